@@ -1,0 +1,36 @@
+// photonfarm: the client command line. One file per subcommand; this one parses and dispatches.
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "client/render_command.h"
+
+int main(int argc, char** argv) {
+    try {
+        CLI::App app{"photonfarm: progressive photon mapping, on one machine or a render farm"};
+        app.require_subcommand(1);
+        std::string log_level = "info";
+        app.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")
+            ->default_val("info")->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
+        app.parse_complete_callback([&] { spdlog::set_level(spdlog::level::from_str(log_level)); });
+        int exit_code = 0;
+        pf::AddRenderCommand(app, &exit_code);
+        spdlog::set_pattern("photonfarm: %^%l%$: %v");
+        try {
+            app.parse(argc, argv);
+        } catch (const CLI::CallForHelp& help) {
+            return app.exit(help);
+        } catch (const CLI::CallForAllHelp& help) {
+            return app.exit(help);
+        } catch (const CLI::ParseError& error) {
+            std::fprintf(stderr, "photonfarm: error: %s (see --help)\n", error.what());
+            return 2;
+        }
+        return exit_code;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "photonfarm: error: %s\n", error.what());
+        return 1;
+    }
+}

@@ -1,0 +1,26 @@
+# Every find_package of the project, in one place. All come from Debian 12 packages
+# (deploy/install-deps.sh); see ../shared/STACK.md for the pitfalls handled here.
+find_package(Threads REQUIRED)
+find_package(absl CONFIG REQUIRED)
+find_package(embree 3 REQUIRED)
+find_package(TBB CONFIG REQUIRED)
+find_package(OpenEXR CONFIG REQUIRED)
+find_package(spdlog CONFIG REQUIRED)
+find_package(TinyGLTF CONFIG REQUIRED)
+find_package(CLI11 CONFIG REQUIRED)
+
+# OpenImageIO's imported target names /usr/include/opencv4, which Debian does not ship
+# without OpenCV: drop that path so generation succeeds.
+find_package(OpenImageIO CONFIG REQUIRED)
+get_target_property(_pf_oiio_includes OpenImageIO::OpenImageIO INTERFACE_INCLUDE_DIRECTORIES)
+list(FILTER _pf_oiio_includes EXCLUDE REGEX "opencv")
+set_target_properties(OpenImageIO::OpenImageIO PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "${_pf_oiio_includes}")
+
+if(PF_BUILD_TESTS)
+    find_package(GTest CONFIG REQUIRED)
+    include(GoogleTest)
+endif()
+if(PF_BUILD_BENCH)
+    find_package(benchmark CONFIG REQUIRED)
+endif()

@@ -1,0 +1,51 @@
+// The unit of work: a photon batch. A batch is a pure function of (scene, hit points, the
+// epoch's radii, job seed, batch index) and returns a sparse tally. An epoch is a fixed,
+// numbered range of batches; the estimate is updated once per epoch by merging its tallies in
+// batch-index order, so the image for a seed and layout does not depend on who ran what.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/math/vec3.h"
+
+namespace pf {
+
+struct BatchLayout {
+    uint32_t photons_per_batch = 1u << 16;
+    uint32_t batches_per_epoch = 16;
+
+    uint64_t PhotonsPerEpoch() const { return uint64_t{photons_per_batch} * batches_per_epoch; }
+};
+
+struct BatchSpec {
+    uint64_t index = 0;       // global batch index: epoch * batches_per_epoch + batch_in_epoch
+    uint64_t epoch = 0;
+    uint32_t photons = 0;     // photon paths to emit
+    // Each batch also takes one direct-light sample for a slice of the hit points, so the
+    // direct estimate is refined progressively and shared out like the photons.
+    uint32_t direct_begin = 0, direct_end = 0;
+};
+
+// Batch `batch_in_epoch` of `epoch` for a job with `hit_point_count` hit points.
+BatchSpec MakeBatchSpec(const BatchLayout& layout, uint64_t epoch, uint32_t batch_in_epoch,
+                        uint32_t hit_point_count);
+
+// Photon contributions of one batch, sorted by hit point index, one entry per hit point reached.
+struct Tally {
+    std::vector<uint32_t> hit_point;
+    std::vector<uint32_t> photons;  // M: photons found within the hit point's radius
+    std::vector<Rgbd> flux;         // Phi_M: their flux times the hit point's weight, W/sr
+
+    size_t Size() const { return hit_point.size(); }
+};
+
+struct BatchResult {
+    BatchSpec spec;
+    Tally tally;
+    std::vector<Rgb> direct;       // one direct-light sample per hit point in the spec's slice
+    uint64_t photons_emitted = 0;  // every path emitted, escaped or absorbed ones included
+    uint64_t segments_traced = 0;  // photon rays cast, for throughput statistics
+};
+
+}  // namespace pf

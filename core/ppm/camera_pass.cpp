@@ -1,0 +1,144 @@
+// Tracing camera paths to hit points.
+#include "core/ppm/camera_pass.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/sampling/rng.h"
+#include "core/scene/specular.h"
+
+namespace pf {
+namespace {
+
+constexpr uint64_t kCameraStream = 0x63616d657261ull;
+
+// Traces one camera path; appends its hit point (if it reaches a diffuse surface) and returns
+// the emission it saw.
+Rgb TraceCameraPath(const Scene& scene, const Tracer& tracer, Ray ray, uint32_t pixel,
+                    float pixel_angle, Rng& rng, std::vector<HitPoint>& hit_points,
+                    std::vector<float>& footprints) {
+    Rgb throughput(1.0f), emission(0.0f);
+    float path_length = 0;
+    for (int depth = 0; depth < kMaxCameraDepth; ++depth) {
+        RayHit hit;
+        if (!tracer.Intersect(ray, &hit)) break;
+        path_length += hit.t;
+        const SurfacePoint surface = scene.Surface(hit);
+        const Material& material = scene.materials[surface.material];
+        const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
+        if (front_facing && material.IsEmissive()) emission += throughput * material.emission;
+        const Rgb base_color = scene.BaseColor(surface);
+        if (material.type == MaterialType::kDiffuse) {
+            const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
+            hit_points.push_back({surface.position, normal, throughput * base_color / kPi, pixel});
+            footprints.push_back(path_length * pixel_angle);
+            break;
+        }
+        const SpecularBounce bounce = ScatterSpecular(material, ray.direction, surface.shading_normal,
+                                                      front_facing, base_color, rng.NextFloat());
+        throughput *= bounce.weight;
+        if (depth >= kCameraRouletteDepth) {
+            const float survive = std::min(1.0f, MaxComponent(throughput));
+            if (!(rng.NextFloat() < survive)) break;
+            throughput /= survive;
+        }
+        if (IsBlack(throughput)) break;
+        const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal
+                                                             : surface.geometric_normal;
+        ray = {OffsetRayOrigin(surface.position, side), bounce.direction};
+    }
+    return emission;
+}
+
+// Spreads the low 21 bits of v to every third bit.
+uint64_t SpreadBits(uint64_t v) {
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffull;
+    v = (v | v << 16) & 0x1f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+}
+
+// Indices of hit_points sorted by the Morton code of their position in bounds (ties by index,
+// so the order is deterministic).
+std::vector<uint32_t> MortonOrder(const std::vector<HitPoint>& hit_points, const Bounds& bounds) {
+    const Vec3 extent = Max(bounds.upper - bounds.lower, Vec3(1e-30f));
+    std::vector<std::pair<uint64_t, uint32_t>> keys(hit_points.size());
+    for (size_t i = 0; i < hit_points.size(); ++i) {
+        const Vec3 unit = (hit_points[i].position - bounds.lower) / extent;
+        uint64_t code = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            const float q = std::clamp(unit[axis], 0.0f, 1.0f) * float((1 << 21) - 1);
+            code |= SpreadBits(static_cast<uint64_t>(q)) << axis;
+        }
+        keys[i] = {code, static_cast<uint32_t>(i)};
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<uint32_t> order(keys.size());
+    for (size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].second;
+    return order;
+}
+
+}  // namespace
+
+CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
+                               const CameraPassSettings& settings) {
+    const int width = settings.width, height = settings.height, spp = settings.samples_per_pixel;
+    const float film_aspect = static_cast<float>(width) / static_cast<float>(height);
+    const float pixel_angle = scene.camera.PixelAngle(height);
+    // Stratified jitter: sample s of a pixel falls in cell s of a strata x strata grid.
+    const int strata = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(spp))));
+
+    std::vector<std::vector<HitPoint>> row_hit_points(height);
+    std::vector<std::vector<float>> row_footprints(height);
+    CameraPassResult result;
+    result.emission = Image(width, height);
+    tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            for (int x = 0; x < width; ++x) {
+                const auto pixel = static_cast<uint32_t>(y * width + x);
+                Rng rng(HashSeed(settings.seed, kCameraStream, pixel));
+                Rgb emission(0.0f);
+                for (int s = 0; s < spp; ++s) {
+                    const float fx = (x + ((s % strata) + rng.NextFloat()) / strata) / width;
+                    const float fy = (y + ((s / strata) + rng.NextFloat()) / strata) / height;
+                    emission += TraceCameraPath(scene, tracer, scene.camera.GenerateRay(fx, fy, film_aspect),
+                                                pixel, pixel_angle, rng, row_hit_points[y],
+                                                row_footprints[y]);
+                }
+                result.emission.At(x, y) = emission / static_cast<float>(spp);
+            }
+        }
+    });
+    std::vector<HitPoint> hit_points;
+    std::vector<float> footprints;
+    for (int y = 0; y < height; ++y) {
+        hit_points.insert(hit_points.end(), row_hit_points[y].begin(), row_hit_points[y].end());
+        footprints.insert(footprints.end(), row_footprints[y].begin(), row_footprints[y].end());
+    }
+    // Order hit points along a Morton curve: those a photon finds together then lie together
+    // in memory, for the grid's candidates and the tally's sums alike.
+    const std::vector<uint32_t> order = MortonOrder(hit_points, scene.bounds);
+    result.hit_points.reserve(order.size());
+    result.footprint.reserve(order.size());
+    for (uint32_t index : order) {
+        result.hit_points.push_back(hit_points[index]);
+        result.footprint.push_back(footprints[index]);
+    }
+    return result;
+}
+
+float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& scene) {
+    if (camera_pass.footprint.empty()) return 0.0f;
+    std::vector<float> footprints = camera_pass.footprint;
+    auto middle = footprints.begin() + static_cast<std::ptrdiff_t>(footprints.size() / 2);
+    std::nth_element(footprints.begin(), middle, footprints.end());
+    return std::min(2.0f * *middle, 0.01f * scene.bounds.Diagonal());
+}
+
+}  // namespace pf

@@ -1,0 +1,42 @@
+// The camera pass (Hachisuka et al. 2008, section 4.1): k jittered paths per pixel follow
+// specular chains to the first diffuse surface, where each leaves a hit point. Emission seen
+// directly or through specular chains goes straight to the pixel.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/film/image.h"
+#include "core/geometry/tracer.h"
+#include "core/ppm/hit_point.h"
+#include "core/scene/scene.h"
+
+namespace pf {
+
+struct CameraPassSettings {
+    int width = 512, height = 512;
+    int samples_per_pixel = 4;  // k: hit points traced per pixel
+    uint64_t seed = 0;
+};
+
+struct CameraPassResult {
+    std::vector<HitPoint> hit_points;  // ordered along a Morton curve through the scene
+    std::vector<float> footprint;      // per hit point: a pixel's width at its distance, world units
+    Image emission;                    // emission reaching each pixel, averaged over its k paths
+};
+
+// Longest specular chain followed; Russian roulette applies after kCameraRouletteDepth.
+inline constexpr int kMaxCameraDepth = 64;
+inline constexpr int kCameraRouletteDepth = 4;
+
+// Runs in parallel over rows (on the calling TBB arena); the result does not depend on the
+// thread count.
+CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
+                               const CameraPassSettings& settings);
+
+// The initial search radius R0: twice the median pixel footprint over the hit points, so a
+// hit point starts by gathering over about a 4x4-pixel patch and shrinks from there; capped at
+// 1% of the scene's diagonal. Zero when there are no hit points.
+float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& scene);
+
+}  // namespace pf

@@ -1,0 +1,105 @@
+// Photon tracing with Russian roulette and the gather into the hit-point grid
+// (Hachisuka et al. 2008, section 4.2; Jensen 2001 for the photon random walk).
+#include "core/ppm/photon_pass.h"
+
+#include <algorithm>
+
+#include "core/math/frame.h"
+#include "core/ppm/direct_light.h"
+#include "core/sampling/rng.h"
+#include "core/sampling/sampling.h"
+#include "core/scene/specular.h"
+
+namespace pf {
+namespace {
+
+// Stream ids separating the random numbers of photons from those of direct light.
+constexpr uint64_t kPhotonStream = 0x70686f746f6e0001ull;
+
+// Follows one photon path, appending a deposit at every diffuse hit after the first
+// scattering; returns the number of segments traced.
+uint64_t TracePhoton(const PhotonPassInputs& inputs, Rng& rng, std::vector<PhotonDeposit>& deposits) {
+    const Scene& scene = *inputs.scene;
+    EmittedPhoton photon = inputs.emitters->Emit(rng);
+    Ray ray = photon.ray;
+    Rgb flux = photon.flux;
+    bool scattered = false;  // the first hit of an unscattered photon is direct light
+    uint64_t segments = 0;
+    for (int bounce = 0; bounce < kMaxPhotonBounces; ++bounce) {
+        RayHit hit;
+        ++segments;
+        if (!inputs.tracer->Intersect(ray, &hit)) break;
+        const SurfacePoint surface = scene.Surface(hit);
+        const Material& material = scene.materials[surface.material];
+        const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
+        const Rgb base_color = scene.BaseColor(surface);
+        if (material.type == MaterialType::kDiffuse) {
+            if (scattered) deposits.push_back({surface.position, ray.direction, flux});
+            // Russian roulette by albedo: survivors carry flux * albedo / p (Jensen 2001, 2.3.3).
+            const float survive = std::min(1.0f, MaxComponent(base_color));
+            if (!(rng.NextFloat() < survive)) break;
+            flux *= base_color / survive;
+            const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
+            const Vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
+            ray.direction = Frame::FromNormal(normal).ToWorld(
+                SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
+            if (!(Dot(ray.direction, geometric) > 0)) break;  // shading normal pointed it inside
+            ray.origin = OffsetRayOrigin(surface.position, geometric);
+        } else {
+            const SpecularBounce bounce_out = ScatterSpecular(
+                material, ray.direction, surface.shading_normal, front_facing, base_color, rng.NextFloat());
+            const float survive = std::min(1.0f, MaxComponent(bounce_out.weight));
+            if (!(rng.NextFloat() < survive)) break;
+            flux *= bounce_out.weight / survive;
+            const Vec3 side = front_facing == bounce_out.transmitted ? -surface.geometric_normal
+                                                                     : surface.geometric_normal;
+            ray.origin = OffsetRayOrigin(surface.position, side);
+            ray.direction = bounce_out.direction;
+        }
+        ray.t_max = std::numeric_limits<float>::infinity();
+        scattered = true;
+    }
+    return segments;
+}
+
+// Adds every deposit to the hit points within their radius whose surface faces the photon.
+// Deposits are visited in the order of their grid bucket (ties in path order), so each
+// bucket's hit points are read from memory once, not once per photon: a deterministic order,
+// and several times faster than gathering in path order.
+void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
+    const std::vector<PhotonDeposit>& deposits = scratch.deposits;
+    std::vector<uint64_t>& keys = scratch.sort_keys;
+    keys.resize(deposits.size());
+    for (size_t i = 0; i < deposits.size(); ++i)
+        keys[i] = uint64_t{inputs.grid->BucketOf(deposits[i].position)} << 32 | i;
+    std::sort(keys.begin(), keys.end());
+    for (uint64_t key : keys) {
+        const PhotonDeposit& deposit = deposits[static_cast<uint32_t>(key)];
+        inputs.grid->ForEachGathering(deposit.position, deposit.direction,
+                                      [&](uint32_t index) { scratch.tally.Add(index, deposit.flux); });
+    }
+}
+
+}  // namespace
+
+BatchResult RunPhotonBatch(const PhotonPassInputs& inputs, const BatchSpec& spec, BatchScratch& scratch) {
+    BatchResult result;
+    result.spec = spec;
+    scratch.tally.Resize(inputs.hit_points.size());
+    scratch.deposits.clear();
+    for (uint32_t i = 0; i < spec.photons; ++i) {
+        Rng rng(HashSeed(inputs.seed, kPhotonStream, spec.index, i));
+        result.segments_traced += TracePhoton(inputs, rng, scratch.deposits);
+    }
+    GatherDeposits(inputs, scratch);
+    result.photons_emitted = spec.photons;
+    result.tally = scratch.tally.Extract(inputs.hit_points);
+    result.direct.resize(spec.direct_end - spec.direct_begin);
+    for (uint32_t index = spec.direct_begin; index < spec.direct_end; ++index)
+        result.direct[index - spec.direct_begin] =
+            SampleDirectLight(*inputs.emitters, *inputs.tracer, inputs.hit_points[index],
+                              DirectLightRng(inputs.seed, spec.epoch, index));
+    return result;
+}
+
+}  // namespace pf

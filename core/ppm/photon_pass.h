@@ -1,0 +1,50 @@
+// The photon pass: runs one batch (photon paths from the lights, gathered at the hit points
+// within their current radius, plus the batch's slice of direct-light samples).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/geometry/tracer.h"
+#include "core/ppm/batch.h"
+#include "core/ppm/hash_grid.h"
+#include "core/ppm/hit_point.h"
+#include "core/ppm/tally_accumulator.h"
+#include "core/scene/emitters.h"
+#include "core/scene/scene.h"
+
+namespace pf {
+
+// Everything a batch reads; fixed for the duration of an epoch and shared by all threads.
+struct PhotonPassInputs {
+    const Scene* scene = nullptr;
+    const Emitters* emitters = nullptr;
+    const Tracer* tracer = nullptr;
+    std::span<const HitPoint> hit_points;
+    const HashGrid* grid = nullptr;  // built over hit_points with this epoch's radii
+    uint64_t seed = 0;
+};
+
+// Longest photon path followed; Russian roulette ends paths long before it (with albedo
+// 0.999 the chance of reaching it is about e^-65).
+inline constexpr int kMaxPhotonBounces = 1 << 16;
+
+// Where a photon landed on a diffuse surface after scattering at least once.
+struct PhotonDeposit {
+    Vec3 position;
+    Vec3 direction;  // of travel, unit
+    Rgb flux;        // W x N_emitted
+};
+
+// One thread's reusable working memory for batches; not thread-safe.
+struct BatchScratch {
+    TallyAccumulator tally;
+    std::vector<PhotonDeposit> deposits;
+    std::vector<uint64_t> sort_keys;
+};
+
+// Runs one batch: traces its photons, then gathers their deposits at the hit points.
+BatchResult RunPhotonBatch(const PhotonPassInputs& inputs, const BatchSpec& spec, BatchScratch& scratch);
+
+}  // namespace pf

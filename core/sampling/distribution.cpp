@@ -1,0 +1,40 @@
+// Discrete distribution sampling by binary search on the CDF.
+#include "core/sampling/distribution.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/util/check.h"
+
+namespace pf {
+
+DiscreteDistribution::DiscreteDistribution(std::span<const double> weights) {
+    PF_CHECK(!weights.empty());
+    cdf_.resize(weights.size());
+    probabilities_.resize(weights.size());
+    double running = 0;
+    for (size_t i = 0; i < weights.size(); ++i) {
+        PF_CHECK(std::isfinite(weights[i]) && weights[i] >= 0);
+        running += weights[i];
+        cdf_[i] = running;
+    }
+    PF_CHECK(running > 0);
+    total_ = running;
+    for (size_t i = 0; i < weights.size(); ++i) {
+        cdf_[i] /= running;
+        probabilities_[i] = weights[i] / running;
+    }
+    cdf_.back() = 1.0;
+}
+
+DiscreteDistribution::Sample DiscreteDistribution::Draw(float u) const {
+    // The first item whose CDF exceeds u; items of zero weight share their predecessor's
+    // CDF value, so upper_bound skips them.
+    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), static_cast<double>(u));
+    auto index = static_cast<uint32_t>(std::min<size_t>(it - cdf_.begin(), cdf_.size() - 1));
+    return {index, probabilities_[index]};
+}
+
+double DiscreteDistribution::Probability(uint32_t index) const { return probabilities_[index]; }
+
+}  // namespace pf

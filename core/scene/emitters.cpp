@@ -1,0 +1,144 @@
+// Photon emission and direct-light sampling over all of a scene's emitters.
+#include "core/scene/emitters.h"
+
+#include <cmath>
+
+#include "core/math/frame.h"
+#include "core/sampling/sampling.h"
+
+namespace pf {
+namespace {
+
+float SpotSolidAngle(const PunctualLight& light) { return 2.0f * kPi * (1.0f - light.cos_outer); }
+
+}  // namespace
+
+Emitters::Emitters(const Scene& scene) : scene_(scene) {
+    scene_center_ = scene.bounds.Center();
+    scene_radius_ = std::max(0.5f * scene.bounds.Diagonal(), 1e-30f);
+    std::vector<double> weights;
+    auto add = [&](bool is_triangle, uint32_t index, const Rgbd& power) {
+        if (!(Average(power) > 0) || !IsFinite(power)) return;
+        emitters_.push_back({is_triangle, index});
+        weights.push_back(Average(power));
+        power_rgb_ += power;
+    };
+    for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
+        const Material& material = scene.materials[scene.triangles[t].material];
+        if (!material.IsEmissive()) continue;
+        add(true, t, Rgbd(material.emission) * (kPiD * scene.TriangleArea(t)));
+    }
+    for (uint32_t l = 0; l < scene.lights.size(); ++l) {
+        const PunctualLight& light = scene.lights[l];
+        const Rgbd intensity(light.intensity);
+        switch (light.type) {
+            case LightType::kPoint: add(false, l, intensity * (4.0 * kPiD)); break;
+            case LightType::kSpot: add(false, l, intensity * double(SpotSolidAngle(light))); break;
+            case LightType::kDirectional:
+                add(false, l, intensity * (kPiD * scene_radius_ * scene_radius_));
+                break;
+        }
+    }
+    if (weights.empty()) return;
+    distribution_ = DiscreteDistribution(weights);
+    total_power_ = distribution_.Total();
+}
+
+EmittedPhoton Emitters::Emit(Rng& rng) const {
+    const auto pick = distribution_.Draw(rng.NextFloat());
+    const Emitter& emitter = emitters_[pick.index];
+    EmittedPhoton photon = emitter.is_triangle ? EmitFromTriangle(emitter.index, rng)
+                                               : EmitFromLight(scene_.lights[emitter.index], rng);
+    photon.flux /= static_cast<float>(pick.probability);
+    return photon;
+}
+
+EmittedPhoton Emitters::EmitFromTriangle(uint32_t triangle, Rng& rng) const {
+    const Triangle& t = scene_.triangles[triangle];
+    const Vec3& p0 = scene_.positions[t.vertex[0]];
+    const Vec3& p1 = scene_.positions[t.vertex[1]];
+    const Vec3& p2 = scene_.positions[t.vertex[2]];
+    const Point2 b = SampleUniformTriangle(rng.NextFloat(), rng.NextFloat());
+    const Vec3 point = p0 * (1.0f - b.x - b.y) + p1 * b.x + p2 * b.y;
+    const Vec3 normal = Normalize(Cross(p1 - p0, p2 - p0));
+    const Vec3 direction = Frame::FromNormal(normal).ToWorld(
+        SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
+    // Cosine-weighted emission of radiance Le from area A carries flux pi * A * Le.
+    const Rgb flux = scene_.materials[t.material].emission * (kPi * scene_.TriangleArea(triangle));
+    return {{OffsetRayOrigin(point, normal), direction}, flux};
+}
+
+EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, Rng& rng) const {
+    const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
+    switch (light.type) {
+        case LightType::kPoint:
+            return {{light.position, SampleUniformSphere(u1, u2)}, light.intensity * (4.0f * kPi)};
+        case LightType::kSpot: {
+            const Vec3 local = SampleUniformCone(u1, u2, light.cos_outer);
+            const Vec3 direction = Frame::FromNormal(light.direction).ToWorld(local);
+            return {{light.position, direction},
+                    light.intensity * (light.SpotFalloff(local.z) * SpotSolidAngle(light))};
+        }
+        case LightType::kDirectional: {
+            // A disk as wide as the scene's bounding sphere, just outside it, facing the light.
+            const Frame frame = Frame::FromNormal(light.direction);
+            const Point2 d = SampleUniformDisk(u1, u2);
+            const Vec3 origin = scene_center_ - light.direction * (1.01f * scene_radius_) +
+                                (frame.s * d.x + frame.t * d.y) * scene_radius_;
+            return {{origin, light.direction},
+                    light.intensity * (kPi * scene_radius_ * scene_radius_)};
+        }
+    }
+    return {};
+}
+
+bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample* sample) const {
+    const auto pick = distribution_.Draw(rng.NextFloat());
+    const Emitter& emitter = emitters_[pick.index];
+    const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
+    const Vec3 origin = OffsetRayOrigin(p, n);
+    Vec3 to_light;
+    float distance = std::numeric_limits<float>::infinity();
+    Rgb radiance_over_pdf;
+    if (emitter.is_triangle) {
+        const Triangle& t = scene_.triangles[emitter.index];
+        const Vec3& p0 = scene_.positions[t.vertex[0]];
+        const Vec3& p1 = scene_.positions[t.vertex[1]];
+        const Vec3& p2 = scene_.positions[t.vertex[2]];
+        const Point2 b = SampleUniformTriangle(u1, u2);
+        const Vec3 point = p0 * (1.0f - b.x - b.y) + p1 * b.x + p2 * b.y;
+        const Vec3 light_normal = Normalize(Cross(p1 - p0, p2 - p0));
+        to_light = point - origin;
+        const float distance_sq = LengthSquared(to_light);
+        distance = std::sqrt(distance_sq);
+        to_light /= distance;
+        const float cos_light = -Dot(light_normal, to_light);
+        if (!(cos_light > 0) || !(distance_sq > 0)) return false;
+        // Area pdf 1/A converted to solid angle: d^2 / (cos_light A).
+        radiance_over_pdf = scene_.materials[t.material].emission *
+                            (cos_light * scene_.TriangleArea(emitter.index) / distance_sq);
+    } else {
+        const PunctualLight& light = scene_.lights[emitter.index];
+        if (light.type == LightType::kDirectional) {
+            to_light = -light.direction;
+            radiance_over_pdf = light.intensity;
+        } else {
+            to_light = light.position - origin;
+            const float distance_sq = LengthSquared(to_light);
+            distance = std::sqrt(distance_sq);
+            to_light /= distance;
+            if (!(distance_sq > 0)) return false;
+            float falloff = 1.0f;
+            if (light.type == LightType::kSpot) falloff = light.SpotFalloff(-Dot(to_light, light.direction));
+            radiance_over_pdf = light.intensity * (falloff / distance_sq);
+        }
+    }
+    if (!(Dot(to_light, n) > 0) || IsBlack(radiance_over_pdf)) return false;
+    sample->direction = to_light;
+    // Stop short of the light itself by a relative margin, which scales with the scene.
+    sample->shadow_ray = {origin, to_light, distance * (1.0f - 1e-4f)};
+    sample->radiance_over_pdf = radiance_over_pdf / static_cast<float>(pick.probability);
+    return true;
+}
+
+}  // namespace pf

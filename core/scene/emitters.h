@@ -1,0 +1,59 @@
+// Every source of light in a scene (punctual lights and emissive triangles) behind one
+// interface: emitting photons in proportion to power, and sampling direct light at a point.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/geometry/ray.h"
+#include "core/math/vec3.h"
+#include "core/sampling/distribution.h"
+#include "core/sampling/rng.h"
+#include "core/scene/scene.h"
+
+namespace pf {
+
+struct EmittedPhoton {
+    Ray ray;   // origin already offset from the emitting surface
+    Rgb flux;  // W: this photon's share of the scene's power times N_emitted (divide by it)
+};
+
+struct LightSample {
+    Ray shadow_ray;         // from the receiver toward the light, t_max short of it
+    Vec3 direction;         // unit, receiver to light
+    Rgb radiance_over_pdf;  // incident radiance / pdf(solid angle), cosine at the receiver excluded
+};
+
+class Emitters {
+public:
+    // The scene must outlive this object. Throws nothing; a scene without light has no
+    // emitters (HasPower() false) and must be refused before rendering.
+    explicit Emitters(const Scene& scene);
+
+    bool HasPower() const { return total_power_ > 0; }
+    // Total emitted power, W per RGB channel.
+    Rgbd TotalPower() const { return power_rgb_; }
+
+    EmittedPhoton Emit(Rng& rng) const;
+    // One light sample for direct lighting at receiver point p with facing normal n.
+    // Returns false when the sample carries no light (behind the light, outside a spot cone).
+    bool SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample* sample) const;
+
+private:
+    struct Emitter {
+        bool is_triangle;
+        uint32_t index;  // into Scene::triangles or Scene::lights
+    };
+    EmittedPhoton EmitFromTriangle(uint32_t triangle, Rng& rng) const;
+    EmittedPhoton EmitFromLight(const PunctualLight& light, Rng& rng) const;
+
+    const Scene& scene_;
+    std::vector<Emitter> emitters_;
+    DiscreteDistribution distribution_;  // over emitters_, by power
+    Rgbd power_rgb_;
+    double total_power_ = 0;
+    Vec3 scene_center_;
+    float scene_radius_ = 0;
+};
+
+}  // namespace pf

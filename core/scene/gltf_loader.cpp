@@ -1,0 +1,421 @@
+// glTF 2.0 loading: node hierarchy, triangle meshes, the camera, KHR_lights_punctual and the
+// materials photon mapping distinguishes (see MaterialFromGltf).
+#include "core/scene/gltf_loader.h"
+
+#include <spdlog/spdlog.h>
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <functional>
+
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "core/math/transform.h"
+
+namespace pf {
+namespace {
+
+constexpr int kMaxNodeDepth = 256;
+
+std::string Describe(const std::string& kind, int index, const std::string& name) {
+    return name.empty() ? absl::StrCat(kind, " #", index) : absl::StrCat(kind, " '", name, "' (#", index, ")");
+}
+
+double NumberOr(const tinygltf::Value& object, const char* key, double fallback) {
+    if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsNumber()) return fallback;
+    return object.Get(key).GetNumberAsDouble();
+}
+
+const tinygltf::Value* Extension(const tinygltf::ExtensionMap& extensions, const char* name) {
+    const auto it = extensions.find(name);
+    return it == extensions.end() ? nullptr : &it->second;
+}
+
+// Reads accessor `index` as `components` floats per element, converting normalised integer
+// types; fails on out-of-range views.
+absl::Status ReadFloats(const tinygltf::Model& model, int index, int components,
+                        std::vector<float>* out) {
+    if (index < 0 || index >= static_cast<int>(model.accessors.size()))
+        return absl::InvalidArgumentError(absl::StrCat("accessor #", index, " does not exist"));
+    const tinygltf::Accessor& accessor = model.accessors[index];
+    if (tinygltf::GetNumComponentsInType(accessor.type) != components)
+        return absl::InvalidArgumentError(absl::StrCat("accessor #", index, " has the wrong type"));
+    if (accessor.sparse.isSparse)
+        return absl::InvalidArgumentError(absl::StrCat("accessor #", index, " is sparse (unsupported)"));
+    if (accessor.bufferView < 0 || accessor.bufferView >= static_cast<int>(model.bufferViews.size()))
+        return absl::InvalidArgumentError(absl::StrCat("accessor #", index, " has no buffer view"));
+    const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];
+    const tinygltf::Buffer& buffer = model.buffers[view.buffer];
+    const int component_size = tinygltf::GetComponentSizeInBytes(accessor.componentType);
+    const size_t stride = view.byteStride != 0 ? view.byteStride : size_t(component_size) * components;
+    const size_t begin = view.byteOffset + accessor.byteOffset;
+    if (component_size <= 0 || accessor.count == 0 ||
+        begin + stride * (accessor.count - 1) + size_t(component_size) * components > view.byteOffset + view.byteLength ||
+        view.byteOffset + view.byteLength > buffer.data.size())
+        return absl::InvalidArgumentError(absl::StrCat("accessor #", index, " lies outside its buffer"));
+    out->resize(accessor.count * components);
+    for (size_t i = 0; i < accessor.count; ++i) {
+        const unsigned char* element = buffer.data.data() + begin + i * stride;
+        for (int c = 0; c < components; ++c) {
+            const unsigned char* p = element + c * component_size;
+            float value;
+            switch (accessor.componentType) {
+                case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&value, p, 4); break;
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: value = *p / 255.0f; break;
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+                    uint16_t v;
+                    std::memcpy(&v, p, 2);
+                    value = v / 65535.0f;
+                    break;
+                }
+                default:
+                    return absl::InvalidArgumentError(absl::StrCat("accessor #", index, " has an unsupported component type"));
+            }
+            (*out)[i * components + c] = value;
+        }
+    }
+    return absl::OkStatus();
+}
+
+absl::Status ReadIndices(const tinygltf::Model& model, int index, std::vector<uint32_t>* out) {
+    if (index < 0 || index >= static_cast<int>(model.accessors.size()))
+        return absl::InvalidArgumentError(absl::StrCat("index accessor #", index, " does not exist"));
+    const tinygltf::Accessor& accessor = model.accessors[index];
+    if (accessor.bufferView < 0 || accessor.bufferView >= static_cast<int>(model.bufferViews.size()) ||
+        accessor.type != TINYGLTF_TYPE_SCALAR)
+        return absl::InvalidArgumentError(absl::StrCat("index accessor #", index, " is malformed"));
+    const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];
+    const tinygltf::Buffer& buffer = model.buffers[view.buffer];
+    const int size = tinygltf::GetComponentSizeInBytes(accessor.componentType);
+    const size_t stride = view.byteStride != 0 ? view.byteStride : size_t(size);
+    const size_t begin = view.byteOffset + accessor.byteOffset;
+    if (size <= 0 || (accessor.count > 0 && begin + stride * (accessor.count - 1) + size > view.byteOffset + view.byteLength) ||
+        view.byteOffset + view.byteLength > buffer.data.size())
+        return absl::InvalidArgumentError(absl::StrCat("index accessor #", index, " lies outside its buffer"));
+    out->resize(accessor.count);
+    for (size_t i = 0; i < accessor.count; ++i) {
+        const unsigned char* p = buffer.data.data() + begin + i * stride;
+        switch (accessor.componentType) {
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: (*out)[i] = *p; break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+                uint16_t v;
+                std::memcpy(&v, p, 2);
+                (*out)[i] = v;
+                break;
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&(*out)[i], p, 4); break;
+            default: return absl::InvalidArgumentError(absl::StrCat("index accessor #", index, " has a non-integer type"));
+        }
+    }
+    return absl::OkStatus();
+}
+
+class GltfSceneBuilder {
+public:
+    GltfSceneBuilder(const std::string& path, const tinygltf::Model& model) : path_(path), model_(model) {
+        scene_.source = path;
+    }
+
+    absl::StatusOr<Scene> Build();
+
+private:
+    absl::Status Error(const std::string& element, const std::string& what) const {
+        return absl::InvalidArgumentError(absl::StrCat(path_, ": ", element, ": ", what));
+    }
+    absl::Status VisitNode(int index, const Transform& parent, int depth);
+    absl::Status AddMesh(int mesh_index, const Transform& world);
+    absl::Status AddPrimitive(const tinygltf::Primitive& primitive, const std::string& element, const Transform& world);
+    absl::Status AddLight(int light_index, const Transform& world);
+    absl::Status SetCamera(int camera_index, const Transform& world);
+    absl::StatusOr<uint32_t> MaterialIndex(int gltf_material);
+    absl::StatusOr<int32_t> TextureIndex(int gltf_texture, const std::string& element);
+
+    const std::string& path_;
+    const tinygltf::Model& model_;
+    Scene scene_;
+    bool has_camera_ = false;
+    std::map<int, uint32_t> material_indices_;  // glTF material -> Scene::materials
+    std::map<int, int32_t> texture_indices_;    // glTF image -> Scene::textures
+};
+
+absl::StatusOr<Scene> GltfSceneBuilder::Build() {
+    std::vector<int> roots;
+    if (!model_.scenes.empty()) {
+        const int scene_index = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+        if (scene_index >= static_cast<int>(model_.scenes.size()))
+            return Error("scene", absl::StrCat("default scene #", scene_index, " does not exist"));
+        roots = model_.scenes[scene_index].nodes;
+    } else {
+        for (int i = 0; i < static_cast<int>(model_.nodes.size()); ++i) roots.push_back(i);
+    }
+    for (int root : roots)
+        if (absl::Status status = VisitNode(root, Transform{}, 0); !status.ok()) return status;
+    if (!has_camera_) return Error("scene", "has no camera (add a perspective camera node)");
+    if (scene_.triangles.empty()) return Error("scene", "has no triangles");
+    bool has_light = !scene_.lights.empty();
+    for (const Triangle& t : scene_.triangles) has_light |= scene_.materials[t.material].IsEmissive();
+    if (!has_light)
+        return Error("scene", "has no light (no KHR_lights_punctual light and no emissive material)");
+    return std::move(scene_);
+}
+
+absl::Status GltfSceneBuilder::VisitNode(int index, const Transform& parent, int depth) {
+    if (index < 0 || index >= static_cast<int>(model_.nodes.size()))
+        return Error(absl::StrCat("node #", index), "does not exist");
+    const tinygltf::Node& node = model_.nodes[index];
+    const std::string element = Describe("node", index, node.name);
+    if (depth > kMaxNodeDepth) return Error(element, "node hierarchy is too deep or cyclic");
+    Transform local;
+    if (node.matrix.size() == 16) {
+        local = Transform::FromColumnMajor(node.matrix.data());
+    } else {
+        const Vec3d t = node.translation.size() == 3 ? Vec3d(node.translation[0], node.translation[1], node.translation[2]) : Vec3d(0.0);
+        const Vec3d s = node.scale.size() == 3 ? Vec3d(node.scale[0], node.scale[1], node.scale[2]) : Vec3d(1.0);
+        const double identity[4] = {0, 0, 0, 1};
+        local = Transform::FromTrs(t, node.rotation.size() == 4 ? node.rotation.data() : identity, s);
+    }
+    if (!local.IsFinite()) return Error(element, "transform has NaN or Inf");
+    const Transform world = parent * local;
+    if (!world.IsFinite()) return Error(element, "world transform overflows to NaN or Inf");
+    if (node.mesh >= 0)
+        if (absl::Status status = AddMesh(node.mesh, world); !status.ok()) return status;
+    if (node.camera >= 0 && !has_camera_)
+        if (absl::Status status = SetCamera(node.camera, world); !status.ok()) return status;
+    if (const tinygltf::Value* light = Extension(node.extensions, "KHR_lights_punctual"))
+        if (absl::Status status = AddLight(static_cast<int>(NumberOr(*light, "light", -1)), world); !status.ok())
+            return status;
+    for (int child : node.children)
+        if (absl::Status status = VisitNode(child, world, depth + 1); !status.ok()) return status;
+    return absl::OkStatus();
+}
+
+absl::Status GltfSceneBuilder::AddMesh(int mesh_index, const Transform& world) {
+    if (mesh_index >= static_cast<int>(model_.meshes.size()))
+        return Error(absl::StrCat("mesh #", mesh_index), "does not exist");
+    const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+        const std::string element = absl::StrCat(Describe("mesh", mesh_index, mesh.name), " primitive ", p);
+        if (absl::Status status = AddPrimitive(mesh.primitives[p], element, world); !status.ok()) return status;
+    }
+    return absl::OkStatus();
+}
+
+absl::Status GltfSceneBuilder::AddPrimitive(const tinygltf::Primitive& primitive, const std::string& element,
+                                            const Transform& world) {
+    if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
+        spdlog::warn("{}: {}: mode {} is not triangles; skipped", path_, element, primitive.mode);
+        return absl::OkStatus();
+    }
+    const auto position_it = primitive.attributes.find("POSITION");
+    if (position_it == primitive.attributes.end()) return Error(element, "has no POSITION attribute");
+    std::vector<float> positions, normals, uvs;
+    if (absl::Status s = ReadFloats(model_, position_it->second, 3, &positions); !s.ok())
+        return Error(element, std::string(s.message()));
+    const size_t vertex_count = positions.size() / 3;
+    for (size_t v = 0; v < vertex_count; ++v)
+        if (!std::isfinite(positions[3 * v]) || !std::isfinite(positions[3 * v + 1]) || !std::isfinite(positions[3 * v + 2]))
+            return Error(element, absl::StrCat("vertex ", v, " position has NaN or Inf"));
+    if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
+        if (absl::Status s = ReadFloats(model_, it->second, 3, &normals); !s.ok()) return Error(element, std::string(s.message()));
+        if (normals.size() != positions.size()) return Error(element, "NORMAL and POSITION counts differ");
+    }
+    if (auto it = primitive.attributes.find("TEXCOORD_0"); it != primitive.attributes.end()) {
+        if (absl::Status s = ReadFloats(model_, it->second, 2, &uvs); !s.ok()) return Error(element, std::string(s.message()));
+        if (uvs.size() / 2 != vertex_count) return Error(element, "TEXCOORD_0 and POSITION counts differ");
+    }
+    std::vector<uint32_t> indices;
+    if (primitive.indices >= 0) {
+        if (absl::Status s = ReadIndices(model_, primitive.indices, &indices); !s.ok()) return Error(element, std::string(s.message()));
+    } else {
+        for (uint32_t i = 0; i < vertex_count; ++i) indices.push_back(i);
+    }
+    if (indices.size() % 3 != 0) return Error(element, "index count is not a multiple of 3");
+    const absl::StatusOr<uint32_t> material = MaterialIndex(primitive.material);
+    if (!material.ok()) return material.status();
+
+    const auto base = static_cast<uint32_t>(scene_.positions.size());
+    for (size_t v = 0; v < vertex_count; ++v) {
+        const Vec3 p(world.ApplyPoint(Vec3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2])));
+        if (!IsFinite(p)) return Error(element, absl::StrCat("vertex ", v, " is not finite after its node's transform"));
+        scene_.positions.push_back(p);
+        scene_.bounds.Extend(p);
+        Vec3 n(0.0f);
+        if (!normals.empty()) {
+            const Vec3d transformed = world.ApplyNormal(Vec3d(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]));
+            if (LengthSquared(transformed) > 0 && IsFinite(transformed)) n = Vec3(Normalize(transformed));
+        }
+        scene_.normals.push_back(n);
+        scene_.uvs.push_back(uvs.empty() ? Point2{} : Point2{uvs[2 * v], uvs[2 * v + 1]});
+    }
+    // A mirroring transform reverses the winding; swap two vertices to keep front faces front.
+    const bool mirrored = world.Determinant() < 0;
+    for (size_t i = 0; i < indices.size(); i += 3) {
+        uint32_t a = indices[i], b = indices[i + 1], c = indices[i + 2];
+        if (a >= vertex_count || b >= vertex_count || c >= vertex_count)
+            return Error(element, absl::StrCat("triangle ", i / 3, " has an index beyond the ", vertex_count, " vertices"));
+        if (mirrored) std::swap(b, c);
+        const Vec3 e1 = scene_.positions[base + b] - scene_.positions[base + a];
+        const Vec3 e2 = scene_.positions[base + c] - scene_.positions[base + a];
+        if (!(LengthSquared(Cross(e1, e2)) > 0)) continue;  // degenerate: has no surface
+        scene_.triangles.push_back({{base + a, base + b, base + c}, *material, !normals.empty()});
+    }
+    return absl::OkStatus();
+}
+
+absl::Status GltfSceneBuilder::AddLight(int light_index, const Transform& world) {
+    if (light_index < 0 || light_index >= static_cast<int>(model_.lights.size()))
+        return Error(absl::StrCat("KHR_lights_punctual light #", light_index), "does not exist");
+    const tinygltf::Light& source = model_.lights[light_index];
+    const std::string element = Describe("light", light_index, source.name);
+    PunctualLight light;
+    light.name = source.name;
+    const Vec3d color = source.color.size() == 3 ? Vec3d(source.color[0], source.color[1], source.color[2]) : Vec3d(1.0);
+    light.intensity = Rgb(color * source.intensity);
+    if (!IsFinite(light.intensity) || MaxComponent(light.intensity) < 0) return Error(element, "intensity or colour is negative, NaN or Inf");
+    light.position = Vec3(world.ApplyPoint(Vec3d(0.0)));
+    light.direction = Vec3(Normalize(world.ApplyVector(Vec3d(0, 0, -1))));
+    if (!IsFinite(light.direction)) return Error(element, "node transform collapses the light's direction");
+    if (source.range > 0) spdlog::warn("{}: {}: range is ignored (lights fall off physically)", path_, element);
+    if (source.type == "point") {
+        light.type = LightType::kPoint;
+    } else if (source.type == "spot") {
+        light.type = LightType::kSpot;
+        light.cos_inner = static_cast<float>(std::cos(source.spot.innerConeAngle));
+        light.cos_outer = static_cast<float>(std::cos(source.spot.outerConeAngle));
+        if (!(source.spot.outerConeAngle > 0 && source.spot.outerConeAngle <= kPiD / 2 &&
+              source.spot.innerConeAngle >= 0 && source.spot.innerConeAngle < source.spot.outerConeAngle))
+            return Error(element, "spot cone angles must satisfy 0 <= inner < outer <= pi/2");
+    } else if (source.type == "directional") {
+        light.type = LightType::kDirectional;
+    } else {
+        return Error(element, absl::StrCat("unknown light type '", source.type, "'"));
+    }
+    scene_.lights.push_back(light);
+    return absl::OkStatus();
+}
+
+absl::Status GltfSceneBuilder::SetCamera(int camera_index, const Transform& world) {
+    if (camera_index >= static_cast<int>(model_.cameras.size()))
+        return Error(absl::StrCat("camera #", camera_index), "does not exist");
+    const tinygltf::Camera& source = model_.cameras[camera_index];
+    const std::string element = Describe("camera", camera_index, source.name);
+    if (source.type != "perspective") return Error(element, absl::StrCat("type '", source.type, "' is unsupported (perspective only)"));
+    Camera& camera = scene_.camera;
+    camera.y_fov = static_cast<float>(source.perspective.yfov);
+    camera.aspect_ratio = static_cast<float>(source.perspective.aspectRatio);
+    if (!(camera.y_fov > 0 && camera.y_fov < kPi)) return Error(element, "yfov must lie in (0, pi)");
+    camera.position = Vec3(world.ApplyPoint(Vec3d(0.0)));
+    camera.forward = Vec3(Normalize(world.ApplyVector(Vec3d(0, 0, -1))));
+    const Vec3 up_hint(Normalize(world.ApplyVector(Vec3d(0, 1, 0))));
+    camera.right = Normalize(Cross(camera.forward, up_hint));
+    camera.up = Cross(camera.right, camera.forward);
+    if (!IsFinite(camera.position) || !IsFinite(camera.right) || !IsFinite(camera.up))
+        return Error(element, "node transform is degenerate");
+    has_camera_ = true;
+    return absl::OkStatus();
+}
+
+// Maps a glTF material to the kinds photon mapping distinguishes:
+//  - transmission > 0 with KHR_materials_volume: solid glass (refracts, index from
+//    KHR_materials_ior, default 1.5); transmission alone: a thin sheet that does not refract;
+//  - metallic = 1 and roughness = 0: a perfect mirror tinted by the base colour;
+//  - anything else: Lambertian diffuse with the base colour (factor x texture).
+// Emission is emissiveFactor x KHR_materials_emissive_strength, radiance in W/(m^2 sr).
+absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
+    if (const auto it = material_indices_.find(gltf_material); it != material_indices_.end()) return it->second;
+    Material material;
+    if (gltf_material >= 0) {
+        if (gltf_material >= static_cast<int>(model_.materials.size()))
+            return Error(absl::StrCat("material #", gltf_material), "does not exist");
+        const tinygltf::Material& source = model_.materials[gltf_material];
+        const std::string element = Describe("material", gltf_material, source.name);
+        const auto& pbr = source.pbrMetallicRoughness;
+        if (pbr.baseColorFactor.size() == 4)
+            material.base_color = Rgb(Vec3d(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]));
+        if (pbr.baseColorTexture.index >= 0) {
+            const absl::StatusOr<int32_t> texture = TextureIndex(pbr.baseColorTexture.index, element);
+            if (!texture.ok()) return texture.status();
+            material.base_color_texture = *texture;
+            if (pbr.baseColorTexture.texCoord != 0)
+                spdlog::warn("{}: {}: texCoord {} unsupported; using TEXCOORD_0", path_, element, pbr.baseColorTexture.texCoord);
+        }
+        double strength = 1.0;
+        if (const tinygltf::Value* e = Extension(source.extensions, "KHR_materials_emissive_strength"))
+            strength = NumberOr(*e, "emissiveStrength", 1.0);
+        if (source.emissiveFactor.size() == 3)
+            material.emission = Rgb(Vec3d(source.emissiveFactor[0], source.emissiveFactor[1], source.emissiveFactor[2]) * strength);
+        if (source.emissiveTexture.index >= 0)
+            spdlog::warn("{}: {}: emissive textures are unsupported; using emissiveFactor alone", path_, element);
+        double transmission = 0.0;
+        if (const tinygltf::Value* e = Extension(source.extensions, "KHR_materials_transmission"))
+            transmission = NumberOr(*e, "transmissionFactor", 0.0);
+        if (const tinygltf::Value* e = Extension(source.extensions, "KHR_materials_ior"))
+            material.ior = static_cast<float>(NumberOr(*e, "ior", 1.5));
+        const tinygltf::Value* volume = Extension(source.extensions, "KHR_materials_volume");
+        if (transmission > 0) {
+            material.type = volume != nullptr && NumberOr(*volume, "thicknessFactor", 0.0) > 0
+                                ? MaterialType::kDielectric : MaterialType::kThinDielectric;
+            if (transmission < 1)
+                spdlog::warn("{}: {}: transmissionFactor {} taken as 1 (no diffuse-transmission mix)", path_, element, transmission);
+        } else if (pbr.metallicFactor >= 1.0 && pbr.roughnessFactor <= 0.0) {
+            material.type = MaterialType::kMirror;
+        } else if (pbr.metallicFactor > 0.0) {
+            spdlog::warn("{}: {}: rough or partly metallic surfaces are shaded as diffuse", path_, element);
+        }
+        if (!IsFinite(material.base_color) || MaxComponent(material.base_color) > 1.0f || material.base_color.x < 0 ||
+            material.base_color.y < 0 || material.base_color.z < 0)
+            return Error(element, "baseColorFactor must lie in [0, 1]");
+        if (!IsFinite(material.emission) || material.emission.x < 0 || material.emission.y < 0 || material.emission.z < 0)
+            return Error(element, "emission must be finite and non-negative");
+        if (!(material.ior >= 1.0f && std::isfinite(material.ior))) return Error(element, "ior must be at least 1");
+    }
+    const auto index = static_cast<uint32_t>(scene_.materials.size());
+    scene_.materials.push_back(material);
+    material_indices_[gltf_material] = index;
+    return index;
+}
+
+absl::StatusOr<int32_t> GltfSceneBuilder::TextureIndex(int gltf_texture, const std::string& element) {
+    if (gltf_texture >= static_cast<int>(model_.textures.size()) || model_.textures[gltf_texture].source < 0 ||
+        model_.textures[gltf_texture].source >= static_cast<int>(model_.images.size()))
+        return Error(element, absl::StrCat("texture #", gltf_texture, " has no image"));
+    const int image_index = model_.textures[gltf_texture].source;
+    if (const auto it = texture_indices_.find(image_index); it != texture_indices_.end()) return it->second;
+    const tinygltf::Image& image = model_.images[image_index];
+    if (image.width <= 0 || image.height <= 0 || image.component < 3 || image.bits != 8 ||
+        image.image.size() < size_t(image.width) * image.height * image.component)
+        return Error(element, absl::StrCat("image #", image_index, " is not decodable 8-bit RGB(A)"));
+    Texture texture;
+    texture.width = image.width;
+    texture.height = image.height;
+    texture.texels.resize(size_t(image.width) * image.height);
+    for (size_t i = 0; i < texture.texels.size(); ++i)
+        for (int c = 0; c < 3; ++c)  // glTF base colour textures are sRGB-encoded
+            texture.texels[i][c] = SrgbToLinear(image.image[i * image.component + c] / 255.0f);
+    const auto index = static_cast<int32_t>(scene_.textures.size());
+    scene_.textures.push_back(std::move(texture));
+    texture_indices_[image_index] = index;
+    return index;
+}
+
+}  // namespace
+
+absl::StatusOr<Scene> LoadGltf(const std::string& path) {
+    if (!std::ifstream(path).good()) return absl::NotFoundError(absl::StrCat(path, ": cannot open file"));
+    tinygltf::TinyGLTF loader;
+    tinygltf::Model model;
+    std::string error, warning;
+    const bool binary = absl::EndsWithIgnoreCase(path, ".glb");
+    const bool loaded = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
+                               : loader.LoadASCIIFromFile(&model, &error, &warning, path);
+    if (!warning.empty()) spdlog::warn("{}: {}", path, warning.substr(0, warning.find('\n')));
+    if (!loaded) {
+        const std::string first_line = error.substr(0, error.find('\n'));
+        return absl::InvalidArgumentError(absl::StrCat(path, ": not a valid glTF file: ", first_line.empty() ? "parse failed" : first_line));
+    }
+    return GltfSceneBuilder(path, model).Build();
+}
+
+}  // namespace pf

@@ -1,0 +1,16 @@
+// Loading glTF 2.0 scenes (.gltf and .glb) into a world-space Scene, through tinygltf.
+#pragma once
+
+#include <string>
+
+#include "absl/status/statusor.h"
+#include "core/scene/scene.h"
+
+namespace pf {
+
+// Loads and validates a scene. Errors are one line naming the file and the element:
+// an unreadable or malformed file, a scene without a camera or a light, NaN or Inf in a
+// transform or a vertex, an index out of range. Unsupported features are logged as warnings.
+absl::StatusOr<Scene> LoadGltf(const std::string& path);
+
+}  // namespace pf

@@ -1,0 +1,74 @@
+// The renderable scene in world space: triangles with materials, punctual lights, the camera.
+// Immutable after loading; safe to read from many threads.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/geometry/ray.h"
+#include "core/math/vec3.h"
+#include "core/sampling/sampling.h"
+#include "core/scene/camera.h"
+#include "core/scene/material.h"
+#include "core/scene/texture.h"
+
+namespace pf {
+
+struct Triangle {
+    uint32_t vertex[3];
+    uint32_t material;
+    bool smooth;  // interpolate vertex normals; otherwise shade with the geometric normal
+};
+
+enum class LightType : uint32_t { kPoint, kSpot, kDirectional };
+
+// KHR_lights_punctual lights, taken radiometrically: intensity in W/sr for point and spot,
+// irradiance in W/m^2 for directional.
+struct PunctualLight {
+    LightType type = LightType::kPoint;
+    Vec3 position;                 // point, spot
+    Vec3 direction{0, 0, -1};      // spot, directional: the direction light travels
+    Rgb intensity{1.0f};           // colour x intensity
+    float cos_inner = 1.0f, cos_outer = 0.7071f;  // spot cone, cosines of the half angles
+    std::string name;
+
+    // glTF's smooth spot falloff for a direction whose cosine to the axis is cos_axis.
+    float SpotFalloff(float cos_axis) const;
+};
+
+struct Bounds {
+    Vec3 lower{1e30f}, upper{-1e30f};
+    void Extend(const Vec3& p) { lower = Min(lower, p), upper = Max(upper, p); }
+    Vec3 Center() const { return (lower + upper) * 0.5f; }
+    float Diagonal() const { return Length(upper - lower); }
+};
+
+// A point on a surface, rebuilt from a ray hit.
+struct SurfacePoint {
+    Vec3 position;
+    Vec3 geometric_normal;  // unit, on the side the triangle's winding makes its front
+    Vec3 shading_normal;    // unit, interpolated, on the same side as geometric_normal
+    Point2 uv;
+    uint32_t material = 0;
+};
+
+struct Scene {
+    std::string source;  // the file it was loaded from, for messages
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;  // one per position (zero where the mesh had none)
+    std::vector<Point2> uvs;    // one per position
+    std::vector<Triangle> triangles;
+    std::vector<Material> materials;
+    std::vector<Texture> textures;
+    std::vector<PunctualLight> lights;
+    Camera camera;
+    Bounds bounds;
+
+    SurfacePoint Surface(const RayHit& hit) const;
+    // Diffuse reflectance or specular tint at a surface point, texture applied.
+    Rgb BaseColor(const SurfacePoint& surface) const;
+    float TriangleArea(uint32_t triangle) const;
+};
+
+}  // namespace pf

@@ -1,0 +1,75 @@
+// Specular scattering shared by the camera and photon passes: mirrors, solid glass (Fresnel
+// reflection and refraction) and thin glass. Branches are chosen with probability equal to
+// their Fresnel weight, so the carried weight is only the tint.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/math/vec3.h"
+#include "core/scene/material.h"
+
+namespace pf {
+
+// Unpolarised Fresnel reflectance of a dielectric interface. cos_incident in [0, 1] on the
+// incident side; eta = n_incident / n_transmitted. Total internal reflection gives 1.
+inline float FresnelDielectric(float cos_incident, float eta) {
+    cos_incident = std::clamp(cos_incident, 0.0f, 1.0f);
+    const float sin_t_sq = eta * eta * (1.0f - cos_incident * cos_incident);
+    if (sin_t_sq >= 1.0f) return 1.0f;
+    const float cos_t = std::sqrt(1.0f - sin_t_sq);
+    const float r_parallel = (cos_incident - eta * cos_t) / (cos_incident + eta * cos_t);
+    const float r_perpendicular = (eta * cos_incident - cos_t) / (eta * cos_incident + cos_t);
+    return 0.5f * (r_parallel * r_parallel + r_perpendicular * r_perpendicular);
+}
+
+// Mirror direction of d about n.
+inline Vec3 Reflect(const Vec3& d, const Vec3& n) { return d - n * (2.0f * Dot(d, n)); }
+
+// Refracts direction d through the interface with normal n facing the incident side
+// (Dot(d, n) < 0); eta = n_incident / n_transmitted. False under total internal reflection.
+inline bool Refract(const Vec3& d, const Vec3& n, float eta, Vec3* refracted) {
+    const float cos_i = -Dot(d, n);
+    const float sin_t_sq = eta * eta * std::max(0.0f, 1.0f - cos_i * cos_i);
+    if (sin_t_sq >= 1.0f) return false;
+    const float cos_t = std::sqrt(1.0f - sin_t_sq);
+    *refracted = Normalize(d * eta + n * (eta * cos_i - cos_t));
+    return true;
+}
+
+struct SpecularBounce {
+    Vec3 direction;
+    Rgb weight;        // throughput factor for the chosen branch
+    bool transmitted;  // the new ray leaves through the other side of the surface
+};
+
+// Scatters incoming direction d at a specular surface. `normal` is the shading normal on the
+// triangle's front side, `front_facing` whether d arrives at that front side, tint the
+// material's (textured) base colour, u a uniform sample that picks the branch.
+inline SpecularBounce ScatterSpecular(const Material& material, const Vec3& d, const Vec3& normal,
+                                      bool front_facing, const Rgb& tint, float u) {
+    const Vec3 n = front_facing ? normal : -normal;  // facing the incident side
+    switch (material.type) {
+        case MaterialType::kMirror:
+            return {Reflect(d, n), tint, false};
+        case MaterialType::kThinDielectric: {
+            // A thin slab: multiple reflections inside sum to R + T^2 R / (1 - R^2) = 2R/(1+R).
+            const float r = FresnelDielectric(-Dot(d, n), 1.0f / material.ior);
+            if (u < 2.0f * r / (1.0f + r)) return {Reflect(d, n), Rgb(1.0f), false};
+            return {d, tint, true};
+        }
+        case MaterialType::kDielectric: {
+            // Front faces lead into the glass (the volume lies behind the winding's front).
+            const float eta = front_facing ? 1.0f / material.ior : material.ior;
+            const float reflectance = FresnelDielectric(-Dot(d, n), eta);
+            Vec3 refracted;
+            if (u < reflectance || !Refract(d, n, eta, &refracted)) return {Reflect(d, n), Rgb(1.0f), false};
+            return {refracted, tint, true};
+        }
+        case MaterialType::kDiffuse:
+            break;
+    }
+    return {d, Rgb(0.0f), true};
+}
+
+}  // namespace pf

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages photonfarm builds, tests and runs with.
+# Idempotent: when every package is already present it returns in well under a second.
+set -euo pipefail
+
+packages=(
+    build-essential cmake ninja-build pkg-config git python3
+    libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
+    libembree-dev libtbb-dev
+    libopenimageio-dev openimageio-tools libopenexr-dev
+    libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev
+    libvulkan-dev glslc mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
+    libzstd-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev
+)
+
+missing=()
+for package in "${packages[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "ok installed"; then
+        missing+=("$package")
+    fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+if [ "$(id -u)" -ne 0 ]; then
+    echo "install-deps: missing packages (${missing[*]}); run as root or install them with apt-get" >&2
+    exit 1
+fi
+echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install-deps: done"

@@ -1,0 +1,268 @@
+#!/usr/bin/env python3
+"""Writes the shipped glTF 2.0 scenes of scenes/ (run: python3 scenes/generate_scenes.py).
+
+Standard library only. Each scene is one self-contained .gltf with its buffer embedded as a
+base64 data URI, so a scene is a single file. Units are metres; emission is radiance in
+W/(m^2 sr) per channel (emissiveFactor x KHR_materials_emissive_strength).
+"""
+import base64
+import json
+import math
+import os
+import struct
+import sys
+
+
+class GltfWriter:
+    """Accumulates meshes, materials, nodes and lights into one glTF document."""
+
+    def __init__(self):
+        self.doc = {"asset": {"version": "2.0", "generator": "photonfarm generate_scenes.py"},
+                    "scene": 0, "scenes": [{"nodes": []}], "nodes": [], "meshes": [],
+                    "materials": [], "accessors": [], "bufferViews": [], "buffers": []}
+        self.blob = bytearray()
+        self.extensions = set()
+
+    def _view(self, data, target):
+        while len(self.blob) % 4:
+            self.blob.append(0)
+        offset = len(self.blob)
+        self.blob.extend(data)
+        self.doc["bufferViews"].append({"buffer": 0, "byteOffset": offset,
+                                        "byteLength": len(data), "target": target})
+        return len(self.doc["bufferViews"]) - 1
+
+    def _accessor(self, values, kind, component, count, target, bounds=False):
+        fmt = {5126: "f", 5125: "I"}[component]
+        view = self._view(struct.pack("<%d%s" % (len(values), fmt), *values), target)
+        accessor = {"bufferView": view, "componentType": component, "count": count, "type": kind}
+        if bounds:
+            accessor["min"] = [min(values[i::3]) for i in range(3)]
+            accessor["max"] = [max(values[i::3]) for i in range(3)]
+        self.doc["accessors"].append(accessor)
+        return len(self.doc["accessors"]) - 1
+
+    def material(self, name, color=(0.8, 0.8, 0.8), emission=None, mirror=False, glass_ior=None):
+        material = {"name": name, "pbrMetallicRoughness": {
+            "baseColorFactor": list(color) + [1.0], "metallicFactor": 1.0 if mirror else 0.0,
+            "roughnessFactor": 0.0 if mirror or glass_ior else 1.0}}
+        extensions = {}
+        if emission is not None:
+            strength = max(emission)
+            material["emissiveFactor"] = [c / strength for c in emission]
+            if strength != 1.0:
+                extensions["KHR_materials_emissive_strength"] = {"emissiveStrength": strength}
+        if glass_ior is not None:
+            extensions["KHR_materials_transmission"] = {"transmissionFactor": 1.0}
+            extensions["KHR_materials_ior"] = {"ior": glass_ior}
+            extensions["KHR_materials_volume"] = {"thicknessFactor": 1.0}
+        if extensions:
+            material["extensions"] = extensions
+            self.extensions.update(extensions)
+        self.doc["materials"].append(material)
+        return len(self.doc["materials"]) - 1
+
+    def mesh(self, name, positions, indices, material, normals=None):
+        flat = [c for p in positions for c in p]
+        attributes = {"POSITION": self._accessor(flat, "VEC3", 5126, len(positions), 34962, True)}
+        if normals:
+            attributes["NORMAL"] = self._accessor([c for n in normals for c in n], "VEC3", 5126,
+                                                  len(normals), 34962)
+        index_accessor = self._accessor(indices, "SCALAR", 5125, len(indices), 34963)
+        self.doc["meshes"].append({"name": name, "primitives": [
+            {"attributes": attributes, "indices": index_accessor, "material": material}]})
+        self.node(name, mesh=len(self.doc["meshes"]) - 1)
+
+    def node(self, name, **fields):
+        self.doc["nodes"].append(dict(name=name, **fields))
+        self.doc["scenes"][0]["nodes"].append(len(self.doc["nodes"]) - 1)
+
+    def camera(self, eye, target, yfov_degrees, aspect=1.0):
+        self.doc["cameras"] = [{"type": "perspective", "perspective": {
+            "yfov": math.radians(yfov_degrees), "aspectRatio": aspect, "znear": 0.001}}]
+        self.node("camera", camera=0, rotation=look_rotation(eye, target), translation=list(eye))
+
+    def light(self, name, kind, color, intensity, position=None, target=None, **spot):
+        lights = self.doc.setdefault("extensions", {}).setdefault(
+            "KHR_lights_punctual", {"lights": []})["lights"]
+        light = {"name": name, "type": kind, "color": list(color), "intensity": intensity}
+        if spot:
+            light["spot"] = spot
+        lights.append(light)
+        self.extensions.add("KHR_lights_punctual")
+        fields = {"extensions": {"KHR_lights_punctual": {"light": len(lights) - 1}}}
+        if position is not None:
+            fields["translation"] = list(position)
+        if target is not None:
+            fields["rotation"] = look_rotation(position or (0, 0, 0), target)
+        self.node(name, **fields)
+
+    def write(self, path):
+        self.doc["buffers"] = [{"byteLength": len(self.blob), "uri":
+                                "data:application/octet-stream;base64," +
+                                base64.b64encode(bytes(self.blob)).decode("ascii")}]
+        if self.extensions:
+            self.doc["extensionsUsed"] = sorted(self.extensions)
+        with open(path, "w") as out:
+            json.dump(self.doc, out, indent=1)
+            out.write("\n")
+
+
+def normalize(v):
+    length = math.sqrt(sum(c * c for c in v))
+    return [c / length for c in v]
+
+
+def cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def look_rotation(eye, target):
+    """Quaternion [x, y, z, w] turning glTF's camera frame (looks down -Z, +Y up) toward target."""
+    forward = normalize([t - e for t, e in zip(target, eye)])
+    up_hint = [0, 1, 0] if abs(forward[1]) < 0.999 else [0, 0, 1]
+    right = normalize(cross(forward, up_hint))
+    up = cross(right, forward)
+    back = [-c for c in forward]
+    m = [[right[0], up[0], back[0]], [right[1], up[1], back[1]], [right[2], up[2], back[2]]]
+    trace = m[0][0] + m[1][1] + m[2][2]
+    if trace > 0:
+        s = 0.5 / math.sqrt(trace + 1.0)
+        q = [(m[2][1] - m[1][2]) * s, (m[0][2] - m[2][0]) * s, (m[1][0] - m[0][1]) * s, 0.25 / s]
+    elif m[0][0] > m[1][1] and m[0][0] > m[2][2]:
+        s = 2.0 * math.sqrt(1.0 + m[0][0] - m[1][1] - m[2][2])
+        q = [0.25 * s, (m[0][1] + m[1][0]) / s, (m[0][2] + m[2][0]) / s, (m[2][1] - m[1][2]) / s]
+    elif m[1][1] > m[2][2]:
+        s = 2.0 * math.sqrt(1.0 + m[1][1] - m[0][0] - m[2][2])
+        q = [(m[0][1] + m[1][0]) / s, 0.25 * s, (m[1][2] + m[2][1]) / s, (m[0][2] - m[2][0]) / s]
+    else:
+        s = 2.0 * math.sqrt(1.0 + m[2][2] - m[0][0] - m[1][1])
+        q = [(m[0][2] + m[2][0]) / s, (m[1][2] + m[2][1]) / s, 0.25 * s, (m[1][0] - m[0][1]) / s]
+    return normalize(q)
+
+
+def quads(name, quad_list, material, writer, scale=0.001):
+    """Adds planar quads (4 corners each, counter-clockwise seen from the lit side)."""
+    positions, indices = [], []
+    for quad in quad_list:
+        base = len(positions)
+        positions.extend([[c * scale for c in p] for p in quad])
+        indices.extend([base, base + 1, base + 2, base, base + 2, base + 3])
+    writer.mesh(name, positions, indices, material)
+
+
+def sphere(name, center, radius, material, writer, rings=48, segments=96):
+    positions, normals, indices = [], [], []
+    for i in range(rings + 1):
+        theta = math.pi * i / rings
+        for j in range(segments + 1):
+            phi = 2 * math.pi * j / segments
+            n = [math.sin(theta) * math.cos(phi), math.cos(theta), math.sin(theta) * math.sin(phi)]
+            normals.append(n)
+            positions.append([c + radius * d for c, d in zip(center, n)])
+    for i in range(rings):
+        for j in range(segments):
+            a, b = i * (segments + 1) + j, (i + 1) * (segments + 1) + j
+            if i != 0:
+                indices.extend([a, a + 1, b])
+            if i != rings - 1:
+                indices.extend([a + 1, b + 1, b])
+    writer.mesh(name, positions, indices, material, normals)
+
+
+# The Cornell box as measured (Cornell University Program of Computer Graphics), in mm.
+CORNELL_WALLS = {
+    "floor": [[552.8, 0, 0], [0, 0, 0], [0, 0, 559.2], [549.6, 0, 559.2]],
+    "ceiling": [[556, 548.8, 0], [556, 548.8, 559.2], [0, 548.8, 559.2], [0, 548.8, 0]],
+    "back": [[549.6, 0, 559.2], [0, 0, 559.2], [0, 548.8, 559.2], [556, 548.8, 559.2]],
+    "right_green": [[0, 0, 559.2], [0, 0, 0], [0, 548.8, 0], [0, 548.8, 559.2]],
+    "left_red": [[552.8, 0, 0], [549.6, 0, 559.2], [556, 548.8, 559.2], [556, 548.8, 0]],
+}
+CORNELL_LIGHT = [[343, 548.7, 227], [343, 548.7, 332], [213, 548.7, 332], [213, 548.7, 227]]
+SHORT_BLOCK = [[[130, 165, 65], [82, 165, 225], [240, 165, 272], [290, 165, 114]],
+               [[290, 0, 114], [290, 165, 114], [240, 165, 272], [240, 0, 272]],
+               [[130, 0, 65], [130, 165, 65], [290, 165, 114], [290, 0, 114]],
+               [[82, 0, 225], [82, 165, 225], [130, 165, 65], [130, 0, 65]],
+               [[240, 0, 272], [240, 165, 272], [82, 165, 225], [82, 0, 225]]]
+TALL_BLOCK = [[[423, 330, 247], [265, 330, 296], [314, 330, 456], [472, 330, 406]],
+              [[423, 0, 247], [423, 330, 247], [472, 330, 406], [472, 0, 406]],
+              [[472, 0, 406], [472, 330, 406], [314, 330, 456], [314, 0, 456]],
+              [[314, 0, 456], [314, 330, 456], [265, 330, 296], [265, 0, 296]],
+              [[265, 0, 296], [265, 330, 296], [423, 330, 247], [423, 0, 247]]]
+WHITE, RED, GREEN = (0.725, 0.71, 0.68), (0.63, 0.065, 0.05), (0.14, 0.45, 0.091)
+LIGHT_RADIANCE = (17.0, 12.0, 4.0)
+
+
+def cornell_room(writer):
+    white = writer.material("white", WHITE)
+    for name in ("floor", "ceiling", "back"):
+        quads(name, [CORNELL_WALLS[name]], white, writer)
+    quads("left_red", [CORNELL_WALLS["left_red"]], writer.material("red", RED), writer)
+    quads("right_green", [CORNELL_WALLS["right_green"]], writer.material("green", GREEN), writer)
+    quads("light", [CORNELL_LIGHT], writer.material("light", (0.78, 0.78, 0.78), LIGHT_RADIANCE),
+          writer)
+    # The measured camera: 35 mm focal length on a 25 mm film, looking down +z.
+    writer.camera([0.278, 0.273, -0.8], [0.278, 0.273, 0.0], math.degrees(2 * math.atan(12.5 / 35)))
+    return white
+
+
+def cornell_box():
+    writer = GltfWriter()
+    white = cornell_room(writer)
+    quads("short_block", SHORT_BLOCK, white, writer)
+    quads("tall_block", TALL_BLOCK, white, writer)
+    return writer
+
+
+def cornell_glass():
+    writer = GltfWriter()
+    cornell_room(writer)
+    sphere("mirror_sphere", [0.385, 0.1, 0.37], 0.1,
+           writer.material("mirror", (0.95, 0.95, 0.95), mirror=True), writer)
+    sphere("glass_sphere", [0.175, 0.1, 0.18], 0.1,
+           writer.material("glass", (1.0, 1.0, 1.0), glass_ior=1.5), writer)
+    return writer
+
+
+def caustic_glass():
+    writer = GltfWriter()
+    quads("plane", [[[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]],
+          writer.material("plane", (0.75, 0.75, 0.75)), writer, scale=1.0)
+    sphere("glass_sphere", [0, 0.5, 0], 0.5,
+           writer.material("glass", (1.0, 1.0, 1.0), glass_ior=1.5), writer)
+    s = 0.05
+    quads("light", [[[1.5 - s, 2.5, -s], [1.5 + s, 2.5, -s], [1.5 + s, 2.5, s], [1.5 - s, 2.5, s]]],
+          writer.material("light", (0.0, 0.0, 0.0), (4000.0, 4000.0, 4000.0)), writer, scale=1.0)
+    writer.camera([-0.6, 2.6, 3.4], [0.1, 0.2, 0.0], 40.0)
+    return writer
+
+
+def furnace(albedo=0.5, emission=1.0):
+    """A closed cube whose every wall has albedo rho and emits Le: L = Le / (1 - rho) everywhere."""
+    writer = GltfWriter()
+    material = writer.material("wall", (albedo,) * 3, (emission,) * 3)
+    h = 1.0
+    faces = []
+    for axis in range(3):
+        for side in (-h, h):
+            # Four corners of the face at coordinate `side` on `axis`, wound to face the centre.
+            u, v = (axis + 1) % 3, (axis + 2) % 3
+            face = []
+            for a, b in ((-h, -h), (h, -h), (h, h), (-h, h)):
+                p = [0.0, 0.0, 0.0]
+                p[axis], p[u], p[v] = side, a, b
+                face.append(p)
+            faces.append(face[::-1] if side > 0 else face)
+    quads("room", faces, material, writer, scale=1.0)
+    writer.camera([0.0, 0.0, 0.5], [0.3, -0.2, -1.0], 70.0)
+    return writer
+
+
+SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass,
+          "caustic-glass": caustic_glass, "furnace": furnace}
+
+if __name__ == "__main__":
+    out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
+    for scene_name, build in SCENES.items():
+        build().write(os.path.join(out_dir, scene_name + ".gltf"))
+        print("wrote", os.path.join(out_dir, scene_name + ".gltf"))

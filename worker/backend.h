@@ -1,0 +1,39 @@
+// The one interface every photon backend implements (CPU with Embree now, Vulkan later):
+// given a job's fixed inputs and an epoch's radii, run batches and return their results.
+// Results depend only on (inputs, radii, seed, batch spec), never on scheduling.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "core/ppm/batch.h"
+#include "core/ppm/hit_point.h"
+#include "core/scene/emitters.h"
+#include "core/scene/scene.h"
+
+namespace pf {
+
+// A job's inputs; everything referenced must outlive the backend's use of the job.
+struct JobInputs {
+    const Scene* scene = nullptr;
+    const Emitters* emitters = nullptr;
+    std::span<const HitPoint> hit_points;
+    uint64_t seed = 0;
+};
+
+class Backend {
+public:
+    virtual ~Backend() = default;
+    virtual std::string_view Name() const = 0;
+    // Makes `job` the job that following epochs and batches belong to.
+    virtual absl::Status BeginJob(const JobInputs& job) = 0;
+    // Sets the current epoch's squared search radii, one per hit point (copied).
+    virtual void BeginEpoch(std::span<const float> radius_sq) = 0;
+    // Runs the batches, in parallel where the backend can; results in the order of `specs`.
+    virtual std::vector<BatchResult> RunBatches(std::span<const BatchSpec> specs) = 0;
+};
+
+}  // namespace pf

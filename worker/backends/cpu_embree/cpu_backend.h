@@ -1,0 +1,33 @@
+// The CPU photon backend: batches run in parallel on the calling TBB arena, photons traced
+// through a Tracer (Embree), gathered through a hit-point hash grid rebuilt each epoch.
+#pragma once
+
+#include <tbb/enumerable_thread_specific.h>
+
+#include <vector>
+
+#include "core/geometry/tracer.h"
+#include "core/ppm/hash_grid.h"
+#include "core/ppm/photon_pass.h"
+#include "worker/backend.h"
+
+namespace pf::embree {
+
+class CpuBackend final : public Backend {
+public:
+    // `tracer` must be built over the scene of every job given to BeginJob, and outlive this.
+    explicit CpuBackend(const Tracer& tracer) : tracer_(tracer) {}
+
+    std::string_view Name() const override { return "cpu"; }
+    absl::Status BeginJob(const JobInputs& job) override;
+    void BeginEpoch(std::span<const float> radius_sq) override;
+    std::vector<BatchResult> RunBatches(std::span<const BatchSpec> specs) override;
+
+private:
+    const Tracer& tracer_;
+    JobInputs job_;
+    HashGrid grid_;
+    tbb::enumerable_thread_specific<BatchScratch> scratch_;
+};
+
+}  // namespace pf::embree

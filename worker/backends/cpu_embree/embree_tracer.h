@@ -1,0 +1,31 @@
+// The Tracer over Embree 3: one static triangle scene, single-ray queries. The only place
+// (with its .cpp) that includes Embree.
+#pragma once
+
+#include <memory>
+
+#include "absl/status/statusor.h"
+#include "core/geometry/tracer.h"
+#include "core/scene/scene.h"
+
+namespace pf::embree {
+
+class EmbreeTracer final : public Tracer {
+public:
+    // Builds the BVH over scene.triangles (primitive IDs are triangle indices). The scene's
+    // geometry is copied; the scene need not outlive the tracer.
+    static absl::StatusOr<std::unique_ptr<EmbreeTracer>> Create(const Scene& scene);
+    ~EmbreeTracer() override;
+    EmbreeTracer(const EmbreeTracer&) = delete;
+    EmbreeTracer& operator=(const EmbreeTracer&) = delete;
+
+    bool Intersect(const Ray& ray, RayHit* hit) const override;
+    bool Occluded(const Ray& ray) const override;
+
+private:
+    struct Handles;
+    explicit EmbreeTracer(std::unique_ptr<Handles> handles);
+    std::unique_ptr<Handles> handles_;
+};
+
+}  // namespace pf::embree
