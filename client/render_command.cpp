@@ -2,6 +2,7 @@
 #include "client/render_command.h"
 
 #include <spdlog/spdlog.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <csignal>
@@ -58,7 +59,23 @@ absl::Status WriteOutputs(const RenderOptions& options, const RenderOutcome& out
     return absl::OkStatus();
 }
 
+// Fails before any rendering if an output could not be written, so no work is lost to a typo.
+absl::Status CheckWritable(const std::string& path) {
+    if (path.empty()) return absl::OkStatus();
+    const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
+    if (!std::filesystem::is_directory(parent) || access(parent.c_str(), W_OK) != 0)
+        return absl::InvalidArgumentError(absl::StrCat(path, ": cannot write here (", parent.string(),
+                                                       " is not a writable directory)"));
+    return absl::OkStatus();
+}
+
 int RunRender(const RenderOptions& options) {
+    for (const std::string* path : {&options.out, &options.png}) {
+        if (absl::Status status = CheckWritable(*path); !status.ok()) {
+            spdlog::error("{}", std::string(status.message()));
+            return 1;
+        }
+    }
     if (options.snapshot_every > 0) {
         std::error_code error;
         std::filesystem::create_directories(options.snapshot_dir, error);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/math/morton.h"
 #include "core/sampling/rng.h"
 #include "core/scene/specular.h"
 
@@ -53,30 +54,13 @@ Rgb TraceCameraPath(const Scene& scene, const Tracer& tracer, Ray ray, uint32_t 
     return emission;
 }
 
-// Spreads the low 21 bits of v to every third bit.
-uint64_t SpreadBits(uint64_t v) {
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffull;
-    v = (v | v << 16) & 0x1f0000ff0000ffull;
-    v = (v | v << 8) & 0x100f00f00f00f00full;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
-    v = (v | v << 2) & 0x1249249249249249ull;
-    return v;
-}
-
 // Indices of hit_points sorted by the Morton code of their position in bounds (ties by index,
 // so the order is deterministic).
 std::vector<uint32_t> MortonOrder(const std::vector<HitPoint>& hit_points, const Bounds& bounds) {
     const Vec3 extent = Max(bounds.upper - bounds.lower, Vec3(1e-30f));
     std::vector<std::pair<uint64_t, uint32_t>> keys(hit_points.size());
     for (size_t i = 0; i < hit_points.size(); ++i) {
-        const Vec3 unit = (hit_points[i].position - bounds.lower) / extent;
-        uint64_t code = 0;
-        for (int axis = 0; axis < 3; ++axis) {
-            const float q = std::clamp(unit[axis], 0.0f, 1.0f) * float((1 << 21) - 1);
-            code |= SpreadBits(static_cast<uint64_t>(q)) << axis;
-        }
-        keys[i] = {code, static_cast<uint32_t>(i)};
+        keys[i] = {MortonCode(hit_points[i].position, bounds.lower, extent), static_cast<uint32_t>(i)};
     }
     std::sort(keys.begin(), keys.end());
     std::vector<uint32_t> order(keys.size());

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "core/math/frame.h"
+#include "core/math/morton.h"
 #include "core/ppm/direct_light.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
@@ -63,18 +64,20 @@ uint64_t TracePhoton(const PhotonPassInputs& inputs, Rng& rng, std::vector<Photo
 }
 
 // Adds every deposit to the hit points within their radius whose surface faces the photon.
-// Deposits are visited in the order of their grid bucket (ties in path order), so each
-// bucket's hit points are read from memory once, not once per photon: a deterministic order,
-// and several times faster than gathering in path order.
+// Deposits are visited in Morton order of their position (ties in path order): the hit points
+// are stored in Morton order too, so consecutive lookups read neighbouring memory instead of
+// missing the cache on every photon. The order is deterministic.
 void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     const std::vector<PhotonDeposit>& deposits = scratch.deposits;
-    std::vector<uint64_t>& keys = scratch.sort_keys;
+    std::vector<std::pair<uint64_t, uint32_t>>& keys = scratch.sort_keys;
+    const Bounds& bounds = inputs.scene->bounds;
+    const Vec3 extent = Max(bounds.upper - bounds.lower, Vec3(1e-30f));
     keys.resize(deposits.size());
     for (size_t i = 0; i < deposits.size(); ++i)
-        keys[i] = uint64_t{inputs.grid->BucketOf(deposits[i].position)} << 32 | i;
+        keys[i] = {MortonCode(deposits[i].position, bounds.lower, extent), static_cast<uint32_t>(i)};
     std::sort(keys.begin(), keys.end());
-    for (uint64_t key : keys) {
-        const PhotonDeposit& deposit = deposits[static_cast<uint32_t>(key)];
+    for (const auto& key : keys) {
+        const PhotonDeposit& deposit = deposits[key.second];
         inputs.grid->ForEachGathering(deposit.position, deposit.direction,
                                       [&](uint32_t index) { scratch.tally.Add(index, deposit.flux); });
     }

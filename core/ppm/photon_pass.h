@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/geometry/tracer.h"
@@ -41,7 +42,7 @@ struct PhotonDeposit {
 struct BatchScratch {
     TallyAccumulator tally;
     std::vector<PhotonDeposit> deposits;
-    std::vector<uint64_t> sort_keys;
+    std::vector<std::pair<uint64_t, uint32_t>> sort_keys;  // (Morton code, deposit)
 };
 
 // Runs one batch: traces its photons, then gathers their deposits at the hit points.

@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# The photonfarm command line meets bad input with one clear line and a non-zero exit code,
+# and a good render writes its outputs. Usage: cli_errors_test.sh PHOTONFARM SOURCE_DIR
+set -u
+photonfarm=$1
+source_dir=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+
+# expect_failure NAME PATTERN ARGS...: the command must exit non-zero, print one line on stderr
+# containing PATTERN, and nothing on stdout.
+expect_failure() {
+    local name=$1 pattern=$2
+    shift 2
+    "$photonfarm" "$@" >"$work/out" 2>"$work/err"
+    local code=$?
+    local lines
+    lines=$(grep -c . "$work/err")
+    if [ "$code" -eq 0 ] || [ "$lines" -ne 1 ] || ! grep -q -- "$pattern" "$work/err"; then
+        echo "FAIL $name: exit $code, $lines stderr lines:"
+        cat "$work/err"
+        failures=$((failures + 1))
+    else
+        echo "ok   $name: $(cat "$work/err")"
+    fi
+}
+
+printf '{"asset": {"version": "2.0"' >"$work/broken.gltf"
+expect_failure "unknown flag" "--frobnicate" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --frobnicate
+expect_failure "missing scene" "nope.gltf" render "$work/nope.gltf" --out "$work/a.exr"
+expect_failure "malformed scene" "broken.gltf" render "$work/broken.gltf" --out "$work/a.exr" --photons 1000
+expect_failure "bad alpha" "alpha" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --alpha 2
+expect_failure "both budgets" "excludes" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --photons 1000 --seconds 1
+expect_failure "unwritable output" "cannot write here" render "$source_dir/scenes/cornell-box.gltf" \
+    --out "$work/no/such/dir/a.exr" --photons 1000 --width 16 --log-level error
+
+if "$photonfarm" render "$source_dir/scenes/cornell-box.gltf" --out "$work/ok.exr" --png "$work/ok.png" \
+        --photons 20k --width 32 --threads 1 >/dev/null 2>"$work/err" && [ -s "$work/ok.exr" ] && [ -s "$work/ok.png" ]; then
+    echo "ok   good render writes EXR and PNG"
+else
+    echo "FAIL good render"; cat "$work/err"; failures=$((failures + 1))
+fi
+
+[ "$failures" -eq 0 ] && echo "all CLI checks passed" || { echo "$failures CLI checks failed"; exit 1; }

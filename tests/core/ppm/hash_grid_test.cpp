@@ -1,0 +1,54 @@
+// The hit-point hash grid finds exactly the hit points a brute-force search finds.
+#include "core/ppm/hash_grid.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+#include "core/sampling/rng.h"
+#include "core/sampling/sampling.h"
+
+namespace pf {
+namespace {
+
+TEST(HashGridTest, MatchesBruteForceForMixedRadii) {
+    Rng rng(5);
+    std::vector<HitPoint> hit_points(3000);
+    std::vector<float> radius_sq(hit_points.size());
+    for (size_t i = 0; i < hit_points.size(); ++i) {
+        hit_points[i] = {Vec3(rng.NextFloat(), rng.NextFloat(), rng.NextFloat()) * 4.0f - Vec3(2.0f),
+                         SampleUniformSphere(rng.NextFloat(), rng.NextFloat()), Rgb(0.5f), uint32_t(i)};
+        const float r = 0.02f + 0.2f * rng.NextFloat();
+        radius_sq[i] = i % 17 == 0 ? 0.0f : r * r;  // some hit points have no radius at all
+    }
+    HashGrid grid;
+    grid.Build(hit_points, radius_sq);
+    for (int query = 0; query < 5000; ++query) {
+        const Vec3 p = Vec3(rng.NextFloat(), rng.NextFloat(), rng.NextFloat()) * 4.4f - Vec3(2.2f);
+        const Vec3 direction = SampleUniformSphere(rng.NextFloat(), rng.NextFloat());
+        std::vector<uint32_t> found, expected;
+        grid.ForEachGathering(p, direction, [&](uint32_t i) { found.push_back(i); });
+        for (uint32_t i = 0; i < hit_points.size(); ++i)
+            if (radius_sq[i] > 0 && LengthSquared(hit_points[i].position - p) <= radius_sq[i] &&
+                Dot(hit_points[i].normal, direction) < 0)
+                expected.push_back(i);
+        std::sort(found.begin(), found.end());
+        ASSERT_EQ(found, expected) << "query " << query;
+    }
+}
+
+TEST(HashGridTest, EmptyAndBlackHitPointsAreLeftOut) {
+    HashGrid grid;
+    grid.Build({}, {});
+    int visits = 0;
+    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1), [&](uint32_t) { ++visits; });
+    const std::vector<HitPoint> black = {{Vec3(0.0f), Vec3(0, 0, 1), Rgb(0.0f), 0}};
+    const std::vector<float> radius_sq = {1.0f};
+    grid.Build(black, radius_sq);
+    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1), [&](uint32_t) { ++visits; });
+    EXPECT_EQ(visits, 0);
+}
+
+}  // namespace
+}  // namespace pf

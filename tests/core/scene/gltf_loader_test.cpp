@@ -1,0 +1,139 @@
+// Loading the shipped scenes, and one-line errors that name the file and element for bad ones.
+#include "core/scene/gltf_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "tests/support/gltf_builder.h"
+
+namespace pf {
+namespace {
+
+std::string ScenePath(const std::string& name) { return std::string(PF_SOURCE_DIR) + "/scenes/" + name; }
+
+int CountMaterials(const Scene& scene, MaterialType type) {
+    return static_cast<int>(std::count_if(scene.materials.begin(), scene.materials.end(),
+                                          [&](const Material& m) { return m.type == type; }));
+}
+
+void ExpectError(const absl::StatusOr<Scene>& scene, const std::string& file, const std::string& fragment) {
+    ASSERT_FALSE(scene.ok());
+    const std::string message(scene.status().message());
+    EXPECT_NE(message.find(file), std::string::npos) << message;
+    EXPECT_NE(message.find(fragment), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "error must be one line: " << message;
+}
+
+TEST(GltfLoaderTest, LoadsTheShippedScenes) {
+    for (const char* name : {"cornell-box.gltf", "cornell-glass.gltf", "caustic-glass.gltf", "furnace.gltf"}) {
+        const absl::StatusOr<Scene> scene = LoadGltf(ScenePath(name));
+        ASSERT_TRUE(scene.ok()) << scene.status();
+        EXPECT_GT(scene->triangles.size(), 0u);
+        EXPECT_GT(scene->bounds.Diagonal(), 0.0f);
+    }
+    const absl::StatusOr<Scene> glass = LoadGltf(ScenePath("cornell-glass.gltf"));
+    ASSERT_TRUE(glass.ok());
+    EXPECT_EQ(CountMaterials(*glass, MaterialType::kDielectric), 1);
+    EXPECT_EQ(CountMaterials(*glass, MaterialType::kMirror), 1);
+    const absl::StatusOr<Scene> box = LoadGltf(ScenePath("cornell-box.gltf"));
+    ASSERT_TRUE(box.ok());
+    EXPECT_EQ(CountMaterials(*box, MaterialType::kDielectric), 0);
+    // The measured camera: 35 mm lens on 25 mm film, looking down +z from z = -0.8.
+    EXPECT_NEAR(box->camera.y_fov, 2 * std::atan(12.5 / 35), 1e-5);
+    EXPECT_NEAR(box->camera.forward.z, 1.0f, 1e-5f);
+    EXPECT_NEAR(box->camera.position.z, -0.8f, 1e-5f);
+}
+
+TEST(GltfLoaderTest, GlbAndGltfLoadTheSameGeometry) {
+    const testing::TestScene scene = testing::LitQuadScene();
+    const absl::StatusOr<Scene> text = LoadGltf(testing::WriteGltf(scene, "quad.gltf"));
+    const absl::StatusOr<Scene> binary = LoadGltf(testing::WriteGlb(scene, "quad.glb"));
+    ASSERT_TRUE(text.ok()) << text.status();
+    ASSERT_TRUE(binary.ok()) << binary.status();
+    ASSERT_EQ(text->positions.size(), binary->positions.size());
+    for (size_t i = 0; i < text->positions.size(); ++i) EXPECT_EQ(text->positions[i], binary->positions[i]);
+}
+
+TEST(GltfLoaderTest, PunctualLightsAreRead) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.materials[1].emission = Rgb(0.0f);
+    scene.lights = {R"({"type":"point","intensity":5,"color":[1,0.5,0.25]})",
+                    R"({"type":"spot","intensity":2,"spot":{"innerConeAngle":0.1,"outerConeAngle":0.5}})",
+                    R"({"type":"directional","intensity":3})"};
+    const absl::StatusOr<Scene> loaded = LoadGltf(testing::WriteGltf(scene, "lights.gltf"));
+    ASSERT_TRUE(loaded.ok()) << loaded.status();
+    ASSERT_EQ(loaded->lights.size(), 3u);
+    EXPECT_EQ(loaded->lights[0].type, LightType::kPoint);
+    EXPECT_EQ(loaded->lights[0].intensity, Rgb(5.0f, 2.5f, 1.25f));
+    EXPECT_EQ(loaded->lights[1].type, LightType::kSpot);
+    EXPECT_NEAR(loaded->lights[1].cos_outer, std::cos(0.5f), 1e-6f);
+    EXPECT_EQ(loaded->lights[2].type, LightType::kDirectional);
+    EXPECT_EQ(loaded->lights[2].direction, Vec3(0, 0, -1));
+}
+
+TEST(GltfLoaderTest, MissingFileIsNamed) {
+    ExpectError(LoadGltf("/nonexistent/scene.gltf"), "/nonexistent/scene.gltf", "cannot open");
+}
+
+TEST(GltfLoaderTest, MalformedJsonIsRefused) {
+    const std::string path = testing::WriteTextFile("{\"asset\": {\"version\": \"2.0\"", "broken.gltf");
+    ExpectError(LoadGltf(path), path, "not a valid glTF");
+}
+
+TEST(GltfLoaderTest, SceneWithoutCameraIsRefused) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.camera = false;
+    const std::string path = testing::WriteGltf(scene, "no-camera.gltf");
+    ExpectError(LoadGltf(path), path, "no camera");
+}
+
+TEST(GltfLoaderTest, SceneWithoutLightIsRefused) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.materials[1].emission = Rgb(0.0f);
+    const std::string path = testing::WriteGltf(scene, "no-light.gltf");
+    ExpectError(LoadGltf(path), path, "no light");
+}
+
+TEST(GltfLoaderTest, NonFiniteTransformIsRefusedNamingTheNode) {
+    // JSON has no NaN or Inf literal: a non-finite transform arises when a hierarchy's scales
+    // overflow. The camera node (#2) scales by 1e200 and so does its child (#3): 1e400 is Inf.
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.camera_extra = R"(,"scale":[1e200,1,1],"children":[3])";
+    std::string json = testing::GltfJson(scene);
+    const std::string end_of_nodes = R"(],"meshes")";
+    json.replace(json.find(end_of_nodes), end_of_nodes.size(), R"(,{"name":"inner","scale":[1e200,1,1]}],"meshes")");
+    const std::string path = testing::WriteTextFile(json, "inf-transform.gltf");
+    ExpectError(LoadGltf(path), path, "node 'inner' (#3): world transform overflows to NaN or Inf");
+}
+
+TEST(GltfLoaderTest, VertexOverflowingItsTransformIsRefused) {
+    testing::TestScene scene = testing::LitQuadScene();
+    std::string json = testing::GltfJson(scene);
+    const std::string mesh_node = R"({"mesh":0})";
+    json.replace(json.find(mesh_node), mesh_node.size(), R"({"mesh":0,"scale":[1e300,1,1]})");
+    const std::string path = testing::WriteTextFile(json, "vertex-overflow.gltf");
+    ExpectError(LoadGltf(path), path, "mesh #0 primitive 0: vertex 0 is not finite after its node's transform");
+}
+
+TEST(GltfLoaderTest, NonFiniteVertexIsRefusedNamingTheMesh) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.meshes[0].positions[4].y = std::numeric_limits<float>::quiet_NaN();
+    const std::string path = testing::WriteGltf(scene, "nan-vertex.gltf");
+    ExpectError(LoadGltf(path), path, "mesh #0 primitive 0: vertex 4 position has NaN or Inf");
+}
+
+TEST(GltfLoaderTest, IndexOutOfRangeCannotReadOutsideTheBuffer) {
+    testing::TestScene scene = testing::LitQuadScene();
+    std::string json = testing::GltfJson(scene);
+    const std::string count = R"("count":6)";
+    json.replace(json.find(count), count.size(), R"("count":600)");
+    const std::string path = testing::WriteTextFile(json, "overrun.gltf");
+    EXPECT_FALSE(LoadGltf(path).ok());
+}
+
+}  // namespace
+}  // namespace pf

@@ -1,0 +1,89 @@
+// Whole renders through the embedded renderer: the white furnace against its analytic answer,
+// glass without NaN, and bit-identical images for any thread count.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "client/local_render.h"
+
+namespace pf {
+namespace {
+
+std::string ScenePath(const std::string& name) { return std::string(PF_SOURCE_DIR) + "/scenes/" + name; }
+
+RenderSettings SmallRender(const std::string& scene, uint64_t photons, int threads) {
+    RenderSettings settings;
+    settings.scene_path = ScenePath(scene);
+    settings.width = 48;
+    settings.height = 48;
+    settings.photon_budget = photons;
+    settings.threads = threads;
+    settings.layout = {1u << 14, 8};
+    return settings;
+}
+
+TEST(RenderTest, WhiteFurnaceConvergesToEmissionOverOneMinusAlbedo) {
+    // furnace.gltf: a closed room of albedo 0.5 emitting Le = 1 everywhere, so L = 2 exactly.
+    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(SmallRender("furnace.gltf", 3'000'000, 2));
+    ASSERT_TRUE(outcome.ok()) << outcome.status();
+    double sum = 0;
+    std::vector<float> luminance;
+    for (const Rgb& pixel : outcome->image.pixels) {
+        ASSERT_TRUE(IsFinite(pixel));
+        sum += Average(pixel);
+        luminance.push_back(Average(pixel));
+    }
+    const double mean = sum / luminance.size();
+    std::nth_element(luminance.begin(), luminance.begin() + luminance.size() / 2, luminance.end());
+    const double median = luminance[luminance.size() / 2];
+    EXPECT_NEAR(mean, 2.0, 0.02) << "image mean must be within 1% of Le / (1 - rho)";
+    EXPECT_NEAR(median, 2.0, 0.04) << "the typical pixel must be within 2%";
+}
+
+TEST(RenderTest, GlassSceneHasNoNaNOrInf) {
+    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(SmallRender("cornell-glass.gltf", 400'000, 2));
+    ASSERT_TRUE(outcome.ok()) << outcome.status();
+    double sum = 0;
+    for (const Rgb& pixel : outcome->image.pixels) {
+        ASSERT_TRUE(IsFinite(pixel));
+        ASSERT_GE(std::min({pixel.x, pixel.y, pixel.z}), 0.0f);
+        sum += Average(pixel);
+    }
+    EXPECT_GT(sum, 0.0);
+}
+
+TEST(RenderTest, SameSeedGivesBitIdenticalImagesForOneAndTwoThreads) {
+    for (const char* scene : {"cornell-glass.gltf", "caustic-glass.gltf"}) {
+        const absl::StatusOr<RenderOutcome> one = RenderLocally(SmallRender(scene, 300'000, 1));
+        const absl::StatusOr<RenderOutcome> two = RenderLocally(SmallRender(scene, 300'000, 2));
+        ASSERT_TRUE(one.ok() && two.ok());
+        ASSERT_EQ(one->image.pixels.size(), two->image.pixels.size());
+        EXPECT_EQ(std::memcmp(one->image.pixels.data(), two->image.pixels.data(),
+                              one->image.pixels.size() * sizeof(Rgb)), 0) << scene;
+        EXPECT_EQ(one->progress.photons, two->progress.photons);
+    }
+}
+
+TEST(RenderTest, DifferentSeedsGiveDifferentImages) {
+    RenderSettings a = SmallRender("cornell-box.gltf", 200'000, 2), b = a;
+    b.seed = a.seed + 1;
+    const absl::StatusOr<RenderOutcome> first = RenderLocally(a), second = RenderLocally(b);
+    ASSERT_TRUE(first.ok() && second.ok());
+    EXPECT_NE(std::memcmp(first->image.pixels.data(), second->image.pixels.data(),
+                          first->image.pixels.size() * sizeof(Rgb)), 0);
+}
+
+TEST(RenderTest, BadSettingsAreRefusedWithAClearError) {
+    RenderSettings settings = SmallRender("cornell-box.gltf", 1000, 1);
+    settings.alpha = 1.5;
+    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+    ASSERT_FALSE(outcome.ok());
+    EXPECT_NE(std::string(outcome.status().message()).find("--alpha"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace pf

@@ -1,0 +1,111 @@
+// Minimal glTF writer for tests.
+#include "tests/support/gltf_builder.h"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "absl/strings/escaping.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+
+namespace pf::testing {
+namespace {
+
+std::string TempPath(const std::string& name) {
+    const auto dir = std::filesystem::temp_directory_path() / "photonfarm-tests";
+    std::filesystem::create_directories(dir);
+    return (dir / name).string();
+}
+
+std::string Floats(const Vec3& v) { return absl::StrCat("[", v.x, ",", v.y, ",", v.z, "]"); }
+
+// Builds the JSON with the buffer either as a data URI or (for .glb) as the binary chunk.
+std::string Json(const TestScene& scene, bool embed, std::string* blob) {
+    std::vector<std::string> meshes, nodes, accessors, views, materials;
+    for (const TestMaterial& m : scene.materials) {
+        std::string material = absl::StrCat(R"({"pbrMetallicRoughness":{"baseColorFactor":[)", m.base_color.x, ",",
+                                            m.base_color.y, ",", m.base_color.z, R"(,1],"metallicFactor":0})");
+        if (!IsBlack(m.emission)) absl::StrAppend(&material, R"(,"emissiveFactor":)", Floats(m.emission));
+        materials.push_back(material + "}");
+    }
+    for (const TestMesh& mesh : scene.meshes) {
+        const size_t offset = blob->size();
+        blob->resize(offset + mesh.positions.size() * 12);
+        std::memcpy(blob->data() + offset, mesh.positions.data(), mesh.positions.size() * 12);
+        Vec3 lower(1e30f), upper(-1e30f);
+        for (const Vec3& p : mesh.positions) lower = Min(lower, p), upper = Max(upper, p);
+        views.push_back(absl::StrCat(R"({"buffer":0,"byteOffset":)", offset, R"(,"byteLength":)", mesh.positions.size() * 12, "}"));
+        accessors.push_back(absl::StrCat(R"({"bufferView":)", views.size() - 1, R"(,"componentType":5126,"count":)",
+                                         mesh.positions.size(), R"(,"type":"VEC3","min":)", Floats(lower), R"(,"max":)",
+                                         Floats(upper), "}"));
+        meshes.push_back(absl::StrCat(R"({"primitives":[{"attributes":{"POSITION":)", accessors.size() - 1,
+                                      R"(},"material":)", mesh.material, "}]}"));
+        nodes.push_back(absl::StrCat(R"({"mesh":)", meshes.size() - 1, "}"));
+    }
+    std::string cameras = "[]";
+    if (scene.camera) {
+        cameras = R"([{"type":"perspective","perspective":{"yfov":0.8,"znear":0.01}}])";
+        nodes.push_back(absl::StrCat(R"({"camera":0,"translation":)", Floats(scene.camera_position), scene.camera_extra, "}"));
+    }
+    std::string extensions;
+    for (size_t i = 0; i < scene.lights.size(); ++i)
+        nodes.push_back(absl::StrCat(R"({"extensions":{"KHR_lights_punctual":{"light":)", i, "}}}"));
+    if (!scene.lights.empty())
+        extensions = absl::StrCat(R"(,"extensions":{"KHR_lights_punctual":{"lights":[)", absl::StrJoin(scene.lights, ","),
+                                  "]}}");
+    std::vector<std::string> roots;
+    for (size_t i = 0; i < nodes.size(); ++i) roots.push_back(absl::StrCat(i));
+    while (blob->size() % 4) blob->push_back('\0');
+    const std::string uri = embed ? absl::StrCat(R"(,"uri":"data:application/octet-stream;base64,)", absl::Base64Escape(*blob), "\"") : "";
+    return absl::StrCat(R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)", absl::StrJoin(roots, ","),
+                        R"(]}],"nodes":[)", absl::StrJoin(nodes, ","), R"(],"meshes":[)", absl::StrJoin(meshes, ","),
+                        R"(],"materials":[)", absl::StrJoin(materials, ","), R"(],"accessors":[)", absl::StrJoin(accessors, ","),
+                        R"(],"bufferViews":[)", absl::StrJoin(views, ","), R"(],"buffers":[{"byteLength":)", blob->size(), uri,
+                        R"(}],"cameras":)", cameras, extensions, "}");
+}
+
+void AppendU32(std::string* out, uint32_t v) { out->append(reinterpret_cast<const char*>(&v), 4); }
+
+}  // namespace
+
+TestScene LitQuadScene() {
+    TestScene scene;
+    scene.materials = {TestMaterial{Rgb(0.5f), Rgb(0.0f)}, TestMaterial{Rgb(0.0f), Rgb(10.0f)}};
+    scene.meshes.push_back({{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}, 0});
+    // The light faces -z (down onto the quad): wound clockwise seen from +z.
+    scene.meshes.push_back({{{-0.2f, -0.2f, 1}, {0.2f, 0.2f, 1}, {0.2f, -0.2f, 1},
+                             {-0.2f, -0.2f, 1}, {-0.2f, 0.2f, 1}, {0.2f, 0.2f, 1}}, 1});
+    return scene;
+}
+
+std::string GltfJson(const TestScene& scene) {
+    std::string blob;
+    return Json(scene, true, &blob);
+}
+
+std::string WriteTextFile(const std::string& text, const std::string& name) {
+    const std::string path = TempPath(name);
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+}
+
+std::string WriteGltf(const TestScene& scene, const std::string& name) { return WriteTextFile(GltfJson(scene), name); }
+
+std::string WriteGlb(const TestScene& scene, const std::string& name) {
+    std::string blob;
+    std::string json = Json(scene, false, &blob);
+    while (json.size() % 4) json.push_back(' ');
+    std::string out = "glTF";
+    AppendU32(&out, 2);
+    AppendU32(&out, static_cast<uint32_t>(12 + 8 + json.size() + 8 + blob.size()));
+    AppendU32(&out, static_cast<uint32_t>(json.size()));
+    AppendU32(&out, 0x4E4F534A);  // JSON
+    out += json;
+    AppendU32(&out, static_cast<uint32_t>(blob.size()));
+    AppendU32(&out, 0x004E4942);  // BIN
+    out += blob;
+    return WriteTextFile(out, name);
+}
+
+}  // namespace pf::testing

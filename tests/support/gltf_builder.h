@@ -1,0 +1,43 @@
+// Writes small glTF scenes for tests: a list of triangles with one material each, optional
+// camera and lights, as .gltf (JSON with an embedded buffer) or .glb.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/math/vec3.h"
+
+namespace pf::testing {
+
+struct TestMaterial {
+    Rgb base_color{0.5f};
+    Rgb emission{0.0f};
+};
+
+struct TestMesh {
+    std::vector<Vec3> positions;  // three per triangle
+    int material = 0;
+};
+
+struct TestScene {
+    std::vector<TestMaterial> materials{TestMaterial{}};
+    std::vector<TestMesh> meshes;
+    bool camera = true;
+    Vec3 camera_position{0, 0, 3};   // looking down -z
+    std::string camera_extra;        // raw JSON fields appended to the camera node
+    std::vector<std::string> lights; // raw KHR_lights_punctual light objects, at the origin
+};
+
+// A unit quad in the z = 0 plane facing +z, lit by an emissive quad above it.
+TestScene LitQuadScene();
+
+// Serialises the scene; returns the file's path under the test's temporary directory.
+std::string WriteGltf(const TestScene& scene, const std::string& name);
+std::string WriteGlb(const TestScene& scene, const std::string& name);
+// The JSON text alone (with the buffer as a data URI), for tests that corrupt it.
+std::string GltfJson(const TestScene& scene);
+// Writes text to a temporary file; returns its path.
+std::string WriteTextFile(const std::string& text, const std::string& name);
+
+}  // namespace pf::testing
