@@ -141,7 +141,7 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
     render->add_option("--batches-per-epoch", s.layout.batches_per_epoch, "Batches per epoch; radii shrink once per epoch")
         ->default_val(s.layout.batches_per_epoch)->check(CLI::Range(1u, 1u << 20));
     render->add_option("--alpha", s.alpha, "Radius reduction ratio alpha in (0, 1]")->default_val(s.alpha)->check(CLI::Range(1e-9, 1.0));
-    render->add_option("--radius", s.initial_radius, "Initial search radius R0, world units (default: 2 pixel footprints)")
+    render->add_option("--radius", s.initial_radius, "Initial search radius R0, world units (default: one pixel footprint)")
         ->check(CLI::PositiveNumber);
     render->add_option("--spp", s.samples_per_pixel, "Hit points (camera paths) per pixel")->default_val(s.samples_per_pixel)
         ->check(CLI::Range(1, 1024));

@@ -15,7 +15,7 @@ namespace pf {
 // locality, and an epoch of 2^20 photons, so radii shrink often while the per-epoch grid
 // rebuild stays a small share of the time.
 struct BatchLayout {
-    uint32_t photons_per_batch = 1u << 17;
+    uint32_t photons_per_batch = 1u << 20;
     uint32_t batches_per_epoch = 8;
 
     uint64_t PhotonsPerEpoch() const { return uint64_t{photons_per_batch} * batches_per_epoch; }

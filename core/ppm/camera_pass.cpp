@@ -122,7 +122,7 @@ float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& sce
     std::vector<float> footprints = camera_pass.footprint;
     auto middle = footprints.begin() + static_cast<std::ptrdiff_t>(footprints.size() / 2);
     std::nth_element(footprints.begin(), middle, footprints.end());
-    return std::min(2.0f * *middle, 0.01f * scene.bounds.Diagonal());
+    return std::min(*middle, 0.01f * scene.bounds.Diagonal());
 }
 
 }  // namespace pf

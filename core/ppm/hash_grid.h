@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "core/math/morton.h"
 #include "core/math/vec3.h"
 #include "core/ppm/hit_point.h"
 
@@ -53,11 +54,16 @@ private:
     int64_t CellOf(float coordinate) const {
         return static_cast<int64_t>(std::floor(coordinate * inverse_cell_size_));
     }
+    // Cells are grouped in blocks of 4x4x4: a block's 64 cells take 64 consecutive buckets in
+    // Morton order, and blocks are spread over the table by the hash of Teschner et al. 2003
+    // ("Optimized Spatial Hashing for Collision Detection"). Neighbouring cells thus share
+    // cache lines, which photons sorted by bucket exploit; distinct blocks still scatter.
     uint32_t Bucket(int64_t x, int64_t y, int64_t z) const {
-        // Teschner et al. 2003, "Optimized Spatial Hashing for Collision Detection".
-        const auto h = static_cast<uint64_t>(x * 73856093) ^ static_cast<uint64_t>(y * 19349663) ^
-                       static_cast<uint64_t>(z * 83492791);
-        return static_cast<uint32_t>(h & bucket_mask_);
+        const uint64_t within = SpreadBits3(uint64_t(x) & 3) | SpreadBits3(uint64_t(y) & 3) << 1 |
+                                SpreadBits3(uint64_t(z) & 3) << 2;
+        const auto block = static_cast<uint64_t>((x >> 2) * 73856093) ^ static_cast<uint64_t>((y >> 2) * 19349663) ^
+                           static_cast<uint64_t>((z >> 2) * 83492791);
+        return static_cast<uint32_t>((block << 6 | within) & bucket_mask_);
     }
     // The distinct buckets of the cells that the sphere (center, radius) overlaps; returns count.
     int OverlappedBuckets(const Vec3& center, float radius, uint32_t buckets[27]) const;

@@ -5,7 +5,6 @@
 #include <algorithm>
 
 #include "core/math/frame.h"
-#include "core/math/morton.h"
 #include "core/ppm/direct_light.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
@@ -64,20 +63,18 @@ uint64_t TracePhoton(const PhotonPassInputs& inputs, Rng& rng, std::vector<Photo
 }
 
 // Adds every deposit to the hit points within their radius whose surface faces the photon.
-// Deposits are visited in Morton order of their position (ties in path order): the hit points
-// are stored in Morton order too, so consecutive lookups read neighbouring memory instead of
-// missing the cache on every photon. The order is deterministic.
+// Deposits are visited in the order of their grid bucket (ties in path order), so the grid's
+// arrays are read front to back instead of at random: a deterministic order, and a much
+// faster one once the hit points no longer fit in cache.
 void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     const std::vector<PhotonDeposit>& deposits = scratch.deposits;
-    std::vector<std::pair<uint64_t, uint32_t>>& keys = scratch.sort_keys;
-    const Bounds& bounds = inputs.scene->bounds;
-    const Vec3 extent = Max(bounds.upper - bounds.lower, Vec3(1e-30f));
+    std::vector<uint64_t>& keys = scratch.sort_keys;
     keys.resize(deposits.size());
     for (size_t i = 0; i < deposits.size(); ++i)
-        keys[i] = {MortonCode(deposits[i].position, bounds.lower, extent), static_cast<uint32_t>(i)};
+        keys[i] = uint64_t{inputs.grid->BucketOf(deposits[i].position)} << 32 | i;
     std::sort(keys.begin(), keys.end());
-    for (const auto& key : keys) {
-        const PhotonDeposit& deposit = deposits[key.second];
+    for (uint64_t key : keys) {
+        const PhotonDeposit& deposit = deposits[static_cast<uint32_t>(key)];
         inputs.grid->ForEachGathering(deposit.position, deposit.direction,
                                       [&](uint32_t index) { scratch.tally.Add(index, deposit.flux); });
     }

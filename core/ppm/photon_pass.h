@@ -4,7 +4,6 @@
 
 #include <cstdint>
 #include <span>
-#include <utility>
 #include <vector>
 
 #include "core/geometry/tracer.h"
@@ -42,7 +41,7 @@ struct PhotonDeposit {
 struct BatchScratch {
     TallyAccumulator tally;
     std::vector<PhotonDeposit> deposits;
-    std::vector<std::pair<uint64_t, uint32_t>> sort_keys;  // (Morton code, deposit)
+    std::vector<uint64_t> sort_keys;  // grid bucket << 32 | deposit index
 };
 
 // Runs one batch: traces its photons, then gathers their deposits at the hit points.

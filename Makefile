@@ -1,0 +1,36 @@
+# photonfarm: `make demo` and `make test` set everything up on a fresh Debian 12 machine (as
+# root): missing packages, a Release build with Ninja, then the demo render or the test suite.
+BUILD ?= build
+JOBS ?= $(shell nproc)
+DEMO_SECONDS ?= 60
+
+.PHONY: all deps configure build demo test bench clean
+
+all: build
+
+deps:
+	@bash deploy/install-deps.sh
+
+configure: deps
+	@if [ ! -f $(BUILD)/build.ninja ]; then \
+		cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release; fi
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+# Renders the Cornell box with a glass and a mirror sphere for about a minute on all cores.
+demo: build
+	@mkdir -p out
+	./$(BUILD)/client/photonfarm render scenes/cornell-glass.gltf --width 512 --height 512 \
+		--seconds $(DEMO_SECONDS) --out out/cornell-glass.exr --png out/cornell-glass.png \
+		--snapshot-every 15 --snapshot-dir out/snapshots
+	@echo "demo: wrote out/cornell-glass.exr and out/cornell-glass.png"
+
+test: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+bench: build
+	./$(BUILD)/bench/photon_bench
+
+clean:
+	rm -rf $(BUILD) out

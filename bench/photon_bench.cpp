@@ -1,0 +1,130 @@
+// Photon pass throughput per thread against the raw Embree ray rate in the same scene, the
+// ceiling for photon tracing here. Prints, after the Google Benchmark table, the ratio
+// (photon segments traced per second) / (raw rtcIntersect1 rays per second) per scene;
+// the target is at least 0.5: the photon pass should cost little beyond its rays.
+#include <benchmark/benchmark.h>
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "core/ppm/camera_pass.h"
+#include "core/ppm/photon_pass.h"
+#include "core/ppm/progressive_estimate.h"
+#include "core/scene/emitters.h"
+#include "core/scene/gltf_loader.h"
+#include "worker/backends/cpu_embree/embree_tracer.h"
+
+namespace pf {
+namespace {
+
+constexpr int kWidth = 512, kHeight = 512, kSpp = 4;
+
+// A scene ready for photon batches: loaded, traced by Embree, hit points from the camera pass
+// at the demo's resolution, grid built for the initial radius.
+struct BenchScene {
+    Scene scene;
+    std::unique_ptr<Emitters> emitters;
+    std::unique_ptr<embree::EmbreeTracer> tracer;
+    CameraPassResult camera_pass;
+    HashGrid grid;
+};
+
+BenchScene& Load(const std::string& name) {
+    static std::map<std::string, std::unique_ptr<BenchScene>> cache;
+    auto& entry = cache[name];
+    if (entry) return *entry;
+    entry = std::make_unique<BenchScene>();
+    absl::StatusOr<Scene> scene = LoadGltf(std::string(PF_SOURCE_DIR) + "/scenes/" + name + ".gltf");
+    if (!scene.ok()) {
+        std::fprintf(stderr, "photon_bench: %s\n", std::string(scene.status().message()).c_str());
+        std::exit(1);
+    }
+    entry->scene = std::move(*scene);
+    entry->emitters = std::make_unique<Emitters>(entry->scene);
+    entry->tracer = std::move(*embree::EmbreeTracer::Create(entry->scene));
+    entry->camera_pass = RunCameraPass(entry->scene, *entry->tracer, {kWidth, kHeight, kSpp, 1});
+    const float radius = DefaultInitialRadius(entry->camera_pass, entry->scene);
+    const std::vector<float> radius_sq(entry->camera_pass.hit_points.size(), radius * radius);
+    entry->grid.Build(entry->camera_pass.hit_points, radius_sq);
+    return *entry;
+}
+
+std::map<std::string, double> g_rates;  // "segments/<scene>" and "rays/<scene>", per second
+
+void BM_PhotonBatch(benchmark::State& state, const std::string& name) {
+    BenchScene& bench = Load(name);
+    const PhotonPassInputs inputs{&bench.scene, bench.emitters.get(), bench.tracer.get(),
+                                  bench.camera_pass.hit_points, &bench.grid, 1};
+    BatchScratch scratch;
+    const BatchLayout layout;
+    uint64_t segments = 0, photons = 0, epoch = 0;
+    double seconds = 0;
+    for (auto _ : state) {
+        const BatchSpec spec = MakeBatchSpec(layout, epoch++, 0, static_cast<uint32_t>(bench.camera_pass.hit_points.size()));
+        const auto start = std::chrono::steady_clock::now();
+        const BatchResult result = RunPhotonBatch(inputs, spec, scratch);
+        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        segments += result.segments_traced;
+        photons += result.photons_emitted;
+        benchmark::DoNotOptimize(result.tally.Size());
+    }
+    state.counters["photons/s"] = benchmark::Counter(double(photons), benchmark::Counter::kIsRate);
+    state.counters["segments/s"] = benchmark::Counter(double(segments), benchmark::Counter::kIsRate);
+    g_rates["segments/" + name] = segments / seconds;
+}
+
+void BM_EmbreeRandomRays(benchmark::State& state, const std::string& name) {
+    BenchScene& bench = Load(name);
+    const Bounds& bounds = bench.scene.bounds;
+    Rng rng(7);
+    constexpr int kRays = 1 << 16;
+    std::vector<Ray> rays(kRays);
+    for (Ray& ray : rays) {
+        const Vec3 u(rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
+        ray.origin = bounds.lower + (bounds.upper - bounds.lower) * u;
+        ray.direction = SampleUniformSphere(rng.NextFloat(), rng.NextFloat());
+    }
+    uint64_t traced = 0;
+    double seconds = 0;
+    for (auto _ : state) {
+        const auto start = std::chrono::steady_clock::now();
+        for (const Ray& ray : rays) {
+            RayHit hit;
+            benchmark::DoNotOptimize(bench.tracer->Intersect(ray, &hit));
+        }
+        seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        traced += kRays;
+    }
+    state.counters["rays/s"] = benchmark::Counter(double(traced), benchmark::Counter::kIsRate);
+    g_rates["rays/" + name] = traced / seconds;
+}
+
+}  // namespace
+}  // namespace pf
+
+int main(int argc, char** argv) {
+    // One thread: the figures are per thread.
+    tbb::global_control single_thread(tbb::global_control::max_allowed_parallelism, 1);
+    for (const char* scene : {"cornell-box", "cornell-glass"}) {
+        benchmark::RegisterBenchmark((std::string("BM_PhotonBatch/") + scene).c_str(), pf::BM_PhotonBatch, scene)
+            ->Unit(benchmark::kMillisecond)->MinTime(2.0);
+        benchmark::RegisterBenchmark((std::string("BM_EmbreeRandomRays/") + scene).c_str(), pf::BM_EmbreeRandomRays, scene)
+            ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+    }
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    benchmark::RunSpecifiedBenchmarks();
+    benchmark::Shutdown();
+    std::printf("\n%-14s %16s %16s %8s\n", "scene", "segments/s", "raw rays/s", "ratio");
+    for (const char* scene : {"cornell-box", "cornell-glass"}) {
+        const double segments = pf::g_rates["segments/" + std::string(scene)];
+        const double rays = pf::g_rates["rays/" + std::string(scene)];
+        if (segments > 0 && rays > 0)
+            std::printf("%-14s %16.0f %16.0f %8.2f\n", scene, segments, rays, segments / rays);
+    }
+    return 0;
+}
