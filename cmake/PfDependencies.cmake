@@ -2,6 +2,7 @@
 # (deploy/install-deps.sh); see ../shared/STACK.md for the pitfalls handled here.
 find_package(Threads REQUIRED)
 find_package(absl CONFIG REQUIRED)
+find_package(Protobuf REQUIRED)  # module mode: Debian ships no protobuf-config.cmake
 find_package(embree 3 REQUIRED)
 find_package(TBB CONFIG REQUIRED)
 find_package(OpenEXR CONFIG REQUIRED)

@@ -31,3 +31,26 @@ function(pf_add_test name)
     gtest_discover_tests(${name} WORKING_DIRECTORY "${PROJECT_BINARY_DIR}"
         PROPERTIES ENVIRONMENT "PF_SOURCE_DIR=${PROJECT_SOURCE_DIR}" DISCOVERY_TIMEOUT 60)
 endfunction()
+
+# pf_add_proto_library(NAME PROTO ...): runs protoc on protos given relative to proto/ and
+# builds the generated C++ into a library. Generated files live in the build tree only.
+function(pf_add_proto_library name)
+    set(sources)
+    foreach(proto IN LISTS ARGN)
+        string(REGEX REPLACE "\\.proto$" "" stem "${proto}")
+        set(out_cc "${CMAKE_CURRENT_BINARY_DIR}/${stem}.pb.cc")
+        set(out_h "${CMAKE_CURRENT_BINARY_DIR}/${stem}.pb.h")
+        add_custom_command(
+            OUTPUT "${out_cc}" "${out_h}"
+            COMMAND protobuf::protoc --proto_path=${CMAKE_CURRENT_SOURCE_DIR}
+                    --cpp_out=${CMAKE_CURRENT_BINARY_DIR} ${CMAKE_CURRENT_SOURCE_DIR}/${proto}
+            DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${proto}" protobuf::protoc
+            COMMENT "protoc ${proto}")
+        list(APPEND sources "${out_cc}")
+    endforeach()
+    add_library(${name} STATIC ${sources})
+    target_link_libraries(${name} PUBLIC protobuf::libprotobuf)
+    # Included as "photonfarm/v1/batch.pb.h".
+    target_include_directories(${name} PUBLIC "${CMAKE_CURRENT_BINARY_DIR}")
+    set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+endfunction()

@@ -1,0 +1,23 @@
+// Conversion between the core's batch types and their wire form (photonfarm.v1). Decoding
+// treats every message as hostile: anything malformed is refused with INVALID_ARGUMENT and
+// never reaches the estimate.
+#pragma once
+
+#include <cstdint>
+
+#include "absl/status/statusor.h"
+#include "core/ppm/batch.h"
+#include "photonfarm/v1/batch.pb.h"
+
+namespace pf {
+
+photonfarm::v1::BatchSpec ToProto(const BatchSpec& spec);
+BatchSpec FromProto(const photonfarm::v1::BatchSpec& spec);
+
+photonfarm::v1::BatchResult ToProto(const BatchResult& result);
+// Checks, for a job with `hit_point_count` hit points: entries sorted and in range, one
+// photon count and three finite, non-negative flux values per entry, counts > 0, the direct
+// slice inside the hit points with three finite, non-negative values per hit point.
+absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& result, uint32_t hit_point_count);
+
+}  // namespace pf
