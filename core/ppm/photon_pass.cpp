@@ -73,8 +73,12 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     for (size_t i = 0; i < deposits.size(); ++i)
         keys[i] = uint64_t{inputs.grid->BucketOf(deposits[i].position)} << 32 | i;
     std::sort(keys.begin(), keys.end());
-    for (uint64_t key : keys) {
-        const PhotonDeposit& deposit = deposits[static_cast<uint32_t>(key)];
+    // Permute in a loop of its own: its loads are independent and overlap, where inside the
+    // gather each would stall the loop.
+    std::vector<PhotonDeposit>& sorted = scratch.sorted_deposits;
+    sorted.resize(deposits.size());
+    for (size_t i = 0; i < keys.size(); ++i) sorted[i] = deposits[static_cast<uint32_t>(keys[i])];
+    for (const PhotonDeposit& deposit : sorted) {
         inputs.grid->ForEachGathering(deposit.position, deposit.direction,
                                       [&](uint32_t index) { scratch.tally.Add(index, deposit.flux); });
     }

@@ -40,7 +40,8 @@ struct PhotonDeposit {
 // One thread's reusable working memory for batches; not thread-safe.
 struct BatchScratch {
     TallyAccumulator tally;
-    std::vector<PhotonDeposit> deposits;
+    std::vector<PhotonDeposit> deposits;         // in path order
+    std::vector<PhotonDeposit> sorted_deposits;  // in gather order
     std::vector<uint64_t> sort_keys;  // grid bucket << 32 | deposit index
 };
 
