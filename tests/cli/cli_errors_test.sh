@@ -42,4 +42,13 @@ else
     echo "FAIL good render"; cat "$work/err"; failures=$((failures + 1))
 fi
 
+if "$photonfarm" render "$source_dir/scenes/furnace.gltf" --out "$work/snap.exr" --photons 3M \
+        --photons-per-batch 65536 --batches-per-epoch 2 --width 16 --threads 1 \
+        --snapshot-every 0.001 --snapshot-dir "$work/snapshots" >/dev/null 2>"$work/err" &&
+        [ -s "$work/snapshots/snapshot-0001.exr" ] && [ -s "$work/snapshots/snapshot-0002.exr" ]; then
+    echo "ok   snapshots are written while rendering"
+else
+    echo "FAIL snapshots"; cat "$work/err"; failures=$((failures + 1))
+fi
+
 [ "$failures" -eq 0 ] && echo "all CLI checks passed" || { echo "$failures CLI checks failed"; exit 1; }

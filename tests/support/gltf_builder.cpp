@@ -22,10 +22,15 @@ std::string Floats(const Vec3& v) { return absl::StrCat("[", v.x, ",", v.y, ",",
 
 // Builds the JSON with the buffer either as a data URI or (for .glb) as the binary chunk.
 std::string Json(const TestScene& scene, bool embed, std::string* blob) {
-    std::vector<std::string> meshes, nodes, accessors, views, materials;
+    std::vector<std::string> meshes, nodes, accessors, views, materials, images;
     for (const TestMaterial& m : scene.materials) {
+        std::string texture;
+        if (!m.texture_png_base64.empty()) {
+            texture = absl::StrCat(R"(,"baseColorTexture":{"index":)", images.size(), "}");
+            images.push_back(absl::StrCat(R"({"uri":"data:image/png;base64,)", m.texture_png_base64, "\"}"));
+        }
         std::string material = absl::StrCat(R"({"pbrMetallicRoughness":{"baseColorFactor":[)", m.base_color.x, ",",
-                                            m.base_color.y, ",", m.base_color.z, R"(,1],"metallicFactor":0})");
+                                            m.base_color.y, ",", m.base_color.z, R"(,1],"metallicFactor":0)", texture, "}");
         if (!IsBlack(m.emission)) absl::StrAppend(&material, R"(,"emissiveFactor":)", Floats(m.emission));
         materials.push_back(material + "}");
     }
@@ -39,8 +44,18 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
         accessors.push_back(absl::StrCat(R"({"bufferView":)", views.size() - 1, R"(,"componentType":5126,"count":)",
                                          mesh.positions.size(), R"(,"type":"VEC3","min":)", Floats(lower), R"(,"max":)",
                                          Floats(upper), "}"));
-        meshes.push_back(absl::StrCat(R"({"primitives":[{"attributes":{"POSITION":)", accessors.size() - 1,
-                                      R"(},"material":)", mesh.material, "}]}"));
+        std::string attributes = absl::StrCat(R"("POSITION":)", accessors.size() - 1);
+        if (!mesh.uvs.empty()) {
+            const size_t uv_offset = blob->size();
+            blob->resize(uv_offset + mesh.uvs.size() * 4);
+            std::memcpy(blob->data() + uv_offset, mesh.uvs.data(), mesh.uvs.size() * 4);
+            views.push_back(absl::StrCat(R"({"buffer":0,"byteOffset":)", uv_offset, R"(,"byteLength":)", mesh.uvs.size() * 4, "}"));
+            accessors.push_back(absl::StrCat(R"({"bufferView":)", views.size() - 1, R"(,"componentType":5126,"count":)",
+                                             mesh.uvs.size() / 2, R"(,"type":"VEC2"})"));
+            absl::StrAppend(&attributes, R"(,"TEXCOORD_0":)", accessors.size() - 1);
+        }
+        meshes.push_back(absl::StrCat(R"({"primitives":[{"attributes":{)", attributes, R"(},"material":)",
+                                      mesh.material, "}]}"));
         nodes.push_back(absl::StrCat(R"({"mesh":)", meshes.size() - 1, "}"));
     }
     std::string cameras = "[]";
@@ -49,11 +64,17 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
         nodes.push_back(absl::StrCat(R"({"camera":0,"translation":)", Floats(scene.camera_position), scene.camera_extra, "}"));
     }
     std::string extensions;
+    if (!images.empty()) {
+        std::vector<std::string> textures;
+        for (size_t i = 0; i < images.size(); ++i) textures.push_back(absl::StrCat(R"({"source":)", i, "}"));
+        extensions = absl::StrCat(R"(,"images":[)", absl::StrJoin(images, ","), R"(],"textures":[)",
+                                  absl::StrJoin(textures, ","), "]");
+    }
     for (size_t i = 0; i < scene.lights.size(); ++i)
         nodes.push_back(absl::StrCat(R"({"extensions":{"KHR_lights_punctual":{"light":)", i, "}}}"));
     if (!scene.lights.empty())
-        extensions = absl::StrCat(R"(,"extensions":{"KHR_lights_punctual":{"lights":[)", absl::StrJoin(scene.lights, ","),
-                                  "]}}");
+        absl::StrAppend(&extensions, R"(,"extensions":{"KHR_lights_punctual":{"lights":[)",
+                        absl::StrJoin(scene.lights, ","), "]}}");
     std::vector<std::string> roots;
     for (size_t i = 0; i < nodes.size(); ++i) roots.push_back(absl::StrCat(i));
     while (blob->size() % 4) blob->push_back('\0');

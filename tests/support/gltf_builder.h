@@ -13,11 +13,13 @@ namespace pf::testing {
 struct TestMaterial {
     Rgb base_color{0.5f};
     Rgb emission{0.0f};
+    std::string texture_png_base64;  // a base colour texture, embedded as a data URI
 };
 
 struct TestMesh {
     std::vector<Vec3> positions;  // three per triangle
     int material = 0;
+    std::vector<float> uvs;       // TEXCOORD_0, two per position, or empty
 };
 
 struct TestScene {

@@ -75,6 +75,28 @@ TEST(GltfLoaderTest, PunctualLightsAreRead) {
     EXPECT_EQ(loaded->lights[2].direction, Vec3(0, 0, -1));
 }
 
+TEST(GltfLoaderTest, BaseColourTextureIsDecodedToLinearAndSampled) {
+    // A 2x1 PNG: sRGB (255, 0, 0) on the left, (128, 128, 128) on the right.
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.materials[0].base_color = Rgb(1.0f, 1.0f, 0.5f);
+    scene.materials[0].texture_png_base64 =
+        "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTkSuQmCC";
+    scene.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+    const absl::StatusOr<Scene> loaded = LoadGltf(testing::WriteGltf(scene, "textured.gltf"));
+    ASSERT_TRUE(loaded.ok()) << loaded.status();
+    ASSERT_EQ(loaded->textures.size(), 1u);
+    const Texture& texture = loaded->textures[0];
+    EXPECT_EQ(texture.Texel(0, 0), Rgb(1.0f, 0.0f, 0.0f));
+    EXPECT_NEAR(texture.Texel(1, 0).x, 0.2158605f, 1e-5f);  // sRGB 128 in linear
+    // The surface's base colour is factor x texture at its uv: the left texel's centre.
+    SurfacePoint surface;
+    surface.material = loaded->triangles[0].material;
+    surface.uv = {0.25f, 0.5f};
+    EXPECT_EQ(loaded->BaseColor(surface), Rgb(1.0f, 0.0f, 0.0f));
+    surface.uv = {0.75f, 0.5f};
+    EXPECT_NEAR(loaded->BaseColor(surface).z, 0.5f * 0.2158605f, 1e-5f);
+}
+
 TEST(GltfLoaderTest, MissingFileIsNamed) {
     ExpectError(LoadGltf("/nonexistent/scene.gltf"), "/nonexistent/scene.gltf", "cannot open");
 }
