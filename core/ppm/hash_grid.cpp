@@ -8,12 +8,12 @@
 
 namespace pf {
 
-int HashGrid::OverlappedBuckets(const Vec3& center, float radius, uint32_t buckets[27]) const {
-    // radius <= cell size, so the sphere spans at most 3 cells an axis; the clamp only
+int HashGrid::OverlappedBuckets(const Vec3& center, float radius, uint32_t buckets[8]) const {
+    // 2 radius <= cell size, so the sphere spans at most 2 cells an axis; the clamp only
     // guards against rounding at cell borders.
-    const int64_t x0 = CellOf(center.x - radius), x1 = std::min(CellOf(center.x + radius), x0 + 2);
-    const int64_t y0 = CellOf(center.y - radius), y1 = std::min(CellOf(center.y + radius), y0 + 2);
-    const int64_t z0 = CellOf(center.z - radius), z1 = std::min(CellOf(center.z + radius), z0 + 2);
+    const int64_t x0 = CellOf(center.x - radius), x1 = std::min(CellOf(center.x + radius), x0 + 1);
+    const int64_t y0 = CellOf(center.y - radius), y1 = std::min(CellOf(center.y + radius), y0 + 1);
+    const int64_t z0 = CellOf(center.z - radius), z1 = std::min(CellOf(center.z + radius), z0 + 1);
     int count = 0;
     for (int64_t x = x0; x <= x1; ++x)
         for (int64_t y = y0; y <= y1; ++y)
@@ -39,13 +39,13 @@ void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float
     entries_.clear();
     bucket_begin_.clear();
     if (!(max_radius > 0)) return;
-    cell_size_ = max_radius;
+    cell_size_ = 2.0f * max_radius;
     inverse_cell_size_ = 1.0f / cell_size_;
     const uint64_t bucket_count = std::bit_ceil(std::max<uint64_t>(2 * hit_points.size(), 64));
     bucket_mask_ = bucket_count - 1;
 
     std::vector<uint32_t> counts(bucket_count + 1, 0);
-    uint32_t buckets[27];
+    uint32_t buckets[8];
     for (size_t i = 0; i < hit_points.size(); ++i) {
         if (!usable(i)) continue;
         const int n = OverlappedBuckets(hit_points[i].position, radius[i], buckets);
