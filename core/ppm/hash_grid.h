@@ -6,6 +6,7 @@
 // the memory.) Rebuilt once per epoch; read-only, and so thread-safe, while batches run.
 #pragma once
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -47,6 +48,8 @@ public:
         return bucket_begin_[bucket + 1] - bucket_begin_[bucket];
     }
 
+    // Buckets are numbered below 2^BucketBits().
+    int BucketBits() const { return std::bit_width(bucket_mask_); }
     float CellSize() const { return cell_size_; }
     size_t EntryCount() const { return entries_.size(); }
 

@@ -9,6 +9,7 @@
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/specular.h"
+#include "core/util/radix_sort.h"
 
 namespace pf {
 namespace {
@@ -72,7 +73,8 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     keys.resize(deposits.size());
     for (size_t i = 0; i < deposits.size(); ++i)
         keys[i] = uint64_t{inputs.grid->BucketOf(deposits[i].position)} << 32 | i;
-    std::sort(keys.begin(), keys.end());
+    // Keys are already in deposit order: a stable sort by bucket alone orders them fully.
+    RadixSortBits(keys, scratch.sort_scratch, 32, inputs.grid->BucketBits());
     // Permute in a loop of its own: its loads are independent and overlap, where inside the
     // gather each would stall the loop.
     std::vector<PhotonDeposit>& sorted = scratch.sorted_deposits;

@@ -43,6 +43,7 @@ struct BatchScratch {
     std::vector<PhotonDeposit> deposits;         // in path order
     std::vector<PhotonDeposit> sorted_deposits;  // in gather order
     std::vector<uint64_t> sort_keys;  // grid bucket << 32 | deposit index
+    std::vector<uint64_t> sort_scratch;
 };
 
 // Runs one batch: traces its photons, then gathers their deposits at the hit points.
