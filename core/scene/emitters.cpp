@@ -26,7 +26,12 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
     for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
         const Material& material = scene.materials[scene.triangles[t].material];
         if (!material.IsEmissive()) continue;
-        add(true, t, Rgbd(material.emission) * (kPiD * scene.TriangleArea(t)));
+        const Triangle& triangle = scene.triangles[t];
+        const Vec3& p0 = scene.positions[triangle.vertex[0]];
+        const Vec3 edge1 = scene.positions[triangle.vertex[1]] - p0, edge2 = scene.positions[triangle.vertex[2]] - p0;
+        const auto index = static_cast<uint32_t>(triangles_.size());
+        triangles_.push_back({p0, edge1, edge2, Normalize(Cross(edge1, edge2)), material.emission, scene.TriangleArea(t)});
+        add(true, index, Rgbd(material.emission) * (kPiD * triangles_.back().area));
     }
     for (uint32_t l = 0; l < scene.lights.size(); ++l) {
         const PunctualLight& light = scene.lights[l];
@@ -47,25 +52,23 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
 EmittedPhoton Emitters::Emit(Rng& rng) const {
     const auto pick = distribution_.Draw(rng.NextFloat());
     const Emitter& emitter = emitters_[pick.index];
-    EmittedPhoton photon = emitter.is_triangle ? EmitFromTriangle(emitter.index, rng)
+    EmittedPhoton photon = emitter.is_triangle ? EmitFromTriangle(triangles_[emitter.index], rng)
                                                : EmitFromLight(scene_.lights[emitter.index], rng);
     photon.flux /= static_cast<float>(pick.probability);
     return photon;
 }
 
-EmittedPhoton Emitters::EmitFromTriangle(uint32_t triangle, Rng& rng) const {
-    const Triangle& t = scene_.triangles[triangle];
-    const Vec3& p0 = scene_.positions[t.vertex[0]];
-    const Vec3& p1 = scene_.positions[t.vertex[1]];
-    const Vec3& p2 = scene_.positions[t.vertex[2]];
-    const Point2 b = SampleUniformTriangle(rng.NextFloat(), rng.NextFloat());
-    const Vec3 point = p0 * (1.0f - b.x - b.y) + p1 * b.x + p2 * b.y;
-    const Vec3 normal = Normalize(Cross(p1 - p0, p2 - p0));
-    const Vec3 direction = Frame::FromNormal(normal).ToWorld(
+Vec3 Emitters::EmissiveTriangle::Point(float u1, float u2) const {
+    const Point2 b = SampleUniformTriangle(u1, u2);
+    return p0 + edge1 * b.x + edge2 * b.y;
+}
+
+EmittedPhoton Emitters::EmitFromTriangle(const EmissiveTriangle& triangle, Rng& rng) const {
+    const Vec3 point = triangle.Point(rng.NextFloat(), rng.NextFloat());
+    const Vec3 direction = Frame::FromNormal(triangle.normal).ToWorld(
         SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
     // Cosine-weighted emission of radiance Le from area A carries flux pi * A * Le.
-    const Rgb flux = scene_.materials[t.material].emission * (kPi * scene_.TriangleArea(triangle));
-    return {{OffsetRayOrigin(point, normal), direction}, flux};
+    return {{OffsetRayOrigin(point, triangle.normal), direction}, triangle.radiance * (kPi * triangle.area)};
 }
 
 EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, Rng& rng) const {
@@ -101,22 +104,16 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
     float distance = std::numeric_limits<float>::infinity();
     Rgb radiance_over_pdf;
     if (emitter.is_triangle) {
-        const Triangle& t = scene_.triangles[emitter.index];
-        const Vec3& p0 = scene_.positions[t.vertex[0]];
-        const Vec3& p1 = scene_.positions[t.vertex[1]];
-        const Vec3& p2 = scene_.positions[t.vertex[2]];
-        const Point2 b = SampleUniformTriangle(u1, u2);
-        const Vec3 point = p0 * (1.0f - b.x - b.y) + p1 * b.x + p2 * b.y;
-        const Vec3 light_normal = Normalize(Cross(p1 - p0, p2 - p0));
+        const EmissiveTriangle& triangle = triangles_[emitter.index];
+        const Vec3 point = triangle.Point(u1, u2);
         to_light = point - origin;
         const float distance_sq = LengthSquared(to_light);
         distance = std::sqrt(distance_sq);
         to_light /= distance;
-        const float cos_light = -Dot(light_normal, to_light);
+        const float cos_light = -Dot(triangle.normal, to_light);
         if (!(cos_light > 0) || !(distance_sq > 0)) return false;
         // Area pdf 1/A converted to solid angle: d^2 / (cos_light A).
-        radiance_over_pdf = scene_.materials[t.material].emission *
-                            (cos_light * scene_.TriangleArea(emitter.index) / distance_sq);
+        radiance_over_pdf = triangle.radiance * (cos_light * triangle.area / distance_sq);
     } else {
         const PunctualLight& light = scene_.lights[emitter.index];
         if (light.type == LightType::kDirectional) {

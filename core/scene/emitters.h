@@ -42,13 +42,22 @@ public:
 private:
     struct Emitter {
         bool is_triangle;
-        uint32_t index;  // into Scene::triangles or Scene::lights
+        uint32_t index;  // into triangles_ or Scene::lights
     };
-    EmittedPhoton EmitFromTriangle(uint32_t triangle, Rng& rng) const;
+    // An emissive triangle, with what sampling it needs precomputed.
+    struct EmissiveTriangle {
+        Vec3 p0, edge1, edge2;
+        Vec3 normal;   // unit, the emitting side
+        Rgb radiance;  // Le
+        float area;
+        Vec3 Point(float u1, float u2) const;
+    };
+    EmittedPhoton EmitFromTriangle(const EmissiveTriangle& triangle, Rng& rng) const;
     EmittedPhoton EmitFromLight(const PunctualLight& light, Rng& rng) const;
 
     const Scene& scene_;
     std::vector<Emitter> emitters_;
+    std::vector<EmissiveTriangle> triangles_;
     DiscreteDistribution distribution_;  // over emitters_, by power
     Rgbd power_rgb_;
     double total_power_ = 0;
