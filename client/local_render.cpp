@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "core/ppm/camera_pass.h"
 #include "core/scene/emitters.h"
 #include "core/scene/gltf_loader.h"
@@ -16,6 +17,11 @@
 
 namespace pf {
 namespace {
+
+// Hit points are indexed with 32 bits and cost about this much memory each across the
+// estimate, the grid and one tally accumulator per thread: 2^26 of them take ~15 GB.
+constexpr uint64_t kMaxHitPoints = uint64_t{1} << 26;
+constexpr uint64_t kBytesPerHitPoint = 220;
 
 absl::Status CheckSettings(const RenderSettings& s) {
     if (s.width < 0 || s.height < 0 || s.width > 32768 || s.height > 32768)
@@ -61,6 +67,13 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
         auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
         CameraPassSettings camera{settings.width, settings.height, settings.samples_per_pixel, settings.seed};
         ResolveFilmSize(scene->camera, &camera.width, &camera.height);
+        const uint64_t most_hit_points = uint64_t(camera.width) * uint64_t(camera.height) * uint64_t(camera.samples_per_pixel);
+        if (most_hit_points > kMaxHitPoints) {
+            status = absl::ResourceExhaustedError(absl::StrFormat(
+                "%dx%d pixels x %d spp = %d hit points exceeds the limit of %d (about %d bytes each)", camera.width,
+                camera.height, camera.samples_per_pixel, most_hit_points, kMaxHitPoints, kBytesPerHitPoint));
+            return;
+        }
         CameraPassResult camera_pass = RunCameraPass(*scene, **tracer, camera);
         outcome.camera_pass_seconds = elapsed();
         outcome.hit_points = camera_pass.hit_points.size();

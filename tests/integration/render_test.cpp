@@ -85,5 +85,15 @@ TEST(RenderTest, BadSettingsAreRefusedWithAClearError) {
     EXPECT_NE(std::string(outcome.status().message()).find("--alpha"), std::string::npos);
 }
 
+TEST(RenderTest, TooManyHitPointsAreRefusedBeforeAnyWork) {
+    RenderSettings settings = SmallRender("cornell-box.gltf", 1000, 1);
+    settings.width = settings.height = 32768;
+    settings.samples_per_pixel = 64;
+    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+    ASSERT_FALSE(outcome.ok());
+    EXPECT_EQ(outcome.status().code(), absl::StatusCode::kResourceExhausted);
+    EXPECT_NE(std::string(outcome.status().message()).find("hit points exceeds the limit"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace pf
