@@ -20,6 +20,16 @@ int CountMaterials(const Scene& scene, MaterialType type) {
                                           [&](const Material& m) { return m.type == type; }));
 }
 
+// Writes the scene's JSON with the first occurrence of `from` replaced by `to`.
+std::string WriteEdited(const testing::TestScene& scene, const std::string& from, const std::string& to,
+                        const std::string& name) {
+    std::string json = testing::GltfJson(scene);
+    const size_t at = json.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) json.replace(at, from.size(), to);
+    return testing::WriteTextFile(json, name);
+}
+
 void ExpectError(const absl::StatusOr<Scene>& scene, const std::string& file, const std::string& fragment) {
     ASSERT_FALSE(scene.ok());
     const std::string message(scene.status().message());
@@ -125,19 +135,14 @@ TEST(GltfLoaderTest, NonFiniteTransformIsRefusedNamingTheNode) {
     // overflow. The camera node (#2) scales by 1e200 and so does its child (#3): 1e400 is Inf.
     testing::TestScene scene = testing::LitQuadScene();
     scene.camera_extra = R"(,"scale":[1e200,1,1],"children":[3])";
-    std::string json = testing::GltfJson(scene);
-    const std::string end_of_nodes = R"(],"meshes")";
-    json.replace(json.find(end_of_nodes), end_of_nodes.size(), R"(,{"name":"inner","scale":[1e200,1,1]}],"meshes")");
-    const std::string path = testing::WriteTextFile(json, "inf-transform.gltf");
+    const std::string path = WriteEdited(scene, R"(],"meshes")", R"(,{"name":"inner","scale":[1e200,1,1]}],"meshes")",
+                                         "inf-transform.gltf");
     ExpectError(LoadGltf(path), path, "node 'inner' (#3): world transform overflows to NaN or Inf");
 }
 
 TEST(GltfLoaderTest, VertexOverflowingItsTransformIsRefused) {
-    testing::TestScene scene = testing::LitQuadScene();
-    std::string json = testing::GltfJson(scene);
-    const std::string mesh_node = R"({"mesh":0})";
-    json.replace(json.find(mesh_node), mesh_node.size(), R"({"mesh":0,"scale":[1e300,1,1]})");
-    const std::string path = testing::WriteTextFile(json, "vertex-overflow.gltf");
+    const std::string path = WriteEdited(testing::LitQuadScene(), R"({"mesh":0})", R"({"mesh":0,"scale":[1e300,1,1]})",
+                                         "vertex-overflow.gltf");
     ExpectError(LoadGltf(path), path, "mesh #0 primitive 0: vertex 0 is not finite after its node's transform");
 }
 
@@ -149,12 +154,8 @@ TEST(GltfLoaderTest, NonFiniteVertexIsRefusedNamingTheMesh) {
 }
 
 TEST(GltfLoaderTest, IndexOutOfRangeCannotReadOutsideTheBuffer) {
-    testing::TestScene scene = testing::LitQuadScene();
-    std::string json = testing::GltfJson(scene);
-    const std::string count = R"("count":6)";
-    json.replace(json.find(count), count.size(), R"("count":600)");
-    const std::string path = testing::WriteTextFile(json, "overrun.gltf");
-    EXPECT_FALSE(LoadGltf(path).ok());
+    const std::string path = WriteEdited(testing::LitQuadScene(), R"("count":6)", R"("count":600)", "overrun.gltf");
+    ExpectError(LoadGltf(path), path, "accessor #0 lies outside its buffer");
 }
 
 }  // namespace
