@@ -39,12 +39,38 @@ absl::Status CheckSettings(const RenderSettings& s) {
     return absl::OkStatus();
 }
 
-// Film size: what was asked, else 512 wide with the camera's aspect ratio.
-void ResolveFilmSize(const Camera& camera, int* width, int* height) {
+// Film size: what was asked, else 512 wide with the camera's aspect ratio; refused if its hit
+// points would not fit.
+absl::StatusOr<CameraPassSettings> FilmFor(const RenderSettings& settings, const Camera& camera) {
+    CameraPassSettings film{settings.width, settings.height, settings.samples_per_pixel, settings.seed};
     const double aspect = camera.aspect_ratio > 0 ? camera.aspect_ratio : 1.0;
-    if (*width == 0 && *height == 0) *width = 512;
-    if (*width == 0) *width = std::max(1, static_cast<int>(std::lround(*height * aspect)));
-    if (*height == 0) *height = std::max(1, static_cast<int>(std::lround(*width / aspect)));
+    if (film.width == 0 && film.height == 0) film.width = 512;
+    if (film.width == 0) film.width = std::max(1, static_cast<int>(std::lround(film.height * aspect)));
+    if (film.height == 0) film.height = std::max(1, static_cast<int>(std::lround(film.width / aspect)));
+    const uint64_t most_hit_points = uint64_t(film.width) * uint64_t(film.height) * uint64_t(film.samples_per_pixel);
+    if (most_hit_points > kMaxHitPoints)
+        return absl::ResourceExhaustedError(absl::StrFormat(
+            "%dx%d pixels x %d spp = %d hit points exceeds the limit of %d (about %d bytes each)", film.width,
+            film.height, film.samples_per_pixel, most_hit_points, kMaxHitPoints, kBytesPerHitPoint));
+    return film;
+}
+
+EstimateSettings EstimateFor(const RenderSettings& settings, const CameraPassResult& camera_pass, const Scene& scene) {
+    EstimateSettings estimate{settings.alpha, settings.initial_radius, settings.samples_per_pixel, settings.layout};
+    if (estimate.initial_radius == 0) estimate.initial_radius = DefaultInitialRadius(camera_pass, scene);
+    if (camera_pass.hit_points.empty() || !(estimate.initial_radius > 0)) {
+        spdlog::warn("{}: the camera sees no diffuse surface; the image holds emission only", settings.scene_path);
+        estimate.initial_radius = std::max(estimate.initial_radius, 1e-3 * scene.bounds.Diagonal());
+    }
+    return estimate;
+}
+
+// The share of the budget spent, in [0, 1]; 1 ends the render after the current epoch.
+double BudgetSpent(const RenderSettings& settings, const RenderProgress& progress) {
+    const double by_photons =
+        settings.photon_budget > 0 ? double(progress.photons) / double(settings.photon_budget) : 0.0;
+    const double by_time = settings.seconds_budget > 0 ? progress.seconds / settings.seconds_budget : 0.0;
+    return std::min(1.0, std::max(by_photons, by_time));
 }
 
 }  // namespace
@@ -55,34 +81,21 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
     if (!scene.ok()) return scene.status();
     const Emitters emitters(*scene);
     if (!emitters.HasPower()) return absl::InvalidArgumentError(absl::StrCat(settings.scene_path, ": lights emit no power"));
+    const absl::StatusOr<CameraPassSettings> film = FilmFor(settings, scene->camera);
+    if (!film.ok()) return film.status();
     absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(*scene);
     if (!tracer.ok()) return tracer.status();
 
-    const int threads = settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency();
-    tbb::task_arena arena(threads);
+    tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency());
     RenderOutcome outcome;
     absl::Status status;
     arena.execute([&] {
         const auto start = std::chrono::steady_clock::now();
         auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-        CameraPassSettings camera{settings.width, settings.height, settings.samples_per_pixel, settings.seed};
-        ResolveFilmSize(scene->camera, &camera.width, &camera.height);
-        const uint64_t most_hit_points = uint64_t(camera.width) * uint64_t(camera.height) * uint64_t(camera.samples_per_pixel);
-        if (most_hit_points > kMaxHitPoints) {
-            status = absl::ResourceExhaustedError(absl::StrFormat(
-                "%dx%d pixels x %d spp = %d hit points exceeds the limit of %d (about %d bytes each)", camera.width,
-                camera.height, camera.samples_per_pixel, most_hit_points, kMaxHitPoints, kBytesPerHitPoint));
-            return;
-        }
-        CameraPassResult camera_pass = RunCameraPass(*scene, **tracer, camera);
+        CameraPassResult camera_pass = RunCameraPass(*scene, **tracer, *film);
         outcome.camera_pass_seconds = elapsed();
         outcome.hit_points = camera_pass.hit_points.size();
-        EstimateSettings estimate_settings{settings.alpha, settings.initial_radius, settings.samples_per_pixel, settings.layout};
-        if (estimate_settings.initial_radius == 0) estimate_settings.initial_radius = DefaultInitialRadius(camera_pass, *scene);
-        if (camera_pass.hit_points.empty() || !(estimate_settings.initial_radius > 0)) {
-            spdlog::warn("{}: the camera sees no diffuse surface; the image holds emission only", settings.scene_path);
-            estimate_settings.initial_radius = std::max(estimate_settings.initial_radius, 1e-3 * scene->bounds.Diagonal());
-        }
+        const EstimateSettings estimate_settings = EstimateFor(settings, camera_pass, *scene);
         outcome.initial_radius = estimate_settings.initial_radius;
         spdlog::info("camera pass: {} hit points in {:.2f} s, initial radius {:.4g}", outcome.hit_points,
                      outcome.camera_pass_seconds, outcome.initial_radius);
@@ -90,13 +103,8 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
 
         embree::CpuBackend backend(**tracer);
         status = backend.BeginJob({&*scene, &emitters, estimate.HitPoints(), settings.seed});
-        if (!status.ok()) return;
         RenderProgress& progress = outcome.progress;
-        while (true) {
-            const bool photons_done = settings.photon_budget > 0 && progress.photons >= settings.photon_budget;
-            const bool time_done = settings.seconds_budget > 0 && progress.seconds >= settings.seconds_budget;
-            const bool stopped = settings.stop != nullptr && settings.stop->load();
-            if (photons_done || time_done || stopped) break;
+        while (status.ok() && progress.fraction < 1.0 && !(settings.stop != nullptr && settings.stop->load())) {
             backend.BeginEpoch(estimate.SearchRadiusSq());
             const std::vector<BatchResult> results = backend.RunBatches(estimate.EpochBatches());
             estimate.MergeEpoch(results);
@@ -104,10 +112,7 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
             progress.epochs = estimate.Epoch();
             progress.photons = estimate.PhotonsEmitted();
             progress.seconds = elapsed();
-            progress.fraction = std::max(
-                settings.photon_budget > 0 ? double(progress.photons) / double(settings.photon_budget) : 0.0,
-                settings.seconds_budget > 0 ? progress.seconds / settings.seconds_budget : 0.0);
-            progress.fraction = std::min(progress.fraction, 1.0);
+            progress.fraction = BudgetSpent(settings, progress);
             if (on_epoch) on_epoch(progress, estimate);
         }
         outcome.image = estimate.Resolve();
