@@ -16,40 +16,74 @@ namespace {
 
 constexpr uint64_t kCameraStream = 0x63616d657261ull;
 
-// Traces one camera path; appends its hit point (if it reaches a diffuse surface) and returns
-// the emission it saw.
-Rgb TraceCameraPath(const Scene& scene, const Tracer& tracer, Ray ray, uint32_t pixel,
-                    float pixel_angle, Rng& rng, std::vector<HitPoint>& hit_points,
-                    std::vector<float>& footprints) {
-    Rgb throughput(1.0f), emission(0.0f);
-    float path_length = 0;
-    for (int depth = 0; depth < kMaxCameraDepth; ++depth) {
-        RayHit hit;
-        if (!tracer.Intersect(ray, &hit)) break;
-        path_length += hit.t;
-        const SurfacePoint surface = scene.Surface(hit);
-        const Material& material = scene.materials[surface.material];
-        const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-        if (front_facing && material.IsEmissive()) emission += throughput * material.emission;
-        const Rgb base_color = scene.BaseColor(surface);
-        if (material.type == MaterialType::kDiffuse) {
-            const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
-            hit_points.push_back({surface.position, normal, throughput * base_color / kPi, pixel});
-            footprints.push_back(path_length * pixel_angle);
-            break;
+// A camera path in flight: where it goes and what it carries.
+struct CameraPath {
+    Ray ray;
+    Rgb throughput;
+    float length = 0;     // distance travelled, for the pixel footprint
+    int depth = 0;
+    int splits_left = 0;  // glass interfaces still to split rather than choose at random
+};
+
+// Traces one camera sample; appends the hit points it reaches and returns the emission it saw.
+// At its first kCameraSplits glass interfaces the path follows both reflection and
+// transmission, each weighted by its probability, instead of choosing one at random: the few
+// percent of reflection on glass would otherwise show as speckle, since hit points are kept.
+Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& primary, uint32_t pixel,
+                      float pixel_angle, Rng& rng, std::vector<HitPoint>& hit_points,
+                      std::vector<float>& footprints) {
+    Rgb emission(0.0f);
+    CameraPath stack[kCameraSplits + 1];
+    int pending = 0;
+    stack[pending++] = {primary, Rgb(1.0f), 0.0f, 0, kCameraSplits};
+    while (pending > 0) {
+        CameraPath path = stack[--pending];
+        for (; path.depth < kMaxCameraDepth; ++path.depth) {
+            RayHit hit;
+            if (!tracer.Intersect(path.ray, &hit)) break;
+            path.length += hit.t;
+            const SurfacePoint surface = scene.Surface(hit);
+            const Material& material = scene.materials[surface.material];
+            const bool front_facing = Dot(path.ray.direction, surface.geometric_normal) < 0;
+            if (front_facing && material.IsEmissive()) emission += path.throughput * material.emission;
+            const Rgb base_color = scene.BaseColor(surface);
+            if (material.type == MaterialType::kDiffuse) {
+                const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
+                hit_points.push_back({surface.position, normal, path.throughput * base_color / kPi, pixel});
+                footprints.push_back(path.length * pixel_angle);
+                break;
+            }
+            const Vec3& n = surface.shading_normal;
+            const float reflect = ReflectionProbability(material, path.ray.direction, n, front_facing);
+            SpecularBounce bounce;
+            if (path.splits_left > 0 && reflect > 0 && reflect < 1) {
+                // Continue with the reflection; the transmission waits on the stack.
+                const SpecularBounce transmitted = TransmitSpecular(material, path.ray.direction, n, front_facing, base_color);
+                CameraPath& other = stack[pending++];
+                other = path;
+                other.throughput *= transmitted.weight * (1.0f - reflect);
+                other.ray = {OffsetRayOrigin(surface.position, front_facing ? -surface.geometric_normal
+                                                                            : surface.geometric_normal),
+                             transmitted.direction};
+                ++other.depth;
+                --other.splits_left;
+                --path.splits_left;
+                bounce = ReflectSpecular(material, path.ray.direction, n, front_facing, base_color);
+                bounce.weight *= reflect;
+            } else {
+                bounce = ScatterSpecular(material, path.ray.direction, n, front_facing, base_color, rng.NextFloat());
+            }
+            path.throughput *= bounce.weight;
+            if (path.depth >= kCameraRouletteDepth) {
+                const float survive = std::min(1.0f, MaxComponent(path.throughput));
+                if (!(rng.NextFloat() < survive)) break;
+                path.throughput /= survive;
+            }
+            if (IsBlack(path.throughput)) break;
+            const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal
+                                                                 : surface.geometric_normal;
+            path.ray = {OffsetRayOrigin(surface.position, side), bounce.direction};
         }
-        const SpecularBounce bounce = ScatterSpecular(material, ray.direction, surface.shading_normal,
-                                                      front_facing, base_color, rng.NextFloat());
-        throughput *= bounce.weight;
-        if (depth >= kCameraRouletteDepth) {
-            const float survive = std::min(1.0f, MaxComponent(throughput));
-            if (!(rng.NextFloat() < survive)) break;
-            throughput /= survive;
-        }
-        if (IsBlack(throughput)) break;
-        const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal
-                                                             : surface.geometric_normal;
-        ray = {OffsetRayOrigin(surface.position, side), bounce.direction};
     }
     return emission;
 }
@@ -91,7 +125,7 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                 for (int s = 0; s < spp; ++s) {
                     const float fx = (x + ((s % strata) + rng.NextFloat()) / strata) / width;
                     const float fy = (y + ((s / strata) + rng.NextFloat()) / strata) / height;
-                    emission += TraceCameraPath(scene, tracer, scene.camera.GenerateRay(fx, fy, film_aspect),
+                    emission += TraceCameraSample(scene, tracer, scene.camera.GenerateRay(fx, fy, film_aspect),
                                                 pixel, pixel_angle, rng, row_hit_points[y],
                                                 row_footprints[y]);
                 }

@@ -1,6 +1,7 @@
 // The camera pass (Hachisuka et al. 2008, section 4.1): k jittered paths per pixel follow
-// specular chains to the first diffuse surface, where each leaves a hit point. Emission seen
-// directly or through specular chains goes straight to the pixel.
+// specular chains to the first diffuse surface, where each leaves a hit point (a path split at
+// glass leaves one per branch, weighted by the branch's probability). Emission seen directly
+// or through specular chains goes straight to the pixel.
 #pragma once
 
 #include <cstdint>
@@ -25,9 +26,11 @@ struct CameraPassResult {
     Image emission;                    // emission reaching each pixel, averaged over its k paths
 };
 
-// Longest specular chain followed; Russian roulette applies after kCameraRouletteDepth.
+// Longest specular chain followed; Russian roulette applies after kCameraRouletteDepth; the
+// first kCameraSplits glass interfaces of a sample are split into both branches.
 inline constexpr int kMaxCameraDepth = 64;
 inline constexpr int kCameraRouletteDepth = 4;
+inline constexpr int kCameraSplits = 2;
 
 // Runs in parallel over rows (on the calling TBB arena); the result does not depend on the
 // thread count.

@@ -39,37 +39,57 @@ inline bool Refract(const Vec3& d, const Vec3& n, float eta, Vec3* refracted) {
 
 struct SpecularBounce {
     Vec3 direction;
-    Rgb weight;        // throughput factor for the chosen branch
+    Rgb weight;        // throughput factor of the branch, given that it was chosen
     bool transmitted;  // the new ray leaves through the other side of the surface
 };
 
-// Scatters incoming direction d at a specular surface. `normal` is the shading normal on the
-// triangle's front side, `front_facing` whether d arrives at that front side, tint the
-// material's (textured) base colour, u a uniform sample that picks the branch.
-inline SpecularBounce ScatterSpecular(const Material& material, const Vec3& d, const Vec3& normal,
-                                      bool front_facing, const Rgb& tint, float u) {
+// The probability that light arriving along d at a specular surface is reflected rather than
+// transmitted: Fresnel's for solid glass (1 under total internal reflection), the sum over a
+// thin sheet's internal reflections 2R/(1+R) for thin glass, 1 for a mirror. `normal` is the
+// shading normal on the triangle's front side, `front_facing` whether d arrives at that side.
+inline float ReflectionProbability(const Material& material, const Vec3& d, const Vec3& normal, bool front_facing) {
     const Vec3 n = front_facing ? normal : -normal;  // facing the incident side
     switch (material.type) {
-        case MaterialType::kMirror:
-            return {Reflect(d, n), tint, false};
-        case MaterialType::kThinDielectric: {
-            // A thin slab: multiple reflections inside sum to R + T^2 R / (1 - R^2) = 2R/(1+R).
-            const float r = FresnelDielectric(-Dot(d, n), 1.0f / material.ior);
-            if (u < 2.0f * r / (1.0f + r)) return {Reflect(d, n), Rgb(1.0f), false};
-            return {d, tint, true};
-        }
-        case MaterialType::kDielectric: {
+        case MaterialType::kDielectric:
             // Front faces lead into the glass (the volume lies behind the winding's front).
-            const float eta = front_facing ? 1.0f / material.ior : material.ior;
-            const float reflectance = FresnelDielectric(-Dot(d, n), eta);
-            Vec3 refracted;
-            if (u < reflectance || !Refract(d, n, eta, &refracted)) return {Reflect(d, n), Rgb(1.0f), false};
-            return {refracted, tint, true};
+            return FresnelDielectric(-Dot(d, n), front_facing ? 1.0f / material.ior : material.ior);
+        case MaterialType::kThinDielectric: {
+            const float r = FresnelDielectric(-Dot(d, n), 1.0f / material.ior);
+            return 2.0f * r / (1.0f + r);
         }
-        case MaterialType::kDiffuse:
-            break;
+        case MaterialType::kMirror: return 1.0f;
+        case MaterialType::kDiffuse: break;
     }
-    return {d, Rgb(0.0f), true};
+    return 0.0f;
+}
+
+// The reflected branch: a mirror is tinted by its base colour, glass reflects untinted.
+inline SpecularBounce ReflectSpecular(const Material& material, const Vec3& d, const Vec3& normal,
+                                      bool front_facing, const Rgb& tint) {
+    const Vec3 n = front_facing ? normal : -normal;
+    return {Reflect(d, n), material.type == MaterialType::kMirror ? tint : Rgb(1.0f), false};
+}
+
+// The transmitted branch, tinted by the base colour: refracted through solid glass (reflected
+// instead should rounding disagree with ReflectionProbability about total internal
+// reflection), straight through a thin sheet.
+inline SpecularBounce TransmitSpecular(const Material& material, const Vec3& d, const Vec3& normal,
+                                       bool front_facing, const Rgb& tint) {
+    if (material.type == MaterialType::kThinDielectric) return {d, tint, true};
+    const Vec3 n = front_facing ? normal : -normal;
+    Vec3 refracted;
+    if (!Refract(d, n, front_facing ? 1.0f / material.ior : material.ior, &refracted))
+        return ReflectSpecular(material, d, normal, front_facing, tint);
+    return {refracted, tint, true};
+}
+
+// Scatters incoming direction d at a specular surface, choosing the branch with its
+// probability (u uniform in [0, 1)), so the carried weight is only the branch's tint.
+inline SpecularBounce ScatterSpecular(const Material& material, const Vec3& d, const Vec3& normal,
+                                      bool front_facing, const Rgb& tint, float u) {
+    if (u < ReflectionProbability(material, d, normal, front_facing))
+        return ReflectSpecular(material, d, normal, front_facing, tint);
+    return TransmitSpecular(material, d, normal, front_facing, tint);
 }
 
 }  // namespace pf
