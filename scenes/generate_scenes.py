@@ -258,8 +258,17 @@ def furnace(albedo=0.5, emission=1.0):
     return writer
 
 
+def furnace_glass():
+    """The furnace with a clear glass sphere in view: lossless scattering leaves the uniform
+    radiance field uniform, so every pixel, through the glass or not, is still Le / (1 - rho)."""
+    writer = furnace()
+    sphere("glass_sphere", [0.25, -0.3, -0.45], 0.35,
+           writer.material("glass", (1.0, 1.0, 1.0), glass_ior=1.5), writer)
+    return writer
+
+
 SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass,
-          "caustic-glass": caustic_glass, "furnace": furnace}
+          "caustic-glass": caustic_glass, "furnace": furnace, "furnace-glass": furnace_glass}
 
 if __name__ == "__main__":
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))

@@ -44,6 +44,25 @@ TEST(RenderTest, WhiteFurnaceConvergesToEmissionOverOneMinusAlbedo) {
     EXPECT_NEAR(median, 2.0, 0.04) << "the typical pixel must be within 2%";
 }
 
+TEST(RenderTest, GlassInTheFurnaceConservesEnergy) {
+    // furnace-glass.gltf: the furnace with a clear glass sphere in view. Lossless scattering
+    // leaves a uniform radiance field uniform, so the pixels seen through the glass (the block
+    // x in [20, 32), y in [26, 38) of the 48x48 image lies on the sphere) must show Le/(1-rho) = 2
+    // too: energy lost or gained by Fresnel, refraction or the splitting would show here.
+    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(SmallRender("furnace-glass.gltf", 3'000'000, 2));
+    ASSERT_TRUE(outcome.ok()) << outcome.status();
+    double all = 0, through_glass = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 48; ++x) {
+            const double value = Average(outcome->image.At(x, y));
+            ASSERT_TRUE(std::isfinite(value));
+            all += value;
+            if (x >= 20 && x < 32 && y >= 26 && y < 38) through_glass += value;
+        }
+    EXPECT_NEAR(all / (48 * 48), 2.0, 0.02);
+    EXPECT_NEAR(through_glass / 144, 2.0, 0.04);
+}
+
 TEST(RenderTest, GlassSceneHasNoNaNOrInf) {
     const absl::StatusOr<RenderOutcome> outcome = RenderLocally(SmallRender("cornell-glass.gltf", 400'000, 2));
     ASSERT_TRUE(outcome.ok()) << outcome.status();
