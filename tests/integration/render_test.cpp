@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "client/local_render.h"
+#include "tests/support/gltf_builder.h"
 
 namespace pf {
 namespace {
@@ -61,6 +62,55 @@ TEST(RenderTest, GlassInTheFurnaceConservesEnergy) {
         }
     EXPECT_NEAR(all / (48 * 48), 2.0, 0.02);
     EXPECT_NEAR(through_glass / 144, 2.0, 0.04);
+}
+
+// Renders a 2x2 quad of albedo 0.5 at z = 0, seen from above, lit by one punctual light, and
+// returns the mean of the 4x4 pixels at the image's centre (the point under the camera).
+double CentreOfQuadLitBy(const std::string& light, const std::string& node_fields, const std::string& name) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.meshes.resize(1);  // no area light
+    scene.lights = {light};
+    scene.light_node_fields = {node_fields};
+    RenderSettings settings = SmallRender("", 100'000, 2);
+    settings.scene_path = testing::WriteGltf(scene, name);
+    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+    EXPECT_TRUE(outcome.ok()) << outcome.status();
+    if (!outcome.ok()) return -1;
+    double sum = 0;
+    for (int y = 22; y < 26; ++y)
+        for (int x = 22; x < 26; ++x) sum += outcome->image.At(x, y).x;
+    return sum / 16;
+}
+
+// The mean over the centre 4x4 pixels of I h / (h^2 + r^2)^(3/2): the irradiance from a point
+// source of intensity I at height h = 1 above the quad, seen by the test camera (z = 3, y-fov
+// 0.8, 48x48 pixels looking straight down).
+double CentreIrradianceFromPointAbove(double intensity) {
+    const double pixel = 2 * 3 * std::tan(0.4) / 48;
+    double sum = 0;
+    constexpr int kSteps = 64;
+    for (int i = 0; i < kSteps; ++i)
+        for (int j = 0; j < kSteps; ++j) {
+            const double x = (-2 + 4 * (i + 0.5) / kSteps) * pixel, y = (-2 + 4 * (j + 0.5) / kSteps) * pixel;
+            sum += intensity / std::pow(1 + x * x + y * y, 1.5);
+        }
+    return sum / (kSteps * kSteps);
+}
+
+TEST(RenderTest, PunctualLightsGiveTheirAnalyticRadiance) {
+    // A Lambertian surface of albedo rho under irradiance E has radiance rho E / pi; nothing
+    // else is in the scene, so there is no indirect light. Intensities are W/sr (point, spot)
+    // and W/m^2 (directional); the lights hang 1 above the quad's centre, pointing down.
+    const double rho_over_pi = 0.5 / kPiD;
+    const double point_expected = rho_over_pi * CentreIrradianceFromPointAbove(4.0);
+    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"point","intensity":4})", R"(,"translation":[0,0,1])", "point.gltf"),
+                point_expected, 0.005 * point_expected);
+    // Within the inner cone a spot light is a point light.
+    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"spot","intensity":4,"spot":{"innerConeAngle":0.3,"outerConeAngle":0.6}})",
+                                  R"(,"translation":[0,0,1])", "spot.gltf"),
+                point_expected, 0.005 * point_expected);
+    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"directional","intensity":3})", "", "directional.gltf"),
+                rho_over_pi * 3.0, 0.01 * rho_over_pi * 3.0);
 }
 
 TEST(RenderTest, GlassSceneHasNoNaNOrInf) {

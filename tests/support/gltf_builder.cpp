@@ -71,7 +71,8 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
                                   absl::StrJoin(textures, ","), "]");
     }
     for (size_t i = 0; i < scene.lights.size(); ++i)
-        nodes.push_back(absl::StrCat(R"({"extensions":{"KHR_lights_punctual":{"light":)", i, "}}}"));
+        nodes.push_back(absl::StrCat(R"({"extensions":{"KHR_lights_punctual":{"light":)", i, "}}",
+                                     i < scene.light_node_fields.size() ? scene.light_node_fields[i] : "", "}"));
     if (!scene.lights.empty())
         absl::StrAppend(&extensions, R"(,"extensions":{"KHR_lights_punctual":{"lights":[)",
                         absl::StrJoin(scene.lights, ","), "]}}");

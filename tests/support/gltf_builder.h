@@ -28,7 +28,9 @@ struct TestScene {
     bool camera = true;
     Vec3 camera_position{0, 0, 3};   // looking down -z
     std::string camera_extra;        // raw JSON fields appended to the camera node
-    std::vector<std::string> lights; // raw KHR_lights_punctual light objects, at the origin
+    std::vector<std::string> lights; // raw KHR_lights_punctual light objects
+    std::vector<std::string> light_node_fields;  // raw JSON fields of each light's node, e.g.
+                                                 // R"(,"translation":[0,0,1])"; none: at the origin
 };
 
 // A unit quad in the z = 0 plane facing +z, lit by an emissive quad above it.
