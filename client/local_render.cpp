@@ -18,10 +18,11 @@
 namespace pf {
 namespace {
 
-// Hit points are indexed with 32 bits and cost about this much memory each across the
-// estimate, the grid and one tally accumulator per thread: 2^26 of them take ~15 GB.
-constexpr uint64_t kMaxHitPoints = uint64_t{1} << 26;
-constexpr uint64_t kBytesPerHitPoint = 220;
+// Hit points cost about this much memory each across the estimate (~140 bytes), the grid (8
+// entries of 20 bytes) and one tally accumulator per thread (16 bytes): 2^25 of them (4K at
+// 4 hit points per pixel) take ~12 GB.
+constexpr uint64_t kMaxHitPoints = uint64_t{1} << 25;
+constexpr uint64_t kBytesPerHitPoint = 350;
 
 absl::Status CheckSettings(const RenderSettings& s) {
     if (s.width < 0 || s.height < 0 || s.width > 32768 || s.height > 32768)

@@ -3,7 +3,10 @@
 // twice the largest current radius, so a sphere overlaps at most 2x2x2 cells. (Cells of one
 // radius would cut the candidates a photon inspects by about (3/4)^2 on a surface, but store
 // each hit point in 27 cells: measured end to end, 2x cells are faster and take a third of
-// the memory.) Rebuilt once per epoch; read-only, and so thread-safe, while batches run.
+// the memory.) Each entry carries a copy of its hit point's centre and R^2, 20 bytes, so a
+// lookup scans contiguous memory with a vectorised test: 2.54 M against 2.45 M photons/s end
+// to end with 4-byte entries pointing at the hit points, for 2.5x the grid's memory.
+// Rebuilt once per epoch; read-only, and so thread-safe, while batches run.
 #pragma once
 
 #include <bit>
@@ -29,21 +32,39 @@ public:
     // fixed order.
     template <typename Visit>
     void ForEachGathering(const Vec3& p, const Vec3& direction, Visit&& visit) const {
-        if (entries_.empty()) return;
+        if (entry_index_.empty()) return;
         const uint32_t bucket = Bucket(CellOf(p.x), CellOf(p.y), CellOf(p.z));
-        for (uint32_t e = bucket_begin_[bucket]; e < bucket_begin_[bucket + 1]; ++e) {
-            const Sphere& sphere = spheres_[entries_[e]];
-            if (LengthSquared(sphere.center - p) <= sphere.radius_sq && Dot(sphere.normal, direction) < 0)
-                visit(entries_[e]);
+        uint32_t begin = bucket_begin_[bucket];
+        const uint32_t end = bucket_begin_[bucket + 1];
+        // Two phases, so the distance test runs as a branch-free loop the compiler vectorises
+        // over the bucket's contiguous coordinates; only the few that pass are looked at again.
+        constexpr uint32_t kChunk = 64;
+        uint8_t inside[kChunk];
+        while (begin < end) {
+            const uint32_t count = std::min(end - begin, kChunk);
+            const float* xs = entry_x_.data() + begin;
+            const float* ys = entry_y_.data() + begin;
+            const float* zs = entry_z_.data() + begin;
+            const float* radii_sq = entry_radius_sq_.data() + begin;
+            for (uint32_t k = 0; k < count; ++k) {
+                const float dx = xs[k] - p.x, dy = ys[k] - p.y, dz = zs[k] - p.z;
+                inside[k] = dx * dx + dy * dy + dz * dz <= radii_sq[k];
+            }
+            for (uint32_t k = 0; k < count; ++k) {
+                if (!inside[k]) continue;
+                const uint32_t index = entry_index_[begin + k];
+                if (Dot(normals_[index], direction) < 0) visit(index);
+            }
+            begin += count;
         }
     }
     // The bucket a photon at p looks in; photons sorted by it share memory traffic.
     uint32_t BucketOf(const Vec3& p) const {
-        return entries_.empty() ? 0 : Bucket(CellOf(p.x), CellOf(p.y), CellOf(p.z));
+        return entry_index_.empty() ? 0 : Bucket(CellOf(p.x), CellOf(p.y), CellOf(p.z));
     }
     // The number of hit points inspected for a photon at p (for tests and statistics).
     size_t CandidateCount(const Vec3& p) const {
-        if (entries_.empty()) return 0;
+        if (entry_index_.empty()) return 0;
         const uint32_t bucket = BucketOf(p);
         return bucket_begin_[bucket + 1] - bucket_begin_[bucket];
     }
@@ -51,7 +72,7 @@ public:
     // Buckets are numbered below 2^BucketBits().
     int BucketBits() const { return std::bit_width(bucket_mask_); }
     float CellSize() const { return cell_size_; }
-    size_t EntryCount() const { return entries_.size(); }
+    size_t EntryCount() const { return entry_index_.size(); }
 
 private:
     int64_t CellOf(float coordinate) const {
@@ -71,19 +92,14 @@ private:
     // The distinct buckets of the cells that the sphere (center, radius) overlaps; returns count.
     int OverlappedBuckets(const Vec3& center, float radius, uint32_t buckets[8]) const;
 
-    // All a lookup reads of a hit point, packed in 32 bytes so candidates (adjacent in memory
-    // thanks to the camera pass's Morton order) share cache lines.
-    struct alignas(32) Sphere {
-        Vec3 center;
-        float radius_sq;
-        Vec3 normal;
-    };
-
-    std::vector<Sphere> spheres_;         // per hit point
+    std::vector<Vec3> normals_;  // per hit point, read only for those within their radius
     float cell_size_ = 0, inverse_cell_size_ = 0;
     uint64_t bucket_mask_ = 0;
-    std::vector<uint32_t> bucket_begin_;  // CSR offsets, size buckets + 1
-    std::vector<uint32_t> entries_;       // hit point indices, grouped by bucket
+    std::vector<uint32_t> bucket_begin_;  // CSR offsets into the entry arrays, size buckets + 1
+    // Entries grouped by bucket, as structure of arrays: a hit point's centre and R^2 copied
+    // into every bucket it is stored in, so a bucket's distance tests read contiguous memory.
+    std::vector<float> entry_x_, entry_y_, entry_z_, entry_radius_sq_;
+    std::vector<uint32_t> entry_index_;  // the hit point of each entry
 };
 
 }  // namespace pf
