@@ -84,6 +84,7 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
         inputs.grid->ForEachGathering(deposit.position, deposit.direction,
                                       [&](uint32_t index) { scratch.tally.Add(index, deposit.flux); });
     }
+    scratch.deposits.clear();
 }
 
 }  // namespace
@@ -96,6 +97,9 @@ BatchResult RunPhotonBatch(const PhotonPassInputs& inputs, const BatchSpec& spec
     for (uint32_t i = 0; i < spec.photons; ++i) {
         Rng rng(HashSeed(inputs.seed, kPhotonStream, spec.index, i));
         result.segments_traced += TracePhoton(inputs, rng, scratch.deposits);
+        // Bounded memory however long the paths (albedo near 1): gather in chunks, at points
+        // fixed by the photon sequence alone, so the sums stay deterministic.
+        if (scratch.deposits.size() >= kMaxPendingDeposits) GatherDeposits(inputs, scratch);
     }
     GatherDeposits(inputs, scratch);
     result.photons_emitted = spec.photons;

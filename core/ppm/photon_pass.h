@@ -29,6 +29,9 @@ struct PhotonPassInputs {
 // Longest photon path followed; Russian roulette ends paths long before it (with albedo
 // 0.999 the chance of reaching it is about e^-65).
 inline constexpr int kMaxPhotonBounces = 1 << 16;
+// A batch gathers its deposits once this many are pending (about 80 MB of deposits and keys
+// per thread), so memory stays bounded however many bounces the photons make.
+inline constexpr size_t kMaxPendingDeposits = size_t{1} << 20;
 
 // Where a photon landed on a diffuse surface after scattering at least once.
 struct PhotonDeposit {
