@@ -28,11 +28,13 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
                        normals[triangle.vertex[2]] * hit.b2;
         if (LengthSquared(n) > 0) surface.shading_normal = FaceForward(Normalize(n), surface.geometric_normal);
     }
-    const Point2& t0 = uvs[triangle.vertex[0]];
-    const Point2& t1 = uvs[triangle.vertex[1]];
-    const Point2& t2 = uvs[triangle.vertex[2]];
-    surface.uv = {t0.x * b0 + t1.x * hit.b1 + t2.x * hit.b2, t0.y * b0 + t1.y * hit.b1 + t2.y * hit.b2};
     surface.material = triangle.material;
+    if (materials[triangle.material].base_color_texture != kNoTexture) {  // only textures read uv
+        const Point2& t0 = uvs[triangle.vertex[0]];
+        const Point2& t1 = uvs[triangle.vertex[1]];
+        const Point2& t2 = uvs[triangle.vertex[2]];
+        surface.uv = {t0.x * b0 + t1.x * hit.b1 + t2.x * hit.b2, t0.y * b0 + t1.y * hit.b1 + t2.y * hit.b2};
+    }
     return surface;
 }
 

@@ -49,7 +49,7 @@ struct SurfacePoint {
     Vec3 position;
     Vec3 geometric_normal;  // unit, on the side the triangle's winding makes its front
     Vec3 shading_normal;    // unit, interpolated, on the same side as geometric_normal
-    Point2 uv;
+    Point2 uv;              // texture coordinates; set only where the material has a texture
     uint32_t material = 0;
 };
 
