@@ -30,7 +30,7 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
         const Vec3& p0 = scene.positions[triangle.vertex[0]];
         const Vec3 edge1 = scene.positions[triangle.vertex[1]] - p0, edge2 = scene.positions[triangle.vertex[2]] - p0;
         const auto index = static_cast<uint32_t>(triangles_.size());
-        triangles_.push_back({p0, edge1, edge2, Normalize(Cross(edge1, edge2)), material.emission, scene.TriangleArea(t)});
+        triangles_.push_back({p0, edge1, edge2, Frame::FromNormal(triangle.normal), material.emission, scene.TriangleArea(t)});
         add(true, index, Rgbd(material.emission) * (kPiD * triangles_.back().area));
     }
     for (uint32_t l = 0; l < scene.lights.size(); ++l) {
@@ -65,10 +65,9 @@ Vec3 Emitters::EmissiveTriangle::Point(float u1, float u2) const {
 
 EmittedPhoton Emitters::EmitFromTriangle(const EmissiveTriangle& triangle, Rng& rng) const {
     const Vec3 point = triangle.Point(rng.NextFloat(), rng.NextFloat());
-    const Vec3 direction = Frame::FromNormal(triangle.normal).ToWorld(
-        SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
+    const Vec3 direction = triangle.frame.ToWorld(SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
     // Cosine-weighted emission of radiance Le from area A carries flux pi * A * Le.
-    return {{OffsetRayOrigin(point, triangle.normal), direction}, triangle.radiance * (kPi * triangle.area)};
+    return {{OffsetRayOrigin(point, triangle.frame.n), direction}, triangle.radiance * (kPi * triangle.area)};
 }
 
 EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, Rng& rng) const {
@@ -110,7 +109,7 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
         const float distance_sq = LengthSquared(to_light);
         distance = std::sqrt(distance_sq);
         to_light /= distance;
-        const float cos_light = -Dot(triangle.normal, to_light);
+        const float cos_light = -Dot(triangle.frame.n, to_light);
         if (!(cos_light > 0) || !(distance_sq > 0)) return false;
         // Area pdf 1/A converted to solid angle: d^2 / (cos_light A).
         radiance_over_pdf = triangle.radiance * (cos_light * triangle.area / distance_sq);

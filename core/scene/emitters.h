@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/geometry/ray.h"
+#include "core/math/frame.h"
 #include "core/math/vec3.h"
 #include "core/sampling/distribution.h"
 #include "core/sampling/rng.h"
@@ -47,7 +48,7 @@ private:
     // An emissive triangle, with what sampling it needs precomputed.
     struct EmissiveTriangle {
         Vec3 p0, edge1, edge2;
-        Vec3 normal;   // unit, the emitting side
+        Frame frame;   // around the unit normal of the emitting side
         Rgb radiance;  // Le
         float area;
         Vec3 Point(float u1, float u2) const;

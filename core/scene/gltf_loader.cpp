@@ -258,8 +258,9 @@ absl::Status GltfSceneBuilder::AddPrimitive(const tinygltf::Primitive& primitive
         if (mirrored) std::swap(b, c);
         const Vec3 e1 = scene_.positions[base + b] - scene_.positions[base + a];
         const Vec3 e2 = scene_.positions[base + c] - scene_.positions[base + a];
-        if (!(LengthSquared(Cross(e1, e2)) > 0)) continue;  // degenerate: has no surface
-        scene_.triangles.push_back({{base + a, base + b, base + c}, *material, !normals.empty()});
+        const Vec3 normal = Normalize(Cross(e1, e2));
+        if (!IsFinite(normal)) continue;  // degenerate: has no surface
+        scene_.triangles.push_back({{base + a, base + b, base + c}, *material, !normals.empty(), normal});
     }
     return absl::OkStatus();
 }

@@ -21,7 +21,7 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
     SurfacePoint surface;
     // Barycentric interpolation is more accurate than origin + t * direction far from the origin.
     surface.position = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
-    surface.geometric_normal = Normalize(Cross(p1 - p0, p2 - p0));
+    surface.geometric_normal = triangle.normal;
     surface.shading_normal = surface.geometric_normal;
     if (triangle.smooth) {
         const Vec3 n = normals[triangle.vertex[0]] * b0 + normals[triangle.vertex[1]] * hit.b1 +

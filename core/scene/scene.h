@@ -18,7 +18,8 @@ namespace pf {
 struct Triangle {
     uint32_t vertex[3];
     uint32_t material;
-    bool smooth;  // interpolate vertex normals; otherwise shade with the geometric normal
+    bool smooth;    // interpolate vertex normals; otherwise shade with the geometric normal
+    Vec3 normal;    // unit geometric normal, on the side counter-clockwise winding makes front
 };
 
 enum class LightType : uint32_t { kPoint, kSpot, kDirectional };
