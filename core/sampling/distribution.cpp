@@ -29,10 +29,16 @@ DiscreteDistribution::DiscreteDistribution(std::span<const double> weights) {
 
 DiscreteDistribution::Sample DiscreteDistribution::Draw(float u) const {
     // The first item whose CDF exceeds u; items of zero weight share their predecessor's
-    // CDF value, so upper_bound skips them.
-    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), static_cast<double>(u));
-    auto index = static_cast<uint32_t>(std::min<size_t>(it - cdf_.begin(), cdf_.size() - 1));
-    return {index, probabilities_[index]};
+    // CDF value, so they are never chosen. Few items (a scene's lights, typically): count the
+    // CDF values not above u, without branches the predictor would lose on random u.
+    size_t index = 0;
+    if (cdf_.size() <= kLinearSearchLimit) {
+        for (double value : cdf_) index += value <= u;
+    } else {
+        index = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), static_cast<double>(u)) - cdf_.begin());
+    }
+    index = std::min(index, cdf_.size() - 1);
+    return {static_cast<uint32_t>(index), probabilities_[index]};
 }
 
 double DiscreteDistribution::Probability(uint32_t index) const { return probabilities_[index]; }
