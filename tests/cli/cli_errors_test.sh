@@ -51,4 +51,22 @@ else
     echo "FAIL snapshots"; cat "$work/err"; failures=$((failures + 1))
 fi
 
+# Ctrl-C stops after the current epoch and still writes the image: nothing computed is lost.
+"$photonfarm" render "$source_dir/scenes/furnace.gltf" --out "$work/interrupted.exr" --seconds 120 \
+    --photons-per-batch 65536 --batches-per-epoch 2 --width 16 --threads 1 \
+    --snapshot-every 0.001 --snapshot-dir "$work/interrupt-snapshots" >/dev/null 2>"$work/err" &
+render_pid=$!
+for _ in $(seq 300); do  # wait (at most 30 s) until the render is under way
+    [ -s "$work/interrupt-snapshots/snapshot-0001.exr" ] && break
+    sleep 0.1
+done
+kill -INT "$render_pid"
+wait "$render_pid"
+code=$?
+if [ "$code" -eq 0 ] && [ -s "$work/interrupted.exr" ] && grep -q "stopped early" "$work/err"; then
+    echo "ok   SIGINT stops after the epoch and writes the image"
+else
+    echo "FAIL SIGINT: exit $code"; cat "$work/err"; failures=$((failures + 1))
+fi
+
 [ "$failures" -eq 0 ] && echo "all CLI checks passed" || { echo "$failures CLI checks failed"; exit 1; }
