@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/math/fast_trig.h"
 #include "core/math/vec3.h"
 
 namespace pf {
@@ -19,8 +20,9 @@ struct Point2 {
 // innermost loop of the photon pass.
 inline Point2 SampleUniformDisk(float u1, float u2) {
     const float radius = std::sqrt(u1);
-    const float phi = 2.0f * kPi * u2;
-    return {radius * std::cos(phi), radius * std::sin(phi)};
+    float sine, cosine;
+    SinCosTurns(u2, &sine, &cosine);
+    return {radius * cosine, radius * sine};
 }
 
 // Cosine-weighted direction about +z (Malley's method: the disk lifted to the hemisphere);
@@ -35,8 +37,9 @@ inline Vec3 SampleCosineHemisphere(float u1, float u2) {
 inline Vec3 SampleUniformSphere(float u1, float u2) {
     const float z = 1.0f - 2.0f * u1;
     const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    const float phi = 2.0f * kPi * u2;
-    return {r * std::cos(phi), r * std::sin(phi), z};
+    float sine, cosine;
+    SinCosTurns(u2, &sine, &cosine);
+    return {r * cosine, r * sine, z};
 }
 
 // Uniform direction in the cone about +z with cos(half angle) = cos_max;
@@ -44,8 +47,9 @@ inline Vec3 SampleUniformSphere(float u1, float u2) {
 inline Vec3 SampleUniformCone(float u1, float u2, float cos_max) {
     const float cos_theta = 1.0f - u1 * (1.0f - cos_max);
     const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
-    const float phi = 2.0f * kPi * u2;
-    return {sin_theta * std::cos(phi), sin_theta * std::sin(phi), cos_theta};
+    float sine, cosine;
+    SinCosTurns(u2, &sine, &cosine);
+    return {sin_theta * cosine, sin_theta * sine, cos_theta};
 }
 
 // Uniform barycentrics (b1, b2) on a triangle by the square-root map (Shirley 1990); density
