@@ -94,6 +94,20 @@ bool EmbreeTracer::Intersect(const Ray& ray, RayHit* hit) const {
     return true;
 }
 
+uint64_t EmbreeTracer::CountHits(std::span<const Ray> rays) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    uint64_t hits = 0;
+    for (const Ray& ray : rays) {
+        RTCRayHit ray_hit;
+        ray_hit.ray = ToRtcRay(ray);
+        ray_hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(handles_->scene, &context, &ray_hit);
+        hits += ray_hit.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    }
+    return hits;
+}
+
 bool EmbreeTracer::Occluded(const Ray& ray) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);

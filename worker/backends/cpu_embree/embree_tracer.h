@@ -2,7 +2,9 @@
 // (with its .cpp) that includes Embree.
 #pragma once
 
+#include <cstdint>
 #include <memory>
+#include <span>
 
 #include "absl/status/statusor.h"
 #include "core/geometry/tracer.h"
@@ -21,6 +23,10 @@ public:
 
     bool Intersect(const Ray& ray, RayHit* hit) const override;
     bool Occluded(const Ray& ray) const override;
+
+    // Casts every ray with bare rtcIntersect1 calls, returning how many hit: the raw ray rate
+    // that benchmarks compare the photon pass against, free of this class's own overhead.
+    uint64_t CountHits(std::span<const Ray> rays) const;
 
 private:
     struct Handles;
