@@ -112,6 +112,12 @@ absl::Status ReadIndices(const tinygltf::Model& model, int index, std::vector<ui
     return absl::OkStatus();
 }
 
+// One primitive's attributes as read from its accessors, in the primitive's own space.
+struct PrimitiveArrays {
+    std::vector<float> positions, normals, uvs;  // 3, 3 and 2 per vertex; normals, uvs may be empty
+    std::vector<uint32_t> indices;               // 3 per triangle, all below the vertex count
+};
+
 class GltfSceneBuilder {
 public:
     GltfSceneBuilder(const std::string& path, const tinygltf::Model& model) : path_(path), model_(model) {
@@ -126,6 +132,7 @@ private:
     }
     absl::Status VisitNode(int index, const Transform& parent, int depth);
     absl::Status AddMesh(int mesh_index, const Transform& world);
+    absl::StatusOr<PrimitiveArrays> ReadPrimitive(const tinygltf::Primitive& primitive, const std::string& element) const;
     absl::Status AddPrimitive(const tinygltf::Primitive& primitive, const std::string& element, const Transform& world);
     absl::Status AddLight(int light_index, const Transform& world);
     absl::Status SetCamera(int camera_index, const Transform& world);
@@ -202,41 +209,54 @@ absl::Status GltfSceneBuilder::AddMesh(int mesh_index, const Transform& world) {
     return absl::OkStatus();
 }
 
+absl::StatusOr<PrimitiveArrays> GltfSceneBuilder::ReadPrimitive(const tinygltf::Primitive& primitive,
+                                                                 const std::string& element) const {
+    const auto position_it = primitive.attributes.find("POSITION");
+    if (position_it == primitive.attributes.end()) return Error(element, "has no POSITION attribute");
+    PrimitiveArrays arrays;
+    if (absl::Status s = ReadFloats(model_, position_it->second, 3, &arrays.positions); !s.ok())
+        return Error(element, std::string(s.message()));
+    const size_t vertex_count = arrays.positions.size() / 3;
+    for (size_t v = 0; v < 3 * vertex_count; ++v)
+        if (!std::isfinite(arrays.positions[v]))
+            return Error(element, absl::StrCat("vertex ", v / 3, " position has NaN or Inf"));
+    if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
+        if (absl::Status s = ReadFloats(model_, it->second, 3, &arrays.normals); !s.ok())
+            return Error(element, std::string(s.message()));
+        if (arrays.normals.size() != arrays.positions.size()) return Error(element, "NORMAL and POSITION counts differ");
+    }
+    if (auto it = primitive.attributes.find("TEXCOORD_0"); it != primitive.attributes.end()) {
+        if (absl::Status s = ReadFloats(model_, it->second, 2, &arrays.uvs); !s.ok())
+            return Error(element, std::string(s.message()));
+        if (arrays.uvs.size() / 2 != vertex_count) return Error(element, "TEXCOORD_0 and POSITION counts differ");
+    }
+    if (primitive.indices >= 0) {
+        if (absl::Status s = ReadIndices(model_, primitive.indices, &arrays.indices); !s.ok())
+            return Error(element, std::string(s.message()));
+    } else {
+        for (uint32_t i = 0; i < vertex_count; ++i) arrays.indices.push_back(i);
+    }
+    if (arrays.indices.size() % 3 != 0) return Error(element, "index count is not a multiple of 3");
+    for (size_t i = 0; i < arrays.indices.size(); ++i)
+        if (arrays.indices[i] >= vertex_count)
+            return Error(element, absl::StrCat("triangle ", i / 3, " has an index beyond the ", vertex_count, " vertices"));
+    return arrays;
+}
+
 absl::Status GltfSceneBuilder::AddPrimitive(const tinygltf::Primitive& primitive, const std::string& element,
                                             const Transform& world) {
     if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
         spdlog::warn("{}: {}: mode {} is not triangles; skipped", path_, element, primitive.mode);
         return absl::OkStatus();
     }
-    const auto position_it = primitive.attributes.find("POSITION");
-    if (position_it == primitive.attributes.end()) return Error(element, "has no POSITION attribute");
-    std::vector<float> positions, normals, uvs;
-    if (absl::Status s = ReadFloats(model_, position_it->second, 3, &positions); !s.ok())
-        return Error(element, std::string(s.message()));
-    const size_t vertex_count = positions.size() / 3;
-    for (size_t v = 0; v < vertex_count; ++v)
-        if (!std::isfinite(positions[3 * v]) || !std::isfinite(positions[3 * v + 1]) || !std::isfinite(positions[3 * v + 2]))
-            return Error(element, absl::StrCat("vertex ", v, " position has NaN or Inf"));
-    if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
-        if (absl::Status s = ReadFloats(model_, it->second, 3, &normals); !s.ok()) return Error(element, std::string(s.message()));
-        if (normals.size() != positions.size()) return Error(element, "NORMAL and POSITION counts differ");
-    }
-    if (auto it = primitive.attributes.find("TEXCOORD_0"); it != primitive.attributes.end()) {
-        if (absl::Status s = ReadFloats(model_, it->second, 2, &uvs); !s.ok()) return Error(element, std::string(s.message()));
-        if (uvs.size() / 2 != vertex_count) return Error(element, "TEXCOORD_0 and POSITION counts differ");
-    }
-    std::vector<uint32_t> indices;
-    if (primitive.indices >= 0) {
-        if (absl::Status s = ReadIndices(model_, primitive.indices, &indices); !s.ok()) return Error(element, std::string(s.message()));
-    } else {
-        for (uint32_t i = 0; i < vertex_count; ++i) indices.push_back(i);
-    }
-    if (indices.size() % 3 != 0) return Error(element, "index count is not a multiple of 3");
+    const absl::StatusOr<PrimitiveArrays> arrays = ReadPrimitive(primitive, element);
+    if (!arrays.ok()) return arrays.status();
     const absl::StatusOr<uint32_t> material = MaterialIndex(primitive.material);
     if (!material.ok()) return material.status();
-
+    const std::vector<float>& positions = arrays->positions;
+    const std::vector<float>& normals = arrays->normals;
     const auto base = static_cast<uint32_t>(scene_.positions.size());
-    for (size_t v = 0; v < vertex_count; ++v) {
+    for (size_t v = 0; v < positions.size() / 3; ++v) {
         const Vec3 p(world.ApplyPoint(Vec3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2])));
         if (!IsFinite(p)) return Error(element, absl::StrCat("vertex ", v, " is not finite after its node's transform"));
         scene_.positions.push_back(p);
@@ -247,20 +267,17 @@ absl::Status GltfSceneBuilder::AddPrimitive(const tinygltf::Primitive& primitive
             if (LengthSquared(transformed) > 0 && IsFinite(transformed)) n = Vec3(Normalize(transformed));
         }
         scene_.normals.push_back(n);
-        scene_.uvs.push_back(uvs.empty() ? Point2{} : Point2{uvs[2 * v], uvs[2 * v + 1]});
+        scene_.uvs.push_back(arrays->uvs.empty() ? Point2{} : Point2{arrays->uvs[2 * v], arrays->uvs[2 * v + 1]});
     }
     // A mirroring transform reverses the winding; swap two vertices to keep front faces front.
     const bool mirrored = world.Determinant() < 0;
+    const std::vector<uint32_t>& indices = arrays->indices;
     for (size_t i = 0; i < indices.size(); i += 3) {
-        uint32_t a = indices[i], b = indices[i + 1], c = indices[i + 2];
-        if (a >= vertex_count || b >= vertex_count || c >= vertex_count)
-            return Error(element, absl::StrCat("triangle ", i / 3, " has an index beyond the ", vertex_count, " vertices"));
-        if (mirrored) std::swap(b, c);
-        const Vec3 e1 = scene_.positions[base + b] - scene_.positions[base + a];
-        const Vec3 e2 = scene_.positions[base + c] - scene_.positions[base + a];
-        const Vec3 normal = Normalize(Cross(e1, e2));
+        const uint32_t a = base + indices[i], b = base + indices[mirrored ? i + 2 : i + 1],
+                       c = base + indices[mirrored ? i + 1 : i + 2];
+        const Vec3 normal = Normalize(Cross(scene_.positions[b] - scene_.positions[a], scene_.positions[c] - scene_.positions[a]));
         if (!IsFinite(normal)) continue;  // degenerate: has no surface
-        scene_.triangles.push_back({{base + a, base + b, base + c}, *material, !normals.empty(), normal});
+        scene_.triangles.push_back({{a, b, c}, *material, !normals.empty(), normal});
     }
     return absl::OkStatus();
 }
