@@ -40,8 +40,7 @@ void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float
     entry_index_.clear();
     bucket_begin_.clear();
     if (!(max_radius > 0)) return;
-    cell_size_ = 2.0f * max_radius;
-    inverse_cell_size_ = 1.0f / cell_size_;
+    inverse_cell_size_ = 1.0f / (2.0f * max_radius);  // cells twice the largest radius wide
     const uint64_t bucket_count = std::bit_ceil(std::max<uint64_t>(2 * hit_points.size(), 64));
     bucket_mask_ = bucket_count - 1;
 

@@ -62,17 +62,8 @@ public:
     uint32_t BucketOf(const Vec3& p) const {
         return entry_index_.empty() ? 0 : Bucket(CellOf(p.x), CellOf(p.y), CellOf(p.z));
     }
-    // The number of hit points inspected for a photon at p (for tests and statistics).
-    size_t CandidateCount(const Vec3& p) const {
-        if (entry_index_.empty()) return 0;
-        const uint32_t bucket = BucketOf(p);
-        return bucket_begin_[bucket + 1] - bucket_begin_[bucket];
-    }
-
     // Buckets are numbered below 2^BucketBits().
     int BucketBits() const { return std::bit_width(bucket_mask_); }
-    float CellSize() const { return cell_size_; }
-    size_t EntryCount() const { return entry_index_.size(); }
 
 private:
     int64_t CellOf(float coordinate) const {
@@ -93,7 +84,7 @@ private:
     int OverlappedBuckets(const Vec3& center, float radius, uint32_t buckets[8]) const;
 
     std::vector<Vec3> normals_;  // per hit point, read only for those within their radius
-    float cell_size_ = 0, inverse_cell_size_ = 0;
+    float inverse_cell_size_ = 0;
     uint64_t bucket_mask_ = 0;
     std::vector<uint32_t> bucket_begin_;  // CSR offsets into the entry arrays, size buckets + 1
     // Entries grouped by bucket, as structure of arrays: a hit point's centre and R^2 copied
