@@ -9,6 +9,7 @@
 // Rebuilt once per epoch; read-only, and so thread-safe, while batches run.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -66,8 +67,11 @@ public:
     int BucketBits() const { return std::bit_width(bucket_mask_); }
 
 private:
+    // Clamped so that radii shrinking toward zero or far-away photons cannot overflow the
+    // conversion; clamped cells only merge, which costs candidates, never correctness.
     int64_t CellOf(float coordinate) const {
-        return static_cast<int64_t>(std::floor(coordinate * inverse_cell_size_));
+        constexpr float kLimit = 0x1p50f;
+        return static_cast<int64_t>(std::floor(std::clamp(coordinate * inverse_cell_size_, -kLimit, kLimit)));
     }
     // Cells are grouped in blocks of 4x4x4: a block's 64 cells take 64 consecutive buckets in
     // Morton order, and blocks are spread over the table by the hash of Teschner et al. 2003
@@ -76,8 +80,8 @@ private:
     uint32_t Bucket(int64_t x, int64_t y, int64_t z) const {
         const uint64_t within = SpreadBits3(uint64_t(x) & 3) | SpreadBits3(uint64_t(y) & 3) << 1 |
                                 SpreadBits3(uint64_t(z) & 3) << 2;
-        const auto block = static_cast<uint64_t>((x >> 2) * 73856093) ^ static_cast<uint64_t>((y >> 2) * 19349663) ^
-                           static_cast<uint64_t>((z >> 2) * 83492791);
+        const uint64_t block = static_cast<uint64_t>(x >> 2) * 73856093u ^ static_cast<uint64_t>(y >> 2) * 19349663u ^
+                               static_cast<uint64_t>(z >> 2) * 83492791u;
         return static_cast<uint32_t>((block << 6 | within) & bucket_mask_);
     }
     // The distinct buckets of the cells that the sphere (center, radius) overlaps; returns count.

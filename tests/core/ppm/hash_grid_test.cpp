@@ -38,6 +38,19 @@ TEST(HashGridTest, MatchesBruteForceForMixedRadii) {
     }
 }
 
+TEST(HashGridTest, RadiiFarBelowTheCoordinatesStillFindTheirPhotons) {
+    // Radii shrinking toward zero far from the origin: cell indices would overflow without the
+    // clamp. A photon exactly at a hit point must still be found, and a neighbour not.
+    const std::vector<HitPoint> hit_points = {{Vec3(1e4f, -1e4f, 3e3f), Vec3(0, 0, 1), Rgb(0.5f), 0},
+                                              {Vec3(1e4f, -1e4f + 1.0f, 3e3f), Vec3(0, 0, 1), Rgb(0.5f), 1}};
+    const std::vector<float> radius_sq = {1e-30f, 1e-30f};
+    HashGrid grid;
+    grid.Build(hit_points, radius_sq);
+    std::vector<uint32_t> found;
+    grid.ForEachGathering(hit_points[0].position, Vec3(0, 0, -1), [&](uint32_t i) { found.push_back(i); });
+    EXPECT_EQ(found, std::vector<uint32_t>{0});
+}
+
 TEST(HashGridTest, EmptyAndBlackHitPointsAreLeftOut) {
     HashGrid grid;
     grid.Build({}, {});
