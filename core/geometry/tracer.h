@@ -13,6 +13,13 @@ public:
     virtual bool Intersect(const Ray& ray, RayHit* hit) const = 0;
     // True if anything lies along ray in (0, ray.t_max).
     virtual bool Occluded(const Ray& ray) const = 0;
+
+    // Closest hits of up to kPacketSize independent rays at once (faster than one by one where
+    // the backend has packet traversal): for each i with active[i], found[i] tells whether
+    // rays[i] hit and hits[i] where. Entries not active are left alone.
+    static constexpr int kPacketSize = 8;
+    virtual void IntersectPacket(const Ray (&rays)[kPacketSize], const bool (&active)[kPacketSize],
+                                 RayHit (&hits)[kPacketSize], bool (&found)[kPacketSize]) const = 0;
 };
 
 }  // namespace pf

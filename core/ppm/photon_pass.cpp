@@ -17,50 +17,59 @@ namespace {
 // Stream ids separating the random numbers of photons from those of direct light.
 constexpr uint64_t kPhotonStream = 0x70686f746f6e0001ull;
 
-// Follows one photon path, appending a deposit at every diffuse hit after the first
-// scattering; returns the number of segments traced.
-uint64_t TracePhoton(const PhotonPassInputs& inputs, Rng& rng, std::vector<PhotonDeposit>& deposits) {
-    const Scene& scene = *inputs.scene;
-    EmittedPhoton photon = inputs.emitters->Emit(rng);
-    Ray ray = photon.ray;
-    Rgb flux = photon.flux;
+// A photon path in flight.
+struct PhotonPath {
+    Ray ray;
+    Rgb flux;
+    Rng rng;
     bool scattered = false;  // the first hit of an unscattered photon is direct light
-    uint64_t segments = 0;
-    for (int bounce = 0; bounce < kMaxPhotonBounces; ++bounce) {
-        RayHit hit;
-        ++segments;
-        if (!inputs.tracer->Intersect(ray, &hit)) break;
-        const SurfacePoint surface = scene.Surface(hit);
-        const Material& material = scene.materials[surface.material];
-        const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-        const Rgb base_color = scene.BaseColor(surface);
-        if (material.type == MaterialType::kDiffuse) {
-            if (scattered) deposits.push_back({surface.position, ray.direction, flux});
-            // Russian roulette by albedo: survivors carry flux * albedo / p (Jensen 2001, 2.3.3).
-            const float survive = std::min(1.0f, MaxComponent(base_color));
-            if (!(rng.NextFloat() < survive)) break;
-            flux *= base_color / survive;
-            const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
-            const Vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
-            ray.direction = Frame::FromNormal(normal).ToWorld(
-                SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
-            if (!(Dot(ray.direction, geometric) > 0)) break;  // shading normal pointed it inside
-            ray.origin = OffsetRayOrigin(surface.position, geometric);
-        } else {
-            const SpecularBounce bounce_out = ScatterSpecular(
-                material, ray.direction, surface.shading_normal, front_facing, base_color, rng.NextFloat());
-            const float survive = std::min(1.0f, MaxComponent(bounce_out.weight));
-            if (!(rng.NextFloat() < survive)) break;
-            flux *= bounce_out.weight / survive;
-            const Vec3 side = front_facing == bounce_out.transmitted ? -surface.geometric_normal
-                                                                     : surface.geometric_normal;
-            ray.origin = OffsetRayOrigin(surface.position, side);
-            ray.direction = bounce_out.direction;
-        }
-        ray.t_max = std::numeric_limits<float>::infinity();
-        scattered = true;
+    int bounces = 0;
+};
+
+PhotonPath StartPhoton(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t photon) {
+    PhotonPath path;
+    path.rng = Rng(HashSeed(inputs.seed, kPhotonStream, spec.index, photon));
+    const EmittedPhoton emitted = inputs.emitters->Emit(path.rng);
+    path.ray = emitted.ray;
+    path.flux = emitted.flux;
+    return path;
+}
+
+// Continues a path at its hit: a deposit at every diffuse hit after the first scattering,
+// Russian roulette, the next ray. Returns false where the path ends.
+bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath& path,
+                   std::vector<PhotonDeposit>& deposits) {
+    const Scene& scene = *inputs.scene;
+    Ray& ray = path.ray;
+    const SurfacePoint surface = scene.Surface(hit);
+    const Material& material = scene.materials[surface.material];
+    const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
+    const Rgb base_color = scene.BaseColor(surface);
+    if (material.type == MaterialType::kDiffuse) {
+        if (path.scattered) deposits.push_back({surface.position, ray.direction, path.flux});
+        // Russian roulette by albedo: survivors carry flux * albedo / p (Jensen 2001, 2.3.3).
+        const float survive = std::min(1.0f, MaxComponent(base_color));
+        if (!(path.rng.NextFloat() < survive)) return false;
+        path.flux *= base_color / survive;
+        const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
+        const Vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
+        ray.direction = Frame::FromNormal(normal).ToWorld(
+            SampleCosineHemisphere(path.rng.NextFloat(), path.rng.NextFloat()));
+        if (!(Dot(ray.direction, geometric) > 0)) return false;  // shading normal pointed it inside
+        ray.origin = OffsetRayOrigin(surface.position, geometric);
+    } else {
+        const SpecularBounce bounce = ScatterSpecular(material, ray.direction, surface.shading_normal, front_facing,
+                                                      base_color, path.rng.NextFloat());
+        const float survive = std::min(1.0f, MaxComponent(bounce.weight));
+        if (!(path.rng.NextFloat() < survive)) return false;
+        path.flux *= bounce.weight / survive;
+        const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;
+        ray.origin = OffsetRayOrigin(surface.position, side);
+        ray.direction = bounce.direction;
     }
-    return segments;
+    ray.t_max = std::numeric_limits<float>::infinity();
+    path.scattered = true;
+    return ++path.bounces < kMaxPhotonBounces;
 }
 
 // Adds every deposit to the hit points within their radius whose surface faces the photon.
@@ -87,6 +96,46 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     scratch.deposits.clear();
 }
 
+
+// Traces the batch's photons a packet at a time: each lane of the packet carries one path,
+// and a lane whose path ends takes the next photon, so packets stay full. Every photon's
+// random numbers depend on its index alone, and lanes are filled in a fixed order, so the
+// deposits (and their order) depend only on the batch. Returns the segments traced.
+uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, BatchScratch& scratch) {
+    constexpr int kLanes = Tracer::kPacketSize;
+    PhotonPath paths[kLanes];
+    Ray rays[kLanes];
+    RayHit hits[kLanes];
+    bool active[kLanes], found[kLanes];
+    uint32_t next = 0;
+    int live = 0;
+    for (int lane = 0; lane < kLanes; ++lane) {
+        active[lane] = next < spec.photons;
+        if (active[lane]) paths[lane] = StartPhoton(inputs, spec, next++), ++live;
+    }
+    uint64_t segments = 0;
+    while (live > 0) {
+        for (int lane = 0; lane < kLanes; ++lane)
+            if (active[lane]) rays[lane] = paths[lane].ray;
+        inputs.tracer->IntersectPacket(rays, active, hits, found);
+        for (int lane = 0; lane < kLanes; ++lane) {
+            if (!active[lane]) continue;
+            ++segments;
+            if (found[lane] && ScatterPhoton(inputs, hits[lane], paths[lane], scratch.deposits)) continue;
+            if (next < spec.photons) {
+                paths[lane] = StartPhoton(inputs, spec, next++);
+            } else {
+                active[lane] = false;
+                --live;
+            }
+        }
+        // Bounded memory however long the paths (albedo near 1): gather in chunks, at points
+        // fixed by the batch alone, so the sums stay deterministic.
+        if (scratch.deposits.size() >= kMaxPendingDeposits) GatherDeposits(inputs, scratch);
+    }
+    return segments;
+}
+
 }  // namespace
 
 BatchResult RunPhotonBatch(const PhotonPassInputs& inputs, const BatchSpec& spec, BatchScratch& scratch) {
@@ -94,13 +143,7 @@ BatchResult RunPhotonBatch(const PhotonPassInputs& inputs, const BatchSpec& spec
     result.spec = spec;
     scratch.tally.Resize(inputs.hit_points.size());
     scratch.deposits.clear();
-    for (uint32_t i = 0; i < spec.photons; ++i) {
-        Rng rng(HashSeed(inputs.seed, kPhotonStream, spec.index, i));
-        result.segments_traced += TracePhoton(inputs, rng, scratch.deposits);
-        // Bounded memory however long the paths (albedo near 1): gather in chunks, at points
-        // fixed by the photon sequence alone, so the sums stay deterministic.
-        if (scratch.deposits.size() >= kMaxPendingDeposits) GatherDeposits(inputs, scratch);
-    }
+    result.segments_traced = TracePhotons(inputs, spec, scratch);
     GatherDeposits(inputs, scratch);
     result.photons_emitted = spec.photons;
     result.tally = scratch.tally.Extract(inputs.hit_points);

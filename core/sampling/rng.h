@@ -21,6 +21,7 @@ constexpr uint64_t HashSeed(uint64_t a, uint64_t b, uint64_t c = 0, uint64_t d =
 
 class Rng {
 public:
+    constexpr Rng() : Rng(0) {}
     explicit constexpr Rng(uint64_t seed) : state_(0), increment_((Mix64(seed) << 1u) | 1u) {
         NextUint();
         state_ += seed;

@@ -94,6 +94,35 @@ bool EmbreeTracer::Intersect(const Ray& ray, RayHit* hit) const {
     return true;
 }
 
+void EmbreeTracer::IntersectPacket(const Ray (&rays)[kPacketSize], const bool (&active)[kPacketSize],
+                                   RayHit (&hits)[kPacketSize], bool (&found)[kPacketSize]) const {
+    static_assert(kPacketSize == 8, "IntersectPacket maps onto rtcIntersect8");
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    alignas(32) int valid[8];
+    alignas(32) RTCRayHit8 packet;
+    for (int i = 0; i < 8; ++i) {
+        valid[i] = active[i] ? -1 : 0;
+        const Ray& ray = rays[i];
+        packet.ray.org_x[i] = ray.origin.x, packet.ray.org_y[i] = ray.origin.y, packet.ray.org_z[i] = ray.origin.z;
+        packet.ray.dir_x[i] = ray.direction.x, packet.ray.dir_y[i] = ray.direction.y, packet.ray.dir_z[i] = ray.direction.z;
+        packet.ray.tnear[i] = 0.0f;
+        packet.ray.tfar[i] = ray.t_max;
+        packet.ray.time[i] = 0.0f;
+        packet.ray.mask[i] = std::numeric_limits<unsigned>::max();
+        packet.ray.id[i] = 0;
+        packet.ray.flags[i] = 0;
+        packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect8(valid, handles_->scene, &context, &packet);
+    for (int i = 0; i < 8; ++i) {
+        if (!active[i]) continue;
+        found[i] = packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        hits[i] = {packet.ray.tfar[i], packet.hit.primID[i], packet.hit.u[i], packet.hit.v[i]};
+    }
+}
+
 uint64_t EmbreeTracer::CountHits(std::span<const Ray> rays) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
