@@ -96,7 +96,6 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     scratch.deposits.clear();
 }
 
-
 // Traces the batch's photons a packet at a time: each lane of the packet carries one path,
 // and a lane whose path ends takes the next photon, so packets stay full. Every photon's
 // random numbers depend on its index alone, and lanes are filled in a fixed order, so the
