@@ -19,10 +19,10 @@ namespace pf {
 namespace {
 
 // Hit points cost about this much memory each across the estimate (~140 bytes), the grid (8
-// entries of 20 bytes) and one tally accumulator per thread (16 bytes): 2^25 of them (4K at
+// entries of 24 bytes) and one tally accumulator per thread (16 bytes): 2^25 of them (4K at
 // 4 hit points per pixel) take ~12 GB.
 constexpr uint64_t kMaxHitPoints = uint64_t{1} << 25;
-constexpr uint64_t kBytesPerHitPoint = 350;
+constexpr uint64_t kBytesPerHitPoint = 360;
 
 absl::Status CheckSettings(const RenderSettings& s) {
     if (s.width < 0 || s.height < 0 || s.width > 32768 || s.height > 32768)

@@ -28,15 +28,14 @@ int HashGrid::OverlappedBuckets(const Vec3& center, float radius, uint32_t bucke
 void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float> radius_sq) {
     PF_CHECK(hit_points.size() == radius_sq.size());
     auto usable = [&](size_t i) { return radius_sq[i] > 0 && !IsBlack(hit_points[i].weight); };
-    normals_.resize(hit_points.size());
     std::vector<float> radius(hit_points.size());
     float max_radius = 0;
     for (size_t i = 0; i < hit_points.size(); ++i) {
-        normals_[i] = hit_points[i].normal;
         radius[i] = std::sqrt(radius_sq[i]);
         if (usable(i)) max_radius = std::max(max_radius, radius[i]);
     }
     for (auto* entries : {&entry_x_, &entry_y_, &entry_z_, &entry_radius_sq_}) entries->clear();
+    entry_normal_.clear();
     entry_index_.clear();
     bucket_begin_.clear();
     if (!(max_radius > 0)) return;
@@ -55,15 +54,18 @@ void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float
     bucket_begin_ = counts;
     const size_t entry_count = counts[bucket_count];
     for (auto* entries : {&entry_x_, &entry_y_, &entry_z_, &entry_radius_sq_}) entries->resize(entry_count);
+    entry_normal_.resize(entry_count);
     entry_index_.resize(entry_count);
     for (size_t i = 0; i < hit_points.size(); ++i) {
         if (!usable(i)) continue;
         const int n = OverlappedBuckets(hit_points[i].position, radius[i], buckets);
         const Vec3& p = hit_points[i].position;
+        const uint32_t normal = EncodeOctahedral(hit_points[i].normal);
         for (int k = 0; k < n; ++k) {
             const uint32_t e = counts[buckets[k]]++;
             entry_x_[e] = p.x, entry_y_[e] = p.y, entry_z_[e] = p.z;
             entry_radius_sq_[e] = radius_sq[i];
+            entry_normal_[e] = normal;
             entry_index_[e] = static_cast<uint32_t>(i);
         }
     }
