@@ -26,9 +26,11 @@ struct PhotonPath {
     int bounces = 0;
 };
 
-PhotonPath StartPhoton(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t photon) {
+// Photon `photon` of the batch whose streams `seeds` holds: its random numbers are a function
+// of (job seed, batch index, photon index) alone.
+PhotonPath StartPhoton(const PhotonPassInputs& inputs, const SeedFamily& seeds, uint32_t photon) {
     PhotonPath path;
-    path.rng = Rng(HashSeed(inputs.seed, kPhotonStream, spec.index, photon));
+    path.rng = Rng(seeds.Seed(photon));
     const EmittedPhoton emitted = inputs.emitters->Emit(path.rng);
     path.ray = emitted.ray;
     path.flux = emitted.flux;
@@ -106,11 +108,12 @@ uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, Bat
     Ray rays[kLanes];
     RayHit hits[kLanes];
     bool active[kLanes], found[kLanes];
+    const SeedFamily seeds(inputs.seed, kPhotonStream, spec.index);
     uint32_t next = 0;
     int live = 0;
     for (int lane = 0; lane < kLanes; ++lane) {
         active[lane] = next < spec.photons;
-        if (active[lane]) paths[lane] = StartPhoton(inputs, spec, next++), ++live;
+        if (active[lane]) paths[lane] = StartPhoton(inputs, seeds, next++), ++live;
     }
     uint64_t segments = 0;
     while (live > 0) {
@@ -122,7 +125,7 @@ uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, Bat
             ++segments;
             if (found[lane] && ScatterPhoton(inputs, hits[lane], paths[lane], scratch.deposits)) continue;
             if (next < spec.photons) {
-                paths[lane] = StartPhoton(inputs, spec, next++);
+                paths[lane] = StartPhoton(inputs, seeds, next++);
             } else {
                 active[lane] = false;
                 --live;

@@ -15,8 +15,19 @@ constexpr uint64_t Mix64(uint64_t x) {
     return x ^ (x >> 31);
 }
 
+// The seeds HashSeed(a, b, c, d) for a fixed (a, b, c), with the shared part mixed once: a
+// batch seeds each of its photons' streams for one mix instead of four.
+class SeedFamily {
+public:
+    constexpr SeedFamily(uint64_t a, uint64_t b, uint64_t c) : prefix_(Mix64(Mix64(Mix64(a) ^ b) ^ c)) {}
+    constexpr uint64_t Seed(uint64_t d) const { return Mix64(prefix_ ^ d); }
+
+private:
+    uint64_t prefix_;
+};
+
 constexpr uint64_t HashSeed(uint64_t a, uint64_t b, uint64_t c = 0, uint64_t d = 0) {
-    return Mix64(Mix64(Mix64(Mix64(a) ^ b) ^ c) ^ d);
+    return SeedFamily(a, b, c).Seed(d);
 }
 
 class Rng {
