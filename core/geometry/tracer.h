@@ -20,6 +20,9 @@ public:
     static constexpr int kPacketSize = 8;
     virtual void IntersectPacket(const Ray (&rays)[kPacketSize], const bool (&active)[kPacketSize],
                                  RayHit (&hits)[kPacketSize], bool (&found)[kPacketSize]) const = 0;
+    // Occluded() for up to kPacketSize rays at once; entries not active are left alone.
+    virtual void OccludedPacket(const Ray (&rays)[kPacketSize], const bool (&active)[kPacketSize],
+                                bool (&occluded)[kPacketSize]) const = 0;
 };
 
 }  // namespace pf

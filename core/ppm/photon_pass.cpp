@@ -105,7 +105,7 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
 uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, BatchScratch& scratch) {
     constexpr int kLanes = Tracer::kPacketSize;
     PhotonPath paths[kLanes];
-    Ray rays[kLanes];
+    Ray rays[kLanes] = {};
     RayHit hits[kLanes];
     bool active[kLanes], found[kLanes];
     const SeedFamily seeds(inputs.seed, kPhotonStream, spec.index);
@@ -150,10 +150,8 @@ BatchResult RunPhotonBatch(const PhotonPassInputs& inputs, const BatchSpec& spec
     result.photons_emitted = spec.photons;
     result.tally = scratch.tally.Extract(inputs.hit_points);
     result.direct.resize(spec.direct_end - spec.direct_begin);
-    for (uint32_t index = spec.direct_begin; index < spec.direct_end; ++index)
-        result.direct[index - spec.direct_begin] =
-            SampleDirectLight(*inputs.emitters, *inputs.tracer, inputs.hit_points[index],
-                              DirectLightRng(inputs.seed, spec.epoch, index));
+    SampleDirectLight(*inputs.emitters, *inputs.tracer, inputs.hit_points, spec.direct_begin, inputs.seed, spec.epoch,
+                      result.direct);
     return result;
 }
 

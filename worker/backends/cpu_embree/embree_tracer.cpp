@@ -29,6 +29,24 @@ RTCRay ToRtcRay(const Ray& ray) {
     return r;
 }
 
+// Fills an 8-wide packet; inactive lanes are masked off by `valid`.
+void ToRtcRays(const Ray (&rays)[Tracer::kPacketSize], const bool (&active)[Tracer::kPacketSize],
+               int (&valid)[Tracer::kPacketSize], RTCRay8* packet) {
+    static_assert(Tracer::kPacketSize == 8, "packets map onto Embree's 8-wide calls");
+    for (int i = 0; i < Tracer::kPacketSize; ++i) {
+        valid[i] = active[i] ? -1 : 0;
+        const Ray& ray = rays[i];
+        packet->org_x[i] = ray.origin.x, packet->org_y[i] = ray.origin.y, packet->org_z[i] = ray.origin.z;
+        packet->dir_x[i] = ray.direction.x, packet->dir_y[i] = ray.direction.y, packet->dir_z[i] = ray.direction.z;
+        packet->tnear[i] = 0.0f;
+        packet->tfar[i] = active[i] ? ray.t_max : 0.0f;
+        packet->time[i] = 0.0f;
+        packet->mask[i] = std::numeric_limits<unsigned>::max();
+        packet->id[i] = 0;
+        packet->flags[i] = 0;
+    }
+}
+
 }  // namespace
 
 struct EmbreeTracer::Handles {
@@ -96,31 +114,33 @@ bool EmbreeTracer::Intersect(const Ray& ray, RayHit* hit) const {
 
 void EmbreeTracer::IntersectPacket(const Ray (&rays)[kPacketSize], const bool (&active)[kPacketSize],
                                    RayHit (&hits)[kPacketSize], bool (&found)[kPacketSize]) const {
-    static_assert(kPacketSize == 8, "IntersectPacket maps onto rtcIntersect8");
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    alignas(32) int valid[8];
+    alignas(32) int valid[kPacketSize];
     alignas(32) RTCRayHit8 packet;
-    for (int i = 0; i < 8; ++i) {
-        valid[i] = active[i] ? -1 : 0;
-        const Ray& ray = rays[i];
-        packet.ray.org_x[i] = ray.origin.x, packet.ray.org_y[i] = ray.origin.y, packet.ray.org_z[i] = ray.origin.z;
-        packet.ray.dir_x[i] = ray.direction.x, packet.ray.dir_y[i] = ray.direction.y, packet.ray.dir_z[i] = ray.direction.z;
-        packet.ray.tnear[i] = 0.0f;
-        packet.ray.tfar[i] = ray.t_max;
-        packet.ray.time[i] = 0.0f;
-        packet.ray.mask[i] = std::numeric_limits<unsigned>::max();
-        packet.ray.id[i] = 0;
-        packet.ray.flags[i] = 0;
+    ToRtcRays(rays, active, valid, &packet.ray);
+    for (int i = 0; i < kPacketSize; ++i) {
         packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
         packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
     rtcIntersect8(valid, handles_->scene, &context, &packet);
-    for (int i = 0; i < 8; ++i) {
+    for (int i = 0; i < kPacketSize; ++i) {
         if (!active[i]) continue;
         found[i] = packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
         hits[i] = {packet.ray.tfar[i], packet.hit.primID[i], packet.hit.u[i], packet.hit.v[i]};
     }
+}
+
+void EmbreeTracer::OccludedPacket(const Ray (&rays)[kPacketSize], const bool (&active)[kPacketSize],
+                                  bool (&occluded)[kPacketSize]) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    alignas(32) int valid[kPacketSize];
+    alignas(32) RTCRay8 packet;
+    ToRtcRays(rays, active, valid, &packet);
+    rtcOccluded8(valid, handles_->scene, &context, &packet);
+    for (int i = 0; i < kPacketSize; ++i)
+        if (active[i]) occluded[i] = packet.tfar[i] < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
 uint64_t EmbreeTracer::CountHits(std::span<const Ray> rays) const {

@@ -25,6 +25,8 @@ public:
     bool Occluded(const Ray& ray) const override;
     void IntersectPacket(const Ray (&rays)[kPacketSize], const bool (&active)[kPacketSize], RayHit (&hits)[kPacketSize],
                          bool (&found)[kPacketSize]) const override;
+    void OccludedPacket(const Ray (&rays)[kPacketSize], const bool (&active)[kPacketSize],
+                        bool (&occluded)[kPacketSize]) const override;
 
     // Casts every ray with bare rtcIntersect1 calls, returning how many hit: the raw ray rate
     // that benchmarks compare the photon pass against, free of this class's own overhead.
