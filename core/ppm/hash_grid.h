@@ -40,23 +40,23 @@ public:
         const uint32_t bucket = Bucket(CellOf(p.x), CellOf(p.y), CellOf(p.z));
         uint32_t begin = bucket_begin_[bucket];
         const uint32_t end = bucket_begin_[bucket + 1];
-        // Two phases, so the distance test runs as a branch-free loop the compiler vectorises
-        // over the bucket's contiguous coordinates; only the few that pass are looked at again.
+        // Two phases: the distance test as a branch-free loop over the bucket's contiguous
+        // coordinates, gathering a bit mask; then only the few that pass are looked at again.
         constexpr uint32_t kChunk = 64;
-        uint8_t inside[kChunk];
         while (begin < end) {
             const uint32_t count = std::min(end - begin, kChunk);
             const float* xs = entry_x_.data() + begin;
             const float* ys = entry_y_.data() + begin;
             const float* zs = entry_z_.data() + begin;
             const float* radii_sq = entry_radius_sq_.data() + begin;
+            uint64_t inside = 0;
             for (uint32_t k = 0; k < count; ++k) {
                 const float dx = xs[k] - p.x, dy = ys[k] - p.y, dz = zs[k] - p.z;
-                inside[k] = dx * dx + dy * dy + dz * dz <= radii_sq[k];
+                inside |= uint64_t{dx * dx + dy * dy + dz * dz <= radii_sq[k]} << k;
             }
-            for (uint32_t k = 0; k < count; ++k) {
-                if (!inside[k]) continue;
-                if (Dot(DecodeOctahedral(entry_normal_[begin + k]), direction) < 0) visit(entry_index_[begin + k]);
+            for (; inside != 0; inside &= inside - 1) {
+                const uint32_t e = begin + static_cast<uint32_t>(std::countr_zero(inside));
+                if (Dot(DecodeOctahedral(entry_normal_[e]), direction) < 0) visit(entry_index_[e]);
             }
             begin += count;
         }
