@@ -47,6 +47,8 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
     if (weights.empty()) return;
     distribution_ = DiscreteDistribution(weights);
     total_power_ = distribution_.Total();
+    for (uint32_t i = 0; i < emitters_.size(); ++i)
+        inverse_probability_.push_back(static_cast<float>(1.0 / distribution_.Probability(i)));
 }
 
 EmittedPhoton Emitters::Emit(Rng& rng) const {
@@ -54,7 +56,7 @@ EmittedPhoton Emitters::Emit(Rng& rng) const {
     const Emitter& emitter = emitters_[pick.index];
     EmittedPhoton photon = emitter.is_triangle ? EmitFromTriangle(triangles_[emitter.index], rng)
                                                : EmitFromLight(scene_.lights[emitter.index], rng);
-    photon.flux /= static_cast<float>(pick.probability);
+    photon.flux *= inverse_probability_[pick.index];
     return photon;
 }
 
@@ -133,7 +135,7 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
     sample->direction = to_light;
     // Stop short of the light itself by a relative margin, which scales with the scene.
     sample->shadow_ray = {origin, to_light, distance * (1.0f - 1e-4f)};
-    sample->radiance_over_pdf = radiance_over_pdf / static_cast<float>(pick.probability);
+    sample->radiance_over_pdf = radiance_over_pdf * inverse_probability_[pick.index];
     return true;
 }
 

@@ -59,7 +59,8 @@ private:
     const Scene& scene_;
     std::vector<Emitter> emitters_;
     std::vector<EmissiveTriangle> triangles_;
-    DiscreteDistribution distribution_;  // over emitters_, by power
+    DiscreteDistribution distribution_;     // over emitters_, by power
+    std::vector<float> inverse_probability_;  // 1 / selection probability, per emitter
     Rgbd power_rgb_;
     double total_power_ = 0;
     Vec3 scene_center_;
