@@ -23,6 +23,10 @@
 #include "core/math/vec3.h"
 #include "core/ppm/hit_point.h"
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 namespace pf {
 
 class HashGrid {
@@ -40,20 +44,13 @@ public:
         const uint32_t bucket = Bucket(CellOf(p.x), CellOf(p.y), CellOf(p.z));
         uint32_t begin = bucket_begin_[bucket];
         const uint32_t end = bucket_begin_[bucket + 1];
-        // Two phases: the distance test as a branch-free loop over the bucket's contiguous
-        // coordinates, gathering a bit mask; then only the few that pass are looked at again.
+        // Two phases: the distance test over the bucket's contiguous coordinates, four entries
+        // at a time, gathering a bit mask; then only the few that pass are looked at again.
         constexpr uint32_t kChunk = 64;
         while (begin < end) {
             const uint32_t count = std::min(end - begin, kChunk);
-            const float* xs = entry_x_.data() + begin;
-            const float* ys = entry_y_.data() + begin;
-            const float* zs = entry_z_.data() + begin;
-            const float* radii_sq = entry_radius_sq_.data() + begin;
-            uint64_t inside = 0;
-            for (uint32_t k = 0; k < count; ++k) {
-                const float dx = xs[k] - p.x, dy = ys[k] - p.y, dz = zs[k] - p.z;
-                inside |= uint64_t{dx * dx + dy * dy + dz * dz <= radii_sq[k]} << k;
-            }
+            uint64_t inside = InsideMask(begin, count, p);
+            if (count < kChunk) inside &= (uint64_t{1} << count) - 1;
             for (; inside != 0; inside &= inside - 1) {
                 const uint32_t e = begin + static_cast<uint32_t>(std::countr_zero(inside));
                 if (Dot(DecodeOctahedral(entry_normal_[e]), direction) < 0) visit(entry_index_[e]);
@@ -86,6 +83,32 @@ private:
                                static_cast<uint64_t>(z >> 2) * 83492791u;
         return static_cast<uint32_t>((block << 6 | within) & bucket_mask_);
     }
+    // Bit k set where entry begin + k (k < count rounded up to 4) holds p within its radius.
+    // (Testing the normals here too, four at a time, is slower: most entries fail the
+    // distance test, and decoding their normals costs more than the branch it saves.)
+    uint64_t InsideMask(uint32_t begin, uint32_t count, const Vec3& p) const {
+        const float* xs = entry_x_.data() + begin;
+        const float* ys = entry_y_.data() + begin;
+        const float* zs = entry_z_.data() + begin;
+        const float* radii_sq = entry_radius_sq_.data() + begin;
+        uint64_t inside = 0;
+#if defined(__SSE2__)
+        const __m128 px = _mm_set1_ps(p.x), py = _mm_set1_ps(p.y), pz = _mm_set1_ps(p.z);
+        for (uint32_t k = 0; k < count; k += 4) {
+            const __m128 dx = _mm_sub_ps(_mm_loadu_ps(xs + k), px);
+            const __m128 dy = _mm_sub_ps(_mm_loadu_ps(ys + k), py);
+            const __m128 dz = _mm_sub_ps(_mm_loadu_ps(zs + k), pz);
+            const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+            inside |= uint64_t(_mm_movemask_ps(_mm_cmple_ps(d2, _mm_loadu_ps(radii_sq + k)))) << k;
+        }
+#else
+        for (uint32_t k = 0; k < count; ++k) {
+            const float dx = xs[k] - p.x, dy = ys[k] - p.y, dz = zs[k] - p.z;
+            inside |= uint64_t{dx * dx + dy * dy + dz * dz <= radii_sq[k]} << k;
+        }
+#endif
+        return inside;
+    }
     // The distinct buckets of the cells that the sphere (center, radius) overlaps; returns count.
     int OverlappedBuckets(const Vec3& center, float radius, uint32_t buckets[8]) const;
 
@@ -94,6 +117,9 @@ private:
     std::vector<uint32_t> bucket_begin_;  // CSR offsets into the entry arrays, size buckets + 1
     // Entries grouped by bucket, as structure of arrays: a hit point's centre, R^2 and normal
     // copied into every bucket it is stored in, so a lookup reads contiguous memory only.
+    // The coordinates and radii are padded with unused entries, so that the vectorised
+    // distance test may read a bucket's last group of four whole.
+    static constexpr uint32_t kEntryPadding = 3;
     std::vector<float> entry_x_, entry_y_, entry_z_, entry_radius_sq_;
     std::vector<uint32_t> entry_normal_;  // octahedral, read only for those within their radius
     std::vector<uint32_t> entry_index_;   // the hit point of each entry
