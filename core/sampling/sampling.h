@@ -26,10 +26,11 @@ inline Point2 SampleUniformDisk(float u1, float u2) {
 }
 
 // Cosine-weighted direction about +z (Malley's method: the disk lifted to the hemisphere);
-// density cos(theta)/pi.
+// density cos(theta)/pi. The disk point's squared radius is u1, so z comes from u1 directly,
+// in parallel with the disk point rather than after it.
 inline Vec3 SampleCosineHemisphere(float u1, float u2) {
     const Point2 d = SampleUniformDisk(u1, u2);
-    const float z = std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y));
+    const float z = std::sqrt(std::max(0.0f, 1.0f - u1));
     return {d.x, d.y, z};
 }
 
