@@ -78,7 +78,7 @@ absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message
         if (hit_point >= hit_point_count)
             return Invalid(absl::StrCat("tally entry ", e, " names hit point ", hit_point, " of ", hit_point_count));
         if (tally.photons(e) == 0) return Invalid(absl::StrCat("tally entry ", e, " has no photons"));
-        const Rgbd flux(tally.flux(3 * e), tally.flux(3 * e + 1), tally.flux(3 * e + 2));
+        const Rgb flux(tally.flux(3 * e), tally.flux(3 * e + 1), tally.flux(3 * e + 2));
         if (!NonNegativeFinite(flux.x) || !NonNegativeFinite(flux.y) || !NonNegativeFinite(flux.z))
             return Invalid(absl::StrCat("tally entry ", e, " has negative, NaN or Inf flux"));
         result.tally.hit_point[e] = static_cast<uint32_t>(hit_point);

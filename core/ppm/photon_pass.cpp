@@ -148,7 +148,7 @@ BatchResult RunPhotonBatch(const PhotonPassInputs& inputs, const BatchSpec& spec
     result.segments_traced = TracePhotons(inputs, spec, scratch);
     GatherDeposits(inputs, scratch);
     result.photons_emitted = spec.photons;
-    result.tally = scratch.tally.Extract(inputs.hit_points);
+    result.tally = scratch.tally.Extract();
     result.direct.resize(spec.direct_end - spec.direct_begin);
     SampleDirectLight(*inputs.emitters, *inputs.tracer, inputs.hit_points, spec.direct_begin, inputs.seed, spec.epoch,
                       result.direct);

@@ -44,9 +44,11 @@ void ProgressiveEstimate::MergeEpoch(std::span<const BatchResult> results) {
                  result.spec.index == epoch_ * settings_.layout.batches_per_epoch + j);
         const Tally& tally = result.tally;
         for (size_t e = 0; e < tally.Size(); ++e) {
-            PF_CHECK(tally.hit_point[e] < hit_points_.size());
-            epoch_photons_[tally.hit_point[e]] += tally.photons[e];
-            epoch_flux_[tally.hit_point[e]] += tally.flux[e];
+            const uint32_t i = tally.hit_point[e];
+            PF_CHECK(i < hit_points_.size());
+            epoch_photons_[i] += tally.photons[e];
+            // Phi_M: the photons' flux times the BSDF weight (a float product, exact in double).
+            epoch_flux_[i] += Rgbd(tally.flux[e]) * Rgbd(hit_points_[i].weight);
         }
         PF_CHECK(result.direct.size() == result.spec.direct_end - result.spec.direct_begin &&
                  result.spec.direct_end <= hit_points_.size());

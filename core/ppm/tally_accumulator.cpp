@@ -13,8 +13,7 @@ void TallyAccumulator::Resize(size_t hit_point_count) {
     touched_.clear();
 }
 
-Tally TallyAccumulator::Extract(std::span<const HitPoint> hit_points) {
-    PF_CHECK(hit_points.size() == sums_.size());
+Tally TallyAccumulator::Extract() {
     // Sorting costs O(T log T) for T touched points, a scan of the counts O(H): take the cheaper.
     if (touched_.size() * 16 > sums_.size()) {
         touched_.clear();
@@ -29,7 +28,7 @@ Tally TallyAccumulator::Extract(std::span<const HitPoint> hit_points) {
     tally.flux.reserve(touched_.size());
     for (uint32_t index : touched_) {
         tally.photons.push_back(sums_[index].photons);
-        tally.flux.push_back(Rgbd(sums_[index].flux) * Rgbd(hit_points[index].weight));
+        tally.flux.push_back(sums_[index].flux);
         sums_[index] = Sum{Rgb(0.0f), 0};
     }
     touched_.clear();

@@ -2,17 +2,15 @@
 // a sparse, sorted Tally. Sums for each hit point are added in photon order, so a batch's
 // tally is bit-identical however batches are scheduled. Not thread-safe: one per thread.
 // The hot loop adds raw photon flux in float (16 bytes a hit point, one cache line per hit);
-// the hit point's constant BSDF weight is applied once per hit point when extracting. Float
-// is ample within one batch: at most 2^26 photons, each sum's relative error below 2^-24 x
-// the number of its terms.
+// the hit point's constant BSDF weight is applied once per hit point by the merge. Float is
+// ample within one batch: at most 2^26 photons, each sum's relative error below 2^-24 x the
+// number of its terms.
 #pragma once
 
 #include <cstdint>
-#include <span>
 #include <vector>
 
 #include "core/ppm/batch.h"
-#include "core/ppm/hit_point.h"
 
 namespace pf {
 
@@ -24,9 +22,8 @@ public:
         if (sum.photons++ == 0) touched_.push_back(hit_point);
         sum.flux += flux;
     }
-    // Moves the sums out as a tally, each flux multiplied by its hit point's weight, and
-    // leaves the accumulator empty.
-    Tally Extract(std::span<const HitPoint> hit_points);
+    // Moves the sums out as a tally and leaves the accumulator empty.
+    Tally Extract();
 
 private:
     struct Sum {

@@ -14,7 +14,7 @@ BatchResult Sample() {
     result.spec = {17, 2, 1000, 4, 7};
     result.tally.hit_point = {0, 3, 4, 9};
     result.tally.photons = {1, 5, 2, 7};
-    result.tally.flux = {Rgbd(0.1, 0.2, 0.3), Rgbd(1e-300, 1e300, 0.0), Rgbd(3.0), Rgbd(std::nextafter(1.0, 2.0))};
+    result.tally.flux = {Rgb(0.1f, 0.2f, 0.3f), Rgb(1e-30f, 1e30f, 0.0f), Rgb(3.0f), Rgb(std::nextafter(1.0f, 2.0f))};
     result.direct = {Rgb(0.5f), Rgb(1.0f, 2.0f, 3.0f), Rgb(0.0f)};
     result.photons_emitted = 1000;
     result.segments_traced = 4321;
