@@ -13,6 +13,7 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "core/math/transform.h"
+#include "core/scene/scene_bundle.h"
 
 namespace pf {
 namespace {
@@ -418,22 +419,53 @@ absl::StatusOr<int32_t> GltfSceneBuilder::TextureIndex(int gltf_texture, const s
     return index;
 }
 
+// tinygltf's file callbacks over a bundle: only the bundle's files exist.
+bool BundleFileExists(const std::string& path, void* user) {
+    return CheckBundlePath(path).ok() && static_cast<const SceneBundle*>(user)->files.contains(path);
+}
+std::string BundleExpandFilePath(const std::string& path, void*) { return path; }
+bool BundleReadWholeFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user) {
+    if (!BundleFileExists(path, user)) {
+        if (error) *error = absl::StrCat(path, ": not in the scene bundle");
+        return false;
+    }
+    const std::string& contents = static_cast<const SceneBundle*>(user)->files.at(path);
+    out->assign(contents.begin(), contents.end());
+    return true;
+}
+bool BundleWriteWholeFile(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
 }  // namespace
 
-absl::StatusOr<Scene> LoadGltf(const std::string& path) {
-    if (!std::ifstream(path).good()) return absl::NotFoundError(absl::StrCat(path, ": cannot open file"));
+absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name) {
+    if (absl::Status status = CheckSceneBundle(bundle); !status.ok())
+        return absl::Status(status.code(), absl::StrCat(name, ": ", status.message()));
     tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks({BundleFileExists, BundleExpandFilePath, BundleReadWholeFile, BundleWriteWholeFile,
+                           const_cast<SceneBundle*>(&bundle)});
     tinygltf::Model model;
     std::string error, warning;
-    const bool binary = absl::EndsWithIgnoreCase(path, ".glb");
-    const bool loaded = binary ? loader.LoadBinaryFromFile(&model, &error, &warning, path)
-                               : loader.LoadASCIIFromFile(&model, &error, &warning, path);
-    if (!warning.empty()) spdlog::warn("{}: {}", path, warning.substr(0, warning.find('\n')));
+    const std::string& main = bundle.files.at(bundle.main_file);
+    const std::string::size_type slash = bundle.main_file.rfind('/');
+    const std::string base_dir = slash == std::string::npos ? "" : bundle.main_file.substr(0, slash);
+    const bool loaded =
+        absl::EndsWithIgnoreCase(bundle.main_file, ".glb")
+            ? loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(main.data()),
+                                          static_cast<unsigned int>(main.size()), base_dir)
+            : loader.LoadASCIIFromString(&model, &error, &warning, main.data(), static_cast<unsigned int>(main.size()),
+                                         base_dir);
+    if (!warning.empty()) spdlog::warn("{}: {}", name, warning.substr(0, warning.find('\n')));
     if (!loaded) {
         const std::string first_line = error.substr(0, error.find('\n'));
-        return absl::InvalidArgumentError(absl::StrCat(path, ": not a valid glTF file: ", first_line.empty() ? "parse failed" : first_line));
+        return absl::InvalidArgumentError(absl::StrCat(name, ": not a valid glTF file: ", first_line.empty() ? "parse failed" : first_line));
     }
-    return GltfSceneBuilder(path, model).Build();
+    return GltfSceneBuilder(name, model).Build();
+}
+
+absl::StatusOr<Scene> LoadGltf(const std::string& path) {
+    absl::StatusOr<SceneBundle> bundle = PackSceneBundle(path);
+    if (!bundle.ok()) return bundle.status();
+    return LoadGltf(*bundle, path);
 }
 
 }  // namespace pf

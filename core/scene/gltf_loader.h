@@ -5,12 +5,16 @@
 
 #include "absl/status/statusor.h"
 #include "core/scene/scene.h"
+#include "core/scene/scene_bundle.h"
 
 namespace pf {
 
 // Loads and validates a scene. Errors are one line naming the file and the element:
 // an unreadable or malformed file, a scene without a camera or a light, NaN or Inf in a
 // transform or a vertex, an index out of range. Unsupported features are logged as warnings.
+// `name` prefixes the errors (the file the user gave).
+absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name);
+// Packs the scene at `path` into a bundle (see PackSceneBundle) and loads that.
 absl::StatusOr<Scene> LoadGltf(const std::string& path);
 
 }  // namespace pf
