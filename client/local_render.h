@@ -12,20 +12,14 @@
 #include "core/film/image.h"
 #include "core/ppm/batch.h"
 #include "core/ppm/estimator.h"
+#include "core/ppm/job_spec.h"
 #include "core/ppm/progressive_estimate.h"
 
 namespace pf {
 
 struct RenderSettings {
     std::string scene_path;
-    int width = 0, height = 0;     // 0: derived from the other and the camera's aspect ratio
-    int samples_per_pixel = 4;     // k hit points per pixel
-    uint64_t seed = 1;
-    double alpha = kDefaultAlpha;
-    double initial_radius = 0;     // 0: derived from the pixel footprint
-    BatchLayout layout;
-    uint64_t photon_budget = 0;    // stop after the epoch that reaches it (0: no limit)
-    double seconds_budget = 0;     // stop after the epoch that reaches it (0: no limit)
+    JobSpec job;
     int threads = 0;               // 0: all hardware threads
     const std::atomic<bool>* stop = nullptr;  // set from elsewhere (a signal) to stop after an epoch
 };

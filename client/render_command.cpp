@@ -40,12 +40,12 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
             {"photonfarm:photons", absl::StrCat(outcome.progress.photons)},
             {"photonfarm:epochs", absl::StrCat(outcome.progress.epochs)},
             {"photonfarm:seconds", absl::StrFormat("%.3f", outcome.progress.seconds)},
-            {"photonfarm:seed", absl::StrCat(s.seed)},
-            {"photonfarm:alpha", absl::StrFormat("%.17g", s.alpha)},
+            {"photonfarm:seed", absl::StrCat(s.job.seed)},
+            {"photonfarm:alpha", absl::StrFormat("%.17g", s.job.alpha)},
             {"photonfarm:initial_radius", absl::StrFormat("%.9g", outcome.initial_radius)},
-            {"photonfarm:spp", absl::StrCat(s.samples_per_pixel)},
-            {"photonfarm:photons_per_batch", absl::StrCat(s.layout.photons_per_batch)},
-            {"photonfarm:batches_per_epoch", absl::StrCat(s.layout.batches_per_epoch)}};
+            {"photonfarm:spp", absl::StrCat(s.job.samples_per_pixel)},
+            {"photonfarm:photons_per_batch", absl::StrCat(s.job.layout.photons_per_batch)},
+            {"photonfarm:batches_per_epoch", absl::StrCat(s.job.layout.batches_per_epoch)}};
 }
 
 absl::Status WriteOutputs(const RenderOptions& options, const RenderOutcome& outcome) {
@@ -132,31 +132,31 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
     render->add_option("--out", options->out, "Output image: float RGB OpenEXR with metadata")->required();
     render->add_option("--png", options->png, "Also write a tone-mapped sRGB PNG");
     render->add_option("--exposure", options->exposure, "PNG exposure in stops")->default_val(0.0f);
-    auto* photons = render->add_option("--photons", s.photon_budget, "Photon budget, e.g. 20M (finishes the epoch that reaches it)")
+    auto* photons = render->add_option("--photons", s.job.photon_budget, "Photon budget, e.g. 20M (finishes the epoch that reaches it)")
                         ->transform(count);
-    render->add_option("--seconds", s.seconds_budget, "Time budget in seconds (finishes the epoch that reaches it)")
+    render->add_option("--seconds", s.job.seconds_budget, "Time budget in seconds (finishes the epoch that reaches it)")
         ->check(CLI::PositiveNumber)->excludes(photons);
-    render->add_option("--photons-per-batch", s.layout.photons_per_batch, "Photon paths per batch, the unit of work")
-        ->default_val(s.layout.photons_per_batch)->check(CLI::Range(1u, 1u << 26));
-    render->add_option("--batches-per-epoch", s.layout.batches_per_epoch, "Batches per epoch; radii shrink once per epoch")
-        ->default_val(s.layout.batches_per_epoch)->check(CLI::Range(1u, 1u << 20));
-    render->add_option("--alpha", s.alpha, "Radius reduction ratio alpha in (0, 1]")->default_val(s.alpha)->check(CLI::Range(1e-9, 1.0));
-    render->add_option("--radius", s.initial_radius, "Initial search radius R0, world units (default: one pixel footprint)")
+    render->add_option("--photons-per-batch", s.job.layout.photons_per_batch, "Photon paths per batch, the unit of work")
+        ->default_val(s.job.layout.photons_per_batch)->check(CLI::Range(1u, 1u << 26));
+    render->add_option("--batches-per-epoch", s.job.layout.batches_per_epoch, "Batches per epoch; radii shrink once per epoch")
+        ->default_val(s.job.layout.batches_per_epoch)->check(CLI::Range(1u, 1u << 20));
+    render->add_option("--alpha", s.job.alpha, "Radius reduction ratio alpha in (0, 1]")->default_val(s.job.alpha)->check(CLI::Range(1e-9, 1.0));
+    render->add_option("--radius", s.job.initial_radius, "Initial search radius R0, world units (default: one pixel footprint)")
         ->check(CLI::PositiveNumber);
-    render->add_option("--spp", s.samples_per_pixel, "Hit points (camera paths) per pixel")->default_val(s.samples_per_pixel)
+    render->add_option("--spp", s.job.samples_per_pixel, "Hit points (camera paths) per pixel")->default_val(s.job.samples_per_pixel)
         ->check(CLI::Range(1, 1024));
     render->add_option("--threads", s.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
-    render->add_option("--seed", s.seed, "Random seed; the same seed and batch layout give the same image")->default_val(s.seed);
-    render->add_option("--width", s.width, "Image width in pixels (default 512)")->check(CLI::Range(1, 32768));
-    render->add_option("--height", s.height, "Image height in pixels (default: width / camera aspect)")->check(CLI::Range(1, 32768));
+    render->add_option("--seed", s.job.seed, "Random seed; the same seed and batch layout give the same image")->default_val(s.job.seed);
+    render->add_option("--width", s.job.width, "Image width in pixels (default 512)")->check(CLI::Range(1, 32768));
+    render->add_option("--height", s.job.height, "Image height in pixels (default: width / camera aspect)")->check(CLI::Range(1, 32768));
     auto* every = render->add_option("--snapshot-every", options->snapshot_every, "Write a snapshot EXR every SECONDS")
                       ->check(CLI::PositiveNumber);
     auto* dir = render->add_option("--snapshot-dir", options->snapshot_dir, "Directory for snapshot-NNNN.exr");
     every->needs(dir);
     dir->needs(every);
     render->callback([options, exit_code] {
-        if (options->settings.photon_budget == 0 && options->settings.seconds_budget == 0)
-            options->settings.photon_budget = 20'000'000;
+        if (options->settings.job.photon_budget == 0 && options->settings.job.seconds_budget == 0)
+            options->settings.job.photon_budget = 20'000'000;
         *exit_code = RunRender(*options);
     });
 }

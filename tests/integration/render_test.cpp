@@ -19,11 +19,11 @@ std::string ScenePath(const std::string& name) { return std::string(PF_SOURCE_DI
 RenderSettings SmallRender(const std::string& scene, uint64_t photons, int threads) {
     RenderSettings settings;
     settings.scene_path = ScenePath(scene);
-    settings.width = 48;
-    settings.height = 48;
-    settings.photon_budget = photons;
+    settings.job.width = 48;
+    settings.job.height = 48;
+    settings.job.photon_budget = photons;
     settings.threads = threads;
-    settings.layout = {1u << 14, 8};
+    settings.job.layout = {1u << 14, 8};
     return settings;
 }
 
@@ -139,7 +139,7 @@ TEST(RenderTest, SameSeedGivesBitIdenticalImagesForOneAndTwoThreads) {
 
 TEST(RenderTest, DifferentSeedsGiveDifferentImages) {
     RenderSettings a = SmallRender("cornell-box.gltf", 200'000, 2), b = a;
-    b.seed = a.seed + 1;
+    b.job.seed = a.job.seed + 1;
     const absl::StatusOr<RenderOutcome> first = RenderLocally(a), second = RenderLocally(b);
     ASSERT_TRUE(first.ok() && second.ok());
     EXPECT_NE(std::memcmp(first->image.pixels.data(), second->image.pixels.data(),
@@ -148,7 +148,7 @@ TEST(RenderTest, DifferentSeedsGiveDifferentImages) {
 
 TEST(RenderTest, BadSettingsAreRefusedWithAClearError) {
     RenderSettings settings = SmallRender("cornell-box.gltf", 1000, 1);
-    settings.alpha = 1.5;
+    settings.job.alpha = 1.5;
     const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
     ASSERT_FALSE(outcome.ok());
     EXPECT_NE(std::string(outcome.status().message()).find("--alpha"), std::string::npos);
@@ -156,8 +156,8 @@ TEST(RenderTest, BadSettingsAreRefusedWithAClearError) {
 
 TEST(RenderTest, TooManyHitPointsAreRefusedBeforeAnyWork) {
     RenderSettings settings = SmallRender("cornell-box.gltf", 1000, 1);
-    settings.width = settings.height = 32768;
-    settings.samples_per_pixel = 64;
+    settings.job.width = settings.job.height = 32768;
+    settings.job.samples_per_pixel = 64;
     const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
     ASSERT_FALSE(outcome.ok());
     EXPECT_EQ(outcome.status().code(), absl::StatusCode::kResourceExhausted);

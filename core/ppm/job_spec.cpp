@@ -1,0 +1,60 @@
+// Checks and scene-derived defaults of a render's settings.
+#include "core/ppm/job_spec.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "absl/strings/str_format.h"
+
+namespace pf {
+
+absl::Status CheckJobSpec(const JobSpec& s) {
+    if (s.width < 0 || s.height < 0 || s.width > 32768 || s.height > 32768)
+        return absl::InvalidArgumentError("--width/--height must lie in [1, 32768]");
+    if (s.samples_per_pixel < 1 || s.samples_per_pixel > 1024) return absl::InvalidArgumentError("--spp must lie in [1, 1024]");
+    if (!(s.alpha > 0 && s.alpha <= 1)) return absl::InvalidArgumentError("--alpha must lie in (0, 1]");
+    if (!(s.initial_radius >= 0 && std::isfinite(s.initial_radius)))
+        return absl::InvalidArgumentError("--radius must be positive and finite");
+    if (s.layout.photons_per_batch < 1 || s.layout.batches_per_epoch < 1)
+        return absl::InvalidArgumentError("--photons-per-batch and --batches-per-epoch must be at least 1");
+    if (!(s.seconds_budget >= 0 && std::isfinite(s.seconds_budget)))
+        return absl::InvalidArgumentError("--seconds must be positive");
+    if (s.photon_budget == 0 && s.seconds_budget == 0)
+        return absl::InvalidArgumentError("give a budget: --photons N or --seconds S");
+    return absl::OkStatus();
+}
+
+absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Camera& camera) {
+    CameraPassSettings film{spec.width, spec.height, spec.samples_per_pixel, spec.seed};
+    const double aspect = camera.aspect_ratio > 0 ? camera.aspect_ratio : 1.0;
+    if (film.width == 0 && film.height == 0) film.width = 512;
+    if (film.width == 0) film.width = std::max(1, static_cast<int>(std::lround(film.height * aspect)));
+    if (film.height == 0) film.height = std::max(1, static_cast<int>(std::lround(film.width / aspect)));
+    const uint64_t most_hit_points = uint64_t(film.width) * uint64_t(film.height) * uint64_t(film.samples_per_pixel);
+    if (most_hit_points > kMaxHitPoints)
+        return absl::ResourceExhaustedError(absl::StrFormat(
+            "%dx%d pixels x %d spp = %d hit points exceeds the limit of %d (about %d bytes each)", film.width,
+            film.height, film.samples_per_pixel, most_hit_points, kMaxHitPoints, kBytesPerHitPoint));
+    return film;
+}
+
+EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass, const Scene& scene,
+                             const std::string& scene_name) {
+    EstimateSettings estimate{spec.alpha, spec.initial_radius, spec.samples_per_pixel, spec.layout};
+    if (estimate.initial_radius == 0) estimate.initial_radius = DefaultInitialRadius(camera_pass, scene);
+    if (camera_pass.hit_points.empty() || !(estimate.initial_radius > 0)) {
+        spdlog::warn("{}: the camera sees no diffuse surface; the image holds emission only", scene_name);
+        estimate.initial_radius = std::max(estimate.initial_radius, 1e-3 * scene.bounds.Diagonal());
+    }
+    return estimate;
+}
+
+double BudgetFraction(const JobSpec& spec, uint64_t photons, double seconds) {
+    const double by_photons = spec.photon_budget > 0 ? double(photons) / double(spec.photon_budget) : 0.0;
+    const double by_time = spec.seconds_budget > 0 ? seconds / spec.seconds_budget : 0.0;
+    return std::min(1.0, std::max(by_photons, by_time));
+}
+
+}  // namespace pf

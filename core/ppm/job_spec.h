@@ -1,0 +1,48 @@
+// What a render asks for, the same for `photonfarm render` and a farm job: film size, hit
+// points per pixel, seed, estimator settings, batch layout, budget. With the checks and the
+// defaults derived from the scene, in one place for both.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "core/ppm/batch.h"
+#include "core/ppm/camera_pass.h"
+#include "core/ppm/estimator.h"
+#include "core/ppm/progressive_estimate.h"
+#include "core/scene/scene.h"
+
+namespace pf {
+
+struct JobSpec {
+    int width = 0, height = 0;   // 0: 512 wide, or derived from the other and the camera's aspect
+    int samples_per_pixel = 4;   // k hit points per pixel
+    uint64_t seed = 1;           // the same seed and layout give the same image
+    double alpha = kDefaultAlpha;
+    double initial_radius = 0;   // R0, world units; 0: one pixel footprint
+    BatchLayout layout;
+    uint64_t photon_budget = 0;  // stop after the epoch that reaches it (0: no limit)
+    double seconds_budget = 0;   // stop after the epoch that reaches it (0: no limit)
+};
+
+// Hit points cost about this much memory each across the estimate (~140 bytes), the grid (8
+// entries of 24 bytes) and one tally accumulator per thread (16 bytes): 2^25 of them (4K at
+// 4 hit points per pixel) take ~12 GB.
+inline constexpr uint64_t kMaxHitPoints = uint64_t{1} << 25;
+inline constexpr uint64_t kBytesPerHitPoint = 360;
+
+// Every field in range and a budget given; errors name the command-line flag.
+absl::Status CheckJobSpec(const JobSpec& spec);
+// Film size: what was asked, else 512 wide with the camera's aspect ratio; RESOURCE_EXHAUSTED
+// if its hit points would not fit.
+absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Camera& camera);
+// The estimator's settings, R0 from the camera pass where not given. `scene_name` names the
+// scene in the warning for a camera that sees no diffuse surface.
+EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass, const Scene& scene,
+                             const std::string& scene_name);
+// The share of the budget spent, in [0, 1]; 1 ends the render after the current epoch.
+double BudgetFraction(const JobSpec& spec, uint64_t photons, double seconds);
+
+}  // namespace pf
