@@ -58,6 +58,12 @@ bool PackReadWholeFile(std::vector<unsigned char>* out, std::string* error, cons
 
 bool NoWrite(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
 
+// Packing only needs to know which files the scene reads; images are decoded once, by the load.
+bool SkipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+                       void*) {
+    return true;
+}
+
 }  // namespace
 
 uint64_t SceneBundle::TotalBytes() const {
@@ -121,6 +127,7 @@ absl::StatusOr<SceneBundle> PackSceneBundle(const std::string& scene_path) {
     PackState state{path.parent_path(), &bundle, absl::OkStatus()};
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({PackFileExists, PackExpandFilePath, PackReadWholeFile, NoWrite, &state});
+    loader.SetImageLoader(SkipImageDecoding, nullptr);
     tinygltf::Model model;
     std::string error, warning;
     const auto* bytes = reinterpret_cast<const unsigned char*>(main->data());
