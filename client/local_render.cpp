@@ -1,66 +1,68 @@
-// The embedded render loop.
+// The embedded render: one coordinator, one in-process worker.
 #include "client/local_render.h"
 
-#include <spdlog/spdlog.h>
 #include <tbb/task_arena.h>
 
 #include <chrono>
 
-#include "absl/strings/str_cat.h"
-#include "absl/strings/str_format.h"
-#include "core/ppm/camera_pass.h"
-#include "core/ppm/job_spec.h"
-#include "core/scene/emitters.h"
-#include "core/scene/gltf_loader.h"
-#include "worker/backends/cpu_embree/cpu_backend.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
+#include "core/scene/scene_bundle.h"
+#include "server/coordinator.h"
+#include "server/in_process_source.h"
+#include "worker/worker_loop.h"
 
 namespace pf {
 
 absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, const EpochCallback& on_epoch) {
     const JobSpec& spec = settings.job;
-    if (absl::Status status = CheckJobSpec(spec); !status.ok()) return status;
-    absl::StatusOr<Scene> scene = LoadGltf(settings.scene_path);
-    if (!scene.ok()) return scene.status();
-    const Emitters emitters(*scene);
-    if (!emitters.HasPower()) return absl::InvalidArgumentError(absl::StrCat(settings.scene_path, ": lights emit no power"));
-    const absl::StatusOr<CameraPassSettings> film = FilmFor(spec, scene->camera);
-    if (!film.ok()) return film.status();
-    absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(*scene);
-    if (!tracer.ok()) return tracer.status();
+    if (absl::Status status = CheckJobSpec(spec, SettingNames::kFlags); !status.ok()) return status;
+    absl::StatusOr<SceneBundle> bundle = PackSceneBundle(settings.scene_path);
+    if (!bundle.ok()) return bundle.status();
 
+    CoordinatorOptions options;
+    options.setting_names = SettingNames::kFlags;
+    Coordinator coordinator(options);
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency());
-    RenderOutcome outcome;
-    absl::Status status;
+    absl::StatusOr<RenderOutcome> outcome = RenderOutcome{};
     arena.execute([&] {
         const auto start = std::chrono::steady_clock::now();
         auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-        CameraPassResult camera_pass = RunCameraPass(*scene, **tracer, *film);
-        outcome.camera_pass_seconds = elapsed();
-        outcome.hit_points = camera_pass.hit_points.size();
-        const EstimateSettings estimate_settings = EstimateFor(spec, camera_pass, *scene, settings.scene_path);
-        outcome.initial_radius = estimate_settings.initial_radius;
-        spdlog::info("camera pass: {} hit points in {:.2f} s, initial radius {:.4g}", outcome.hit_points,
-                     outcome.camera_pass_seconds, outcome.initial_radius);
-        ProgressiveEstimate estimate(std::move(camera_pass), estimate_settings);
-
-        embree::CpuBackend backend(**tracer);
-        status = backend.BeginJob({&*scene, &emitters, estimate.HitPoints(), spec.seed});
-        RenderProgress& progress = outcome.progress;
-        while (status.ok() && progress.fraction < 1.0 && !(settings.stop != nullptr && settings.stop->load())) {
-            backend.BeginEpoch(estimate.SearchRadiusSq());
-            const std::vector<BatchResult> results = backend.RunBatches(estimate.EpochBatches());
-            estimate.MergeEpoch(results);
-            for (const BatchResult& result : results) progress.segments += result.segments_traced;
-            progress.epochs = estimate.Epoch();
-            progress.photons = estimate.PhotonsEmitted();
-            progress.seconds = elapsed();
-            progress.fraction = BudgetFraction(spec, progress.photons, progress.seconds);
-            if (on_epoch) on_epoch(progress, estimate);
+        absl::StatusOr<JobProgress> submitted = coordinator.Submit({settings.scene_path, std::move(*bundle), spec, 0});
+        if (!submitted.ok()) {
+            outcome = submitted.status();
+            return;
         }
-        outcome.image = estimate.Resolve();
+        outcome->camera_pass_seconds = elapsed();
+        outcome->hit_points = submitted->hit_points;
+        outcome->initial_radius = submitted->initial_radius;
+        const std::shared_ptr<Job> job = *coordinator.FindJob(submitted->job_id);
+
+        // The worker leases a whole epoch at a time: its batches run in parallel on this arena.
+        InProcessSource source(coordinator, {"cpu", static_cast<uint32_t>(arena.max_concurrency()),
+                                             std::string(CoordinatorVersion()), ""}, 0.0);
+        WorkerLoop worker(source, "cpu", spec.layout.batches_per_epoch);
+        uint64_t version = job->Version();
+        RenderProgress& progress = outcome->progress;
+        while (job->Progress(Clock::now()).state == JobState::kRunning) {
+            if (settings.stop != nullptr && settings.stop->load()) {
+                (void)coordinator.Cancel(job->Id(), "stopped by a signal");
+                break;
+            }
+            if (absl::StatusOr<size_t> ran = worker.Step(); !ran.ok()) {
+                outcome = ran.status();
+                return;
+            }
+            if (job->Version() == version) continue;
+            version = job->Version();
+            const JobProgress state = job->Progress(Clock::now());
+            progress.epochs = state.epochs;
+            progress.photons = state.photons;
+            progress.segments = worker.Stats().segments;
+            progress.seconds = elapsed();
+            progress.fraction = state.state == JobState::kDone ? 1.0 : BudgetFraction(spec, progress.photons, progress.seconds);
+            if (on_epoch) on_epoch(progress, *job);
+        }
+        outcome->image = *job->CurrentImage();
     });
-    if (!status.ok()) return status;
     return outcome;
 }
 

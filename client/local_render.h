@@ -1,6 +1,6 @@
-// Rendering on one machine with no server: the camera pass, then epochs of photon batches run
-// by a backend on a TBB arena of the requested size and merged by ProgressiveEstimate —
-// the same batch and merge code the farm runs.
+// Rendering on one machine with no server: a coordinator and a worker loop in this process,
+// the same code the farm runs (server/coordinator.h, worker/worker_loop.h), with the job's
+// inputs handed over in memory.
 #pragma once
 
 #include <atomic>
@@ -10,10 +10,8 @@
 
 #include "absl/status/statusor.h"
 #include "core/film/image.h"
-#include "core/ppm/batch.h"
-#include "core/ppm/estimator.h"
 #include "core/ppm/job_spec.h"
-#include "core/ppm/progressive_estimate.h"
+#include "server/job.h"
 
 namespace pf {
 
@@ -40,11 +38,11 @@ struct RenderOutcome {
     double camera_pass_seconds = 0;
 };
 
-// Called after every merged epoch, on the rendering thread.
-using EpochCallback = std::function<void(const RenderProgress&, const ProgressiveEstimate&)>;
+// Called after every merged epoch, on the rendering thread; `job` gives the current image.
+using EpochCallback = std::function<void(const RenderProgress&, const Job& job)>;
 
-// Loads the scene and renders it. Errors: the scene's load errors, a scene the camera sees
-// nothing of, bad settings.
+// Packs the scene into a bundle and renders it. Errors: the scene's load errors, bad settings
+// (naming the command-line flag).
 absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, const EpochCallback& on_epoch = {});
 
 }  // namespace pf

@@ -94,12 +94,12 @@ int RunRender(const RenderOptions& options) {
     double next_snapshot = options.snapshot_every;
     int snapshot_count = 0;
     absl::Status snapshot_status;
-    const auto on_epoch = [&](const RenderProgress& progress, const ProgressiveEstimate& estimate) {
+    const auto on_epoch = [&](const RenderProgress& progress, const Job& job) {
         display.Update(progress);
         if (options.snapshot_every <= 0 || progress.seconds < next_snapshot || !snapshot_status.ok()) return;
         next_snapshot = progress.seconds + options.snapshot_every;
         const std::string path = absl::StrFormat("%s/snapshot-%04d.exr", options.snapshot_dir, ++snapshot_count);
-        snapshot_status = WriteExr(path, estimate.Resolve(),
+        snapshot_status = WriteExr(path, *job.CurrentImage(),
                                    {{"photonfarm:photons", absl::StrCat(progress.photons)},
                                     {"photonfarm:seconds", absl::StrFormat("%.3f", progress.seconds)}});
     };

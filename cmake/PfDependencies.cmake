@@ -10,6 +10,7 @@ find_package(spdlog CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
 find_package(OpenSSL REQUIRED)  # SHA-256 content addresses
+find_package(zstd CONFIG REQUIRED)  # blobs and images on the wire
 find_package(gRPC CONFIG REQUIRED)
 
 # OpenImageIO's imported target names /usr/include/opencv4, which Debian does not ship

@@ -7,6 +7,8 @@ target_include_directories(pf_warnings INTERFACE "${PROJECT_SOURCE_DIR}")
 # Nothing reads errno after maths: without it sqrt compiles to one instruction, unguarded.
 target_compile_options(pf_warnings INTERFACE -fno-math-errno)
 target_compile_features(pf_warnings INTERFACE cxx_std_20)
+# The version workers and the coordinator must agree on.
+target_compile_definitions(pf_warnings INTERFACE PF_VERSION="${PROJECT_VERSION}")
 
 # pf_add_library(NAME SOURCES ... [DEPS ...])
 function(pf_add_library name)
@@ -34,24 +36,29 @@ function(pf_add_test name)
         PROPERTIES ENVIRONMENT "PF_SOURCE_DIR=${PROJECT_SOURCE_DIR}" DISCOVERY_TIMEOUT 60)
 endfunction()
 
-# pf_add_proto_library(NAME PROTO ...): runs protoc on protos given relative to proto/ and
-# builds the generated C++ into a library. Generated files live in the build tree only.
+# pf_add_proto_library(NAME PROTO ...): runs protoc with the gRPC plugin on protos given
+# relative to proto/ and builds the generated messages and service stubs into a library.
+# Generated files live in the build tree only.
 function(pf_add_proto_library name)
     set(sources)
     foreach(proto IN LISTS ARGN)
         string(REGEX REPLACE "\\.proto$" "" stem "${proto}")
-        set(out_cc "${CMAKE_CURRENT_BINARY_DIR}/${stem}.pb.cc")
-        set(out_h "${CMAKE_CURRENT_BINARY_DIR}/${stem}.pb.h")
+        set(outputs
+            "${CMAKE_CURRENT_BINARY_DIR}/${stem}.pb.cc" "${CMAKE_CURRENT_BINARY_DIR}/${stem}.pb.h"
+            "${CMAKE_CURRENT_BINARY_DIR}/${stem}.grpc.pb.cc" "${CMAKE_CURRENT_BINARY_DIR}/${stem}.grpc.pb.h")
         add_custom_command(
-            OUTPUT "${out_cc}" "${out_h}"
+            OUTPUT ${outputs}
             COMMAND protobuf::protoc --proto_path=${CMAKE_CURRENT_SOURCE_DIR}
-                    --cpp_out=${CMAKE_CURRENT_BINARY_DIR} ${CMAKE_CURRENT_SOURCE_DIR}/${proto}
-            DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${proto}" protobuf::protoc
+                    --cpp_out=${CMAKE_CURRENT_BINARY_DIR} --grpc_out=${CMAKE_CURRENT_BINARY_DIR}
+                    --plugin=protoc-gen-grpc=$<TARGET_FILE:gRPC::grpc_cpp_plugin>
+                    ${CMAKE_CURRENT_SOURCE_DIR}/${proto}
+            DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${proto}" protobuf::protoc gRPC::grpc_cpp_plugin
             COMMENT "protoc ${proto}")
-        list(APPEND sources "${out_cc}")
+        list(APPEND sources "${CMAKE_CURRENT_BINARY_DIR}/${stem}.pb.cc"
+                            "${CMAKE_CURRENT_BINARY_DIR}/${stem}.grpc.pb.cc")
     endforeach()
     add_library(${name} STATIC ${sources})
-    target_link_libraries(${name} PUBLIC protobuf::libprotobuf)
+    target_link_libraries(${name} PUBLIC protobuf::libprotobuf gRPC::grpc++)
     # Included as "photonfarm/v1/batch.pb.h".
     target_include_directories(${name} PUBLIC "${CMAKE_CURRENT_BINARY_DIR}")
     set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)

@@ -3,7 +3,10 @@
 
 #include <cmath>
 
+#include <limits>
+
 #include "absl/strings/str_cat.h"
+#include "worker/blob_codec.h"
 
 namespace pf {
 namespace {
@@ -100,6 +103,86 @@ absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message
     result.photons_emitted = message.photons_emitted();
     result.segments_traced = message.segments_traced();
     return result;
+}
+
+photonfarm::v1::SceneBundle ToProto(const SceneBundle& bundle) {
+    photonfarm::v1::SceneBundle out;
+    out.set_main_file(bundle.main_file);
+    for (const auto& [path, content] : bundle.files) {
+        photonfarm::v1::BundleFile* file = out.add_files();
+        file->set_path(path);
+        file->set_content(content);
+    }
+    return out;
+}
+
+absl::StatusOr<SceneBundle> FromProto(const photonfarm::v1::SceneBundle& message) {
+    SceneBundle bundle;
+    bundle.main_file = message.main_file();
+    for (const photonfarm::v1::BundleFile& file : message.files()) {
+        if (absl::Status status = CheckBundlePath(file.path()); !status.ok())
+            return absl::InvalidArgumentError(absl::StrCat("scene.files: ", status.message()));
+        if (!bundle.files.emplace(file.path(), file.content()).second)
+            return absl::InvalidArgumentError(absl::StrCat("scene.files: '", file.path(), "' given twice"));
+    }
+    if (absl::Status status = CheckSceneBundle(bundle); !status.ok())
+        return absl::InvalidArgumentError(absl::StrCat("scene: ", status.message()));
+    return bundle;
+}
+
+photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
+    photonfarm::v1::JobSettings out;
+    out.set_width(spec.width);
+    out.set_height(spec.height);
+    out.set_samples_per_pixel(spec.samples_per_pixel);
+    out.set_photon_budget(spec.photon_budget);
+    out.set_seconds_budget(spec.seconds_budget);
+    out.set_alpha(spec.alpha);
+    out.set_initial_radius(spec.initial_radius);
+    out.set_seed(spec.seed);
+    out.set_photons_per_batch(spec.layout.photons_per_batch);
+    out.set_batches_per_epoch(spec.layout.batches_per_epoch);
+    return out;
+}
+
+absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings) {
+    JobSpec spec;
+    auto too_large = [](const char* field, uint64_t value) {
+        return absl::InvalidArgumentError(absl::StrCat("settings.", field, " ", value, " is out of range"));
+    };
+    if (settings.width() > 32768) return too_large("width", settings.width());
+    if (settings.height() > 32768) return too_large("height", settings.height());
+    if (settings.samples_per_pixel() > 1024) return too_large("samples_per_pixel", settings.samples_per_pixel());
+    spec.width = static_cast<int>(settings.width());
+    spec.height = static_cast<int>(settings.height());
+    if (settings.samples_per_pixel() != 0) spec.samples_per_pixel = static_cast<int>(settings.samples_per_pixel());
+    spec.photon_budget = settings.photon_budget();
+    spec.seconds_budget = settings.seconds_budget();
+    if (settings.alpha() != 0) spec.alpha = settings.alpha();
+    spec.initial_radius = settings.initial_radius();
+    spec.seed = settings.seed();
+    if (settings.photons_per_batch() != 0) spec.layout.photons_per_batch = settings.photons_per_batch();
+    if (settings.batches_per_epoch() != 0) spec.layout.batches_per_epoch = settings.batches_per_epoch();
+    if (settings.target_error() != 0)
+        return absl::UnimplementedError(
+            "settings.target_error: stopping at a target error needs the error estimator, which this coordinator "
+            "does not have yet; give photon_budget or seconds_budget");
+    if (absl::Status status = CheckJobSpec(spec, SettingNames::kFields); !status.ok()) return status;
+    return spec;
+}
+
+photonfarm::v1::Image ToProto(const Image& image) {
+    photonfarm::v1::Image out;
+    out.set_width(image.width);
+    out.set_height(image.height);
+    out.set_rgb_f32_zstd(EncodeImagePixels(image));
+    return out;
+}
+
+absl::StatusOr<Image> FromProto(const photonfarm::v1::Image& image) {
+    if (image.width() > std::numeric_limits<int>::max() || image.height() > std::numeric_limits<int>::max())
+        return absl::InvalidArgumentError("image: size out of range");
+    return DecodeImagePixels(image.rgb_f32_zstd(), static_cast<int>(image.width()), static_cast<int>(image.height()));
 }
 
 }  // namespace pf

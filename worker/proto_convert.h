@@ -6,8 +6,12 @@
 #include <cstdint>
 
 #include "absl/status/statusor.h"
+#include "core/film/image.h"
 #include "core/ppm/batch.h"
+#include "core/ppm/job_spec.h"
+#include "core/scene/scene_bundle.h"
 #include "photonfarm/v1/batch.pb.h"
+#include "photonfarm/v1/jobs.pb.h"
 
 namespace pf {
 
@@ -20,4 +24,14 @@ photonfarm::v1::BatchResult ToProto(const BatchResult& result);
 // slice inside the hit points with three finite, non-negative values per hit point.
 absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& result, uint32_t hit_point_count);
 
+photonfarm::v1::SceneBundle ToProto(const SceneBundle& bundle);
+// Checks paths and limits (CheckSceneBundle) and refuses a path given twice.
+absl::StatusOr<SceneBundle> FromProto(const photonfarm::v1::SceneBundle& bundle);
+
+// Job settings, zero meaning "the default"; checked by CheckJobSpec naming the fields.
+photonfarm::v1::JobSettings ToProto(const JobSpec& spec);
+absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings);
+
+photonfarm::v1::Image ToProto(const Image& image);
+absl::StatusOr<Image> FromProto(const photonfarm::v1::Image& image);
 }  // namespace pf

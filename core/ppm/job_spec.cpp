@@ -6,23 +6,34 @@
 #include <algorithm>
 #include <cmath>
 
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 
 namespace pf {
 
-absl::Status CheckJobSpec(const JobSpec& s) {
+absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
+    const bool flags = names == SettingNames::kFlags;
+    auto invalid = [&](const char* flag, const char* field, const std::string& what) {
+        return absl::InvalidArgumentError(absl::StrCat(flags ? flag : field, " ", what));
+    };
     if (s.width < 0 || s.height < 0 || s.width > 32768 || s.height > 32768)
-        return absl::InvalidArgumentError("--width/--height must lie in [1, 32768]");
-    if (s.samples_per_pixel < 1 || s.samples_per_pixel > 1024) return absl::InvalidArgumentError("--spp must lie in [1, 1024]");
-    if (!(s.alpha > 0 && s.alpha <= 1)) return absl::InvalidArgumentError("--alpha must lie in (0, 1]");
+        return invalid("--width/--height", "settings.width/settings.height", "must lie in [1, 32768]");
+    if (s.samples_per_pixel < 1 || s.samples_per_pixel > 1024)
+        return invalid("--spp", "settings.samples_per_pixel", "must lie in [1, 1024]");
+    if (!(s.alpha > 0 && s.alpha <= 1)) return invalid("--alpha", "settings.alpha", "must lie in (0, 1]");
     if (!(s.initial_radius >= 0 && std::isfinite(s.initial_radius)))
-        return absl::InvalidArgumentError("--radius must be positive and finite");
-    if (s.layout.photons_per_batch < 1 || s.layout.batches_per_epoch < 1)
-        return absl::InvalidArgumentError("--photons-per-batch and --batches-per-epoch must be at least 1");
+        return invalid("--radius", "settings.initial_radius", "must be positive and finite");
+    if (s.layout.photons_per_batch < 1 || s.layout.photons_per_batch > kMaxPhotonsPerBatch)
+        return invalid("--photons-per-batch", "settings.photons_per_batch",
+                       absl::StrCat("must lie in [1, ", kMaxPhotonsPerBatch, "]"));
+    if (s.layout.batches_per_epoch < 1 || s.layout.batches_per_epoch > kMaxBatchesPerEpoch)
+        return invalid("--batches-per-epoch", "settings.batches_per_epoch",
+                       absl::StrCat("must lie in [1, ", kMaxBatchesPerEpoch, "]"));
     if (!(s.seconds_budget >= 0 && std::isfinite(s.seconds_budget)))
-        return absl::InvalidArgumentError("--seconds must be positive");
+        return invalid("--seconds", "settings.seconds_budget", "must be positive and finite");
     if (s.photon_budget == 0 && s.seconds_budget == 0)
-        return absl::InvalidArgumentError("give a budget: --photons N or --seconds S");
+        return absl::InvalidArgumentError(flags ? "give a budget: --photons N or --seconds S"
+                                                : "settings: give a budget (photon_budget or seconds_budget)");
     return absl::OkStatus();
 }
 

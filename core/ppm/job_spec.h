@@ -33,8 +33,16 @@ struct JobSpec {
 inline constexpr uint64_t kMaxHitPoints = uint64_t{1} << 25;
 inline constexpr uint64_t kBytesPerHitPoint = 360;
 
-// Every field in range and a budget given; errors name the command-line flag.
-absl::Status CheckJobSpec(const JobSpec& spec);
+// Limits on the batch layout: a batch's photon count fits the wire's uint32 with room to
+// spare; an epoch's batches are slots the coordinator tracks one by one.
+inline constexpr uint32_t kMaxPhotonsPerBatch = 1u << 26;
+inline constexpr uint32_t kMaxBatchesPerEpoch = 1u << 16;
+
+// How errors name a setting: as `photonfarm render`'s flags or as the farm's message fields.
+enum class SettingNames { kFlags, kFields };
+
+// Every field in range and a budget given; errors name the flag or field.
+absl::Status CheckJobSpec(const JobSpec& spec, SettingNames names = SettingNames::kFlags);
 // Film size: what was asked, else 512 wide with the camera's aspect ratio; RESOURCE_EXHAUSTED
 // if its hit points would not fit.
 absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Camera& camera);

@@ -4,22 +4,25 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
+
 #include "core/util/check.h"
 
 namespace pf {
 
 ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings)
-    : hit_points_(std::move(camera_pass.hit_points)),
+    : hit_points_(std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points))),
       emission_(std::move(camera_pass.emission)),
       settings_(settings) {
     PF_CHECK(settings.alpha > 0 && settings.alpha <= 1);
     PF_CHECK(settings.initial_radius > 0 && std::isfinite(settings.initial_radius));
     PF_CHECK(settings.samples_per_pixel > 0);
     const double radius_sq = settings.initial_radius * settings.initial_radius;
-    points_.assign(hit_points_.size(), PointEstimate{0.0, radius_sq, Rgbd(0.0)});
-    direct_sum_.assign(hit_points_.size(), Rgbd(0.0));
-    epoch_photons_.assign(hit_points_.size(), 0);
-    epoch_flux_.assign(hit_points_.size(), Rgbd(0.0));
+    points_.assign(hit_points_->size(), PointEstimate{0.0, radius_sq, Rgbd(0.0)});
+    direct_sum_.assign(hit_points_->size(), Rgbd(0.0));
+    epoch_photons_.assign(hit_points_->size(), 0);
+    epoch_flux_.assign(hit_points_->size(), Rgbd(0.0));
+    epoch_direct_.assign(hit_points_->size(), Rgb(0.0f));
 }
 
 std::vector<float> ProgressiveEstimate::SearchRadiusSq() const {
@@ -31,49 +34,62 @@ std::vector<float> ProgressiveEstimate::SearchRadiusSq() const {
 std::vector<BatchSpec> ProgressiveEstimate::EpochBatches() const {
     std::vector<BatchSpec> specs;
     for (uint32_t j = 0; j < settings_.layout.batches_per_epoch; ++j)
-        specs.push_back(MakeBatchSpec(settings_.layout, epoch_, j, static_cast<uint32_t>(hit_points_.size())));
+        specs.push_back(MakeBatchSpec(settings_.layout, epoch_, j, static_cast<uint32_t>(hit_points_->size())));
     return specs;
 }
 
-void ProgressiveEstimate::MergeEpoch(std::span<const BatchResult> results) {
-    PF_CHECK(results.size() == settings_.layout.batches_per_epoch);
-    // Sum the epoch's tallies in batch-index order: the same sums whatever ran them.
-    for (uint32_t j = 0; j < results.size(); ++j) {
-        const BatchResult& result = results[j];
-        PF_CHECK(result.spec.epoch == epoch_ &&
-                 result.spec.index == epoch_ * settings_.layout.batches_per_epoch + j);
-        const Tally& tally = result.tally;
-        for (size_t e = 0; e < tally.Size(); ++e) {
-            const uint32_t i = tally.hit_point[e];
-            PF_CHECK(i < hit_points_.size());
-            epoch_photons_[i] += tally.photons[e];
-            // Phi_M: the photons' flux times the BSDF weight (a float product, exact in double).
-            epoch_flux_[i] += Rgbd(tally.flux[e]) * Rgbd(hit_points_[i].weight);
-        }
-        PF_CHECK(result.direct.size() == result.spec.direct_end - result.spec.direct_begin &&
-                 result.spec.direct_end <= hit_points_.size());
-        for (size_t k = 0; k < result.direct.size(); ++k)
-            direct_sum_[result.spec.direct_begin + k] += Rgbd(result.direct[k]);
-        photons_emitted_ += result.photons_emitted;
+void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
+    const uint32_t j = batches_folded_;
+    PF_CHECK(j < settings_.layout.batches_per_epoch && result.spec.epoch == epoch_ &&
+             result.spec.index == epoch_ * settings_.layout.batches_per_epoch + j);
+    const std::vector<HitPoint>& hit_points = *hit_points_;
+    const Tally& tally = result.tally;
+    for (size_t e = 0; e < tally.Size(); ++e) {
+        const uint32_t i = tally.hit_point[e];
+        PF_CHECK(i < hit_points.size());
+        epoch_photons_[i] += tally.photons[e];
+        // Phi_M: the photons' flux times the BSDF weight (a float product, exact in double).
+        epoch_flux_[i] += Rgbd(tally.flux[e]) * Rgbd(hit_points[i].weight);
     }
+    PF_CHECK(result.direct.size() == result.spec.direct_end - result.spec.direct_begin &&
+             result.spec.direct_end <= hit_points.size());
+    // The epoch's direct slices are disjoint and cover every hit point once.
+    std::copy(result.direct.begin(), result.direct.end(), epoch_direct_.begin() + result.spec.direct_begin);
+    epoch_photons_emitted_ += result.photons_emitted;
+    ++batches_folded_;
+}
+
+void ProgressiveEstimate::FinishEpoch() {
+    PF_CHECK(batches_folded_ == settings_.layout.batches_per_epoch);
     const double alpha = settings_.alpha;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, points_.size()), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
             points_[i] = UpdateEstimate(points_[i], static_cast<double>(epoch_photons_[i]), epoch_flux_[i], alpha);
+            direct_sum_[i] += Rgbd(epoch_direct_[i]);
             epoch_photons_[i] = 0;
             epoch_flux_[i] = Rgbd(0.0);
         }
     });
+    photons_emitted_ += epoch_photons_emitted_;
+    epoch_photons_emitted_ = 0;
+    batches_folded_ = 0;
     ++epoch_;
+}
+
+void ProgressiveEstimate::MergeEpoch(std::span<const BatchResult> results) {
+    PF_CHECK(results.size() == settings_.layout.batches_per_epoch && batches_folded_ == 0);
+    for (const BatchResult& result : results) FoldBatch(result);
+    FinishEpoch();
 }
 
 Image ProgressiveEstimate::Resolve() const {
     std::vector<Rgbd> sums(emission_.pixels.size(), Rgbd(0.0));
     const double direct_samples = static_cast<double>(epoch_);
-    for (size_t i = 0; i < hit_points_.size(); ++i) {
+    const std::vector<HitPoint>& hit_points = *hit_points_;
+    for (size_t i = 0; i < hit_points.size(); ++i) {
         Rgbd value = EstimateRadiance(points_[i], static_cast<double>(photons_emitted_));
         if (direct_samples > 0) value += direct_sum_[i] / direct_samples;
-        sums[hit_points_[i].pixel] += value;
+        sums[hit_points[i].pixel] += value;
     }
     Image image(emission_.width, emission_.height);
     const double inverse_spp = 1.0 / settings_.samples_per_pixel;

@@ -1,0 +1,301 @@
+// Job and worker bookkeeping, job preparation (scene load, camera pass) and lease scheduling.
+#include "server/coordinator.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <random>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "core/ppm/camera_pass.h"
+#include "core/scene/gltf_loader.h"
+#include "worker/backends/cpu_embree/embree_tracer.h"
+
+namespace pf {
+namespace {
+
+// Loads the scene, runs the camera pass and sets up the estimate: everything a job needs
+// before its first batch.
+absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names) {
+    if (absl::Status status = CheckJobSpec(request.spec, names); !status.ok()) return status;
+    if (absl::Status status = CheckSceneBundle(request.bundle); !status.ok()) return status;
+    if (request.name.empty()) request.name = std::filesystem::path(request.bundle.main_file).filename().string();
+    absl::StatusOr<Scene> scene = LoadGltf(request.bundle, request.bundle.main_file);
+    if (!scene.ok()) return scene.status();
+    auto payload = std::make_shared<JobPayload>(std::move(*scene), nullptr, request.spec.seed);
+    if (!payload->emitters.HasPower())
+        return absl::InvalidArgumentError(absl::StrCat(request.bundle.main_file, ": lights emit no power"));
+    const absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, payload->scene.camera);
+    if (!film.ok()) return film.status();
+    absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(payload->scene);
+    if (!tracer.ok()) return tracer.status();
+    const auto start = Clock::now();
+    CameraPassResult camera_pass = RunCameraPass(payload->scene, **tracer, *film);
+    const EstimateSettings settings = EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
+    spdlog::info("{}: camera pass: {}x{}, {} hit points in {:.2f} s, initial radius {:.4g}", request.name, film->width,
+                 film->height, camera_pass.hit_points.size(),
+                 std::chrono::duration<double>(Clock::now() - start).count(), settings.initial_radius);
+    PreparedJob prepared;
+    prepared.estimate = std::make_unique<ProgressiveEstimate>(std::move(camera_pass), settings);
+    payload->hit_points = prepared.estimate->SharedHitPoints();
+    prepared.payload = std::move(payload);
+    prepared.name = std::move(request.name);
+    prepared.spec = request.spec;
+    prepared.priority = request.priority;
+    prepared.bundle = std::move(request.bundle);
+    return prepared;
+}
+
+std::string RandomSalt() {
+    std::random_device device;
+    return absl::StrFormat("%04x", device() & 0xffff);
+}
+
+}  // namespace
+
+std::string_view CoordinatorVersion() { return PF_VERSION; }
+
+Coordinator::Coordinator(CoordinatorOptions options) : options_(std::move(options)), id_salt_(RandomSalt()) {}
+
+Coordinator::~Coordinator() { Shutdown(); }
+
+Clock::duration Coordinator::Duration(double seconds) const {
+    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+}
+
+absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
+    {
+        std::lock_guard lock(mutex_);
+        const size_t running = std::count_if(jobs_.begin(), jobs_.end(), [&](const auto& entry) {
+            return entry.second->Progress(Now()).state == JobState::kRunning;
+        });
+        if (running >= options_.max_running_jobs)
+            return absl::ResourceExhaustedError(
+                absl::StrCat("the coordinator runs ", running, " jobs, its limit (max_running_jobs)"));
+    }
+    absl::StatusOr<PreparedJob> prepared = Prepare(std::move(request), options_.setting_names);
+    if (!prepared.ok()) return prepared.status();
+    std::shared_ptr<Job> job;
+    {
+        std::lock_guard lock(mutex_);
+        const std::string id = absl::StrCat("job-", next_id_++, "-", id_salt_);
+        job = std::make_shared<Job>(id, std::move(*prepared), Now());
+        jobs_[id] = job;
+        job_order_.push_back(id);
+        ForgetEndedJobsLocked();
+    }
+    spdlog::info("job {} submitted", job->Id());
+    NotifyWork();
+    return job->Progress(Now());
+}
+
+absl::StatusOr<std::shared_ptr<Job>> Coordinator::FindJob(const std::string& job_id) const {
+    std::lock_guard lock(mutex_);
+    auto it = jobs_.find(job_id);
+    if (it == jobs_.end()) return absl::NotFoundError(absl::StrCat("job_id: no job '", job_id, "'"));
+    return it->second;
+}
+
+absl::StatusOr<JobProgress> Coordinator::Cancel(const std::string& job_id, const std::string& reason) {
+    absl::StatusOr<std::shared_ptr<Job>> job = FindJob(job_id);
+    if (!job.ok()) return job.status();
+    if ((*job)->Cancel(reason, Now())) spdlog::info("job {} cancelled: {}", job_id, reason);
+    NotifyWork();
+    return (*job)->Progress(Now());
+}
+
+std::vector<JobProgress> Coordinator::ListJobs() const {
+    std::lock_guard lock(mutex_);
+    std::vector<JobProgress> jobs;
+    for (const std::string& id : job_order_) jobs.push_back(jobs_.at(id)->Progress(Now()));
+    return jobs;
+}
+
+void Coordinator::ForgetEndedJobsLocked() {
+    size_t ended = 0;
+    for (const std::string& id : job_order_) ended += jobs_.at(id)->Progress(Now()).state != JobState::kRunning;
+    for (auto it = job_order_.begin(); it != job_order_.end() && ended > options_.finished_jobs_kept;) {
+        if (jobs_.at(*it)->Progress(Now()).state != JobState::kRunning) {
+            jobs_.erase(*it);
+            it = job_order_.erase(it);
+            --ended;
+        } else {
+            ++it;
+        }
+    }
+}
+
+absl::StatusOr<std::string> Coordinator::RegisterWorker(const WorkerRegistration& registration) {
+    if (registration.version != CoordinatorVersion())
+        return absl::FailedPreconditionError(absl::StrCat("version: worker runs photonfarm ", registration.version,
+                                                          ", the coordinator ", std::string(CoordinatorVersion())));
+    std::lock_guard lock(mutex_);
+    ReapWorkersLocked(Now());
+    const std::string id = absl::StrCat("worker-", next_id_++, "-", id_salt_);
+    workers_[id] = {registration, Now()};
+    spdlog::info("worker {} registered ({}, {} threads, from {})", id, registration.backend, registration.threads,
+                 registration.peer.empty() ? "this process" : registration.peer);
+    return id;
+}
+
+absl::Status Coordinator::Heartbeat(const std::string& worker_id) {
+    std::lock_guard lock(mutex_);
+    ReapWorkersLocked(Now());
+    auto it = workers_.find(worker_id);
+    if (it == workers_.end()) return absl::NotFoundError(absl::StrCat("worker_id: unknown worker '", worker_id, "'"));
+    it->second.last_seen = Now();
+    return absl::OkStatus();
+}
+
+absl::StatusOr<uint32_t> Coordinator::UnregisterWorker(const std::string& worker_id) {
+    std::lock_guard lock(mutex_);
+    if (workers_.erase(worker_id) == 0)
+        return absl::NotFoundError(absl::StrCat("worker_id: unknown worker '", worker_id, "'"));
+    uint32_t returned = 0;
+    for (const auto& [id, job] : jobs_) returned += job->ReleaseLeases(worker_id);
+    spdlog::info("worker {} left, returning {} leases", worker_id, returned);
+    work_available_.notify_all();
+    return returned;
+}
+
+void Coordinator::ReapWorkersLocked(Clock::time_point now) {
+    for (auto it = workers_.begin(); it != workers_.end();) {
+        if (now - it->second.last_seen > Duration(options_.worker_timeout_seconds)) {
+            uint32_t released = 0;
+            for (const auto& [id, job] : jobs_) released += job->ReleaseLeases(it->first);
+            spdlog::warn("worker {} silent for {:.0f} s: gone; {} leases handed out again", it->first,
+                         options_.worker_timeout_seconds, released);
+            it = workers_.erase(it);
+            work_available_.notify_all();
+        } else {
+            ++it;
+        }
+    }
+}
+
+std::vector<WorkerView> Coordinator::ListWorkers() const {
+    std::lock_guard lock(mutex_);
+    const Clock::time_point now = Now();
+    std::vector<WorkerView> views;
+    for (const auto& [id, worker] : workers_) {
+        WorkerView view{id, worker.registration, std::chrono::duration<double>(now - worker.last_seen).count(), 0,
+                        worker.batches_done};
+        for (const auto& [job_id, job] : jobs_) view.batches_leased += job->LeasedBy(id, now);
+        views.push_back(std::move(view));
+    }
+    return views;
+}
+
+std::shared_ptr<Job> Coordinator::PickJobLocked(Clock::time_point now) const {
+    std::shared_ptr<Job> best;
+    uint32_t best_leased = 0;
+    for (const std::string& id : job_order_) {  // oldest first: ties go to the older job
+        const std::shared_ptr<Job>& job = jobs_.at(id);
+        if (job->Leasable(now) == 0) continue;
+        const uint32_t leased = job->Leased(now);
+        if (!best || job->Priority() > best->Priority() ||
+            (job->Priority() == best->Priority() && leased < best_leased)) {
+            best = job;
+            best_leased = leased;
+        }
+    }
+    return best;
+}
+
+absl::StatusOr<CoordinatorLease> Coordinator::Lease(const std::string& worker_id, uint32_t max_batches,
+                                                    double wait_seconds) {
+    std::unique_lock lock(mutex_);
+    const Clock::time_point until = Clock::now() + Duration(wait_seconds);
+    CoordinatorLease lease;
+    lease.lease_seconds = options_.lease_seconds;
+    while (true) {
+        const Clock::time_point now = Now();
+        ReapWorkersLocked(now);
+        auto worker = workers_.find(worker_id);
+        if (worker == workers_.end())
+            return absl::NotFoundError(absl::StrCat("worker_id: unknown worker '", worker_id, "'"));
+        worker->second.last_seen = now;
+        if (std::shared_ptr<Job> job = PickJobLocked(now)) {
+            Job::Lease granted = job->LeaseBatches(worker_id, max_batches, now, now + Duration(options_.lease_seconds));
+            if (!granted.batches.empty()) {
+                lease.grant = {job->Id(), std::move(granted.payload), granted.epoch->epoch, granted.epoch->radius_sq,
+                               std::move(granted.batches)};
+                lease.epoch = std::move(granted.epoch);
+                lease.job = std::move(job);
+                return lease;
+            }
+        }
+        if (shut_down_ || work_available_.wait_until(lock, until) == std::cv_status::timeout) return lease;
+    }
+}
+
+absl::StatusOr<TallyVerdict> Coordinator::Report(const std::string& worker_id, const std::string& job_id,
+                                                 BatchResult result) {
+    std::shared_ptr<Job> job;
+    {
+        std::lock_guard lock(mutex_);
+        auto worker = workers_.find(worker_id);
+        if (worker == workers_.end()) {
+            ++refusals_.unknown_worker;
+            return absl::NotFoundError(absl::StrCat("worker_id: unknown worker '", worker_id, "'; register again"));
+        }
+        worker->second.last_seen = Now();
+        ++worker->second.batches_done;
+        auto it = jobs_.find(job_id);
+        if (it == jobs_.end()) {
+            ++refusals_.job_gone;
+            return TallyVerdict::kJobGone;
+        }
+        job = it->second;
+    }
+    absl::StatusOr<Job::ReportOutcome> outcome = job->Report(worker_id, std::move(result), Now());
+    std::lock_guard lock(mutex_);
+    if (!outcome.ok()) {
+        ++refusals_.malformed;
+        return outcome.status();
+    }
+    switch (outcome->verdict) {
+        case TallyVerdict::kAccepted: break;
+        case TallyVerdict::kDuplicate: ++refusals_.duplicate; break;
+        case TallyVerdict::kStale: ++refusals_.stale; break;
+        case TallyVerdict::kJobGone: ++refusals_.job_gone; break;
+    }
+    if (outcome->epoch_finished) work_available_.notify_all();
+    return outcome->verdict;
+}
+
+void Coordinator::CountMalformed() {
+    std::lock_guard lock(mutex_);
+    ++refusals_.malformed;
+}
+
+RefusalCounts Coordinator::Refusals() const {
+    std::lock_guard lock(mutex_);
+    return refusals_;
+}
+
+std::shared_ptr<const Blob> Coordinator::FindBlob(const std::string& digest) const {
+    std::vector<std::shared_ptr<Job>> jobs;
+    {
+        std::lock_guard lock(mutex_);
+        for (const auto& [id, job] : jobs_) jobs.push_back(job);
+    }
+    for (const std::shared_ptr<Job>& job : jobs)
+        if (std::shared_ptr<const Blob> blob = job->FindBlob(digest)) return blob;
+    return nullptr;
+}
+
+void Coordinator::NotifyWork() {
+    std::lock_guard lock(mutex_);
+    work_available_.notify_all();
+}
+
+void Coordinator::Shutdown() {
+    std::lock_guard lock(mutex_);
+    shut_down_ = true;
+    work_available_.notify_all();
+}
+
+}  // namespace pf

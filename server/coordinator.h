@@ -1,0 +1,134 @@
+// The coordinator: jobs and workers, with no transport. Clients submit, watch and cancel jobs;
+// workers register, lease batches and report results. The gRPC services (jobs_service.h,
+// work_service.h) and the embedded renderer (in_process_source.h) both drive this class, so
+// the farm and `photonfarm render` share one path. Thread-safe.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/ppm/job_spec.h"
+#include "core/scene/scene_bundle.h"
+#include "server/job.h"
+#include "worker/work_source.h"
+
+namespace pf {
+
+struct CoordinatorOptions {
+    double heartbeat_seconds = 2;        // workers heartbeat this often
+    double worker_timeout_seconds = 10;  // a worker silent this long is gone; its leases are re-handed
+    double lease_seconds = 300;          // a batch not reported within this is handed out again
+    double lease_wait_seconds = 1;       // a lease request waits this long for work to appear
+    size_t max_running_jobs = 64;
+    size_t finished_jobs_kept = 64;      // ended jobs (their final images) kept for GetResult
+    // How errors name a job's settings: the farm's fields, or the embedded renderer's flags.
+    SettingNames setting_names = SettingNames::kFields;
+    std::function<Clock::time_point()> now = [] { return Clock::now(); };  // tests drive time
+};
+
+struct JobRequest {
+    std::string name;  // for listings; the main file's name if empty
+    SceneBundle bundle;
+    JobSpec spec;
+    int priority = 0;  // higher first; equal priorities share workers fairly
+};
+
+struct WorkerRegistration {
+    std::string backend;
+    uint32_t threads = 0;
+    std::string version;
+    std::string peer;  // where it connects from, for listings
+};
+
+struct WorkerView {
+    std::string worker_id;
+    WorkerRegistration registration;
+    double seconds_since_heartbeat = 0;
+    uint32_t batches_leased = 0;
+    uint64_t batches_done = 0;
+};
+
+// Tallies refused, by reason, since the coordinator started.
+struct RefusalCounts {
+    uint64_t duplicate = 0, stale = 0, job_gone = 0, unknown_worker = 0, malformed = 0;
+};
+
+// A lease as the coordinator hands it out: the grant, and the job for its blobs.
+struct CoordinatorLease {
+    WorkGrant grant;
+    std::shared_ptr<Job> job;                   // null when no work
+    std::shared_ptr<const EpochInputs> epoch;   // null when no work
+    double lease_seconds = 0;
+};
+
+// The version a worker must run to join: batches must be computed by the same code.
+std::string_view CoordinatorVersion();
+
+class Coordinator {
+public:
+    explicit Coordinator(CoordinatorOptions options = {});
+    ~Coordinator();
+
+    const CoordinatorOptions& Options() const { return options_; }
+
+    // Jobs. Submit loads the scene and runs the camera pass (on the calling TBB arena) before
+    // it returns: INVALID_ARGUMENT for a bad scene or settings, naming the file or field.
+    absl::StatusOr<JobProgress> Submit(JobRequest request);
+    absl::StatusOr<std::shared_ptr<Job>> FindJob(const std::string& job_id) const;  // NOT_FOUND
+    absl::StatusOr<JobProgress> Cancel(const std::string& job_id, const std::string& reason = "cancelled by a client");
+    std::vector<JobProgress> ListJobs() const;
+
+    // Workers. An unknown worker id is NOT_FOUND: the worker registers again.
+    absl::StatusOr<std::string> RegisterWorker(const WorkerRegistration& registration);
+    absl::Status Heartbeat(const std::string& worker_id);
+    absl::StatusOr<uint32_t> UnregisterWorker(const std::string& worker_id);  // leases returned
+    std::vector<WorkerView> ListWorkers() const;
+    // Up to `max_batches` batches of one job, the highest priority first, then the job with
+    // the fewest batches out; waits up to `wait_seconds` for work when there is none.
+    absl::StatusOr<CoordinatorLease> Lease(const std::string& worker_id, uint32_t max_batches, double wait_seconds);
+    absl::StatusOr<TallyVerdict> Report(const std::string& worker_id, const std::string& job_id, BatchResult result);
+    // A tally that failed to decode, counted with the refusals.
+    void CountMalformed();
+    RefusalCounts Refusals() const;
+
+    // A blob of a running job (scene, hit points, radii) by digest, or null.
+    std::shared_ptr<const Blob> FindBlob(const std::string& digest) const;
+
+    // Wakes every waiting lease; later waits return at once. For shutting down.
+    void Shutdown();
+
+private:
+    struct Worker {
+        WorkerRegistration registration;
+        Clock::time_point last_seen;
+        uint64_t batches_done = 0;
+    };
+    Clock::time_point Now() const { return options_.now(); }
+    Clock::duration Duration(double seconds) const;
+    void ReapWorkersLocked(Clock::time_point now);
+    void ForgetEndedJobsLocked();
+    std::shared_ptr<Job> PickJobLocked(Clock::time_point now) const;
+    void NotifyWork();
+
+    const CoordinatorOptions options_;
+    mutable std::mutex mutex_;
+    std::condition_variable work_available_;
+    std::map<std::string, std::shared_ptr<Job>> jobs_;  // by id
+    std::vector<std::string> job_order_;                // submission order, for fairness ties and listings
+    std::map<std::string, Worker> workers_;
+    RefusalCounts refusals_;
+    uint64_t next_id_ = 1;
+    std::string id_salt_;
+    bool shut_down_ = false;
+};
+
+}  // namespace pf

@@ -1,0 +1,299 @@
+// Slots, leases and the in-order fold of one job.
+#include "server/job.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+#include "absl/strings/str_cat.h"
+#include "worker/proto_convert.h"
+
+namespace pf {
+namespace {
+
+// A worker counts as active on a job while it holds a lease or reported within this long.
+constexpr auto kActiveWindow = std::chrono::seconds(10);
+
+double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+bool SameSpec(const BatchSpec& a, const BatchSpec& b) {
+    return a.index == b.index && a.epoch == b.epoch && a.photons == b.photons && a.direct_begin == b.direct_begin &&
+           a.direct_end == b.direct_end;
+}
+
+}  // namespace
+
+const Blob& LazyBlob::Get() const {
+    std::call_once(once_, [this] {
+        blob_ = Blob::Of(encode_());
+        encoded_.store(true, std::memory_order_release);
+    });
+    return blob_;
+}
+
+EpochInputs::EpochInputs(uint64_t epoch_in, std::vector<float> radius_sq_in)
+    : epoch(epoch_in),
+      radius_sq(std::make_shared<const std::vector<float>>(std::move(radius_sq_in))),
+      blob([radii = radius_sq] { return EncodeFloats(*radii); }) {}
+
+Job::Job(std::string id, PreparedJob prepared, Clock::time_point now)
+    : id_(std::move(id)),
+      name_(std::move(prepared.name)),
+      spec_(prepared.spec),
+      priority_(prepared.priority),
+      started_(now),
+      hit_point_count_(prepared.estimate->HitPoints().size()),
+      initial_radius_(prepared.estimate->Settings().initial_radius),
+      payload_(std::move(prepared.payload)),
+      estimate_(std::move(prepared.estimate)) {
+    scene_blob_ = std::make_shared<const LazyBlob>(
+        [bundle = std::make_shared<const SceneBundle>(std::move(prepared.bundle))] {
+            return ToProto(*bundle).SerializeAsString();
+        });
+    hit_points_blob_ = std::make_shared<const LazyBlob>([payload = payload_] { return EncodeHitPoints(*payload->hit_points); });
+    std::lock_guard lock(mutex_);
+    StartEpochLocked(estimate_->SearchRadiusSq());
+}
+
+std::shared_ptr<const LazyBlob> Job::SceneBlob() const {
+    std::lock_guard lock(mutex_);
+    return scene_blob_;
+}
+
+std::shared_ptr<const LazyBlob> Job::HitPointsBlob() const {
+    std::lock_guard lock(mutex_);
+    return hit_points_blob_;
+}
+
+std::shared_ptr<const Blob> Job::FindBlob(const std::string& digest) const {
+    std::lock_guard lock(mutex_);
+    if (state_ != JobState::kRunning) return nullptr;
+    // Only blobs already encoded can have been announced to a worker, so none is encoded here.
+    auto match = [&](const std::shared_ptr<const void>& owner, const LazyBlob& lazy) -> std::shared_ptr<const Blob> {
+        const Blob* blob = lazy.IfEncoded();
+        return blob != nullptr && blob->digest == digest ? std::shared_ptr<const Blob>(owner, blob) : nullptr;
+    };
+    for (const std::shared_ptr<const LazyBlob>& lazy : {scene_blob_, hit_points_blob_})
+        if (std::shared_ptr<const Blob> blob = match(lazy, *lazy)) return blob;
+    return match(epoch_, epoch_->blob);
+}
+
+void Job::StartEpochLocked(std::vector<float> radius_sq) {
+    const uint64_t epoch = estimate_->Epoch();
+    epoch_ = std::make_shared<const EpochInputs>(epoch, std::move(radius_sq));
+    slots_.clear();
+    for (const BatchSpec& spec : estimate_->EpochBatches()) slots_.push_back({spec});
+    next_fold_ = 0;
+}
+
+bool Job::LeasableLocked(const Slot& slot, Clock::time_point now) const {
+    return !slot.folded && !slot.result && (!slot.leased || slot.deadline <= now);
+}
+
+uint32_t Job::Leasable(Clock::time_point now) const {
+    std::lock_guard lock(mutex_);
+    if (state_ != JobState::kRunning || folding_) return 0;
+    return static_cast<uint32_t>(std::count_if(slots_.begin(), slots_.end(), [&](const Slot& s) { return LeasableLocked(s, now); }));
+}
+
+uint32_t Job::Leased(Clock::time_point now) const {
+    std::lock_guard lock(mutex_);
+    return static_cast<uint32_t>(std::count_if(slots_.begin(), slots_.end(), [&](const Slot& s) {
+        return s.leased && !s.result && !s.folded && s.deadline > now;
+    }));
+}
+
+uint32_t Job::LeasedBy(const std::string& worker, Clock::time_point now) const {
+    std::lock_guard lock(mutex_);
+    return static_cast<uint32_t>(std::count_if(slots_.begin(), slots_.end(), [&](const Slot& s) {
+        return s.leased && s.worker == worker && !s.result && !s.folded && s.deadline > now;
+    }));
+}
+
+Job::Lease Job::LeaseBatches(const std::string& worker, uint32_t max_batches, Clock::time_point now,
+                             Clock::time_point deadline) {
+    std::lock_guard lock(mutex_);
+    Lease lease;
+    if (state_ != JobState::kRunning) return lease;
+    for (Slot& slot : slots_) {
+        if (lease.batches.size() >= max_batches) break;
+        if (!LeasableLocked(slot, now)) continue;
+        slot.leased = true;
+        slot.worker = worker;
+        slot.deadline = deadline;
+        lease.batches.push_back(slot.spec);
+    }
+    if (!lease.batches.empty()) {
+        lease.payload = payload_;
+        lease.epoch = epoch_;
+        workers_seen_[worker] = now;
+    }
+    return lease;
+}
+
+uint32_t Job::ReleaseLeases(const std::string& worker) {
+    std::lock_guard lock(mutex_);
+    uint32_t released = 0;
+    for (Slot& slot : slots_)
+        if (slot.leased && slot.worker == worker && !slot.result && !slot.folded) {
+            slot.leased = false;
+            ++released;
+        }
+    workers_seen_.erase(worker);
+    return released;
+}
+
+absl::StatusOr<Job::ReportOutcome> Job::Report(const std::string& worker, BatchResult result, Clock::time_point now) {
+    std::unique_lock lock(mutex_);
+    if (state_ != JobState::kRunning) return ReportOutcome{TallyVerdict::kJobGone};
+    const uint64_t epoch = epoch_->epoch;
+    const uint64_t first = epoch * spec_.layout.batches_per_epoch;
+    if (result.spec.epoch != epoch || result.spec.index < first || result.spec.index - first >= slots_.size()) {
+        if (result.spec.epoch < epoch) return ReportOutcome{TallyVerdict::kStale};
+        return absl::InvalidArgumentError(absl::StrCat("result.spec: batch ", result.spec.index, " of epoch ",
+                                                       result.spec.epoch, " was never handed out (epoch ", epoch, " runs)"));
+    }
+    Slot& slot = slots_[result.spec.index - first];
+    if (!SameSpec(slot.spec, result.spec))
+        return absl::InvalidArgumentError(absl::StrCat("result.spec: does not match batch ", slot.spec.index));
+    for (uint32_t hit_point : result.tally.hit_point)
+        if (hit_point >= hit_point_count_)
+            return absl::InvalidArgumentError(absl::StrCat("result.tally: hit point ", hit_point, " of ", hit_point_count_));
+    if (slot.result || slot.folded) return ReportOutcome{TallyVerdict::kDuplicate};
+    slot.result = std::move(result);
+    workers_seen_[worker] = now;
+    return ReportOutcome{TallyVerdict::kAccepted, FoldReadyLocked(lock, now)};
+}
+
+bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point now) {
+    if (folding_) return false;  // the thread folding now will pick this result up
+    folding_ = true;
+    bool finished = false;
+    while (state_ == JobState::kRunning) {
+        if (next_fold_ < slots_.size()) {
+            Slot& slot = slots_[next_fold_];
+            if (!slot.result) break;
+            BatchResult result = std::move(*slot.result);
+            slot.result.reset();
+            slot.folded = true;
+            ++next_fold_;
+            lock.unlock();
+            {
+                std::lock_guard estimate_lock(estimate_mutex_);
+                if (estimate_) estimate_->FoldBatch(result);
+            }
+            lock.lock();
+            continue;
+        }
+        // Every batch of the epoch is folded: update the estimate and start the next epoch.
+        std::vector<float> radius_sq;
+        uint64_t photons = 0;
+        lock.unlock();
+        {
+            std::lock_guard estimate_lock(estimate_mutex_);
+            if (estimate_) {
+                estimate_->FinishEpoch();
+                radius_sq = estimate_->SearchRadiusSq();
+                photons = estimate_->PhotonsEmitted();
+            }
+        }
+        lock.lock();
+        if (state_ != JobState::kRunning) break;
+        ++epochs_merged_;
+        photons_merged_ = photons;
+        ++version_;
+        finished = true;
+        if (BudgetFraction(spec_, photons_merged_, Seconds(now - started_)) >= 1.0) {
+            EndLocked(JobState::kDone, "", now);
+            break;
+        }
+        StartEpochLocked(std::move(radius_sq));
+        break;
+    }
+    folding_ = false;
+    changed_.notify_all();
+    if (state_ != JobState::kRunning) {
+        lock.unlock();
+        ReleaseInputs();
+        lock.lock();
+    }
+    return finished;
+}
+
+void Job::EndLocked(JobState state, std::string message, Clock::time_point now) {
+    state_ = state;
+    message_ = std::move(message);
+    ended_ = now;
+    ++version_;
+    // Leases end with the job; inputs are freed by ReleaseInputs, outside this lock.
+    slots_.clear();
+    epoch_.reset();
+    payload_.reset();
+    scene_blob_.reset();
+    hit_points_blob_.reset();
+    workers_seen_.clear();
+    changed_.notify_all();
+}
+
+void Job::ReleaseInputs() {
+    std::lock_guard estimate_lock(estimate_mutex_);
+    if (!estimate_) return;
+    if (image_epoch_ != estimate_->Epoch()) {
+        image_ = std::make_shared<const Image>(estimate_->Resolve());
+        image_epoch_ = estimate_->Epoch();
+    }
+    estimate_.reset();
+}
+
+bool Job::Cancel(const std::string& reason, Clock::time_point now) {
+    {
+        std::lock_guard lock(mutex_);
+        if (state_ != JobState::kRunning) return false;
+        EndLocked(JobState::kCancelled, reason, now);
+    }
+    ReleaseInputs();
+    return true;
+}
+
+JobProgress Job::Progress(Clock::time_point now) const {
+    std::lock_guard lock(mutex_);
+    JobProgress progress;
+    progress.job_id = id_;
+    progress.name = name_;
+    progress.state = state_;
+    progress.priority = priority_;
+    progress.epochs = epochs_merged_;
+    progress.photons = photons_merged_;
+    progress.hit_points = hit_point_count_;
+    progress.initial_radius = initial_radius_;
+    const Clock::time_point end = state_ == JobState::kRunning ? now : ended_;
+    progress.elapsed_seconds = Seconds(end - started_);
+    progress.photons_per_second = progress.elapsed_seconds > 0 ? photons_merged_ / progress.elapsed_seconds : 0;
+    progress.budget_fraction = state_ == JobState::kDone ? 1.0 : BudgetFraction(spec_, photons_merged_, progress.elapsed_seconds);
+    for (const auto& [worker, seen] : workers_seen_)
+        if (now - seen < kActiveWindow) ++progress.workers_active;
+    progress.message = message_;
+    return progress;
+}
+
+uint64_t Job::Version() const {
+    std::lock_guard lock(mutex_);
+    return version_;
+}
+
+uint64_t Job::WaitForChange(uint64_t seen, Clock::time_point until) const {
+    std::unique_lock lock(mutex_);
+    changed_.wait_until(lock, until, [&] { return version_ != seen; });
+    return version_;
+}
+
+std::shared_ptr<const Image> Job::CurrentImage() const {
+    std::lock_guard estimate_lock(estimate_mutex_);
+    if (estimate_ && image_epoch_ != estimate_->Epoch()) {
+        image_ = std::make_shared<const Image>(estimate_->Resolve());
+        image_epoch_ = estimate_->Epoch();
+    }
+    return image_;
+}
+
+}  // namespace pf

@@ -1,0 +1,177 @@
+// One render job on the coordinator: its inputs (shared in memory with in-process workers,
+// served as content-addressed blobs to remote ones), the current epoch's batch slots and
+// their leases, and the progressive estimate the results fold into. Thread-safe.
+//
+// Determinism: a result for a slot is accepted once, from whoever delivers it first (every
+// worker computes the same bytes for a batch), and results fold into the estimate strictly in
+// batch-index order, so the image for a seed and layout does not depend on who ran what.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/film/image.h"
+#include "core/ppm/job_spec.h"
+#include "core/ppm/progressive_estimate.h"
+#include "core/scene/scene_bundle.h"
+#include "worker/blob_codec.h"
+#include "worker/work_source.h"
+
+namespace pf {
+
+using Clock = std::chrono::steady_clock;
+
+// A blob encoded on first use, once, whichever thread asks first.
+class LazyBlob {
+public:
+    explicit LazyBlob(std::function<std::string()> encode) : encode_(std::move(encode)) {}
+    const Blob& Get() const;
+    const Blob* IfEncoded() const { return encoded_.load(std::memory_order_acquire) ? &blob_ : nullptr; }
+
+private:
+    std::function<std::string()> encode_;
+    mutable std::once_flag once_;
+    mutable Blob blob_;
+    mutable std::atomic<bool> encoded_{false};
+};
+
+// The inputs of one epoch's photon pass: the squared search radii.
+struct EpochInputs {
+    explicit EpochInputs(uint64_t epoch_in, std::vector<float> radius_sq_in);
+    uint64_t epoch;
+    std::shared_ptr<const std::vector<float>> radius_sq;
+    LazyBlob blob;  // EncodeFloats(radius_sq)
+};
+
+enum class JobState { kRunning, kDone, kCancelled, kFailed };
+
+// A job's state for listings and snapshots.
+struct JobProgress {
+    std::string job_id, name;
+    JobState state = JobState::kRunning;
+    int priority = 0;
+    uint64_t epochs = 0, photons = 0, hit_points = 0;
+    double initial_radius = 0;  // R0, world units
+    double elapsed_seconds = 0;
+    double photons_per_second = 0;
+    double budget_fraction = 0;
+    uint32_t workers_active = 0;
+    std::string message;  // why it failed or was cancelled
+};
+
+// What a job's constructor needs: prepared by Coordinator::Submit (scene loaded, camera pass run).
+struct PreparedJob {
+    std::string name;
+    JobSpec spec;
+    int priority = 0;
+    SceneBundle bundle;
+    std::shared_ptr<const JobPayload> payload;
+    std::unique_ptr<ProgressiveEstimate> estimate;
+};
+
+class Job {
+public:
+    Job(std::string id, PreparedJob prepared, Clock::time_point now);
+
+    const std::string& Id() const { return id_; }
+    int Priority() const { return priority_; }
+
+    // Blobs a remote worker fetches: the scene bundle (a serialized photonfarm.v1.SceneBundle)
+    // and the hit points. Null once the job has ended.
+    std::shared_ptr<const LazyBlob> SceneBlob() const;
+    std::shared_ptr<const LazyBlob> HitPointsBlob() const;
+    // The blob with this digest among the job's encoded ones (scene, hit points, current
+    // radii), or null.
+    std::shared_ptr<const Blob> FindBlob(const std::string& digest) const;
+
+    struct Lease {
+        std::shared_ptr<const JobPayload> payload;
+        std::shared_ptr<const EpochInputs> epoch;
+        std::vector<BatchSpec> batches;
+    };
+    // Slots that may be leased now: neither reported nor under a live lease.
+    uint32_t Leasable(Clock::time_point now) const;
+    uint32_t Leased(Clock::time_point now) const;  // under a live lease
+    uint32_t LeasedBy(const std::string& worker, Clock::time_point now) const;
+    // Leases up to `max_batches` slots to `worker` until `deadline`, lowest index first.
+    Lease LeaseBatches(const std::string& worker, uint32_t max_batches, Clock::time_point now, Clock::time_point deadline);
+    // A worker that left or went silent: its slots may be leased again at once.
+    uint32_t ReleaseLeases(const std::string& worker);
+
+    struct ReportOutcome {
+        TallyVerdict verdict;
+        bool epoch_finished = false;  // new work exists (or the job ended)
+    };
+    // A result for a slot of the current epoch, accepted once. INVALID_ARGUMENT when its spec
+    // does not match the slot's (a forged or corrupted result), or it names hit points the job
+    // does not have.
+    absl::StatusOr<ReportOutcome> Report(const std::string& worker, BatchResult result, Clock::time_point now);
+
+    // Ends a running job; its image as of the last merged epoch stays. False if already ended.
+    bool Cancel(const std::string& reason, Clock::time_point now);
+
+    JobProgress Progress(Clock::time_point now) const;
+    // Changes with every merged epoch and state change; WaitForChange returns the current
+    // version once it differs from `seen`, or at `until`.
+    uint64_t Version() const;
+    uint64_t WaitForChange(uint64_t seen, Clock::time_point until) const;
+    // The image as of the last merged epoch (resolved once per epoch however many ask).
+    std::shared_ptr<const Image> CurrentImage() const;
+
+private:
+    struct Slot {
+        BatchSpec spec;
+        std::string worker;  // holding the lease
+        Clock::time_point deadline{};
+        bool leased = false;
+        std::optional<BatchResult> result;  // reported, waiting for its turn to fold
+        bool folded = false;
+    };
+    bool LeasableLocked(const Slot& slot, Clock::time_point now) const;
+    void StartEpochLocked(std::vector<float> radius_sq);
+    // Folds the results that are next in order, and finishes the epoch when all are in.
+    // Called by the thread that stored a result; one thread folds at a time.
+    bool FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point now);
+    void EndLocked(JobState state, std::string message, Clock::time_point now);
+    void ReleaseInputs();  // after the end: keep the final image, free the rest
+
+    const std::string id_;
+    const std::string name_;
+    const JobSpec spec_;
+    const int priority_;
+    const Clock::time_point started_;
+    const uint64_t hit_point_count_;
+    const double initial_radius_;
+
+    mutable std::mutex mutex_;  // guards everything below but the estimate and image
+    mutable std::condition_variable changed_;
+    JobState state_ = JobState::kRunning;
+    std::string message_;
+    Clock::time_point ended_{};
+    uint64_t version_ = 0;
+    uint64_t epochs_merged_ = 0, photons_merged_ = 0;
+    std::shared_ptr<const JobPayload> payload_;
+    std::shared_ptr<const LazyBlob> scene_blob_, hit_points_blob_;
+    std::shared_ptr<const EpochInputs> epoch_;
+    std::vector<Slot> slots_;
+    uint32_t next_fold_ = 0;
+    bool folding_ = false;
+    std::map<std::string, Clock::time_point> workers_seen_;
+
+    mutable std::mutex estimate_mutex_;  // guards the estimate and the image cache
+    std::unique_ptr<ProgressiveEstimate> estimate_;  // null once the job has ended
+    mutable std::shared_ptr<const Image> image_;
+    mutable uint64_t image_epoch_ = UINT64_MAX;
+};
+
+}  // namespace pf

@@ -1,0 +1,53 @@
+// Where a worker gets its work and sends its results: the coordinator in this process (the
+// embedded `photonfarm render`) or one across the network (photonfarm-worker). The worker
+// loop (worker_loop.h) is the same for both; only this interface differs.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/ppm/batch.h"
+#include "core/ppm/hit_point.h"
+#include "core/scene/emitters.h"
+#include "core/scene/scene.h"
+
+namespace pf {
+
+// What every batch of a job needs, fixed for the job. Not copyable: the emitters refer to
+// the scene.
+struct JobPayload {
+    JobPayload(Scene scene_in, std::shared_ptr<const std::vector<HitPoint>> hit_points_in, uint64_t seed_in)
+        : scene(std::move(scene_in)), emitters(scene), hit_points(std::move(hit_points_in)), seed(seed_in) {}
+    JobPayload(const JobPayload&) = delete;
+    JobPayload& operator=(const JobPayload&) = delete;
+
+    Scene scene;
+    Emitters emitters;
+    std::shared_ptr<const std::vector<HitPoint>> hit_points;
+    uint64_t seed;
+};
+
+// Batches leased to this worker, all of one epoch of one job, with what they need.
+struct WorkGrant {
+    std::string job_id;
+    std::shared_ptr<const JobPayload> job;
+    uint64_t epoch = 0;
+    std::shared_ptr<const std::vector<float>> radius_sq;  // the epoch's, one per hit point
+    std::vector<BatchSpec> batches;                       // empty: no work now
+};
+
+enum class TallyVerdict { kAccepted, kDuplicate, kStale, kJobGone };
+
+class WorkSource {
+public:
+    virtual ~WorkSource() = default;
+    // Leases up to `max_batches` batches, waiting a short while for work to appear. An error
+    // means the source is unreachable or refuses this worker (the loop backs off and retries).
+    virtual absl::StatusOr<WorkGrant> Lease(uint32_t max_batches) = 0;
+    virtual absl::StatusOr<TallyVerdict> Report(const std::string& job_id, BatchResult result) = 0;
+};
+
+}  // namespace pf
