@@ -38,7 +38,7 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
 
         // The worker leases a whole epoch at a time: its batches run in parallel on this arena.
         InProcessSource source(coordinator, {"cpu", static_cast<uint32_t>(arena.max_concurrency()),
-                                             std::string(CoordinatorVersion()), ""}, 0.0);
+                                             std::string(kPhotonfarmVersion), ""}, 0.0);
         WorkerLoop worker(source, "cpu", spec.layout.batches_per_epoch);
         uint64_t version = job->Version();
         RenderProgress& progress = outcome->progress;

@@ -28,6 +28,7 @@ struct RenderProgress {
     uint64_t segments = 0;  // photon rays traced
     double seconds = 0;     // since the camera pass began
     double fraction = 0;    // of the budget, in [0, 1]
+    uint32_t workers = 0;   // workers active on a farm job (0: not shown)
 };
 
 struct RenderOutcome {

@@ -6,7 +6,9 @@
 #include <cstdio>
 #include <exception>
 
+#include "client/job_commands.h"
 #include "client/render_command.h"
+#include "client/submit_command.h"
 
 int main(int argc, char** argv) {
     try {
@@ -19,6 +21,9 @@ int main(int argc, char** argv) {
         app.parse_complete_callback([&] { spdlog::set_level(spdlog::level::from_str(log_level)); });
         int exit_code = 0;
         pf::AddRenderCommand(app, &exit_code);
+        pf::AddSubmitCommand(app, &exit_code);
+        pf::AddWatchCommand(app, &exit_code);
+        pf::AddJobCommands(app, &exit_code);
         // Logs and errors go to stderr, one line each; stdout stays free for results.
         spdlog::set_default_logger(spdlog::stderr_color_mt("photonfarm"));
         spdlog::set_pattern("photonfarm: %^%l%$: %v");

@@ -21,8 +21,10 @@ std::string Count(double value) {
 
 std::string Status(const RenderProgress& p) {
     const double rate = p.seconds > 0 ? p.photons / p.seconds : 0;
-    return absl::StrFormat("%s photons, epoch %d, %.1f s, %s photons/s", Count(double(p.photons)), p.epochs,
-                           p.seconds, Count(rate));
+    std::string status = absl::StrFormat("%s photons, epoch %d, %.1f s, %s photons/s", Count(double(p.photons)),
+                                         p.epochs, p.seconds, Count(rate));
+    if (p.workers > 0) status += absl::StrFormat(", %d workers", p.workers);
+    return status;
 }
 
 }  // namespace
@@ -42,6 +44,11 @@ void ProgressDisplay::Update(const RenderProgress& progress) {
         std::fprintf(out_, "progress: %3d%% %s\n", static_cast<int>(progress.fraction * 100), Status(progress).c_str());
         std::fflush(out_);
     }
+}
+
+void ProgressDisplay::Finish() {
+    if (terminal_) std::fprintf(out_, "\n");
+    std::fflush(out_);
 }
 
 void ProgressDisplay::Finish(const RenderOutcome& outcome) {

@@ -14,6 +14,8 @@ public:
     explicit ProgressDisplay(std::FILE* out = stderr);
     void Update(const RenderProgress& progress);
     void Finish(const RenderOutcome& outcome);
+    // Ends the bar without a summary (the caller prints its own).
+    void Finish();
 
 private:
     std::FILE* out_;

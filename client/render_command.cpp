@@ -2,19 +2,18 @@
 #include "client/render_command.h"
 
 #include <spdlog/spdlog.h>
-#include <unistd.h>
 
 #include <atomic>
 #include <csignal>
-#include <filesystem>
 #include <memory>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "client/job_options.h"
 #include "client/local_render.h"
+#include "client/output_files.h"
 #include "client/progress_display.h"
 #include "core/film/exr_io.h"
-#include "core/film/png_writer.h"
 
 namespace pf {
 namespace {
@@ -48,27 +47,6 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
             {"photonfarm:batches_per_epoch", absl::StrCat(s.job.layout.batches_per_epoch)}};
 }
 
-absl::Status WriteOutputs(const RenderOptions& options, const RenderOutcome& outcome) {
-    if (absl::Status status = WriteExr(options.out, outcome.image, Metadata(options, outcome)); !status.ok())
-        return status;
-    spdlog::info("wrote {}", options.out);
-    if (!options.png.empty()) {
-        if (absl::Status status = WritePng(options.png, outcome.image, options.exposure); !status.ok()) return status;
-        spdlog::info("wrote {}", options.png);
-    }
-    return absl::OkStatus();
-}
-
-// Fails before any rendering if an output could not be written, so no work is lost to a typo.
-absl::Status CheckWritable(const std::string& path) {
-    if (path.empty()) return absl::OkStatus();
-    const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
-    if (!std::filesystem::is_directory(parent) || access(parent.c_str(), W_OK) != 0)
-        return absl::InvalidArgumentError(absl::StrCat(path, ": cannot write here (", parent.string(),
-                                                       " is not a writable directory)"));
-    return absl::OkStatus();
-}
-
 int RunRender(const RenderOptions& options) {
     for (const std::string* path : {&options.out, &options.png}) {
         if (absl::Status status = CheckWritable(*path); !status.ok()) {
@@ -76,13 +54,9 @@ int RunRender(const RenderOptions& options) {
             return 1;
         }
     }
-    if (options.snapshot_every > 0) {
-        std::error_code error;
-        std::filesystem::create_directories(options.snapshot_dir, error);
-        if (error) {
-            spdlog::error("{}: cannot create snapshot directory: {}", options.snapshot_dir, error.message());
-            return 1;
-        }
+    if (absl::Status status = MakeDirectory(options.snapshot_dir); !status.ok()) {
+        spdlog::error("{}", std::string(status.message()));
+        return 1;
     }
     g_stop_requested = false;
     std::signal(SIGINT, OnStopSignal);
@@ -113,7 +87,9 @@ int RunRender(const RenderOptions& options) {
     display.Finish(*outcome);
     if (g_stop_requested) spdlog::warn("stopped early by a signal; writing what was rendered");
     if (!snapshot_status.ok()) spdlog::error("{}", std::string(snapshot_status.message()));
-    if (absl::Status status = WriteOutputs(options, *outcome); !status.ok()) {
+    if (absl::Status status = WriteImageFiles(outcome->image, Metadata(options, *outcome), options.out, options.png,
+                                              options.exposure);
+        !status.ok()) {
         spdlog::error("{}", std::string(status.message()));
         return 1;
     }
@@ -126,37 +102,19 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
     auto options = std::make_shared<RenderOptions>();
     RenderSettings& s = options->settings;
     CLI::App* render = app.add_subcommand("render", "Render a scene on this machine (no server)");
-    const auto count = CLI::AsNumberWithUnit(std::map<std::string, uint64_t>{{"k", 1000}, {"m", 1000000}, {"g", 1000000000}, {"t", 1000000000000}},
-                                             CLI::AsNumberWithUnit::CASE_INSENSITIVE, "COUNT");
     render->add_option("scene", s.scene_path, "Scene file (.gltf or .glb)")->required()->check(CLI::ExistingFile);
     render->add_option("--out", options->out, "Output image: float RGB OpenEXR with metadata")->required();
     render->add_option("--png", options->png, "Also write a tone-mapped sRGB PNG");
     render->add_option("--exposure", options->exposure, "PNG exposure in stops")->default_val(0.0f);
-    auto* photons = render->add_option("--photons", s.job.photon_budget, "Photon budget, e.g. 20M (finishes the epoch that reaches it)")
-                        ->transform(count);
-    render->add_option("--seconds", s.job.seconds_budget, "Time budget in seconds (finishes the epoch that reaches it)")
-        ->check(CLI::PositiveNumber)->excludes(photons);
-    render->add_option("--photons-per-batch", s.job.layout.photons_per_batch, "Photon paths per batch, the unit of work")
-        ->default_val(s.job.layout.photons_per_batch)->check(CLI::Range(1u, 1u << 26));
-    render->add_option("--batches-per-epoch", s.job.layout.batches_per_epoch, "Batches per epoch; radii shrink once per epoch")
-        ->default_val(s.job.layout.batches_per_epoch)->check(CLI::Range(1u, 1u << 20));
-    render->add_option("--alpha", s.job.alpha, "Radius reduction ratio alpha in (0, 1]")->default_val(s.job.alpha)->check(CLI::Range(1e-9, 1.0));
-    render->add_option("--radius", s.job.initial_radius, "Initial search radius R0, world units (default: one pixel footprint)")
-        ->check(CLI::PositiveNumber);
-    render->add_option("--spp", s.job.samples_per_pixel, "Hit points (camera paths) per pixel")->default_val(s.job.samples_per_pixel)
-        ->check(CLI::Range(1, 1024));
+    AddJobOptions(render, &s.job);
     render->add_option("--threads", s.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
-    render->add_option("--seed", s.job.seed, "Random seed; the same seed and batch layout give the same image")->default_val(s.job.seed);
-    render->add_option("--width", s.job.width, "Image width in pixels (default 512)")->check(CLI::Range(1, 32768));
-    render->add_option("--height", s.job.height, "Image height in pixels (default: width / camera aspect)")->check(CLI::Range(1, 32768));
     auto* every = render->add_option("--snapshot-every", options->snapshot_every, "Write a snapshot EXR every SECONDS")
                       ->check(CLI::PositiveNumber);
     auto* dir = render->add_option("--snapshot-dir", options->snapshot_dir, "Directory for snapshot-NNNN.exr");
     every->needs(dir);
     dir->needs(every);
     render->callback([options, exit_code] {
-        if (options->settings.job.photon_budget == 0 && options->settings.job.seconds_budget == 0)
-            options->settings.job.photon_budget = 20'000'000;
+        ApplyDefaultBudget(&options->settings.job);
         *exit_code = RunRender(*options);
     });
 }

@@ -55,8 +55,6 @@ std::string RandomSalt() {
 
 }  // namespace
 
-std::string_view CoordinatorVersion() { return PF_VERSION; }
-
 Coordinator::Coordinator(CoordinatorOptions options) : options_(std::move(options)), id_salt_(RandomSalt()) {}
 
 Coordinator::~Coordinator() { Shutdown(); }
@@ -128,9 +126,9 @@ void Coordinator::ForgetEndedJobsLocked() {
 }
 
 absl::StatusOr<std::string> Coordinator::RegisterWorker(const WorkerRegistration& registration) {
-    if (registration.version != CoordinatorVersion())
+    if (registration.version != kPhotonfarmVersion)
         return absl::FailedPreconditionError(absl::StrCat("version: worker runs photonfarm ", registration.version,
-                                                          ", the coordinator ", std::string(CoordinatorVersion())));
+                                                          ", the coordinator ", std::string(kPhotonfarmVersion)));
     std::lock_guard lock(mutex_);
     ReapWorkersLocked(Now());
     const std::string id = absl::StrCat("worker-", next_id_++, "-", id_salt_);

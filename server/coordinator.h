@@ -42,13 +42,6 @@ struct JobRequest {
     int priority = 0;  // higher first; equal priorities share workers fairly
 };
 
-struct WorkerRegistration {
-    std::string backend;
-    uint32_t threads = 0;
-    std::string version;
-    std::string peer;  // where it connects from, for listings
-};
-
 struct WorkerView {
     std::string worker_id;
     WorkerRegistration registration;
@@ -69,9 +62,6 @@ struct CoordinatorLease {
     std::shared_ptr<const EpochInputs> epoch;   // null when no work
     double lease_seconds = 0;
 };
-
-// The version a worker must run to join: batches must be computed by the same code.
-std::string_view CoordinatorVersion();
 
 class Coordinator {
 public:

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -37,6 +38,18 @@ struct WorkGrant {
     uint64_t epoch = 0;
     std::shared_ptr<const std::vector<float>> radius_sq;  // the epoch's, one per hit point
     std::vector<BatchSpec> batches;                       // empty: no work now
+};
+
+// photonfarm's version: a coordinator accepts only workers of its own version, since every
+// worker must compute the same bytes for a batch.
+inline constexpr std::string_view kPhotonfarmVersion = PF_VERSION;
+
+// How a worker describes itself when it registers.
+struct WorkerRegistration {
+    std::string backend;
+    uint32_t threads = 0;
+    std::string version;
+    std::string peer;  // where it connects from, for listings (set by the coordinator)
 };
 
 enum class TallyVerdict { kAccepted, kDuplicate, kStale, kJobGone };

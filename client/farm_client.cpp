@@ -1,0 +1,134 @@
+// Jobs service calls.
+#include "client/farm_client.h"
+
+#include <google/protobuf/util/json_util.h>
+#include <grpcpp/client_context.h>
+#include <grpcpp/create_channel.h>
+#include <grpcpp/security/credentials.h>
+
+#include <chrono>
+
+#include "absl/strings/str_cat.h"
+#include "worker/rpc_status.h"
+
+namespace pf {
+namespace {
+
+namespace v1 = photonfarm::v1;
+
+// Unary calls other than submit answer at once; submit runs the camera pass first.
+constexpr double kCallSeconds = 30;
+constexpr double kSubmitSeconds = 600;
+
+void SetDeadline(grpc::ClientContext* context, double seconds) {
+    context->set_deadline(std::chrono::system_clock::now() + std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                                                                   std::chrono::duration<double>(seconds)));
+}
+
+}  // namespace
+
+void AddServerOption(CLI::App* command, std::string* address) {
+    command->add_option("--server", *address, "Coordinator address HOST:PORT")->envname("PHOTONFARM_SERVER")->required();
+}
+
+FarmClient::FarmClient(std::string address, std::shared_ptr<grpc::Channel> channel)
+    : peer_(absl::StrCat("coordinator at ", address)), channel_(std::move(channel)), stub_(v1::Jobs::NewStub(channel_)) {}
+
+absl::StatusOr<FarmClient> FarmClient::Connect(const std::string& address, double timeout_seconds) {
+    grpc::ChannelArguments args;
+    args.SetMaxReceiveMessageSize(kMaxMessageBytes);
+    args.SetMaxSendMessageSize(kMaxMessageBytes);
+    std::shared_ptr<grpc::Channel> channel = grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), args);
+    const auto deadline = std::chrono::system_clock::now() +
+                          std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(timeout_seconds));
+    if (!channel->WaitForConnected(deadline))
+        return absl::UnavailableError(
+            absl::StrCat("cannot reach the coordinator at ", address, " (nothing answered within ", timeout_seconds, " s)"));
+    return FarmClient(address, std::move(channel));
+}
+
+absl::StatusOr<v1::JobStatus> FarmClient::Submit(const v1::SubmitJobRequest& request) {
+    grpc::ClientContext context;
+    SetDeadline(&context, kSubmitSeconds);
+    v1::SubmitJobResponse response;
+    if (grpc::Status status = stub_->SubmitJob(&context, request, &response); !status.ok())
+        return FromGrpcStatus(status, peer_);
+    return response.status();
+}
+
+absl::StatusOr<v1::JobStatus> FarmClient::Cancel(const std::string& job_id) {
+    grpc::ClientContext context;
+    SetDeadline(&context, kCallSeconds);
+    v1::CancelJobRequest request;
+    request.set_job_id(job_id);
+    v1::CancelJobResponse response;
+    if (grpc::Status status = stub_->CancelJob(&context, request, &response); !status.ok())
+        return FromGrpcStatus(status, peer_);
+    return response.status();
+}
+
+absl::StatusOr<v1::ListJobsResponse> FarmClient::ListJobs() {
+    grpc::ClientContext context;
+    SetDeadline(&context, kCallSeconds);
+    v1::ListJobsResponse response;
+    if (grpc::Status status = stub_->ListJobs(&context, {}, &response); !status.ok()) return FromGrpcStatus(status, peer_);
+    return response;
+}
+
+absl::StatusOr<v1::ListWorkersResponse> FarmClient::ListWorkers() {
+    grpc::ClientContext context;
+    SetDeadline(&context, kCallSeconds);
+    v1::ListWorkersResponse response;
+    if (grpc::Status status = stub_->ListWorkers(&context, {}, &response); !status.ok())
+        return FromGrpcStatus(status, peer_);
+    return response;
+}
+
+absl::StatusOr<v1::GetResultResponse> FarmClient::GetResult(const std::string& job_id) {
+    grpc::ClientContext context;
+    SetDeadline(&context, kSubmitSeconds);
+    v1::GetResultRequest request;
+    request.set_job_id(job_id);
+    v1::GetResultResponse response;
+    if (grpc::Status status = stub_->GetResult(&context, request, &response); !status.ok())
+        return FromGrpcStatus(status, peer_);
+    return response;
+}
+
+absl::StatusOr<v1::Snapshot> FarmClient::Watch(const std::string& job_id, double interval_seconds, bool images,
+                                               const std::function<void(const v1::Snapshot&)>& on_snapshot) {
+    grpc::ClientContext context;
+    v1::WatchJobRequest request;
+    request.set_job_id(job_id);
+    request.set_interval_seconds(interval_seconds);
+    request.set_images(images);
+    std::unique_ptr<grpc::ClientReader<v1::Snapshot>> reader = stub_->WatchJob(&context, request);
+    v1::Snapshot snapshot, last;
+    while (reader->Read(&snapshot)) {
+        on_snapshot(snapshot);
+        last = std::move(snapshot);
+    }
+    if (grpc::Status status = reader->Finish(); !status.ok()) return FromGrpcStatus(status, peer_);
+    return last;
+}
+
+std::string ToJson(const google::protobuf::Message& message) {
+    google::protobuf::util::JsonPrintOptions options;
+    options.preserve_proto_field_names = true;
+    options.always_print_primitive_fields = true;
+    std::string json;
+    (void)google::protobuf::util::MessageToJsonString(message, &json, options);
+    return json;
+}
+
+std::string StateName(v1::JobState state) {
+    switch (state) {
+        case v1::JOB_STATE_RUNNING: return "running";
+        case v1::JOB_STATE_DONE: return "done";
+        case v1::JOB_STATE_CANCELLED: return "cancelled";
+        case v1::JOB_STATE_FAILED: return "failed";
+        default: return "unknown";
+    }
+}
+
+}  // namespace pf

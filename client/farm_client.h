@@ -1,0 +1,49 @@
+// The client side of a coordinator's Jobs service, for the command line: the server address
+// (flag or environment), a connection that fails fast and clearly, and each call with its
+// errors as one-line statuses.
+#pragma once
+
+#include <grpcpp/channel.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "absl/status/statusor.h"
+#include "photonfarm/v1/jobs.grpc.pb.h"
+
+namespace pf {
+
+// Adds --server ADDR (or PHOTONFARM_SERVER) to `command`.
+void AddServerOption(CLI::App* command, std::string* address);
+
+class FarmClient {
+public:
+    // Waits up to `timeout_seconds` for the coordinator: UNAVAILABLE naming it if it cannot be reached.
+    static absl::StatusOr<FarmClient> Connect(const std::string& address, double timeout_seconds = 5);
+
+    absl::StatusOr<photonfarm::v1::JobStatus> Submit(const photonfarm::v1::SubmitJobRequest& request);
+    absl::StatusOr<photonfarm::v1::JobStatus> Cancel(const std::string& job_id);
+    absl::StatusOr<photonfarm::v1::ListJobsResponse> ListJobs();
+    absl::StatusOr<photonfarm::v1::ListWorkersResponse> ListWorkers();
+    absl::StatusOr<photonfarm::v1::GetResultResponse> GetResult(const std::string& job_id);
+    // Streams snapshots to `on_snapshot` until the job ends; returns the last one.
+    absl::StatusOr<photonfarm::v1::Snapshot> Watch(const std::string& job_id, double interval_seconds, bool images,
+                                                   const std::function<void(const photonfarm::v1::Snapshot&)>& on_snapshot);
+
+private:
+    FarmClient(std::string address, std::shared_ptr<grpc::Channel> channel);
+
+    std::string peer_;  // "coordinator at ADDR", for messages
+    std::shared_ptr<grpc::Channel> channel_;
+    std::shared_ptr<photonfarm::v1::Jobs::Stub> stub_;
+};
+
+// One line of JSON for a message (field names as in the .proto), for --json output.
+std::string ToJson(const google::protobuf::Message& message);
+// A job's state in words: "running", "done", ...
+std::string StateName(photonfarm::v1::JobState state);
+
+}  // namespace pf

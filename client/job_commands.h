@@ -1,0 +1,10 @@
+// `photonfarm cancel`, `jobs`, `workers` and `result`: managing a farm from the command line.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace pf {
+
+void AddJobCommands(CLI::App& app, int* exit_code);
+
+}  // namespace pf

@@ -1,0 +1,36 @@
+// Job flags.
+#include "client/job_options.h"
+
+#include <map>
+#include <string>
+
+namespace pf {
+
+void AddJobOptions(CLI::App* command, JobSpec* s) {
+    const auto count = CLI::AsNumberWithUnit(
+        std::map<std::string, uint64_t>{{"k", 1000}, {"m", 1000000}, {"g", 1000000000}, {"t", 1000000000000}},
+        CLI::AsNumberWithUnit::CASE_INSENSITIVE, "COUNT");
+    auto* photons = command->add_option("--photons", s->photon_budget, "Photon budget, e.g. 20M (finishes the epoch that reaches it; default 20M)")
+                        ->transform(count);
+    command->add_option("--seconds", s->seconds_budget, "Time budget in seconds (finishes the epoch that reaches it)")
+        ->check(CLI::PositiveNumber)->excludes(photons);
+    command->add_option("--photons-per-batch", s->layout.photons_per_batch, "Photon paths per batch, the unit of work")
+        ->default_val(s->layout.photons_per_batch)->check(CLI::Range(1u, kMaxPhotonsPerBatch));
+    command->add_option("--batches-per-epoch", s->layout.batches_per_epoch,
+                        "Batches per epoch; radii shrink once per epoch, and a farm runs at most this many batches at once")
+        ->default_val(s->layout.batches_per_epoch)->check(CLI::Range(1u, kMaxBatchesPerEpoch));
+    command->add_option("--alpha", s->alpha, "Radius reduction ratio alpha in (0, 1]")->default_val(s->alpha)->check(CLI::Range(1e-9, 1.0));
+    command->add_option("--radius", s->initial_radius, "Initial search radius R0, world units (default: one pixel footprint)")
+        ->check(CLI::PositiveNumber);
+    command->add_option("--spp", s->samples_per_pixel, "Hit points (camera paths) per pixel")->default_val(s->samples_per_pixel)
+        ->check(CLI::Range(1, 1024));
+    command->add_option("--seed", s->seed, "Random seed; the same seed and batch layout give the same image")->default_val(s->seed);
+    command->add_option("--width", s->width, "Image width in pixels (default 512)")->check(CLI::Range(1, 32768));
+    command->add_option("--height", s->height, "Image height in pixels (default: width / camera aspect)")->check(CLI::Range(1, 32768));
+}
+
+void ApplyDefaultBudget(JobSpec* spec) {
+    if (spec->photon_budget == 0 && spec->seconds_budget == 0) spec->photon_budget = 20'000'000;
+}
+
+}  // namespace pf

@@ -1,0 +1,17 @@
+// The options that describe a job, shared by `render` (on this machine) and `submit` (to a
+// farm) so both accept the same flags with the same checks.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include "core/ppm/job_spec.h"
+
+namespace pf {
+
+// Adds --photons/--seconds, --spp, --width/--height, --alpha, --radius, --seed and the batch
+// layout to `command`, writing into `spec`.
+void AddJobOptions(CLI::App* command, JobSpec* spec);
+// After parsing: the default budget when none was given.
+void ApplyDefaultBudget(JobSpec* spec);
+
+}  // namespace pf

@@ -1,0 +1,215 @@
+// Submitting and watching farm jobs: progress, snapshots, the final image.
+#include "client/submit_command.h"
+
+#include <spdlog/spdlog.h>
+
+#include <cstdio>
+#include <memory>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "client/farm_client.h"
+#include "client/job_options.h"
+#include "client/output_files.h"
+#include "client/progress_display.h"
+#include "core/scene/scene_bundle.h"
+#include "worker/proto_convert.h"
+
+namespace pf {
+namespace {
+
+namespace v1 = photonfarm::v1;
+
+struct WatchOptions {
+    std::string server;
+    std::string job_id;
+    std::string out, png, snapshot_dir;
+    double interval = 1.0;
+    float exposure = 0;
+    bool json = false;
+};
+
+void AddWatchOptions(CLI::App* command, WatchOptions* options) {
+    AddServerOption(command, &options->server);
+    command->add_option("--out", options->out, "Write the final image here (float RGB OpenEXR)");
+    command->add_option("--png", options->png, "Also write the final image as a tone-mapped PNG");
+    command->add_option("--exposure", options->exposure, "PNG exposure in stops")->default_val(0.0f);
+    command->add_option("--snapshot-dir", options->snapshot_dir, "Write every snapshot here (snapshot-NNNN.exr and .png)");
+    command->add_option("--interval", options->interval, "Seconds between snapshots")->default_val(1.0)->check(CLI::Range(0.0, 3600.0));
+    command->add_flag("--json", options->json, "One JSON status per snapshot on stdout, for scripts");
+}
+
+ImageMetadata SnapshotMetadata(const v1::JobStatus& status) {
+    return {{"photonfarm:job", status.job_id()},
+            {"photonfarm:scene", status.name()},
+            {"photonfarm:photons", absl::StrCat(status.photons())},
+            {"photonfarm:epochs", absl::StrCat(status.epochs())},
+            {"photonfarm:seconds", absl::StrFormat("%.3f", status.elapsed_seconds())}};
+}
+
+RenderProgress ProgressOf(const v1::JobStatus& status) {
+    RenderProgress progress;
+    progress.epochs = status.epochs();
+    progress.photons = status.photons();
+    progress.seconds = status.elapsed_seconds();
+    progress.fraction = status.budget_fraction();
+    progress.workers = status.workers_active();
+    return progress;
+}
+
+// Follows a job to its end, writing snapshots and the final image. Exit code: 0 when the
+// job is done, 1 otherwise (cancelled, failed, or the coordinator lost); whatever image
+// arrived is written either way.
+int Follow(FarmClient& client, const WatchOptions& options) {
+    for (const std::string* path : {&options.out, &options.png})
+        if (absl::Status status = CheckWritable(*path); !status.ok()) {
+            spdlog::error("{}", std::string(status.message()));
+            return 1;
+        }
+    if (absl::Status status = MakeDirectory(options.snapshot_dir); !status.ok()) {
+        spdlog::error("{}", std::string(status.message()));
+        return 1;
+    }
+    ProgressDisplay display;
+    Image image;
+    v1::JobStatus last;
+    int snapshots = 0;
+    absl::Status write_status;
+    const bool images = !options.out.empty() || !options.png.empty() || !options.snapshot_dir.empty();
+    absl::StatusOr<v1::Snapshot> outcome = client.Watch(options.job_id, options.interval, images, [&](const v1::Snapshot& snapshot) {
+        last = snapshot.status();
+        if (options.json) {
+            std::printf("%s\n", ToJson(snapshot.status()).c_str());
+            std::fflush(stdout);
+        } else {
+            display.Update(ProgressOf(snapshot.status()));
+        }
+        if (!snapshot.has_image()) return;
+        absl::StatusOr<Image> decoded = FromProto(snapshot.image());
+        if (!decoded.ok()) {
+            write_status = decoded.status();
+            return;
+        }
+        image = std::move(*decoded);
+        if (!options.snapshot_dir.empty() && write_status.ok()) {
+            const std::string stem = absl::StrFormat("%s/snapshot-%04d", options.snapshot_dir, ++snapshots);
+            write_status = WriteImageFiles(image, SnapshotMetadata(snapshot.status()), stem + ".exr", stem + ".png", options.exposure);
+        }
+    });
+    if (!options.json) display.Finish();
+    int exit_code = 0;
+    if (!outcome.ok()) {
+        spdlog::error("{}", std::string(outcome.status().message()));
+        exit_code = 1;
+    } else if (last.state() != v1::JOB_STATE_DONE) {
+        spdlog::error("job {} {}{}", last.job_id(), StateName(last.state()),
+                      last.message().empty() ? "" : absl::StrCat(": ", last.message()));
+        exit_code = 1;
+    } else if (!options.json) {
+        std::fprintf(stderr, "done: job %s, %s photons in %d epochs, %.1f s\n", last.job_id().c_str(),
+                     absl::StrCat(last.photons()).c_str(), static_cast<int>(last.epochs()), last.elapsed_seconds());
+    }
+    if (!write_status.ok()) {
+        spdlog::error("{}", std::string(write_status.message()));
+        exit_code = 1;
+    }
+    if (!options.out.empty() && image.width > 0) {
+        if (absl::Status status = WriteImageFiles(image, SnapshotMetadata(last), options.out, options.png, options.exposure);
+            !status.ok()) {
+            spdlog::error("{}", std::string(status.message()));
+            exit_code = 1;
+        }
+    }
+    return exit_code;
+}
+
+struct SubmitOptions {
+    std::string scene_path;
+    std::string name;
+    JobSpec spec;
+    int priority = 0;
+    bool watch = false;
+    WatchOptions watch_options;
+};
+
+int RunSubmit(SubmitOptions& options) {
+    ApplyDefaultBudget(&options.spec);
+    if (absl::Status status = CheckJobSpec(options.spec, SettingNames::kFlags); !status.ok()) {
+        spdlog::error("{}", std::string(status.message()));
+        return 2;
+    }
+    absl::StatusOr<SceneBundle> bundle = PackSceneBundle(options.scene_path);
+    if (!bundle.ok()) {
+        spdlog::error("{}", std::string(bundle.status().message()));
+        return 1;
+    }
+    absl::StatusOr<FarmClient> client = FarmClient::Connect(options.watch_options.server);
+    if (!client.ok()) {
+        spdlog::error("{}", std::string(client.status().message()));
+        return 1;
+    }
+    v1::SubmitJobRequest request;
+    *request.mutable_scene() = ToProto(*bundle);
+    *request.mutable_settings() = ToProto(options.spec);
+    request.mutable_settings()->set_priority(options.priority);
+    request.set_name(options.name);
+    spdlog::info("submitting {} ({} files, {} bytes)", options.scene_path, bundle->files.size(), bundle->TotalBytes());
+    absl::StatusOr<v1::JobStatus> status = client->Submit(request);
+    if (!status.ok()) {
+        spdlog::error("{}", std::string(status.status().message()));
+        return 1;
+    }
+    if (options.watch_options.json) {
+        std::printf("%s\n", ToJson(*status).c_str());
+        std::fflush(stdout);
+    } else {
+        // The job id alone on stdout, for scripts: JOB=$(photonfarm submit ...).
+        std::printf("%s\n", status->job_id().c_str());
+        std::fflush(stdout);
+        spdlog::info("job {}: {} hit points", status->job_id(), status->hit_points());
+    }
+    if (!options.watch) return 0;
+    options.watch_options.job_id = status->job_id();
+    return Follow(*client, options.watch_options);
+}
+
+}  // namespace
+
+void AddSubmitCommand(CLI::App& app, int* exit_code) {
+    auto options = std::make_shared<SubmitOptions>();
+    CLI::App* submit = app.add_subcommand("submit", "Submit a scene to a render farm (prints the job id)");
+    submit->add_option("scene", options->scene_path, "Scene file (.gltf or .glb); it and every file it references are sent")
+        ->required()->check(CLI::ExistingFile);
+    submit->add_option("--name", options->name, "Name in listings (default: the scene's file name)");
+    submit->add_option("--priority", options->priority, "Higher runs first; equal priorities share workers")->default_val(0);
+    AddJobOptions(submit, &options->spec);
+    submit->add_flag("--watch", options->watch, "Follow the job to its end: progress, snapshots, final image");
+    AddWatchOptions(submit, &options->watch_options);
+    submit->callback([options, exit_code] {
+        const WatchOptions& watch = options->watch_options;
+        if (!options->watch && (!watch.out.empty() || !watch.png.empty() || !watch.snapshot_dir.empty())) {
+            spdlog::error("--out, --png and --snapshot-dir need --watch (or use `photonfarm watch JOB --out ...` later)");
+            *exit_code = 2;
+            return;
+        }
+        *exit_code = RunSubmit(*options);
+    });
+}
+
+void AddWatchCommand(CLI::App& app, int* exit_code) {
+    auto options = std::make_shared<WatchOptions>();
+    CLI::App* watch = app.add_subcommand("watch", "Follow a farm job: progress, snapshots, final image");
+    watch->add_option("job", options->job_id, "Job id (from submit or jobs)")->required();
+    AddWatchOptions(watch, options.get());
+    watch->callback([options, exit_code] {
+        absl::StatusOr<FarmClient> client = FarmClient::Connect(options->server);
+        if (!client.ok()) {
+            spdlog::error("{}", std::string(client.status().message()));
+            *exit_code = 1;
+            return;
+        }
+        *exit_code = Follow(*client, *options);
+    });
+}
+
+}  // namespace pf

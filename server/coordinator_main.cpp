@@ -1,0 +1,89 @@
+// photonfarm-coordinator: holds jobs and their progressive estimates, hands photon batches to
+// workers, merges their tallies, streams snapshots to clients.
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <csignal>
+#include <cstdio>
+#include <exception>
+
+#include "server/coordinator.h"
+#include "server/coordinator_server.h"
+
+namespace {
+
+// Waits for SIGINT or SIGTERM on this thread (blocked everywhere, so no handler runs).
+int WaitForStopSignal() {
+    sigset_t signals;
+    sigemptyset(&signals);
+    sigaddset(&signals, SIGINT);
+    sigaddset(&signals, SIGTERM);
+    int signal = 0;
+    sigwait(&signals, &signal);
+    return signal;
+}
+
+void BlockStopSignals() {
+    sigset_t signals;
+    sigemptyset(&signals);
+    sigaddset(&signals, SIGINT);
+    sigaddset(&signals, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        spdlog::set_default_logger(spdlog::stderr_color_mt("photonfarm-coordinator"));
+        spdlog::set_pattern("photonfarm-coordinator: %^%l%$: %v");
+        CLI::App app{"photonfarm-coordinator: the render farm's coordinator"};
+        std::string listen = "0.0.0.0:50051";
+        std::string log_level = "info";
+        pf::CoordinatorOptions options;
+        app.add_option("--listen", listen, "Address to listen on, HOST:PORT (port 0: any free port)")->default_val(listen);
+        app.add_option("--heartbeat-seconds", options.heartbeat_seconds, "How often workers heartbeat")
+            ->default_val(options.heartbeat_seconds)->check(CLI::Range(0.05, 3600.0));
+        app.add_option("--worker-timeout-seconds", options.worker_timeout_seconds,
+                       "A worker silent this long is gone and its leases are handed out again")
+            ->default_val(options.worker_timeout_seconds)->check(CLI::Range(0.1, 86400.0));
+        app.add_option("--lease-seconds", options.lease_seconds, "A batch not reported within this is handed out again")
+            ->default_val(options.lease_seconds)->check(CLI::Range(0.1, 86400.0));
+        app.add_option("--max-jobs", options.max_running_jobs, "Jobs running at once")
+            ->default_val(options.max_running_jobs)->check(CLI::Range(1, 100000));
+        app.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")
+            ->default_val(log_level)->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
+        try {
+            app.parse(argc, argv);
+        } catch (const CLI::ParseError& error) {
+            if (error.get_exit_code() == 0) return app.exit(error);
+            std::fprintf(stderr, "photonfarm-coordinator: error: %s (see --help)\n", error.what());
+            return 2;
+        }
+        spdlog::set_level(spdlog::level::from_str(log_level));
+        if (options.worker_timeout_seconds <= options.heartbeat_seconds) {
+            std::fprintf(stderr, "photonfarm-coordinator: error: --worker-timeout-seconds must exceed --heartbeat-seconds\n");
+            return 2;
+        }
+        BlockStopSignals();  // before any thread starts, so every thread inherits the mask
+        pf::Coordinator coordinator(options);
+        absl::StatusOr<std::unique_ptr<pf::CoordinatorServer>> server = pf::CoordinatorServer::Start(coordinator, listen);
+        if (!server.ok()) {
+            spdlog::error("{}", std::string(server.status().message()));
+            return 1;
+        }
+        const std::string host = listen.substr(0, listen.rfind(':'));
+        // One line on stdout with the bound address, for scripts that asked for port 0.
+        std::printf("listening on %s:%d\n", host.c_str(), (*server)->Port());
+        std::fflush(stdout);
+        spdlog::info("listening on {}:{} (plain text: no TLS or tokens yet)", host, (*server)->Port());
+        const int signal = WaitForStopSignal();
+        spdlog::info("{}: shutting down", signal == SIGTERM ? "SIGTERM" : "SIGINT");
+        (*server)->Shutdown();
+        return 0;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "photonfarm-coordinator: error: %s\n", error.what());
+        return 1;
+    }
+}

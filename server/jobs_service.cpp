@@ -1,0 +1,134 @@
+// Jobs RPCs: decode and check the request, call the coordinator, encode the answer.
+#include "server/jobs_service.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+#include "worker/proto_convert.h"
+#include "worker/rpc_status.h"
+
+namespace pf {
+namespace {
+
+namespace v1 = photonfarm::v1;
+
+// A watch stream checks for cancellation (client gone, server stopping) at least this often.
+constexpr auto kWatchPoll = std::chrono::milliseconds(250);
+
+v1::JobState ToProto(JobState state) {
+    switch (state) {
+        case JobState::kRunning: return v1::JOB_STATE_RUNNING;
+        case JobState::kDone: return v1::JOB_STATE_DONE;
+        case JobState::kCancelled: return v1::JOB_STATE_CANCELLED;
+        case JobState::kFailed: return v1::JOB_STATE_FAILED;
+    }
+    return v1::JOB_STATE_UNSPECIFIED;
+}
+
+v1::JobStatus ToProto(const JobProgress& progress) {
+    v1::JobStatus status;
+    status.set_job_id(progress.job_id);
+    status.set_name(progress.name);
+    status.set_state(ToProto(progress.state));
+    status.set_epochs(progress.epochs);
+    status.set_photons(progress.photons);
+    status.set_elapsed_seconds(progress.elapsed_seconds);
+    status.set_photons_per_second(progress.photons_per_second);
+    status.set_workers_active(progress.workers_active);
+    status.set_priority(progress.priority);
+    status.set_hit_points(progress.hit_points);
+    status.set_budget_fraction(progress.budget_fraction);
+    status.set_message(progress.message);
+    return status;
+}
+
+grpc::Status Invalid(const absl::Status& status) { return ToGrpcStatus(status); }
+
+}  // namespace
+
+grpc::Status JobsService::SubmitJob(grpc::ServerContext*, const v1::SubmitJobRequest* request,
+                                    v1::SubmitJobResponse* response) {
+    if (!request->has_scene()) return Invalid(absl::InvalidArgumentError("scene: missing"));
+    absl::StatusOr<SceneBundle> bundle = FromProto(request->scene());
+    if (!bundle.ok()) return Invalid(bundle.status());
+    absl::StatusOr<JobSpec> spec = FromProto(request->settings());
+    if (!spec.ok()) return Invalid(spec.status());
+    absl::StatusOr<JobProgress> progress =
+        coordinator_.Submit({request->name(), std::move(*bundle), *spec, request->settings().priority()});
+    if (!progress.ok()) return ToGrpcStatus(progress.status());
+    *response->mutable_status() = ToProto(*progress);
+    return grpc::Status::OK;
+}
+
+grpc::Status JobsService::WatchJob(grpc::ServerContext* context, const v1::WatchJobRequest* request,
+                                   grpc::ServerWriter<v1::Snapshot>* writer) {
+    if (!(std::isfinite(request->interval_seconds()) && request->interval_seconds() >= 0))
+        return Invalid(absl::InvalidArgumentError("interval_seconds: must be a non-negative number"));
+    absl::StatusOr<std::shared_ptr<Job>> job = coordinator_.FindJob(request->job_id());
+    if (!job.ok()) return ToGrpcStatus(job.status());
+    const auto interval = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(std::min(request->interval_seconds(), 3600.0)));
+    uint64_t version = (*job)->Version();
+    while (true) {
+        // Always the latest state: a watcher that reads slowly skips snapshots, never queues them.
+        const JobProgress progress = (*job)->Progress(coordinator_.Options().now());
+        v1::Snapshot snapshot;
+        *snapshot.mutable_status() = ToProto(progress);
+        if (request->images())
+            if (std::shared_ptr<const Image> image = (*job)->CurrentImage()) *snapshot.mutable_image() = ToProto(*image);
+        if (!writer->Write(snapshot)) return grpc::Status(grpc::StatusCode::CANCELLED, "watcher went away");
+        if (progress.state != JobState::kRunning) return grpc::Status::OK;
+        const Clock::time_point next = Clock::now() + interval;
+        bool changed = false;
+        while (!changed || Clock::now() < next) {
+            if (context->IsCancelled() || stopping_.load())
+                return grpc::Status(grpc::StatusCode::UNAVAILABLE, "the coordinator is shutting down");
+            const Clock::time_point until = std::min(changed ? next : Clock::time_point::max(), Clock::now() + kWatchPoll);
+            const uint64_t now_version = (*job)->WaitForChange(version, until);
+            changed = changed || now_version != version;
+            version = now_version;
+            if (changed && (*job)->Progress(coordinator_.Options().now()).state != JobState::kRunning) break;
+        }
+    }
+}
+
+grpc::Status JobsService::CancelJob(grpc::ServerContext*, const v1::CancelJobRequest* request,
+                                    v1::CancelJobResponse* response) {
+    absl::StatusOr<JobProgress> progress = coordinator_.Cancel(request->job_id());
+    if (!progress.ok()) return ToGrpcStatus(progress.status());
+    *response->mutable_status() = ToProto(*progress);
+    return grpc::Status::OK;
+}
+
+grpc::Status JobsService::ListJobs(grpc::ServerContext*, const v1::ListJobsRequest*, v1::ListJobsResponse* response) {
+    for (const JobProgress& progress : coordinator_.ListJobs()) *response->add_jobs() = ToProto(progress);
+    return grpc::Status::OK;
+}
+
+grpc::Status JobsService::GetResult(grpc::ServerContext*, const v1::GetResultRequest* request,
+                                    v1::GetResultResponse* response) {
+    absl::StatusOr<std::shared_ptr<Job>> job = coordinator_.FindJob(request->job_id());
+    if (!job.ok()) return ToGrpcStatus(job.status());
+    *response->mutable_status() = ToProto((*job)->Progress(coordinator_.Options().now()));
+    if (std::shared_ptr<const Image> image = (*job)->CurrentImage()) *response->mutable_image() = ToProto(*image);
+    return grpc::Status::OK;
+}
+
+grpc::Status JobsService::ListWorkers(grpc::ServerContext*, const v1::ListWorkersRequest*,
+                                      v1::ListWorkersResponse* response) {
+    for (const WorkerView& view : coordinator_.ListWorkers()) {
+        v1::WorkerStatus* worker = response->add_workers();
+        worker->set_worker_id(view.worker_id);
+        worker->set_backend(view.registration.backend);
+        worker->set_threads(view.registration.threads);
+        worker->set_version(view.registration.version);
+        worker->set_peer(view.registration.peer);
+        worker->set_seconds_since_heartbeat(view.seconds_since_heartbeat);
+        worker->set_batches_leased(view.batches_leased);
+        worker->set_batches_done(view.batches_done);
+    }
+    return grpc::Status::OK;
+}
+
+}  // namespace pf

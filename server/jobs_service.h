@@ -1,0 +1,35 @@
+// The photonfarm.v1.Jobs service: gRPC glue for clients over a Coordinator.
+#pragma once
+
+#include <atomic>
+
+#include "photonfarm/v1/jobs.grpc.pb.h"
+#include "server/coordinator.h"
+
+namespace pf {
+
+class JobsService final : public photonfarm::v1::Jobs::Service {
+public:
+    // `stopping` ends watch streams early when the server shuts down.
+    JobsService(Coordinator& coordinator, const std::atomic<bool>& stopping)
+        : coordinator_(coordinator), stopping_(stopping) {}
+
+    grpc::Status SubmitJob(grpc::ServerContext* context, const photonfarm::v1::SubmitJobRequest* request,
+                           photonfarm::v1::SubmitJobResponse* response) override;
+    grpc::Status WatchJob(grpc::ServerContext* context, const photonfarm::v1::WatchJobRequest* request,
+                          grpc::ServerWriter<photonfarm::v1::Snapshot>* writer) override;
+    grpc::Status CancelJob(grpc::ServerContext* context, const photonfarm::v1::CancelJobRequest* request,
+                           photonfarm::v1::CancelJobResponse* response) override;
+    grpc::Status ListJobs(grpc::ServerContext* context, const photonfarm::v1::ListJobsRequest* request,
+                          photonfarm::v1::ListJobsResponse* response) override;
+    grpc::Status GetResult(grpc::ServerContext* context, const photonfarm::v1::GetResultRequest* request,
+                           photonfarm::v1::GetResultResponse* response) override;
+    grpc::Status ListWorkers(grpc::ServerContext* context, const photonfarm::v1::ListWorkersRequest* request,
+                             photonfarm::v1::ListWorkersResponse* response) override;
+
+private:
+    Coordinator& coordinator_;
+    const std::atomic<bool>& stopping_;
+};
+
+}  // namespace pf

@@ -1,0 +1,31 @@
+// The photonfarm.v1.Work service: gRPC glue for workers over a Coordinator. Every tally is
+// decoded as hostile (worker/proto_convert.h) before the coordinator sees it.
+#pragma once
+
+#include "photonfarm/v1/work.grpc.pb.h"
+#include "server/coordinator.h"
+
+namespace pf {
+
+class WorkService final : public photonfarm::v1::Work::Service {
+public:
+    explicit WorkService(Coordinator& coordinator) : coordinator_(coordinator) {}
+
+    grpc::Status RegisterWorker(grpc::ServerContext* context, const photonfarm::v1::RegisterWorkerRequest* request,
+                                photonfarm::v1::RegisterWorkerResponse* response) override;
+    grpc::Status Heartbeat(grpc::ServerContext* context, const photonfarm::v1::HeartbeatRequest* request,
+                           photonfarm::v1::HeartbeatResponse* response) override;
+    grpc::Status UnregisterWorker(grpc::ServerContext* context, const photonfarm::v1::UnregisterWorkerRequest* request,
+                                  photonfarm::v1::UnregisterWorkerResponse* response) override;
+    grpc::Status LeaseBatches(grpc::ServerContext* context, const photonfarm::v1::LeaseBatchesRequest* request,
+                              photonfarm::v1::LeaseBatchesResponse* response) override;
+    grpc::Status FetchBlob(grpc::ServerContext* context, const photonfarm::v1::FetchBlobRequest* request,
+                           grpc::ServerWriter<photonfarm::v1::BlobChunk>* writer) override;
+    grpc::Status ReportTally(grpc::ServerContext* context, const photonfarm::v1::ReportTallyRequest* request,
+                             photonfarm::v1::ReportTallyResponse* response) override;
+
+private:
+    Coordinator& coordinator_;
+};
+
+}  // namespace pf

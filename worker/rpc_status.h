@@ -1,0 +1,23 @@
+// The one mapping between our statuses (absl::Status) and gRPC's, both ways. Codes carry
+// over one for one, explicitly, so a bad scene stays INVALID_ARGUMENT, an unknown job
+// NOT_FOUND, a limit RESOURCE_EXHAUSTED: never a blanket UNKNOWN.
+#pragma once
+
+#include <string>
+
+#include <grpcpp/support/status.h>
+
+#include "absl/status/status.h"
+
+namespace pf {
+
+// The largest gRPC message either way, for servers and channels alike: a scene bundle at its
+// limit (1 GiB) with room for the request around it. gRPC refuses larger messages with
+// RESOURCE_EXHAUSTED.
+inline constexpr int kMaxMessageBytes = (1 << 30) + (16 << 20);
+
+grpc::Status ToGrpcStatus(const absl::Status& status);
+// `peer` names the other end in the message: "coordinator at 127.0.0.1:5000: ...".
+absl::Status FromGrpcStatus(const grpc::Status& status, const std::string& peer);
+
+}  // namespace pf

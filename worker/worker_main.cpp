@@ -1,0 +1,163 @@
+// photonfarm-worker: leases photon batches from a coordinator, runs them, reports the tallies;
+// reconnects with back-off when the coordinator is away; on SIGTERM or SIGINT finishes the
+// batches in hand, returns its leases and exits cleanly.
+#include <grpcpp/create_channel.h>
+#include <grpcpp/security/credentials.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+#include <tbb/task_arena.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <condition_variable>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <mutex>
+#include <random>
+#include <thread>
+
+#include "worker/backend_factory.h"
+#include "worker/grpc_work_source.h"
+#include "worker/rpc_status.h"
+#include "worker/worker_loop.h"
+
+namespace {
+
+// Set once a stop signal arrives; waits end early through the condition variable.
+struct StopFlag {
+    std::mutex mutex;
+    std::condition_variable changed;
+    bool stop = false;
+
+    void Set() {
+        std::lock_guard lock(mutex);
+        stop = true;
+        changed.notify_all();
+    }
+    bool IsSet() {
+        std::lock_guard lock(mutex);
+        return stop;
+    }
+    // Waits up to `seconds`; true if stopping.
+    bool WaitFor(double seconds) {
+        std::unique_lock lock(mutex);
+        return changed.wait_for(lock, std::chrono::duration<double>(seconds), [&] { return stop; });
+    }
+};
+
+sigset_t StopSignals() {
+    sigset_t signals;
+    sigemptyset(&signals);
+    sigaddset(&signals, SIGINT);
+    sigaddset(&signals, SIGTERM);
+    return signals;
+}
+
+// Errors worth waiting out (the coordinator restarting, the network); others end the worker.
+bool Retryable(const absl::Status& status) {
+    return absl::IsUnavailable(status) || absl::IsDeadlineExceeded(status) || absl::IsNotFound(status) ||
+           absl::IsDataLoss(status) || absl::IsResourceExhausted(status) || absl::IsAborted(status) ||
+           absl::IsCancelled(status);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        spdlog::set_default_logger(spdlog::stderr_color_mt("photonfarm-worker"));
+        spdlog::set_pattern("photonfarm-worker: %^%l%$: %v");
+        CLI::App app{"photonfarm-worker: runs photon batches for a photonfarm coordinator"};
+        std::string coordinator;
+        int threads = 0;
+        std::string backend = "cpu";
+        std::string cache_dir;
+        std::string log_level = "info";
+        uint32_t batches_per_lease = 0;
+        app.add_option("--coordinator", coordinator, "Coordinator address HOST:PORT")
+            ->envname("PHOTONFARM_COORDINATOR")->required();
+        app.add_option("--threads", threads, "Threads (default: all cores)")->check(CLI::Range(1, 4096));
+        app.add_option("--backend", backend, "Photon backend")->default_val(backend)->check(CLI::IsMember(pf::BackendNames()));
+        app.add_option("--cache-dir", cache_dir, "Keep fetched scenes and hit points here across restarts");
+        app.add_option("--batches-per-lease", batches_per_lease, "Batches to ask for at once (default: one per thread)")
+            ->check(CLI::Range(1, 1024));
+        app.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")
+            ->default_val(log_level)->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
+        try {
+            app.parse(argc, argv);
+        } catch (const CLI::ParseError& error) {
+            if (error.get_exit_code() == 0) return app.exit(error);
+            std::fprintf(stderr, "photonfarm-worker: error: %s (see --help)\n", error.what());
+            return 2;
+        }
+        spdlog::set_level(spdlog::level::from_str(log_level));
+
+        // Signals are taken by one thread with sigwait; every other thread inherits the block.
+        const sigset_t signals = StopSignals();
+        pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+        StopFlag stop;
+        std::thread signal_thread([&] {
+            int signal = 0;
+            sigwait(&signals, &signal);
+            if (signal != 0 && !stop.IsSet()) {
+                spdlog::info("{}: finishing the batches in hand, then leaving", signal == SIGTERM ? "SIGTERM" : "SIGINT");
+                stop.Set();
+            }
+        });
+
+        tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+        grpc::ChannelArguments channel_args;
+        channel_args.SetMaxReceiveMessageSize(pf::kMaxMessageBytes);
+        channel_args.SetMaxSendMessageSize(pf::kMaxMessageBytes);
+        pf::GrpcWorkSource source(
+            grpc::CreateCustomChannel(coordinator, grpc::InsecureChannelCredentials(), channel_args), coordinator,
+            {backend, static_cast<uint32_t>(arena.max_concurrency()), std::string(pf::kPhotonfarmVersion), ""}, cache_dir);
+        pf::WorkerLoop loop(source, backend, batches_per_lease > 0 ? batches_per_lease : arena.max_concurrency());
+
+        std::thread heartbeat_thread([&] {
+            while (!stop.WaitFor(source.HeartbeatSeconds()))
+                if (absl::Status status = source.Heartbeat(); !status.ok())
+                    spdlog::debug("heartbeat: {}", std::string(status.message()));
+        });
+
+        int exit_code = 0;
+        double backoff = 0.25;
+        std::mt19937 jitter(std::random_device{}());
+        bool reported_outage = false;
+        while (!stop.IsSet()) {
+            absl::StatusOr<size_t> ran;
+            arena.execute([&] { ran = loop.Step(); });
+            if (ran.ok()) {
+                if (reported_outage) spdlog::info("coordinator reachable again");
+                reported_outage = false;
+                backoff = 0.25;
+                continue;
+            }
+            if (!Retryable(ran.status())) {
+                spdlog::error("{}", std::string(ran.status().message()));
+                exit_code = 1;
+                break;
+            }
+            if (!reported_outage) spdlog::warn("{}; retrying with back-off", std::string(ran.status().message()));
+            reported_outage = true;
+            // Exponential back-off with jitter, so a restarted coordinator is not stormed.
+            const double wait = backoff * std::uniform_real_distribution<double>(0.5, 1.0)(jitter);
+            backoff = std::min(backoff * 2, 30.0);
+            if (stop.WaitFor(wait)) break;
+        }
+        stop.Set();
+        heartbeat_thread.join();
+        if (absl::Status status = source.Unregister(); !status.ok())
+            spdlog::warn("leaving: {}", std::string(status.message()));
+        const pf::WorkerStats& stats = loop.Stats();
+        spdlog::info("ran {} batches ({} refused), {} photons", stats.batches_run, stats.batches_refused, stats.photons);
+        // Wake the signal thread if no signal came, then join it.
+        pthread_kill(signal_thread.native_handle(), SIGTERM);
+        signal_thread.join();
+        return exit_code;
+    } catch (const std::exception& error) {
+        std::fprintf(stderr, "photonfarm-worker: error: %s\n", error.what());
+        return 1;
+    }
+}
