@@ -96,7 +96,7 @@ absl::StatusOr<v1::GetResultResponse> FarmClient::GetResult(const std::string& j
 }
 
 absl::StatusOr<v1::Snapshot> FarmClient::Watch(const std::string& job_id, double interval_seconds, bool images,
-                                               const std::function<void(const v1::Snapshot&)>& on_snapshot) {
+                                               const std::function<bool(const v1::Snapshot&)>& on_snapshot) {
     grpc::ClientContext context;
     v1::WatchJobRequest request;
     request.set_job_id(job_id);
@@ -104,11 +104,19 @@ absl::StatusOr<v1::Snapshot> FarmClient::Watch(const std::string& job_id, double
     request.set_images(images);
     std::unique_ptr<grpc::ClientReader<v1::Snapshot>> reader = stub_->WatchJob(&context, request);
     v1::Snapshot snapshot, last;
+    bool stopped = false;
     while (reader->Read(&snapshot)) {
-        on_snapshot(snapshot);
+        const bool go_on = on_snapshot(snapshot);
         last = std::move(snapshot);
+        if (!go_on) {
+            stopped = true;
+            context.TryCancel();
+            while (reader->Read(&snapshot)) {
+            }
+            break;
+        }
     }
-    if (grpc::Status status = reader->Finish(); !status.ok()) return FromGrpcStatus(status, peer_);
+    if (grpc::Status status = reader->Finish(); !status.ok() && !stopped) return FromGrpcStatus(status, peer_);
     return last;
 }
 

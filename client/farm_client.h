@@ -29,9 +29,10 @@ public:
     absl::StatusOr<photonfarm::v1::ListJobsResponse> ListJobs();
     absl::StatusOr<photonfarm::v1::ListWorkersResponse> ListWorkers();
     absl::StatusOr<photonfarm::v1::GetResultResponse> GetResult(const std::string& job_id);
-    // Streams snapshots to `on_snapshot` until the job ends; returns the last one.
+    // Streams snapshots to `on_snapshot` until the job ends or `on_snapshot` returns false;
+    // returns the last one.
     absl::StatusOr<photonfarm::v1::Snapshot> Watch(const std::string& job_id, double interval_seconds, bool images,
-                                                   const std::function<void(const photonfarm::v1::Snapshot&)>& on_snapshot);
+                                                   const std::function<bool(const photonfarm::v1::Snapshot&)>& on_snapshot);
 
 private:
     FarmClient(std::string address, std::shared_ptr<grpc::Channel> channel);

@@ -19,7 +19,9 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
     command->add_option("--batches-per-epoch", s->layout.batches_per_epoch,
                         "Batches per epoch; radii shrink once per epoch, and a farm runs at most this many batches at once")
         ->default_val(s->layout.batches_per_epoch)->check(CLI::Range(1u, kMaxBatchesPerEpoch));
-    command->add_option("--alpha", s->alpha, "Radius reduction ratio alpha in (0, 1]")->default_val(s->alpha)->check(CLI::Range(1e-9, 1.0));
+    // capture_default_str, not default_val: default_val would re-parse "0.666667" into alpha,
+    // and the render would no longer match a farm job left at the default 2/3.
+    command->add_option("--alpha", s->alpha, "Radius reduction ratio alpha in (0, 1]")->capture_default_str()->check(CLI::Range(1e-9, 1.0));
     command->add_option("--radius", s->initial_radius, "Initial search radius R0, world units (default: one pixel footprint)")
         ->check(CLI::PositiveNumber);
     command->add_option("--spp", s->samples_per_pixel, "Hit points (camera paths) per pixel")->default_val(s->samples_per_pixel)

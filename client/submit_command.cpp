@@ -84,17 +84,18 @@ int Follow(FarmClient& client, const WatchOptions& options) {
         } else {
             display.Update(ProgressOf(snapshot.status()));
         }
-        if (!snapshot.has_image()) return;
+        if (!snapshot.has_image()) return true;
         absl::StatusOr<Image> decoded = FromProto(snapshot.image());
         if (!decoded.ok()) {
             write_status = decoded.status();
-            return;
+            return true;
         }
         image = std::move(*decoded);
         if (!options.snapshot_dir.empty() && write_status.ok()) {
             const std::string stem = absl::StrFormat("%s/snapshot-%04d", options.snapshot_dir, ++snapshots);
             write_status = WriteImageFiles(image, SnapshotMetadata(snapshot.status()), stem + ".exr", stem + ".png", options.exposure);
         }
+        return true;
     });
     if (!options.json) display.Finish();
     int exit_code = 0;

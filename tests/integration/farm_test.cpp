@@ -1,0 +1,301 @@
+// The farm as users run it: a real photonfarm-coordinator and photonfarm-worker processes on
+// 127.0.0.1 with ephemeral ports, jobs submitted through the client. Images must come out
+// bit-identical to `photonfarm render` however many workers ran them and whichever died.
+#include <gtest/gtest.h>
+#include <grpcpp/client_context.h>
+#include <grpcpp/create_channel.h>
+#include <signal.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <thread>
+
+#include "client/farm_client.h"
+#include "core/film/exr_io.h"
+#include "core/scene/scene_bundle.h"
+#include "grpc/health/v1/health.grpc.pb.h"
+#include "photonfarm/v1/work.grpc.pb.h"
+#include "tests/support/child_process.h"
+#include "worker/proto_convert.h"
+#include "worker/work_source.h"
+
+namespace pf {
+namespace {
+
+namespace v1 = photonfarm::v1;
+using testing::ChildProcess;
+
+const std::string kBin = PF_BINARY_DIR;
+const std::string kScene = std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf";
+// 48x48, 4 spp, epochs of 8 batches of 2^13 photons.
+const std::vector<std::string> kJobFlags = {"--width", "48", "--height", "48", "--photons-per-batch", "8192",
+                                            "--batches-per-epoch", "8", "--seed", "11"};
+constexpr int kEpochs = 6;
+// Long enough (~1 s on two cores) for something to happen while the job runs.
+constexpr int kLongEpochs = 40;
+
+std::string TempPath(const std::string& name) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("pf-farm-test-" + std::to_string(getpid()));
+    std::filesystem::create_directories(dir);
+    return (dir / name).string();
+}
+
+std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<std::string>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+
+// Pixels of an EXR, compared byte for byte.
+std::vector<Rgb> Pixels(const std::string& path) {
+    absl::StatusOr<Image> image = ReadExr(path);
+    EXPECT_TRUE(image.ok()) << image.status();
+    return image.ok() ? image->pixels : std::vector<Rgb>{};
+}
+
+bool Identical(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
+    return !a.empty() && a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Rgb)) == 0;
+}
+
+class FarmTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        coordinator_ = std::make_unique<ChildProcess>(std::vector<std::string>{
+            kBin + "/server/photonfarm-coordinator", "--listen", "127.0.0.1:0", "--heartbeat-seconds", "0.2",
+            "--worker-timeout-seconds", "1.5", "--log-level", "warn"});
+        const std::optional<std::string> line = coordinator_->ReadLine(30);
+        ASSERT_TRUE(line && line->starts_with("listening on ")) << "the coordinator did not start";
+        address_ = line->substr(std::strlen("listening on "));
+        absl::StatusOr<FarmClient> client = FarmClient::Connect(address_);
+        ASSERT_TRUE(client.ok()) << client.status();
+        client_ = std::make_unique<FarmClient>(std::move(*client));
+    }
+
+    void TearDown() override {
+        workers_.clear();  // killed and reaped
+        if (coordinator_) {
+            coordinator_->Signal(SIGTERM);
+            EXPECT_EQ(coordinator_->Wait(30), 0) << "the coordinator must stop cleanly on SIGTERM";
+        }
+    }
+
+    ChildProcess& StartWorker() {
+        workers_.push_back(std::make_unique<ChildProcess>(std::vector<std::string>{
+            kBin + "/worker/photonfarm-worker", "--coordinator", address_, "--threads", "1", "--log-level", "warn"}));
+        return *workers_.back();
+    }
+
+    // `photonfarm submit --watch` to the end; returns its exit code.
+    int SubmitAndWatch(const std::string& out, int epochs = kEpochs) {
+        ChildProcess submit(Concat({kBin + "/client/photonfarm", "submit", kScene, "--server", address_, "--watch",
+                                    "--interval", "0", "--out", out, "--photons", std::to_string(epochs * 8 * 8192),
+                                    "--log-level", "warn"},
+                                   kJobFlags));
+        return submit.Wait(300).value_or(-1);
+    }
+
+    v1::JobStatus Submit(int epochs, int priority = 0) {
+        absl::StatusOr<SceneBundle> bundle = PackSceneBundle(kScene);
+        v1::SubmitJobRequest request;
+        *request.mutable_scene() = ToProto(*bundle);
+        v1::JobSettings* settings = request.mutable_settings();
+        settings->set_width(48);
+        settings->set_height(48);
+        settings->set_photons_per_batch(8192);
+        settings->set_batches_per_epoch(8);
+        settings->set_seed(11);
+        settings->set_photon_budget(uint64_t(epochs) * 8 * 8192);
+        settings->set_priority(priority);
+        absl::StatusOr<v1::JobStatus> status = client_->Submit(request);
+        EXPECT_TRUE(status.ok()) << status.status();
+        return status.ok() ? *status : v1::JobStatus{};
+    }
+
+    // Watches the job until `predicate` holds for a snapshot, or to its end without one.
+    v1::JobStatus WatchUntil(const std::string& job_id, const std::function<bool(const v1::JobStatus&)>& predicate = {}) {
+        absl::StatusOr<v1::Snapshot> last = client_->Watch(job_id, 0, false, [&](const v1::Snapshot& snapshot) {
+            return !(predicate && predicate(snapshot.status()));
+        });
+        EXPECT_TRUE(last.ok()) << last.status();
+        return last.ok() ? last->status() : v1::JobStatus{};
+    }
+
+    std::vector<Rgb> Reference(int epochs = kEpochs) {
+        const std::string out = TempPath("render.exr");
+        ChildProcess render(Concat({kBin + "/client/photonfarm", "render", kScene, "--threads", "2", "--out", out,
+                                    "--photons", std::to_string(epochs * 8 * 8192), "--log-level", "warn"},
+                                   kJobFlags));
+        EXPECT_EQ(render.Wait(300), 0);
+        return Pixels(out);
+    }
+
+    std::unique_ptr<ChildProcess> coordinator_;
+    std::vector<std::unique_ptr<ChildProcess>> workers_;
+    std::string address_;
+    std::unique_ptr<FarmClient> client_;
+};
+
+TEST_F(FarmTest, OneWorkerThreeWorkersAndRenderGiveTheSameImage) {
+    StartWorker();
+    ASSERT_EQ(SubmitAndWatch(TempPath("one.exr")), 0);
+    StartWorker();
+    StartWorker();
+    ASSERT_EQ(SubmitAndWatch(TempPath("three.exr")), 0);
+    const std::vector<Rgb> reference = Reference();
+    EXPECT_TRUE(Identical(Pixels(TempPath("one.exr")), reference)) << "one worker differs from photonfarm render";
+    EXPECT_TRUE(Identical(Pixels(TempPath("three.exr")), reference)) << "three workers differ from photonfarm render";
+}
+
+TEST_F(FarmTest, WorkerKilledMidJobChangesNothing) {
+    ChildProcess& doomed = StartWorker();
+    StartWorker();
+    const v1::JobStatus job = Submit(kLongEpochs);
+    const v1::JobStatus at = WatchUntil(job.job_id(), [&](const v1::JobStatus& status) { return status.epochs() >= 2; });
+    ASSERT_EQ(at.state(), v1::JOB_STATE_RUNNING) << "the job must still run when the worker dies";
+    doomed.Signal(SIGKILL);  // its leases die with it
+    ASSERT_EQ(WatchUntil(job.job_id()).state(), v1::JOB_STATE_DONE);
+    const absl::StatusOr<v1::GetResultResponse> result = client_->GetResult(job.job_id());
+    ASSERT_TRUE(result.ok()) << result.status();
+    const absl::StatusOr<Image> image = FromProto(result->image());
+    ASSERT_TRUE(image.ok());
+    EXPECT_TRUE(Identical(image->pixels, Reference(kLongEpochs)));
+}
+
+TEST_F(FarmTest, LateWorkerGetsWorkAndTwoJobsBothFinish) {
+    StartWorker();
+    const v1::JobStatus first = Submit(kLongEpochs);
+    const v1::JobStatus second = Submit(kLongEpochs);
+    ASSERT_EQ(WatchUntil(first.job_id(), [](const v1::JobStatus& status) { return status.epochs() >= 1; }).state(),
+              v1::JOB_STATE_RUNNING);
+    StartWorker();
+    EXPECT_EQ(WatchUntil(first.job_id()).state(), v1::JOB_STATE_DONE);
+    EXPECT_EQ(WatchUntil(second.job_id()).state(), v1::JOB_STATE_DONE);
+    const absl::StatusOr<v1::ListWorkersResponse> workers = client_->ListWorkers();
+    ASSERT_TRUE(workers.ok());
+    ASSERT_EQ(workers->workers_size(), 2);
+    for (const v1::WorkerStatus& worker : workers->workers())
+        EXPECT_GT(worker.batches_done(), 0u) << worker.worker_id() << " got no work";
+}
+
+TEST_F(FarmTest, CancelledJobStopsItsLeasesAndKeepsItsImage) {
+    StartWorker();
+    const v1::JobStatus job = Submit(1000);
+    WatchUntil(job.job_id(), [&](const v1::JobStatus& status) { return status.epochs() >= 1; });
+    ChildProcess cancel({kBin + "/client/photonfarm", "cancel", job.job_id(), "--server", address_});
+    ASSERT_EQ(cancel.Wait(60), 0);
+    EXPECT_EQ(WatchUntil(job.job_id()).state(), v1::JOB_STATE_CANCELLED);
+    const absl::StatusOr<v1::ListWorkersResponse> workers = client_->ListWorkers();
+    ASSERT_TRUE(workers.ok());
+    for (const v1::WorkerStatus& worker : workers->workers()) EXPECT_EQ(worker.batches_leased(), 0u);
+    const absl::StatusOr<v1::GetResultResponse> result = client_->GetResult(job.job_id());
+    ASSERT_TRUE(result.ok() && result->has_image());
+    EXPECT_GE(result->status().epochs(), 1u);
+}
+
+// A hand-driven worker: forged but well-formed results (no photons found) for leased batches.
+class FakeWorker {
+public:
+    explicit FakeWorker(const std::string& address)
+        : stub_(v1::Work::NewStub(grpc::CreateChannel(address, grpc::InsecureChannelCredentials()))) {
+        v1::RegisterWorkerRequest request;
+        request.set_backend("cpu");
+        request.set_version(std::string(kPhotonfarmVersion));
+        v1::RegisterWorkerResponse response;
+        grpc::ClientContext context;
+        EXPECT_TRUE(stub_->RegisterWorker(&context, request, &response).ok());
+        id_ = response.worker_id();
+    }
+    grpc::Status Lease(uint32_t max, v1::LeaseBatchesResponse* response) {
+        v1::LeaseBatchesRequest request;
+        request.set_worker_id(id_);
+        request.set_max_batches(max);
+        grpc::ClientContext context;
+        return stub_->LeaseBatches(&context, request, response);
+    }
+    v1::TallyVerdict Report(const v1::JobInputs& job, const v1::BatchSpec& spec, const std::string& worker = "") {
+        BatchResult result;
+        result.spec = FromProto(spec);
+        result.direct.assign(spec.direct_end() - spec.direct_begin(), Rgb(0.0f));
+        result.photons_emitted = spec.photons();
+        v1::ReportTallyRequest request;
+        request.set_worker_id(worker.empty() ? id_ : worker);
+        request.set_job_id(job.job_id());
+        *request.mutable_result() = ToProto(result);
+        v1::ReportTallyResponse response;
+        grpc::ClientContext context;
+        last_status_ = stub_->ReportTally(&context, request, &response);
+        return response.verdict();
+    }
+    grpc::Status last_status_;
+
+private:
+    std::unique_ptr<v1::Work::Stub> stub_;
+    std::string id_;
+};
+
+TEST_F(FarmTest, DuplicateStaleAndUnknownTalliesAreRefused) {
+    const v1::JobStatus job = Submit(kEpochs);
+    FakeWorker worker(address_);
+    v1::LeaseBatchesResponse epoch0;
+    ASSERT_TRUE(worker.Lease(8, &epoch0).ok());
+    ASSERT_EQ(epoch0.batches_size(), 8);
+    EXPECT_EQ(worker.Report(epoch0.job(), epoch0.batches(0)), v1::TALLY_VERDICT_ACCEPTED);
+    EXPECT_EQ(worker.Report(epoch0.job(), epoch0.batches(0)), v1::TALLY_VERDICT_DUPLICATE);
+    for (int i = 1; i < 8; ++i) EXPECT_EQ(worker.Report(epoch0.job(), epoch0.batches(i)), v1::TALLY_VERDICT_ACCEPTED);
+    EXPECT_EQ(worker.Report(epoch0.job(), epoch0.batches(3)), v1::TALLY_VERDICT_STALE) << "epoch 0 is merged";
+    worker.Report(epoch0.job(), epoch0.batches(3), "worker-forged");
+    EXPECT_EQ(worker.last_status_.error_code(), grpc::StatusCode::NOT_FOUND) << "an unknown worker";
+    ASSERT_TRUE(client_->Cancel(job.job_id()).ok());
+    v1::LeaseBatchesResponse none;
+    ASSERT_TRUE(worker.Lease(8, &none).ok());
+    EXPECT_EQ(none.batches_size(), 0) << "a cancelled job hands out nothing";
+    EXPECT_EQ(worker.Report(epoch0.job(), epoch0.batches(0)), v1::TALLY_VERDICT_JOB_GONE);
+}
+
+TEST_F(FarmTest, MalformedRequestsNameTheField) {
+    v1::SubmitJobRequest request;
+    absl::Status status = client_->Submit(request).status();
+    EXPECT_TRUE(absl::IsInvalidArgument(status)) << status;
+    EXPECT_NE(status.message().find("scene"), std::string::npos) << status;
+    *request.mutable_scene() = ToProto(*PackSceneBundle(kScene));
+    request.mutable_settings()->set_photon_budget(1000);
+    request.mutable_settings()->set_alpha(5);
+    status = client_->Submit(request).status();
+    EXPECT_TRUE(absl::IsInvalidArgument(status)) << status;
+    EXPECT_NE(status.message().find("settings.alpha"), std::string::npos) << status;
+    request.mutable_settings()->set_alpha(0.5);
+    request.mutable_scene()->mutable_files(0)->set_path("../escape.gltf");
+    status = client_->Submit(request).status();
+    EXPECT_TRUE(absl::IsInvalidArgument(status)) << status;
+    EXPECT_NE(status.message().find("scene.files"), std::string::npos) << status;
+    FakeWorker worker(address_);
+    v1::LeaseBatchesResponse response;
+    const grpc::Status lease = worker.Lease(0, &response);
+    EXPECT_EQ(lease.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_NE(lease.error_message().find("max_batches"), std::string::npos) << lease.error_message();
+    EXPECT_TRUE(absl::IsNotFound(client_->Cancel("job-none").status()));
+}
+
+TEST_F(FarmTest, HealthServiceAnswersServing) {
+    auto health = grpc::health::v1::Health::NewStub(grpc::CreateChannel(address_, grpc::InsecureChannelCredentials()));
+    grpc::ClientContext context;
+    grpc::health::v1::HealthCheckResponse response;
+    ASSERT_TRUE(health->Check(&context, {}, &response).ok());
+    EXPECT_EQ(response.status(), grpc::health::v1::HealthCheckResponse::SERVING);
+}
+
+TEST_F(FarmTest, WorkerLeavesCleanlyOnSigterm) {
+    ChildProcess& worker = StartWorker();
+    const v1::JobStatus job = Submit(1000);
+    WatchUntil(job.job_id(), [&](const v1::JobStatus& status) { return status.epochs() >= 1; });
+    worker.Signal(SIGTERM);
+    EXPECT_EQ(worker.Wait(60), 0);
+    const absl::StatusOr<v1::ListWorkersResponse> workers = client_->ListWorkers();
+    ASSERT_TRUE(workers.ok());
+    EXPECT_EQ(workers->workers_size(), 0) << "the worker unregisters as it leaves";
+    ASSERT_TRUE(client_->Cancel(job.job_id()).ok());
+}
+
+}  // namespace
+}  // namespace pf

@@ -1,0 +1,235 @@
+// The coordinator's logic without a socket: leases and their expiry, refusals (duplicate,
+// stale, job gone, unknown worker, forged), in-order merging whatever the arrival order,
+// cancellation, priorities and fairness, and settings errors that name the field.
+#include "server/coordinator.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <random>
+
+#include "client/local_render.h"
+#include "server/in_process_source.h"
+#include "worker/backend_factory.h"
+#include "worker/worker_loop.h"
+
+namespace pf {
+namespace {
+
+std::string ScenePath(const std::string& name) { return std::string(PF_SOURCE_DIR) + "/scenes/" + name; }
+
+JobSpec SmallSpec(uint64_t photons) {
+    JobSpec spec;
+    spec.width = 32;
+    spec.height = 32;
+    spec.photon_budget = photons;
+    spec.layout = {1u << 12, 4};
+    return spec;
+}
+
+JobRequest SmallJob(uint64_t photons, int priority = 0) {
+    absl::StatusOr<SceneBundle> bundle = PackSceneBundle(ScenePath("cornell-box.gltf"));
+    EXPECT_TRUE(bundle.ok()) << bundle.status();
+    return {"test", std::move(*bundle), SmallSpec(photons), priority};
+}
+
+// A clock the test moves by hand.
+struct FakeClock {
+    Clock::time_point now = Clock::time_point() + std::chrono::hours(1);
+    void Advance(double seconds) {
+        now += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+    }
+};
+
+CoordinatorOptions Options(FakeClock* clock) {
+    CoordinatorOptions options;
+    options.lease_seconds = 30;
+    options.worker_timeout_seconds = 10;
+    options.now = [clock] { return clock->now; };
+    return options;
+}
+
+WorkerRegistration Cpu() { return {"cpu", 1, std::string(kPhotonfarmVersion), ""}; }
+
+// Runs batches the way a worker would, for reports made by hand.
+class BatchRunner {
+public:
+    std::vector<BatchResult> Run(const CoordinatorLease& lease) {
+        if (!backend_ || job_ != lease.grant.job) {
+            backend_ = *CreateBackend("cpu", lease.grant.job->scene);
+            job_ = lease.grant.job;
+            EXPECT_TRUE(backend_->BeginJob({&job_->scene, &job_->emitters, *job_->hit_points, job_->seed}).ok());
+            epoch_ = UINT64_MAX;
+        }
+        if (epoch_ != lease.grant.epoch) backend_->BeginEpoch(*lease.grant.radius_sq);
+        epoch_ = lease.grant.epoch;
+        return backend_->RunBatches(lease.grant.batches);
+    }
+
+private:
+    std::unique_ptr<Backend> backend_;
+    std::shared_ptr<const JobPayload> job_;
+    uint64_t epoch_ = UINT64_MAX;
+};
+
+bool SamePixels(const Image& a, const Image& b) {
+    return a.width == b.width && a.height == b.height &&
+           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
+}
+
+TEST(CoordinatorTest, ResultsInAnyOrderFromAnyWorkerGiveTheEmbeddedImage) {
+    RenderSettings settings;
+    settings.scene_path = ScenePath("cornell-box.gltf");
+    settings.job = SmallSpec(3 * 4 * 4096);
+    settings.threads = 1;
+    const absl::StatusOr<RenderOutcome> reference = RenderLocally(settings);
+    ASSERT_TRUE(reference.ok()) << reference.status();
+
+    FakeClock clock;
+    Coordinator coordinator(Options(&clock));
+    const absl::StatusOr<JobProgress> job = coordinator.Submit(SmallJob(settings.job.photon_budget));
+    ASSERT_TRUE(job.ok()) << job.status();
+    const std::string a = *coordinator.RegisterWorker(Cpu()), b = *coordinator.RegisterWorker(Cpu());
+    BatchRunner runner;
+    std::mt19937 shuffle(7);
+    for (int epoch = 0; epoch < 3; ++epoch) {
+        // Two workers take two batches each; their results come back in a random order.
+        std::vector<std::pair<std::string, BatchResult>> reports;
+        for (const std::string& worker : {a, b}) {
+            const absl::StatusOr<CoordinatorLease> lease = coordinator.Lease(worker, 2, 0);
+            ASSERT_TRUE(lease.ok() && lease->grant.batches.size() == 2);
+            for (BatchResult& result : runner.Run(*lease)) reports.emplace_back(worker, std::move(result));
+        }
+        std::shuffle(reports.begin(), reports.end(), shuffle);
+        for (auto& [worker, result] : reports)
+            EXPECT_EQ(*coordinator.Report(worker, job->job_id, std::move(result)), TallyVerdict::kAccepted);
+    }
+    const std::shared_ptr<Job> done = *coordinator.FindJob(job->job_id);
+    EXPECT_EQ(done->Progress(clock.now).state, JobState::kDone);
+    EXPECT_TRUE(SamePixels(*done->CurrentImage(), reference->image)) << "the merge must not depend on arrival order";
+}
+
+TEST(CoordinatorTest, DuplicateStaleGoneAndUnknownTalliesAreRefusedAndCounted) {
+    FakeClock clock;
+    Coordinator coordinator(Options(&clock));
+    const std::string job_id = coordinator.Submit(SmallJob(1'000'000))->job_id;
+    const std::string worker = *coordinator.RegisterWorker(Cpu());
+    BatchRunner runner;
+    absl::StatusOr<CoordinatorLease> lease = coordinator.Lease(worker, 4, 0);
+    ASSERT_TRUE(lease.ok());
+    std::vector<BatchResult> epoch0 = runner.Run(*lease);
+    const BatchResult first = epoch0[0];
+    for (BatchResult& result : epoch0) EXPECT_EQ(*coordinator.Report(worker, job_id, std::move(result)), TallyVerdict::kAccepted);
+    // Epoch 0 is merged: its batch again is stale, whoever sends it.
+    EXPECT_EQ(*coordinator.Report(worker, job_id, first), TallyVerdict::kStale);
+    lease = coordinator.Lease(worker, 1, 0);
+    const BatchResult second = runner.Run(*lease)[0];
+    EXPECT_EQ(*coordinator.Report(worker, job_id, second), TallyVerdict::kAccepted);
+    EXPECT_EQ(*coordinator.Report(worker, job_id, second), TallyVerdict::kDuplicate);
+    // A forged spec, and hit points the job does not have.
+    BatchResult forged = second;
+    forged.spec.index += 1;
+    forged.spec.photons += 1;
+    EXPECT_TRUE(absl::IsInvalidArgument(coordinator.Report(worker, job_id, forged).status()));
+    BatchResult outside = second;
+    outside.spec = MakeBatchSpec(SmallSpec(0).layout, 1, 2, 32 * 32 * 4);
+    outside.tally.hit_point.assign(outside.tally.hit_point.size(), 1u << 30);
+    EXPECT_TRUE(absl::IsInvalidArgument(coordinator.Report(worker, job_id, outside).status()));
+    EXPECT_TRUE(absl::IsNotFound(coordinator.Report("worker-nobody", job_id, second).status()));
+    ASSERT_TRUE(coordinator.Cancel(job_id).ok());
+    EXPECT_EQ(*coordinator.Report(worker, job_id, second), TallyVerdict::kJobGone);
+    EXPECT_EQ(*coordinator.Report(worker, "job-unknown", second), TallyVerdict::kJobGone);
+    const RefusalCounts refused = coordinator.Refusals();
+    EXPECT_EQ(refused.stale, 1u);
+    EXPECT_EQ(refused.duplicate, 1u);
+    EXPECT_EQ(refused.malformed, 2u);
+    EXPECT_EQ(refused.unknown_worker, 1u);
+    EXPECT_EQ(refused.job_gone, 2u);
+}
+
+TEST(CoordinatorTest, ExpiredLeasesAndSilentWorkersHandTheirBatchesOut) {
+    FakeClock clock;
+    Coordinator coordinator(Options(&clock));
+    const std::string job_id = coordinator.Submit(SmallJob(1'000'000))->job_id;
+    const std::string slow = *coordinator.RegisterWorker(Cpu());
+    const std::string other = *coordinator.RegisterWorker(Cpu());
+    ASSERT_EQ(coordinator.Lease(slow, 4, 0)->grant.batches.size(), 4u);
+    EXPECT_TRUE(coordinator.Lease(other, 4, 0)->grant.batches.empty()) << "every batch is out";
+    // Both keep heartbeating, but the slow worker's lease (30 s) runs out: its batches go out again.
+    for (int beat = 0; beat < 4; ++beat) {
+        clock.Advance(beat < 3 ? 9 : 4);
+        ASSERT_TRUE(coordinator.Heartbeat(slow).ok());
+        ASSERT_TRUE(coordinator.Heartbeat(other).ok());
+    }
+    const absl::StatusOr<CoordinatorLease> again = coordinator.Lease(other, 4, 0);
+    ASSERT_TRUE(again.ok()) << again.status();
+    ASSERT_EQ(again->grant.batches.size(), 4u);
+    EXPECT_EQ(again->grant.batches[0].index, 0u);
+    // The other worker falls silent (10 s): it is gone, its leases free at once, its id unknown.
+    clock.Advance(5);
+    ASSERT_TRUE(coordinator.Heartbeat(slow).ok());
+    clock.Advance(6);
+    const absl::StatusOr<CoordinatorLease> back = coordinator.Lease(slow, 4, 0);
+    ASSERT_TRUE(back.ok()) << back.status();
+    EXPECT_EQ(back->grant.batches.size(), 4u);
+    EXPECT_TRUE(absl::IsNotFound(coordinator.Heartbeat(other)));
+    EXPECT_EQ(coordinator.ListWorkers().size(), 1u);
+}
+
+TEST(CoordinatorTest, CancelEndsLeasesKeepsTheImageAndFreesTheInputs) {
+    FakeClock clock;
+    Coordinator coordinator(Options(&clock));
+    const std::string job_id = coordinator.Submit(SmallJob(1'000'000))->job_id;
+    const std::string worker = *coordinator.RegisterWorker(Cpu());
+    absl::StatusOr<CoordinatorLease> lease = coordinator.Lease(worker, 4, 0);
+    std::weak_ptr<const JobPayload> payload = lease->grant.job;
+    BatchRunner runner;
+    for (BatchResult& result : runner.Run(*lease)) (void)coordinator.Report(worker, job_id, std::move(result));
+    lease = coordinator.Lease(worker, 4, 0);
+    const std::shared_ptr<Job> job = *coordinator.FindJob(job_id);
+    ASSERT_TRUE(coordinator.Cancel(job_id).ok());
+    EXPECT_EQ(job->Progress(clock.now).state, JobState::kCancelled);
+    EXPECT_EQ(job->Leased(clock.now), 0u);
+    EXPECT_TRUE(coordinator.Lease(worker, 4, 0)->grant.batches.empty());
+    EXPECT_EQ(job->Progress(clock.now).epochs, 1u);
+    ASSERT_NE(job->CurrentImage(), nullptr) << "the image of the merged epoch stays";
+    lease = absl::UnknownError("released");
+    runner = BatchRunner();
+    EXPECT_TRUE(payload.expired()) << "a cancelled job's scene and hit points are freed";
+}
+
+TEST(CoordinatorTest, HigherPriorityFirstThenFewestBatchesOut) {
+    FakeClock clock;
+    Coordinator coordinator(Options(&clock));
+    const std::string low = coordinator.Submit(SmallJob(1'000'000, 0))->job_id;
+    const std::string high = coordinator.Submit(SmallJob(1'000'000, 5))->job_id;
+    const std::string low2 = coordinator.Submit(SmallJob(1'000'000, 0))->job_id;
+    const std::string worker = *coordinator.RegisterWorker(Cpu());
+    std::vector<std::string> order;
+    for (int i = 0; i < 8; ++i) order.push_back(coordinator.Lease(worker, 1, 0)->grant.job_id);
+    EXPECT_EQ(std::count(order.begin(), order.begin() + 4, high), 4) << "the high-priority job's epoch goes first";
+    // Then the two equal jobs alternate, the older first.
+    EXPECT_EQ(std::vector<std::string>(order.begin() + 4, order.end()), (std::vector<std::string>{low, low2, low, low2}));
+}
+
+TEST(CoordinatorTest, BadRequestsNameTheFieldOrFile) {
+    Coordinator coordinator;
+    JobRequest request = SmallJob(1000);
+    request.spec.alpha = 2;
+    absl::Status status = coordinator.Submit(request).status();
+    EXPECT_TRUE(absl::IsInvalidArgument(status));
+    EXPECT_NE(status.message().find("settings.alpha"), std::string::npos) << status;
+    request = SmallJob(1000);
+    request.bundle.files.erase(request.bundle.main_file);
+    status = coordinator.Submit(request).status();
+    EXPECT_TRUE(absl::IsInvalidArgument(status)) << status;
+    EXPECT_NE(status.message().find("cornell-box.gltf"), std::string::npos) << status;
+    EXPECT_TRUE(absl::IsNotFound(coordinator.FindJob("job-0").status()));
+    WorkerRegistration old = Cpu();
+    old.version = "0.0.1";
+    EXPECT_TRUE(absl::IsFailedPrecondition(coordinator.RegisterWorker(old).status()));
+}
+
+}  // namespace
+}  // namespace pf
