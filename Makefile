@@ -31,6 +31,8 @@ test: build
 
 bench: build
 	./$(BUILD)/bench/photon_bench
+	./$(BUILD)/bench/merge_bench
+	bench/farm_vs_render.sh $(BUILD)
 
 clean:
 	rm -rf $(BUILD) out

@@ -44,13 +44,18 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
              result.spec.index == epoch_ * settings_.layout.batches_per_epoch + j);
     const std::vector<HitPoint>& hit_points = *hit_points_;
     const Tally& tally = result.tally;
-    for (size_t e = 0; e < tally.Size(); ++e) {
-        const uint32_t i = tally.hit_point[e];
-        PF_CHECK(i < hit_points.size());
-        epoch_photons_[i] += tally.photons[e];
-        // Phi_M: the photons' flux times the BSDF weight (a float product, exact in double).
-        epoch_flux_[i] += Rgbd(tally.flux[e]) * Rgbd(hit_points[i].weight);
-    }
+    PF_CHECK(tally.Size() == 0 || tally.hit_point.back() < hit_points.size());
+    // Entries are sorted by hit point and each names a hit point once, so disjoint ranges of
+    // entries touch disjoint sums: folded in parallel, each sum still gets its batches in
+    // batch-index order, and the result does not depend on the thread count.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tally.Size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t e = r.begin(); e < r.end(); ++e) {
+            const uint32_t i = tally.hit_point[e];
+            epoch_photons_[i] += tally.photons[e];
+            // Phi_M: the photons' flux times the BSDF weight (a float product, exact in double).
+            epoch_flux_[i] += Rgbd(tally.flux[e]) * Rgbd(hit_points[i].weight);
+        }
+    });
     PF_CHECK(result.direct.size() == result.spec.direct_end - result.spec.direct_begin &&
              result.spec.direct_end <= hit_points.size());
     // The epoch's direct slices are disjoint and cover every hit point once.

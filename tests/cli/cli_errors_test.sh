@@ -30,6 +30,13 @@ printf '{"asset": {"version": "2.0"' >"$work/broken.gltf"
 expect_failure "unknown flag" "--frobnicate" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --frobnicate
 expect_failure "missing scene" "nope.gltf" render "$work/nope.gltf" --out "$work/a.exr"
 expect_failure "malformed scene" "broken.gltf" render "$work/broken.gltf" --out "$work/a.exr" --photons 1000
+# The farm commands: nothing listens on port 1 here.
+expect_failure "unreachable server" "cannot reach the coordinator at 127.0.0.1:1" jobs --server 127.0.0.1:1
+expect_failure "unreachable server on submit" "cannot reach the coordinator" submit "$source_dir/scenes/cornell-box.gltf" \
+    --server 127.0.0.1:1 --photons 1000
+expect_failure "no server given" "server" workers
+expect_failure "outputs without --watch" "need --watch" submit "$source_dir/scenes/cornell-box.gltf" \
+    --server 127.0.0.1:1 --out "$work/a.exr"
 expect_failure "bad alpha" "alpha" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --alpha 2
 expect_failure "both budgets" "excludes" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --photons 1000 --seconds 1
 expect_failure "unwritable output" "cannot write here" render "$source_dir/scenes/cornell-box.gltf" \
