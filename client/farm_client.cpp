@@ -20,11 +20,6 @@ namespace v1 = photonfarm::v1;
 constexpr double kCallSeconds = 30;
 constexpr double kSubmitSeconds = 600;
 
-void SetDeadline(grpc::ClientContext* context, double seconds) {
-    context->set_deadline(std::chrono::system_clock::now() + std::chrono::duration_cast<std::chrono::system_clock::duration>(
-                                                                   std::chrono::duration<double>(seconds)));
-}
-
 }  // namespace
 
 void AddServerOption(CLI::App* command, std::string* address) {

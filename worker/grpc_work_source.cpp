@@ -25,11 +25,6 @@ namespace v1 = photonfarm::v1;
 constexpr size_t kPayloadsKept = 4;
 constexpr size_t kRadiiKept = 4;
 
-void SetDeadline(grpc::ClientContext* context, double seconds) {
-    context->set_deadline(std::chrono::system_clock::now() +
-                          std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(seconds)));
-}
-
 template <typename T>
 std::shared_ptr<const T> Lookup(std::list<std::pair<std::string, std::shared_ptr<const T>>>& cache, const std::string& key) {
     for (auto it = cache.begin(); it != cache.end(); ++it)

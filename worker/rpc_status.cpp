@@ -1,6 +1,8 @@
 // Status code mapping.
 #include "worker/rpc_status.h"
 
+#include <chrono>
+
 #include "absl/strings/str_cat.h"
 
 namespace pf {
@@ -54,6 +56,11 @@ absl::StatusCode FromGrpcCode(grpc::StatusCode code) {
 }
 
 }  // namespace
+
+void SetDeadline(grpc::ClientContext* context, double seconds) {
+    context->set_deadline(std::chrono::system_clock::now() + std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                                                                   std::chrono::duration<double>(seconds)));
+}
 
 grpc::Status ToGrpcStatus(const absl::Status& status) {
     if (status.ok()) return grpc::Status::OK;

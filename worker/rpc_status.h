@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include <grpcpp/client_context.h>
 #include <grpcpp/support/status.h>
 
 #include "absl/status/status.h"
@@ -17,6 +18,8 @@ namespace pf {
 inline constexpr int kMaxMessageBytes = (1 << 30) + (16 << 20);
 
 grpc::Status ToGrpcStatus(const absl::Status& status);
+// A client call's deadline, `seconds` from now.
+void SetDeadline(grpc::ClientContext* context, double seconds);
 // `peer` names the other end in the message: "coordinator at 127.0.0.1:5000: ...".
 absl::Status FromGrpcStatus(const grpc::Status& status, const std::string& peer);
 
