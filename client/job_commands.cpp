@@ -106,12 +106,11 @@ void AddJobCommands(CLI::App& app, int* exit_code) {
     result->add_option("--out", result_options->out, "Write the image here (float RGB OpenEXR)")->required();
     result->add_option("--png", result_options->png, "Also write a tone-mapped PNG");
     result->callback([result_options, exit_code] {
-        for (const std::string* path : {&result_options->out, &result_options->png})
-            if (absl::Status status = CheckWritable(*path); !status.ok()) {
-                spdlog::error("{}", std::string(status.message()));
-                *exit_code = 1;
-                return;
-            }
+        if (absl::Status status = PrepareOutputs(result_options->out, result_options->png, ""); !status.ok()) {
+            spdlog::error("{}", std::string(status.message()));
+            *exit_code = 1;
+            return;
+        }
         Run(*result_options, exit_code, [&](FarmClient& client) -> absl::Status {
             absl::StatusOr<v1::GetResultResponse> response = client.GetResult(result_options->job_id);
             if (!response.ok()) return response.status();

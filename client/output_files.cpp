@@ -10,7 +10,9 @@
 #include "core/film/png_writer.h"
 
 namespace pf {
+namespace {
 
+// INVALID_ARGUMENT naming the path unless its folder exists and is writable ("" is fine).
 absl::Status CheckWritable(const std::string& path) {
     if (path.empty()) return absl::OkStatus();
     const std::filesystem::path parent = std::filesystem::absolute(path).parent_path();
@@ -20,12 +22,21 @@ absl::Status CheckWritable(const std::string& path) {
     return absl::OkStatus();
 }
 
+// INVALID_ARGUMENT unless `dir` exists or can be created ("" is fine).
 absl::Status MakeDirectory(const std::string& dir) {
     if (dir.empty()) return absl::OkStatus();
     std::error_code error;
     std::filesystem::create_directories(dir, error);
     if (error) return absl::InvalidArgumentError(absl::StrCat(dir, ": cannot create directory: ", error.message()));
     return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::Status PrepareOutputs(const std::string& exr, const std::string& png, const std::string& snapshot_dir) {
+    for (const std::string* path : {&exr, &png})
+        if (absl::Status status = CheckWritable(*path); !status.ok()) return status;
+    return MakeDirectory(snapshot_dir);
 }
 
 absl::Status WriteImageFiles(const Image& image, const ImageMetadata& metadata, const std::string& exr,

@@ -10,10 +10,9 @@
 
 namespace pf {
 
-// INVALID_ARGUMENT naming the path unless its folder exists and is writable ("" is fine).
-absl::Status CheckWritable(const std::string& path);
-// INVALID_ARGUMENT unless `dir` exists or can be created ("" is fine).
-absl::Status MakeDirectory(const std::string& dir);
+// Before any work: both image paths writable (either may be "") and the snapshot folder
+// made (may be ""). The first problem, naming the path.
+absl::Status PrepareOutputs(const std::string& exr, const std::string& png, const std::string& snapshot_dir);
 // Writes `exr` (float RGB with metadata) and, when `png` is not empty, a tone-mapped PNG;
 // logs each file written.
 absl::Status WriteImageFiles(const Image& image, const ImageMetadata& metadata, const std::string& exr,

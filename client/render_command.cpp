@@ -48,13 +48,7 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
 }
 
 int RunRender(const RenderOptions& options) {
-    for (const std::string* path : {&options.out, &options.png}) {
-        if (absl::Status status = CheckWritable(*path); !status.ok()) {
-            spdlog::error("{}", std::string(status.message()));
-            return 1;
-        }
-    }
-    if (absl::Status status = MakeDirectory(options.snapshot_dir); !status.ok()) {
+    if (absl::Status status = PrepareOutputs(options.out, options.png, options.snapshot_dir); !status.ok()) {
         spdlog::error("{}", std::string(status.message()));
         return 1;
     }

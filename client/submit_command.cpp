@@ -61,12 +61,7 @@ RenderProgress ProgressOf(const v1::JobStatus& status) {
 // job is done, 1 otherwise (cancelled, failed, or the coordinator lost); whatever image
 // arrived is written either way.
 int Follow(FarmClient& client, const WatchOptions& options) {
-    for (const std::string* path : {&options.out, &options.png})
-        if (absl::Status status = CheckWritable(*path); !status.ok()) {
-            spdlog::error("{}", std::string(status.message()));
-            return 1;
-        }
-    if (absl::Status status = MakeDirectory(options.snapshot_dir); !status.ok()) {
+    if (absl::Status status = PrepareOutputs(options.out, options.png, options.snapshot_dir); !status.ok()) {
         spdlog::error("{}", std::string(status.message()));
         return 1;
     }
