@@ -6,6 +6,7 @@
 // segments); the ratio is given for the photon pass alone and for whole batches.
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <chrono>
 #include <cstdio>
@@ -62,7 +63,8 @@ void BM_PhotonBatch(benchmark::State& state, const std::string& name, bool with_
     BenchScene& bench = Load(name);
     const PhotonPassInputs inputs{&bench.scene, bench.emitters.get(), bench.tracer.get(),
                                   bench.camera_pass.hit_points, &bench.grid, 1};
-    BatchScratch scratch;
+    PhotonPassScratch scratch;
+    tbb::task_arena one_thread(1);
     const BatchLayout layout;
     uint64_t segments = 0, photons = 0, epoch = 0;
     double seconds = 0;
@@ -70,7 +72,8 @@ void BM_PhotonBatch(benchmark::State& state, const std::string& name, bool with_
         BatchSpec spec = MakeBatchSpec(layout, epoch++, 0, static_cast<uint32_t>(bench.camera_pass.hit_points.size()));
         if (!with_direct) spec.direct_end = spec.direct_begin;
         const auto start = std::chrono::steady_clock::now();
-        const BatchResult result = RunPhotonBatch(inputs, spec, scratch);
+        BatchResult result;
+        one_thread.execute([&] { result = std::move(RunPhotonBatches(inputs, std::span(&spec, 1), scratch)[0]); });
         seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         segments += result.segments_traced;
         photons += result.photons_emitted;

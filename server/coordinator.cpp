@@ -202,7 +202,7 @@ std::shared_ptr<Job> Coordinator::PickJobLocked(Clock::time_point now) const {
     return best;
 }
 
-absl::StatusOr<CoordinatorLease> Coordinator::Lease(const std::string& worker_id, uint32_t max_batches,
+absl::StatusOr<CoordinatorLease> Coordinator::Lease(const std::string& worker_id, uint32_t chunks,
                                                     double wait_seconds) {
     std::unique_lock lock(mutex_);
     const Clock::time_point until = Clock::now() + Duration(wait_seconds);
@@ -216,7 +216,7 @@ absl::StatusOr<CoordinatorLease> Coordinator::Lease(const std::string& worker_id
             return absl::NotFoundError(absl::StrCat("worker_id: unknown worker '", worker_id, "'"));
         worker->second.last_seen = now;
         if (std::shared_ptr<Job> job = PickJobLocked(now)) {
-            Job::Lease granted = job->LeaseBatches(worker_id, max_batches, now, now + Duration(options_.lease_seconds));
+            Job::Lease granted = job->LeaseBatches(worker_id, chunks, now, now + Duration(options_.lease_seconds));
             if (!granted.batches.empty()) {
                 lease.grant = {job->Id(), std::move(granted.payload), granted.epoch->epoch, granted.epoch->radius_sq,
                                std::move(granted.batches)};

@@ -82,9 +82,10 @@ public:
     absl::Status Heartbeat(const std::string& worker_id);
     absl::StatusOr<uint32_t> UnregisterWorker(const std::string& worker_id);  // leases returned
     std::vector<WorkerView> ListWorkers() const;
-    // Up to `max_batches` batches of one job, the highest priority first, then the job with
-    // the fewest batches out; waits up to `wait_seconds` for work when there is none.
-    absl::StatusOr<CoordinatorLease> Lease(const std::string& worker_id, uint32_t max_batches, double wait_seconds);
+    // Batches of one job covering about `chunks` chunks (at least one batch), the highest
+    // priority first, then the job with the fewest batches out; waits up to `wait_seconds`
+    // for work when there is none.
+    absl::StatusOr<CoordinatorLease> Lease(const std::string& worker_id, uint32_t chunks, double wait_seconds);
     absl::StatusOr<TallyVerdict> Report(const std::string& worker_id, const std::string& job_id, BatchResult result);
     // A tally that failed to decode, counted with the refusals.
     void CountMalformed();

@@ -10,9 +10,9 @@ InProcessSource::~InProcessSource() {
     if (worker_id_.ok()) (void)coordinator_.UnregisterWorker(*worker_id_);
 }
 
-absl::StatusOr<WorkGrant> InProcessSource::Lease(uint32_t max_batches) {
+absl::StatusOr<WorkGrant> InProcessSource::Lease(uint32_t chunks) {
     if (!worker_id_.ok()) return worker_id_.status();
-    absl::StatusOr<CoordinatorLease> lease = coordinator_.Lease(*worker_id_, max_batches, wait_seconds_);
+    absl::StatusOr<CoordinatorLease> lease = coordinator_.Lease(*worker_id_, chunks, wait_seconds_);
     if (!lease.ok()) return lease.status();
     return std::move(lease->grant);
 }

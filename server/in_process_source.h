@@ -17,7 +17,7 @@ public:
     InProcessSource(Coordinator& coordinator, const WorkerRegistration& registration, double wait_seconds);
     ~InProcessSource() override;
 
-    absl::StatusOr<WorkGrant> Lease(uint32_t max_batches) override;
+    absl::StatusOr<WorkGrant> Lease(uint32_t chunks) override;
     absl::StatusOr<TallyVerdict> Report(const std::string& job_id, BatchResult result) override;
 
 private:

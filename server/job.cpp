@@ -92,7 +92,7 @@ bool Job::LeasableLocked(const Slot& slot, Clock::time_point now) const {
 
 uint32_t Job::Leasable(Clock::time_point now) const {
     std::lock_guard lock(mutex_);
-    if (state_ != JobState::kRunning || folding_) return 0;
+    if (state_ != JobState::kRunning) return 0;
     return static_cast<uint32_t>(std::count_if(slots_.begin(), slots_.end(), [&](const Slot& s) { return LeasableLocked(s, now); }));
 }
 
@@ -110,14 +110,16 @@ uint32_t Job::LeasedBy(const std::string& worker, Clock::time_point now) const {
     }));
 }
 
-Job::Lease Job::LeaseBatches(const std::string& worker, uint32_t max_batches, Clock::time_point now,
+Job::Lease Job::LeaseBatches(const std::string& worker, uint32_t chunks, Clock::time_point now,
                              Clock::time_point deadline) {
     std::lock_guard lock(mutex_);
     Lease lease;
     if (state_ != JobState::kRunning) return lease;
+    uint64_t granted = 0;
     for (Slot& slot : slots_) {
-        if (lease.batches.size() >= max_batches) break;
+        if (granted >= chunks) break;
         if (!LeasableLocked(slot, now)) continue;
+        granted += ChunkCount(slot.spec);
         slot.leased = true;
         slot.worker = worker;
         slot.deadline = deadline;

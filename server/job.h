@@ -103,8 +103,9 @@ public:
     uint32_t Leasable(Clock::time_point now) const;
     uint32_t Leased(Clock::time_point now) const;  // under a live lease
     uint32_t LeasedBy(const std::string& worker, Clock::time_point now) const;
-    // Leases up to `max_batches` slots to `worker` until `deadline`, lowest index first.
-    Lease LeaseBatches(const std::string& worker, uint32_t max_batches, Clock::time_point now, Clock::time_point deadline);
+    // Leases slots to `worker` until `deadline`, lowest index first, until their chunks cover
+    // `chunks` (at least one slot).
+    Lease LeaseBatches(const std::string& worker, uint32_t chunks, Clock::time_point now, Clock::time_point deadline);
     // A worker that left or went silent: its slots may be leased again at once.
     uint32_t ReleaseLeases(const std::string& worker);
 

@@ -15,7 +15,7 @@ namespace v1 = photonfarm::v1;
 // Blobs stream in chunks of this size (the proto promises at most 1 MiB).
 constexpr size_t kChunkBytes = size_t{1} << 20;
 // The most batches one lease may ask for.
-constexpr uint32_t kMaxBatchesPerLease = 1024;
+constexpr uint32_t kMaxChunksPerLease = 1 << 16;
 
 v1::TallyVerdict ToProto(TallyVerdict verdict) {
     switch (verdict) {
@@ -57,11 +57,11 @@ grpc::Status WorkService::UnregisterWorker(grpc::ServerContext*, const v1::Unreg
 
 grpc::Status WorkService::LeaseBatches(grpc::ServerContext*, const v1::LeaseBatchesRequest* request,
                                        v1::LeaseBatchesResponse* response) {
-    if (request->max_batches() == 0 || request->max_batches() > kMaxBatchesPerLease)
-        return ToGrpcStatus(absl::InvalidArgumentError(
-            absl::StrCat("max_batches: must lie in [1, ", kMaxBatchesPerLease, "]")));
+    if (request->chunks() == 0 || request->chunks() > kMaxChunksPerLease)
+        return ToGrpcStatus(
+            absl::InvalidArgumentError(absl::StrCat("chunks: must lie in [1, ", kMaxChunksPerLease, "]")));
     absl::StatusOr<CoordinatorLease> lease =
-        coordinator_.Lease(request->worker_id(), request->max_batches(), coordinator_.Options().lease_wait_seconds);
+        coordinator_.Lease(request->worker_id(), request->chunks(), coordinator_.Options().lease_wait_seconds);
     if (!lease.ok()) return ToGrpcStatus(lease.status());
     if (lease->grant.batches.empty()) {
         response->set_retry_seconds(0);  // the lease already waited for work: ask again at once

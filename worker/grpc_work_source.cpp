@@ -114,12 +114,12 @@ absl::Status GrpcWorkSource::Unregister() {
     return FromGrpcStatus(stub_->UnregisterWorker(&context, request, &response), address_);
 }
 
-absl::StatusOr<WorkGrant> GrpcWorkSource::Lease(uint32_t max_batches) {
+absl::StatusOr<WorkGrant> GrpcWorkSource::Lease(uint32_t chunks) {
     absl::StatusOr<std::string> id = WorkerId();
     if (!id.ok()) return id.status();
     v1::LeaseBatchesRequest request;
     request.set_worker_id(*id);
-    request.set_max_batches(max_batches);
+    request.set_chunks(chunks);
     v1::LeaseBatchesResponse response;
     grpc::ClientContext context;
     SetDeadline(&context, 60);

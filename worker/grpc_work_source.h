@@ -24,7 +24,7 @@ public:
     GrpcWorkSource(std::shared_ptr<grpc::Channel> channel, std::string address, WorkerRegistration registration,
                    std::string cache_dir);
 
-    absl::StatusOr<WorkGrant> Lease(uint32_t max_batches) override;
+    absl::StatusOr<WorkGrant> Lease(uint32_t chunks) override;
     absl::StatusOr<TallyVerdict> Report(const std::string& job_id, BatchResult result) override;
     // Registers first if needed. Thread-safe, like the rest of this class.
     absl::Status Heartbeat();

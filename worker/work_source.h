@@ -57,9 +57,10 @@ enum class TallyVerdict { kAccepted, kDuplicate, kStale, kJobGone };
 class WorkSource {
 public:
     virtual ~WorkSource() = default;
-    // Leases up to `max_batches` batches, waiting a short while for work to appear. An error
-    // means the source is unreachable or refuses this worker (the loop backs off and retries).
-    virtual absl::StatusOr<WorkGrant> Lease(uint32_t max_batches) = 0;
+    // Leases batches covering about `chunks` chunks (batch.h; at least one batch), waiting a
+    // short while for work to appear. An error means the source is unreachable or refuses
+    // this worker (the loop backs off and retries).
+    virtual absl::StatusOr<WorkGrant> Lease(uint32_t chunks) = 0;
     virtual absl::StatusOr<TallyVerdict> Report(const std::string& job_id, BatchResult result) = 0;
 };
 

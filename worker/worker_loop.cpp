@@ -14,8 +14,8 @@ constexpr size_t kBackendsKept = 4;
 
 }  // namespace
 
-WorkerLoop::WorkerLoop(WorkSource& source, std::string backend, uint32_t batches_per_lease)
-    : source_(source), backend_name_(std::move(backend)), batches_per_lease_(std::max(1u, batches_per_lease)) {}
+WorkerLoop::WorkerLoop(WorkSource& source, std::string backend, uint32_t chunks_per_lease)
+    : source_(source), backend_name_(std::move(backend)), chunks_per_lease_(std::max(1u, chunks_per_lease)) {}
 
 absl::StatusOr<WorkerLoop::JobBackend*> WorkerLoop::BackendFor(const WorkGrant& grant) {
     auto it = backends_.begin();
@@ -40,7 +40,7 @@ absl::StatusOr<WorkerLoop::JobBackend*> WorkerLoop::BackendFor(const WorkGrant& 
 }
 
 absl::StatusOr<size_t> WorkerLoop::Step() {
-    absl::StatusOr<WorkGrant> grant = source_.Lease(batches_per_lease_);
+    absl::StatusOr<WorkGrant> grant = source_.Lease(chunks_per_lease_);
     if (!grant.ok()) return grant.status();
     if (grant->batches.empty()) return 0;
     absl::StatusOr<JobBackend*> backend = BackendFor(*grant);

@@ -22,9 +22,9 @@ struct WorkerStats {
 
 class WorkerLoop {
 public:
-    // `batches_per_lease`: how many batches to ask for at once (they run in parallel on the
-    // calling TBB arena, so about the arena's thread count).
-    WorkerLoop(WorkSource& source, std::string backend, uint32_t batches_per_lease);
+    // `chunks_per_lease`: how many chunks of photons to ask for at once (they run in parallel
+    // on the calling TBB arena, so about the arena's thread count).
+    WorkerLoop(WorkSource& source, std::string backend, uint32_t chunks_per_lease);
 
     // One lease: runs and reports what it got. Returns the number of batches run, 0 when no
     // work was offered; errors from the source (unreachable) or the backend.
@@ -44,7 +44,7 @@ private:
 
     WorkSource& source_;
     std::string backend_name_;
-    uint32_t batches_per_lease_;
+    uint32_t chunks_per_lease_;
     std::list<JobBackend> backends_;  // most recently used first, a few jobs at most
     WorkerStats stats_;
 };

@@ -74,14 +74,15 @@ int main(int argc, char** argv) {
         std::string backend = "cpu";
         std::string cache_dir;
         std::string log_level = "info";
-        uint32_t batches_per_lease = 0;
+        uint32_t chunks_per_lease = 0;
         app.add_option("--coordinator", coordinator, "Coordinator address HOST:PORT")
             ->envname("PHOTONFARM_COORDINATOR")->required();
         app.add_option("--threads", threads, "Threads (default: all cores)")->check(CLI::Range(1, 4096));
         app.add_option("--backend", backend, "Photon backend")->default_val(backend)->check(CLI::IsMember(pf::BackendNames()));
         app.add_option("--cache-dir", cache_dir, "Keep fetched scenes and hit points here across restarts");
-        app.add_option("--batches-per-lease", batches_per_lease, "Batches to ask for at once (default: one per thread)")
-            ->check(CLI::Range(1, 1024));
+        app.add_option("--chunks-per-lease", chunks_per_lease,
+                       "Chunks of 2^19 photons to lease at once (default: one per thread)")
+            ->check(CLI::Range(1, 1 << 16));
         app.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")
             ->default_val(log_level)->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
         try {
@@ -113,7 +114,7 @@ int main(int argc, char** argv) {
         pf::GrpcWorkSource source(
             grpc::CreateCustomChannel(coordinator, grpc::InsecureChannelCredentials(), channel_args), coordinator,
             {backend, static_cast<uint32_t>(arena.max_concurrency()), std::string(pf::kPhotonfarmVersion), ""}, cache_dir);
-        pf::WorkerLoop loop(source, backend, batches_per_lease > 0 ? batches_per_lease : arena.max_concurrency());
+        pf::WorkerLoop loop(source, backend, chunks_per_lease > 0 ? chunks_per_lease : arena.max_concurrency());
 
         std::thread heartbeat_thread([&] {
             while (!stop.WaitFor(source.HeartbeatSeconds()))

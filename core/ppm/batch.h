@@ -23,6 +23,13 @@ struct BatchLayout {
     uint64_t PhotonsPerEpoch() const { return uint64_t{photons_per_batch} * batches_per_epoch; }
 };
 
+// A batch runs as chunks of this many photons (the last may be shorter): a worker spreads a
+// big batch over its threads, chunk by chunk, and sums the chunks' tallies in chunk order, so
+// a batch's tally does not depend on the thread count. Big batches are how a farm keeps the
+// coordinator's merge small (its cost is per tally entry, and a tally has at most one entry
+// per hit point however many photons went into it). Part of what fixes the image for a seed.
+inline constexpr uint32_t kPhotonsPerChunk = 1u << 19;
+
 struct BatchSpec {
     uint64_t index = 0;       // global batch index: epoch * batches_per_epoch + batch_in_epoch
     uint64_t epoch = 0;
@@ -31,6 +38,9 @@ struct BatchSpec {
     // direct estimate is refined progressively and shared out like the photons.
     uint32_t direct_begin = 0, direct_end = 0;
 };
+
+// How many chunks `spec` runs as.
+inline uint32_t ChunkCount(const BatchSpec& spec) { return (spec.photons + kPhotonsPerChunk - 1) / kPhotonsPerChunk; }
 
 // Batch `batch_in_epoch` of `epoch` for a job with `hit_point_count` hit points.
 BatchSpec MakeBatchSpec(const BatchLayout& layout, uint64_t epoch, uint32_t batch_in_epoch,

@@ -2,6 +2,10 @@
 // (Hachisuka et al. 2008, section 4.2; Jensen 2001 for the photon random walk).
 #include "core/ppm/photon_pass.h"
 
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 
 #include "core/math/frame.h"
@@ -9,6 +13,7 @@
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/specular.h"
+#include "core/util/check.h"
 #include "core/util/radix_sort.h"
 
 namespace pf {
@@ -98,21 +103,22 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     scratch.deposits.clear();
 }
 
-// Traces the batch's photons a packet at a time: each lane of the packet carries one path,
+// Traces photons [begin, end) of the batch a packet at a time: each lane of the packet carries one path,
 // and a lane whose path ends takes the next photon, so packets stay full. Every photon's
 // random numbers depend on its index alone, and lanes are filled in a fixed order, so the
 // deposits (and their order) depend only on the batch. Returns the segments traced.
-uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, BatchScratch& scratch) {
+uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t begin, uint32_t end,
+                      BatchScratch& scratch) {
     constexpr int kLanes = Tracer::kPacketSize;
     PhotonPath paths[kLanes];
     Ray rays[kLanes] = {};
     RayHit hits[kLanes];
     bool active[kLanes], found[kLanes];
     const SeedFamily seeds(inputs.seed, kPhotonStream, spec.index);
-    uint32_t next = 0;
+    uint32_t next = begin;
     int live = 0;
     for (int lane = 0; lane < kLanes; ++lane) {
-        active[lane] = next < spec.photons;
+        active[lane] = next < end;
         if (active[lane]) paths[lane] = StartPhoton(inputs, seeds, next++), ++live;
     }
     uint64_t segments = 0;
@@ -124,15 +130,15 @@ uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, Bat
             if (!active[lane]) continue;
             ++segments;
             if (found[lane] && ScatterPhoton(inputs, hits[lane], paths[lane], scratch.deposits)) continue;
-            if (next < spec.photons) {
+            if (next < end) {
                 paths[lane] = StartPhoton(inputs, seeds, next++);
             } else {
                 active[lane] = false;
                 --live;
             }
         }
-        // Bounded memory however long the paths (albedo near 1): gather in chunks, at points
-        // fixed by the batch alone, so the sums stay deterministic.
+        // Bounded memory however long the paths (albedo near 1): gather in parts, at points
+        // fixed by the chunk alone, so the sums stay deterministic.
         if (scratch.deposits.size() >= kMaxPendingDeposits) GatherDeposits(inputs, scratch);
     }
     return segments;
@@ -140,19 +146,73 @@ uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, Bat
 
 }  // namespace
 
-BatchResult RunPhotonBatch(const PhotonPassInputs& inputs, const BatchSpec& spec, BatchScratch& scratch) {
-    BatchResult result;
-    result.spec = spec;
+ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t chunk, BatchScratch& scratch) {
+    PF_CHECK(chunk < ChunkCount(spec));
+    const uint32_t begin = chunk * kPhotonsPerChunk;
+    const uint32_t end = std::min(spec.photons, begin + kPhotonsPerChunk);
     scratch.tally.Resize(inputs.hit_points.size());
     scratch.deposits.clear();
-    result.segments_traced = TracePhotons(inputs, spec, scratch);
+    ChunkResult result;
+    result.segments_traced = TracePhotons(inputs, spec, begin, end, scratch);
     GatherDeposits(inputs, scratch);
-    result.photons_emitted = spec.photons;
     result.tally = scratch.tally.Extract();
-    result.direct.resize(spec.direct_end - spec.direct_begin);
-    SampleDirectLight(*inputs.emitters, *inputs.tracer, inputs.hit_points, spec.direct_begin, inputs.seed, spec.epoch,
-                      result.direct);
     return result;
+}
+
+std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs, std::span<const BatchSpec> specs,
+                                          PhotonPassScratch& scratch) {
+    std::vector<BatchResult> results(specs.size());
+    // Chunks flow through a pipeline: handed out in (batch, chunk) order, run in parallel,
+    // and summed into their batch in that same order by one stage at a time. A batch of one
+    // chunk keeps its chunk's tally as it is. At most a few chunks per thread are in flight.
+    struct Item {
+        size_t batch = 0;
+        uint32_t chunk = 0;
+        ChunkResult result;
+    };
+    size_t next_batch = 0;
+    uint32_t next_chunk = 0;
+    const size_t tokens = 2 * static_cast<size_t>(tbb::this_task_arena::max_concurrency());
+    tbb::parallel_pipeline(
+        tokens,
+        tbb::make_filter<void, Item>(tbb::filter_mode::serial_in_order,
+                                     [&](tbb::flow_control& control) {
+                                         while (next_batch < specs.size() && next_chunk >= ChunkCount(specs[next_batch]))
+                                             ++next_batch, next_chunk = 0;
+                                         if (next_batch == specs.size()) {
+                                             control.stop();
+                                             return Item{};
+                                         }
+                                         return Item{next_batch, next_chunk++, {}};
+                                     }) &
+            tbb::make_filter<Item, Item>(tbb::filter_mode::parallel,
+                                         [&](Item item) {
+                                             item.result = RunPhotonChunk(inputs, specs[item.batch], item.chunk,
+                                                                          scratch.threads.local());
+                                             return item;
+                                         }) &
+            tbb::make_filter<Item, void>(tbb::filter_mode::serial_in_order, [&](Item item) {
+                BatchResult& result = results[item.batch];
+                const uint32_t chunks = ChunkCount(specs[item.batch]);
+                result.segments_traced += item.result.segments_traced;
+                if (chunks == 1) {
+                    result.tally = std::move(item.result.tally);
+                    return;
+                }
+                scratch.combined.Resize(inputs.hit_points.size());
+                scratch.combined.Add(item.result.tally);
+                if (item.chunk + 1 == chunks) result.tally = scratch.combined.Extract();
+            }));
+    tbb::parallel_for(size_t{0}, specs.size(), [&](size_t i) {
+        const BatchSpec& spec = specs[i];
+        BatchResult& result = results[i];
+        result.spec = spec;
+        result.photons_emitted = spec.photons;
+        result.direct.resize(spec.direct_end - spec.direct_begin);
+        SampleDirectLight(*inputs.emitters, *inputs.tracer, inputs.hit_points, spec.direct_begin, inputs.seed,
+                          spec.epoch, result.direct);
+    });
+    return results;
 }
 
 }  // namespace pf

@@ -2,6 +2,8 @@
 // within their current radius, plus the batch's slice of direct-light samples).
 #pragma once
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -49,7 +51,27 @@ struct BatchScratch {
     std::vector<uint64_t> sort_scratch;
 };
 
-// Runs one batch: traces its photons, then gathers their deposits at the hit points.
-BatchResult RunPhotonBatch(const PhotonPassInputs& inputs, const BatchSpec& spec, BatchScratch& scratch);
+// Working memory for RunPhotonBatches, kept across calls: one BatchScratch per thread, and
+// the sums of the batch whose chunks are being combined.
+struct PhotonPassScratch {
+    tbb::enumerable_thread_specific<BatchScratch> threads;
+    TallyAccumulator combined;
+};
+
+// What one chunk of a batch found.
+struct ChunkResult {
+    Tally tally;
+    uint64_t segments_traced = 0;
+};
+
+// Chunk `chunk` of batch `spec` (photons [chunk, chunk + 1) x kPhotonsPerChunk of it): traces
+// its photons, then gathers their deposits at the hit points.
+ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t chunk, BatchScratch& scratch);
+
+// Runs the batches on the calling TBB arena: every chunk of every batch in parallel, each
+// batch's chunk tallies summed in chunk order, and each batch's slice of direct-light
+// samples. Results in the order of `specs`, each a pure function of its spec.
+std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs, std::span<const BatchSpec> specs,
+                                          PhotonPassScratch& scratch);
 
 }  // namespace pf

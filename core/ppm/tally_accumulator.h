@@ -1,5 +1,5 @@
-// Per-thread scratch that sums a batch's photon contributions densely, then hands them out as
-// a sparse, sorted Tally. Sums for each hit point are added in photon order, so a batch's
+// Per-thread scratch that sums a batch's photon contributions (or its chunks' tallies)
+// densely, then hands them out as a sparse, sorted Tally. Sums for each hit point are added in photon order, so a batch's
 // tally is bit-identical however batches are scheduled. Not thread-safe: one per thread.
 // The hot loop adds raw photon flux in float (16 bytes a hit point, one cache line per hit);
 // the hit point's constant BSDF weight is applied once per hit point by the merge. Float is
@@ -21,6 +21,16 @@ public:
         Sum& sum = sums_[hit_point];
         if (sum.photons++ == 0) touched_.push_back(hit_point);
         sum.flux += flux;
+    }
+    // Adds a chunk's tally entry by entry: chunks added in chunk order give the same sums
+    // whoever ran them.
+    void Add(const Tally& tally) {
+        for (size_t e = 0; e < tally.Size(); ++e) {
+            Sum& sum = sums_[tally.hit_point[e]];
+            if (sum.photons == 0) touched_.push_back(tally.hit_point[e]);
+            sum.photons += tally.photons[e];
+            sum.flux += tally.flux[e];
+        }
     }
     // Moves the sums out as a tally and leaves the accumulator empty.
     Tally Extract();

@@ -206,10 +206,10 @@ public:
         EXPECT_TRUE(stub_->RegisterWorker(&context, request, &response).ok());
         id_ = response.worker_id();
     }
-    grpc::Status Lease(uint32_t max, v1::LeaseBatchesResponse* response) {
+    grpc::Status Lease(uint32_t chunks, v1::LeaseBatchesResponse* response) {
         v1::LeaseBatchesRequest request;
         request.set_worker_id(id_);
-        request.set_max_batches(max);
+        request.set_chunks(chunks);
         grpc::ClientContext context;
         return stub_->LeaseBatches(&context, request, response);
     }
@@ -273,7 +273,7 @@ TEST_F(FarmTest, MalformedRequestsNameTheField) {
     v1::LeaseBatchesResponse response;
     const grpc::Status lease = worker.Lease(0, &response);
     EXPECT_EQ(lease.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
-    EXPECT_NE(lease.error_message().find("max_batches"), std::string::npos) << lease.error_message();
+    EXPECT_NE(lease.error_message().find("chunks"), std::string::npos) << lease.error_message();
     EXPECT_TRUE(absl::IsNotFound(client_->Cancel("job-none").status()));
 }
 

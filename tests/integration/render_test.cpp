@@ -137,6 +137,21 @@ TEST(RenderTest, SameSeedGivesBitIdenticalImagesForOneAndTwoThreads) {
     }
 }
 
+TEST(RenderTest, BatchesOfSeveralChunksGiveTheSameImageForOneAndTwoThreads) {
+    // One batch per epoch of two chunks and a short third: on two threads its chunks run at
+    // once and are summed in chunk order, as one thread runs them one after the other.
+    RenderSettings settings = SmallRender("cornell-box.gltf", 0, 1);
+    settings.job.layout = {2 * kPhotonsPerChunk + 4096, 1};
+    settings.job.photon_budget = settings.job.layout.PhotonsPerEpoch();
+    const absl::StatusOr<RenderOutcome> one = RenderLocally(settings);
+    settings.threads = 2;
+    const absl::StatusOr<RenderOutcome> two = RenderLocally(settings);
+    ASSERT_TRUE(one.ok() && two.ok());
+    EXPECT_EQ(one->progress.photons, settings.job.layout.PhotonsPerEpoch());
+    EXPECT_EQ(std::memcmp(one->image.pixels.data(), two->image.pixels.data(), one->image.pixels.size() * sizeof(Rgb)),
+              0);
+}
+
 TEST(RenderTest, DifferentSeedsGiveDifferentImages) {
     RenderSettings a = SmallRender("cornell-box.gltf", 200'000, 2), b = a;
     b.job.seed = a.job.seed + 1;

@@ -1,8 +1,6 @@
 // CPU batch execution.
 #include "worker/backends/cpu_embree/cpu_backend.h"
 
-#include <tbb/parallel_for.h>
-
 #include "absl/strings/str_cat.h"
 #include "core/ppm/photon_pass.h"
 #include "core/util/check.h"
@@ -23,14 +21,7 @@ void CpuBackend::BeginEpoch(std::span<const float> radius_sq) {
 }
 
 std::vector<BatchResult> CpuBackend::RunBatches(std::span<const BatchSpec> specs) {
-    const PhotonPassInputs inputs{job_.scene, job_.emitters, &tracer_, job_.hit_points, &grid_, job_.seed};
-    std::vector<BatchResult> results(specs.size());
-    // One batch per task: a batch's result is a pure function of its spec, so any thread
-    // may run any batch.
-    tbb::parallel_for(size_t{0}, specs.size(), [&](size_t i) {
-        results[i] = RunPhotonBatch(inputs, specs[i], scratch_.local());
-    });
-    return results;
+    return RunPhotonBatches({job_.scene, job_.emitters, &tracer_, job_.hit_points, &grid_, job_.seed}, specs, scratch_);
 }
 
 }  // namespace pf::embree

@@ -1,8 +1,6 @@
-// The CPU photon backend: batches run in parallel on the calling TBB arena, photons traced
-// through a Tracer (Embree), gathered through a hit-point hash grid rebuilt each epoch.
+// The CPU photon backend: batches' chunks run in parallel on the calling TBB arena, photons
+// traced through a Tracer (Embree), gathered through a hit-point hash grid rebuilt each epoch.
 #pragma once
-
-#include <tbb/enumerable_thread_specific.h>
 
 #include <vector>
 
@@ -27,7 +25,7 @@ private:
     const Tracer& tracer_;
     JobInputs job_;
     HashGrid grid_;
-    tbb::enumerable_thread_specific<BatchScratch> scratch_;
+    PhotonPassScratch scratch_;
 };
 
 }  // namespace pf::embree
