@@ -2,8 +2,9 @@
 // of 8 batches of 2^19 photons) are recorded once, then replayed through the coordinator's
 // path: decoding the wire message (as ReportTally does) and folding into the estimate, then
 // finishing the epoch. Prints hit-point updates (tally entries) per second, the entries a
-// batch produces per photon, and from both how many 16-core workers one coordinator can keep
-// merged at full speed (the arithmetic is in docs/farm.md).
+// batch produces per photon at the default batch size and at a farm's (2^24 photons, one
+// batch recorded), and from both how many 16-core workers one coordinator can keep merged at
+// full speed (the arithmetic is in docs/farm.md).
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
@@ -34,7 +35,11 @@ struct Recorded {
     double radii_bytes = 0, hit_point_bytes = 0;  // blob sizes per hit point
     double batch_seconds = 0;      // one batch on one thread
     uint64_t entries = 0;
+    double farm_entries_per_photon = 0, farm_wire_bytes_per_photon = 0;  // a batch of kFarmBatch photons
 };
+
+// A farm's batch: 32 chunks, spread over a worker's threads and summed there.
+constexpr uint32_t kFarmBatch = 1u << 24;
 
 Recorded& Record() {
     static std::unique_ptr<Recorded> recorded;
@@ -67,6 +72,13 @@ Recorded& Record() {
     for (int epoch = 1; epoch < 4; ++epoch) {
         backend->BeginEpoch(estimate.SearchRadiusSq());
         estimate.MergeEpoch(backend->RunBatches(estimate.EpochBatches()));
+    }
+    {
+        BatchSpec farm = estimate.EpochBatches()[0];
+        farm.photons = kFarmBatch;
+        const BatchResult result = std::move(backend->RunBatches(std::span(&farm, 1))[0]);
+        r.farm_entries_per_photon = double(result.tally.Size()) / kFarmBatch;
+        r.farm_wire_bytes_per_photon = double(ToProto(result).ByteSizeLong()) / kFarmBatch;
     }
     r.radii_bytes = double(EncodeFloats(estimate.SearchRadiusSq()).size()) / estimate.HitPoints().size();
     r.hit_point_bytes = double(EncodeHitPoints(estimate.HitPoints()).size()) / estimate.HitPoints().size();
@@ -138,7 +150,9 @@ int main(int argc, char** argv) {
     // Every report is decoded on some thread and folded with all of them: per update, the
     // decode's share of the threads plus the fold.
     const double coordinator_rate = 1.0 / (1.0 / (reporter.decode * threads) + 1.0 / reporter.merge_all);
-    const double worker_rate = 16.0 * r.results[0].photons_emitted / r.batch_seconds * entries_per_photon;
+    const double photons_per_core = r.results[0].photons_emitted / r.batch_seconds;
+    const double worker_rate = 16.0 * photons_per_core * entries_per_photon;
+    const double farm_worker_rate = 16.0 * photons_per_core * r.farm_entries_per_photon;
     std::printf("\nmerge: %.3g hit-point updates/s on 1 thread, %.3g on %d; decode: %.3g/s per thread; "
                 "coordinator on %d threads: %.3g/s\n",
                 reporter.merge_one, reporter.merge_all, threads, reporter.decode, threads, coordinator_rate);
@@ -147,8 +161,11 @@ int main(int argc, char** argv) {
                 r.results[0].photons_emitted / r.batch_seconds, entries_per_photon, wire_bytes / photons, wire_bytes / r.entries);
     std::printf("blobs: hit points %.2f bytes each (once per job), squared radii %.2f bytes each (once per epoch)\n",
                 r.hit_point_bytes, r.radii_bytes);
-    std::printf("a 16-core worker: %.3g updates/s; this coordinator (%d threads) merges for %.1f such workers, "
-                "a 16-thread one for about %.0f (scaled by threads)\n",
-                worker_rate, threads, coordinator_rate / worker_rate, coordinator_rate / worker_rate * 16.0 / threads);
+    std::printf("a batch of 2^24 photons (a farm's layout): %.4f tally entries per photon, %.3f wire bytes per photon\n",
+                r.farm_entries_per_photon, r.farm_wire_bytes_per_photon);
+    for (const auto& [layout, rate] : {std::pair{"2^19-photon batches", worker_rate}, {"2^24-photon batches", farm_worker_rate}})
+        std::printf("%s: a 16-core worker makes %.3g updates/s; this coordinator (%d threads) merges for %.1f such "
+                    "workers, a 16-thread one for about %.0f (scaled by threads)\n",
+                    layout, rate, threads, coordinator_rate / rate, coordinator_rate / rate * 16.0 / threads);
     return 0;
 }

@@ -9,8 +9,10 @@
 #include "client/job_commands.h"
 #include "client/render_command.h"
 #include "client/submit_command.h"
+#include "core/util/allocator.h"
 
 int main(int argc, char** argv) {
+    pf::KeepLargeBuffersForReuse();
     try {
         CLI::App app{"photonfarm: progressive photon mapping, on one machine or a render farm"};
         app.require_subcommand(1);

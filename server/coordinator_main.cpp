@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "core/util/allocator.h"
 #include "server/coordinator.h"
 #include "server/coordinator_server.h"
 
@@ -35,6 +36,7 @@ void BlockStopSignals() {
 }  // namespace
 
 int main(int argc, char** argv) {
+    pf::KeepLargeBuffersForReuse();
     try {
         spdlog::set_default_logger(spdlog::stderr_color_mt("photonfarm-coordinator"));
         spdlog::set_pattern("photonfarm-coordinator: %^%l%$: %v");

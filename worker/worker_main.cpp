@@ -18,6 +18,7 @@
 #include <random>
 #include <thread>
 
+#include "core/util/allocator.h"
 #include "worker/backend_factory.h"
 #include "worker/grpc_work_source.h"
 #include "worker/rpc_status.h"
@@ -65,6 +66,7 @@ bool Retryable(const absl::Status& status) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    pf::KeepLargeBuffersForReuse();
     try {
         spdlog::set_default_logger(spdlog::stderr_color_mt("photonfarm-worker"));
         spdlog::set_pattern("photonfarm-worker: %^%l%$: %v");
