@@ -14,6 +14,10 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
                         ->transform(count);
     command->add_option("--seconds", s->seconds_budget, "Time budget in seconds (finishes the epoch that reaches it)")
         ->check(CLI::PositiveNumber)->excludes(photons);
+    command->add_option("--target-error", s->target_error,
+                        "Stop once the estimated relative error (from even and odd batches) is at most this, e.g. "
+                        "0.02; with --photons or --seconds, whichever comes first")
+        ->check(CLI::Range(1e-9, 999.0));
     command->add_option("--photons-per-batch", s->layout.photons_per_batch, "Photon paths per batch, the unit of work")
         ->default_val(s->layout.photons_per_batch)->check(CLI::Range(1u, kMaxPhotonsPerBatch));
     command->add_option("--batches-per-epoch", s->layout.batches_per_epoch,
@@ -32,7 +36,7 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
 }
 
 void ApplyDefaultBudget(JobSpec* spec) {
-    if (spec->photon_budget == 0 && spec->seconds_budget == 0) spec->photon_budget = 20'000'000;
+    if (spec->photon_budget == 0 && spec->seconds_budget == 0 && spec->target_error == 0) spec->photon_budget = 20'000'000;
 }
 
 }  // namespace pf

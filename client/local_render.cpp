@@ -36,10 +36,13 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
         outcome->initial_radius = submitted->initial_radius;
         const std::shared_ptr<Job> job = *coordinator.FindJob(submitted->job_id);
 
-        // The worker leases a whole epoch at a time: its batches run in parallel on this arena.
+        // The worker leases a whole epoch at a time: its batches' chunks run in parallel on
+        // this arena.
         InProcessSource source(coordinator, {"cpu", static_cast<uint32_t>(arena.max_concurrency()),
                                              std::string(kPhotonfarmVersion), ""}, 0.0);
-        WorkerLoop worker(source, "cpu", spec.layout.batches_per_epoch);
+        const uint64_t epoch_chunks = uint64_t{spec.layout.batches_per_epoch} *
+                                      ChunkCount(MakeBatchSpec(spec.layout, 0, 0, 0));
+        WorkerLoop worker(source, "cpu", static_cast<uint32_t>(std::min<uint64_t>(epoch_chunks, UINT32_MAX)));
         uint64_t version = job->Version();
         RenderProgress& progress = outcome->progress;
         while (job->Progress(Clock::now()).state == JobState::kRunning) {
@@ -58,7 +61,8 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
             progress.photons = state.photons;
             progress.segments = worker.Stats().segments;
             progress.seconds = elapsed();
-            progress.fraction = state.state == JobState::kDone ? 1.0 : BudgetFraction(spec, progress.photons, progress.seconds);
+            progress.estimated_error = state.estimated_error;
+            progress.fraction = state.state == JobState::kDone ? 1.0 : state.budget_fraction;
             if (on_epoch) on_epoch(progress, *job);
         }
         outcome->image = *job->CurrentImage();

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "absl/status/statusor.h"
@@ -29,6 +30,7 @@ struct RenderProgress {
     double seconds = 0;     // since the camera pass began
     double fraction = 0;    // of the budget, in [0, 1]
     uint32_t workers = 0;   // workers active on a farm job (0: not shown)
+    std::optional<double> estimated_error;  // relative, from the half-estimates, once known
 };
 
 struct RenderOutcome {

@@ -23,6 +23,7 @@ std::string Status(const RenderProgress& p) {
     const double rate = p.seconds > 0 ? p.photons / p.seconds : 0;
     std::string status = absl::StrFormat("%s photons, epoch %d, %.1f s, %s photons/s", Count(double(p.photons)),
                                          p.epochs, p.seconds, Count(rate));
+    if (p.estimated_error) status += absl::StrFormat(", error ~%.2g%%", 100 * *p.estimated_error);
     if (p.workers > 0) status += absl::StrFormat(", %d workers", p.workers);
     return status;
 }

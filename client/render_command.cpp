@@ -39,6 +39,9 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
             {"photonfarm:photons", absl::StrCat(outcome.progress.photons)},
             {"photonfarm:epochs", absl::StrCat(outcome.progress.epochs)},
             {"photonfarm:seconds", absl::StrFormat("%.3f", outcome.progress.seconds)},
+            {"photonfarm:estimated_error", outcome.progress.estimated_error
+                                               ? absl::StrFormat("%.4g", *outcome.progress.estimated_error)
+                                               : "unknown"},
             {"photonfarm:seed", absl::StrCat(s.job.seed)},
             {"photonfarm:alpha", absl::StrFormat("%.17g", s.job.alpha)},
             {"photonfarm:initial_radius", absl::StrFormat("%.9g", outcome.initial_radius)},

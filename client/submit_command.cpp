@@ -44,7 +44,9 @@ ImageMetadata SnapshotMetadata(const v1::JobStatus& status) {
             {"photonfarm:scene", status.name()},
             {"photonfarm:photons", absl::StrCat(status.photons())},
             {"photonfarm:epochs", absl::StrCat(status.epochs())},
-            {"photonfarm:seconds", absl::StrFormat("%.3f", status.elapsed_seconds())}};
+            {"photonfarm:seconds", absl::StrFormat("%.3f", status.elapsed_seconds())},
+            {"photonfarm:estimated_error",
+             status.has_estimated_error() ? absl::StrFormat("%.4g", status.estimated_error()) : "unknown"}};
 }
 
 RenderProgress ProgressOf(const v1::JobStatus& status) {
@@ -54,6 +56,7 @@ RenderProgress ProgressOf(const v1::JobStatus& status) {
     progress.seconds = status.elapsed_seconds();
     progress.fraction = status.budget_fraction();
     progress.workers = status.workers_active();
+    if (status.has_estimated_error()) progress.estimated_error = status.estimated_error();
     return progress;
 }
 

@@ -190,6 +190,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
         // Every batch of the epoch is folded: update the estimate and start the next epoch.
         std::vector<float> radius_sq;
         uint64_t photons = 0;
+        ErrorEstimate error;
         lock.unlock();
         {
             std::lock_guard estimate_lock(estimate_mutex_);
@@ -197,15 +198,17 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
                 estimate_->FinishEpoch();
                 radius_sq = estimate_->SearchRadiusSq();
                 photons = estimate_->PhotonsEmitted();
+                error = estimate_->EstimateError();
             }
         }
         lock.lock();
         if (state_ != JobState::kRunning) break;
         ++epochs_merged_;
         photons_merged_ = photons;
+        if (error.known) estimated_error_ = error.RelativeError();
         ++version_;
         finished = true;
-        if (BudgetFraction(spec_, photons_merged_, Seconds(now - started_)) >= 1.0) {
+        if (BudgetFraction(spec_, photons_merged_, Seconds(now - started_), estimated_error_) >= 1.0) {
             EndLocked(JobState::kDone, "", now);
             break;
         }
@@ -271,7 +274,9 @@ JobProgress Job::Progress(Clock::time_point now) const {
     const Clock::time_point end = state_ == JobState::kRunning ? now : ended_;
     progress.elapsed_seconds = Seconds(end - started_);
     progress.photons_per_second = progress.elapsed_seconds > 0 ? photons_merged_ / progress.elapsed_seconds : 0;
-    progress.budget_fraction = state_ == JobState::kDone ? 1.0 : BudgetFraction(spec_, photons_merged_, progress.elapsed_seconds);
+    progress.budget_fraction =
+        state_ == JobState::kDone ? 1.0 : BudgetFraction(spec_, photons_merged_, progress.elapsed_seconds, estimated_error_);
+    progress.estimated_error = estimated_error_;
     for (const auto& [worker, seen] : workers_seen_)
         if (now - seen < kActiveWindow) ++progress.workers_active;
     progress.message = message_;

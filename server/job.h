@@ -65,6 +65,7 @@ struct JobProgress {
     double elapsed_seconds = 0;
     double photons_per_second = 0;
     double budget_fraction = 0;
+    std::optional<double> estimated_error;  // relative (ErrorEstimate::RelativeError), once known
     uint32_t workers_active = 0;
     std::string message;  // why it failed or was cancelled
 };
@@ -161,6 +162,7 @@ private:
     Clock::time_point ended_{};
     uint64_t version_ = 0;
     uint64_t epochs_merged_ = 0, photons_merged_ = 0;
+    std::optional<double> estimated_error_;
     std::shared_ptr<const JobPayload> payload_;
     std::shared_ptr<const LazyBlob> scene_blob_, hit_points_blob_;
     std::shared_ptr<const EpochInputs> epoch_;

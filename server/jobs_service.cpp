@@ -39,6 +39,7 @@ v1::JobStatus ToProto(const JobProgress& progress) {
     status.set_priority(progress.priority);
     status.set_hit_points(progress.hit_points);
     status.set_budget_fraction(progress.budget_fraction);
+    if (progress.estimated_error) status.set_estimated_error(*progress.estimated_error);
     status.set_message(progress.message);
     return status;
 }

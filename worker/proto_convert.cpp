@@ -137,6 +137,7 @@ photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
     out.set_samples_per_pixel(spec.samples_per_pixel);
     out.set_photon_budget(spec.photon_budget);
     out.set_seconds_budget(spec.seconds_budget);
+    out.set_target_error(spec.target_error);
     out.set_alpha(spec.alpha);
     out.set_initial_radius(spec.initial_radius);
     out.set_seed(spec.seed);
@@ -163,10 +164,7 @@ absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings) {
     spec.seed = settings.seed();
     if (settings.photons_per_batch() != 0) spec.layout.photons_per_batch = settings.photons_per_batch();
     if (settings.batches_per_epoch() != 0) spec.layout.batches_per_epoch = settings.batches_per_epoch();
-    if (settings.target_error() != 0)
-        return absl::UnimplementedError(
-            "settings.target_error: stopping at a target error needs the error estimator, which this coordinator "
-            "does not have yet; give photon_budget or seconds_budget");
+    spec.target_error = settings.target_error();
     if (absl::Status status = CheckJobSpec(spec, SettingNames::kFields); !status.ok()) return status;
     return spec;
 }

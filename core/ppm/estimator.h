@@ -25,14 +25,18 @@ struct PointEstimate {
 // multiplied by the hit point's BSDF weight). Eq. 7-10 of Hachisuka et al. 2008:
 //   N' = N + alpha M,  R'^2 = R^2 (N + alpha M) / (N + M),  tau' = (tau + Phi_M) R'^2 / R^2.
 // M = 0 leaves the estimate unchanged; alpha in (0, 1].
+// The area's shrink R'^2 / R^2 = (N + alpha M) / (N + M), in [alpha, 1]; 1 when M = 0.
+inline double ShrinkRatio(const PointEstimate& estimate, double new_photons, double alpha) {
+    PF_DCHECK(alpha > 0 && alpha <= 1 && new_photons >= 0);
+    if (new_photons <= 0) return 1.0;
+    return (estimate.photon_count + alpha * new_photons) / (estimate.photon_count + new_photons);
+}
+
 inline PointEstimate UpdateEstimate(const PointEstimate& estimate, double new_photons,
                                     const Rgbd& new_flux, double alpha) {
-    PF_DCHECK(alpha > 0 && alpha <= 1 && new_photons >= 0);
     if (new_photons <= 0) return estimate;
-    const double total = estimate.photon_count + new_photons;
-    const double next_count = estimate.photon_count + alpha * new_photons;
-    const double ratio = next_count / total;  // in [alpha, 1]
-    return {next_count, estimate.radius_sq * ratio, (estimate.flux + new_flux) * ratio};
+    const double ratio = ShrinkRatio(estimate, new_photons, alpha);
+    return {estimate.photon_count + alpha * new_photons, estimate.radius_sq * ratio, (estimate.flux + new_flux) * ratio};
 }
 
 // Reflected radiance estimate tau / (pi R^2 N_emitted), with N_emitted counting every emitted

@@ -31,9 +31,12 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
                        absl::StrCat("must lie in [1, ", kMaxBatchesPerEpoch, "]"));
     if (!(s.seconds_budget >= 0 && std::isfinite(s.seconds_budget)))
         return invalid("--seconds", "settings.seconds_budget", "must be positive and finite");
-    if (s.photon_budget == 0 && s.seconds_budget == 0)
-        return absl::InvalidArgumentError(flags ? "give a budget: --photons N or --seconds S"
-                                                : "settings: give a budget (photon_budget or seconds_budget)");
+    if (!(s.target_error >= 0 && s.target_error < 1e3))
+        return invalid("--target-error", "settings.target_error", "must lie in [0, 1000) (a relative error, 0.01 = 1%)");
+    if (s.photon_budget == 0 && s.seconds_budget == 0 && s.target_error == 0)
+        return absl::InvalidArgumentError(
+            flags ? "give a budget: --photons N, --seconds S or --target-error E"
+                  : "settings: give a budget (photon_budget, seconds_budget or target_error)");
     return absl::OkStatus();
 }
 
@@ -62,10 +65,15 @@ EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera
     return estimate;
 }
 
-double BudgetFraction(const JobSpec& spec, uint64_t photons, double seconds) {
+double BudgetFraction(const JobSpec& spec, uint64_t photons, double seconds, std::optional<double> estimated_error) {
     const double by_photons = spec.photon_budget > 0 ? double(photons) / double(spec.photon_budget) : 0.0;
     const double by_time = spec.seconds_budget > 0 ? seconds / spec.seconds_budget : 0.0;
-    return std::min(1.0, std::max(by_photons, by_time));
+    double by_error = 0.0;
+    if (spec.target_error > 0 && estimated_error) {
+        const double ratio = spec.target_error / *estimated_error;
+        by_error = *estimated_error <= spec.target_error ? 1.0 : ratio * ratio;
+    }
+    return std::min(1.0, std::max({by_photons, by_time, by_error}));
 }
 
 }  // namespace pf

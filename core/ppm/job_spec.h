@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include "absl/status/status.h"
@@ -25,6 +26,9 @@ struct JobSpec {
     BatchLayout layout;
     uint64_t photon_budget = 0;  // stop after the epoch that reaches it (0: no limit)
     double seconds_budget = 0;   // stop after the epoch that reaches it (0: no limit)
+    // Stop after the epoch whose estimated relative error (ErrorEstimate::RelativeError) is
+    // at most this (0: no target).
+    double target_error = 0;
 };
 
 // Hit points cost about this much memory each across the estimate (~140 bytes), the grid (8
@@ -51,6 +55,8 @@ absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Camera& ca
 EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass, const Scene& scene,
                              const std::string& scene_name);
 // The share of the budget spent, in [0, 1]; 1 ends the render after the current epoch.
-double BudgetFraction(const JobSpec& spec, uint64_t photons, double seconds);
+// `estimated_error`: the current relative error estimate, if known yet. Toward a target error
+// the share is (target / error)^2, since the squared error falls as 1 / photons.
+double BudgetFraction(const JobSpec& spec, uint64_t photons, double seconds, std::optional<double> estimated_error);
 
 }  // namespace pf

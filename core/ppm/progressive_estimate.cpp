@@ -20,8 +20,11 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass, const Est
     const double radius_sq = settings.initial_radius * settings.initial_radius;
     points_.assign(hit_points_->size(), PointEstimate{0.0, radius_sq, Rgbd(0.0)});
     direct_sum_.assign(hit_points_->size(), Rgbd(0.0));
+    flux_even_.assign(hit_points_->size(), Rgbd(0.0));
+    direct_even_.assign(hit_points_->size(), Rgbd(0.0));
     epoch_photons_.assign(hit_points_->size(), 0);
     epoch_flux_.assign(hit_points_->size(), Rgbd(0.0));
+    epoch_flux_even_.assign(hit_points_->size(), Rgbd(0.0));
     epoch_direct_.assign(hit_points_->size(), Rgb(0.0f));
 }
 
@@ -45,6 +48,7 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
     const std::vector<HitPoint>& hit_points = *hit_points_;
     const Tally& tally = result.tally;
     PF_CHECK(tally.Size() == 0 || tally.hit_point.back() < hit_points.size());
+    const bool even = result.spec.index % 2 == 0;
     // Entries are sorted by hit point and each names a hit point once, so disjoint ranges of
     // entries touch disjoint sums: folded in parallel, each sum still gets its batches in
     // batch-index order, and the result does not depend on the thread count.
@@ -53,7 +57,9 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
             const uint32_t i = tally.hit_point[e];
             epoch_photons_[i] += tally.photons[e];
             // Phi_M: the photons' flux times the BSDF weight (a float product, exact in double).
-            epoch_flux_[i] += Rgbd(tally.flux[e]) * Rgbd(hit_points[i].weight);
+            const Rgbd flux = Rgbd(tally.flux[e]) * Rgbd(hit_points[i].weight);
+            epoch_flux_[i] += flux;
+            if (even) epoch_flux_even_[i] += flux;
         }
     });
     PF_CHECK(result.direct.size() == result.spec.direct_end - result.spec.direct_begin &&
@@ -61,22 +67,30 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
     // The epoch's direct slices are disjoint and cover every hit point once.
     std::copy(result.direct.begin(), result.direct.end(), epoch_direct_.begin() + result.spec.direct_begin);
     epoch_photons_emitted_ += result.photons_emitted;
+    if (even) epoch_photons_emitted_even_ += result.photons_emitted;
     ++batches_folded_;
 }
 
 void ProgressiveEstimate::FinishEpoch() {
     PF_CHECK(batches_folded_ == settings_.layout.batches_per_epoch);
     const double alpha = settings_.alpha;
+    const bool even_epoch = epoch_ % 2 == 0;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, points_.size()), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
-            points_[i] = UpdateEstimate(points_[i], static_cast<double>(epoch_photons_[i]), epoch_flux_[i], alpha);
+            const double photons = static_cast<double>(epoch_photons_[i]);
+            flux_even_[i] = (flux_even_[i] + epoch_flux_even_[i]) * ShrinkRatio(points_[i], photons, alpha);
+            points_[i] = UpdateEstimate(points_[i], photons, epoch_flux_[i], alpha);
             direct_sum_[i] += Rgbd(epoch_direct_[i]);
+            if (even_epoch) direct_even_[i] += Rgbd(epoch_direct_[i]);
             epoch_photons_[i] = 0;
             epoch_flux_[i] = Rgbd(0.0);
+            epoch_flux_even_[i] = Rgbd(0.0);
         }
     });
     photons_emitted_ += epoch_photons_emitted_;
+    photons_emitted_even_ += epoch_photons_emitted_even_;
     epoch_photons_emitted_ = 0;
+    epoch_photons_emitted_even_ = 0;
     batches_folded_ = 0;
     ++epoch_;
 }
@@ -101,6 +115,43 @@ Image ProgressiveEstimate::Resolve() const {
     for (size_t p = 0; p < sums.size(); ++p)
         image.pixels[p] = emission_.pixels[p] + Rgb(sums[p] * inverse_spp);
     return image;
+}
+
+ErrorEstimate ProgressiveEstimate::EstimateError() const {
+    const double photons = static_cast<double>(photons_emitted_);
+    const double photons_even = static_cast<double>(photons_emitted_even_);
+    const double photons_odd = photons - photons_even;
+    const double epochs_even = static_cast<double>((epoch_ + 1) / 2), epochs_odd = static_cast<double>(epoch_ / 2);
+    ErrorEstimate error;
+    if (!(photons_even > 0 && photons_odd > 0 && epochs_odd > 0)) return error;
+    // Per pixel: the full estimate and the difference of the halves, summed over its hit points.
+    std::vector<Rgbd> value(emission_.pixels.size(), Rgbd(0.0)), difference(emission_.pixels.size(), Rgbd(0.0));
+    const std::vector<HitPoint>& hit_points = *hit_points_;
+    for (size_t i = 0; i < hit_points.size(); ++i) {
+        const PointEstimate& point = points_[i];
+        const Rgbd even = EstimateRadiance({0, point.radius_sq, flux_even_[i]}, photons_even) + direct_even_[i] / epochs_even;
+        const Rgbd odd = EstimateRadiance({0, point.radius_sq, point.flux - flux_even_[i]}, photons_odd) +
+                         (direct_sum_[i] - direct_even_[i]) / epochs_odd;
+        const uint32_t pixel = hit_points[i].pixel;
+        value[pixel] += EstimateRadiance(point, photons) + direct_sum_[i] / static_cast<double>(epoch_);
+        difference[pixel] += even - odd;
+    }
+    const double inverse_spp = 1.0 / settings_.samples_per_pixel;
+    const double variance_scale = photons_even * photons_odd / (photons * photons);
+    double squared = 0, relative = 0;
+    for (size_t p = 0; p < value.size(); ++p)
+        for (int c = 0; c < 3; ++c) {
+            const double d = difference[p][c] * inverse_spp;
+            const double v = emission_.pixels[p][c] + value[p][c] * inverse_spp;
+            const double variance = d * d * variance_scale;
+            squared += variance;
+            relative += variance / (v * v + 0.01);
+        }
+    const double samples = 3.0 * static_cast<double>(value.size());
+    error.known = true;
+    error.rmse = std::sqrt(squared / samples);
+    error.rel_mse = relative / samples;
+    return error;
 }
 
 }  // namespace pf

@@ -5,6 +5,7 @@
 // use the calling TBB arena for data-parallel loops, deterministically.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -16,6 +17,18 @@
 #include "core/ppm/estimator.h"
 
 namespace pf {
+
+// The error of the current image estimated without a reference, from two half-estimates:
+// one of the photons of even-numbered batches (and the direct light of even epochs), one of
+// the odd. Both share the radii, so their difference is the noise of the image, not its bias
+// (which shrinks with the radii). Per channel and pixel, the variance of the full estimate is
+// (L_even - L_odd)^2 N_even N_odd / N^2.
+struct ErrorEstimate {
+    bool known = false;   // false until both halves have photons and direct light
+    double rmse = 0;      // root mean squared error over pixels and channels
+    double rel_mse = 0;   // mean of squared error / (value^2 + 0.01), as the reference metrics
+    double RelativeError() const { return std::sqrt(rel_mse); }
+};
 
 struct EstimateSettings {
     double alpha = kDefaultAlpha;  // radius reduction ratio, (0, 1]
@@ -51,6 +64,8 @@ public:
     // The image as of the last merged epoch: emission + direct + tau / (pi R^2 N_emitted),
     // averaged over each pixel's k camera paths.
     Image Resolve() const;
+    // The error of Resolve()'s image, estimated from the even and odd half-estimates.
+    ErrorEstimate EstimateError() const;
 
 private:
     std::shared_ptr<const std::vector<HitPoint>> hit_points_;
@@ -58,15 +73,22 @@ private:
     EstimateSettings settings_;
     std::vector<PointEstimate> points_;
     std::vector<Rgbd> direct_sum_;  // sum of one direct-light sample per merged epoch
+    // The even half-estimate: tau of the even-numbered batches' photons (shrunk with the same
+    // ratios as tau) and the direct sum of the even epochs. The odd half is the rest.
+    std::vector<Rgbd> flux_even_;
+    std::vector<Rgbd> direct_even_;
     uint64_t epoch_ = 0;
     uint64_t photons_emitted_ = 0;
+    uint64_t photons_emitted_even_ = 0;
     uint32_t batches_folded_ = 0;  // of the current epoch
     // The current epoch's sums (M and Phi_M per hit point) and direct samples, apart from the
     // merged state so that Resolve() between folds shows the last merged epoch exactly.
     std::vector<uint64_t> epoch_photons_;
     std::vector<Rgbd> epoch_flux_;
+    std::vector<Rgbd> epoch_flux_even_;
     std::vector<Rgb> epoch_direct_;
     uint64_t epoch_photons_emitted_ = 0;
+    uint64_t epoch_photons_emitted_even_ = 0;
 };
 
 }  // namespace pf

@@ -95,7 +95,7 @@ protected:
         return submit.Wait(300).value_or(-1);
     }
 
-    v1::JobStatus Submit(int epochs, int priority = 0) {
+    v1::JobStatus Submit(int epochs, int priority = 0, double target_error = 0) {
         absl::StatusOr<SceneBundle> bundle = PackSceneBundle(kScene);
         v1::SubmitJobRequest request;
         *request.mutable_scene() = ToProto(*bundle);
@@ -107,6 +107,7 @@ protected:
         settings->set_seed(11);
         settings->set_photon_budget(uint64_t(epochs) * 8 * 8192);
         settings->set_priority(priority);
+        settings->set_target_error(target_error);
         absl::StatusOr<v1::JobStatus> status = client_->Submit(request);
         EXPECT_TRUE(status.ok()) << status.status();
         return status.ok() ? *status : v1::JobStatus{};
@@ -176,6 +177,24 @@ TEST_F(FarmTest, LateWorkerGetsWorkAndTwoJobsBothFinish) {
     ASSERT_EQ(workers->workers_size(), 2);
     for (const v1::WorkerStatus& worker : workers->workers())
         EXPECT_GT(worker.batches_done(), 0u) << worker.worker_id() << " got no work";
+}
+
+TEST_F(FarmTest, TargetErrorEndsTheJobAndSnapshotsCarryTheEstimate) {
+    StartWorker();
+    constexpr int kCapEpochs = 200;
+    const v1::JobStatus job = Submit(kCapEpochs, 0, 0.03);
+    bool unknown_at_first = false, estimated = false;
+    const v1::JobStatus last = WatchUntil(job.job_id(), [&](const v1::JobStatus& status) {
+        if (status.epochs() < 2 && !status.has_estimated_error()) unknown_at_first = true;
+        if (status.epochs() >= 2 && status.has_estimated_error()) estimated = true;
+        return false;
+    });
+    EXPECT_TRUE(unknown_at_first) << "no estimate can exist before two epochs";
+    EXPECT_TRUE(estimated) << "snapshots from the second epoch on carry the estimated error";
+    ASSERT_EQ(last.state(), v1::JOB_STATE_DONE);
+    ASSERT_TRUE(last.has_estimated_error());
+    EXPECT_LE(last.estimated_error(), 0.03);
+    EXPECT_LT(last.photons(), uint64_t(kCapEpochs) * 8 * 8192) << "the target, not the photon cap, ended the job";
 }
 
 TEST_F(FarmTest, CancelledJobStopsItsLeasesAndKeepsItsImage) {

@@ -152,6 +152,16 @@ TEST(RenderTest, BatchesOfSeveralChunksGiveTheSameImageForOneAndTwoThreads) {
               0);
 }
 
+TEST(RenderTest, TargetErrorEndsTheRenderOnceTheEstimateMeetsIt) {
+    RenderSettings settings = SmallRender("cornell-box.gltf", 100'000'000, 2);
+    settings.job.target_error = 0.03;
+    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+    ASSERT_TRUE(outcome.ok()) << outcome.status();
+    ASSERT_TRUE(outcome->progress.estimated_error.has_value());
+    EXPECT_LE(*outcome->progress.estimated_error, 0.03);
+    EXPECT_LT(outcome->progress.photons, settings.job.photon_budget) << "the target, not the photons, ended it";
+}
+
 TEST(RenderTest, DifferentSeedsGiveDifferentImages) {
     RenderSettings a = SmallRender("cornell-box.gltf", 200'000, 2), b = a;
     b.job.seed = a.job.seed + 1;
