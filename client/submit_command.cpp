@@ -158,6 +158,7 @@ int RunSubmit(SubmitOptions& options) {
         spdlog::error("{}", std::string(status.status().message()));
         return 1;
     }
+    for (const std::string& warning : status->warnings()) spdlog::warn("job {}: {}", status->job_id(), warning);
     if (options.watch_options.json) {
         std::printf("%s\n", ToJson(*status).c_str());
         std::fflush(stdout);

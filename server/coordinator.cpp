@@ -78,6 +78,18 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
     std::shared_ptr<Job> job;
     {
         std::lock_guard lock(mutex_);
+        // An epoch's chunks are all the work there is until it is merged: fewer than the
+        // workers' threads leave threads idle.
+        uint64_t threads = 0;
+        for (const auto& [id, worker] : workers_) threads += worker.registration.threads;
+        const BatchLayout& layout = prepared->spec.layout;
+        const uint64_t chunks = uint64_t{layout.batches_per_epoch} * ChunkCount(MakeBatchSpec(layout, 0, 0, 0));
+        if (chunks < threads)
+            prepared->warnings.push_back(absl::StrFormat(
+                "an epoch runs as %d chunks of photons but the workers have %d threads, so at most %d of them "
+                "work at once: ask for more photons per epoch (batches_per_epoch x photons_per_batch, %d photons "
+                "per chunk; see docs/farm.md)",
+                chunks, threads, chunks, kPhotonsPerChunk));
         const std::string id = absl::StrCat("job-", next_id_++, "-", id_salt_);
         job = std::make_shared<Job>(id, std::move(*prepared), Now());
         jobs_[id] = job;
@@ -85,6 +97,7 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
         ForgetEndedJobsLocked();
     }
     spdlog::info("job {} submitted", job->Id());
+    for (const std::string& warning : job->Progress(Now()).warnings) spdlog::warn("job {}: {}", job->Id(), warning);
     NotifyWork();
     return job->Progress(Now());
 }

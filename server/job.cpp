@@ -44,6 +44,7 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point now)
       started_(now),
       hit_point_count_(prepared.estimate->HitPoints().size()),
       initial_radius_(prepared.estimate->Settings().initial_radius),
+      warnings_(std::move(prepared.warnings)),
       payload_(std::move(prepared.payload)),
       estimate_(std::move(prepared.estimate)) {
     scene_blob_ = std::make_shared<const LazyBlob>(
@@ -280,6 +281,7 @@ JobProgress Job::Progress(Clock::time_point now) const {
     for (const auto& [worker, seen] : workers_seen_)
         if (now - seen < kActiveWindow) ++progress.workers_active;
     progress.message = message_;
+    progress.warnings = warnings_;
     return progress;
 }
 

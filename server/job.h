@@ -68,6 +68,7 @@ struct JobProgress {
     std::optional<double> estimated_error;  // relative (ErrorEstimate::RelativeError), once known
     uint32_t workers_active = 0;
     std::string message;  // why it failed or was cancelled
+    std::vector<std::string> warnings;  // found when it was submitted
 };
 
 // What a job's constructor needs: prepared by Coordinator::Submit (scene loaded, camera pass run).
@@ -78,6 +79,7 @@ struct PreparedJob {
     SceneBundle bundle;
     std::shared_ptr<const JobPayload> payload;
     std::unique_ptr<ProgressiveEstimate> estimate;
+    std::vector<std::string> warnings;
 };
 
 class Job {
@@ -154,6 +156,7 @@ private:
     const Clock::time_point started_;
     const uint64_t hit_point_count_;
     const double initial_radius_;
+    const std::vector<std::string> warnings_;
 
     mutable std::mutex mutex_;  // guards everything below but the estimate and image
     mutable std::condition_variable changed_;

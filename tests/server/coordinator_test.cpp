@@ -231,5 +231,21 @@ TEST(CoordinatorTest, BadRequestsNameTheFieldOrFile) {
     EXPECT_TRUE(absl::IsFailedPrecondition(coordinator.RegisterWorker(old).status()));
 }
 
+TEST(CoordinatorTest, AJobWhoseEpochsCannotKeepTheWorkersBusyIsSubmittedWithAWarning) {
+    FakeClock clock;
+    Coordinator coordinator(Options(&clock));
+    const absl::StatusOr<JobProgress> alone = coordinator.Submit(SmallJob(4 * 4096));
+    ASSERT_TRUE(alone.ok()) << alone.status();
+    EXPECT_TRUE(alone->warnings.empty()) << "no workers yet: nothing to warn about";
+    WorkerRegistration big = Cpu();
+    big.threads = 64;
+    ASSERT_TRUE(coordinator.RegisterWorker(big).ok());
+    const absl::StatusOr<JobProgress> starved = coordinator.Submit(SmallJob(4 * 4096));  // 4 one-chunk batches
+    ASSERT_TRUE(starved.ok()) << starved.status();
+    ASSERT_EQ(starved->warnings.size(), 1u);
+    EXPECT_NE(starved->warnings[0].find("4 chunks"), std::string::npos) << starved->warnings[0];
+    EXPECT_NE(starved->warnings[0].find("64 threads"), std::string::npos) << starved->warnings[0];
+}
+
 }  // namespace
 }  // namespace pf
