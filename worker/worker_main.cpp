@@ -116,7 +116,8 @@ int main(int argc, char** argv) {
         pf::GrpcWorkSource source(
             grpc::CreateCustomChannel(coordinator, grpc::InsecureChannelCredentials(), channel_args), coordinator,
             {backend, static_cast<uint32_t>(arena.max_concurrency()), std::string(pf::kPhotonfarmVersion), ""}, cache_dir);
-        pf::WorkerLoop loop(source, backend, chunks_per_lease > 0 ? chunks_per_lease : arena.max_concurrency());
+        pf::WorkerLoop loop(source, backend, chunks_per_lease > 0 ? chunks_per_lease : arena.max_concurrency(),
+                            /*report_in_background=*/true);
 
         std::thread heartbeat_thread([&] {
             while (!stop.WaitFor(source.HeartbeatSeconds()))
@@ -149,11 +150,13 @@ int main(int argc, char** argv) {
             backoff = std::min(backoff * 2, 30.0);
             if (stop.WaitFor(wait)) break;
         }
+        if (absl::Status status = loop.Flush(); !status.ok())
+            spdlog::warn("reporting the last results: {}", std::string(status.message()));
         stop.Set();
         heartbeat_thread.join();
         if (absl::Status status = source.Unregister(); !status.ok())
             spdlog::warn("leaving: {}", std::string(status.message()));
-        const pf::WorkerStats& stats = loop.Stats();
+        const pf::WorkerStats stats = loop.Stats();
         spdlog::info("ran {} batches ({} refused), {} photons", stats.batches_run, stats.batches_refused, stats.photons);
         // Wake the signal thread if no signal came, then join it.
         pthread_kill(signal_thread.native_handle(), SIGTERM);
