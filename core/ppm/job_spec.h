@@ -31,11 +31,11 @@ struct JobSpec {
     double target_error = 0;
 };
 
-// Hit points cost about this much memory each across the estimate (~140 bytes), the grid (8
-// entries of 24 bytes) and one tally accumulator per thread (16 bytes): 2^25 of them (4K at
-// 4 hit points per pixel) take ~12 GB.
+// Hit points cost about this much memory each across the estimate (~140 bytes, and 72 more
+// for the even half-estimate of the error), the grid (8 entries of 24 bytes) and one tally
+// accumulator per thread (16 bytes): 2^25 of them (4K at 4 hit points per pixel) take ~14 GB.
 inline constexpr uint64_t kMaxHitPoints = uint64_t{1} << 25;
-inline constexpr uint64_t kBytesPerHitPoint = 360;
+inline constexpr uint64_t kBytesPerHitPoint = 432;
 
 // Limits on the batch layout: a batch's photon count fits the wire's uint32 with room to
 // spare; an epoch's batches are slots the coordinator tracks one by one.

@@ -103,7 +103,7 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     scratch.deposits.clear();
 }
 
-// Traces photons [begin, end) of the batch a packet at a time: each lane of the packet carries one path,
+// Traces photons [begin, end) of the batch a packet at a time: each lane carries one path,
 // and a lane whose path ends takes the next photon, so packets stay full. Every photon's
 // random numbers depend on its index alone, and lanes are filled in a fixed order, so the
 // deposits (and their order) depend only on the batch. Returns the segments traced.

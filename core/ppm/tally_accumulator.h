@@ -1,6 +1,7 @@
-// Per-thread scratch that sums a batch's photon contributions (or its chunks' tallies)
-// densely, then hands them out as a sparse, sorted Tally. Sums for each hit point are added in photon order, so a batch's
-// tally is bit-identical however batches are scheduled. Not thread-safe: one per thread.
+// Per-thread scratch that sums a chunk's photon contributions (or a batch's chunk tallies)
+// densely, then hands them out as a sparse, sorted Tally. Sums for each hit point are added
+// in photon (or chunk) order, so a batch's tally is bit-identical however batches and chunks
+// are scheduled. Not thread-safe: one per thread.
 // The hot loop adds raw photon flux in float (16 bytes a hit point, one cache line per hit);
 // the hit point's constant BSDF weight is applied once per hit point by the merge. Float is
 // ample within one batch: at most 2^26 photons, each sum's relative error below 2^-24 x the
