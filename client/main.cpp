@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "client/compare_command.h"
 #include "client/job_commands.h"
 #include "client/render_command.h"
 #include "client/submit_command.h"
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
         pf::AddSubmitCommand(app, &exit_code);
         pf::AddWatchCommand(app, &exit_code);
         pf::AddJobCommands(app, &exit_code);
+        pf::AddCompareCommand(app, &exit_code);
         // Logs and errors go to stderr, one line each; stdout stays free for results.
         spdlog::set_default_logger(spdlog::stderr_color_mt("photonfarm"));
         spdlog::set_pattern("photonfarm: %^%l%$: %v");

@@ -1,0 +1,25 @@
+// How far an image is from a reference: the metrics of `photonfarm compare` and of the error
+// against run time (docs/farm.md, "Error without a reference", for the estimate without one).
+#pragma once
+
+#include <cstdint>
+
+#include "absl/status/statusor.h"
+#include "core/film/image.h"
+
+namespace pf {
+
+// Over every channel of every pixel where both values are finite; NaN and Inf values are
+// counted apart, per pixel of `image` that holds one.
+struct ImageDifference {
+    double rmse = 0;             // root mean squared error
+    double rel_mse = 0;          // mean of (image - reference)^2 / (reference^2 + 0.01)
+    double psnr = 0;             // dB, against the reference's largest finite value; +Inf if equal
+    double max_abs = 0;          // largest |image - reference|
+    uint64_t nonfinite_pixels = 0;  // pixels of `image` with a NaN or Inf channel
+};
+
+// INVALID_ARGUMENT when the sizes differ (naming both).
+absl::StatusOr<ImageDifference> CompareImages(const Image& image, const Image& reference);
+
+}  // namespace pf
