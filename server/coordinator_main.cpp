@@ -1,14 +1,15 @@
 // photonfarm-coordinator: holds jobs and their progressive estimates, hands photon batches to
 // workers, merges their tallies, streams snapshots to clients.
-#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <optional>
 
 #include "core/util/allocator.h"
+#include "core/util/command_line.h"
 #include "server/coordinator.h"
 #include "server/coordinator_server.h"
 
@@ -38,11 +39,9 @@ void BlockStopSignals() {
 int main(int argc, char** argv) {
     pf::KeepLargeBuffersForReuse();
     try {
-        spdlog::set_default_logger(spdlog::stderr_color_mt("photonfarm-coordinator"));
-        spdlog::set_pattern("photonfarm-coordinator: %^%l%$: %v");
+        pf::SetUpLogging("photonfarm-coordinator");
         CLI::App app{"photonfarm-coordinator: the render farm's coordinator"};
         std::string listen = "0.0.0.0:50051";
-        std::string log_level = "info";
         pf::CoordinatorOptions options;
         app.add_option("--listen", listen, "Address to listen on, HOST:PORT (port 0: any free port)")->default_val(listen);
         app.add_option("--heartbeat-seconds", options.heartbeat_seconds, "How often workers heartbeat")
@@ -54,16 +53,8 @@ int main(int argc, char** argv) {
             ->default_val(options.lease_seconds)->check(CLI::Range(0.1, 86400.0));
         app.add_option("--max-jobs", options.max_running_jobs, "Jobs running at once")
             ->default_val(options.max_running_jobs)->check(CLI::Range(1, 100000));
-        app.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")
-            ->default_val(log_level)->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
-        try {
-            app.parse(argc, argv);
-        } catch (const CLI::ParseError& error) {
-            if (error.get_exit_code() == 0) return app.exit(error);
-            std::fprintf(stderr, "photonfarm-coordinator: error: %s (see --help)\n", error.what());
-            return 2;
-        }
-        spdlog::set_level(spdlog::level::from_str(log_level));
+        pf::AddLogLevelOption(app);
+        if (std::optional<int> exit_code = pf::ParseCommandLine(app, argc, argv, "photonfarm-coordinator")) return *exit_code;
         if (options.worker_timeout_seconds <= options.heartbeat_seconds) {
             std::fprintf(stderr, "photonfarm-coordinator: error: --worker-timeout-seconds must exceed --heartbeat-seconds\n");
             return 2;

@@ -3,7 +3,6 @@
 // batches in hand, returns its leases and exits cleanly.
 #include <grpcpp/create_channel.h>
 #include <grpcpp/security/credentials.h>
-#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 #include <tbb/task_arena.h>
 
@@ -15,10 +14,12 @@
 #include <cstdlib>
 #include <exception>
 #include <mutex>
+#include <optional>
 #include <random>
 #include <thread>
 
 #include "core/util/allocator.h"
+#include "core/util/command_line.h"
 #include "worker/backend_factory.h"
 #include "worker/grpc_work_source.h"
 #include "worker/rpc_status.h"
@@ -68,14 +69,12 @@ bool Retryable(const absl::Status& status) {
 int main(int argc, char** argv) {
     pf::KeepLargeBuffersForReuse();
     try {
-        spdlog::set_default_logger(spdlog::stderr_color_mt("photonfarm-worker"));
-        spdlog::set_pattern("photonfarm-worker: %^%l%$: %v");
+        pf::SetUpLogging("photonfarm-worker");
         CLI::App app{"photonfarm-worker: runs photon batches for a photonfarm coordinator"};
         std::string coordinator;
         int threads = 0;
         std::string backend = "cpu";
         std::string cache_dir;
-        std::string log_level = "info";
         uint32_t chunks_per_lease = 0;
         app.add_option("--coordinator", coordinator, "Coordinator address HOST:PORT")
             ->envname("PHOTONFARM_COORDINATOR")->required();
@@ -85,16 +84,8 @@ int main(int argc, char** argv) {
         app.add_option("--chunks-per-lease", chunks_per_lease,
                        "Chunks of 2^19 photons to lease at once (default: one per thread)")
             ->check(CLI::Range(1, 1 << 16));
-        app.add_option("--log-level", log_level, "trace, debug, info, warn, error or off")
-            ->default_val(log_level)->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
-        try {
-            app.parse(argc, argv);
-        } catch (const CLI::ParseError& error) {
-            if (error.get_exit_code() == 0) return app.exit(error);
-            std::fprintf(stderr, "photonfarm-worker: error: %s (see --help)\n", error.what());
-            return 2;
-        }
-        spdlog::set_level(spdlog::level::from_str(log_level));
+        pf::AddLogLevelOption(app);
+        if (std::optional<int> exit_code = pf::ParseCommandLine(app, argc, argv, "photonfarm-worker")) return *exit_code;
 
         // Signals are taken by one thread with sigwait; every other thread inherits the block.
         const sigset_t signals = StopSignals();
