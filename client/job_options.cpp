@@ -31,6 +31,10 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
     command->add_option("--spp", s->samples_per_pixel, "Hit points (camera paths) per pixel")->default_val(s->samples_per_pixel)
         ->check(CLI::Range(1, 1024));
     command->add_option("--seed", s->seed, "Random seed; the same seed and batch layout give the same image")->default_val(s->seed);
+    command->add_option("--photon-stream", s->photon_stream,
+                        "Another photon stream of the same --seed: the same hit points, independent photons "
+                        "(to render a reference for --reference)")
+        ->default_val(s->photon_stream);
     command->add_option("--width", s->width, "Image width in pixels (default 512)")->check(CLI::Range(1, 32768));
     command->add_option("--height", s->height, "Image height in pixels (default: width / camera aspect)")->check(CLI::Range(1, 32768));
 }

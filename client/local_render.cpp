@@ -3,7 +3,7 @@
 
 #include <tbb/task_arena.h>
 
-#include <chrono>
+#include <cmath>
 
 #include "core/scene/scene_bundle.h"
 #include "server/coordinator.h"
@@ -24,14 +24,13 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
     tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency());
     absl::StatusOr<RenderOutcome> outcome = RenderOutcome{};
     arena.execute([&] {
-        const auto start = std::chrono::steady_clock::now();
-        auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-        absl::StatusOr<JobProgress> submitted = coordinator.Submit({settings.scene_path, std::move(*bundle), spec, 0});
+        absl::StatusOr<JobProgress> submitted =
+            coordinator.Submit({settings.scene_path, std::move(*bundle), spec, 0, settings.reference});
         if (!submitted.ok()) {
             outcome = submitted.status();
             return;
         }
-        outcome->camera_pass_seconds = elapsed();
+        outcome->camera_pass_seconds = submitted->elapsed_seconds;
         outcome->hit_points = submitted->hit_points;
         outcome->initial_radius = submitted->initial_radius;
         const std::shared_ptr<Job> job = *coordinator.FindJob(submitted->job_id);
@@ -60,12 +59,14 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
             progress.epochs = state.epochs;
             progress.photons = state.photons;
             progress.segments = worker.Stats().segments;
-            progress.seconds = elapsed();
+            progress.seconds = state.elapsed_seconds;
             progress.estimated_error = state.estimated_error;
+            if (state.measured_error) progress.measured_error = std::sqrt(state.measured_error->rel_mse);
             progress.fraction = state.state == JobState::kDone ? 1.0 : state.budget_fraction;
             if (on_epoch) on_epoch(progress, *job);
         }
         outcome->image = *job->CurrentImage();
+        outcome->convergence = job->Convergence();
     });
     return outcome;
 }

@@ -6,11 +6,14 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "core/film/image.h"
+#include "core/ppm/convergence.h"
 #include "core/ppm/job_spec.h"
 #include "server/job.h"
 
@@ -20,6 +23,7 @@ struct RenderSettings {
     std::string scene_path;
     JobSpec job;
     int threads = 0;               // 0: all hardware threads
+    std::shared_ptr<const Image> reference;  // every epoch is measured against it, when set
     const std::atomic<bool>* stop = nullptr;  // set from elsewhere (a signal) to stop after an epoch
 };
 
@@ -31,6 +35,7 @@ struct RenderProgress {
     double fraction = 0;    // of the budget, in [0, 1]
     uint32_t workers = 0;   // workers active on a farm job (0: not shown)
     std::optional<double> estimated_error;  // relative, from the half-estimates, once known
+    std::optional<double> measured_error;   // relative (sqrt of relMSE), against the reference
 };
 
 struct RenderOutcome {
@@ -39,6 +44,7 @@ struct RenderOutcome {
     uint64_t hit_points = 0;
     double initial_radius = 0;
     double camera_pass_seconds = 0;
+    std::vector<ConvergencePoint> convergence;  // one point per epoch
 };
 
 // Called after every merged epoch, on the rendering thread; `job` gives the current image.

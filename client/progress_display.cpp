@@ -24,6 +24,7 @@ std::string Status(const RenderProgress& p) {
     std::string status = absl::StrFormat("%s photons, epoch %d, %.1f s, %s photons/s", Count(double(p.photons)),
                                          p.epochs, p.seconds, Count(rate));
     if (p.estimated_error) status += absl::StrFormat(", error ~%.2g%%", 100 * *p.estimated_error);
+    if (p.measured_error) status += absl::StrFormat(", against the reference %.2g%%", 100 * *p.measured_error);
     if (p.workers > 0) status += absl::StrFormat(", %d workers", p.workers);
     return status;
 }

@@ -5,10 +5,12 @@
 
 #include <atomic>
 #include <csignal>
+#include <filesystem>
 #include <memory>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "client/convergence_report.h"
 #include "client/job_options.h"
 #include "client/local_render.h"
 #include "client/output_files.h"
@@ -30,6 +32,7 @@ struct RenderOptions {
     std::string out, png;
     double snapshot_every = 0;
     std::string snapshot_dir;
+    std::string reference_path, report_dir;
     float exposure = 0;
 };
 
@@ -43,6 +46,7 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
                                                ? absl::StrFormat("%.4g", *outcome.progress.estimated_error)
                                                : "unknown"},
             {"photonfarm:seed", absl::StrCat(s.job.seed)},
+            {"photonfarm:photon_stream", absl::StrCat(s.job.photon_stream)},
             {"photonfarm:alpha", absl::StrFormat("%.17g", s.job.alpha)},
             {"photonfarm:initial_radius", absl::StrFormat("%.9g", outcome.initial_radius)},
             {"photonfarm:spp", absl::StrCat(s.job.samples_per_pixel)},
@@ -51,14 +55,21 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
 }
 
 int RunRender(const RenderOptions& options) {
-    if (absl::Status status = PrepareOutputs(options.out, options.png, options.snapshot_dir); !status.ok()) {
-        spdlog::error("{}", std::string(status.message()));
+    RenderSettings settings = options.settings;
+    absl::Status prepared = PrepareOutputs(options.out, options.png, options.snapshot_dir);
+    if (prepared.ok() && !options.report_dir.empty()) prepared = PrepareReportDir(options.report_dir);
+    if (prepared.ok() && !options.reference_path.empty()) {
+        absl::StatusOr<Image> reference = ReadExr(options.reference_path);
+        if (reference.ok()) settings.reference = std::make_shared<const Image>(std::move(*reference));
+        else prepared = reference.status();
+    }
+    if (!prepared.ok()) {
+        spdlog::error("{}", std::string(prepared.message()));
         return 1;
     }
     g_stop_requested = false;
     std::signal(SIGINT, OnStopSignal);
     std::signal(SIGTERM, OnStopSignal);
-    RenderSettings settings = options.settings;
     settings.stop = &g_stop_requested;
 
     ProgressDisplay display;
@@ -90,6 +101,13 @@ int RunRender(const RenderOptions& options) {
         spdlog::error("{}", std::string(status.message()));
         return 1;
     }
+    if (!options.report_dir.empty()) {
+        const std::string title = std::filesystem::path(settings.scene_path).filename().string();
+        if (absl::Status status = WriteConvergenceReport(options.report_dir, title, outcome->convergence); !status.ok()) {
+            spdlog::error("{}", std::string(status.message()));
+            return 1;
+        }
+    }
     return snapshot_status.ok() ? 0 : 1;
 }
 
@@ -110,6 +128,11 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
     auto* dir = render->add_option("--snapshot-dir", options->snapshot_dir, "Directory for snapshot-NNNN.exr");
     every->needs(dir);
     dir->needs(every);
+    render->add_option("--reference", options->reference_path,
+                       "Measure every epoch against this EXR (RMSE, relative MSE, NaN/Inf pixels); same size as the render")
+        ->check(CLI::ExistingFile);
+    render->add_option("--report", options->report_dir,
+                       "Write convergence.csv and log-log plots of error against time (PNG, SVG) into this folder");
     render->callback([options, exit_code] {
         ApplyDefaultBudget(&options->settings.job);
         *exit_code = RunRender(*options);

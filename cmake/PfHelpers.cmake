@@ -63,3 +63,19 @@ function(pf_add_proto_library name)
     target_include_directories(${name} PUBLIC "${CMAKE_CURRENT_BINARY_DIR}")
     set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
 endfunction()
+
+# pf_embed_text(TARGET FILE SYMBOL): the text of FILE (relative to the current source folder)
+# compiled into TARGET as `pf::SYMBOL`, a std::string_view, from the header named after FILE
+# with ".h" appended, included by its path from the source root ("client/x.gp.h").
+function(pf_embed_text target file symbol)
+    file(RELATIVE_PATH relative "${PROJECT_SOURCE_DIR}" "${CMAKE_CURRENT_SOURCE_DIR}/${file}")
+    set(header "${PROJECT_BINARY_DIR}/embedded/${relative}.h")
+    add_custom_command(
+        OUTPUT "${header}"
+        COMMAND ${CMAKE_COMMAND} -DINPUT=${CMAKE_CURRENT_SOURCE_DIR}/${file} -DOUTPUT=${header} -DSYMBOL=${symbol}
+                -P "${PROJECT_SOURCE_DIR}/cmake/EmbedText.cmake"
+        DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${file}" "${PROJECT_SOURCE_DIR}/cmake/EmbedText.cmake"
+        COMMENT "embedding ${relative}")
+    target_sources(${target} PRIVATE "${header}")
+    target_include_directories(${target} PRIVATE "${PROJECT_BINARY_DIR}/embedded")
+endfunction()

@@ -9,12 +9,26 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "core/film/image_metrics.h"
 #include "core/ppm/camera_pass.h"
 #include "core/scene/gltf_loader.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf {
 namespace {
+
+absl::Status CheckReference(const Image* reference, int width, int height) {
+    if (reference == nullptr) return absl::OkStatus();
+    if (reference->width != width || reference->height != height)
+        return absl::InvalidArgumentError(absl::StrFormat("reference: the image is %dx%d but the job renders %dx%d",
+                                                          reference->width, reference->height, width, height));
+    const uint64_t nonfinite = std::count_if(reference->pixels.begin(), reference->pixels.end(),
+                                             [](const Rgb& rgb) { return !IsFinite(rgb); });
+    if (nonfinite > 0)
+        return absl::InvalidArgumentError(
+            absl::StrFormat("reference: %d pixels hold NaN or Inf; a reference must be finite", nonfinite));
+    return absl::OkStatus();
+}
 
 // Loads the scene, runs the camera pass and sets up the estimate: everything a job needs
 // before its first batch.
@@ -24,11 +38,13 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names) {
     if (request.name.empty()) request.name = std::filesystem::path(request.bundle.main_file).filename().string();
     absl::StatusOr<Scene> scene = LoadGltf(request.bundle, request.bundle.main_file);
     if (!scene.ok()) return scene.status();
-    auto payload = std::make_shared<JobPayload>(std::move(*scene), nullptr, request.spec.seed);
+    auto payload = std::make_shared<JobPayload>(std::move(*scene), nullptr, PhotonSeed(request.spec));
     if (!payload->emitters.HasPower())
         return absl::InvalidArgumentError(absl::StrCat(request.bundle.main_file, ": lights emit no power"));
     const absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, payload->scene.camera);
     if (!film.ok()) return film.status();
+    if (absl::Status status = CheckReference(request.reference.get(), film->width, film->height); !status.ok())
+        return status;
     absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(payload->scene);
     if (!tracer.ok()) return tracer.status();
     const auto start = Clock::now();
@@ -45,6 +61,7 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names) {
     prepared.spec = request.spec;
     prepared.priority = request.priority;
     prepared.bundle = std::move(request.bundle);
+    prepared.reference = std::move(request.reference);
     return prepared;
 }
 
@@ -73,6 +90,7 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
             return absl::ResourceExhaustedError(
                 absl::StrCat("the coordinator runs ", running, " jobs, its limit (max_running_jobs)"));
     }
+    const Clock::time_point submitted = Now();  // a job's clock includes its camera pass
     absl::StatusOr<PreparedJob> prepared = Prepare(std::move(request), options_.setting_names);
     if (!prepared.ok()) return prepared.status();
     std::shared_ptr<Job> job;
@@ -91,7 +109,7 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
                 "per chunk; see docs/farm.md)",
                 chunks, threads, chunks, kPhotonsPerChunk));
         const std::string id = absl::StrCat("job-", next_id_++, "-", id_salt_);
-        job = std::make_shared<Job>(id, std::move(*prepared), Now());
+        job = std::make_shared<Job>(id, std::move(*prepared), submitted);
         jobs_[id] = job;
         job_order_.push_back(id);
         ForgetEndedJobsLocked();

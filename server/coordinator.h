@@ -40,6 +40,9 @@ struct JobRequest {
     SceneBundle bundle;
     JobSpec spec;
     int priority = 0;  // higher first; equal priorities share workers fairly
+    // When set, every epoch's image is measured against it for the convergence log; its size
+    // must be the job's.
+    std::shared_ptr<const Image> reference;
 };
 
 struct WorkerView {

@@ -36,15 +36,16 @@ EpochInputs::EpochInputs(uint64_t epoch_in, std::vector<float> radius_sq_in)
       radius_sq(std::make_shared<const std::vector<float>>(std::move(radius_sq_in))),
       blob([radii = radius_sq] { return EncodeFloats(*radii); }) {}
 
-Job::Job(std::string id, PreparedJob prepared, Clock::time_point now)
+Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
     : id_(std::move(id)),
       name_(std::move(prepared.name)),
       spec_(prepared.spec),
       priority_(prepared.priority),
-      started_(now),
+      started_(submitted),
       hit_point_count_(prepared.estimate->HitPoints().size()),
       initial_radius_(prepared.estimate->Settings().initial_radius),
       warnings_(std::move(prepared.warnings)),
+      reference_(std::move(prepared.reference)),
       payload_(std::move(prepared.payload)),
       estimate_(std::move(prepared.estimate)) {
     scene_blob_ = std::make_shared<const LazyBlob>(
@@ -192,6 +193,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
         std::vector<float> radius_sq;
         uint64_t photons = 0;
         ErrorEstimate error;
+        std::optional<ImageDifference> measured;
         lock.unlock();
         {
             std::lock_guard estimate_lock(estimate_mutex_);
@@ -200,6 +202,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
                 radius_sq = estimate_->SearchRadiusSq();
                 photons = estimate_->PhotonsEmitted();
                 error = estimate_->EstimateError();
+                measured = MeasureLocked();
             }
         }
         lock.lock();
@@ -207,6 +210,10 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
         ++epochs_merged_;
         photons_merged_ = photons;
         if (error.known) estimated_error_ = error.RelativeError();
+        measured_error_ = measured;
+        convergence_.push_back({Seconds(now - started_), epochs_merged_, photons_merged_,
+                                error.known ? std::optional(error) : std::nullopt, measured,
+                                reference_ ? reference_->pixels.size() : 0});
         ++version_;
         finished = true;
         if (BudgetFraction(spec_, photons_merged_, Seconds(now - started_), estimated_error_) >= 1.0) {
@@ -244,10 +251,7 @@ void Job::EndLocked(JobState state, std::string message, Clock::time_point now) 
 void Job::ReleaseInputs() {
     std::lock_guard estimate_lock(estimate_mutex_);
     if (!estimate_) return;
-    if (image_epoch_ != estimate_->Epoch()) {
-        image_ = std::make_shared<const Image>(estimate_->Resolve());
-        image_epoch_ = estimate_->Epoch();
-    }
+    ResolveLocked();
     estimate_.reset();
 }
 
@@ -278,6 +282,7 @@ JobProgress Job::Progress(Clock::time_point now) const {
     progress.budget_fraction =
         state_ == JobState::kDone ? 1.0 : BudgetFraction(spec_, photons_merged_, progress.elapsed_seconds, estimated_error_);
     progress.estimated_error = estimated_error_;
+    progress.measured_error = measured_error_;
     for (const auto& [worker, seen] : workers_seen_)
         if (now - seen < kActiveWindow) ++progress.workers_active;
     progress.message = message_;
@@ -296,12 +301,27 @@ uint64_t Job::WaitForChange(uint64_t seen, Clock::time_point until) const {
     return version_;
 }
 
+void Job::ResolveLocked() const {
+    if (image_epoch_ == estimate_->Epoch()) return;
+    image_ = std::make_shared<const Image>(estimate_->Resolve());
+    image_epoch_ = estimate_->Epoch();
+}
+
+std::optional<ImageDifference> Job::MeasureLocked() const {
+    if (!reference_) return std::nullopt;
+    ResolveLocked();
+    const absl::StatusOr<ImageDifference> difference = CompareImages(*image_, *reference_);
+    return difference.ok() ? std::optional(*difference) : std::nullopt;  // sizes were checked at submission
+}
+
+std::vector<ConvergencePoint> Job::Convergence() const {
+    std::lock_guard lock(mutex_);
+    return convergence_;
+}
+
 std::shared_ptr<const Image> Job::CurrentImage() const {
     std::lock_guard estimate_lock(estimate_mutex_);
-    if (estimate_ && image_epoch_ != estimate_->Epoch()) {
-        image_ = std::make_shared<const Image>(estimate_->Resolve());
-        image_epoch_ = estimate_->Epoch();
-    }
+    if (estimate_) ResolveLocked();
     return image_;
 }
 

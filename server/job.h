@@ -21,6 +21,7 @@
 
 #include "absl/status/statusor.h"
 #include "core/film/image.h"
+#include "core/ppm/convergence.h"
 #include "core/ppm/job_spec.h"
 #include "core/ppm/progressive_estimate.h"
 #include "core/scene/scene_bundle.h"
@@ -66,6 +67,7 @@ struct JobProgress {
     double photons_per_second = 0;
     double budget_fraction = 0;
     std::optional<double> estimated_error;  // relative (ErrorEstimate::RelativeError), once known
+    std::optional<ImageDifference> measured_error;  // against the reference, when the job has one
     uint32_t workers_active = 0;
     std::string message;  // why it failed or was cancelled
     std::vector<std::string> warnings;  // found when it was submitted
@@ -80,11 +82,13 @@ struct PreparedJob {
     std::shared_ptr<const JobPayload> payload;
     std::unique_ptr<ProgressiveEstimate> estimate;
     std::vector<std::string> warnings;
+    std::shared_ptr<const Image> reference;  // measured against after every epoch, when set
 };
 
 class Job {
 public:
-    Job(std::string id, PreparedJob prepared, Clock::time_point now);
+    // `submitted`: when the job arrived, the start of its clock (the camera pass counts).
+    Job(std::string id, PreparedJob prepared, Clock::time_point submitted);
 
     const std::string& Id() const { return id_; }
     int Priority() const { return priority_; }
@@ -131,6 +135,10 @@ public:
     uint64_t WaitForChange(uint64_t seen, Clock::time_point until) const;
     // The image as of the last merged epoch (resolved once per epoch however many ask).
     std::shared_ptr<const Image> CurrentImage() const;
+    // One point per merged epoch: seconds, photons, the estimated error and, with a reference,
+    // the measured one.
+    std::vector<ConvergencePoint> Convergence() const;
+    bool HasReference() const { return reference_ != nullptr; }
 
 private:
     struct Slot {
@@ -148,6 +156,11 @@ private:
     bool FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point now);
     void EndLocked(JobState state, std::string message, Clock::time_point now);
     void ReleaseInputs();  // after the end: keep the final image, free the rest
+    // Under estimate_mutex_, with the estimate alive. Resolves the current epoch's image into
+    // image_ unless done already.
+    void ResolveLocked() const;
+    // The current image against the reference; none without one.
+    std::optional<ImageDifference> MeasureLocked() const;
 
     const std::string id_;
     const std::string name_;
@@ -157,6 +170,7 @@ private:
     const uint64_t hit_point_count_;
     const double initial_radius_;
     const std::vector<std::string> warnings_;
+    const std::shared_ptr<const Image> reference_;
 
     mutable std::mutex mutex_;  // guards everything below but the estimate and image
     mutable std::condition_variable changed_;
@@ -166,6 +180,8 @@ private:
     uint64_t version_ = 0;
     uint64_t epochs_merged_ = 0, photons_merged_ = 0;
     std::optional<double> estimated_error_;
+    std::optional<ImageDifference> measured_error_;  // the last point's, with a reference
+    std::vector<ConvergencePoint> convergence_;
     std::shared_ptr<const JobPayload> payload_;
     std::shared_ptr<const LazyBlob> scene_blob_, hit_points_blob_;
     std::shared_ptr<const EpochInputs> epoch_;

@@ -141,6 +141,7 @@ photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
     out.set_alpha(spec.alpha);
     out.set_initial_radius(spec.initial_radius);
     out.set_seed(spec.seed);
+    out.set_photon_stream(spec.photon_stream);
     out.set_photons_per_batch(spec.layout.photons_per_batch);
     out.set_batches_per_epoch(spec.layout.batches_per_epoch);
     return out;
@@ -162,6 +163,7 @@ absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings) {
     if (settings.alpha() != 0) spec.alpha = settings.alpha();
     spec.initial_radius = settings.initial_radius();
     spec.seed = settings.seed();
+    spec.photon_stream = settings.photon_stream();
     if (settings.photons_per_batch() != 0) spec.layout.photons_per_batch = settings.photons_per_batch();
     if (settings.batches_per_epoch() != 0) spec.layout.batches_per_epoch = settings.batches_per_epoch();
     spec.target_error = settings.target_error();

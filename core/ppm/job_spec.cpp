@@ -8,6 +8,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "core/sampling/rng.h"
 
 namespace pf {
 
@@ -38,6 +39,11 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
             flags ? "give a budget: --photons N, --seconds S or --target-error E"
                   : "settings: give a budget (photon_budget, seconds_budget or target_error)");
     return absl::OkStatus();
+}
+
+uint64_t PhotonSeed(const JobSpec& spec) {
+    constexpr uint64_t kPhotonStreams = 0x73747265616d73ull;
+    return spec.photon_stream == 0 ? spec.seed : HashSeed(spec.seed, kPhotonStreams, spec.photon_stream);
 }
 
 absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Camera& camera) {

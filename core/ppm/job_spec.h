@@ -21,6 +21,10 @@ struct JobSpec {
     int width = 0, height = 0;   // 0: 512 wide, or derived from the other and the camera's aspect
     int samples_per_pixel = 4;   // k hit points per pixel
     uint64_t seed = 1;           // the same seed and layout give the same image
+    // Renders with the same seed and another photon stream share their hit points (the camera
+    // pass) but trace independent photons and light samples: how a reference for the error
+    // against run time is made (docs/convergence.md). 0: the stream of `seed` itself.
+    uint64_t photon_stream = 0;
     double alpha = kDefaultAlpha;
     double initial_radius = 0;   // R0, world units; 0: one pixel footprint
     BatchLayout layout;
@@ -54,6 +58,8 @@ absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Camera& ca
 // scene in the warning for a camera that sees no diffuse surface.
 EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass, const Scene& scene,
                              const std::string& scene_name);
+// The seed of the photon pass and direct light: `seed` itself for stream 0.
+uint64_t PhotonSeed(const JobSpec& spec);
 // The share of the budget spent, in [0, 1]; 1 ends the render after the current epoch.
 // `estimated_error`: the current relative error estimate, if known yet. Toward a target error
 // the share is (target / error)^2, since the squared error falls as 1 / photons.

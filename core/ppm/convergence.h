@@ -1,0 +1,50 @@
+// The convergence log of a render: where its error stood after every merged epoch, estimated
+// from the half-estimates and, when a reference image was given, measured against it. What
+// `--report DIR` turns into convergence.csv and a log-log plot (docs/convergence.md).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "core/film/image_metrics.h"
+#include "core/ppm/progressive_estimate.h"
+
+namespace pf {
+
+struct ConvergencePoint {
+    double seconds = 0;  // since the job was submitted, camera pass included
+    uint64_t epochs = 0, photons = 0;
+    std::optional<ErrorEstimate> estimated;   // from the half-estimates, once known
+    std::optional<ImageDifference> measured;  // against the reference, when there is one
+    uint64_t pixels = 0;                      // of the image, for the non-finite fraction
+};
+
+// y = scale * x^slope, fitted by least squares on log(y) against log(x).
+struct PowerLaw {
+    double slope = 0, log_scale = 0;
+};
+// Over the pairs where both are > 0 and finite; none when fewer than two such pairs exist or
+// every x is the same.
+std::optional<PowerLaw> FitPowerLaw(std::span<const double> x, std::span<const double> y);
+
+// The fits of one log: RMSE against seconds and against photons, measured (against the
+// reference) and estimated, over the points past the first `kFitSkipEpochs` epochs.
+struct ConvergenceFits {
+    std::optional<PowerLaw> measured_vs_seconds, measured_vs_photons;
+    std::optional<PowerLaw> estimated_vs_seconds, estimated_vs_photons;
+};
+inline constexpr uint64_t kFitSkipEpochs = 3;  // the estimate is unknown before epoch 2
+ConvergenceFits FitConvergence(std::span<const ConvergencePoint> points);
+
+// convergence.csv: one row per point; columns seconds, epochs, photons, estimated_rmse,
+// estimated_rel_error, reference_rmse, reference_rel_mse, reference_rel_error,
+// reference_nonfinite_fraction (empty where unknown). Written to a temporary file and
+// renamed, so a reader never sees half a file.
+std::string ConvergenceCsv(std::span<const ConvergencePoint> points);
+absl::Status WriteConvergenceCsv(const std::string& path, std::span<const ConvergencePoint> points);
+
+}  // namespace pf
