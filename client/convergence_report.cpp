@@ -47,6 +47,19 @@ absl::Status RunGnuplot(const std::string& dir, const std::string& script) {
 
 }  // namespace
 
+void AddReferenceOption(CLI::App* command, std::string* path) {
+    command->add_option("--reference", *path,
+                        "Measure every epoch against this EXR (RMSE, relative MSE, NaN/Inf pixels): the render's size, "
+                        "e.g. a long render with another --photon-stream (docs/convergence.md)")
+        ->check(CLI::ExistingFile);
+}
+
+void AddReportOption(CLI::App* command, std::string* dir) {
+    command->add_option("--report", *dir,
+                        "Write the convergence log into this folder: convergence.csv and log-log plots of error against "
+                        "time and photons with fitted slopes (convergence.png, .svg; needs gnuplot)");
+}
+
 absl::Status PrepareReportDir(const std::string& dir) {
     std::error_code error;
     std::filesystem::create_directories(dir, error);

@@ -6,10 +6,16 @@
 #include <span>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "absl/status/status.h"
 #include "core/ppm/convergence.h"
 
 namespace pf {
+
+// --reference REF.exr and --report DIR, the same for `render`, `submit`, `watch` and `result`.
+void AddReferenceOption(CLI::App* command, std::string* path);
+void AddReportOption(CLI::App* command, std::string* dir);
 
 // Before any work: makes `dir` and checks it can be written to, naming it otherwise.
 absl::Status PrepareReportDir(const std::string& dir);

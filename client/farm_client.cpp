@@ -9,6 +9,7 @@
 #include <chrono>
 
 #include "absl/strings/str_cat.h"
+#include "worker/proto_convert.h"
 #include "worker/rpc_status.h"
 
 namespace pf {
@@ -42,52 +43,56 @@ absl::StatusOr<FarmClient> FarmClient::Connect(const std::string& address, doubl
     return FarmClient(address, std::move(channel));
 }
 
-absl::StatusOr<v1::JobStatus> FarmClient::Submit(const v1::SubmitJobRequest& request) {
+template <typename Response, typename Request, typename Method>
+absl::StatusOr<Response> FarmClient::Unary(Method method, const Request& request, double seconds) {
     grpc::ClientContext context;
-    SetDeadline(&context, kSubmitSeconds);
-    v1::SubmitJobResponse response;
-    if (grpc::Status status = stub_->SubmitJob(&context, request, &response); !status.ok())
+    SetDeadline(&context, seconds);
+    Response response;
+    if (grpc::Status status = (stub_.get()->*method)(&context, request, &response); !status.ok())
         return FromGrpcStatus(status, peer_);
-    return response.status();
+    return response;
+}
+
+absl::StatusOr<v1::JobStatus> FarmClient::Submit(const v1::SubmitJobRequest& request) {
+    absl::StatusOr<v1::SubmitJobResponse> response =
+        Unary<v1::SubmitJobResponse>(&v1::Jobs::Stub::SubmitJob, request, kSubmitSeconds);
+    if (!response.ok()) return response.status();
+    return response->status();
 }
 
 absl::StatusOr<v1::JobStatus> FarmClient::Cancel(const std::string& job_id) {
-    grpc::ClientContext context;
-    SetDeadline(&context, kCallSeconds);
     v1::CancelJobRequest request;
     request.set_job_id(job_id);
-    v1::CancelJobResponse response;
-    if (grpc::Status status = stub_->CancelJob(&context, request, &response); !status.ok())
-        return FromGrpcStatus(status, peer_);
-    return response.status();
+    absl::StatusOr<v1::CancelJobResponse> response =
+        Unary<v1::CancelJobResponse>(&v1::Jobs::Stub::CancelJob, request, kCallSeconds);
+    if (!response.ok()) return response.status();
+    return response->status();
 }
 
 absl::StatusOr<v1::ListJobsResponse> FarmClient::ListJobs() {
-    grpc::ClientContext context;
-    SetDeadline(&context, kCallSeconds);
-    v1::ListJobsResponse response;
-    if (grpc::Status status = stub_->ListJobs(&context, {}, &response); !status.ok()) return FromGrpcStatus(status, peer_);
-    return response;
+    return Unary<v1::ListJobsResponse>(&v1::Jobs::Stub::ListJobs, v1::ListJobsRequest(), kCallSeconds);
 }
 
 absl::StatusOr<v1::ListWorkersResponse> FarmClient::ListWorkers() {
-    grpc::ClientContext context;
-    SetDeadline(&context, kCallSeconds);
-    v1::ListWorkersResponse response;
-    if (grpc::Status status = stub_->ListWorkers(&context, {}, &response); !status.ok())
-        return FromGrpcStatus(status, peer_);
-    return response;
+    return Unary<v1::ListWorkersResponse>(&v1::Jobs::Stub::ListWorkers, v1::ListWorkersRequest(), kCallSeconds);
 }
 
 absl::StatusOr<v1::GetResultResponse> FarmClient::GetResult(const std::string& job_id) {
-    grpc::ClientContext context;
-    SetDeadline(&context, kSubmitSeconds);
     v1::GetResultRequest request;
     request.set_job_id(job_id);
-    v1::GetResultResponse response;
-    if (grpc::Status status = stub_->GetResult(&context, request, &response); !status.ok())
-        return FromGrpcStatus(status, peer_);
-    return response;
+    return Unary<v1::GetResultResponse>(&v1::Jobs::Stub::GetResult, request, kSubmitSeconds);
+}
+
+absl::StatusOr<JobConvergence> FarmClient::Convergence(const std::string& job_id) {
+    v1::GetConvergenceRequest request;
+    request.set_job_id(job_id);
+    absl::StatusOr<v1::GetConvergenceResponse> response =
+        Unary<v1::GetConvergenceResponse>(&v1::Jobs::Stub::GetConvergence, request, kCallSeconds);
+    if (!response.ok()) return response.status();
+    JobConvergence convergence{response->status().name(), {}};
+    for (const v1::ConvergencePoint& point : response->points())
+        convergence.points.push_back(FromProto(point, response->pixels()));
+    return convergence;
 }
 
 absl::StatusOr<v1::Snapshot> FarmClient::Watch(const std::string& job_id, double interval_seconds, bool images,

@@ -8,16 +8,24 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "absl/status/statusor.h"
+#include "core/ppm/convergence.h"
 #include "photonfarm/v1/jobs.grpc.pb.h"
 
 namespace pf {
 
 // Adds --server ADDR (or PHOTONFARM_SERVER) to `command`.
 void AddServerOption(CLI::App* command, std::string* address);
+
+// A job's convergence log, for `--report`.
+struct JobConvergence {
+    std::string name;
+    std::vector<ConvergencePoint> points;
+};
 
 class FarmClient {
 public:
@@ -29,6 +37,7 @@ public:
     absl::StatusOr<photonfarm::v1::ListJobsResponse> ListJobs();
     absl::StatusOr<photonfarm::v1::ListWorkersResponse> ListWorkers();
     absl::StatusOr<photonfarm::v1::GetResultResponse> GetResult(const std::string& job_id);
+    absl::StatusOr<JobConvergence> Convergence(const std::string& job_id);
     // Streams snapshots to `on_snapshot` until the job ends or `on_snapshot` returns false;
     // returns the last one.
     absl::StatusOr<photonfarm::v1::Snapshot> Watch(const std::string& job_id, double interval_seconds, bool images,
@@ -36,6 +45,9 @@ public:
 
 private:
     FarmClient(std::string address, std::shared_ptr<grpc::Channel> channel);
+    // One unary call of the Jobs service with a deadline `seconds` away.
+    template <typename Response, typename Request, typename Method>
+    absl::StatusOr<Response> Unary(Method method, const Request& request, double seconds);
 
     std::string peer_;  // "coordinator at ADDR", for messages
     std::shared_ptr<grpc::Channel> channel_;

@@ -10,8 +10,10 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "client/convergence_report.h"
 #include "client/farm_client.h"
 #include "client/output_files.h"
+#include "client/submit_command.h"
 #include "worker/proto_convert.h"
 
 namespace pf {
@@ -23,7 +25,7 @@ struct CommandOptions {
     std::string server;
     std::string job_id;
     bool json = false;
-    std::string out, png;
+    std::string out, png, report_dir;
 };
 
 // Connects and runs `body`; one line and exit code 1 on any error.
@@ -105,9 +107,12 @@ void AddJobCommands(CLI::App& app, int* exit_code) {
     AddServerOption(result, &result_options->server);
     result->add_option("--out", result_options->out, "Write the image here (float RGB OpenEXR)")->required();
     result->add_option("--png", result_options->png, "Also write a tone-mapped PNG");
+    AddReportOption(result, &result_options->report_dir);
     result->callback([result_options, exit_code] {
-        if (absl::Status status = PrepareOutputs(result_options->out, result_options->png, ""); !status.ok()) {
-            spdlog::error("{}", std::string(status.message()));
+        absl::Status prepared = PrepareOutputs(result_options->out, result_options->png, "");
+        if (prepared.ok() && !result_options->report_dir.empty()) prepared = PrepareReportDir(result_options->report_dir);
+        if (!prepared.ok()) {
+            spdlog::error("{}", std::string(prepared.message()));
             *exit_code = 1;
             return;
         }
@@ -120,11 +125,10 @@ void AddJobCommands(CLI::App& app, int* exit_code) {
             const v1::JobStatus& status = response->status();
             if (status.state() != v1::JOB_STATE_DONE)
                 spdlog::warn("job {} is {}: writing its image so far", status.job_id(), StateName(status.state()));
-            return WriteImageFiles(*image,
-                                   {{"photonfarm:job", status.job_id()},
-                                    {"photonfarm:photons", absl::StrCat(status.photons())},
-                                    {"photonfarm:epochs", absl::StrCat(status.epochs())}},
-                                   result_options->out, result_options->png, 0.0f);
+            absl::Status written =
+                WriteImageFiles(*image, JobMetadata(status), result_options->out, result_options->png, 0.0f);
+            if (!written.ok() || result_options->report_dir.empty()) return written;
+            return WriteJobReport(client, status.job_id(), result_options->report_dir);
         });
     });
 }

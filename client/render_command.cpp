@@ -128,11 +128,8 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
     auto* dir = render->add_option("--snapshot-dir", options->snapshot_dir, "Directory for snapshot-NNNN.exr");
     every->needs(dir);
     dir->needs(every);
-    render->add_option("--reference", options->reference_path,
-                       "Measure every epoch against this EXR (RMSE, relative MSE, NaN/Inf pixels); same size as the render")
-        ->check(CLI::ExistingFile);
-    render->add_option("--report", options->report_dir,
-                       "Write convergence.csv and log-log plots of error against time (PNG, SVG) into this folder");
+    AddReferenceOption(render, &options->reference_path);
+    AddReportOption(render, &options->report_dir);
     render->callback([options, exit_code] {
         ApplyDefaultBudget(&options->settings.job);
         *exit_code = RunRender(*options);

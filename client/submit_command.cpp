@@ -3,15 +3,18 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "client/convergence_report.h"
 #include "client/farm_client.h"
 #include "client/job_options.h"
 #include "client/output_files.h"
 #include "client/progress_display.h"
+#include "core/film/exr_io.h"
 #include "core/scene/scene_bundle.h"
 #include "worker/proto_convert.h"
 
@@ -23,7 +26,7 @@ namespace v1 = photonfarm::v1;
 struct WatchOptions {
     std::string server;
     std::string job_id;
-    std::string out, png, snapshot_dir;
+    std::string out, png, snapshot_dir, report_dir;
     double interval = 1.0;
     float exposure = 0;
     bool json = false;
@@ -37,17 +40,9 @@ void AddWatchOptions(CLI::App* command, WatchOptions* options) {
     command->add_option("--snapshot-dir", options->snapshot_dir, "Write every snapshot here (snapshot-NNNN.exr and .png)");
     command->add_option("--interval", options->interval, "Seconds between snapshots")->default_val(1.0)->check(CLI::Range(0.0, 3600.0));
     command->add_flag("--json", options->json, "One JSON status per snapshot on stdout, for scripts");
+    AddReportOption(command, &options->report_dir);
 }
 
-ImageMetadata SnapshotMetadata(const v1::JobStatus& status) {
-    return {{"photonfarm:job", status.job_id()},
-            {"photonfarm:scene", status.name()},
-            {"photonfarm:photons", absl::StrCat(status.photons())},
-            {"photonfarm:epochs", absl::StrCat(status.epochs())},
-            {"photonfarm:seconds", absl::StrFormat("%.3f", status.elapsed_seconds())},
-            {"photonfarm:estimated_error",
-             status.has_estimated_error() ? absl::StrFormat("%.4g", status.estimated_error()) : "unknown"}};
-}
 
 RenderProgress ProgressOf(const v1::JobStatus& status) {
     RenderProgress progress;
@@ -57,15 +52,38 @@ RenderProgress ProgressOf(const v1::JobStatus& status) {
     progress.fraction = status.budget_fraction();
     progress.workers = status.workers_active();
     if (status.has_estimated_error()) progress.estimated_error = status.estimated_error();
+    if (status.has_reference_error()) progress.measured_error = std::sqrt(status.reference_error().rel_mse());
     return progress;
 }
+
+}  // namespace
+
+ImageMetadata JobMetadata(const photonfarm::v1::JobStatus& status) {
+    return {{"photonfarm:job", status.job_id()},
+            {"photonfarm:scene", status.name()},
+            {"photonfarm:photons", absl::StrCat(status.photons())},
+            {"photonfarm:epochs", absl::StrCat(status.epochs())},
+            {"photonfarm:seconds", absl::StrFormat("%.3f", status.elapsed_seconds())},
+            {"photonfarm:estimated_error",
+             status.has_estimated_error() ? absl::StrFormat("%.4g", status.estimated_error()) : "unknown"}};
+}
+
+absl::Status WriteJobReport(FarmClient& client, const std::string& job_id, const std::string& dir) {
+    absl::StatusOr<JobConvergence> convergence = client.Convergence(job_id);
+    if (!convergence.ok()) return convergence.status();
+    return WriteConvergenceReport(dir, convergence->name, convergence->points);
+}
+
+namespace {
 
 // Follows a job to its end, writing snapshots and the final image. Exit code: 0 when the
 // job is done, 1 otherwise (cancelled, failed, or the coordinator lost); whatever image
 // arrived is written either way.
 int Follow(FarmClient& client, const WatchOptions& options) {
-    if (absl::Status status = PrepareOutputs(options.out, options.png, options.snapshot_dir); !status.ok()) {
-        spdlog::error("{}", std::string(status.message()));
+    absl::Status prepared = PrepareOutputs(options.out, options.png, options.snapshot_dir);
+    if (prepared.ok() && !options.report_dir.empty()) prepared = PrepareReportDir(options.report_dir);
+    if (!prepared.ok()) {
+        spdlog::error("{}", std::string(prepared.message()));
         return 1;
     }
     ProgressDisplay display;
@@ -91,7 +109,7 @@ int Follow(FarmClient& client, const WatchOptions& options) {
         image = std::move(*decoded);
         if (!options.snapshot_dir.empty() && write_status.ok()) {
             const std::string stem = absl::StrFormat("%s/snapshot-%04d", options.snapshot_dir, ++snapshots);
-            write_status = WriteImageFiles(image, SnapshotMetadata(snapshot.status()), stem + ".exr", stem + ".png", options.exposure);
+            write_status = WriteImageFiles(image, JobMetadata(snapshot.status()), stem + ".exr", stem + ".png", options.exposure);
         }
         return true;
     });
@@ -113,8 +131,14 @@ int Follow(FarmClient& client, const WatchOptions& options) {
         exit_code = 1;
     }
     if (!options.out.empty() && image.width > 0) {
-        if (absl::Status status = WriteImageFiles(image, SnapshotMetadata(last), options.out, options.png, options.exposure);
+        if (absl::Status status = WriteImageFiles(image, JobMetadata(last), options.out, options.png, options.exposure);
             !status.ok()) {
+            spdlog::error("{}", std::string(status.message()));
+            exit_code = 1;
+        }
+    }
+    if (!options.report_dir.empty()) {
+        if (absl::Status status = WriteJobReport(client, options.job_id, options.report_dir); !status.ok()) {
             spdlog::error("{}", std::string(status.message()));
             exit_code = 1;
         }
@@ -124,6 +148,7 @@ int Follow(FarmClient& client, const WatchOptions& options) {
 
 struct SubmitOptions {
     std::string scene_path;
+    std::string reference_path;
     std::string name;
     JobSpec spec;
     int priority = 0;
@@ -152,6 +177,14 @@ int RunSubmit(SubmitOptions& options) {
     *request.mutable_settings() = ToProto(options.spec);
     request.mutable_settings()->set_priority(options.priority);
     request.set_name(options.name);
+    if (!options.reference_path.empty()) {
+        absl::StatusOr<Image> reference = ReadExr(options.reference_path);
+        if (!reference.ok()) {
+            spdlog::error("{}", std::string(reference.status().message()));
+            return 1;
+        }
+        *request.mutable_reference() = ToProto(*reference);
+    }
     spdlog::info("submitting {} ({} files, {} bytes)", options.scene_path, bundle->files.size(), bundle->TotalBytes());
     absl::StatusOr<v1::JobStatus> status = client->Submit(request);
     if (!status.ok()) {
@@ -183,12 +216,15 @@ void AddSubmitCommand(CLI::App& app, int* exit_code) {
     submit->add_option("--name", options->name, "Name in listings (default: the scene's file name)");
     submit->add_option("--priority", options->priority, "Higher runs first; equal priorities share workers")->default_val(0);
     AddJobOptions(submit, &options->spec);
+    AddReferenceOption(submit, &options->reference_path);
     submit->add_flag("--watch", options->watch, "Follow the job to its end: progress, snapshots, final image");
     AddWatchOptions(submit, &options->watch_options);
     submit->callback([options, exit_code] {
         const WatchOptions& watch = options->watch_options;
-        if (!options->watch && (!watch.out.empty() || !watch.png.empty() || !watch.snapshot_dir.empty())) {
-            spdlog::error("--out, --png and --snapshot-dir need --watch (or use `photonfarm watch JOB --out ...` later)");
+        if (!options->watch &&
+            (!watch.out.empty() || !watch.png.empty() || !watch.snapshot_dir.empty() || !watch.report_dir.empty())) {
+            spdlog::error(
+                "--out, --png, --snapshot-dir and --report need --watch (or use `photonfarm watch JOB --out ...` later)");
             *exit_code = 2;
             return;
         }

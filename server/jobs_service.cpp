@@ -40,6 +40,7 @@ v1::JobStatus ToProto(const JobProgress& progress) {
     status.set_hit_points(progress.hit_points);
     status.set_budget_fraction(progress.budget_fraction);
     if (progress.estimated_error) status.set_estimated_error(*progress.estimated_error);
+    if (progress.measured_error) *status.mutable_reference_error() = ToProto(*progress.measured_error);
     status.set_message(progress.message);
     for (const std::string& warning : progress.warnings) status.add_warnings(warning);
     return status;
@@ -56,8 +57,14 @@ grpc::Status JobsService::SubmitJob(grpc::ServerContext*, const v1::SubmitJobReq
     if (!bundle.ok()) return Invalid(bundle.status());
     absl::StatusOr<JobSpec> spec = FromProto(request->settings());
     if (!spec.ok()) return Invalid(spec.status());
-    absl::StatusOr<JobProgress> progress =
-        coordinator_.Submit({request->name(), std::move(*bundle), *spec, request->settings().priority()});
+    std::shared_ptr<const Image> reference;
+    if (request->has_reference()) {
+        absl::StatusOr<Image> image = FromProto(request->reference());
+        if (!image.ok()) return Invalid(absl::InvalidArgumentError(absl::StrCat("reference: ", image.status().message())));
+        reference = std::make_shared<const Image>(std::move(*image));
+    }
+    absl::StatusOr<JobProgress> progress = coordinator_.Submit(
+        {request->name(), std::move(*bundle), *spec, request->settings().priority(), std::move(reference)});
     if (!progress.ok()) return ToGrpcStatus(progress.status());
     *response->mutable_status() = ToProto(*progress);
     return grpc::Status::OK;
@@ -114,6 +121,18 @@ grpc::Status JobsService::GetResult(grpc::ServerContext*, const v1::GetResultReq
     if (!job.ok()) return ToGrpcStatus(job.status());
     *response->mutable_status() = ToProto((*job)->Progress(coordinator_.Options().now()));
     if (std::shared_ptr<const Image> image = (*job)->CurrentImage()) *response->mutable_image() = ToProto(*image);
+    return grpc::Status::OK;
+}
+
+grpc::Status JobsService::GetConvergence(grpc::ServerContext*, const v1::GetConvergenceRequest* request,
+                                         v1::GetConvergenceResponse* response) {
+    absl::StatusOr<std::shared_ptr<Job>> job = coordinator_.FindJob(request->job_id());
+    if (!job.ok()) return ToGrpcStatus(job.status());
+    const JobProgress progress = (*job)->Progress(coordinator_.Options().now());
+    *response->mutable_status() = ToProto(progress);
+    for (const ConvergencePoint& point : (*job)->Convergence()) *response->add_points() = ToProto(point);
+    if (std::shared_ptr<const Image> image = (*job)->CurrentImage())
+        response->set_pixels(static_cast<uint64_t>(image->width) * image->height);
     return grpc::Status::OK;
 }
 

@@ -24,6 +24,8 @@ public:
                           photonfarm::v1::ListJobsResponse* response) override;
     grpc::Status GetResult(grpc::ServerContext* context, const photonfarm::v1::GetResultRequest* request,
                            photonfarm::v1::GetResultResponse* response) override;
+    grpc::Status GetConvergence(grpc::ServerContext* context, const photonfarm::v1::GetConvergenceRequest* request,
+                                photonfarm::v1::GetConvergenceResponse* response) override;
     grpc::Status ListWorkers(grpc::ServerContext* context, const photonfarm::v1::ListWorkersRequest* request,
                              photonfarm::v1::ListWorkersResponse* response) override;
 

@@ -185,4 +185,45 @@ absl::StatusOr<Image> FromProto(const photonfarm::v1::Image& image) {
     return DecodeImagePixels(image.rgb_f32_zstd(), static_cast<int>(image.width()), static_cast<int>(image.height()));
 }
 
+photonfarm::v1::ReferenceError ToProto(const ImageDifference& difference) {
+    photonfarm::v1::ReferenceError out;
+    out.set_rmse(difference.rmse);
+    out.set_rel_mse(difference.rel_mse);
+    out.set_nonfinite_pixels(difference.nonfinite_pixels);
+    return out;
+}
+
+ImageDifference FromProto(const photonfarm::v1::ReferenceError& error) {
+    ImageDifference difference;
+    difference.rmse = error.rmse();
+    difference.rel_mse = error.rel_mse();
+    difference.nonfinite_pixels = error.nonfinite_pixels();
+    return difference;
+}
+
+photonfarm::v1::ConvergencePoint ToProto(const ConvergencePoint& point) {
+    photonfarm::v1::ConvergencePoint out;
+    out.set_seconds(point.seconds);
+    out.set_epochs(point.epochs);
+    out.set_photons(point.photons);
+    if (point.estimated) {
+        out.set_estimated_rmse(point.estimated->rmse);
+        out.set_estimated_rel_mse(point.estimated->rel_mse);
+    }
+    if (point.measured) *out.mutable_reference_error() = ToProto(*point.measured);
+    return out;
+}
+
+ConvergencePoint FromProto(const photonfarm::v1::ConvergencePoint& point, uint64_t pixels) {
+    ConvergencePoint out;
+    out.seconds = point.seconds();
+    out.epochs = point.epochs();
+    out.photons = point.photons();
+    if (point.has_estimated_rmse() && point.has_estimated_rel_mse())
+        out.estimated = ErrorEstimate{true, point.estimated_rmse(), point.estimated_rel_mse()};
+    if (point.has_reference_error()) out.measured = FromProto(point.reference_error());
+    out.pixels = pixels;
+    return out;
+}
+
 }  // namespace pf

@@ -7,6 +7,8 @@
 
 #include "absl/status/statusor.h"
 #include "core/film/image.h"
+#include "core/film/image_metrics.h"
+#include "core/ppm/convergence.h"
 #include "core/ppm/batch.h"
 #include "core/ppm/job_spec.h"
 #include "core/scene/scene_bundle.h"
@@ -34,4 +36,11 @@ absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings);
 
 photonfarm::v1::Image ToProto(const Image& image);
 absl::StatusOr<Image> FromProto(const photonfarm::v1::Image& image);
+
+// The convergence log (RMSE, relative MSE and non-finite pixels of a measurement; PSNR and
+// the largest difference stay behind).
+photonfarm::v1::ReferenceError ToProto(const ImageDifference& difference);
+ImageDifference FromProto(const photonfarm::v1::ReferenceError& error);
+photonfarm::v1::ConvergencePoint ToProto(const ConvergencePoint& point);
+ConvergencePoint FromProto(const photonfarm::v1::ConvergencePoint& point, uint64_t pixels);
 }  // namespace pf
