@@ -14,6 +14,7 @@
 
 #include "client/farm_client.h"
 #include "core/film/exr_io.h"
+#include "core/film/image_metrics.h"
 #include "core/scene/scene_bundle.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "photonfarm/v1/work.grpc.pb.h"
@@ -195,6 +196,55 @@ TEST_F(FarmTest, TargetErrorEndsTheJobAndSnapshotsCarryTheEstimate) {
     ASSERT_TRUE(last.has_estimated_error());
     EXPECT_LE(last.estimated_error(), 0.03);
     EXPECT_LT(last.photons(), uint64_t(kCapEpochs) * 8 * 8192) << "the target, not the photon cap, ended the job";
+}
+
+TEST_F(FarmTest, JobWithAReferenceLogsItsErrorAndWritesTheReport) {
+    StartWorker();
+    // The reference: the same hit points (seed), independent photons (another stream), 4x longer.
+    const std::string reference = TempPath("reference.exr");
+    ChildProcess render(Concat({kBin + "/client/photonfarm", "render", kScene, "--threads", "2", "--out", reference,
+                                "--photons", std::to_string(4 * kEpochs * 8 * 8192), "--photon-stream", "1",
+                                "--log-level", "warn"},
+                               kJobFlags));
+    ASSERT_EQ(render.Wait(300), 0);
+    const std::string out = TempPath("measured.exr"), report = TempPath("report");
+    ChildProcess submit(Concat({kBin + "/client/photonfarm", "submit", kScene, "--server", address_, "--watch",
+                                "--interval", "0", "--out", out, "--photons", std::to_string(kEpochs * 8 * 8192),
+                                "--reference", reference, "--report", report, "--log-level", "warn"},
+                               kJobFlags));
+    ASSERT_EQ(submit.Wait(300), 0);
+
+    // One CSV row per epoch; the last one's measurement is what `compare` finds between the
+    // final image and the reference.
+    absl::StatusOr<JobConvergence> log;
+    const absl::StatusOr<v1::ListJobsResponse> jobs = client_->ListJobs();
+    ASSERT_TRUE(jobs.ok() && jobs->jobs_size() == 1);
+    log = client_->Convergence(jobs->jobs(0).job_id());
+    ASSERT_TRUE(log.ok()) << log.status();
+    ASSERT_EQ(log->points.size(), static_cast<size_t>(kEpochs));
+    for (const ConvergencePoint& point : log->points) {
+        ASSERT_TRUE(point.measured.has_value()) << "epoch " << point.epochs;
+        EXPECT_EQ(point.measured->nonfinite_pixels, 0u);
+        EXPECT_EQ(point.estimated.has_value(), point.epochs >= 2);
+    }
+    const absl::StatusOr<ImageDifference> final = CompareImages(*ReadExr(out), *ReadExr(reference));
+    ASSERT_TRUE(final.ok());
+    EXPECT_DOUBLE_EQ(log->points.back().measured->rmse, final->rmse);
+    EXPECT_DOUBLE_EQ(log->points.back().measured->rel_mse, final->rel_mse);
+    EXPECT_LT(log->points.back().measured->rmse, log->points.front().measured->rmse) << "the error must fall";
+    for (const char* file : {"convergence.csv", "convergence.gp", "convergence.png", "convergence.svg"})
+        EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(report) / file)) << file;
+
+    // A reference of another size is refused before any work, naming it.
+    v1::SubmitJobRequest request;
+    *request.mutable_scene() = ToProto(*PackSceneBundle(kScene));
+    request.mutable_settings()->set_width(32);
+    request.mutable_settings()->set_photon_budget(8192);
+    *request.mutable_reference() = ToProto(*ReadExr(reference));
+    const absl::Status status = client_->Submit(request).status();
+    EXPECT_TRUE(absl::IsInvalidArgument(status)) << status;
+    EXPECT_NE(status.message().find("reference: the image is 48x48 but the job renders 32x32"), std::string::npos)
+        << status;
 }
 
 TEST_F(FarmTest, CancelledJobStopsItsLeasesAndKeepsItsImage) {
