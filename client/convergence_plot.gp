@@ -1,7 +1,7 @@
 # Plots convergence.csv (written by `photonfarm render|submit|result --report DIR`): RMSE
-# against seconds and against photons on log-log axes, the estimate from the half-estimates
-# and, when the render had a reference, the error measured against it, each with its fitted
-# power law. photonfarm writes this script into DIR after a header that sets the variables
+# against seconds and against photons on log-log axes, the estimate (variance from the
+# half-estimates plus bias from the inner discs, and the bias part alone) and, when the render
+# had a reference, the error measured against it, each with its fitted power law. photonfarm writes this script into DIR after a header that sets the variables
 # below, and runs `gnuplot convergence.gp` there; run it again by hand to re-plot.
 #
 # Set by the header: title; has_reference (0 or 1); for each fit f in est_t, est_n, ref_t,
@@ -9,6 +9,7 @@
 
 set datafile separator comma
 set datafile missing ""
+set datafile columnheaders
 set logscale xy
 set format y "10^{%L}"
 set grid xtics ytics mxtics mytics lc rgb "#dddddd"
@@ -17,6 +18,7 @@ set style line 1 lc rgb "#1f77b4" pt 7 ps 0.5 lw 1.5
 set style line 2 lc rgb "#d62728" pt 5 ps 0.5 lw 1.5
 set style line 3 lc rgb "#1f77b4" dt 2 lw 2
 set style line 4 lc rgb "#d62728" dt 2 lw 2
+set style line 5 lc rgb "#7fa9d0" dt 3 lw 1.5
 
 fit_label(ok, slope) = ok ? sprintf("fit: slope %.3f", slope) : "fit: too few points"
 power(x, ok, slope, log_scale) = ok ? exp(log_scale) * x**slope : NaN
@@ -38,26 +40,30 @@ do for [out in "png svg"] {
     set ylabel "RMSE"
     set format x "%g"
     if (has_reference) {
-        plot "convergence.csv" using 1:6 skip 1 with linespoints ls 2 title "against the reference", \
+        plot "convergence.csv" using "seconds":"reference_rmse" with linespoints ls 2 title "against the reference", \
              power(x, ref_t_ok, ref_t_slope, ref_t_log_scale) with lines ls 4 title fit_label(ref_t_ok, ref_t_slope), \
-             "convergence.csv" using 1:4 skip 1 with linespoints ls 1 title "estimated (half-estimates)", \
-             power(x, est_t_ok, est_t_slope, est_t_log_scale) with lines ls 3 title fit_label(est_t_ok, est_t_slope)
+             "convergence.csv" using "seconds":"estimated_rmse" with linespoints ls 1 title "estimated (variance + bias)", \
+             power(x, est_t_ok, est_t_slope, est_t_log_scale) with lines ls 3 title fit_label(est_t_ok, est_t_slope), \
+             "convergence.csv" using "seconds":"estimated_bias_rmse" with lines ls 5 title "of which bias"
     } else {
-        plot "convergence.csv" using 1:4 skip 1 with linespoints ls 1 title "estimated (half-estimates)", \
-             power(x, est_t_ok, est_t_slope, est_t_log_scale) with lines ls 3 title fit_label(est_t_ok, est_t_slope)
+        plot "convergence.csv" using "seconds":"estimated_rmse" with linespoints ls 1 title "estimated (variance + bias)", \
+             power(x, est_t_ok, est_t_slope, est_t_log_scale) with lines ls 3 title fit_label(est_t_ok, est_t_slope), \
+             "convergence.csv" using "seconds":"estimated_bias_rmse" with lines ls 5 title "of which bias"
     }
 
     set title panel_title("photons")
     set xlabel "photons emitted"
     set format x "10^{%L}"
     if (has_reference) {
-        plot "convergence.csv" using 3:6 skip 1 with linespoints ls 2 title "against the reference", \
+        plot "convergence.csv" using "photons":"reference_rmse" with linespoints ls 2 title "against the reference", \
              power(x, ref_n_ok, ref_n_slope, ref_n_log_scale) with lines ls 4 title fit_label(ref_n_ok, ref_n_slope), \
-             "convergence.csv" using 3:4 skip 1 with linespoints ls 1 title "estimated (half-estimates)", \
-             power(x, est_n_ok, est_n_slope, est_n_log_scale) with lines ls 3 title fit_label(est_n_ok, est_n_slope)
+             "convergence.csv" using "photons":"estimated_rmse" with linespoints ls 1 title "estimated (variance + bias)", \
+             power(x, est_n_ok, est_n_slope, est_n_log_scale) with lines ls 3 title fit_label(est_n_ok, est_n_slope), \
+             "convergence.csv" using "photons":"estimated_bias_rmse" with lines ls 5 title "of which bias"
     } else {
-        plot "convergence.csv" using 3:4 skip 1 with linespoints ls 1 title "estimated (half-estimates)", \
-             power(x, est_n_ok, est_n_slope, est_n_log_scale) with lines ls 3 title fit_label(est_n_ok, est_n_slope)
+        plot "convergence.csv" using "photons":"estimated_rmse" with linespoints ls 1 title "estimated (variance + bias)", \
+             power(x, est_n_ok, est_n_slope, est_n_log_scale) with lines ls 3 title fit_label(est_n_ok, est_n_slope), \
+             "convergence.csv" using "photons":"estimated_bias_rmse" with lines ls 5 title "of which bias"
     }
 
     unset multiplot

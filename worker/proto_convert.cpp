@@ -40,12 +40,14 @@ photonfarm::v1::BatchResult ToProto(const BatchResult& result) {
     const size_t entries = result.tally.Size();
     tally->mutable_hit_point_delta()->Reserve(static_cast<int>(entries));
     tally->mutable_photons()->Reserve(static_cast<int>(entries));
+    tally->mutable_inner_photons()->Reserve(static_cast<int>(entries));
     tally->mutable_flux()->Reserve(static_cast<int>(3 * entries));
     uint32_t previous = 0;
     for (size_t e = 0; e < entries; ++e) {
         tally->add_hit_point_delta(result.tally.hit_point[e] - previous);
         previous = result.tally.hit_point[e];
         tally->add_photons(result.tally.photons[e]);
+        tally->add_inner_photons(result.tally.inner_photons[e]);
         for (int c = 0; c < 3; ++c) tally->add_flux(result.tally.flux[e][c]);
     }
     out.mutable_direct()->Reserve(static_cast<int>(3 * result.direct.size()));
@@ -65,13 +67,15 @@ absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message
                                     ") lies outside the ", hit_point_count, " hit points"));
     const photonfarm::v1::Tally& tally = message.tally();
     const int entries = tally.hit_point_delta_size();
-    if (tally.photons_size() != entries || tally.flux_size() != 3 * entries)
+    if (tally.photons_size() != entries || tally.inner_photons_size() != entries || tally.flux_size() != 3 * entries)
         return Invalid(absl::StrCat("tally sizes disagree: ", entries, " hit points, ", tally.photons_size(),
-                                    " counts, ", tally.flux_size(), " flux values"));
+                                    " counts, ", tally.inner_photons_size(), " inner counts, ", tally.flux_size(),
+                                    " flux values"));
     if (static_cast<uint64_t>(entries) > hit_point_count)
         return Invalid(absl::StrCat("tally has ", entries, " entries for ", hit_point_count, " hit points"));
     result.tally.hit_point.resize(entries);
     result.tally.photons.resize(entries);
+    result.tally.inner_photons.resize(entries);
     result.tally.flux.resize(entries);
     uint64_t hit_point = 0;
     for (int e = 0; e < entries; ++e) {
@@ -81,11 +85,14 @@ absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message
         if (hit_point >= hit_point_count)
             return Invalid(absl::StrCat("tally entry ", e, " names hit point ", hit_point, " of ", hit_point_count));
         if (tally.photons(e) == 0) return Invalid(absl::StrCat("tally entry ", e, " has no photons"));
+        if (tally.inner_photons(e) > tally.photons(e))
+            return Invalid(absl::StrCat("tally entry ", e, " has more inner photons than photons"));
         const Rgb flux(tally.flux(3 * e), tally.flux(3 * e + 1), tally.flux(3 * e + 2));
         if (!NonNegativeFinite(flux.x) || !NonNegativeFinite(flux.y) || !NonNegativeFinite(flux.z))
             return Invalid(absl::StrCat("tally entry ", e, " has negative, NaN or Inf flux"));
         result.tally.hit_point[e] = static_cast<uint32_t>(hit_point);
         result.tally.photons[e] = tally.photons(e);
+        result.tally.inner_photons[e] = tally.inner_photons(e);
         result.tally.flux[e] = flux;
     }
     const uint32_t slice = spec.direct_end - spec.direct_begin;
@@ -209,6 +216,7 @@ photonfarm::v1::ConvergencePoint ToProto(const ConvergencePoint& point) {
     if (point.estimated) {
         out.set_estimated_rmse(point.estimated->rmse);
         out.set_estimated_rel_mse(point.estimated->rel_mse);
+        out.set_estimated_bias_rmse(point.estimated->bias_rmse);
     }
     if (point.measured) *out.mutable_reference_error() = ToProto(*point.measured);
     return out;
@@ -220,7 +228,8 @@ ConvergencePoint FromProto(const photonfarm::v1::ConvergencePoint& point, uint64
     out.epochs = point.epochs();
     out.photons = point.photons();
     if (point.has_estimated_rmse() && point.has_estimated_rel_mse())
-        out.estimated = ErrorEstimate{true, point.estimated_rmse(), point.estimated_rel_mse()};
+        out.estimated =
+            ErrorEstimate{true, point.estimated_rmse(), point.estimated_rel_mse(), point.estimated_bias_rmse()};
     if (point.has_reference_error()) out.measured = FromProto(point.reference_error());
     out.pixels = pixels;
     return out;

@@ -50,6 +50,7 @@ BatchSpec MakeBatchSpec(const BatchLayout& layout, uint64_t epoch, uint32_t batc
 struct Tally {
     std::vector<uint32_t> hit_point;
     std::vector<uint32_t> photons;  // M: photons found within the hit point's radius
+    std::vector<uint32_t> inner_photons;  // those of them within R / sqrt(2), for the bias estimate
     // Their raw photon flux (W x N_emitted), summed in float in photon order; the merge
     // multiplies it by the hit point's BSDF weight to give Phi_M. Float is exact enough
     // within a batch (see tally_accumulator.h) and halves the wire size.

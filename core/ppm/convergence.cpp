@@ -46,13 +46,14 @@ ConvergenceFits FitConvergence(std::span<const ConvergencePoint> points) {
 
 std::string ConvergenceCsv(std::span<const ConvergencePoint> points) {
     std::string csv =
-        "seconds,epochs,photons,estimated_rmse,estimated_rel_error,reference_rmse,reference_rel_mse,"
-        "reference_rel_error,reference_nonfinite_fraction\n";
+        "seconds,epochs,photons,estimated_rmse,estimated_rel_error,estimated_bias_rmse,reference_rmse,"
+        "reference_rel_mse,reference_rel_error,reference_nonfinite_fraction\n";
     for (const ConvergencePoint& p : points) {
-        std::optional<double> estimated_rmse, estimated_rel, rmse, rel_mse, rel, nonfinite;
+        std::optional<double> estimated_rmse, estimated_rel, estimated_bias, rmse, rel_mse, rel, nonfinite;
         if (p.estimated) {
             estimated_rmse = p.estimated->rmse;
             estimated_rel = p.estimated->RelativeError();
+            estimated_bias = p.estimated->bias_rmse;
         }
         if (p.measured) {
             rmse = p.measured->rmse;
@@ -60,8 +61,9 @@ std::string ConvergenceCsv(std::span<const ConvergencePoint> points) {
             rel = std::sqrt(p.measured->rel_mse);
             nonfinite = p.pixels > 0 ? double(p.measured->nonfinite_pixels) / double(p.pixels) : 0.0;
         }
-        csv += absl::StrFormat("%.6f,%d,%d,%s,%s,%s,%s,%s,%s\n", p.seconds, p.epochs, p.photons, Cell(estimated_rmse),
-                               Cell(estimated_rel), Cell(rmse), Cell(rel_mse), Cell(rel), Cell(nonfinite));
+        csv += absl::StrFormat("%.6f,%d,%d,%s,%s,%s,%s,%s,%s,%s\n", p.seconds, p.epochs, p.photons,
+                               Cell(estimated_rmse), Cell(estimated_rel), Cell(estimated_bias), Cell(rmse),
+                               Cell(rel_mse), Cell(rel), Cell(nonfinite));
     }
     return csv;
 }

@@ -41,7 +41,7 @@ inline constexpr uint64_t kFitSkipEpochs = 3;  // the estimate is unknown before
 ConvergenceFits FitConvergence(std::span<const ConvergencePoint> points);
 
 // convergence.csv: one row per point; columns seconds, epochs, photons, estimated_rmse,
-// estimated_rel_error, reference_rmse, reference_rel_mse, reference_rel_error,
+// estimated_rel_error, estimated_bias_rmse, reference_rmse, reference_rel_mse, reference_rel_error,
 // reference_nonfinite_fraction (empty where unknown). Written to a temporary file and
 // renamed, so a reader never sees half a file.
 std::string ConvergenceCsv(std::span<const ConvergencePoint> points);

@@ -35,9 +35,10 @@ public:
     // zero radius or a black weight are left out, since no photon can change their estimate.
     void Build(std::span<const HitPoint> hit_points, std::span<const float> radius_sq);
 
-    // Calls visit(index) for every hit point whose search sphere contains p and whose surface
-    // faces a photon arriving along `direction` (photons from behind are rejected), in a
-    // fixed order.
+    // Calls visit(index, inner) for every hit point whose search sphere contains p and whose
+    // surface faces a photon arriving along `direction` (photons from behind are rejected), in
+    // a fixed order. `inner`: p also lies within R / sqrt(2), the disc of half the area (for
+    // the estimate of the bias, ProgressiveEstimate::EstimateError).
     template <typename Visit>
     void ForEachGathering(const Vec3& p, const Vec3& direction, Visit&& visit) const {
         if (entry_index_.empty()) return;
@@ -53,7 +54,9 @@ public:
             if (count < kChunk) inside &= (uint64_t{1} << count) - 1;
             for (; inside != 0; inside &= inside - 1) {
                 const uint32_t e = begin + static_cast<uint32_t>(std::countr_zero(inside));
-                if (Dot(DecodeOctahedral(entry_normal_[e]), direction) < 0) visit(entry_index_[e]);
+                if (Dot(DecodeOctahedral(entry_normal_[e]), direction) >= 0) continue;
+                const float dx = entry_x_[e] - p.x, dy = entry_y_[e] - p.y, dz = entry_z_[e] - p.z;
+                visit(entry_index_[e], 2 * (dx * dx + dy * dy + dz * dz) <= entry_radius_sq_[e]);
             }
             begin += count;
         }

@@ -98,7 +98,7 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     for (size_t i = 0; i < keys.size(); ++i) sorted[i] = deposits[static_cast<uint32_t>(keys[i])];
     for (const PhotonDeposit& deposit : sorted) {
         inputs.grid->ForEachGathering(deposit.position, deposit.direction,
-                                      [&](uint32_t index) { scratch.tally.Add(index, deposit.flux); });
+                                      [&](uint32_t index, bool inner) { scratch.tally.Add(index, deposit.flux, inner); });
     }
     scratch.deposits.clear();
 }

@@ -22,7 +22,9 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass, const Est
     direct_sum_.assign(hit_points_->size(), Rgbd(0.0));
     flux_even_.assign(hit_points_->size(), Rgbd(0.0));
     direct_even_.assign(hit_points_->size(), Rgbd(0.0));
+    counts_.assign(hit_points_->size(), GatherCounts{});
     epoch_photons_.assign(hit_points_->size(), 0);
+    epoch_inner_photons_.assign(hit_points_->size(), 0);
     epoch_flux_.assign(hit_points_->size(), Rgbd(0.0));
     epoch_flux_even_.assign(hit_points_->size(), Rgbd(0.0));
     epoch_direct_.assign(hit_points_->size(), Rgb(0.0f));
@@ -48,6 +50,8 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
     const std::vector<HitPoint>& hit_points = *hit_points_;
     const Tally& tally = result.tally;
     PF_CHECK(tally.Size() == 0 || tally.hit_point.back() < hit_points.size());
+    PF_CHECK(tally.photons.size() == tally.Size() && tally.inner_photons.size() == tally.Size() &&
+             tally.flux.size() == tally.Size());
     const bool even = result.spec.index % 2 == 0;
     // Entries are sorted by hit point and each names a hit point once, so disjoint ranges of
     // entries touch disjoint sums: folded in parallel, each sum still gets its batches in
@@ -56,6 +60,7 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
         for (size_t e = r.begin(); e < r.end(); ++e) {
             const uint32_t i = tally.hit_point[e];
             epoch_photons_[i] += tally.photons[e];
+            epoch_inner_photons_[i] += tally.inner_photons[e];
             // Phi_M: the photons' flux times the BSDF weight (a float product, exact in double).
             const Rgbd flux = Rgbd(tally.flux[e]) * Rgbd(hit_points[i].weight);
             epoch_flux_[i] += flux;
@@ -78,11 +83,17 @@ void ProgressiveEstimate::FinishEpoch() {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, points_.size()), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
             const double photons = static_cast<double>(epoch_photons_[i]);
-            flux_even_[i] = (flux_even_[i] + epoch_flux_even_[i]) * ShrinkRatio(points_[i], photons, alpha);
+            const double shrink = ShrinkRatio(points_[i], photons, alpha);
+            flux_even_[i] = (flux_even_[i] + epoch_flux_even_[i]) * shrink;
+            GatherCounts& counts = counts_[i];
+            counts.all = (counts.all + photons) * shrink;
+            counts.inner = (counts.inner + static_cast<double>(epoch_inner_photons_[i])) * shrink;
+            counts.weight_sq = (counts.weight_sq + photons) * shrink * shrink;
             points_[i] = UpdateEstimate(points_[i], photons, epoch_flux_[i], alpha);
             direct_sum_[i] += Rgbd(epoch_direct_[i]);
             if (even_epoch) direct_even_[i] += Rgbd(epoch_direct_[i]);
             epoch_photons_[i] = 0;
+            epoch_inner_photons_[i] = 0;
             epoch_flux_[i] = Rgbd(0.0);
             epoch_flux_even_[i] = Rgbd(0.0);
         }
@@ -124,8 +135,11 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
     const double epochs_even = static_cast<double>((epoch_ + 1) / 2), epochs_odd = static_cast<double>(epoch_ / 2);
     ErrorEstimate error;
     if (!(photons_even > 0 && photons_odd > 0 && epochs_odd > 0)) return error;
-    // Per pixel: the full estimate and the difference of the halves, summed over its hit points.
-    std::vector<Rgbd> value(emission_.pixels.size(), Rgbd(0.0)), difference(emission_.pixels.size(), Rgbd(0.0));
+    // Per pixel, summed over its hit points: the full estimate, the difference of the halves,
+    // the bias estimate 2 (L - L_inner) of the photon part, and that estimate's own variance.
+    const size_t pixels = emission_.pixels.size();
+    std::vector<Rgbd> value(pixels, Rgbd(0.0)), difference(pixels, Rgbd(0.0)), bias(pixels, Rgbd(0.0));
+    std::vector<Rgbd> bias_noise(pixels, Rgbd(0.0));
     const std::vector<HitPoint>& hit_points = *hit_points_;
     for (size_t i = 0; i < hit_points.size(); ++i) {
         const PointEstimate& point = points_[i];
@@ -133,24 +147,46 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
         const Rgbd odd = EstimateRadiance({0, point.radius_sq, point.flux - flux_even_[i]}, photons_odd) +
                          (direct_sum_[i] - direct_even_[i]) / epochs_odd;
         const uint32_t pixel = hit_points[i].pixel;
-        value[pixel] += EstimateRadiance(point, photons) + direct_sum_[i] / static_cast<double>(epoch_);
+        const Rgbd photon_part = EstimateRadiance(point, photons);
+        value[pixel] += photon_part + direct_sum_[i] / static_cast<double>(epoch_);
         difference[pixel] += even - odd;
+        const GatherCounts& counts = counts_[i];
+        if (counts.all > 0) {
+            // The inner fraction f = inner / all is 1/2 where the density is flat; L_inner =
+            // 2 f L, so bias = 2 (L - L_inner) = 2 (1 - 2 f) L. Each photon falls inside with
+            // probability f: var(f) = f (1 - f) sum(w^2) / sum(w)^2, with f pulled toward 1/2
+            // by half a photon each way so that a few photons all on one side (f = 0 or 1)
+            // do not claim certainty.
+            const double f = counts.inner / counts.all;
+            bias[pixel] += photon_part * (2 * (1 - 2 * f));
+            const double f_smooth = (counts.inner + 0.5) / (counts.all + 1);
+            const double f_variance = f_smooth * (1 - f_smooth) * counts.weight_sq / (counts.all * counts.all);
+            bias_noise[pixel] += photon_part * photon_part * (16 * f_variance);
+        }
     }
     const double inverse_spp = 1.0 / settings_.samples_per_pixel;
     const double variance_scale = photons_even * photons_odd / (photons * photons);
-    double squared = 0, relative = 0;
-    for (size_t p = 0; p < value.size(); ++p)
+    double squared = 0, relative = 0, bias_squared = 0, bias_relative = 0;
+    for (size_t p = 0; p < pixels; ++p)
         for (int c = 0; c < 3; ++c) {
             const double d = difference[p][c] * inverse_spp;
             const double v = emission_.pixels[p][c] + value[p][c] * inverse_spp;
             const double variance = d * d * variance_scale;
             squared += variance;
             relative += variance / (v * v + 0.01);
+            // b^2 overestimates the squared bias by b's variance: take it off (the sum over
+            // pixels is clamped at zero below, not each pixel, to stay unbiased).
+            const double b = bias[p][c] * inverse_spp;
+            const double b_squared = b * b - bias_noise[p][c] * inverse_spp * inverse_spp;
+            bias_squared += b_squared;
+            bias_relative += b_squared / (v * v + 0.01);
         }
-    const double samples = 3.0 * static_cast<double>(value.size());
+    const double samples = 3.0 * static_cast<double>(pixels);
+    bias_squared = std::max(bias_squared, 0.0) / samples;
     error.known = true;
-    error.rmse = std::sqrt(squared / samples);
-    error.rel_mse = relative / samples;
+    error.rmse = std::sqrt(squared / samples + bias_squared);
+    error.rel_mse = relative / samples + std::max(bias_relative, 0.0) / samples;
+    error.bias_rmse = std::sqrt(bias_squared);
     return error;
 }
 

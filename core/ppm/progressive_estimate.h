@@ -23,11 +23,21 @@ namespace pf {
 // the odd. Both share the radii, so their difference is the noise of the image, not its bias
 // (which shrinks with the radii). Per channel and pixel, the variance of the full estimate is
 // (L_even - L_odd)^2 N_even N_odd / N^2.
+// The estimated error of an image: the variance from the half-estimates plus the squared
+// bias from the inner discs (ProgressiveEstimate::EstimateError).
 struct ErrorEstimate {
     bool known = false;   // false until both halves have photons and direct light
     double rmse = 0;      // root mean squared error over pixels and channels
     double rel_mse = 0;   // mean of squared error / (value^2 + 0.01), as the reference metrics
+    double bias_rmse = 0;  // the part of rmse that is bias: rmse^2 = variance + bias_rmse^2
     double RelativeError() const { return std::sqrt(rel_mse); }
+};
+
+// A hit point's photon counts, shrunk with tau so that they count photons within the current
+// radius: all of them, those within R / sqrt(2), and the sum of squared weights that gives
+// the inner fraction's variance (a photon of epoch i weighs prod of later R'^2 / R^2).
+struct GatherCounts {
+    double all = 0, inner = 0, weight_sq = 0;
 };
 
 struct EstimateSettings {
@@ -64,7 +74,10 @@ public:
     // The image as of the last merged epoch: emission + direct + tau / (pi R^2 N_emitted),
     // averaged over each pixel's k camera paths.
     Image Resolve() const;
-    // The error of Resolve()'s image, estimated from the even and odd half-estimates.
+    // The error of Resolve()'s image. Variance: from the even and odd half-estimates. Bias:
+    // a disc estimate's bias grows as R^2 (radiance locally quadratic), so the estimate from
+    // the inner disc of half the area has half the bias, and bias = 2 (L - L_inner), with
+    // L_inner / L taken as the photon density ratio 2 inner / all (docs/convergence.md).
     ErrorEstimate EstimateError() const;
 
 private:
@@ -77,6 +90,7 @@ private:
     // ratios as tau) and the direct sum of the even epochs. The odd half is the rest.
     std::vector<Rgbd> flux_even_;
     std::vector<Rgbd> direct_even_;
+    std::vector<GatherCounts> counts_;  // for the bias estimate
     uint64_t epoch_ = 0;
     uint64_t photons_emitted_ = 0;
     uint64_t photons_emitted_even_ = 0;
@@ -84,6 +98,7 @@ private:
     // The current epoch's sums (M and Phi_M per hit point) and direct samples, apart from the
     // merged state so that Resolve() between folds shows the last merged epoch exactly.
     std::vector<uint64_t> epoch_photons_;
+    std::vector<uint64_t> epoch_inner_photons_;
     std::vector<Rgbd> epoch_flux_;
     std::vector<Rgbd> epoch_flux_even_;
     std::vector<Rgb> epoch_direct_;

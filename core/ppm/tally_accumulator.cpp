@@ -9,7 +9,7 @@ namespace pf {
 
 void TallyAccumulator::Resize(size_t hit_point_count) {
     if (sums_.size() == hit_point_count) return;
-    sums_.assign(hit_point_count, Sum{Rgb(0.0f), 0});
+    sums_.assign(hit_point_count, Sum{Rgb(0.0f), 0, 0});
     touched_.clear();
 }
 
@@ -25,11 +25,13 @@ Tally TallyAccumulator::Extract() {
     Tally tally;
     tally.hit_point = touched_;
     tally.photons.reserve(touched_.size());
+    tally.inner_photons.reserve(touched_.size());
     tally.flux.reserve(touched_.size());
     for (uint32_t index : touched_) {
         tally.photons.push_back(sums_[index].photons);
+        tally.inner_photons.push_back(sums_[index].inner_photons);
         tally.flux.push_back(sums_[index].flux);
-        sums_[index] = Sum{Rgb(0.0f), 0};
+        sums_[index] = Sum{Rgb(0.0f), 0, 0};
     }
     touched_.clear();
     return tally;

@@ -2,7 +2,7 @@
 // densely, then hands them out as a sparse, sorted Tally. Sums for each hit point are added
 // in photon (or chunk) order, so a batch's tally is bit-identical however batches and chunks
 // are scheduled. Not thread-safe: one per thread.
-// The hot loop adds raw photon flux in float (16 bytes a hit point, one cache line per hit);
+// The hot loop adds raw photon flux in float (20 bytes a hit point);
 // the hit point's constant BSDF weight is applied once per hit point by the merge. Float is
 // ample within one batch: at most 2^26 photons, each sum's relative error below 2^-24 x the
 // number of its terms.
@@ -18,9 +18,11 @@ namespace pf {
 class TallyAccumulator {
 public:
     void Resize(size_t hit_point_count);
-    void Add(uint32_t hit_point, const Rgb& flux) {
+    // `inner`: the photon also lies within R / sqrt(2) (HashGrid::ForEachGathering).
+    void Add(uint32_t hit_point, const Rgb& flux, bool inner) {
         Sum& sum = sums_[hit_point];
         if (sum.photons++ == 0) touched_.push_back(hit_point);
+        sum.inner_photons += inner;
         sum.flux += flux;
     }
     // Adds a chunk's tally entry by entry: chunks added in chunk order give the same sums
@@ -30,6 +32,7 @@ public:
             Sum& sum = sums_[tally.hit_point[e]];
             if (sum.photons == 0) touched_.push_back(tally.hit_point[e]);
             sum.photons += tally.photons[e];
+            sum.inner_photons += tally.inner_photons[e];
             sum.flux += tally.flux[e];
         }
     }
@@ -40,6 +43,7 @@ private:
     struct Sum {
         Rgb flux;
         uint32_t photons;
+        uint32_t inner_photons;
     };
     std::vector<Sum> sums_;
     std::vector<uint32_t> touched_;

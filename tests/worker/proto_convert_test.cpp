@@ -14,6 +14,7 @@ BatchResult Sample() {
     result.spec = {17, 2, 1000, 4, 7};
     result.tally.hit_point = {0, 3, 4, 9};
     result.tally.photons = {1, 5, 2, 7};
+    result.tally.inner_photons = {0, 3, 2, 4};
     result.tally.flux = {Rgb(0.1f, 0.2f, 0.3f), Rgb(1e-30f, 1e30f, 0.0f), Rgb(3.0f), Rgb(std::nextafter(1.0f, 2.0f))};
     result.direct = {Rgb(0.5f), Rgb(1.0f, 2.0f, 3.0f), Rgb(0.0f)};
     result.photons_emitted = 1000;
@@ -32,6 +33,7 @@ TEST(ProtoConvertTest, RoundTripIsBitExact) {
     EXPECT_EQ(decoded->spec.direct_end, original.spec.direct_end);
     EXPECT_EQ(decoded->tally.hit_point, original.tally.hit_point);
     EXPECT_EQ(decoded->tally.photons, original.tally.photons);
+    EXPECT_EQ(decoded->tally.inner_photons, original.tally.inner_photons);
     EXPECT_EQ(decoded->tally.flux, original.tally.flux);
     EXPECT_EQ(decoded->direct, original.direct);
     EXPECT_EQ(decoded->segments_traced, original.segments_traced);
@@ -49,6 +51,8 @@ TEST(ProtoConvertTest, HostileResultsAreRefused) {
     EXPECT_TRUE(refused([](auto& m) { m.mutable_tally()->set_flux(0, -1.0); }));
     EXPECT_TRUE(refused([](auto& m) { m.mutable_tally()->add_photons(1); }));               // sizes disagree
     EXPECT_TRUE(refused([](auto& m) { m.mutable_tally()->set_photons(0, 0); }));
+    EXPECT_TRUE(refused([](auto& m) { m.mutable_tally()->add_inner_photons(1); }));         // sizes disagree
+    EXPECT_TRUE(refused([](auto& m) { m.mutable_tally()->set_inner_photons(1, 6); }));      // more than photons
     EXPECT_TRUE(refused([](auto& m) { m.set_direct(2, std::numeric_limits<float>::infinity()); }));
     EXPECT_TRUE(refused([](auto& m) { m.mutable_spec()->set_direct_end(11); }));           // slice beyond
     EXPECT_TRUE(refused([](auto& m) { m.set_photons_emitted(999); }));

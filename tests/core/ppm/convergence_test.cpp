@@ -56,14 +56,14 @@ TEST(ConvergenceTest, FitsLeaveOutTheFirstEpochsAndMissingErrors) {
 
 TEST(ConvergenceTest, CsvHasOneRowPerPointAndEmptyCellsWhereUnknown) {
     ConvergencePoint first{1.25, 1, 4096, std::nullopt, std::nullopt, 64};
-    ConvergencePoint second{2.5, 2, 8192, ErrorEstimate{true, 0.02, 0.0004}, ImageDifference{0.03, 0.0009}, 64};
+    ConvergencePoint second{2.5, 2, 8192, ErrorEstimate{true, 0.02, 0.0004, 0.01}, ImageDifference{0.03, 0.0009}, 64};
     second.measured->nonfinite_pixels = 16;
     const std::vector<ConvergencePoint> points = {first, second};
     EXPECT_EQ(ConvergenceCsv(points),
-              "seconds,epochs,photons,estimated_rmse,estimated_rel_error,reference_rmse,reference_rel_mse,"
-              "reference_rel_error,reference_nonfinite_fraction\n"
-              "1.250000,1,4096,,,,,,\n"
-              "2.500000,2,8192,0.02,0.02,0.03,0.0009,0.03,0.25\n");
+              "seconds,epochs,photons,estimated_rmse,estimated_rel_error,estimated_bias_rmse,reference_rmse,"
+              "reference_rel_mse,reference_rel_error,reference_nonfinite_fraction\n"
+              "1.250000,1,4096,,,,,,,\n"
+              "2.500000,2,8192,0.02,0.02,0.01,0.03,0.0009,0.03,0.25\n");
 }
 
 }  // namespace

@@ -28,12 +28,15 @@ ProgressiveEstimate OnePointEstimate() {
     return ProgressiveEstimate(std::move(camera_pass), settings);
 }
 
-// Batch `index % 2` of the epoch, whose one tally entry carries `flux` (W x N_emitted).
-BatchResult Batch(const ProgressiveEstimate& estimate, uint32_t batch_in_epoch, float flux) {
+// Batch `index % 2` of the epoch, whose one tally entry carries `flux` (W x N_emitted) in
+// `photons` photons, `inner` of them within R / sqrt(2) (half of them: a flat density, no bias).
+BatchResult Batch(const ProgressiveEstimate& estimate, uint32_t batch_in_epoch, float flux, uint32_t photons = 2,
+                  uint32_t inner = 1) {
     BatchResult result;
     result.spec = MakeBatchSpec(estimate.Settings().layout, estimate.Epoch(), batch_in_epoch, 1);
     result.tally.hit_point = {0};
-    result.tally.photons = {1};
+    result.tally.photons = {photons};
+    result.tally.inner_photons = {inner};
     result.tally.flux = {Rgb(flux)};
     result.direct.assign(result.spec.direct_end - result.spec.direct_begin, Rgb(0.0f));
     result.photons_emitted = kPhotons;
@@ -65,6 +68,27 @@ TEST(ErrorEstimateTest, IsHalfTheDifferenceOfEqualHalves) {
     const double expected = std::abs(even - odd) / 2;
     EXPECT_NEAR(error.rmse, expected, 1e-9 * expected);
     EXPECT_NEAR(error.rel_mse, expected * expected / (value * value + 0.01), 1e-9);
+}
+
+TEST(ErrorEstimateTest, PhotonsCrowdingTheInnerDiscShowAsBias) {
+    // Equal halves (no variance), but three quarters of the photons fall in the inner disc of
+    // half the area: the inner density is 1.5x the whole disc's, so L_inner = 1.5 L and the
+    // bias 2 (L - L_inner) = -L, less the little its own noise claims (4000 photons).
+    ProgressiveEstimate estimate = OnePointEstimate();
+    for (int epoch = 0; epoch < 2; ++epoch)
+        estimate.MergeEpoch(std::vector{Batch(estimate, 0, 3, 1000, 750), Batch(estimate, 1, 3, 1000, 750)});
+    const double value = estimate.Resolve().pixels[0].x;
+    const ErrorEstimate error = estimate.EstimateError();
+    ASSERT_TRUE(error.known);
+    EXPECT_GT(error.bias_rmse, 0.99 * value);
+    EXPECT_LE(error.bias_rmse, value);
+    EXPECT_DOUBLE_EQ(error.rmse, error.bias_rmse) << "no variance between equal halves";
+    // A flat density (half inside) claims no bias: the noise of the inner fraction outweighs
+    // the nothing it shows.
+    ProgressiveEstimate flat = OnePointEstimate();
+    for (int epoch = 0; epoch < 2; ++epoch)
+        flat.MergeEpoch(std::vector{Batch(flat, 0, 3, 1000, 500), Batch(flat, 1, 3, 1000, 500)});
+    EXPECT_EQ(flat.EstimateError().bias_rmse, 0.0);
 }
 
 TEST(ErrorEstimateTest, AgreeingHalvesGiveZeroAndTheTargetEndsTheBudget) {

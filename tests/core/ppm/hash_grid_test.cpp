@@ -27,12 +27,14 @@ TEST(HashGridTest, MatchesBruteForceForMixedRadii) {
     for (int query = 0; query < 5000; ++query) {
         const Vec3 p = Vec3(rng.NextFloat(), rng.NextFloat(), rng.NextFloat()) * 4.4f - Vec3(2.2f);
         const Vec3 direction = SampleUniformSphere(rng.NextFloat(), rng.NextFloat());
-        std::vector<uint32_t> found, expected;
-        grid.ForEachGathering(p, direction, [&](uint32_t i) { found.push_back(i); });
-        for (uint32_t i = 0; i < hit_points.size(); ++i)
-            if (radius_sq[i] > 0 && LengthSquared(hit_points[i].position - p) <= radius_sq[i] &&
-                Dot(hit_points[i].normal, direction) < 0)
-                expected.push_back(i);
+        // Each found hit point with whether p lies in its inner disc (R / sqrt(2)).
+        std::vector<std::pair<uint32_t, bool>> found, expected;
+        grid.ForEachGathering(p, direction, [&](uint32_t i, bool inner) { found.emplace_back(i, inner); });
+        for (uint32_t i = 0; i < hit_points.size(); ++i) {
+            const float distance_sq = LengthSquared(hit_points[i].position - p);
+            if (radius_sq[i] > 0 && distance_sq <= radius_sq[i] && Dot(hit_points[i].normal, direction) < 0)
+                expected.emplace_back(i, 2 * distance_sq <= radius_sq[i]);
+        }
         std::sort(found.begin(), found.end());
         ASSERT_EQ(found, expected) << "query " << query;
     }
@@ -47,7 +49,7 @@ TEST(HashGridTest, RadiiFarBelowTheCoordinatesStillFindTheirPhotons) {
     HashGrid grid;
     grid.Build(hit_points, radius_sq);
     std::vector<uint32_t> found;
-    grid.ForEachGathering(hit_points[0].position, Vec3(0, 0, -1), [&](uint32_t i) { found.push_back(i); });
+    grid.ForEachGathering(hit_points[0].position, Vec3(0, 0, -1), [&](uint32_t i, bool) { found.push_back(i); });
     EXPECT_EQ(found, std::vector<uint32_t>{0});
 }
 
@@ -55,11 +57,11 @@ TEST(HashGridTest, EmptyAndBlackHitPointsAreLeftOut) {
     HashGrid grid;
     grid.Build({}, {});
     int visits = 0;
-    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1), [&](uint32_t) { ++visits; });
+    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1), [&](uint32_t, bool) { ++visits; });
     const std::vector<HitPoint> black = {{Vec3(0.0f), Vec3(0, 0, 1), Rgb(0.0f), 0}};
     const std::vector<float> radius_sq = {1.0f};
     grid.Build(black, radius_sq);
-    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1), [&](uint32_t) { ++visits; });
+    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1), [&](uint32_t, bool) { ++visits; });
     EXPECT_EQ(visits, 0);
 }
 
