@@ -24,6 +24,7 @@ set_target_properties(OpenImageIO::OpenImageIO PROPERTIES
 if(PF_BUILD_TESTS)
     find_package(GTest CONFIG REQUIRED)
     include(GoogleTest)
+    find_package(nlohmann_json CONFIG REQUIRED)  # tests edit shipped scenes' glTF JSON
 endif()
 if(PF_BUILD_BENCH)
     find_package(benchmark CONFIG REQUIRED)

@@ -62,8 +62,9 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
                 CameraPath& other = stack[pending++];
                 other = path;
                 other.throughput *= transmitted.weight * (1.0f - reflect);
-                other.ray = {OffsetRayOrigin(surface.position, front_facing ? -surface.geometric_normal
-                                                                            : surface.geometric_normal),
+                other.ray = {OffsetRayOrigin(surface.position,
+                                             front_facing ? -surface.geometric_normal : surface.geometric_normal,
+                                             scene.bounds.Magnitude()),
                              transmitted.direction};
                 ++other.depth;
                 --other.splits_left;
@@ -82,7 +83,7 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
             if (IsBlack(path.throughput)) break;
             const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal
                                                                  : surface.geometric_normal;
-            path.ray = {OffsetRayOrigin(surface.position, side), bounce.direction};
+            path.ray = {OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude()), bounce.direction};
         }
     }
     return emission;

@@ -68,6 +68,9 @@ EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera
         spdlog::warn("{}: the camera sees no diffuse surface; the image holds emission only", scene_name);
         estimate.initial_radius = std::max(estimate.initial_radius, 1e-3 * scene.bounds.Diagonal());
     }
+    // 2^-20 of the scene's largest coordinate is 16 float steps of a position there: radii
+    // below it gather by rounding error, not by distance.
+    estimate.min_radius = std::min(estimate.initial_radius, std::ldexp(double(scene.bounds.Magnitude()), -20));
     return estimate;
 }
 

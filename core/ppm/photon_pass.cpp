@@ -63,7 +63,7 @@ bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath
         ray.direction = Frame::FromNormal(normal).ToWorld(
             SampleCosineHemisphere(path.rng.NextFloat(), path.rng.NextFloat()));
         if (!(Dot(ray.direction, geometric) > 0)) return false;  // shading normal pointed it inside
-        ray.origin = OffsetRayOrigin(surface.position, geometric);
+        ray.origin = OffsetRayOrigin(surface.position, geometric, scene.bounds.Magnitude());
     } else {
         const SpecularBounce bounce = ScatterSpecular(material, ray.direction, surface.shading_normal, front_facing,
                                                       base_color, path.rng.NextFloat());
@@ -71,7 +71,7 @@ bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath
         if (!(path.rng.NextFloat() < survive)) return false;
         path.flux *= bounce.weight / survive;
         const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;
-        ray.origin = OffsetRayOrigin(surface.position, side);
+        ray.origin = OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude());
         ray.direction = bounce.direction;
     }
     ray.t_max = std::numeric_limits<float>::infinity();

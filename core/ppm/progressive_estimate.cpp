@@ -16,6 +16,7 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass, const Est
       settings_(settings) {
     PF_CHECK(settings.alpha > 0 && settings.alpha <= 1);
     PF_CHECK(settings.initial_radius > 0 && std::isfinite(settings.initial_radius));
+    PF_CHECK(settings.min_radius >= 0 && settings.min_radius <= settings.initial_radius);
     PF_CHECK(settings.samples_per_pixel > 0);
     const double radius_sq = settings.initial_radius * settings.initial_radius;
     points_.assign(hit_points_->size(), PointEstimate{0.0, radius_sq, Rgbd(0.0)});
@@ -79,17 +80,18 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
 void ProgressiveEstimate::FinishEpoch() {
     PF_CHECK(batches_folded_ == settings_.layout.batches_per_epoch);
     const double alpha = settings_.alpha;
+    const double min_radius_sq = settings_.min_radius * settings_.min_radius;
     const bool even_epoch = epoch_ % 2 == 0;
     tbb::parallel_for(tbb::blocked_range<size_t>(0, points_.size()), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
             const double photons = static_cast<double>(epoch_photons_[i]);
-            const double shrink = ShrinkRatio(points_[i], photons, alpha);
+            const double shrink = ShrinkRatio(points_[i], photons, alpha, min_radius_sq);
             flux_even_[i] = (flux_even_[i] + epoch_flux_even_[i]) * shrink;
             GatherCounts& counts = counts_[i];
             counts.all = (counts.all + photons) * shrink;
             counts.inner = (counts.inner + static_cast<double>(epoch_inner_photons_[i])) * shrink;
             counts.weight_sq = (counts.weight_sq + photons) * shrink * shrink;
-            points_[i] = UpdateEstimate(points_[i], photons, epoch_flux_[i], alpha);
+            points_[i] = UpdateEstimate(points_[i], photons, epoch_flux_[i], alpha, min_radius_sq);
             direct_sum_[i] += Rgbd(epoch_direct_[i]);
             if (even_epoch) direct_even_[i] += Rgbd(epoch_direct_[i]);
             epoch_photons_[i] = 0;

@@ -45,6 +45,7 @@ struct EstimateSettings {
     double initial_radius = 0;     // R0, world units, > 0
     int samples_per_pixel = 4;     // k: camera paths per pixel (the resolve divides by it)
     BatchLayout layout;
+    double min_radius = 0;  // radii shrink no further (ShrinkRatio), world units, <= R0
 };
 
 class ProgressiveEstimate {

@@ -69,7 +69,8 @@ EmittedPhoton Emitters::EmitFromTriangle(const EmissiveTriangle& triangle, Rng& 
     const Vec3 point = triangle.Point(rng.NextFloat(), rng.NextFloat());
     const Vec3 direction = triangle.frame.ToWorld(SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
     // Cosine-weighted emission of radiance Le from area A carries flux pi * A * Le.
-    return {{OffsetRayOrigin(point, triangle.frame.n), direction}, triangle.radiance * (kPi * triangle.area)};
+    return {{OffsetRayOrigin(point, triangle.frame.n, scene_.bounds.Magnitude()), direction},
+            triangle.radiance * (kPi * triangle.area)};
 }
 
 EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, Rng& rng) const {
@@ -100,7 +101,7 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
     const auto pick = distribution_.Draw(rng.NextFloat());
     const Emitter& emitter = emitters_[pick.index];
     const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
-    const Vec3 origin = OffsetRayOrigin(p, n);
+    const Vec3 origin = OffsetRayOrigin(p, n, scene_.bounds.Magnitude());
     Vec3 to_light;
     float distance = std::numeric_limits<float>::infinity();
     Rgb radiance_over_pdf;

@@ -2,7 +2,9 @@
 // Immutable after loading; safe to read from many threads.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -43,6 +45,12 @@ struct Bounds {
     void Extend(const Vec3& p) { lower = Min(lower, p), upper = Max(upper, p); }
     Vec3 Center() const { return (lower + upper) * 0.5f; }
     float Diagonal() const { return Length(upper - lower); }
+    // The largest coordinate magnitude, for scale-aware ray offsets (OffsetRayOrigin); at
+    // least the smallest normal float, so an empty scene still offsets.
+    float Magnitude() const {
+        const Vec3 m = Max(Abs(lower), Abs(upper));
+        return std::max({m.x, m.y, m.z, std::numeric_limits<float>::min()});
+    }
 };
 
 // A point on a surface, rebuilt from a ray hit.

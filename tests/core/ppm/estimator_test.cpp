@@ -47,6 +47,25 @@ TEST(EstimatorTest, AlphaOneNeverShrinksTheRadius) {
     EXPECT_DOUBLE_EQ(estimate.flux.x, 100.0);
 }
 
+TEST(EstimatorTest, RadiusStopsAtItsFloorAndTheEstimateGoesOnAtThatRadius) {
+    // Every pass finds 1000 photons however small R is (a caustic's focus): with alpha 0.01
+    // R^2 would fall a hundredfold per pass; the floor stops it, and from there tau grows by
+    // the new flux unshrunk, a density estimate of fixed radius.
+    constexpr double kFloor = 1e-12;
+    PointEstimate estimate{0.0, 1.0, Rgbd(0.0)};
+    for (int pass = 0; pass < 100; ++pass) {
+        const PointEstimate next = UpdateEstimate(estimate, 1000.0, Rgbd(1.0), 0.01, kFloor);
+        ASSERT_LE(next.radius_sq, estimate.radius_sq);
+        ASSERT_GE(next.radius_sq, kFloor);
+        estimate = next;
+    }
+    EXPECT_DOUBLE_EQ(estimate.radius_sq, kFloor);
+    const PointEstimate after = UpdateEstimate(estimate, 1000.0, Rgbd(1.0), 0.01, kFloor);
+    EXPECT_EQ(after.radius_sq, kFloor);
+    EXPECT_DOUBLE_EQ(after.flux.x, estimate.flux.x + 1.0);
+    EXPECT_TRUE(IsFinite(EstimateRadiance(after, 1e6)));
+}
+
 TEST(EstimatorTest, AlphaNearZeroStaysFiniteAndPositive) {
     PointEstimate estimate{0.0, 1.0, Rgbd(0.0)};
     for (int pass = 0; pass < 200; ++pass) {

@@ -1,0 +1,32 @@
+// Stiff and extreme cases (docs/numerics.md): each case of tests/support/numerics_cases.h as
+// one test, passing when its stated criterion holds.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "tests/support/numerics_cases.h"
+
+namespace pf::testing {
+namespace {
+
+class Numerics : public ::testing::TestWithParam<NumericsCase> {};
+
+TEST_P(Numerics, MeetsItsCriterion) {
+    const NumericsCase& c = GetParam();
+    const NumericsResult result = c.run();
+    RecordProperty("measured", std::to_string(result.measured));
+    RecordProperty("bound", std::to_string(result.bound));
+    EXPECT_TRUE(result.ok) << c.name << ": " << result.detail;
+    EXPECT_LE(result.measured, result.bound) << c.name << " (" << c.criterion << "): " << result.detail;
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, Numerics, ::testing::ValuesIn(NumericsCases()),
+                         [](const ::testing::TestParamInfo<NumericsCase>& info) {
+                             std::string name = info.param.group + "_" + info.param.name;
+                             std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(ch); }, '_');
+                             return name;
+                         });
+
+}  // namespace
+}  // namespace pf::testing

@@ -1,0 +1,231 @@
+// The stiff and extreme cases: shipped scenes edited (albedo, scale, light power) and rendered
+// through the embedded renderer, and the estimator's recurrences run far past where counts
+// stay exact.
+#include "tests/support/numerics_cases.h"
+
+#include <absl/strings/str_format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+
+#include "client/local_render.h"
+#include "core/film/image_metrics.h"
+#include "core/ppm/estimator.h"
+
+namespace pf::testing {
+namespace {
+
+std::string ShippedScene(const std::string& name) { return std::string(PF_SOURCE_DIR) + "/scenes/" + name; }
+
+// A shipped scene with `edit` applied to its glTF JSON, written under the temporary folder.
+std::string EditedScene(const std::string& shipped, const std::string& name,
+                        const std::function<void(nlohmann::json&)>& edit) {
+    std::ifstream in(ShippedScene(shipped));
+    nlohmann::json gltf = nlohmann::json::parse(in);
+    edit(gltf);
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "photonfarm-numerics";
+    std::filesystem::create_directories(dir);
+    const std::filesystem::path path = dir / (name + ".gltf");
+    std::ofstream(path) << gltf.dump();
+    return path.string();
+}
+
+// Every root node moved under one that scales the scene (camera included) by `scale`.
+void ScaleScene(nlohmann::json& gltf, double scale) {
+    nlohmann::json root = {{"name", "scaled"}, {"scale", {scale, scale, scale}}, {"children", gltf["scenes"][0]["nodes"]}};
+    gltf["nodes"].push_back(root);
+    gltf["scenes"][0]["nodes"] = {gltf["nodes"].size() - 1};
+}
+
+RenderOutcome Render(const std::string& path, int size, uint64_t photons, uint32_t photons_per_batch,
+                     uint32_t batches, double radius = 0) {
+    RenderSettings settings;
+    settings.scene_path = path;
+    settings.job.width = size;
+    settings.job.height = size;
+    settings.job.photon_budget = photons;
+    settings.job.layout = {photons_per_batch, batches};
+    settings.job.initial_radius = radius;
+    absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+    if (!outcome.ok()) throw std::runtime_error(std::string(outcome.status().message()));
+    return std::move(*outcome);
+}
+
+uint64_t NonfinitePixels(const Image& image) {
+    return std::count_if(image.pixels.begin(), image.pixels.end(), [](const Rgb& p) { return !IsFinite(p); });
+}
+
+// The white furnace of albedo rho: a closed cube emitting Le = 1 everywhere, so L = 1/(1-rho).
+// Photon paths average rho/(1-rho) bounces (Russian roulette by albedo keeps their flux
+// constant), so the budget is 2^24 segments: N = 2^24 (1-rho) photons, at least 2^12.
+NumericsCase Furnace(double rho) {
+    const double expected = 1.0 / (1.0 - rho);
+    const uint64_t photons = std::max<uint64_t>(4096, static_cast<uint64_t>(std::ldexp(1.0 - rho, 24)));
+    // The image mean is a mean over N photons of their deposits; a photon's deposit count is
+    // geometric, of relative deviation 1/sqrt(rho), so the mean's is 1/sqrt(rho N). Allowed:
+    // 1% for the discs cut by the cube's edges (the furnace test of render_test.cpp) plus 4 of those.
+    const double sigma = 1.0 / std::sqrt(rho * static_cast<double>(photons));
+    const double bound = 0.01 + 4 * sigma;
+    return {"stiff", absl::StrFormat("furnace_rho_%g", rho),
+            absl::StrFormat("|mean / (Le/(1-rho)) - 1| <= 1%% + 4/sqrt(rho N) = %.2f%% (N = %d photons); no NaN/Inf",
+                            100 * bound, photons),
+            [=] {
+                const std::string path = EditedScene("furnace.gltf", absl::StrFormat("furnace-%g", rho), [&](auto& gltf) {
+                    gltf["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {rho, rho, rho, 1.0};
+                });
+                const uint32_t per_batch = static_cast<uint32_t>(std::max<uint64_t>(photons / 32, 1));
+                const RenderOutcome outcome = Render(path, 32, photons, per_batch, 2);
+                double sum = 0;
+                for (const Rgb& pixel : outcome.image.pixels) sum += Average(pixel);
+                NumericsResult result;
+                result.measured = std::abs(sum / static_cast<double>(outcome.image.pixels.size()) / expected - 1);
+                result.bound = bound;
+                result.ok = NonfinitePixels(outcome.image) == 0;
+                result.detail = absl::StrFormat("mean %.5g against %.5g", sum / outcome.image.pixels.size(), expected);
+                return result;
+            }};
+}
+
+// cornell-box scaled by `scale` against the unit scene, same seed and layout: the same hit
+// points and, but for rounding, the same photon paths. If the paths had nothing in common the
+// difference would still be only the noise of two renders, sqrt(2) x the RMSE each estimates
+// of itself; allowed: twice that.
+NumericsCase Scaled(double scale) {
+    return {"scale", absl::StrFormat("cornell_box_scaled_%g", scale),
+            "RMSE(scaled - unit) <= 2 sqrt(2) x the unit render's estimated RMSE; no NaN/Inf",
+            [=] {
+                const RenderOutcome unit = Render(ShippedScene("cornell-box.gltf"), 32, 1 << 21, 1 << 17, 2);
+                const std::string path = EditedScene("cornell-box.gltf", absl::StrFormat("cornell-%g", scale),
+                                                     [&](auto& gltf) { ScaleScene(gltf, scale); });
+                const RenderOutcome scaled = Render(path, 32, 1 << 21, 1 << 17, 2);
+                NumericsResult result;
+                const ImageDifference difference = *CompareImages(scaled.image, unit.image);
+                const ErrorEstimate& estimate = *unit.convergence.back().estimated;
+                result.measured = difference.rmse;
+                result.bound = 2 * std::sqrt(2.0) * estimate.rmse;
+                result.ok = NonfinitePixels(scaled.image) == 0;
+                result.detail = absl::StrFormat("RMSE %.3g, estimated %.3g", difference.rmse, estimate.rmse);
+                return result;
+            }};
+}
+
+// cornell-box with its light k times as strong: every photon's flux and every direct sample
+// scale by k, nothing else changes (Russian roulette looks at albedo, not flux), so image / k
+// is the unit image but for float rounding: photon flux is summed in float within a chunk of
+// 2^19 photons, 2^-24 sqrt(2^19) ~ 4e-5 relative at worst typical. Allowed: 1e-4.
+NumericsCase LightPower(double k) {
+    return {"power", absl::StrFormat("cornell_box_light_x%g", k),
+            "max |image/k - image_1| / image_1 <= 1e-4 over pixels above 1e-3 of the brightest; no NaN/Inf",
+            [=] {
+                const RenderOutcome unit = Render(ShippedScene("cornell-box.gltf"), 32, 1 << 20, 1 << 17, 2);
+                const std::string path = EditedScene("cornell-box.gltf", absl::StrFormat("cornell-light-%g", k),
+                                                     [&](auto& gltf) {
+                                                         for (auto& material : gltf["materials"])
+                                                             if (material.contains("extensions"))
+                                                                 material["extensions"]["KHR_materials_emissive_strength"]
+                                                                         ["emissiveStrength"] = 17.0 * k;
+                                                     });
+                const RenderOutcome scaled = Render(path, 32, 1 << 20, 1 << 17, 2);
+                float brightest = 0;
+                for (const Rgb& p : unit.image.pixels) brightest = std::max(brightest, MaxComponent(p));
+                double worst = 0;
+                for (size_t i = 0; i < unit.image.pixels.size(); ++i)
+                    for (int c = 0; c < 3; ++c) {
+                        const double reference = unit.image.pixels[i][c];
+                        if (reference <= 1e-3 * brightest) continue;
+                        worst = std::max(worst, std::abs(scaled.image.pixels[i][c] / k - reference) / reference);
+                    }
+                NumericsResult result;
+                result.measured = worst;
+                result.bound = 1e-4;
+                result.ok = NonfinitePixels(scaled.image) == 0;
+                return result;
+            }};
+}
+
+// The recurrences of one hit point (estimator.h) over 10^6 epochs of 2^40 photons each (10^18
+// photons emitted, N past 2^53 for every alpha >= 0.01), under a density that makes the exact
+// answer known: M = c R^2 photons per epoch (a flat field), each carrying flux phi, so the
+// estimate tau / (pi R^2 N_emitted) must stay c phi / pi however far R shrinks. Also run in
+// long double with a constant M (a caustic's worth of photons whatever the radius, which
+// drives R^2 toward underflow for small alpha until the floor of 2^-20 R0 that EstimateFor
+// sets stops it), whose double result must agree. Allowed: 1e-9 relative, R^2 never growing,
+// all finite.
+NumericsCase LongRun(double alpha) {
+    return {"estimator", absl::StrFormat("long_run_alpha_%g", alpha),
+            "10^6 epochs, 10^18 photons: |estimate - exact| / exact <= 1e-9 (flat field) and double vs long double "
+            "<= 1e-9 (constant M); R^2 monotone, finite",
+            [=] {
+                constexpr int kEpochs = 1'000'000;
+                const double emitted_per_epoch = std::ldexp(1.0, 40), phi = 3.0;
+                const double c = 1e6 / emitted_per_epoch;  // photons per unit R^2 per emitted photon
+                const double floor = std::ldexp(1.0, -40);  // R_min^2 for R0 = 1
+                PointEstimate flat{0, 1.0, Rgbd(0.0)}, constant{0, 1.0, Rgbd(0.0)};
+                long double n = 0, r2 = 1, tau = 0;
+                bool ok = true;
+                double emitted = 0;
+                for (int epoch = 0; epoch < kEpochs; ++epoch) {
+                    emitted += emitted_per_epoch;
+                    const double m_flat = c * flat.radius_sq * emitted_per_epoch;
+                    const PointEstimate next = UpdateEstimate(flat, m_flat, Rgbd(m_flat * phi), alpha);
+                    ok = ok && next.radius_sq <= flat.radius_sq && next.radius_sq > 0;
+                    flat = next;
+                    const double m = emitted_per_epoch;  // every photon lands here
+                    constant = UpdateEstimate(constant, m, Rgbd(m * phi), alpha, floor);
+                    long double ratio = (n + alpha * m) / (n + m);
+                    if (r2 * ratio < floor) ratio = r2 > floor ? floor / r2 : 1.0L;
+                    n += alpha * m;
+                    r2 *= ratio;
+                    tau = (tau + m * phi) * ratio;
+                }
+                const double exact_flat = c * phi / kPiD;
+                const double flat_error = std::abs(EstimateRadiance(flat, emitted).x / exact_flat - 1);
+                const long double exact_constant = tau / (3.14159265358979323846264338327950288L * r2 * emitted);
+                const double constant_error =
+                    static_cast<double>(std::abs(EstimateRadiance(constant, emitted).x / exact_constant - 1));
+                NumericsResult result;
+                result.measured = std::max(flat_error, constant_error);
+                result.bound = 1e-9;
+                result.ok = ok && IsFinite(flat.flux) && IsFinite(constant.flux) && constant.photon_count > 0x1p53;
+                result.detail = absl::StrFormat("flat %.2g, constant %.2g; N %.3g, R^2 %.3g", flat_error, constant_error,
+                                                constant.photon_count, constant.radius_sq);
+                return result;
+            }};
+}
+
+// cornell-box with the initial radius at `fraction` of the scene's diagonal (1.0 m): tiny radii
+// find no photon (the photon part stays black), huge ones gather every photon at every hit
+// point (a blur); neither may produce NaN or Inf, or a negative value.
+NumericsCase InitialRadius(double fraction) {
+    return {"estimator", absl::StrFormat("initial_radius_%g_of_scene", fraction),
+            "no NaN, Inf or negative pixel (count <= 0)",
+            [=] {
+                const double diagonal = 1.0;  // cornell-box spans about 0.56 m x 0.55 m x 0.56 m
+                const RenderOutcome outcome =
+                    Render(ShippedScene("cornell-box.gltf"), 16, 1 << 18, 1 << 16, 2, fraction * diagonal);
+                NumericsResult result;
+                uint64_t bad = NonfinitePixels(outcome.image);
+                for (const Rgb& p : outcome.image.pixels) bad += p.x < 0 || p.y < 0 || p.z < 0;
+                result.measured = static_cast<double>(bad);
+                result.bound = 0;
+                return result;
+            }};
+}
+
+}  // namespace
+
+std::vector<NumericsCase> NumericsCases() {
+    std::vector<NumericsCase> cases;
+    for (double rho : {0.5, 0.9, 0.99, 0.999}) cases.push_back(Furnace(rho));
+    for (double scale : {1e-4, 1e4}) cases.push_back(Scaled(scale));
+    for (double k : {1e-6, 1e9}) cases.push_back(LightPower(k));
+    for (double alpha : {0.01, 0.1, 2.0 / 3.0, 1.0}) cases.push_back(LongRun(alpha));
+    for (double fraction : {1e-6, 1e3}) cases.push_back(InitialRadius(fraction));
+    return cases;
+}
+
+}  // namespace pf::testing
