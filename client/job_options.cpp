@@ -4,6 +4,8 @@
 #include <map>
 #include <string>
 
+#include "core/util/command_line.h"
+
 namespace pf {
 
 void AddJobOptions(CLI::App* command, JobSpec* s) {
@@ -13,11 +15,11 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
     auto* photons = command->add_option("--photons", s->photon_budget, "Photon budget, e.g. 20M (finishes the epoch that reaches it; default 20M)")
                         ->transform(count);
     command->add_option("--seconds", s->seconds_budget, "Time budget in seconds (finishes the epoch that reaches it)")
-        ->check(CLI::PositiveNumber)->excludes(photons);
+        ->check(FinitePositive())->excludes(photons);
     command->add_option("--target-error", s->target_error,
                         "Stop once the estimated relative error (from even and odd batches) is at most this, e.g. "
                         "0.02; with --photons or --seconds, whichever comes first")
-        ->check(CLI::Range(1e-9, 999.0));
+        ->check(FiniteRange(1e-9, 999.0));
     command->add_option("--photons-per-batch", s->layout.photons_per_batch, "Photon paths per batch, the unit of work")
         ->default_val(s->layout.photons_per_batch)->check(CLI::Range(1u, kMaxPhotonsPerBatch));
     command->add_option("--batches-per-epoch", s->layout.batches_per_epoch,
@@ -25,9 +27,9 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
         ->default_val(s->layout.batches_per_epoch)->check(CLI::Range(1u, kMaxBatchesPerEpoch));
     // capture_default_str, not default_val: default_val would re-parse "0.666667" into alpha,
     // and the render would no longer match a farm job left at the default 2/3.
-    command->add_option("--alpha", s->alpha, "Radius reduction ratio alpha in (0, 1]")->capture_default_str()->check(CLI::Range(1e-9, 1.0));
+    command->add_option("--alpha", s->alpha, "Radius reduction ratio alpha in (0, 1]")->capture_default_str()->check(FiniteRange(1e-9, 1.0));
     command->add_option("--radius", s->initial_radius, "Initial search radius R0, world units (default: one pixel footprint)")
-        ->check(CLI::PositiveNumber);
+        ->check(FinitePositive());
     command->add_option("--spp", s->samples_per_pixel, "Hit points (camera paths) per pixel")->default_val(s->samples_per_pixel)
         ->check(CLI::Range(1, 1024));
     command->add_option("--seed", s->seed, "Random seed; the same seed and batch layout give the same image")->default_val(s->seed);

@@ -61,6 +61,7 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
             progress.segments = worker.Stats().segments;
             progress.seconds = state.elapsed_seconds;
             progress.estimated_error = state.estimated_error;
+            progress.nonfinite_discarded = state.nonfinite_discarded;
             if (state.measured_error) progress.measured_error = std::sqrt(state.measured_error->rel_mse);
             progress.fraction = state.state == JobState::kDone ? 1.0 : state.budget_fraction;
             if (on_epoch) on_epoch(progress, *job);

@@ -36,6 +36,7 @@ struct RenderProgress {
     uint32_t workers = 0;   // workers active on a farm job (0: not shown)
     std::optional<double> estimated_error;  // relative, from the half-estimates, once known
     std::optional<double> measured_error;   // relative (sqrt of relMSE), against the reference
+    uint64_t nonfinite_discarded = 0;       // NaN/Inf paths and samples dropped (should be 0)
 };
 
 struct RenderOutcome {

@@ -26,6 +26,7 @@ std::string Status(const RenderProgress& p) {
     if (p.estimated_error) status += absl::StrFormat(", error ~%.2g%%", 100 * *p.estimated_error);
     if (p.measured_error) status += absl::StrFormat(", against the reference %.2g%%", 100 * *p.measured_error);
     if (p.workers > 0) status += absl::StrFormat(", %d workers", p.workers);
+    if (p.nonfinite_discarded > 0) status += absl::StrFormat(", %d NaN/Inf values discarded", p.nonfinite_discarded);
     return status;
 }
 

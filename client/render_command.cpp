@@ -12,6 +12,7 @@
 #include "absl/strings/str_format.h"
 #include "client/convergence_report.h"
 #include "client/job_options.h"
+#include "core/util/command_line.h"
 #include "client/local_render.h"
 #include "client/output_files.h"
 #include "client/progress_display.h"
@@ -45,6 +46,7 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
             {"photonfarm:estimated_error", outcome.progress.estimated_error
                                                ? absl::StrFormat("%.4g", *outcome.progress.estimated_error)
                                                : "unknown"},
+            {"photonfarm:nonfinite_discarded", absl::StrCat(outcome.progress.nonfinite_discarded)},
             {"photonfarm:seed", absl::StrCat(s.job.seed)},
             {"photonfarm:photon_stream", absl::StrCat(s.job.photon_stream)},
             {"photonfarm:alpha", absl::StrFormat("%.17g", s.job.alpha)},
@@ -93,6 +95,9 @@ int RunRender(const RenderOptions& options) {
         return 1;
     }
     display.Finish(*outcome);
+    if (outcome->progress.nonfinite_discarded > 0)
+        spdlog::warn("{} photon paths or direct-light samples became NaN or Inf and were left out; "
+                     "please report the scene (docs/numerics.md)", outcome->progress.nonfinite_discarded);
     if (g_stop_requested) spdlog::warn("stopped early by a signal; writing what was rendered");
     if (!snapshot_status.ok()) spdlog::error("{}", std::string(snapshot_status.message()));
     if (absl::Status status = WriteImageFiles(outcome->image, Metadata(options, *outcome), options.out, options.png,
@@ -120,11 +125,11 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
     render->add_option("scene", s.scene_path, "Scene file (.gltf or .glb)")->required()->check(CLI::ExistingFile);
     render->add_option("--out", options->out, "Output image: float RGB OpenEXR with metadata")->required();
     render->add_option("--png", options->png, "Also write a tone-mapped sRGB PNG");
-    render->add_option("--exposure", options->exposure, "PNG exposure in stops")->default_val(0.0f);
+    render->add_option("--exposure", options->exposure, "PNG exposure in stops")->default_val(0.0f)->check(FiniteNumber());
     AddJobOptions(render, &s.job);
     render->add_option("--threads", s.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
     auto* every = render->add_option("--snapshot-every", options->snapshot_every, "Write a snapshot EXR every SECONDS")
-                      ->check(CLI::PositiveNumber);
+                      ->check(FinitePositive());
     auto* dir = render->add_option("--snapshot-dir", options->snapshot_dir, "Directory for snapshot-NNNN.exr");
     every->needs(dir);
     dir->needs(every);

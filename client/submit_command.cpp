@@ -12,6 +12,7 @@
 #include "client/convergence_report.h"
 #include "client/farm_client.h"
 #include "client/job_options.h"
+#include "core/util/command_line.h"
 #include "client/output_files.h"
 #include "client/progress_display.h"
 #include "core/film/exr_io.h"
@@ -36,9 +37,9 @@ void AddWatchOptions(CLI::App* command, WatchOptions* options) {
     AddServerOption(command, &options->server);
     command->add_option("--out", options->out, "Write the final image here (float RGB OpenEXR)");
     command->add_option("--png", options->png, "Also write the final image as a tone-mapped PNG");
-    command->add_option("--exposure", options->exposure, "PNG exposure in stops")->default_val(0.0f);
+    command->add_option("--exposure", options->exposure, "PNG exposure in stops")->default_val(0.0f)->check(FiniteNumber());
     command->add_option("--snapshot-dir", options->snapshot_dir, "Write every snapshot here (snapshot-NNNN.exr and .png)");
-    command->add_option("--interval", options->interval, "Seconds between snapshots")->default_val(1.0)->check(CLI::Range(0.0, 3600.0));
+    command->add_option("--interval", options->interval, "Seconds between snapshots")->default_val(1.0)->check(FiniteRange(0.0, 3600.0));
     command->add_flag("--json", options->json, "One JSON status per snapshot on stdout, for scripts");
     AddReportOption(command, &options->report_dir);
 }
@@ -53,6 +54,7 @@ RenderProgress ProgressOf(const v1::JobStatus& status) {
     progress.workers = status.workers_active();
     if (status.has_estimated_error()) progress.estimated_error = status.estimated_error();
     if (status.has_reference_error()) progress.measured_error = std::sqrt(status.reference_error().rel_mse());
+    progress.nonfinite_discarded = status.nonfinite_discarded();
     return progress;
 }
 
@@ -65,7 +67,8 @@ ImageMetadata JobMetadata(const photonfarm::v1::JobStatus& status) {
             {"photonfarm:epochs", absl::StrCat(status.epochs())},
             {"photonfarm:seconds", absl::StrFormat("%.3f", status.elapsed_seconds())},
             {"photonfarm:estimated_error",
-             status.has_estimated_error() ? absl::StrFormat("%.4g", status.estimated_error()) : "unknown"}};
+             status.has_estimated_error() ? absl::StrFormat("%.4g", status.estimated_error()) : "unknown"},
+            {"photonfarm:nonfinite_discarded", absl::StrCat(status.nonfinite_discarded())}};
 }
 
 absl::Status WriteJobReport(FarmClient& client, const std::string& job_id, const std::string& dir) {

@@ -41,6 +41,10 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names) {
     auto payload = std::make_shared<JobPayload>(std::move(*scene), nullptr, PhotonSeed(request.spec));
     if (!payload->emitters.HasPower())
         return absl::InvalidArgumentError(absl::StrCat(request.bundle.main_file, ": lights emit no power"));
+    if (const double power = MaxComponent(payload->emitters.TotalPower()); power > kMaxLightPower)
+        return absl::InvalidArgumentError(absl::StrFormat(
+            "%s: lights emit %.3g W in all, over the %.3g W that single-precision photon sums hold (docs/numerics.md)",
+            request.bundle.main_file, power, kMaxLightPower));
     const absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, payload->scene.camera);
     if (!film.ok()) return film.status();
     if (absl::Status status = CheckReference(request.reference.get(), film->width, film->height); !status.ok())

@@ -45,12 +45,12 @@ int main(int argc, char** argv) {
         pf::CoordinatorOptions options;
         app.add_option("--listen", listen, "Address to listen on, HOST:PORT (port 0: any free port)")->default_val(listen);
         app.add_option("--heartbeat-seconds", options.heartbeat_seconds, "How often workers heartbeat")
-            ->default_val(options.heartbeat_seconds)->check(CLI::Range(0.05, 3600.0));
+            ->default_val(options.heartbeat_seconds)->check(pf::FiniteRange(0.05, 3600.0));
         app.add_option("--worker-timeout-seconds", options.worker_timeout_seconds,
                        "A worker silent this long is gone and its leases are handed out again")
-            ->default_val(options.worker_timeout_seconds)->check(CLI::Range(0.1, 86400.0));
+            ->default_val(options.worker_timeout_seconds)->check(pf::FiniteRange(0.1, 86400.0));
         app.add_option("--lease-seconds", options.lease_seconds, "A batch not reported within this is handed out again")
-            ->default_val(options.lease_seconds)->check(CLI::Range(0.1, 86400.0));
+            ->default_val(options.lease_seconds)->check(pf::FiniteRange(0.1, 86400.0));
         app.add_option("--max-jobs", options.max_running_jobs, "Jobs running at once")
             ->default_val(options.max_running_jobs)->check(CLI::Range(1, 100000));
         pf::AddLogLevelOption(app);

@@ -191,7 +191,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
         }
         // Every batch of the epoch is folded: update the estimate and start the next epoch.
         std::vector<float> radius_sq;
-        uint64_t photons = 0;
+        uint64_t photons = 0, discarded = 0;
         ErrorEstimate error;
         std::optional<ImageDifference> measured;
         lock.unlock();
@@ -201,6 +201,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
                 estimate_->FinishEpoch();
                 radius_sq = estimate_->SearchRadiusSq();
                 photons = estimate_->PhotonsEmitted();
+                discarded = estimate_->NonfiniteDiscarded();
                 error = estimate_->EstimateError();
                 measured = MeasureLocked();
             }
@@ -209,6 +210,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
         if (state_ != JobState::kRunning) break;
         ++epochs_merged_;
         photons_merged_ = photons;
+        nonfinite_discarded_ = discarded;
         if (error.known) estimated_error_ = error.RelativeError();
         measured_error_ = measured;
         convergence_.push_back({Seconds(now - started_), epochs_merged_, photons_merged_,
@@ -283,6 +285,7 @@ JobProgress Job::Progress(Clock::time_point now) const {
         state_ == JobState::kDone ? 1.0 : BudgetFraction(spec_, photons_merged_, progress.elapsed_seconds, estimated_error_);
     progress.estimated_error = estimated_error_;
     progress.measured_error = measured_error_;
+    progress.nonfinite_discarded = nonfinite_discarded_;
     for (const auto& [worker, seen] : workers_seen_)
         if (now - seen < kActiveWindow) ++progress.workers_active;
     progress.message = message_;

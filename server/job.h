@@ -68,6 +68,7 @@ struct JobProgress {
     double budget_fraction = 0;
     std::optional<double> estimated_error;  // relative (ErrorEstimate::RelativeError), once known
     std::optional<ImageDifference> measured_error;  // against the reference, when the job has one
+    uint64_t nonfinite_discarded = 0;  // NaN/Inf paths and samples dropped (ProgressiveEstimate)
     uint32_t workers_active = 0;
     std::string message;  // why it failed or was cancelled
     std::vector<std::string> warnings;  // found when it was submitted
@@ -178,7 +179,7 @@ private:
     std::string message_;
     Clock::time_point ended_{};
     uint64_t version_ = 0;
-    uint64_t epochs_merged_ = 0, photons_merged_ = 0;
+    uint64_t epochs_merged_ = 0, photons_merged_ = 0, nonfinite_discarded_ = 0;
     std::optional<double> estimated_error_;
     std::optional<ImageDifference> measured_error_;  // the last point's, with a reference
     std::vector<ConvergencePoint> convergence_;

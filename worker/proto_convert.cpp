@@ -55,6 +55,7 @@ photonfarm::v1::BatchResult ToProto(const BatchResult& result) {
         for (int c = 0; c < 3; ++c) out.add_direct(direct[c]);
     out.set_photons_emitted(result.photons_emitted);
     out.set_segments_traced(result.segments_traced);
+    out.set_nonfinite_discarded(result.nonfinite_discarded);
     return out;
 }
 
@@ -109,6 +110,7 @@ absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message
         return Invalid(absl::StrCat("emitted ", message.photons_emitted(), " photons for a batch of ", spec.photons));
     result.photons_emitted = message.photons_emitted();
     result.segments_traced = message.segments_traced();
+    result.nonfinite_discarded = message.nonfinite_discarded();
     return result;
 }
 

@@ -65,6 +65,9 @@ struct BatchResult {
     std::vector<Rgb> direct;       // one direct-light sample per hit point in the spec's slice
     uint64_t photons_emitted = 0;  // every path emitted, escaped or absorbed ones included
     uint64_t segments_traced = 0;  // photon rays cast, for throughput statistics
+    // Photon paths and direct-light samples dropped because a value had become NaN or Inf
+    // (a light whose power overflows single precision, say); should stay 0 (docs/numerics.md).
+    uint64_t nonfinite_discarded = 0;
 };
 
 }  // namespace pf

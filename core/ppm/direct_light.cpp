@@ -11,8 +11,9 @@ namespace {
 constexpr uint64_t kDirectStream = 0x646972656374ull;
 }  // namespace
 
-void SampleDirectLight(const Emitters& emitters, const Tracer& tracer, std::span<const HitPoint> hit_points,
-                       uint32_t first, uint64_t seed, uint64_t epoch, std::span<Rgb> out) {
+uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer, std::span<const HitPoint> hit_points,
+                           uint32_t first, uint64_t seed, uint64_t epoch, std::span<Rgb> out) {
+    uint64_t discarded = 0;
     PF_CHECK(first + out.size() <= hit_points.size());
     constexpr int kLanes = Tracer::kPacketSize;
     const SeedFamily seeds(seed, kDirectStream, epoch);
@@ -31,12 +32,15 @@ void SampleDirectLight(const Emitters& emitters, const Tracer& tracer, std::span
         tracer.OccludedPacket(rays, active, occluded);
         for (int lane = 0; lane < lanes; ++lane) {
             const HitPoint& hit_point = hit_points[first + begin + lane];
-            out[begin + lane] = active[lane] && !occluded[lane]
-                                    ? hit_point.weight * samples[lane].radiance_over_pdf *
-                                          Dot(samples[lane].direction, hit_point.normal)
-                                    : Rgb(0.0f);
+            const Rgb sample = active[lane] && !occluded[lane] ? hit_point.weight * samples[lane].radiance_over_pdf *
+                                                                     Dot(samples[lane].direction, hit_point.normal)
+                                                               : Rgb(0.0f);
+            const bool finite = IsFinite(sample);
+            discarded += !finite;
+            out[begin + lane] = finite ? sample : Rgb(0.0f);
         }
     }
+    return discarded;
 }
 
 }  // namespace pf

@@ -15,8 +15,9 @@ namespace pf {
 // One sample each of the light reflected at hit_points[first + i] toward its camera path,
 // already multiplied by the hit point's weight (throughput x BSDF), in W/(m^2 sr), into
 // out[i]. Hit point h's sample in `epoch` draws from a stream seeded by (seed, epoch, h)
-// alone. Shadow rays are cast in packets.
-void SampleDirectLight(const Emitters& emitters, const Tracer& tracer, std::span<const HitPoint> hit_points,
+// alone. Shadow rays are cast in packets. A sample that comes out NaN or Inf is set to 0;
+// returns how many were.
+uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer, std::span<const HitPoint> hit_points,
                        uint32_t first, uint64_t seed, uint64_t epoch, std::span<Rgb> out);
 
 }  // namespace pf

@@ -129,7 +129,11 @@ uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, uin
         for (int lane = 0; lane < kLanes; ++lane) {
             if (!active[lane]) continue;
             ++segments;
-            if (found[lane] && ScatterPhoton(inputs, hits[lane], paths[lane], scratch.deposits)) continue;
+            // A path whose flux is NaN or Inf would poison every sum it reached: it ends here,
+            // counted, before it deposits anything.
+            const bool finite = IsFinite(paths[lane].flux);
+            scratch.nonfinite_discarded += !finite;
+            if (finite && found[lane] && ScatterPhoton(inputs, hits[lane], paths[lane], scratch.deposits)) continue;
             if (next < end) {
                 paths[lane] = StartPhoton(inputs, seeds, next++);
             } else {
@@ -152,8 +156,10 @@ ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec
     const uint32_t end = std::min(spec.photons, begin + kPhotonsPerChunk);
     scratch.tally.Resize(inputs.hit_points.size());
     scratch.deposits.clear();
+    scratch.nonfinite_discarded = 0;
     ChunkResult result;
     result.segments_traced = TracePhotons(inputs, spec, begin, end, scratch);
+    result.nonfinite_discarded = scratch.nonfinite_discarded;
     GatherDeposits(inputs, scratch);
     result.tally = scratch.tally.Extract();
     return result;
@@ -195,6 +201,7 @@ std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs, std::s
                 BatchResult& result = results[item.batch];
                 const uint32_t chunks = ChunkCount(specs[item.batch]);
                 result.segments_traced += item.result.segments_traced;
+                result.nonfinite_discarded += item.result.nonfinite_discarded;
                 if (chunks == 1) {
                     result.tally = std::move(item.result.tally);
                     return;
@@ -209,8 +216,8 @@ std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs, std::s
         result.spec = spec;
         result.photons_emitted = spec.photons;
         result.direct.resize(spec.direct_end - spec.direct_begin);
-        SampleDirectLight(*inputs.emitters, *inputs.tracer, inputs.hit_points, spec.direct_begin, inputs.seed,
-                          spec.epoch, result.direct);
+        result.nonfinite_discarded += SampleDirectLight(*inputs.emitters, *inputs.tracer, inputs.hit_points,
+                                                        spec.direct_begin, inputs.seed, spec.epoch, result.direct);
     });
     return results;
 }

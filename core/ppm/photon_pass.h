@@ -49,6 +49,7 @@ struct BatchScratch {
     std::vector<PhotonDeposit> sorted_deposits;  // in gather order
     std::vector<uint64_t> sort_keys;  // grid bucket << 32 | deposit index
     std::vector<uint64_t> sort_scratch;
+    uint64_t nonfinite_discarded = 0;  // of the chunk being traced
 };
 
 // Working memory for RunPhotonBatches, kept across calls: one BatchScratch per thread, and
@@ -62,6 +63,7 @@ struct PhotonPassScratch {
 struct ChunkResult {
     Tally tally;
     uint64_t segments_traced = 0;
+    uint64_t nonfinite_discarded = 0;  // paths ended because their flux was NaN or Inf
 };
 
 // Chunk `chunk` of batch `spec` (photons [chunk, chunk + 1) x kPhotonsPerChunk of it): traces

@@ -73,6 +73,7 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
     // The epoch's direct slices are disjoint and cover every hit point once.
     std::copy(result.direct.begin(), result.direct.end(), epoch_direct_.begin() + result.spec.direct_begin);
     epoch_photons_emitted_ += result.photons_emitted;
+    epoch_nonfinite_discarded_ += result.nonfinite_discarded;
     if (even) epoch_photons_emitted_even_ += result.photons_emitted;
     ++batches_folded_;
 }
@@ -101,6 +102,8 @@ void ProgressiveEstimate::FinishEpoch() {
         }
     });
     photons_emitted_ += epoch_photons_emitted_;
+    nonfinite_discarded_ += epoch_nonfinite_discarded_;
+    epoch_nonfinite_discarded_ = 0;
     photons_emitted_even_ += epoch_photons_emitted_even_;
     epoch_photons_emitted_ = 0;
     epoch_photons_emitted_even_ = 0;

@@ -59,6 +59,9 @@ public:
     const EstimateSettings& Settings() const { return settings_; }
     uint64_t Epoch() const { return epoch_; }  // the next epoch to merge; also epochs merged
     uint64_t PhotonsEmitted() const { return photons_emitted_; }  // over the merged epochs
+    // Photon paths and direct samples the batches dropped for NaN or Inf, over the merged
+    // epochs (BatchResult::nonfinite_discarded); should be 0.
+    uint64_t NonfiniteDiscarded() const { return nonfinite_discarded_; }
 
     // This epoch's squared search radii, one per hit point, for the photon pass.
     std::vector<float> SearchRadiusSq() const;
@@ -95,6 +98,7 @@ private:
     uint64_t epoch_ = 0;
     uint64_t photons_emitted_ = 0;
     uint64_t photons_emitted_even_ = 0;
+    uint64_t nonfinite_discarded_ = 0;
     uint32_t batches_folded_ = 0;  // of the current epoch
     // The current epoch's sums (M and Phi_M per hit point) and direct samples, apart from the
     // merged state so that Resolve() between folds shows the last merged epoch exactly.
@@ -105,6 +109,7 @@ private:
     std::vector<Rgb> epoch_direct_;
     uint64_t epoch_photons_emitted_ = 0;
     uint64_t epoch_photons_emitted_even_ = 0;
+    uint64_t epoch_nonfinite_discarded_ = 0;
 };
 
 }  // namespace pf

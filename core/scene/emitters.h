@@ -14,6 +14,11 @@
 
 namespace pf {
 
+// The most power a scene's lights may emit in all, W: every photon carries the total power,
+// and a batch sums up to 2^26 of them, several times over for long paths, in float (3.4e38),
+// so 2^-36 of float's range leaves room for 2^10 deposits per photon on average.
+inline constexpr double kMaxLightPower = 0x1p-36 * 3.4028234663852886e38;
+
 struct EmittedPhoton {
     Ray ray;   // origin already offset from the emitting surface
     Rgb flux;  // W: this photon's share of the scene's power times N_emitted (divide by it)

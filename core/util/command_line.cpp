@@ -4,9 +4,48 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <sstream>
 
 namespace pf {
+namespace {
+
+// A validator over the option's text read as a double: `check` says what is wrong, or "".
+CLI::Validator NumberValidator(const std::string& description, std::function<std::string(double)> check) {
+    return CLI::Validator(
+        [check = std::move(check)](std::string& text) -> std::string {
+            char* end = nullptr;
+            const double value = std::strtod(text.c_str(), &end);
+            if (end == text.c_str() || *end != '\0') return "must be a number, not '" + text + "'";
+            if (!std::isfinite(value)) return "must be a finite number, not '" + text + "'";
+            return check(value);
+        },
+        description);
+}
+
+std::string Format(double value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+}
+
+}  // namespace
+
+CLI::Validator FiniteNumber() {
+    return NumberValidator("FINITE", [](double) { return std::string(); });
+}
+
+CLI::Validator FinitePositive() {
+    return NumberValidator("POSITIVE", [](double value) { return value > 0 ? std::string() : "must be positive"; });
+}
+
+CLI::Validator FiniteRange(double low, double high) {
+    return NumberValidator("[" + Format(low) + " - " + Format(high) + "]", [low, high](double value) {
+        return value >= low && value <= high ? std::string() : "must lie in [" + Format(low) + ", " + Format(high) + "]";
+    });
+}
 
 void SetUpLogging(const std::string& program) {
     spdlog::set_default_logger(spdlog::stderr_color_mt(program));

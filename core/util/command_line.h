@@ -16,6 +16,12 @@ void SetUpLogging(const std::string& program);
 // before any subcommand's callback runs.
 void AddLogLevelOption(CLI::App& app);
 
+// Number checks that refuse NaN and Inf with a short message ("must be a finite number"):
+// CLI11's ranges let NaN through, and print the largest double for PositiveNumber.
+CLI::Validator FiniteNumber();
+CLI::Validator FinitePositive();
+CLI::Validator FiniteRange(double low, double high);
+
 // Parses the command line (running the subcommands' callbacks). Returns the exit code to end
 // with: 0 after --help, 2 after "PROGRAM: error: ... (see --help)" on stderr; nothing when
 // parsing succeeded.

@@ -26,6 +26,7 @@ expect_failure() {
     fi
 }
 
+oiiotool --pattern constant:color=1,1,1 4x4 3 -d float -o "$work/small.exr"
 printf '{"asset": {"version": "2.0"' >"$work/broken.gltf"
 expect_failure "unknown flag" "--frobnicate" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --frobnicate
 expect_failure "missing scene" "nope.gltf" render "$work/nope.gltf" --out "$work/a.exr"
@@ -38,6 +39,15 @@ expect_failure "no server given" "server" workers
 expect_failure "outputs without --watch" "need --watch" submit "$source_dir/scenes/cornell-box.gltf" \
     --server 127.0.0.1:1 --out "$work/a.exr"
 expect_failure "bad alpha" "alpha" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --alpha 2
+# NaN and Inf in any number flag: refused by name before any work.
+for flag in --alpha --radius --seconds --target-error --exposure --snapshot-every; do
+    for value in nan inf -inf 1e999; do
+        expect_failure "$flag $value" "$flag: must be a finite number" render "$source_dir/scenes/cornell-box.gltf" \
+            --out "$work/a.exr" "$flag" "$value"
+    done
+done
+expect_failure "reference of another size" "reference: the image is" render "$source_dir/scenes/cornell-box.gltf" \
+    --out "$work/b.exr" --width 8 --height 8 --photons 1000 --reference "$work/small.exr"
 expect_failure "both budgets" "excludes" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --photons 1000 --seconds 1
 expect_failure "unwritable output" "cannot write here" render "$source_dir/scenes/cornell-box.gltf" \
     --out "$work/no/such/dir/a.exr" --photons 1000 --width 16 --log-level error

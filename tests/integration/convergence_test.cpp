@@ -62,6 +62,7 @@ TEST_P(ShippedSceneConvergence, ErrorFallsAndTheEstimateTracksIt) {
     ASSERT_TRUE(outcome.ok()) << outcome.status();
     const std::vector<ConvergencePoint>& log = outcome->convergence;
     ASSERT_EQ(log.size(), kPhotons / kEpochPhotons);
+    EXPECT_EQ(outcome->progress.nonfinite_discarded, 0u) << "no photon path or direct sample may become NaN or Inf";
 
     double worst_low = 1e9, worst_high = 0;
     for (const ConvergencePoint& point : log) {
