@@ -68,6 +68,7 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
         }
         outcome->image = *job->CurrentImage();
         outcome->convergence = job->Convergence();
+        outcome->warnings = job->Progress(Clock::now()).warnings;
     });
     return outcome;
 }

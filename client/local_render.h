@@ -46,6 +46,7 @@ struct RenderOutcome {
     double initial_radius = 0;
     double camera_pass_seconds = 0;
     std::vector<ConvergencePoint> convergence;  // one point per epoch
+    std::vector<std::string> warnings;           // the job's (also logged as they arise)
 };
 
 // Called after every merged epoch, on the rendering thread; `job` gives the current image.

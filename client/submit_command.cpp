@@ -95,8 +95,10 @@ int Follow(FarmClient& client, const WatchOptions& options) {
     int snapshots = 0;
     absl::Status write_status;
     const bool images = !options.out.empty() || !options.png.empty() || !options.snapshot_dir.empty();
+    int first_warnings = -1;
     absl::StatusOr<v1::Snapshot> outcome = client.Watch(options.job_id, options.interval, images, [&](const v1::Snapshot& snapshot) {
         last = snapshot.status();
+        if (first_warnings < 0) first_warnings = last.warnings_size();
         if (options.json) {
             std::printf("%s\n", ToJson(snapshot.status()).c_str());
             std::fflush(stdout);
@@ -117,6 +119,10 @@ int Follow(FarmClient& client, const WatchOptions& options) {
         return true;
     });
     if (!options.json) display.Finish();
+    // Warnings that arose while the job ran (those from its submission were shown then).
+    if (outcome.ok())
+        for (int i = first_warnings; i < last.warnings_size(); ++i)
+            spdlog::warn("job {}: {}", last.job_id(), last.warnings(i));
     int exit_code = 0;
     if (!outcome.ok()) {
         spdlog::error("{}", std::string(outcome.status().message()));

@@ -44,7 +44,6 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
       started_(submitted),
       hit_point_count_(prepared.estimate->HitPoints().size()),
       initial_radius_(prepared.estimate->Settings().initial_radius),
-      warnings_(std::move(prepared.warnings)),
       reference_(std::move(prepared.reference)),
       payload_(std::move(prepared.payload)),
       estimate_(std::move(prepared.estimate)) {
@@ -54,6 +53,7 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
         });
     hit_points_blob_ = std::make_shared<const LazyBlob>([payload = payload_] { return EncodeHitPoints(*payload->hit_points); });
     std::lock_guard lock(mutex_);
+    warnings_ = std::move(prepared.warnings);
     StartEpochLocked(estimate_->SearchRadiusSq());
 }
 
@@ -192,6 +192,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
         // Every batch of the epoch is folded: update the estimate and start the next epoch.
         std::vector<float> radius_sq;
         uint64_t photons = 0, discarded = 0;
+        bool reached = true;
         ErrorEstimate error;
         std::optional<ImageDifference> measured;
         lock.unlock();
@@ -202,6 +203,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
                 radius_sq = estimate_->SearchRadiusSq();
                 photons = estimate_->PhotonsEmitted();
                 discarded = estimate_->NonfiniteDiscarded();
+                reached = estimate_->LightReachedAnything();
                 error = estimate_->EstimateError();
                 measured = MeasureLocked();
             }
@@ -219,6 +221,12 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
         ++version_;
         finished = true;
         if (BudgetFraction(spec_, photons_merged_, Seconds(now - started_), estimated_error_) >= 1.0) {
+            if (!reached) {
+                warnings_.push_back(absl::StrCat("no light reached anything the camera sees in ", photons_merged_,
+                                                 " photons: the image is emission only (a light shut inside a closed "
+                                                 "object, or a camera that sees only unlit surfaces?)"));
+                spdlog::warn("job {}: {}", id_, warnings_.back());
+            }
             EndLocked(JobState::kDone, "", now);
             break;
         }

@@ -170,13 +170,13 @@ private:
     const Clock::time_point started_;
     const uint64_t hit_point_count_;
     const double initial_radius_;
-    const std::vector<std::string> warnings_;
     const std::shared_ptr<const Image> reference_;
 
     mutable std::mutex mutex_;  // guards everything below but the estimate and image
     mutable std::condition_variable changed_;
     JobState state_ = JobState::kRunning;
     std::string message_;
+    std::vector<std::string> warnings_;  // from submission, and one if no light reached anything
     Clock::time_point ended_{};
     uint64_t version_ = 0;
     uint64_t epochs_merged_ = 0, photons_merged_ = 0, nonfinite_discarded_ = 0;

@@ -74,6 +74,8 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
     std::copy(result.direct.begin(), result.direct.end(), epoch_direct_.begin() + result.spec.direct_begin);
     epoch_photons_emitted_ += result.photons_emitted;
     epoch_nonfinite_discarded_ += result.nonfinite_discarded;
+    epoch_light_reached_ = epoch_light_reached_ || tally.Size() > 0 ||
+                           std::any_of(result.direct.begin(), result.direct.end(), [](const Rgb& d) { return !IsBlack(d); });
     if (even) epoch_photons_emitted_even_ += result.photons_emitted;
     ++batches_folded_;
 }
@@ -104,6 +106,8 @@ void ProgressiveEstimate::FinishEpoch() {
     photons_emitted_ += epoch_photons_emitted_;
     nonfinite_discarded_ += epoch_nonfinite_discarded_;
     epoch_nonfinite_discarded_ = 0;
+    light_reached_ = light_reached_ || epoch_light_reached_;
+    epoch_light_reached_ = false;
     photons_emitted_even_ += epoch_photons_emitted_even_;
     epoch_photons_emitted_ = 0;
     epoch_photons_emitted_even_ = 0;

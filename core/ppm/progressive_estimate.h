@@ -62,6 +62,10 @@ public:
     // Photon paths and direct samples the batches dropped for NaN or Inf, over the merged
     // epochs (BatchResult::nonfinite_discarded); should be 0.
     uint64_t NonfiniteDiscarded() const { return nonfinite_discarded_; }
+    // Whether any photon or direct-light sample has reached any hit point in the merged epochs:
+    // false for a light shut inside a closed object, or a camera that sees only what no light
+    // reaches (the image is then emission only).
+    bool LightReachedAnything() const { return light_reached_; }
 
     // This epoch's squared search radii, one per hit point, for the photon pass.
     std::vector<float> SearchRadiusSq() const;
@@ -99,6 +103,7 @@ private:
     uint64_t photons_emitted_ = 0;
     uint64_t photons_emitted_even_ = 0;
     uint64_t nonfinite_discarded_ = 0;
+    bool light_reached_ = false, epoch_light_reached_ = false;
     uint32_t batches_folded_ = 0;  // of the current epoch
     // The current epoch's sums (M and Phi_M per hit point) and direct samples, apart from the
     // merged state so that Resolve() between folds shows the last merged epoch exactly.

@@ -98,8 +98,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ShippedSceneConvergence,
                                          SceneCase{"caustic-glass.gltf", false, false},
                                          SceneCase{"furnace.gltf", true, false},
                                          SceneCase{"furnace-glass.gltf", true, false}),
-                         [](const testing::TestParamInfo<SceneCase>& info) {
-                             std::string name = info.param.file;
+                         [](const testing::TestParamInfo<SceneCase>& param) {
+                             std::string name = param.param.file;
                              name = name.substr(0, name.find('.'));
                              std::replace(name.begin(), name.end(), '-', '_');
                              return name;

@@ -22,8 +22,8 @@ TEST_P(Numerics, MeetsItsCriterion) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, Numerics, ::testing::ValuesIn(NumericsCases()),
-                         [](const ::testing::TestParamInfo<NumericsCase>& info) {
-                             std::string name = info.param.group + "_" + info.param.name;
+                         [](const ::testing::TestParamInfo<NumericsCase>& param) {
+                             std::string name = param.param.group + "_" + param.param.name;
                              std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(ch); }, '_');
                              return name;
                          });

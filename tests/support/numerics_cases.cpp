@@ -15,6 +15,7 @@
 #include "client/local_render.h"
 #include "core/film/image_metrics.h"
 #include "core/ppm/estimator.h"
+#include "tests/support/gltf_builder.h"
 
 namespace pf::testing {
 namespace {
@@ -216,6 +217,133 @@ NumericsCase InitialRadius(double fraction) {
             }};
 }
 
+// cornell-box with its light 1e30 times as strong: a photon carries the whole power (5e29 W),
+// a batch sums up to 2^26 of them in float, which would overflow; the scene is refused before
+// any work, naming the power and the limit.
+NumericsCase LightTooStrong() {
+    return {"input", "cornell_box_light_x1e30_refused", "refused with an error naming the lights' power (count of failures <= 0)",
+            [] {
+                const std::string path = EditedScene("cornell-box.gltf", "cornell-light-1e30", [&](auto& gltf) {
+                    for (auto& material : gltf["materials"])
+                        if (material.contains("extensions"))
+                            material["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = 17e30;
+                });
+                RenderSettings settings;
+                settings.scene_path = path;
+                settings.job.width = 8;
+                settings.job.photon_budget = 1000;
+                const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+                NumericsResult result;
+                const bool refused = !outcome.ok() && absl::IsInvalidArgument(outcome.status()) &&
+                                     outcome.status().message().find("W in all, over the") != std::string::npos;
+                result.measured = refused ? 0 : 1;
+                result.bound = 0;
+                result.detail = outcome.ok() ? "rendered" : std::string(outcome.status().message());
+                return result;
+            }};
+}
+
+// The two triangles of the quad a, b, c, d (counter-clockwise seen from its front).
+std::vector<Vec3> Quad(Vec3 a, Vec3 b, Vec3 c, Vec3 d) { return {a, b, c, a, c, d}; }
+
+uint64_t BadPixels(const Image& image) {
+    uint64_t bad = NonfinitePixels(image);
+    for (const Rgb& p : image.pixels) bad += p.x < 0 || p.y < 0 || p.z < 0;
+    return bad;
+}
+
+// A closed cube of albedo 0.5 around an emissive quad, out of view, and a quad in view: every
+// photon stays inside the cube, far from the camera's hit points, so the image is black, and
+// the render says why. (A camera looking at the cube itself would see a glimmer: photons on
+// the inside of a face, near an edge, lie within the gather radius of hit points on the
+// outside of the next face, a leak the radius's shrinking removes.)
+NumericsCase LightInClosedBox() {
+    return {"geometry", "light_inside_closed_box",
+            "finite, black image and a warning that no light reached what the camera sees (failures <= 0)", [] {
+                TestScene scene;
+                scene.materials = {TestMaterial{Rgb(0.5f), Rgb(0.0f)}, TestMaterial{Rgb(0.0f), Rgb(10.0f)}};
+                const float h = 0.5f;
+                std::vector<Vec3> box;
+                const Vec3 o(5, 0, 0);  // out of the camera's view
+                const Vec3 p[8] = {o + Vec3(-h, -h, -h), o + Vec3(h, -h, -h), o + Vec3(h, h, -h), o + Vec3(-h, h, -h),
+                                   o + Vec3(-h, -h, h),  o + Vec3(h, -h, h),  o + Vec3(h, h, h),  o + Vec3(-h, h, h)};
+                for (const auto& face : std::vector<std::vector<Vec3>>{
+                         Quad(p[4], p[5], p[6], p[7]), Quad(p[1], p[0], p[3], p[2]), Quad(p[0], p[4], p[7], p[3]),
+                         Quad(p[5], p[1], p[2], p[6]), Quad(p[7], p[6], p[2], p[3]), Quad(p[0], p[1], p[5], p[4])})
+                    box.insert(box.end(), face.begin(), face.end());
+                scene.meshes.push_back({box, 0});
+                scene.meshes.push_back({Quad(o + Vec3(-0.1f, -0.1f, 0.3f), o + Vec3(-0.1f, 0.1f, 0.3f),
+                                             o + Vec3(0.1f, 0.1f, 0.3f), o + Vec3(0.1f, -0.1f, 0.3f)),
+                                        1});  // facing -z, inside
+                scene.meshes.push_back({Quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}), 0});  // in view
+                RenderSettings settings;
+                settings.scene_path = WriteGltf(scene, "light-in-box.gltf");
+                settings.job.width = 16;
+                settings.job.photon_budget = 1 << 16;
+                settings.job.layout = {1 << 14, 2};
+                const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+                NumericsResult result;
+                if (!outcome.ok()) {
+                    result.measured = 1, result.detail = std::string(outcome.status().message());
+                    return result;
+                }
+                const bool black = std::all_of(outcome->image.pixels.begin(), outcome->image.pixels.end(),
+                                               [](const Rgb& pixel) { return IsBlack(pixel); });
+                const bool warned = std::any_of(outcome->warnings.begin(), outcome->warnings.end(), [](const auto& w) {
+                    return w.find("no light reached") != std::string::npos;
+                });
+                result.measured = static_cast<double>(BadPixels(outcome->image) + !black + !warned);
+                result.bound = 0;
+                result.detail = warned ? outcome->warnings.back() : "no warning";
+                return result;
+            }};
+}
+
+// A lit quad with a second quad of another albedo in the same plane (coincident surfaces),
+// and degenerate triangles (a point, a line) beside it: no crash, no NaN or Inf, nothing negative.
+NumericsCase DegenerateAndCoincident() {
+    return {"geometry", "degenerate_and_coincident_triangles", "no NaN, Inf or negative pixel (count <= 0)", [] {
+                TestScene scene = LitQuadScene();
+                scene.materials.push_back(TestMaterial{Rgb(0.9f), Rgb(0.0f)});
+                scene.meshes.push_back({Quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}), 2});
+                scene.meshes.push_back({{{0.5f, 0.5f, 0.1f}, {0.5f, 0.5f, 0.1f}, {0.5f, 0.5f, 0.1f},
+                                         {-0.5f, 0, 0.1f}, {0, 0, 0.1f}, {0.5f, 0, 0.1f}}, 0});
+                RenderSettings settings;
+                settings.scene_path = WriteGltf(scene, "degenerate.gltf");
+                settings.job.width = 16;
+                settings.job.photon_budget = 1 << 17;
+                settings.job.layout = {1 << 15, 2};
+                const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+                NumericsResult result;
+                result.measured = outcome.ok() ? static_cast<double>(BadPixels(outcome->image)) : 1.0;
+                result.bound = 0;
+                if (!outcome.ok()) result.detail = std::string(outcome.status().message());
+                return result;
+            }};
+}
+
+// furnace-glass with the camera inside the glass sphere: lossless glass in a uniform field
+// leaves it uniform from inside too, so every pixel is Le/(1-rho) = 2 (the image mean within
+// 3%, the furnace's 1% edge allowance and the noise of 2^21 photons at 16x16 with margin).
+NumericsCase CameraInsideGlass() {
+    return {"geometry", "camera_inside_glass", "|mean / 2 - 1| <= 3%; no NaN/Inf", [] {
+                const std::string path = EditedScene("furnace-glass.gltf", "camera-in-glass", [](auto& gltf) {
+                    for (auto& node : gltf["nodes"])
+                        if (node.contains("camera")) node["translation"] = {0.25, -0.3, -0.45};
+                });
+                const RenderOutcome outcome = Render(path, 16, 1 << 21, 1 << 17, 2);
+                double sum = 0;
+                for (const Rgb& pixel : outcome.image.pixels) sum += Average(pixel);
+                const double mean = sum / static_cast<double>(outcome.image.pixels.size());
+                NumericsResult result;
+                result.measured = std::abs(mean / 2 - 1);
+                result.bound = 0.03;
+                result.ok = NonfinitePixels(outcome.image) == 0;
+                result.detail = absl::StrFormat("mean %.4f", mean);
+                return result;
+            }};
+}
+
 }  // namespace
 
 std::vector<NumericsCase> NumericsCases() {
@@ -225,6 +353,10 @@ std::vector<NumericsCase> NumericsCases() {
     for (double k : {1e-6, 1e9}) cases.push_back(LightPower(k));
     for (double alpha : {0.01, 0.1, 2.0 / 3.0, 1.0}) cases.push_back(LongRun(alpha));
     for (double fraction : {1e-6, 1e3}) cases.push_back(InitialRadius(fraction));
+    cases.push_back(LightTooStrong());
+    cases.push_back(LightInClosedBox());
+    cases.push_back(DegenerateAndCoincident());
+    cases.push_back(CameraInsideGlass());
     return cases;
 }
 
