@@ -215,9 +215,9 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
         nonfinite_discarded_ = discarded;
         if (error.known) estimated_error_ = error.RelativeError();
         measured_error_ = measured;
-        convergence_.push_back({Seconds(now - started_), epochs_merged_, photons_merged_,
-                                error.known ? std::optional(error) : std::nullopt, measured,
-                                reference_ ? reference_->pixels.size() : 0});
+        convergence_.Add({Seconds(now - started_), epochs_merged_, photons_merged_,
+                          error.known ? std::optional(error) : std::nullopt, measured,
+                          reference_ ? reference_->pixels.size() : 0});
         ++version_;
         finished = true;
         if (BudgetFraction(spec_, photons_merged_, Seconds(now - started_), estimated_error_) >= 1.0) {
@@ -327,7 +327,7 @@ std::optional<ImageDifference> Job::MeasureLocked() const {
 
 std::vector<ConvergencePoint> Job::Convergence() const {
     std::lock_guard lock(mutex_);
-    return convergence_;
+    return convergence_.Points();
 }
 
 std::shared_ptr<const Image> Job::CurrentImage() const {

@@ -182,7 +182,7 @@ private:
     uint64_t epochs_merged_ = 0, photons_merged_ = 0, nonfinite_discarded_ = 0;
     std::optional<double> estimated_error_;
     std::optional<ImageDifference> measured_error_;  // the last point's, with a reference
-    std::vector<ConvergencePoint> convergence_;
+    ConvergenceLog convergence_;
     std::shared_ptr<const JobPayload> payload_;
     std::shared_ptr<const LazyBlob> scene_blob_, hit_points_blob_;
     std::shared_ptr<const EpochInputs> epoch_;

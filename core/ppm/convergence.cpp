@@ -14,6 +14,18 @@ std::string Cell(const std::optional<double>& value) { return value ? absl::StrF
 
 }  // namespace
 
+void ConvergenceLog::Add(const ConvergencePoint& point) {
+    if (latest_off_stride_) points_.pop_back();
+    points_.push_back(point);
+    latest_off_stride_ = point.epochs % stride_ != 0;
+    if (points_.size() - latest_off_stride_ <= kMaxPoints) return;
+    stride_ *= 2;
+    const ConvergencePoint latest = points_.back();
+    std::erase_if(points_, [&](const ConvergencePoint& p) { return p.epochs % stride_ != 0; });
+    latest_off_stride_ = latest.epochs % stride_ != 0;
+    if (latest_off_stride_) points_.push_back(latest);
+}
+
 std::optional<PowerLaw> FitPowerLaw(std::span<const double> x, std::span<const double> y) {
     double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
     for (size_t i = 0; i < std::min(x.size(), y.size()); ++i) {

@@ -23,6 +23,21 @@ struct ConvergencePoint {
     uint64_t pixels = 0;                      // of the image, for the non-finite fraction
 };
 
+// A job's points, bounded: past kMaxPoints it keeps every second one and records only every
+// second epoch from then on (then every fourth, ...), so a job of any length holds at most
+// kMaxPoints + 1 points, spread over its whole run, and always its latest epoch.
+class ConvergenceLog {
+public:
+    static constexpr size_t kMaxPoints = 4096;
+    void Add(const ConvergencePoint& point);
+    const std::vector<ConvergencePoint>& Points() const { return points_; }
+
+private:
+    std::vector<ConvergencePoint> points_;
+    uint64_t stride_ = 1;             // epochs between the points kept
+    bool latest_off_stride_ = false;  // the last point is only there as the latest
+};
+
 // y = scale * x^slope, fitted by least squares on log(y) against log(x).
 struct PowerLaw {
     double slope = 0, log_scale = 0;

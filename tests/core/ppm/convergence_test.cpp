@@ -54,6 +54,22 @@ TEST(ConvergenceTest, FitsLeaveOutTheFirstEpochsAndMissingErrors) {
     EXPECT_NEAR(fits.measured_vs_seconds->slope, -0.3, 1e-12);  // seconds proportional to photons here
 }
 
+TEST(ConvergenceTest, LogStaysBoundedSpreadOverTheRunAndEndsAtTheLatestEpoch) {
+    ConvergenceLog log;
+    constexpr uint64_t kEpochs = 100'003;
+    for (uint64_t epoch = 1; epoch <= kEpochs; ++epoch) {
+        ConvergencePoint point;
+        point.epochs = epoch;
+        log.Add(point);
+        ASSERT_LE(log.Points().size(), ConvergenceLog::kMaxPoints + 1) << "epoch " << epoch;
+        ASSERT_EQ(log.Points().back().epochs, epoch) << "the latest epoch is always there";
+    }
+    const std::vector<ConvergencePoint>& points = log.Points();
+    EXPECT_GT(points.size(), ConvergenceLog::kMaxPoints / 2);
+    // Evenly spread: a stride of 32 epochs (100003 / 4096 rounded up to a power of two), then the latest.
+    for (size_t i = 0; i + 1 < points.size(); ++i) ASSERT_EQ(points[i].epochs, 32 * (i + 1));
+}
+
 TEST(ConvergenceTest, CsvHasOneRowPerPointAndEmptyCellsWhereUnknown) {
     ConvergencePoint first{1.25, 1, 4096, std::nullopt, std::nullopt, 64};
     ConvergencePoint second{2.5, 2, 8192, ErrorEstimate{true, 0.02, 0.0004, 0.01}, ImageDifference{0.03, 0.0009}, 64};
