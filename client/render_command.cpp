@@ -12,11 +12,11 @@
 #include "absl/strings/str_format.h"
 #include "client/convergence_report.h"
 #include "client/job_options.h"
-#include "core/util/command_line.h"
 #include "client/local_render.h"
 #include "client/output_files.h"
 #include "client/progress_display.h"
 #include "core/film/exr_io.h"
+#include "core/util/command_line.h"
 
 namespace pf {
 namespace {

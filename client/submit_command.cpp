@@ -12,11 +12,11 @@
 #include "client/convergence_report.h"
 #include "client/farm_client.h"
 #include "client/job_options.h"
-#include "core/util/command_line.h"
 #include "client/output_files.h"
 #include "client/progress_display.h"
 #include "core/film/exr_io.h"
 #include "core/scene/scene_bundle.h"
+#include "core/util/command_line.h"
 #include "worker/proto_convert.h"
 
 namespace pf {
@@ -43,7 +43,6 @@ void AddWatchOptions(CLI::App* command, WatchOptions* options) {
     command->add_flag("--json", options->json, "One JSON status per snapshot on stdout, for scripts");
     AddReportOption(command, &options->report_dir);
 }
-
 
 RenderProgress ProgressOf(const v1::JobStatus& status) {
     RenderProgress progress;

@@ -9,7 +9,11 @@
 #include <vector>
 
 #include "client/local_render.h"
+#include "core/ppm/camera_pass.h"
+#include "core/ppm/photon_pass.h"
+#include "core/scene/gltf_loader.h"
 #include "tests/support/gltf_builder.h"
+#include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf {
 namespace {
@@ -187,6 +191,32 @@ TEST(RenderTest, TooManyHitPointsAreRefusedBeforeAnyWork) {
     ASSERT_FALSE(outcome.ok());
     EXPECT_EQ(outcome.status().code(), absl::StatusCode::kResourceExhausted);
     EXPECT_NE(std::string(outcome.status().message()).find("hit points exceeds the limit"), std::string::npos);
+}
+
+TEST(RenderTest, PhotonsAndDirectSamplesTurnedNanAreDroppedAndCounted) {
+    // Loaded input cannot hold NaN (the loader refuses it), so it is planted after loading: the
+    // quad's albedo becomes NaN. Every photon that scatters off it, and every direct sample
+    // there, turns NaN: each must be dropped and counted, and the tally must stay finite.
+    absl::StatusOr<Scene> scene = LoadGltf(testing::WriteGltf(testing::LitQuadScene(), "nan-albedo.gltf"));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(*scene);
+    ASSERT_TRUE(tracer.ok());
+    const CameraPassResult camera_pass = RunCameraPass(*scene, **tracer, {16, 16, 1, 1});
+    ASSERT_FALSE(camera_pass.hit_points.empty());
+    scene->materials[0].base_color = Rgb(std::nanf(""));
+    std::vector<HitPoint> hit_points = camera_pass.hit_points;
+    for (HitPoint& hit_point : hit_points) hit_point.weight = Rgb(std::nanf(""));  // direct samples turn NaN
+    const Emitters emitters(*scene);
+    HashGrid grid;
+    grid.Build(hit_points, std::vector<float>(hit_points.size(), 0.01f));
+    const PhotonPassInputs inputs{&*scene, &emitters, tracer->get(), hit_points, &grid, 1};
+    PhotonPassScratch scratch;
+    const BatchSpec spec = MakeBatchSpec({20000, 1}, 0, 0, static_cast<uint32_t>(hit_points.size()));
+    const std::vector<BatchResult> results = RunPhotonBatches(inputs, std::vector{spec}, scratch);
+    ASSERT_EQ(results.size(), 1u);
+    EXPECT_GT(results[0].nonfinite_discarded, hit_points.size()) << "the direct samples and the scattered photons";
+    for (const Rgb& flux : results[0].tally.flux) EXPECT_TRUE(IsFinite(flux));
+    for (const Rgb& direct : results[0].direct) EXPECT_TRUE(IsFinite(direct));
 }
 
 }  // namespace
