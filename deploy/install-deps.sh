@@ -11,7 +11,7 @@ packages=(
     libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev
     libvulkan-dev glslc mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
     libzstd-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev
-    gnuplot-nox
+    gnuplot-nox fonts-dejavu-core
 )
 
 missing=()
