@@ -42,6 +42,13 @@ void ScaleScene(nlohmann::json& gltf, double scale) {
     gltf["scenes"][0]["nodes"] = {gltf["nodes"].size() - 1};
 }
 
+// cornell-box's light (emissive strength 17) made k times as strong.
+void ScaleCornellLight(nlohmann::json& gltf, double k) {
+    for (auto& material : gltf["materials"])
+        if (material.contains("extensions"))
+            material["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = 17.0 * k;
+}
+
 RenderOutcome Render(const std::string& path, int size, uint64_t photons, uint32_t photons_per_batch,
                      uint32_t batches, double radius = 0) {
     RenderSettings settings;
@@ -124,12 +131,7 @@ NumericsCase LightPower(double k) {
             [=] {
                 const RenderOutcome unit = Render(ShippedScene("cornell-box.gltf"), 32, 1 << 20, 1 << 17, 2);
                 const std::string path = EditedScene("cornell-box.gltf", absl::StrFormat("cornell-light-%g", k),
-                                                     [&](auto& gltf) {
-                                                         for (auto& material : gltf["materials"])
-                                                             if (material.contains("extensions"))
-                                                                 material["extensions"]["KHR_materials_emissive_strength"]
-                                                                         ["emissiveStrength"] = 17.0 * k;
-                                                     });
+                                                     [&](auto& gltf) { ScaleCornellLight(gltf, k); });
                 const RenderOutcome scaled = Render(path, 32, 1 << 20, 1 << 17, 2);
                 float brightest = 0;
                 for (const Rgb& p : unit.image.pixels) brightest = std::max(brightest, MaxComponent(p));
@@ -223,11 +225,8 @@ NumericsCase InitialRadius(double fraction) {
 NumericsCase LightTooStrong() {
     return {"input", "cornell_box_light_x1e30_refused", "refused with an error naming the lights' power (count of failures <= 0)",
             [] {
-                const std::string path = EditedScene("cornell-box.gltf", "cornell-light-1e30", [&](auto& gltf) {
-                    for (auto& material : gltf["materials"])
-                        if (material.contains("extensions"))
-                            material["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = 17e30;
-                });
+                const std::string path = EditedScene("cornell-box.gltf", "cornell-light-1e30",
+                                                     [](auto& gltf) { ScaleCornellLight(gltf, 1e30); });
                 RenderSettings settings;
                 settings.scene_path = path;
                 settings.job.width = 8;
