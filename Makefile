@@ -23,8 +23,8 @@ demo: build
 	@mkdir -p out
 	./$(BUILD)/client/photonfarm render scenes/cornell-glass.gltf --width 512 --height 512 \
 		--seconds $(DEMO_SECONDS) --out out/cornell-glass.exr --png out/cornell-glass.png \
-		--snapshot-every 15 --snapshot-dir out/snapshots
-	@echo "demo: wrote out/cornell-glass.exr and out/cornell-glass.png"
+		--snapshot-every 15 --snapshot-dir out/snapshots --report out/convergence
+	@echo "demo: wrote out/cornell-glass.exr, out/cornell-glass.png and out/convergence/ (error against time)"
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
