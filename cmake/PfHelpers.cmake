@@ -32,7 +32,9 @@ function(pf_add_test name)
     target_link_libraries(${name} PRIVATE pf_warnings ${ARG_DEPS} GTest::gtest GTest::gtest_main)
     target_compile_definitions(${name} PRIVATE
         PF_SOURCE_DIR="${PROJECT_SOURCE_DIR}" PF_BINARY_DIR="${PROJECT_BINARY_DIR}")
-    gtest_discover_tests(${name} WORKING_DIRECTORY "${PROJECT_BINARY_DIR}"
+    # NO_PRETTY_VALUES: parameterised tests are named by their name generators alone, not by
+    # gtest's printout of the parameter (bytes of pointers, for a struct of strings).
+    gtest_discover_tests(${name} WORKING_DIRECTORY "${PROJECT_BINARY_DIR}" NO_PRETTY_VALUES
         PROPERTIES ENVIRONMENT "PF_SOURCE_DIR=${PROJECT_SOURCE_DIR}" DISCOVERY_TIMEOUT 60)
 endfunction()
 
