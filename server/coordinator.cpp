@@ -22,9 +22,7 @@ absl::Status CheckReference(const Image* reference, int width, int height) {
     if (reference->width != width || reference->height != height)
         return absl::InvalidArgumentError(absl::StrFormat("reference: the image is %dx%d but the job renders %dx%d",
                                                           reference->width, reference->height, width, height));
-    const uint64_t nonfinite = std::count_if(reference->pixels.begin(), reference->pixels.end(),
-                                             [](const Rgb& rgb) { return !IsFinite(rgb); });
-    if (nonfinite > 0)
+    if (const uint64_t nonfinite = NonfinitePixels(*reference); nonfinite > 0)
         return absl::InvalidArgumentError(
             absl::StrFormat("reference: %d pixels hold NaN or Inf; a reference must be finite", nonfinite));
     return absl::OkStatus();

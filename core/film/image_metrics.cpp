@@ -9,6 +9,10 @@
 
 namespace pf {
 
+uint64_t NonfinitePixels(const Image& image) {
+    return std::count_if(image.pixels.begin(), image.pixels.end(), [](const Rgb& p) { return !IsFinite(p); });
+}
+
 absl::StatusOr<ImageDifference> CompareImages(const Image& image, const Image& reference) {
     if (image.width != reference.width || image.height != reference.height)
         return absl::InvalidArgumentError(absl::StrCat("the images differ in size: ", image.width, "x", image.height,

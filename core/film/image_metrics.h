@@ -19,6 +19,9 @@ struct ImageDifference {
     uint64_t nonfinite_pixels = 0;  // pixels of `image` with a NaN or Inf channel
 };
 
+// Pixels with a NaN or Inf channel.
+uint64_t NonfinitePixels(const Image& image);
+
 // INVALID_ARGUMENT when the sizes differ (naming both).
 absl::StatusOr<ImageDifference> CompareImages(const Image& image, const Image& reference);
 

@@ -63,8 +63,14 @@ RenderOutcome Render(const std::string& path, int size, uint64_t photons, uint32
     return std::move(*outcome);
 }
 
-uint64_t NonfinitePixels(const Image& image) {
-    return std::count_if(image.pixels.begin(), image.pixels.end(), [](const Rgb& p) { return !IsFinite(p); });
+// cornell-box rendered as shipped and with `edit` applied (saved as `name`), with the same
+// seed, size and layout: the pair a scale-invariance case compares.
+std::pair<RenderOutcome, RenderOutcome> UnitAndEdited(const std::string& name,
+                                                      const std::function<void(nlohmann::json&)>& edit,
+                                                      uint64_t photons) {
+    RenderOutcome unit = Render(ShippedScene("cornell-box.gltf"), 32, photons, 1 << 17, 2);
+    RenderOutcome edited = Render(EditedScene("cornell-box.gltf", name, edit), 32, photons, 1 << 17, 2);
+    return {std::move(unit), std::move(edited)};
 }
 
 // The white furnace of albedo rho: a closed cube emitting Le = 1 everywhere, so L = 1/(1-rho).
@@ -106,10 +112,8 @@ NumericsCase Scaled(double scale) {
     return {"scale", absl::StrFormat("cornell_box_scaled_%g", scale),
             "RMSE(scaled - unit) <= 2 sqrt(2) x the unit render's estimated RMSE; no NaN/Inf",
             [=] {
-                const RenderOutcome unit = Render(ShippedScene("cornell-box.gltf"), 32, 1 << 21, 1 << 17, 2);
-                const std::string path = EditedScene("cornell-box.gltf", absl::StrFormat("cornell-%g", scale),
-                                                     [&](auto& gltf) { ScaleScene(gltf, scale); });
-                const RenderOutcome scaled = Render(path, 32, 1 << 21, 1 << 17, 2);
+                const auto [unit, scaled] = UnitAndEdited(absl::StrFormat("cornell-%g", scale),
+                                                          [&](auto& gltf) { ScaleScene(gltf, scale); }, 1 << 21);
                 NumericsResult result;
                 const ImageDifference difference = *CompareImages(scaled.image, unit.image);
                 const ErrorEstimate& estimate = *unit.convergence.back().estimated;
@@ -129,10 +133,8 @@ NumericsCase LightPower(double k) {
     return {"power", absl::StrFormat("cornell_box_light_x%g", k),
             "max |image/k - image_1| / image_1 <= 1e-4 over pixels above 1e-3 of the brightest; no NaN/Inf",
             [=] {
-                const RenderOutcome unit = Render(ShippedScene("cornell-box.gltf"), 32, 1 << 20, 1 << 17, 2);
-                const std::string path = EditedScene("cornell-box.gltf", absl::StrFormat("cornell-light-%g", k),
-                                                     [&](auto& gltf) { ScaleCornellLight(gltf, k); });
-                const RenderOutcome scaled = Render(path, 32, 1 << 20, 1 << 17, 2);
+                const auto [unit, scaled] = UnitAndEdited(absl::StrFormat("cornell-light-%g", k),
+                                                          [&](auto& gltf) { ScaleCornellLight(gltf, k); }, 1 << 20);
                 float brightest = 0;
                 for (const Rgb& p : unit.image.pixels) brightest = std::max(brightest, MaxComponent(p));
                 double worst = 0;
