@@ -56,27 +56,27 @@ Recorded& Record() {
     const Emitters emitters(r.scene);
     std::unique_ptr<Backend> backend = std::move(*CreateBackend("cpu", r.scene));
     (void)backend->BeginJob({&r.scene, &emitters, estimate.HitPoints(), 1});
-    backend->BeginEpoch(estimate.SearchRadiusSq());
+    (void)backend->BeginEpoch(estimate.SearchRadiusSq());
     const std::vector<BatchSpec> specs = estimate.EpochBatches();
     {
         tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
         const auto start = std::chrono::steady_clock::now();
-        r.results.push_back(backend->RunBatches(std::span(specs).first(1))[0]);
+        r.results.push_back((*backend->RunBatches(std::span(specs).first(1)))[0]);
         r.batch_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
-    std::vector<BatchResult> rest = backend->RunBatches(std::span(specs).subspan(1));
+    std::vector<BatchResult> rest = *backend->RunBatches(std::span(specs).subspan(1));
     for (BatchResult& result : rest) r.results.push_back(std::move(result));
     // After the first epoch every reached hit point has the same radius (R^2 alpha); a few
     // real epochs later they have spread out as in any long run.
     estimate.MergeEpoch(r.results);
     for (int epoch = 1; epoch < 4; ++epoch) {
-        backend->BeginEpoch(estimate.SearchRadiusSq());
-        estimate.MergeEpoch(backend->RunBatches(estimate.EpochBatches()));
+        (void)backend->BeginEpoch(estimate.SearchRadiusSq());
+        estimate.MergeEpoch(*backend->RunBatches(estimate.EpochBatches()));
     }
     {
         BatchSpec farm = estimate.EpochBatches()[0];
         farm.photons = kFarmBatch;
-        const BatchResult result = std::move(backend->RunBatches(std::span(&farm, 1))[0]);
+        const BatchResult result = std::move((*backend->RunBatches(std::span(&farm, 1)))[0]);
         r.farm_entries_per_photon = double(result.tally.Size()) / kFarmBatch;
         r.farm_wire_bytes_per_photon = double(ToProto(result).ByteSizeLong()) / kFarmBatch;
     }

@@ -37,11 +37,11 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
 
         // The worker leases a whole epoch at a time: its batches' chunks run in parallel on
         // this arena.
-        InProcessSource source(coordinator, {"cpu", static_cast<uint32_t>(arena.max_concurrency()),
+        InProcessSource source(coordinator, {settings.backend, static_cast<uint32_t>(arena.max_concurrency()),
                                              std::string(kPhotonfarmVersion), ""}, 0.0);
         const uint64_t epoch_chunks = uint64_t{spec.layout.batches_per_epoch} *
                                       ChunkCount(MakeBatchSpec(spec.layout, 0, 0, 0));
-        WorkerLoop worker(source, "cpu", static_cast<uint32_t>(std::min<uint64_t>(epoch_chunks, UINT32_MAX)));
+        WorkerLoop worker(source, settings.backend, static_cast<uint32_t>(std::min<uint64_t>(epoch_chunks, UINT32_MAX)));
         uint64_t version = job->Version();
         RenderProgress& progress = outcome->progress;
         while (job->Progress(Clock::now()).state == JobState::kRunning) {

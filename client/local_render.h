@@ -23,6 +23,7 @@ struct RenderSettings {
     std::string scene_path;
     JobSpec job;
     int threads = 0;               // 0: all hardware threads
+    std::string backend = "cpu";   // the photon backend (worker/backend_factory.h)
     std::shared_ptr<const Image> reference;  // every epoch is measured against it, when set
     const std::atomic<bool>* stop = nullptr;  // set from elsewhere (a signal) to stop after an epoch
 };

@@ -17,6 +17,7 @@
 #include "client/progress_display.h"
 #include "core/film/exr_io.h"
 #include "core/util/command_line.h"
+#include "worker/backend_factory.h"
 
 namespace pf {
 namespace {
@@ -128,6 +129,9 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
     render->add_option("--exposure", options->exposure, "PNG exposure in stops")->default_val(0.0f)->check(FiniteNumber());
     AddJobOptions(render, &s.job);
     render->add_option("--threads", s.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+    render->add_option("--backend", s.backend, "Photon backend: cpu (Embree) or vulkan (compute on a GPU)")
+        ->default_val(s.backend)
+        ->check(CLI::IsMember(BackendNames()));
     auto* every = render->add_option("--snapshot-every", options->snapshot_every, "Write a snapshot EXR every SECONDS")
                       ->check(FinitePositive());
     auto* dir = render->add_option("--snapshot-dir", options->snapshot_dir, "Directory for snapshot-NNNN.exr");

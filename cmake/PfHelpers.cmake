@@ -81,3 +81,26 @@ function(pf_embed_text target file symbol)
     target_sources(${target} PRIVATE "${header}")
     target_include_directories(${target} PRIVATE "${PROJECT_BINARY_DIR}/embedded")
 endfunction()
+
+# pf_add_shaders(TARGET SHADER ...): compiles each GLSL compute shader (relative to the
+# current source folder) to SPIR-V with glslc at build time, as a list of 32-bit words that
+# TARGET's sources #include into an array by the shader's path from the source root with
+# ".spv.inc" appended ("worker/backends/vulkan/shaders/x.comp.spv.inc"). Shaders include
+# shared headers by their path from the source root; glslc's depfile tracks them.
+function(pf_add_shaders target)
+    foreach(shader IN LISTS ARGN)
+        file(RELATIVE_PATH relative "${PROJECT_SOURCE_DIR}" "${CMAKE_CURRENT_SOURCE_DIR}/${shader}")
+        set(output "${PROJECT_BINARY_DIR}/embedded/${relative}.spv.inc")
+        get_filename_component(output_dir "${output}" DIRECTORY)
+        add_custom_command(
+            OUTPUT "${output}"
+            COMMAND ${CMAKE_COMMAND} -E make_directory "${output_dir}"
+            COMMAND Vulkan::glslc --target-env=vulkan1.2 -O -Werror -mfmt=num -I "${PROJECT_SOURCE_DIR}"
+                    -MD -MF "${output}.d" -o "${output}" "${CMAKE_CURRENT_SOURCE_DIR}/${shader}"
+            DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${shader}"
+            DEPFILE "${output}.d"
+            COMMENT "glslc ${relative}")
+        target_sources(${target} PRIVATE "${output}")
+    endforeach()
+    target_include_directories(${target} PRIVATE "${PROJECT_BINARY_DIR}/embedded")
+endfunction()

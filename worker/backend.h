@@ -1,4 +1,4 @@
-// The one interface every photon backend implements (CPU with Embree now, Vulkan later):
+// The one interface every photon backend implements (CPU with Embree, Vulkan compute):
 // given a job's fixed inputs and an epoch's radii, run batches and return their results.
 // Results depend only on (inputs, radii, seed, batch spec), never on scheduling.
 #pragma once
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "absl/status/status.h"
+#include "absl/status/statusor.h"
 #include "core/ppm/batch.h"
 #include "core/ppm/hit_point.h"
 #include "core/scene/emitters.h"
@@ -31,9 +32,10 @@ public:
     // Makes `job` the job that following epochs and batches belong to.
     virtual absl::Status BeginJob(const JobInputs& job) = 0;
     // Sets the current epoch's squared search radii, one per hit point (copied).
-    virtual void BeginEpoch(std::span<const float> radius_sq) = 0;
+    virtual absl::Status BeginEpoch(std::span<const float> radius_sq) = 0;
     // Runs the batches, in parallel where the backend can; results in the order of `specs`.
-    virtual std::vector<BatchResult> RunBatches(std::span<const BatchSpec> specs) = 0;
+    // Errors are the device's (a lost GPU), never the batches'.
+    virtual absl::StatusOr<std::vector<BatchResult>> RunBatches(std::span<const BatchSpec> specs) = 0;
 };
 
 }  // namespace pf

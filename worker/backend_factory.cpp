@@ -5,6 +5,7 @@
 #include "absl/strings/str_join.h"
 #include "worker/backends/cpu_embree/cpu_backend.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
+#include "worker/backends/vulkan/vulkan_backend.h"
 
 namespace pf {
 namespace {
@@ -17,8 +18,10 @@ public:
 
     std::string_view Name() const override { return backend_.Name(); }
     absl::Status BeginJob(const JobInputs& job) override { return backend_.BeginJob(job); }
-    void BeginEpoch(std::span<const float> radius_sq) override { backend_.BeginEpoch(radius_sq); }
-    std::vector<BatchResult> RunBatches(std::span<const BatchSpec> specs) override { return backend_.RunBatches(specs); }
+    absl::Status BeginEpoch(std::span<const float> radius_sq) override { return backend_.BeginEpoch(radius_sq); }
+    absl::StatusOr<std::vector<BatchResult>> RunBatches(std::span<const BatchSpec> specs) override {
+        return backend_.RunBatches(specs);
+    }
 
 private:
     std::unique_ptr<embree::EmbreeTracer> tracer_;
@@ -27,13 +30,37 @@ private:
 
 }  // namespace
 
-std::vector<std::string> BackendNames() { return {"cpu"}; }
+std::string DescribeDevices(int cpu_threads) {
+    std::string lines = absl::StrCat("cpu: Embree, ", cpu_threads, " threads\n");
+    absl::StatusOr<std::vector<vk::DeviceInfo>> devices = vk::ListDevices();
+    if (!devices.ok()) return absl::StrCat(lines, "vulkan: unavailable: ", devices.status().message(), "\n");
+    if (devices->empty()) return absl::StrCat(lines, "vulkan: no devices\n");
+    const absl::StatusOr<uint32_t> chosen = vk::ChooseDevice(*devices);
+    for (const vk::DeviceInfo& device : *devices) {
+        absl::StrAppend(&lines, "vulkan device ", device.index, ": ", device.name, " (", device.type, ", Vulkan ",
+                        device.api_version, ", ", device.device_local_bytes >> 20, " MiB)");
+        if (!device.unusable.empty()) absl::StrAppend(&lines, ": unusable: ", device.unusable);
+        if (chosen.ok() && *chosen == device.index) absl::StrAppend(&lines, "  <- --backend vulkan uses this one");
+        absl::StrAppend(&lines, "\n");
+    }
+    if (!chosen.ok()) absl::StrAppend(&lines, "vulkan: ", chosen.status().message(), "\n");
+    return lines;
+}
+
+std::vector<std::string> BackendNames() { return {"cpu", "vulkan"}; }
 
 absl::StatusOr<std::unique_ptr<Backend>> CreateBackend(std::string_view name, const Scene& scene) {
     if (name == "cpu") {
         absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(scene);
         if (!tracer.ok()) return tracer.status();
         return std::unique_ptr<Backend>(std::make_unique<OwningCpuBackend>(std::move(*tracer)));
+    }
+    if (name == "vulkan") {
+        absl::StatusOr<std::shared_ptr<vk::Context>> context = vk::Context::Shared();
+        if (!context.ok()) return absl::Status(context.status().code(), absl::StrCat("vulkan backend: ", context.status().message()));
+        absl::StatusOr<std::unique_ptr<vk::VulkanBackend>> backend = vk::VulkanBackend::Create(std::move(*context), scene);
+        if (!backend.ok()) return backend.status();
+        return std::unique_ptr<Backend>(std::move(*backend));
     }
     return absl::InvalidArgumentError(
         absl::StrCat("unknown backend '", std::string(name), "' (known: ", absl::StrJoin(BackendNames(), ", "), ")"));

@@ -15,8 +15,14 @@ namespace pf {
 // The names CreateBackend accepts, for --backend's help and checks.
 std::vector<std::string> BackendNames();
 
-// A backend for jobs over `scene` (which must outlive it): "cpu" (Embree, the default).
+// A backend for jobs over `scene` (which must outlive it): "cpu" (Embree, the default) or
+// "vulkan" (compute kernels on the process's Vulkan device, shared by its backends).
 // INVALID_ARGUMENT for an unknown name; the backend's own errors otherwise.
 absl::StatusOr<std::unique_ptr<Backend>> CreateBackend(std::string_view name, const Scene& scene);
+
+// What each backend would run on here, one line each: the CPU's threads, every Vulkan device
+// (the one the vulkan backend picks marked, unusable ones with the reason), or why Vulkan is
+// unavailable. For photonfarm-worker --list-devices.
+std::string DescribeDevices(int cpu_threads);
 
 }  // namespace pf

@@ -89,7 +89,7 @@ absl::StatusOr<WorkerLoop::JobBackend*> WorkerLoop::BackendFor(const WorkGrant& 
     }
     JobBackend& current = backends_.front();
     if (current.epoch != grant.epoch) {
-        current.backend->BeginEpoch(*grant.radius_sq);
+        if (absl::Status status = current.backend->BeginEpoch(*grant.radius_sq); !status.ok()) return status;
         current.epoch = grant.epoch;
     }
     return &current;
@@ -105,7 +105,9 @@ absl::StatusOr<size_t> WorkerLoop::Step() {
     if (grant->batches.empty()) return 0;
     absl::StatusOr<JobBackend*> backend = BackendFor(*grant);
     if (!backend.ok()) return backend.status();
-    Pending pending{grant->job_id, (*backend)->backend->RunBatches(grant->batches)};
+    absl::StatusOr<std::vector<BatchResult>> results = (*backend)->backend->RunBatches(grant->batches);
+    if (!results.ok()) return results.status();
+    Pending pending{grant->job_id, std::move(*results)};
     const size_t ran = pending.results.size();
     std::unique_lock lock(mutex_);
     for (const BatchResult& result : pending.results) {

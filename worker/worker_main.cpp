@@ -79,7 +79,17 @@ int main(int argc, char** argv) {
         app.add_option("--coordinator", coordinator, "Coordinator address HOST:PORT")
             ->envname("PHOTONFARM_COORDINATOR")->required();
         app.add_option("--threads", threads, "Threads (default: all cores)")->check(CLI::Range(1, 4096));
-        app.add_option("--backend", backend, "Photon backend")->default_val(backend)->check(CLI::IsMember(pf::BackendNames()));
+        app.add_option("--backend", backend, "Photon backend: cpu (Embree) or vulkan (compute on a GPU)")
+            ->default_val(backend)
+            ->check(CLI::IsMember(pf::BackendNames()));
+        app.add_flag_callback(
+            "--list-devices",
+            [&] {
+                std::fputs(pf::DescribeDevices(threads > 0 ? threads : tbb::this_task_arena::max_concurrency()).c_str(),
+                           stdout);
+                throw CLI::Success();
+            },
+            "List the devices each backend can run on, and exit");
         app.add_option("--cache-dir", cache_dir, "Keep fetched scenes and hit points here across restarts");
         app.add_option("--chunks-per-lease", chunks_per_lease,
                        "Chunks of 2^19 photons to lease at once (default: one per thread)")

@@ -7,16 +7,17 @@
 #include "core/util/check.h"
 
 namespace pf {
-namespace {
-constexpr uint64_t kDirectStream = 0x646972656374ull;
-}  // namespace
+SeedFamily DirectLightSeeds(uint64_t seed, uint64_t epoch) {
+    constexpr uint64_t kDirectStream = 0x646972656374ull;
+    return SeedFamily(seed, kDirectStream, epoch);
+}
 
 uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer, std::span<const HitPoint> hit_points,
                            uint32_t first, uint64_t seed, uint64_t epoch, std::span<Rgb> out) {
     uint64_t discarded = 0;
     PF_CHECK(first + out.size() <= hit_points.size());
     constexpr int kLanes = Tracer::kPacketSize;
-    const SeedFamily seeds(seed, kDirectStream, epoch);
+    const SeedFamily seeds = DirectLightSeeds(seed, epoch);
     for (size_t begin = 0; begin < out.size(); begin += kLanes) {
         const int lanes = static_cast<int>(std::min<size_t>(kLanes, out.size() - begin));
         Ray rays[kLanes] = {};

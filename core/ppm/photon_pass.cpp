@@ -19,9 +19,6 @@
 namespace pf {
 namespace {
 
-// Stream ids separating the random numbers of photons from those of direct light.
-constexpr uint64_t kPhotonStream = 0x70686f746f6e0001ull;
-
 // A photon path in flight.
 struct PhotonPath {
     Ray ray;
@@ -114,7 +111,7 @@ uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, uin
     Ray rays[kLanes] = {};
     RayHit hits[kLanes];
     bool active[kLanes], found[kLanes];
-    const SeedFamily seeds(inputs.seed, kPhotonStream, spec.index);
+    const SeedFamily seeds = PhotonSeeds(inputs.seed, spec.index);
     uint32_t next = begin;
     int live = 0;
     for (int lane = 0; lane < kLanes; ++lane) {
@@ -149,6 +146,12 @@ uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, uin
 }
 
 }  // namespace
+
+SeedFamily PhotonSeeds(uint64_t seed, uint64_t batch_index) {
+    // The stream id separates the random numbers of photons from those of direct light.
+    constexpr uint64_t kPhotonStream = 0x70686f746f6e0001ull;
+    return SeedFamily(seed, kPhotonStream, batch_index);
+}
 
 ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t chunk, BatchScratch& scratch) {
     PF_CHECK(chunk < ChunkCount(spec));

@@ -13,6 +13,7 @@
 #include "core/ppm/hash_grid.h"
 #include "core/ppm/hit_point.h"
 #include "core/ppm/tally_accumulator.h"
+#include "core/sampling/rng.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene.h"
 
@@ -34,6 +35,10 @@ inline constexpr int kMaxPhotonBounces = 1 << 16;
 // A batch gathers its deposits once this many are pending (about 80 MB of deposits and keys
 // per thread), so memory stays bounded however many bounces the photons make.
 inline constexpr size_t kMaxPendingDeposits = size_t{1} << 20;
+
+// The streams of batch `batch_index`'s photons: photon p draws from
+// Rng(PhotonSeeds(seed, batch_index).Seed(p)), on every backend.
+SeedFamily PhotonSeeds(uint64_t seed, uint64_t batch_index);
 
 // Where a photon landed on a diffuse surface after scattering at least once.
 struct PhotonDeposit {

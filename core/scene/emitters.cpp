@@ -7,11 +7,25 @@
 #include "core/sampling/sampling.h"
 
 namespace pf {
-namespace {
+float Emitters::SpotSolidAngle(const PunctualLight& light) { return 2.0f * kPi * (1.0f - light.cos_outer); }
 
-float SpotSolidAngle(const PunctualLight& light) { return 2.0f * kPi * (1.0f - light.cos_outer); }
-
-}  // namespace
+std::vector<Emitters::Record> Emitters::Records() const {
+    std::vector<Record> records;
+    for (uint32_t i = 0; i < emitters_.size(); ++i) {
+        Record record;
+        record.is_triangle = emitters_[i].is_triangle;
+        record.probability = distribution_.Probability(i);
+        if (record.is_triangle) {
+            const EmissiveTriangle& triangle = triangles_[emitters_[i].index];
+            record.p0 = triangle.p0, record.edge1 = triangle.edge1, record.edge2 = triangle.edge2;
+            record.normal = triangle.frame.n, record.radiance = triangle.radiance, record.area = triangle.area;
+        } else {
+            record.light = emitters_[i].index;
+        }
+        records.push_back(record);
+    }
+    return records;
+}
 
 Emitters::Emitters(const Scene& scene) : scene_(scene) {
     scene_center_ = scene.bounds.Center();

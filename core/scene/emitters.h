@@ -45,6 +45,23 @@ public:
     // Returns false when the sample carries no light (behind the light, outside a spot cone).
     bool SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample* sample) const;
 
+    // Each emitter as another backend needs it to emit and sample the same light (the Vulkan
+    // backend uploads these), in selection order.
+    struct Record {
+        bool is_triangle = false;
+        uint32_t light = 0;                 // punctual: index into Scene::lights
+        Vec3 p0, edge1, edge2, normal;      // triangle: corners and unit emitting normal
+        Rgb radiance;                       // triangle: Le
+        float area = 0;                     // triangle
+        double probability = 0;             // of being picked by Emit and SampleDirect
+    };
+    std::vector<Record> Records() const;
+    // The bounding sphere directional lights emit across.
+    Vec3 SceneCenter() const { return scene_center_; }
+    float SceneRadius() const { return scene_radius_; }
+    // The solid angle of a spot light's cone, over which its photons spread.
+    static float SpotSolidAngle(const PunctualLight& light);
+
 private:
     struct Emitter {
         bool is_triangle;

@@ -62,9 +62,11 @@ public:
             EXPECT_TRUE(backend_->BeginJob({&job_->scene, &job_->emitters, *job_->hit_points, job_->seed}).ok());
             epoch_ = UINT64_MAX;
         }
-        if (epoch_ != lease.grant.epoch) backend_->BeginEpoch(*lease.grant.radius_sq);
+        if (epoch_ != lease.grant.epoch) {
+            EXPECT_TRUE(backend_->BeginEpoch(*lease.grant.radius_sq).ok());
+        }
         epoch_ = lease.grant.epoch;
-        return backend_->RunBatches(lease.grant.batches);
+        return *backend_->RunBatches(lease.grant.batches);
     }
 
 private:

@@ -15,12 +15,13 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     return absl::OkStatus();
 }
 
-void CpuBackend::BeginEpoch(std::span<const float> radius_sq) {
+absl::Status CpuBackend::BeginEpoch(std::span<const float> radius_sq) {
     PF_CHECK(radius_sq.size() == job_.hit_points.size());
     grid_.Build(job_.hit_points, radius_sq);
+    return absl::OkStatus();
 }
 
-std::vector<BatchResult> CpuBackend::RunBatches(std::span<const BatchSpec> specs) {
+absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const BatchSpec> specs) {
     return RunPhotonBatches({job_.scene, job_.emitters, &tracer_, job_.hit_points, &grid_, job_.seed}, specs, scratch_);
 }
 

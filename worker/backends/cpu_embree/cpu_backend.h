@@ -18,8 +18,8 @@ public:
 
     std::string_view Name() const override { return "cpu"; }
     absl::Status BeginJob(const JobInputs& job) override;
-    void BeginEpoch(std::span<const float> radius_sq) override;
-    std::vector<BatchResult> RunBatches(std::span<const BatchSpec> specs) override;
+    absl::Status BeginEpoch(std::span<const float> radius_sq) override;
+    absl::StatusOr<std::vector<BatchResult>> RunBatches(std::span<const BatchSpec> specs) override;
 
 private:
     const Tracer& tracer_;

@@ -1,0 +1,170 @@
+// Every structure the Vulkan photon backend shares between C++ and its shaders, with the
+// descriptor bindings and specialisation constant ids: their only definition
+// (worker/backends/vulkan/ fills them, worker/backends/vulkan/shaders/ reads them).
+// Only vec2/vec4/uvec4 and 32/64-bit scalars, so std430 and C++ agree; sizes are asserted.
+#ifndef PF_CORE_SHARED_GPU_TYPES_H
+#define PF_CORE_SHARED_GPU_TYPES_H
+
+#include "core/shared/gpu_prelude.h"
+
+PF_GPU_BEGIN
+
+// Descriptor set 0, one layout for every pipeline.
+PF_CONST(uint32_t) kBindingBvhNodes = 0;       // GpuBvhNode[]
+PF_CONST(uint32_t) kBindingTriangles = 1;      // GpuTriangle[], in BVH leaf order
+PF_CONST(uint32_t) kBindingShading = 2;        // GpuTriangleShading[], in scene order
+PF_CONST(uint32_t) kBindingNormals = 3;        // vec4[], per vertex
+PF_CONST(uint32_t) kBindingUvs = 4;            // vec2[], per vertex
+PF_CONST(uint32_t) kBindingMaterials = 5;      // GpuMaterial[]
+PF_CONST(uint32_t) kBindingTextures = 6;       // GpuTexture[]
+PF_CONST(uint32_t) kBindingTexels = 7;         // vec4[], every texture's texels
+PF_CONST(uint32_t) kBindingEmitters = 8;       // GpuEmitter[]
+PF_CONST(uint32_t) kBindingEmitterCdf = 9;     // float[]: cdf[i] = P(emitter <= i)
+PF_CONST(uint32_t) kBindingHitPoints = 10;     // GpuHitPoint[]
+PF_CONST(uint32_t) kBindingRadiusSq = 11;      // float[], per hit point, this epoch
+PF_CONST(uint32_t) kBindingGridBegin = 12;     // uint[buckets + 1]: counts, then CSR offsets
+PF_CONST(uint32_t) kBindingGridCursor = 13;    // uint[buckets]: next free slot while filling
+PF_CONST(uint32_t) kBindingGridEntries = 14;   // GpuGridEntry[]
+PF_CONST(uint32_t) kBindingScanBlocks = 15;    // uint[]: per-block sums of the prefix scan
+PF_CONST(uint32_t) kBindingTally = 16;         // GpuTallySum[], per hit point
+PF_CONST(uint32_t) kBindingDirect = 17;        // vec4[], a batch's direct-light samples
+PF_CONST(uint32_t) kBindingCounters = 18;      // GpuCounters
+PF_CONST(uint32_t) kBindingCount = 19;
+
+// Specialisation constants: the scene's features, so that code for materials and lights it
+// does not use is compiled out (booleans, 0 or 1).
+PF_CONST(uint32_t) kSpecHasMirror = 0;
+PF_CONST(uint32_t) kSpecHasDielectric = 1;
+PF_CONST(uint32_t) kSpecHasThinDielectric = 2;
+PF_CONST(uint32_t) kSpecHasTextures = 3;
+PF_CONST(uint32_t) kSpecHasSmoothNormals = 4;
+PF_CONST(uint32_t) kSpecHasTriangleLights = 5;
+PF_CONST(uint32_t) kSpecHasPointLights = 6;
+PF_CONST(uint32_t) kSpecHasSpotLights = 7;
+PF_CONST(uint32_t) kSpecHasDirectionalLights = 8;
+PF_CONST(uint32_t) kSpecCount = 9;
+
+// Threads per workgroup of every kernel but the scan; the scan's workgroup covers
+// kScanBlock elements, kScanPerThread per thread.
+PF_CONST(uint32_t) kWorkgroupSize = 64;
+PF_CONST(uint32_t) kScanThreads = 256;
+PF_CONST(uint32_t) kScanPerThread = 8;
+PF_CONST(uint32_t) kScanBlock = 2048;  // kScanThreads * kScanPerThread
+
+// Material and emitter kinds, as core/scene/material.h and emitters.h number them.
+PF_CONST(uint32_t) kMaterialDiffuse = 0;
+PF_CONST(uint32_t) kMaterialMirror = 1;
+PF_CONST(uint32_t) kMaterialDielectric = 2;
+PF_CONST(uint32_t) kMaterialThinDielectric = 3;
+PF_CONST(uint32_t) kEmitterTriangle = 0;
+PF_CONST(uint32_t) kEmitterPoint = 1;
+PF_CONST(uint32_t) kEmitterSpot = 2;
+PF_CONST(uint32_t) kEmitterDirectional = 3;
+
+// A two-wide BVH node holding both children's boxes (Embree's builder, flattened). A child
+// is a node index where its count is 0, else `count` triangles from `first`.
+struct GpuBvhNode {
+    vec4 left_lower;   // xyz; w: the left child (uint bits)
+    vec4 left_upper;   // xyz; w: the left child's triangle count (uint bits)
+    vec4 right_lower;  // xyz; w: the right child
+    vec4 right_upper;  // xyz; w: the right child's triangle count
+};
+PF_GPU_LAYOUT(GpuBvhNode, 64);
+
+// A triangle as the intersection test wants it, in leaf order.
+struct GpuTriangle {
+    vec4 p0;     // xyz; w: the scene triangle's index (uint bits)
+    vec4 edge1;  // p1 - p0
+    vec4 edge2;  // p2 - p0
+};
+PF_GPU_LAYOUT(GpuTriangle, 48);
+
+// What shading a hit needs beyond its position, in scene triangle order.
+struct GpuTriangleShading {
+    vec4 normal;     // unit geometric normal (the winding's front)
+    uvec4 vertices;  // xyz: vertex indices (normals, uvs); w: material | kSmoothBit
+};
+PF_GPU_LAYOUT(GpuTriangleShading, 32);
+PF_CONST(uint32_t) kSmoothBit = 0x80000000u;
+
+struct GpuMaterial {
+    vec4 base_color;  // xyz; w: index of refraction
+    uint32_t type;    // kMaterial*
+    int32_t texture;  // base colour texture, or -1
+    uint32_t pad0, pad1;
+};
+PF_GPU_LAYOUT(GpuMaterial, 32);
+
+struct GpuTexture {
+    uint32_t first_texel;  // into the texels binding
+    int32_t width, height;
+    uint32_t pad;
+};
+PF_GPU_LAYOUT(GpuTexture, 16);
+
+// One light: an emissive triangle or a punctual light, with what emission and light
+// sampling need precomputed (core/scene/emitters.cpp computes the same on the CPU).
+struct GpuEmitter {
+    vec4 position;   // triangle: p0; point, spot: position; w: kind (uint bits)
+    vec4 edge1;      // triangle: p1 - p0; w: area
+    vec4 edge2;      // triangle: p2 - p0
+    vec4 direction;  // triangle: unit emitting normal; spot, directional: direction of travel
+    vec4 power;      // a photon's flux before selection and falloff (triangle: Le pi area;
+                     // point: 4 pi I; spot: I x cone solid angle; directional: E pi r^2);
+                     // w: 1 / selection probability
+    vec4 radiance;   // triangle: Le; point, spot: intensity I; directional: irradiance E
+    vec4 cone;       // spot: cos_inner, cos_outer, 1 / max(0.001, cos_inner - cos_outer)
+};
+PF_GPU_LAYOUT(GpuEmitter, 112);
+
+struct GpuHitPoint {
+    vec4 position;  // xyz; w unused
+    vec4 normal;    // unit, toward the camera path's side
+    vec4 weight;    // camera throughput x BSDF, 1/sr
+};
+PF_GPU_LAYOUT(GpuHitPoint, 48);
+
+// A hit point in a grid bucket: its centre, R^2 and normal copied, so the gather reads
+// one contiguous run of entries per bucket.
+struct GpuGridEntry {
+    vec4 position;  // xyz; w: R^2
+    vec4 normal;    // xyz; w: the hit point's index (uint bits)
+};
+PF_GPU_LAYOUT(GpuGridEntry, 32);
+
+// A batch's photons at one hit point, summed with integer atomics so that the sums do not
+// depend on the order threads reach them: flux in fixed point, units of
+// 1 / GpuParams.flux_to_fixed watts (see vulkan_backend.cpp for the range argument).
+struct GpuTallySum {
+    uint64_t flux[3];
+    uint32_t photons;        // M
+    uint32_t inner_photons;  // within R / sqrt(2)
+};
+PF_GPU_LAYOUT(GpuTallySum, 32);
+
+struct GpuCounters {
+    uint64_t segments;             // photon rays traced
+    uint64_t nonfinite_discarded;  // photon paths and direct samples dropped as NaN or Inf
+};
+PF_GPU_LAYOUT(GpuCounters, 16);
+
+// Push constants, the same block for every pipeline.
+struct GpuParams {
+    vec4 scene_sphere;         // xyz centre, w radius: the bounding sphere (directional lights)
+    float scene_magnitude;     // Bounds::Magnitude, for ray offsets
+    float grid_inverse_cell;   // 1 / grid cell size
+    uint32_t grid_bucket_mask; // buckets - 1
+    uint32_t hit_point_count;
+    float flux_to_fixed;       // fixed-point units per watt of photon flux
+    uint32_t emitter_count;
+    uint32_t first;            // photons: first photon of this dispatch; direct: first hit point
+    uint32_t end;              // photons: one past the batch's last photon; direct: of the slice
+    uint64_t seed_prefix;      // the stream family of the batch's photons or direct samples
+    uint32_t scan_count;       // elements the scan covers
+    uint32_t max_bounces;
+};
+PF_GPU_LAYOUT(GpuParams, 64);
+
+PF_GPU_END
+
+#endif  // PF_CORE_SHARED_GPU_TYPES_H

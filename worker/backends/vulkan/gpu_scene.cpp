@@ -1,0 +1,161 @@
+// Flattening a scene into the shared GPU structs.
+#include "worker/backends/vulkan/gpu_scene.h"
+
+#include <bit>
+
+#include "absl/strings/str_join.h"
+#include "worker/backends/cpu_embree/bvh_builder.h"
+
+namespace pf::vk {
+namespace {
+
+gpu::vec4 Vec4(const Vec3& v, float w = 0) { return {v.x, v.y, v.z, w}; }
+gpu::vec4 Vec4(const Vec3& v, uint32_t w_bits) { return {v.x, v.y, v.z, std::bit_cast<float>(w_bits)}; }
+
+void AddFeatures(const Scene& scene, SceneFeatures& features) {
+    std::vector<bool> used(scene.materials.size(), false);
+    for (const Triangle& triangle : scene.triangles) {
+        used[triangle.material] = true;
+        features.smooth_normals |= triangle.smooth;
+    }
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        if (!used[m]) continue;
+        const Material& material = scene.materials[m];
+        features.mirror |= material.type == MaterialType::kMirror;
+        features.dielectric |= material.type == MaterialType::kDielectric;
+        features.thin_dielectric |= material.type == MaterialType::kThinDielectric;
+        features.textures |= material.base_color_texture != kNoTexture;
+    }
+}
+
+void AddGeometry(const Scene& scene, const embree::GpuBvh& bvh, GpuScene& gpu_scene) {
+    for (uint32_t t : bvh.order) {
+        const Triangle& triangle = scene.triangles[t];
+        const Vec3& p0 = scene.positions[triangle.vertex[0]];
+        gpu_scene.triangles.push_back({Vec4(p0, t), Vec4(scene.positions[triangle.vertex[1]] - p0),
+                                       Vec4(scene.positions[triangle.vertex[2]] - p0)});
+    }
+    for (const Triangle& triangle : scene.triangles)
+        gpu_scene.shading.push_back({Vec4(triangle.normal),
+                                     {triangle.vertex[0], triangle.vertex[1], triangle.vertex[2],
+                                      triangle.material | (triangle.smooth ? gpu::kSmoothBit : 0u)}});
+    for (const Vec3& normal : scene.normals) gpu_scene.normals.push_back(Vec4(normal));
+    for (const Point2& uv : scene.uvs) gpu_scene.uvs.push_back({uv.x, uv.y});
+    for (const Material& material : scene.materials)
+        gpu_scene.materials.push_back({Vec4(material.base_color, material.ior), static_cast<uint32_t>(material.type),
+                                       material.base_color_texture, 0, 0});
+    for (const Texture& texture : scene.textures) {
+        gpu_scene.textures.push_back({static_cast<uint32_t>(gpu_scene.texels.size()), texture.width, texture.height, 0});
+        for (const Rgb& texel : texture.texels) gpu_scene.texels.push_back(Vec4(texel));
+    }
+}
+
+void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_scene) {
+    double cumulative = 0;
+    for (const Emitters::Record& record : emitters.Records()) {
+        gpu::GpuEmitter emitter{};
+        const auto inverse_probability = static_cast<float>(1.0 / record.probability);
+        Rgb power;
+        if (record.is_triangle) {
+            gpu_scene.features.triangle_lights = true;
+            emitter.position = Vec4(record.p0, gpu::kEmitterTriangle);
+            emitter.edge1 = Vec4(record.edge1, record.area);
+            emitter.edge2 = Vec4(record.edge2);
+            emitter.direction = Vec4(record.normal);
+            emitter.radiance = Vec4(record.radiance);
+            power = record.radiance * (kPi * record.area);
+        } else {
+            const PunctualLight& light = scene.lights[record.light];
+            emitter.position = Vec4(light.position);
+            emitter.direction = Vec4(light.direction);
+            emitter.radiance = Vec4(light.intensity);
+            emitter.cone = {light.cos_inner, light.cos_outer, 1.0f / std::max(0.001f, light.cos_inner - light.cos_outer), 0};
+            uint32_t kind = gpu::kEmitterPoint;
+            switch (light.type) {
+                case LightType::kPoint:
+                    gpu_scene.features.point_lights = true;
+                    power = light.intensity * (4.0f * kPi);
+                    break;
+                case LightType::kSpot:
+                    gpu_scene.features.spot_lights = true;
+                    kind = gpu::kEmitterSpot;
+                    power = light.intensity * Emitters::SpotSolidAngle(light);
+                    break;
+                case LightType::kDirectional:
+                    gpu_scene.features.directional_lights = true;
+                    kind = gpu::kEmitterDirectional;
+                    power = light.intensity * (kPi * emitters.SceneRadius() * emitters.SceneRadius());
+                    break;
+            }
+            emitter.position.w = std::bit_cast<float>(kind);
+        }
+        emitter.power = Vec4(power, inverse_probability);
+        gpu_scene.max_photon_flux = std::max(gpu_scene.max_photon_flux, MaxComponent(power) * inverse_probability);
+        gpu_scene.emitters.push_back(emitter);
+        cumulative += record.probability;
+        gpu_scene.emitter_cdf.push_back(static_cast<float>(cumulative));
+    }
+    // Rounding must not leave a u in [0, 1) past the last emitter.
+    if (!gpu_scene.emitter_cdf.empty()) gpu_scene.emitter_cdf.back() = 2.0f;
+}
+
+}  // namespace
+
+SpecConstants SceneFeatures::Spec() const {
+    SpecConstants spec{};
+    spec[gpu::kSpecHasMirror] = mirror;
+    spec[gpu::kSpecHasDielectric] = dielectric;
+    spec[gpu::kSpecHasThinDielectric] = thin_dielectric;
+    spec[gpu::kSpecHasTextures] = textures;
+    spec[gpu::kSpecHasSmoothNormals] = smooth_normals;
+    spec[gpu::kSpecHasTriangleLights] = triangle_lights;
+    spec[gpu::kSpecHasPointLights] = point_lights;
+    spec[gpu::kSpecHasSpotLights] = spot_lights;
+    spec[gpu::kSpecHasDirectionalLights] = directional_lights;
+    return spec;
+}
+
+std::string SceneFeatures::ToString() const {
+    std::vector<std::string> parts = {"diffuse"};
+    if (mirror) parts.push_back("mirror");
+    if (dielectric) parts.push_back("glass");
+    if (thin_dielectric) parts.push_back("thin glass");
+    if (textures) parts.push_back("textures");
+    if (smooth_normals) parts.push_back("smooth normals");
+    if (triangle_lights) parts.push_back("area lights");
+    if (point_lights) parts.push_back("point lights");
+    if (spot_lights) parts.push_back("spot lights");
+    if (directional_lights) parts.push_back("directional lights");
+    return absl::StrJoin(parts, ", ");
+}
+
+absl::StatusOr<GpuScene> BuildGpuScene(const Scene& scene, const Emitters& emitters) {
+    GpuScene gpu_scene;
+    AddFeatures(scene, gpu_scene.features);
+    std::vector<Bounds> boxes;
+    for (const Triangle& triangle : scene.triangles) {
+        Bounds box;
+        for (uint32_t v : triangle.vertex) box.Extend(scene.positions[v]);
+        boxes.push_back(box);
+    }
+    if (boxes.empty()) {
+        // Nothing to hit: one box far outside everything, over a degenerate triangle that no
+        // ray intersects (its determinant is 0).
+        boxes.push_back({Vec3(0.0f), Vec3(0.0f)});
+    }
+    absl::StatusOr<embree::GpuBvh> bvh = embree::BuildGpuBvh(boxes);
+    if (!bvh.ok()) return bvh.status();
+    gpu_scene.nodes = std::move(bvh->nodes);
+    if (scene.triangles.empty()) {
+        gpu_scene.triangles.push_back({Vec4(Vec3(0.0f), 0u), Vec4(Vec3(0.0f)), Vec4(Vec3(0.0f))});
+        gpu_scene.shading.push_back({Vec4(Vec3(0, 0, 1)), {0, 0, 0, 0}});
+    } else {
+        AddGeometry(scene, *bvh, gpu_scene);
+    }
+    AddEmitters(scene, emitters, gpu_scene);
+    gpu_scene.sphere = Vec4(emitters.SceneCenter(), emitters.SceneRadius());
+    gpu_scene.magnitude = scene.bounds.Magnitude();
+    return gpu_scene;
+}
+
+}  // namespace pf::vk

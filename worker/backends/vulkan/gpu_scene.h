@@ -1,0 +1,49 @@
+// A scene as the Vulkan kernels read it: the BVH (Embree's builder), triangles in leaf
+// order, shading data, materials, textures and emitters in the shared structs of
+// core/shared/gpu_types.h, and the set of features the scene uses, which selects the
+// kernels' specialisation. Plain arrays: no Vulkan here.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/scene/emitters.h"
+#include "core/scene/scene.h"
+#include "core/shared/gpu_types.h"
+#include "worker/backends/vulkan/kernels.h"
+
+namespace pf::vk {
+
+// The materials and lights a scene's kernels need code for.
+struct SceneFeatures {
+    bool mirror = false, dielectric = false, thin_dielectric = false, textures = false, smooth_normals = false;
+    bool triangle_lights = false, point_lights = false, spot_lights = false, directional_lights = false;
+
+    SpecConstants Spec() const;
+    // "diffuse+glass, triangle lights", for logs.
+    std::string ToString() const;
+};
+
+struct GpuScene {
+    std::vector<gpu::GpuBvhNode> nodes;
+    std::vector<gpu::GpuTriangle> triangles;
+    std::vector<gpu::GpuTriangleShading> shading;
+    std::vector<gpu::vec4> normals;
+    std::vector<gpu::vec2> uvs;
+    std::vector<gpu::GpuMaterial> materials;
+    std::vector<gpu::GpuTexture> textures;
+    std::vector<gpu::vec4> texels;
+    std::vector<gpu::GpuEmitter> emitters;
+    std::vector<float> emitter_cdf;
+    SceneFeatures features;
+    gpu::vec4 sphere{};      // the emitters' bounding sphere: centre, radius
+    float magnitude = 0;     // Bounds::Magnitude
+    // The largest flux one photon can carry in any channel, W: albedos are at most 1, so no
+    // path gains flux; the fixed-point tally's unit is a fraction of it.
+    float max_photon_flux = 0;
+};
+
+absl::StatusOr<GpuScene> BuildGpuScene(const Scene& scene, const Emitters& emitters);
+
+}  // namespace pf::vk

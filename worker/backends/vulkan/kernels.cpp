@@ -1,0 +1,140 @@
+// Pipelines, their layout and descriptor set.
+#include "worker/backends/vulkan/kernels.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace pf::vk {
+namespace {
+
+// SPIR-V words compiled by glslc at build time (pf_add_shaders).
+constexpr uint32_t kGridCountSpirv[] = {
+#include "worker/backends/vulkan/shaders/grid_count.comp.spv.inc"
+};
+constexpr uint32_t kScanBlocksSpirv[] = {
+#include "worker/backends/vulkan/shaders/scan_blocks.comp.spv.inc"
+};
+constexpr uint32_t kScanTotalsSpirv[] = {
+#include "worker/backends/vulkan/shaders/scan_totals.comp.spv.inc"
+};
+constexpr uint32_t kScanAddSpirv[] = {
+#include "worker/backends/vulkan/shaders/scan_add.comp.spv.inc"
+};
+constexpr uint32_t kGridFillSpirv[] = {
+#include "worker/backends/vulkan/shaders/grid_fill.comp.spv.inc"
+};
+constexpr uint32_t kPhotonTraceSpirv[] = {
+#include "worker/backends/vulkan/shaders/photon_trace.comp.spv.inc"
+};
+constexpr uint32_t kDirectLightSpirv[] = {
+#include "worker/backends/vulkan/shaders/direct_light.comp.spv.inc"
+};
+
+// In the order of Kernel.
+constexpr std::span<const uint32_t> kSpirv[] = {kGridCountSpirv, kScanBlocksSpirv, kScanTotalsSpirv, kScanAddSpirv,
+                                                kGridFillSpirv,  kPhotonTraceSpirv, kDirectLightSpirv};
+static_assert(std::size(kSpirv) == static_cast<size_t>(Kernel::kCount));
+
+// A shader module destroyed with its scope (pipelines keep what they need).
+struct ShaderModule {
+    VkDevice device;
+    VkShaderModule module = VK_NULL_HANDLE;
+    ~ShaderModule() {
+        if (module != VK_NULL_HANDLE) vkDestroyShaderModule(device, module, nullptr);
+    }
+};
+
+}  // namespace
+
+absl::StatusOr<std::unique_ptr<Kernels>> Kernels::Create(const Context& context, const SpecConstants& spec) {
+    std::unique_ptr<Kernels> kernels(new Kernels(context.Device()));
+    const VkDevice device = context.Device();
+    std::vector<VkDescriptorSetLayoutBinding> bindings;
+    for (uint32_t b = 0; b < gpu::kBindingCount; ++b)
+        bindings.push_back({.binding = b,
+                            .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                            .descriptorCount = 1,
+                            .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT});
+    const VkDescriptorSetLayoutCreateInfo set_layout{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+                                                     .bindingCount = static_cast<uint32_t>(bindings.size()),
+                                                     .pBindings = bindings.data()};
+    PF_VK_TRY(vkCreateDescriptorSetLayout(device, &set_layout, nullptr, &kernels->set_layout_));
+    const VkPushConstantRange push{.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .offset = 0, .size = sizeof(gpu::GpuParams)};
+    const VkPipelineLayoutCreateInfo layout{.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
+                                            .setLayoutCount = 1,
+                                            .pSetLayouts = &kernels->set_layout_,
+                                            .pushConstantRangeCount = 1,
+                                            .pPushConstantRanges = &push};
+    PF_VK_TRY(vkCreatePipelineLayout(device, &layout, nullptr, &kernels->layout_));
+
+    const VkDescriptorPoolSize pool_size{.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .descriptorCount = gpu::kBindingCount};
+    const VkDescriptorPoolCreateInfo pool{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
+                                          .maxSets = 1,
+                                          .poolSizeCount = 1,
+                                          .pPoolSizes = &pool_size};
+    PF_VK_TRY(vkCreateDescriptorPool(device, &pool, nullptr, &kernels->pool_));
+    const VkDescriptorSetAllocateInfo allocate{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+                                               .descriptorPool = kernels->pool_,
+                                               .descriptorSetCount = 1,
+                                               .pSetLayouts = &kernels->set_layout_};
+    PF_VK_TRY(vkAllocateDescriptorSets(device, &allocate, &kernels->set_));
+
+    std::array<VkSpecializationMapEntry, gpu::kSpecCount> entries;
+    for (uint32_t id = 0; id < gpu::kSpecCount; ++id)
+        entries[id] = {.constantID = id, .offset = id * uint32_t{sizeof(uint32_t)}, .size = sizeof(uint32_t)};
+    const VkSpecializationInfo specialization{.mapEntryCount = gpu::kSpecCount,
+                                              .pMapEntries = entries.data(),
+                                              .dataSize = sizeof(spec),
+                                              .pData = spec.data()};
+    for (size_t k = 0; k < kernels->pipelines_.size(); ++k) {
+        ShaderModule shader{device};
+        const VkShaderModuleCreateInfo module{.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
+                                              .codeSize = kSpirv[k].size_bytes(),
+                                              .pCode = kSpirv[k].data()};
+        PF_VK_TRY(vkCreateShaderModule(device, &module, nullptr, &shader.module));
+        const VkComputePipelineCreateInfo pipeline{
+            .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
+            .stage = {.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO,
+                      .stage = VK_SHADER_STAGE_COMPUTE_BIT,
+                      .module = shader.module,
+                      .pName = "main",
+                      .pSpecializationInfo = &specialization},
+            .layout = kernels->layout_};
+        PF_VK_TRY(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipeline, nullptr, &kernels->pipelines_[k]));
+    }
+    return kernels;
+}
+
+Kernels::~Kernels() {
+    for (VkPipeline pipeline : pipelines_)
+        if (pipeline != VK_NULL_HANDLE) vkDestroyPipeline(device_, pipeline, nullptr);
+    if (pool_ != VK_NULL_HANDLE) vkDestroyDescriptorPool(device_, pool_, nullptr);
+    if (layout_ != VK_NULL_HANDLE) vkDestroyPipelineLayout(device_, layout_, nullptr);
+    if (set_layout_ != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(device_, set_layout_, nullptr);
+}
+
+void Kernels::BindBuffers(const std::array<VkBuffer, gpu::kBindingCount>& buffers) {
+    std::array<VkDescriptorBufferInfo, gpu::kBindingCount> infos;
+    std::array<VkWriteDescriptorSet, gpu::kBindingCount> writes;
+    for (uint32_t b = 0; b < gpu::kBindingCount; ++b) {
+        infos[b] = {.buffer = buffers[b], .offset = 0, .range = VK_WHOLE_SIZE};
+        writes[b] = {.sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET,
+                     .dstSet = set_,
+                     .dstBinding = b,
+                     .descriptorCount = 1,
+                     .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                     .pBufferInfo = &infos[b]};
+    }
+    vkUpdateDescriptorSets(device_, gpu::kBindingCount, writes.data(), 0, nullptr);
+}
+
+void Kernels::Dispatch(VkCommandBuffer commands, Kernel kernel, const gpu::GpuParams& params, uint32_t groups) const {
+    if (groups == 0) return;
+    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[static_cast<size_t>(kernel)]);
+    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+    vkCmdPushConstants(commands, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(params), &params);
+    vkCmdDispatch(commands, groups, 1, 1);
+}
+
+}  // namespace pf::vk

@@ -1,0 +1,45 @@
+// What every photonfarm kernel starts from: the shared structs and generator, the scene's
+// feature switches (specialisation constants), the push constants and the descriptor set.
+#extension GL_EXT_shader_explicit_arithmetic_types : require
+#extension GL_EXT_shader_atomic_int64 : require
+
+#include "core/shared/gpu_types.h"
+#include "core/shared/rng.h"
+
+layout(constant_id = kSpecHasMirror) const bool kHasMirror = true;
+layout(constant_id = kSpecHasDielectric) const bool kHasDielectric = true;
+layout(constant_id = kSpecHasThinDielectric) const bool kHasThinDielectric = true;
+layout(constant_id = kSpecHasTextures) const bool kHasTextures = true;
+layout(constant_id = kSpecHasSmoothNormals) const bool kHasSmoothNormals = true;
+layout(constant_id = kSpecHasTriangleLights) const bool kHasTriangleLights = true;
+layout(constant_id = kSpecHasPointLights) const bool kHasPointLights = true;
+layout(constant_id = kSpecHasSpotLights) const bool kHasSpotLights = true;
+layout(constant_id = kSpecHasDirectionalLights) const bool kHasDirectionalLights = true;
+
+layout(push_constant, std430) uniform Push { GpuParams params; };
+
+layout(std430, binding = kBindingBvhNodes) readonly buffer BvhNodes { GpuBvhNode bvh_nodes[]; };
+layout(std430, binding = kBindingTriangles) readonly buffer Triangles { GpuTriangle triangles[]; };
+layout(std430, binding = kBindingShading) readonly buffer Shading { GpuTriangleShading shading[]; };
+layout(std430, binding = kBindingNormals) readonly buffer Normals { vec4 vertex_normals[]; };
+layout(std430, binding = kBindingUvs) readonly buffer Uvs { vec2 vertex_uvs[]; };
+layout(std430, binding = kBindingMaterials) readonly buffer Materials { GpuMaterial materials[]; };
+layout(std430, binding = kBindingTextures) readonly buffer Textures { GpuTexture textures[]; };
+layout(std430, binding = kBindingTexels) readonly buffer Texels { vec4 texels[]; };
+layout(std430, binding = kBindingEmitters) readonly buffer Emitters { GpuEmitter emitters[]; };
+layout(std430, binding = kBindingEmitterCdf) readonly buffer EmitterCdf { float emitter_cdf[]; };
+layout(std430, binding = kBindingHitPoints) readonly buffer HitPoints { GpuHitPoint hit_points[]; };
+layout(std430, binding = kBindingRadiusSq) readonly buffer RadiusSq { float radius_sq[]; };
+layout(std430, binding = kBindingGridBegin) buffer GridBegin { uint grid_begin[]; };
+layout(std430, binding = kBindingGridCursor) buffer GridCursor { uint grid_cursor[]; };
+layout(std430, binding = kBindingGridEntries) buffer GridEntries { GpuGridEntry grid_entries[]; };
+layout(std430, binding = kBindingScanBlocks) buffer ScanBlocks { uint scan_blocks[]; };
+layout(std430, binding = kBindingTally) buffer Tally { GpuTallySum tally[]; };
+layout(std430, binding = kBindingDirect) writeonly buffer Direct { vec4 direct[]; };
+layout(std430, binding = kBindingCounters) buffer Counters { GpuCounters counters; };
+
+const float kPi = 3.14159265358979323846;
+const float kInfinity = 1.0 / 0.0;
+
+bool IsFinite(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
+float MaxComponent(vec3 v) { return max(v.x, max(v.y, v.z)); }

@@ -1,0 +1,134 @@
+// Photon emission and light sampling over the scene's emitters, as core/scene/emitters.cpp
+// does on the CPU and consuming random numbers in the same order; light kinds the scene
+// lacks are compiled out.
+vec2 SampleUniformDisk(float u1, float u2) {
+    const float radius = sqrt(u1), angle = 2.0 * kPi * u2;
+    return radius * vec2(cos(angle), sin(angle));
+}
+vec3 SampleCosineHemisphere(float u1, float u2) {
+    return vec3(SampleUniformDisk(u1, u2), sqrt(max(0.0, 1.0 - u1)));
+}
+vec3 SampleUniformSphere(float u1, float u2) {
+    const float z = 1.0 - 2.0 * u1, r = sqrt(max(0.0, 1.0 - z * z)), angle = 2.0 * kPi * u2;
+    return vec3(r * cos(angle), r * sin(angle), z);
+}
+vec3 SampleUniformCone(float u1, float u2, float cos_max) {
+    const float cos_theta = 1.0 - u1 * (1.0 - cos_max);
+    const float sin_theta = sqrt(max(0.0, 1.0 - cos_theta * cos_theta)), angle = 2.0 * kPi * u2;
+    return vec3(sin_theta * cos(angle), sin_theta * sin(angle), cos_theta);
+}
+vec2 SampleUniformTriangle(float u1, float u2) {
+    const float root = sqrt(u1);
+    return vec2(u2 * root, 1.0 - root);
+}
+
+// A frame around a unit normal (Duff et al. 2017), as core/math/frame.h.
+mat3 FrameFromNormal(vec3 n) {
+    const float sign_z = n.z >= 0 ? 1.0 : -1.0;
+    const float a = -1.0 / (sign_z + n.z);
+    const float b = n.x * n.y * a;
+    return mat3(vec3(1.0 + sign_z * n.x * n.x * a, sign_z * b, -sign_z * n.x), vec3(b, sign_z + n.y * n.y * a, -n.y), n);
+}
+
+// glTF's smooth spot falloff (PunctualLight::SpotFalloff).
+float SpotFalloff(GpuEmitter light, float cos_axis) {
+    const float t = clamp((cos_axis - light.cone.y) * light.cone.z, 0.0, 1.0);
+    return t * t;
+}
+
+uint EmitterKind(GpuEmitter emitter) { return floatBitsToUint(emitter.position.w); }
+
+// Picks an emitter in proportion to its power by inverting the CDF.
+uint PickEmitter(float u) {
+    uint low = 0, high = params.emitter_count - 1;
+    while (low < high) {
+        const uint middle = (low + high) / 2;
+        if (u < emitter_cdf[middle]) high = middle; else low = middle + 1;
+    }
+    return low;
+}
+
+struct Photon {
+    vec3 origin, direction;
+    vec3 flux;  // W x photons emitted
+};
+
+Photon EmitPhoton(inout Pcg32 rng) {
+    const GpuEmitter emitter = emitters[PickEmitter(Pcg32NextFloat(rng))];
+    const uint kind = EmitterKind(emitter);
+    Photon photon;
+    photon.flux = emitter.power.xyz * emitter.power.w;
+    if (kHasTriangleLights && kind == kEmitterTriangle) {
+        const vec2 b = SampleUniformTriangle(Pcg32NextFloat(rng), Pcg32NextFloat(rng));
+        const vec3 point = emitter.position.xyz + emitter.edge1.xyz * b.x + emitter.edge2.xyz * b.y;
+        const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+        photon.direction = FrameFromNormal(emitter.direction.xyz) * SampleCosineHemisphere(u1, u2);
+        photon.origin = OffsetRayOrigin(point, emitter.direction.xyz);
+        return photon;
+    }
+    const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+    if (kHasPointLights && kind == kEmitterPoint) {
+        photon.origin = emitter.position.xyz;
+        photon.direction = SampleUniformSphere(u1, u2);
+    } else if (kHasSpotLights && kind == kEmitterSpot) {
+        const vec3 local = SampleUniformCone(u1, u2, emitter.cone.y);
+        photon.origin = emitter.position.xyz;
+        photon.direction = FrameFromNormal(emitter.direction.xyz) * local;
+        photon.flux *= SpotFalloff(emitter, local.z);
+    } else if (kHasDirectionalLights && kind == kEmitterDirectional) {
+        // A disk as wide as the scene's bounding sphere, just outside it, facing the light.
+        const mat3 frame = FrameFromNormal(emitter.direction.xyz);
+        const vec2 d = SampleUniformDisk(u1, u2);
+        const float radius = params.scene_sphere.w;
+        photon.origin = params.scene_sphere.xyz - emitter.direction.xyz * (1.01 * radius) +
+                        (frame[0] * d.x + frame[1] * d.y) * radius;
+        photon.direction = emitter.direction.xyz;
+    }
+    return photon;
+}
+
+struct LightSample {
+    vec3 origin, direction;  // the shadow ray, toward the light
+    float distance;          // how far the shadow ray goes
+    vec3 radiance_over_pdf;  // incident radiance / pdf(solid angle), receiver cosine excluded
+};
+
+// One light sample at receiver p with facing normal n; false where it carries no light.
+bool SampleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample sample_out) {
+    const uint index = PickEmitter(Pcg32NextFloat(rng));
+    const GpuEmitter emitter = emitters[index];
+    const uint kind = EmitterKind(emitter);
+    const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+    sample_out.origin = OffsetRayOrigin(p, n);
+    sample_out.distance = kInfinity;
+    vec3 to_light = vec3(0);
+    vec3 radiance_over_pdf = vec3(0);
+    if (kHasTriangleLights && kind == kEmitterTriangle) {
+        const vec2 b = SampleUniformTriangle(u1, u2);
+        const vec3 point = emitter.position.xyz + emitter.edge1.xyz * b.x + emitter.edge2.xyz * b.y;
+        to_light = point - sample_out.origin;
+        const float distance_sq = dot(to_light, to_light);
+        sample_out.distance = sqrt(distance_sq);
+        to_light /= sample_out.distance;
+        const float cos_light = -dot(emitter.direction.xyz, to_light);
+        if (!(cos_light > 0) || !(distance_sq > 0)) return false;
+        radiance_over_pdf = emitter.radiance.xyz * (cos_light * emitter.edge1.w / distance_sq);
+    } else if (kHasDirectionalLights && kind == kEmitterDirectional) {
+        to_light = -emitter.direction.xyz;
+        radiance_over_pdf = emitter.radiance.xyz;
+    } else if ((kHasPointLights && kind == kEmitterPoint) || (kHasSpotLights && kind == kEmitterSpot)) {
+        to_light = emitter.position.xyz - sample_out.origin;
+        const float distance_sq = dot(to_light, to_light);
+        sample_out.distance = sqrt(distance_sq);
+        to_light /= sample_out.distance;
+        if (!(distance_sq > 0)) return false;
+        float falloff = 1.0;
+        if (kHasSpotLights && kind == kEmitterSpot) falloff = SpotFalloff(emitter, -dot(to_light, emitter.direction.xyz));
+        radiance_over_pdf = emitter.radiance.xyz * (falloff / distance_sq);
+    }
+    if (!(dot(to_light, n) > 0) || MaxComponent(radiance_over_pdf) <= 0) return false;
+    sample_out.direction = to_light;
+    sample_out.distance *= 1.0 - 1e-4;  // stop short of the light, by a margin that scales
+    sample_out.radiance_over_pdf = radiance_over_pdf * emitter.power.w;
+    return true;
+}

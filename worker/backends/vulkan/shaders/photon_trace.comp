@@ -1,0 +1,113 @@
+#version 460
+// The photon pass (core/ppm/photon_pass.cpp on the CPU): one thread a photon path, from a
+// light through specular and diffuse bounces with Russian roulette; at every diffuse hit
+// after the first scattering the photon is gathered at once by the hit points whose sphere
+// holds it, into integer sums (GpuTallySum) that do not depend on thread order.
+#include "common.glsl"
+#include "trace.glsl"
+#include "lights.glsl"
+#include "specular.glsl"
+#include "grid.glsl"
+
+layout(local_size_x = kWorkgroupSize) in;
+
+shared uint group_segments;
+shared uint group_discarded;
+
+// Fixed-point flux of one deposit: the clamp keeps every addend below 2^31 units, so a sum
+// of the at most 2^32 - 1 photons a tally counts stays below 2^63.
+uint64_t ToFixed(float flux) { return uint64_t(min(flux * params.flux_to_fixed + 0.5, 2147483648.0)); }
+
+void Gather(vec3 p, vec3 direction, vec3 flux) {
+    const ivec3 cell = GridCell(p);
+    // The neighbour on the nearer side in each axis: cells are two radii wide.
+    const vec3 within = p * params.grid_inverse_cell - vec3(cell);
+    const ivec3 step = mix(ivec3(-1), ivec3(1), greaterThanEqual(within, vec3(0.5)));
+    const uint64_t fixed_r = ToFixed(flux.r), fixed_g = ToFixed(flux.g), fixed_b = ToFixed(flux.b);
+    uint visited[8];
+    for (uint corner = 0; corner < 8; ++corner) {
+        const ivec3 offset = ivec3(corner & 1, (corner >> 1) & 1, corner >> 2) * step;
+        const uint bucket = GridBucket(cell + offset);
+        // Distinct cells may share a bucket: each bucket is searched once.
+        bool seen = false;
+        for (uint k = 0; k < corner; ++k) seen = seen || visited[k] == bucket;
+        visited[corner] = bucket;
+        if (seen) continue;
+        const uint end = grid_begin[bucket + 1];
+        for (uint e = grid_begin[bucket]; e < end; ++e) {
+            const GpuGridEntry entry = grid_entries[e];
+            const vec3 offset_to = entry.position.xyz - p;
+            const float distance_sq = dot(offset_to, offset_to);
+            if (distance_sq > entry.position.w || dot(entry.normal.xyz, direction) >= 0) continue;
+            const uint index = floatBitsToUint(entry.normal.w);
+            atomicAdd(tally[index].photons, 1u);
+            if (2.0 * distance_sq <= entry.position.w) atomicAdd(tally[index].inner_photons, 1u);
+            atomicAdd(tally[index].flux[0], fixed_r);
+            atomicAdd(tally[index].flux[1], fixed_g);
+            atomicAdd(tally[index].flux[2], fixed_b);
+        }
+    }
+}
+
+// Follows one photon; returns the rays traced, and sets `discarded` where its flux turned
+// NaN or Inf (the path ends there, before depositing).
+uint TracePhoton(uint photon, out bool discarded) {
+    discarded = false;
+    Pcg32 rng = Pcg32Seeded(FamilySeed(params.seed_prefix, photon));
+    const Photon emitted = EmitPhoton(rng);
+    vec3 origin = emitted.origin, direction = emitted.direction, flux = emitted.flux;
+    bool scattered = false;
+    uint segments = 0;
+    for (uint bounce = 0; bounce < params.max_bounces; ++bounce) {
+        ++segments;
+        if (!IsFinite(flux)) {
+            discarded = true;
+            break;
+        }
+        RayHit hit;
+        if (!TraceRay(origin, direction, kInfinity, false, hit)) break;
+        const Surface surface = SurfaceAt(hit);
+        const GpuMaterial material = materials[surface.material];
+        const bool front_facing = dot(direction, surface.geometric_normal) < 0;
+        if (material.type == kMaterialDiffuse) {
+            if (scattered) Gather(surface.position, direction, flux);
+            // Russian roulette by albedo (Jensen 2001, 2.3.3).
+            const float survive = min(1.0, MaxComponent(surface.base_color));
+            if (!(Pcg32NextFloat(rng) < survive)) break;
+            flux *= surface.base_color / survive;
+            const vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
+            const vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
+            const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+            direction = FrameFromNormal(normal) * SampleCosineHemisphere(u1, u2);
+            if (!(dot(direction, geometric) > 0)) break;  // the shading normal pointed it inside
+            origin = OffsetRayOrigin(surface.position, geometric);
+        } else if (kHasMirror || kHasDielectric || kHasThinDielectric) {
+            const SpecularBounce bounce = ScatterSpecular(material, direction, surface.shading_normal, front_facing,
+                                                          surface.base_color, Pcg32NextFloat(rng));
+            const float survive = min(1.0, MaxComponent(bounce.weight));
+            if (!(Pcg32NextFloat(rng) < survive)) break;
+            flux *= bounce.weight / survive;
+            const vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;
+            origin = OffsetRayOrigin(surface.position, side);
+            direction = bounce.direction;
+        }
+        scattered = true;
+    }
+    return segments;
+}
+
+void main() {
+    if (gl_LocalInvocationIndex == 0) group_segments = 0, group_discarded = 0;
+    barrier();
+    const uint photon = params.first + gl_GlobalInvocationID.x;
+    if (photon < params.end) {
+        bool discarded;
+        atomicAdd(group_segments, TracePhoton(photon, discarded));
+        if (discarded) atomicAdd(group_discarded, 1u);
+    }
+    barrier();
+    if (gl_LocalInvocationIndex == 0) {
+        atomicAdd(counters.segments, uint64_t(group_segments));
+        atomicAdd(counters.nonfinite_discarded, uint64_t(group_discarded));
+    }
+}

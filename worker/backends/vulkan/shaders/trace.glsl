@@ -1,0 +1,135 @@
+// Ray queries against the scene's BVH (built on the CPU by Embree's builder, flattened to
+// GpuBvhNode): closest hit and any hit, a stack-based traversal visiting the nearer child
+// first, Moeller-Trumbore triangle tests.
+struct RayHit {
+    float t;
+    uint triangle;  // in leaf order (the triangles binding)
+    float b1, b2;   // barycentrics of vertices 1 and 2
+};
+
+const uint kStackSize = 64;  // the builder's depth limit (gpu_scene.cpp)
+
+// Entry distance of the ray into the box, or infinity where it misses within (0, t_max).
+float EnterBox(vec3 lower, vec3 upper, vec3 origin, vec3 inverse_direction, float t_max) {
+    const vec3 t0 = (lower - origin) * inverse_direction, t1 = (upper - origin) * inverse_direction;
+    const vec3 near = min(t0, t1), far = max(t0, t1);
+    const float enter = max(max(near.x, near.y), max(near.z, 0.0));
+    const float leave = min(min(far.x, far.y), min(far.z, t_max));
+    return enter <= leave ? enter : kInfinity;
+}
+
+bool IntersectTriangle(uint index, vec3 origin, vec3 direction, inout float t_max, inout RayHit hit) {
+    const GpuTriangle triangle = triangles[index];
+    const vec3 p = cross(direction, triangle.edge2.xyz);
+    const float determinant = dot(triangle.edge1.xyz, p);
+    if (determinant == 0) return false;
+    const float inverse = 1.0 / determinant;
+    const vec3 to_origin = origin - triangle.p0.xyz;
+    const float b1 = dot(to_origin, p) * inverse;
+    if (b1 < 0 || b1 > 1) return false;
+    const vec3 q = cross(to_origin, triangle.edge1.xyz);
+    const float b2 = dot(direction, q) * inverse;
+    if (b2 < 0 || b1 + b2 > 1) return false;
+    const float t = dot(triangle.edge2.xyz, q) * inverse;
+    if (!(t > 0 && t < t_max)) return false;
+    t_max = t;
+    hit = RayHit(t, index, b1, b2);
+    return true;
+}
+
+// Closest hit along origin + t direction, 0 < t < t_max; with `any_hit`, the first found.
+bool TraceRay(vec3 origin, vec3 direction, float t_max, bool any_hit, out RayHit hit) {
+    hit = RayHit(0, 0, 0, 0);
+    // Zero components become tiny ones, so the slab test never computes 0 x infinity.
+    const vec3 safe = mix(vec3(1e-30), direction, greaterThan(abs(direction), vec3(1e-30)));
+    const vec3 inverse_direction = 1.0 / safe;
+    uint stack[kStackSize];
+    uint depth = 0;
+    uint node = 0;
+    bool found = false;
+    while (true) {
+        const GpuBvhNode n = bvh_nodes[node];
+        const float enter_left = EnterBox(n.left_lower.xyz, n.left_upper.xyz, origin, inverse_direction, t_max);
+        const float enter_right = EnterBox(n.right_lower.xyz, n.right_upper.xyz, origin, inverse_direction, t_max);
+        const uint left = floatBitsToUint(n.left_lower.w), left_count = floatBitsToUint(n.left_upper.w);
+        const uint right = floatBitsToUint(n.right_lower.w), right_count = floatBitsToUint(n.right_upper.w);
+        bool visit_left = enter_left < kInfinity, visit_right = enter_right < kInfinity;
+        if (visit_left && left_count > 0) {
+            for (uint i = left; i < left + left_count; ++i) found = IntersectTriangle(i, origin, direction, t_max, hit) || found;
+            visit_left = false;
+        }
+        if (visit_right && right_count > 0) {
+            for (uint i = right; i < right + right_count; ++i) found = IntersectTriangle(i, origin, direction, t_max, hit) || found;
+            visit_right = false;
+        }
+        if (found && any_hit) return true;
+        if (visit_left && visit_right) {
+            const bool left_first = enter_left <= enter_right;
+            stack[depth++] = left_first ? right : left;
+            node = left_first ? left : right;
+        } else if (visit_left || visit_right) {
+            node = visit_left ? left : right;
+        } else {
+            if (depth == 0) break;
+            node = stack[--depth];
+        }
+    }
+    return found;
+}
+
+// A surface point rebuilt from a hit, as Scene::Surface does.
+struct Surface {
+    vec3 position;
+    vec3 geometric_normal;  // the winding's front
+    vec3 shading_normal;    // on the same side
+    uint material;
+    vec3 base_color;        // reflectance or tint, texture applied
+};
+
+vec3 TextureSample(GpuTexture texture, vec2 uv) {
+    // Bilinear with repeat wrapping at glTF coordinates, as core/scene/texture.h.
+    const vec2 xy = uv * vec2(texture.width, texture.height) - 0.5;
+    const vec2 floor_xy = floor(xy);
+    const vec2 w = xy - floor_xy;
+    const ivec2 size = ivec2(texture.width, texture.height);
+    const ivec2 p0 = ((ivec2(floor_xy) % size) + size) % size;
+    const ivec2 p1 = (p0 + 1) % size;
+    const uint row0 = texture.first_texel + uint(p0.y * size.x), row1 = texture.first_texel + uint(p1.y * size.x);
+    const vec3 top = mix(texels[row0 + p0.x].xyz, texels[row0 + p1.x].xyz, w.x);
+    const vec3 bottom = mix(texels[row1 + p0.x].xyz, texels[row1 + p1.x].xyz, w.x);
+    return mix(top, bottom, w.y);
+}
+
+Surface SurfaceAt(RayHit hit) {
+    const GpuTriangle triangle = triangles[hit.triangle];
+    const GpuTriangleShading shade = shading[floatBitsToUint(triangle.p0.w)];
+    Surface surface;
+    surface.position = triangle.p0.xyz + triangle.edge1.xyz * hit.b1 + triangle.edge2.xyz * hit.b2;
+    surface.geometric_normal = shade.normal.xyz;
+    surface.shading_normal = shade.normal.xyz;
+    surface.material = shade.vertices.w & ~kSmoothBit;
+    const float b0 = 1.0 - hit.b1 - hit.b2;
+    if (kHasSmoothNormals && (shade.vertices.w & kSmoothBit) != 0) {
+        const vec3 n = vertex_normals[shade.vertices.x].xyz * b0 + vertex_normals[shade.vertices.y].xyz * hit.b1 +
+                       vertex_normals[shade.vertices.z].xyz * hit.b2;
+        if (dot(n, n) > 0) surface.shading_normal = dot(n, surface.geometric_normal) < 0 ? -normalize(n) : normalize(n);
+    }
+    const GpuMaterial material = materials[surface.material];
+    surface.base_color = material.base_color.xyz;
+    if (kHasTextures && material.texture >= 0) {
+        const vec2 uv = vertex_uvs[shade.vertices.x] * b0 + vertex_uvs[shade.vertices.y] * hit.b1 +
+                        vertex_uvs[shade.vertices.z] * hit.b2;
+        surface.base_color *= TextureSample(textures[material.texture], uv);
+    }
+    return surface;
+}
+
+// Moves p off the surface along n, as OffsetRayOrigin (core/geometry/ray.h) does: a few
+// units in the last place, or a small fraction of the scene near zero.
+vec3 OffsetRayOrigin(vec3 p, vec3 n) {
+    const float origin = params.scene_magnitude * (1.0 / 32.0);
+    const float float_scale = params.scene_magnitude * (1.0 / 65536.0);
+    const ivec3 offset = ivec3(256.0 * n);
+    const vec3 moved = intBitsToFloat(floatBitsToInt(p) + mix(offset, -offset, lessThan(p, vec3(0))));
+    return mix(moved, p + float_scale * n, lessThan(abs(p), vec3(origin)));
+}

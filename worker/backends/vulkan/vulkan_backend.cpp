@@ -1,0 +1,355 @@
+// Batches on a Vulkan device.
+//
+// The tally's fixed point: each deposit's flux is converted to an integer number of units of
+// max_photon_flux x 2^-31 (the largest flux any photon carries, since albedos are at most 1,
+// see GpuScene) and added with 64-bit integer atomics, so a batch's sums are exact and do
+// not depend on the order threads reach them. Range: an addend is at most 2^31 units and a
+// hit point counts at most 2^32 - 1 photons a batch (its count is 32-bit, as on the CPU), so
+// a sum stays below 2^63 whatever the light's power (the unit scales with it: lights x1e-6
+// and x1e9 in docs/numerics.md are the same integers). Precision: each addend is rounded to
+// the nearest unit, an absolute error of 2^-32 of the largest photon flux, below float's
+// own rounding for every deposit above 2^-8 of it; the sum is then exact, where the CPU's
+// float sum loses up to 2^-24 per addition.
+#include "worker/backends/vulkan/vulkan_backend.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+
+#include "absl/strings/str_cat.h"
+#include "core/ppm/direct_light.h"
+#include "core/ppm/photon_pass.h"
+
+namespace pf::vk {
+namespace {
+
+constexpr float kFixedUnitsPerMaxFlux = 2147483648.0f;  // 2^31
+// The grid's buckets: about two per hit point, at most what two scan levels cover.
+constexpr uint32_t kMaxBuckets = 1u << 21;
+static_assert(kMaxBuckets + 1 <= gpu::kScanBlock * gpu::kScanBlock);
+
+double Mib(uint64_t bytes) { return static_cast<double>(bytes) / (1 << 20); }
+
+template <typename T>
+std::span<const std::byte> Bytes(const std::vector<T>& values) {
+    return std::as_bytes(std::span(values));
+}
+
+uint32_t Groups(uint64_t threads, uint32_t per_group) { return static_cast<uint32_t>((threads + per_group - 1) / per_group); }
+
+// Device buffers filled from host data through staging buffers, all copies in one submission.
+class Uploader {
+public:
+    Uploader(const Context& context, CommandStream& stream) : context_(context), stream_(stream) {}
+
+    absl::StatusOr<Buffer> Upload(std::span<const std::byte> data) {
+        if (commands_ == VK_NULL_HANDLE) {
+            absl::StatusOr<VkCommandBuffer> commands = stream_.Begin();
+            if (!commands.ok()) return commands.status();
+            commands_ = *commands;
+        }
+        absl::StatusOr<Buffer> device = Buffer::Create(context_, data.size(), MemoryUse::kDevice);
+        if (!device.ok() || data.empty()) return device;
+        absl::StatusOr<Buffer> staging = Buffer::Create(context_, data.size(), MemoryUse::kUpload);
+        if (!staging.ok()) return staging.status();
+        std::memcpy(staging->Mapped(), data.data(), data.size());
+        const VkBufferCopy region{.srcOffset = 0, .dstOffset = 0, .size = data.size()};
+        vkCmdCopyBuffer(commands_, staging->Handle(), device->Handle(), 1, &region);
+        staging_.push_back(std::move(*staging));
+        return device;
+    }
+    absl::Status Finish() {
+        if (commands_ == VK_NULL_HANDLE) return absl::OkStatus();
+        stream_.Barrier();
+        absl::Status status = stream_.SubmitAndWait();
+        staging_.clear();
+        commands_ = VK_NULL_HANDLE;
+        return status;
+    }
+
+private:
+    const Context& context_;
+    CommandStream& stream_;
+    VkCommandBuffer commands_ = VK_NULL_HANDLE;
+    std::vector<Buffer> staging_;
+};
+
+}  // namespace
+
+// Every buffer of a job, named by what it holds; `bindings` lists them in binding order.
+struct VulkanBackend::JobBuffers {
+    Buffer nodes, triangles, shading, normals, uvs, materials, textures, texels, emitters, emitter_cdf;
+    Buffer hit_points, radius_sq, grid_begin, grid_cursor, grid_entries, scan_blocks, tally, direct, counters;
+    Buffer radius_upload, tally_readback, direct_readback, counters_readback;
+
+    std::array<VkBuffer, gpu::kBindingCount> Bindings() const {
+        std::array<VkBuffer, gpu::kBindingCount> b{};
+        b[gpu::kBindingBvhNodes] = nodes.Handle(), b[gpu::kBindingTriangles] = triangles.Handle();
+        b[gpu::kBindingShading] = shading.Handle(), b[gpu::kBindingNormals] = normals.Handle();
+        b[gpu::kBindingUvs] = uvs.Handle(), b[gpu::kBindingMaterials] = materials.Handle();
+        b[gpu::kBindingTextures] = textures.Handle(), b[gpu::kBindingTexels] = texels.Handle();
+        b[gpu::kBindingEmitters] = emitters.Handle(), b[gpu::kBindingEmitterCdf] = emitter_cdf.Handle();
+        b[gpu::kBindingHitPoints] = hit_points.Handle(), b[gpu::kBindingRadiusSq] = radius_sq.Handle();
+        b[gpu::kBindingGridBegin] = grid_begin.Handle(), b[gpu::kBindingGridCursor] = grid_cursor.Handle();
+        b[gpu::kBindingGridEntries] = grid_entries.Handle(), b[gpu::kBindingScanBlocks] = scan_blocks.Handle();
+        b[gpu::kBindingTally] = tally.Handle(), b[gpu::kBindingDirect] = direct.Handle();
+        b[gpu::kBindingCounters] = counters.Handle();
+        return b;
+    }
+};
+
+absl::StatusOr<std::unique_ptr<VulkanBackend>> VulkanBackend::Create(std::shared_ptr<Context> context, const Scene& scene) {
+    absl::StatusOr<CommandStream> stream = CommandStream::Create(*context);
+    if (!stream.ok()) return stream.status();
+    return std::unique_ptr<VulkanBackend>(new VulkanBackend(std::move(context), scene, std::move(*stream)));
+}
+
+VulkanBackend::VulkanBackend(std::shared_ptr<Context> context, const Scene& scene, CommandStream stream)
+    : context_(std::move(context)), scene_(scene), stream_(std::move(stream)) {}
+
+VulkanBackend::~VulkanBackend() = default;
+
+absl::Status VulkanBackend::CheckFits(const GpuScene& gpu_scene, size_t hit_points) const {
+    struct Need {
+        const char* what;
+        uint64_t bytes;
+    };
+    const Need needs[] = {
+        {"BVH nodes", gpu_scene.nodes.size() * sizeof(gpu::GpuBvhNode)},
+        {"triangles", gpu_scene.triangles.size() * sizeof(gpu::GpuTriangle)},
+        {"texels", gpu_scene.texels.size() * sizeof(gpu::vec4)},
+        {"hit points", hit_points * sizeof(gpu::GpuHitPoint)},
+        {"grid entries", hit_points * sizeof(gpu::GpuGridEntry)},
+        {"tally", hit_points * sizeof(gpu::GpuTallySum)},
+    };
+    const uint64_t range = context_->Limits().maxStorageBufferRange;
+    uint64_t total = 0;
+    for (const Need& need : needs) {
+        total += need.bytes;
+        if (need.bytes > range)
+            return absl::ResourceExhaustedError(absl::StrCat(
+                "job too large for Vulkan device ", context_->Info().name, ": its ", need.what, " (", hit_points,
+                " hit points) need ", Mib(need.bytes), " MiB in one buffer, the device allows ", Mib(range),
+                " MiB (maxStorageBufferRange); use fewer pixels or samples, or the cpu backend"));
+    }
+    // Direct samples, radii and their staging come on top: about 60 bytes a hit point more.
+    total += hit_points * 60;
+    const uint64_t memory = context_->Info().device_local_bytes;
+    if (total > memory)
+        return absl::ResourceExhaustedError(absl::StrCat("job too large for Vulkan device ", context_->Info().name, ": it needs ",
+                                                         Mib(total), " MiB, the device has ", Mib(memory), " MiB"));
+    return absl::OkStatus();
+}
+
+absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
+    if (job.scene == nullptr || job.emitters == nullptr || !job.emitters->HasPower())
+        return absl::InvalidArgumentError("job has no scene or no light");
+    if (job.scene != &scene_) return absl::InvalidArgumentError("job's scene is not the backend's");
+    if (job.hit_points.size() >= (size_t{1} << 31)) return absl::ResourceExhaustedError("over 2^31 hit points");
+    buffers_.reset();
+    kernels_.reset();
+    job_ = job;
+    absl::StatusOr<GpuScene> gpu_scene = BuildGpuScene(scene_, *job.emitters);
+    if (!gpu_scene.ok()) return gpu_scene.status();
+    if (absl::Status status = CheckFits(*gpu_scene, job.hit_points.size()); !status.ok()) return status;
+    features_ = gpu_scene->features;
+    scene_sphere_ = gpu_scene->sphere;
+    scene_magnitude_ = gpu_scene->magnitude;
+    flux_to_fixed_ = kFixedUnitsPerMaxFlux / gpu_scene->max_photon_flux;
+    emitter_count_ = static_cast<uint32_t>(gpu_scene->emitters.size());
+    if (!(gpu_scene->max_photon_flux > 0) || !std::isfinite(flux_to_fixed_))
+        return absl::InvalidArgumentError("the scene's lights carry no finite power");
+
+    absl::StatusOr<std::unique_ptr<Kernels>> kernels = Kernels::Create(*context_, features_.Spec());
+    if (!kernels.ok()) return kernels.status();
+    kernels_ = std::move(*kernels);
+
+    const size_t n = job.hit_points.size();
+    std::vector<gpu::GpuHitPoint> hit_points;
+    hit_points.reserve(n);
+    for (const HitPoint& h : job.hit_points)
+        hit_points.push_back({{h.position.x, h.position.y, h.position.z, 0},
+                              {h.normal.x, h.normal.y, h.normal.z, 0},
+                              {h.weight.x, h.weight.y, h.weight.z, 0}});
+    buckets_ = std::clamp<uint32_t>(std::bit_ceil(static_cast<uint32_t>(2 * n + 1)), gpu::kScanBlock, kMaxBuckets);
+
+    auto buffers = std::make_unique<JobBuffers>();
+    Uploader uploader(*context_, stream_);
+    absl::Status status;
+    const auto upload = [&](Buffer& buffer, std::span<const std::byte> data) {
+        if (!status.ok()) return;
+        absl::StatusOr<Buffer> made = uploader.Upload(data);
+        if (made.ok()) buffer = std::move(*made);
+        else status = made.status();
+    };
+    const auto make = [&](Buffer& buffer, uint64_t bytes, MemoryUse use) {
+        if (!status.ok()) return;
+        absl::StatusOr<Buffer> made = Buffer::Create(*context_, bytes, use);
+        if (made.ok()) buffer = std::move(*made);
+        else status = made.status();
+    };
+    upload(buffers->nodes, Bytes(gpu_scene->nodes));
+    upload(buffers->triangles, Bytes(gpu_scene->triangles));
+    upload(buffers->shading, Bytes(gpu_scene->shading));
+    upload(buffers->normals, Bytes(gpu_scene->normals));
+    upload(buffers->uvs, Bytes(gpu_scene->uvs));
+    upload(buffers->materials, Bytes(gpu_scene->materials));
+    upload(buffers->textures, Bytes(gpu_scene->textures));
+    upload(buffers->texels, Bytes(gpu_scene->texels));
+    upload(buffers->emitters, Bytes(gpu_scene->emitters));
+    upload(buffers->emitter_cdf, Bytes(gpu_scene->emitter_cdf));
+    upload(buffers->hit_points, Bytes(hit_points));
+    make(buffers->radius_sq, n * sizeof(float), MemoryUse::kDevice);
+    make(buffers->grid_begin, (buckets_ + 1) * sizeof(uint32_t), MemoryUse::kDevice);
+    make(buffers->grid_cursor, buckets_ * sizeof(uint32_t), MemoryUse::kDevice);
+    make(buffers->grid_entries, n * sizeof(gpu::GpuGridEntry), MemoryUse::kDevice);
+    make(buffers->scan_blocks, gpu::kScanBlock * sizeof(uint32_t), MemoryUse::kDevice);
+    make(buffers->tally, n * sizeof(gpu::GpuTallySum), MemoryUse::kDevice);
+    make(buffers->direct, n * sizeof(gpu::vec4), MemoryUse::kDevice);
+    make(buffers->counters, sizeof(gpu::GpuCounters), MemoryUse::kDevice);
+    make(buffers->radius_upload, n * sizeof(float), MemoryUse::kUpload);
+    make(buffers->tally_readback, n * sizeof(gpu::GpuTallySum), MemoryUse::kReadback);
+    make(buffers->direct_readback, n * sizeof(gpu::vec4), MemoryUse::kReadback);
+    make(buffers->counters_readback, sizeof(gpu::GpuCounters), MemoryUse::kReadback);
+    if (absl::Status finished = uploader.Finish(); status.ok()) status = finished;
+    if (!status.ok()) return status;
+    kernels_->BindBuffers(buffers->Bindings());
+    buffers_ = std::move(buffers);
+    spdlog::debug("Vulkan job: {} hit points, {} triangles, kernels for {}", n, scene_.triangles.size(),
+                  features_.ToString());
+    return absl::OkStatus();
+}
+
+gpu::GpuParams VulkanBackend::BaseParams() const {
+    gpu::GpuParams params{};
+    params.scene_sphere = scene_sphere_;
+    params.scene_magnitude = scene_magnitude_;
+    params.grid_inverse_cell = grid_inverse_cell_;
+    params.grid_bucket_mask = buckets_ - 1;
+    params.hit_point_count = static_cast<uint32_t>(job_.hit_points.size());
+    params.flux_to_fixed = flux_to_fixed_;
+    params.emitter_count = emitter_count_;
+    params.max_bounces = kMaxPhotonBounces;
+    return params;
+}
+
+absl::Status VulkanBackend::BeginEpoch(std::span<const float> radius_sq) {
+    if (buffers_ == nullptr) return absl::FailedPreconditionError("BeginEpoch before a job");
+    const size_t n = job_.hit_points.size();
+    if (radius_sq.size() != n) return absl::InvalidArgumentError("one radius per hit point expected");
+    // Cells two of the largest radius wide, as the CPU grid: the largest over the hit points
+    // the grid holds (a radius and a weight).
+    float max_radius_sq = 0;
+    for (size_t i = 0; i < n; ++i)
+        if (MaxComponent(job_.hit_points[i].weight) > 0) max_radius_sq = std::max(max_radius_sq, radius_sq[i]);
+    grid_inverse_cell_ = max_radius_sq > 0 ? 0.5f / std::sqrt(max_radius_sq) : 1.0f;
+    if (n > 0) std::memcpy(buffers_->radius_upload.Mapped(), radius_sq.data(), n * sizeof(float));
+
+    absl::StatusOr<VkCommandBuffer> commands = stream_.Begin();
+    if (!commands.ok()) return commands.status();
+    const VkBufferCopy radii{.size = n * sizeof(float)};
+    if (n > 0) vkCmdCopyBuffer(*commands, buffers_->radius_upload.Handle(), buffers_->radius_sq.Handle(), 1, &radii);
+    vkCmdFillBuffer(*commands, buffers_->grid_begin.Handle(), 0, VK_WHOLE_SIZE, 0);
+    stream_.Barrier();
+    gpu::GpuParams params = BaseParams();
+    const uint32_t hit_point_groups = Groups(n, gpu::kWorkgroupSize);
+    kernels_->Dispatch(*commands, Kernel::kGridCount, params, hit_point_groups);
+    stream_.Barrier();
+    // Exclusive scan of buckets + 1 counts: the last offset is the number of entries.
+    params.scan_count = buckets_ + 1;
+    const uint32_t blocks = Groups(params.scan_count, gpu::kScanBlock);
+    kernels_->Dispatch(*commands, Kernel::kScanBlocks, params, blocks);
+    stream_.Barrier();
+    gpu::GpuParams totals = params;
+    totals.scan_count = blocks;
+    kernels_->Dispatch(*commands, Kernel::kScanTotals, totals, 1);
+    stream_.Barrier();
+    kernels_->Dispatch(*commands, Kernel::kScanAdd, params, blocks);
+    stream_.Barrier();
+    const VkBufferCopy cursor{.size = buckets_ * sizeof(uint32_t)};
+    vkCmdCopyBuffer(*commands, buffers_->grid_begin.Handle(), buffers_->grid_cursor.Handle(), 1, &cursor);
+    stream_.Barrier();
+    kernels_->Dispatch(*commands, Kernel::kGridFill, params, hit_point_groups);
+    return stream_.SubmitAndWait();
+}
+
+absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
+    absl::StatusOr<VkCommandBuffer> commands = stream_.Begin();
+    if (!commands.ok()) return commands.status();
+    vkCmdFillBuffer(*commands, buffers_->tally.Handle(), 0, VK_WHOLE_SIZE, 0);
+    vkCmdFillBuffer(*commands, buffers_->counters.Handle(), 0, VK_WHOLE_SIZE, 0);
+    stream_.Barrier();
+    // Photons in dispatches the device's workgroup count limit allows.
+    gpu::GpuParams params = BaseParams();
+    params.seed_prefix = PhotonSeeds(job_.seed, spec.index).Prefix();
+    params.end = spec.photons;
+    const uint64_t per_dispatch = uint64_t{context_->Limits().maxComputeWorkGroupCount[0]} * gpu::kWorkgroupSize;
+    for (uint64_t first = 0; first < spec.photons; first += per_dispatch) {
+        params.first = static_cast<uint32_t>(first);
+        kernels_->Dispatch(*commands, Kernel::kPhotonTrace, params,
+                           Groups(std::min<uint64_t>(per_dispatch, spec.photons - first), gpu::kWorkgroupSize));
+    }
+    const uint32_t direct_count = spec.direct_end - spec.direct_begin;
+    gpu::GpuParams direct = BaseParams();
+    direct.seed_prefix = DirectLightSeeds(job_.seed, spec.epoch).Prefix();
+    direct.end = spec.direct_end;
+    for (uint64_t first = 0; first < direct_count; first += per_dispatch) {
+        direct.first = static_cast<uint32_t>(spec.direct_begin + first);
+        kernels_->Dispatch(*commands, Kernel::kDirectLight, direct,
+                           Groups(std::min<uint64_t>(per_dispatch, direct_count - first), gpu::kWorkgroupSize));
+    }
+    stream_.Barrier();
+    const size_t n = job_.hit_points.size();
+    const VkBufferCopy tally{.size = n * sizeof(gpu::GpuTallySum)};
+    const VkBufferCopy samples{.size = direct_count * sizeof(gpu::vec4)};
+    const VkBufferCopy counters{.size = sizeof(gpu::GpuCounters)};
+    if (n > 0) vkCmdCopyBuffer(*commands, buffers_->tally.Handle(), buffers_->tally_readback.Handle(), 1, &tally);
+    if (direct_count > 0)
+        vkCmdCopyBuffer(*commands, buffers_->direct.Handle(), buffers_->direct_readback.Handle(), 1, &samples);
+    vkCmdCopyBuffer(*commands, buffers_->counters.Handle(), buffers_->counters_readback.Handle(), 1, &counters);
+    stream_.Barrier();
+    if (absl::Status status = stream_.SubmitAndWait(); !status.ok()) return status;
+
+    BatchResult result;
+    result.spec = spec;
+    result.photons_emitted = spec.photons;
+    buffers_->tally_readback.InvalidateForRead();
+    buffers_->direct_readback.InvalidateForRead();
+    buffers_->counters_readback.InvalidateForRead();
+    const auto* sums = static_cast<const gpu::GpuTallySum*>(buffers_->tally_readback.Mapped());
+    const double watts_per_unit = 1.0 / flux_to_fixed_;
+    Tally& out = result.tally;
+    for (uint32_t i = 0; i < n; ++i) {
+        const gpu::GpuTallySum& sum = sums[i];
+        if (sum.photons == 0) continue;
+        out.hit_point.push_back(i);
+        out.photons.push_back(sum.photons);
+        out.inner_photons.push_back(sum.inner_photons);
+        out.flux.push_back(Rgb(Vec3d(static_cast<double>(sum.flux[0]), static_cast<double>(sum.flux[1]),
+                                     static_cast<double>(sum.flux[2])) * watts_per_unit));
+    }
+    const auto* direct_samples = static_cast<const gpu::vec4*>(buffers_->direct_readback.Mapped());
+    result.direct.resize(direct_count);
+    for (uint32_t i = 0; i < direct_count; ++i)
+        result.direct[i] = {direct_samples[i].x, direct_samples[i].y, direct_samples[i].z};
+    const auto* counted = static_cast<const gpu::GpuCounters*>(buffers_->counters_readback.Mapped());
+    result.segments_traced = counted->segments;
+    result.nonfinite_discarded = counted->nonfinite_discarded;
+    return result;
+}
+
+absl::StatusOr<std::vector<BatchResult>> VulkanBackend::RunBatches(std::span<const BatchSpec> specs) {
+    if (buffers_ == nullptr) return absl::FailedPreconditionError("RunBatches before a job");
+    std::vector<BatchResult> results;
+    results.reserve(specs.size());
+    for (const BatchSpec& spec : specs) {
+        absl::StatusOr<BatchResult> result = RunBatch(spec);
+        if (!result.ok()) return result.status();
+        results.push_back(std::move(*result));
+    }
+    return results;
+}
+
+}  // namespace pf::vk

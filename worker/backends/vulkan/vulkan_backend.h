@@ -1,0 +1,60 @@
+// The Vulkan compute photon backend: the same batches as the CPU backend, traced by
+// compute kernels on the chosen device (a GPU, or lavapipe). Per job: the scene's buffers
+// and kernels specialised to its features; per epoch: the radii uploaded and the hit-point
+// grid rebuilt on the device; per batch: photon and direct-light kernels, then the tally
+// read back and made sparse. Not thread-safe; one job at a time.
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "worker/backend.h"
+#include "worker/backends/vulkan/buffer.h"
+#include "worker/backends/vulkan/command_stream.h"
+#include "worker/backends/vulkan/context.h"
+#include "worker/backends/vulkan/gpu_scene.h"
+#include "worker/backends/vulkan/kernels.h"
+
+namespace pf::vk {
+
+class VulkanBackend final : public Backend {
+public:
+    // A backend on `context`'s device for jobs over `scene` (which must outlive it).
+    static absl::StatusOr<std::unique_ptr<VulkanBackend>> Create(std::shared_ptr<Context> context, const Scene& scene);
+    ~VulkanBackend() override;
+
+    std::string_view Name() const override { return "vulkan"; }
+    // Uploads the scene and hit points; RESOURCE_EXHAUSTED, naming the buffer and the limit,
+    // where the job does not fit the device.
+    absl::Status BeginJob(const JobInputs& job) override;
+    absl::Status BeginEpoch(std::span<const float> radius_sq) override;
+    absl::StatusOr<std::vector<BatchResult>> RunBatches(std::span<const BatchSpec> specs) override;
+
+    const Context& GetContext() const { return *context_; }
+    // The current job's scene features (what its kernels were specialised for).
+    const SceneFeatures& Features() const { return features_; }
+
+private:
+    VulkanBackend(std::shared_ptr<Context> context, const Scene& scene, CommandStream stream);
+    struct JobBuffers;
+
+    absl::Status CheckFits(const GpuScene& gpu_scene, size_t hit_points) const;
+    absl::StatusOr<BatchResult> RunBatch(const BatchSpec& spec);
+    gpu::GpuParams BaseParams() const;
+
+    std::shared_ptr<Context> context_;
+    const Scene& scene_;
+    CommandStream stream_;
+    JobInputs job_;
+    SceneFeatures features_;
+    std::unique_ptr<Kernels> kernels_;
+    std::unique_ptr<JobBuffers> buffers_;
+    gpu::vec4 scene_sphere_{};
+    float scene_magnitude_ = 0;
+    float flux_to_fixed_ = 0;  // fixed-point tally units per watt
+    uint32_t emitter_count_ = 0;
+    uint32_t buckets_ = 0;     // of the hit-point grid, a power of two
+    float grid_inverse_cell_ = 0;
+};
+
+}  // namespace pf::vk
