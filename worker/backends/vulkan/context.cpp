@@ -71,7 +71,6 @@ absl::Status CreateInstance(bool validation, InstanceHolder& holder) {
             "no Vulkan driver (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER); install one, or mesa-vulkan-drivers "
             "for the CPU implementation lavapipe");
     PF_VK_TRY(result);
-    LoadInstanceFunctions(holder.instance);
     return absl::OkStatus();
 }
 
@@ -186,7 +185,13 @@ absl::StatusOr<std::shared_ptr<Context>> Context::Create(const ContextOptions& o
                            VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
             .pfnUserCallback = &Context::OnMessage,
             .pUserData = context.get()};
-        PF_VK_TRY(vkCreateDebugUtilsMessengerEXT(holder.instance, &info, nullptr, &context->messenger_));
+        const auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(holder.instance, "vkCreateDebugUtilsMessengerEXT"));
+        context->destroy_messenger_ = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(holder.instance, "vkDestroyDebugUtilsMessengerEXT"));
+        if (create == nullptr || context->destroy_messenger_ == nullptr)
+            return absl::FailedPreconditionError("the Vulkan loader does not provide VK_EXT_debug_utils for validation");
+        PF_VK_TRY(create(holder.instance, &info, nullptr, &context->messenger_));
     }
     context->instance_ = std::exchange(holder.instance, VK_NULL_HANDLE);
 
@@ -242,7 +247,7 @@ Context::~Context() {
         vkDeviceWaitIdle(device_);
         vkDestroyDevice(device_, nullptr);
     }
-    if (messenger_ != VK_NULL_HANDLE) vkDestroyDebugUtilsMessengerEXT(instance_, messenger_, nullptr);
+    if (messenger_ != VK_NULL_HANDLE) destroy_messenger_(instance_, messenger_, nullptr);
     if (instance_ != VK_NULL_HANDLE) vkDestroyInstance(instance_, nullptr);
 }
 

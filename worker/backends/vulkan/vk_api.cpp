@@ -9,12 +9,6 @@
 #include "absl/strings/str_cat.h"
 
 namespace pf::vk {
-namespace {
-
-PFN_vkGetInstanceProcAddr get_instance_proc_addr = nullptr;
-
-}  // namespace
-
 absl::Status LoadLoader() {
     static std::once_flag once;
     static absl::Status status;
@@ -25,24 +19,17 @@ absl::Status LoadLoader() {
                 absl::StrCat("no Vulkan loader (libvulkan.so.1: ", dlerror(), "); install libvulkan1 and a driver"));
             return;
         }
-        get_instance_proc_addr = reinterpret_cast<PFN_vkGetInstanceProcAddr>(dlsym(library, "vkGetInstanceProcAddr"));
-        if (get_instance_proc_addr == nullptr) {
-            status = absl::FailedPreconditionError("libvulkan.so.1 has no vkGetInstanceProcAddr");
-            return;
-        }
-#define PF_VK_LOAD(name) name = reinterpret_cast<PFN_##name>(get_instance_proc_addr(nullptr, #name));
-        PF_VK_GLOBAL_FUNCTIONS(PF_VK_LOAD)
+        std::string missing;
+#define PF_VK_LOAD(name)                                                 \
+    name = reinterpret_cast<PFN_##name>(dlsym(library, #name));        \
+    if (name == nullptr) absl::StrAppend(&missing, missing.empty() ? "" : ", ", #name);
+        PF_VK_CORE_FUNCTIONS(PF_VK_LOAD)
 #undef PF_VK_LOAD
-        if (vkCreateInstance == nullptr || vkEnumerateInstanceVersion == nullptr)
-            status = absl::FailedPreconditionError("the Vulkan loader is older than Vulkan 1.1");
+        if (!missing.empty())
+            status = absl::FailedPreconditionError(
+                absl::StrCat("the Vulkan loader libvulkan.so.1 lacks ", missing, " (older than Vulkan 1.2?)"));
     });
     return status;
-}
-
-void LoadInstanceFunctions(VkInstance instance) {
-#define PF_VK_LOAD(name) name = reinterpret_cast<PFN_##name>(get_instance_proc_addr(instance, #name));
-    PF_VK_INSTANCE_FUNCTIONS(PF_VK_LOAD)
-#undef PF_VK_LOAD
 }
 
 std::string_view ResultName(VkResult result) {

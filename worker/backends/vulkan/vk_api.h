@@ -12,13 +12,14 @@
 
 namespace pf::vk {
 
-#define PF_VK_GLOBAL_FUNCTIONS(X)            \
-    X(vkCreateInstance)                      \
-    X(vkEnumerateInstanceVersion)            \
-    X(vkEnumerateInstanceLayerProperties)    \
-    X(vkEnumerateInstanceExtensionProperties)
-
-#define PF_VK_INSTANCE_FUNCTIONS(X)            \
+// Core functions, which the loader exports: taken from libvulkan.so.1 itself, they serve
+// every instance and device, as if linked. (Extension functions come per instance, through
+// vkGetInstanceProcAddr: Context does that for debug utils.)
+#define PF_VK_CORE_FUNCTIONS(X)                \
+    X(vkGetInstanceProcAddr)                   \
+    X(vkCreateInstance)                        \
+    X(vkEnumerateInstanceVersion)              \
+    X(vkEnumerateInstanceLayerProperties)      \
     X(vkDestroyInstance)                       \
     X(vkEnumeratePhysicalDevices)              \
     X(vkGetPhysicalDeviceProperties)           \
@@ -27,8 +28,6 @@ namespace pf::vk {
     X(vkGetPhysicalDeviceMemoryProperties)     \
     X(vkEnumerateDeviceExtensionProperties)    \
     X(vkCreateDevice)                          \
-    X(vkCreateDebugUtilsMessengerEXT)          \
-    X(vkDestroyDebugUtilsMessengerEXT)         \
     X(vkDestroyDevice)                         \
     X(vkGetDeviceQueue)                        \
     X(vkCreateBuffer)                          \
@@ -74,16 +73,12 @@ namespace pf::vk {
     X(vkDeviceWaitIdle)
 
 #define PF_VK_DECLARE(name) inline PFN_##name name = nullptr;
-PF_VK_GLOBAL_FUNCTIONS(PF_VK_DECLARE)
-PF_VK_INSTANCE_FUNCTIONS(PF_VK_DECLARE)
+PF_VK_CORE_FUNCTIONS(PF_VK_DECLARE)
 #undef PF_VK_DECLARE
 
-// Opens the loader and its global functions, once per process; FAILED_PRECONDITION naming
-// libvulkan.so.1 where there is none.
+// Opens the loader and takes its functions, once per process; FAILED_PRECONDITION naming
+// libvulkan.so.1 where there is none, or where it lacks a function (older than Vulkan 1.2).
 absl::Status LoadLoader();
-// The remaining functions, through `instance` (device functions through the loader's
-// dispatch, which serves every device).
-void LoadInstanceFunctions(VkInstance instance);
 
 std::string_view ResultName(VkResult result);
 // "what failed: VK_ERROR_..." with the code that fits: out of memory is RESOURCE_EXHAUSTED,

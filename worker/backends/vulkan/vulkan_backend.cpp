@@ -78,6 +78,38 @@ private:
 
 }  // namespace
 
+absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scene, size_t hit_points) {
+    struct Need {
+        const char* what;
+        uint64_t bytes;
+    };
+    const Need needs[] = {
+        {"BVH nodes", gpu_scene.nodes.size() * sizeof(gpu::GpuBvhNode)},
+        {"triangles", gpu_scene.triangles.size() * sizeof(gpu::GpuTriangle)},
+        {"texels", gpu_scene.texels.size() * sizeof(gpu::vec4)},
+        {"hit points", hit_points * sizeof(gpu::GpuHitPoint)},
+        {"grid entries", hit_points * sizeof(gpu::GpuGridEntry)},
+        {"tally", hit_points * sizeof(gpu::GpuTallySum)},
+    };
+    uint64_t total = 0;
+    for (const Need& need : needs) {
+        total += need.bytes;
+        if (need.bytes > device.max_buffer_bytes)
+            return absl::ResourceExhaustedError(absl::StrCat(
+                "job too large for Vulkan device ", device.name, ": its ", need.what, " (", hit_points,
+                " hit points) need ", Mib(need.bytes), " MiB in one buffer, the device allows ",
+                Mib(device.max_buffer_bytes), " MiB (maxStorageBufferRange); use fewer pixels or samples, or the cpu backend"));
+    }
+    // Direct samples, radii, the grid's buckets and the staging buffers come on top: under
+    // 100 bytes a hit point.
+    total += hit_points * 100;
+    if (total > device.memory_bytes)
+        return absl::ResourceExhaustedError(absl::StrCat("job too large for Vulkan device ", device.name, ": it needs ",
+                                                         Mib(total), " MiB, the device has ", Mib(device.memory_bytes),
+                                                         " MiB; use fewer pixels or samples, or the cpu backend"));
+    return absl::OkStatus();
+}
+
 // Every buffer of a job, named by what it holds; `bindings` lists them in binding order.
 struct VulkanBackend::JobBuffers {
     Buffer nodes, triangles, shading, normals, uvs, materials, textures, texels, emitters, emitter_cdf;
@@ -111,38 +143,6 @@ VulkanBackend::VulkanBackend(std::shared_ptr<Context> context, const Scene& scen
 
 VulkanBackend::~VulkanBackend() = default;
 
-absl::Status VulkanBackend::CheckFits(const GpuScene& gpu_scene, size_t hit_points) const {
-    struct Need {
-        const char* what;
-        uint64_t bytes;
-    };
-    const Need needs[] = {
-        {"BVH nodes", gpu_scene.nodes.size() * sizeof(gpu::GpuBvhNode)},
-        {"triangles", gpu_scene.triangles.size() * sizeof(gpu::GpuTriangle)},
-        {"texels", gpu_scene.texels.size() * sizeof(gpu::vec4)},
-        {"hit points", hit_points * sizeof(gpu::GpuHitPoint)},
-        {"grid entries", hit_points * sizeof(gpu::GpuGridEntry)},
-        {"tally", hit_points * sizeof(gpu::GpuTallySum)},
-    };
-    const uint64_t range = context_->Limits().maxStorageBufferRange;
-    uint64_t total = 0;
-    for (const Need& need : needs) {
-        total += need.bytes;
-        if (need.bytes > range)
-            return absl::ResourceExhaustedError(absl::StrCat(
-                "job too large for Vulkan device ", context_->Info().name, ": its ", need.what, " (", hit_points,
-                " hit points) need ", Mib(need.bytes), " MiB in one buffer, the device allows ", Mib(range),
-                " MiB (maxStorageBufferRange); use fewer pixels or samples, or the cpu backend"));
-    }
-    // Direct samples, radii and their staging come on top: about 60 bytes a hit point more.
-    total += hit_points * 60;
-    const uint64_t memory = context_->Info().device_local_bytes;
-    if (total > memory)
-        return absl::ResourceExhaustedError(absl::StrCat("job too large for Vulkan device ", context_->Info().name, ": it needs ",
-                                                         Mib(total), " MiB, the device has ", Mib(memory), " MiB"));
-    return absl::OkStatus();
-}
-
 absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     if (job.scene == nullptr || job.emitters == nullptr || !job.emitters->HasPower())
         return absl::InvalidArgumentError("job has no scene or no light");
@@ -153,7 +153,9 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     job_ = job;
     absl::StatusOr<GpuScene> gpu_scene = BuildGpuScene(scene_, *job.emitters);
     if (!gpu_scene.ok()) return gpu_scene.status();
-    if (absl::Status status = CheckFits(*gpu_scene, job.hit_points.size()); !status.ok()) return status;
+    const DeviceCapacity capacity{context_->Info().name, context_->Limits().maxStorageBufferRange,
+                                  context_->Info().device_local_bytes};
+    if (absl::Status status = CheckJobFits(capacity, *gpu_scene, job.hit_points.size()); !status.ok()) return status;
     features_ = gpu_scene->features;
     scene_sphere_ = gpu_scene->sphere;
     scene_magnitude_ = gpu_scene->magnitude;

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "worker/backend.h"
 #include "worker/backends/vulkan/buffer.h"
@@ -16,6 +17,17 @@
 #include "worker/backends/vulkan/kernels.h"
 
 namespace pf::vk {
+
+// What a device can hold: its largest storage buffer and its device-local memory.
+struct DeviceCapacity {
+    std::string name;
+    uint64_t max_buffer_bytes = 0;  // maxStorageBufferRange
+    uint64_t memory_bytes = 0;      // the largest device-local heap
+};
+
+// OK where a job over `gpu_scene` with `hit_points` fits `device`; RESOURCE_EXHAUSTED naming
+// the buffer, the need and the limit otherwise.
+absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scene, size_t hit_points);
 
 class VulkanBackend final : public Backend {
 public:
@@ -38,7 +50,6 @@ private:
     VulkanBackend(std::shared_ptr<Context> context, const Scene& scene, CommandStream stream);
     struct JobBuffers;
 
-    absl::Status CheckFits(const GpuScene& gpu_scene, size_t hit_points) const;
     absl::StatusOr<BatchResult> RunBatch(const BatchSpec& spec);
     gpu::GpuParams BaseParams() const;
 
