@@ -1,5 +1,6 @@
-// Whole renders through the embedded renderer: the white furnace against its analytic answer,
-// glass without NaN, and bit-identical images for any thread count.
+// Whole renders through the embedded renderer: the white furnace and punctual lights against
+// their analytic answers on every backend, glass without NaN, and bit-identical images for any
+// thread count.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,8 @@
 #include "core/ppm/photon_pass.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/support/gltf_builder.h"
+#include "tests/support/vulkan_validation.h"
+#include "worker/backend_factory.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf {
@@ -20,8 +23,9 @@ namespace {
 
 std::string ScenePath(const std::string& name) { return std::string(PF_SOURCE_DIR) + "/scenes/" + name; }
 
-RenderSettings SmallRender(const std::string& scene, uint64_t photons, int threads) {
+RenderSettings SmallRender(const std::string& scene, uint64_t photons, int threads, const std::string& backend = "cpu") {
     RenderSettings settings;
+    settings.backend = backend;
     settings.scene_path = ScenePath(scene);
     settings.job.width = 48;
     settings.job.height = 48;
@@ -31,9 +35,23 @@ RenderSettings SmallRender(const std::string& scene, uint64_t photons, int threa
     return settings;
 }
 
-TEST(RenderTest, WhiteFurnaceConvergesToEmissionOverOneMinusAlbedo) {
+// The analytic cases, run on every backend (the Vulkan one on lavapipe where there is no GPU,
+// under the validation layer: tests/support/vulkan_validation.cpp).
+class AnalyticRender : public ::testing::TestWithParam<std::string> {
+protected:
+    void SetUp() override {
+        if (GetParam() == "vulkan") testing::SkipWithoutVulkan();
+        errors_before_ = testing::VulkanValidationErrors();
+    }
+    void TearDown() override { EXPECT_EQ(testing::VulkanValidationErrors(), errors_before_) << "Vulkan validation errors"; }
+
+private:
+    unsigned long long errors_before_ = 0;
+};
+
+TEST_P(AnalyticRender, WhiteFurnaceConvergesToEmissionOverOneMinusAlbedo) {
     // furnace.gltf: a closed room of albedo 0.5 emitting Le = 1 everywhere, so L = 2 exactly.
-    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(SmallRender("furnace.gltf", 3'000'000, 2));
+    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(SmallRender("furnace.gltf", 3'000'000, 2, GetParam()));
     ASSERT_TRUE(outcome.ok()) << outcome.status();
     double sum = 0;
     std::vector<float> luminance;
@@ -49,12 +67,13 @@ TEST(RenderTest, WhiteFurnaceConvergesToEmissionOverOneMinusAlbedo) {
     EXPECT_NEAR(median, 2.0, 0.04) << "the typical pixel must be within 2%";
 }
 
-TEST(RenderTest, GlassInTheFurnaceConservesEnergy) {
+TEST_P(AnalyticRender, GlassInTheFurnaceConservesEnergy) {
     // furnace-glass.gltf: the furnace with a clear glass sphere in view. Lossless scattering
     // leaves a uniform radiance field uniform, so the pixels seen through the glass (the block
     // x in [20, 32), y in [26, 38) of the 48x48 image lies on the sphere) must show Le/(1-rho) = 2
     // too: energy lost or gained by Fresnel, refraction or the splitting would show here.
-    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(SmallRender("furnace-glass.gltf", 3'000'000, 2));
+    const absl::StatusOr<RenderOutcome> outcome =
+        RenderLocally(SmallRender("furnace-glass.gltf", 3'000'000, 2, GetParam()));
     ASSERT_TRUE(outcome.ok()) << outcome.status();
     double all = 0, through_glass = 0;
     for (int y = 0; y < 48; ++y)
@@ -70,12 +89,13 @@ TEST(RenderTest, GlassInTheFurnaceConservesEnergy) {
 
 // Renders a 2x2 quad of albedo 0.5 at z = 0, seen from above, lit by one punctual light, and
 // returns the mean of the 4x4 pixels at the image's centre (the point under the camera).
-double CentreOfQuadLitBy(const std::string& light, const std::string& node_fields, const std::string& name) {
+double CentreOfQuadLitBy(const std::string& light, const std::string& node_fields, const std::string& name,
+                         const std::string& backend) {
     testing::TestScene scene = testing::LitQuadScene();
     scene.meshes.resize(1);  // no area light
     scene.lights = {light};
     scene.light_node_fields = {node_fields};
-    RenderSettings settings = SmallRender("", 100'000, 2);
+    RenderSettings settings = SmallRender("", 100'000, 2, backend);
     settings.scene_path = testing::WriteGltf(scene, name);
     const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
     EXPECT_TRUE(outcome.ok()) << outcome.status();
@@ -101,21 +121,26 @@ double CentreIrradianceFromPointAbove(double intensity) {
     return sum / (kSteps * kSteps);
 }
 
-TEST(RenderTest, PunctualLightsGiveTheirAnalyticRadiance) {
+TEST_P(AnalyticRender, PunctualLightsGiveTheirAnalyticRadiance) {
     // A Lambertian surface of albedo rho under irradiance E has radiance rho E / pi; nothing
     // else is in the scene, so there is no indirect light. Intensities are W/sr (point, spot)
     // and W/m^2 (directional); the lights hang 1 above the quad's centre, pointing down.
     const double rho_over_pi = 0.5 / kPiD;
     const double point_expected = rho_over_pi * CentreIrradianceFromPointAbove(4.0);
-    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"point","intensity":4})", R"(,"translation":[0,0,1])", "point.gltf"),
-                point_expected, 0.005 * point_expected);
+    const std::string& backend = GetParam();
+    EXPECT_NEAR(
+        CentreOfQuadLitBy(R"({"type":"point","intensity":4})", R"(,"translation":[0,0,1])", "point.gltf", backend),
+        point_expected, 0.005 * point_expected);
     // Within the inner cone a spot light is a point light.
     EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"spot","intensity":4,"spot":{"innerConeAngle":0.3,"outerConeAngle":0.6}})",
-                                  R"(,"translation":[0,0,1])", "spot.gltf"),
+                                  R"(,"translation":[0,0,1])", "spot.gltf", backend),
                 point_expected, 0.005 * point_expected);
-    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"directional","intensity":3})", "", "directional.gltf"),
+    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"directional","intensity":3})", "", "directional.gltf", backend),
                 rho_over_pi * 3.0, 0.01 * rho_over_pi * 3.0);
 }
+
+INSTANTIATE_TEST_SUITE_P(Backends, AnalyticRender, ::testing::ValuesIn(BackendNames()),
+                         [](const ::testing::TestParamInfo<std::string>& backend) { return backend.param; });
 
 TEST(RenderTest, GlassSceneHasNoNaNOrInf) {
     const absl::StatusOr<RenderOutcome> outcome = RenderLocally(SmallRender("cornell-glass.gltf", 400'000, 2));

@@ -12,6 +12,7 @@
 #include "core/ppm/progressive_estimate.h"
 #include "core/scene/emitters.h"
 #include "core/scene/gltf_loader.h"
+#include "tests/support/vulkan_validation.h"
 #include "worker/backend_factory.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
 #include "worker/backends/vulkan/context.h"
@@ -51,21 +52,15 @@ std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size) {
     return setup;
 }
 
-class VulkanBackendTest : public testing::Test {
+class VulkanBackendTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        absl::StatusOr<std::shared_ptr<vk::Context>> context = vk::Context::Shared();
-        if (!context.ok() && absl::IsFailedPrecondition(context.status())) {
-            GTEST_SKIP() << "no Vulkan device at all: " << context.status();
-        }
-        ASSERT_TRUE(context.ok()) << context.status();
-        context_ = *context;
-        ASSERT_TRUE(context_->Validating()) << "tests run with the Khronos validation layer";
+        testing::SkipWithoutVulkan();
+        if (IsSkipped() || HasFatalFailure()) return;
+        context_ = *vk::Context::Shared();
     }
     void TearDown() override {
-        if (context_) {
-            EXPECT_EQ(context_->ValidationErrors(), 0u) << "see the 'Vulkan validation' lines above";
-        }
+        EXPECT_EQ(vk::Context::ValidationErrors(), 0u) << "see the 'Vulkan validation' lines above";
     }
 
     std::shared_ptr<vk::Context> context_;

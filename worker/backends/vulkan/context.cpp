@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
@@ -13,6 +14,8 @@
 
 namespace pf::vk {
 namespace {
+
+std::atomic<uint64_t> validation_errors{0};
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 constexpr uint32_t kApiVersion = VK_API_VERSION_1_2;
@@ -183,8 +186,7 @@ absl::StatusOr<std::shared_ptr<Context>> Context::Create(const ContextOptions& o
             .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
             .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                            VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
-            .pfnUserCallback = &Context::OnMessage,
-            .pUserData = context.get()};
+            .pfnUserCallback = &Context::OnMessage};
         const auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(holder.instance, "vkCreateDebugUtilsMessengerEXT"));
         context->destroy_messenger_ = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
@@ -251,13 +253,14 @@ Context::~Context() {
     if (instance_ != VK_NULL_HANDLE) vkDestroyInstance(instance_, nullptr);
 }
 
+uint64_t Context::ValidationErrors() { return validation_errors.load(); }
+
 VKAPI_ATTR VkBool32 VKAPI_CALL Context::OnMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                   VkDebugUtilsMessageTypeFlagsEXT /*types*/,
-                                                  const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
-    auto* context = static_cast<Context*>(user);
+                                                  const VkDebugUtilsMessengerCallbackDataEXT* data, void* /*user*/) {
     const char* message = data != nullptr && data->pMessage != nullptr ? data->pMessage : "";
     if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
-        ++context->validation_errors_;
+        ++validation_errors;
         spdlog::error("Vulkan validation: {}", message);
     } else {
         spdlog::warn("Vulkan validation: {}", message);

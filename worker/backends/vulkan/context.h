@@ -4,7 +4,6 @@
 // option) the Khronos layer checks every call and its messages are counted.
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -51,8 +50,9 @@ public:
     const DeviceInfo& Info() const { return info_; }
     const VkPhysicalDeviceLimits& Limits() const { return limits_; }
     const VkPhysicalDeviceMemoryProperties& Memory() const { return memory_; }
-    // Validation errors reported so far (0 without validation); warnings are only logged.
-    uint64_t ValidationErrors() const { return validation_errors_.load(); }
+    // Validation errors reported so far by any context of this process (0 without
+    // validation); warnings are only logged.
+    static uint64_t ValidationErrors();
     bool Validating() const { return messenger_ != VK_NULL_HANDLE; }
 
 private:
@@ -71,7 +71,6 @@ private:
     DeviceInfo info_;
     VkPhysicalDeviceLimits limits_{};
     VkPhysicalDeviceMemoryProperties memory_{};
-    std::atomic<uint64_t> validation_errors_{0};
 };
 
 }  // namespace pf::vk
