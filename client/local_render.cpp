@@ -8,6 +8,7 @@
 #include "core/scene/scene_bundle.h"
 #include "server/coordinator.h"
 #include "server/in_process_source.h"
+#include "worker/backend_factory.h"
 #include "worker/worker_loop.h"
 
 namespace pf {
@@ -15,6 +16,9 @@ namespace pf {
 absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, const EpochCallback& on_epoch) {
     const JobSpec& spec = settings.job;
     if (absl::Status status = CheckJobSpec(spec, SettingNames::kFlags); !status.ok()) return status;
+    // The backend's device first: without one, say so before any work.
+    const absl::StatusOr<std::shared_ptr<void>> device = OpenBackendDevice(settings.backend);
+    if (!device.ok()) return device.status();
     absl::StatusOr<SceneBundle> bundle = PackSceneBundle(settings.scene_path);
     if (!bundle.ok()) return bundle.status();
 

@@ -30,6 +30,15 @@ private:
 
 }  // namespace
 
+absl::StatusOr<std::shared_ptr<void>> OpenBackendDevice(std::string_view name) {
+    if (name != "vulkan") return nullptr;
+    absl::StatusOr<std::shared_ptr<vk::Context>> context = vk::Context::Shared();
+    if (!context.ok()) return absl::Status(context.status().code(), absl::StrCat("vulkan backend: ", context.status().message()));
+    return std::shared_ptr<void>(std::move(*context));
+}
+
+uint64_t BackendValidationErrors() { return vk::Context::ValidationErrors(); }
+
 std::string DescribeDevices(int cpu_threads) {
     std::string lines = absl::StrCat("cpu: Embree, ", cpu_threads, " threads\n");
     absl::StatusOr<std::vector<vk::DeviceInfo>> devices = vk::ListDevices();

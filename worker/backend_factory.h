@@ -20,6 +20,14 @@ std::vector<std::string> BackendNames();
 // INVALID_ARGUMENT for an unknown name; the backend's own errors otherwise.
 absl::StatusOr<std::unique_ptr<Backend>> CreateBackend(std::string_view name, const Scene& scene);
 
+// Opens the device backend `name` computes on and keeps it open while the handle lives, so
+// a worker fails at start, not at its first lease, and its jobs share one device. Null for
+// the cpu backend; the device's error (no loader, no driver, no usable device) otherwise.
+absl::StatusOr<std::shared_ptr<void>> OpenBackendDevice(std::string_view name);
+
+// Errors the Vulkan validation layer reported in this process (PHOTONFARM_VULKAN_VALIDATION=1).
+uint64_t BackendValidationErrors();
+
 // What each backend would run on here, one line each: the CPU's threads, every Vulkan device
 // (the one the vulkan backend picks marked, unusable ones with the reason), or why Vulkan is
 // unavailable. For photonfarm-worker --list-devices.

@@ -96,10 +96,15 @@ int main(int argc, char** argv) {
             ->check(CLI::Range(1, 1 << 16));
         pf::AddLogLevelOption(app);
         if (std::optional<int> exit_code = pf::ParseCommandLine(app, argc, argv, "photonfarm-worker")) return *exit_code;
-
         // Signals are taken by one thread with sigwait; every other thread inherits the block.
         const sigset_t signals = StopSignals();
         pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+        // After the mask, so that the device's own threads (lavapipe's) inherit it too.
+        const absl::StatusOr<std::shared_ptr<void>> device = pf::OpenBackendDevice(backend);
+        if (!device.ok()) {
+            std::fprintf(stderr, "photonfarm-worker: error: %s\n", std::string(device.status().message()).c_str());
+            return 1;
+        }
         StopFlag stop;
         std::thread signal_thread([&] {
             int signal = 0;
@@ -157,6 +162,10 @@ int main(int argc, char** argv) {
         heartbeat_thread.join();
         if (absl::Status status = source.Unregister(); !status.ok())
             spdlog::warn("leaving: {}", std::string(status.message()));
+        if (const uint64_t errors = pf::BackendValidationErrors(); errors > 0) {
+            spdlog::error("the Vulkan validation layer reported {} errors", errors);
+            exit_code = 1;
+        }
         const pf::WorkerStats stats = loop.Stats();
         spdlog::info("ran {} batches ({} refused), {} photons", stats.batches_run, stats.batches_refused, stats.photons);
         // Wake the signal thread if no signal came, then join it.

@@ -38,6 +38,10 @@ expect_failure "unreachable server on submit" "cannot reach the coordinator" sub
 expect_failure "no server given" "server" workers
 expect_failure "outputs without --watch" "need --watch" submit "$source_dir/scenes/cornell-box.gltf" \
     --server 127.0.0.1:1 --out "$work/a.exr"
+VK_ICD_FILENAMES=/nonexistent/icd.json expect_failure "vulkan without a driver" "vulkan backend: no Vulkan driver" \
+    render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --backend vulkan
+expect_failure "unknown backend" "--backend" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" \
+    --backend cuda
 expect_failure "bad alpha" "alpha" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --alpha 2
 # NaN and Inf in any number flag: refused by name before any work.
 for flag in --alpha --radius --seconds --target-error --exposure --snapshot-every; do

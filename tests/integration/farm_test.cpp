@@ -19,6 +19,8 @@
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "photonfarm/v1/work.grpc.pb.h"
 #include "tests/support/child_process.h"
+#include "tests/support/image_agreement.h"
+#include "tests/support/vulkan_validation.h"
 #include "worker/proto_convert.h"
 #include "worker/work_source.h"
 
@@ -81,9 +83,10 @@ protected:
         }
     }
 
-    ChildProcess& StartWorker() {
-        workers_.push_back(std::make_unique<ChildProcess>(std::vector<std::string>{
-            kBin + "/worker/photonfarm-worker", "--coordinator", address_, "--threads", "1", "--log-level", "warn"}));
+    ChildProcess& StartWorker(const std::string& backend = "cpu") {
+        workers_.push_back(std::make_unique<ChildProcess>(
+            std::vector<std::string>{kBin + "/worker/photonfarm-worker", "--coordinator", address_, "--threads", "1",
+                                     "--backend", backend, "--log-level", "warn"}));
         return *workers_.back();
     }
 
@@ -123,10 +126,12 @@ protected:
         return last.ok() ? last->status() : v1::JobStatus{};
     }
 
-    std::vector<Rgb> Reference(int epochs = kEpochs) {
-        const std::string out = TempPath("render.exr");
+    // `photonfarm render` of the job (another photon stream of its seed where `stream` > 0).
+    std::vector<Rgb> Reference(int epochs = kEpochs, int stream = 0) {
+        const std::string out = TempPath("render-" + std::to_string(stream) + ".exr");
         ChildProcess render(Concat({kBin + "/client/photonfarm", "render", kScene, "--threads", "2", "--out", out,
-                                    "--photons", std::to_string(epochs * 8 * 8192), "--log-level", "warn"},
+                                    "--photons", std::to_string(epochs * 8 * 8192), "--photon-stream",
+                                    std::to_string(stream), "--log-level", "warn"},
                                    kJobFlags));
         EXPECT_EQ(render.Wait(300), 0);
         return Pixels(out);
@@ -147,6 +152,36 @@ TEST_F(FarmTest, OneWorkerThreeWorkersAndRenderGiveTheSameImage) {
     const std::vector<Rgb> reference = Reference();
     EXPECT_TRUE(Identical(Pixels(TempPath("one.exr")), reference)) << "one worker differs from photonfarm render";
     EXPECT_TRUE(Identical(Pixels(TempPath("three.exr")), reference)) << "three workers differ from photonfarm render";
+}
+
+TEST_F(FarmTest, CpuAndVulkanWorkersShareAJob) {
+    testing::SkipWithoutVulkan();
+    if (IsSkipped() || HasFatalFailure()) return;
+    ChildProcess& vulkan = StartWorker("vulkan");
+    ChildProcess& cpu = StartWorker("cpu");
+    // Both registered before the job, so both lease from its first epoch.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (client_->ListWorkers().value_or(v1::ListWorkersResponse{}).workers_size() < 2 &&
+           std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    ASSERT_EQ(SubmitAndWatch(TempPath("mixed.exr")), 0);
+    const absl::StatusOr<v1::ListWorkersResponse> workers = client_->ListWorkers();
+    ASSERT_TRUE(workers.ok()) << workers.status();
+    for (const v1::WorkerStatus& worker : workers->workers())
+        EXPECT_GT(worker.batches_done(), 0u) << worker.backend() << " worker ran no batch";
+    // The Vulkan worker's batches follow nearly the CPU's paths (the same streams): the
+    // image must be a draw of the CPU-only estimator, by the bound of image_agreement.cpp.
+    const auto image = [](std::vector<Rgb> pixels) {
+        Image result(48, 48);
+        result.pixels = std::move(pixels);
+        return result;
+    };
+    testing::ExpectSameEstimator(image(Pixels(TempPath("mixed.exr"))), image(Reference()), image(Reference(kEpochs, 2)));
+    // The Vulkan worker exits 1 should the validation layer have reported an error.
+    for (ChildProcess* worker : {&vulkan, &cpu}) {
+        worker->Signal(SIGTERM);
+        EXPECT_EQ(worker->Wait(30), 0);
+    }
 }
 
 TEST_F(FarmTest, WorkerKilledMidJobChangesNothing) {
