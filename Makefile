@@ -32,6 +32,7 @@ test: build
 bench: build
 	./$(BUILD)/bench/photon_bench
 	./$(BUILD)/bench/merge_bench
+	./$(BUILD)/bench/backend_bench --seconds 3
 	./$(BUILD)/bench/numerics_report
 	bench/farm_vs_render.sh $(BUILD)
 
