@@ -5,6 +5,8 @@
 
 #include <utility>
 
+#include "absl/strings/str_cat.h"
+
 #include "worker/backend_factory.h"
 
 namespace pf {
@@ -13,6 +15,14 @@ namespace {
 // Jobs whose backends (Embree scene, hit-point grid) stay built while others run: enough for
 // a worker shared among a few jobs not to rebuild on every lease.
 constexpr size_t kBackendsKept = 4;
+
+// A backend's failure (a job too large for the GPU, a lost device) is this worker's to
+// report, not the network's: FAILED_PRECONDITION, which the worker does not retry. It leaves,
+// returning its leases, and the job goes on elsewhere.
+absl::Status BackendError(const absl::Status& status, const std::string& backend, const std::string& job_id) {
+    return absl::FailedPreconditionError(
+        absl::StrCat("the ", backend, " backend cannot run job ", job_id, ": ", status.message()));
+}
 
 }  // namespace
 
@@ -78,10 +88,10 @@ absl::StatusOr<WorkerLoop::JobBackend*> WorkerLoop::BackendFor(const WorkGrant& 
     while (it != backends_.end() && !(it->job_id == grant.job_id && it->job == grant.job)) ++it;
     if (it == backends_.end()) {
         absl::StatusOr<std::unique_ptr<Backend>> backend = CreateBackend(backend_name_, grant.job->scene);
-        if (!backend.ok()) return backend.status();
+        if (!backend.ok()) return BackendError(backend.status(), backend_name_, grant.job_id);
         const JobPayload& job = *grant.job;
         if (absl::Status status = (*backend)->BeginJob({&job.scene, &job.emitters, *job.hit_points, job.seed}); !status.ok())
-            return status;
+            return BackendError(status, backend_name_, grant.job_id);
         backends_.push_front({grant.job_id, grant.job, std::move(*backend)});
         if (backends_.size() > kBackendsKept) backends_.pop_back();
     } else {
@@ -89,7 +99,8 @@ absl::StatusOr<WorkerLoop::JobBackend*> WorkerLoop::BackendFor(const WorkGrant& 
     }
     JobBackend& current = backends_.front();
     if (current.epoch != grant.epoch) {
-        if (absl::Status status = current.backend->BeginEpoch(*grant.radius_sq); !status.ok()) return status;
+        if (absl::Status status = current.backend->BeginEpoch(*grant.radius_sq); !status.ok())
+            return BackendError(status, backend_name_, grant.job_id);
         current.epoch = grant.epoch;
     }
     return &current;
@@ -106,7 +117,7 @@ absl::StatusOr<size_t> WorkerLoop::Step() {
     absl::StatusOr<JobBackend*> backend = BackendFor(*grant);
     if (!backend.ok()) return backend.status();
     absl::StatusOr<std::vector<BatchResult>> results = (*backend)->backend->RunBatches(grant->batches);
-    if (!results.ok()) return results.status();
+    if (!results.ok()) return BackendError(results.status(), backend_name_, grant->job_id);
     Pending pending{grant->job_id, std::move(*results)};
     const size_t ran = pending.results.size();
     std::unique_lock lock(mutex_);

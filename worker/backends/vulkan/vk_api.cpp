@@ -70,7 +70,7 @@ absl::Status ResultStatus(std::string_view what, VkResult result) {
         case VK_ERROR_LAYER_NOT_PRESENT:
         case VK_ERROR_EXTENSION_NOT_PRESENT:
         case VK_ERROR_FEATURE_NOT_PRESENT: return absl::FailedPreconditionError(message);
-        case VK_ERROR_DEVICE_LOST: return absl::UnavailableError(message);
+        case VK_ERROR_DEVICE_LOST: return absl::InternalError(absl::StrCat(message, " (the GPU was lost)"));
         default: return absl::InternalError(message);
     }
 }

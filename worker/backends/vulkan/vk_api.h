@@ -82,7 +82,7 @@ absl::Status LoadLoader();
 
 std::string_view ResultName(VkResult result);
 // "what failed: VK_ERROR_..." with the code that fits: out of memory is RESOURCE_EXHAUSTED,
-// a missing driver or feature FAILED_PRECONDITION, a lost device UNAVAILABLE.
+// a missing driver or feature FAILED_PRECONDITION, anything else (a lost device) INTERNAL.
 absl::Status ResultStatus(std::string_view what, VkResult result);
 
 }  // namespace pf::vk
