@@ -7,13 +7,18 @@
 #include "core/sampling/sampling.h"
 
 namespace pf {
-float Emitters::SpotSolidAngle(const PunctualLight& light) { return 2.0f * kPi * (1.0f - light.cos_outer); }
+namespace {
+
+float SpotSolidAngle(const PunctualLight& light) { return 2.0f * kPi * (1.0f - light.cos_outer); }
+
+}  // namespace
 
 std::vector<Emitters::Record> Emitters::Records() const {
     std::vector<Record> records;
     for (uint32_t i = 0; i < emitters_.size(); ++i) {
         Record record;
         record.is_triangle = emitters_[i].is_triangle;
+        record.power = emitters_[i].power;
         record.probability = distribution_.Probability(i);
         if (record.is_triangle) {
             const EmissiveTriangle& triangle = triangles_[emitters_[i].index];
@@ -33,7 +38,7 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
     std::vector<double> weights;
     auto add = [&](bool is_triangle, uint32_t index, const Rgbd& power) {
         if (!(Average(power) > 0) || !IsFinite(power)) return;
-        emitters_.push_back({is_triangle, index});
+        emitters_.push_back({is_triangle, index, Rgb(power)});
         weights.push_back(Average(power));
         power_rgb_ += power;
     };

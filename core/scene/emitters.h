@@ -53,19 +53,21 @@ public:
         Vec3 p0, edge1, edge2, normal;      // triangle: corners and unit emitting normal
         Rgb radiance;                       // triangle: Le
         float area = 0;                     // triangle
+        // W per channel: a photon's flux before the 1 / probability of its pick (and, for a
+        // spot light, before the falloff of its direction).
+        Rgb power;
         double probability = 0;             // of being picked by Emit and SampleDirect
     };
     std::vector<Record> Records() const;
     // The bounding sphere directional lights emit across.
     Vec3 SceneCenter() const { return scene_center_; }
     float SceneRadius() const { return scene_radius_; }
-    // The solid angle of a spot light's cone, over which its photons spread.
-    static float SpotSolidAngle(const PunctualLight& light);
 
 private:
     struct Emitter {
         bool is_triangle;
         uint32_t index;  // into triangles_ or Scene::lights
+        Rgb power;       // W per channel
     };
     // An emissive triangle, with what sampling it needs precomputed.
     struct EmissiveTriangle {

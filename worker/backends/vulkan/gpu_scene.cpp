@@ -55,7 +55,6 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
     for (const Emitters::Record& record : emitters.Records()) {
         gpu::GpuEmitter emitter{};
         const auto inverse_probability = static_cast<float>(1.0 / record.probability);
-        Rgb power;
         if (record.is_triangle) {
             gpu_scene.features.triangle_lights = true;
             emitter.position = Vec4(record.p0, gpu::kEmitterTriangle);
@@ -63,7 +62,6 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
             emitter.edge2 = Vec4(record.edge2);
             emitter.direction = Vec4(record.normal);
             emitter.radiance = Vec4(record.radiance);
-            power = record.radiance * (kPi * record.area);
         } else {
             const PunctualLight& light = scene.lights[record.light];
             emitter.position = Vec4(light.position);
@@ -72,25 +70,20 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
             emitter.cone = {light.cos_inner, light.cos_outer, 1.0f / std::max(0.001f, light.cos_inner - light.cos_outer), 0};
             uint32_t kind = gpu::kEmitterPoint;
             switch (light.type) {
-                case LightType::kPoint:
-                    gpu_scene.features.point_lights = true;
-                    power = light.intensity * (4.0f * kPi);
-                    break;
+                case LightType::kPoint: gpu_scene.features.point_lights = true; break;
                 case LightType::kSpot:
                     gpu_scene.features.spot_lights = true;
                     kind = gpu::kEmitterSpot;
-                    power = light.intensity * Emitters::SpotSolidAngle(light);
                     break;
                 case LightType::kDirectional:
                     gpu_scene.features.directional_lights = true;
                     kind = gpu::kEmitterDirectional;
-                    power = light.intensity * (kPi * emitters.SceneRadius() * emitters.SceneRadius());
                     break;
             }
             emitter.position.w = std::bit_cast<float>(kind);
         }
-        emitter.power = Vec4(power, inverse_probability);
-        gpu_scene.max_photon_flux = std::max(gpu_scene.max_photon_flux, MaxComponent(power) * inverse_probability);
+        emitter.power = Vec4(record.power, inverse_probability);
+        gpu_scene.max_photon_flux = std::max(gpu_scene.max_photon_flux, MaxComponent(record.power) * inverse_probability);
         gpu_scene.emitters.push_back(emitter);
         cumulative += record.probability;
         gpu_scene.emitter_cdf.push_back(static_cast<float>(cumulative));
