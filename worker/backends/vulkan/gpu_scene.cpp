@@ -132,8 +132,8 @@ absl::StatusOr<GpuScene> BuildGpuScene(const Scene& scene, const Emitters& emitt
         boxes.push_back(box);
     }
     if (boxes.empty()) {
-        // Nothing to hit: one box far outside everything, over a degenerate triangle that no
-        // ray intersects (its determinant is 0).
+        // Nothing to hit: one empty box at the origin, over a degenerate triangle that no ray
+        // intersects (its determinant is 0).
         boxes.push_back({Vec3(0.0f), Vec3(0.0f)});
     }
     absl::StatusOr<embree::GpuBvh> bvh = embree::BuildGpuBvh(boxes);

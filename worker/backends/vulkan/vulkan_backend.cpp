@@ -110,11 +110,60 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
     return absl::OkStatus();
 }
 
-// Every buffer of a job, named by what it holds; `bindings` lists them in binding order.
+// Every buffer of a job, named by what it holds; Bindings() lists them in binding order.
 struct VulkanBackend::JobBuffers {
     Buffer nodes, triangles, shading, normals, uvs, materials, textures, texels, emitters, emitter_cdf;
     Buffer hit_points, radius_sq, grid_begin, grid_cursor, grid_entries, scan_blocks, tally, direct, counters;
     Buffer radius_upload, tally_readback, direct_readback, counters_readback;
+
+    // Uploads what kernels read and makes the rest; RESOURCE_EXHAUSTED where the device runs out.
+    static absl::StatusOr<std::unique_ptr<JobBuffers>> Create(const Context& context, CommandStream& stream,
+                                                              const GpuScene& gpu_scene,
+                                                              std::span<const gpu::GpuHitPoint> hit_points,
+                                                              uint32_t buckets) {
+        const size_t n = hit_points.size();
+        auto buffers = std::make_unique<JobBuffers>();
+        Uploader uploader(context, stream);
+        absl::Status status;
+        const auto upload = [&](Buffer& buffer, std::span<const std::byte> data) {
+            if (!status.ok()) return;
+            absl::StatusOr<Buffer> made = uploader.Upload(data);
+            if (made.ok()) buffer = std::move(*made);
+            else status = made.status();
+        };
+        const auto make = [&](Buffer& buffer, uint64_t bytes, MemoryUse use) {
+            if (!status.ok()) return;
+            absl::StatusOr<Buffer> made = Buffer::Create(context, bytes, use);
+            if (made.ok()) buffer = std::move(*made);
+            else status = made.status();
+        };
+        upload(buffers->nodes, Bytes(gpu_scene.nodes));
+        upload(buffers->triangles, Bytes(gpu_scene.triangles));
+        upload(buffers->shading, Bytes(gpu_scene.shading));
+        upload(buffers->normals, Bytes(gpu_scene.normals));
+        upload(buffers->uvs, Bytes(gpu_scene.uvs));
+        upload(buffers->materials, Bytes(gpu_scene.materials));
+        upload(buffers->textures, Bytes(gpu_scene.textures));
+        upload(buffers->texels, Bytes(gpu_scene.texels));
+        upload(buffers->emitters, Bytes(gpu_scene.emitters));
+        upload(buffers->emitter_cdf, Bytes(gpu_scene.emitter_cdf));
+        upload(buffers->hit_points, std::as_bytes(hit_points));
+        make(buffers->radius_sq, n * sizeof(float), MemoryUse::kDevice);
+        make(buffers->grid_begin, (buckets + 1) * sizeof(uint32_t), MemoryUse::kDevice);
+        make(buffers->grid_cursor, buckets * sizeof(uint32_t), MemoryUse::kDevice);
+        make(buffers->grid_entries, n * sizeof(gpu::GpuGridEntry), MemoryUse::kDevice);
+        make(buffers->scan_blocks, gpu::kScanBlock * sizeof(uint32_t), MemoryUse::kDevice);
+        make(buffers->tally, n * sizeof(gpu::GpuTallySum), MemoryUse::kDevice);
+        make(buffers->direct, n * sizeof(gpu::vec4), MemoryUse::kDevice);
+        make(buffers->counters, sizeof(gpu::GpuCounters), MemoryUse::kDevice);
+        make(buffers->radius_upload, n * sizeof(float), MemoryUse::kUpload);
+        make(buffers->tally_readback, n * sizeof(gpu::GpuTallySum), MemoryUse::kReadback);
+        make(buffers->direct_readback, n * sizeof(gpu::vec4), MemoryUse::kReadback);
+        make(buffers->counters_readback, sizeof(gpu::GpuCounters), MemoryUse::kReadback);
+        if (absl::Status finished = uploader.Finish(); status.ok()) status = finished;
+        if (!status.ok()) return status;
+        return buffers;
+    }
 
     std::array<VkBuffer, gpu::kBindingCount> Bindings() const {
         std::array<VkBuffer, gpu::kBindingCount> b{};
@@ -177,48 +226,10 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
                               {h.weight.x, h.weight.y, h.weight.z, 0}});
     buckets_ = std::clamp<uint32_t>(std::bit_ceil(static_cast<uint32_t>(2 * n + 1)), gpu::kScanBlock, kMaxBuckets);
 
-    auto buffers = std::make_unique<JobBuffers>();
-    Uploader uploader(*context_, stream_);
-    absl::Status status;
-    const auto upload = [&](Buffer& buffer, std::span<const std::byte> data) {
-        if (!status.ok()) return;
-        absl::StatusOr<Buffer> made = uploader.Upload(data);
-        if (made.ok()) buffer = std::move(*made);
-        else status = made.status();
-    };
-    const auto make = [&](Buffer& buffer, uint64_t bytes, MemoryUse use) {
-        if (!status.ok()) return;
-        absl::StatusOr<Buffer> made = Buffer::Create(*context_, bytes, use);
-        if (made.ok()) buffer = std::move(*made);
-        else status = made.status();
-    };
-    upload(buffers->nodes, Bytes(gpu_scene->nodes));
-    upload(buffers->triangles, Bytes(gpu_scene->triangles));
-    upload(buffers->shading, Bytes(gpu_scene->shading));
-    upload(buffers->normals, Bytes(gpu_scene->normals));
-    upload(buffers->uvs, Bytes(gpu_scene->uvs));
-    upload(buffers->materials, Bytes(gpu_scene->materials));
-    upload(buffers->textures, Bytes(gpu_scene->textures));
-    upload(buffers->texels, Bytes(gpu_scene->texels));
-    upload(buffers->emitters, Bytes(gpu_scene->emitters));
-    upload(buffers->emitter_cdf, Bytes(gpu_scene->emitter_cdf));
-    upload(buffers->hit_points, Bytes(hit_points));
-    make(buffers->radius_sq, n * sizeof(float), MemoryUse::kDevice);
-    make(buffers->grid_begin, (buckets_ + 1) * sizeof(uint32_t), MemoryUse::kDevice);
-    make(buffers->grid_cursor, buckets_ * sizeof(uint32_t), MemoryUse::kDevice);
-    make(buffers->grid_entries, n * sizeof(gpu::GpuGridEntry), MemoryUse::kDevice);
-    make(buffers->scan_blocks, gpu::kScanBlock * sizeof(uint32_t), MemoryUse::kDevice);
-    make(buffers->tally, n * sizeof(gpu::GpuTallySum), MemoryUse::kDevice);
-    make(buffers->direct, n * sizeof(gpu::vec4), MemoryUse::kDevice);
-    make(buffers->counters, sizeof(gpu::GpuCounters), MemoryUse::kDevice);
-    make(buffers->radius_upload, n * sizeof(float), MemoryUse::kUpload);
-    make(buffers->tally_readback, n * sizeof(gpu::GpuTallySum), MemoryUse::kReadback);
-    make(buffers->direct_readback, n * sizeof(gpu::vec4), MemoryUse::kReadback);
-    make(buffers->counters_readback, sizeof(gpu::GpuCounters), MemoryUse::kReadback);
-    if (absl::Status finished = uploader.Finish(); status.ok()) status = finished;
-    if (!status.ok()) return status;
-    kernels_->BindBuffers(buffers->Bindings());
-    buffers_ = std::move(buffers);
+    absl::StatusOr<std::unique_ptr<JobBuffers>> buffers = JobBuffers::Create(*context_, stream_, *gpu_scene, hit_points, buckets_);
+    if (!buffers.ok()) return buffers.status();
+    kernels_->BindBuffers((*buffers)->Bindings());
+    buffers_ = std::move(*buffers);
     spdlog::debug("Vulkan job: {} hit points, {} triangles, kernels for {}", n, scene_.triangles.size(),
                   features_.ToString());
     return absl::OkStatus();
