@@ -162,8 +162,10 @@ struct GpuParams {
     uint64_t seed_prefix;      // the stream family of the batch's photons or direct samples
     uint32_t scan_count;       // elements the scan covers
     uint32_t max_bounces;
+    uint32_t direct_begin;     // direct: the slice's first hit point (output index 0)
+    uint32_t pad0, pad1, pad2;
 };
-PF_GPU_LAYOUT(GpuParams, 64);
+PF_GPU_LAYOUT(GpuParams, 80);
 
 PF_GPU_END
 

@@ -308,6 +308,7 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
     gpu::GpuParams direct = BaseParams();
     direct.seed_prefix = DirectLightSeeds(job_.seed, spec.epoch).Prefix();
     direct.end = spec.direct_end;
+    direct.direct_begin = spec.direct_begin;
     for (uint64_t first = 0; first < direct_count; first += per_dispatch) {
         direct.first = static_cast<uint32_t>(spec.direct_begin + first);
         kernels_->Dispatch(*commands, Kernel::kDirectLight, direct,

@@ -26,7 +26,7 @@ void main() {
             atomicAdd(group_discarded, 1u);
             value = vec3(0);
         }
-        direct[index - params.first] = vec4(value, 0);
+        direct[index - params.direct_begin] = vec4(value, 0);
     }
     barrier();
     if (gl_LocalInvocationIndex == 0 && group_discarded > 0)
