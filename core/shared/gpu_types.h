@@ -29,7 +29,13 @@ PF_CONST(uint32_t) kBindingScanBlocks = 15;    // uint[]: per-block sums of the 
 PF_CONST(uint32_t) kBindingTally = 16;         // GpuTallySum[], per hit point
 PF_CONST(uint32_t) kBindingDirect = 17;        // vec4[], a batch's direct-light samples
 PF_CONST(uint32_t) kBindingCounters = 18;      // GpuCounters
-PF_CONST(uint32_t) kBindingCount = 19;
+PF_CONST(uint32_t) kBindingTallyOffsets = 19;  // uint[hit points + 1]: flags, then offsets
+PF_CONST(uint32_t) kBindingTallyEntries = 20;  // GpuTallyEntry[]: the sparse tally, host-visible
+PF_CONST(uint32_t) kBindingCount = 21;
+
+// What the prefix-sum kernels scan (GpuParams.scan_target).
+PF_CONST(uint32_t) kScanGridBegin = 0;
+PF_CONST(uint32_t) kScanTallyOffsets = 1;
 
 // Specialisation constants: the scene's features, so that code for materials and lights it
 // does not use is compiled out (booleans, 0 or 1).
@@ -142,11 +148,23 @@ struct GpuTallySum {
 };
 PF_GPU_LAYOUT(GpuTallySum, 32);
 
+// One hit point's entry of the sparse tally a batch returns (Tally in core/ppm/batch.h),
+// written in hit point order by tally_compact.comp.
+struct GpuTallyEntry {
+    uint32_t hit_point;
+    uint32_t photons;
+    uint32_t inner_photons;
+    float flux[3];  // W, converted from the fixed-point sums
+};
+PF_GPU_LAYOUT(GpuTallyEntry, 24);
+
 struct GpuCounters {
     uint64_t segments;             // photon rays traced
     uint64_t nonfinite_discarded;  // photon paths and direct samples dropped as NaN or Inf
+    uint64_t tally_entries;        // hit points the batch's photons reached
+    uint64_t pad;
 };
-PF_GPU_LAYOUT(GpuCounters, 16);
+PF_GPU_LAYOUT(GpuCounters, 32);
 
 // Push constants, the same block for every pipeline.
 struct GpuParams {
@@ -163,7 +181,8 @@ struct GpuParams {
     uint32_t scan_count;       // elements the scan covers
     uint32_t max_bounces;
     uint32_t direct_begin;     // direct: the slice's first hit point (output index 0)
-    uint32_t pad0, pad1, pad2;
+    uint32_t scan_target;      // kScanGridBegin or kScanTallyOffsets
+    uint32_t pad0, pad1;
 };
 PF_GPU_LAYOUT(GpuParams, 80);
 

@@ -3,7 +3,9 @@
 // errors. Skipped only where no Vulkan device exists at all (lavapipe counts as one).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -98,6 +100,13 @@ TEST_F(VulkanBackendTest, BatchIsAPureFunctionOfItsSpec) {
     EXPECT_EQ(a.direct, b.direct);
     EXPECT_EQ(a.segments_traced, b.segments_traced);
     EXPECT_GT(a.tally.Size(), 0u);
+    // Compacted on the device in hit point order, one entry per hit point reached.
+    EXPECT_TRUE(std::adjacent_find(a.tally.hit_point.begin(), a.tally.hit_point.end(), std::greater_equal<>()) ==
+                a.tally.hit_point.end());
+    for (size_t e = 0; e < a.tally.Size(); ++e) {
+        EXPECT_GT(a.tally.photons[e], 0u);
+        EXPECT_LE(a.tally.inner_photons[e], a.tally.photons[e]);
+    }
 }
 
 TEST_F(VulkanBackendTest, BatchesMatchTheCpuBackendsOnTheSameStreams) {

@@ -28,11 +28,11 @@ absl::StatusOr<Buffer> Buffer::Create(const Context& context, VkDeviceSize bytes
     Buffer buffer;
     buffer.device_ = context.Device();
     buffer.bytes_ = std::max<VkDeviceSize>(16, (bytes + 15) / 16 * 16);
-    const VkBufferUsageFlags usage = use == MemoryUse::kDevice ? VK_BUFFER_USAGE_STORAGE_BUFFER_BIT |
-                                                                     VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                                                                     VK_BUFFER_USAGE_TRANSFER_SRC_BIT
-                                     : use == MemoryUse::kUpload ? VK_BUFFER_USAGE_TRANSFER_SRC_BIT
-                                                                 : VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    VkBufferUsageFlags usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    if (use == MemoryUse::kDevice)
+        usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    if (use == MemoryUse::kUpload) usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+    if (use == MemoryUse::kKernelToHost) usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     const VkBufferCreateInfo info{.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,
                                   .size = buffer.bytes_,
                                   .usage = usage,
@@ -43,7 +43,7 @@ absl::StatusOr<Buffer> Buffer::Create(const Context& context, VkDeviceSize bytes
     VkMemoryPropertyFlags required = VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, preferred = 0;
     if (use == MemoryUse::kUpload)
         required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
-    if (use == MemoryUse::kReadback)
+    if (use == MemoryUse::kReadback || use == MemoryUse::kKernelToHost)
         required = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT, preferred = VK_MEMORY_PROPERTY_HOST_CACHED_BIT;
     const int type = FindMemoryType(context.Memory(), requirements.memoryTypeBits, required, preferred);
     if (type < 0)

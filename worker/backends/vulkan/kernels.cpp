@@ -30,10 +30,17 @@ constexpr uint32_t kPhotonTraceSpirv[] = {
 constexpr uint32_t kDirectLightSpirv[] = {
 #include "worker/backends/vulkan/shaders/direct_light.comp.spv.inc"
 };
+constexpr uint32_t kTallyFlagsSpirv[] = {
+#include "worker/backends/vulkan/shaders/tally_flags.comp.spv.inc"
+};
+constexpr uint32_t kTallyCompactSpirv[] = {
+#include "worker/backends/vulkan/shaders/tally_compact.comp.spv.inc"
+};
 
 // In the order of Kernel.
-constexpr std::span<const uint32_t> kSpirv[] = {kGridCountSpirv, kScanBlocksSpirv, kScanTotalsSpirv, kScanAddSpirv,
-                                                kGridFillSpirv,  kPhotonTraceSpirv, kDirectLightSpirv};
+constexpr std::span<const uint32_t> kSpirv[] = {kGridCountSpirv,   kScanBlocksSpirv,  kScanTotalsSpirv,
+                                                kScanAddSpirv,     kGridFillSpirv,    kPhotonTraceSpirv,
+                                                kDirectLightSpirv, kTallyFlagsSpirv, kTallyCompactSpirv};
 static_assert(std::size(kSpirv) == static_cast<size_t>(Kernel::kCount));
 
 // A shader module destroyed with its scope (pipelines keep what they need).

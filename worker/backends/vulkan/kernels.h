@@ -12,7 +12,18 @@
 
 namespace pf::vk {
 
-enum class Kernel { kGridCount, kScanBlocks, kScanTotals, kScanAdd, kGridFill, kPhotonTrace, kDirectLight, kCount };
+enum class Kernel {
+    kGridCount,
+    kScanBlocks,
+    kScanTotals,
+    kScanAdd,
+    kGridFill,
+    kPhotonTrace,
+    kDirectLight,
+    kTallyFlags,
+    kTallyCompact,
+    kCount
+};
 
 // Specialisation constant values, indexed by the kSpec* ids (each 0 or 1).
 using SpecConstants = std::array<uint32_t, gpu::kSpecCount>;

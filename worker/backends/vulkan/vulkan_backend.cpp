@@ -26,9 +26,8 @@ namespace pf::vk {
 namespace {
 
 constexpr float kFixedUnitsPerMaxFlux = 2147483648.0f;  // 2^31
-// The grid's buckets: about two per hit point, at most what two scan levels cover.
+// The grid's buckets: about two per hit point, at most 2^21 (8 MiB of offsets).
 constexpr uint32_t kMaxBuckets = 1u << 21;
-static_assert(kMaxBuckets + 1 <= gpu::kScanBlock * gpu::kScanBlock);
 
 double Mib(uint64_t bytes) { return static_cast<double>(bytes) / (1 << 20); }
 
@@ -114,7 +113,8 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
 struct VulkanBackend::JobBuffers {
     Buffer nodes, triangles, shading, normals, uvs, materials, textures, texels, emitters, emitter_cdf;
     Buffer hit_points, radius_sq, grid_begin, grid_cursor, grid_entries, scan_blocks, tally, direct, counters;
-    Buffer radius_upload, tally_readback, direct_readback, counters_readback;
+    Buffer tally_offsets, tally_entries;
+    Buffer radius_upload, direct_readback, counters_readback;
 
     // Uploads what kernels read and makes the rest; RESOURCE_EXHAUSTED where the device runs out.
     static absl::StatusOr<std::unique_ptr<JobBuffers>> Create(const Context& context, CommandStream& stream,
@@ -152,12 +152,14 @@ struct VulkanBackend::JobBuffers {
         make(buffers->grid_begin, (buckets + 1) * sizeof(uint32_t), MemoryUse::kDevice);
         make(buffers->grid_cursor, buckets * sizeof(uint32_t), MemoryUse::kDevice);
         make(buffers->grid_entries, n * sizeof(gpu::GpuGridEntry), MemoryUse::kDevice);
-        make(buffers->scan_blocks, gpu::kScanBlock * sizeof(uint32_t), MemoryUse::kDevice);
+        const uint64_t scanned = std::max<uint64_t>(buckets, n) + 1;  // the longest array scanned
+        make(buffers->scan_blocks, Groups(scanned, gpu::kScanBlock) * sizeof(uint32_t), MemoryUse::kDevice);
         make(buffers->tally, n * sizeof(gpu::GpuTallySum), MemoryUse::kDevice);
+        make(buffers->tally_offsets, (n + 1) * sizeof(uint32_t), MemoryUse::kDevice);
+        make(buffers->tally_entries, n * sizeof(gpu::GpuTallyEntry), MemoryUse::kKernelToHost);
         make(buffers->direct, n * sizeof(gpu::vec4), MemoryUse::kDevice);
         make(buffers->counters, sizeof(gpu::GpuCounters), MemoryUse::kDevice);
         make(buffers->radius_upload, n * sizeof(float), MemoryUse::kUpload);
-        make(buffers->tally_readback, n * sizeof(gpu::GpuTallySum), MemoryUse::kReadback);
         make(buffers->direct_readback, n * sizeof(gpu::vec4), MemoryUse::kReadback);
         make(buffers->counters_readback, sizeof(gpu::GpuCounters), MemoryUse::kReadback);
         if (absl::Status finished = uploader.Finish(); status.ok()) status = finished;
@@ -177,6 +179,7 @@ struct VulkanBackend::JobBuffers {
         b[gpu::kBindingGridEntries] = grid_entries.Handle(), b[gpu::kBindingScanBlocks] = scan_blocks.Handle();
         b[gpu::kBindingTally] = tally.Handle(), b[gpu::kBindingDirect] = direct.Handle();
         b[gpu::kBindingCounters] = counters.Handle();
+        b[gpu::kBindingTallyOffsets] = tally_offsets.Handle(), b[gpu::kBindingTallyEntries] = tally_entries.Handle();
         return b;
     }
 };
@@ -271,21 +274,27 @@ absl::Status VulkanBackend::BeginEpoch(std::span<const float> radius_sq) {
     kernels_->Dispatch(*commands, Kernel::kGridCount, params, hit_point_groups);
     stream_.Barrier();
     // Exclusive scan of buckets + 1 counts: the last offset is the number of entries.
-    params.scan_count = buckets_ + 1;
-    const uint32_t blocks = Groups(params.scan_count, gpu::kScanBlock);
-    kernels_->Dispatch(*commands, Kernel::kScanBlocks, params, blocks);
-    stream_.Barrier();
-    gpu::GpuParams totals = params;
-    totals.scan_count = blocks;
-    kernels_->Dispatch(*commands, Kernel::kScanTotals, totals, 1);
-    stream_.Barrier();
-    kernels_->Dispatch(*commands, Kernel::kScanAdd, params, blocks);
-    stream_.Barrier();
+    RecordScan(*commands, gpu::kScanGridBegin, buckets_ + 1);
     const VkBufferCopy cursor{.size = buckets_ * sizeof(uint32_t)};
     vkCmdCopyBuffer(*commands, buffers_->grid_begin.Handle(), buffers_->grid_cursor.Handle(), 1, &cursor);
     stream_.Barrier();
     kernels_->Dispatch(*commands, Kernel::kGridFill, params, hit_point_groups);
     return stream_.SubmitAndWait();
+}
+
+void VulkanBackend::RecordScan(VkCommandBuffer commands, uint32_t target, uint32_t count) {
+    gpu::GpuParams params = BaseParams();
+    params.scan_target = target;
+    params.scan_count = count;
+    const uint32_t blocks = Groups(count, gpu::kScanBlock);
+    kernels_->Dispatch(commands, Kernel::kScanBlocks, params, blocks);
+    stream_.Barrier();
+    gpu::GpuParams totals = params;
+    totals.scan_count = blocks;
+    kernels_->Dispatch(commands, Kernel::kScanTotals, totals, 1);
+    stream_.Barrier();
+    kernels_->Dispatch(commands, Kernel::kScanAdd, params, blocks);
+    stream_.Barrier();
 }
 
 absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
@@ -315,42 +324,54 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
                            Groups(std::min<uint64_t>(per_dispatch, direct_count - first), gpu::kWorkgroupSize));
     }
     stream_.Barrier();
-    const size_t n = job_.hit_points.size();
-    const VkBufferCopy tally{.size = n * sizeof(gpu::GpuTallySum)};
+    // The sparse tally, made on the device in hit point order: flags, their prefix sum, and
+    // each reached hit point's entry written to host-visible memory.
+    const auto n = static_cast<uint32_t>(job_.hit_points.size());
+    kernels_->Dispatch(*commands, Kernel::kTallyFlags, BaseParams(), Groups(uint64_t{n} + 1, gpu::kWorkgroupSize));
+    stream_.Barrier();
+    RecordScan(*commands, gpu::kScanTallyOffsets, n + 1);
+    kernels_->Dispatch(*commands, Kernel::kTallyCompact, BaseParams(), Groups(uint64_t{n} + 1, gpu::kWorkgroupSize));
+    stream_.Barrier();
     const VkBufferCopy samples{.size = direct_count * sizeof(gpu::vec4)};
     const VkBufferCopy counters{.size = sizeof(gpu::GpuCounters)};
-    if (n > 0) vkCmdCopyBuffer(*commands, buffers_->tally.Handle(), buffers_->tally_readback.Handle(), 1, &tally);
     if (direct_count > 0)
         vkCmdCopyBuffer(*commands, buffers_->direct.Handle(), buffers_->direct_readback.Handle(), 1, &samples);
     vkCmdCopyBuffer(*commands, buffers_->counters.Handle(), buffers_->counters_readback.Handle(), 1, &counters);
     stream_.Barrier();
     if (absl::Status status = stream_.SubmitAndWait(); !status.ok()) return status;
 
+    return ReadResult(spec);
+}
+
+BatchResult VulkanBackend::ReadResult(const BatchSpec& spec) const {
+    const uint32_t direct_count = spec.direct_end - spec.direct_begin;
+    const auto n = static_cast<uint32_t>(job_.hit_points.size());
     BatchResult result;
     result.spec = spec;
     result.photons_emitted = spec.photons;
-    buffers_->tally_readback.InvalidateForRead();
+    buffers_->tally_entries.InvalidateForRead();
     buffers_->direct_readback.InvalidateForRead();
     buffers_->counters_readback.InvalidateForRead();
-    const auto* sums = static_cast<const gpu::GpuTallySum*>(buffers_->tally_readback.Mapped());
-    const double watts_per_unit = 1.0 / flux_to_fixed_;
+    const auto* counted = static_cast<const gpu::GpuCounters*>(buffers_->counters_readback.Mapped());
+    result.segments_traced = counted->segments;
+    result.nonfinite_discarded = counted->nonfinite_discarded;
+    const auto entries = std::span(static_cast<const gpu::GpuTallyEntry*>(buffers_->tally_entries.Mapped()),
+                                   std::min<uint64_t>(counted->tally_entries, n));
     Tally& out = result.tally;
-    for (uint32_t i = 0; i < n; ++i) {
-        const gpu::GpuTallySum& sum = sums[i];
-        if (sum.photons == 0) continue;
-        out.hit_point.push_back(i);
-        out.photons.push_back(sum.photons);
-        out.inner_photons.push_back(sum.inner_photons);
-        out.flux.push_back(Rgb(Vec3d(static_cast<double>(sum.flux[0]), static_cast<double>(sum.flux[1]),
-                                     static_cast<double>(sum.flux[2])) * watts_per_unit));
+    out.hit_point.resize(entries.size());
+    out.photons.resize(entries.size());
+    out.inner_photons.resize(entries.size());
+    out.flux.resize(entries.size());
+    for (size_t e = 0; e < entries.size(); ++e) {
+        out.hit_point[e] = entries[e].hit_point;
+        out.photons[e] = entries[e].photons;
+        out.inner_photons[e] = entries[e].inner_photons;
+        out.flux[e] = {entries[e].flux[0], entries[e].flux[1], entries[e].flux[2]};
     }
     const auto* direct_samples = static_cast<const gpu::vec4*>(buffers_->direct_readback.Mapped());
     result.direct.resize(direct_count);
     for (uint32_t i = 0; i < direct_count; ++i)
         result.direct[i] = {direct_samples[i].x, direct_samples[i].y, direct_samples[i].z};
-    const auto* counted = static_cast<const gpu::GpuCounters*>(buffers_->counters_readback.Mapped());
-    result.segments_traced = counted->segments;
-    result.nonfinite_discarded = counted->nonfinite_discarded;
     return result;
 }
 

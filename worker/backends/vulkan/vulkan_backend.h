@@ -51,6 +51,10 @@ private:
     struct JobBuffers;
 
     absl::StatusOr<BatchResult> RunBatch(const BatchSpec& spec);
+    // The finished batch's results, from the host-visible buffers.
+    BatchResult ReadResult(const BatchSpec& spec) const;
+    // Records an exclusive prefix sum of `count` elements of the array `target` (kScan*).
+    void RecordScan(VkCommandBuffer commands, uint32_t target, uint32_t count);
     gpu::GpuParams BaseParams() const;
 
     std::shared_ptr<Context> context_;

@@ -37,6 +37,8 @@ layout(std430, binding = kBindingScanBlocks) buffer ScanBlocks { uint scan_block
 layout(std430, binding = kBindingTally) buffer Tally { GpuTallySum tally[]; };
 layout(std430, binding = kBindingDirect) writeonly buffer Direct { vec4 direct[]; };
 layout(std430, binding = kBindingCounters) buffer Counters { GpuCounters counters; };
+layout(std430, binding = kBindingTallyOffsets) buffer TallyOffsets { uint tally_offsets[]; };
+layout(std430, binding = kBindingTallyEntries) writeonly buffer TallyEntries { GpuTallyEntry tally_entries[]; };
 
 const float kPi = 3.14159265358979323846;
 const float kInfinity = 1.0 / 0.0;

@@ -1,7 +1,14 @@
 // An exclusive prefix sum over kScanBlock values in shared memory, by one workgroup of
 // kScanThreads: each thread scans its kScanPerThread consecutive values serially, the
 // threads' totals are scanned in shared memory (Hillis and Steele 1986), and each thread
-// adds its offset. Callers load `scan_values`, call ScanBlock, and store it back.
+// adds its offset. Callers load `scan_values`, call ScanBlock, and store it back. The array
+// scanned in the end is params.scan_target's (ScanLoad, ScanStore).
+uint ScanLoad(uint i) { return params.scan_target == kScanGridBegin ? grid_begin[i] : tally_offsets[i]; }
+void ScanStore(uint i, uint value) {
+    if (params.scan_target == kScanGridBegin) grid_begin[i] = value;
+    else tally_offsets[i] = value;
+}
+
 shared uint scan_values[kScanBlock];
 shared uint thread_totals[kScanThreads];
 

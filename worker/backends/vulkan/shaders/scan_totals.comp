@@ -1,15 +1,19 @@
 #version 460
-// Grid build, step 2b: the block totals scanned in place by one workgroup (at most
-// kScanBlock blocks: the bucket count is capped to fit).
+// Prefix sum, step 2: the block totals scanned in place by one workgroup, kScanBlock at a
+// time with the running sum carried, so any number of blocks fits.
 #include "common.glsl"
 #include "scan.glsl"
 
 layout(local_size_x = kScanThreads) in;
 
 void main() {
-    for (uint k = gl_LocalInvocationID.x; k < kScanBlock; k += kScanThreads)
-        scan_values[k] = k < params.scan_count ? scan_blocks[k] : 0u;
-    ScanBlock();
-    for (uint k = gl_LocalInvocationID.x; k < kScanBlock; k += kScanThreads)
-        if (k < params.scan_count) scan_blocks[k] = scan_values[k];
+    uint carried = 0;
+    for (uint base = 0; base < params.scan_count; base += kScanBlock) {
+        for (uint k = gl_LocalInvocationID.x; k < kScanBlock; k += kScanThreads)
+            scan_values[k] = base + k < params.scan_count ? scan_blocks[base + k] : 0u;
+        const uint total = ScanBlock();
+        for (uint k = gl_LocalInvocationID.x; k < kScanBlock; k += kScanThreads)
+            if (base + k < params.scan_count) scan_blocks[base + k] = scan_values[k] + carried;
+        carried += total;
+    }
 }
