@@ -147,6 +147,23 @@ TEST_F(VulkanBackendTest, BatchesMatchTheCpuBackendsOnTheSameStreams) {
     }
 }
 
+TEST_F(VulkanBackendTest, BatchLargerThanOneDispatchTracesEveryPhoton) {
+    // A batch of more photons than one dispatch takes runs as several; the paths traced match
+    // the CPU's (the same streams) within 4/sqrt(segments), which a lost dispatch (8% of the
+    // photons here) would exceed many times over.
+    std::unique_ptr<Rendering> setup = BeginBoth("cornell-box.gltf", 16);
+    ASSERT_NE(setup, nullptr);
+    BatchSpec spec = setup->estimate->EpochBatches()[0];
+    spec.photons = vk::kMaxThreadsPerDispatch + vk::kMaxThreadsPerDispatch / 12;
+    const absl::StatusOr<std::vector<BatchResult>> cpu = setup->cpu->RunBatches(std::span(&spec, 1));
+    const absl::StatusOr<std::vector<BatchResult>> gpu = setup->vulkan->RunBatches(std::span(&spec, 1));
+    ASSERT_TRUE(cpu.ok() && gpu.ok());
+    const double cpu_segments = (*cpu)[0].segments_traced;
+    EXPECT_NEAR((*gpu)[0].segments_traced / cpu_segments, 1.0, 4 / std::sqrt(cpu_segments));
+    EXPECT_NEAR(TotalPhotons((*gpu)[0].tally) / TotalPhotons((*cpu)[0].tally), 1.0,
+                4 / std::sqrt(TotalPhotons((*cpu)[0].tally)));
+}
+
 TEST_F(VulkanBackendTest, KernelsAreSpecialisedToTheScenesFeatures) {
     for (const auto& [name, glass] : {std::pair{"cornell-box.gltf", false}, std::pair{"cornell-glass.gltf", true}}) {
         const Scene scene = *LoadGltf(std::string(PF_SOURCE_DIR) + "/scenes/" + name);

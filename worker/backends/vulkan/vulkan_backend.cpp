@@ -303,11 +303,13 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
     vkCmdFillBuffer(*commands, buffers_->tally.Handle(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(*commands, buffers_->counters.Handle(), 0, VK_WHOLE_SIZE, 0);
     stream_.Barrier();
-    // Photons in dispatches the device's workgroup count limit allows.
+    // Photons in dispatches of at most kMaxThreadsPerDispatch, within the device's workgroup
+    // count limit.
     gpu::GpuParams params = BaseParams();
     params.seed_prefix = PhotonSeeds(job_.seed, spec.index).Prefix();
     params.end = spec.photons;
-    const uint64_t per_dispatch = uint64_t{context_->Limits().maxComputeWorkGroupCount[0]} * gpu::kWorkgroupSize;
+    const uint64_t per_dispatch = std::min<uint64_t>(
+        kMaxThreadsPerDispatch, uint64_t{context_->Limits().maxComputeWorkGroupCount[0]} * gpu::kWorkgroupSize);
     for (uint64_t first = 0; first < spec.photons; first += per_dispatch) {
         params.first = static_cast<uint32_t>(first);
         kernels_->Dispatch(*commands, Kernel::kPhotonTrace, params,

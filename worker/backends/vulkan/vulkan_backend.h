@@ -29,6 +29,11 @@ struct DeviceCapacity {
 // the buffer, the need and the limit otherwise.
 absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scene, size_t hit_points);
 
+// Threads of one photon or direct-light dispatch at most: enough to fill the largest GPUs
+// (an H100 holds 270k resident threads), short enough to keep each dispatch brief; bigger
+// batches run as several dispatches.
+inline constexpr uint32_t kMaxThreadsPerDispatch = 1u << 20;
+
 class VulkanBackend final : public Backend {
 public:
     // A backend on `context`'s device for jobs over `scene` (which must outlive it).
