@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "core/math/vec3.h"
+#include "core/shared/path_sampling.h"
 
 namespace pf {
 
@@ -25,25 +26,13 @@ struct RayHit {
 };
 
 // Moves p off the surface along the geometric normal n, toward the side `n` faces, by a few
-// units in the last place of each coordinate rather than by a fixed epsilon (Wachter & Binder
-// 2019, "A Fast and Robust Method for Avoiding Self-Intersection", Ray Tracing Gems ch. 6).
-// Coordinates near zero, where a few units in the last place are nothing against the hit's
-// rounding error, move by a small fixed fraction of the scene instead: `scene_scale` is the
-// scene's largest coordinate magnitude (Bounds::Magnitude), so a scene scaled by 1e-4 or
-// 1e+4 is offset exactly as the same scene at unit scale (tests/integration/numerics_test.cpp).
+// units in the last place of each coordinate, or near zero by a small fraction of
+// `scene_scale`, the scene's largest coordinate magnitude (Bounds::Magnitude): see
+// shared::OffsetCoordinate, the one definition for the CPU and the Vulkan kernels. A scene
+// scaled by 1e-4 or 1e+4 is offset exactly as at unit scale (tests/integration/numerics_test.cpp).
 inline Vec3 OffsetRayOrigin(const Vec3& p, const Vec3& n, float scene_scale) {
-    const float origin = scene_scale * (1.0f / 32.0f);
-    const float float_scale = scene_scale * (1.0f / 65536.0f);
-    constexpr float kIntScale = 256.0f;
-    Vec3 result;
-    for (int axis = 0; axis < 3; ++axis) {
-        const float coordinate = p[axis];
-        const auto offset = static_cast<int32_t>(kIntScale * n[axis]);
-        const auto bits = std::bit_cast<int32_t>(coordinate);
-        const float moved = std::bit_cast<float>(bits + (coordinate < 0 ? -offset : offset));
-        result[axis] = std::abs(coordinate) < origin ? coordinate + float_scale * n[axis] : moved;
-    }
-    return result;
+    return {shared::OffsetCoordinate(p.x, n.x, scene_scale), shared::OffsetCoordinate(p.y, n.y, scene_scale),
+            shared::OffsetCoordinate(p.z, n.z, scene_scale)};
 }
 
 }  // namespace pf

@@ -8,34 +8,16 @@
 
 #include "core/math/vec3.h"
 #include "core/scene/material.h"
+#include "core/shared/path_sampling.h"
 
 namespace pf {
 
-// Unpolarised Fresnel reflectance of a dielectric interface. cos_incident in [0, 1] on the
-// incident side; eta = n_incident / n_transmitted. Total internal reflection gives 1.
-inline float FresnelDielectric(float cos_incident, float eta) {
-    cos_incident = std::clamp(cos_incident, 0.0f, 1.0f);
-    const float sin_t_sq = eta * eta * (1.0f - cos_incident * cos_incident);
-    if (sin_t_sq >= 1.0f) return 1.0f;
-    const float cos_t = std::sqrt(1.0f - sin_t_sq);
-    const float r_parallel = (cos_incident - eta * cos_t) / (cos_incident + eta * cos_t);
-    const float r_perpendicular = (eta * cos_incident - cos_t) / (eta * cos_incident + cos_t);
-    return 0.5f * (r_parallel * r_parallel + r_perpendicular * r_perpendicular);
-}
+// Fresnel reflectance and refraction, defined once for the CPU and the Vulkan kernels.
+using shared::FresnelDielectric;  // (cos_incident, eta = n_incident / n_transmitted)
+using shared::Refract;            // (d, n facing d's side, eta, out refracted); false under TIR
 
 // Mirror direction of d about n.
 inline Vec3 Reflect(const Vec3& d, const Vec3& n) { return d - n * (2.0f * Dot(d, n)); }
-
-// Refracts direction d through the interface with normal n facing the incident side
-// (Dot(d, n) < 0); eta = n_incident / n_transmitted. False under total internal reflection.
-inline bool Refract(const Vec3& d, const Vec3& n, float eta, Vec3* refracted) {
-    const float cos_i = -Dot(d, n);
-    const float sin_t_sq = eta * eta * std::max(0.0f, 1.0f - cos_i * cos_i);
-    if (sin_t_sq >= 1.0f) return false;
-    const float cos_t = std::sqrt(1.0f - sin_t_sq);
-    *refracted = Normalize(d * eta + n * (eta * cos_i - cos_t));
-    return true;
-}
 
 struct SpecularBounce {
     Vec3 direction;
@@ -78,7 +60,7 @@ inline SpecularBounce TransmitSpecular(const Material& material, const Vec3& d, 
     if (material.type == MaterialType::kThinDielectric) return {d, tint, true};
     const Vec3 n = front_facing ? normal : -normal;
     Vec3 refracted;
-    if (!Refract(d, n, front_facing ? 1.0f / material.ior : material.ior, &refracted))
+    if (!Refract(d, n, front_facing ? 1.0f / material.ior : material.ior, refracted))
         return ReflectSpecular(material, d, normal, front_facing, tint);
     return {refracted, tint, true};
 }

@@ -44,7 +44,7 @@ TEST(SpecularTest, RefractionObeysSnellsLaw) {
         if (d.z > -0.01f) d.z = -std::abs(d.z) - 0.01f;
         d = Normalize(d);
         Vec3 t;
-        ASSERT_TRUE(Refract(d, n, 1.0f / 1.5f, &t));
+        ASSERT_TRUE(Refract(d, n, 1.0f / 1.5f, t));
         const float sin_i = std::sqrt(std::max(0.0f, 1 - d.z * d.z)), sin_t = std::sqrt(std::max(0.0f, 1 - t.z * t.z));
         EXPECT_NEAR(sin_i, 1.5f * sin_t, 1e-4f);
         EXPECT_LT(t.z, 0.0f);

@@ -1,10 +1,12 @@
-// What every photonfarm kernel starts from: the shared structs and generator, the scene's
-// feature switches (specialisation constants), the push constants and the descriptor set.
+// What every photonfarm kernel starts from: the shared structs, generator and sampling maths,
+// the scene's feature switches (specialisation constants), the push constants and the
+// descriptor set.
 #extension GL_EXT_shader_explicit_arithmetic_types : require
 #extension GL_EXT_shader_atomic_int64 : require
 
 #include "core/shared/gpu_types.h"
 #include "core/shared/rng.h"
+#include "core/shared/path_sampling.h"
 
 layout(constant_id = kSpecHasMirror) const bool kHasMirror = true;
 layout(constant_id = kSpecHasDielectric) const bool kHasDielectric = true;

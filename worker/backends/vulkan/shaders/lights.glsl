@@ -1,33 +1,11 @@
 // Photon emission and light sampling over the scene's emitters, as core/scene/emitters.cpp
-// does on the CPU and consuming random numbers in the same order; light kinds the scene
-// lacks are compiled out.
-vec2 SampleUniformDisk(float u1, float u2) {
-    const float radius = sqrt(u1), angle = 2.0 * kPi * u2;
-    return radius * vec2(cos(angle), sin(angle));
-}
-vec3 SampleCosineHemisphere(float u1, float u2) {
-    return vec3(SampleUniformDisk(u1, u2), sqrt(max(0.0, 1.0 - u1)));
-}
-vec3 SampleUniformSphere(float u1, float u2) {
-    const float z = 1.0 - 2.0 * u1, r = sqrt(max(0.0, 1.0 - z * z)), angle = 2.0 * kPi * u2;
-    return vec3(r * cos(angle), r * sin(angle), z);
-}
-vec3 SampleUniformCone(float u1, float u2, float cos_max) {
-    const float cos_theta = 1.0 - u1 * (1.0 - cos_max);
-    const float sin_theta = sqrt(max(0.0, 1.0 - cos_theta * cos_theta)), angle = 2.0 * kPi * u2;
-    return vec3(sin_theta * cos(angle), sin_theta * sin(angle), cos_theta);
-}
-vec2 SampleUniformTriangle(float u1, float u2) {
-    const float root = sqrt(u1);
-    return vec2(u2 * root, 1.0 - root);
-}
-
-// A frame around a unit normal (Duff et al. 2017), as core/math/frame.h.
+// does on the CPU, with the shared warps (core/shared/path_sampling.h) and consuming random
+// numbers in the same order; light kinds the scene lacks are compiled out.
+// A frame around a unit normal, as core/math/frame.h: columns s, t, n.
 mat3 FrameFromNormal(vec3 n) {
-    const float sign_z = n.z >= 0 ? 1.0 : -1.0;
-    const float a = -1.0 / (sign_z + n.z);
-    const float b = n.x * n.y * a;
-    return mat3(vec3(1.0 + sign_z * n.x * n.x * a, sign_z * b, -sign_z * n.x), vec3(b, sign_z + n.y * n.y * a, -n.y), n);
+    vec3 s, t;
+    OrthonormalBasis(n, s, t);
+    return mat3(s, t, n);
 }
 
 // glTF's smooth spot falloff (PunctualLight::SpotFalloff).

@@ -1,16 +1,6 @@
-// Specular scattering, as core/scene/specular.h: the branch is chosen with its Fresnel
-// probability, so the carried weight is the tint alone. Materials the scene lacks are
-// compiled out.
-float FresnelDielectric(float cos_incident, float eta) {
-    cos_incident = clamp(cos_incident, 0.0, 1.0);
-    const float sin_t_sq = eta * eta * (1.0 - cos_incident * cos_incident);
-    if (sin_t_sq >= 1.0) return 1.0;
-    const float cos_t = sqrt(1.0 - sin_t_sq);
-    const float r_parallel = (cos_incident - eta * cos_t) / (cos_incident + eta * cos_t);
-    const float r_perpendicular = (eta * cos_incident - cos_t) / (eta * cos_incident + cos_t);
-    return 0.5 * (r_parallel * r_parallel + r_perpendicular * r_perpendicular);
-}
-
+// Specular scattering, as core/scene/specular.h (Fresnel and refraction from
+// core/shared/path_sampling.h): the branch is chosen with its Fresnel probability, so the
+// carried weight is the tint alone. Materials the scene lacks are compiled out.
 struct SpecularBounce {
     vec3 direction;
     vec3 weight;
@@ -36,9 +26,7 @@ SpecularBounce ScatterSpecular(GpuMaterial material, vec3 d, vec3 normal, bool f
     if (kHasThinDielectric && material.type == kMaterialThinDielectric) return SpecularBounce(d, tint, true);
     // Refraction through solid glass; reflected instead should rounding disagree with the
     // Fresnel term about total internal reflection.
-    const float eta = front_facing ? 1.0 / ior : ior;
-    const float sin_t_sq = eta * eta * max(0.0, 1.0 - cos_i * cos_i);
-    if (sin_t_sq >= 1.0) return reflected;
-    const float cos_t = sqrt(1.0 - sin_t_sq);
-    return SpecularBounce(normalize(d * eta + n * (eta * cos_i - cos_t)), tint, true);
+    vec3 refracted;
+    if (!Refract(d, n, front_facing ? 1.0 / ior : ior, refracted)) return reflected;
+    return SpecularBounce(refracted, tint, true);
 }

@@ -124,12 +124,8 @@ Surface SurfaceAt(RayHit hit) {
     return surface;
 }
 
-// Moves p off the surface along n, as OffsetRayOrigin (core/geometry/ray.h) does: a few
-// units in the last place, or a small fraction of the scene near zero.
+// Moves p off the surface along n (OffsetRayOrigin in core/geometry/ray.h).
 vec3 OffsetRayOrigin(vec3 p, vec3 n) {
-    const float origin = params.scene_magnitude * (1.0 / 32.0);
-    const float float_scale = params.scene_magnitude * (1.0 / 65536.0);
-    const ivec3 offset = ivec3(256.0 * n);
-    const vec3 moved = intBitsToFloat(floatBitsToInt(p) + mix(offset, -offset, lessThan(p, vec3(0))));
-    return mix(moved, p + float_scale * n, lessThan(abs(p), vec3(origin)));
+    const float scale = params.scene_magnitude;
+    return vec3(OffsetCoordinate(p.x, n.x, scale), OffsetCoordinate(p.y, n.y, scale), OffsetCoordinate(p.z, n.z, scale));
 }
