@@ -17,7 +17,7 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
     const JobSpec& spec = settings.job;
     if (absl::Status status = CheckJobSpec(spec, SettingNames::kFlags); !status.ok()) return status;
     // The backend's device first: without one, say so before any work.
-    const absl::StatusOr<std::shared_ptr<void>> device = OpenBackendDevice(settings.backend);
+    const absl::StatusOr<BackendDevice> device = OpenBackendDevice(settings.backend);
     if (!device.ok()) return device.status();
     absl::StatusOr<SceneBundle> bundle = PackSceneBundle(settings.scene_path);
     if (!bundle.ok()) return bundle.status();
@@ -41,7 +41,7 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
 
         // The worker leases a whole epoch at a time: its batches' chunks run in parallel on
         // this arena.
-        InProcessSource source(coordinator, {settings.backend, static_cast<uint32_t>(arena.max_concurrency()),
+        InProcessSource source(coordinator, {device->description, static_cast<uint32_t>(arena.max_concurrency()),
                                              std::string(kPhotonfarmVersion), ""}, 0.0);
         const uint64_t epoch_chunks = uint64_t{spec.layout.batches_per_epoch} *
                                       ChunkCount(MakeBatchSpec(spec.layout, 0, 0, 0));

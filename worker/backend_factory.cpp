@@ -30,11 +30,12 @@ private:
 
 }  // namespace
 
-absl::StatusOr<std::shared_ptr<void>> OpenBackendDevice(std::string_view name) {
-    if (name != "vulkan") return nullptr;
+absl::StatusOr<BackendDevice> OpenBackendDevice(std::string_view name) {
+    if (name != "vulkan") return BackendDevice{nullptr, std::string(name)};
     absl::StatusOr<std::shared_ptr<vk::Context>> context = vk::Context::Shared();
     if (!context.ok()) return absl::Status(context.status().code(), absl::StrCat("vulkan backend: ", context.status().message()));
-    return std::shared_ptr<void>(std::move(*context));
+    std::string description = absl::StrCat("vulkan: ", (*context)->Info().name);
+    return BackendDevice{std::move(*context), std::move(description)};
 }
 
 uint64_t BackendValidationErrors() { return vk::Context::ValidationErrors(); }

@@ -20,10 +20,16 @@ std::vector<std::string> BackendNames();
 // INVALID_ARGUMENT for an unknown name; the backend's own errors otherwise.
 absl::StatusOr<std::unique_ptr<Backend>> CreateBackend(std::string_view name, const Scene& scene);
 
-// Opens the device backend `name` computes on and keeps it open while the handle lives, so
-// a worker fails at start, not at its first lease, and its jobs share one device. Null for
-// the cpu backend; the device's error (no loader, no driver, no usable device) otherwise.
-absl::StatusOr<std::shared_ptr<void>> OpenBackendDevice(std::string_view name);
+// The device a backend computes on, kept open while this lives, so that a worker fails at
+// start rather than at its first lease and its jobs share one device.
+struct BackendDevice {
+    std::shared_ptr<void> handle;  // null for the cpu backend
+    std::string description;       // "cpu", or "vulkan: <device name>", for worker listings
+};
+
+// Opens the device backend `name` computes on; the device's error (no loader, no driver, no
+// usable device) where it cannot.
+absl::StatusOr<BackendDevice> OpenBackendDevice(std::string_view name);
 
 // Errors the Vulkan validation layer reported in this process (PHOTONFARM_VULKAN_VALIDATION=1).
 uint64_t BackendValidationErrors();

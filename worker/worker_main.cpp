@@ -100,7 +100,7 @@ int main(int argc, char** argv) {
         const sigset_t signals = StopSignals();
         pthread_sigmask(SIG_BLOCK, &signals, nullptr);
         // After the mask, so that the device's own threads (lavapipe's) inherit it too.
-        const absl::StatusOr<std::shared_ptr<void>> device = pf::OpenBackendDevice(backend);
+        const absl::StatusOr<pf::BackendDevice> device = pf::OpenBackendDevice(backend);
         if (!device.ok()) {
             std::fprintf(stderr, "photonfarm-worker: error: %s\n", std::string(device.status().message()).c_str());
             return 1;
@@ -121,7 +121,9 @@ int main(int argc, char** argv) {
         channel_args.SetMaxSendMessageSize(pf::kMaxMessageBytes);
         pf::GrpcWorkSource source(
             grpc::CreateCustomChannel(coordinator, grpc::InsecureChannelCredentials(), channel_args), coordinator,
-            {backend, static_cast<uint32_t>(arena.max_concurrency()), std::string(pf::kPhotonfarmVersion), ""}, cache_dir);
+            {device->description.substr(0, 64), static_cast<uint32_t>(arena.max_concurrency()),
+             std::string(pf::kPhotonfarmVersion), ""},
+            cache_dir);
         pf::WorkerLoop loop(source, backend, chunks_per_lease > 0 ? chunks_per_lease : arena.max_concurrency(),
                             /*report_in_background=*/true);
 

@@ -167,8 +167,11 @@ TEST_F(FarmTest, CpuAndVulkanWorkersShareAJob) {
     ASSERT_EQ(SubmitAndWatch(TempPath("mixed.exr")), 0);
     const absl::StatusOr<v1::ListWorkersResponse> workers = client_->ListWorkers();
     ASSERT_TRUE(workers.ok()) << workers.status();
+    ASSERT_EQ(workers->workers_size(), 2);
     for (const v1::WorkerStatus& worker : workers->workers())
         EXPECT_GT(worker.batches_done(), 0u) << worker.backend() << " worker ran no batch";
+    EXPECT_TRUE(workers->workers(0).backend().starts_with("vulkan: ") || workers->workers(1).backend().starts_with("vulkan: "))
+        << "a Vulkan worker registers with its device's name";
     // The Vulkan worker's batches follow nearly the CPU's paths (the same streams): the
     // image must be a draw of the CPU-only estimator, by the bound of image_agreement.cpp.
     const auto image = [](std::vector<Rgb> pixels) {
