@@ -6,6 +6,7 @@
 #include <string>
 
 #include "client/local_render.h"
+#include "tests/support/gltf_builder.h"
 #include "tests/support/image_agreement.h"
 #include "tests/support/vulkan_validation.h"
 
@@ -36,6 +37,38 @@ TEST_P(BackendAgreement, VulkanImageMatchesTheCpuImagesWithinTheirNoise) {
     const Image a = Render(GetParam(), "cpu", 1), b = Render(GetParam(), "cpu", 2), v = Render(GetParam(), "vulkan", 3);
     testing::ExpectSameEstimator(v, a, b);
     EXPECT_EQ(testing::VulkanValidationErrors(), errors_before);
+}
+
+TEST(BackendAgreementTextures, LightOffATexturedWallMatchesTheCpus) {
+    // The lit quad with a textured wall beside it (2x1 texels: sRGB red, sRGB grey 128; factor
+    // (1, 1, 0.5)): the floor's indirect light comes off the wall, so photons must take the
+    // texture's albedo at their bounce there (direct light needs no texture on the device:
+    // hit points carry their BSDF weight). Same bound as the Cornell scenes.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    testing::TestScene scene = testing::LitQuadScene();
+    testing::TestMaterial wall;
+    wall.base_color = Rgb(1.0f, 1.0f, 0.5f);
+    wall.texture_png_base64 = "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTkSuQmCC";
+    scene.materials.push_back(wall);
+    // At x = 1, from z = 0 to 1, facing -x (toward the floor and the light).
+    scene.meshes.push_back({{{1, -1, 0}, {1, 1, 1}, {1, 1, 0}, {1, -1, 0}, {1, -1, 1}, {1, 1, 1}},
+                            2,
+                            {0, 0, 1, 1, 1, 0, 0, 0, 0, 1, 1, 1}});
+    const std::string path = testing::WriteGltf(scene, "textured-wall.gltf");
+    const auto render = [&](const std::string& backend, uint64_t stream) {
+        RenderSettings settings;
+        settings.scene_path = path;
+        settings.backend = backend;
+        settings.job.width = settings.job.height = 32;
+        settings.job.photon_budget = 1'000'000;
+        settings.job.layout = {1u << 16, 4};
+        settings.job.photon_stream = stream;
+        absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+        EXPECT_TRUE(outcome.ok()) << outcome.status();
+        return outcome.ok() ? outcome->image : Image();
+    };
+    testing::ExpectSameEstimator(render("vulkan", 3), render("cpu", 1), render("cpu", 2));
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, BackendAgreement, ::testing::Values("cornell-box.gltf", "cornell-glass.gltf"),

@@ -1,6 +1,7 @@
 // Photon emission and light sampling over the scene's emitters, as core/scene/emitters.cpp
 // does on the CPU, with the shared warps (core/shared/path_sampling.h) and consuming random
 // numbers in the same order; light kinds the scene lacks are compiled out.
+
 // A frame around a unit normal, as core/math/frame.h: columns s, t, n.
 mat3 FrameFromNormal(vec3 n) {
     vec3 s, t;
