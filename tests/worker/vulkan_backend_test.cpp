@@ -173,7 +173,7 @@ TEST_F(VulkanBackendTest, KernelsAreSpecialisedToTheScenesFeatures) {
         EXPECT_EQ(gpu_scene->features.mirror, glass) << name;  // cornell-glass has a mirror sphere too
         EXPECT_TRUE(gpu_scene->features.triangle_lights) << name;
         EXPECT_FALSE(gpu_scene->features.point_lights || gpu_scene->features.spot_lights) << name;
-        EXPECT_EQ(gpu_scene->features.Spec()[gpu::kSpecHasDielectric], glass ? 1u : 0u);
+        EXPECT_EQ(vk::SpecConstantsFor(gpu_scene->features)[gpu::kSpecHasDielectric], glass ? 1u : 0u);
     }
 }
 

@@ -3,7 +3,6 @@
 
 #include <bit>
 
-#include "absl/strings/str_join.h"
 #include "worker/backends/cpu_embree/bvh_builder.h"
 
 namespace pf::vk {
@@ -11,22 +10,6 @@ namespace {
 
 gpu::vec4 Vec4(const Vec3& v, float w = 0) { return {v.x, v.y, v.z, w}; }
 gpu::vec4 Vec4(const Vec3& v, uint32_t w_bits) { return {v.x, v.y, v.z, std::bit_cast<float>(w_bits)}; }
-
-void AddFeatures(const Scene& scene, SceneFeatures& features) {
-    std::vector<bool> used(scene.materials.size(), false);
-    for (const Triangle& triangle : scene.triangles) {
-        used[triangle.material] = true;
-        features.smooth_normals |= triangle.smooth;
-    }
-    for (size_t m = 0; m < scene.materials.size(); ++m) {
-        if (!used[m]) continue;
-        const Material& material = scene.materials[m];
-        features.mirror |= material.type == MaterialType::kMirror;
-        features.dielectric |= material.type == MaterialType::kDielectric;
-        features.thin_dielectric |= material.type == MaterialType::kThinDielectric;
-        features.textures |= material.base_color_texture != kNoTexture;
-    }
-}
 
 void AddGeometry(const Scene& scene, const embree::GpuBvh& bvh, GpuScene& gpu_scene) {
     for (uint32_t t : bvh.order) {
@@ -56,7 +39,6 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
         gpu::GpuEmitter emitter{};
         const auto inverse_probability = static_cast<float>(1.0 / record.probability);
         if (record.is_triangle) {
-            gpu_scene.features.triangle_lights = true;
             emitter.position = Vec4(record.p0, gpu::kEmitterTriangle);
             emitter.edge1 = Vec4(record.edge1, record.area);
             emitter.edge2 = Vec4(record.edge2);
@@ -70,15 +52,9 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
             emitter.cone = {light.cos_inner, light.cos_outer, 1.0f / std::max(0.001f, light.cos_inner - light.cos_outer), 0};
             uint32_t kind = gpu::kEmitterPoint;
             switch (light.type) {
-                case LightType::kPoint: gpu_scene.features.point_lights = true; break;
-                case LightType::kSpot:
-                    gpu_scene.features.spot_lights = true;
-                    kind = gpu::kEmitterSpot;
-                    break;
-                case LightType::kDirectional:
-                    gpu_scene.features.directional_lights = true;
-                    kind = gpu::kEmitterDirectional;
-                    break;
+                case LightType::kPoint: break;
+                case LightType::kSpot: kind = gpu::kEmitterSpot; break;
+                case LightType::kDirectional: kind = gpu::kEmitterDirectional; break;
             }
             emitter.position.w = std::bit_cast<float>(kind);
         }
@@ -94,37 +70,23 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
 
 }  // namespace
 
-SpecConstants SceneFeatures::Spec() const {
+SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     SpecConstants spec{};
-    spec[gpu::kSpecHasMirror] = mirror;
-    spec[gpu::kSpecHasDielectric] = dielectric;
-    spec[gpu::kSpecHasThinDielectric] = thin_dielectric;
-    spec[gpu::kSpecHasTextures] = textures;
-    spec[gpu::kSpecHasSmoothNormals] = smooth_normals;
-    spec[gpu::kSpecHasTriangleLights] = triangle_lights;
-    spec[gpu::kSpecHasPointLights] = point_lights;
-    spec[gpu::kSpecHasSpotLights] = spot_lights;
-    spec[gpu::kSpecHasDirectionalLights] = directional_lights;
+    spec[gpu::kSpecHasMirror] = features.mirror;
+    spec[gpu::kSpecHasDielectric] = features.dielectric;
+    spec[gpu::kSpecHasThinDielectric] = features.thin_dielectric;
+    spec[gpu::kSpecHasTextures] = features.textures;
+    spec[gpu::kSpecHasSmoothNormals] = features.smooth_normals;
+    spec[gpu::kSpecHasTriangleLights] = features.triangle_lights;
+    spec[gpu::kSpecHasPointLights] = features.point_lights;
+    spec[gpu::kSpecHasSpotLights] = features.spot_lights;
+    spec[gpu::kSpecHasDirectionalLights] = features.directional_lights;
     return spec;
-}
-
-std::string SceneFeatures::ToString() const {
-    std::vector<std::string> parts = {"diffuse"};
-    if (mirror) parts.push_back("mirror");
-    if (dielectric) parts.push_back("glass");
-    if (thin_dielectric) parts.push_back("thin glass");
-    if (textures) parts.push_back("textures");
-    if (smooth_normals) parts.push_back("smooth normals");
-    if (triangle_lights) parts.push_back("area lights");
-    if (point_lights) parts.push_back("point lights");
-    if (spot_lights) parts.push_back("spot lights");
-    if (directional_lights) parts.push_back("directional lights");
-    return absl::StrJoin(parts, ", ");
 }
 
 absl::StatusOr<GpuScene> BuildGpuScene(const Scene& scene, const Emitters& emitters) {
     GpuScene gpu_scene;
-    AddFeatures(scene, gpu_scene.features);
+    gpu_scene.features = AnalyseFeatures(scene, emitters);
     std::vector<Bounds> boxes;
     for (const Triangle& triangle : scene.triangles) {
         Bounds box;

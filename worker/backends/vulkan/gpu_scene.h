@@ -4,26 +4,19 @@
 // kernels' specialisation. Plain arrays: no Vulkan here.
 #pragma once
 
-#include <string>
 #include <vector>
 
 #include "absl/status/statusor.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene.h"
+#include "core/scene/scene_features.h"
 #include "core/shared/gpu_types.h"
 #include "worker/backends/vulkan/kernels.h"
 
 namespace pf::vk {
 
-// The materials and lights a scene's kernels need code for.
-struct SceneFeatures {
-    bool mirror = false, dielectric = false, thin_dielectric = false, textures = false, smooth_normals = false;
-    bool triangle_lights = false, point_lights = false, spot_lights = false, directional_lights = false;
-
-    SpecConstants Spec() const;
-    // "diffuse+glass, triangle lights", for logs.
-    std::string ToString() const;
-};
+// The kernels' specialisation constants for a scene's features.
+SpecConstants SpecConstantsFor(const SceneFeatures& features);
 
 struct GpuScene {
     std::vector<gpu::GpuBvhNode> nodes;

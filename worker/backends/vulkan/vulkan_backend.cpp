@@ -216,7 +216,7 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     if (!(gpu_scene->max_photon_flux > 0) || !std::isfinite(flux_to_fixed_))
         return absl::InvalidArgumentError("the scene's lights carry no finite power");
 
-    absl::StatusOr<std::unique_ptr<Kernels>> kernels = Kernels::Create(*context_, features_.Spec());
+    absl::StatusOr<std::unique_ptr<Kernels>> kernels = Kernels::Create(*context_, SpecConstantsFor(features_));
     if (!kernels.ok()) return kernels.status();
     kernels_ = std::move(*kernels);
 

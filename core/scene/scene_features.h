@@ -1,0 +1,30 @@
+// What a scene uses, analysed once per job, so that both backends run code instantiated for
+// it (the CPU photon pass's template variants, the Vulkan kernels' specialisation constants)
+// and a scene without glass pays nothing for glass.
+#pragma once
+
+#include <string>
+
+#include "core/scene/emitters.h"
+#include "core/scene/scene.h"
+
+namespace pf {
+
+struct SceneFeatures {
+    // Materials on at least one triangle.
+    bool mirror = false, dielectric = false, thin_dielectric = false;
+    bool textures = false;        // a used material has a base colour texture
+    bool smooth_normals = false;  // a triangle interpolates vertex normals
+    // Emitters with power.
+    bool triangle_lights = false, point_lights = false, spot_lights = false, directional_lights = false;
+
+    bool Specular() const { return mirror || dielectric || thin_dielectric; }
+    // Every feature on: the general code path, for comparison (bench/photon_bench).
+    static SceneFeatures All();
+    // "diffuse, glass, area lights": for logs, job metadata and EXR headers.
+    std::string ToString() const;
+};
+
+SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters);
+
+}  // namespace pf
