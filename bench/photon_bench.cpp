@@ -3,7 +3,9 @@
 // (photon segments traced per second) / (raw rtcIntersect1 rays per second) per scene;
 // the target is at least 0.5: the photon pass should cost little beyond its rays. A batch
 // also carries one direct-light sample for a slice of the hit points (shadow rays, not photon
-// segments); the ratio is given for the photon pass alone and for whole batches.
+// segments); the ratio is given for the photon pass alone and for whole batches. Last, the
+// photon pass instantiated for the scene's features (what backends run) against the general
+// path, forced, on cornell-box (diffuse only: no specular or texture code), as a ratio.
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
@@ -19,6 +21,7 @@
 #include "core/ppm/progressive_estimate.h"
 #include "core/scene/emitters.h"
 #include "core/scene/gltf_loader.h"
+#include "core/scene/scene_features.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf {
@@ -59,10 +62,12 @@ BenchScene& Load(const std::string& name) {
 // Per second: "pass/<scene>" and "batch/<scene>" photon segments, "rays/<scene>" raw rays.
 std::map<std::string, double> g_rates;
 
-void BM_PhotonBatch(benchmark::State& state, const std::string& name, bool with_direct) {
+// "pass/", "batch/": the photon loop for the scene's features; "general/": the general one.
+void BM_PhotonBatch(benchmark::State& state, const std::string& name, bool with_direct, bool general) {
     BenchScene& bench = Load(name);
+    const SceneFeatures features = general ? SceneFeatures::All() : AnalyseFeatures(bench.scene, *bench.emitters);
     const PhotonPassInputs inputs{&bench.scene, bench.emitters.get(), bench.tracer.get(),
-                                  bench.camera_pass.hit_points, &bench.grid, 1};
+                                  bench.camera_pass.hit_points, &bench.grid, 1, features};
     PhotonPassScratch scratch;
     tbb::task_arena one_thread(1);
     const BatchLayout layout;
@@ -81,7 +86,7 @@ void BM_PhotonBatch(benchmark::State& state, const std::string& name, bool with_
     }
     state.counters["photons/s"] = benchmark::Counter(double(photons), benchmark::Counter::kIsRate);
     state.counters["segments/s"] = benchmark::Counter(double(segments), benchmark::Counter::kIsRate);
-    g_rates[(with_direct ? "batch/" : "pass/") + name] = segments / seconds;
+    g_rates[(general ? "general/" : with_direct ? "batch/" : "pass/") + name] = segments / seconds;
 }
 
 void BM_EmbreeRandomRays(benchmark::State& state, const std::string& name) {
@@ -114,13 +119,15 @@ int main(int argc, char** argv) {
     // One thread: the figures are per thread.
     tbb::global_control single_thread(tbb::global_control::max_allowed_parallelism, 1);
     for (const char* scene : {"cornell-box", "cornell-glass"}) {
-        benchmark::RegisterBenchmark((std::string("BM_PhotonPass/") + scene).c_str(), pf::BM_PhotonBatch, scene, false)
+        benchmark::RegisterBenchmark((std::string("BM_PhotonPass/") + scene).c_str(), pf::BM_PhotonBatch, scene, false, false)
             ->Unit(benchmark::kMillisecond)->MinTime(2.0);
-        benchmark::RegisterBenchmark((std::string("BM_PhotonBatch/") + scene).c_str(), pf::BM_PhotonBatch, scene, true)
+        benchmark::RegisterBenchmark((std::string("BM_PhotonBatch/") + scene).c_str(), pf::BM_PhotonBatch, scene, true, false)
             ->Unit(benchmark::kMillisecond)->MinTime(2.0);
         benchmark::RegisterBenchmark((std::string("BM_EmbreeRandomRays/") + scene).c_str(), pf::BM_EmbreeRandomRays, scene)
             ->Unit(benchmark::kMillisecond)->MinTime(1.0);
     }
+    benchmark::RegisterBenchmark("BM_PhotonPassGeneral/cornell-box", pf::BM_PhotonBatch, "cornell-box", false, true)
+        ->Unit(benchmark::kMillisecond)->MinTime(2.0);
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     benchmark::RunSpecifiedBenchmarks();
@@ -135,5 +142,10 @@ int main(int argc, char** argv) {
         if (pass > 0 && batch > 0 && rays > 0)
             std::printf("%-14s %14.0f %14.0f %14.0f %11.2f %12.2f\n", scene, pass, batch, rays, pass / rays, batch / rays);
     }
+    const double specialised = pf::g_rates["pass/cornell-box"], general = pf::g_rates["general/cornell-box"];
+    if (specialised > 0 && general > 0)
+        std::printf("\ncornell-box photon pass for its features (%s) over the general path: %.3f\n",
+                    pf::AnalyseFeatures(pf::Load("cornell-box").scene, *pf::Load("cornell-box").emitters).ToString().c_str(),
+                    specialised / general);
     return 0;
 }

@@ -40,7 +40,10 @@ PhotonPath StartPhoton(const PhotonPassInputs& inputs, const SeedFamily& seeds, 
 }
 
 // Continues a path at its hit: a deposit at every diffuse hit after the first scattering,
-// Russian roulette, the next ray. Returns false where the path ends.
+// Russian roulette, the next ray. Returns false where the path ends. Instantiated for the
+// scene's features: without specular materials every surface is diffuse, without textures
+// every base colour is the material's.
+template <bool kSpecular, bool kTextures>
 bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath& path,
                    std::vector<PhotonDeposit>& deposits) {
     const Scene& scene = *inputs.scene;
@@ -48,8 +51,8 @@ bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath
     const SurfacePoint surface = scene.Surface(hit);
     const Material& material = scene.materials[surface.material];
     const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-    const Rgb base_color = scene.BaseColor(surface);
-    if (material.type == MaterialType::kDiffuse) {
+    const Rgb base_color = kTextures ? scene.BaseColor(surface) : material.base_color;
+    if (!kSpecular || material.type == MaterialType::kDiffuse) {
         if (path.scattered) deposits.push_back({surface.position, ray.direction, path.flux});
         // Russian roulette by albedo: survivors carry flux * albedo / p (Jensen 2001, 2.3.3).
         const float survive = std::min(1.0f, MaxComponent(base_color));
@@ -104,6 +107,7 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
 // and a lane whose path ends takes the next photon, so packets stay full. Every photon's
 // random numbers depend on its index alone, and lanes are filled in a fixed order, so the
 // deposits (and their order) depend only on the batch. Returns the segments traced.
+template <bool kSpecular, bool kTextures>
 uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t begin, uint32_t end,
                       BatchScratch& scratch) {
     constexpr int kLanes = Tracer::kPacketSize;
@@ -130,7 +134,9 @@ uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, uin
             // counted, before it deposits anything.
             const bool finite = IsFinite(paths[lane].flux);
             scratch.nonfinite_discarded += !finite;
-            if (finite && found[lane] && ScatterPhoton(inputs, hits[lane], paths[lane], scratch.deposits)) continue;
+            if (finite && found[lane] &&
+                ScatterPhoton<kSpecular, kTextures>(inputs, hits[lane], paths[lane], scratch.deposits))
+                continue;
             if (next < end) {
                 paths[lane] = StartPhoton(inputs, seeds, next++);
             } else {
@@ -161,7 +167,11 @@ ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec
     scratch.deposits.clear();
     scratch.nonfinite_discarded = 0;
     ChunkResult result;
-    result.segments_traced = TracePhotons(inputs, spec, begin, end, scratch);
+    // The photon loop for the scene's features, chosen once per chunk.
+    const SceneFeatures& features = inputs.features;
+    const auto trace = features.Specular() ? (features.textures ? TracePhotons<true, true> : TracePhotons<true, false>)
+                                           : (features.textures ? TracePhotons<false, true> : TracePhotons<false, false>);
+    result.segments_traced = trace(inputs, spec, begin, end, scratch);
     result.nonfinite_discarded = scratch.nonfinite_discarded;
     GatherDeposits(inputs, scratch);
     result.tally = scratch.tally.Extract();

@@ -16,6 +16,7 @@
 #include "core/sampling/rng.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene.h"
+#include "core/scene/scene_features.h"
 
 namespace pf {
 
@@ -27,6 +28,9 @@ struct PhotonPassInputs {
     std::span<const HitPoint> hit_points;
     const HashGrid* grid = nullptr;  // built over hit_points with this epoch's radii
     uint64_t seed = 0;
+    // What the scene uses (AnalyseFeatures): chunks run the photon loop instantiated for it,
+    // so a scene without specular materials or textures runs no code for them. All by default.
+    SceneFeatures features = SceneFeatures::All();
 };
 
 // Longest photon path followed; Russian roulette ends paths long before it (with albedo

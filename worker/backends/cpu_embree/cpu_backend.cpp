@@ -11,6 +11,7 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     if (job.scene == nullptr || job.emitters == nullptr || !job.emitters->HasPower())
         return absl::InvalidArgumentError("job has no scene or no light");
     job_ = job;
+    features_ = AnalyseFeatures(*job.scene, *job.emitters);
     grid_ = HashGrid();
     return absl::OkStatus();
 }
@@ -22,7 +23,8 @@ absl::Status CpuBackend::BeginEpoch(std::span<const float> radius_sq) {
 }
 
 absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const BatchSpec> specs) {
-    return RunPhotonBatches({job_.scene, job_.emitters, &tracer_, job_.hit_points, &grid_, job_.seed}, specs, scratch_);
+    return RunPhotonBatches({job_.scene, job_.emitters, &tracer_, job_.hit_points, &grid_, job_.seed, features_}, specs,
+                            scratch_);
 }
 
 }  // namespace pf::embree

@@ -24,6 +24,7 @@ public:
 private:
     const Tracer& tracer_;
     JobInputs job_;
+    SceneFeatures features_;  // the job's, selecting the photon loop's variant
     HashGrid grid_;
     PhotonPassScratch scratch_;
 };
