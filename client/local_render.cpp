@@ -37,6 +37,7 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
         outcome->camera_pass_seconds = submitted->elapsed_seconds;
         outcome->hit_points = submitted->hit_points;
         outcome->initial_radius = submitted->initial_radius;
+        outcome->scene_features = submitted->scene_features;
         const std::shared_ptr<Job> job = *coordinator.FindJob(submitted->job_id);
 
         // The worker leases a whole epoch at a time: its batches' chunks run in parallel on

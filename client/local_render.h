@@ -45,6 +45,7 @@ struct RenderOutcome {
     RenderProgress progress;
     uint64_t hit_points = 0;
     double initial_radius = 0;
+    std::string scene_features;  // what the scene uses (SceneFeatures::ToString)
     double camera_pass_seconds = 0;
     std::vector<ConvergencePoint> convergence;  // one point per epoch
     std::vector<std::string> warnings;           // the job's (also logged as they arise)

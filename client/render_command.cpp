@@ -52,6 +52,8 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
             {"photonfarm:photon_stream", absl::StrCat(s.job.photon_stream)},
             {"photonfarm:alpha", absl::StrFormat("%.17g", s.job.alpha)},
             {"photonfarm:initial_radius", absl::StrFormat("%.9g", outcome.initial_radius)},
+            {"photonfarm:scene_features", outcome.scene_features},
+            {"photonfarm:backend", s.backend},
             {"photonfarm:spp", absl::StrCat(s.job.samples_per_pixel)},
             {"photonfarm:photons_per_batch", absl::StrCat(s.job.layout.photons_per_batch)},
             {"photonfarm:batches_per_epoch", absl::StrCat(s.job.layout.batches_per_epoch)}};

@@ -67,7 +67,8 @@ ImageMetadata JobMetadata(const photonfarm::v1::JobStatus& status) {
             {"photonfarm:seconds", absl::StrFormat("%.3f", status.elapsed_seconds())},
             {"photonfarm:estimated_error",
              status.has_estimated_error() ? absl::StrFormat("%.4g", status.estimated_error()) : "unknown"},
-            {"photonfarm:nonfinite_discarded", absl::StrCat(status.nonfinite_discarded())}};
+            {"photonfarm:nonfinite_discarded", absl::StrCat(status.nonfinite_discarded())},
+            {"photonfarm:scene_features", status.scene_features()}};
 }
 
 absl::Status WriteJobReport(FarmClient& client, const std::string& job_id, const std::string& dir) {

@@ -12,6 +12,7 @@
 #include "core/film/image_metrics.h"
 #include "core/ppm/camera_pass.h"
 #include "core/scene/gltf_loader.h"
+#include "core/scene/scene_features.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf {
@@ -64,6 +65,7 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names) {
     prepared.priority = request.priority;
     prepared.bundle = std::move(request.bundle);
     prepared.reference = std::move(request.reference);
+    prepared.scene_features = AnalyseFeatures(prepared.payload->scene, prepared.payload->emitters).ToString();
     return prepared;
 }
 

@@ -44,6 +44,7 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
       started_(submitted),
       hit_point_count_(prepared.estimate->HitPoints().size()),
       initial_radius_(prepared.estimate->Settings().initial_radius),
+      scene_features_(std::move(prepared.scene_features)),
       reference_(std::move(prepared.reference)),
       payload_(std::move(prepared.payload)),
       estimate_(std::move(prepared.estimate)) {
@@ -286,6 +287,7 @@ JobProgress Job::Progress(Clock::time_point now) const {
     progress.photons = photons_merged_;
     progress.hit_points = hit_point_count_;
     progress.initial_radius = initial_radius_;
+    progress.scene_features = scene_features_;
     const Clock::time_point end = state_ == JobState::kRunning ? now : ended_;
     progress.elapsed_seconds = Seconds(end - started_);
     progress.photons_per_second = progress.elapsed_seconds > 0 ? photons_merged_ / progress.elapsed_seconds : 0;

@@ -63,6 +63,7 @@ struct JobProgress {
     int priority = 0;
     uint64_t epochs = 0, photons = 0, hit_points = 0;
     double initial_radius = 0;  // R0, world units
+    std::string scene_features;  // what the scene uses (SceneFeatures::ToString)
     double elapsed_seconds = 0;
     double photons_per_second = 0;
     double budget_fraction = 0;
@@ -84,6 +85,7 @@ struct PreparedJob {
     std::unique_ptr<ProgressiveEstimate> estimate;
     std::vector<std::string> warnings;
     std::shared_ptr<const Image> reference;  // measured against after every epoch, when set
+    std::string scene_features;  // SceneFeatures::ToString of the scene
 };
 
 class Job {
@@ -170,6 +172,7 @@ private:
     const Clock::time_point started_;
     const uint64_t hit_point_count_;
     const double initial_radius_;
+    const std::string scene_features_;
     const std::shared_ptr<const Image> reference_;
 
     mutable std::mutex mutex_;  // guards everything below but the estimate and image

@@ -42,6 +42,7 @@ v1::JobStatus ToProto(const JobProgress& progress) {
     if (progress.estimated_error) status.set_estimated_error(*progress.estimated_error);
     if (progress.measured_error) *status.mutable_reference_error() = ToProto(*progress.measured_error);
     status.set_nonfinite_discarded(progress.nonfinite_discarded);
+    status.set_scene_features(progress.scene_features);
     status.set_message(progress.message);
     for (const std::string& warning : progress.warnings) status.add_warnings(warning);
     return status;

@@ -1,0 +1,44 @@
+// The scene analysis that selects each backend's code paths.
+#include "core/scene/scene_features.h"
+
+#include <gtest/gtest.h>
+
+#include "core/scene/gltf_loader.h"
+#include "tests/support/gltf_builder.h"
+
+namespace pf {
+namespace {
+
+SceneFeatures FeaturesOf(const Scene& scene) { return AnalyseFeatures(scene, Emitters(scene)); }
+
+Scene Shipped(const std::string& name) { return *LoadGltf(std::string(PF_SOURCE_DIR) + "/scenes/" + name); }
+
+TEST(SceneFeaturesTest, ShippedScenesUseWhatTheyShow) {
+    const SceneFeatures box = FeaturesOf(Shipped("cornell-box.gltf"));
+    EXPECT_FALSE(box.Specular());
+    EXPECT_FALSE(box.textures);
+    EXPECT_TRUE(box.triangle_lights);
+    EXPECT_FALSE(box.point_lights || box.spot_lights || box.directional_lights);
+    EXPECT_EQ(box.ToString(), "diffuse, area lights");
+    const SceneFeatures glass = FeaturesOf(Shipped("cornell-glass.gltf"));
+    EXPECT_TRUE(glass.mirror && glass.dielectric);
+    EXPECT_FALSE(glass.thin_dielectric);
+    EXPECT_TRUE(glass.Specular());
+}
+
+TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.meshes.resize(1);  // the emissive quad's material stays, unused
+    scene.lights = {R"({"type":"spot","intensity":4,"spot":{"outerConeAngle":0.6}})", R"({"type":"point","intensity":0})"};
+    scene.light_node_fields = {R"(,"translation":[0,0,1])", ""};
+    const SceneFeatures features = FeaturesOf(*LoadGltf(testing::WriteGltf(scene, "features.gltf")));
+    EXPECT_TRUE(features.spot_lights);
+    EXPECT_FALSE(features.point_lights) << "a light of no power is no emitter";
+    EXPECT_FALSE(features.triangle_lights) << "an emissive material on no triangle emits nothing";
+    EXPECT_EQ(SceneFeatures::All().ToString(),
+              "diffuse, mirror, glass, thin glass, textures, smooth normals, area lights, point lights, spot lights, "
+              "directional lights");
+}
+
+}  // namespace
+}  // namespace pf
