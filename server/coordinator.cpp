@@ -44,8 +44,10 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names) {
         return absl::InvalidArgumentError(absl::StrFormat(
             "%s: lights emit %.3g W in all, over the %.3g W that single-precision photon sums hold (docs/numerics.md)",
             request.bundle.main_file, power, kMaxLightPower));
-    const absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, payload->scene.camera);
+    absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, payload->scene.camera);
     if (!film.ok()) return film.status();
+    // Analysed once: the camera pass here and every backend's photon loop run code for it.
+    film->features = AnalyseFeatures(payload->scene, payload->emitters);
     if (absl::Status status = CheckReference(request.reference.get(), film->width, film->height); !status.ok())
         return status;
     absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(payload->scene);
@@ -65,7 +67,7 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names) {
     prepared.priority = request.priority;
     prepared.bundle = std::move(request.bundle);
     prepared.reference = std::move(request.reference);
-    prepared.scene_features = AnalyseFeatures(prepared.payload->scene, prepared.payload->emitters).ToString();
+    prepared.scene_features = film->features.ToString();
     return prepared;
 }
 

@@ -29,6 +29,9 @@ struct CameraPath {
 // At its first kCameraSplits glass interfaces the path follows both reflection and
 // transmission, each weighted by its probability, instead of choosing one at random: the few
 // percent of reflection on glass would otherwise show as speckle, since hit points are kept.
+// Instantiated for the scene's features: without specular materials every path ends at its
+// first hit, without textures every base colour is the material's.
+template <bool kSpecular, bool kTextures>
 Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& primary, uint32_t pixel,
                       float pixel_angle, Rng& rng, std::vector<HitPoint>& hit_points,
                       std::vector<float>& footprints) {
@@ -46,8 +49,8 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
             const Material& material = scene.materials[surface.material];
             const bool front_facing = Dot(path.ray.direction, surface.geometric_normal) < 0;
             if (front_facing && material.IsEmissive()) emission += path.throughput * material.emission;
-            const Rgb base_color = scene.BaseColor(surface);
-            if (material.type == MaterialType::kDiffuse) {
+            const Rgb base_color = kTextures ? scene.BaseColor(surface) : material.base_color;
+            if (!kSpecular || material.type == MaterialType::kDiffuse) {
                 const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
                 hit_points.push_back({surface.position, normal, path.throughput * base_color / kPi, pixel});
                 footprints.push_back(path.length * pixel_angle);
@@ -117,6 +120,11 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     std::vector<std::vector<float>> row_footprints(height);
     CameraPassResult result;
     result.emission = Image(width, height);
+    // The camera path for the scene's features, chosen once.
+    const SceneFeatures& features = settings.features;
+    const auto trace = features.Specular()
+                           ? (features.textures ? TraceCameraSample<true, true> : TraceCameraSample<true, false>)
+                           : (features.textures ? TraceCameraSample<false, true> : TraceCameraSample<false, false>);
     tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y) {
             for (int x = 0; x < width; ++x) {
@@ -126,9 +134,8 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                 for (int s = 0; s < spp; ++s) {
                     const float fx = (x + ((s % strata) + rng.NextFloat()) / strata) / width;
                     const float fy = (y + ((s / strata) + rng.NextFloat()) / strata) / height;
-                    emission += TraceCameraSample(scene, tracer, scene.camera.GenerateRay(fx, fy, film_aspect),
-                                                pixel, pixel_angle, rng, row_hit_points[y],
-                                                row_footprints[y]);
+                    emission += trace(scene, tracer, scene.camera.GenerateRay(fx, fy, film_aspect), pixel, pixel_angle,
+                                      rng, row_hit_points[y], row_footprints[y]);
                 }
                 result.emission.At(x, y) = emission / static_cast<float>(spp);
             }

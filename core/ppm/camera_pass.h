@@ -11,6 +11,7 @@
 #include "core/geometry/tracer.h"
 #include "core/ppm/hit_point.h"
 #include "core/scene/scene.h"
+#include "core/scene/scene_features.h"
 
 namespace pf {
 
@@ -18,6 +19,9 @@ struct CameraPassSettings {
     int width = 512, height = 512;
     int samples_per_pixel = 4;  // k: hit points traced per pixel
     uint64_t seed = 0;
+    // What the scene uses (AnalyseFeatures): camera paths run code instantiated for it. All
+    // by default.
+    SceneFeatures features = SceneFeatures::All();
 };
 
 struct CameraPassResult {

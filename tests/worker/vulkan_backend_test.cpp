@@ -174,6 +174,9 @@ TEST_F(VulkanBackendTest, KernelsAreSpecialisedToTheScenesFeatures) {
         EXPECT_TRUE(gpu_scene->features.triangle_lights) << name;
         EXPECT_FALSE(gpu_scene->features.point_lights || gpu_scene->features.spot_lights) << name;
         EXPECT_EQ(vk::SpecConstantsFor(gpu_scene->features)[gpu::kSpecHasDielectric], glass ? 1u : 0u);
+        // Data no kernel of the scene reads is not built.
+        EXPECT_EQ(gpu_scene->normals.empty(), !gpu_scene->features.smooth_normals) << name;
+        EXPECT_TRUE(gpu_scene->uvs.empty() && gpu_scene->texels.empty()) << name;
     }
 }
 

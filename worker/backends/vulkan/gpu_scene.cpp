@@ -22,11 +22,15 @@ void AddGeometry(const Scene& scene, const embree::GpuBvh& bvh, GpuScene& gpu_sc
         gpu_scene.shading.push_back({Vec4(triangle.normal),
                                      {triangle.vertex[0], triangle.vertex[1], triangle.vertex[2],
                                       triangle.material | (triangle.smooth ? gpu::kSmoothBit : 0u)}});
-    for (const Vec3& normal : scene.normals) gpu_scene.normals.push_back(Vec4(normal));
-    for (const Point2& uv : scene.uvs) gpu_scene.uvs.push_back({uv.x, uv.y});
+    // What no kernel of this scene reads is neither built nor uploaded.
+    if (gpu_scene.features.smooth_normals)
+        for (const Vec3& normal : scene.normals) gpu_scene.normals.push_back(Vec4(normal));
+    if (gpu_scene.features.textures)
+        for (const Point2& uv : scene.uvs) gpu_scene.uvs.push_back({uv.x, uv.y});
     for (const Material& material : scene.materials)
         gpu_scene.materials.push_back({Vec4(material.base_color, material.ior), static_cast<uint32_t>(material.type),
                                        material.base_color_texture, 0, 0});
+    if (!gpu_scene.features.textures) return;
     for (const Texture& texture : scene.textures) {
         gpu_scene.textures.push_back({static_cast<uint32_t>(gpu_scene.texels.size()), texture.width, texture.height, 0});
         for (const Rgb& texel : texture.texels) gpu_scene.texels.push_back(Vec4(texel));
