@@ -46,7 +46,8 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names) {
             request.bundle.main_file, power, kMaxLightPower));
     absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, payload->scene.camera);
     if (!film.ok()) return film.status();
-    // Analysed once: the camera pass here and every backend's photon loop run code for it.
+    // For the camera pass and the job's record; each backend analyses the scene it is given
+    // the same way (AnalyseFeatures) for its photon loop.
     film->features = AnalyseFeatures(payload->scene, payload->emitters);
     if (absl::Status status = CheckReference(request.reference.get(), film->width, film->height); !status.ok())
         return status;
