@@ -3,6 +3,7 @@
 // (tests/support/image_agreement.cpp derives the bound).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "client/local_render.h"
@@ -13,9 +14,10 @@
 namespace pf {
 namespace {
 
-Image Render(const std::string& scene, const std::string& backend, uint64_t stream) {
+// Renders `scene_path` at 32x32 with 1M photons on `backend` with photon stream `stream`.
+Image Render(const std::string& scene_path, const std::string& backend, uint64_t stream) {
     RenderSettings settings;
-    settings.scene_path = std::string(PF_SOURCE_DIR) + "/scenes/" + scene;
+    settings.scene_path = scene_path;
     settings.backend = backend;
     settings.threads = 2;
     settings.job.width = 32;
@@ -28,15 +30,21 @@ Image Render(const std::string& scene, const std::string& backend, uint64_t stre
     return outcome.ok() ? outcome->image : Image();
 }
 
+// A Vulkan render of the scene (stream 3) against two CPU renders (streams 1 and 2), with no
+// validation error on the way.
+void ExpectVulkanAgreesWithTheCpu(const std::string& scene_path) {
+    const unsigned long long errors_before = testing::VulkanValidationErrors();
+    testing::ExpectSameEstimator(Render(scene_path, "vulkan", 3), Render(scene_path, "cpu", 1),
+                                 Render(scene_path, "cpu", 2));
+    EXPECT_EQ(testing::VulkanValidationErrors(), errors_before);
+}
+
 class BackendAgreement : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(BackendAgreement, VulkanImageMatchesTheCpuImagesWithinTheirNoise) {
     testing::SkipWithoutVulkan();
     if (IsSkipped() || HasFatalFailure()) return;
-    const unsigned long long errors_before = testing::VulkanValidationErrors();
-    const Image a = Render(GetParam(), "cpu", 1), b = Render(GetParam(), "cpu", 2), v = Render(GetParam(), "vulkan", 3);
-    testing::ExpectSameEstimator(v, a, b);
-    EXPECT_EQ(testing::VulkanValidationErrors(), errors_before);
+    ExpectVulkanAgreesWithTheCpu(std::string(PF_SOURCE_DIR) + "/scenes/" + GetParam());
 }
 
 TEST(BackendAgreementTextures, LightOffATexturedWallMatchesTheCpus) {
@@ -55,26 +63,14 @@ TEST(BackendAgreementTextures, LightOffATexturedWallMatchesTheCpus) {
     scene.meshes.push_back({{{1, -1, 0}, {1, 1, 1}, {1, 1, 0}, {1, -1, 0}, {1, -1, 1}, {1, 1, 1}},
                             2,
                             {0, 0, 1, 1, 1, 0, 0, 0, 0, 1, 1, 1}});
-    const std::string path = testing::WriteGltf(scene, "textured-wall.gltf");
-    const auto render = [&](const std::string& backend, uint64_t stream) {
-        RenderSettings settings;
-        settings.scene_path = path;
-        settings.backend = backend;
-        settings.job.width = settings.job.height = 32;
-        settings.job.photon_budget = 1'000'000;
-        settings.job.layout = {1u << 16, 4};
-        settings.job.photon_stream = stream;
-        absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
-        EXPECT_TRUE(outcome.ok()) << outcome.status();
-        return outcome.ok() ? outcome->image : Image();
-    };
-    testing::ExpectSameEstimator(render("vulkan", 3), render("cpu", 1), render("cpu", 2));
+    ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "textured-wall.gltf"));
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, BackendAgreement, ::testing::Values("cornell-box.gltf", "cornell-glass.gltf"),
                          [](const ::testing::TestParamInfo<std::string>& scene) {
-                             return scene.param.substr(0, scene.param.find('.')) == "cornell-box" ? "cornell_box"
-                                                                                                 : "cornell_glass";
+                             std::string name = scene.param.substr(0, scene.param.find('.'));
+                             std::replace(name.begin(), name.end(), '-', '_');
+                             return name;
                          });
 
 }  // namespace
