@@ -19,7 +19,7 @@
 #include "core/ppm/job_spec.h"
 #include "core/ppm/progressive_estimate.h"
 #include "core/scene/emitters.h"
-#include "core/scene/gltf_loader.h"
+#include "core/scene/scene_loader.h"
 #include "worker/backend_factory.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
 
@@ -33,7 +33,7 @@ struct Rate {
 // Runs batches of `photons` each, all of one epoch's radii, for about `seconds`.
 absl::StatusOr<Rate> Measure(const std::string& backend_name, const std::string& scene_name, uint32_t photons,
                              double seconds) {
-    absl::StatusOr<Scene> scene = LoadGltf(std::string(PF_SOURCE_DIR) + "/scenes/" + scene_name + ".gltf");
+    absl::StatusOr<Scene> scene = LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + scene_name + ".gltf");
     if (!scene.ok()) return scene.status();
     auto tracer = std::move(*embree::EmbreeTracer::Create(*scene));
     const CameraPassResult camera_pass = RunCameraPass(*scene, *tracer, {512, 512, 4, 1});

@@ -17,7 +17,7 @@
 #include "core/ppm/job_spec.h"
 #include "core/ppm/progressive_estimate.h"
 #include "core/scene/emitters.h"
-#include "core/scene/gltf_loader.h"
+#include "core/scene/scene_loader.h"
 #include "worker/backend_factory.h"
 #include "worker/blob_codec.h"
 #include "worker/proto_convert.h"
@@ -46,7 +46,7 @@ Recorded& Record() {
     if (recorded) return *recorded;
     recorded = std::make_unique<Recorded>();
     Recorded& r = *recorded;
-    r.scene = *LoadGltf(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
+    r.scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
     auto tracer = std::move(*embree::EmbreeTracer::Create(r.scene));
     r.camera_pass = RunCameraPass(r.scene, *tracer, {512, 512, 4, 1});
     JobSpec spec;

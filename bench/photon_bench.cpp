@@ -20,7 +20,7 @@
 #include "core/ppm/photon_pass.h"
 #include "core/ppm/progressive_estimate.h"
 #include "core/scene/emitters.h"
-#include "core/scene/gltf_loader.h"
+#include "core/scene/scene_loader.h"
 #include "core/scene/scene_features.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
 
@@ -44,7 +44,7 @@ BenchScene& Load(const std::string& name) {
     auto& entry = cache[name];
     if (entry) return *entry;
     entry = std::make_unique<BenchScene>();
-    absl::StatusOr<Scene> scene = LoadGltf(std::string(PF_SOURCE_DIR) + "/scenes/" + name + ".gltf");
+    absl::StatusOr<Scene> scene = LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + name + ".gltf");
     if (!scene.ok()) {
         std::fprintf(stderr, "photon_bench: %s\n", std::string(scene.status().message()).c_str());
         std::exit(1);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/scene/scene_bundle.h"
+#include "core/scene/scene_loader.h"
 #include "server/coordinator.h"
 #include "server/in_process_source.h"
 #include "worker/backend_factory.h"

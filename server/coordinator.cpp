@@ -11,7 +11,7 @@
 #include "absl/strings/str_format.h"
 #include "core/film/image_metrics.h"
 #include "core/ppm/camera_pass.h"
-#include "core/scene/gltf_loader.h"
+#include "core/scene/scene_loader.h"
 #include "core/scene/scene_features.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
 
@@ -35,7 +35,7 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names) {
     if (absl::Status status = CheckJobSpec(request.spec, names); !status.ok()) return status;
     if (absl::Status status = CheckSceneBundle(request.bundle); !status.ok()) return status;
     if (request.name.empty()) request.name = std::filesystem::path(request.bundle.main_file).filename().string();
-    absl::StatusOr<Scene> scene = LoadGltf(request.bundle, request.bundle.main_file);
+    absl::StatusOr<Scene> scene = LoadScene(request.bundle, request.bundle.main_file);
     if (!scene.ok()) return scene.status();
     auto payload = std::make_shared<JobPayload>(std::move(*scene), nullptr, PhotonSeed(request.spec));
     if (!payload->emitters.HasPower())

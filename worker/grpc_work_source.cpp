@@ -11,7 +11,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/ppm/job_spec.h"
-#include "core/scene/gltf_loader.h"
+#include "core/scene/scene_loader.h"
 #include "core/util/sha256.h"
 #include "worker/blob_codec.h"
 #include "worker/proto_convert.h"
@@ -225,7 +225,7 @@ absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(con
     if (!message.ParseFromString(*scene_bytes)) return absl::DataLossError(absl::StrCat(address_, ": scene blob does not parse"));
     absl::StatusOr<SceneBundle> bundle = FromProto(message);
     if (!bundle.ok()) return bundle.status();
-    absl::StatusOr<Scene> scene = LoadGltf(*bundle, bundle->main_file);
+    absl::StatusOr<Scene> scene = LoadScene(*bundle, bundle->main_file);
     if (!scene.ok()) return scene.status();
     absl::StatusOr<std::string> hit_point_bytes = FetchBlob(job.hit_points_digest(), true);
     if (!hit_point_bytes.ok()) return hit_point_bytes.status();

@@ -3,6 +3,8 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
+#include <utility>
 
 #include "core/math/vec3.h"
 
@@ -30,6 +32,50 @@ struct Transform {
             t.m[row][3] = translation[row];
         }
         return t;
+    }
+
+    static Transform Translate(const Vec3d& delta) {
+        Transform t;
+        for (int row = 0; row < 3; ++row) t.m[row][3] = delta[row];
+        return t;
+    }
+    static Transform Scale(const Vec3d& factors) {
+        Transform t;
+        for (int row = 0; row < 3; ++row) t.m[row][row] = factors[row];
+        return t;
+    }
+    // Counter-clockwise by `degrees` about `axis` (normalised here), seen looking down the axis.
+    static Transform Rotate(double degrees, const Vec3d& axis) {
+        const Vec3d a = Normalize(axis);
+        const double radians = degrees * (kPiD / 180.0), s = std::sin(radians), c = std::cos(radians);
+        Transform t;
+        t.m[0] = {a.x * a.x + (1 - a.x * a.x) * c, a.x * a.y * (1 - c) - a.z * s, a.x * a.z * (1 - c) + a.y * s, 0};
+        t.m[1] = {a.x * a.y * (1 - c) + a.z * s, a.y * a.y + (1 - a.y * a.y) * c, a.y * a.z * (1 - c) - a.x * s, 0};
+        t.m[2] = {a.x * a.z * (1 - c) - a.y * s, a.y * a.z * (1 - c) + a.x * s, a.z * a.z + (1 - a.z * a.z) * c, 0};
+        return t;
+    }
+
+    // The inverse by Gauss-Jordan elimination with partial pivoting; nullopt when singular.
+    std::optional<Transform> Inverse() const {
+        std::array<std::array<double, 4>, 4> a = m;
+        Transform inverse;
+        for (int column = 0; column < 4; ++column) {
+            int pivot = column;
+            for (int row = column + 1; row < 4; ++row)
+                if (std::abs(a[row][column]) > std::abs(a[pivot][column])) pivot = row;
+            if (!(std::abs(a[pivot][column]) > 1e-300)) return std::nullopt;
+            std::swap(a[pivot], a[column]);
+            std::swap(inverse.m[pivot], inverse.m[column]);
+            const double scale = 1.0 / a[column][column];
+            for (int k = 0; k < 4; ++k) a[column][k] *= scale, inverse.m[column][k] *= scale;
+            for (int row = 0; row < 4; ++row) {
+                if (row == column) continue;
+                const double factor = a[row][column];
+                for (int k = 0; k < 4; ++k) a[row][k] -= factor * a[column][k], inverse.m[row][k] -= factor * inverse.m[column][k];
+            }
+        }
+        if (!inverse.IsFinite()) return std::nullopt;
+        return inverse;
     }
 
     Transform operator*(const Transform& o) const {

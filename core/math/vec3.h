@@ -68,6 +68,8 @@ constexpr Vec3T<T> Abs(const Vec3T<T>& v) { return {std::abs(v.x), std::abs(v.y)
 template <typename T>
 constexpr T MaxComponent(const Vec3T<T>& v) { return std::max(v.x, std::max(v.y, v.z)); }
 template <typename T>
+constexpr T MinComponent(const Vec3T<T>& v) { return std::min(v.x, std::min(v.y, v.z)); }
+template <typename T>
 constexpr T Average(const Vec3T<T>& v) { return (v.x + v.y + v.z) / T(3); }
 template <typename T>
 bool IsFinite(const Vec3T<T>& v) {

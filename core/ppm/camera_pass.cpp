@@ -9,6 +9,7 @@
 
 #include "core/math/morton.h"
 #include "core/sampling/rng.h"
+#include "core/sampling/sampling.h"
 #include "core/scene/specular.h"
 
 namespace pf {
@@ -134,8 +135,12 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                 for (int s = 0; s < spp; ++s) {
                     const float fx = (x + ((s % strata) + rng.NextFloat()) / strata) / width;
                     const float fy = (y + ((s / strata) + rng.NextFloat()) / strata) / height;
-                    emission += trace(scene, tracer, scene.camera.GenerateRay(fx, fy, film_aspect), pixel, pixel_angle,
-                                      rng, row_hit_points[y], row_footprints[y]);
+                    Ray ray = scene.camera.GenerateRay(fx, fy, film_aspect);
+                    if (scene.camera.HasLens()) {  // two more numbers, drawn only with a lens
+                        const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
+                        ray = scene.camera.GenerateRay(fx, fy, film_aspect, SampleUniformDisk(u1, u2));
+                    }
+                    emission += trace(scene, tracer, ray, pixel, pixel_angle, rng, row_hit_points[y], row_footprints[y]);
                 }
                 result.emission.At(x, y) = emission / static_cast<float>(spp);
             }

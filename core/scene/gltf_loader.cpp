@@ -13,6 +13,7 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "core/math/transform.h"
+#include "core/scene/image_decode.h"
 #include "core/scene/scene_bundle.h"
 
 namespace pf {
@@ -113,15 +114,51 @@ absl::Status ReadIndices(const tinygltf::Model& model, int index, std::vector<ui
     return absl::OkStatus();
 }
 
-// One primitive's attributes as read from its accessors, in the primitive's own space.
-struct PrimitiveArrays {
-    std::vector<float> positions, normals, uvs;  // 3, 3 and 2 per vertex; normals, uvs may be empty
-    std::vector<uint32_t> indices;               // 3 per triangle, all below the vertex count
+// An image's encoded bytes, kept by tinygltf's image callback and decoded only if a material
+// uses it; `name` carries the extension that tells OpenImageIO the format.
+struct EncodedImage {
+    std::string bytes, name;
 };
+using GltfImages = std::map<int, EncodedImage>;
+
+// KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv.
+UvTransform TextureTransform(const tinygltf::Value& transform) {
+    double offset[2] = {0, 0}, scale[2] = {1, 1};
+    for (int i = 0; i < 2; ++i) {
+        if (transform.Has("offset") && transform.Get("offset").IsArray() && transform.Get("offset").ArrayLen() == 2)
+            offset[i] = transform.Get("offset").Get(i).GetNumberAsDouble();
+        if (transform.Has("scale") && transform.Get("scale").IsArray() && transform.Get("scale").ArrayLen() == 2)
+            scale[i] = transform.Get("scale").Get(i).GetNumberAsDouble();
+    }
+    const double rotation = NumberOr(transform, "rotation", 0.0), c = std::cos(rotation), s = std::sin(rotation);
+    UvTransform uv;
+    uv.m[0] = c * scale[0], uv.m[1] = s * scale[1], uv.m[2] = offset[0];
+    uv.m[3] = -s * scale[0], uv.m[4] = c * scale[1], uv.m[5] = offset[1];
+    return uv;
+}
+
+// The extension OpenImageIO needs to pick a reader: from the bytes' signature, else the URI's.
+std::string ImageName(int index, const tinygltf::Image& image, const unsigned char* bytes, int size) {
+    const std::string label = image.uri.empty() || absl::StartsWith(image.uri, "data:") ? absl::StrCat("image #", index) : image.uri;
+    if (size >= 8 && std::memcmp(bytes, "\x89PNG", 4) == 0) return absl::StrCat(label, ".png");
+    if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) return absl::StrCat(label, ".jpg");
+    return label;
+}
+
+// tinygltf's image callback: keeps the encoded bytes, decoded later only for images a
+// material uses, through OpenImageIO.
+bool KeepEncodedImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void* user) {
+    auto* images = static_cast<GltfImages*>(user);
+    (*images)[index] = {std::string(reinterpret_cast<const char*>(bytes), size), ImageName(index, *image, bytes, size)};
+    return true;
+}
 
 class GltfSceneBuilder {
 public:
-    GltfSceneBuilder(const std::string& path, const tinygltf::Model& model) : path_(path), model_(model) {
+    GltfSceneBuilder(const std::string& path, const tinygltf::Model& model, const SceneLimits& limits,
+                     const GltfImages& images)
+        : path_(path), model_(model), limits_(limits), images_(images) {
         scene_.source = path;
     }
 
@@ -133,8 +170,8 @@ private:
     }
     absl::Status VisitNode(int index, const Transform& parent, int depth);
     absl::Status AddMesh(int mesh_index, const Transform& world);
-    absl::StatusOr<PrimitiveArrays> ReadPrimitive(const tinygltf::Primitive& primitive, const std::string& element) const;
-    absl::Status AddPrimitive(const tinygltf::Primitive& primitive, const std::string& element, const Transform& world);
+    absl::StatusOr<TriangleMesh> ReadPrimitive(const tinygltf::Primitive& primitive, const std::string& element) const;
+    absl::Status AddPrimitive(int mesh_index, size_t primitive_index, const std::string& element, const Transform& world);
     absl::Status AddLight(int light_index, const Transform& world);
     absl::Status SetCamera(int camera_index, const Transform& world);
     absl::StatusOr<uint32_t> MaterialIndex(int gltf_material);
@@ -146,6 +183,10 @@ private:
     bool has_camera_ = false;
     std::map<int, uint32_t> material_indices_;  // glTF material -> Scene::materials
     std::map<int, int32_t> texture_indices_;    // glTF image -> Scene::textures
+    std::map<uint32_t, UvTransform> material_uvs_;  // Scene::materials -> its texture's transform
+    std::map<std::pair<int, size_t>, TriangleMesh> meshes_;  // (mesh, primitive), read once
+    const SceneLimits& limits_;
+    const GltfImages& images_;
 };
 
 absl::StatusOr<Scene> GltfSceneBuilder::Build() {
@@ -205,82 +246,69 @@ absl::Status GltfSceneBuilder::AddMesh(int mesh_index, const Transform& world) {
     const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
     for (size_t p = 0; p < mesh.primitives.size(); ++p) {
         const std::string element = absl::StrCat(Describe("mesh", mesh_index, mesh.name), " primitive ", p);
-        if (absl::Status status = AddPrimitive(mesh.primitives[p], element, world); !status.ok()) return status;
+        if (absl::Status status = AddPrimitive(mesh_index, p, element, world); !status.ok()) return status;
     }
     return absl::OkStatus();
 }
 
-absl::StatusOr<PrimitiveArrays> GltfSceneBuilder::ReadPrimitive(const tinygltf::Primitive& primitive,
-                                                                 const std::string& element) const {
+absl::StatusOr<TriangleMesh> GltfSceneBuilder::ReadPrimitive(const tinygltf::Primitive& primitive,
+                                                              const std::string& element) const {
     const auto position_it = primitive.attributes.find("POSITION");
     if (position_it == primitive.attributes.end()) return Error(element, "has no POSITION attribute");
-    PrimitiveArrays arrays;
-    if (absl::Status s = ReadFloats(model_, position_it->second, 3, &arrays.positions); !s.ok())
+    std::vector<float> positions, normals, uvs;
+    if (absl::Status s = ReadFloats(model_, position_it->second, 3, &positions); !s.ok())
         return Error(element, std::string(s.message()));
-    const size_t vertex_count = arrays.positions.size() / 3;
+    const size_t vertex_count = positions.size() / 3;
     for (size_t v = 0; v < 3 * vertex_count; ++v)
-        if (!std::isfinite(arrays.positions[v]))
-            return Error(element, absl::StrCat("vertex ", v / 3, " position has NaN or Inf"));
+        if (!std::isfinite(positions[v])) return Error(element, absl::StrCat("vertex ", v / 3, " position has NaN or Inf"));
     if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
-        if (absl::Status s = ReadFloats(model_, it->second, 3, &arrays.normals); !s.ok())
+        if (absl::Status s = ReadFloats(model_, it->second, 3, &normals); !s.ok())
             return Error(element, std::string(s.message()));
-        if (arrays.normals.size() != arrays.positions.size()) return Error(element, "NORMAL and POSITION counts differ");
+        if (normals.size() != positions.size()) return Error(element, "NORMAL and POSITION counts differ");
     }
     if (auto it = primitive.attributes.find("TEXCOORD_0"); it != primitive.attributes.end()) {
-        if (absl::Status s = ReadFloats(model_, it->second, 2, &arrays.uvs); !s.ok())
+        if (absl::Status s = ReadFloats(model_, it->second, 2, &uvs); !s.ok())
             return Error(element, std::string(s.message()));
-        if (arrays.uvs.size() / 2 != vertex_count) return Error(element, "TEXCOORD_0 and POSITION counts differ");
+        if (uvs.size() / 2 != vertex_count) return Error(element, "TEXCOORD_0 and POSITION counts differ");
+    }
+    TriangleMesh mesh;
+    for (size_t v = 0; v < vertex_count; ++v) {
+        mesh.positions.emplace_back(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
+        if (!normals.empty()) mesh.normals.emplace_back(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+        if (!uvs.empty()) mesh.uvs.push_back({uvs[2 * v], uvs[2 * v + 1]});
     }
     if (primitive.indices >= 0) {
-        if (absl::Status s = ReadIndices(model_, primitive.indices, &arrays.indices); !s.ok())
+        if (absl::Status s = ReadIndices(model_, primitive.indices, &mesh.indices); !s.ok())
             return Error(element, std::string(s.message()));
     } else {
-        for (uint32_t i = 0; i < vertex_count; ++i) arrays.indices.push_back(i);
+        for (uint32_t i = 0; i < vertex_count; ++i) mesh.indices.push_back(i);
     }
-    if (arrays.indices.size() % 3 != 0) return Error(element, "index count is not a multiple of 3");
-    for (size_t i = 0; i < arrays.indices.size(); ++i)
-        if (arrays.indices[i] >= vertex_count)
+    if (mesh.indices.size() % 3 != 0) return Error(element, "index count is not a multiple of 3");
+    for (size_t i = 0; i < mesh.indices.size(); ++i)
+        if (mesh.indices[i] >= vertex_count)
             return Error(element, absl::StrCat("triangle ", i / 3, " has an index beyond the ", vertex_count, " vertices"));
-    return arrays;
+    return mesh;
 }
 
-absl::Status GltfSceneBuilder::AddPrimitive(const tinygltf::Primitive& primitive, const std::string& element,
+absl::Status GltfSceneBuilder::AddPrimitive(int mesh_index, size_t primitive_index, const std::string& element,
                                             const Transform& world) {
+    const tinygltf::Primitive& primitive = model_.meshes[mesh_index].primitives[primitive_index];
     if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
         spdlog::warn("{}: {}: mode {} is not triangles; skipped", path_, element, primitive.mode);
         return absl::OkStatus();
     }
-    const absl::StatusOr<PrimitiveArrays> arrays = ReadPrimitive(primitive, element);
-    if (!arrays.ok()) return arrays.status();
+    // A mesh that several nodes use (instancing) is read once and placed by each node.
+    const auto key = std::make_pair(mesh_index, primitive_index);
+    auto cached = meshes_.find(key);
+    if (cached == meshes_.end()) {
+        absl::StatusOr<TriangleMesh> mesh = ReadPrimitive(primitive, element);
+        if (!mesh.ok()) return mesh.status();
+        cached = meshes_.emplace(key, std::move(*mesh)).first;
+    }
     const absl::StatusOr<uint32_t> material = MaterialIndex(primitive.material);
     if (!material.ok()) return material.status();
-    const std::vector<float>& positions = arrays->positions;
-    const std::vector<float>& normals = arrays->normals;
-    const auto base = static_cast<uint32_t>(scene_.positions.size());
-    for (size_t v = 0; v < positions.size() / 3; ++v) {
-        const Vec3 p(world.ApplyPoint(Vec3d(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2])));
-        if (!IsFinite(p)) return Error(element, absl::StrCat("vertex ", v, " is not finite after its node's transform"));
-        scene_.positions.push_back(p);
-        scene_.bounds.Extend(p);
-        Vec3 n(0.0f);
-        if (!normals.empty()) {
-            const Vec3d transformed = world.ApplyNormal(Vec3d(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]));
-            if (LengthSquared(transformed) > 0 && IsFinite(transformed)) n = Vec3(Normalize(transformed));
-        }
-        scene_.normals.push_back(n);
-        scene_.uvs.push_back(arrays->uvs.empty() ? Point2{} : Point2{arrays->uvs[2 * v], arrays->uvs[2 * v + 1]});
-    }
-    // A mirroring transform reverses the winding; swap two vertices to keep front faces front.
-    const bool mirrored = world.Determinant() < 0;
-    const std::vector<uint32_t>& indices = arrays->indices;
-    for (size_t i = 0; i < indices.size(); i += 3) {
-        const uint32_t a = base + indices[i], b = base + indices[mirrored ? i + 2 : i + 1],
-                       c = base + indices[mirrored ? i + 1 : i + 2];
-        const Vec3 normal = Normalize(Cross(scene_.positions[b] - scene_.positions[a], scene_.positions[c] - scene_.positions[a]));
-        if (!IsFinite(normal)) continue;  // degenerate: has no surface
-        scene_.triangles.push_back({{a, b, c}, *material, !normals.empty(), normal});
-    }
-    return absl::OkStatus();
+    const MeshPlacement placement{world, *material, FrontFace::kObjectWinding, false, material_uvs_[*material]};
+    return AppendMesh(cached->second, placement, limits_, absl::StrCat(path_, ": ", element), &scene_);
 }
 
 absl::Status GltfSceneBuilder::AddLight(int light_index, const Transform& world) {
@@ -345,6 +373,7 @@ absl::Status GltfSceneBuilder::SetCamera(int camera_index, const Transform& worl
 absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
     if (const auto it = material_indices_.find(gltf_material); it != material_indices_.end()) return it->second;
     Material material;
+    UvTransform uv;
     if (gltf_material >= 0) {
         if (gltf_material >= static_cast<int>(model_.materials.size()))
             return Error(absl::StrCat("material #", gltf_material), "does not exist");
@@ -357,6 +386,8 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
             const absl::StatusOr<int32_t> texture = TextureIndex(pbr.baseColorTexture.index, element);
             if (!texture.ok()) return texture.status();
             material.base_color_texture = *texture;
+            if (const tinygltf::Value* transform = Extension(pbr.baseColorTexture.extensions, "KHR_texture_transform"))
+                uv = TextureTransform(*transform);
             if (pbr.baseColorTexture.texCoord != 0)
                 spdlog::warn("{}: {}: texCoord {} unsupported; using TEXCOORD_0", path_, element, pbr.baseColorTexture.texCoord);
         }
@@ -393,6 +424,7 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
     const auto index = static_cast<uint32_t>(scene_.materials.size());
     scene_.materials.push_back(material);
     material_indices_[gltf_material] = index;
+    material_uvs_[index] = uv;
     return index;
 }
 
@@ -402,19 +434,14 @@ absl::StatusOr<int32_t> GltfSceneBuilder::TextureIndex(int gltf_texture, const s
         return Error(element, absl::StrCat("texture #", gltf_texture, " has no image"));
     const int image_index = model_.textures[gltf_texture].source;
     if (const auto it = texture_indices_.find(image_index); it != texture_indices_.end()) return it->second;
-    const tinygltf::Image& image = model_.images[image_index];
-    if (image.width <= 0 || image.height <= 0 || image.component < 3 || image.bits != 8 ||
-        image.image.size() < size_t(image.width) * image.height * image.component)
-        return Error(element, absl::StrCat("image #", image_index, " is not decodable 8-bit RGB(A)"));
-    Texture texture;
-    texture.width = image.width;
-    texture.height = image.height;
-    texture.texels.resize(size_t(image.width) * image.height);
-    for (size_t i = 0; i < texture.texels.size(); ++i)
-        for (int c = 0; c < 3; ++c)  // glTF base colour textures are sRGB-encoded
-            texture.texels[i][c] = SrgbToLinear(image.image[i * image.component + c] / 255.0f);
+    const auto encoded = images_.find(image_index);
+    if (encoded == images_.end()) return Error(element, absl::StrCat("image #", image_index, " has no data"));
+    // glTF base colour textures are sRGB-encoded 8-bit images (PNG or JPEG).
+    absl::StatusOr<Texture> texture = DecodeImage(encoded->second.bytes, encoded->second.name, limits_, {ImageEncoding::kSrgb});
+    if (!texture.ok())
+        return absl::Status(texture.status().code(), absl::StrCat(path_, ": ", element, ": ", texture.status().message()));
     const auto index = static_cast<int32_t>(scene_.textures.size());
-    scene_.textures.push_back(std::move(texture));
+    scene_.textures.push_back(std::move(*texture));
     texture_indices_[image_index] = index;
     return index;
 }
@@ -437,12 +464,14 @@ bool BundleWriteWholeFile(std::string*, const std::string&, const std::vector<un
 
 }  // namespace
 
-absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name) {
+absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name, const SceneLimits& limits) {
     if (absl::Status status = CheckSceneBundle(bundle); !status.ok())
         return absl::Status(status.code(), absl::StrCat(name, ": ", status.message()));
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({BundleFileExists, BundleExpandFilePath, BundleReadWholeFile, BundleWriteWholeFile,
                            const_cast<SceneBundle*>(&bundle)});
+    GltfImages images;
+    loader.SetImageLoader(KeepEncodedImage, &images);
     tinygltf::Model model;
     std::string error, warning;
     const std::string& main = bundle.files.at(bundle.main_file);
@@ -459,13 +488,7 @@ absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& nam
         const std::string first_line = error.substr(0, error.find('\n'));
         return absl::InvalidArgumentError(absl::StrCat(name, ": not a valid glTF file: ", first_line.empty() ? "parse failed" : first_line));
     }
-    return GltfSceneBuilder(name, model).Build();
-}
-
-absl::StatusOr<Scene> LoadGltf(const std::string& path) {
-    absl::StatusOr<SceneBundle> bundle = PackSceneBundle(path);
-    if (!bundle.ok()) return bundle.status();
-    return LoadGltf(*bundle, path);
+    return GltfSceneBuilder(name, model, limits, images).Build();
 }
 
 }  // namespace pf

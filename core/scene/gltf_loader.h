@@ -4,6 +4,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "core/scene/mesh_builder.h"
 #include "core/scene/scene.h"
 #include "core/scene/scene_bundle.h"
 
@@ -13,8 +14,8 @@ namespace pf {
 // an unreadable or malformed file, a scene without a camera or a light, NaN or Inf in a
 // transform or a vertex, an index out of range. Unsupported features are logged as warnings.
 // `name` prefixes the errors (the file the user gave).
-absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name);
-// Packs the scene at `path` into a bundle (see PackSceneBundle) and loads that.
-absl::StatusOr<Scene> LoadGltf(const std::string& path);
+// Meshes used by several nodes are read once; images are decoded (through OpenImageIO) only
+// where a material uses them, within `limits`.
+absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name, const SceneLimits& limits);
 
 }  // namespace pf

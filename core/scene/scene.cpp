@@ -9,7 +9,7 @@ float PunctualLight::SpotFalloff(float cos_axis) const {
     // KHR_lights_punctual, "Inner and Outer Cone Angles": a quadratic ramp between the cones.
     const float scale = 1.0f / std::max(0.001f, cos_inner - cos_outer);
     const float t = std::clamp((cos_axis - cos_outer) * scale, 0.0f, 1.0f);
-    return t * t;
+    return smooth_falloff ? t * t * (3.0f - 2.0f * t) : t * t;
 }
 
 SurfacePoint Scene::Surface(const RayHit& hit) const {

@@ -34,9 +34,11 @@ struct PunctualLight {
     Vec3 direction{0, 0, -1};      // spot, directional: the direction light travels
     Rgb intensity{1.0f};           // colour x intensity
     float cos_inner = 1.0f, cos_outer = 0.7071f;  // spot cone, cosines of the half angles
+    bool smooth_falloff = false;   // pbrt's smoothstep between the cones, not glTF's quadratic
     std::string name;
 
-    // glTF's smooth spot falloff for a direction whose cosine to the axis is cos_axis.
+    // The spot's falloff for a direction whose cosine to the axis is cos_axis: glTF's
+    // quadratic ramp between the cones, or pbrt's smoothstep.
     float SpotFalloff(float cos_axis) const;
 };
 
@@ -62,6 +64,16 @@ struct SurfacePoint {
     uint32_t material = 0;
 };
 
+// What a scene file asks of its render (pbrt's Film and Integrator "sppm"), used where the
+// render's own settings leave a choice open; zero or empty where the scene says nothing.
+struct SceneRenderHints {
+    int width = 0, height = 0;
+    double initial_radius = 0;        // R0, world units
+    uint64_t photons_per_epoch = 0;   // photons between radius updates
+    uint64_t photon_budget = 0;       // photons in all
+    std::string output;               // the image file name the scene suggests
+};
+
 struct Scene {
     std::string source;  // the file it was loaded from, for messages
     std::vector<Vec3> positions;
@@ -73,6 +85,7 @@ struct Scene {
     std::vector<PunctualLight> lights;
     Camera camera;
     Bounds bounds;
+    SceneRenderHints hints;
 
     SurfacePoint Surface(const RayHit& hit) const;
     // Diffuse reflectance or specular tint at a surface point, texture applied.

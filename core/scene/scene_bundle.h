@@ -1,4 +1,4 @@
-// A scene as a self-contained bundle: the main glTF file and every file it references, held
+// A scene as a self-contained bundle: the main scene file and every file it references, held
 // in memory under paths relative to the bundle's root. The farm ships scenes this way, and
 // every scene is loaded from one, so nothing outside a bundle is ever read.
 #pragma once
@@ -31,10 +31,5 @@ inline constexpr size_t kMaxBundleFiles = 4096;
 absl::Status CheckBundlePath(std::string_view path);
 // The main file present, every path acceptable, within the limits.
 absl::Status CheckSceneBundle(const SceneBundle& bundle);
-
-// Reads the scene at `scene_path` and every file it references, found the way the glTF
-// loader finds them: relative to the scene's folder. A reference that leaves the folder
-// (absolute, '..', a URL) is refused naming the file and the reference.
-absl::StatusOr<SceneBundle> PackSceneBundle(const std::string& scene_path);
 
 }  // namespace pf

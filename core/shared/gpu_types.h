@@ -119,7 +119,7 @@ struct GpuEmitter {
                      // point: 4 pi I; spot: I x cone solid angle; directional: E pi r^2);
                      // w: 1 / selection probability
     vec4 radiance;   // triangle: Le; point, spot: intensity I; directional: irradiance E
-    vec4 cone;       // spot: cos_inner, cos_outer, 1 / max(0.001, cos_inner - cos_outer)
+    vec4 cone;       // spot: cos_inner, cos_outer, 1 / max(0.001, cos_inner - cos_outer), smoothstep (1) or quadratic (0)
 };
 PF_GPU_LAYOUT(GpuEmitter, 112);
 

@@ -12,7 +12,7 @@
 #include "client/local_render.h"
 #include "core/ppm/camera_pass.h"
 #include "core/ppm/photon_pass.h"
-#include "core/scene/gltf_loader.h"
+#include "core/scene/scene_loader.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/vulkan_validation.h"
 #include "worker/backend_factory.h"
@@ -222,7 +222,7 @@ TEST(RenderTest, PhotonsAndDirectSamplesTurnedNanAreDroppedAndCounted) {
     // Loaded input cannot hold NaN (the loader refuses it), so it is planted after loading: the
     // quad's albedo becomes NaN. Every photon that scatters off it, and every direct sample
     // there, turns NaN: each must be dropped and counted, and the tally must stay finite.
-    absl::StatusOr<Scene> scene = LoadGltf(testing::WriteGltf(testing::LitQuadScene(), "nan-albedo.gltf"));
+    absl::StatusOr<Scene> scene = LoadScene(testing::WriteGltf(testing::LitQuadScene(), "nan-albedo.gltf"));
     ASSERT_TRUE(scene.ok()) << scene.status();
     absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(*scene);
     ASSERT_TRUE(tracer.ok());

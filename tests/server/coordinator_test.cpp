@@ -10,6 +10,7 @@
 #include <random>
 
 #include "client/local_render.h"
+#include "core/scene/scene_loader.h"
 #include "server/in_process_source.h"
 #include "worker/backend_factory.h"
 #include "worker/worker_loop.h"

@@ -13,7 +13,7 @@
 #include "core/ppm/job_spec.h"
 #include "core/ppm/progressive_estimate.h"
 #include "core/scene/emitters.h"
-#include "core/scene/gltf_loader.h"
+#include "core/scene/scene_loader.h"
 #include "tests/support/vulkan_validation.h"
 #include "worker/backend_factory.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
@@ -34,7 +34,7 @@ struct Rendering {
 
 std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size) {
     auto setup = std::make_unique<Rendering>();
-    setup->scene = *LoadGltf(std::string(PF_SOURCE_DIR) + "/scenes/" + name);
+    setup->scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + name);
     auto tracer = std::move(*embree::EmbreeTracer::Create(setup->scene));
     const CameraPassResult camera_pass = RunCameraPass(setup->scene, *tracer, {size, size, 2, 1});
     JobSpec spec;
@@ -166,7 +166,7 @@ TEST_F(VulkanBackendTest, BatchLargerThanOneDispatchTracesEveryPhoton) {
 
 TEST_F(VulkanBackendTest, KernelsAreSpecialisedToTheScenesFeatures) {
     for (const auto& [name, glass] : {std::pair{"cornell-box.gltf", false}, std::pair{"cornell-glass.gltf", true}}) {
-        const Scene scene = *LoadGltf(std::string(PF_SOURCE_DIR) + "/scenes/" + name);
+        const Scene scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + name);
         const absl::StatusOr<vk::GpuScene> gpu_scene = vk::BuildGpuScene(scene, Emitters(scene));
         ASSERT_TRUE(gpu_scene.ok());
         EXPECT_EQ(gpu_scene->features.dielectric, glass) << name;
@@ -181,7 +181,7 @@ TEST_F(VulkanBackendTest, KernelsAreSpecialisedToTheScenesFeatures) {
 }
 
 TEST_F(VulkanBackendTest, JobTooLargeForTheDeviceIsRefusedNamingTheLimit) {
-    const Scene scene = *LoadGltf(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
+    const Scene scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
     const vk::GpuScene gpu_scene = *vk::BuildGpuScene(scene, Emitters(scene));
     const vk::DeviceCapacity small{"small GPU", 64u << 20, 1u << 30};
     EXPECT_TRUE(vk::CheckJobFits(small, gpu_scene, 1'000'000).ok());

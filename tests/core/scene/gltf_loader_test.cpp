@@ -1,5 +1,5 @@
 // Loading the shipped scenes, and one-line errors that name the file and element for bad ones.
-#include "core/scene/gltf_loader.h"
+#include "core/scene/scene_loader.h"
 
 #include <gtest/gtest.h>
 
@@ -40,16 +40,16 @@ void ExpectError(const absl::StatusOr<Scene>& scene, const std::string& file, co
 
 TEST(GltfLoaderTest, LoadsTheShippedScenes) {
     for (const char* name : {"cornell-box.gltf", "cornell-glass.gltf", "caustic-glass.gltf", "furnace.gltf"}) {
-        const absl::StatusOr<Scene> scene = LoadGltf(ScenePath(name));
+        const absl::StatusOr<Scene> scene = LoadScene(ScenePath(name));
         ASSERT_TRUE(scene.ok()) << scene.status();
         EXPECT_GT(scene->triangles.size(), 0u);
         EXPECT_GT(scene->bounds.Diagonal(), 0.0f);
     }
-    const absl::StatusOr<Scene> glass = LoadGltf(ScenePath("cornell-glass.gltf"));
+    const absl::StatusOr<Scene> glass = LoadScene(ScenePath("cornell-glass.gltf"));
     ASSERT_TRUE(glass.ok());
     EXPECT_EQ(CountMaterials(*glass, MaterialType::kDielectric), 1);
     EXPECT_EQ(CountMaterials(*glass, MaterialType::kMirror), 1);
-    const absl::StatusOr<Scene> box = LoadGltf(ScenePath("cornell-box.gltf"));
+    const absl::StatusOr<Scene> box = LoadScene(ScenePath("cornell-box.gltf"));
     ASSERT_TRUE(box.ok());
     EXPECT_EQ(CountMaterials(*box, MaterialType::kDielectric), 0);
     // The measured camera: 35 mm lens on 25 mm film, looking down +z from z = -0.8.
@@ -60,8 +60,8 @@ TEST(GltfLoaderTest, LoadsTheShippedScenes) {
 
 TEST(GltfLoaderTest, GlbAndGltfLoadTheSameGeometry) {
     const testing::TestScene scene = testing::LitQuadScene();
-    const absl::StatusOr<Scene> text = LoadGltf(testing::WriteGltf(scene, "quad.gltf"));
-    const absl::StatusOr<Scene> binary = LoadGltf(testing::WriteGlb(scene, "quad.glb"));
+    const absl::StatusOr<Scene> text = LoadScene(testing::WriteGltf(scene, "quad.gltf"));
+    const absl::StatusOr<Scene> binary = LoadScene(testing::WriteGlb(scene, "quad.glb"));
     ASSERT_TRUE(text.ok()) << text.status();
     ASSERT_TRUE(binary.ok()) << binary.status();
     ASSERT_EQ(text->positions.size(), binary->positions.size());
@@ -74,7 +74,7 @@ TEST(GltfLoaderTest, PunctualLightsAreRead) {
     scene.lights = {R"({"type":"point","intensity":5,"color":[1,0.5,0.25]})",
                     R"({"type":"spot","intensity":2,"spot":{"innerConeAngle":0.1,"outerConeAngle":0.5}})",
                     R"({"type":"directional","intensity":3})"};
-    const absl::StatusOr<Scene> loaded = LoadGltf(testing::WriteGltf(scene, "lights.gltf"));
+    const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "lights.gltf"));
     ASSERT_TRUE(loaded.ok()) << loaded.status();
     ASSERT_EQ(loaded->lights.size(), 3u);
     EXPECT_EQ(loaded->lights[0].type, LightType::kPoint);
@@ -92,7 +92,7 @@ TEST(GltfLoaderTest, BaseColourTextureIsDecodedToLinearAndSampled) {
     scene.materials[0].texture_png_base64 =
         "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTkSuQmCC";
     scene.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
-    const absl::StatusOr<Scene> loaded = LoadGltf(testing::WriteGltf(scene, "textured.gltf"));
+    const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "textured.gltf"));
     ASSERT_TRUE(loaded.ok()) << loaded.status();
     ASSERT_EQ(loaded->textures.size(), 1u);
     const Texture& texture = loaded->textures[0];
@@ -108,26 +108,26 @@ TEST(GltfLoaderTest, BaseColourTextureIsDecodedToLinearAndSampled) {
 }
 
 TEST(GltfLoaderTest, MissingFileIsNamed) {
-    ExpectError(LoadGltf("/nonexistent/scene.gltf"), "/nonexistent/scene.gltf", "cannot open");
+    ExpectError(LoadScene("/nonexistent/scene.gltf"), "/nonexistent/scene.gltf", "cannot open");
 }
 
 TEST(GltfLoaderTest, MalformedJsonIsRefused) {
     const std::string path = testing::WriteTextFile("{\"asset\": {\"version\": \"2.0\"", "broken.gltf");
-    ExpectError(LoadGltf(path), path, "not a valid glTF");
+    ExpectError(LoadScene(path), path, "not a valid glTF");
 }
 
 TEST(GltfLoaderTest, SceneWithoutCameraIsRefused) {
     testing::TestScene scene = testing::LitQuadScene();
     scene.camera = false;
     const std::string path = testing::WriteGltf(scene, "no-camera.gltf");
-    ExpectError(LoadGltf(path), path, "no camera");
+    ExpectError(LoadScene(path), path, "no camera");
 }
 
 TEST(GltfLoaderTest, SceneWithoutLightIsRefused) {
     testing::TestScene scene = testing::LitQuadScene();
     scene.materials[1].emission = Rgb(0.0f);
     const std::string path = testing::WriteGltf(scene, "no-light.gltf");
-    ExpectError(LoadGltf(path), path, "no light");
+    ExpectError(LoadScene(path), path, "no light");
 }
 
 TEST(GltfLoaderTest, NonFiniteTransformIsRefusedNamingTheNode) {
@@ -137,25 +137,25 @@ TEST(GltfLoaderTest, NonFiniteTransformIsRefusedNamingTheNode) {
     scene.camera_extra = R"(,"scale":[1e200,1,1],"children":[3])";
     const std::string path = WriteEdited(scene, R"(],"meshes")", R"(,{"name":"inner","scale":[1e200,1,1]}],"meshes")",
                                          "inf-transform.gltf");
-    ExpectError(LoadGltf(path), path, "node 'inner' (#3): world transform overflows to NaN or Inf");
+    ExpectError(LoadScene(path), path, "node 'inner' (#3): world transform overflows to NaN or Inf");
 }
 
 TEST(GltfLoaderTest, VertexOverflowingItsTransformIsRefused) {
     const std::string path = WriteEdited(testing::LitQuadScene(), R"({"mesh":0})", R"({"mesh":0,"scale":[1e300,1,1]})",
                                          "vertex-overflow.gltf");
-    ExpectError(LoadGltf(path), path, "mesh #0 primitive 0: vertex 0 is not finite after its node's transform");
+    ExpectError(LoadScene(path), path, "mesh #0 primitive 0: vertex 0 is not finite after its transform");
 }
 
 TEST(GltfLoaderTest, NonFiniteVertexIsRefusedNamingTheMesh) {
     testing::TestScene scene = testing::LitQuadScene();
     scene.meshes[0].positions[4].y = std::numeric_limits<float>::quiet_NaN();
     const std::string path = testing::WriteGltf(scene, "nan-vertex.gltf");
-    ExpectError(LoadGltf(path), path, "mesh #0 primitive 0: vertex 4 position has NaN or Inf");
+    ExpectError(LoadScene(path), path, "mesh #0 primitive 0: vertex 4 position has NaN or Inf");
 }
 
 TEST(GltfLoaderTest, IndexOutOfRangeCannotReadOutsideTheBuffer) {
     const std::string path = WriteEdited(testing::LitQuadScene(), R"("count":6)", R"("count":600)", "overrun.gltf");
-    ExpectError(LoadGltf(path), path, "accessor #0 lies outside its buffer");
+    ExpectError(LoadScene(path), path, "accessor #0 lies outside its buffer");
 }
 
 }  // namespace

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "core/scene/gltf_loader.h"
+#include "core/scene/scene_loader.h"
 
 namespace pf {
 namespace {
@@ -51,7 +51,7 @@ TEST(SceneBundleTest, PacksReferencedFilesAndLoadsFromTheBundleAlone) {
     EXPECT_TRUE(bundle->files.contains("meshes/box.bin"));
     // Loading reads the bundle only: removing the files on disk changes nothing.
     std::filesystem::remove_all(std::filesystem::path(path).parent_path());
-    const absl::StatusOr<Scene> scene = LoadGltf(*bundle, "box.gltf");
+    const absl::StatusOr<Scene> scene = LoadScene(*bundle, "box.gltf");
     ASSERT_TRUE(scene.ok()) << scene.status();
     EXPECT_GT(scene->triangles.size(), 10u);
 }

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/scene/gltf_loader.h"
+#include "core/scene/scene_loader.h"
 #include "tests/support/gltf_builder.h"
 
 namespace pf {
@@ -11,7 +11,7 @@ namespace {
 
 SceneFeatures FeaturesOf(const Scene& scene) { return AnalyseFeatures(scene, Emitters(scene)); }
 
-Scene Shipped(const std::string& name) { return *LoadGltf(std::string(PF_SOURCE_DIR) + "/scenes/" + name); }
+Scene Shipped(const std::string& name) { return *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + name); }
 
 TEST(SceneFeaturesTest, ShippedScenesUseWhatTheyShow) {
     const SceneFeatures box = FeaturesOf(Shipped("cornell-box.gltf"));
@@ -31,7 +31,7 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     scene.meshes.resize(1);  // the emissive quad's material stays, unused
     scene.lights = {R"({"type":"spot","intensity":4,"spot":{"outerConeAngle":0.6}})", R"({"type":"point","intensity":0})"};
     scene.light_node_fields = {R"(,"translation":[0,0,1])", ""};
-    const SceneFeatures features = FeaturesOf(*LoadGltf(testing::WriteGltf(scene, "features.gltf")));
+    const SceneFeatures features = FeaturesOf(*LoadScene(testing::WriteGltf(scene, "features.gltf")));
     EXPECT_TRUE(features.spot_lights);
     EXPECT_FALSE(features.point_lights) << "a light of no power is no emitter";
     EXPECT_FALSE(features.triangle_lights) << "an emissive material on no triangle emits nothing";

@@ -9,10 +9,10 @@ mat3 FrameFromNormal(vec3 n) {
     return mat3(s, t, n);
 }
 
-// glTF's smooth spot falloff (PunctualLight::SpotFalloff).
+// The spot's falloff, glTF's quadratic or pbrt's smoothstep (PunctualLight::SpotFalloff).
 float SpotFalloff(GpuEmitter light, float cos_axis) {
     const float t = clamp((cos_axis - light.cone.y) * light.cone.z, 0.0, 1.0);
-    return t * t;
+    return light.cone.w != 0.0 ? t * t * (3.0 - 2.0 * t) : t * t;
 }
 
 uint EmitterKind(GpuEmitter emitter) { return floatBitsToUint(emitter.position.w); }

@@ -1,0 +1,61 @@
+// Image decoding from memory through OpenImageIO's IOProxy.
+#include "core/scene/image_decode.h"
+
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+
+namespace pf {
+
+absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& name, const SceneLimits& limits,
+                                    const ImageDecodeOptions& options) {
+    auto error = [&](const std::string& what) { return absl::InvalidArgumentError(absl::StrCat(name, ": ", what)); };
+    const size_t dot = name.rfind('.');
+    if (dot == std::string::npos) return error("image file has no extension to tell its format");
+    // OpenImageIO probes the file name on disk while it picks a reader; a name under
+    // /dev/null cannot be opened, so only the proxy's bytes are ever read.
+    const std::string probe_name = absl::StrCat("/dev/null/image", name.substr(dot));
+    OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
+    std::unique_ptr<OIIO::ImageInput> input =
+        OIIO::ImageInput::create(OIIO::string_view(probe_name), false, nullptr, &proxy);
+    if (!input) return error(absl::StrCat("not a readable image (", OIIO::geterror(), ")"));
+    if (!input->supports("ioproxy"))
+        return error(absl::StrCat("image format '", input->format_name(), "' cannot be read from a scene bundle"));
+    input->set_ioproxy(&proxy);
+    OIIO::ImageSpec spec;
+    if (!input->open(probe_name, spec)) return error(absl::StrCat("not a readable image (", input->geterror(), ")"));
+    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth != 1)
+        return error("image has no pixels or is a volume");
+    const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
+    if (pixels > limits.max_image_pixels)
+        return absl::ResourceExhaustedError(absl::StrCat(name, ": image is ", spec.width, "x", spec.height, ", over the limit of ",
+                                                         limits.max_image_pixels, " pixels"));
+    std::vector<float> values(pixels * size_t(spec.nchannels));
+    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data()))
+        return error(absl::StrCat("image data is corrupt (", input->geterror(), ")"));
+    ImageEncoding encoding = options.encoding;
+    if (encoding == ImageEncoding::kAuto)
+        encoding = spec.format.is_floating_point() ? ImageEncoding::kLinear : ImageEncoding::kSrgb;
+    auto to_linear = [&](float value) {
+        if (!std::isfinite(value)) return 0.0f;
+        switch (encoding) {
+            case ImageEncoding::kSrgb: return SrgbToLinear(std::clamp(value, 0.0f, 1.0f));
+            case ImageEncoding::kGamma: return static_cast<float>(std::pow(std::max(value, 0.0f), options.gamma));
+            default: return std::max(value, 0.0f);
+        }
+    };
+    Texture texture;
+    texture.width = spec.width;
+    texture.height = spec.height;
+    texture.texels.resize(pixels);
+    for (size_t i = 0; i < pixels; ++i)
+        for (int c = 0; c < 3; ++c)
+            texture.texels[i][c] = to_linear(values[i * spec.nchannels + (spec.nchannels < 3 ? 0 : c)]);
+    return texture;
+}
+
+}  // namespace pf

@@ -1,0 +1,61 @@
+// Appending a triangle mesh, given in its own space, to a world-space Scene: one place for
+// what every scene format needs (transform, winding, degenerate triangles, limits).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "core/math/transform.h"
+#include "core/scene/scene.h"
+
+namespace pf {
+
+struct TriangleMesh {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;   // empty, or one per position
+    std::vector<Point2> uvs;     // empty, or one per position
+    std::vector<uint32_t> indices;  // 3 per triangle, each below positions.size()
+};
+
+// Which side of a triangle is its front (where emission leaves and what "outside" is for glass).
+enum class FrontFace {
+    kObjectWinding,  // counter-clockwise in the mesh's own space, kept under a mirroring transform (glTF, pbrt meshes)
+    kWorldWinding,   // counter-clockwise after the transform (pbrt's quadrics, which a mirror turns inside out)
+    kVertexNormals,  // the side the interpolated vertex normals point to (pbrt meshes with "N")
+};
+
+// An affine map of texture coordinates: u' = m[0] u + m[1] v + m[2], v' = m[3] u + m[4] v + m[5]
+// (glTF's KHR_texture_transform, pbrt's uscale/udelta and its v axis pointing up). Applied to
+// the vertices when a mesh is added, so lookups pay nothing for it.
+struct UvTransform {
+    double m[6] = {1, 0, 0, 0, 1, 0};
+    Point2 Apply(const Point2& uv) const {
+        return {static_cast<float>(m[0] * uv.x + m[1] * uv.y + m[2]), static_cast<float>(m[3] * uv.x + m[4] * uv.y + m[5])};
+    }
+    UvTransform Then(const UvTransform& next) const;  // next after this
+};
+
+// Limits on what loading a scene may build, so a small hostile file cannot exhaust memory.
+struct SceneLimits {
+    uint64_t max_triangles = uint64_t{1} << 26;      // 64 M: ~5 GiB of scene
+    uint64_t max_image_pixels = uint64_t{1} << 26;   // per image: 8192 x 8192
+    int max_include_depth = 32;
+};
+
+struct MeshPlacement {
+    Transform world;           // object to world
+    uint32_t material = 0;     // index into Scene::materials
+    FrontFace front = FrontFace::kObjectWinding;
+    bool reverse = false;      // flip the front (pbrt's ReverseOrientation)
+    UvTransform uv;
+};
+
+// Appends `mesh` placed by `placement`. Triangles with no area are dropped. Errors name
+// `element`: a vertex not finite after the transform, an index out of range, the triangle
+// limit exceeded (RESOURCE_EXHAUSTED).
+absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement, const SceneLimits& limits,
+                        const std::string& element, Scene* scene);
+
+}  // namespace pf

@@ -1,0 +1,243 @@
+// pbrt-v4 cameras, film, integrator settings, shapes and lights onto the scene.
+#include <spdlog/spdlog.h>
+
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+#include "core/scene/pbrt/pbrt_scene_builder.h"
+#include "core/scene/pbrt/pbrt_shapes.h"
+#include "core/scene/ply_reader.h"
+
+namespace pf::pbrt {
+
+absl::Status PbrtSceneBuilder::Camera(const std::string& type, ParameterList& parameters, const Location& where) {
+    if (type != "perspective")
+        return ErrorAt(where, absl::StrCat("Camera \"", type, "\" is not supported (only \"perspective\")"));
+    if (camera_) return ErrorAt(where, absl::StrCat("a second Camera; the first is at ", camera_->where.ToString()));
+    CameraSettings camera;
+    camera.camera_from_world = state_.ctm;
+    camera.fov_degrees = parameters.Float("fov", 90.0);
+    camera.lens_radius = parameters.Float("lensradius", 0.0);
+    camera.focal_distance = parameters.Float("focaldistance", 1e6);
+    camera.frame_aspect = parameters.Float("frameaspectratio", 0.0);
+    camera.where = where;
+    if (!(camera.fov_degrees > 0 && camera.fov_degrees < 180)) return ErrorAt(where, "Camera: \"float fov\" must lie in (0, 180)");
+    if (!(camera.lens_radius >= 0 && camera.focal_distance > 0))
+        return ErrorAt(where, "Camera: \"float lensradius\" must be at least 0 and \"float focaldistance\" positive");
+    if (const std::optional<Transform> world_from_camera = state_.ctm.Inverse())
+        coordinate_systems_["camera"] = *world_from_camera;
+    else
+        return ErrorAt(where, "Camera: the current transform is singular");
+    camera_ = camera;
+    return absl::OkStatus();
+}
+
+absl::Status PbrtSceneBuilder::FinishCamera() {
+    if (camera_finished_) return absl::OkStatus();
+    camera_finished_ = true;
+    const CameraSettings camera = camera_.value_or(CameraSettings{});  // pbrt's default: at the origin, looking down +z
+    const Transform world_from_camera = *camera.camera_from_world.Inverse();
+    pf::Camera& out = scene_.camera;
+    out.position = Vec3(world_from_camera.ApplyPoint(Vec3d(0.0)));
+    // pbrt's image x runs along camera +x and y along camera +y: taking both from the
+    // transform keeps the picture the right way round in pbrt's left-handed convention.
+    out.forward = Vec3(Normalize(world_from_camera.ApplyVector(Vec3d(0, 0, 1))));
+    out.right = Vec3(Normalize(world_from_camera.ApplyVector(Vec3d(1, 0, 0))));
+    out.up = Vec3(Normalize(world_from_camera.ApplyVector(Vec3d(0, 1, 0))));
+    if (!IsFinite(out.position) || !IsFinite(out.forward) || !IsFinite(out.right) || !IsFinite(out.up))
+        return ErrorAt(camera.where, "Camera: the transform is degenerate");
+    const double aspect = camera.frame_aspect > 0 ? camera.frame_aspect : double(film_width_) / film_height_;
+    // pbrt's fov spans the image's shorter side.
+    const double half = 0.5 * camera.fov_degrees * kPiD / 180.0;
+    out.y_fov = static_cast<float>(aspect >= 1 ? 2 * half : 2 * std::atan(std::tan(half) / aspect));
+    out.aspect_ratio = static_cast<float>(aspect);
+    out.lens_radius = static_cast<float>(camera.lens_radius);
+    out.focal_distance = static_cast<float>(camera.focal_distance);
+    scene_.hints.width = film_width_;
+    scene_.hints.height = film_height_;
+    return absl::OkStatus();
+}
+
+absl::Status PbrtSceneBuilder::Film(ParameterList& parameters) {
+    film_width_ = parameters.Integer("xresolution", 1280);
+    film_height_ = parameters.Integer("yresolution", 720);
+    scene_.hints.output = parameters.String("filename", "");
+    if (film_width_ < 1 || film_height_ < 1 || film_width_ > 32768 || film_height_ > 32768)
+        return absl::InvalidArgumentError("Film: resolution must lie in 1..32768");
+    return absl::OkStatus();
+}
+
+absl::Status PbrtSceneBuilder::Integrator(const std::string& type, ParameterList& parameters, const Location& where) {
+    if (type != "sppm") {
+        for (const Parameter* p : parameters.Unused()) const_cast<Parameter*>(p)->used = true;
+        Warn(where, absl::StrCat("Integrator \"", type, "\": photonfarm renders with progressive photon mapping"));
+        return absl::OkStatus();
+    }
+    // SPPM's settings, mapped to ours: radius is R0; iterations x photonsperiteration is the
+    // photon budget, photonsperiteration the photons between radius updates (an epoch).
+    const double radius = parameters.Float("radius", 0.0);
+    const int iterations = parameters.Integer("iterations", 0);
+    const int photons_per_iteration = parameters.Integer("photonsperiteration", 0);
+    const int max_depth = parameters.Integer("maxdepth", 0);
+    parameters.Integer("seed", 0);
+    if (radius < 0 || iterations < 0 || photons_per_iteration < 0 || max_depth < 0)
+        return ErrorAt(where, "Integrator \"sppm\": parameters must not be negative");
+    scene_.hints.initial_radius = radius;
+    scene_.hints.photons_per_epoch = static_cast<uint64_t>(photons_per_iteration);
+    scene_.hints.photon_budget = static_cast<uint64_t>(iterations) * static_cast<uint64_t>(photons_per_iteration);
+    if (max_depth > 0)
+        Warn(where, "Integrator \"sppm\": \"maxdepth\" is not used; photonfarm ends paths by Russian roulette (unbiased)");
+    return absl::OkStatus();
+}
+
+absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& parameters, const Location& where) {
+    const std::string element = absl::StrCat(where.ToString(), ": Shape \"", type, "\"");
+    if (parameters.Has("alpha")) {
+        const Parameter* alpha = parameters.Find("alpha");
+        if (alpha->type != "float" || alpha->numbers.empty() || alpha->numbers[0] != 1.0)
+            Warn(where, "Shape: \"alpha\" cut-outs are not supported; the shape is opaque");
+        parameters.Float("alpha", 1.0);
+        const_cast<Parameter*>(alpha)->used = true;
+    }
+    absl::StatusOr<TriangleMesh> mesh;
+    FrontFace front = FrontFace::kObjectWinding;
+    if (type == "trianglemesh" || type == "loopsubdiv") {
+        if (type == "loopsubdiv") {
+            parameters.Integer("levels", 3);
+            Warn(where, "Shape \"loopsubdiv\": rendered as its control mesh, not subdivided");
+        }
+        mesh = TriangleMeshShape(parameters, where);
+    } else if (type == "bilinearmesh") {
+        mesh = BilinearMeshShape(parameters, where);
+    } else if (type == "sphere") {
+        mesh = SphereShape(parameters, where);
+        front = FrontFace::kWorldWinding;
+    } else if (type == "disk") {
+        mesh = DiskShape(parameters, where);
+        front = FrontFace::kWorldWinding;
+    } else if (type == "plymesh") {
+        const std::string filename = parameters.String("filename", "");
+        if (filename.empty()) return ErrorAt(where, "Shape \"plymesh\" needs \"string filename\"");
+        absl::StatusOr<std::string> path = ResolveReference(filename);
+        if (!path.ok()) return ErrorAt(where, absl::StrCat("Shape \"plymesh\": ", path.status().message()));
+        absl::StatusOr<std::string_view> bytes = files_.Read(*path);
+        if (!bytes.ok()) return absl::Status(bytes.status().code(), absl::StrCat(element, ": ", bytes.status().message()));
+        if (options_.references_only) return absl::OkStatus();
+        mesh = ReadPly(*bytes, *path, options_.limits);
+        if (!mesh.ok()) return absl::Status(mesh.status().code(), absl::StrCat(element, ": ", mesh.status().message()));
+    } else if (type == "cylinder" || type == "curve" || type == "bilinearpatch" || type == "hyperboloid" ||
+               type == "paraboloid" || type == "cone") {
+        for (const Parameter* p : parameters.Unused()) const_cast<Parameter*>(p)->used = true;
+        Warn(where, absl::StrCat("Shape \"", type, "\" is not supported; the shape is left out"));
+        return absl::OkStatus();
+    } else {
+        return ErrorAt(where, absl::StrCat("Shape \"", type, "\" is unknown"));
+    }
+    if (!mesh.ok()) return mesh.status();
+    if (!parameters.status().ok()) return parameters.status();
+    if (type != "sphere" && type != "disk" && !mesh->normals.empty()) front = FrontFace::kVertexNormals;
+    if (!current_object_.empty()) {
+        objects_[current_object_].push_back({std::move(*mesh), state_.ctm, front, state_, element});
+        return absl::OkStatus();
+    }
+    return AddShape(*mesh, state_.ctm, front, state_, element);
+}
+
+absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transform& world, FrontFace front,
+                                        const GraphicsState& state, const std::string& element) {
+    if (options_.references_only) return absl::OkStatus();
+    const MaterialRef& material = state.material >= 0 ? materials_[state.material] : DefaultMaterial();
+    if (material.interface) {
+        if (state.area_light) Warn(Location{}, absl::StrCat(element, ": an emitting \"interface\" shape is left out"));
+        return absl::OkStatus();
+    }
+    Rgb emission(0.0f);
+    if (state.area_light) {
+        emission = state.area_light->radiance;
+        if (state.area_light->power > 0) {
+            // "power": scale L so the shape emits that many watts, pi x area x L from one side.
+            double area = 0;
+            for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+                const Vec3d a = world.ApplyPoint(Vec3d(mesh.positions[mesh.indices[i]]));
+                const Vec3d b = world.ApplyPoint(Vec3d(mesh.positions[mesh.indices[i + 1]]));
+                const Vec3d c = world.ApplyPoint(Vec3d(mesh.positions[mesh.indices[i + 2]]));
+                area += 0.5 * Length(Cross(b - a, c - a));
+            }
+            const double luminance = 0.2126 * emission.x + 0.7152 * emission.y + 0.0722 * emission.z;
+            if (area > 0 && luminance > 0) emission *= static_cast<float>(state.area_light->power / (kPiD * area * luminance));
+        }
+    }
+    absl::StatusOr<uint32_t> index = SceneMaterial(state.material, emission);
+    if (!index.ok()) return index.status();
+    MeshPlacement placement{world, *index, front, state.reverse_orientation, material.uv};
+    return AppendMesh(mesh, placement, options_.limits, element, &scene_);
+}
+
+absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emission) {
+    const auto key = std::make_tuple(material, emission.x, emission.y, emission.z);
+    if (const auto it = scene_materials_.find(key); it != scene_materials_.end()) return it->second;
+    Material out = material >= 0 ? materials_[material].material : DefaultMaterial().material;
+    out.emission = emission;
+    const auto index = static_cast<uint32_t>(scene_.materials.size());
+    scene_.materials.push_back(out);
+    scene_materials_[key] = index;
+    return index;
+}
+
+const MaterialRef& PbrtSceneBuilder::DefaultMaterial() {
+    static const MaterialRef kDefault{Material{MaterialType::kDiffuse, Rgb(0.5f)}, {}, false};
+    return kDefault;
+}
+
+absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterList& parameters, const Location& where) {
+    if (!current_object_.empty()) return ErrorAt(where, "LightSource inside ObjectBegin is not allowed");
+    PunctualLight light;
+    const float scale = static_cast<float>(parameters.Float("scale", 1.0));
+    const double power = parameters.Float("power", 0.0);
+    auto luminance = [](const Rgb& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
+    if (type == "point" || type == "spot") {
+        const Rgb intensity = parameters.Color("I").value_or(Rgb(1.0f)) * scale;
+        const Vec3d from = parameters.Point3("from").value_or(Vec3d(0.0));
+        light.position = Vec3(state_.ctm.ApplyPoint(from));
+        light.intensity = intensity;
+        double solid_angle = 4 * kPiD;
+        if (type == "spot") {
+            const Vec3d to = parameters.Point3("to").value_or(Vec3d(0, 0, 1));
+            const double cone = parameters.Float("coneangle", 30.0), delta = parameters.Float("conedelta", 5.0);
+            if (!(cone > 0 && cone <= 90 && delta >= 0 && delta <= cone))
+                return ErrorAt(where, "LightSource \"spot\": needs 0 < coneangle <= 90 and 0 <= conedelta <= coneangle");
+            light.type = LightType::kSpot;
+            light.direction = Vec3(Normalize(state_.ctm.ApplyVector(to - from)));
+            light.cos_outer = static_cast<float>(std::cos(cone * kPiD / 180));
+            light.cos_inner = static_cast<float>(std::cos((cone - delta) * kPiD / 180));
+            light.smooth_falloff = true;  // pbrt's smoothstep between the cones
+            solid_angle = 2 * kPiD * ((1 - light.cos_inner) + (light.cos_inner - light.cos_outer) / 2);
+        }
+        if (power > 0 && luminance(intensity) > 0) light.intensity *= static_cast<float>(power / (solid_angle * luminance(intensity)));
+    } else if (type == "distant") {
+        const Vec3d from = parameters.Point3("from").value_or(Vec3d(0.0));
+        const Vec3d to = parameters.Point3("to").value_or(Vec3d(0, 0, 1));
+        light.type = LightType::kDirectional;
+        light.direction = Vec3(Normalize(state_.ctm.ApplyVector(to - from)));
+        light.intensity = parameters.Color("L").value_or(Rgb(1.0f)) * scale;
+        const double illuminance = parameters.Float("illuminance", 0.0);
+        if (illuminance > 0 && luminance(light.intensity) > 0)
+            light.intensity *= static_cast<float>(illuminance / luminance(light.intensity));
+    } else if (type == "infinite" || type == "goniometric" || type == "projection") {
+        for (const Parameter* p : parameters.Unused()) const_cast<Parameter*>(p)->used = true;
+        Warn(where, absl::StrCat("LightSource \"", type, "\" is not supported; the light is left out"));
+        return absl::OkStatus();
+    } else {
+        return ErrorAt(where, absl::StrCat("LightSource \"", type, "\" is unknown"));
+    }
+    if (!parameters.status().ok()) return parameters.status();
+    if (!IsFinite(light.intensity) || MinComponent(light.intensity) < 0 || !IsFinite(light.position) ||
+        !IsFinite(light.direction) || power < 0)
+        return ErrorAt(where, absl::StrCat("LightSource \"", type, "\": intensity, power and position must be finite and "
+                                           "non-negative, from and to distinct"));
+    light.name = where.ToString();
+    if (!options_.references_only) scene_.lights.push_back(light);
+    return absl::OkStatus();
+}
+
+}  // namespace pf::pbrt

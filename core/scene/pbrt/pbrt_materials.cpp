@@ -1,0 +1,208 @@
+// pbrt-v4 materials and textures onto photonfarm's: diffuse, smooth dielectric and
+// conductor (a mirror with the metal's normal-incidence reflectance), thin dielectric, and
+// coateddiffuse shaded as its diffuse base; image textures through OpenImageIO.
+#include <cmath>
+
+#include "absl/strings/match.h"
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+#include "core/scene/image_decode.h"
+#include "core/scene/pbrt/pbrt_scene_builder.h"
+
+namespace pf::pbrt {
+namespace {
+
+// Marks every parameter read, for materials mapped as a whole with one note.
+void ConsumeAll(ParameterList& parameters) {
+    for (const Parameter* p : parameters.Unused()) const_cast<Parameter*>(p)->used = true;
+}
+
+// Normal-incidence Fresnel reflectance of a conductor with index eta + i k, per channel.
+Rgb ConductorReflectance(const Rgb& eta, const Rgb& k) {
+    Rgb f0;
+    for (int c = 0; c < 3; ++c)
+        f0[c] = ((eta[c] - 1) * (eta[c] - 1) + k[c] * k[c]) / ((eta[c] + 1) * (eta[c] + 1) + k[c] * k[c]);
+    return f0;
+}
+
+}  // namespace
+
+absl::Status PbrtSceneBuilder::BaseColor(ParameterList& parameters, const std::string& name, Rgb fallback,
+                                         const Location& where, MaterialRef* material) {
+    material->material.base_color = fallback;
+    if (const std::optional<std::string> texture_name = parameters.TextureName(name)) {
+        const auto it = textures_.find(*texture_name);
+        if (it == textures_.end()) {
+            if (float_textures_.contains(*texture_name))
+                return ErrorAt(where, absl::StrCat("\"", name, "\" names float texture \"", *texture_name, "\"; it needs a spectrum texture"));
+            return ErrorAt(where, absl::StrCat("no texture named \"", *texture_name, "\""));
+        }
+        const TextureRef& texture = it->second;
+        if (!texture.unsupported.empty()) {
+            Warn(where, absl::StrCat("texture \"", *texture_name, "\" (", texture.unsupported, ") is not supported; using ",
+                                     "its material's default colour"));
+            return absl::OkStatus();
+        }
+        material->material.base_color = texture.scale;
+        material->material.base_color_texture = texture.index;
+        material->uv = texture.uv;
+    } else if (const std::optional<Rgb> color = parameters.Color(name)) {
+        material->material.base_color = *color;
+    }
+    Rgb& base = material->material.base_color;
+    if (!IsFinite(base) || MinComponent(base) < 0)
+        return ErrorAt(where, absl::StrCat("\"", name, "\" must be finite and non-negative"));
+    if (MaxComponent(base) > 1) {
+        Warn(where, absl::StrCat("\"", name, "\" above 1 would create energy; clamped to 1"));
+        base = Min(base, Rgb(1.0f));
+    }
+    return absl::OkStatus();
+}
+
+absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, ParameterList& parameters,
+                                                   const Location& where) {
+    MaterialRef material;
+    absl::Status status;
+    auto warn_rough = [&](const char* what) {
+        for (const char* name : {"roughness", "uroughness", "vroughness"}) {
+            const Parameter* p = parameters.Find(name);
+            if (p == nullptr) continue;
+            const_cast<Parameter*>(p)->used = true;
+            if (p->type != "float" || p->numbers.empty() || p->numbers[0] != 0)
+                Warn(p->where, absl::StrCat("Material \"", type, "\": roughness is not supported; ", what, " rendered smooth"));
+        }
+        parameters.Bool("remaproughness", true);
+    };
+    auto index_of_refraction = [&](double fallback) {
+        const Parameter* eta = parameters.Find("eta");
+        if (eta != nullptr && eta->type == "float") return parameters.Float("eta", fallback);
+        const std::optional<Rgb> color = parameters.Color("eta");
+        return color ? double(color->y) : fallback;
+    };
+    if (type == "diffuse") {
+        status = BaseColor(parameters, "reflectance", Rgb(0.5f), where, &material);
+    } else if (type == "coateddiffuse") {
+        status = BaseColor(parameters, "reflectance", Rgb(0.5f), where, &material);
+        ConsumeAll(parameters);
+        Warn(where, "Material \"coateddiffuse\": shaded as its diffuse base, without the glossy coating");
+    } else if (type == "dielectric" || type == "thindielectric") {
+        material.material.type = type == "dielectric" ? MaterialType::kDielectric : MaterialType::kThinDielectric;
+        material.material.base_color = Rgb(1.0f);
+        material.material.ior = static_cast<float>(index_of_refraction(1.5));
+        if (type == "dielectric") warn_rough("the glass is");
+        if (!(material.material.ior >= 1.0f && std::isfinite(material.material.ior)))
+            return ErrorAt(where, absl::StrCat("Material \"", type, "\": \"eta\" must be at least 1"));
+    } else if (type == "conductor") {
+        material.material.type = MaterialType::kMirror;
+        warn_rough("the metal is");
+        if (parameters.Has("reflectance")) {
+            status = BaseColor(parameters, "reflectance", Rgb(1.0f), where, &material);
+        } else {
+            const Parameter* eta_parameter = parameters.Find("eta");
+            const bool named = eta_parameter != nullptr && !eta_parameter->strings.empty();
+            const std::optional<Rgb> eta = parameters.Color("eta");
+            const std::optional<Rgb> k = parameters.Color("k");
+            if (named && eta) {
+                material.material.base_color = *eta;  // a named metal's spectrum gives its reflectance
+            } else if (eta || k) {
+                material.material.base_color = ConductorReflectance(eta.value_or(Rgb(0.2f)), k.value_or(Rgb(3.9f)));
+            } else {
+                material.material.base_color = *NamedMetalReflectance("metal-Cu-eta");  // pbrt's default, copper
+            }
+        }
+    } else if (type == "interface") {
+        material.interface = true;
+    } else if (type == "coatedconductor" || type == "measured" || type == "mix" || type == "subsurface" || type == "hair" ||
+               type == "diffusetransmission") {
+        ConsumeAll(parameters);
+        material.material.base_color = Rgb(0.5f);
+        Warn(where, absl::StrCat("Material \"", type, "\" is not supported; shaded as grey diffuse (0.5)"));
+    } else {
+        return ErrorAt(where, absl::StrCat("Material \"", type, "\" is unknown"));
+    }
+    if (!status.ok()) return status;
+    parameters.String("type", "");  // MakeNamedMaterial's
+    for (const char* name : {"displacement", "normalmap"})
+        if (parameters.Has(name)) {
+            const_cast<Parameter*>(parameters.Find(name))->used = true;
+            Warn(where, absl::StrCat("Material: \"", name, "\" is not supported; ignored"));
+        }
+    materials_.push_back(material);
+    return static_cast<int>(materials_.size() - 1);
+}
+
+absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::string& kind, const std::string& type,
+                                       ParameterList& parameters, const Location& where) {
+    if (kind == "float") {
+        ConsumeAll(parameters);
+        float_textures_[name] = type;
+        return absl::OkStatus();
+    }
+    if (kind != "spectrum") return ErrorAt(where, absl::StrCat("Texture \"", name, "\": class '", kind, "' is not \"spectrum\" or \"float\""));
+    TextureRef texture;
+    if (type == "imagemap") {
+        const std::string filename = parameters.String("filename", "");
+        if (filename.empty()) return ErrorAt(where, absl::StrCat("Texture \"", name, "\" needs \"string filename\""));
+        absl::StatusOr<std::string> path = ResolveReference(filename);
+        if (!path.ok()) return ErrorAt(where, absl::StrCat("Texture \"", name, "\": ", path.status().message()));
+        ImageDecodeOptions decode;
+        const std::string encoding = parameters.String("encoding", "");
+        if (encoding == "sRGB") {
+            decode.encoding = ImageEncoding::kSrgb;
+        } else if (encoding == "linear") {
+            decode.encoding = ImageEncoding::kLinear;
+        } else if (absl::StartsWith(encoding, "gamma ") && absl::SimpleAtod(encoding.substr(6), &decode.gamma) &&
+                   decode.gamma > 0) {
+            decode.encoding = ImageEncoding::kGamma;
+        } else if (!encoding.empty()) {
+            return ErrorAt(where, absl::StrCat("Texture \"", name, "\": encoding '", encoding, "' is not sRGB, linear or \"gamma g\""));
+        }
+        const double su = parameters.Float("uscale", 1), sv = parameters.Float("vscale", 1);
+        const double du = parameters.Float("udelta", 0), dv = parameters.Float("vdelta", 0);
+        // pbrt's (s, t) = (su u + du, sv v + dv) with t = 0 at the image's bottom row; photonfarm's
+        // textures put v = 0 at the top.
+        texture.uv.m[0] = su, texture.uv.m[2] = du, texture.uv.m[4] = -sv, texture.uv.m[5] = 1 - dv;
+        texture.scale = Rgb(static_cast<float>(parameters.Float("scale", 1.0)));
+        if (parameters.Bool("invert", false)) Warn(where, absl::StrCat("Texture \"", name, "\": \"invert\" is not supported; ignored"));
+        const std::string wrap = parameters.String("wrap", "repeat");
+        if (wrap != "repeat") Warn(where, absl::StrCat("Texture \"", name, "\": wrap \"", wrap, "\" is rendered as \"repeat\""));
+        parameters.String("filter", "");
+        parameters.Float("maxanisotropy", 8);
+        absl::StatusOr<std::string_view> bytes = files_.Read(*path);
+        if (!bytes.ok()) return absl::Status(bytes.status().code(), absl::StrCat(where.ToString(), ": Texture \"", name, "\": ", bytes.status().message()));
+        const std::pair<std::string, int> key(*path, static_cast<int>(decode.encoding) * 1000 + static_cast<int>(decode.gamma * 100));
+        if (options_.references_only) {
+            texture.index = kNoTexture;
+        } else if (const auto it = images_.find(key); it != images_.end()) {
+            texture.index = it->second;
+        } else {
+            absl::StatusOr<pf::Texture> image = DecodeImage(*bytes, *path, options_.limits, decode);
+            if (!image.ok()) return absl::Status(image.status().code(), absl::StrCat(where.ToString(), ": Texture \"", name, "\": ", image.status().message()));
+            texture.index = static_cast<int32_t>(scene_.textures.size());
+            scene_.textures.push_back(std::move(*image));
+            images_[key] = texture.index;
+        }
+    } else if (type == "constant") {
+        texture.scale = parameters.Color("value").value_or(Rgb(1.0f));
+    } else if (type == "scale") {
+        const float scale = static_cast<float>(parameters.Float("scale", 1.0));
+        if (const std::optional<std::string> inner = parameters.TextureName("tex")) {
+            const auto it = textures_.find(*inner);
+            if (it == textures_.end()) return ErrorAt(where, absl::StrCat("Texture \"", name, "\": no texture named \"", *inner, "\""));
+            texture = it->second;
+        } else {
+            texture.scale = parameters.Color("tex").value_or(Rgb(1.0f));
+        }
+        texture.scale *= scale;
+    } else {
+        ConsumeAll(parameters);
+        texture.unsupported = type;
+    }
+    if (!parameters.status().ok()) return parameters.status();
+    if (!IsFinite(texture.scale) || MinComponent(texture.scale) < 0)
+        return ErrorAt(where, absl::StrCat("Texture \"", name, "\": its values must be finite and non-negative"));
+    textures_[name] = texture;
+    return absl::OkStatus();
+}
+
+}  // namespace pf::pbrt

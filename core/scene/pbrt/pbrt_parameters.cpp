@@ -1,0 +1,208 @@
+// Typed lookups over a pbrt-v4 parameter list, and the named spectra pbrt scenes use.
+#include "core/scene/pbrt/pbrt_parameters.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+
+namespace pf::pbrt {
+Parameter* ParameterList::Lookup(std::string_view name, std::initializer_list<std::string_view> types,
+                                 size_t min_count) {
+    for (Parameter& parameter : parameters_) {
+        if (parameter.name != name) continue;
+        parameter.used = true;
+        if (std::find(types.begin(), types.end(), parameter.type) == types.end()) {
+            std::string expected;
+            for (std::string_view type : types) absl::StrAppend(&expected, expected.empty() ? "" : " or ", std::string(type));
+            Fail(parameter, absl::StrCat("has type '", parameter.type, "', expected ", expected));
+            return nullptr;
+        }
+        const size_t count = std::max({parameter.numbers.size(), parameter.strings.size(), parameter.bools.size()});
+        if (count < min_count) {
+            Fail(parameter, absl::StrCat("needs at least ", min_count, " values, has ", count));
+            return nullptr;
+        }
+        return &parameter;
+    }
+    return nullptr;
+}
+
+void ParameterList::Fail(const Parameter& parameter, const std::string& what) {
+    if (status_.ok())
+        status_ = absl::InvalidArgumentError(
+            absl::StrCat(parameter.where.ToString(), ": parameter \"", parameter.type, " ", parameter.name, "\" ", what));
+}
+
+double ParameterList::Float(std::string_view name, double fallback) {
+    const Parameter* p = Lookup(name, {"float"}, 1);
+    return p ? p->numbers[0] : fallback;
+}
+
+int ParameterList::Integer(std::string_view name, int fallback) {
+    const Parameter* p = Lookup(name, {"integer"}, 1);
+    return p ? static_cast<int>(p->numbers[0]) : fallback;
+}
+
+bool ParameterList::Bool(std::string_view name, bool fallback) {
+    const Parameter* p = Lookup(name, {"bool"}, 1);
+    return p ? bool(p->bools[0]) : fallback;
+}
+
+std::string ParameterList::String(std::string_view name, std::string_view fallback) {
+    const Parameter* p = Lookup(name, {"string"}, 1);
+    return p ? p->strings[0] : std::string(fallback);
+}
+
+std::optional<Vec3d> ParameterList::Point3(std::string_view name) {
+    const Parameter* p = Lookup(name, {"point3"}, 3);
+    if (!p) return std::nullopt;
+    return Vec3d(p->numbers[0], p->numbers[1], p->numbers[2]);
+}
+
+std::vector<double> ParameterList::Floats(std::string_view name) {
+    const Parameter* p = Lookup(name, {"float"}, 0);
+    return p ? p->numbers : std::vector<double>{};
+}
+
+std::vector<int> ParameterList::Integers(std::string_view name) {
+    const Parameter* p = Lookup(name, {"integer"}, 0);
+    if (!p) return {};
+    return std::vector<int>(p->numbers.begin(), p->numbers.end());
+}
+
+namespace {
+
+std::vector<Vec3d> Triples(const Parameter* p) {
+    std::vector<Vec3d> out;
+    if (!p) return out;
+    for (size_t i = 0; i + 2 < p->numbers.size(); i += 3) out.emplace_back(p->numbers[i], p->numbers[i + 1], p->numbers[i + 2]);
+    return out;
+}
+
+}  // namespace
+
+std::vector<Vec3d> ParameterList::Point3s(std::string_view name) {
+    Parameter* p = Lookup(name, {"point3"}, 0);
+    if (p && p->numbers.size() % 3 != 0) Fail(*p, "needs a multiple of 3 values");
+    return Triples(p);
+}
+
+std::vector<Vec3d> ParameterList::Normals(std::string_view name) {
+    Parameter* p = Lookup(name, {"normal3"}, 0);
+    if (p && p->numbers.size() % 3 != 0) Fail(*p, "needs a multiple of 3 values");
+    return Triples(p);
+}
+
+std::vector<double> ParameterList::Point2s(std::string_view name) {
+    Parameter* p = Lookup(name, {"point2"}, 0);
+    if (p && p->numbers.size() % 2 != 0) Fail(*p, "needs a multiple of 2 values");
+    return p ? p->numbers : std::vector<double>{};
+}
+
+std::optional<Rgb> ParameterList::Color(std::string_view name) {
+    Parameter* p = Lookup(name, {"rgb", "blackbody", "spectrum", "float"}, 1);
+    if (!p) return std::nullopt;
+    if (p->type == "rgb") {
+        if (p->numbers.size() != 3) {
+            Fail(*p, "needs 3 values");
+            return std::nullopt;
+        }
+        return Rgb(Vec3d(p->numbers[0], p->numbers[1], p->numbers[2]));
+    }
+    if (p->type == "float") return Rgb(static_cast<float>(p->numbers[0]));
+    if (p->type == "blackbody") return BlackbodyColor(p->numbers[0]);
+    // "spectrum": a named spectrum, or (wavelength, value) pairs.
+    if (!p->strings.empty()) {
+        if (std::optional<Rgb> metal = NamedMetalReflectance(p->strings[0])) return metal;
+        if (std::optional<double> ior = NamedGlassIor(p->strings[0])) return Rgb(static_cast<float>(*ior));
+        Fail(*p, absl::StrCat("names spectrum '", p->strings[0], "', which photonfarm does not know"));
+        return std::nullopt;
+    }
+    if (p->numbers.size() % 2 != 0) {
+        Fail(*p, "needs (wavelength, value) pairs");
+        return std::nullopt;
+    }
+    // Sampled spectrum: the mean value over each of three bands (blue 400-500 nm, green
+    // 500-600 nm, red 600-700 nm): a coarse match, enough for the smooth spectra scenes use.
+    std::array<double, 3> sum{}, count{};
+    for (size_t i = 0; i < p->numbers.size(); i += 2) {
+        const double lambda = p->numbers[i];
+        const int band = lambda < 400 || lambda >= 700 ? -1 : lambda < 500 ? 2 : lambda < 600 ? 1 : 0;
+        if (band >= 0) sum[band] += p->numbers[i + 1], count[band] += 1;
+    }
+    Rgb rgb;
+    for (int c = 0; c < 3; ++c) {
+        if (count[c] == 0) {
+            Fail(*p, "has no samples in one of 400-500, 500-600, 600-700 nm");
+            return std::nullopt;
+        }
+        rgb[c] = static_cast<float>(sum[c] / count[c]);
+    }
+    return rgb;
+}
+
+std::optional<std::string> ParameterList::TextureName(std::string_view name) {
+    for (const Parameter& parameter : parameters_)
+        if (parameter.name == name && parameter.type != "texture") return std::nullopt;
+    const Parameter* p = Lookup(name, {"texture"}, 1);
+    if (!p) return std::nullopt;
+    return p->strings[0];
+}
+
+bool ParameterList::Has(std::string_view name) const { return Find(name) != nullptr; }
+
+const Parameter* ParameterList::Find(std::string_view name) const {
+    for (const Parameter& parameter : parameters_)
+        if (parameter.name == name) return &parameter;
+    return nullptr;
+}
+
+std::vector<const Parameter*> ParameterList::Unused() const {
+    std::vector<const Parameter*> unused;
+    for (const Parameter& parameter : parameters_)
+        if (!parameter.used) unused.push_back(&parameter);
+    return unused;
+}
+
+std::optional<double> NamedGlassIor(std::string_view name) {
+    // pbrt-v4's named glasses (Schott catalogue), index at 550 nm.
+    static constexpr std::pair<std::string_view, double> kGlasses[] = {
+        {"glass-BK7", 1.5185},  {"glass-BAF10", 1.6718}, {"glass-FK51A", 1.4875}, {"glass-LASF9", 1.8550},
+        {"glass-F5", 1.6055},   {"glass-F10", 1.6259},   {"glass-F11", 1.6242},
+    };
+    for (const auto& [glass, ior] : kGlasses)
+        if (glass == name) return ior;
+    return std::nullopt;
+}
+
+std::optional<Rgb> NamedMetalReflectance(std::string_view name) {
+    // Normal-incidence reflectance ((n-1)^2 + k^2) / ((n+1)^2 + k^2) of pbrt-v4's measured
+    // metals, integrated to linear sRGB.
+    static constexpr std::pair<std::string_view, std::array<float, 3>> kMetals[] = {
+        {"Ag", {0.972f, 0.960f, 0.915f}}, {"Al", {0.913f, 0.922f, 0.924f}}, {"Au", {1.000f, 0.766f, 0.336f}},
+        {"Cu", {0.955f, 0.638f, 0.538f}}, {"CuZn", {0.910f, 0.778f, 0.423f}}, {"MgO", {0.068f, 0.069f, 0.072f}},
+        {"TiO2", {0.180f, 0.185f, 0.205f}},
+    };
+    for (const auto& [metal, f0] : kMetals)
+        for (std::string_view suffix : {"-eta", "-k"})
+            if (name == absl::StrCat("metal-", std::string(metal), std::string(suffix))) return Rgb(f0[0], f0[1], f0[2]);
+    return std::nullopt;
+}
+
+Rgb BlackbodyColor(double kelvin) {
+    // Kim et al. 2002's cubic fit of the Planckian locus in CIE xy, 1667 K to 25000 K.
+    const double t = std::clamp(kelvin, 1667.0, 25000.0);
+    const double x = t <= 4000 ? -0.2661239e9 / (t * t * t) - 0.2343589e6 / (t * t) + 0.8776956e3 / t + 0.179910
+                               : -3.0258469e9 / (t * t * t) + 2.1070379e6 / (t * t) + 0.2226347e3 / t + 0.240390;
+    const double y = t <= 2222   ? -1.1063814 * x * x * x - 1.34811020 * x * x + 2.18555832 * x - 0.20219683
+                     : t <= 4000 ? -0.9549476 * x * x * x - 1.37418593 * x * x + 2.09137015 * x - 0.16748867
+                                 : 3.0817580 * x * x * x - 5.87338670 * x * x + 3.75112997 * x - 0.37001483;
+    const double X = x / y, Y = 1.0, Z = (1.0 - x - y) / y;
+    const Vec3d rgb(3.2404542 * X - 1.5371385 * Y - 0.4985314 * Z, -0.9692660 * X + 1.8760108 * Y + 0.0415560 * Z,
+                    0.0556434 * X - 0.2040259 * Y + 1.0572252 * Z);
+    return Rgb(Vec3d(std::max(rgb.x, 0.0), std::max(rgb.y, 0.0), std::max(rgb.z, 0.0)));
+}
+
+}  // namespace pf::pbrt

@@ -1,0 +1,78 @@
+// A pbrt-v4 directive's parameter list ("float fov" 45 "rgb L" [1 1 1] ...), read with typed
+// lookups. A lookup of the wrong type or size records an error; parameters no lookup asked
+// for are reported as unused, each at its file:line:column.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "absl/status/status.h"
+#include "core/math/vec3.h"
+#include "core/scene/pbrt/pbrt_lexer.h"
+
+namespace pf::pbrt {
+
+struct Parameter {
+    std::string type;  // canonical: float integer bool string texture rgb blackbody spectrum
+                       // point2 vector2 point3 vector3 normal3
+    std::string name;
+    Location where;
+    std::vector<double> numbers;
+    std::vector<std::string> strings;
+    std::vector<bool> bools;
+    bool used = false;
+};
+
+class ParameterList {
+public:
+    ParameterList() = default;
+    explicit ParameterList(std::vector<Parameter> parameters) : parameters_(std::move(parameters)) {}
+
+    // Single values; `fallback` when absent. Wrong type or count: an error, and `fallback`.
+    double Float(std::string_view name, double fallback);
+    int Integer(std::string_view name, int fallback);
+    bool Bool(std::string_view name, bool fallback);
+    std::string String(std::string_view name, std::string_view fallback);
+    std::optional<Vec3d> Point3(std::string_view name);
+    // Arrays, empty when absent.
+    std::vector<double> Floats(std::string_view name);
+    std::vector<int> Integers(std::string_view name);
+    std::vector<Vec3d> Point3s(std::string_view name);    // point3 (and point)
+    std::vector<Vec3d> Normals(std::string_view name);    // normal3 (and normal)
+    std::vector<double> Point2s(std::string_view name);   // point2, flattened (u0 v0 u1 v1 ...)
+
+    // A colour parameter (rgb, blackbody, spectrum or float) as linear sRGB: rgb as given;
+    // blackbody T as the colour of a black body at T kelvin with luminance 1 (pbrt-v4
+    // normalises emission spectra to luminance); a named spectrum from the small table pbrt
+    // scenes use (metals' F0, glasses' index); a float as grey. Absent: nullopt.
+    std::optional<Rgb> Color(std::string_view name);
+    // A parameter of type "texture": the texture's name; absent: nullopt.
+    std::optional<std::string> TextureName(std::string_view name);
+    // Whether a parameter of this name exists (any type); does not mark it used.
+    bool Has(std::string_view name) const;
+    const Parameter* Find(std::string_view name) const;
+
+    // The first error a lookup recorded, or OK.
+    const absl::Status& status() const { return status_; }
+    // The parameters nobody looked up.
+    std::vector<const Parameter*> Unused() const;
+
+private:
+    Parameter* Lookup(std::string_view name, std::initializer_list<std::string_view> types, size_t min_count);
+    void Fail(const Parameter& parameter, const std::string& what);
+
+    std::vector<Parameter> parameters_;
+    absl::Status status_;
+};
+
+// The index of refraction of a named glass spectrum at 550 nm, or nullopt.
+std::optional<double> NamedGlassIor(std::string_view name);
+// Normal-incidence reflectance (linear sRGB) of a named metal ("metal-Cu-eta" or its "-k"
+// twin), or nullopt.
+std::optional<Rgb> NamedMetalReflectance(std::string_view name);
+// Linear sRGB of a black body at `kelvin`, scaled to luminance 1 (CIE Y = 1).
+Rgb BlackbodyColor(double kelvin);
+
+}  // namespace pf::pbrt

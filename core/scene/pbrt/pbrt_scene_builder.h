@@ -1,0 +1,129 @@
+// The state of loading one pbrt-v4 scene: graphics state, named things, and the scene built
+// so far. pbrt_loader.cpp parses directives; pbrt_materials.cpp and pbrt_builder.cpp make
+// materials, textures, shapes, lights and the camera.
+#pragma once
+
+#include <deque>
+#include <map>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/scene/mesh_builder.h"
+#include "core/scene/pbrt/pbrt_lexer.h"
+#include "core/scene/pbrt/pbrt_loader.h"
+#include "core/scene/pbrt/pbrt_parameters.h"
+#include "core/scene/scene.h"
+
+namespace pf::pbrt {
+
+// "file:line:column: what", INVALID_ARGUMENT.
+absl::Status ErrorAt(const Location& where, const std::string& what);
+
+// A texture as materials see it: an image (or none, for a constant) times a colour.
+struct TextureRef {
+    int32_t index = kNoTexture;  // into Scene::textures
+    Rgb scale{1.0f};
+    UvTransform uv;
+    std::string unsupported;     // non-empty: the texture class photonfarm cannot evaluate
+};
+
+struct MaterialRef {
+    Material material;           // emission left zero: it comes from the shape's area light
+    UvTransform uv;              // of its base colour texture
+    bool interface = false;      // "interface": a medium boundary, not a surface
+};
+
+struct AreaLight {
+    Rgb radiance;                // L x scale, W/(m^2 sr)
+    double power = 0;            // "power": total watts wanted from the shape, 0 if not given
+};
+
+struct GraphicsState {
+    Transform ctm;
+    bool reverse_orientation = false;
+    int material = -1;           // into materials_; -1: pbrt's default, diffuse 0.5
+    std::optional<AreaLight> area_light;
+};
+
+// A shape inside ObjectBegin/ObjectEnd, kept in the object's space until instanced.
+struct ObjectShape {
+    TriangleMesh mesh;
+    Transform world;             // the CTM where it was defined
+    FrontFace front;
+    GraphicsState state;
+    std::string element;
+};
+
+struct CameraSettings {
+    Transform camera_from_world;
+    double fov_degrees = 90, lens_radius = 0, focal_distance = 1e6, frame_aspect = 0;
+    Location where;
+};
+
+class PbrtSceneBuilder {
+public:
+    PbrtSceneBuilder(SceneFiles& files, std::string display_root, const PbrtLoadOptions& options)
+        : files_(files), display_root_(std::move(display_root)), options_(options) {}
+
+    absl::StatusOr<Scene> Load(const std::string& main_file);
+
+private:
+    // Parsing.
+    absl::Status ParseFile(const std::string& path, const Location* included_from, int depth);
+    absl::Status Directive(const std::vector<Token>& tokens, size_t* pos, int depth);
+    absl::StatusOr<std::string> ReadString(const std::vector<Token>& tokens, size_t* pos, const Token& directive);
+    absl::StatusOr<std::vector<double>> ReadNumbers(const std::vector<Token>& tokens, size_t* pos, const Token& directive,
+                                                    size_t count);
+    absl::StatusOr<ParameterList> ReadParameters(const std::vector<Token>& tokens, size_t* pos);
+
+    // Directives.
+    absl::Status Camera(const std::string& type, ParameterList& parameters, const Location& where);
+    absl::Status Film(ParameterList& parameters);
+    absl::Status Integrator(const std::string& type, ParameterList& parameters, const Location& where);
+    absl::Status Shape(const std::string& type, ParameterList& parameters, const Location& where);
+    absl::Status AddShape(const TriangleMesh& mesh, const Transform& world, FrontFace front, const GraphicsState& state,
+                          const std::string& element);
+    absl::StatusOr<int> MakeMaterial(const std::string& type, ParameterList& parameters, const Location& where);
+    absl::Status BaseColor(ParameterList& parameters, const std::string& name, Rgb fallback, const Location& where,
+                           MaterialRef* material);
+    absl::Status Texture(const std::string& name, const std::string& kind, const std::string& type,
+                         ParameterList& parameters, const Location& where);
+    absl::Status LightSource(const std::string& type, ParameterList& parameters, const Location& where);
+    absl::Status ApplyTransform(const Transform& transform);
+    absl::Status FinishCamera();
+
+    void Warn(const Location& where, const std::string& what);
+    void WarnUnused(const ParameterList& parameters, const std::string& directive);
+    absl::StatusOr<uint32_t> SceneMaterial(int material, Rgb emission);
+    static const MaterialRef& DefaultMaterial();
+
+    SceneFiles& files_;
+    std::string display_root_;
+    PbrtLoadOptions options_;
+    std::deque<std::string> file_names_;  // what tokens' locations point into
+
+    Scene scene_;
+    GraphicsState state_;
+    std::vector<GraphicsState> attribute_stack_;
+    std::vector<std::pair<Transform, bool>> transform_stack_;  // TransformBegin/End (pbrt-v3)
+    std::map<std::string, Transform> coordinate_systems_;
+    std::optional<CameraSettings> camera_;
+    bool in_world_ = false, transform_at_start_ = true, camera_finished_ = false;
+    int film_width_ = 1280, film_height_ = 720;
+
+    std::vector<MaterialRef> materials_;
+    std::map<std::string, int> named_materials_;
+    std::map<std::string, TextureRef> textures_;
+    std::map<std::string, std::string> float_textures_;  // name -> class, unused by photonfarm
+    std::map<std::pair<std::string, int>, int32_t> images_;  // (path, encoding) -> Scene::textures
+    std::map<std::tuple<int, float, float, float>, uint32_t> scene_materials_;
+
+    std::map<std::string, std::vector<ObjectShape>> objects_;
+    std::string current_object_;
+    std::map<std::string, int> warning_counts_;
+};
+
+}  // namespace pf::pbrt

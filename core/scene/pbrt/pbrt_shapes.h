@@ -1,0 +1,25 @@
+// pbrt-v4 shapes as triangle meshes in object space: trianglemesh and bilinearmesh as given,
+// sphere and disk tessellated finely enough that their facets stay below a pixel in the
+// scenes photonfarm renders (with interpolated normals, so glass spheres refract smoothly).
+#pragma once
+
+#include "absl/status/statusor.h"
+#include "core/scene/mesh_builder.h"
+#include "core/scene/pbrt/pbrt_parameters.h"
+
+namespace pf::pbrt {
+
+// Segments around a full turn, and rings from pole to pole, of a tessellated sphere or disk.
+inline constexpr int kQuadricSegments = 128, kSphereRings = 64;
+
+// "point3 P", "integer indices" (optional for exactly 3 vertices), "normal N", "point2 uv".
+absl::StatusOr<TriangleMesh> TriangleMeshShape(ParameterList& parameters, const Location& where);
+// Bilinear patches given by "point3 P" and 4 "indices" each (p00 p10 p01 p11), two triangles a patch.
+absl::StatusOr<TriangleMesh> BilinearMeshShape(ParameterList& parameters, const Location& where);
+// "radius" (1), "zmin" (-radius), "zmax" (radius), "phimax" (360): normals point outward,
+// uv as pbrt's (phi / phimax, (theta - theta_min) / (theta_max - theta_min)).
+absl::StatusOr<TriangleMesh> SphereShape(ParameterList& parameters, const Location& where);
+// "height" (0), "radius" (1), "innerradius" (0), "phimax" (360): facing +z.
+absl::StatusOr<TriangleMesh> DiskShape(ParameterList& parameters, const Location& where);
+
+}  // namespace pf::pbrt

@@ -1,0 +1,146 @@
+// The scene formats behind one door, and packing a scene's files into a bundle.
+#include "core/scene/scene_loader.h"
+
+#include <tiny_gltf.h>
+
+#include <filesystem>
+
+#include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
+#include "core/scene/gltf_loader.h"
+#include "core/scene/pbrt/pbrt_loader.h"
+#include "core/scene/scene_files.h"
+
+namespace pf {
+namespace {
+
+enum class SceneFormat { kGltf, kGlb, kPbrt, kUnknown };
+
+SceneFormat FormatOf(const std::string& path) {
+    if (absl::EndsWithIgnoreCase(path, ".gltf")) return SceneFormat::kGltf;
+    if (absl::EndsWithIgnoreCase(path, ".glb")) return SceneFormat::kGlb;
+    if (absl::EndsWithIgnoreCase(path, ".pbrt")) return SceneFormat::kPbrt;
+    return SceneFormat::kUnknown;
+}
+
+absl::Status UnknownFormat(const std::string& name) {
+    return absl::InvalidArgumentError(
+        absl::StrCat(name, ": unknown scene format (photonfarm reads .gltf, .glb and .pbrt files)"));
+}
+
+// The folder part of the name the user gave, so pbrt messages name files as the user sees them.
+std::string DisplayRoot(const std::string& name, const std::string& main_file) {
+    if (!absl::EndsWith(name, main_file)) return "";
+    std::string root = name.substr(0, name.size() - main_file.size());
+    while (!root.empty() && root.back() == '/') root.pop_back();
+    return root;
+}
+
+// tinygltf's file callbacks while packing: files are read through PackingFiles, which
+// records them; a path that would leave the folder is refused and remembered as the error.
+struct PackState {
+    PackingFiles* files;
+    absl::Status error;
+};
+
+bool PackFileExists(const std::string& path, void* user) {
+    auto* state = static_cast<PackState*>(user);
+    if (absl::Status status = CheckBundlePath(path); !status.ok()) {
+        if (state->error.ok()) state->error = status;
+        return false;
+    }
+    return true;
+}
+
+std::string PackExpandFilePath(const std::string& path, void*) { return path; }
+
+bool PackReadWholeFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user) {
+    auto* state = static_cast<PackState*>(user);
+    if (!PackFileExists(path, user)) return false;
+    absl::StatusOr<std::string_view> contents = state->files->Read(path);
+    if (!contents.ok()) {
+        if (error) *error = std::string(contents.status().message());
+        if (contents.status().code() == absl::StatusCode::kResourceExhausted && state->error.ok()) state->error = contents.status();
+        return false;
+    }
+    out->assign(contents->begin(), contents->end());
+    return true;
+}
+
+bool NoWrite(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
+// Packing only needs to know which files the scene reads; images are decoded once, by the load.
+bool SkipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+                       void*) {
+    return true;
+}
+
+absl::Status PackGltf(const std::string& scene_path, const std::string& main, bool binary, PackingFiles* files) {
+    PackState state{files, absl::OkStatus()};
+    tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks({PackFileExists, PackExpandFilePath, PackReadWholeFile, NoWrite, &state});
+    loader.SetImageLoader(SkipImageDecoding, nullptr);
+    tinygltf::Model model;
+    std::string error, warning;
+    const auto* bytes = reinterpret_cast<const unsigned char*>(main.data());
+    const bool loaded = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, bytes, main.size(), "")
+                               : loader.LoadASCIIFromString(&model, &error, &warning, main.data(), main.size(), "");
+    if (!state.error.ok()) return absl::Status(state.error.code(), absl::StrCat(scene_path, ": ", state.error.message()));
+    if (!loaded) {
+        const std::string first_line = error.substr(0, error.find('\n'));
+        return absl::InvalidArgumentError(
+            absl::StrCat(scene_path, ": not a valid glTF file: ", first_line.empty() ? "parse failed" : first_line));
+    }
+    return absl::OkStatus();
+}
+
+}  // namespace
+
+bool IsSceneFile(const std::string& path) { return FormatOf(path) != SceneFormat::kUnknown; }
+
+absl::StatusOr<Scene> LoadScene(const SceneBundle& bundle, const std::string& name, const SceneLoadOptions& options) {
+    if (absl::Status status = CheckSceneBundle(bundle); !status.ok())
+        return absl::Status(status.code(), absl::StrCat(name, ": ", status.message()));
+    switch (FormatOf(bundle.main_file)) {
+        case SceneFormat::kGltf:
+        case SceneFormat::kGlb: return LoadGltf(bundle, name, options.limits);
+        case SceneFormat::kPbrt: {
+            BundleFiles files(bundle);
+            return LoadPbrt(files, bundle.main_file, DisplayRoot(name, bundle.main_file),
+                            {options.limits, false, options.warnings});
+        }
+        case SceneFormat::kUnknown: break;
+    }
+    return UnknownFormat(name);
+}
+
+absl::StatusOr<Scene> LoadScene(const std::string& path, const SceneLoadOptions& options) {
+    absl::StatusOr<SceneBundle> bundle = PackSceneBundle(path);
+    if (!bundle.ok()) return bundle.status();
+    return LoadScene(*bundle, path, options);
+}
+
+absl::StatusOr<SceneBundle> PackSceneBundle(const std::string& scene_path) {
+    const SceneFormat format = FormatOf(scene_path);
+    if (format == SceneFormat::kUnknown) return UnknownFormat(scene_path);
+    const std::filesystem::path path(scene_path);
+    SceneBundle bundle;
+    bundle.main_file = path.filename().string();
+    PackingFiles files(path.parent_path(), &bundle);
+    absl::Status status;
+    if (format == SceneFormat::kPbrt) {
+        if (!std::filesystem::is_regular_file(path)) return absl::NotFoundError(absl::StrCat(scene_path, ": cannot open file"));
+        status = LoadPbrt(files, bundle.main_file, path.parent_path().string(), {SceneLimits{}, true, nullptr}).status();
+    } else {
+        absl::StatusOr<std::string> main = ReadWholeFile(path);
+        if (!main.ok()) return main.status();
+        status = PackGltf(scene_path, *main, format == SceneFormat::kGlb, &files);
+        bundle.files[bundle.main_file] = std::move(*main);
+    }
+    if (!status.ok()) return status;
+    if (absl::Status checked = CheckSceneBundle(bundle); !checked.ok())
+        return absl::Status(checked.code(), absl::StrCat(scene_path, ": ", checked.message()));
+    return bundle;
+}
+
+}  // namespace pf
