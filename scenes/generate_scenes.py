@@ -1,9 +1,12 @@
 #!/usr/bin/env python3
-"""Writes the shipped glTF 2.0 scenes of scenes/ (run: python3 scenes/generate_scenes.py).
+"""Writes the shipped scenes of scenes/ (run: python3 scenes/generate_scenes.py), each twice:
+as glTF 2.0 (scenes/NAME.gltf) and as pbrt-v4 (scenes/pbrt/NAME.pbrt), the same scene in both.
 
-Standard library only. Each scene is one self-contained .gltf with its buffer embedded as a
-base64 data URI, so a scene is a single file. Units are metres; emission is radiance in
-W/(m^2 sr) per channel (emissiveFactor x KHR_materials_emissive_strength).
+Standard library only. Each glTF scene is one self-contained .gltf with its buffer embedded
+as a base64 data URI, so a scene is a single file. The pbrt forms use what pbrt scenes use:
+an Include for the shared Cornell room, bilinear patches, spheres, a binary PLY mesh, named
+materials and area lights. Units are metres; emission is radiance in W/(m^2 sr) per channel
+(emissiveFactor x KHR_materials_emissive_strength in glTF, "rgb L" in pbrt).
 """
 import base64
 import json
@@ -97,6 +100,26 @@ class GltfWriter:
             fields["rotation"] = look_rotation(position or (0, 0, 0), target)
         self.node(name, **fields)
 
+    def sphere(self, name, center, radius, material, as_mesh=False):
+        """A UV sphere about the y axis, with vertex normals."""
+        positions, indices, normals = uv_sphere(center, radius)
+        self.mesh(name, positions, indices, material, normals)
+
+    def quads(self, name, quad_list, material, ply=None):
+        """Planar quads (4 corners each, counter-clockwise seen from the lit side)."""
+        positions, indices = [], []
+        for quad in quad_list:
+            base = len(positions)
+            positions.extend([[float(c) for c in p] for p in quad])
+            indices.extend([base, base + 1, base + 2, base, base + 2, base + 3])
+        self.mesh(name, positions, indices, material)
+
+    def begin_shared(self, name):
+        """Starts a part other scenes share (the pbrt form puts it in its own file)."""
+
+    def end_shared(self):
+        pass
+
     def write(self, path):
         self.doc["buffers"] = [{"byteLength": len(self.blob), "uri":
                                 "data:application/octet-stream;base64," +
@@ -141,17 +164,8 @@ def look_rotation(eye, target):
     return normalize(q)
 
 
-def quads(name, quad_list, material, writer, scale=0.001):
-    """Adds planar quads (4 corners each, counter-clockwise seen from the lit side)."""
-    positions, indices = [], []
-    for quad in quad_list:
-        base = len(positions)
-        positions.extend([[c * scale for c in p] for p in quad])
-        indices.extend([base, base + 1, base + 2, base, base + 2, base + 3])
-    writer.mesh(name, positions, indices, material)
-
-
-def sphere(name, center, radius, material, writer, rings=48, segments=96):
+def uv_sphere(center, radius, rings=48, segments=96):
+    """Positions, indices and normals of a UV sphere about the y axis."""
     positions, normals, indices = [], [], []
     for i in range(rings + 1):
         theta = math.pi * i / rings
@@ -167,7 +181,12 @@ def sphere(name, center, radius, material, writer, rings=48, segments=96):
                 indices.extend([a, a + 1, b])
             if i != rings - 1:
                 indices.extend([a + 1, b + 1, b])
-    writer.mesh(name, positions, indices, material, normals)
+    return positions, indices, normals
+
+
+def mm(quad_list):
+    """Millimetres to metres."""
+    return [[[c * 0.001 for c in p] for p in quad] for quad in quad_list]
 
 
 # The Cornell box as measured (Cornell University Program of Computer Graphics), in mm.
@@ -194,52 +213,47 @@ LIGHT_RADIANCE = (17.0, 12.0, 4.0)
 
 
 def cornell_room(writer):
+    writer.begin_shared("cornell-room")
     white = writer.material("white", WHITE)
     for name in ("floor", "ceiling", "back"):
-        quads(name, [CORNELL_WALLS[name]], white, writer)
-    quads("left_red", [CORNELL_WALLS["left_red"]], writer.material("red", RED), writer)
-    quads("right_green", [CORNELL_WALLS["right_green"]], writer.material("green", GREEN), writer)
-    quads("light", [CORNELL_LIGHT], writer.material("light", (0.78, 0.78, 0.78), LIGHT_RADIANCE),
-          writer)
+        writer.quads(name, mm([CORNELL_WALLS[name]]), white)
+    writer.quads("left_red", mm([CORNELL_WALLS["left_red"]]), writer.material("red", RED))
+    writer.quads("right_green", mm([CORNELL_WALLS["right_green"]]), writer.material("green", GREEN))
+    writer.quads("light", mm([CORNELL_LIGHT]),
+                 writer.material("light", (0.78, 0.78, 0.78), LIGHT_RADIANCE))
+    writer.end_shared()
     # The measured camera: 35 mm focal length on a 25 mm film, looking down +z.
     writer.camera([0.278, 0.273, -0.8], [0.278, 0.273, 0.0], math.degrees(2 * math.atan(12.5 / 35)))
     return white
 
 
-def cornell_box():
-    writer = GltfWriter()
+def cornell_box(writer):
     white = cornell_room(writer)
-    quads("short_block", SHORT_BLOCK, white, writer)
-    quads("tall_block", TALL_BLOCK, white, writer)
-    return writer
+    writer.quads("short_block", mm(SHORT_BLOCK), white)
+    writer.quads("tall_block", mm(TALL_BLOCK), white, ply="tall-block")
 
 
-def cornell_glass():
-    writer = GltfWriter()
+def cornell_glass(writer):
     cornell_room(writer)
-    sphere("mirror_sphere", [0.385, 0.1, 0.37], 0.1,
-           writer.material("mirror", (0.95, 0.95, 0.95), mirror=True), writer)
-    sphere("glass_sphere", [0.175, 0.1, 0.18], 0.1,
-           writer.material("glass", (1.0, 1.0, 1.0), glass_ior=1.5), writer)
-    return writer
+    writer.sphere("mirror_sphere", [0.385, 0.1, 0.37], 0.1,
+                  writer.material("mirror", (0.95, 0.95, 0.95), mirror=True))
+    writer.sphere("glass_sphere", [0.175, 0.1, 0.18], 0.1,
+                  writer.material("glass", (1.0, 1.0, 1.0), glass_ior=1.5))
 
 
-def caustic_glass():
-    writer = GltfWriter()
-    quads("plane", [[[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]],
-          writer.material("plane", (0.75, 0.75, 0.75)), writer, scale=1.0)
-    sphere("glass_sphere", [0, 0.5, 0], 0.5,
-           writer.material("glass", (1.0, 1.0, 1.0), glass_ior=1.5), writer)
+def caustic_glass(writer):
+    writer.quads("plane", [[[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]],
+                 writer.material("plane", (0.75, 0.75, 0.75)))
+    writer.sphere("glass_sphere", [0, 0.5, 0], 0.5,
+                  writer.material("glass", (1.0, 1.0, 1.0), glass_ior=1.5), as_mesh=True)
     s = 0.05
-    quads("light", [[[1.5 - s, 2.5, -s], [1.5 + s, 2.5, -s], [1.5 + s, 2.5, s], [1.5 - s, 2.5, s]]],
-          writer.material("light", (0.0, 0.0, 0.0), (4000.0, 4000.0, 4000.0)), writer, scale=1.0)
+    writer.quads("light", [[[1.5 - s, 2.5, -s], [1.5 + s, 2.5, -s], [1.5 + s, 2.5, s], [1.5 - s, 2.5, s]]],
+                 writer.material("light", (0.0, 0.0, 0.0), (4000.0, 4000.0, 4000.0)))
     writer.camera([-0.6, 2.6, 3.4], [0.1, 0.2, 0.0], 40.0)
-    return writer
 
 
-def furnace(albedo=0.5, emission=1.0):
+def furnace(writer, albedo=0.5, emission=1.0):
     """A closed cube whose every wall has albedo rho and emits Le: L = Le / (1 - rho) everywhere."""
-    writer = GltfWriter()
     material = writer.material("wall", (albedo,) * 3, (emission,) * 3)
     h = 1.0
     faces = []
@@ -253,18 +267,164 @@ def furnace(albedo=0.5, emission=1.0):
                 p[axis], p[u], p[v] = side, a, b
                 face.append(p)
             faces.append(face[::-1] if side > 0 else face)
-    quads("room", faces, material, writer, scale=1.0)
+    writer.quads("room", faces, material)
     writer.camera([0.0, 0.0, 0.5], [0.3, -0.2, -1.0], 70.0)
-    return writer
 
 
-def furnace_glass():
+def furnace_glass(writer):
     """The furnace with a clear glass sphere in view: lossless scattering leaves the uniform
     radiance field uniform, so every pixel, through the glass or not, is still Le / (1 - rho)."""
-    writer = furnace()
-    sphere("glass_sphere", [0.25, -0.3, -0.45], 0.35,
-           writer.material("glass", (1.0, 1.0, 1.0), glass_ior=1.5), writer)
-    return writer
+    furnace(writer)
+    writer.sphere("glass_sphere", [0.25, -0.3, -0.45], 0.35,
+                  writer.material("glass", (1.0, 1.0, 1.0), glass_ior=1.5))
+
+
+class PbrtWriter:
+    """The same scene calls as GltfWriter, written as a pbrt-v4 scene."""
+
+    def __init__(self, name):
+        self.name = name
+        self.header = []
+        self.world = []
+        self.shared = None          # (name, lines) while a shared part is being written
+        self.files = {}             # extra files: relative path -> bytes
+        self.materials = {}
+
+    def _out(self):
+        return self.shared[1] if self.shared else self.world
+
+    def material(self, name, color=(0.8, 0.8, 0.8), emission=None, mirror=False, glass_ior=None):
+        if mirror:
+            line = 'MakeNamedMaterial "%s" "string type" "conductor" "rgb reflectance" %s' % (name, rgb(color))
+        elif glass_ior is not None:
+            line = 'MakeNamedMaterial "%s" "string type" "dielectric" "float eta" %s' % (name, num(glass_ior))
+        else:
+            line = 'MakeNamedMaterial "%s" "string type" "diffuse" "rgb reflectance" %s' % (name, rgb(color))
+        self._out().append(line)
+        self.materials[name] = emission
+        return name
+
+    def _begin(self, name, material):
+        out = self._out()
+        out.append("")
+        out.append("# " + name)
+        out.append("AttributeBegin")
+        if self.materials[material] is not None:
+            out.append('    AreaLightSource "diffuse" "rgb L" %s' % rgb(self.materials[material]))
+        out.append('    NamedMaterial "%s"' % material)
+        return out
+
+    def quads(self, name, quad_list, material, ply=None):
+        out = self._begin(name, material)
+        points = [c for quad in quad_list for p in quad for c in p]
+        if ply:
+            path = "meshes/%s.ply" % ply
+            self.files[path] = ply_quads(quad_list)
+            out.append('    Shape "plymesh" "string filename" "%s"' % path)
+        else:
+            # Bilinear patches: corners p00 p10 p01 p11, i.e. the quad's 0, 1, 3, 2.
+            indices = []
+            for q in range(len(quad_list)):
+                indices.extend([4 * q, 4 * q + 1, 4 * q + 3, 4 * q + 2])
+            out.append('    Shape "bilinearmesh" "point3 P" %s "integer indices" %s' % (
+                numbers(points), numbers(indices)))
+        out.append("AttributeEnd")
+
+    def sphere(self, name, center, radius, material, as_mesh=False):
+        """pbrt's own sphere, or with as_mesh the glTF form's exact triangles (for a caustic,
+        whose shape depends on the facets)."""
+        if as_mesh:
+            path = "meshes/%s.ply" % name.replace("_", "-")
+            self.files[path] = ply_mesh(*uv_sphere(center, radius))
+            out = self._begin(name, material)
+            out.append('    Shape "plymesh" "string filename" "%s"' % path)
+            out.append("AttributeEnd")
+            return
+        out = self._begin(name, material)
+        out.append("    Translate %s %s %s" % tuple(num(c) for c in center))
+        out.append("    Rotate -90 1 0 0  # pbrt's spheres have their poles on z; these on y")
+        out.append('    Shape "sphere" "float radius" %s' % num(radius))
+        out.append("AttributeEnd")
+
+    def mesh(self, name, positions, indices, material, normals=None):
+        out = self._begin(name, material)
+        line = '    Shape "trianglemesh" "point3 P" %s "integer indices" %s' % (
+            numbers([c for p in positions for c in p]), numbers(indices))
+        if normals:
+            line += ' "normal N" %s' % numbers([c for n in normals for c in n])
+        out.append(line)
+        out.append("AttributeEnd")
+
+    def camera(self, eye, target, yfov_degrees, aspect=1.0):
+        up = [0, 1, 0] if abs(normalize([t - e for t, e in zip(target, eye)])[1]) < 0.999 else [0, 0, 1]
+        self.header = [
+            "# %s, written by scenes/generate_scenes.py; the same scene as ../%s.gltf." % (self.name, self.name),
+            "# pbrt's camera space is left-handed: mirroring x gives glTF's right-handed view.",
+            "Scale -1 1 1",
+            "LookAt %s  %s  %s" % (" ".join(num(c) for c in eye), " ".join(num(c) for c in target),
+                                   " ".join(num(c) for c in up)),
+            'Camera "perspective" "float fov" %s' % num(yfov_degrees if aspect >= 1 else
+                                                      math.degrees(2 * math.atan(math.tan(math.radians(yfov_degrees) / 2) * aspect))),
+            'Film "rgb" "integer xresolution" 512 "integer yresolution" %d "string filename" "%s.exr"' % (
+                round(512 / aspect), self.name),
+        ]
+
+    def light(self, *args, **kwargs):
+        raise NotImplementedError("punctual lights are written to glTF scenes only")
+
+    def begin_shared(self, name):
+        self.shared = (name, [])
+
+    def end_shared(self):
+        name, lines = self.shared
+        self.shared = None
+        self.files[name + ".pbrt"] = ("# Shared by the scenes that Include it; written by scenes/generate_scenes.py.\n"
+                                      + "\n".join(lines) + "\n").encode()
+        self.world.append('Include "%s.pbrt"' % name)
+
+    def write(self, path):
+        folder = os.path.dirname(path)
+        for relative, data in self.files.items():
+            os.makedirs(os.path.dirname(os.path.join(folder, relative)) or folder, exist_ok=True)
+            with open(os.path.join(folder, relative), "wb") as out:
+                out.write(data)
+        with open(path, "w") as out:
+            out.write("\n".join(self.header + ["", "WorldBegin", ""] + self.world) + "\n")
+
+
+def num(x):
+    return repr(round(float(x), 9))
+
+
+def numbers(values):
+    return "[ " + " ".join(num(v) if isinstance(v, float) else str(v) for v in values) + " ]"
+
+
+def rgb(color):
+    return "[ " + " ".join(num(c) for c in color) + " ]"
+
+
+def ply_mesh(positions, indices, normals):
+    """A binary little-endian PLY of triangles with vertex normals."""
+    header = ("ply\nformat binary_little_endian 1.0\ncomment written by scenes/generate_scenes.py\n"
+              "element vertex %d\nproperty float x\nproperty float y\nproperty float z\n"
+              "property float nx\nproperty float ny\nproperty float nz\n"
+              "element face %d\nproperty list uchar int vertex_indices\nend_header\n") % (
+                  len(positions), len(indices) // 3)
+    body = b"".join(struct.pack("<6f", *p, *n) for p, n in zip(positions, normals))
+    body += b"".join(struct.pack("<B3i", 3, *indices[i:i + 3]) for i in range(0, len(indices), 3))
+    return header.encode() + body
+
+
+def ply_quads(quad_list):
+    """A binary little-endian PLY of quads: float x y z vertices, uchar-counted int faces."""
+    header = ("ply\nformat binary_little_endian 1.0\ncomment written by scenes/generate_scenes.py\n"
+              "element vertex %d\nproperty float x\nproperty float y\nproperty float z\n"
+              "element face %d\nproperty list uchar int vertex_indices\nend_header\n") % (
+                  4 * len(quad_list), len(quad_list))
+    body = b"".join(struct.pack("<fff", *p) for quad in quad_list for p in quad)
+    body += b"".join(struct.pack("<B4i", 4, 4 * q, 4 * q + 1, 4 * q + 2, 4 * q + 3) for q in range(len(quad_list)))
+    return header.encode() + body
 
 
 SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass,
@@ -273,5 +433,9 @@ SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass,
 if __name__ == "__main__":
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
     for scene_name, build in SCENES.items():
-        build().write(os.path.join(out_dir, scene_name + ".gltf"))
-        print("wrote", os.path.join(out_dir, scene_name + ".gltf"))
+        for writer, path in ((GltfWriter(), os.path.join(out_dir, scene_name + ".gltf")),
+                             (PbrtWriter(scene_name), os.path.join(out_dir, "pbrt", scene_name + ".pbrt"))):
+            build(writer)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            writer.write(path)
+            print("wrote", path)

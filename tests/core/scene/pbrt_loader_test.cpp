@@ -1,0 +1,330 @@
+// The pbrt-v4 importer: each directive's effect on the scene against what pbrt-v4 defines,
+// warnings and errors that point at file:line:column, and bundles that cannot reach outside.
+#include "core/scene/pbrt/pbrt_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "core/scene/pbrt/pbrt_lexer.h"
+#include "core/scene/pbrt/pbrt_parameters.h"
+#include "core/scene/scene_files.h"
+#include "core/scene/scene_loader.h"
+
+namespace pf {
+namespace {
+
+// A scene.pbrt with a camera and a light around `world`, plus other files.
+SceneBundle Bundle(const std::string& world, std::map<std::string, std::string> files = {}) {
+    SceneBundle bundle;
+    bundle.main_file = "scene.pbrt";
+    files["scene.pbrt"] = "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 40\n"
+                          "Film \"rgb\" \"integer xresolution\" 200 \"integer yresolution\" 100\nWorldBegin\n"
+                          "LightSource \"point\" \"rgb I\" [1 1 1]\n" + world;
+    bundle.files = std::move(files);
+    return bundle;
+}
+
+absl::StatusOr<Scene> Load(const SceneBundle& bundle, std::vector<std::string>* warnings = nullptr) {
+    SceneLoadOptions options;
+    options.warnings = warnings;
+    return LoadScene(bundle, "scenes/" + bundle.main_file, options);
+}
+
+void ExpectError(const absl::StatusOr<Scene>& scene, const std::string& fragment) {
+    ASSERT_FALSE(scene.ok()) << "loaded, expected an error with: " << fragment;
+    const std::string message(scene.status().message());
+    EXPECT_NE(message.find(fragment), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << "error must be one line: " << message;
+}
+
+bool Contains(const std::vector<std::string>& lines, const std::string& fragment) {
+    for (const std::string& line : lines)
+        if (line.find(fragment) != std::string::npos) return true;
+    return false;
+}
+
+constexpr char kQuad[] = "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0] \"integer indices\" [0 1 2 3]\n";
+
+double TotalArea(const Scene& scene) {
+    double area = 0;
+    for (uint32_t t = 0; t < scene.triangles.size(); ++t) area += scene.TriangleArea(t);
+    return area;
+}
+
+TEST(PbrtLexerTest, TokensKnowWhereTheyStart) {
+    const absl::StatusOr<std::vector<pbrt::Token>> tokens =
+        pbrt::Tokenize("a.pbrt", "# comment\n  Shape \"sphere\" [ 1.5e-3 ]\n\"esc\\\"aped\"");
+    ASSERT_TRUE(tokens.ok()) << tokens.status();
+    ASSERT_EQ(tokens->size(), 6u);
+    EXPECT_EQ((*tokens)[0].text, "Shape");
+    EXPECT_EQ((*tokens)[0].where.ToString(), "a.pbrt:2:3");
+    EXPECT_EQ((*tokens)[1].kind, pbrt::TokenKind::kString);
+    EXPECT_EQ((*tokens)[1].where.ToString(), "a.pbrt:2:9");
+    EXPECT_EQ((*tokens)[3].text, "1.5e-3");
+    EXPECT_EQ((*tokens)[5].text, "esc\"aped");
+    const absl::StatusOr<std::vector<pbrt::Token>> open = pbrt::Tokenize("b.pbrt", "Shape\n  \"sphere");
+    ASSERT_FALSE(open.ok());
+    EXPECT_NE(open.status().message().find("b.pbrt:2:3"), std::string::npos) << open.status();
+}
+
+TEST(PbrtLoaderTest, CameraFollowsLookAtAndFovSpansTheShorterSide) {
+    const absl::StatusOr<Scene> scene = Load(Bundle(kQuad));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Camera& camera = scene->camera;
+    EXPECT_NEAR(camera.position.z, -5.0f, 1e-5f);
+    EXPECT_NEAR(camera.forward.z, 1.0f, 1e-6f);
+    // pbrt's image x is camera +x = cross(up, view direction): world +x here.
+    EXPECT_NEAR(camera.right.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(camera.up.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(camera.aspect_ratio, 2.0f, 1e-6f);
+    EXPECT_NEAR(camera.y_fov, 40 * kPi / 180, 1e-6);  // 200x100: y is the shorter side
+    EXPECT_EQ(scene->hints.width, 200);
+    EXPECT_EQ(scene->hints.height, 100);
+
+    SceneBundle tall = Bundle(kQuad);
+    const std::string film = "\"integer xresolution\" 200 \"integer yresolution\" 100";
+    std::string& main = tall.files["scene.pbrt"];
+    main.replace(main.find(film), film.size(), "\"integer xresolution\" 100 \"integer yresolution\" 200");
+    const absl::StatusOr<Scene> portrait = Load(tall);
+    ASSERT_TRUE(portrait.ok()) << portrait.status();
+    // 100x200: x is the shorter side, so the vertical angle is wider.
+    EXPECT_NEAR(portrait->camera.y_fov, 2 * std::atan(2 * std::tan(20 * kPiD / 180)), 1e-6);
+}
+
+TEST(PbrtLoaderTest, TransformsComposeAsPbrtDefines) {
+    // Translate then Rotate then Scale: a point p lands at T(R(S(p))).
+    const absl::StatusOr<Scene> scene =
+        Load(Bundle("Translate 1 2 3\nRotate 90 0 0 1\nScale 2 2 2\n"
+                    "Shape \"trianglemesh\" \"point3 P\" [1 0 0  0 1 0  0 0 1] \"integer indices\" [0 1 2]\n"));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->positions.size(), 3u);
+    // (1,0,0) scaled to (2,0,0), turned 90 degrees about z to (0,2,0), moved to (1,4,3).
+    EXPECT_NEAR(scene->positions[0].x, 1.0f, 1e-5f);
+    EXPECT_NEAR(scene->positions[0].y, 4.0f, 1e-5f);
+    EXPECT_NEAR(scene->positions[0].z, 3.0f, 1e-5f);
+}
+
+TEST(PbrtLoaderTest, AttributesRestoreTheStateAndInstancesRepeatAnObject) {
+    const std::string world = std::string("AttributeBegin\nTranslate 10 0 0\nAttributeEnd\n") +
+                              "ObjectBegin \"quad\"\n" + kQuad + "ObjectEnd\n"
+                              "ObjectInstance \"quad\"\nAttributeBegin\nTranslate 0 0 5\nObjectInstance \"quad\"\nAttributeEnd\n";
+    const absl::StatusOr<Scene> scene = Load(Bundle(world));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->triangles.size(), 4u);  // two instances of two triangles
+    EXPECT_NEAR(scene->bounds.lower.x, -1.0f, 1e-6f);  // the first Translate was undone
+    EXPECT_NEAR(scene->bounds.upper.z, 5.0f, 1e-6f);
+}
+
+TEST(PbrtLoaderTest, MaterialsMapOntoPhotonfarms) {
+    const std::string world = std::string("MakeNamedMaterial \"gold\" \"string type\" \"conductor\" \"spectrum eta\" \"metal-Au-eta\" \"spectrum k\" \"metal-Au-k\"\n") +
+                              "NamedMaterial \"gold\"\n" + kQuad +
+                              "Material \"dielectric\" \"float eta\" 1.33\n" + kQuad +
+                              "Material \"dielectric\" \"spectrum eta\" \"glass-BK7\"\n" + kQuad +
+                              "Material \"coateddiffuse\" \"rgb reflectance\" [0.2 0.4 0.6] \"float roughness\" 0.1\n" + kQuad +
+                              "Material \"conductor\" \"rgb reflectance\" [0.9 0.9 0.9]\n" + kQuad +
+                              "Material \"thindielectric\"\n" + kQuad;
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->materials.size(), 6u);
+    EXPECT_EQ(scene->materials[0].type, MaterialType::kMirror);
+    EXPECT_NEAR(scene->materials[0].base_color.x, 1.0f, 1e-6f);   // gold's F0: red high,
+    EXPECT_NEAR(scene->materials[0].base_color.z, 0.336f, 1e-6f); // blue low
+    EXPECT_EQ(scene->materials[1].type, MaterialType::kDielectric);
+    EXPECT_NEAR(scene->materials[1].ior, 1.33f, 1e-6f);
+    EXPECT_NEAR(scene->materials[2].ior, 1.5185f, 1e-4f);
+    EXPECT_EQ(scene->materials[3].type, MaterialType::kDiffuse);
+    EXPECT_NEAR(scene->materials[3].base_color.z, 0.6f, 1e-6f);
+    EXPECT_TRUE(Contains(warnings, "coateddiffuse\": shaded as its diffuse base"));
+    EXPECT_NEAR(scene->materials[4].base_color.y, 0.9f, 1e-6f);
+    EXPECT_EQ(scene->materials[5].type, MaterialType::kThinDielectric);
+}
+
+TEST(PbrtLoaderTest, AreaLightsEmitFromTheirShapesFront) {
+    // A unit-square pair of triangles facing +z with L = 2; "power" 4 pi rescales L to give
+    // 4 pi W from area 4: L = 4 pi / (pi x 4) = 1.
+    const std::string world = std::string("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2]\n") + kQuad +
+                              "AttributeEnd\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2] \"float power\" " +
+                              std::to_string(4 * kPiD) + "\nTranslate 0 0 1\nReverseOrientation\n" + kQuad + "AttributeEnd\n";
+    const absl::StatusOr<Scene> scene = Load(Bundle(world));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->triangles.size(), 4u);
+    const Triangle& plain = scene->triangles[0];
+    const Triangle& reversed = scene->triangles[2];
+    EXPECT_NEAR(scene->materials[plain.material].emission.x, 2.0f, 1e-6f);
+    EXPECT_NEAR(plain.normal.z, 1.0f, 1e-6f);
+    EXPECT_NEAR(scene->materials[reversed.material].emission.x, 1.0f, 1e-5f);
+    EXPECT_NEAR(reversed.normal.z, -1.0f, 1e-6f);  // ReverseOrientation flips the emitting side
+}
+
+TEST(PbrtLoaderTest, QuadricsAreTessellatedFaithfully) {
+    const absl::StatusOr<Scene> sphere = Load(Bundle("Shape \"sphere\" \"float radius\" 2\n"));
+    ASSERT_TRUE(sphere.ok()) << sphere.status();
+    EXPECT_NEAR(TotalArea(*sphere), 4 * kPiD * 4, 4 * kPiD * 4 * 2e-3);  // 4 pi r^2 within the facets' shortfall
+    for (const Triangle& t : sphere->triangles) {
+        const Vec3 centre = (sphere->positions[t.vertex[0]] + sphere->positions[t.vertex[1]] + sphere->positions[t.vertex[2]]) / 3.0f;
+        ASSERT_GT(Dot(t.normal, centre), 0.0f) << "sphere triangles face outward";
+        ASSERT_TRUE(t.smooth);
+    }
+    const absl::StatusOr<Scene> disk =
+        Load(Bundle("Shape \"disk\" \"float radius\" 1 \"float innerradius\" 0.5 \"float height\" 0.25\n"));
+    ASSERT_TRUE(disk.ok()) << disk.status();
+    EXPECT_NEAR(TotalArea(*disk), kPiD * 0.75, kPiD * 0.75 * 2e-3);
+    for (const Triangle& t : disk->triangles) EXPECT_NEAR(t.normal.z, 1.0f, 1e-5f);
+    EXPECT_NEAR(disk->bounds.upper.z, 0.25f, 1e-6f);
+}
+
+TEST(PbrtLoaderTest, LightsTakePbrtsParameters) {
+    SceneBundle bundle = Bundle(kQuad);
+    bundle.files["scene.pbrt"] +=
+        "LightSource \"spot\" \"point3 from\" [0 0 1] \"point3 to\" [0 0 0] \"float coneangle\" 30 \"float conedelta\" 10 "
+        "\"blackbody I\" 6500\n"
+        "AttributeBegin\nRotate 90 1 0 0\nLightSource \"distant\" \"point3 from\" [0 0 0] \"point3 to\" [0 0 1] \"rgb L\" [3 3 3]\nAttributeEnd\n"
+        "LightSource \"point\" \"rgb I\" [1 1 1] \"float power\" 100\n";
+    const absl::StatusOr<Scene> scene = Load(bundle);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->lights.size(), 4u);
+    const PunctualLight& spot = scene->lights[1];
+    EXPECT_EQ(spot.type, LightType::kSpot);
+    EXPECT_NEAR(spot.direction.z, -1.0f, 1e-6f);
+    EXPECT_NEAR(spot.cos_outer, std::cos(30 * kPiD / 180), 1e-6);
+    EXPECT_NEAR(spot.cos_inner, std::cos(20 * kPiD / 180), 1e-6);
+    EXPECT_TRUE(spot.smooth_falloff);
+    // pbrt's smoothstep in the cosine between the cones: t^2 (3 - 2t).
+    const double t = (std::cos(25 * kPiD / 180) - std::cos(30 * kPiD / 180)) / (std::cos(20 * kPiD / 180) - std::cos(30 * kPiD / 180));
+    EXPECT_NEAR(spot.SpotFalloff(std::cos(25 * kPiD / 180)), t * t * (3 - 2 * t), 1e-5);
+    // 6500 K is close to D65 white, with luminance 1.
+    EXPECT_NEAR(0.2126f * spot.intensity.x + 0.7152f * spot.intensity.y + 0.0722f * spot.intensity.z, 1.0f, 1e-3f);
+    EXPECT_NEAR(spot.intensity.x / spot.intensity.z, 1.0f, 0.05f);
+    const PunctualLight& distant = scene->lights[2];
+    EXPECT_EQ(distant.type, LightType::kDirectional);
+    EXPECT_NEAR(distant.direction.y, -1.0f, 1e-6f);  // +z turned 90 degrees about x travels -y
+    EXPECT_NEAR(distant.intensity.x, 3.0f, 1e-6f);
+    // "power" 100 W from a point light: I = 100 / (4 pi) W/sr.
+    EXPECT_NEAR(scene->lights[3].intensity.x, 100 / (4 * kPiD), 1e-4);
+}
+
+TEST(PbrtLoaderTest, IncludesPlyMeshesAndImageTexturesComeFromTheBundle) {
+    // A binary PLY quad (two triangles after triangulation) and a 2x1 PNG: red, then grey.
+    std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                      "property float z\nproperty float u\nproperty float v\nelement face 1\n"
+                      "property list uchar int vertex_indices\nend_header\n";
+    const float vertices[4][5] = {{-1, -1, 0, 0, 0}, {1, -1, 0, 1, 0}, {1, 1, 0, 1, 1}, {-1, 1, 0, 0, 1}};
+    ply.append(reinterpret_cast<const char*>(vertices), sizeof vertices);
+    const unsigned char count = 4;
+    const int32_t face[4] = {0, 1, 2, 3};
+    ply.append(reinterpret_cast<const char*>(&count), 1);
+    ply.append(reinterpret_cast<const char*>(face), sizeof face);
+    const std::filesystem::path png_path = std::filesystem::temp_directory_path() / "photonfarm-pbrt-texture.png";
+    {
+        const unsigned char pixels[6] = {255, 0, 0, 128, 128, 128};
+        auto out = OIIO::ImageOutput::create(png_path.string());
+        ASSERT_TRUE(out && out->open(png_path.string(), OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8)));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels));
+        out->close();
+    }
+    const absl::StatusOr<std::string> png = ReadWholeFile(png_path);
+    ASSERT_TRUE(png.ok());
+    const std::string world = "Include \"parts/wall.pbrt\"\n";
+    const std::string wall = "Texture \"checks\" \"spectrum\" \"imagemap\" \"string filename\" \"textures/two.png\" \"float uscale\" 2\n"
+                             "Material \"diffuse\" \"texture reflectance\" \"checks\"\n"
+                             "Shape \"plymesh\" \"string filename\" \"meshes/./quad.ply\"\n";
+    const SceneBundle bundle =
+        Bundle(world, {{"parts/wall.pbrt", wall}, {"meshes/quad.ply", ply}, {"textures/two.png", *png}});
+    const absl::StatusOr<Scene> scene = Load(bundle);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    EXPECT_EQ(scene->triangles.size(), 2u);
+    ASSERT_EQ(scene->textures.size(), 1u);
+    EXPECT_NEAR(scene->textures[0].texels[0].x, 1.0f, 1e-6f);
+    EXPECT_NEAR(scene->textures[0].texels[1].x, SrgbToLinear(128 / 255.0f), 1e-6f);  // sRGB decoded
+    // pbrt's v runs up the image and uscale 2 repeats it twice: the vertex at uv (1, 1) maps to (2, 0).
+    bool found = false;
+    for (size_t v = 0; v < scene->positions.size(); ++v)
+        if (scene->positions[v].x > 0.5f && scene->positions[v].y > 0.5f) {
+            EXPECT_NEAR(scene->uvs[v].x, 2.0f, 1e-6f);
+            EXPECT_NEAR(scene->uvs[v].y, 0.0f, 1e-6f);
+            found = true;
+        }
+    EXPECT_TRUE(found);
+    std::filesystem::remove(png_path);
+}
+
+TEST(PbrtLoaderTest, UnsupportedThingsWarnAtTheirLocation) {
+    std::vector<std::string> warnings;
+    const std::string world = std::string("Shape \"sphere\" \"float radius\" 1 \"float bogus\" 3\n") +
+                              "Shape \"cylinder\"\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n";
+    SceneBundle bundle = Bundle(world);
+    bundle.files["scene.pbrt"] = "Sampler \"zsobol\" \"integer pixelsamples\" 64\n" + bundle.files["scene.pbrt"];
+    const absl::StatusOr<Scene> scene = Load(bundle, &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    // The parameter's own line and column: line 7 (the Sampler and 5 lines of preamble before it).
+    EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:7:33: warning: Shape \"sphere\": parameter \"float bogus\""));
+    EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:8:1: warning: Shape \"cylinder\" is not supported"));
+    EXPECT_TRUE(Contains(warnings, "MakeNamedMedium"));
+    EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:1:1: warning: Sampler"));
+}
+
+TEST(PbrtLoaderTest, BadInputIsAOneLineErrorNamingFileLineAndColumn) {
+    ExpectError(Load(Bundle("Shapee \"sphere\"\n")), "scenes/scene.pbrt:6:1: unknown directive 'Shapee'");
+    ExpectError(Load(Bundle("Shape \"sphere\" \"float radius\" \"big\"\n")), "scenes/scene.pbrt:6:16");
+    ExpectError(Load(Bundle("Shape \"sphere\" \"float radius\" -1\n")), "\"float radius\" must be positive");
+    ExpectError(Load(Bundle("Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 7]\n")),
+                "index 2 (7) is outside the 3 points");
+    ExpectError(Load(Bundle("Material \"plastic\"\n")), "scenes/scene.pbrt:6:1: Material \"plastic\" is unknown");
+    ExpectError(Load(Bundle("NamedMaterial \"nothing\"\n")), "no material named \"nothing\"");
+    ExpectError(Load(Bundle("AttributeEnd\n")), "AttributeEnd without AttributeBegin");
+    ExpectError(Load(Bundle("Translate 1 2\n")), "Translate needs 3 numbers");
+    ExpectError(Load(Bundle("Include \"../outside.pbrt\"\n")), "leaves the scene's folder");
+    ExpectError(Load(Bundle("Include \"/etc/passwd\"\n")), "is absolute");
+    ExpectError(Load(Bundle("Include \"missing.pbrt\"\n")), "scenes/scene.pbrt:6:1: 'missing.pbrt' is not in the scene bundle");
+    ExpectError(Load(Bundle("Include \"loop.pbrt\"\n", {{"loop.pbrt", "Include \"loop.pbrt\"\n"}})), "includes nest deeper than");
+    ExpectError(Load(Bundle("Shape \"plymesh\" \"string filename\" \"bad.ply\"\n", {{"bad.ply", "ply\nformat nonsense\n"}})),
+                "bad.ply: not a valid PLY mesh");
+    ExpectError(Load(Bundle("Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"t.png\"\n", {{"t.png", "not a png"}})),
+                "Texture \"t\": t.png");
+    SceneBundle no_light = Bundle(kQuad);
+    std::string& main = no_light.files["scene.pbrt"];
+    main.erase(main.find("LightSource"), std::strlen("LightSource \"point\" \"rgb I\" [1 1 1]\n"));
+    ExpectError(Load(no_light), "scene has no light");
+}
+
+TEST(PbrtLoaderTest, LimitsRefuseOversizedScenes) {
+    SceneLoadOptions options;
+    options.limits.max_triangles = 100;
+    const absl::StatusOr<Scene> scene = LoadScene(Bundle("Shape \"sphere\"\n"), "scene.pbrt", options);
+    ASSERT_FALSE(scene.ok());
+    EXPECT_EQ(scene.status().code(), absl::StatusCode::kResourceExhausted);
+    EXPECT_NE(scene.status().message().find("more than 100 triangles"), std::string::npos) << scene.status();
+}
+
+TEST(PbrtLoaderTest, PackingGathersIncludedMeshesAndNothingElse) {
+    const absl::StatusOr<SceneBundle> bundle = PackSceneBundle(std::string(PF_SOURCE_DIR) + "/scenes/pbrt/cornell-box.pbrt");
+    ASSERT_TRUE(bundle.ok()) << bundle.status();
+    std::vector<std::string> paths;
+    for (const auto& [path, contents] : bundle->files) paths.push_back(path);
+    EXPECT_EQ(paths, (std::vector<std::string>{"cornell-box.pbrt", "cornell-room.pbrt", "meshes/tall-block.ply"}));
+    const absl::StatusOr<Scene> scene = LoadScene(*bundle, "cornell-box.pbrt");
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    EXPECT_EQ(scene->triangles.size(), 32u);  // 5 walls and the light: 12; two blocks of 5 quads: 20
+}
+
+TEST(PbrtLoaderTest, ShippedScenesLoadWithoutWarnings) {
+    for (const char* name : {"cornell-box", "cornell-glass", "caustic-glass", "furnace", "furnace-glass"}) {
+        std::vector<std::string> warnings;
+        SceneLoadOptions options;
+        options.warnings = &warnings;
+        const absl::StatusOr<Scene> scene =
+            LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/pbrt/" + name + ".pbrt", options);
+        ASSERT_TRUE(scene.ok()) << scene.status();
+        EXPECT_TRUE(warnings.empty()) << name << ": " << warnings.front();
+    }
+}
+
+}  // namespace
+}  // namespace pf
