@@ -37,7 +37,7 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
                         "Another photon stream of the same --seed: the same hit points, independent photons "
                         "(to render a reference for --reference)")
         ->default_val(s->photon_stream);
-    command->add_option("--width", s->width, "Image width in pixels (default 512)")->check(CLI::Range(1, 32768));
+    command->add_option("--width", s->width, "Image width in pixels (default: the scene's own (a pbrt Film), else 512)")->check(CLI::Range(1, 32768));
     command->add_option("--height", s->height, "Image height in pixels (default: width / camera aspect)")->check(CLI::Range(1, 32768));
 }
 

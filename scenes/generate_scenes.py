@@ -365,8 +365,7 @@ class PbrtWriter:
                                    " ".join(num(c) for c in up)),
             'Camera "perspective" "float fov" %s' % num(yfov_degrees if aspect >= 1 else
                                                       math.degrees(2 * math.atan(math.tan(math.radians(yfov_degrees) / 2) * aspect))),
-            'Film "rgb" "integer xresolution" 512 "integer yresolution" %d "string filename" "%s.exr"' % (
-                round(512 / aspect), self.name),
+            'Film "rgb" "integer xresolution" 512 "integer yresolution" %d' % round(512 / aspect),
         ]
 
     def light(self, *args, **kwargs):

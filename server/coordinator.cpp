@@ -44,7 +44,7 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names) {
         return absl::InvalidArgumentError(absl::StrFormat(
             "%s: lights emit %.3g W in all, over the %.3g W that single-precision photon sums hold (docs/numerics.md)",
             request.bundle.main_file, power, kMaxLightPower));
-    absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, payload->scene.camera);
+    absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, payload->scene);
     if (!film.ok()) return film.status();
     // For the camera pass and the job's record; each backend analyses the scene it is given
     // the same way (AnalyseFeatures) for its photon loop.

@@ -46,10 +46,13 @@ uint64_t PhotonSeed(const JobSpec& spec) {
     return spec.photon_stream == 0 ? spec.seed : HashSeed(spec.seed, kPhotonStreams, spec.photon_stream);
 }
 
-absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Camera& camera) {
+absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& scene) {
     CameraPassSettings film{spec.width, spec.height, spec.samples_per_pixel, spec.seed};
-    const double aspect = camera.aspect_ratio > 0 ? camera.aspect_ratio : 1.0;
-    if (film.width == 0 && film.height == 0) film.width = 512;
+    const double aspect = scene.camera.aspect_ratio > 0 ? scene.camera.aspect_ratio : 1.0;
+    if (film.width == 0 && film.height == 0) {
+        film.width = scene.hints.width > 0 ? scene.hints.width : 512;
+        film.height = scene.hints.height;
+    }
     if (film.width == 0) film.width = std::max(1, static_cast<int>(std::lround(film.height * aspect)));
     if (film.height == 0) film.height = std::max(1, static_cast<int>(std::lround(film.width / aspect)));
     const uint64_t most_hit_points = uint64_t(film.width) * uint64_t(film.height) * uint64_t(film.samples_per_pixel);
@@ -63,6 +66,7 @@ absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Camera& ca
 EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass, const Scene& scene,
                              const std::string& scene_name) {
     EstimateSettings estimate{spec.alpha, spec.initial_radius, spec.samples_per_pixel, spec.layout};
+    if (estimate.initial_radius == 0) estimate.initial_radius = scene.hints.initial_radius;
     if (estimate.initial_radius == 0) estimate.initial_radius = DefaultInitialRadius(camera_pass, scene);
     if (camera_pass.hit_points.empty() || !(estimate.initial_radius > 0)) {
         spdlog::warn("{}: the camera sees no diffuse surface; the image holds emission only", scene_name);

@@ -52,10 +52,11 @@ enum class SettingNames { kFlags, kFields };
 
 // Every field in range and a budget given; errors name the flag or field.
 absl::Status CheckJobSpec(const JobSpec& spec, SettingNames names = SettingNames::kFlags);
-// Film size: what was asked, else 512 wide with the camera's aspect ratio; RESOURCE_EXHAUSTED
-// if its hit points would not fit.
-absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Camera& camera);
-// The estimator's settings, R0 from the camera pass where not given. `scene_name` names the
+// Film size: what was asked, else the scene's own (pbrt's Film), else 512 wide with the
+// camera's aspect ratio; RESOURCE_EXHAUSTED if its hit points would not fit.
+absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& scene);
+// The estimator's settings, R0 from the scene (pbrt's sppm "radius") or else the camera pass
+// where not given. `scene_name` names the
 // scene in the warning for a camera that sees no diffuse surface.
 EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass, const Scene& scene,
                              const std::string& scene_name);

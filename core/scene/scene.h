@@ -65,13 +65,11 @@ struct SurfacePoint {
 };
 
 // What a scene file asks of its render (pbrt's Film and Integrator "sppm"), used where the
-// render's own settings leave a choice open; zero or empty where the scene says nothing.
+// render's own settings leave a choice open (JobSpec's FilmFor, EstimateFor); zero or empty
+// where the scene says nothing.
 struct SceneRenderHints {
     int width = 0, height = 0;
     double initial_radius = 0;        // R0, world units
-    uint64_t photons_per_epoch = 0;   // photons between radius updates
-    uint64_t photon_budget = 0;       // photons in all
-    std::string output;               // the image file name the scene suggests
 };
 
 struct Scene {

@@ -61,7 +61,10 @@ absl::Status PbrtSceneBuilder::FinishCamera() {
 absl::Status PbrtSceneBuilder::Film(ParameterList& parameters) {
     film_width_ = parameters.Integer("xresolution", 1280);
     film_height_ = parameters.Integer("yresolution", 720);
-    scene_.hints.output = parameters.String("filename", "");
+    if (parameters.Has("filename")) {
+        parameters.String("filename", "");
+        Warn(parameters.Find("filename")->where, "Film: \"filename\" is not used; the image goes where --out says");
+    }
     if (film_width_ < 1 || film_height_ < 1 || film_width_ > 32768 || film_height_ > 32768)
         return absl::InvalidArgumentError("Film: resolution must lie in 1..32768");
     return absl::OkStatus();
@@ -73,8 +76,8 @@ absl::Status PbrtSceneBuilder::Integrator(const std::string& type, ParameterList
         Warn(where, absl::StrCat("Integrator \"", type, "\": photonfarm renders with progressive photon mapping"));
         return absl::OkStatus();
     }
-    // SPPM's settings, mapped to ours: radius is R0; iterations x photonsperiteration is the
-    // photon budget, photonsperiteration the photons between radius updates (an epoch).
+    // SPPM's settings, mapped to ours: radius is R0 (where the render gives no --radius); the
+    // photon count is the render's budget, so the scene's is shown as the flags that ask for it.
     const double radius = parameters.Float("radius", 0.0);
     const int iterations = parameters.Integer("iterations", 0);
     const int photons_per_iteration = parameters.Integer("photonsperiteration", 0);
@@ -83,8 +86,10 @@ absl::Status PbrtSceneBuilder::Integrator(const std::string& type, ParameterList
     if (radius < 0 || iterations < 0 || photons_per_iteration < 0 || max_depth < 0)
         return ErrorAt(where, "Integrator \"sppm\": parameters must not be negative");
     scene_.hints.initial_radius = radius;
-    scene_.hints.photons_per_epoch = static_cast<uint64_t>(photons_per_iteration);
-    scene_.hints.photon_budget = static_cast<uint64_t>(iterations) * static_cast<uint64_t>(photons_per_iteration);
+    if (iterations > 0 && photons_per_iteration > 0)
+        Warn(where, absl::StrCat("Integrator \"sppm\": ", iterations, " iterations of ", photons_per_iteration,
+                                 " photons: render with --photons ", uint64_t(iterations) * uint64_t(photons_per_iteration),
+                                 " for the same photon count (radii shrink once per --batches-per-epoch x --photons-per-batch)"));
     if (max_depth > 0)
         Warn(where, "Integrator \"sppm\": \"maxdepth\" is not used; photonfarm ends paths by Russian roulette (unbiased)");
     return absl::OkStatus();

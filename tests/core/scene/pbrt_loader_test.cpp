@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <string>
 
+#include "core/ppm/job_spec.h"
 #include "core/scene/pbrt/pbrt_lexer.h"
 #include "core/scene/pbrt/pbrt_parameters.h"
 #include "core/scene/scene_files.h"
@@ -95,6 +96,24 @@ TEST(PbrtLoaderTest, CameraFollowsLookAtAndFovSpansTheShorterSide) {
     ASSERT_TRUE(portrait.ok()) << portrait.status();
     // 100x200: x is the shorter side, so the vertical angle is wider.
     EXPECT_NEAR(portrait->camera.y_fov, 2 * std::atan(2 * std::tan(20 * kPiD / 180)), 1e-6);
+}
+
+TEST(PbrtLoaderTest, FilmAndSppmSettingsBecomeTheRenderDefaults) {
+    SceneBundle bundle = Bundle(kQuad);
+    bundle.files["scene.pbrt"] = "Integrator \"sppm\" \"float radius\" 0.25 \"integer iterations\" 10 "
+                                 "\"integer photonsperiteration\" 1000\n" + bundle.files["scene.pbrt"];
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(bundle, &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    EXPECT_EQ(scene->hints.initial_radius, 0.25);
+    EXPECT_TRUE(Contains(warnings, "render with --photons 10000 for the same photon count"));
+    const absl::StatusOr<CameraPassSettings> film = FilmFor(JobSpec{}, *scene);  // no --width, --height
+    ASSERT_TRUE(film.ok());
+    EXPECT_EQ(film->width, 200);
+    EXPECT_EQ(film->height, 100);
+    JobSpec asked;
+    asked.width = 64;
+    EXPECT_EQ(FilmFor(asked, *scene)->height, 32);  // the scene's aspect for the side not given
 }
 
 TEST(PbrtLoaderTest, TransformsComposeAsPbrtDefines) {
