@@ -5,6 +5,11 @@ namespace pf {
 
 struct Point2 {
     float x = 0, y = 0;
+
+    // Spelled out for the shared headers' GLSL-style vec2(x, y): clang before 16 lacks C++20's
+    // parenthesised aggregate initialisation.
+    constexpr Point2() = default;
+    constexpr Point2(float x_in, float y_in) : x(x_in), y(y_in) {}
 };
 
 }  // namespace pf

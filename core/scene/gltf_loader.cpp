@@ -35,6 +35,19 @@ const tinygltf::Value* Extension(const tinygltf::ExtensionMap& extensions, const
     return it == extensions.end() ? nullptr : &it->second;
 }
 
+// Whether `count` elements of `element_size` bytes, `stride` apart, starting `offset` bytes
+// into buffer view `view`, lie inside it and the view inside its buffer; overflow-safe, since
+// every number here comes from the file.
+bool AccessorFits(const tinygltf::Model& model, const tinygltf::BufferView& view, size_t offset, size_t count,
+                  size_t stride, size_t element_size) {
+    if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size())) return false;
+    const size_t buffer_size = model.buffers[view.buffer].data.size();
+    if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) return false;
+    if (count == 0) return true;
+    if (offset > view.byteLength || element_size > view.byteLength - offset || stride == 0) return false;
+    return count - 1 <= (view.byteLength - offset - element_size) / stride;
+}
+
 // Reads accessor `index` as `components` floats per element, converting normalised integer
 // types; fails on out-of-range views.
 absl::Status ReadFloats(const tinygltf::Model& model, int index, int components,
@@ -49,14 +62,13 @@ absl::Status ReadFloats(const tinygltf::Model& model, int index, int components,
     if (accessor.bufferView < 0 || accessor.bufferView >= static_cast<int>(model.bufferViews.size()))
         return absl::InvalidArgumentError(absl::StrCat("accessor #", index, " has no buffer view"));
     const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];
-    const tinygltf::Buffer& buffer = model.buffers[view.buffer];
     const int component_size = tinygltf::GetComponentSizeInBytes(accessor.componentType);
     const size_t stride = view.byteStride != 0 ? view.byteStride : size_t(component_size) * components;
-    const size_t begin = view.byteOffset + accessor.byteOffset;
     if (component_size <= 0 || accessor.count == 0 ||
-        begin + stride * (accessor.count - 1) + size_t(component_size) * components > view.byteOffset + view.byteLength ||
-        view.byteOffset + view.byteLength > buffer.data.size())
+        !AccessorFits(model, view, accessor.byteOffset, accessor.count, stride, size_t(component_size) * components))
         return absl::InvalidArgumentError(absl::StrCat("accessor #", index, " lies outside its buffer"));
+    const tinygltf::Buffer& buffer = model.buffers[view.buffer];
+    const size_t begin = view.byteOffset + accessor.byteOffset;
     out->resize(accessor.count * components);
     for (size_t i = 0; i < accessor.count; ++i) {
         const unsigned char* element = buffer.data.data() + begin + i * stride;
@@ -89,13 +101,12 @@ absl::Status ReadIndices(const tinygltf::Model& model, int index, std::vector<ui
         accessor.type != TINYGLTF_TYPE_SCALAR)
         return absl::InvalidArgumentError(absl::StrCat("index accessor #", index, " is malformed"));
     const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];
-    const tinygltf::Buffer& buffer = model.buffers[view.buffer];
     const int size = tinygltf::GetComponentSizeInBytes(accessor.componentType);
     const size_t stride = view.byteStride != 0 ? view.byteStride : size_t(size);
-    const size_t begin = view.byteOffset + accessor.byteOffset;
-    if (size <= 0 || (accessor.count > 0 && begin + stride * (accessor.count - 1) + size > view.byteOffset + view.byteLength) ||
-        view.byteOffset + view.byteLength > buffer.data.size())
+    if (size <= 0 || !AccessorFits(model, view, accessor.byteOffset, accessor.count, stride, size_t(size)))
         return absl::InvalidArgumentError(absl::StrCat("index accessor #", index, " lies outside its buffer"));
+    const tinygltf::Buffer& buffer = model.buffers[view.buffer];
+    const size_t begin = view.byteOffset + accessor.byteOffset;
     out->resize(accessor.count);
     for (size_t i = 0; i < accessor.count; ++i) {
         const unsigned char* p = buffer.data.data() + begin + i * stride;
@@ -140,9 +151,10 @@ UvTransform TextureTransform(const tinygltf::Value& transform) {
 // The extension OpenImageIO needs to pick a reader: from the bytes' signature, else the URI's.
 std::string ImageName(int index, const tinygltf::Image& image, const unsigned char* bytes, int size) {
     const std::string label = image.uri.empty() || absl::StartsWith(image.uri, "data:") ? absl::StrCat("image #", index) : image.uri;
-    if (size >= 8 && std::memcmp(bytes, "\x89PNG", 4) == 0) return absl::StrCat(label, ".png");
-    if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) return absl::StrCat(label, ".jpg");
-    return label;
+    const char* extension = "";
+    if (size >= 8 && std::memcmp(bytes, "\x89PNG", 4) == 0) extension = ".png";
+    if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) extension = ".jpg";
+    return absl::EndsWithIgnoreCase(label, extension) ? label : absl::StrCat(label, extension);
 }
 
 // tinygltf's image callback: keeps the encoded bytes, decoded later only for images a

@@ -10,6 +10,12 @@
 #include "absl/strings/str_cat.h"
 
 namespace pf {
+namespace {
+
+// OpenImageIO's errors can span lines; messages here are one line.
+std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+}  // namespace
 
 absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& name, const SceneLimits& limits,
                                     const ImageDecodeOptions& options) {
@@ -22,12 +28,12 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
     OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
     std::unique_ptr<OIIO::ImageInput> input =
         OIIO::ImageInput::create(OIIO::string_view(probe_name), false, nullptr, &proxy);
-    if (!input) return error(absl::StrCat("not a readable image (", OIIO::geterror(), ")"));
+    if (!input) return error(absl::StrCat("not a readable image (", FirstLine(OIIO::geterror()), ")"));
     if (!input->supports("ioproxy"))
         return error(absl::StrCat("image format '", input->format_name(), "' cannot be read from a scene bundle"));
     input->set_ioproxy(&proxy);
     OIIO::ImageSpec spec;
-    if (!input->open(probe_name, spec)) return error(absl::StrCat("not a readable image (", input->geterror(), ")"));
+    if (!input->open(probe_name, spec)) return error(absl::StrCat("not a readable image (", FirstLine(input->geterror()), ")"));
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth != 1)
         return error("image has no pixels or is a volume");
     const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
@@ -36,7 +42,7 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
                                                          limits.max_image_pixels, " pixels"));
     std::vector<float> values(pixels * size_t(spec.nchannels));
     if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data()))
-        return error(absl::StrCat("image data is corrupt (", input->geterror(), ")"));
+        return error(absl::StrCat("image data is corrupt (", FirstLine(input->geterror()), ")"));
     ImageEncoding encoding = options.encoding;
     if (encoding == ImageEncoding::kAuto)
         encoding = spec.format.is_floating_point() ? ImageEncoding::kLinear : ImageEncoding::kSrgb;

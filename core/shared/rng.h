@@ -25,6 +25,12 @@ PF_GPU_FN uint64_t FamilySeed(uint64_t prefix, uint64_t d) { return Mix64(prefix
 struct Pcg32 {
     uint64_t state;
     uint64_t increment;  // odd: selects the stream
+#ifdef __cplusplus
+    // For GLSL's constructor syntax, Pcg32(state, increment): clang before 16 lacks C++20's
+    // parenthesised aggregate initialisation.
+    Pcg32() = default;
+    constexpr Pcg32(uint64_t state_in, uint64_t increment_in) : state(state_in), increment(increment_in) {}
+#endif
 };
 
 PF_GPU_FN uint32_t Pcg32Next(PF_INOUT(Pcg32) rng) {

@@ -1,0 +1,50 @@
+// libFuzzer target for a scene parser: the input is a scene's main file, loaded from a bundle
+// that also holds a small valid PLY mesh and PNG image it may reference (mesh.ply, image.png),
+// under limits small enough that a few bytes cannot ask for gigabytes. Any outcome but a crash,
+// a sanitizer report or a leak is fine: bad input must come back as an error.
+// PF_FUZZ_MAIN_FILE (scene.pbrt or scene.gltf) picks the parser.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "core/scene/scene_loader.h"
+
+namespace {
+
+const pf::SceneBundle& Fixtures() {
+    static const pf::SceneBundle* bundle = [] {
+        auto* b = new pf::SceneBundle;
+        // A binary PLY triangle and a 1x1 PNG (white), the smallest of each.
+        std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                          "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+        const float vertices[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        ply.append(reinterpret_cast<const char*>(vertices), sizeof vertices);
+        const unsigned char count = 3;
+        const int32_t face[3] = {0, 1, 2};
+        ply.append(reinterpret_cast<const char*>(&count), 1);
+        ply.append(reinterpret_cast<const char*>(face), sizeof face);
+        b->files["mesh.ply"] = ply;
+        static const unsigned char kPng[] = {
+            0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48, 0x44, 0x52, 0x00, 0x00,
+            0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x02, 0x00, 0x00, 0x00, 0x90, 0x77, 0x53, 0xde, 0x00, 0x00, 0x00,
+            0x0c, 0x49, 0x44, 0x41, 0x54, 0x78, 0x9c, 0x63, 0xf8, 0xff, 0xff, 0x3f, 0x00, 0x05, 0xfe, 0x02, 0xfe, 0x0d,
+            0xef, 0x46, 0xb8, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
+        b->files["image.png"] = std::string(reinterpret_cast<const char*>(kPng), sizeof kPng);
+        return b;
+    }();
+    return *bundle;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    pf::SceneBundle bundle = Fixtures();
+    bundle.main_file = PF_FUZZ_MAIN_FILE;
+    bundle.files[bundle.main_file] = std::string(reinterpret_cast<const char*>(data), size);
+    pf::SceneLoadOptions options;
+    options.limits.max_triangles = 1u << 18;
+    options.limits.max_image_pixels = 1u << 16;
+    options.limits.max_include_depth = 8;
+    (void)pf::LoadScene(bundle, bundle.main_file, options);
+    return 0;
+}
