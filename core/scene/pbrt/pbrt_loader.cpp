@@ -4,6 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cmath>
 #include <set>
 
 #include "absl/strings/numbers.h"
@@ -138,6 +139,11 @@ absl::StatusOr<ParameterList> PbrtSceneBuilder::ReadParameters(const std::vector
         } else {
             if (absl::Status status = add_value(tokens[(*pos)++]); !status.ok()) return status;
         }
+        if (parameter.type == "integer")
+            for (double number : parameter.numbers)
+                if (number != std::floor(number) || std::abs(number) > 2147483647.0)
+                    return ErrorAt(declaration.where, absl::StrCat("parameter ", Describe(declaration), ": ", number,
+                                                                   " is not a 32-bit integer"));
         const bool numeric = parameter.type != "string" && parameter.type != "texture" && parameter.type != "bool" &&
                              parameter.type != "spectrum";
         if ((numeric && !parameter.strings.empty()) || (!numeric && parameter.type != "spectrum" && !parameter.numbers.empty()) ||
