@@ -26,8 +26,17 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
     for (const TestMaterial& m : scene.materials) {
         std::string texture;
         if (!m.texture_png_base64.empty()) {
-            texture = absl::StrCat(R"(,"baseColorTexture":{"index":)", images.size(), "}");
-            images.push_back(absl::StrCat(R"({"uri":"data:image/png;base64,)", m.texture_png_base64, "\"}"));
+            texture = absl::StrCat(R"(,"baseColorTexture":{"index":)", images.size(), m.texture_extra, "}");
+            if (scene.images_in_buffer) {
+                std::string png;
+                absl::Base64Unescape(m.texture_png_base64, &png);
+                views.push_back(absl::StrCat(R"({"buffer":0,"byteOffset":)", blob->size(), R"(,"byteLength":)", png.size(), "}"));
+                blob->append(png);
+                while (blob->size() % 4) blob->push_back('\0');
+                images.push_back(absl::StrCat(R"({"bufferView":)", views.size() - 1, R"(,"mimeType":"image/png"})"));
+            } else {
+                images.push_back(absl::StrCat(R"({"uri":"data:image/png;base64,)", m.texture_png_base64, "\"}"));
+            }
         }
         std::string material = absl::StrCat(R"({"pbrMetallicRoughness":{"baseColorFactor":[)", m.base_color.x, ",",
                                             m.base_color.y, ",", m.base_color.z, R"(,1],"metallicFactor":0)", texture, "}");
@@ -70,6 +79,7 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
         extensions = absl::StrCat(R"(,"images":[)", absl::StrJoin(images, ","), R"(],"textures":[)",
                                   absl::StrJoin(textures, ","), "]");
     }
+    for (const std::string& node : scene.extra_nodes) nodes.push_back(node);
     for (size_t i = 0; i < scene.lights.size(); ++i)
         nodes.push_back(absl::StrCat(R"({"extensions":{"KHR_lights_punctual":{"light":)", i, "}}",
                                      i < scene.light_node_fields.size() ? scene.light_node_fields[i] : "", "}"));

@@ -14,6 +14,7 @@ struct TestMaterial {
     Rgb base_color{0.5f};
     Rgb emission{0.0f};
     std::string texture_png_base64;  // a base colour texture, embedded as a data URI
+    std::string texture_extra;       // raw JSON fields of its textureInfo, e.g. an extension
 };
 
 struct TestMesh {
@@ -31,6 +32,8 @@ struct TestScene {
     std::vector<std::string> lights; // raw KHR_lights_punctual light objects
     std::vector<std::string> light_node_fields;  // raw JSON fields of each light's node, e.g.
                                                  // R"(,"translation":[0,0,1])"; none: at the origin
+    bool images_in_buffer = false;   // textures in the buffer (a .glb's binary chunk), not data URIs
+    std::vector<std::string> extra_nodes;  // raw node objects added to the scene, e.g. instances
 };
 
 // A unit quad in the z = 0 plane facing +z, lit by an emissive quad above it.

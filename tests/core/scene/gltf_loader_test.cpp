@@ -107,6 +107,69 @@ TEST(GltfLoaderTest, BaseColourTextureIsDecodedToLinearAndSampled) {
     EXPECT_NEAR(loaded->BaseColor(surface).z, 0.5f * 0.2158605f, 1e-5f);
 }
 
+constexpr char kTwoTexelPng[] =
+    "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTkSuQmCC";
+
+TEST(GltfLoaderTest, TextureTransformIsAppliedToTheTextureCoordinates) {
+    // KHR_texture_transform: uv' = offset + rotation(scale uv); a quarter turn maps (1, 0) to
+    // (0, -1) before the offset.
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.materials[0].texture_png_base64 = kTwoTexelPng;
+    scene.materials[0].texture_extra =
+        R"(,"extensions":{"KHR_texture_transform":{"offset":[0.5,0.25],"scale":[2,3],"rotation":1.5707963267948966}})";
+    scene.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+    const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "texture-transform.gltf"));
+    ASSERT_TRUE(loaded.ok()) << loaded.status();
+    // Vertex 1 had uv (1, 0): scaled (2, 0), turned to (0, -2), offset to (0.5, -1.75).
+    EXPECT_NEAR(loaded->uvs[1].x, 0.5f, 1e-6f);
+    EXPECT_NEAR(loaded->uvs[1].y, -1.75f, 1e-6f);
+    // Vertex 2, uv (1, 1): scaled (2, 3), turned to (3, -2), offset to (3.5, -1.75).
+    EXPECT_NEAR(loaded->uvs[2].x, 3.5f, 1e-6f);
+    EXPECT_NEAR(loaded->uvs[2].y, -1.75f, 1e-6f);
+}
+
+TEST(GltfLoaderTest, GlbWithTheImageInItsBinaryChunk) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.materials[0].texture_png_base64 = kTwoTexelPng;
+    scene.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+    scene.images_in_buffer = true;
+    const std::string path = testing::WriteGlb(scene, "embedded-image.glb");
+    const absl::StatusOr<SceneBundle> bundle = PackSceneBundle(path);
+    ASSERT_TRUE(bundle.ok()) << bundle.status();
+    EXPECT_EQ(bundle->files.size(), 1u);  // the image travels inside the .glb
+    const absl::StatusOr<Scene> loaded = LoadScene(*bundle, path);
+    ASSERT_TRUE(loaded.ok()) << loaded.status();
+    ASSERT_EQ(loaded->textures.size(), 1u);
+    EXPECT_EQ(loaded->textures[0].Texel(0, 0), Rgb(1.0f, 0.0f, 0.0f));
+}
+
+TEST(GltfLoaderTest, MeshesUsedByManyNodesAreInstanced) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.extra_nodes = {R"({"mesh":0,"translation":[0,0,-2]})", R"({"mesh":0,"translation":[0,0,-4],"scale":[-1,1,1]})"};
+    const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "instanced.gltf"));
+    ASSERT_TRUE(loaded.ok()) << loaded.status();
+    ASSERT_EQ(loaded->triangles.size(), 8u);  // the quad three times, the light once
+    EXPECT_NEAR(loaded->bounds.lower.z, -4.0f, 1e-6f);
+    for (const Triangle& t : loaded->triangles) {  // the mirrored instance still faces +z
+        if (loaded->materials[t.material].emission.x == 0) {
+            EXPECT_NEAR(t.normal.z, 1.0f, 1e-6f);
+        }
+    }
+}
+
+TEST(GltfLoaderTest, OversizedImagesAreRefusedBeforeDecoding) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.materials[0].texture_png_base64 = kTwoTexelPng;
+    scene.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+    SceneLoadOptions options;
+    options.limits.max_image_pixels = 1;
+    const std::string path = testing::WriteGltf(scene, "big-image.gltf");
+    const absl::StatusOr<Scene> loaded = LoadScene(path, options);
+    ASSERT_FALSE(loaded.ok());
+    EXPECT_EQ(loaded.status().code(), absl::StatusCode::kResourceExhausted);
+    ExpectError(loaded, path, "image is 2x1, over the limit of 1 pixels");
+}
+
 TEST(GltfLoaderTest, MissingFileIsNamed) {
     ExpectError(LoadScene("/nonexistent/scene.gltf"), "/nonexistent/scene.gltf", "cannot open");
 }
