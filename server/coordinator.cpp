@@ -31,11 +31,11 @@ absl::Status CheckReference(const Image* reference, int width, int height) {
 
 // Loads the scene, runs the camera pass and sets up the estimate: everything a job needs
 // before its first batch.
-absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names) {
+absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names, const SceneLimits& limits) {
     if (absl::Status status = CheckJobSpec(request.spec, names); !status.ok()) return status;
     if (absl::Status status = CheckSceneBundle(request.bundle); !status.ok()) return status;
     if (request.name.empty()) request.name = std::filesystem::path(request.bundle.main_file).filename().string();
-    absl::StatusOr<Scene> scene = LoadScene(request.bundle, request.bundle.main_file);
+    absl::StatusOr<Scene> scene = LoadScene(request.bundle, request.bundle.main_file, {limits, nullptr});
     if (!scene.ok()) return scene.status();
     auto payload = std::make_shared<JobPayload>(std::move(*scene), nullptr, PhotonSeed(request.spec));
     if (!payload->emitters.HasPower())
@@ -98,7 +98,7 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
                 absl::StrCat("the coordinator runs ", running, " jobs, its limit (max_running_jobs)"));
     }
     const Clock::time_point submitted = Now();  // a job's clock includes its camera pass
-    absl::StatusOr<PreparedJob> prepared = Prepare(std::move(request), options_.setting_names);
+    absl::StatusOr<PreparedJob> prepared = Prepare(std::move(request), options_.setting_names, options_.scene_limits);
     if (!prepared.ok()) return prepared.status();
     std::shared_ptr<Job> job;
     {

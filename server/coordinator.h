@@ -17,6 +17,7 @@
 
 #include "absl/status/statusor.h"
 #include "core/ppm/job_spec.h"
+#include "core/scene/mesh_builder.h"
 #include "core/scene/scene_bundle.h"
 #include "server/job.h"
 #include "worker/work_source.h"
@@ -32,6 +33,8 @@ struct CoordinatorOptions {
     size_t finished_jobs_kept = 64;      // ended jobs (their final images) kept for GetResult
     // How errors name a job's settings: the farm's fields, or the embedded renderer's flags.
     SettingNames setting_names = SettingNames::kFields;
+    // What a submitted scene may build (triangles, image sizes); over it, RESOURCE_EXHAUSTED.
+    SceneLimits scene_limits;
     std::function<Clock::time_point()> now = [] { return Clock::now(); };  // tests drive time
 };
 

@@ -225,7 +225,11 @@ absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(con
     if (!message.ParseFromString(*scene_bytes)) return absl::DataLossError(absl::StrCat(address_, ": scene blob does not parse"));
     absl::StatusOr<SceneBundle> bundle = FromProto(message);
     if (!bundle.ok()) return bundle.status();
-    absl::StatusOr<Scene> scene = LoadScene(*bundle, bundle->main_file);
+    // The coordinator accepted this scene under its configured limits; the worker takes it
+    // whatever they were (the bundle's own size limit still bounds it).
+    SceneLoadOptions options;
+    options.limits.max_triangles = options.limits.max_image_pixels = uint64_t{1} << 31;
+    absl::StatusOr<Scene> scene = LoadScene(*bundle, bundle->main_file, options);
     if (!scene.ok()) return scene.status();
     absl::StatusOr<std::string> hit_point_bytes = FetchBlob(job.hit_points_digest(), true);
     if (!hit_point_bytes.ok()) return hit_point_bytes.status();

@@ -113,6 +113,20 @@ TEST(CoordinatorTest, ResultsInAnyOrderFromAnyWorkerGiveTheEmbeddedImage) {
     EXPECT_TRUE(SamePixels(*done->CurrentImage(), reference->image)) << "the merge must not depend on arrival order";
 }
 
+TEST(CoordinatorTest, ScenesOverTheConfiguredLimitsAreRefused) {
+    FakeClock clock;
+    CoordinatorOptions options = Options(&clock);
+    options.scene_limits.max_triangles = 10;  // the Cornell box has 32
+    Coordinator coordinator(options);
+    const absl::StatusOr<JobProgress> refused = coordinator.Submit(SmallJob(1000));
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.status().code(), absl::StatusCode::kResourceExhausted);
+    EXPECT_NE(refused.status().message().find("more than 10 triangles"), std::string::npos) << refused.status();
+    options.scene_limits.max_triangles = 32;
+    Coordinator roomy(options);
+    EXPECT_TRUE(roomy.Submit(SmallJob(1000)).ok());
+}
+
 TEST(CoordinatorTest, DuplicateStaleGoneAndUnknownTalliesAreRefusedAndCounted) {
     FakeClock clock;
     Coordinator coordinator(Options(&clock));
