@@ -495,7 +495,17 @@ absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& nam
                                           static_cast<unsigned int>(main.size()), base_dir)
             : loader.LoadASCIIFromString(&model, &error, &warning, main.data(), static_cast<unsigned int>(main.size()),
                                          base_dir);
-    if (!warning.empty()) spdlog::warn("{}: {}", name, warning.substr(0, warning.find('\n')));
+    // Image files a bundle leaves out (no material reads them; PackSceneBundle) are expected
+    // missing; a base colour image that is missing is an error below.
+    for (size_t begin = 0; begin < warning.size();) {
+        const size_t end = std::min(warning.find('\n', begin), warning.size());
+        const std::string line = warning.substr(begin, end - begin);
+        if (!line.empty() && !absl::StartsWith(line, "File not found")) {
+            spdlog::warn("{}: {}", name, line);
+            break;
+        }
+        begin = end + 1;
+    }
     if (!loaded) {
         const std::string first_line = error.substr(0, error.find('\n'));
         return absl::InvalidArgumentError(absl::StrCat(name, ": not a valid glTF file: ", first_line.empty() ? "parse failed" : first_line));

@@ -3,7 +3,10 @@
 
 #include <tiny_gltf.h>
 
+#include <spdlog/spdlog.h>
+
 #include <filesystem>
+#include <set>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
@@ -75,7 +78,33 @@ bool SkipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, 
     return true;
 }
 
-absl::Status PackGltf(const std::string& scene_path, const std::string& main, bool binary, PackingFiles* files) {
+// Image files no material reads as its base colour (normal, roughness, occlusion maps...):
+// left out of the bundle, so they are neither uploaded nor sent to workers. Files that also
+// hold a buffer or a used image stay.
+void LeaveOutUnusedImages(const std::string& scene_path, const tinygltf::Model& model, SceneBundle* bundle) {
+    std::set<int> used;
+    for (const tinygltf::Material& material : model.materials) {
+        const int texture = material.pbrMetallicRoughness.baseColorTexture.index;
+        if (texture >= 0 && texture < static_cast<int>(model.textures.size())) used.insert(model.textures[texture].source);
+    }
+    std::set<std::string> kept;
+    for (const tinygltf::Buffer& buffer : model.buffers) kept.insert(buffer.uri);
+    for (int i : used)
+        if (i >= 0 && i < static_cast<int>(model.images.size())) kept.insert(model.images[i].uri);
+    std::vector<std::string> left_out;
+    for (int i = 0; i < static_cast<int>(model.images.size()); ++i) {
+        const std::string& uri = model.images[i].uri;
+        if (used.contains(i) || kept.contains(uri) || !bundle->files.contains(uri)) continue;
+        bundle->files.erase(uri);
+        left_out.push_back(uri);
+    }
+    if (!left_out.empty())
+        spdlog::info("{}: left out {} image file(s) no material reads as its base colour ({}{})", scene_path,
+                     left_out.size(), left_out.front(), left_out.size() > 1 ? ", ..." : "");
+}
+
+absl::Status PackGltf(const std::string& scene_path, const std::string& main, bool binary, PackingFiles* files,
+                      SceneBundle* bundle) {
     PackState state{files, absl::OkStatus()};
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({PackFileExists, PackExpandFilePath, PackReadWholeFile, NoWrite, &state});
@@ -91,6 +120,7 @@ absl::Status PackGltf(const std::string& scene_path, const std::string& main, bo
         return absl::InvalidArgumentError(
             absl::StrCat(scene_path, ": not a valid glTF file: ", first_line.empty() ? "parse failed" : first_line));
     }
+    LeaveOutUnusedImages(scene_path, model, bundle);
     return absl::OkStatus();
 }
 
@@ -134,7 +164,7 @@ absl::StatusOr<SceneBundle> PackSceneBundle(const std::string& scene_path) {
     } else {
         absl::StatusOr<std::string> main = ReadWholeFile(path);
         if (!main.ok()) return main.status();
-        status = PackGltf(scene_path, *main, format == SceneFormat::kGlb, &files);
+        status = PackGltf(scene_path, *main, format == SceneFormat::kGlb, &files, &bundle);
         bundle.files[bundle.main_file] = std::move(*main);
     }
     if (!status.ok()) return status;

@@ -4,10 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
+#include "absl/strings/escaping.h"
 #include "core/scene/scene_loader.h"
 
 namespace pf {
@@ -54,6 +57,34 @@ TEST(SceneBundleTest, PacksReferencedFilesAndLoadsFromTheBundleAlone) {
     const absl::StatusOr<Scene> scene = LoadScene(*bundle, "box.gltf");
     ASSERT_TRUE(scene.ok()) << scene.status();
     EXPECT_GT(scene->triangles.size(), 10u);
+}
+
+TEST(SceneBundleTest, LeavesOutImagesNoMaterialReadsAsItsBaseColour) {
+    // The fuzz corpus's textured quad reads image.png as its base colour; give it a normal map
+    // too, which photonfarm does not read.
+    const std::filesystem::path root = std::filesystem::temp_directory_path() / "photonfarm-tests" / "unused-images";
+    std::filesystem::create_directories(root);
+    std::ifstream in(std::string(PF_SOURCE_DIR) + "/tests/fuzz/corpus/gltf/textured-quad.gltf");
+    std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    json.replace(json.find(R"("images":[{"uri":"image.png"}])"), std::strlen(R"("images":[{"uri":"image.png"}])"),
+                 R"("images":[{"uri":"image.png"},{"uri":"normal.png"}])");
+    json.replace(json.find(R"("textures":[{"source":0}])"), std::strlen(R"("textures":[{"source":0}])"),
+                 R"("textures":[{"source":0},{"source":1}])");
+    json.replace(json.find(R"("emissiveFactor")"), std::strlen(R"("emissiveFactor")"), R"("normalTexture":{"index":1},"emissiveFactor")");
+    std::ofstream(root / "quad.gltf") << json;
+    // A 2x1 PNG for both (the same bytes: what matters is which files travel).
+    std::string png;
+    absl::Base64Unescape("iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTkSuQmCC", &png);
+    std::ofstream(root / "image.png", std::ios::binary) << png;
+    std::ofstream(root / "normal.png", std::ios::binary) << png;
+    const absl::StatusOr<SceneBundle> bundle = PackSceneBundle((root / "quad.gltf").string());
+    ASSERT_TRUE(bundle.ok()) << bundle.status();
+    EXPECT_TRUE(bundle->files.contains("image.png"));
+    EXPECT_FALSE(bundle->files.contains("normal.png"));
+    const absl::StatusOr<Scene> scene = LoadScene(*bundle, "quad.gltf");
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    EXPECT_EQ(scene->textures.size(), 1u);
+    std::filesystem::remove_all(root);
 }
 
 TEST(SceneBundleTest, DigestIsAContentAddress) {
