@@ -43,8 +43,10 @@ absl::Status PbrtSceneBuilder::BaseColor(ParameterList& parameters, const std::s
                                      "its material's default colour"));
             return absl::OkStatus();
         }
+        absl::StatusOr<int32_t> index = ImageIndex(texture);
+        if (!index.ok()) return index.status();
         material->material.base_color = texture.scale;
-        material->material.base_color_texture = texture.index;
+        material->material.base_color_texture = *index;
         material->uv = texture.uv;
     } else if (const std::optional<Rgb> color = parameters.Color(name)) {
         material->material.base_color = *color;
@@ -131,6 +133,22 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, Para
     return static_cast<int>(materials_.size() - 1);
 }
 
+absl::StatusOr<int32_t> PbrtSceneBuilder::ImageIndex(const TextureRef& texture) {
+    if (texture.path.empty()) return kNoTexture;
+    absl::StatusOr<std::string_view> bytes = files_.Read(texture.path);
+    if (!bytes.ok()) return absl::Status(bytes.status().code(), absl::StrCat(texture.element, ": ", bytes.status().message()));
+    if (options_.references_only) return kNoTexture;
+    const std::pair<std::string, int> key(
+        texture.path, static_cast<int>(texture.decode.encoding) * 1000 + static_cast<int>(texture.decode.gamma * 100));
+    if (const auto it = images_.find(key); it != images_.end()) return it->second;
+    absl::StatusOr<pf::Texture> image = DecodeImage(*bytes, texture.path, options_.limits, texture.decode);
+    if (!image.ok()) return absl::Status(image.status().code(), absl::StrCat(texture.element, ": ", image.status().message()));
+    const auto index = static_cast<int32_t>(scene_.textures.size());
+    scene_.textures.push_back(std::move(*image));
+    images_[key] = index;
+    return index;
+}
+
 absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::string& kind, const std::string& type,
                                        ParameterList& parameters, const Location& where) {
     if (kind == "float") {
@@ -145,7 +163,7 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
         if (filename.empty()) return ErrorAt(where, absl::StrCat("Texture \"", name, "\" needs \"string filename\""));
         absl::StatusOr<std::string> path = ResolveReference(filename);
         if (!path.ok()) return ErrorAt(where, absl::StrCat("Texture \"", name, "\": ", path.status().message()));
-        ImageDecodeOptions decode;
+        ImageDecodeOptions& decode = texture.decode;
         const std::string encoding = parameters.String("encoding", "");
         if (encoding == "sRGB") {
             decode.encoding = ImageEncoding::kSrgb;
@@ -168,20 +186,8 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
         if (wrap != "repeat") Warn(where, absl::StrCat("Texture \"", name, "\": wrap \"", wrap, "\" is rendered as \"repeat\""));
         parameters.String("filter", "");
         parameters.Float("maxanisotropy", 8);
-        absl::StatusOr<std::string_view> bytes = files_.Read(*path);
-        if (!bytes.ok()) return absl::Status(bytes.status().code(), absl::StrCat(where.ToString(), ": Texture \"", name, "\": ", bytes.status().message()));
-        const std::pair<std::string, int> key(*path, static_cast<int>(decode.encoding) * 1000 + static_cast<int>(decode.gamma * 100));
-        if (options_.references_only) {
-            texture.index = kNoTexture;
-        } else if (const auto it = images_.find(key); it != images_.end()) {
-            texture.index = it->second;
-        } else {
-            absl::StatusOr<pf::Texture> image = DecodeImage(*bytes, *path, options_.limits, decode);
-            if (!image.ok()) return absl::Status(image.status().code(), absl::StrCat(where.ToString(), ": Texture \"", name, "\": ", image.status().message()));
-            texture.index = static_cast<int32_t>(scene_.textures.size());
-            scene_.textures.push_back(std::move(*image));
-            images_[key] = texture.index;
-        }
+        texture.path = *path;
+        texture.element = absl::StrCat(where.ToString(), ": Texture \"", name, "\"");
     } else if (type == "constant") {
         texture.scale = parameters.Color("value").value_or(Rgb(1.0f));
     } else if (type == "scale") {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "core/scene/image_decode.h"
 #include "core/scene/mesh_builder.h"
 #include "core/scene/pbrt/pbrt_lexer.h"
 #include "core/scene/pbrt/pbrt_loader.h"
@@ -22,9 +23,13 @@ namespace pf::pbrt {
 // "file:line:column: what", INVALID_ARGUMENT.
 absl::Status ErrorAt(const Location& where, const std::string& what);
 
-// A texture as materials see it: an image (or none, for a constant) times a colour.
+// A texture as materials see it: an image (or none, for a constant) times a colour. The image
+// is read and decoded when a material first uses it, so unused textures cost nothing and are
+// not packed.
 struct TextureRef {
-    int32_t index = kNoTexture;  // into Scene::textures
+    std::string path;            // the image's bundle path; empty for a constant
+    ImageDecodeOptions decode;
+    std::string element;         // "file:line:column: Texture "name"", for errors
     Rgb scale{1.0f};
     UvTransform uv;
     std::string unsupported;     // non-empty: the texture class photonfarm cannot evaluate
@@ -91,6 +96,9 @@ private:
                            MaterialRef* material);
     absl::Status Texture(const std::string& name, const std::string& kind, const std::string& type,
                          ParameterList& parameters, const Location& where);
+    // The scene texture of `texture`'s image, read and decoded on first use (kNoTexture while
+    // packing, which only reads it).
+    absl::StatusOr<int32_t> ImageIndex(const TextureRef& texture);
     absl::Status LightSource(const std::string& type, ParameterList& parameters, const Location& where);
     absl::Status ApplyTransform(const Transform& transform);
     absl::Status FinishCamera();

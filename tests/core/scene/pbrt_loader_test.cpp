@@ -251,7 +251,9 @@ TEST(PbrtLoaderTest, IncludesPlyMeshesAndImageTexturesComeFromTheBundle) {
     const absl::StatusOr<std::string> png = ReadWholeFile(png_path);
     ASSERT_TRUE(png.ok());
     const std::string world = "Include \"parts/wall.pbrt\"\n";
-    const std::string wall = "Texture \"checks\" \"spectrum\" \"imagemap\" \"string filename\" \"textures/two.png\" \"float uscale\" 2\n"
+    // "unused" names a file the bundle lacks: no material uses it, so it is never read.
+    const std::string wall = "Texture \"unused\" \"spectrum\" \"imagemap\" \"string filename\" \"textures/absent.png\"\n"
+                             "Texture \"checks\" \"spectrum\" \"imagemap\" \"string filename\" \"textures/two.png\" \"float uscale\" 2\n"
                              "Material \"diffuse\" \"texture reflectance\" \"checks\"\n"
                              "Shape \"plymesh\" \"string filename\" \"meshes/./quad.ply\"\n";
     const SceneBundle bundle =
@@ -305,8 +307,10 @@ TEST(PbrtLoaderTest, BadInputIsAOneLineErrorNamingFileLineAndColumn) {
     ExpectError(Load(Bundle("Include \"loop.pbrt\"\n", {{"loop.pbrt", "Include \"loop.pbrt\"\n"}})), "includes nest deeper than");
     ExpectError(Load(Bundle("Shape \"plymesh\" \"string filename\" \"bad.ply\"\n", {{"bad.ply", "ply\nformat nonsense\n"}})),
                 "bad.ply: not a valid PLY mesh");
-    ExpectError(Load(Bundle("Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"t.png\"\n", {{"t.png", "not a png"}})),
-                "Texture \"t\": t.png");
+    ExpectError(Load(Bundle(std::string("Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"t.png\"\n"
+                                        "Material \"diffuse\" \"texture reflectance\" \"t\"\n") + kQuad,
+                            {{"t.png", "not a png"}})),
+                "scenes/scene.pbrt:6:1: Texture \"t\": t.png");
     SceneBundle no_light = Bundle(kQuad);
     std::string& main = no_light.files["scene.pbrt"];
     main.erase(main.find("LightSource"), std::strlen("LightSource \"point\" \"rgb I\" [1 1 1]\n"));
