@@ -32,9 +32,11 @@ struct CameraPath {
 // percent of reflection on glass would otherwise show as speckle, since hit points are kept.
 // Instantiated for the scene's features: without specular materials every path ends at its
 // first hit, without textures every base colour is the material's.
+// Textures are filtered over the sample's share of the pixel's cone (the pixel's angle over
+// the square root of its samples, as pbrt-v4 scales its ray differentials).
 template <bool kSpecular, bool kTextures>
 Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& primary, uint32_t pixel,
-                      float pixel_angle, Rng& rng, std::vector<HitPoint>& hit_points,
+                      float pixel_angle, float filter_angle, Rng& rng, std::vector<HitPoint>& hit_points,
                       std::vector<float>& footprints) {
     Rgb emission(0.0f);
     CameraPath stack[kCameraSplits + 1];
@@ -50,7 +52,7 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
             const Material& material = scene.materials[surface.material];
             const bool front_facing = Dot(path.ray.direction, surface.geometric_normal) < 0;
             if (front_facing && material.IsEmissive()) emission += path.throughput * material.emission;
-            const Rgb base_color = kTextures ? scene.BaseColor(surface) : material.base_color;
+            const Rgb base_color = kTextures ? scene.BaseColor(surface, path.length * filter_angle) : material.base_color;
             if (!kSpecular || material.type == MaterialType::kDiffuse) {
                 const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
                 hit_points.push_back({surface.position, normal, path.throughput * base_color / kPi, pixel});
@@ -114,6 +116,7 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     const int width = settings.width, height = settings.height, spp = settings.samples_per_pixel;
     const float film_aspect = static_cast<float>(width) / static_cast<float>(height);
     const float pixel_angle = scene.camera.PixelAngle(height);
+    const float filter_angle = pixel_angle / std::sqrt(static_cast<float>(settings.samples_per_pixel));
     // Stratified jitter: sample s of a pixel falls in cell s of a strata x strata grid.
     const int strata = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(spp))));
 
@@ -140,7 +143,8 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                         const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
                         ray = scene.camera.GenerateRay(fx, fy, film_aspect, SampleUniformDisk(u1, u2));
                     }
-                    emission += trace(scene, tracer, ray, pixel, pixel_angle, rng, row_hit_points[y], row_footprints[y]);
+                    emission += trace(scene, tracer, ray, pixel, pixel_angle, filter_angle, rng, row_hit_points[y],
+                                      row_footprints[y]);
                 }
                 result.emission.At(x, y) = emission / static_cast<float>(spp);
             }

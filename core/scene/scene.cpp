@@ -2,6 +2,7 @@
 #include "core/scene/scene.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace pf {
 
@@ -34,6 +35,10 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
         const Point2& t1 = uvs[triangle.vertex[1]];
         const Point2& t2 = uvs[triangle.vertex[2]];
         surface.uv = {t0.x * b0 + t1.x * hit.b1 + t2.x * hit.b2, t0.y * b0 + t1.y * hit.b1 + t2.y * hit.b2};
+        // An isotropic scale: the square root of the triangle's area in uv over its area in space.
+        const float uv_area = std::abs((t1.x - t0.x) * (t2.y - t0.y) - (t2.x - t0.x) * (t1.y - t0.y));
+        const float area = Length(Cross(p1 - p0, p2 - p0));
+        surface.uv_per_length = area > 0 ? std::sqrt(uv_area / area) : 0.0f;
     }
     return surface;
 }
@@ -43,6 +48,13 @@ Rgb Scene::BaseColor(const SurfacePoint& surface) const {
     if (material.base_color_texture == kNoTexture) return material.base_color;
     return material.base_color *
            textures[material.base_color_texture].Sample(surface.uv.x, surface.uv.y);
+}
+
+Rgb Scene::BaseColor(const SurfacePoint& surface, float width) const {
+    const Material& material = materials[surface.material];
+    if (material.base_color_texture == kNoTexture) return material.base_color;
+    return material.base_color * textures[material.base_color_texture].SampleFiltered(
+                                     surface.uv.x, surface.uv.y, width * surface.uv_per_length);
 }
 
 float Scene::TriangleArea(uint32_t triangle) const {

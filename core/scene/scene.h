@@ -61,6 +61,7 @@ struct SurfacePoint {
     Vec3 geometric_normal;  // unit, on the side the triangle's winding makes its front
     Vec3 shading_normal;    // unit, interpolated, on the same side as geometric_normal
     Point2 uv;              // texture coordinates; set only where the material has a texture
+    float uv_per_length = 0;  // texture-coordinate units per world length on this triangle; likewise
     uint32_t material = 0;
 };
 
@@ -86,8 +87,12 @@ struct Scene {
     SceneRenderHints hints;
 
     SurfacePoint Surface(const RayHit& hit) const;
-    // Diffuse reflectance or specular tint at a surface point, texture applied.
+    // Diffuse reflectance or specular tint at a surface point, texture applied (bilinear, at
+    // the point: what a photon meets).
     Rgb BaseColor(const SurfacePoint& surface) const;
+    // The same averaged over a footprint `width` world units across (a camera sample's cone
+    // where it meets the surface), trilinearly from the texture's MIP levels.
+    Rgb BaseColor(const SurfacePoint& surface, float width) const;
     float TriangleArea(uint32_t triangle) const;
 };
 
