@@ -11,6 +11,7 @@
 #include "absl/strings/str_format.h"
 #include "core/film/image_metrics.h"
 #include "core/ppm/camera_pass.h"
+#include "core/ppm/caustic_probe.h"
 #include "core/scene/scene_loader.h"
 #include "core/scene/scene_features.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
@@ -53,6 +54,12 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names, cons
         return status;
     absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(payload->scene);
     if (!tracer.ok()) return tracer.status();
+    if (film->features.Specular()) {
+        const CausticProbe probe = ProbeCaustics(payload->scene, payload->emitters, **tracer, request.spec.seed);
+        film->features.caustics = probe.caustic > 0;
+        spdlog::info("{}: {:.2f}% of light paths reach a diffuse surface through specular bounces (caustics)",
+                     request.name, 100 * probe.Fraction());
+    }
     const auto start = Clock::now();
     CameraPassResult camera_pass = RunCameraPass(payload->scene, **tracer, *film);
     const EstimateSettings settings = EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);

@@ -8,7 +8,7 @@
 namespace pf {
 
 SceneFeatures SceneFeatures::All() {
-    return {true, true, true, true, true, true, true, true, true};
+    return {true, true, true, true, true, true, true, true, true, true};
 }
 
 std::string SceneFeatures::ToString() const {
@@ -22,6 +22,7 @@ std::string SceneFeatures::ToString() const {
     if (point_lights) parts.push_back("point lights");
     if (spot_lights) parts.push_back("spot lights");
     if (directional_lights) parts.push_back("directional lights");
+    if (caustics) parts.push_back("caustics");
     return absl::StrJoin(parts, ", ");
 }
 

@@ -17,11 +17,15 @@ struct SceneFeatures {
     bool smooth_normals = false;  // a triangle interpolates vertex normals
     // Emitters with power.
     bool triangle_lights = false, point_lights = false, spot_lights = false, directional_lights = false;
+    // Light reaches diffuse surfaces through specular chains (caustic paths). Not known from
+    // the scene's contents alone: the coordinator probes light paths (core/ppm/caustic_probe.h)
+    // for scenes with specular materials; false otherwise.
+    bool caustics = false;
 
     bool Specular() const { return mirror || dielectric || thin_dielectric; }
     // Every feature on: the general code path, for comparison (bench/photon_bench).
     static SceneFeatures All();
-    // "diffuse, glass, area lights": for logs, job metadata and EXR headers.
+    // "diffuse, glass, area lights, caustics": for logs, job metadata and EXR headers.
     std::string ToString() const;
 };
 

@@ -1,0 +1,39 @@
+// The caustic probe: light paths followed through specular bounces to their first diffuse hit.
+#include "core/ppm/caustic_probe.h"
+
+#include "core/ppm/camera_pass.h"
+#include "core/sampling/rng.h"
+#include "core/scene/specular.h"
+
+namespace pf {
+
+CausticProbe ProbeCaustics(const Scene& scene, const Emitters& emitters, const Tracer& tracer, uint64_t seed,
+                           uint32_t paths) {
+    CausticProbe probe;
+    if (!emitters.HasPower()) return probe;
+    constexpr uint64_t kProbeStream = 0x63617573746963ull;  // "caustic"
+    for (uint32_t i = 0; i < paths; ++i) {
+        Rng rng(HashSeed(seed, kProbeStream, i));
+        Ray ray = emitters.Emit(rng).ray;
+        ++probe.paths;
+        for (int bounce = 0; bounce < kMaxCameraDepth; ++bounce) {
+            RayHit hit;
+            if (!tracer.Intersect(ray, &hit)) break;
+            const SurfacePoint surface = scene.Surface(hit);
+            const Material& material = scene.materials[surface.material];
+            if (material.type == MaterialType::kDiffuse) {
+                probe.caustic += bounce > 0;
+                break;
+            }
+            const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
+            const SpecularBounce next = ScatterSpecular(material, ray.direction, surface.shading_normal, front_facing,
+                                                        scene.BaseColor(surface), rng.NextFloat());
+            if (IsBlack(next.weight)) break;
+            const Vec3 side = front_facing == next.transmitted ? -surface.geometric_normal : surface.geometric_normal;
+            ray = {OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude()), next.direction};
+        }
+    }
+    return probe;
+}
+
+}  // namespace pf

@@ -1,0 +1,48 @@
+// The caustic probe: light reaching diffuse surfaces through specular chains is found where
+// it exists and not claimed where walls stop it.
+#include "core/ppm/caustic_probe.h"
+
+#include <gtest/gtest.h>
+
+#include "core/scene/scene_loader.h"
+#include "tests/support/gltf_builder.h"
+#include "worker/backends/cpu_embree/embree_tracer.h"
+
+namespace pf {
+namespace {
+
+CausticProbe Probe(const Scene& scene) {
+    const Emitters emitters(scene);
+    absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(scene);
+    EXPECT_TRUE(tracer.ok()) << tracer.status();
+    return ProbeCaustics(scene, emitters, **tracer, 1);
+}
+
+TEST(CausticProbeTest, GlassUnderTheLightCastsCaustics) {
+    const absl::StatusOr<Scene> scene = LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-glass.gltf");
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const CausticProbe probe = Probe(*scene);
+    EXPECT_EQ(probe.paths, 1u << 14);
+    EXPECT_GT(probe.caustic, 100u);  // the spheres take several percent of the light
+}
+
+TEST(CausticProbeTest, AMirrorTheLightCannotSeeCastsNone) {
+    // The lit quad (the light above it faces down onto its top), and a mirror below it facing
+    // away from the light: no light path meets the mirror before a diffuse surface.
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.materials.push_back({Rgb(0.9f), Rgb(0.0f)});
+    scene.meshes.push_back({{{-0.5f, -0.5f, -1}, {0.5f, 0.5f, -1}, {0.5f, -0.5f, -1}}, 2});
+    std::string json = testing::GltfJson(scene);
+    // Make material 2 a mirror: metallic 1, roughness 0.
+    const std::string last = R"({"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":0})";
+    const size_t at = json.rfind(last);
+    ASSERT_NE(at, std::string::npos);
+    json.replace(at, last.size(), R"({"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":1,"roughnessFactor":0})");
+    const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteTextFile(json, "hidden-mirror.gltf"));
+    ASSERT_TRUE(loaded.ok()) << loaded.status();
+    EXPECT_EQ(loaded->materials[2].type, MaterialType::kMirror);
+    EXPECT_EQ(Probe(*loaded).caustic, 0u);
+}
+
+}  // namespace
+}  // namespace pf
