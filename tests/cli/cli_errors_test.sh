@@ -31,6 +31,13 @@ printf '{"asset": {"version": "2.0"' >"$work/broken.gltf"
 expect_failure "unknown flag" "--frobnicate" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --frobnicate
 expect_failure "missing scene" "nope.gltf" render "$work/nope.gltf" --out "$work/a.exr"
 expect_failure "malformed scene" "broken.gltf" render "$work/broken.gltf" --out "$work/a.exr" --photons 1000
+printf 'LookAt 0 0 -1  0 0 0  0 1 0\nCamera "perspective"\nWorldBegin\nShape "sphere" "float radius" "big"\n' >"$work/bad.pbrt"
+expect_failure "malformed pbrt scene" "bad.pbrt:4:16: parameter \"float radius\" needs numbers, found \"big\"" \
+    render "$work/bad.pbrt" --out "$work/a.exr" --photons 1000
+printf 'WorldBegin\nInclude "../secret.pbrt"\n' >"$work/escape.pbrt"
+expect_failure "pbrt include outside the folder" "escape.pbrt:2:1: Include: scene reference '../secret.pbrt' leaves" \
+    render "$work/escape.pbrt" --out "$work/a.exr" --photons 1000
+expect_failure "unknown scene format" "unknown scene format" render "$work/small.exr" --out "$work/a.exr" --photons 1000
 # The farm commands: nothing listens on port 1 here.
 expect_failure "unreachable server" "cannot reach the coordinator at 127.0.0.1:1" jobs --server 127.0.0.1:1
 expect_failure "unreachable server on submit" "cannot reach the coordinator" submit "$source_dir/scenes/cornell-box.gltf" \

@@ -146,9 +146,13 @@ absl::StatusOr<ParameterList> PbrtSceneBuilder::ReadParameters(const std::vector
                                                                    " is not a 32-bit integer"));
         const bool numeric = parameter.type != "string" && parameter.type != "texture" && parameter.type != "bool" &&
                              parameter.type != "spectrum";
-        if ((numeric && !parameter.strings.empty()) || (!numeric && parameter.type != "spectrum" && !parameter.numbers.empty()) ||
-            (parameter.type == "bool" && parameter.bools.empty()))
-            return ErrorAt(declaration.where, absl::StrCat("parameter ", Describe(declaration), " has values of the wrong kind"));
+        std::string wrong;
+        if (numeric && !parameter.strings.empty()) wrong = absl::StrCat("needs numbers, found \"", parameter.strings[0], "\"");
+        if ((parameter.type == "string" || parameter.type == "texture") && !parameter.numbers.empty())
+            wrong = absl::StrCat("needs a quoted string, found ", parameter.numbers[0]);
+        if (parameter.type == "bool" && (parameter.bools.empty() || !parameter.numbers.empty()))
+            wrong = "needs true or false";
+        if (!wrong.empty()) return ErrorAt(declaration.where, absl::StrCat("parameter ", Describe(declaration), " ", wrong));
         parameters.push_back(std::move(parameter));
     }
     return ParameterList(std::move(parameters));

@@ -37,7 +37,7 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     EXPECT_FALSE(features.triangle_lights) << "an emissive material on no triangle emits nothing";
     EXPECT_EQ(SceneFeatures::All().ToString(),
               "diffuse, mirror, glass, thin glass, textures, smooth normals, area lights, point lights, spot lights, "
-              "directional lights");
+              "directional lights, caustics");
 }
 
 }  // namespace
