@@ -165,94 +165,73 @@ absl::Status PbrtSceneBuilder::ApplyTransform(const Transform& transform) {
     return absl::OkStatus();
 }
 
-absl::Status PbrtSceneBuilder::Directive(const std::vector<Token>& tokens, size_t* pos, int depth) {
-    const Token& directive = tokens[(*pos)++];
+// Directives with a type (or name) and a parameter list.
+absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, const std::vector<Token>& tokens, size_t* pos) {
     const std::string& name = directive.text;
     const Location& where = directive.where;
-    if (directive.kind != TokenKind::kWord)
-        return ErrorAt(where, absl::StrCat("expected a directive, found ", Describe(directive)));
+    auto string_argument = [&]() { return ReadString(tokens, pos, directive); };
+    absl::StatusOr<std::string> type = string_argument();
+    if (!type.ok()) return type.status();
+    absl::StatusOr<ParameterList> parameters = ReadParameters(tokens, pos);
+    if (!parameters.ok()) return parameters.status();
+    absl::Status status;
+    if (name == "Camera") {
+        status = Camera(*type, *parameters, where);
+    } else if (name == "Film") {
+        status = Film(*parameters);
+    } else if (name == "Sampler" || name == "PixelFilter" || name == "Accelerator") {
+        for (const Parameter* p : parameters->Unused()) const_cast<Parameter*>(p)->used = true;
+        if (name != "Accelerator")
+            Warn(where, name == "Sampler" ? "Sampler: hit points per pixel come from photonfarm's --spp, samples from its own sequence"
+                                          : "PixelFilter: photonfarm averages each pixel's hit points (a box filter)");
+    } else if (name == "Integrator") {
+        status = Integrator(*type, *parameters, where);
+    } else if (name == "Shape") {
+        status = Shape(*type, *parameters, where);
+    } else if (name == "Material") {
+        absl::StatusOr<int> material = MakeMaterial(*type, *parameters, where);
+        if (!material.ok()) return material.status();
+        state_.material = *material;
+    } else if (name == "MakeNamedMaterial") {
+        const std::string material_type = parameters->String("type", "");
+        if (material_type.empty()) return ErrorAt(where, absl::StrCat("MakeNamedMaterial \"", *type, "\" needs \"string type\""));
+        absl::StatusOr<int> material = MakeMaterial(material_type, *parameters, where);
+        if (!material.ok()) return material.status();
+        named_materials_[*type] = *material;
+    } else if (name == "LightSource") {
+        status = LightSource(*type, *parameters, where);
+    } else if (name == "AreaLightSource") {
+        if (*type != "diffuse") return ErrorAt(where, absl::StrCat("AreaLightSource \"", *type, "\" is unknown (\"diffuse\" is pbrt-v4's only one)"));
+        const Rgb radiance = parameters->Color("L").value_or(Rgb(1.0f)) * static_cast<float>(parameters->Float("scale", 1.0));
+        AreaLight light{radiance, parameters->Float("power", 0.0)};
+        if (parameters->Bool("twosided", false))
+            Warn(where, "AreaLightSource: \"twosided\" lights emit from their front side only in photonfarm");
+        if (!IsFinite(radiance) || MinComponent(radiance) < 0 || light.power < 0)
+            return ErrorAt(where, "AreaLightSource: L, scale and power must be finite and non-negative");
+        state_.area_light = light;
+    } else if (name == "MakeNamedMedium") {
+        for (const Parameter* p : parameters->Unused()) const_cast<Parameter*>(p)->used = true;
+        Warn(where, "MakeNamedMedium: participating media are not rendered; the medium is ignored");
+    } else if (name == "Attribute") {
+        for (const Parameter* p : parameters->Unused()) const_cast<Parameter*>(p)->used = true;
+        Warn(where, "Attribute: default parameters for a class of objects are not supported; ignored");
+    }
+    if (!status.ok()) return status;
+    if (!parameters->status().ok()) return parameters->status();
+    WarnUnused(*parameters, absl::StrCat(name, " \"", *type, "\""));
+    return absl::OkStatus();
+}
+
+// Transform directives; nullopt for any other.
+std::optional<absl::Status> PbrtSceneBuilder::TransformDirective(const Token& directive, const std::vector<Token>& tokens,
+                                                                 size_t* pos) {
+    const std::string& name = directive.text;
+    const Location& where = directive.where;
     auto string_argument = [&]() { return ReadString(tokens, pos, directive); };
     auto numbers = [&](size_t count) { return ReadNumbers(tokens, pos, directive, count); };
     auto transform_error = [&](absl::Status status) {
         return status.ok() ? status : ErrorAt(where, absl::StrCat(name, ": ", status.message()));
     };
-    // Directives with a type (or name) and a parameter list.
-    static const std::set<std::string> kTyped = {"Camera", "Film", "Sampler", "PixelFilter", "Integrator", "Accelerator",
-                                                 "Shape", "Material", "MakeNamedMaterial", "LightSource", "AreaLightSource",
-                                                 "MakeNamedMedium", "Attribute"};
-    if (kTyped.contains(name)) {
-        absl::StatusOr<std::string> type = string_argument();
-        if (!type.ok()) return type.status();
-        absl::StatusOr<ParameterList> parameters = ReadParameters(tokens, pos);
-        if (!parameters.ok()) return parameters.status();
-        absl::Status status;
-        if (name == "Camera") {
-            status = Camera(*type, *parameters, where);
-        } else if (name == "Film") {
-            status = Film(*parameters);
-        } else if (name == "Sampler" || name == "PixelFilter" || name == "Accelerator") {
-            for (const Parameter* p : parameters->Unused()) const_cast<Parameter*>(p)->used = true;
-            if (name != "Accelerator")
-                Warn(where, name == "Sampler" ? "Sampler: hit points per pixel come from photonfarm's --spp, samples from its own sequence"
-                                              : "PixelFilter: photonfarm averages each pixel's hit points (a box filter)");
-        } else if (name == "Integrator") {
-            status = Integrator(*type, *parameters, where);
-        } else if (name == "Shape") {
-            status = Shape(*type, *parameters, where);
-        } else if (name == "Material") {
-            absl::StatusOr<int> material = MakeMaterial(*type, *parameters, where);
-            if (!material.ok()) return material.status();
-            state_.material = *material;
-        } else if (name == "MakeNamedMaterial") {
-            const std::string material_type = parameters->String("type", "");
-            if (material_type.empty()) return ErrorAt(where, absl::StrCat("MakeNamedMaterial \"", *type, "\" needs \"string type\""));
-            absl::StatusOr<int> material = MakeMaterial(material_type, *parameters, where);
-            if (!material.ok()) return material.status();
-            named_materials_[*type] = *material;
-        } else if (name == "LightSource") {
-            status = LightSource(*type, *parameters, where);
-        } else if (name == "AreaLightSource") {
-            if (*type != "diffuse") return ErrorAt(where, absl::StrCat("AreaLightSource \"", *type, "\" is unknown (\"diffuse\" is pbrt-v4's only one)"));
-            const Rgb radiance = parameters->Color("L").value_or(Rgb(1.0f)) * static_cast<float>(parameters->Float("scale", 1.0));
-            AreaLight light{radiance, parameters->Float("power", 0.0)};
-            if (parameters->Bool("twosided", false))
-                Warn(where, "AreaLightSource: \"twosided\" lights emit from their front side only in photonfarm");
-            if (!IsFinite(radiance) || MinComponent(radiance) < 0 || light.power < 0)
-                return ErrorAt(where, "AreaLightSource: L, scale and power must be finite and non-negative");
-            state_.area_light = light;
-        } else if (name == "MakeNamedMedium") {
-            for (const Parameter* p : parameters->Unused()) const_cast<Parameter*>(p)->used = true;
-            Warn(where, "MakeNamedMedium: participating media are not rendered; the medium is ignored");
-        } else if (name == "Attribute") {
-            for (const Parameter* p : parameters->Unused()) const_cast<Parameter*>(p)->used = true;
-            Warn(where, "Attribute: default parameters for a class of objects are not supported; ignored");
-        }
-        if (!status.ok()) return status;
-        if (!parameters->status().ok()) return parameters->status();
-        WarnUnused(*parameters, absl::StrCat(name, " \"", *type, "\""));
-        return absl::OkStatus();
-    }
-    if (name == "Texture") {
-        absl::StatusOr<std::string> texture_name = string_argument();
-        if (!texture_name.ok()) return texture_name.status();
-        absl::StatusOr<std::string> kind = string_argument();
-        if (!kind.ok()) return kind.status();
-        absl::StatusOr<std::string> type = string_argument();
-        if (!type.ok()) return type.status();
-        absl::StatusOr<ParameterList> parameters = ReadParameters(tokens, pos);
-        if (!parameters.ok()) return parameters.status();
-        if (absl::Status status = Texture(*texture_name, *kind, *type, *parameters, where); !status.ok()) return status;
-        if (!parameters->status().ok()) return parameters->status();
-        WarnUnused(*parameters, absl::StrCat("Texture \"", *texture_name, "\""));
-        return absl::OkStatus();
-    }
-    if (name == "Include" || name == "Import") {
-        absl::StatusOr<std::string> file = string_argument();
-        if (!file.ok()) return file.status();
-        absl::StatusOr<std::string> path = ResolveReference(*file);
-        if (!path.ok()) return ErrorAt(where, absl::StrCat(name, ": ", path.status().message()));
-        return ParseFile(*path, &where, depth + 1);
-    }
     if (name == "LookAt") {
         absl::StatusOr<std::vector<double>> v = numbers(9);
         if (!v.ok()) return v.status();
@@ -318,6 +297,15 @@ absl::Status PbrtSceneBuilder::Directive(const std::vector<Token>& tokens, size_
         absl::StatusOr<std::vector<double>> v = numbers(2);
         return v.ok() ? absl::OkStatus() : v.status();
     }
+    return std::nullopt;
+}
+
+// Directives on the graphics state, the world and objects; nullopt for any other.
+std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& directive, const std::vector<Token>& tokens,
+                                                             size_t* pos) {
+    const std::string& name = directive.text;
+    const Location& where = directive.where;
+    auto string_argument = [&]() { return ReadString(tokens, pos, directive); };
     if (name == "ReverseOrientation") {
         state_.reverse_orientation = !state_.reverse_orientation;
         return absl::OkStatus();
@@ -410,6 +398,43 @@ absl::Status PbrtSceneBuilder::Directive(const std::vector<Token>& tokens, size_
         for (const Parameter* p : parameters->Unused()) Warn(p->where, absl::StrCat("Option \"", p->name, "\" is not supported; ignored"));
         return absl::OkStatus();
     }
+    return std::nullopt;
+}
+
+absl::Status PbrtSceneBuilder::Directive(const std::vector<Token>& tokens, size_t* pos, int depth) {
+    const Token& directive = tokens[(*pos)++];
+    const std::string& name = directive.text;
+    const Location& where = directive.where;
+    if (directive.kind != TokenKind::kWord)
+        return ErrorAt(where, absl::StrCat("expected a directive, found ", Describe(directive)));
+    auto string_argument = [&]() { return ReadString(tokens, pos, directive); };
+    static const std::set<std::string> kTyped = {"Camera", "Film", "Sampler", "PixelFilter", "Integrator", "Accelerator",
+                                                 "Shape", "Material", "MakeNamedMaterial", "LightSource", "AreaLightSource",
+                                                 "MakeNamedMedium", "Attribute"};
+    if (kTyped.contains(name)) return TypedDirective(directive, tokens, pos);
+    if (name == "Texture") {
+        absl::StatusOr<std::string> texture_name = string_argument();
+        if (!texture_name.ok()) return texture_name.status();
+        absl::StatusOr<std::string> kind = string_argument();
+        if (!kind.ok()) return kind.status();
+        absl::StatusOr<std::string> type = string_argument();
+        if (!type.ok()) return type.status();
+        absl::StatusOr<ParameterList> parameters = ReadParameters(tokens, pos);
+        if (!parameters.ok()) return parameters.status();
+        if (absl::Status status = Texture(*texture_name, *kind, *type, *parameters, where); !status.ok()) return status;
+        if (!parameters->status().ok()) return parameters->status();
+        WarnUnused(*parameters, absl::StrCat("Texture \"", *texture_name, "\""));
+        return absl::OkStatus();
+    }
+    if (name == "Include" || name == "Import") {
+        absl::StatusOr<std::string> file = string_argument();
+        if (!file.ok()) return file.status();
+        absl::StatusOr<std::string> path = ResolveReference(*file);
+        if (!path.ok()) return ErrorAt(where, absl::StrCat(name, ": ", path.status().message()));
+        return ParseFile(*path, &where, depth + 1);
+    }
+    if (std::optional<absl::Status> status = TransformDirective(directive, tokens, pos)) return *status;
+    if (std::optional<absl::Status> status = StateDirective(directive, tokens, pos)) return *status;
     return ErrorAt(where, absl::StrCat("unknown directive '", name, "'"));
 }
 

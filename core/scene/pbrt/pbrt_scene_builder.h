@@ -79,6 +79,9 @@ private:
     // Parsing.
     absl::Status ParseFile(const std::string& path, const Location* included_from, int depth);
     absl::Status Directive(const std::vector<Token>& tokens, size_t* pos, int depth);
+    absl::Status TypedDirective(const Token& directive, const std::vector<Token>& tokens, size_t* pos);
+    std::optional<absl::Status> TransformDirective(const Token& directive, const std::vector<Token>& tokens, size_t* pos);
+    std::optional<absl::Status> StateDirective(const Token& directive, const std::vector<Token>& tokens, size_t* pos);
     absl::StatusOr<std::string> ReadString(const std::vector<Token>& tokens, size_t* pos, const Token& directive);
     absl::StatusOr<std::vector<double>> ReadNumbers(const std::vector<Token>& tokens, size_t* pos, const Token& directive,
                                                     size_t count);
