@@ -6,36 +6,21 @@
 #include <algorithm>
 #include <string>
 
-#include "client/local_render.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/image_agreement.h"
+#include "tests/support/small_render.h"
 #include "tests/support/vulkan_validation.h"
 
 namespace pf {
 namespace {
 
-// Renders `scene_path` at 32x32 with 1M photons on `backend` with photon stream `stream`.
-Image Render(const std::string& scene_path, const std::string& backend, uint64_t stream) {
-    RenderSettings settings;
-    settings.scene_path = scene_path;
-    settings.backend = backend;
-    settings.threads = 2;
-    settings.job.width = 32;
-    settings.job.height = 32;
-    settings.job.photon_budget = 1'000'000;
-    settings.job.layout = {1u << 16, 4};
-    settings.job.photon_stream = stream;
-    absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
-    EXPECT_TRUE(outcome.ok()) << outcome.status();
-    return outcome.ok() ? outcome->image : Image();
-}
 
 // A Vulkan render of the scene (stream 3) against two CPU renders (streams 1 and 2), with no
 // validation error on the way.
 void ExpectVulkanAgreesWithTheCpu(const std::string& scene_path) {
     const unsigned long long errors_before = testing::VulkanValidationErrors();
-    testing::ExpectSameEstimator(Render(scene_path, "vulkan", 3), Render(scene_path, "cpu", 1),
-                                 Render(scene_path, "cpu", 2));
+    testing::ExpectSameEstimator(testing::RenderSmall(scene_path, "vulkan", 3), testing::RenderSmall(scene_path, "cpu", 1),
+                                 testing::RenderSmall(scene_path, "cpu", 2));
     EXPECT_EQ(testing::VulkanValidationErrors(), errors_before);
 }
 

@@ -19,14 +19,6 @@
 namespace pf::testing {
 namespace {
 
-double MeanSquaredDifference(const Image& a, const Image& b) {
-    double sum = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-        const double d = Average(a.pixels[i]) - Average(b.pixels[i]);
-        sum += d * d;
-    }
-    return sum / a.pixels.size();
-}
 
 double Mean(const Image& image) {
     double sum = 0;
@@ -35,6 +27,15 @@ double Mean(const Image& image) {
 }
 
 }  // namespace
+
+double MeanSquaredDifference(const Image& a, const Image& b) {
+    double sum = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        const double d = Average(a.pixels[i]) - Average(b.pixels[i]);
+        sum += d * d;
+    }
+    return sum / a.pixels.size();
+}
 
 void ExpectSameEstimator(const Image& image, const Image& a, const Image& b) {
     ASSERT_FALSE(a.pixels.empty());

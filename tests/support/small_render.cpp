@@ -1,0 +1,25 @@
+// The small render the statistical image comparisons share.
+#include "tests/support/small_render.h"
+
+#include <gtest/gtest.h>
+
+#include "client/local_render.h"
+
+namespace pf::testing {
+
+Image RenderSmall(const std::string& scene_path, const std::string& backend, uint64_t stream) {
+    RenderSettings settings;
+    settings.scene_path = scene_path;
+    settings.backend = backend;
+    settings.threads = 2;
+    settings.job.width = 32;
+    settings.job.height = 32;
+    settings.job.photon_budget = 1'000'000;
+    settings.job.layout = {1u << 16, 4};
+    settings.job.photon_stream = stream;
+    absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+    EXPECT_TRUE(outcome.ok()) << outcome.status();
+    return outcome.ok() ? outcome->image : Image();
+}
+
+}  // namespace pf::testing

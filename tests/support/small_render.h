@@ -1,0 +1,16 @@
+// One small local render for tests that compare images statistically: 32x32, 1M photons in
+// batches of 2^16, two threads.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "core/film/image.h"
+
+namespace pf::testing {
+
+// Renders `scene_path` on `backend` with photon stream `stream`; a failed render adds a test
+// failure and gives an empty image.
+Image RenderSmall(const std::string& scene_path, const std::string& backend, uint64_t stream);
+
+}  // namespace pf::testing
