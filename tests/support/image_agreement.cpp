@@ -19,7 +19,6 @@
 namespace pf::testing {
 namespace {
 
-
 double Mean(const Image& image) {
     double sum = 0;
     for (const Rgb& pixel : image.pixels) sum += Average(pixel);
