@@ -19,7 +19,8 @@ build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
 # Renders the Cornell box with a glass and a mirror sphere for about a minute on all cores,
-# then for a quarter of that with the Vulkan backend (on the best GPU; lavapipe without one).
+# then for a quarter of that with the Vulkan backend (on the best GPU; lavapipe without one),
+# then the Cornell box from its pbrt-v4 form for a sixth.
 demo: build
 	@mkdir -p out
 	./$(BUILD)/client/photonfarm render scenes/cornell-glass.gltf --width 512 --height 512 \
@@ -29,8 +30,11 @@ demo: build
 	./$(BUILD)/client/photonfarm render scenes/cornell-glass.gltf --width 256 --height 256 --backend vulkan --photons-per-batch 131072 \
 		--seconds $$(( $(DEMO_SECONDS) / 4 )) --out out/cornell-glass-vulkan.exr --png out/cornell-glass-vulkan.png \
 		|| echo "demo: the Vulkan render did not run (see the line above); the CPU images are written"
+	./$(BUILD)/client/photonfarm render scenes/pbrt/cornell-box.pbrt --width 256 --seconds $$(( $(DEMO_SECONDS) / 6 )) \
+		--out out/cornell-box-pbrt.exr --png out/cornell-box-pbrt.png
 	@echo "demo: wrote out/cornell-glass.exr, out/cornell-glass.png and out/convergence/ (error against time)"
 	@echo "demo: and out/cornell-glass-vulkan.exr, .png from the Vulkan backend"
+	@echo "demo: and out/cornell-box-pbrt.exr, .png from the pbrt-v4 scene scenes/pbrt/cornell-box.pbrt"
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
