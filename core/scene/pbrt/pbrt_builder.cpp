@@ -120,6 +120,9 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
     } else if (type == "disk") {
         mesh = DiskShape(parameters, where);
         front = FrontFace::kWorldWinding;
+    } else if (type == "cylinder") {
+        mesh = CylinderShape(parameters, where);
+        front = FrontFace::kWorldWinding;
     } else if (type == "plymesh") {
         const std::string filename = parameters.String("filename", "");
         if (filename.empty()) return ErrorAt(where, "Shape \"plymesh\" needs \"string filename\"");
@@ -130,8 +133,7 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
         if (options_.references_only) return absl::OkStatus();
         mesh = ReadPly(*bytes, *path, options_.limits);
         if (!mesh.ok()) return absl::Status(mesh.status().code(), absl::StrCat(element, ": ", mesh.status().message()));
-    } else if (type == "cylinder" || type == "curve" || type == "bilinearpatch" || type == "hyperboloid" ||
-               type == "paraboloid" || type == "cone") {
+    } else if (type == "curve" || type == "hyperboloid" || type == "paraboloid" || type == "cone") {
         for (const Parameter* p : parameters.Unused()) const_cast<Parameter*>(p)->used = true;
         Warn(where, absl::StrCat("Shape \"", type, "\" is not supported; the shape is left out"));
         return absl::OkStatus();
@@ -140,7 +142,7 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
     }
     if (!mesh.ok()) return mesh.status();
     if (!parameters.status().ok()) return parameters.status();
-    if (type != "sphere" && type != "disk" && !mesh->normals.empty()) front = FrontFace::kVertexNormals;
+    if (front == FrontFace::kObjectWinding && !mesh->normals.empty()) front = FrontFace::kVertexNormals;
     if (!current_object_.empty()) {
         objects_[current_object_].push_back({std::move(*mesh), state_.ctm, front, state_, element});
         return absl::OkStatus();

@@ -138,4 +138,38 @@ absl::StatusOr<TriangleMesh> DiskShape(ParameterList& parameters, const Location
     return mesh;
 }
 
+absl::StatusOr<TriangleMesh> CylinderShape(ParameterList& parameters, const Location& where) {
+    const double radius = parameters.Float("radius", 1.0);
+    const double z_min = parameters.Float("zmin", -1.0), z_max = parameters.Float("zmax", 1.0);
+    const absl::StatusOr<double> phi_max = PhiMax(parameters, where);
+    if (!parameters.status().ok()) return parameters.status();
+    if (!phi_max.ok()) return phi_max.status();
+    if (!(radius > 0 && std::isfinite(radius) && std::isfinite(z_min) && std::isfinite(z_max) && z_min != z_max))
+        return Invalid(where, "cylinder needs a positive radius and zmin != zmax, all finite");
+    const int segments = std::max(3, static_cast<int>(std::ceil(kQuadricSegments * *phi_max / (2 * kPiD))));
+    TriangleMesh mesh;
+    for (int j = 0; j <= segments; ++j) {
+        const double u = double(j) / segments, phi = u * *phi_max;
+        const Vec3d n(std::cos(phi), std::sin(phi), 0);
+        for (const double v : {0.0, 1.0}) {
+            mesh.positions.emplace_back(Vec3d(radius * n.x, radius * n.y, z_min + v * (z_max - z_min)));
+            mesh.normals.emplace_back(n);
+            mesh.uvs.push_back({static_cast<float>(u), static_cast<float>(v)});
+        }
+    }
+    // Counter-clockwise seen from outside when z grows from zmin to zmax; pbrt's normal is
+    // dp/du x dp/dv, which points inward when zmax < zmin: the winding follows it.
+    const bool upward = z_max > z_min;
+    for (int j = 0; j < segments; ++j) {
+        const uint32_t bottom0 = 2 * j, top0 = 2 * j + 1, bottom1 = 2 * j + 2, top1 = 2 * j + 3;
+        if (upward)
+            mesh.indices.insert(mesh.indices.end(), {bottom0, bottom1, top1, bottom0, top1, top0});
+        else
+            mesh.indices.insert(mesh.indices.end(), {bottom0, top1, bottom1, bottom0, top0, top1});
+    }
+    if (!upward)
+        for (Vec3& n : mesh.normals) n = -n;
+    return mesh;
+}
+
 }  // namespace pf::pbrt

@@ -21,5 +21,8 @@ absl::StatusOr<TriangleMesh> BilinearMeshShape(ParameterList& parameters, const 
 absl::StatusOr<TriangleMesh> SphereShape(ParameterList& parameters, const Location& where);
 // "height" (0), "radius" (1), "innerradius" (0), "phimax" (360): facing +z.
 absl::StatusOr<TriangleMesh> DiskShape(ParameterList& parameters, const Location& where);
+// "radius" (1), "zmin" (-1), "zmax" (1), "phimax" (360): about the z axis, normals outward,
+// open at both ends.
+absl::StatusOr<TriangleMesh> CylinderShape(ParameterList& parameters, const Location& where);
 
 }  // namespace pf::pbrt

@@ -197,6 +197,15 @@ TEST(PbrtLoaderTest, QuadricsAreTessellatedFaithfully) {
     EXPECT_NEAR(TotalArea(*disk), kPiD * 0.75, kPiD * 0.75 * 2e-3);
     for (const Triangle& t : disk->triangles) EXPECT_NEAR(t.normal.z, 1.0f, 1e-5f);
     EXPECT_NEAR(disk->bounds.upper.z, 0.25f, 1e-6f);
+    const absl::StatusOr<Scene> cylinder =
+        Load(Bundle("Shape \"cylinder\" \"float radius\" 0.5 \"float zmin\" 0 \"float zmax\" 2\n"));
+    ASSERT_TRUE(cylinder.ok()) << cylinder.status();
+    EXPECT_NEAR(TotalArea(*cylinder), 2 * kPiD * 0.5 * 2, 2 * kPiD * 0.5 * 2 * 2e-3);  // 2 pi r h
+    for (const Triangle& t : cylinder->triangles) {
+        const Vec3 centre = (cylinder->positions[t.vertex[0]] + cylinder->positions[t.vertex[1]] +
+                             cylinder->positions[t.vertex[2]]) / 3.0f;
+        ASSERT_GT(t.normal.x * centre.x + t.normal.y * centre.y, 0.0f) << "cylinder triangles face outward";
+    }
 }
 
 TEST(PbrtLoaderTest, LightsTakePbrtsParameters) {
@@ -279,14 +288,14 @@ TEST(PbrtLoaderTest, IncludesPlyMeshesAndImageTexturesComeFromTheBundle) {
 TEST(PbrtLoaderTest, UnsupportedThingsWarnAtTheirLocation) {
     std::vector<std::string> warnings;
     const std::string world = std::string("Shape \"sphere\" \"float radius\" 1 \"float bogus\" 3\n") +
-                              "Shape \"cylinder\"\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n";
+                              "Shape \"curve\"\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n";
     SceneBundle bundle = Bundle(world);
     bundle.files["scene.pbrt"] = "Sampler \"zsobol\" \"integer pixelsamples\" 64\n" + bundle.files["scene.pbrt"];
     const absl::StatusOr<Scene> scene = Load(bundle, &warnings);
     ASSERT_TRUE(scene.ok()) << scene.status();
     // The parameter's own line and column: line 7 (the Sampler and 5 lines of preamble before it).
     EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:7:33: warning: Shape \"sphere\": parameter \"float bogus\""));
-    EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:8:1: warning: Shape \"cylinder\" is not supported"));
+    EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:8:1: warning: Shape \"curve\" is not supported"));
     EXPECT_TRUE(Contains(warnings, "MakeNamedMedium"));
     EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:1:1: warning: Sampler"));
 }
