@@ -58,7 +58,7 @@ absl::Status PbrtSceneBuilder::FinishCamera() {
     return absl::OkStatus();
 }
 
-absl::Status PbrtSceneBuilder::Film(ParameterList& parameters) {
+absl::Status PbrtSceneBuilder::Film(ParameterList& parameters, const Location& where) {
     film_width_ = parameters.Integer("xresolution", 1280);
     film_height_ = parameters.Integer("yresolution", 720);
     if (parameters.Has("filename")) {
@@ -66,7 +66,7 @@ absl::Status PbrtSceneBuilder::Film(ParameterList& parameters) {
         Warn(parameters.Find("filename")->where, "Film: \"filename\" is not used; the image goes where --out says");
     }
     if (film_width_ < 1 || film_height_ < 1 || film_width_ > 32768 || film_height_ > 32768)
-        return absl::InvalidArgumentError("Film: resolution must lie in 1..32768");
+        return ErrorAt(where, "Film: resolution must lie in 1..32768");
     return absl::OkStatus();
 }
 
@@ -162,7 +162,7 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
     if (state.area_light) {
         emission = state.area_light->radiance;
         if (state.area_light->power > 0) {
-            // "power": scale L so the shape emits that many watts, pi x area x L from one side.
+            // "power": the shape emits that many watts, pi x area x L from one side.
             double area = 0;
             for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
                 const Vec3d a = world.ApplyPoint(Vec3d(mesh.positions[mesh.indices[i]]));
@@ -170,8 +170,9 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
                 const Vec3d c = world.ApplyPoint(Vec3d(mesh.positions[mesh.indices[i + 2]]));
                 area += 0.5 * Length(Cross(b - a, c - a));
             }
-            const double luminance = 0.2126 * emission.x + 0.7152 * emission.y + 0.0722 * emission.z;
-            if (area > 0 && luminance > 0) emission *= static_cast<float>(state.area_light->power / (kPiD * area * luminance));
+            // pbrt-v4 scales by power / (pi x area) whatever L's colour (for rgb L, the spectrum
+            // it normalises by is the colour space's illuminant, of luminance 1).
+            if (area > 0) emission *= static_cast<float>(state.area_light->power / (kPiD * area));
         }
     }
     absl::StatusOr<uint32_t> index = SceneMaterial(state.material, emission);
@@ -201,7 +202,6 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
     PunctualLight light;
     const float scale = static_cast<float>(parameters.Float("scale", 1.0));
     const double power = parameters.Float("power", 0.0);
-    auto luminance = [](const Rgb& c) { return 0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z; };
     if (type == "point" || type == "spot") {
         const Rgb intensity = parameters.Color("I").value_or(Rgb(1.0f)) * scale;
         const Vec3d from = parameters.Point3("from").value_or(Vec3d(0.0));
@@ -220,7 +220,8 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
             light.smooth_falloff = true;  // pbrt's smoothstep between the cones
             solid_angle = 2 * kPiD * ((1 - light.cos_inner) + (light.cos_inner - light.cos_outer) / 2);
         }
-        if (power > 0 && luminance(intensity) > 0) light.intensity *= static_cast<float>(power / (solid_angle * luminance(intensity)));
+        // As pbrt-v4: "power" scales I by power / (the cone's solid angle), whatever I's colour.
+        if (power > 0) light.intensity *= static_cast<float>(power / solid_angle);
     } else if (type == "distant") {
         const Vec3d from = parameters.Point3("from").value_or(Vec3d(0.0));
         const Vec3d to = parameters.Point3("to").value_or(Vec3d(0, 0, 1));
@@ -228,8 +229,7 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
         light.direction = Vec3(Normalize(state_.ctm.ApplyVector(to - from)));
         light.intensity = parameters.Color("L").value_or(Rgb(1.0f)) * scale;
         const double illuminance = parameters.Float("illuminance", 0.0);
-        if (illuminance > 0 && luminance(light.intensity) > 0)
-            light.intensity *= static_cast<float>(illuminance / luminance(light.intensity));
+        if (illuminance > 0) light.intensity *= static_cast<float>(illuminance);
     } else if (type == "infinite" || type == "goniometric" || type == "projection") {
         for (const Parameter* p : parameters.Unused()) const_cast<Parameter*>(p)->used = true;
         Warn(where, absl::StrCat("LightSource \"", type, "\" is not supported; the light is left out"));

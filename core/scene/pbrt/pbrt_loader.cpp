@@ -178,7 +178,7 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, const std:
     if (name == "Camera") {
         status = Camera(*type, *parameters, where);
     } else if (name == "Film") {
-        status = Film(*parameters);
+        status = Film(*parameters, where);
     } else if (name == "Sampler" || name == "PixelFilter" || name == "Accelerator") {
         for (const Parameter* p : parameters->Unused()) const_cast<Parameter*>(p)->used = true;
         if (name != "Accelerator")

@@ -89,7 +89,7 @@ private:
 
     // Directives.
     absl::Status Camera(const std::string& type, ParameterList& parameters, const Location& where);
-    absl::Status Film(ParameterList& parameters);
+    absl::Status Film(ParameterList& parameters, const Location& where);
     absl::Status Integrator(const std::string& type, ParameterList& parameters, const Location& where);
     absl::Status Shape(const std::string& type, ParameterList& parameters, const Location& where);
     absl::Status AddShape(const TriangleMesh& mesh, const Transform& world, FrontFace front, const GraphicsState& state,

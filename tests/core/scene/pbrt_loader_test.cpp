@@ -166,11 +166,11 @@ TEST(PbrtLoaderTest, MaterialsMapOntoPhotonfarms) {
 }
 
 TEST(PbrtLoaderTest, AreaLightsEmitFromTheirShapesFront) {
-    // A unit-square pair of triangles facing +z with L = 2; "power" 4 pi rescales L to give
-    // 4 pi W from area 4: L = 4 pi / (pi x 4) = 1.
+    // A 2x2 square facing +z with L = 2; "power" P scales L by P / (pi x area), as pbrt-v4
+    // does whatever L's colour: 8 pi / (pi x 4) = 2, so L = 4.
     const std::string world = std::string("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2]\n") + kQuad +
                               "AttributeEnd\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2] \"float power\" " +
-                              std::to_string(4 * kPiD) + "\nTranslate 0 0 1\nReverseOrientation\n" + kQuad + "AttributeEnd\n";
+                              std::to_string(8 * kPiD) + "\nTranslate 0 0 1\nReverseOrientation\n" + kQuad + "AttributeEnd\n";
     const absl::StatusOr<Scene> scene = Load(Bundle(world));
     ASSERT_TRUE(scene.ok()) << scene.status();
     ASSERT_EQ(scene->triangles.size(), 4u);
@@ -178,7 +178,7 @@ TEST(PbrtLoaderTest, AreaLightsEmitFromTheirShapesFront) {
     const Triangle& reversed = scene->triangles[2];
     EXPECT_NEAR(scene->materials[plain.material].emission.x, 2.0f, 1e-6f);
     EXPECT_NEAR(plain.normal.z, 1.0f, 1e-6f);
-    EXPECT_NEAR(scene->materials[reversed.material].emission.x, 1.0f, 1e-5f);
+    EXPECT_NEAR(scene->materials[reversed.material].emission.x, 4.0f, 1e-5f);
     EXPECT_NEAR(reversed.normal.z, -1.0f, 1e-6f);  // ReverseOrientation flips the emitting side
 }
 
