@@ -4,6 +4,7 @@
 #include <zstd.h>
 
 #include <bit>
+#include <cstddef>
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
@@ -73,9 +74,11 @@ void ReadField(const uint8_t* planes, size_t offset, std::span<T> items) {
     for (size_t i = 0; i < items.size(); ++i) std::memcpy(reinterpret_cast<uint8_t*>(&items[i]) + offset, &words[i], 4);
 }
 
-// HitPoint's fields, each a 4-byte word, in wire order.
-constexpr size_t kHitPointWords = sizeof(HitPoint) / 4;
-static_assert(sizeof(HitPoint) == 40 && kHitPointWords == 10, "HitPoint is ten 4-byte words");
+// The HitPoint words a worker reads, in wire order: position, normal, weight. The tenth, the
+// pixel, only the coordinator's merge uses; it is not sent.
+constexpr size_t kHitPointWords = 9;
+static_assert(sizeof(HitPoint) == 40 && offsetof(HitPoint, pixel) == 4 * kHitPointWords,
+              "HitPoint is nine 4-byte words of geometry and weight, then the pixel");
 
 }  // namespace
 
@@ -100,13 +103,13 @@ absl::StatusOr<std::vector<float>> DecodeFloats(std::string_view bytes, uint64_t
 
 std::string EncodeHitPoints(std::span<const HitPoint> hit_points) {
     std::vector<uint8_t> raw;
-    raw.reserve(sizeof(HitPoint) * hit_points.size());
+    raw.reserve(4 * kHitPointWords * hit_points.size());
     for (size_t word = 0; word < kHitPointWords; ++word) AppendField(hit_points, 4 * word, &raw);
     return Compress(raw);
 }
 
 absl::StatusOr<std::vector<HitPoint>> DecodeHitPoints(std::string_view bytes, uint64_t expected_count) {
-    absl::StatusOr<std::vector<uint8_t>> raw = Decompress(bytes, sizeof(HitPoint) * expected_count, "hit points");
+    absl::StatusOr<std::vector<uint8_t>> raw = Decompress(bytes, 4 * kHitPointWords * expected_count, "hit points");
     if (!raw.ok()) return raw.status();
     std::vector<HitPoint> hit_points(expected_count);
     for (size_t word = 0; word < kHitPointWords; ++word)

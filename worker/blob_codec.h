@@ -29,6 +29,8 @@ std::string EncodeFloats(std::span<const float> values);
 // `expected_count` guards against a blob for another job: any other count is refused.
 absl::StatusOr<std::vector<float>> DecodeFloats(std::string_view bytes, uint64_t expected_count);
 
+// What the photon pass reads of each hit point (position, normal, weight); the pixel stays
+// with the coordinator and decodes as 0.
 std::string EncodeHitPoints(std::span<const HitPoint> hit_points);
 absl::StatusOr<std::vector<HitPoint>> DecodeHitPoints(std::string_view bytes, uint64_t expected_count);
 
