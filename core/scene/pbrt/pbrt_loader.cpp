@@ -19,6 +19,8 @@ absl::Status ErrorAt(const Location& where, const std::string& what) {
 }
 
 void PbrtSceneBuilder::Warn(const Location& where, const std::string& what) {
+    // Packing reads the scene only for its references; the load that follows warns.
+    if (options_.references_only) return;
     // The same warning for many shapes is logged once, with the count at the end.
     if (warning_counts_[what]++ > 0) return;
     const std::string line = absl::StrCat(where.ToString(), ": warning: ", what);
