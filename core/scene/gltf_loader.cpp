@@ -477,8 +477,6 @@ bool BundleWriteWholeFile(std::string*, const std::string&, const std::vector<un
 }  // namespace
 
 absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name, const SceneLimits& limits) {
-    if (absl::Status status = CheckSceneBundle(bundle); !status.ok())
-        return absl::Status(status.code(), absl::StrCat(name, ": ", status.message()));
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({BundleFileExists, BundleExpandFilePath, BundleReadWholeFile, BundleWriteWholeFile,
                            const_cast<SceneBundle*>(&bundle)});

@@ -14,8 +14,9 @@ namespace pf {
 // an unreadable or malformed file, a scene without a camera or a light, NaN or Inf in a
 // transform or a vertex, an index out of range. Unsupported features are logged as warnings.
 // `name` prefixes the errors (the file the user gave).
-// Meshes used by several nodes are read once; images are decoded (through OpenImageIO) only
-// where a material uses them, within `limits`.
+// `bundle` has passed CheckSceneBundle (LoadScene checks it). Meshes used by several nodes
+// are read once; images are decoded (through OpenImageIO) only where a material uses them,
+// within `limits`.
 absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name, const SceneLimits& limits);
 
 }  // namespace pf

@@ -72,7 +72,7 @@ absl::Status PbrtSceneBuilder::Film(ParameterList& parameters, const Location& w
 
 absl::Status PbrtSceneBuilder::Integrator(const std::string& type, ParameterList& parameters, const Location& where) {
     if (type != "sppm") {
-        for (const Parameter* p : parameters.Unused()) const_cast<Parameter*>(p)->used = true;
+        parameters.ConsumeAll();
         Warn(where, absl::StrCat("Integrator \"", type, "\": photonfarm renders with progressive photon mapping"));
         return absl::OkStatus();
     }
@@ -97,13 +97,9 @@ absl::Status PbrtSceneBuilder::Integrator(const std::string& type, ParameterList
 
 absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& parameters, const Location& where) {
     const std::string element = absl::StrCat(where.ToString(), ": Shape \"", type, "\"");
-    if (parameters.Has("alpha")) {
-        const Parameter* alpha = parameters.Find("alpha");
-        if (alpha->type != "float" || alpha->numbers.empty() || alpha->numbers[0] != 1.0)
-            Warn(where, "Shape: \"alpha\" cut-outs are not supported; the shape is opaque");
-        parameters.Float("alpha", 1.0);
-        const_cast<Parameter*>(alpha)->used = true;
-    }
+    if (const Parameter* alpha = parameters.Consume("alpha");
+        alpha && (alpha->type != "float" || alpha->numbers.empty() || alpha->numbers[0] != 1.0))
+        Warn(where, "Shape: \"alpha\" cut-outs are not supported; the shape is opaque");
     absl::StatusOr<TriangleMesh> mesh;
     FrontFace front = FrontFace::kObjectWinding;
     if (type == "trianglemesh" || type == "loopsubdiv") {
@@ -134,7 +130,7 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
         mesh = ReadPly(*bytes, *path, options_.limits);
         if (!mesh.ok()) return absl::Status(mesh.status().code(), absl::StrCat(element, ": ", mesh.status().message()));
     } else if (type == "curve" || type == "hyperboloid" || type == "paraboloid" || type == "cone") {
-        for (const Parameter* p : parameters.Unused()) const_cast<Parameter*>(p)->used = true;
+        parameters.ConsumeAll();
         Warn(where, absl::StrCat("Shape \"", type, "\" is not supported; the shape is left out"));
         return absl::OkStatus();
     } else {
@@ -231,7 +227,7 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
         const double illuminance = parameters.Float("illuminance", 0.0);
         if (illuminance > 0) light.intensity *= static_cast<float>(illuminance);
     } else if (type == "infinite" || type == "goniometric" || type == "projection") {
-        for (const Parameter* p : parameters.Unused()) const_cast<Parameter*>(p)->used = true;
+        parameters.ConsumeAll();
         Warn(where, absl::StrCat("LightSource \"", type, "\" is not supported; the light is left out"));
         return absl::OkStatus();
     } else {

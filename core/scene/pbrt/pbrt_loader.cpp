@@ -182,7 +182,7 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, const std:
     } else if (name == "Film") {
         status = Film(*parameters, where);
     } else if (name == "Sampler" || name == "PixelFilter" || name == "Accelerator") {
-        for (const Parameter* p : parameters->Unused()) const_cast<Parameter*>(p)->used = true;
+        parameters->ConsumeAll();
         if (name != "Accelerator")
             Warn(where, name == "Sampler" ? "Sampler: hit points per pixel come from photonfarm's --spp, samples from its own sequence"
                                           : "PixelFilter: photonfarm averages each pixel's hit points (a box filter)");
@@ -212,10 +212,10 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, const std:
             return ErrorAt(where, "AreaLightSource: L, scale and power must be finite and non-negative");
         state_.area_light = light;
     } else if (name == "MakeNamedMedium") {
-        for (const Parameter* p : parameters->Unused()) const_cast<Parameter*>(p)->used = true;
+        parameters->ConsumeAll();
         Warn(where, "MakeNamedMedium: participating media are not rendered; the medium is ignored");
     } else if (name == "Attribute") {
-        for (const Parameter* p : parameters->Unused()) const_cast<Parameter*>(p)->used = true;
+        parameters->ConsumeAll();
         Warn(where, "Attribute: default parameters for a class of objects are not supported; ignored");
     }
     if (!status.ok()) return status;

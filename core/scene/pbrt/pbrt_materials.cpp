@@ -12,11 +12,6 @@
 namespace pf::pbrt {
 namespace {
 
-// Marks every parameter read, for materials mapped as a whole with one note.
-void ConsumeAll(ParameterList& parameters) {
-    for (const Parameter* p : parameters.Unused()) const_cast<Parameter*>(p)->used = true;
-}
-
 // Normal-incidence Fresnel reflectance of a conductor with index eta + i k, per channel.
 Rgb ConductorReflectance(const Rgb& eta, const Rgb& k) {
     Rgb f0;
@@ -67,9 +62,8 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, Para
     absl::Status status;
     auto warn_rough = [&](const char* what) {
         for (const char* name : {"roughness", "uroughness", "vroughness"}) {
-            const Parameter* p = parameters.Find(name);
+            const Parameter* p = parameters.Consume(name);
             if (p == nullptr) continue;
-            const_cast<Parameter*>(p)->used = true;
             if (p->type != "float" || p->numbers.empty() || p->numbers[0] != 0)
                 Warn(p->where, absl::StrCat("Material \"", type, "\": roughness is not supported; ", what, " rendered smooth"));
         }
@@ -85,7 +79,7 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, Para
         status = BaseColor(parameters, "reflectance", Rgb(0.5f), where, &material);
     } else if (type == "coateddiffuse") {
         status = BaseColor(parameters, "reflectance", Rgb(0.5f), where, &material);
-        ConsumeAll(parameters);
+        parameters.ConsumeAll();
         Warn(where, "Material \"coateddiffuse\": shaded as its diffuse base, without the glossy coating");
     } else if (type == "dielectric" || type == "thindielectric") {
         material.material.type = type == "dielectric" ? MaterialType::kDielectric : MaterialType::kThinDielectric;
@@ -116,7 +110,7 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, Para
         material.interface = true;
     } else if (type == "coatedconductor" || type == "measured" || type == "mix" || type == "subsurface" || type == "hair" ||
                type == "diffusetransmission") {
-        ConsumeAll(parameters);
+        parameters.ConsumeAll();
         material.material.base_color = Rgb(0.5f);
         Warn(where, absl::StrCat("Material \"", type, "\" is not supported; shaded as grey diffuse (0.5)"));
     } else {
@@ -125,10 +119,7 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, Para
     if (!status.ok()) return status;
     parameters.String("type", "");  // MakeNamedMaterial's
     for (const char* name : {"displacement", "normalmap"})
-        if (parameters.Has(name)) {
-            const_cast<Parameter*>(parameters.Find(name))->used = true;
-            Warn(where, absl::StrCat("Material: \"", name, "\" is not supported; ignored"));
-        }
+        if (parameters.Consume(name)) Warn(where, absl::StrCat("Material: \"", name, "\" is not supported; ignored"));
     materials_.push_back(material);
     return static_cast<int>(materials_.size() - 1);
 }
@@ -138,8 +129,7 @@ absl::StatusOr<int32_t> PbrtSceneBuilder::ImageIndex(const TextureRef& texture) 
     absl::StatusOr<std::string_view> bytes = files_.Read(texture.path);
     if (!bytes.ok()) return absl::Status(bytes.status().code(), absl::StrCat(texture.element, ": ", bytes.status().message()));
     if (options_.references_only) return kNoTexture;
-    const std::pair<std::string, int> key(
-        texture.path, static_cast<int>(texture.decode.encoding) * 1000 + static_cast<int>(texture.decode.gamma * 100));
+    const auto key = std::make_tuple(texture.path, texture.decode.encoding, texture.decode.gamma);
     if (const auto it = images_.find(key); it != images_.end()) return it->second;
     absl::StatusOr<pf::Texture> image = DecodeImage(*bytes, texture.path, options_.limits, texture.decode);
     if (!image.ok()) return absl::Status(image.status().code(), absl::StrCat(texture.element, ": ", image.status().message()));
@@ -152,7 +142,7 @@ absl::StatusOr<int32_t> PbrtSceneBuilder::ImageIndex(const TextureRef& texture) 
 absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::string& kind, const std::string& type,
                                        ParameterList& parameters, const Location& where) {
     if (kind == "float") {
-        ConsumeAll(parameters);
+        parameters.ConsumeAll();
         float_textures_[name] = type;
         return absl::OkStatus();
     }
@@ -201,7 +191,7 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
         }
         texture.scale *= scale;
     } else {
-        ConsumeAll(parameters);
+        parameters.ConsumeAll();
         texture.unsupported = type;
     }
     if (!parameters.status().ok()) return parameters.status();

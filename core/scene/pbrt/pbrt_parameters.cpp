@@ -151,6 +151,19 @@ std::optional<std::string> ParameterList::TextureName(std::string_view name) {
     return p->strings[0];
 }
 
+const Parameter* ParameterList::Consume(std::string_view name) {
+    for (Parameter& parameter : parameters_)
+        if (parameter.name == name) {
+            parameter.used = true;
+            return &parameter;
+        }
+    return nullptr;
+}
+
+void ParameterList::ConsumeAll() {
+    for (Parameter& parameter : parameters_) parameter.used = true;
+}
+
 bool ParameterList::Has(std::string_view name) const { return Find(name) != nullptr; }
 
 const Parameter* ParameterList::Find(std::string_view name) const {

@@ -50,6 +50,11 @@ public:
     std::optional<Rgb> Color(std::string_view name);
     // A parameter of type "texture": the texture's name; absent: nullopt.
     std::optional<std::string> TextureName(std::string_view name);
+    // Marks the parameter of this name read, whatever its type, and returns it (null if absent):
+    // for parameters a directive notes as a whole rather than reads.
+    const Parameter* Consume(std::string_view name);
+    // Marks every parameter read: for directives mapped as a whole, with one note.
+    void ConsumeAll();
     // Whether a parameter of this name exists (any type); does not mark it used.
     bool Has(std::string_view name) const;
     const Parameter* Find(std::string_view name) const;

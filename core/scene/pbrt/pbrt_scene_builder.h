@@ -129,7 +129,7 @@ private:
     std::map<std::string, int> named_materials_;
     std::map<std::string, TextureRef> textures_;
     std::map<std::string, std::string> float_textures_;  // name -> class, unused by photonfarm
-    std::map<std::pair<std::string, int>, int32_t> images_;  // (path, encoding) -> Scene::textures
+    std::map<std::tuple<std::string, ImageEncoding, double>, int32_t> images_;  // (path, encoding, gamma) -> Scene::textures
     std::map<std::tuple<int, float, float, float>, uint32_t> scene_materials_;
 
     std::map<std::string, std::vector<ObjectShape>> objects_;
