@@ -23,6 +23,7 @@ struct RayHit {
     float t = 0;
     uint32_t triangle = 0;   // index into Scene::triangles
     float b1 = 0, b2 = 0;    // barycentrics of vertices 1 and 2
+    uint32_t instance = ~0u; // index into Scene::instances, or ~0u (Instance::kNone) for a world triangle
 };
 
 // Moves p off the surface along the geometric normal n, toward the side `n` faces, by a few

@@ -42,7 +42,7 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
         weights.push_back(Average(power));
         power_rgb_ += power;
     };
-    for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
+    for (uint32_t t = 0; t < scene.WorldTriangleCount(); ++t) {  // prototypes hold no emitters
         const Material& material = scene.materials[scene.triangles[t].material];
         if (!material.IsEmissive()) continue;
         const Triangle& triangle = scene.triangles[t];

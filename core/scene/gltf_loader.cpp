@@ -183,7 +183,8 @@ private:
     absl::Status VisitNode(int index, const Transform& parent, int depth);
     absl::Status AddMesh(int mesh_index, const Transform& world);
     absl::StatusOr<TriangleMesh> ReadPrimitive(const tinygltf::Primitive& primitive, const std::string& element) const;
-    absl::Status AddPrimitive(int mesh_index, size_t primitive_index, const std::string& element, const Transform& world);
+    absl::Status AddPrimitive(int mesh_index, size_t primitive_index, const std::string& element, const Transform& world,
+                              uint32_t material, std::optional<uint32_t> prototype);
     absl::Status AddLight(int light_index, const Transform& world);
     absl::Status SetCamera(int camera_index, const Transform& world);
     absl::StatusOr<uint32_t> MaterialIndex(int gltf_material);
@@ -197,6 +198,8 @@ private:
     std::map<int, int32_t> texture_indices_;    // glTF image -> Scene::textures
     std::map<uint32_t, UvTransform> material_uvs_;  // Scene::materials -> its texture's transform
     std::map<std::pair<int, size_t>, TriangleMesh> meshes_;  // (mesh, primitive), read once
+    std::map<int, int> mesh_uses_;                  // glTF mesh -> how many nodes name it
+    std::map<int, uint32_t> mesh_prototypes_;       // glTF mesh used by several nodes -> Scene::prototypes
     const SceneLimits& limits_;
     const GltfImages& images_;
 };
@@ -211,8 +214,11 @@ absl::StatusOr<Scene> GltfSceneBuilder::Build() {
     } else {
         for (int i = 0; i < static_cast<int>(model_.nodes.size()); ++i) roots.push_back(i);
     }
+    for (const tinygltf::Node& node : model_.nodes)
+        if (node.mesh >= 0) ++mesh_uses_[node.mesh];
     for (int root : roots)
         if (absl::Status status = VisitNode(root, Transform{}, 0); !status.ok()) return status;
+    FinishInstancing(&scene_);
     if (!has_camera_) return Error("scene", "has no camera (add a perspective camera node)");
     if (scene_.triangles.empty()) return Error("scene", "has no triangles");
     bool has_light = !scene_.lights.empty();
@@ -256,11 +262,31 @@ absl::Status GltfSceneBuilder::AddMesh(int mesh_index, const Transform& world) {
     if (mesh_index >= static_cast<int>(model_.meshes.size()))
         return Error(absl::StrCat("mesh #", mesh_index), "does not exist");
     const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
-    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-        const std::string element = absl::StrCat(Describe("mesh", mesh_index, mesh.name), " primitive ", p);
-        if (absl::Status status = AddPrimitive(mesh_index, p, element, world); !status.ok()) return status;
+    const std::string name = Describe("mesh", mesh_index, mesh.name);
+    // Adds the primitives that emit (or, with false, those that do not; with nullopt, all).
+    const auto add_primitives = [&](std::optional<bool> emitting, const Transform& placement,
+                                    std::optional<uint32_t> prototype) {
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            absl::StatusOr<uint32_t> material = MaterialIndex(mesh.primitives[p].material);
+            if (!material.ok()) return material.status();
+            if (emitting && scene_.materials[*material].IsEmissive() != *emitting) continue;
+            if (absl::Status status = AddPrimitive(mesh_index, p, absl::StrCat(name, " primitive ", p), placement,
+                                                   *material, prototype);
+                !status.ok())
+                return status;
+        }
+        return absl::OkStatus();
+    };
+    // A mesh that several nodes use is stored once, as a prototype each node places by an
+    // instance; its emitting primitives are lights, placed as world triangles by every node.
+    if (mesh_uses_[mesh_index] < 2) return add_primitives(std::nullopt, world, std::nullopt);
+    auto [prototype, first] = mesh_prototypes_.try_emplace(mesh_index, 0);
+    if (first) {
+        prototype->second = BeginPrototype(&scene_);
+        if (absl::Status status = add_primitives(false, Transform{}, prototype->second); !status.ok()) return status;
     }
-    return absl::OkStatus();
+    if (absl::Status status = add_primitives(true, world, std::nullopt); !status.ok()) return status;
+    return AddInstance(prototype->second, world, limits_, absl::StrCat(path_, ": ", name), &scene_);
 }
 
 absl::StatusOr<TriangleMesh> GltfSceneBuilder::ReadPrimitive(const tinygltf::Primitive& primitive,
@@ -303,13 +329,14 @@ absl::StatusOr<TriangleMesh> GltfSceneBuilder::ReadPrimitive(const tinygltf::Pri
 }
 
 absl::Status GltfSceneBuilder::AddPrimitive(int mesh_index, size_t primitive_index, const std::string& element,
-                                            const Transform& world) {
+                                            const Transform& world, uint32_t material,
+                                            std::optional<uint32_t> prototype) {
     const tinygltf::Primitive& primitive = model_.meshes[mesh_index].primitives[primitive_index];
     if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
         spdlog::warn("{}: {}: mode {} is not triangles; skipped", path_, element, primitive.mode);
         return absl::OkStatus();
     }
-    // A mesh that several nodes use (instancing) is read once and placed by each node.
+    // An emitting primitive of a mesh that several nodes use is read once and placed by each.
     const auto key = std::make_pair(mesh_index, primitive_index);
     auto cached = meshes_.find(key);
     if (cached == meshes_.end()) {
@@ -317,10 +344,8 @@ absl::Status GltfSceneBuilder::AddPrimitive(int mesh_index, size_t primitive_ind
         if (!mesh.ok()) return mesh.status();
         cached = meshes_.emplace(key, std::move(*mesh)).first;
     }
-    const absl::StatusOr<uint32_t> material = MaterialIndex(primitive.material);
-    if (!material.ok()) return material.status();
-    const MeshPlacement placement{world, *material, FrontFace::kObjectWinding, false, material_uvs_[*material]};
-    return AppendMesh(cached->second, placement, limits_, absl::StrCat(path_, ": ", element), &scene_);
+    const MeshPlacement placement{world, material, FrontFace::kObjectWinding, false, material_uvs_[material]};
+    return AppendMesh(cached->second, placement, limits_, absl::StrCat(path_, ": ", element), &scene_, prototype);
 }
 
 absl::Status GltfSceneBuilder::AddLight(int light_index, const Transform& world) {

@@ -1,7 +1,10 @@
 // Transforming a mesh into the scene, with the front-face rule of its format.
 #include "core/scene/mesh_builder.h"
 
+#include <algorithm>
+
 #include "absl/strings/str_cat.h"
+#include "core/util/check.h"
 
 namespace pf {
 
@@ -18,7 +21,11 @@ UvTransform UvTransform::Then(const UvTransform& next) const {
 }
 
 absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement, const SceneLimits& limits,
-                        const std::string& element, Scene* scene) {
+                        const std::string& element, Scene* scene, std::optional<uint32_t> prototype) {
+    PF_CHECK(!prototype || (*prototype + 1 == scene->prototypes.size() &&
+                            scene->prototypes[*prototype].first_triangle + scene->prototypes[*prototype].triangle_count ==
+                                scene->triangles.size()));
+    Bounds& bounds = prototype ? scene->prototypes[*prototype].bounds : scene->bounds;
     auto error = [&](const std::string& what) { return absl::InvalidArgumentError(absl::StrCat(element, ": ", what)); };
     const size_t vertex_count = mesh.positions.size();
     if (!mesh.normals.empty() && mesh.normals.size() != vertex_count) return error("normal and position counts differ");
@@ -36,7 +43,7 @@ absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement
         const Vec3 p(world.ApplyPoint(Vec3d(mesh.positions[v])));
         if (!IsFinite(p)) return error(absl::StrCat("vertex ", v, " is not finite after its transform"));
         scene->positions.push_back(p);
-        scene->bounds.Extend(p);
+        bounds.Extend(p);
         Vec3 n(0.0f);
         if (!mesh.normals.empty()) {
             const Vec3d transformed = world.ApplyNormal(Vec3d(mesh.normals[v]));
@@ -52,8 +59,13 @@ absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement
     const bool smooth = !mesh.normals.empty();
     for (size_t i = 0; i < mesh.indices.size(); i += 3) {
         uint32_t a = base + mesh.indices[i], b = base + mesh.indices[i + 1], c = base + mesh.indices[i + 2];
-        Vec3 normal = Normalize(Cross(scene->positions[b] - scene->positions[a], scene->positions[c] - scene->positions[a]));
-        if (!IsFinite(normal)) continue;  // degenerate: has no surface
+        const Vec3d pa(scene->positions[a]), pb(scene->positions[b]), pc(scene->positions[c]);
+        const Vec3d cross = Cross(pb - pa, pc - pa);
+        // Degenerate, or a sliver thinner than float resolves against its longest edge (a
+        // tessellated pole, whose corners a transform may round together): no surface.
+        const double longest = std::max({LengthSquared(pb - pa), LengthSquared(pc - pb), LengthSquared(pa - pc)});
+        if (!(Length(cross) > 1e-7 * longest)) continue;
+        Vec3 normal(Normalize(cross));
         bool flip = false;
         switch (placement.front) {
             case FrontFace::kObjectWinding: flip = mirrored != placement.reverse; break;
@@ -66,8 +78,106 @@ absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement
         }
         if (flip) std::swap(b, c), normal = -normal;
         scene->triangles.push_back({{a, b, c}, placement.material, smooth, normal});
+        if (prototype) ++scene->prototypes[*prototype].triangle_count;
     }
     return absl::OkStatus();
+}
+
+uint32_t BeginPrototype(Scene* scene) {
+    scene->prototypes.push_back({static_cast<uint32_t>(scene->triangles.size()), 0, {}});
+    return static_cast<uint32_t>(scene->prototypes.size() - 1);
+}
+
+absl::Status AddInstance(uint32_t prototype, const Transform& from_object, const SceneLimits& limits,
+                         const std::string& element, Scene* scene) {
+    PF_CHECK(prototype < scene->prototypes.size());
+    const Prototype& placed = scene->prototypes[prototype];
+    if (placed.triangle_count == 0) return absl::OkStatus();
+    if (scene->instances.size() >= limits.max_instances)
+        return absl::ResourceExhaustedError(absl::StrCat(element, ": the scene would hold more than ",
+                                                         limits.max_instances, " instances, the loading limit"));
+    if (!from_object.IsFinite() || !from_object.Inverse())
+        return absl::InvalidArgumentError(absl::StrCat(element, ": the instance's transform is singular or not finite"));
+    // The world bounds take the prototype's box corners, transformed.
+    Bounds bounds = scene->bounds;
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3d p((corner & 1 ? placed.bounds.upper : placed.bounds.lower).x,
+                      (corner & 2 ? placed.bounds.upper : placed.bounds.lower).y,
+                      (corner & 4 ? placed.bounds.upper : placed.bounds.lower).z);
+        const Vec3 world(from_object.ApplyPoint(p));
+        if (!IsFinite(world)) return absl::InvalidArgumentError(absl::StrCat(element, ": the instance lies beyond float's range"));
+        bounds.Extend(world);
+    }
+    scene->bounds = bounds;
+    scene->instances.push_back(Instance::Make(prototype, from_object));
+    return absl::OkStatus();
+}
+
+void FinishInstancing(Scene* scene) {
+    if (scene->prototypes.empty()) return;
+    std::vector<bool> in_prototype(scene->triangles.size(), false);
+    for (const Prototype& prototype : scene->prototypes)
+        std::fill_n(in_prototype.begin() + prototype.first_triangle, prototype.triangle_count, true);
+    std::vector<Triangle> ordered;
+    ordered.reserve(scene->triangles.size());
+    for (size_t t = 0; t < scene->triangles.size(); ++t)
+        if (!in_prototype[t]) ordered.push_back(scene->triangles[t]);
+    for (Prototype& prototype : scene->prototypes) {
+        const auto first = scene->triangles.begin() + prototype.first_triangle;
+        prototype.first_triangle = static_cast<uint32_t>(ordered.size());
+        ordered.insert(ordered.end(), first, first + prototype.triangle_count);
+    }
+    scene->triangles = std::move(ordered);
+}
+
+absl::StatusOr<Scene> FlattenInstances(const Scene& scene, uint64_t max_triangles) {
+    uint64_t total = scene.WorldTriangleCount();
+    for (const Instance& instance : scene.instances) total += scene.prototypes[instance.prototype].triangle_count;
+    if (total > max_triangles)
+        return absl::ResourceExhaustedError(absl::StrCat(scene.source, ": its ", scene.instances.size(), " instances expand to ",
+                                                         total, " triangles, more than the ", max_triangles, " this backend holds"));
+    // Each prototype's vertices, once, and its triangles over them.
+    struct Local {
+        std::vector<uint32_t> vertices;   // into Scene::positions
+        std::vector<Triangle> triangles;  // vertex: into `vertices`
+    };
+    std::vector<Local> locals(scene.prototypes.size());
+    std::vector<uint32_t> local_index(scene.positions.size(), ~0u);
+    for (size_t p = 0; p < scene.prototypes.size(); ++p) {
+        const Prototype& prototype = scene.prototypes[p];
+        Local& local = locals[p];
+        for (uint32_t t = prototype.first_triangle; t < prototype.first_triangle + prototype.triangle_count; ++t) {
+            Triangle triangle = scene.triangles[t];
+            for (uint32_t& v : triangle.vertex) {
+                if (local_index[v] == ~0u || local_index[v] >= local.vertices.size() || local.vertices[local_index[v]] != v) {
+                    local_index[v] = static_cast<uint32_t>(local.vertices.size());
+                    local.vertices.push_back(v);
+                }
+                v = local_index[v];
+            }
+            local.triangles.push_back(triangle);
+        }
+    }
+    Scene flat = scene;
+    flat.triangles.resize(scene.WorldTriangleCount());
+    flat.prototypes.clear();
+    flat.instances.clear();
+    for (const Instance& instance : scene.instances) {
+        const Local& local = locals[instance.prototype];
+        const auto base = static_cast<uint32_t>(flat.positions.size());
+        for (uint32_t v : local.vertices) {
+            flat.positions.push_back(instance.ApplyPoint(scene.positions[v]));
+            const Vec3 n = instance.ApplyNormal(scene.normals[v]);
+            flat.normals.push_back(LengthSquared(n) > 0 ? Normalize(n) : n);
+            flat.uvs.push_back(scene.uvs[v]);
+        }
+        for (Triangle triangle : local.triangles) {
+            for (uint32_t& v : triangle.vertex) v += base;
+            triangle.normal = Normalize(instance.ApplyNormal(triangle.normal));
+            flat.triangles.push_back(triangle);
+        }
+    }
+    return flat;
 }
 
 }  // namespace pf

@@ -1,12 +1,15 @@
-// Appending a triangle mesh, given in its own space, to a world-space Scene: one place for
-// what every scene format needs (transform, winding, degenerate triangles, limits).
+// Appending a triangle mesh, given in its own space, to a Scene (its world, or a prototype that
+// instances place): one place for what every scene format needs (transform, winding,
+// degenerate triangles, instancing, limits).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "absl/status/status.h"
+#include "absl/status/statusor.h"
 #include "core/math/transform.h"
 #include "core/scene/scene.h"
 
@@ -39,7 +42,8 @@ struct UvTransform {
 
 // Limits on what loading a scene may build, so a small hostile file cannot exhaust memory.
 struct SceneLimits {
-    uint64_t max_triangles = uint64_t{1} << 26;      // 64 M: ~5 GiB of scene
+    uint64_t max_triangles = uint64_t{1} << 26;      // 64 M stored (a prototype's once): ~5 GiB of scene
+    uint64_t max_instances = uint64_t{1} << 24;      // 16 M: ~1.3 GiB
     uint64_t max_image_pixels = uint64_t{1} << 26;   // per image: 8192 x 8192
     int max_include_depth = 32;
 };
@@ -52,10 +56,28 @@ struct MeshPlacement {
     UvTransform uv;
 };
 
-// Appends `mesh` placed by `placement`. Triangles with no area are dropped. Errors name
-// `element`: a vertex not finite after the transform, an index out of range, the triangle
-// limit exceeded (RESOURCE_EXHAUSTED).
+// Appends `mesh` placed by `placement` to the world or, given `prototype`, to that prototype,
+// which must be the last begun (placement.world then maps into the prototype's space).
+// Triangles with no area are dropped. Errors name `element`: a vertex not finite after the
+// transform, an index out of range, the triangle limit exceeded (RESOURCE_EXHAUSTED).
 absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement, const SceneLimits& limits,
-                        const std::string& element, Scene* scene);
+                        const std::string& element, Scene* scene, std::optional<uint32_t> prototype = std::nullopt);
+
+// Starts a prototype, empty until meshes are appended to it; returns its index.
+uint32_t BeginPrototype(Scene* scene);
+
+// Places `prototype` in the world by `from_object` (a prototype without triangles places
+// nothing). Errors name `element`: a transform that is singular or not finite, the instance
+// limit exceeded (RESOURCE_EXHAUSTED).
+absl::Status AddInstance(uint32_t prototype, const Transform& from_object, const SceneLimits& limits,
+                         const std::string& element, Scene* scene);
+
+// Puts the world's triangles before the prototypes' (Scene::WorldTriangleCount), as loaders
+// build them in file order; each loader calls it once, when done.
+void FinishInstancing(Scene* scene);
+
+// The scene with every instance expanded into world triangles, no prototypes left (for a
+// backend without instancing). RESOURCE_EXHAUSTED beyond `max_triangles` in all.
+absl::StatusOr<Scene> FlattenInstances(const Scene& scene, uint64_t max_triangles);
 
 }  // namespace pf

@@ -13,20 +13,38 @@ float PunctualLight::SpotFalloff(float cos_axis) const {
     return smooth_falloff ? t * t * (3.0f - 2.0f * t) : t * t;
 }
 
+Instance Instance::Make(uint32_t prototype, const Transform& from_object) {
+    Instance instance;
+    instance.prototype = prototype;
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 4; ++column)
+            instance.to_world[4 * row + column] = static_cast<float>(from_object.m[row][column]);
+    const Vec3d normal_columns[3] = {from_object.ApplyNormal({1, 0, 0}), from_object.ApplyNormal({0, 1, 0}),
+                                     from_object.ApplyNormal({0, 0, 1})};
+    // Scaled so the largest entry is 1: the cofactors of a tiny or huge scale stay in float's range.
+    double largest = 0;
+    for (const Vec3d& column : normal_columns) largest = std::max(largest, MaxComponent(Abs(column)));
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 3; ++column)
+            instance.normal_map[3 * row + column] = static_cast<float>(normal_columns[column][row] / largest);
+    return instance;
+}
+
 SurfacePoint Scene::Surface(const RayHit& hit) const {
     const Triangle& triangle = triangles[hit.triangle];
-    const Vec3& p0 = positions[triangle.vertex[0]];
-    const Vec3& p1 = positions[triangle.vertex[1]];
-    const Vec3& p2 = positions[triangle.vertex[2]];
+    const Instance* instance = hit.instance == Instance::kNone ? nullptr : &instances[hit.instance];
+    Vec3 p0 = positions[triangle.vertex[0]], p1 = positions[triangle.vertex[1]], p2 = positions[triangle.vertex[2]];
+    if (instance) p0 = instance->ApplyPoint(p0), p1 = instance->ApplyPoint(p1), p2 = instance->ApplyPoint(p2);
     const float b0 = 1.0f - hit.b1 - hit.b2;
     SurfacePoint surface;
     // Barycentric interpolation is more accurate than origin + t * direction far from the origin.
     surface.position = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
-    surface.geometric_normal = triangle.normal;
+    surface.geometric_normal = instance ? Normalize(instance->ApplyNormal(triangle.normal)) : triangle.normal;
     surface.shading_normal = surface.geometric_normal;
     if (triangle.smooth) {
-        const Vec3 n = normals[triangle.vertex[0]] * b0 + normals[triangle.vertex[1]] * hit.b1 +
-                       normals[triangle.vertex[2]] * hit.b2;
+        Vec3 n = normals[triangle.vertex[0]] * b0 + normals[triangle.vertex[1]] * hit.b1 +
+                 normals[triangle.vertex[2]] * hit.b2;
+        if (instance) n = instance->ApplyNormal(n);
         if (LengthSquared(n) > 0) surface.shading_normal = FaceForward(Normalize(n), surface.geometric_normal);
     }
     surface.material = triangle.material;

@@ -1,14 +1,16 @@
-// The renderable scene in world space: triangles with materials, punctual lights, the camera.
-// Immutable after loading; safe to read from many threads.
+// The renderable scene in world space: triangles with materials, punctual lights, the camera,
+// and prototypes placed by instances. Immutable after loading; safe to read from many threads.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "core/geometry/ray.h"
+#include "core/math/transform.h"
 #include "core/math/vec3.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/camera.h"
@@ -65,6 +67,44 @@ struct SurfacePoint {
     uint32_t material = 0;
 };
 
+// A mesh stored once, in its own space, and placed any number of times by instances (pbrt's
+// ObjectBegin/ObjectInstance, a glTF mesh that several nodes use): triangles
+// [first_triangle, first_triangle + triangle_count) of Scene::triangles, which hold it in that
+// space. Prototypes follow the world's own triangles (Scene::WorldTriangleCount) and hold no
+// emitters: emitting shapes are always placed as world triangles.
+struct Prototype {
+    uint32_t first_triangle = 0, triangle_count = 0;
+    Bounds bounds;  // in the prototype's space
+};
+
+// A prototype placed in the world: an affine object-to-world map, in float as tracing applies it.
+struct Instance {
+    static constexpr uint32_t kNone = ~0u;
+    uint32_t prototype = 0;
+    std::array<float, 12> to_world{};    // row-major 3x4: [linear | translation]
+    std::array<float, 9> normal_map{};   // row-major 3x3: the inverse transpose of the linear part,
+                                         // up to a positive scale (normals keep their side)
+
+    // from_object must be invertible and finite (AddInstance checks).
+    static Instance Make(uint32_t prototype, const Transform& from_object);
+    Vec3 ApplyPoint(const Vec3& p) const {
+        const float* m = to_world.data();
+        return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3], m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
+                m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
+    }
+    Vec3 ApplyVector(const Vec3& v) const {
+        const float* m = to_world.data();
+        return {m[0] * v.x + m[1] * v.y + m[2] * v.z, m[4] * v.x + m[5] * v.y + m[6] * v.z,
+                m[8] * v.x + m[9] * v.y + m[10] * v.z};
+    }
+    // Not normalised.
+    Vec3 ApplyNormal(const Vec3& n) const {
+        const float* m = normal_map.data();
+        return {m[0] * n.x + m[1] * n.y + m[2] * n.z, m[3] * n.x + m[4] * n.y + m[5] * n.z,
+                m[6] * n.x + m[7] * n.y + m[8] * n.z};
+    }
+};
+
 // What a scene file asks of its render (pbrt's Film and Integrator "sppm"), used where the
 // render's own settings leave a choice open (JobSpec's FilmFor, EstimateFor); zero or empty
 // where the scene says nothing.
@@ -78,13 +118,20 @@ struct Scene {
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;  // one per position (zero where the mesh had none)
     std::vector<Point2> uvs;    // one per position
-    std::vector<Triangle> triangles;
+    std::vector<Triangle> triangles;  // the world's own, then each prototype's (in its space)
+    std::vector<Prototype> prototypes;
+    std::vector<Instance> instances;
     std::vector<Material> materials;
     std::vector<Texture> textures;
     std::vector<PunctualLight> lights;
     Camera camera;
-    Bounds bounds;
+    Bounds bounds;  // of everything, instances included
     SceneRenderHints hints;
+
+    // Triangles [0, WorldTriangleCount()) are in world space; the prototypes' follow.
+    uint32_t WorldTriangleCount() const {
+        return prototypes.empty() ? static_cast<uint32_t>(triangles.size()) : prototypes.front().first_triangle;
+    }
 
     SurfacePoint Surface(const RayHit& hit) const;
     // Diffuse reflectance or specular tint at a surface point, texture applied (bilinear, at
@@ -93,6 +140,7 @@ struct Scene {
     // The same averaged over a footprint `width` world units across (a camera sample's cone
     // where it meets the surface), trilinearly from the texture's MIP levels.
     Rgb BaseColor(const SurfacePoint& surface, float width) const;
+    // The area of a world triangle.
     float TriangleArea(uint32_t triangle) const;
 };
 

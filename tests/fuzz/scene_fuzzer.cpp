@@ -1,12 +1,14 @@
 // libFuzzer target for a scene parser: the input is a scene's main file, loaded from a bundle
 // that also holds a small valid PLY mesh and PNG image it may reference (mesh.ply, image.png),
 // under limits small enough that a few bytes cannot ask for gigabytes. Any outcome but a crash,
-// a sanitizer report or a leak is fine: bad input must come back as an error.
+// a sanitizer report or a leak is fine: bad input must come back as an error. A scene that
+// loads is also expanded as a backend without instancing would.
 // PF_FUZZ_MAIN_FILE (scene.pbrt or scene.gltf) picks the parser.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
+#include "core/scene/mesh_builder.h"
 #include "core/scene/scene_loader.h"
 
 namespace {
@@ -45,6 +47,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     options.limits.max_triangles = 1u << 18;
     options.limits.max_image_pixels = 1u << 16;
     options.limits.max_include_depth = 8;
-    (void)pf::LoadScene(bundle, bundle.main_file, options);
+    options.limits.max_instances = 1u << 12;
+    const absl::StatusOr<pf::Scene> scene = pf::LoadScene(bundle, bundle.main_file, options);
+    // What a backend without instancing does with the scene (the Vulkan backend expands it).
+    if (scene.ok()) (void)pf::FlattenInstances(*scene, options.limits.max_triangles);
     return 0;
 }

@@ -146,8 +146,36 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
     return AddShape(*mesh, state_.ctm, front, state_, element);
 }
 
+absl::Status PbrtSceneBuilder::ObjectInstance(const std::string& name, const std::vector<ObjectShape>& shapes,
+                                              const Location& where) {
+    const std::string element = absl::StrCat(where.ToString(), ": ObjectInstance \"", name, "\"");
+    // The object's shapes are stored once, as a prototype in the space of the CTM where each was
+    // defined (so a quadric's front is settled there, as pbrt-v4 does), at its first instance.
+    auto [prototype, first] = object_prototypes_.try_emplace(name, 0);
+    if (first) {
+        prototype->second = BeginPrototype(&scene_);
+        for (const ObjectShape& shape : shapes)
+            if (!shape.state.area_light)
+                if (absl::Status status = AddShape(shape.mesh, shape.world, shape.front, shape.state,
+                                                   absl::StrCat(element, ": ", shape.element), prototype->second);
+                    !status.ok())
+                    return status;
+    }
+    // Emitting shapes are lights, which are sampled in world space: each instance places them as
+    // world triangles (pbrt-v4 refuses area lights in instances).
+    for (const ObjectShape& shape : shapes)
+        if (shape.state.area_light)
+            if (absl::Status status = AddShape(shape.mesh, state_.ctm * shape.world, shape.front, shape.state,
+                                               absl::StrCat(element, ": ", shape.element));
+                !status.ok())
+                return status;
+    if (options_.references_only) return absl::OkStatus();
+    return AddInstance(prototype->second, state_.ctm, options_.limits, element, &scene_);
+}
+
 absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transform& world, FrontFace front,
-                                        const GraphicsState& state, const std::string& element) {
+                                        const GraphicsState& state, const std::string& element,
+                                        std::optional<uint32_t> prototype) {
     if (options_.references_only) return absl::OkStatus();
     const MaterialRef& material = state.material >= 0 ? materials_[state.material] : DefaultMaterial();
     if (material.interface) {
@@ -174,7 +202,7 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
     absl::StatusOr<uint32_t> index = SceneMaterial(state.material, emission);
     if (!index.ok()) return index.status();
     MeshPlacement placement{world, *index, front, state.reverse_orientation, material.uv};
-    return AppendMesh(mesh, placement, options_.limits, element, &scene_);
+    return AppendMesh(mesh, placement, options_.limits, element, &scene_, prototype);
 }
 
 absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emission) {

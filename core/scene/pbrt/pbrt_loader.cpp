@@ -43,6 +43,7 @@ absl::StatusOr<Scene> PbrtSceneBuilder::Load(const std::string& main_file) {
     if (absl::Status status = FinishCamera(); !status.ok()) return status;
     for (const auto& [what, count] : warning_counts_)
         if (count > 1) spdlog::warn("{}: ... and {} more times: {}", scene_.source, count - 1, what);
+    FinishInstancing(&scene_);
     if (options_.references_only) return std::move(scene_);
     if (scene_.triangles.empty()) return absl::InvalidArgumentError(absl::StrCat(scene_.source, ": scene has no shapes"));
     bool has_light = !scene_.lights.empty();
@@ -372,14 +373,7 @@ std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& direct
         if (!current_object_.empty()) return ErrorAt(where, "ObjectInstance inside ObjectBegin");
         const auto it = objects_.find(*object);
         if (it == objects_.end()) return ErrorAt(where, absl::StrCat("ObjectInstance: no object named \"", *object, "\""));
-        // Instances are expanded into the scene's triangles (each costs its triangles' memory;
-        // SceneLimits::max_triangles bounds them).
-        for (const ObjectShape& shape : it->second)
-            if (absl::Status status = AddShape(shape.mesh, state_.ctm * shape.world, shape.front, shape.state,
-                                               absl::StrCat(where.ToString(), ": ObjectInstance \"", *object, "\": ", shape.element));
-                !status.ok())
-                return status;
-        return absl::OkStatus();
+        return ObjectInstance(*object, it->second, where);
     }
     if (name == "MediumInterface") {
         absl::StatusOr<std::string> inside = string_argument();

@@ -92,8 +92,10 @@ private:
     absl::Status Film(ParameterList& parameters, const Location& where);
     absl::Status Integrator(const std::string& type, ParameterList& parameters, const Location& where);
     absl::Status Shape(const std::string& type, ParameterList& parameters, const Location& where);
+    // Adds a shape to the world or, given `prototype`, to that prototype.
     absl::Status AddShape(const TriangleMesh& mesh, const Transform& world, FrontFace front, const GraphicsState& state,
-                          const std::string& element);
+                          const std::string& element, std::optional<uint32_t> prototype = std::nullopt);
+    absl::Status ObjectInstance(const std::string& name, const std::vector<ObjectShape>& shapes, const Location& where);
     absl::StatusOr<int> MakeMaterial(const std::string& type, ParameterList& parameters, const Location& where);
     absl::Status BaseColor(ParameterList& parameters, const std::string& name, Rgb fallback, const Location& where,
                            MaterialRef* material);
@@ -133,6 +135,7 @@ private:
     std::map<std::tuple<int, float, float, float>, uint32_t> scene_materials_;
 
     std::map<std::string, std::vector<ObjectShape>> objects_;
+    std::map<std::string, uint32_t> object_prototypes_;  // objects instanced so far -> Scene::prototypes
     std::string current_object_;
     std::map<std::string, int> warning_counts_;
 };

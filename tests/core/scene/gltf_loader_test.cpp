@@ -1,4 +1,5 @@
 // Loading the shipped scenes, and one-line errors that name the file and element for bad ones.
+#include "core/scene/mesh_builder.h"
 #include "core/scene/scene_loader.h"
 
 #include <gtest/gtest.h>
@@ -148,13 +149,24 @@ TEST(GltfLoaderTest, MeshesUsedByManyNodesAreInstanced) {
     scene.extra_nodes = {R"({"mesh":0,"translation":[0,0,-2]})", R"({"mesh":0,"translation":[0,0,-4],"scale":[-1,1,1]})"};
     const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "instanced.gltf"));
     ASSERT_TRUE(loaded.ok()) << loaded.status();
-    ASSERT_EQ(loaded->triangles.size(), 8u);  // the quad three times, the light once
+    // The quad is stored once and placed three times; the light, used by one node, is not a prototype.
+    ASSERT_EQ(loaded->prototypes.size(), 1u);
+    EXPECT_EQ(loaded->prototypes[0].triangle_count, 2u);
+    EXPECT_EQ(loaded->instances.size(), 3u);
+    EXPECT_EQ(loaded->WorldTriangleCount(), 2u);
+    EXPECT_EQ(loaded->triangles.size(), 4u);
     EXPECT_NEAR(loaded->bounds.lower.z, -4.0f, 1e-6f);
-    for (const Triangle& t : loaded->triangles) {  // the mirrored instance still faces +z
-        if (loaded->materials[t.material].emission.x == 0) {
+    // Expanded, the quad three times and the light once; the mirrored instance still faces +z.
+    const absl::StatusOr<Scene> flat = FlattenInstances(*loaded, 100);
+    ASSERT_TRUE(flat.ok()) << flat.status();
+    ASSERT_EQ(flat->triangles.size(), 8u);
+    EXPECT_TRUE(flat->instances.empty());
+    for (const Triangle& t : flat->triangles) {
+        if (flat->materials[t.material].emission.x == 0) {
             EXPECT_NEAR(t.normal.z, 1.0f, 1e-6f);
         }
     }
+    EXPECT_EQ(FlattenInstances(*loaded, 7).status().code(), absl::StatusCode::kResourceExhausted);
 }
 
 TEST(GltfLoaderTest, OversizedImagesAreRefusedBeforeDecoding) {

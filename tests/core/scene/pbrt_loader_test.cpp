@@ -135,9 +135,38 @@ TEST(PbrtLoaderTest, AttributesRestoreTheStateAndInstancesRepeatAnObject) {
                               "ObjectInstance \"quad\"\nAttributeBegin\nTranslate 0 0 5\nObjectInstance \"quad\"\nAttributeEnd\n";
     const absl::StatusOr<Scene> scene = Load(Bundle(world));
     ASSERT_TRUE(scene.ok()) << scene.status();
-    ASSERT_EQ(scene->triangles.size(), 4u);  // two instances of two triangles
+    ASSERT_EQ(scene->triangles.size(), 2u);  // the object's two triangles, stored once,
+    ASSERT_EQ(scene->prototypes.size(), 1u);
+    ASSERT_EQ(scene->instances.size(), 2u);  // placed twice
     EXPECT_NEAR(scene->bounds.lower.x, -1.0f, 1e-6f);  // the first Translate was undone
     EXPECT_NEAR(scene->bounds.upper.z, 5.0f, 1e-6f);
+    EXPECT_NEAR(scene->instances[1].ApplyPoint(Vec3(0.0f)).z, 5.0f, 1e-6f);
+}
+
+TEST(PbrtLoaderTest, EmittingShapesOfAnObjectArePlacedAsWorldTriangles) {
+    const std::string world = std::string("ObjectBegin \"lamp\"\n") + kQuad +
+                              "AttributeBegin\nTranslate 0 0 1\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1]\n" + kQuad +
+                              "AttributeEnd\nObjectEnd\nObjectInstance \"lamp\"\nTranslate 3 0 0\nObjectInstance \"lamp\"\n";
+    const absl::StatusOr<Scene> scene = Load(Bundle(world));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->prototypes.size(), 1u);
+    EXPECT_EQ(scene->prototypes[0].triangle_count, 2u);  // the plain quad
+    EXPECT_EQ(scene->instances.size(), 2u);
+    ASSERT_EQ(scene->WorldTriangleCount(), 4u);          // the emitting quad, once per instance
+    for (uint32_t t = 0; t < scene->WorldTriangleCount(); ++t)
+        EXPECT_TRUE(scene->materials[scene->triangles[t].material].IsEmissive());
+    EXPECT_NEAR(scene->bounds.upper.x, 4.0f, 1e-6f);
+}
+
+TEST(PbrtLoaderTest, InstanceLimitAndSingularInstancesAreRefused) {
+    const std::string object = std::string("ObjectBegin \"quad\"\n") + kQuad + "ObjectEnd\n";
+    SceneLoadOptions options;
+    options.limits.max_instances = 1;
+    const absl::StatusOr<Scene> limited =
+        LoadScene(Bundle(object + "ObjectInstance \"quad\"\nObjectInstance \"quad\"\n"), "scenes/scene.pbrt", options);
+    ExpectError(limited, "scenes/scene.pbrt:10:1: ObjectInstance \"quad\": the scene would hold more than 1 instances");
+    EXPECT_EQ(limited.status().code(), absl::StatusCode::kResourceExhausted);
+    ExpectError(Load(Bundle(object + "Scale 1 0 1\nObjectInstance \"quad\"\n")), "transform is singular");
 }
 
 TEST(PbrtLoaderTest, MaterialsMapOntoPhotonfarms) {

@@ -1,4 +1,5 @@
-// Embree 3 device, scene and queries. Errors reach us through one device error callback.
+// Embree 3 device, scenes (the world's triangles and one per prototype, placed by instance
+// geometries) and queries. Errors reach us through one device error callback.
 #include "worker/backends/cpu_embree/embree_tracer.h"
 
 #include <embree3/rtcore.h>
@@ -6,6 +7,7 @@
 
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 
@@ -52,10 +54,46 @@ void ToRtcRays(const Ray (&rays)[Tracer::kPacketSize], const bool (&active)[Trac
 struct EmbreeTracer::Handles {
     std::string last_error;
     RTCDevice device = nullptr;
-    RTCScene scene = nullptr;
+    RTCBuffer vertices = nullptr;        // every position, shared by the world's and prototypes' geometries
+    std::vector<RTCScene> prototypes;    // one scene per Scene::prototypes entry
+    RTCScene scene = nullptr;            // geometry 0: the world's triangles; 1 + i: instance i
+    std::vector<uint32_t> instance_first_triangle;  // per instance: its prototype's first triangle
     ~Handles() {
         if (scene) rtcReleaseScene(scene);
+        for (RTCScene prototype : prototypes) rtcReleaseScene(prototype);
+        if (vertices) rtcReleaseBuffer(vertices);
         if (device) rtcReleaseDevice(device);
+    }
+
+    // Attaches triangles [first, first + count) of `triangles` as geometry `id` of `target`.
+    bool AttachTriangles(RTCScene target, const std::vector<Triangle>& triangles, uint32_t first, uint32_t count,
+                         size_t vertex_count, unsigned id) {
+        RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices, 0, sizeof(float) * 3,
+                             vertex_count);
+        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
+                                                                        RTC_FORMAT_UINT3, sizeof(unsigned) * 3, count));
+        if (indices == nullptr) {
+            rtcReleaseGeometry(geometry);
+            return false;
+        }
+        for (uint32_t t = 0; t < count; ++t)
+            for (int k = 0; k < 3; ++k) indices[3 * t + k] = triangles[first + t].vertex[k];
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometryByID(target, geometry, id);
+        rtcReleaseGeometry(geometry);
+        return true;
+    }
+
+    // Our hit from Embree's: instance geometries are 1 + the instance's index.
+    void ToRayHit(unsigned instance_geometry, unsigned primitive, RayHit* hit) const {
+        if (instance_geometry == RTC_INVALID_GEOMETRY_ID) {
+            hit->triangle = primitive;
+            hit->instance = Instance::kNone;
+        } else {
+            hit->instance = instance_geometry - 1;
+            hit->triangle = instance_first_triangle[hit->instance] + primitive;
+        }
     }
 };
 
@@ -65,29 +103,43 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Scene& 
     if (handles->device == nullptr)
         return absl::UnavailableError("cannot create an Embree device (CPU without SSE2?)");
     rtcSetDeviceErrorFunction(handles->device, OnEmbreeError, &handles->last_error);
-    handles->scene = rtcNewScene(handles->device);
-    rtcSetSceneBuildQuality(handles->scene, RTC_BUILD_QUALITY_HIGH);
-    RTCGeometry geometry = rtcNewGeometry(handles->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0,
-                                                                  RTC_FORMAT_FLOAT3, sizeof(float) * 3,
-                                                                  scene.positions.size()));
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
-                                                                    RTC_FORMAT_UINT3, sizeof(unsigned) * 3,
-                                                                    scene.triangles.size()));
-    if (vertices == nullptr || indices == nullptr) {
-        rtcReleaseGeometry(geometry);
+    const auto out_of_memory = [&] {
         return absl::ResourceExhaustedError(absl::StrCat("cannot allocate Embree buffers: ", handles->last_error));
-    }
-    for (size_t v = 0; v < scene.positions.size(); ++v) {
+    };
+    // Embree reads vertices 16 bytes at a time: the last one needs 4 bytes of padding.
+    const size_t vertex_count = scene.positions.size();
+    handles->vertices = rtcNewBuffer(handles->device, sizeof(float) * 3 * vertex_count + sizeof(float));
+    auto* vertices = handles->vertices ? static_cast<float*>(rtcGetBufferData(handles->vertices)) : nullptr;
+    if (vertices == nullptr) return out_of_memory();
+    for (size_t v = 0; v < vertex_count; ++v) {
         vertices[3 * v] = scene.positions[v].x;
         vertices[3 * v + 1] = scene.positions[v].y;
         vertices[3 * v + 2] = scene.positions[v].z;
     }
-    for (size_t t = 0; t < scene.triangles.size(); ++t)
-        for (int k = 0; k < 3; ++k) indices[3 * t + k] = scene.triangles[t].vertex[k];
-    rtcCommitGeometry(geometry);
-    rtcAttachGeometry(handles->scene, geometry);
-    rtcReleaseGeometry(geometry);
+    for (const Prototype& prototype : scene.prototypes) {
+        RTCScene prototype_scene = rtcNewScene(handles->device);
+        handles->prototypes.push_back(prototype_scene);
+        rtcSetSceneBuildQuality(prototype_scene, RTC_BUILD_QUALITY_HIGH);
+        if (!handles->AttachTriangles(prototype_scene, scene.triangles, prototype.first_triangle,
+                                      prototype.triangle_count, vertex_count, 0))
+            return out_of_memory();
+        rtcCommitScene(prototype_scene);
+    }
+    handles->scene = rtcNewScene(handles->device);
+    rtcSetSceneBuildQuality(handles->scene, RTC_BUILD_QUALITY_HIGH);
+    if (scene.WorldTriangleCount() > 0 &&
+        !handles->AttachTriangles(handles->scene, scene.triangles, 0, scene.WorldTriangleCount(), vertex_count, 0))
+        return out_of_memory();
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
+        RTCGeometry geometry = rtcNewGeometry(handles->device, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(geometry, handles->prototypes[instance.prototype]);
+        rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, instance.to_world.data());
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometryByID(handles->scene, geometry, i + 1);
+        rtcReleaseGeometry(geometry);
+        handles->instance_first_triangle.push_back(scene.prototypes[instance.prototype].first_triangle);
+    }
     rtcCommitScene(handles->scene);
     if (!handles->last_error.empty()) return absl::InternalError(handles->last_error);
     return std::unique_ptr<EmbreeTracer>(new EmbreeTracer(std::move(handles)));
@@ -106,9 +158,9 @@ bool EmbreeTracer::Intersect(const Ray& ray, RayHit* hit) const {
     rtcIntersect1(handles_->scene, &context, &ray_hit);
     if (ray_hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     hit->t = ray_hit.ray.tfar;
-    hit->triangle = ray_hit.hit.primID;
     hit->b1 = ray_hit.hit.u;
     hit->b2 = ray_hit.hit.v;
+    handles_->ToRayHit(ray_hit.hit.instID[0], ray_hit.hit.primID, hit);
     return true;
 }
 
@@ -127,7 +179,10 @@ void EmbreeTracer::IntersectPacket(const Ray (&rays)[kPacketSize], const bool (&
     for (int i = 0; i < kPacketSize; ++i) {
         if (!active[i]) continue;
         found[i] = packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
-        hits[i] = {packet.ray.tfar[i], packet.hit.primID[i], packet.hit.u[i], packet.hit.v[i]};
+        hits[i].t = packet.ray.tfar[i];
+        hits[i].b1 = packet.hit.u[i];
+        hits[i].b2 = packet.hit.v[i];
+        handles_->ToRayHit(packet.hit.instID[0][i], packet.hit.primID[i], &hits[i]);
     }
 }
 

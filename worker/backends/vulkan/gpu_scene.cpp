@@ -3,6 +3,7 @@
 
 #include <bit>
 
+#include "core/scene/mesh_builder.h"
 #include "worker/backends/cpu_embree/bvh_builder.h"
 
 namespace pf::vk {
@@ -89,9 +90,17 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     return spec;
 }
 
-absl::StatusOr<GpuScene> BuildGpuScene(const Scene& scene, const Emitters& emitters) {
+absl::StatusOr<GpuScene> BuildGpuScene(const Scene& job_scene, const Emitters& emitters) {
     GpuScene gpu_scene;
-    gpu_scene.features = AnalyseFeatures(scene, emitters);
+    gpu_scene.features = AnalyseFeatures(job_scene, emitters);
+    // The kernels traverse one BVH: instances are expanded into world triangles (the world's
+    // own keep their indices, so emitters still name them).
+    absl::StatusOr<Scene> flattened;
+    if (!job_scene.instances.empty()) {
+        flattened = FlattenInstances(job_scene, SceneLimits{}.max_triangles);
+        if (!flattened.ok()) return flattened.status();
+    }
+    const Scene& scene = job_scene.instances.empty() ? job_scene : *flattened;
     std::vector<Bounds> boxes;
     for (const Triangle& triangle : scene.triangles) {
         Bounds box;
