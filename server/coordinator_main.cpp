@@ -54,8 +54,11 @@ int main(int argc, char** argv) {
         app.add_option("--max-jobs", options.max_running_jobs, "Jobs running at once")
             ->default_val(options.max_running_jobs)->check(CLI::Range(1, 100000));
         app.add_option("--max-scene-triangles", options.scene_limits.max_triangles,
-                       "Largest scene a job may bring, in triangles after instancing")
+                       "Largest scene a job may bring, in triangles stored (an instanced object's once)")
             ->default_val(options.scene_limits.max_triangles)->check(CLI::Range(uint64_t{1}, uint64_t{1} << 31));
+        app.add_option("--max-scene-instances", options.scene_limits.max_instances,
+                       "Most object instances a scene may place")
+            ->default_val(options.scene_limits.max_instances)->check(CLI::Range(uint64_t{1}, uint64_t{1} << 31));
         app.add_option("--max-image-pixels", options.scene_limits.max_image_pixels, "Largest texture a scene may bring, in pixels")
             ->default_val(options.scene_limits.max_image_pixels)->check(CLI::Range(uint64_t{1}, uint64_t{1} << 31));
         pf::AddLogLevelOption(app);
