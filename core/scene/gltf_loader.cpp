@@ -478,7 +478,7 @@ absl::StatusOr<int32_t> GltfSceneBuilder::TextureIndex(int gltf_texture, const s
     if (!texture.ok())
         return absl::Status(texture.status().code(), absl::StrCat(path_, ": ", element, ": ", texture.status().message()));
     const auto index = static_cast<int32_t>(scene_.textures.size());
-    scene_.textures.push_back(std::move(*texture));
+    scene_.textures.push_back(std::make_shared<const Texture>(std::move(*texture)));
     texture_indices_[image_index] = index;
     return index;
 }

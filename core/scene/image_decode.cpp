@@ -2,8 +2,6 @@
 #include "core/scene/image_decode.h"
 
 #include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -16,25 +14,6 @@ namespace {
 
 // OpenImageIO's errors can span lines; messages here are one line.
 std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
-
-// Halves the image level by level down to 1x1 with OpenImageIO's resampling, a box one output
-// texel wide: each texel the mean of those beneath it, so no ringing and no dark edges on
-// tiling textures (wider filters read black past the border).
-void BuildMipLevels(Texture* texture) {
-    const TextureLevel* source = texture;
-    while (source->width > 1 || source->height > 1) {
-        TextureLevel level;
-        level.width = std::max(1, source->width / 2);
-        level.height = std::max(1, source->height / 2);
-        level.texels.resize(size_t(level.width) * level.height);
-        const OIIO::ImageBuf from(OIIO::ImageSpec(source->width, source->height, 3, OIIO::TypeDesc::FLOAT),
-                                  const_cast<Rgb*>(source->texels.data()));
-        OIIO::ImageBuf to(OIIO::ImageSpec(level.width, level.height, 3, OIIO::TypeDesc::FLOAT), level.texels.data());
-        OIIO::ImageBufAlgo::resize(to, from, "box", 1.0f);
-        texture->mips.push_back(std::move(level));
-        source = &texture->mips.back();
-    }
-}
 
 }  // namespace
 
@@ -82,7 +61,6 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
     for (size_t i = 0; i < pixels; ++i)
         for (int c = 0; c < 3; ++c)
             texture.texels[i][c] = to_linear(values[i * spec.nchannels + (spec.nchannels < 3 ? 0 : c)]);
-    BuildMipLevels(&texture);
     return texture;
 }
 

@@ -64,15 +64,15 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
 Rgb Scene::BaseColor(const SurfacePoint& surface) const {
     const Material& material = materials[surface.material];
     if (material.base_color_texture == kNoTexture) return material.base_color;
-    return material.base_color *
-           textures[material.base_color_texture].Sample(surface.uv.x, surface.uv.y);
+    return material.base_color * textures[material.base_color_texture]->Sample(surface.uv.x, surface.uv.y);
 }
 
 Rgb Scene::BaseColor(const SurfacePoint& surface, float width) const {
     const Material& material = materials[surface.material];
     if (material.base_color_texture == kNoTexture) return material.base_color;
-    return material.base_color * textures[material.base_color_texture].SampleFiltered(
-                                     surface.uv.x, surface.uv.y, width * surface.uv_per_length);
+    if (!texture_filter) return BaseColor(surface);
+    return material.base_color * texture_filter->Sample(material.base_color_texture, surface.uv.x, surface.uv.y,
+                                                        width * surface.uv_per_length);
 }
 
 float Scene::TriangleArea(uint32_t triangle) const {

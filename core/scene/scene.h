@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -122,7 +123,8 @@ struct Scene {
     std::vector<Prototype> prototypes;
     std::vector<Instance> instances;
     std::vector<Material> materials;
-    std::vector<Texture> textures;
+    std::vector<std::shared_ptr<const Texture>> textures;  // shared with texture_filter
+    std::shared_ptr<const TextureFilter> texture_filter;   // set by the loaders where there are textures
     std::vector<PunctualLight> lights;
     Camera camera;
     Bounds bounds;  // of everything, instances included
@@ -138,7 +140,7 @@ struct Scene {
     // the point: what a photon meets).
     Rgb BaseColor(const SurfacePoint& surface) const;
     // The same averaged over a footprint `width` world units across (a camera sample's cone
-    // where it meets the surface), trilinearly from the texture's MIP levels.
+    // where it meets the surface), by texture_filter (the point lookup where there is none).
     Rgb BaseColor(const SurfacePoint& surface, float width) const;
     // The area of a world triangle.
     float TriangleArea(uint32_t triangle) const;

@@ -13,6 +13,7 @@
 #include "core/scene/gltf_loader.h"
 #include "core/scene/pbrt/pbrt_loader.h"
 #include "core/scene/scene_files.h"
+#include "core/scene/texture_filter.h"
 
 namespace pf {
 namespace {
@@ -131,17 +132,20 @@ bool IsSceneFile(const std::string& path) { return FormatOf(path) != SceneFormat
 absl::StatusOr<Scene> LoadScene(const SceneBundle& bundle, const std::string& name, const SceneLoadOptions& options) {
     if (absl::Status status = CheckSceneBundle(bundle); !status.ok())
         return absl::Status(status.code(), absl::StrCat(name, ": ", status.message()));
+    absl::StatusOr<Scene> scene = UnknownFormat(name);
     switch (FormatOf(bundle.main_file)) {
         case SceneFormat::kGltf:
-        case SceneFormat::kGlb: return LoadGltf(bundle, name, options.limits);
+        case SceneFormat::kGlb: scene = LoadGltf(bundle, name, options.limits); break;
         case SceneFormat::kPbrt: {
             BundleFiles files(bundle);
-            return LoadPbrt(files, bundle.main_file, DisplayRoot(name, bundle.main_file),
-                            {options.limits, false, options.warnings});
+            scene = LoadPbrt(files, bundle.main_file, DisplayRoot(name, bundle.main_file),
+                             {options.limits, false, options.warnings});
+            break;
         }
         case SceneFormat::kUnknown: break;
     }
-    return UnknownFormat(name);
+    if (scene.ok() && !scene->textures.empty()) scene->texture_filter = MakeTextureFilter(scene->textures);
+    return scene;
 }
 
 absl::StatusOr<Scene> LoadScene(const std::string& path, const SceneLoadOptions& options) {

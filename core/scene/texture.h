@@ -1,6 +1,6 @@
-// An RGB image texture in linear floating point with its MIP pyramid, sampled bilinearly
-// (photons: a point on the surface) or trilinearly over a footprint (camera hit points: the
-// pixel's cone where it meets the surface), with wrapping.
+// An RGB image texture in linear floating point, sampled bilinearly at a point (what photons
+// meet; the Vulkan kernels read the same texels the same way), and the interface of filtered
+// lookups over a footprint (camera hit points), which OpenImageIO's TextureSystem answers.
 #pragma once
 
 #include <algorithm>
@@ -12,8 +12,8 @@
 
 namespace pf {
 
-// One level of an image: row-major, row 0 at the top (glTF's v = 0), linear RGB.
-struct TextureLevel {
+// Row-major, row 0 at the top (glTF's v = 0), linear RGB.
+struct Texture {
     int width = 0, height = 0;
     std::vector<Rgb> texels;
 
@@ -33,24 +33,14 @@ struct TextureLevel {
     }
 };
 
-// Level 0 is the image itself (what the photon pass and the Vulkan backend read); `mips`
-// holds the halved levels below it, made by OpenImageIO's resampling filter when the image is
-// decoded (core/scene/image_decode.cpp), down to 1x1.
-struct Texture : TextureLevel {
-    std::vector<TextureLevel> mips;
-
-    // Trilinear lookup for a footprint `footprint` texture-coordinate units across: the two
-    // levels whose texels are nearest that size, blended.
-    Rgb SampleFiltered(float u, float v, float footprint) const {
-        const float texels_across = footprint * static_cast<float>(std::max(width, height));
-        if (mips.empty() || !(texels_across > 1.0f)) return Sample(u, v);
-        const float level = std::min(std::log2(texels_across), static_cast<float>(mips.size()));
-        const int lower = static_cast<int>(level);
-        const float blend = level - static_cast<float>(lower);
-        auto at = [&](int l) { return l == 0 ? Sample(u, v) : mips[l - 1].Sample(u, v); };
-        const Rgb fine = at(lower);
-        return blend > 0 && lower < static_cast<int>(mips.size()) ? fine * (1 - blend) + at(lower + 1) * blend : fine;
-    }
+// Filtered lookups of a scene's textures: the average over a footprint `footprint`
+// texture-coordinate units across around (u, v), from MIP levels (a camera sample's cone where
+// it meets the surface). The scene loaders give every scene with textures one
+// (core/scene/texture_filter.h: OpenImageIO's TextureSystem). Safe to call from many threads.
+class TextureFilter {
+public:
+    virtual ~TextureFilter() = default;
+    virtual Rgb Sample(uint32_t texture, float u, float v, float footprint) const = 0;
 };
 
 // The sRGB electro-optical transfer function: an 8-bit-encoded sRGB value to linear.

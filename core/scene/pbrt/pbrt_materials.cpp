@@ -134,7 +134,7 @@ absl::StatusOr<int32_t> PbrtSceneBuilder::ImageIndex(const TextureRef& texture) 
     absl::StatusOr<pf::Texture> image = DecodeImage(*bytes, texture.path, options_.limits, texture.decode);
     if (!image.ok()) return absl::Status(image.status().code(), absl::StrCat(texture.element, ": ", image.status().message()));
     const auto index = static_cast<int32_t>(scene_.textures.size());
-    scene_.textures.push_back(std::move(*image));
+    scene_.textures.push_back(std::make_shared<const pf::Texture>(std::move(*image)));
     images_[key] = index;
     return index;
 }

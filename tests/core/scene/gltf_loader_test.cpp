@@ -96,7 +96,7 @@ TEST(GltfLoaderTest, BaseColourTextureIsDecodedToLinearAndSampled) {
     const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "textured.gltf"));
     ASSERT_TRUE(loaded.ok()) << loaded.status();
     ASSERT_EQ(loaded->textures.size(), 1u);
-    const Texture& texture = loaded->textures[0];
+    const Texture& texture = *loaded->textures[0];
     EXPECT_EQ(texture.Texel(0, 0), Rgb(1.0f, 0.0f, 0.0f));
     EXPECT_NEAR(texture.Texel(1, 0).x, 0.2158605f, 1e-5f);  // sRGB 128 in linear
     // The surface's base colour is factor x texture at its uv: the left texel's centre.
@@ -141,7 +141,7 @@ TEST(GltfLoaderTest, GlbWithTheImageInItsBinaryChunk) {
     const absl::StatusOr<Scene> loaded = LoadScene(*bundle, path);
     ASSERT_TRUE(loaded.ok()) << loaded.status();
     ASSERT_EQ(loaded->textures.size(), 1u);
-    EXPECT_EQ(loaded->textures[0].Texel(0, 0), Rgb(1.0f, 0.0f, 0.0f));
+    EXPECT_EQ(loaded->textures[0]->Texel(0, 0), Rgb(1.0f, 0.0f, 0.0f));
 }
 
 TEST(GltfLoaderTest, MeshesUsedByManyNodesAreInstanced) {

@@ -300,8 +300,8 @@ TEST(PbrtLoaderTest, IncludesPlyMeshesAndImageTexturesComeFromTheBundle) {
     ASSERT_TRUE(scene.ok()) << scene.status();
     EXPECT_EQ(scene->triangles.size(), 2u);
     ASSERT_EQ(scene->textures.size(), 1u);
-    EXPECT_NEAR(scene->textures[0].texels[0].x, 1.0f, 1e-6f);
-    EXPECT_NEAR(scene->textures[0].texels[1].x, SrgbToLinear(128 / 255.0f), 1e-6f);  // sRGB decoded
+    EXPECT_NEAR(scene->textures[0]->texels[0].x, 1.0f, 1e-6f);
+    EXPECT_NEAR(scene->textures[0]->texels[1].x, SrgbToLinear(128 / 255.0f), 1e-6f);  // sRGB decoded
     // pbrt's v runs up the image and uscale 2 repeats it twice: the vertex at uv (1, 1) maps to (2, 0).
     bool found = false;
     for (size_t v = 0; v < scene->positions.size(); ++v)

@@ -1,5 +1,5 @@
-// Image decoding and texture filtering: the MIP pyramid OpenImageIO resamples, and lookups
-// over a footprint that average what the footprint covers.
+// Image decoding and texture filtering: lookups over a footprint (OpenImageIO's TextureSystem,
+// MIP-mapped) average what the footprint covers; the point lookup agrees with it at a point.
 #include "core/scene/texture.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 
 #include "core/scene/image_decode.h"
 #include "core/scene/scene_files.h"
+#include "core/scene/texture_filter.h"
 
 namespace pf {
 namespace {
@@ -30,26 +31,35 @@ std::string CheckerboardPng() {
     return bytes.ok() ? *bytes : std::string();
 }
 
-TEST(TextureTest, PyramidHalvesDownToOneTexelAndKeepsTheMean) {
-    const absl::StatusOr<Texture> texture = DecodeImage(CheckerboardPng(), "checks.png", SceneLimits{});
+TEST(TextureTest, FootprintsAverageWhatTheyCover) {
+    absl::StatusOr<Texture> texture = DecodeImage(CheckerboardPng(), "checks.png", SceneLimits{});
     ASSERT_TRUE(texture.ok()) << texture.status();
-    ASSERT_EQ(texture->mips.size(), 6u);  // 32, 16, 8, 4, 2, 1
-    EXPECT_EQ(texture->mips.back().width, 1);
-    // A fine checkerboard's average is half white; every coarser level shows that grey.
-    for (const TextureLevel& level : texture->mips)
-        for (const Rgb& texel : level.texels) ASSERT_NEAR(texel.x, 0.5f, 0.02f) << level.width;
+    const auto shared = std::make_shared<const Texture>(std::move(*texture));
+    const std::shared_ptr<const TextureFilter> filter = MakeTextureFilter({shared});
+    // At a texel's centre, a footprint below a texel sees that texel; one many texels wide sees
+    // the average (a fine checkerboard's is half white), as the bilinear point sample (the
+    // photons' lookup) does not.
+    const float u = 0.5f / 64, v = 0.5f / 64;  // texel (0, 0): black
+    EXPECT_NEAR(filter->Sample(0, u, v, 0.0f).x, 0.0f, 1e-6f);
+    EXPECT_NEAR(shared->Sample(u, v).x, 0.0f, 1e-6f);
+    EXPECT_NEAR(filter->Sample(0, u + 1.0f / 64, v, 0.0f).x, 1.0f, 1e-6f);  // its neighbour: white
+    for (float footprint : {4.0f / 64, 8.0f / 64, 0.5f, 1000.0f})  // up to past the coarsest level
+        EXPECT_NEAR(filter->Sample(0, u, v, footprint).x, 0.5f, 0.02f) << footprint;
 }
 
-TEST(TextureTest, FootprintsAverageWhatTheyCover) {
-    const absl::StatusOr<Texture> texture = DecodeImage(CheckerboardPng(), "checks.png", SceneLimits{});
-    ASSERT_TRUE(texture.ok()) << texture.status();
-    // At a texel's centre, a footprint below a texel sees that texel; one many texels wide sees
-    // the average, as the bilinear point sample (the photons' lookup) does not.
-    const float u = 0.5f / 64, v = 0.5f / 64;  // texel (0, 0): black
-    EXPECT_NEAR(texture->SampleFiltered(u, v, 0.5f / 64).x, 0.0f, 1e-6f);
-    EXPECT_NEAR(texture->Sample(u, v).x, 0.0f, 1e-6f);
-    EXPECT_NEAR(texture->SampleFiltered(u, v, 8.0f / 64).x, 0.5f, 0.02f);
-    EXPECT_NEAR(texture->SampleFiltered(u, v, 1000.0f).x, 0.5f, 0.02f);  // past the coarsest level
+TEST(TextureTest, PointLookupsAgreeWithTheFiltersFinestLevelAndWrap) {
+    // A smooth image (no level choice matters at a zero footprint): the point lookup the photons
+    // and the Vulkan kernels use and the filter's finest level are the same bilinear lookup,
+    // repeat-wrapped past [0, 1).
+    auto texture = std::make_shared<Texture>();
+    texture->width = 5, texture->height = 3;
+    for (int y = 0; y < 3; ++y)
+        for (int x = 0; x < 5; ++x) texture->texels.push_back(Rgb(0.1f * x, 0.3f * y, 0.05f * (x + y)));
+    const std::shared_ptr<const TextureFilter> filter = MakeTextureFilter({texture});
+    for (const auto& [u, v] : {std::pair{0.13f, 0.71f}, {0.5f, 0.5f}, {0.95f, 0.02f}, {1.3f, -0.4f}, {-2.7f, 3.2f}}) {
+        const Rgb point = texture->Sample(u, v), filtered = filter->Sample(0, u, v, 0.0f);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(filtered[c], point[c], 1e-5f) << u << ", " << v;
+    }
 }
 
 }  // namespace

@@ -32,9 +32,9 @@ void AddGeometry(const Scene& scene, const embree::GpuBvh& bvh, GpuScene& gpu_sc
         gpu_scene.materials.push_back({Vec4(material.base_color, material.ior), static_cast<uint32_t>(material.type),
                                        material.base_color_texture, 0, 0});
     if (!gpu_scene.features.textures) return;
-    for (const Texture& texture : scene.textures) {
-        gpu_scene.textures.push_back({static_cast<uint32_t>(gpu_scene.texels.size()), texture.width, texture.height, 0});
-        for (const Rgb& texel : texture.texels) gpu_scene.texels.push_back(Vec4(texel));
+    for (const std::shared_ptr<const Texture>& texture : scene.textures) {
+        gpu_scene.textures.push_back({static_cast<uint32_t>(gpu_scene.texels.size()), texture->width, texture->height, 0});
+        for (const Rgb& texel : texture->texels) gpu_scene.texels.push_back(Vec4(texel));
     }
 }
 
