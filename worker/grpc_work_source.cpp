@@ -229,6 +229,7 @@ absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(con
     // whatever they were (the bundle's own size limit still bounds it).
     SceneLoadOptions options;
     options.limits.max_triangles = options.limits.max_image_pixels = options.limits.max_instances = uint64_t{1} << 31;
+    options.texture_filter = false;  // photons look textures up at a point
     absl::StatusOr<Scene> scene = LoadScene(*bundle, bundle->main_file, options);
     if (!scene.ok()) return scene.status();
     absl::StatusOr<std::string> hit_point_bytes = FetchBlob(job.hit_points_digest(), true);

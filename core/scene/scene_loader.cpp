@@ -144,7 +144,8 @@ absl::StatusOr<Scene> LoadScene(const SceneBundle& bundle, const std::string& na
         }
         case SceneFormat::kUnknown: break;
     }
-    if (scene.ok() && !scene->textures.empty()) scene->texture_filter = MakeTextureFilter(scene->textures);
+    if (scene.ok() && options.texture_filter && !scene->textures.empty())
+        scene->texture_filter = MakeTextureFilter(scene->textures);
     return scene;
 }
 

@@ -16,6 +16,9 @@ namespace pf {
 struct SceneLoadOptions {
     SceneLimits limits;
     std::vector<std::string>* warnings = nullptr;  // also logged; pbrt scenes only, may be null
+    // Give a scene with textures its TextureFilter (what the camera pass reads); workers, which
+    // trace photons only, leave it out.
+    bool texture_filter = true;
 };
 
 // Loads the bundle's main file. `name` names the scene in errors (the path the user gave).

@@ -1,6 +1,7 @@
 // OpenImageIO's TextureSystem reading our decoded textures through an ImageInput of its own
-// (OpenImageIO calls it whenever its cache needs texels); each filter has a private
-// TextureSystem, so scenes do not share cache entries.
+// (OpenImageIO calls it whenever its cache needs texels). One TextureSystem serves the process,
+// so all scenes share one cache budget; each filter's textures have names of their own and are
+// dropped from it when the filter goes.
 #include "core/scene/texture_filter.h"
 
 #include <OpenImageIO/imagecache.h>
@@ -53,22 +54,37 @@ private:
 
 OIIO::ImageInput* CreateTextureInput() { return new TextureInput; }
 
+// Made once and kept for the process (OpenImageIO 2.4's TextureSystem::destroy frees its
+// implementation through the interface's type, which AddressSanitizer reports).
+OIIO::TextureSystem& ProcessTextureSystem() {
+    static OIIO::TextureSystem* const system = [] {
+        OIIO::TextureSystem* made = OIIO::TextureSystem::create(false);
+        made->attribute("automip", 1);   // MIP levels made from level 0 on first use
+        made->attribute("autotile", 64);  // cached in tiles, not whole levels
+        return made;
+    }();
+    return *system;
+}
+
 class OiioTextureFilter final : public TextureFilter {
 public:
     explicit OiioTextureFilter(std::vector<std::shared_ptr<const Texture>> textures)
-        : textures_(std::move(textures)), system_(OIIO::TextureSystem::create(false)) {
-        system_->attribute("automip", 1);   // MIP levels made from level 0 on first use
-        system_->attribute("autotile", 64);  // cached in tiles, not whole levels
+        : textures_(std::move(textures)), system_(ProcessTextureSystem()) {
+        static std::atomic<uint64_t> filters{0};
+        const uint64_t filter = filters++;
         for (size_t i = 0; i < textures_.size(); ++i) {
-            const OIIO::ustring name(absl::StrCat("photonfarm-texture-", i));
+            names_.emplace_back(absl::StrCat("photonfarm-texture-", filter, "-", i));
             OIIO::ImageSpec config;
             const Texture* texture = textures_[i].get();
             config.attribute(kTextureAttribute, OIIO::TypeDesc::PTR, &texture);
-            system_->imagecache()->add_file(name, CreateTextureInput, &config);
-            handles_.push_back(system_->get_texture_handle(name));
+            system_.imagecache()->add_file(names_.back(), CreateTextureInput, &config);
+            handles_.push_back(system_.get_texture_handle(names_.back()));
         }
     }
-    ~OiioTextureFilter() override { OIIO::TextureSystem::destroy(system_); }
+    // The cache lets go of the tiles and inputs of textures about to be freed.
+    ~OiioTextureFilter() override {
+        for (const OIIO::ustring& name : names_) system_.invalidate(name, true);
+    }
     OiioTextureFilter(const OiioTextureFilter&) = delete;
     OiioTextureFilter& operator=(const OiioTextureFilter&) = delete;
 
@@ -78,9 +94,9 @@ public:
         options.mipmode = OIIO::TextureOpt::MipModeTrilinear;
         options.interpmode = OIIO::TextureOpt::InterpBilinear;
         float result[3] = {0, 0, 0};
-        if (!system_->texture(handles_[texture], nullptr, options, u, v, footprint, 0, 0, footprint, 3, result)) {
+        if (!system_.texture(handles_[texture], nullptr, options, u, v, footprint, 0, 0, footprint, 3, result)) {
             // Cannot happen for textures in memory; should it, the point lookup stands in.
-            if (!warned_.exchange(true)) spdlog::warn("texture lookup failed: {}", system_->geterror());
+            if (!warned_.exchange(true)) spdlog::warn("texture lookup failed: {}", system_.geterror());
             return textures_[texture]->Sample(u, v);
         }
         return {result[0], result[1], result[2]};
@@ -88,7 +104,8 @@ public:
 
 private:
     std::vector<std::shared_ptr<const Texture>> textures_;
-    OIIO::TextureSystem* system_;
+    OIIO::TextureSystem& system_;
+    std::vector<OIIO::ustring> names_;
     std::vector<OIIO::TextureSystem::TextureHandle*> handles_;
     mutable std::atomic<bool> warned_{false};
 };
