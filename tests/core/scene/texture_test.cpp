@@ -62,5 +62,23 @@ TEST(TextureTest, PointLookupsAgreeWithTheFiltersFinestLevelAndWrap) {
     }
 }
 
+TEST(TextureTest, FiltersShareOneTextureSystemAndLetGoOfTheirTextures) {
+    // Scenes come and go in a coordinator: each filter's textures are its own, and a filter
+    // outlived by another leaves that one's lookups intact.
+    const auto solid = [](float value) {
+        auto texture = std::make_shared<Texture>();
+        texture->width = texture->height = 2;
+        texture->texels.assign(4, Rgb(value));
+        return texture;
+    };
+    const std::shared_ptr<const TextureFilter> kept = MakeTextureFilter({solid(0.25f)});
+    EXPECT_NEAR(kept->Sample(0, 0.3f, 0.6f, 0.1f).x, 0.25f, 1e-6f);
+    for (int i = 0; i < 3; ++i) {
+        const std::shared_ptr<const TextureFilter> passing = MakeTextureFilter({solid(0.5f + i)});
+        EXPECT_NEAR(passing->Sample(0, 0.3f, 0.6f, 0.1f).x, 0.5f + i, 1e-6f);
+    }
+    EXPECT_NEAR(kept->Sample(0, 0.7f, 0.1f, 0.5f).x, 0.25f, 1e-6f);
+}
+
 }  // namespace
 }  // namespace pf
