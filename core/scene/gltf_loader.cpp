@@ -197,7 +197,7 @@ private:
     std::map<int, uint32_t> material_indices_;  // glTF material -> Scene::materials
     std::map<int, int32_t> texture_indices_;    // glTF image -> Scene::textures
     std::map<uint32_t, UvTransform> material_uvs_;  // Scene::materials -> its texture's transform
-    std::map<std::pair<int, size_t>, TriangleMesh> meshes_;  // (mesh, primitive), read once
+    std::map<std::pair<int, size_t>, TriangleMesh> meshes_;  // (mesh, primitive) emitting in several nodes
     std::map<int, int> mesh_uses_;                  // glTF mesh -> how many nodes name it
     std::map<int, uint32_t> mesh_prototypes_;       // glTF mesh used by several nodes -> Scene::prototypes
     const SceneLimits& limits_;
@@ -336,6 +336,13 @@ absl::Status GltfSceneBuilder::AddPrimitive(int mesh_index, size_t primitive_ind
         spdlog::warn("{}: {}: mode {} is not triangles; skipped", path_, element, primitive.mode);
         return absl::OkStatus();
     }
+    const MeshPlacement placement{world, material, FrontFace::kObjectWinding, false, material_uvs_[material]};
+    const std::string where = absl::StrCat(path_, ": ", element);
+    if (mesh_uses_[mesh_index] < 2 || prototype) {  // placed once
+        absl::StatusOr<TriangleMesh> mesh = ReadPrimitive(primitive, element);
+        if (!mesh.ok()) return mesh.status();
+        return AppendMesh(*mesh, placement, limits_, where, &scene_, prototype);
+    }
     // An emitting primitive of a mesh that several nodes use is read once and placed by each.
     const auto key = std::make_pair(mesh_index, primitive_index);
     auto cached = meshes_.find(key);
@@ -344,8 +351,7 @@ absl::Status GltfSceneBuilder::AddPrimitive(int mesh_index, size_t primitive_ind
         if (!mesh.ok()) return mesh.status();
         cached = meshes_.emplace(key, std::move(*mesh)).first;
     }
-    const MeshPlacement placement{world, material, FrontFace::kObjectWinding, false, material_uvs_[material]};
-    return AppendMesh(cached->second, placement, limits_, absl::StrCat(path_, ": ", element), &scene_, prototype);
+    return AppendMesh(cached->second, placement, limits_, where, &scene_, prototype);
 }
 
 absl::Status GltfSceneBuilder::AddLight(int light_index, const Transform& world) {

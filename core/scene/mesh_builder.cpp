@@ -136,7 +136,8 @@ absl::StatusOr<Scene> FlattenInstances(const Scene& scene, uint64_t max_triangle
     if (total > max_triangles)
         return absl::ResourceExhaustedError(absl::StrCat(scene.source, ": its ", scene.instances.size(), " instances expand to ",
                                                          total, " triangles, more than the ", max_triangles, " this backend holds"));
-    // Each prototype's vertices, once, and its triangles over them.
+    // Each prototype's vertices, once, and its triangles over them (AppendMesh gives every mesh
+    // vertices of its own: no vertex belongs to two prototypes).
     struct Local {
         std::vector<uint32_t> vertices;   // into Scene::positions
         std::vector<Triangle> triangles;  // vertex: into `vertices`
@@ -149,7 +150,7 @@ absl::StatusOr<Scene> FlattenInstances(const Scene& scene, uint64_t max_triangle
         for (uint32_t t = prototype.first_triangle; t < prototype.first_triangle + prototype.triangle_count; ++t) {
             Triangle triangle = scene.triangles[t];
             for (uint32_t& v : triangle.vertex) {
-                if (local_index[v] == ~0u || local_index[v] >= local.vertices.size() || local.vertices[local_index[v]] != v) {
+                if (local_index[v] == ~0u) {
                     local_index[v] = static_cast<uint32_t>(local.vertices.size());
                     local.vertices.push_back(v);
                 }

@@ -93,11 +93,6 @@ struct Instance {
         return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3], m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
                 m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
     }
-    Vec3 ApplyVector(const Vec3& v) const {
-        const float* m = to_world.data();
-        return {m[0] * v.x + m[1] * v.y + m[2] * v.z, m[4] * v.x + m[5] * v.y + m[6] * v.z,
-                m[8] * v.x + m[9] * v.y + m[10] * v.z};
-    }
     // Not normalised.
     Vec3 ApplyNormal(const Vec3& n) const {
         const float* m = normal_map.data();
