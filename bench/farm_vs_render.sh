@@ -35,16 +35,16 @@ render_rate() {
 }
 
 farm_rate() {
-    "$build/server/photonfarm-coordinator" --listen 127.0.0.1:0 --log-level warn > "$work/coordinator.out" &
+    "$build/server/photonfarm-coordinator" --listen 127.0.0.1:0 --plaintext --log-level warn > "$work/coordinator.out" &
     coordinator=$!
     for _ in $(seq 50); do grep -q listening "$work/coordinator.out" && break; sleep 0.1; done
     local address
     address=$(sed -n 's/^listening on //p' "$work/coordinator.out")
     for _ in 1 2; do
-        "$build/worker/photonfarm-worker" --coordinator "$address" --threads 1 --log-level warn &
+        "$build/worker/photonfarm-worker" --coordinator "$address" --plaintext --threads 1 --log-level warn &
         workers+=($!)
     done
-    "$build/client/photonfarm" submit "$scene" --server "$address" --photons "$photons" "${layout[@]}" --watch --json \
+    "$build/client/photonfarm" submit "$scene" --server "$address" --plaintext --photons "$photons" "${layout[@]}" --watch --json \
         --log-level warn | tail -n 1 | sed 's/.*"photons_per_second":\([0-9.e+]*\).*/\1/'
     stop_farm
 }

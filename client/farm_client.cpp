@@ -3,8 +3,6 @@
 
 #include <google/protobuf/util/json_util.h>
 #include <grpcpp/client_context.h>
-#include <grpcpp/create_channel.h>
-#include <grpcpp/security/credentials.h>
 
 #include <chrono>
 
@@ -23,23 +21,31 @@ constexpr double kSubmitSeconds = 600;
 
 }  // namespace
 
-void AddServerOption(CLI::App* command, std::string* address) {
-    command->add_option("--server", *address, "Coordinator address HOST:PORT")->envname("PHOTONFARM_SERVER")->required();
+void AddServerOption(CLI::App* command, ServerFlags* server) {
+    command->add_option("--server", server->address, "Coordinator address HOST:PORT")->envname("PHOTONFARM_SERVER")->required();
+    AddChannelSecurityOptions(command, &server->security, kClientTokenEnv);
 }
 
 FarmClient::FarmClient(std::string address, std::shared_ptr<grpc::Channel> channel)
     : peer_(absl::StrCat("coordinator at ", address)), channel_(std::move(channel)), stub_(v1::Jobs::NewStub(channel_)) {}
 
-absl::StatusOr<FarmClient> FarmClient::Connect(const std::string& address, double timeout_seconds) {
-    grpc::ChannelArguments args;
-    args.SetMaxReceiveMessageSize(kMaxMessageBytes);
-    args.SetMaxSendMessageSize(kMaxMessageBytes);
-    std::shared_ptr<grpc::Channel> channel = grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), args);
+absl::StatusOr<FarmClient> FarmClient::Connect(const ServerFlags& server, double timeout_seconds) {
+    absl::StatusOr<ChannelSecurity> security = LoadChannelSecurity(server.security, kClientTokenEnv);
+    if (!security.ok()) return security.status();
+    return Connect(server.address, *security, timeout_seconds);
+}
+
+absl::StatusOr<FarmClient> FarmClient::Connect(const std::string& address, const ChannelSecurity& security,
+                                               double timeout_seconds) {
+    std::shared_ptr<grpc::Channel> channel = OpenChannel(address, security);
     const auto deadline = std::chrono::system_clock::now() +
                           std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(timeout_seconds));
     if (!channel->WaitForConnected(deadline))
-        return absl::UnavailableError(
-            absl::StrCat("cannot reach the coordinator at ", address, " (nothing answered within ", timeout_seconds, " s)"));
+        return absl::UnavailableError(absl::StrCat(
+            "cannot reach the coordinator at ", address, " (no ", security.plaintext ? "plain-text" : "TLS",
+            " connection within ", timeout_seconds, " s: nothing listening, ",
+            security.plaintext ? "or it serves TLS" : "a certificate not from --tls-ca or not for this name, or --plaintext there",
+            ")"));
     return FarmClient(address, std::move(channel));
 }
 

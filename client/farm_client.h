@@ -15,11 +15,19 @@
 #include "absl/status/statusor.h"
 #include "core/ppm/convergence.h"
 #include "photonfarm/v1/jobs.grpc.pb.h"
+#include "worker/secure_channel.h"
 
 namespace pf {
 
-// Adds --server ADDR (or PHOTONFARM_SERVER) to `command`.
-void AddServerOption(CLI::App* command, std::string* address);
+// Where the coordinator is and how to reach it, as the command line gives it.
+struct ServerFlags {
+    std::string address;
+    ChannelSecurityFlags security;
+};
+
+// Adds --server ADDR (or PHOTONFARM_SERVER), the TLS options and --token-file (or
+// PHOTONFARM_CLIENT_TOKEN) to `command`.
+void AddServerOption(CLI::App* command, ServerFlags* server);
 
 // A job's convergence log, for `--report`.
 struct JobConvergence {
@@ -29,8 +37,12 @@ struct JobConvergence {
 
 class FarmClient {
 public:
-    // Waits up to `timeout_seconds` for the coordinator: UNAVAILABLE naming it if it cannot be reached.
-    static absl::StatusOr<FarmClient> Connect(const std::string& address, double timeout_seconds = 5);
+    // Waits up to `timeout_seconds` for the coordinator: UNAVAILABLE naming it if it cannot be
+    // reached (nothing listening, or a TLS handshake that failed).
+    static absl::StatusOr<FarmClient> Connect(const std::string& address, const ChannelSecurity& security,
+                                              double timeout_seconds = 5);
+    // Reads the files the flags name first.
+    static absl::StatusOr<FarmClient> Connect(const ServerFlags& server, double timeout_seconds = 5);
 
     absl::StatusOr<photonfarm::v1::JobStatus> Submit(const photonfarm::v1::SubmitJobRequest& request);
     absl::StatusOr<photonfarm::v1::JobStatus> Cancel(const std::string& job_id);

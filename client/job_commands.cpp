@@ -22,7 +22,7 @@ namespace {
 namespace v1 = photonfarm::v1;
 
 struct CommandOptions {
-    std::string server;
+    ServerFlags server;
     std::string job_id;
     bool json = false;
     std::string out, png, report_dir;

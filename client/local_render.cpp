@@ -30,7 +30,7 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
     absl::StatusOr<RenderOutcome> outcome = RenderOutcome{};
     arena.execute([&] {
         absl::StatusOr<JobProgress> submitted =
-            coordinator.Submit({settings.scene_path, std::move(*bundle), spec, 0, settings.reference});
+            coordinator.Submit({settings.scene_path, "this process", std::move(*bundle), spec, 0, settings.reference});
         if (!submitted.ok()) {
             outcome = submitted.status();
             return;

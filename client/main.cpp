@@ -11,6 +11,7 @@
 #include "client/submit_command.h"
 #include "core/util/allocator.h"
 #include "core/util/command_line.h"
+#include "worker/rpc_status.h"
 
 int main(int argc, char** argv) {
     pf::KeepLargeBuffersForReuse();
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
         pf::AddJobCommands(app, &exit_code);
         pf::AddCompareCommand(app, &exit_code);
         pf::SetUpLogging("photonfarm");
+        pf::RouteGrpcLogsToDebug();
         if (std::optional<int> parse_exit = pf::ParseCommandLine(app, argc, argv, "photonfarm")) return *parse_exit;
         return exit_code;
     } catch (const std::exception& error) {

@@ -26,7 +26,7 @@ namespace {
 namespace v1 = photonfarm::v1;
 
 struct WatchOptions {
-    std::string server;
+    ServerFlags server;
     std::string job_id;
     std::string out, png, snapshot_dir, report_dir;
     double interval = 1.0;

@@ -19,6 +19,10 @@
 namespace pf {
 namespace {
 
+const char* SettingName(SettingNames names, const char* field, const char* flag) {
+    return names == SettingNames::kFlags ? flag : field;
+}
+
 absl::Status CheckReference(const Image* reference, int width, int height) {
     if (reference == nullptr) return absl::OkStatus();
     if (reference->width != width || reference->height != height)
@@ -32,11 +36,21 @@ absl::Status CheckReference(const Image* reference, int width, int height) {
 
 // Loads the scene, runs the camera pass and sets up the estimate: everything a job needs
 // before its first batch.
-absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names, const SceneLimits& limits) {
+absl::StatusOr<PreparedJob> Prepare(JobRequest request, const CoordinatorOptions& options) {
+    const SettingNames names = options.setting_names;
+    const ClientLimits& client_limits = options.client_limits;
     if (absl::Status status = CheckJobSpec(request.spec, names); !status.ok()) return status;
     if (absl::Status status = CheckSceneBundle(request.bundle); !status.ok()) return status;
+    if (const uint64_t bytes = request.bundle.TotalBytes(); bytes > client_limits.max_bundle_bytes)
+        return absl::ResourceExhaustedError(absl::StrCat("scene: the bundle holds ", bytes,
+                                                         " bytes, over this coordinator's limit of ",
+                                                         client_limits.max_bundle_bytes, " (--max-bundle-bytes)"));
+    if (request.spec.layout.photons_per_batch > client_limits.max_photons_per_batch)
+        return absl::ResourceExhaustedError(absl::StrCat(
+            SettingName(names, "settings.photons_per_batch", "--photons-per-batch"), ": ", request.spec.layout.photons_per_batch,
+            " is over this coordinator's limit of ", client_limits.max_photons_per_batch, " (--max-photons-per-batch)"));
     if (request.name.empty()) request.name = std::filesystem::path(request.bundle.main_file).filename().string();
-    absl::StatusOr<Scene> scene = LoadScene(request.bundle, request.bundle.main_file, {limits, nullptr});
+    absl::StatusOr<Scene> scene = LoadScene(request.bundle, request.bundle.main_file, {options.scene_limits, nullptr});
     if (!scene.ok()) return scene.status();
     auto payload = std::make_shared<JobPayload>(std::move(*scene), nullptr, PhotonSeed(request.spec));
     if (!payload->emitters.HasPower())
@@ -47,6 +61,10 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names, cons
             request.bundle.main_file, power, kMaxLightPower));
     absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, payload->scene);
     if (!film.ok()) return film.status();
+    if (const uint64_t pixels = uint64_t(film->width) * film->height; pixels > client_limits.max_render_pixels)
+        return absl::ResourceExhaustedError(absl::StrFormat(
+            "%s: the image is %dx%d, %d pixels, over this coordinator's limit of %d (--max-render-pixels)",
+            SettingName(names, "settings.width", "--width"), film->width, film->height, pixels, client_limits.max_render_pixels));
     // For the camera pass and the job's record; each backend analyses the scene it is given
     // the same way (AnalyseFeatures) for its photon loop.
     film->features = AnalyseFeatures(payload->scene, payload->emitters);
@@ -71,6 +89,7 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names, cons
     payload->hit_points = prepared.estimate->SharedHitPoints();
     prepared.payload = std::move(payload);
     prepared.name = std::move(request.name);
+    prepared.owner = std::move(request.owner);
     prepared.spec = request.spec;
     prepared.priority = request.priority;
     prepared.bundle = std::move(request.bundle);
@@ -79,14 +98,16 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, SettingNames names, cons
     return prepared;
 }
 
-std::string RandomSalt() {
+std::string RandomHex(int digits) {
     std::random_device device;
-    return absl::StrFormat("%04x", device() & 0xffff);
+    std::string hex;
+    while (static_cast<int>(hex.size()) < digits) hex += absl::StrFormat("%08x", device());
+    return hex.substr(0, digits);
 }
 
 }  // namespace
 
-Coordinator::Coordinator(CoordinatorOptions options) : options_(std::move(options)), id_salt_(RandomSalt()) {}
+Coordinator::Coordinator(CoordinatorOptions options) : options_(std::move(options)), id_salt_(RandomHex(4)) {}
 
 Coordinator::~Coordinator() { Shutdown(); }
 
@@ -102,10 +123,16 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
         });
         if (running >= options_.max_running_jobs)
             return absl::ResourceExhaustedError(
-                absl::StrCat("the coordinator runs ", running, " jobs, its limit (max_running_jobs)"));
+                absl::StrCat("the coordinator runs ", running, " jobs, its limit (--max-jobs)"));
+        const size_t owned = std::count_if(jobs_.begin(), jobs_.end(), [&](const auto& entry) {
+            return entry.second->Owner() == request.owner && entry.second->Running();
+        });
+        if (owned >= options_.client_limits.max_jobs_per_client)
+            return absl::ResourceExhaustedError(absl::StrCat("client '", request.owner, "' runs ", owned,
+                                                             " jobs, this coordinator's limit (--max-jobs-per-client)"));
     }
     const Clock::time_point submitted = Now();  // a job's clock includes its camera pass
-    absl::StatusOr<PreparedJob> prepared = Prepare(std::move(request), options_.setting_names, options_.scene_limits);
+    absl::StatusOr<PreparedJob> prepared = Prepare(std::move(request), options_);
     if (!prepared.ok()) return prepared.status();
     std::shared_ptr<Job> job;
     {
@@ -176,7 +203,8 @@ absl::StatusOr<std::string> Coordinator::RegisterWorker(const WorkerRegistration
                                                           ", the coordinator ", std::string(kPhotonfarmVersion)));
     std::lock_guard lock(mutex_);
     ReapWorkersLocked(Now());
-    const std::string id = absl::StrCat("worker-", next_id_++, "-", id_salt_);
+    // Unguessable, since it is all a worker's later calls show: one worker cannot act for another.
+    const std::string id = absl::StrCat("worker-", next_id_++, "-", RandomHex(16));
     workers_[id] = {registration, Now()};
     spdlog::info("worker {} registered ({}, {} threads, from {})", id, registration.backend, registration.threads,
                  registration.peer.empty() ? "this process" : registration.peer);
@@ -304,6 +332,7 @@ absl::StatusOr<TallyVerdict> Coordinator::Report(const std::string& worker_id, c
         case TallyVerdict::kDuplicate: ++refusals_.duplicate; break;
         case TallyVerdict::kStale: ++refusals_.stale; break;
         case TallyVerdict::kJobGone: ++refusals_.job_gone; break;
+        case TallyVerdict::kNotLeased: ++refusals_.not_leased; break;
     }
     if (outcome->epoch_finished) work_available_.notify_all();
     return outcome->verdict;

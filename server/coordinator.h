@@ -24,6 +24,16 @@
 
 namespace pf {
 
+// Limits on what one client may ask of the coordinator; over one, RESOURCE_EXHAUSTED naming
+// the coordinator's flag. The scene's own limits (triangles, textures) are SceneLimits.
+struct ClientLimits {
+    size_t max_jobs_per_client = 16;        // running at once, per client (token name or address)
+    uint32_t max_watchers_per_job = 64;     // snapshot streams open at once on one job
+    uint64_t max_bundle_bytes = kMaxBundleBytes;  // a scene with every file it references
+    uint64_t max_render_pixels = uint64_t{1} << 24;  // width x height of a job's image
+    uint32_t max_photons_per_batch = kMaxPhotonsPerBatch;
+};
+
 struct CoordinatorOptions {
     double heartbeat_seconds = 2;        // workers heartbeat this often
     double worker_timeout_seconds = 10;  // a worker silent this long is gone; its leases are re-handed
@@ -35,11 +45,13 @@ struct CoordinatorOptions {
     SettingNames setting_names = SettingNames::kFields;
     // What a submitted scene may build (triangles, image sizes); over it, RESOURCE_EXHAUSTED.
     SceneLimits scene_limits;
+    ClientLimits client_limits;
     std::function<Clock::time_point()> now = [] { return Clock::now(); };  // tests drive time
 };
 
 struct JobRequest {
     std::string name;  // for listings; the main file's name if empty
+    std::string owner;  // who submitted it, for the per-client limits: a token's name, or an address
     SceneBundle bundle;
     JobSpec spec;
     int priority = 0;  // higher first; equal priorities share workers fairly
@@ -58,7 +70,7 @@ struct WorkerView {
 
 // Tallies refused, by reason, since the coordinator started.
 struct RefusalCounts {
-    uint64_t duplicate = 0, stale = 0, job_gone = 0, unknown_worker = 0, malformed = 0;
+    uint64_t duplicate = 0, stale = 0, job_gone = 0, unknown_worker = 0, malformed = 0, not_leased = 0;
 };
 
 // A lease as the coordinator hands it out: the grant, and the job for its blobs.

@@ -7,11 +7,16 @@
 #include <cstdio>
 #include <exception>
 #include <optional>
+#include <tuple>
+
+#include "absl/strings/str_cat.h"
 
 #include "core/util/allocator.h"
 #include "core/util/command_line.h"
 #include "server/coordinator.h"
 #include "server/coordinator_server.h"
+#include "worker/rpc_status.h"
+#include "worker/secure_channel.h"
 
 namespace {
 
@@ -34,12 +39,74 @@ void BlockStopSignals() {
     pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 }
 
+struct SecurityFlags {
+    bool plaintext = false;
+    std::string cert_file, key_file, worker_ca_file, client_token_file, worker_token_file;
+};
+
+void AddSecurityOptions(CLI::App& app, SecurityFlags* flags) {
+    app.add_flag("--plaintext", flags->plaintext,
+                 "No TLS, for this machine or a private network only: everything crosses in clear, and "
+                 "without tokens anyone who reaches the port may submit, cancel or report")
+        ->envname("PHOTONFARM_PLAINTEXT");
+    app.add_option("--tls-cert", flags->cert_file, "The coordinator's certificate chain (PEM)")->envname("PHOTONFARM_TLS_CERT");
+    app.add_option("--tls-key", flags->key_file, "The private key (PEM) of --tls-cert")->envname("PHOTONFARM_TLS_KEY");
+    app.add_option("--worker-ca", flags->worker_ca_file,
+                   "Mutual TLS: workers must present a certificate signed by one of these CAs (PEM)")
+        ->envname("PHOTONFARM_WORKER_CA");
+    app.add_option("--client-token-file", flags->client_token_file,
+                   absl::StrCat("Tokens that open the Jobs service, one per line, \"SECRET\" or \"NAME SECRET\" "
+                                "(default: the one in ", pf::kClientTokenEnv, ")"))
+        ->envname(absl::StrCat(pf::kClientTokenEnv, "_FILE"));
+    app.add_option("--worker-token-file", flags->worker_token_file,
+                   absl::StrCat("Tokens that open the Work service, likewise (default: the one in ", pf::kWorkerTokenEnv, ")"))
+        ->envname(absl::StrCat(pf::kWorkerTokenEnv, "_FILE"));
+}
+
+absl::StatusOr<pf::ServerSecurity> LoadSecurity(const SecurityFlags& flags) {
+    pf::ServerSecurity security;
+    security.plaintext = flags.plaintext;
+    if (flags.plaintext && !(flags.cert_file.empty() && flags.key_file.empty() && flags.worker_ca_file.empty()))
+        return absl::InvalidArgumentError("--plaintext: cannot be combined with --tls-cert, --tls-key or --worker-ca");
+    for (const auto& [file, what, pem] : {std::tuple{&flags.cert_file, "--tls-cert", &security.cert_pem},
+                                          std::tuple{&flags.key_file, "--tls-key", &security.key_pem},
+                                          std::tuple{&flags.worker_ca_file, "--worker-ca", &security.worker_ca_pem}}) {
+        if (file->empty()) continue;
+        absl::StatusOr<std::string> content = pf::ReadPemFile(*file, what);
+        if (!content.ok()) return content.status();
+        *pem = std::move(*content);
+    }
+    absl::StatusOr<std::vector<pf::Token>> client = pf::ReadTokens(flags.client_token_file, pf::kClientTokenEnv);
+    if (!client.ok()) return client.status();
+    absl::StatusOr<std::vector<pf::Token>> worker = pf::ReadTokens(flags.worker_token_file, pf::kWorkerTokenEnv);
+    if (!worker.ok()) return worker.status();
+    security.client_tokens = std::move(*client);
+    security.worker_tokens = std::move(*worker);
+    return security;
+}
+
+// What protects the port, in the log; plain text loudly.
+void LogSecurity(const pf::ServerSecurity& security, const std::string& host, int port) {
+    if (!security.plaintext) {
+        spdlog::info("listening on {}:{} with TLS{}; {} client and {} worker tokens", host, port,
+                     security.worker_ca_pem.empty() ? "" : " (workers present certificates)",
+                     security.client_tokens.size(), security.worker_tokens.size());
+        return;
+    }
+    spdlog::warn("listening on {}:{} in PLAIN TEXT (--plaintext): no encryption, for local use only", host, port);
+    if (security.client_tokens.empty() && security.worker_tokens.empty())
+        spdlog::warn("NO TOKENS: anyone who reaches port {} may submit and cancel jobs and report tallies", port);
+    else
+        spdlog::warn("tokens are checked but cross the network in clear");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     pf::KeepLargeBuffersForReuse();
     try {
         pf::SetUpLogging("photonfarm-coordinator");
+        pf::RouteGrpcLogsToDebug();
         CLI::App app{"photonfarm-coordinator: the render farm's coordinator"};
         std::string listen = "0.0.0.0:50051";
         pf::CoordinatorOptions options;
@@ -61,24 +128,50 @@ int main(int argc, char** argv) {
             ->default_val(options.scene_limits.max_instances)->check(CLI::Range(uint64_t{1}, uint64_t{1} << 31));
         app.add_option("--max-image-pixels", options.scene_limits.max_image_pixels, "Largest texture a scene may bring, in pixels")
             ->default_val(options.scene_limits.max_image_pixels)->check(CLI::Range(uint64_t{1}, uint64_t{1} << 31));
+        pf::ClientLimits& limits = options.client_limits;
+        app.add_option("--max-jobs-per-client", limits.max_jobs_per_client,
+                       "Jobs one client (token name, or address without tokens) may run at once")
+            ->default_val(limits.max_jobs_per_client)->check(CLI::Range(1, 100000));
+        app.add_option("--max-watchers-per-job", limits.max_watchers_per_job, "Snapshot streams open at once on one job")
+            ->default_val(limits.max_watchers_per_job)->check(CLI::Range(1, 100000));
+        app.add_option("--max-bundle-bytes", limits.max_bundle_bytes, "Largest scene bundle a job may bring, in bytes")
+            ->default_val(limits.max_bundle_bytes)->check(CLI::Range(uint64_t{1}, pf::kMaxBundleBytes));
+        app.add_option("--max-render-pixels", limits.max_render_pixels, "Largest image a job may ask for, width x height")
+            ->default_val(limits.max_render_pixels)->check(CLI::Range(uint64_t{1}, uint64_t{1} << 30));
+        app.add_option("--max-photons-per-batch", limits.max_photons_per_batch, "Most photons a job's batch may hold")
+            ->default_val(limits.max_photons_per_batch)->check(CLI::Range(1u, pf::kMaxPhotonsPerBatch));
+        pf::ServerOptions server_options;
+        app.add_option("--max-message-bytes", server_options.max_message_bytes,
+                       "Largest message a client or worker may send (a submitted scene travels in one)")
+            ->default_val(server_options.max_message_bytes)->check(CLI::Range(1 << 20, pf::kMaxMessageBytes));
+        SecurityFlags security;
+        AddSecurityOptions(app, &security);
         pf::AddLogLevelOption(app);
         if (std::optional<int> exit_code = pf::ParseCommandLine(app, argc, argv, "photonfarm-coordinator")) return *exit_code;
         if (options.worker_timeout_seconds <= options.heartbeat_seconds) {
             std::fprintf(stderr, "photonfarm-coordinator: error: --worker-timeout-seconds must exceed --heartbeat-seconds\n");
             return 2;
         }
+        absl::StatusOr<pf::ServerSecurity> loaded = LoadSecurity(security);
+        if (!loaded.ok()) {
+            std::fprintf(stderr, "photonfarm-coordinator: error: %s\n", std::string(loaded.status().message()).c_str());
+            return 2;
+        }
+        server_options.address = listen;
+        server_options.security = std::move(*loaded);
         BlockStopSignals();  // before any thread starts, so every thread inherits the mask
         pf::Coordinator coordinator(options);
-        absl::StatusOr<std::unique_ptr<pf::CoordinatorServer>> server = pf::CoordinatorServer::Start(coordinator, listen);
+        absl::StatusOr<std::unique_ptr<pf::CoordinatorServer>> server =
+            pf::CoordinatorServer::Start(coordinator, server_options);
         if (!server.ok()) {
-            spdlog::error("{}", std::string(server.status().message()));
+            std::fprintf(stderr, "photonfarm-coordinator: error: %s\n", std::string(server.status().message()).c_str());
             return 1;
         }
         const std::string host = listen.substr(0, listen.rfind(':'));
         // One line on stdout with the bound address, for scripts that asked for port 0.
         std::printf("listening on %s:%d\n", host.c_str(), (*server)->Port());
         std::fflush(stdout);
-        spdlog::info("listening on {}:{} (plain text: no TLS or tokens yet)", host, (*server)->Port());
+        LogSecurity(server_options.security, host, (*server)->Port());
         const int signal = WaitForStopSignal();
         spdlog::info("{}: shutting down", signal == SIGTERM ? "SIGTERM" : "SIGINT");
         (*server)->Shutdown();

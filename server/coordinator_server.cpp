@@ -12,24 +12,37 @@
 
 namespace pf {
 
-CoordinatorServer::CoordinatorServer(Coordinator& coordinator)
-    : coordinator_(coordinator), jobs_(coordinator, stopping_), work_(coordinator) {}
+CoordinatorServer::CoordinatorServer(Coordinator& coordinator, ServerSecurity security)
+    : coordinator_(coordinator),
+      access_(std::move(security)),
+      jobs_(coordinator, access_, stopping_),
+      work_(coordinator, access_) {}
 
 absl::StatusOr<std::unique_ptr<CoordinatorServer>> CoordinatorServer::Start(Coordinator& coordinator,
-                                                                          const std::string& address) {
-    std::unique_ptr<CoordinatorServer> server(new CoordinatorServer(coordinator));
+                                                                          ServerOptions options) {
+    const ServerSecurity& security = options.security;
+    if (!security.plaintext) {
+        if (security.cert_pem.empty() || security.key_pem.empty())
+            return absl::InvalidArgumentError("TLS needs a certificate and its key (--tls-cert, --tls-key), or --plaintext");
+        if (security.client_tokens.empty() || security.worker_tokens.empty())
+            return absl::InvalidArgumentError(absl::StrCat(
+                "TLS needs tokens for clients and for workers (--client-token-file or ", kClientTokenEnv,
+                ", --worker-token-file or ", kWorkerTokenEnv, ")"));
+    }
+    std::shared_ptr<grpc::ServerCredentials> credentials = MakeServerCredentials(security);
+    std::unique_ptr<CoordinatorServer> server(new CoordinatorServer(coordinator, std::move(options.security)));
     grpc::EnableDefaultHealthCheckService(true);
     grpc::reflection::InitProtoReflectionServerBuilderPlugin();
     grpc::ServerBuilder builder;
-    // Plain text: TLS and tokens come with the deployment work (issue 7).
-    builder.AddListeningPort(address, grpc::InsecureServerCredentials(), &server->port_);
+    builder.AddListeningPort(options.address, credentials, &server->port_);
     builder.RegisterService(&server->jobs_);
     builder.RegisterService(&server->work_);
-    builder.SetMaxReceiveMessageSize(kMaxMessageBytes);
+    builder.SetMaxReceiveMessageSize(options.max_message_bytes);
     builder.SetMaxSendMessageSize(kMaxMessageBytes);
     server->server_ = builder.BuildAndStart();
     if (!server->server_ || server->port_ == 0)
-        return absl::UnavailableError(absl::StrCat("cannot listen on ", address, " (in use, or not an address here)"));
+        return absl::UnavailableError(
+            absl::StrCat("cannot listen on ", options.address, " (in use, not an address here, or a bad certificate or key)"));
     return server;
 }
 

@@ -1,5 +1,6 @@
 // The coordinator's gRPC server: the Jobs and Work services, the standard health service
-// (grpc.health.v1, for probes) and server reflection (for grpcurl), with bounded messages.
+// (grpc.health.v1, for probes) and server reflection (for grpcurl), with bounded messages,
+// TLS and tokens (access_control.h).
 #pragma once
 
 #include <grpcpp/server.h>
@@ -9,6 +10,7 @@
 #include <string>
 
 #include "absl/status/statusor.h"
+#include "server/access_control.h"
 #include "server/coordinator.h"
 #include "server/jobs_service.h"
 #include "server/work_service.h"
@@ -16,10 +18,18 @@
 
 namespace pf {
 
+struct ServerOptions {
+    std::string address;  // "host:port"; port 0 picks a free one
+    ServerSecurity security;
+    // The largest message a peer may send; gRPC refuses larger ones with RESOURCE_EXHAUSTED.
+    int max_message_bytes = kMaxMessageBytes;
+};
+
 class CoordinatorServer {
 public:
-    // Listens on `address` ("host:port"; port 0 picks a free one). UNAVAILABLE if it cannot bind.
-    static absl::StatusOr<std::unique_ptr<CoordinatorServer>> Start(Coordinator& coordinator, const std::string& address);
+    // UNAVAILABLE if it cannot bind; INVALID_ARGUMENT if TLS is asked for without a certificate,
+    // or with neither client nor worker tokens.
+    static absl::StatusOr<std::unique_ptr<CoordinatorServer>> Start(Coordinator& coordinator, ServerOptions options);
     ~CoordinatorServer();
 
     int Port() const { return port_; }
@@ -27,10 +37,11 @@ public:
     void Shutdown();
 
 private:
-    explicit CoordinatorServer(Coordinator& coordinator);
+    CoordinatorServer(Coordinator& coordinator, ServerSecurity security);
 
     Coordinator& coordinator_;
     std::atomic<bool> stopping_{false};
+    const AccessControl access_;
     JobsService jobs_;
     WorkService work_;
     std::unique_ptr<grpc::Server> server_;

@@ -39,6 +39,7 @@ EpochInputs::EpochInputs(uint64_t epoch_in, std::vector<float> radius_sq_in)
 Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
     : id_(std::move(id)),
       name_(std::move(prepared.name)),
+      owner_(std::move(prepared.owner)),
       spec_(prepared.spec),
       priority_(prepared.priority),
       started_(submitted),
@@ -126,6 +127,8 @@ Job::Lease Job::LeaseBatches(const std::string& worker, uint32_t chunks, Clock::
         slot.leased = true;
         slot.worker = worker;
         slot.deadline = deadline;
+        if (std::find(slot.lessees.begin(), slot.lessees.end(), worker) == slot.lessees.end())
+            slot.lessees.push_back(worker);
         lease.batches.push_back(slot.spec);
     }
     if (!lease.batches.empty()) {
@@ -153,17 +156,21 @@ absl::StatusOr<Job::ReportOutcome> Job::Report(const std::string& worker, BatchR
     if (state_ != JobState::kRunning) return ReportOutcome{TallyVerdict::kJobGone};
     const uint64_t epoch = epoch_->epoch;
     const uint64_t first = epoch * spec_.layout.batches_per_epoch;
-    if (result.spec.epoch != epoch || result.spec.index < first || result.spec.index - first >= slots_.size()) {
-        if (result.spec.epoch < epoch) return ReportOutcome{TallyVerdict::kStale};
-        return absl::InvalidArgumentError(absl::StrCat("result.spec: batch ", result.spec.index, " of epoch ",
-                                                       result.spec.epoch, " was never handed out (epoch ", epoch, " runs)"));
-    }
+    // Another epoch's result: one merged already, or one from before the coordinator restarted
+    // from a checkpoint (whose epochs may run ahead of the one resumed).
+    if (result.spec.epoch != epoch) return ReportOutcome{TallyVerdict::kStale};
+    if (result.spec.index < first || result.spec.index - first >= slots_.size())
+        return absl::InvalidArgumentError(absl::StrCat("result.spec: epoch ", epoch, " has no batch ", result.spec.index));
     Slot& slot = slots_[result.spec.index - first];
     if (!SameSpec(slot.spec, result.spec))
         return absl::InvalidArgumentError(absl::StrCat("result.spec: does not match batch ", slot.spec.index));
     for (uint32_t hit_point : result.tally.hit_point)
         if (hit_point >= hit_point_count_)
             return absl::InvalidArgumentError(absl::StrCat("result.tally: hit point ", hit_point, " of ", hit_point_count_));
+    // Only a worker that held the slot may fill it: a result cannot be checked but by running
+    // the batch again, so one from a worker never given the batch is refused unread.
+    if (std::find(slot.lessees.begin(), slot.lessees.end(), worker) == slot.lessees.end())
+        return ReportOutcome{TallyVerdict::kNotLeased};
     if (slot.result || slot.folded) return ReportOutcome{TallyVerdict::kDuplicate};
     slot.result = std::move(result);
     workers_seen_[worker] = now;
@@ -276,10 +283,26 @@ bool Job::Cancel(const std::string& reason, Clock::time_point now) {
     return true;
 }
 
+bool Job::Running() const {
+    std::lock_guard lock(mutex_);
+    return state_ == JobState::kRunning;
+}
+
+bool Job::AddWatcher(uint32_t limit) {
+    uint32_t watchers = watchers_.load();
+    do {
+        if (watchers >= limit) return false;
+    } while (!watchers_.compare_exchange_weak(watchers, watchers + 1));
+    return true;
+}
+
+void Job::RemoveWatcher() { watchers_.fetch_sub(1); }
+
 JobProgress Job::Progress(Clock::time_point now) const {
     std::lock_guard lock(mutex_);
     JobProgress progress;
     progress.job_id = id_;
+    progress.owner = owner_;
     progress.name = name_;
     progress.state = state_;
     progress.priority = priority_;

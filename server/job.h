@@ -59,6 +59,7 @@ enum class JobState { kRunning, kDone, kCancelled, kFailed };
 // A job's state for listings and snapshots.
 struct JobProgress {
     std::string job_id, name;
+    std::string owner;  // who submitted it (JobRequest::owner)
     JobState state = JobState::kRunning;
     int priority = 0;
     uint64_t epochs = 0, photons = 0, hit_points = 0;
@@ -77,7 +78,7 @@ struct JobProgress {
 
 // What a job's constructor needs: prepared by Coordinator::Submit (scene loaded, camera pass run).
 struct PreparedJob {
-    std::string name;
+    std::string name, owner;
     JobSpec spec;
     int priority = 0;
     SceneBundle bundle;
@@ -94,7 +95,13 @@ public:
     Job(std::string id, PreparedJob prepared, Clock::time_point submitted);
 
     const std::string& Id() const { return id_; }
+    const std::string& Owner() const { return owner_; }
     int Priority() const { return priority_; }
+    bool Running() const;
+
+    // Snapshot streams open on this job: AddWatcher is false when `limit` are open already.
+    bool AddWatcher(uint32_t limit);
+    void RemoveWatcher();
 
     // Blobs a remote worker fetches: the scene bundle (a serialized photonfarm.v1.SceneBundle)
     // and the hit points. Null once the job has ended.
@@ -147,6 +154,7 @@ private:
     struct Slot {
         BatchSpec spec;
         std::string worker;  // holding the lease
+        std::vector<std::string> lessees;  // every worker that held it this epoch: who may report it
         Clock::time_point deadline{};
         bool leased = false;
         std::optional<BatchResult> result;  // reported, waiting for its turn to fold
@@ -167,6 +175,7 @@ private:
 
     const std::string id_;
     const std::string name_;
+    const std::string owner_;
     const JobSpec spec_;
     const int priority_;
     const Clock::time_point started_;
@@ -174,6 +183,8 @@ private:
     const double initial_radius_;
     const std::string scene_features_;
     const std::shared_ptr<const Image> reference_;
+
+    std::atomic<uint32_t> watchers_{0};
 
     mutable std::mutex mutex_;  // guards everything below but the estimate and image
     mutable std::condition_variable changed_;

@@ -52,8 +52,14 @@ grpc::Status Invalid(const absl::Status& status) { return ToGrpcStatus(status); 
 
 }  // namespace
 
-grpc::Status JobsService::SubmitJob(grpc::ServerContext*, const v1::SubmitJobRequest* request,
+grpc::Status JobsService::Authorize(const grpc::ServerContext& context) const {
+    return ToGrpcStatus(access_.Authorize(context, Role::kClient).status());
+}
+
+grpc::Status JobsService::SubmitJob(grpc::ServerContext* context, const v1::SubmitJobRequest* request,
                                     v1::SubmitJobResponse* response) {
+    absl::StatusOr<std::string> owner = access_.Authorize(*context, Role::kClient);
+    if (!owner.ok()) return ToGrpcStatus(owner.status());
     if (!request->has_scene()) return Invalid(absl::InvalidArgumentError("scene: missing"));
     absl::StatusOr<SceneBundle> bundle = FromProto(request->scene());
     if (!bundle.ok()) return Invalid(bundle.status());
@@ -66,7 +72,7 @@ grpc::Status JobsService::SubmitJob(grpc::ServerContext*, const v1::SubmitJobReq
         reference = std::make_shared<const Image>(std::move(*image));
     }
     absl::StatusOr<JobProgress> progress = coordinator_.Submit(
-        {request->name(), std::move(*bundle), *spec, request->settings().priority(), std::move(reference)});
+        {request->name(), std::move(*owner), std::move(*bundle), *spec, request->settings().priority(), std::move(reference)});
     if (!progress.ok()) return ToGrpcStatus(progress.status());
     *response->mutable_status() = ToProto(*progress);
     return grpc::Status::OK;
@@ -74,10 +80,16 @@ grpc::Status JobsService::SubmitJob(grpc::ServerContext*, const v1::SubmitJobReq
 
 grpc::Status JobsService::WatchJob(grpc::ServerContext* context, const v1::WatchJobRequest* request,
                                    grpc::ServerWriter<v1::Snapshot>* writer) {
+    if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     if (!(std::isfinite(request->interval_seconds()) && request->interval_seconds() >= 0))
         return Invalid(absl::InvalidArgumentError("interval_seconds: must be a non-negative number"));
     absl::StatusOr<std::shared_ptr<Job>> job = coordinator_.FindJob(request->job_id());
     if (!job.ok()) return ToGrpcStatus(job.status());
+    const uint32_t max_watchers = coordinator_.Options().client_limits.max_watchers_per_job;
+    if (!(*job)->AddWatcher(max_watchers))
+        return ToGrpcStatus(absl::ResourceExhaustedError(absl::StrCat(
+            "job ", request->job_id(), " has ", max_watchers, " watchers, this coordinator's limit (--max-watchers-per-job)")));
+    const std::unique_ptr<Job, void (*)(Job*)> watcher(job->get(), [](Job* watched) { watched->RemoveWatcher(); });
     const auto interval = std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(std::min(request->interval_seconds(), 3600.0)));
     uint64_t version = (*job)->Version();
@@ -104,21 +116,24 @@ grpc::Status JobsService::WatchJob(grpc::ServerContext* context, const v1::Watch
     }
 }
 
-grpc::Status JobsService::CancelJob(grpc::ServerContext*, const v1::CancelJobRequest* request,
+grpc::Status JobsService::CancelJob(grpc::ServerContext* context, const v1::CancelJobRequest* request,
                                     v1::CancelJobResponse* response) {
+    if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     absl::StatusOr<JobProgress> progress = coordinator_.Cancel(request->job_id());
     if (!progress.ok()) return ToGrpcStatus(progress.status());
     *response->mutable_status() = ToProto(*progress);
     return grpc::Status::OK;
 }
 
-grpc::Status JobsService::ListJobs(grpc::ServerContext*, const v1::ListJobsRequest*, v1::ListJobsResponse* response) {
+grpc::Status JobsService::ListJobs(grpc::ServerContext* context, const v1::ListJobsRequest*, v1::ListJobsResponse* response) {
+    if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     for (const JobProgress& progress : coordinator_.ListJobs()) *response->add_jobs() = ToProto(progress);
     return grpc::Status::OK;
 }
 
-grpc::Status JobsService::GetResult(grpc::ServerContext*, const v1::GetResultRequest* request,
+grpc::Status JobsService::GetResult(grpc::ServerContext* context, const v1::GetResultRequest* request,
                                     v1::GetResultResponse* response) {
+    if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     absl::StatusOr<std::shared_ptr<Job>> job = coordinator_.FindJob(request->job_id());
     if (!job.ok()) return ToGrpcStatus(job.status());
     *response->mutable_status() = ToProto((*job)->Progress(coordinator_.Options().now()));
@@ -126,8 +141,9 @@ grpc::Status JobsService::GetResult(grpc::ServerContext*, const v1::GetResultReq
     return grpc::Status::OK;
 }
 
-grpc::Status JobsService::GetConvergence(grpc::ServerContext*, const v1::GetConvergenceRequest* request,
+grpc::Status JobsService::GetConvergence(grpc::ServerContext* context, const v1::GetConvergenceRequest* request,
                                          v1::GetConvergenceResponse* response) {
+    if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     absl::StatusOr<std::shared_ptr<Job>> job = coordinator_.FindJob(request->job_id());
     if (!job.ok()) return ToGrpcStatus(job.status());
     const JobProgress progress = (*job)->Progress(coordinator_.Options().now());
@@ -138,8 +154,9 @@ grpc::Status JobsService::GetConvergence(grpc::ServerContext*, const v1::GetConv
     return grpc::Status::OK;
 }
 
-grpc::Status JobsService::ListWorkers(grpc::ServerContext*, const v1::ListWorkersRequest*,
+grpc::Status JobsService::ListWorkers(grpc::ServerContext* context, const v1::ListWorkersRequest*,
                                       v1::ListWorkersResponse* response) {
+    if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     for (const WorkerView& view : coordinator_.ListWorkers()) {
         v1::WorkerStatus* worker = response->add_workers();
         worker->set_worker_id(view.worker_id);

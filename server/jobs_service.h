@@ -4,15 +4,17 @@
 #include <atomic>
 
 #include "photonfarm/v1/jobs.grpc.pb.h"
+#include "server/access_control.h"
 #include "server/coordinator.h"
 
 namespace pf {
 
 class JobsService final : public photonfarm::v1::Jobs::Service {
 public:
-    // `stopping` ends watch streams early when the server shuts down.
-    JobsService(Coordinator& coordinator, const std::atomic<bool>& stopping)
-        : coordinator_(coordinator), stopping_(stopping) {}
+    // `stopping` ends watch streams early when the server shuts down. Every call must hold a
+    // client's token (`access`).
+    JobsService(Coordinator& coordinator, const AccessControl& access, const std::atomic<bool>& stopping)
+        : coordinator_(coordinator), access_(access), stopping_(stopping) {}
 
     grpc::Status SubmitJob(grpc::ServerContext* context, const photonfarm::v1::SubmitJobRequest* request,
                            photonfarm::v1::SubmitJobResponse* response) override;
@@ -30,7 +32,10 @@ public:
                              photonfarm::v1::ListWorkersResponse* response) override;
 
 private:
+    grpc::Status Authorize(const grpc::ServerContext& context) const;
+
     Coordinator& coordinator_;
+    const AccessControl& access_;
     const std::atomic<bool>& stopping_;
 };
 

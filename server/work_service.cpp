@@ -23,14 +23,20 @@ v1::TallyVerdict ToProto(TallyVerdict verdict) {
         case TallyVerdict::kDuplicate: return v1::TALLY_VERDICT_DUPLICATE;
         case TallyVerdict::kStale: return v1::TALLY_VERDICT_STALE;
         case TallyVerdict::kJobGone: return v1::TALLY_VERDICT_JOB_GONE;
+        case TallyVerdict::kNotLeased: return v1::TALLY_VERDICT_NOT_LEASED;
     }
     return v1::TALLY_VERDICT_UNSPECIFIED;
 }
 
 }  // namespace
 
+grpc::Status WorkService::Authorize(const grpc::ServerContext& context) const {
+    return ToGrpcStatus(access_.Authorize(context, Role::kWorker).status());
+}
+
 grpc::Status WorkService::RegisterWorker(grpc::ServerContext* context, const v1::RegisterWorkerRequest* request,
                                          v1::RegisterWorkerResponse* response) {
+    if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     if (request->backend().empty() || request->backend().size() > 64)
         return ToGrpcStatus(absl::InvalidArgumentError("backend: must name the worker's backend (at most 64 characters)"));
     if (request->version().size() > 64) return ToGrpcStatus(absl::InvalidArgumentError("version: too long"));
@@ -43,20 +49,23 @@ grpc::Status WorkService::RegisterWorker(grpc::ServerContext* context, const v1:
     return grpc::Status::OK;
 }
 
-grpc::Status WorkService::Heartbeat(grpc::ServerContext*, const v1::HeartbeatRequest* request, v1::HeartbeatResponse*) {
+grpc::Status WorkService::Heartbeat(grpc::ServerContext* context, const v1::HeartbeatRequest* request, v1::HeartbeatResponse*) {
+    if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     return ToGrpcStatus(coordinator_.Heartbeat(request->worker_id()));
 }
 
-grpc::Status WorkService::UnregisterWorker(grpc::ServerContext*, const v1::UnregisterWorkerRequest* request,
+grpc::Status WorkService::UnregisterWorker(grpc::ServerContext* context, const v1::UnregisterWorkerRequest* request,
                                            v1::UnregisterWorkerResponse* response) {
+    if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     absl::StatusOr<uint32_t> returned = coordinator_.UnregisterWorker(request->worker_id());
     if (!returned.ok()) return ToGrpcStatus(returned.status());
     response->set_leases_returned(*returned);
     return grpc::Status::OK;
 }
 
-grpc::Status WorkService::LeaseBatches(grpc::ServerContext*, const v1::LeaseBatchesRequest* request,
+grpc::Status WorkService::LeaseBatches(grpc::ServerContext* context, const v1::LeaseBatchesRequest* request,
                                        v1::LeaseBatchesResponse* response) {
+    if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     if (request->chunks() == 0 || request->chunks() > kMaxChunksPerLease)
         return ToGrpcStatus(
             absl::InvalidArgumentError(absl::StrCat("chunks: must lie in [1, ", kMaxChunksPerLease, "]")));
@@ -85,6 +94,7 @@ grpc::Status WorkService::LeaseBatches(grpc::ServerContext*, const v1::LeaseBatc
 
 grpc::Status WorkService::FetchBlob(grpc::ServerContext* context, const v1::FetchBlobRequest* request,
                                     grpc::ServerWriter<v1::BlobChunk>* writer) {
+    if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     const std::shared_ptr<const Blob> blob = coordinator_.FindBlob(request->digest());
     if (!blob)
         return ToGrpcStatus(absl::NotFoundError(absl::StrCat("digest: no blob '", request->digest().substr(0, 64),
@@ -102,8 +112,9 @@ grpc::Status WorkService::FetchBlob(grpc::ServerContext* context, const v1::Fetc
     return grpc::Status::OK;
 }
 
-grpc::Status WorkService::ReportTally(grpc::ServerContext*, const v1::ReportTallyRequest* request,
+grpc::Status WorkService::ReportTally(grpc::ServerContext* context, const v1::ReportTallyRequest* request,
                                       v1::ReportTallyResponse* response) {
+    if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     absl::StatusOr<std::shared_ptr<Job>> job = coordinator_.FindJob(request->job_id());
     if (!job.ok()) {  // the coordinator checks the worker and counts the refusal
         absl::StatusOr<TallyVerdict> verdict = coordinator_.Report(request->worker_id(), request->job_id(), {});

@@ -3,13 +3,15 @@
 #pragma once
 
 #include "photonfarm/v1/work.grpc.pb.h"
+#include "server/access_control.h"
 #include "server/coordinator.h"
 
 namespace pf {
 
 class WorkService final : public photonfarm::v1::Work::Service {
 public:
-    explicit WorkService(Coordinator& coordinator) : coordinator_(coordinator) {}
+    // Every call must hold a worker's token, and under mutual TLS a worker's certificate.
+    WorkService(Coordinator& coordinator, const AccessControl& access) : coordinator_(coordinator), access_(access) {}
 
     grpc::Status RegisterWorker(grpc::ServerContext* context, const photonfarm::v1::RegisterWorkerRequest* request,
                                 photonfarm::v1::RegisterWorkerResponse* response) override;
@@ -25,7 +27,10 @@ public:
                              photonfarm::v1::ReportTallyResponse* response) override;
 
 private:
+    grpc::Status Authorize(const grpc::ServerContext& context) const;
+
     Coordinator& coordinator_;
+    const AccessControl& access_;
 };
 
 }  // namespace pf

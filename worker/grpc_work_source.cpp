@@ -167,6 +167,7 @@ absl::StatusOr<TallyVerdict> GrpcWorkSource::Report(const std::string& job_id, B
         case v1::TALLY_VERDICT_DUPLICATE: return TallyVerdict::kDuplicate;
         case v1::TALLY_VERDICT_STALE: return TallyVerdict::kStale;
         case v1::TALLY_VERDICT_JOB_GONE: return TallyVerdict::kJobGone;
+        case v1::TALLY_VERDICT_NOT_LEASED: return TallyVerdict::kNotLeased;
         default: return absl::InternalError(absl::StrCat(address_, ": unknown tally verdict ", response.verdict()));
     }
 }

@@ -1,6 +1,9 @@
 // Status code mapping.
 #include "worker/rpc_status.h"
 
+#include <grpc/support/log.h>
+#include <spdlog/spdlog.h>
+
 #include <chrono>
 
 #include "absl/strings/str_cat.h"
@@ -75,6 +78,10 @@ absl::Status FromGrpcStatus(const grpc::Status& status, const std::string& peer)
     else
         message = absl::StrCat(peer, ": ", message);
     return absl::Status(FromGrpcCode(status.error_code()), message);
+}
+
+void RouteGrpcLogsToDebug() {
+    gpr_set_log_function([](gpr_log_func_args* args) { spdlog::debug("grpc: {} ({}:{})", args->message, args->file, args->line); });
 }
 
 }  // namespace pf

@@ -23,4 +23,9 @@ void SetDeadline(grpc::ClientContext* context, double seconds);
 // `peer` names the other end in the message: "coordinator at 127.0.0.1:5000: ...".
 absl::Status FromGrpcStatus(const grpc::Status& status, const std::string& peer);
 
+// gRPC's own log lines (a failed TLS handshake, a dropped connection) go to our log at debug
+// level, so a user sees the one-line error the call returns rather than the library's noise;
+// --log-level debug shows them.
+void RouteGrpcLogsToDebug();
+
 }  // namespace pf

@@ -52,7 +52,7 @@ struct WorkerRegistration {
     std::string peer;  // where it connects from, for listings (set by the coordinator)
 };
 
-enum class TallyVerdict { kAccepted, kDuplicate, kStale, kJobGone };
+enum class TallyVerdict { kAccepted, kDuplicate, kStale, kJobGone, kNotLeased };
 
 class WorkSource {
 public:

@@ -1,8 +1,6 @@
 // photonfarm-worker: leases photon batches from a coordinator, runs them, reports the tallies;
 // reconnects with back-off when the coordinator is away; on SIGTERM or SIGINT finishes the
 // batches in hand, returns its leases and exits cleanly.
-#include <grpcpp/create_channel.h>
-#include <grpcpp/security/credentials.h>
 #include <spdlog/spdlog.h>
 #include <tbb/task_arena.h>
 
@@ -23,6 +21,7 @@
 #include "worker/backend_factory.h"
 #include "worker/grpc_work_source.h"
 #include "worker/rpc_status.h"
+#include "worker/secure_channel.h"
 #include "worker/worker_loop.h"
 
 namespace {
@@ -70,6 +69,7 @@ int main(int argc, char** argv) {
     pf::KeepLargeBuffersForReuse();
     try {
         pf::SetUpLogging("photonfarm-worker");
+        pf::RouteGrpcLogsToDebug();
         CLI::App app{"photonfarm-worker: runs photon batches for a photonfarm coordinator"};
         std::string coordinator;
         int threads = 0;
@@ -94,8 +94,16 @@ int main(int argc, char** argv) {
         app.add_option("--chunks-per-lease", chunks_per_lease,
                        "Chunks of 2^19 photons to lease at once (default: one per thread)")
             ->check(CLI::Range(1, 1 << 16));
+        pf::ChannelSecurityFlags security_flags;
+        pf::AddChannelSecurityOptions(&app, &security_flags, pf::kWorkerTokenEnv);
         pf::AddLogLevelOption(app);
         if (std::optional<int> exit_code = pf::ParseCommandLine(app, argc, argv, "photonfarm-worker")) return *exit_code;
+        const absl::StatusOr<pf::ChannelSecurity> security = pf::LoadChannelSecurity(security_flags, pf::kWorkerTokenEnv);
+        if (!security.ok()) {
+            std::fprintf(stderr, "photonfarm-worker: error: %s\n", std::string(security.status().message()).c_str());
+            return 2;
+        }
+        if (security->plaintext) spdlog::warn("--plaintext: talking to the coordinator without TLS");
         // Signals are taken by one thread with sigwait; every other thread inherits the block.
         const sigset_t signals = StopSignals();
         pthread_sigmask(SIG_BLOCK, &signals, nullptr);
@@ -116,11 +124,8 @@ int main(int argc, char** argv) {
         });
 
         tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
-        grpc::ChannelArguments channel_args;
-        channel_args.SetMaxReceiveMessageSize(pf::kMaxMessageBytes);
-        channel_args.SetMaxSendMessageSize(pf::kMaxMessageBytes);
         pf::GrpcWorkSource source(
-            grpc::CreateCustomChannel(coordinator, grpc::InsecureChannelCredentials(), channel_args), coordinator,
+            pf::OpenChannel(coordinator, *security), coordinator,
             {device->description.substr(0, 64), static_cast<uint32_t>(arena.max_concurrency()),
              std::string(pf::kPhotonfarmVersion), ""},
             cache_dir);

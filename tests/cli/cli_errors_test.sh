@@ -43,6 +43,14 @@ expect_failure "unreachable server" "cannot reach the coordinator at 127.0.0.1:1
 expect_failure "unreachable server on submit" "cannot reach the coordinator" submit "$source_dir/scenes/cornell-box.gltf" \
     --server 127.0.0.1:1 --photons 1000
 expect_failure "no server given" "server" workers
+expect_failure "certificate without its key" "--tls-cert and --tls-key: give both or neither" \
+    jobs --server 127.0.0.1:1 --tls-cert "$work/small.exr"
+expect_failure "missing token file" "token file $work/none: cannot open" jobs --server 127.0.0.1:1 --token-file "$work/none"
+printf 'short\n' >"$work/short-token"
+expect_failure "guessable token" "short-token:1: the token is 5 characters" \
+    jobs --server 127.0.0.1:1 --token-file "$work/short-token"
+PHOTONFARM_CLIENT_TOKEN=tiny expect_failure "guessable token from the environment" "PHOTONFARM_CLIENT_TOKEN: the token is 4" \
+    jobs --server 127.0.0.1:1
 expect_failure "outputs without --watch" "need --watch" submit "$source_dir/scenes/cornell-box.gltf" \
     --server 127.0.0.1:1 --out "$work/a.exr"
 VK_ICD_FILENAMES=/nonexistent/icd.json expect_failure "vulkan without a driver" "vulkan backend: no Vulkan driver" \

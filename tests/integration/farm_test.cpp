@@ -20,9 +20,11 @@
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "photonfarm/v1/work.grpc.pb.h"
 #include "tests/support/child_process.h"
+#include "tests/support/farm_credentials.h"
 #include "tests/support/image_agreement.h"
 #include "tests/support/vulkan_validation.h"
 #include "worker/proto_convert.h"
+#include "worker/secure_channel.h"
 #include "worker/work_source.h"
 
 namespace pf {
@@ -39,6 +41,9 @@ const std::vector<std::string> kJobFlags = {"--width", "48", "--height", "48", "
 constexpr int kEpochs = 6;
 // Long enough (~1 s on two cores) for something to happen while the job runs.
 constexpr int kLongEpochs = 40;
+
+// The farm runs as it would on a network: TLS, workers with certificates, tokens.
+const testing::FarmCredentials& Credentials() { return testing::TestCredentials(PF_SOURCE_DIR); }
 
 std::string TempPath(const std::string& name) {
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("pf-farm-test-" + std::to_string(getpid()));
@@ -65,13 +70,14 @@ bool Identical(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
 class FarmTest : public ::testing::Test {
 protected:
     void SetUp() override {
-        coordinator_ = std::make_unique<ChildProcess>(std::vector<std::string>{
-            kBin + "/server/photonfarm-coordinator", "--listen", "127.0.0.1:0", "--heartbeat-seconds", "0.2",
-            "--worker-timeout-seconds", "1.5", "--log-level", "warn"});
+        coordinator_ = std::make_unique<ChildProcess>(Concat(
+            {kBin + "/server/photonfarm-coordinator", "--listen", "127.0.0.1:0", "--heartbeat-seconds", "0.2",
+             "--worker-timeout-seconds", "1.5", "--log-level", "warn"},
+            Credentials().CoordinatorFlags()));
         const std::optional<std::string> line = coordinator_->ReadLine(30);
         ASSERT_TRUE(line && line->starts_with("listening on ")) << "the coordinator did not start";
         address_ = line->substr(std::strlen("listening on "));
-        absl::StatusOr<FarmClient> client = FarmClient::Connect(address_);
+        absl::StatusOr<FarmClient> client = FarmClient::Connect(address_, Credentials().Client());
         ASSERT_TRUE(client.ok()) << client.status();
         client_ = std::make_unique<FarmClient>(std::move(*client));
     }
@@ -86,8 +92,9 @@ protected:
 
     ChildProcess& StartWorker(const std::string& backend = "cpu") {
         workers_.push_back(std::make_unique<ChildProcess>(
-            std::vector<std::string>{kBin + "/worker/photonfarm-worker", "--coordinator", address_, "--threads", "1",
-                                     "--backend", backend, "--log-level", "warn"}));
+            Concat({kBin + "/worker/photonfarm-worker", "--coordinator", address_, "--threads", "1", "--backend",
+                    backend, "--log-level", "warn"},
+                   Credentials().WorkerFlags())));
         return *workers_.back();
     }
 
@@ -96,7 +103,7 @@ protected:
         ChildProcess submit(Concat({kBin + "/client/photonfarm", "submit", kScene, "--server", address_, "--watch",
                                     "--interval", "0", "--out", out, "--photons", std::to_string(epochs * 8 * 8192),
                                     "--log-level", "warn"},
-                                   kJobFlags));
+                                   Concat(kJobFlags, Credentials().ClientFlags())));
         return submit.Wait(300).value_or(-1);
     }
 
@@ -250,7 +257,7 @@ TEST_F(FarmTest, JobWithAReferenceLogsItsErrorAndWritesTheReport) {
     ChildProcess submit(Concat({kBin + "/client/photonfarm", "submit", kScene, "--server", address_, "--watch",
                                 "--interval", "0", "--out", out, "--photons", std::to_string(kEpochs * 8 * 8192),
                                 "--reference", reference, "--report", report, "--log-level", "warn"},
-                               kJobFlags));
+                               Concat(kJobFlags, Credentials().ClientFlags())));
     ASSERT_EQ(submit.Wait(300), 0);
 
     // One CSV row per epoch; the last one's measurement is what `compare` finds between the
@@ -290,7 +297,8 @@ TEST_F(FarmTest, CancelledJobStopsItsLeasesAndKeepsItsImage) {
     StartWorker();
     const v1::JobStatus job = Submit(1000);
     WatchUntil(job.job_id(), [&](const v1::JobStatus& status) { return status.epochs() >= 1; });
-    ChildProcess cancel({kBin + "/client/photonfarm", "cancel", job.job_id(), "--server", address_});
+    ChildProcess cancel(Concat({kBin + "/client/photonfarm", "cancel", job.job_id(), "--server", address_},
+                               Credentials().ClientFlags()));
     ASSERT_EQ(cancel.Wait(60), 0);
     EXPECT_EQ(WatchUntil(job.job_id()).state(), v1::JOB_STATE_CANCELLED);
     const absl::StatusOr<v1::ListWorkersResponse> workers = client_->ListWorkers();
@@ -305,7 +313,7 @@ TEST_F(FarmTest, CancelledJobStopsItsLeasesAndKeepsItsImage) {
 class FakeWorker {
 public:
     explicit FakeWorker(const std::string& address)
-        : stub_(v1::Work::NewStub(grpc::CreateChannel(address, grpc::InsecureChannelCredentials()))) {
+        : stub_(v1::Work::NewStub(OpenChannel(address, Credentials().Worker()))) {
         v1::RegisterWorkerRequest request;
         request.set_backend("cpu");
         request.set_version(std::string(kPhotonfarmVersion));
@@ -386,7 +394,10 @@ TEST_F(FarmTest, MalformedRequestsNameTheField) {
 }
 
 TEST_F(FarmTest, HealthServiceAnswersServing) {
-    auto health = grpc::health::v1::Health::NewStub(grpc::CreateChannel(address_, grpc::InsecureChannelCredentials()));
+    // Probes carry no token: the health service is open to anyone who can complete TLS.
+    ChannelSecurity security = Credentials().Client();
+    security.token.clear();
+    auto health = grpc::health::v1::Health::NewStub(OpenChannel(address_, security));
     grpc::ClientContext context;
     grpc::health::v1::HealthCheckResponse response;
     ASSERT_TRUE(health->Check(&context, {}, &response).ok());

@@ -29,10 +29,10 @@ JobSpec SmallSpec(uint64_t photons) {
     return spec;
 }
 
-JobRequest SmallJob(uint64_t photons, int priority = 0) {
+JobRequest SmallJob(uint64_t photons, int priority = 0, std::string owner = "tester") {
     absl::StatusOr<SceneBundle> bundle = PackSceneBundle(ScenePath("cornell-box.gltf"));
     EXPECT_TRUE(bundle.ok()) << bundle.status();
-    return {"test", std::move(*bundle), SmallSpec(photons), priority};
+    return {"test", std::move(owner), std::move(*bundle), SmallSpec(photons), priority};
 }
 
 // A clock the test moves by hand.
@@ -125,6 +125,52 @@ TEST(CoordinatorTest, ScenesOverTheConfiguredLimitsAreRefused) {
     options.scene_limits.max_triangles = 32;
     Coordinator roomy(options);
     EXPECT_TRUE(roomy.Submit(SmallJob(1000)).ok());
+}
+
+// Over a client limit: RESOURCE_EXHAUSTED naming the coordinator's flag.
+void ExpectOverLimit(const absl::StatusOr<JobProgress>& refused, const std::string& flag) {
+    ASSERT_FALSE(refused.ok()) << "over " << flag;
+    EXPECT_EQ(refused.status().code(), absl::StatusCode::kResourceExhausted) << refused.status();
+    EXPECT_NE(refused.status().message().find(flag), std::string::npos) << refused.status();
+}
+
+TEST(CoordinatorTest, RequestsOverTheClientLimitsAreRefused) {
+    FakeClock clock;
+    CoordinatorOptions options = Options(&clock);
+    options.client_limits.max_jobs_per_client = 2;
+    options.client_limits.max_render_pixels = 32 * 32 - 1;
+    Coordinator small_images(options);
+    ExpectOverLimit(small_images.Submit(SmallJob(1000)), "--max-render-pixels");
+
+    options.client_limits.max_render_pixels = 32 * 32;
+    options.client_limits.max_photons_per_batch = (1u << 12) - 1;
+    Coordinator small_batches(options);
+    ExpectOverLimit(small_batches.Submit(SmallJob(1000)), "--max-photons-per-batch");
+
+    options.client_limits.max_photons_per_batch = 1u << 12;
+    options.client_limits.max_bundle_bytes = 1000;  // the Cornell box's glTF and buffer hold more
+    Coordinator small_scenes(options);
+    ExpectOverLimit(small_scenes.Submit(SmallJob(1000)), "--max-bundle-bytes");
+
+    options.client_limits.max_bundle_bytes = kMaxBundleBytes;
+    Coordinator coordinator(options);
+    const std::string first = coordinator.Submit(SmallJob(1'000'000, 0, "alice"))->job_id;
+    ASSERT_TRUE(coordinator.Submit(SmallJob(1'000'000, 0, "alice")).ok());
+    ExpectOverLimit(coordinator.Submit(SmallJob(1'000'000, 0, "alice")), "--max-jobs-per-client");
+    EXPECT_TRUE(coordinator.Submit(SmallJob(1'000'000, 0, "bob")).ok()) << "the limit is per client";
+    ASSERT_TRUE(coordinator.Cancel(first).ok());
+    EXPECT_TRUE(coordinator.Submit(SmallJob(1'000'000, 0, "alice")).ok()) << "an ended job no longer counts";
+}
+
+TEST(CoordinatorTest, WatchersPerJobAreCounted) {
+    FakeClock clock;
+    Coordinator coordinator(Options(&clock));
+    const std::shared_ptr<Job> job = *coordinator.FindJob(coordinator.Submit(SmallJob(1000))->job_id);
+    EXPECT_TRUE(job->AddWatcher(2));
+    EXPECT_TRUE(job->AddWatcher(2));
+    EXPECT_FALSE(job->AddWatcher(2));
+    job->RemoveWatcher();
+    EXPECT_TRUE(job->AddWatcher(2));
 }
 
 TEST(CoordinatorTest, DuplicateStaleGoneAndUnknownTalliesAreRefusedAndCounted) {
