@@ -4,6 +4,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cinttypes>
+#include <cstdio>
 #include <filesystem>
 #include <random>
 
@@ -107,9 +109,101 @@ std::string RandomHex(int digits) {
 
 }  // namespace
 
-Coordinator::Coordinator(CoordinatorOptions options) : options_(std::move(options)), id_salt_(RandomHex(4)) {}
+Coordinator::Coordinator(CoordinatorOptions options) : options_(std::move(options)), id_salt_(RandomHex(4)) {
+    if (options_.checkpoint_dir.empty()) return;
+    checkpoints_ = std::make_unique<CheckpointStore>(options_.checkpoint_dir);
+    checkpoint_thread_ = std::thread([this] { CheckpointLoop(); });
+}
 
-Coordinator::~Coordinator() { Shutdown(); }
+Coordinator::~Coordinator() {
+    Shutdown();
+    if (!checkpoints_) return;
+    {
+        std::lock_guard lock(mutex_);
+        checkpoints_stopping_ = true;
+        checkpoint_wake_.notify_all();
+    }
+    checkpoint_thread_.join();
+    WriteCheckpoints();  // the jobs as they stand at the end, to be resumed by the next coordinator
+}
+
+void Coordinator::CheckpointLoop() {
+    std::unique_lock lock(mutex_);
+    Clock::time_point next = Clock::now() + Duration(options_.checkpoint_seconds);
+    while (!checkpoints_stopping_) {
+        // Woken early when a job ends (its final state is written at once) or is forgotten.
+        checkpoint_wake_.wait_until(lock, next);
+        if (checkpoints_stopping_) break;
+        const bool due = Clock::now() >= next;
+        if (due) next = Clock::now() + Duration(options_.checkpoint_seconds);
+        lock.unlock();
+        WriteCheckpoints(due);
+        lock.lock();
+    }
+}
+
+void Coordinator::WriteCheckpoints() { WriteCheckpoints(true); }
+
+void Coordinator::WriteCheckpoints(bool running_too) {
+    if (!checkpoints_) return;
+    std::lock_guard writer(checkpoint_mutex_);
+    std::vector<std::shared_ptr<Job>> jobs;
+    std::vector<std::string> forgotten;
+    {
+        std::lock_guard lock(mutex_);
+        for (const std::string& id : job_order_) jobs.push_back(jobs_.at(id));
+        forgotten.swap(forgotten_);
+    }
+    for (const std::string& id : forgotten) checkpoints_->Remove(id);
+    for (const std::shared_ptr<Job>& job : jobs) {
+        std::optional<JobCheckpointData> checkpoint = job->TakeFinalCheckpoint();
+        if (!checkpoint && running_too) {
+            absl::StatusOr<JobCheckpointData> running = job->Checkpoint(Now());
+            if (running.ok()) checkpoint = std::move(*running);
+        }
+        if (!checkpoint) continue;
+        const auto start = Clock::now();
+        if (absl::Status status = checkpoints_->Write(*checkpoint); !status.ok()) {
+            spdlog::error("job {}: checkpoint not written: {}", job->Id(), std::string(status.message()));
+            continue;
+        }
+        spdlog::debug("job {}: checkpoint {} written in {:.3f} s ({} MB)", job->Id(), checkpoint->record.sequence(),
+                      std::chrono::duration<double>(Clock::now() - start).count(),
+                      (checkpoint->record.ByteSizeLong() + checkpoint->estimate.size()) >> 20);
+    }
+}
+
+size_t Coordinator::RestoreCheckpoints() {
+    if (!checkpoints_) return 0;
+    std::vector<JobCheckpointData> checkpoints = checkpoints_->ReadAll();
+    // In submission order (the number in "job-N-..."), for fairness ties and listings.
+    const auto number = [](const JobCheckpointData& checkpoint) {
+        uint64_t n = 0;
+        std::sscanf(checkpoint.record.job_id().c_str(), "job-%" SCNu64, &n);
+        return n;
+    };
+    std::sort(checkpoints.begin(), checkpoints.end(), [&](const auto& a, const auto& b) { return number(a) < number(b); });
+    size_t restored = 0;
+    for (const JobCheckpointData& checkpoint : checkpoints) {
+        const std::string& id = checkpoint.record.job_id();
+        absl::StatusOr<std::shared_ptr<Job>> job = Job::Restore(checkpoint, options_.scene_limits, Now());
+        if (!job.ok()) {
+            spdlog::error("job {}: not resumed: {}", id, std::string(job.status().message()));
+            continue;
+        }
+        const JobProgress progress = (*job)->Progress(Now());
+        spdlog::info("job {} resumed from checkpoint {}: {}, epoch {}, {} photons", id, checkpoint.record.sequence(),
+                     progress.state == JobState::kRunning ? "running" : "ended", progress.epochs, progress.photons);
+        std::lock_guard lock(mutex_);
+        if (jobs_.contains(id)) continue;
+        jobs_[id] = *job;
+        job_order_.push_back(id);
+        next_id_ = std::max(next_id_, number(checkpoint) + 1);
+        ++restored;
+    }
+    NotifyWork();
+    return restored;
+}
 
 Clock::duration Coordinator::Duration(double seconds) const {
     return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
@@ -134,6 +228,7 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
     const Clock::time_point submitted = Now();  // a job's clock includes its camera pass
     absl::StatusOr<PreparedJob> prepared = Prepare(std::move(request), options_);
     if (!prepared.ok()) return prepared.status();
+    prepared->checkpointed = checkpoints_ != nullptr;
     std::shared_ptr<Job> job;
     {
         std::lock_guard lock(mutex_);
@@ -173,6 +268,10 @@ absl::StatusOr<JobProgress> Coordinator::Cancel(const std::string& job_id, const
     if (!job.ok()) return job.status();
     if ((*job)->Cancel(reason, Now())) spdlog::info("job {} cancelled: {}", job_id, reason);
     NotifyWork();
+    if (checkpoints_) {
+        std::lock_guard lock(mutex_);
+        checkpoint_wake_.notify_all();
+    }
     return (*job)->Progress(Now());
 }
 
@@ -188,6 +287,7 @@ void Coordinator::ForgetEndedJobsLocked() {
     for (const std::string& id : job_order_) ended += jobs_.at(id)->Progress(Now()).state != JobState::kRunning;
     for (auto it = job_order_.begin(); it != job_order_.end() && ended > options_.finished_jobs_kept;) {
         if (jobs_.at(*it)->Progress(Now()).state != JobState::kRunning) {
+            if (checkpoints_) forgotten_.push_back(*it);
             jobs_.erase(*it);
             it = job_order_.erase(it);
             --ended;
@@ -334,7 +434,10 @@ absl::StatusOr<TallyVerdict> Coordinator::Report(const std::string& worker_id, c
         case TallyVerdict::kJobGone: ++refusals_.job_gone; break;
         case TallyVerdict::kNotLeased: ++refusals_.not_leased; break;
     }
-    if (outcome->epoch_finished) work_available_.notify_all();
+    if (outcome->epoch_finished) {
+        work_available_.notify_all();
+        if (checkpoints_ && !job->Running()) checkpoint_wake_.notify_all();  // its final state, now
+    }
     return outcome->verdict;
 }
 

@@ -13,12 +13,14 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "absl/status/statusor.h"
 #include "core/ppm/job_spec.h"
 #include "core/scene/mesh_builder.h"
 #include "core/scene/scene_bundle.h"
+#include "server/checkpoint_store.h"
 #include "server/job.h"
 #include "worker/work_source.h"
 
@@ -46,6 +48,11 @@ struct CoordinatorOptions {
     // What a submitted scene may build (triangles, image sizes); over it, RESOURCE_EXHAUSTED.
     SceneLimits scene_limits;
     ClientLimits client_limits;
+    // Checkpoints: every job's state is written here (checkpoint_store.h) every
+    // `checkpoint_seconds`, when it ends and at shutdown; RestoreCheckpoints reads them back.
+    // Empty: none.
+    std::string checkpoint_dir;
+    double checkpoint_seconds = 30;
     std::function<Clock::time_point()> now = [] { return Clock::now(); };  // tests drive time
 };
 
@@ -115,6 +122,14 @@ public:
     // Wakes every waiting lease; later waits return at once. For shutting down.
     void Shutdown();
 
+    // Resumes the jobs checkpointed in options.checkpoint_dir (a coordinator that crashed or
+    // stopped there): running ones go on where their checkpoint left them, ended ones keep
+    // their final image. Call before serving. Returns how many jobs came back; a checkpoint
+    // that cannot be read or loaded is logged and skipped.
+    size_t RestoreCheckpoints();
+    // Writes every job's checkpoint now (also done by the destructor, after the last fold).
+    void WriteCheckpoints();
+
 private:
     struct Worker {
         WorkerRegistration registration;
@@ -128,7 +143,19 @@ private:
     std::shared_ptr<Job> PickJobLocked(Clock::time_point now) const;
     void NotifyWork();
 
+    // The checkpoint thread: writes each running job every checkpoint_seconds and each ended
+    // one once, and removes forgotten jobs' folders.
+    void CheckpointLoop();
+    // Ended jobs' final states and, when `running_too`, running jobs' current ones.
+    void WriteCheckpoints(bool running_too);
+
     const CoordinatorOptions options_;
+    std::unique_ptr<CheckpointStore> checkpoints_;  // null without a checkpoint folder
+    std::mutex checkpoint_mutex_;                   // one writer at a time
+    std::vector<std::string> forgotten_;            // ended jobs whose checkpoints go (under mutex_)
+    std::condition_variable checkpoint_wake_;       // with mutex_
+    bool checkpoints_stopping_ = false;             // under mutex_
+    std::thread checkpoint_thread_;
     mutable std::mutex mutex_;
     std::condition_variable work_available_;
     std::map<std::string, std::shared_ptr<Job>> jobs_;  // by id

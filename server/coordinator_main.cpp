@@ -128,6 +128,12 @@ int main(int argc, char** argv) {
             ->default_val(options.scene_limits.max_instances)->check(CLI::Range(uint64_t{1}, uint64_t{1} << 31));
         app.add_option("--max-image-pixels", options.scene_limits.max_image_pixels, "Largest texture a scene may bring, in pixels")
             ->default_val(options.scene_limits.max_image_pixels)->check(CLI::Range(uint64_t{1}, uint64_t{1} << 31));
+        app.add_option("--checkpoint-dir", options.checkpoint_dir,
+                       "Keep every job's state here, and resume the jobs found here at start (after a crash or a stop)")
+            ->envname("PHOTONFARM_CHECKPOINT_DIR");
+        app.add_option("--checkpoint-seconds", options.checkpoint_seconds,
+                       "How often running jobs are checkpointed (also when a job ends, and at shutdown)")
+            ->default_val(options.checkpoint_seconds)->check(pf::FiniteRange(0.01, 86400.0));
         pf::ClientLimits& limits = options.client_limits;
         app.add_option("--max-jobs-per-client", limits.max_jobs_per_client,
                        "Jobs one client (token name, or address without tokens) may run at once")
@@ -161,6 +167,11 @@ int main(int argc, char** argv) {
         server_options.security = std::move(*loaded);
         BlockStopSignals();  // before any thread starts, so every thread inherits the mask
         pf::Coordinator coordinator(options);
+        if (!options.checkpoint_dir.empty()) {
+            const size_t resumed = coordinator.RestoreCheckpoints();
+            spdlog::info("checkpoints in {} every {} s; {} jobs resumed", options.checkpoint_dir,
+                         options.checkpoint_seconds, resumed);
+        }
         absl::StatusOr<std::unique_ptr<pf::CoordinatorServer>> server =
             pf::CoordinatorServer::Start(coordinator, server_options);
         if (!server.ok()) {

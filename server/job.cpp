@@ -48,12 +48,14 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
       scene_features_(std::move(prepared.scene_features)),
       reference_(std::move(prepared.reference)),
       payload_(std::move(prepared.payload)),
+      checkpointed_(prepared.checkpointed),
       estimate_(std::move(prepared.estimate)) {
     scene_blob_ = std::make_shared<const LazyBlob>(
         [bundle = std::make_shared<const SceneBundle>(std::move(prepared.bundle))] {
             return ToProto(*bundle).SerializeAsString();
         });
     hit_points_blob_ = std::make_shared<const LazyBlob>([payload = payload_] { return EncodeHitPoints(*payload->hit_points); });
+    if (checkpointed_) durable_scene_ = scene_blob_;
     std::lock_guard lock(mutex_);
     warnings_ = std::move(prepared.warnings);
     StartEpochLocked(estimate_->SearchRadiusSq());
@@ -87,7 +89,9 @@ void Job::StartEpochLocked(std::vector<float> radius_sq) {
     epoch_ = std::make_shared<const EpochInputs>(epoch, std::move(radius_sq));
     slots_.clear();
     for (const BatchSpec& spec : estimate_->EpochBatches()) slots_.push_back({spec});
-    next_fold_ = 0;
+    // A job restored from a checkpoint may have folded some of the epoch's batches already.
+    next_fold_ = estimate_->BatchesFolded();
+    for (uint32_t i = 0; i < next_fold_; ++i) slots_[i].folded = true;
 }
 
 bool Job::LeasableLocked(const Slot& slot, Clock::time_point now) const {
@@ -267,10 +271,25 @@ void Job::EndLocked(JobState state, std::string message, Clock::time_point now) 
 }
 
 void Job::ReleaseInputs() {
-    std::lock_guard estimate_lock(estimate_mutex_);
-    if (!estimate_) return;
-    ResolveLocked();
-    estimate_.reset();
+    std::optional<JobCheckpointData> final_state;
+    if (checkpointed_) {
+        std::lock_guard lock(mutex_);
+        final_state = JobCheckpointData{RecordLocked(ended_), ""};
+    }
+    {
+        std::lock_guard estimate_lock(estimate_mutex_);
+        if (!estimate_) return;
+        if (final_state) {
+            ByteWriter writer;
+            estimate_->Save(writer);
+            final_state->estimate = std::move(writer.Bytes());
+        }
+        ResolveLocked();
+        estimate_.reset();
+    }
+    std::lock_guard lock(mutex_);
+    final_checkpoint_ = std::move(final_state);
+    durable_scene_.reset();
 }
 
 bool Job::Cancel(const std::string& reason, Clock::time_point now) {

@@ -25,6 +25,8 @@
 #include "core/ppm/job_spec.h"
 #include "core/ppm/progressive_estimate.h"
 #include "core/scene/scene_bundle.h"
+#include "core/scene/scene_loader.h"
+#include "server/checkpoint_store.h"
 #include "worker/blob_codec.h"
 #include "worker/work_source.h"
 
@@ -55,6 +57,9 @@ struct EpochInputs {
 };
 
 enum class JobState { kRunning, kDone, kCancelled, kFailed };
+
+// The job state on the wire.
+photonfarm::v1::JobState ToProto(JobState state);
 
 // A job's state for listings and snapshots.
 struct JobProgress {
@@ -87,6 +92,9 @@ struct PreparedJob {
     std::vector<std::string> warnings;
     std::shared_ptr<const Image> reference;  // measured against after every epoch, when set
     std::string scene_features;  // SceneFeatures::ToString of the scene
+    // The coordinator keeps checkpoints: the job's final state is kept for one when it ends
+    // (TakeFinalCheckpoint).
+    bool checkpointed = false;
 };
 
 class Job {
@@ -138,6 +146,18 @@ public:
     // Ends a running job; its image as of the last merged epoch stays. False if already ended.
     bool Cancel(const std::string& reason, Clock::time_point now);
 
+    // Checkpoints (job_checkpoint.cpp). A running job's state now, between two folds: its
+    // record and estimate, copied under the job's locks (written by the caller, outside them).
+    // FAILED_PRECONDITION once the job has ended.
+    absl::StatusOr<JobCheckpointData> Checkpoint(Clock::time_point now);
+    // An ended job's last state, once, for a job with PreparedJob::checkpointed.
+    std::optional<JobCheckpointData> TakeFinalCheckpoint();
+    // A job as a checkpoint left it: running jobs go on from the state saved (the epoch's
+    // batches folded before it are not handed out again), ended ones hold their final image.
+    // DATA_LOSS or the scene's load error when the checkpoint cannot be such a job.
+    static absl::StatusOr<std::shared_ptr<Job>> Restore(const JobCheckpointData& checkpoint, const SceneLimits& limits,
+                                                        Clock::time_point now);
+
     JobProgress Progress(Clock::time_point now) const;
     // Changes with every merged epoch and state change; WaitForChange returns the current
     // version once it differs from `seen`, or at `until`.
@@ -166,6 +186,8 @@ private:
     // Called by the thread that stored a result; one thread folds at a time.
     bool FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point now);
     void EndLocked(JobState state, std::string message, Clock::time_point now);
+    // The checkpoint record as of now (without the estimate); under mutex_.
+    photonfarm::v1::JobCheckpoint RecordLocked(Clock::time_point now);
     void ReleaseInputs();  // after the end: keep the final image, free the rest
     // Under estimate_mutex_, with the estimate alive. Resolves the current epoch's image into
     // image_ unless done already.
@@ -204,6 +226,12 @@ private:
     uint32_t next_fold_ = 0;
     bool folding_ = false;
     std::map<std::string, Clock::time_point> workers_seen_;
+    // Checkpoints: the scene a record holds (kept past the job's end until its final state is
+    // taken), the record's sequence number, and the final state once the job has ended.
+    const bool checkpointed_;
+    std::shared_ptr<const LazyBlob> durable_scene_;
+    uint64_t checkpoint_sequence_ = 0;
+    std::optional<JobCheckpointData> final_checkpoint_;
 
     mutable std::mutex estimate_mutex_;  // guards the estimate and the image cache
     std::unique_ptr<ProgressiveEstimate> estimate_;  // null once the job has ended

@@ -16,16 +16,6 @@ namespace v1 = photonfarm::v1;
 // A watch stream checks for cancellation (client gone, server stopping) at least this often.
 constexpr auto kWatchPoll = std::chrono::milliseconds(250);
 
-v1::JobState ToProto(JobState state) {
-    switch (state) {
-        case JobState::kRunning: return v1::JOB_STATE_RUNNING;
-        case JobState::kDone: return v1::JOB_STATE_DONE;
-        case JobState::kCancelled: return v1::JOB_STATE_CANCELLED;
-        case JobState::kFailed: return v1::JOB_STATE_FAILED;
-    }
-    return v1::JOB_STATE_UNSPECIFIED;
-}
-
 v1::JobStatus ToProto(const JobProgress& progress) {
     v1::JobStatus status;
     status.set_job_id(progress.job_id);

@@ -56,6 +56,10 @@ sigset_t StopSignals() {
     return signals;
 }
 
+// A restarted coordinator is found again within this (plus the channel's own reconnect), yet
+// a thousand waiting workers ask it less than a thousand times a second.
+constexpr double kMaxBackoffSeconds = 2;
+
 // Errors worth waiting out (the coordinator restarting, the network); others end the worker.
 bool Retryable(const absl::Status& status) {
     return absl::IsUnavailable(status) || absl::IsDeadlineExceeded(status) || absl::IsNotFound(status) ||
@@ -160,7 +164,7 @@ int main(int argc, char** argv) {
             reported_outage = true;
             // Exponential back-off with jitter, so a restarted coordinator is not stormed.
             const double wait = backoff * std::uniform_real_distribution<double>(0.5, 1.0)(jitter);
-            backoff = std::min(backoff * 2, 30.0);
+            backoff = std::min(backoff * 2, kMaxBackoffSeconds);
             if (stop.WaitFor(wait)) break;
         }
         if (absl::Status status = loop.Flush(); !status.ok())

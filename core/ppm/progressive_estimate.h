@@ -11,10 +11,12 @@
 #include <span>
 #include <vector>
 
+#include "absl/status/statusor.h"
 #include "core/film/image.h"
 #include "core/ppm/batch.h"
 #include "core/ppm/camera_pass.h"
 #include "core/ppm/estimator.h"
+#include "core/util/byte_stream.h"
 
 namespace pf {
 
@@ -88,7 +90,16 @@ public:
     // L_inner / L taken as the photon density ratio 2 inner / all (docs/convergence.md).
     ErrorEstimate EstimateError() const;
 
+    // The whole state, hit points included, at an epoch's end or between folds, for a
+    // checkpoint. Load restores it bit for bit, so folding the rest of the epochs gives the
+    // image an uninterrupted render gives; DATA_LOSS naming what is wrong when the bytes
+    // cannot be such a state (estimate_state.cpp).
+    void Save(ByteWriter& out) const;
+    static absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> Load(ByteReader& in);
+
 private:
+    ProgressiveEstimate() = default;
+
     std::shared_ptr<const std::vector<HitPoint>> hit_points_;
     Image emission_;
     EstimateSettings settings_;

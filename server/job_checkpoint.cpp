@@ -1,0 +1,136 @@
+// A job's checkpoints: its record and estimate taken under its locks, and a job rebuilt from
+// them after a restart.
+#include <spdlog/spdlog.h>
+
+#include "absl/strings/str_cat.h"
+#include "server/job.h"
+#include "worker/proto_convert.h"
+
+namespace pf {
+namespace {
+
+namespace v1 = photonfarm::v1;
+
+double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+}  // namespace
+
+v1::JobState ToProto(JobState state) {
+    switch (state) {
+        case JobState::kRunning: return v1::JOB_STATE_RUNNING;
+        case JobState::kDone: return v1::JOB_STATE_DONE;
+        case JobState::kCancelled: return v1::JOB_STATE_CANCELLED;
+        case JobState::kFailed: return v1::JOB_STATE_FAILED;
+    }
+    return v1::JOB_STATE_UNSPECIFIED;
+}
+
+v1::JobCheckpoint Job::RecordLocked(Clock::time_point now) {
+    v1::JobCheckpoint record;
+    record.set_job_id(id_);
+    record.set_name(name_);
+    record.set_owner(owner_);
+    *record.mutable_settings() = ToProto(spec_);
+    record.mutable_settings()->set_priority(priority_);
+    if (durable_scene_) record.set_scene(durable_scene_->Get().bytes);
+    if (reference_) *record.mutable_reference() = ToProto(*reference_);
+    record.set_state(ToProto(state_));
+    record.set_message(message_);
+    for (const std::string& warning : warnings_) record.add_warnings(warning);
+    record.set_elapsed_seconds(Seconds((state_ == JobState::kRunning ? now : ended_) - started_));
+    record.set_scene_features(scene_features_);
+    for (const ConvergencePoint& point : convergence_.Points()) *record.add_convergence() = ToProto(point);
+    record.set_sequence(++checkpoint_sequence_);
+    return record;
+}
+
+absl::StatusOr<JobCheckpointData> Job::Checkpoint(Clock::time_point now) {
+    JobCheckpointData checkpoint;
+    {
+        std::lock_guard lock(mutex_);
+        if (state_ != JobState::kRunning)
+            return absl::FailedPreconditionError(absl::StrCat("job ", id_, " has ended"));
+        checkpoint.record = RecordLocked(now);
+    }
+    // The estimate a moment later than the record: between two folds, which is all a resumed
+    // job needs (the record's log may lack the latest epoch's point).
+    std::lock_guard estimate_lock(estimate_mutex_);
+    if (!estimate_) return absl::FailedPreconditionError(absl::StrCat("job ", id_, " has ended"));
+    ByteWriter writer;
+    estimate_->Save(writer);
+    checkpoint.estimate = std::move(writer.Bytes());
+    return checkpoint;
+}
+
+std::optional<JobCheckpointData> Job::TakeFinalCheckpoint() {
+    std::lock_guard lock(mutex_);
+    std::optional<JobCheckpointData> final_state = std::move(final_checkpoint_);
+    final_checkpoint_.reset();
+    return final_state;
+}
+
+absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& checkpoint, const SceneLimits& limits,
+                                                  Clock::time_point now) {
+    const v1::JobCheckpoint& record = checkpoint.record;
+    const auto lost = [&](const std::string& what) {
+        return absl::DataLossError(absl::StrCat("checkpoint of job ", record.job_id(), ": ", what));
+    };
+    v1::SceneBundle bundle_message;
+    if (!bundle_message.ParseFromString(record.scene())) return lost("unreadable scene bundle");
+    absl::StatusOr<SceneBundle> bundle = FromProto(bundle_message);
+    if (!bundle.ok()) return lost(std::string(bundle.status().message()));
+    absl::StatusOr<JobSpec> spec = FromProto(record.settings());
+    if (!spec.ok()) return lost(std::string(spec.status().message()));
+    if (!(record.elapsed_seconds() >= 0 && record.elapsed_seconds() < 1e9)) return lost("elapsed time out of range");
+    absl::StatusOr<Scene> scene = LoadScene(*bundle, bundle->main_file, {limits, nullptr});
+    if (!scene.ok()) return scene.status();
+    ByteReader reader(checkpoint.estimate);
+    absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> estimate = ProgressiveEstimate::Load(reader);
+    if (!estimate.ok()) return lost(std::string(estimate.status().message()));
+    if (!reader.AtEnd()) return lost("bytes after the estimate");
+
+    PreparedJob prepared;
+    prepared.name = record.name();
+    prepared.owner = record.owner();
+    prepared.spec = *spec;
+    prepared.priority = record.settings().priority();
+    prepared.payload = std::make_shared<JobPayload>(std::move(*scene), (*estimate)->SharedHitPoints(), PhotonSeed(*spec));
+    prepared.estimate = std::move(*estimate);
+    prepared.bundle = std::move(*bundle);
+    prepared.warnings.assign(record.warnings().begin(), record.warnings().end());
+    if (record.has_reference()) {
+        absl::StatusOr<Image> reference = FromProto(record.reference());
+        if (!reference.ok()) return lost(absl::StrCat("reference: ", reference.status().message()));
+        prepared.reference = std::make_shared<const Image>(std::move(*reference));
+    }
+    prepared.scene_features = record.scene_features();
+    prepared.checkpointed = true;
+    const ProgressiveEstimate& restored = *prepared.estimate;
+    const uint64_t epochs = restored.Epoch(), photons = restored.PhotonsEmitted(), discarded = restored.NonfiniteDiscarded();
+    const uint64_t pixels = prepared.reference ? prepared.reference->pixels.size() : 0;
+    const auto started = now - std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(record.elapsed_seconds()));
+    auto job = std::make_shared<Job>(record.job_id(), std::move(prepared), started);
+    {
+        std::lock_guard lock(job->mutex_);
+        job->checkpoint_sequence_ = record.sequence();
+        for (const v1::ConvergencePoint& point : record.convergence()) job->convergence_.Add(FromProto(point, pixels));
+        job->epochs_merged_ = epochs;
+        job->photons_merged_ = photons;
+        job->nonfinite_discarded_ = discarded;
+        if (!job->convergence_.Points().empty()) {
+            const ConvergencePoint& last = job->convergence_.Points().back();
+            if (last.estimated) job->estimated_error_ = last.estimated->RelativeError();
+            job->measured_error_ = last.measured;
+        }
+        if (record.state() == v1::JOB_STATE_RUNNING) return job;
+        const JobState state = record.state() == v1::JOB_STATE_DONE        ? JobState::kDone
+                               : record.state() == v1::JOB_STATE_CANCELLED ? JobState::kCancelled
+                                                                           : JobState::kFailed;
+        job->EndLocked(state, record.message(), now);
+    }
+    job->ReleaseInputs();  // the final image, from the state saved
+    job->TakeFinalCheckpoint();  // already on disk
+    return job;
+}
+
+}  // namespace pf
