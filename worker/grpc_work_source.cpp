@@ -50,10 +50,17 @@ bool IsHexDigest(const std::string& digest) {
 
 GrpcWorkSource::GrpcWorkSource(std::shared_ptr<grpc::Channel> channel, std::string address,
                                WorkerRegistration registration, std::string cache_dir)
-    : stub_(v1::Work::NewStub(channel)),
+    : channel_(channel),
+      stub_(v1::Work::NewStub(channel)),
       address_(absl::StrCat("coordinator at ", address)),
       registration_(std::move(registration)),
       cache_dir_(std::move(cache_dir)) {}
+
+bool GrpcWorkSource::WaitForConnection(double seconds) {
+    return channel_->WaitForConnected(std::chrono::system_clock::now() +
+                                      std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                                          std::chrono::duration<double>(seconds)));
+}
 
 double GrpcWorkSource::HeartbeatSeconds() const {
     std::lock_guard lock(mutex_);

@@ -31,6 +31,10 @@ public:
     // Returns this worker's leases to the coordinator; a later call registers anew.
     absl::Status Unregister();
     double HeartbeatSeconds() const;
+    // Waits up to `seconds` for the channel to the coordinator to be connected, asking it to
+    // connect: after a failed attempt, gRPC 1.51's channel may otherwise sit idle, failing
+    // every call at once, after the coordinator is back. True once connected.
+    bool WaitForConnection(double seconds);
 
 private:
     absl::StatusOr<std::string> WorkerId();
@@ -39,6 +43,7 @@ private:
     absl::StatusOr<std::shared_ptr<const JobPayload>> PayloadFor(const photonfarm::v1::JobInputs& job);
     absl::StatusOr<std::shared_ptr<const std::vector<float>>> RadiiFor(const std::string& digest, uint64_t count);
 
+    std::shared_ptr<grpc::Channel> channel_;
     std::unique_ptr<photonfarm::v1::Work::Stub> stub_;
     const std::string address_;
     const WorkerRegistration registration_;

@@ -165,7 +165,8 @@ int main(int argc, char** argv) {
             // Exponential back-off with jitter, so a restarted coordinator is not stormed.
             const double wait = backoff * std::uniform_real_distribution<double>(0.5, 1.0)(jitter);
             backoff = std::min(backoff * 2, kMaxBackoffSeconds);
-            if (stop.WaitFor(wait)) break;
+            if (absl::IsUnavailable(ran.status()) || absl::IsDeadlineExceeded(ran.status())) source.WaitForConnection(wait);
+            if (stop.WaitFor(absl::IsUnavailable(ran.status()) ? 0.0 : wait)) break;
         }
         if (absl::Status status = loop.Flush(); !status.ok())
             spdlog::warn("reporting the last results: {}", std::string(status.message()));

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <random>
 #include <thread>
 
 #include "client/farm_client.h"
@@ -69,11 +70,15 @@ bool Identical(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
 
 class FarmTest : public ::testing::Test {
 protected:
-    void SetUp() override {
+    void SetUp() override { StartCoordinator("127.0.0.1:0"); }
+
+    // Starts the coordinator on `listen` with the fixture's flags and connects the client.
+    void StartCoordinator(const std::string& listen, const std::vector<std::string>& flags = {}) {
         coordinator_ = std::make_unique<ChildProcess>(Concat(
-            {kBin + "/server/photonfarm-coordinator", "--listen", "127.0.0.1:0", "--heartbeat-seconds", "0.2",
-             "--worker-timeout-seconds", "1.5", "--log-level", "warn"},
-            Credentials().CoordinatorFlags()));
+            Concat({kBin + "/server/photonfarm-coordinator", "--listen", listen, "--heartbeat-seconds", "0.2",
+                    "--worker-timeout-seconds", "1.5", "--log-level", "warn"},
+                   Credentials().CoordinatorFlags()),
+            flags));
         const std::optional<std::string> line = coordinator_->ReadLine(30);
         ASSERT_TRUE(line && line->starts_with("listening on ")) << "the coordinator did not start";
         address_ = line->substr(std::strlen("listening on "));
@@ -107,7 +112,7 @@ protected:
         return submit.Wait(300).value_or(-1);
     }
 
-    v1::JobStatus Submit(int epochs, int priority = 0, double target_error = 0) {
+    v1::JobStatus Submit(int epochs, int priority = 0, double target_error = 0, int stream = 0) {
         absl::StatusOr<SceneBundle> bundle = PackSceneBundle(kScene);
         v1::SubmitJobRequest request;
         *request.mutable_scene() = ToProto(*bundle);
@@ -120,6 +125,7 @@ protected:
         settings->set_photon_budget(uint64_t(epochs) * 8 * 8192);
         settings->set_priority(priority);
         settings->set_target_error(target_error);
+        settings->set_photon_stream(stream);
         absl::StatusOr<v1::JobStatus> status = client_->Submit(request);
         EXPECT_TRUE(status.ok()) << status.status();
         return status.ok() ? *status : v1::JobStatus{};
@@ -402,6 +408,50 @@ TEST_F(FarmTest, HealthServiceAnswersServing) {
     grpc::health::v1::HealthCheckResponse response;
     ASSERT_TRUE(health->Check(&context, {}, &response).ok());
     EXPECT_EQ(response.status(), grpc::health::v1::HealthCheckResponse::SERVING);
+}
+
+// The coordinator killed (SIGKILL) at random moments and restarted on its checkpoints: every
+// unfinished job resumes, the workers find it again on their own, and the images come out
+// bit-identical to uninterrupted renders.
+TEST_F(FarmTest, CoordinatorKilledAtRandomMomentsResumesEveryJobBitIdentical) {
+    const std::string port = address_.substr(address_.rfind(':') + 1);
+    const std::vector<std::string> durable = {"--checkpoint-dir", TempPath("checkpoints"), "--checkpoint-seconds", "0.05"};
+    StartCoordinator("127.0.0.1:" + port, durable);  // the same port, with checkpoints
+    ASSERT_FALSE(HasFatalFailure());
+    StartWorker();
+    StartWorker();
+    const v1::JobStatus first = Submit(2 * kLongEpochs);
+    const v1::JobStatus second = Submit(kLongEpochs, 0, 0, /*stream=*/2);
+    const unsigned seed = std::random_device{}();
+    SCOPED_TRACE(::testing::Message() << "random seed " << seed);
+    std::mt19937 rng(seed);
+    for (int kill = 0; kill < 3; ++kill) {
+        const int epochs = std::uniform_int_distribution<int>(2, 2 * kLongEpochs / 3)(rng);
+        const v1::JobStatus before = WatchUntil(first.job_id(), [&](const v1::JobStatus& status) {
+            return status.epochs() >= static_cast<uint64_t>(epochs);
+        });
+        if (before.state() != v1::JOB_STATE_RUNNING) break;  // ran to its end first
+        std::this_thread::sleep_for(std::chrono::milliseconds(std::uniform_int_distribution<int>(0, 60)(rng)));
+        coordinator_->Signal(SIGKILL);
+        ASSERT_EQ(coordinator_->Wait(30), 128 + SIGKILL);
+        StartCoordinator("127.0.0.1:" + port, durable);
+        ASSERT_FALSE(HasFatalFailure());
+        const absl::StatusOr<v1::ListJobsResponse> jobs = client_->ListJobs();
+        ASSERT_TRUE(jobs.ok()) << jobs.status();
+        ASSERT_EQ(jobs->jobs_size(), 2) << "both jobs resume";
+        EXPECT_EQ(jobs->jobs(0).job_id(), first.job_id());
+        EXPECT_GT(jobs->jobs(0).epochs(), 0u) << "the work before the kill was kept (checkpoints every 0.05 s)";
+    }
+    ASSERT_EQ(WatchUntil(first.job_id()).state(), v1::JOB_STATE_DONE);
+    ASSERT_EQ(WatchUntil(second.job_id()).state(), v1::JOB_STATE_DONE);
+    for (const auto& [job, expected] : {std::pair{first.job_id(), Reference(2 * kLongEpochs)},
+                                         std::pair{second.job_id(), Reference(kLongEpochs, 2)}}) {
+        const absl::StatusOr<v1::GetResultResponse> result = client_->GetResult(job);
+        ASSERT_TRUE(result.ok()) << result.status();
+        const absl::StatusOr<Image> image = FromProto(result->image());
+        ASSERT_TRUE(image.ok());
+        EXPECT_TRUE(Identical(image->pixels, expected)) << job << " differs from an uninterrupted render";
+    }
 }
 
 TEST_F(FarmTest, WorkerLeavesCleanlyOnSigterm) {
