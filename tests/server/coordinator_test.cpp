@@ -5,8 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <random>
 
 #include "client/local_render.h"
@@ -308,6 +312,149 @@ TEST(CoordinatorTest, AJobWhoseEpochsCannotKeepTheWorkersBusyIsSubmittedWithAWar
     ASSERT_EQ(starved->warnings.size(), 1u);
     EXPECT_NE(starved->warnings[0].find("4 chunks"), std::string::npos) << starved->warnings[0];
     EXPECT_NE(starved->warnings[0].find("64 threads"), std::string::npos) << starved->warnings[0];
+}
+
+}  // namespace
+}  // namespace pf
+
+namespace pf {
+namespace {
+
+// A checkpoint folder of its own, removed at the end.
+struct TempDir {
+    std::string path = (std::filesystem::temp_directory_path() /
+                        ("pf-checkpoints-" + std::to_string(getpid()) + "-" + std::to_string(std::random_device{}())))
+                           .string();
+    ~TempDir() { std::filesystem::remove_all(path); }
+};
+
+CoordinatorOptions Durable(FakeClock* clock, const std::string& dir) {
+    CoordinatorOptions options = Options(clock);
+    options.checkpoint_dir = dir;
+    options.checkpoint_seconds = 3600;  // only when the test asks, a job ends, and at the end
+    return options;
+}
+
+// Leases and reports `batches` batches of the job, one at a time.
+void RunBatches(Coordinator& coordinator, const std::string& worker, const std::string& job_id, int batches,
+                BatchRunner& runner) {
+    for (int i = 0; i < batches; ++i) {
+        const absl::StatusOr<CoordinatorLease> lease = coordinator.Lease(worker, 1, 0);
+        ASSERT_TRUE(lease.ok() && lease->grant.batches.size() == 1);
+        for (BatchResult& result : runner.Run(*lease))
+            ASSERT_EQ(*coordinator.Report(worker, job_id, std::move(result)), TallyVerdict::kAccepted);
+    }
+}
+
+std::vector<std::filesystem::path> CheckpointFiles(const std::string& dir, const std::string& job_id) {
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(dir) / job_id))
+        files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+TEST(CoordinatorCheckpointTest, JobsResumeInANewCoordinatorBitIdentical) {
+    RenderSettings settings;
+    settings.scene_path = ScenePath("cornell-box.gltf");
+    settings.job = SmallSpec(3 * 4 * 4096);
+    settings.threads = 1;
+    const absl::StatusOr<RenderOutcome> reference = RenderLocally(settings);
+    ASSERT_TRUE(reference.ok()) << reference.status();
+
+    TempDir dir;
+    FakeClock clock;
+    std::string running, cancelled;
+    std::shared_ptr<const Image> cancelled_image;
+    {
+        Coordinator first(Durable(&clock, dir.path));
+        running = first.Submit(SmallJob(settings.job.photon_budget))->job_id;
+        cancelled = first.Submit(SmallJob(settings.job.photon_budget))->job_id;
+        ASSERT_TRUE(first.Cancel(cancelled).ok());
+        cancelled_image = (*first.FindJob(cancelled))->CurrentImage();
+        const std::string worker = *first.RegisterWorker(Cpu());
+        BatchRunner runner;
+        RunBatches(first, worker, running, 4, runner);  // epoch 0
+        RunBatches(first, worker, running, 2, runner);  // half of epoch 1: a checkpoint between folds
+        first.WriteCheckpoints();
+    }  // and at the end, as a stopping coordinator does
+
+    Coordinator second(Durable(&clock, dir.path));
+    ASSERT_EQ(second.RestoreCheckpoints(), 2u);
+    const std::vector<JobProgress> jobs = second.ListJobs();
+    ASSERT_EQ(jobs.size(), 2u);
+    EXPECT_EQ(jobs[0].job_id, running) << "in submission order";
+    EXPECT_EQ(jobs[0].state, JobState::kRunning);
+    EXPECT_EQ(jobs[0].epochs, 1u);
+    EXPECT_EQ(jobs[1].state, JobState::kCancelled);
+    EXPECT_TRUE(SamePixels(*(*second.FindJob(cancelled))->CurrentImage(), *cancelled_image))
+        << "an ended job keeps its final image";
+    // Epoch 1's first two batches were folded before the checkpoint: only the last two are out.
+    const std::string worker = *second.RegisterWorker(Cpu());
+    const absl::StatusOr<CoordinatorLease> lease = second.Lease(worker, 8, 0);
+    ASSERT_TRUE(lease.ok());
+    ASSERT_EQ(lease->grant.batches.size(), 2u);
+    EXPECT_EQ(lease->grant.batches[0].index, 4u + 2u);
+    BatchRunner runner;
+    for (BatchResult& result : runner.Run(*lease))
+        ASSERT_EQ(*second.Report(worker, running, std::move(result)), TallyVerdict::kAccepted);
+    RunBatches(second, worker, running, 4, runner);  // epoch 2
+    const std::shared_ptr<Job> done = *second.FindJob(running);
+    EXPECT_EQ(done->Progress(clock.now).state, JobState::kDone);
+    EXPECT_TRUE(SamePixels(*done->CurrentImage(), reference->image)) << "resumed, it ends as an uninterrupted render";
+    const std::string next = second.Submit(SmallJob(1000))->job_id;
+    EXPECT_NE(next, running);
+    EXPECT_NE(next, cancelled);
+}
+
+TEST(CoordinatorCheckpointTest, CorruptOrTruncatedCheckpointsFallBackToThePreviousOne) {
+    TempDir dir;
+    FakeClock clock;
+    std::string job_id;
+    {
+        Coordinator coordinator(Durable(&clock, dir.path));
+        job_id = coordinator.Submit(SmallJob(1'000'000))->job_id;
+        const std::string worker = *coordinator.RegisterWorker(Cpu());
+        BatchRunner runner;
+        RunBatches(coordinator, worker, job_id, 4, runner);
+        coordinator.WriteCheckpoints();  // at epoch 1
+        RunBatches(coordinator, worker, job_id, 4, runner);
+    }  // at epoch 2, written as it stops
+    const std::vector<std::filesystem::path> files = CheckpointFiles(dir.path, job_id);
+    ASSERT_EQ(files.size(), 2u) << "the latest two are kept";
+    const auto epochs_resumed = [&] {
+        Coordinator coordinator(Durable(&clock, dir.path));
+        if (coordinator.RestoreCheckpoints() != 1) return uint64_t{0};
+        return coordinator.ListJobs().at(0).epochs;
+    };
+    // One bit flipped in the middle of the newest (epoch 2): its checksum fails, and the one
+    // before (epoch 1) is used.
+    std::string bytes;
+    {
+        std::ifstream file(files.back(), std::ios::binary);
+        bytes.assign(std::istreambuf_iterator<char>(file), {});
+    }
+    bytes[bytes.size() / 2] ^= 1;
+    std::ofstream(files.back(), std::ios::binary | std::ios::trunc) << bytes;
+    EXPECT_EQ(epochs_resumed(), 1u);
+    // Both cut short: nothing is resumed, and nothing crashes.
+    for (const std::filesystem::path& file : CheckpointFiles(dir.path, job_id)) std::filesystem::resize_file(file, 100);
+    EXPECT_EQ(epochs_resumed(), 0u);
+}
+
+TEST(CoordinatorCheckpointTest, ForgottenJobsLoseTheirCheckpoints) {
+    TempDir dir;
+    FakeClock clock;
+    CoordinatorOptions options = Durable(&clock, dir.path);
+    options.finished_jobs_kept = 0;
+    Coordinator coordinator(options);
+    const std::string first = coordinator.Submit(SmallJob(1'000'000))->job_id;
+    coordinator.WriteCheckpoints();
+    ASSERT_TRUE(std::filesystem::exists(std::filesystem::path(dir.path) / first));
+    ASSERT_TRUE(coordinator.Cancel(first).ok());
+    coordinator.Submit(SmallJob(1'000'000));  // forgets the ended job
+    coordinator.WriteCheckpoints();
+    EXPECT_FALSE(std::filesystem::exists(std::filesystem::path(dir.path) / first));
 }
 
 }  // namespace
