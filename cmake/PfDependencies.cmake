@@ -13,6 +13,7 @@ find_package(CLI11 CONFIG REQUIRED)
 find_package(OpenSSL REQUIRED)  # SHA-256 content addresses
 find_package(zstd CONFIG REQUIRED)  # blobs and images on the wire
 find_package(gRPC CONFIG REQUIRED)
+find_package(prometheus-cpp CONFIG REQUIRED)  # the coordinator's /metrics
 # Headers and glslc only: the worker opens libvulkan.so.1 at run time (vk_api.cpp), so it
 # starts, and says why, on machines without a Vulkan loader.
 find_package(Vulkan REQUIRED COMPONENTS glslc)

@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
     build-essential cmake ninja-build pkg-config git python3 openssl
-    libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler libssl-dev
+    libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler libssl-dev prometheus-cpp-dev
     libembree-dev libtbb-dev
     libopenimageio-dev openimageio-tools libopenexr-dev
     libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev

@@ -421,8 +421,15 @@ absl::StatusOr<TallyVerdict> Coordinator::Report(const std::string& worker_id, c
         }
         job = it->second;
     }
+    const uint64_t photons = result.photons_emitted;
+    const auto start = Clock::now();
     absl::StatusOr<Job::ReportOutcome> outcome = job->Report(worker_id, std::move(result), Now());
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     std::lock_guard lock(mutex_);
+    if (outcome.ok() && outcome->verdict == TallyVerdict::kAccepted) {
+        photons_accepted_ += photons;
+        if (merge_observer_) merge_observer_(seconds);
+    }
     if (!outcome.ok()) {
         ++refusals_.malformed;
         return outcome.status();
@@ -449,6 +456,16 @@ void Coordinator::CountMalformed() {
 RefusalCounts Coordinator::Refusals() const {
     std::lock_guard lock(mutex_);
     return refusals_;
+}
+
+uint64_t Coordinator::PhotonsAccepted() const {
+    std::lock_guard lock(mutex_);
+    return photons_accepted_;
+}
+
+void Coordinator::SetMergeObserver(std::function<void(double seconds)> observer) {
+    std::lock_guard lock(mutex_);
+    merge_observer_ = std::move(observer);
 }
 
 std::shared_ptr<const Blob> Coordinator::FindBlob(const std::string& digest) const {

@@ -115,6 +115,11 @@ public:
     // A tally that failed to decode, counted with the refusals.
     void CountMalformed();
     RefusalCounts Refusals() const;
+    // Photons in accepted reports since the coordinator started (each merged in its turn).
+    uint64_t PhotonsAccepted() const;
+    // Called with the seconds each accepted report took to be stored and merged (the batches
+    // it made ready folded, the epoch finished if it was the last). Set before serving.
+    void SetMergeObserver(std::function<void(double seconds)> observer);
 
     // A blob of a running job (scene, hit points, radii) by digest, or null.
     std::shared_ptr<const Blob> FindBlob(const std::string& digest) const;
@@ -162,6 +167,8 @@ private:
     std::vector<std::string> job_order_;                // submission order, for fairness ties and listings
     std::map<std::string, Worker> workers_;
     RefusalCounts refusals_;
+    uint64_t photons_accepted_ = 0;
+    std::function<void(double)> merge_observer_;
     uint64_t next_id_ = 1;
     std::string id_salt_;
     bool shut_down_ = false;

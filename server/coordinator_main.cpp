@@ -15,6 +15,7 @@
 #include "core/util/command_line.h"
 #include "server/coordinator.h"
 #include "server/coordinator_server.h"
+#include "server/metrics.h"
 #include "worker/rpc_status.h"
 #include "worker/secure_channel.h"
 
@@ -128,6 +129,10 @@ int main(int argc, char** argv) {
             ->default_val(options.scene_limits.max_instances)->check(CLI::Range(uint64_t{1}, uint64_t{1} << 31));
         app.add_option("--max-image-pixels", options.scene_limits.max_image_pixels, "Largest texture a scene may bring, in pixels")
             ->default_val(options.scene_limits.max_image_pixels)->check(CLI::Range(uint64_t{1}, uint64_t{1} << 31));
+        std::string metrics_listen;
+        app.add_option("--metrics-listen", metrics_listen,
+                       "Serve Prometheus metrics at http://HOST:PORT/metrics (plain HTTP: bind it to a private address)")
+            ->envname("PHOTONFARM_METRICS_LISTEN");
         app.add_option("--checkpoint-dir", options.checkpoint_dir,
                        "Keep every job's state here, and resume the jobs found here at start (after a crash or a stop)")
             ->envname("PHOTONFARM_CHECKPOINT_DIR");
@@ -178,9 +183,22 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "photonfarm-coordinator: error: %s\n", std::string(server.status().message()).c_str());
             return 1;
         }
+        std::unique_ptr<pf::MetricsServer> metrics;
+        if (!metrics_listen.empty()) {
+            absl::StatusOr<std::unique_ptr<pf::MetricsServer>> started =
+                pf::MetricsServer::Start(metrics_listen, std::make_shared<pf::CoordinatorMetrics>(coordinator));
+            if (!started.ok()) {
+                std::fprintf(stderr, "photonfarm-coordinator: error: %s\n", std::string(started.status().message()).c_str());
+                return 1;
+            }
+            metrics = std::move(*started);
+        }
         const std::string host = listen.substr(0, listen.rfind(':'));
-        // One line on stdout with the bound address, for scripts that asked for port 0.
+        // A line on stdout with the bound address (and one with the metrics'), for scripts
+        // that asked for port 0.
         std::printf("listening on %s:%d\n", host.c_str(), (*server)->Port());
+        if (metrics)
+            std::printf("metrics on %s:%d\n", metrics_listen.substr(0, metrics_listen.rfind(':')).c_str(), metrics->Port());
         std::fflush(stdout);
         LogSecurity(server_options.security, host, (*server)->Port());
         const int signal = WaitForStopSignal();

@@ -340,6 +340,10 @@ JobProgress Job::Progress(Clock::time_point now) const {
     progress.nonfinite_discarded = nonfinite_discarded_;
     for (const auto& [worker, seen] : workers_seen_)
         if (now - seen < kActiveWindow) ++progress.workers_active;
+    for (const Slot& slot : slots_) {
+        progress.batches_pending += LeasableLocked(slot, now);
+        progress.batches_leased += slot.leased && !slot.result && !slot.folded && slot.deadline > now;
+    }
     progress.message = message_;
     progress.warnings = warnings_;
     return progress;

@@ -77,6 +77,8 @@ struct JobProgress {
     std::optional<ImageDifference> measured_error;  // against the reference, when the job has one
     uint64_t nonfinite_discarded = 0;  // NaN/Inf paths and samples dropped (ProgressiveEstimate)
     uint32_t workers_active = 0;
+    // The current epoch's batches waiting for a worker, and those under a live lease.
+    uint32_t batches_pending = 0, batches_leased = 0;
     std::string message;  // why it failed or was cancelled
     std::vector<std::string> warnings;  // found when it was submitted
 };

@@ -371,7 +371,9 @@ TEST_F(HostilePeersTest, HostileClientIsRefusedAndChangesNothing) {
         contexts.push_back(std::make_unique<grpc::ClientContext>());
         readers.push_back(jobs->WatchJob(contexts.back().get(), watch));
         v1::Snapshot snapshot;
-        if (i < 2) ASSERT_TRUE(readers.back()->Read(&snapshot)) << "watcher " << i;
+        if (i < 2) {
+            ASSERT_TRUE(readers.back()->Read(&snapshot)) << "watcher " << i;
+        }
     }
     v1::Snapshot snapshot;
     EXPECT_FALSE(readers.back()->Read(&snapshot));
