@@ -7,6 +7,7 @@
 #include <chrono>
 
 #include "absl/strings/str_cat.h"
+#include "grpc/health/v1/health.grpc.pb.h"
 #include "worker/proto_convert.h"
 #include "worker/rpc_status.h"
 
@@ -87,6 +88,19 @@ absl::StatusOr<v1::GetResultResponse> FarmClient::GetResult(const std::string& j
     v1::GetResultRequest request;
     request.set_job_id(job_id);
     return Unary<v1::GetResultResponse>(&v1::Jobs::Stub::GetResult, request, kSubmitSeconds);
+}
+
+absl::Status FarmClient::CheckHealth() {
+    grpc::ClientContext context;
+    SetDeadline(&context, kCallSeconds);
+    grpc::health::v1::HealthCheckResponse response;
+    const grpc::Status status =
+        grpc::health::v1::Health::NewStub(channel_)->Check(&context, grpc::health::v1::HealthCheckRequest(), &response);
+    if (!status.ok()) return FromGrpcStatus(status, peer_);
+    if (response.status() != grpc::health::v1::HealthCheckResponse::SERVING)
+        return absl::UnavailableError(absl::StrCat(peer_, ": health ",
+                                                   grpc::health::v1::HealthCheckResponse::ServingStatus_Name(response.status())));
+    return absl::OkStatus();
 }
 
 absl::StatusOr<JobConvergence> FarmClient::Convergence(const std::string& job_id) {

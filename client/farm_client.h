@@ -50,6 +50,9 @@ public:
     absl::StatusOr<photonfarm::v1::ListWorkersResponse> ListWorkers();
     absl::StatusOr<photonfarm::v1::GetResultResponse> GetResult(const std::string& job_id);
     absl::StatusOr<JobConvergence> Convergence(const std::string& job_id);
+    // The standard health service (grpc.health.v1, no token needed): OK when it answers
+    // SERVING, UNAVAILABLE naming the status otherwise.
+    absl::Status CheckHealth();
     // Streams snapshots to `on_snapshot` until the job ends or `on_snapshot` returns false;
     // returns the last one.
     absl::StatusOr<photonfarm::v1::Snapshot> Watch(const std::string& job_id, double interval_seconds, bool images,

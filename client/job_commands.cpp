@@ -131,6 +131,18 @@ void AddJobCommands(CLI::App& app, int* exit_code) {
             return WriteJobReport(client, status.job_id(), result_options->report_dir);
         });
     });
+
+    auto health_options = std::make_shared<CommandOptions>();
+    CLI::App* health = app.add_subcommand(
+        "health", "Ask the coordinator's gRPC health service whether it serves (exit 0 if so): for probes");
+    AddServerOption(health, &health_options->server);
+    health->callback([health_options, exit_code] {
+        Run(*health_options, exit_code, [&](FarmClient& client) -> absl::Status {
+            absl::Status serving = client.CheckHealth();
+            if (serving.ok()) std::printf("SERVING\n");
+            return serving;
+        });
+    });
 }
 
 }  // namespace pf

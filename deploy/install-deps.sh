@@ -13,6 +13,8 @@ packages=(
     libzstd-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev libassimp-dev
     gnuplot-nox fonts-dejavu-core
     clang libclang-rt-14-dev
+    podman buildah runc netavark aardvark-dns debootstrap uidmap slirp4netns fuse-overlayfs
+    containernetworking-plugins docker-compose
 )
 
 missing=()

@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
             ->envname("PHOTONFARM_CHECKPOINT_DIR");
         app.add_option("--checkpoint-seconds", options.checkpoint_seconds,
                        "How often running jobs are checkpointed (also when a job ends, and at shutdown)")
-            ->default_val(options.checkpoint_seconds)->check(pf::FiniteRange(0.01, 86400.0));
+            ->envname("PHOTONFARM_CHECKPOINT_SECONDS")->default_val(options.checkpoint_seconds)->check(pf::FiniteRange(0.01, 86400.0));
         pf::ClientLimits& limits = options.client_limits;
         app.add_option("--max-jobs-per-client", limits.max_jobs_per_client,
                        "Jobs one client (token name, or address without tokens) may run at once")

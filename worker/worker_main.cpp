@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <fstream>
 #include <mutex>
 #include <optional>
 #include <random>
@@ -82,7 +83,8 @@ int main(int argc, char** argv) {
         uint32_t chunks_per_lease = 0;
         app.add_option("--coordinator", coordinator, "Coordinator address HOST:PORT")
             ->envname("PHOTONFARM_COORDINATOR")->required();
-        app.add_option("--threads", threads, "Threads (default: all cores)")->check(CLI::Range(1, 4096));
+        app.add_option("--threads", threads, "Threads (default: all cores)")
+            ->envname("PHOTONFARM_THREADS")->check(CLI::Range(1, 4096));
         app.add_option("--backend", backend, "Photon backend: cpu (Embree) or vulkan (compute on a GPU)")
             ->default_val(backend)
             ->check(CLI::IsMember(pf::BackendNames()));
@@ -95,6 +97,10 @@ int main(int argc, char** argv) {
             },
             "List the devices each backend can run on, and exit");
         app.add_option("--cache-dir", cache_dir, "Keep fetched scenes and hit points here across restarts");
+        std::string alive_file;
+        app.add_option("--alive-file", alive_file,
+                       "Touch this file at every heartbeat the coordinator answers (for container health checks)")
+            ->envname("PHOTONFARM_ALIVE_FILE");
         app.add_option("--chunks-per-lease", chunks_per_lease,
                        "Chunks of 2^19 photons to lease at once (default: one per thread)")
             ->check(CLI::Range(1, 1 << 16));
@@ -137,9 +143,12 @@ int main(int argc, char** argv) {
                             /*report_in_background=*/true);
 
         std::thread heartbeat_thread([&] {
-            while (!stop.WaitFor(source.HeartbeatSeconds()))
+            while (!stop.WaitFor(source.HeartbeatSeconds())) {
                 if (absl::Status status = source.Heartbeat(); !status.ok())
                     spdlog::debug("heartbeat: {}", std::string(status.message()));
+                else if (!alive_file.empty())
+                    std::ofstream(alive_file, std::ios::trunc) << "alive\n";
+            }
         });
 
         int exit_code = 0;

@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# The farm in containers, as deploy/compose.yaml runs it: the images built from
+# deploy/Containerfile, then `docker-compose up --scale worker=3` against podman's Docker API
+# (no Docker engine here), a job rendered to completion through the published port over TLS,
+# its image bit-identical to `photonfarm render`, the health check and the metrics checked.
+# Usage: farm_in_containers_test.sh BUILD_DIR SOURCE_DIR. Skips (77) where podman cannot run.
+BUILD=$1 SOURCE=$2
+source "$SOURCE/tests/containers/podman_env.sh"
+command -v docker-compose >/dev/null || skip "docker-compose is not installed (deploy/install-deps.sh installs it)"
+
+project=pftest$$
+secrets=$W/secrets-$$
+out=$W/out-$$
+service_pid=
+cleanup() {
+    set +e
+    [ -n "${DOCKER_HOST:-}" ] && docker-compose -p "$project" -f "$SOURCE/deploy/compose.yaml" down -v -t 30 > /dev/null 2>&1
+    [ -n "$service_pid" ] && kill "$service_pid" 2> /dev/null && wait "$service_pid" 2> /dev/null
+    rm -rf "$secrets" "$out" "$W/podman-$$.sock"
+}
+trap cleanup EXIT
+free_port() { python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'; }
+
+build_images
+bash "$SOURCE/deploy/make-certs.sh" "$secrets" localhost 127.0.0.1 coordinator > /dev/null
+chmod -R a+rX "$secrets"  # the containers' user (uid 10001) reads them; a test folder only
+mkdir -p "$out"
+
+podman system service --time=0 "unix://$W/podman-$$.sock" > "$W/service.log" 2>&1 &
+service_pid=$!
+export DOCKER_HOST=unix://$W/podman-$$.sock
+for _ in $(seq 100); do [ -S "$W/podman-$$.sock" ] && break; sleep 0.1; done
+
+port=$(free_port) metrics_port=$(free_port)
+export PHOTONFARM_IMAGE=$PF_TAG PHOTONFARM_TAG=test PHOTONFARM_SECRETS=$secrets PHOTONFARM_PORT=$port \
+    PHOTONFARM_METRICS_PORT=$metrics_port
+say "docker-compose up --scale worker=3 (coordinator on 127.0.0.1:$port)"
+docker-compose -p "$project" -f "$SOURCE/deploy/compose.yaml" up -d --no-build --scale worker=3 > "$W/compose.log" 2>&1 \
+    || { cat "$W/compose.log"; exit 1; }
+
+client=("$BUILD/client/photonfarm")
+farm=(--server "127.0.0.1:$port" --tls-ca "$secrets/ca.pem" --token-file "$secrets/client-token" --log-level warn)
+workers=0
+for _ in $(seq 120); do
+    workers=$("${client[@]}" workers "${farm[@]}" 2> /dev/null | tail -n +2 | grep -c . || true)
+    [ "$workers" -ge 3 ] && break
+    sleep 1
+done
+[ "$workers" -eq 3 ] || { echo "FAIL: $workers of 3 workers registered"; docker-compose -p "$project" -f "$SOURCE/deploy/compose.yaml" logs | tail -20; exit 1; }
+say "3 workers registered"
+
+job=(--width 48 --height 48 --photons-per-batch 8192 --batches-per-epoch 6 --seed 3 --photons $((20 * 6 * 8192)))
+"${client[@]}" submit "$SOURCE/scenes/cornell-box.gltf" "${farm[@]}" "${job[@]}" --watch --interval 0 --out "$out/farm.exr" \
+    || { echo "FAIL: the job did not finish"; exit 1; }
+"${client[@]}" render "$SOURCE/scenes/cornell-box.gltf" "${job[@]}" --threads 2 --out "$out/local.exr" --log-level warn
+difference=$("${client[@]}" compare "$out/farm.exr" "$out/local.exr" | awk '/^max_abs/{print $2}')
+[ "$difference" = "0" ] || { echo "FAIL: the farm's image differs from photonfarm render (max_abs $difference)"; exit 1; }
+say "the image is bit-identical to photonfarm render"
+
+# Every worker ran batches.
+idle=$("${client[@]}" workers "${farm[@]}" | awk 'NR > 1 && $5 == 0' | wc -l)
+[ "$idle" -eq 0 ] || { echo "FAIL: $idle workers ran no batch"; exit 1; }
+# The image's health check (the gRPC health service over TLS), and the metrics.
+coordinator=$(podman ps --filter "label=com.docker.compose.project=$project" --filter "label=com.docker.compose.service=coordinator" --format '{{.Names}}')
+podman healthcheck run "$coordinator" > /dev/null || { echo "FAIL: the coordinator's health check"; exit 1; }
+exec 3<> "/dev/tcp/127.0.0.1/$metrics_port"
+printf 'GET /metrics HTTP/1.0\r\nHost: localhost\r\n\r\n' >&3
+metrics=$(cat <&3)
+exec 3>&-
+grep -q '^photonfarm_workers{backend="cpu"} 3' <<< "$metrics" || { echo "FAIL: metrics: workers"; grep photonfarm_workers <<< "$metrics"; exit 1; }
+grep -q "^photonfarm_photons_total $((20 * 6 * 8192))" <<< "$metrics" || { echo "FAIL: metrics: photons"; grep photons_total <<< "$metrics"; exit 1; }
+say "health check and metrics agree"
+
+# Workers leave cleanly on SIGTERM (compose stop sends it): exit 0 and unregistered.
+docker-compose -p "$project" -f "$SOURCE/deploy/compose.yaml" stop -t 60 worker > /dev/null 2>&1
+for name in $(podman ps -a --filter "label=com.docker.compose.project=$project" --filter "label=com.docker.compose.service=worker" --format '{{.Names}}'); do
+    code=$(podman inspect --format '{{.State.ExitCode}}' "$name")
+    [ "$code" = 0 ] || { echo "FAIL: $name exited $code on SIGTERM"; podman logs "$name" | tail -5; exit 1; }
+done
+left=$("${client[@]}" workers "${farm[@]}" | tail -n +2 | grep -c . || true)
+[ "$left" -eq 0 ] || { echo "FAIL: $left workers still registered after SIGTERM"; exit 1; }
+say "PASS: the workers left cleanly on SIGTERM"
