@@ -14,7 +14,7 @@ packages=(
     gnuplot-nox fonts-dejavu-core
     clang libclang-rt-14-dev
     podman buildah runc netavark aardvark-dns debootstrap uidmap slirp4netns fuse-overlayfs
-    containernetworking-plugins docker-compose
+    containernetworking-plugins catatonit docker-compose
 )
 
 missing=()
