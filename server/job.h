@@ -17,6 +17,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -150,7 +151,8 @@ public:
 
     // Checkpoints (job_checkpoint.cpp). A running job's state now, between two folds: its
     // record and estimate, copied under the job's locks (written by the caller, outside them).
-    // FAILED_PRECONDITION once the job has ended.
+    // FAILED_PRECONDITION once the job has ended; ALREADY_EXISTS when nothing was folded since
+    // the last one.
     absl::StatusOr<JobCheckpointData> Checkpoint(Clock::time_point now);
     // An ended job's last state, once, for a job with PreparedJob::checkpointed.
     std::optional<JobCheckpointData> TakeFinalCheckpoint();
@@ -233,6 +235,9 @@ private:
     const bool checkpointed_;
     std::shared_ptr<const LazyBlob> durable_scene_;
     uint64_t checkpoint_sequence_ = 0;
+    // The estimate's (epoch, batches folded) at the last checkpoint: an idle job is not
+    // written again. Under estimate_mutex_.
+    std::pair<uint64_t, uint32_t> checkpointed_at_{UINT64_MAX, 0};
     std::optional<JobCheckpointData> final_checkpoint_;
 
     mutable std::mutex estimate_mutex_;  // guards the estimate and the image cache

@@ -45,6 +45,11 @@ v1::JobCheckpoint Job::RecordLocked(Clock::time_point now) {
 }
 
 absl::StatusOr<JobCheckpointData> Job::Checkpoint(Clock::time_point now) {
+    {
+        std::lock_guard estimate_lock(estimate_mutex_);
+        if (estimate_ && std::pair(estimate_->Epoch(), estimate_->BatchesFolded()) == checkpointed_at_)
+            return absl::AlreadyExistsError(absl::StrCat("job ", id_, ": nothing folded since its last checkpoint"));
+    }
     JobCheckpointData checkpoint;
     {
         std::lock_guard lock(mutex_);
@@ -59,6 +64,7 @@ absl::StatusOr<JobCheckpointData> Job::Checkpoint(Clock::time_point now) {
     ByteWriter writer;
     estimate_->Save(writer);
     checkpoint.estimate = std::move(writer.Bytes());
+    checkpointed_at_ = {estimate_->Epoch(), estimate_->BatchesFolded()};
     return checkpoint;
 }
 
@@ -107,9 +113,11 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     prepared.checkpointed = true;
     const ProgressiveEstimate& restored = *prepared.estimate;
     const uint64_t epochs = restored.Epoch(), photons = restored.PhotonsEmitted(), discarded = restored.NonfiniteDiscarded();
+    const uint32_t restored_folded = restored.BatchesFolded();
     const uint64_t pixels = prepared.reference ? prepared.reference->pixels.size() : 0;
     const auto started = now - std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(record.elapsed_seconds()));
     auto job = std::make_shared<Job>(record.job_id(), std::move(prepared), started);
+    job->checkpointed_at_ = {epochs, restored_folded};
     {
         std::lock_guard lock(job->mutex_);
         job->checkpoint_sequence_ = record.sequence();

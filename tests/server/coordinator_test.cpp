@@ -449,7 +449,7 @@ TEST(CoordinatorCheckpointTest, CorruptOrTruncatedCheckpointsFallBackToThePrevio
     EXPECT_EQ(epochs_resumed(), 0u);
 }
 
-TEST(CoordinatorCheckpointTest, ForgottenJobsLoseTheirCheckpoints) {
+TEST(CoordinatorCheckpointTest, IdleJobsAreNotRewrittenAndForgottenOnesLoseTheirCheckpoints) {
     TempDir dir;
     FakeClock clock;
     CoordinatorOptions options = Durable(&clock, dir.path);
@@ -458,6 +458,8 @@ TEST(CoordinatorCheckpointTest, ForgottenJobsLoseTheirCheckpoints) {
     const std::string first = coordinator.Submit(SmallJob(1'000'000))->job_id;
     coordinator.WriteCheckpoints();
     ASSERT_TRUE(std::filesystem::exists(std::filesystem::path(dir.path) / first));
+    coordinator.WriteCheckpoints();
+    EXPECT_EQ(CheckpointFiles(dir.path, first).size(), 1u) << "an idle job is not written again";
     ASSERT_TRUE(coordinator.Cancel(first).ok());
     ASSERT_TRUE(coordinator.Submit(SmallJob(1'000'000)).ok());  // forgets the ended job
     coordinator.WriteCheckpoints();
