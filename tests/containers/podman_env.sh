@@ -64,7 +64,9 @@ build_images() {
     cp "$SOURCE/deploy/Containerfile" "$context/deploy/"
     for target in coordinator worker; do
         say "building $PF_TAG-$target"
-        podman build --runtime runc --format docker -q -f "$context/deploy/Containerfile" --target "$target" \
+        # --network host: the build's apt reaches the mirror through the host's resolver, which a
+        # bridge network may not reach (a resolver on a host-only address).
+        podman build --runtime runc --network host --format docker -q -f "$context/deploy/Containerfile" --target "$target" \
             --build-arg BASE="$PF_BASE" --build-arg BINARIES=prebuilt -t "$PF_TAG-$target:test" "$context" > /dev/null
     done
 }
