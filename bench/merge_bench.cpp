@@ -116,7 +116,7 @@ void BM_DecodeEpoch(benchmark::State& state) {
         for (const std::string& bytes : r.wire) {
             photonfarm::v1::BatchResult message;
             message.ParseFromString(bytes);
-            benchmark::DoNotOptimize(FromProto(message, hit_points));
+            benchmark::DoNotOptimize(FromProto(message, hit_points, hit_points));
         }
     }
     state.counters["updates/s"] = benchmark::Counter(double(r.entries) * state.iterations(), benchmark::Counter::kIsRate);

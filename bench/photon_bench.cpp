@@ -75,7 +75,7 @@ void BM_PhotonBatch(benchmark::State& state, const std::string& name, bool with_
     double seconds = 0;
     for (auto _ : state) {
         BatchSpec spec = MakeBatchSpec(layout, epoch++, 0, static_cast<uint32_t>(bench.camera_pass.hit_points.size()));
-        if (!with_direct) spec.direct_end = spec.direct_begin;
+        if (!with_direct) spec.sample_end = spec.sample_begin;
         const auto start = std::chrono::steady_clock::now();
         BatchResult result;
         one_thread.execute([&] { result = std::move(RunPhotonBatches(inputs, std::span(&spec, 1), scratch)[0]); });

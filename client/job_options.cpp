@@ -2,18 +2,69 @@
 #include "client/job_options.h"
 
 #include <map>
+#include <optional>
 #include <string>
 
 #include "core/util/command_line.h"
 
 namespace pf {
 
+namespace {
+
+// The choices of an enum flag, by name.
+template <typename Enum>
+CLI::CheckedTransformer EnumChoices(const std::vector<std::string>& names, std::optional<Enum> (*parse)(std::string_view)) {
+    std::map<std::string, Enum> choices;
+    for (const std::string& name : names) choices.emplace(name, *parse(name));
+    return CLI::CheckedTransformer(choices, CLI::ignore_case);
+}
+
+void AddPhotonMapOptions(CLI::App* command, PhotonMapSettings* m, const CLI::AsNumberWithUnit& count) {
+    command->add_option("--pm-photons", m->global_photons,
+                        "pm: photons emitted for the global map. The maps are kept in memory, about 64 bytes per "
+                        "photon stored (a photon is stored at every diffuse bounce): a count that will not fit "
+                        "is refused")
+        ->capture_default_str()->transform(count);
+    command->add_option("--pm-caustic-photons", m->caustic_photons,
+                        "pm: photons emitted for the caustic map (those reaching a diffuse surface through "
+                        "specular bounces are stored)")
+        ->capture_default_str()->transform(count);
+    command->add_option("--pm-nearest", m->nearest, "pm: k, photons per density estimate")
+        ->capture_default_str()->check(CLI::Range(1u, kMaxNearestPhotons));
+    command->add_option("--pm-max-radius", m->max_radius,
+                        "pm: largest radius of the nearest-photon search, world units (default: 2% of the scene's "
+                        "diagonal)")
+        ->check(FinitePositive());
+    command->add_option("--pm-filter", m->filter, "pm: density estimation filter")
+        ->transform(EnumChoices<DensityFilter>({"box", "cone", "gaussian"}, ParseDensityFilter))
+        ->default_str("cone");
+    command->add_option("--final-gather", m->final_gather,
+                        "pm: gather rays per camera sample for indirect light (0: read the global map directly)")
+        ->capture_default_str()->check(CLI::Range(0u, kMaxFinalGatherRays));
+    command->add_option("--photon-index", m->index, "pm: how photons are stored and searched")
+        ->transform(EnumChoices<PhotonIndex>({"kdtree", "grid"}, ParsePhotonIndex))
+        ->default_str("kdtree");
+}
+
+}  // namespace
+
 void AddJobOptions(CLI::App* command, JobSpec* s) {
     const auto count = CLI::AsNumberWithUnit(
         std::map<std::string, uint64_t>{{"k", 1000}, {"m", 1000000}, {"g", 1000000000}, {"t", 1000000000000}},
         CLI::AsNumberWithUnit::CASE_INSENSITIVE, "COUNT");
-    auto* photons = command->add_option("--photons", s->photon_budget, "Photon budget, e.g. 20M (finishes the epoch that reaches it; default 20M)")
+    command->add_option("--integrator", s->integrator,
+                        "Light transport: ppm (progressive photon mapping), sppm (stochastic ppm), pm (classic "
+                        "photon mapping, maps stored in memory), path (path tracing, the unbiased reference); "
+                        "docs/integrators.md")
+        ->transform(EnumChoices<Integrator>(IntegratorNames(), ParseIntegrator))
+        ->default_str("ppm");
+    auto* photons = command->add_option("--photons", s->photon_budget,
+                                        "Photon budget of ppm and sppm, e.g. 20M (finishes the epoch that reaches it; "
+                                        "default 20M)")
                         ->transform(count);
+    command->add_option("--epochs", s->epoch_budget,
+                        "Epoch budget: stop after this many (default for path and pm: 16)")
+        ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
     command->add_option("--seconds", s->seconds_budget, "Time budget in seconds (finishes the epoch that reaches it)")
         ->check(FinitePositive())->excludes(photons);
     command->add_option("--target-error", s->target_error,
@@ -30,7 +81,10 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
     command->add_option("--alpha", s->alpha, "Radius reduction ratio alpha in (0, 1]")->capture_default_str()->check(FiniteRange(1e-9, 1.0));
     command->add_option("--radius", s->initial_radius, "Initial search radius R0, world units (default: one pixel footprint)")
         ->check(FinitePositive());
-    command->add_option("--spp", s->samples_per_pixel, "Hit points (camera paths) per pixel")->default_val(s->samples_per_pixel)
+    command->add_option("--spp", s->samples_per_pixel,
+                        "Camera paths per pixel: hit points (ppm), hit points per epoch (sppm), samples per epoch "
+                        "(path, pm)")
+        ->default_val(s->samples_per_pixel)
         ->check(CLI::Range(1, 1024));
     command->add_option("--seed", s->seed, "Random seed; the same seed and batch layout give the same image")->default_val(s->seed);
     command->add_option("--photon-stream", s->photon_stream,
@@ -39,10 +93,14 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
         ->default_val(s->photon_stream);
     command->add_option("--width", s->width, "Image width in pixels (default: the scene's own (a pbrt Film), else 512)")->check(CLI::Range(1, 32768));
     command->add_option("--height", s->height, "Image height in pixels (default: width / camera aspect)")->check(CLI::Range(1, 32768));
+    AddPhotonMapOptions(command, &s->photon_map, count);
 }
 
 void ApplyDefaultBudget(JobSpec* spec) {
-    if (spec->photon_budget == 0 && spec->seconds_budget == 0 && spec->target_error == 0) spec->photon_budget = 20'000'000;
+    if (spec->photon_budget != 0 || spec->epoch_budget != 0 || spec->seconds_budget != 0 || spec->target_error != 0)
+        return;
+    if (GathersAtHitPoints(spec->integrator)) spec->photon_budget = 20'000'000;
+    else spec->epoch_budget = 16;
 }
 
 }  // namespace pf

@@ -8,8 +8,9 @@
 
 namespace pf {
 
-// Adds --photons/--seconds, --spp, --width/--height, --alpha, --radius, --seed and the batch
-// layout to `command`, writing into `spec`.
+// Adds --integrator, the budgets (--photons, --epochs, --seconds, --target-error), --spp,
+// --width/--height, --alpha, --radius, --seed, the batch layout and classic photon mapping's
+// settings (--pm-*, --final-gather, --photon-index) to `command`, writing into `spec`.
 void AddJobOptions(CLI::App* command, JobSpec* spec);
 // After parsing: the default budget when none was given.
 void ApplyDefaultBudget(JobSpec* spec);

@@ -14,6 +14,8 @@
 #include "core/film/image_metrics.h"
 #include "core/ppm/camera_pass.h"
 #include "core/ppm/caustic_probe.h"
+#include "core/ppm/progressive_estimate.h"
+#include "core/render/pixel_estimate.h"
 #include "core/scene/scene_loader.h"
 #include "core/scene/scene_features.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
@@ -54,19 +56,22 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, const CoordinatorOptions
     if (request.name.empty()) request.name = std::filesystem::path(request.bundle.main_file).filename().string();
     absl::StatusOr<Scene> scene = LoadScene(request.bundle, request.bundle.main_file, {options.scene_limits, nullptr});
     if (!scene.ok()) return scene.status();
-    auto payload = std::make_shared<JobPayload>(std::move(*scene), nullptr, PhotonSeed(request.spec));
+    absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, *scene);
+    if (!film.ok()) return film.status();
+    if (const uint64_t pixels = uint64_t(film->width) * film->height; pixels > client_limits.max_render_pixels)
+        return absl::ResourceExhaustedError(absl::StrFormat(
+            "%s: the image is %dx%d, %d pixels, over this coordinator's limit of %d (--max-render-pixels)",
+            SettingName(names, "settings.width", "--width"), film->width, film->height, pixels, client_limits.max_render_pixels));
+    // The film size resolved: workers that render pixels need it.
+    request.spec.width = film->width;
+    request.spec.height = film->height;
+    auto payload = std::make_shared<JobPayload>(std::move(*scene), nullptr, request.spec);
     if (!payload->emitters.HasPower())
         return absl::InvalidArgumentError(absl::StrCat(request.bundle.main_file, ": lights emit no power"));
     if (const double power = MaxComponent(payload->emitters.TotalPower()); power > kMaxLightPower)
         return absl::InvalidArgumentError(absl::StrFormat(
             "%s: lights emit %.3g W in all, over the %.3g W that single-precision photon sums hold (docs/numerics.md)",
             request.bundle.main_file, power, kMaxLightPower));
-    absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, payload->scene);
-    if (!film.ok()) return film.status();
-    if (const uint64_t pixels = uint64_t(film->width) * film->height; pixels > client_limits.max_render_pixels)
-        return absl::ResourceExhaustedError(absl::StrFormat(
-            "%s: the image is %dx%d, %d pixels, over this coordinator's limit of %d (--max-render-pixels)",
-            SettingName(names, "settings.width", "--width"), film->width, film->height, pixels, client_limits.max_render_pixels));
     // For the camera pass and the job's record; each backend analyses the scene it is given
     // the same way (AnalyseFeatures) for its photon loop.
     film->features = AnalyseFeatures(payload->scene, payload->emitters);
@@ -80,14 +85,22 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, const CoordinatorOptions
         spdlog::info("{}: {:.2f}% of light paths reach a diffuse surface through specular bounces (caustics)",
                      request.name, 100 * probe.Fraction());
     }
-    const auto start = Clock::now();
-    CameraPassResult camera_pass = RunCameraPass(payload->scene, **tracer, *film);
-    const EstimateSettings settings = EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
-    spdlog::info("{}: camera pass: {}x{}, {} hit points in {:.2f} s, initial radius {:.4g}", request.name, film->width,
-                 film->height, camera_pass.hit_points.size(),
-                 std::chrono::duration<double>(Clock::now() - start).count(), settings.initial_radius);
     PreparedJob prepared;
-    prepared.estimate = std::make_unique<ProgressiveEstimate>(std::move(camera_pass), settings);
+    if (GathersAtHitPoints(request.spec.integrator)) {
+        const auto start = Clock::now();
+        CameraPassResult camera_pass = RunCameraPass(payload->scene, **tracer, *film);
+        const EstimateSettings settings = EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
+        spdlog::info("{}: camera pass: {}x{}, {} hit points in {:.2f} s, initial radius {:.4g}", request.name, film->width,
+                     film->height, camera_pass.hit_points.size(),
+                     std::chrono::duration<double>(Clock::now() - start).count(), settings.initial_radius);
+        prepared.estimate = std::make_unique<ProgressiveEstimate>(std::move(camera_pass), settings);
+    } else {
+        const PhotonMapSettings& maps = request.spec.photon_map;
+        prepared.estimate = std::make_unique<PixelEstimate>(PixelEstimateSettings{
+            request.spec.integrator, film->width, film->height, film->samples_per_pixel,
+            request.spec.layout.batches_per_epoch,
+            request.spec.integrator == Integrator::kPm ? maps.global_photons + maps.caustic_photons : 0});
+    }
     payload->hit_points = prepared.estimate->SharedHitPoints();
     prepared.payload = std::move(payload);
     prepared.name = std::move(request.name);
@@ -238,7 +251,7 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
         for (const auto& [id, worker] : workers_) threads += worker.registration.threads;
         const BatchLayout& layout = prepared->spec.layout;
         const uint64_t chunks = uint64_t{layout.batches_per_epoch} * ChunkCount(MakeBatchSpec(layout, 0, 0, 0));
-        if (chunks < threads)
+        if (GathersAtHitPoints(prepared->spec.integrator) && chunks < threads)
             prepared->warnings.push_back(absl::StrFormat(
                 "an epoch runs as %d chunks of photons but the workers have %d threads, so at most %d of them "
                 "work at once: ask for more photons per epoch (batches_per_epoch x photons_per_batch, %d photons "
@@ -359,12 +372,12 @@ std::vector<WorkerView> Coordinator::ListWorkers() const {
     return views;
 }
 
-std::shared_ptr<Job> Coordinator::PickJobLocked(Clock::time_point now) const {
+std::shared_ptr<Job> Coordinator::PickJobLocked(const std::string& backend, Clock::time_point now) const {
     std::shared_ptr<Job> best;
     uint32_t best_leased = 0;
     for (const std::string& id : job_order_) {  // oldest first: ties go to the older job
         const std::shared_ptr<Job>& job = jobs_.at(id);
-        if (job->Leasable(now) == 0) continue;
+        if (!RunsOnBackend(job->Kind(), backend) || job->Leasable(now) == 0) continue;
         const uint32_t leased = job->Leased(now);
         if (!best || job->Priority() > best->Priority() ||
             (job->Priority() == best->Priority() && leased < best_leased)) {
@@ -388,7 +401,7 @@ absl::StatusOr<CoordinatorLease> Coordinator::Lease(const std::string& worker_id
         if (worker == workers_.end())
             return absl::NotFoundError(absl::StrCat("worker_id: unknown worker '", worker_id, "'"));
         worker->second.last_seen = now;
-        if (std::shared_ptr<Job> job = PickJobLocked(now)) {
+        if (std::shared_ptr<Job> job = PickJobLocked(worker->second.registration.backend, now)) {
             Job::Lease granted = job->LeaseBatches(worker_id, chunks, now, now + Duration(options_.lease_seconds));
             if (!granted.batches.empty()) {
                 lease.grant = {job->Id(), std::move(granted.payload), granted.epoch->epoch, granted.epoch->radius_sq,

@@ -17,8 +17,8 @@ constexpr auto kActiveWindow = std::chrono::seconds(10);
 double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
 bool SameSpec(const BatchSpec& a, const BatchSpec& b) {
-    return a.index == b.index && a.epoch == b.epoch && a.photons == b.photons && a.direct_begin == b.direct_begin &&
-           a.direct_end == b.direct_end;
+    return a.index == b.index && a.epoch == b.epoch && a.photons == b.photons && a.sample_begin == b.sample_begin &&
+           a.sample_end == b.sample_end;
 }
 
 }  // namespace
@@ -43,8 +43,9 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
       spec_(prepared.spec),
       priority_(prepared.priority),
       started_(submitted),
-      hit_point_count_(prepared.estimate->HitPoints().size()),
-      initial_radius_(prepared.estimate->Settings().initial_radius),
+      hit_point_count_(GathersAtHitPoints(prepared.estimate->Kind()) ? prepared.estimate->ItemCount() : 0),
+      item_count_(prepared.estimate->ItemCount()),
+      initial_radius_(prepared.estimate->InitialRadius()),
       scene_features_(std::move(prepared.scene_features)),
       reference_(std::move(prepared.reference)),
       payload_(std::move(prepared.payload)),
@@ -232,7 +233,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
                           reference_ ? reference_->pixels.size() : 0});
         ++version_;
         finished = true;
-        if (BudgetFraction(spec_, photons_merged_, Seconds(now - started_), estimated_error_) >= 1.0) {
+        if (BudgetFraction(spec_, photons_merged_, epochs_merged_, Seconds(now - started_), estimated_error_) >= 1.0) {
             if (!reached) {
                 warnings_.push_back(absl::StrCat("no light reached anything the camera sees in ", photons_merged_,
                                                  " photons: the image is emission only (a light shut inside a closed "
@@ -334,7 +335,7 @@ JobProgress Job::Progress(Clock::time_point now) const {
     progress.elapsed_seconds = Seconds(end - started_);
     progress.photons_per_second = progress.elapsed_seconds > 0 ? photons_merged_ / progress.elapsed_seconds : 0;
     progress.budget_fraction =
-        state_ == JobState::kDone ? 1.0 : BudgetFraction(spec_, photons_merged_, progress.elapsed_seconds, estimated_error_);
+        state_ == JobState::kDone ? 1.0 : BudgetFraction(spec_, photons_merged_, epochs_merged_, progress.elapsed_seconds, estimated_error_);
     progress.estimated_error = estimated_error_;
     progress.measured_error = measured_error_;
     progress.nonfinite_discarded = nonfinite_discarded_;

@@ -24,7 +24,7 @@
 #include "core/film/image.h"
 #include "core/ppm/convergence.h"
 #include "core/ppm/job_spec.h"
-#include "core/ppm/progressive_estimate.h"
+#include "core/render/estimate.h"
 #include "core/scene/scene_bundle.h"
 #include "core/scene/scene_loader.h"
 #include "server/checkpoint_store.h"
@@ -91,7 +91,7 @@ struct PreparedJob {
     int priority = 0;
     SceneBundle bundle;
     std::shared_ptr<const JobPayload> payload;
-    std::unique_ptr<ProgressiveEstimate> estimate;
+    std::unique_ptr<Estimate> estimate;
     std::vector<std::string> warnings;
     std::shared_ptr<const Image> reference;  // measured against after every epoch, when set
     std::string scene_features;  // SceneFeatures::ToString of the scene
@@ -108,6 +108,9 @@ public:
     const std::string& Id() const { return id_; }
     const std::string& Owner() const { return owner_; }
     int Priority() const { return priority_; }
+    Integrator Kind() const { return spec_.integrator; }
+    // What a batch's sample slice indexes: hit points, or pixels (Estimate::ItemCount).
+    uint64_t ItemCount() const { return item_count_; }
     bool Running() const;
 
     // Snapshot streams open on this job: AddWatcher is false when `limit` are open already.
@@ -205,7 +208,8 @@ private:
     const JobSpec spec_;
     const int priority_;
     const Clock::time_point started_;
-    const uint64_t hit_point_count_;
+    const uint64_t hit_point_count_;  // 0 for the integrators that render pixels
+    const uint64_t item_count_;       // what a batch's sample slice indexes (Estimate::ItemCount)
     const double initial_radius_;
     const std::string scene_features_;
     const std::shared_ptr<const Image> reference_;
@@ -241,7 +245,7 @@ private:
     std::optional<JobCheckpointData> final_checkpoint_;
 
     mutable std::mutex estimate_mutex_;  // guards the estimate and the image cache
-    std::unique_ptr<ProgressiveEstimate> estimate_;  // null once the job has ended
+    std::unique_ptr<Estimate> estimate_;  // null once the job has ended
     mutable std::shared_ptr<const Image> image_;
     mutable uint64_t image_epoch_ = UINT64_MAX;
 };

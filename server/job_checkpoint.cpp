@@ -91,16 +91,19 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     absl::StatusOr<Scene> scene = LoadScene(*bundle, bundle->main_file, {limits, nullptr});
     if (!scene.ok()) return scene.status();
     ByteReader reader(checkpoint.estimate);
-    absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> estimate = ProgressiveEstimate::Load(reader);
+    absl::StatusOr<std::unique_ptr<Estimate>> estimate = LoadEstimate(reader);
     if (!estimate.ok()) return lost(std::string(estimate.status().message()));
     if (!reader.AtEnd()) return lost("bytes after the estimate");
+    if ((*estimate)->Kind() != spec->integrator)
+        return lost(absl::StrCat("a ", std::string(IntegratorName((*estimate)->Kind())), " estimate for a ",
+                                 std::string(IntegratorName(spec->integrator)), " job"));
 
     PreparedJob prepared;
     prepared.name = record.name();
     prepared.owner = record.owner();
     prepared.spec = *spec;
     prepared.priority = record.settings().priority();
-    prepared.payload = std::make_shared<JobPayload>(std::move(*scene), (*estimate)->SharedHitPoints(), PhotonSeed(*spec));
+    prepared.payload = std::make_shared<JobPayload>(std::move(*scene), (*estimate)->SharedHitPoints(), *spec);
     prepared.estimate = std::move(*estimate);
     prepared.bundle = std::move(*bundle);
     prepared.warnings.assign(record.warnings().begin(), record.warnings().end());
@@ -111,7 +114,7 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     }
     prepared.scene_features = record.scene_features();
     prepared.checkpointed = true;
-    const ProgressiveEstimate& restored = *prepared.estimate;
+    const Estimate& restored = *prepared.estimate;
     const uint64_t epochs = restored.Epoch(), photons = restored.PhotonsEmitted(), discarded = restored.NonfiniteDiscarded();
     const uint32_t restored_folded = restored.BatchesFolded();
     const uint64_t pixels = prepared.reference ? prepared.reference->pixels.size() : 0;

@@ -85,7 +85,7 @@ grpc::Status WorkService::LeaseBatches(grpc::ServerContext* context, const v1::L
     job->set_scene_digest(scene->Get().digest);
     job->set_hit_points_digest(hit_points->Get().digest);
     job->set_hit_point_count(lease->grant.job->hit_points->size());
-    job->set_seed(lease->grant.job->seed);
+    *job->mutable_settings() = ToProto(lease->grant.job->spec);
     response->set_radii_digest(lease->epoch->blob.Get().digest);
     for (const BatchSpec& spec : lease->grant.batches) *response->add_batches() = ToProto(spec);
     response->set_lease_seconds(lease->lease_seconds);
@@ -123,7 +123,8 @@ grpc::Status WorkService::ReportTally(grpc::ServerContext* context, const v1::Re
         return grpc::Status::OK;
     }
     const uint64_t hit_points = (*job)->Progress(coordinator_.Options().now()).hit_points;
-    absl::StatusOr<BatchResult> result = FromProto(request->result(), static_cast<uint32_t>(hit_points));
+    absl::StatusOr<BatchResult> result =
+        FromProto(request->result(), static_cast<uint32_t>(hit_points), static_cast<uint32_t>((*job)->ItemCount()));
     if (!result.ok()) {
         coordinator_.CountMalformed();
         return ToGrpcStatus(result.status());

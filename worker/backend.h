@@ -12,6 +12,7 @@
 #include "absl/status/statusor.h"
 #include "core/ppm/batch.h"
 #include "core/ppm/hit_point.h"
+#include "core/ppm/job_spec.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene.h"
 
@@ -23,6 +24,9 @@ struct JobInputs {
     const Emitters* emitters = nullptr;
     std::span<const HitPoint> hit_points;
     uint64_t seed = 0;
+    // The integrator, the film (its size resolved) and the photon maps' settings; null for
+    // progressive photon mapping's batches alone (tests, benchmarks).
+    const JobSpec* spec = nullptr;
 };
 
 class Backend {
@@ -31,7 +35,8 @@ public:
     virtual std::string_view Name() const = 0;
     // Makes `job` the job that following epochs and batches belong to.
     virtual absl::Status BeginJob(const JobInputs& job) = 0;
-    // Sets the current epoch's squared search radii, one per hit point (copied).
+    // Sets the current epoch's squared search radii, one per hit point (copied); none for
+    // the integrators that render pixels.
     virtual absl::Status BeginEpoch(std::span<const float> radius_sq) = 0;
     // Runs the batches, in parallel where the backend can; results in the order of `specs`.
     // Errors are the device's (a lost GPU), never the batches'.

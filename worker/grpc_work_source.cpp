@@ -136,9 +136,16 @@ absl::StatusOr<WorkGrant> GrpcWorkSource::Lease(uint32_t chunks) {
     WorkGrant grant;
     if (response.batches().empty()) return grant;
     const v1::JobInputs& job = response.job();
-    if (job.hit_point_count() == 0 || job.hit_point_count() > kMaxHitPoints)
-        return absl::InternalError(absl::StrCat(address_, ": a job of ", job.hit_point_count(), " hit points"));
-    absl::StatusOr<std::shared_ptr<const JobPayload>> payload = PayloadFor(job);
+    absl::StatusOr<JobSpec> spec = FromProto(job.settings());
+    if (!spec.ok()) return absl::InternalError(absl::StrCat(address_, ": a job's settings: ", spec.status().message()));
+    const bool gathers = GathersAtHitPoints(spec->integrator);
+    if ((job.hit_point_count() == 0) == gathers || job.hit_point_count() > kMaxHitPoints || spec->width == 0 ||
+        spec->height == 0)
+        return absl::InternalError(absl::StrCat(address_, ": a ", std::string(IntegratorName(spec->integrator)), " job of ",
+                                                job.hit_point_count(), " hit points and a ", spec->width, "x",
+                                                spec->height, " film"));
+    const uint64_t items = gathers ? job.hit_point_count() : uint64_t(spec->width) * uint64_t(spec->height);
+    absl::StatusOr<std::shared_ptr<const JobPayload>> payload = PayloadFor(job, *spec);
     if (!payload.ok()) return payload.status();
     absl::StatusOr<std::shared_ptr<const std::vector<float>>> radii = RadiiFor(response.radii_digest(), job.hit_point_count());
     if (!radii.ok()) return radii.status();
@@ -149,8 +156,9 @@ absl::StatusOr<WorkGrant> GrpcWorkSource::Lease(uint32_t chunks) {
         grant.batches.push_back(FromProto(spec));
         if (grant.batches.back().epoch != grant.batches.front().epoch)
             return absl::InternalError(absl::StrCat(address_, ": a lease mixed epochs"));
-        if (grant.batches.back().direct_end > job.hit_point_count())
-            return absl::InternalError(absl::StrCat(address_, ": a batch's direct slice lies outside the hit points"));
+        if (grant.batches.back().sample_end > items)
+            return absl::InternalError(absl::StrCat(address_, ": a batch's sample slice lies outside the job's ", items,
+                                                    gathers ? " hit points" : " pixels"));
     }
     grant.epoch = grant.batches.front().epoch;
     return grant;
@@ -220,8 +228,9 @@ absl::StatusOr<std::string> GrpcWorkSource::FetchBlob(const std::string& digest,
     return bytes;
 }
 
-absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(const v1::JobInputs& job) {
-    const std::string key = absl::StrCat(job.scene_digest(), "/", job.hit_points_digest(), "/", job.seed());
+absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(const v1::JobInputs& job, const JobSpec& spec) {
+    const std::string key = absl::StrCat(job.scene_digest(), "/", job.hit_points_digest(), "/",
+                                         Sha256Hex(job.settings().SerializeAsString()));
     {
         std::lock_guard lock(mutex_);
         if (std::shared_ptr<const JobPayload> payload = Lookup(payloads_, key)) return payload;
@@ -237,7 +246,9 @@ absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(con
     // whatever they were (the bundle's own size limit still bounds it).
     SceneLoadOptions options;
     options.limits.max_triangles = options.limits.max_image_pixels = options.limits.max_instances = uint64_t{1} << 31;
-    options.texture_filter = false;  // photons look textures up at a point
+    // Photons look textures up at a point; camera samples (path, pm) filter them over their
+    // footprint, as the camera pass does.
+    options.texture_filter = !GathersAtHitPoints(spec.integrator);
     absl::StatusOr<Scene> scene = LoadScene(*bundle, bundle->main_file, options);
     if (!scene.ok()) return scene.status();
     absl::StatusOr<std::string> hit_point_bytes = FetchBlob(job.hit_points_digest(), true);
@@ -245,7 +256,7 @@ absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(con
     absl::StatusOr<std::vector<HitPoint>> hit_points = DecodeHitPoints(*hit_point_bytes, job.hit_point_count());
     if (!hit_points.ok()) return hit_points.status();
     auto payload = std::make_shared<const JobPayload>(
-        std::move(*scene), std::make_shared<const std::vector<HitPoint>>(std::move(*hit_points)), job.seed());
+        std::move(*scene), std::make_shared<const std::vector<HitPoint>>(std::move(*hit_points)), spec);
     spdlog::info("job {}: scene ({} bytes) and {} hit points ({} bytes) fetched in {:.2f} s", job.job_id(),
                  scene_bytes->size(), job.hit_point_count(), hit_point_bytes->size(),
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

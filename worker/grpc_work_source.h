@@ -40,7 +40,7 @@ private:
     absl::StatusOr<std::string> WorkerId();
     void Forget(const std::string& worker_id);
     absl::StatusOr<std::string> FetchBlob(const std::string& digest, bool keep_on_disk);
-    absl::StatusOr<std::shared_ptr<const JobPayload>> PayloadFor(const photonfarm::v1::JobInputs& job);
+    absl::StatusOr<std::shared_ptr<const JobPayload>> PayloadFor(const photonfarm::v1::JobInputs& job, const JobSpec& spec);
     absl::StatusOr<std::shared_ptr<const std::vector<float>>> RadiiFor(const std::string& digest, uint64_t count);
 
     std::shared_ptr<grpc::Channel> channel_;

@@ -24,13 +24,13 @@ photonfarm::v1::BatchSpec ToProto(const BatchSpec& spec) {
     out.set_index(spec.index);
     out.set_epoch(spec.epoch);
     out.set_photons(spec.photons);
-    out.set_direct_begin(spec.direct_begin);
-    out.set_direct_end(spec.direct_end);
+    out.set_sample_begin(spec.sample_begin);
+    out.set_sample_end(spec.sample_end);
     return out;
 }
 
 BatchSpec FromProto(const photonfarm::v1::BatchSpec& spec) {
-    return {spec.index(), spec.epoch(), spec.photons(), spec.direct_begin(), spec.direct_end()};
+    return {spec.index(), spec.epoch(), spec.photons(), spec.sample_begin(), spec.sample_end()};
 }
 
 photonfarm::v1::BatchResult ToProto(const BatchResult& result) {
@@ -50,22 +50,23 @@ photonfarm::v1::BatchResult ToProto(const BatchResult& result) {
         tally->add_inner_photons(result.tally.inner_photons[e]);
         for (int c = 0; c < 3; ++c) tally->add_flux(result.tally.flux[e][c]);
     }
-    out.mutable_direct()->Reserve(static_cast<int>(3 * result.direct.size()));
-    for (const Rgb& direct : result.direct)
-        for (int c = 0; c < 3; ++c) out.add_direct(direct[c]);
+    out.mutable_samples()->Reserve(static_cast<int>(3 * result.samples.size()));
+    for (const Rgb& sample : result.samples)
+        for (int c = 0; c < 3; ++c) out.add_samples(sample[c]);
     out.set_photons_emitted(result.photons_emitted);
     out.set_segments_traced(result.segments_traced);
     out.set_nonfinite_discarded(result.nonfinite_discarded);
     return out;
 }
 
-absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message, uint32_t hit_point_count) {
+absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message, uint32_t hit_point_count,
+                                      uint32_t item_count) {
     BatchResult result;
     result.spec = FromProto(message.spec());
     const BatchSpec& spec = result.spec;
-    if (spec.direct_begin > spec.direct_end || spec.direct_end > hit_point_count)
-        return Invalid(absl::StrCat("direct slice [", spec.direct_begin, ", ", spec.direct_end,
-                                    ") lies outside the ", hit_point_count, " hit points"));
+    if (spec.sample_begin > spec.sample_end || spec.sample_end > item_count)
+        return Invalid(absl::StrCat("sample slice [", spec.sample_begin, ", ", spec.sample_end,
+                                    ") lies outside the job's ", item_count, " items"));
     const photonfarm::v1::Tally& tally = message.tally();
     const int entries = tally.hit_point_delta_size();
     if (tally.photons_size() != entries || tally.inner_photons_size() != entries || tally.flux_size() != 3 * entries)
@@ -96,15 +97,15 @@ absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message
         result.tally.inner_photons[e] = tally.inner_photons(e);
         result.tally.flux[e] = flux;
     }
-    const uint32_t slice = spec.direct_end - spec.direct_begin;
-    if (static_cast<uint64_t>(message.direct_size()) != 3ull * slice)
-        return Invalid(absl::StrCat("direct has ", message.direct_size(), " values for a slice of ", slice));
-    result.direct.resize(slice);
+    const uint32_t slice = spec.sample_end - spec.sample_begin;
+    if (static_cast<uint64_t>(message.samples_size()) != 3ull * slice)
+        return Invalid(absl::StrCat("samples has ", message.samples_size(), " values for a slice of ", slice));
+    result.samples.resize(slice);
     for (uint32_t i = 0; i < slice; ++i) {
-        const Rgb direct(message.direct(3 * i), message.direct(3 * i + 1), message.direct(3 * i + 2));
+        const Rgb direct(message.samples(3 * i), message.samples(3 * i + 1), message.samples(3 * i + 2));
         if (!NonNegativeFinite(direct.x) || !NonNegativeFinite(direct.y) || !NonNegativeFinite(direct.z))
-            return Invalid(absl::StrCat("direct sample ", i, " is negative, NaN or Inf"));
-        result.direct[i] = direct;
+            return Invalid(absl::StrCat("sample ", i, " is negative, NaN or Inf"));
+        result.samples[i] = direct;
     }
     if (message.photons_emitted() != spec.photons)
         return Invalid(absl::StrCat("emitted ", message.photons_emitted(), " photons for a batch of ", spec.photons));
@@ -153,6 +154,19 @@ photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
     out.set_photon_stream(spec.photon_stream);
     out.set_photons_per_batch(spec.layout.photons_per_batch);
     out.set_batches_per_epoch(spec.layout.batches_per_epoch);
+    out.set_integrator(static_cast<photonfarm::v1::Integrator>(static_cast<int>(spec.integrator) + 1));
+    out.set_epoch_budget(spec.epoch_budget);
+    if (spec.integrator == Integrator::kPm) {
+        const PhotonMapSettings& maps = spec.photon_map;
+        photonfarm::v1::PhotonMapSettings* out_maps = out.mutable_photon_map();
+        out_maps->set_global_photons(maps.global_photons);
+        out_maps->set_caustic_photons(maps.caustic_photons);
+        out_maps->set_nearest(maps.nearest);
+        out_maps->set_max_radius(maps.max_radius);
+        out_maps->set_filter(static_cast<photonfarm::v1::DensityFilter>(static_cast<int>(maps.filter) + 1));
+        out_maps->set_final_gather(maps.final_gather);
+        out_maps->set_index(static_cast<photonfarm::v1::PhotonIndex>(static_cast<int>(maps.index) + 1));
+    }
     return out;
 }
 
@@ -176,6 +190,26 @@ absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings) {
     if (settings.photons_per_batch() != 0) spec.layout.photons_per_batch = settings.photons_per_batch();
     if (settings.batches_per_epoch() != 0) spec.layout.batches_per_epoch = settings.batches_per_epoch();
     spec.target_error = settings.target_error();
+    spec.epoch_budget = settings.epoch_budget();
+    // The enums are the core ones shifted by one, 0 meaning the default.
+    const auto enum_value = [&](int value, int count, const char* field, auto* out) -> absl::Status {
+        if (value < 0 || value > count) return too_large(field, static_cast<uint64_t>(value));
+        if (value > 0) *out = static_cast<std::remove_pointer_t<decltype(out)>>(value - 1);
+        return absl::OkStatus();
+    };
+    PhotonMapSettings& maps = spec.photon_map;
+    const photonfarm::v1::PhotonMapSettings& in_maps = settings.photon_map();
+    for (absl::Status status : {enum_value(settings.integrator(), 4, "integrator", &spec.integrator),
+                                enum_value(in_maps.filter(), 3, "photon_map.filter", &maps.filter),
+                                enum_value(in_maps.index(), 2, "photon_map.index", &maps.index)})
+        if (!status.ok()) return status;
+    if (in_maps.global_photons() != 0 || in_maps.caustic_photons() != 0) {
+        maps.global_photons = in_maps.global_photons();
+        maps.caustic_photons = in_maps.caustic_photons();
+    }
+    if (in_maps.nearest() != 0) maps.nearest = in_maps.nearest();
+    maps.max_radius = in_maps.max_radius();
+    maps.final_gather = in_maps.final_gather();
     if (absl::Status status = CheckJobSpec(spec, SettingNames::kFields); !status.ok()) return status;
     return spec;
 }

@@ -21,10 +21,13 @@ photonfarm::v1::BatchSpec ToProto(const BatchSpec& spec);
 BatchSpec FromProto(const photonfarm::v1::BatchSpec& spec);
 
 photonfarm::v1::BatchResult ToProto(const BatchResult& result);
-// Checks, for a job with `hit_point_count` hit points: entries sorted and in range, one
-// photon count and three finite, non-negative flux values per entry, counts > 0, the direct
-// slice inside the hit points with three finite, non-negative values per hit point.
-absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& result, uint32_t hit_point_count);
+// Checks, for a job with `hit_point_count` hit points (0 for the integrators that render
+// pixels) whose sample slices index `item_count` items (its hit points, or its pixels):
+// entries sorted and in range, one photon count and three finite, non-negative flux values
+// per entry, counts > 0, the sample slice inside the items with three finite, non-negative
+// values per item.
+absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& result, uint32_t hit_point_count,
+                                      uint32_t item_count);
 
 photonfarm::v1::SceneBundle ToProto(const SceneBundle& bundle);
 // Checks paths and limits (CheckSceneBundle) and refuses a path given twice.

@@ -12,6 +12,7 @@
 #include "absl/status/statusor.h"
 #include "core/ppm/batch.h"
 #include "core/ppm/hit_point.h"
+#include "core/ppm/job_spec.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene.h"
 
@@ -20,15 +21,21 @@ namespace pf {
 // What every batch of a job needs, fixed for the job. Not copyable: the emitters refer to
 // the scene.
 struct JobPayload {
-    JobPayload(Scene scene_in, std::shared_ptr<const std::vector<HitPoint>> hit_points_in, uint64_t seed_in)
-        : scene(std::move(scene_in)), emitters(scene), hit_points(std::move(hit_points_in)), seed(seed_in) {}
+    JobPayload(Scene scene_in, std::shared_ptr<const std::vector<HitPoint>> hit_points_in, const JobSpec& spec_in)
+        : scene(std::move(scene_in)),
+          emitters(scene),
+          hit_points(std::move(hit_points_in)),
+          seed(PhotonSeed(spec_in)),
+          spec(spec_in) {}
     JobPayload(const JobPayload&) = delete;
     JobPayload& operator=(const JobPayload&) = delete;
 
     Scene scene;
     Emitters emitters;
-    std::shared_ptr<const std::vector<HitPoint>> hit_points;
-    uint64_t seed;
+    std::shared_ptr<const std::vector<HitPoint>> hit_points;  // empty for the integrators that render pixels
+    uint64_t seed;  // of the photons, light and pixel samples (PhotonSeed)
+    // The job's settings, its film size resolved (FilmFor): the integrator and its settings.
+    JobSpec spec;
 };
 
 // Batches leased to this worker, all of one epoch of one job, with what they need.

@@ -90,7 +90,8 @@ absl::StatusOr<WorkerLoop::JobBackend*> WorkerLoop::BackendFor(const WorkGrant& 
         absl::StatusOr<std::unique_ptr<Backend>> backend = CreateBackend(backend_name_, grant.job->scene);
         if (!backend.ok()) return BackendError(backend.status(), backend_name_, grant.job_id);
         const JobPayload& job = *grant.job;
-        if (absl::Status status = (*backend)->BeginJob({&job.scene, &job.emitters, *job.hit_points, job.seed}); !status.ok())
+        if (absl::Status status = (*backend)->BeginJob({&job.scene, &job.emitters, *job.hit_points, job.seed, &job.spec});
+            !status.ok())
             return BackendError(status, backend_name_, grant.job_id);
         backends_.push_front({grant.job_id, grant.job, std::move(*backend)});
         if (backends_.size() > kBackendsKept) backends_.pop_back();

@@ -34,13 +34,18 @@ struct BatchSpec {
     uint64_t index = 0;       // global batch index: epoch * batches_per_epoch + batch_in_epoch
     uint64_t epoch = 0;
     uint32_t photons = 0;     // photon paths to emit
-    // Each batch also takes one direct-light sample for a slice of the hit points, so the
-    // direct estimate is refined progressively and shared out like the photons.
-    uint32_t direct_begin = 0, direct_end = 0;
+    // Each batch also takes one sample for each item of a slice: for the photon mappers a
+    // direct-light sample per hit point, so the direct estimate is refined progressively and
+    // shared out like the photons; for the integrators that sample pixels (path, pm) the
+    // radiance of each pixel's camera samples, and then photons is 0.
+    uint32_t sample_begin = 0, sample_end = 0;
 };
 
-// How many chunks `spec` runs as.
-inline uint32_t ChunkCount(const BatchSpec& spec) { return (spec.photons + kPhotonsPerChunk - 1) / kPhotonsPerChunk; }
+// How many chunks `spec` runs as; a batch that renders pixels (no photons) counts as one, for
+// leases: it runs its pixels in parallel.
+inline uint32_t ChunkCount(const BatchSpec& spec) {
+    return spec.photons == 0 ? 1 : (spec.photons + kPhotonsPerChunk - 1) / kPhotonsPerChunk;
+}
 
 // Batch `batch_in_epoch` of `epoch` for a job with `hit_point_count` hit points.
 BatchSpec MakeBatchSpec(const BatchLayout& layout, uint64_t epoch, uint32_t batch_in_epoch,
@@ -62,7 +67,7 @@ struct Tally {
 struct BatchResult {
     BatchSpec spec;
     Tally tally;
-    std::vector<Rgb> direct;       // one direct-light sample per hit point in the spec's slice
+    std::vector<Rgb> samples;      // one per item of the spec's slice (BatchSpec::sample_begin)
     uint64_t photons_emitted = 0;  // every path emitted, escaped or absorbed ones included
     uint64_t segments_traced = 0;  // photon rays cast, for throughput statistics
     // Photon paths and direct-light samples dropped because a value had become NaN or Inf

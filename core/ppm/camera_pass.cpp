@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/math/morton.h"
+#include "core/render/pixel_sample.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/specular.h"
@@ -114,11 +115,9 @@ std::vector<uint32_t> MortonOrder(const std::vector<HitPoint>& hit_points, const
 CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                                const CameraPassSettings& settings) {
     const int width = settings.width, height = settings.height, spp = settings.samples_per_pixel;
-    const float film_aspect = static_cast<float>(width) / static_cast<float>(height);
+    const Film film{width, height, spp};
     const float pixel_angle = scene.camera.PixelAngle(height);
     const float filter_angle = pixel_angle / std::sqrt(static_cast<float>(settings.samples_per_pixel));
-    // Stratified jitter: sample s of a pixel falls in cell s of a strata x strata grid.
-    const int strata = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(spp))));
 
     std::vector<std::vector<HitPoint>> row_hit_points(height);
     std::vector<std::vector<float>> row_footprints(height);
@@ -136,13 +135,7 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                 Rng rng(HashSeed(settings.seed, kCameraStream, pixel));
                 Rgb emission(0.0f);
                 for (int s = 0; s < spp; ++s) {
-                    const float fx = (x + ((s % strata) + rng.NextFloat()) / strata) / width;
-                    const float fy = (y + ((s / strata) + rng.NextFloat()) / strata) / height;
-                    Ray ray = scene.camera.GenerateRay(fx, fy, film_aspect);
-                    if (scene.camera.HasLens()) {  // two more numbers, drawn only with a lens
-                        const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
-                        ray = scene.camera.GenerateRay(fx, fy, film_aspect, SampleUniformDisk(u1, u2));
-                    }
+                    const Ray ray = PixelSampleRay(scene.camera, film, x, y, s, rng);
                     emission += trace(scene, tracer, ray, pixel, pixel_angle, filter_angle, rng, row_hit_points[y],
                                       row_footprints[y]);
                 }

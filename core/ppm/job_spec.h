@@ -13,13 +13,17 @@
 #include "core/ppm/camera_pass.h"
 #include "core/ppm/estimator.h"
 #include "core/ppm/progressive_estimate.h"
+#include "core/render/integrator.h"
 #include "core/scene/scene.h"
 
 namespace pf {
 
 struct JobSpec {
+    Integrator integrator = Integrator::kPpm;
     int width = 0, height = 0;   // 0: 512 wide, or derived from the other and the camera's aspect
-    int samples_per_pixel = 4;   // k hit points per pixel
+    // k: hit points per pixel (ppm), per pixel and epoch (sppm), camera samples per pixel and
+    // epoch (path, pm).
+    int samples_per_pixel = 4;
     uint64_t seed = 1;           // the same seed and layout give the same image
     // Renders with the same seed and another photon stream share their hit points (the camera
     // pass) but trace independent photons and light samples: how a reference for the error
@@ -28,11 +32,13 @@ struct JobSpec {
     double alpha = kDefaultAlpha;
     double initial_radius = 0;   // R0, world units; 0: one pixel footprint
     BatchLayout layout;
-    uint64_t photon_budget = 0;  // stop after the epoch that reaches it (0: no limit)
+    uint64_t photon_budget = 0;  // stop after the epoch that reaches it (0: no limit); ppm, sppm
+    uint64_t epoch_budget = 0;   // stop after this many epochs (0: no limit)
     double seconds_budget = 0;   // stop after the epoch that reaches it (0: no limit)
     // Stop after the epoch whose estimated relative error (ErrorEstimate::RelativeError) is
     // at most this (0: no target).
     double target_error = 0;
+    PhotonMapSettings photon_map;  // pm only
 };
 
 // Hit points cost about this much memory each across the estimate (~140 bytes, 72 more for
@@ -50,8 +56,14 @@ inline constexpr uint32_t kMaxBatchesPerEpoch = 1u << 16;
 // How errors name a setting: as `photonfarm render`'s flags or as the farm's message fields.
 enum class SettingNames { kFlags, kFields };
 
+// Limits on classic photon mapping's settings (memory is checked apart, PhotonMapBytes).
+inline constexpr uint64_t kMaxMapPhotons = uint64_t{1} << 34;
+inline constexpr uint32_t kMaxNearestPhotons = 4096;
+inline constexpr uint32_t kMaxFinalGatherRays = 4096;
+
 // Every field in range and a budget given; errors name the flag or field.
 absl::Status CheckJobSpec(const JobSpec& spec, SettingNames names = SettingNames::kFlags);
+absl::Status CheckPhotonMapSettings(const PhotonMapSettings& settings, SettingNames names);
 // Film size: what was asked, else the scene's own (pbrt's Film), else 512 wide with the
 // camera's aspect ratio; RESOURCE_EXHAUSTED if its hit points would not fit.
 absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& scene);
@@ -65,6 +77,7 @@ uint64_t PhotonSeed(const JobSpec& spec);
 // The share of the budget spent, in [0, 1]; 1 ends the render after the current epoch.
 // `estimated_error`: the current relative error estimate, if known yet. Toward a target error
 // the share is (target / error)^2, since the squared error falls as 1 / photons.
-double BudgetFraction(const JobSpec& spec, uint64_t photons, double seconds, std::optional<double> estimated_error);
+double BudgetFraction(const JobSpec& spec, uint64_t photons, uint64_t epochs, double seconds,
+                      std::optional<double> estimated_error);
 
 }  // namespace pf

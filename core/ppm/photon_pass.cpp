@@ -228,9 +228,9 @@ std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs, std::s
         BatchResult& result = results[i];
         result.spec = spec;
         result.photons_emitted = spec.photons;
-        result.direct.resize(spec.direct_end - spec.direct_begin);
+        result.samples.resize(spec.sample_end - spec.sample_begin);
         result.nonfinite_discarded += SampleDirectLight(*inputs.emitters, *inputs.tracer, inputs.hit_points,
-                                                        spec.direct_begin, inputs.seed, spec.epoch, result.direct);
+                                                        spec.sample_begin, inputs.seed, spec.epoch, result.samples);
     });
     return results;
 }

@@ -68,14 +68,14 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
             if (even) epoch_flux_even_[i] += flux;
         }
     });
-    PF_CHECK(result.direct.size() == result.spec.direct_end - result.spec.direct_begin &&
-             result.spec.direct_end <= hit_points.size());
+    PF_CHECK(result.samples.size() == result.spec.sample_end - result.spec.sample_begin &&
+             result.spec.sample_end <= hit_points.size());
     // The epoch's direct slices are disjoint and cover every hit point once.
-    std::copy(result.direct.begin(), result.direct.end(), epoch_direct_.begin() + result.spec.direct_begin);
+    std::copy(result.samples.begin(), result.samples.end(), epoch_direct_.begin() + result.spec.sample_begin);
     epoch_photons_emitted_ += result.photons_emitted;
     epoch_nonfinite_discarded_ += result.nonfinite_discarded;
     epoch_light_reached_ = epoch_light_reached_ || tally.Size() > 0 ||
-                           std::any_of(result.direct.begin(), result.direct.end(), [](const Rgb& d) { return !IsBlack(d); });
+                           std::any_of(result.samples.begin(), result.samples.end(), [](const Rgb& d) { return !IsBlack(d); });
     if (even) epoch_photons_emitted_even_ += result.photons_emitted;
     ++batches_folded_;
 }
@@ -113,12 +113,6 @@ void ProgressiveEstimate::FinishEpoch() {
     epoch_photons_emitted_even_ = 0;
     batches_folded_ = 0;
     ++epoch_;
-}
-
-void ProgressiveEstimate::MergeEpoch(std::span<const BatchResult> results) {
-    PF_CHECK(results.size() == settings_.layout.batches_per_epoch && batches_folded_ == 0);
-    for (const BatchResult& result : results) FoldBatch(result);
-    FinishEpoch();
 }
 
 Image ProgressiveEstimate::Resolve() const {
@@ -180,9 +174,7 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
         for (int c = 0; c < 3; ++c) {
             const double d = difference[p][c] * inverse_spp;
             const double v = emission_.pixels[p][c] + value[p][c] * inverse_spp;
-            const double variance = d * d * variance_scale;
-            squared += variance;
-            relative += variance / (v * v + 0.01);
+            AddHalfVariance(v, d, variance_scale, &squared, &relative);
             // b^2 overestimates the squared bias by b's variance: take it off (the sum over
             // pixels is clamped at zero below, not each pixel, to stay unbiased).
             const double b = bias[p][c] * inverse_spp;

@@ -16,24 +16,10 @@
 #include "core/ppm/batch.h"
 #include "core/ppm/camera_pass.h"
 #include "core/ppm/estimator.h"
+#include "core/render/estimate.h"
 #include "core/util/byte_stream.h"
 
 namespace pf {
-
-// The error of the current image estimated without a reference, from two half-estimates:
-// one of the photons of even-numbered batches (and the direct light of even epochs), one of
-// the odd. Both share the radii, so their difference is the noise of the image, not its bias
-// (which shrinks with the radii). Per channel and pixel, the variance of the full estimate is
-// (L_even - L_odd)^2 N_even N_odd / N^2.
-// The estimated error of an image: the variance from the half-estimates plus the squared
-// bias from the inner discs (ProgressiveEstimate::EstimateError).
-struct ErrorEstimate {
-    bool known = false;   // false until both halves have photons and direct light
-    double rmse = 0;      // root mean squared error over pixels and channels
-    double rel_mse = 0;   // mean of squared error / (value^2 + 0.01), as the reference metrics
-    double bias_rmse = 0;  // the part of rmse that is bias: rmse^2 = variance + bias_rmse^2
-    double RelativeError() const { return std::sqrt(rel_mse); }
-};
 
 // A hit point's photon counts, shrunk with tau so that they count photons within the current
 // radius: all of them, those within R / sqrt(2), and the sum of squared weights that gives
@@ -50,51 +36,53 @@ struct EstimateSettings {
     double min_radius = 0;  // radii shrink no further (ShrinkRatio), world units, <= R0
 };
 
-class ProgressiveEstimate {
+class ProgressiveEstimate final : public Estimate {
 public:
     ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings);
 
     std::span<const HitPoint> HitPoints() const { return *hit_points_; }
     // The same hit points, shared with whoever needs them past this object's life.
-    std::shared_ptr<const std::vector<HitPoint>> SharedHitPoints() const { return hit_points_; }
+    std::shared_ptr<const std::vector<HitPoint>> SharedHitPoints() const override { return hit_points_; }
     const PointEstimate& Point(size_t hit_point) const { return points_[hit_point]; }
     const EstimateSettings& Settings() const { return settings_; }
-    uint64_t Epoch() const { return epoch_; }  // the next epoch to merge; also epochs merged
-    uint64_t PhotonsEmitted() const { return photons_emitted_; }  // over the merged epochs
+    Integrator Kind() const override { return Integrator::kPpm; }
+    uint64_t ItemCount() const override { return hit_points_->size(); }
+    uint64_t Epoch() const override { return epoch_; }  // the next epoch to merge; also epochs merged
+    uint64_t PhotonsEmitted() const override { return photons_emitted_; }  // over the merged epochs
+    uint64_t CameraSamples() const override { return emission_.pixels.size() * uint64_t(settings_.samples_per_pixel); }
+    double InitialRadius() const override { return settings_.initial_radius; }
     // Photon paths and direct samples the batches dropped for NaN or Inf, over the merged
     // epochs (BatchResult::nonfinite_discarded); should be 0.
-    uint64_t NonfiniteDiscarded() const { return nonfinite_discarded_; }
+    uint64_t NonfiniteDiscarded() const override { return nonfinite_discarded_; }
     // Whether any photon or direct-light sample has reached any hit point in the merged epochs:
     // false for a light shut inside a closed object, or a camera that sees only what no light
     // reaches (the image is then emission only).
-    bool LightReachedAnything() const { return light_reached_; }
+    bool LightReachedAnything() const override { return light_reached_; }
 
     // This epoch's squared search radii, one per hit point, for the photon pass.
-    std::vector<float> SearchRadiusSq() const;
+    std::vector<float> SearchRadiusSq() const override;
     // The batches of the current epoch, in batch-index order.
-    std::vector<BatchSpec> EpochBatches() const;
+    std::vector<BatchSpec> EpochBatches() const override;
     // Adds the next batch of the current epoch to the epoch's sums: batches must come in
     // batch-index order, so the sums are the same whoever ran them and whenever they arrived.
-    void FoldBatch(const BatchResult& result);
-    uint32_t BatchesFolded() const { return batches_folded_; }
+    void FoldBatch(const BatchResult& result) override;
+    uint32_t BatchesFolded() const override { return batches_folded_; }
     // Once every batch of the epoch is folded: updates N, R, tau and starts the next epoch.
-    void FinishEpoch();
-    // FoldBatch for each of results (results[j] the result of EpochBatches()[j]), then FinishEpoch.
-    void MergeEpoch(std::span<const BatchResult> results);
+    void FinishEpoch() override;
     // The image as of the last merged epoch: emission + direct + tau / (pi R^2 N_emitted),
     // averaged over each pixel's k camera paths.
-    Image Resolve() const;
+    Image Resolve() const override;
     // The error of Resolve()'s image. Variance: from the even and odd half-estimates. Bias:
     // a disc estimate's bias grows as R^2 (radiance locally quadratic), so the estimate from
     // the inner disc of half the area has half the bias, and bias = 2 (L - L_inner), with
     // L_inner / L taken as the photon density ratio 2 inner / all (docs/convergence.md).
-    ErrorEstimate EstimateError() const;
+    ErrorEstimate EstimateError() const override;
 
     // The whole state, hit points included, at an epoch's end or between folds, for a
     // checkpoint. Load restores it bit for bit, so folding the rest of the epochs gives the
     // image an uninterrupted render gives; DATA_LOSS naming what is wrong when the bytes
     // cannot be such a state (estimate_state.cpp).
-    void Save(ByteWriter& out) const;
+    void Save(ByteWriter& out) const override;
     static absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> Load(ByteReader& in);
 
 private:

@@ -36,11 +36,13 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
     scene_center_ = scene.bounds.Center();
     scene_radius_ = std::max(0.5f * scene.bounds.Diagonal(), 1e-30f);
     std::vector<double> weights;
+    emitter_of_triangle_.assign(scene.WorldTriangleCount(), -1);
     auto add = [&](bool is_triangle, uint32_t index, const Rgbd& power) {
-        if (!(Average(power) > 0) || !IsFinite(power)) return;
+        if (!(Average(power) > 0) || !IsFinite(power)) return false;
         emitters_.push_back({is_triangle, index, Rgb(power)});
         weights.push_back(Average(power));
         power_rgb_ += power;
+        return true;
     };
     for (uint32_t t = 0; t < scene.WorldTriangleCount(); ++t) {  // prototypes hold no emitters
         const Material& material = scene.materials[scene.triangles[t].material];
@@ -50,7 +52,8 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
         const Vec3 edge1 = scene.positions[triangle.vertex[1]] - p0, edge2 = scene.positions[triangle.vertex[2]] - p0;
         const auto index = static_cast<uint32_t>(triangles_.size());
         triangles_.push_back({p0, edge1, edge2, Frame::FromNormal(triangle.normal), material.emission, scene.TriangleArea(t)});
-        add(true, index, Rgbd(material.emission) * (kPiD * triangles_.back().area));
+        if (add(true, index, Rgbd(material.emission) * (kPiD * triangles_.back().area)))
+            emitter_of_triangle_[t] = static_cast<int32_t>(emitters_.size() - 1);
     }
     for (uint32_t l = 0; l < scene.lights.size(); ++l) {
         const PunctualLight& light = scene.lights[l];
@@ -135,8 +138,11 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
         if (!(cos_light > 0) || !(distance_sq > 0)) return false;
         // Area pdf 1/A converted to solid angle: d^2 / (cos_light A).
         radiance_over_pdf = triangle.radiance * (cos_light * triangle.area / distance_sq);
+        sample->pdf = static_cast<float>(distribution_.Probability(pick.index)) * distance_sq /
+                      (cos_light * triangle.area);
     } else {
         const PunctualLight& light = scene_.lights[emitter.index];
+        sample->pdf = 0;
         if (light.type == LightType::kDirectional) {
             to_light = -light.direction;
             radiance_over_pdf = light.intensity;
@@ -157,6 +163,17 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
     sample->shadow_ray = {origin, to_light, distance * (1.0f - 1e-4f)};
     sample->radiance_over_pdf = radiance_over_pdf * inverse_probability_[pick.index];
     return true;
+}
+
+float Emitters::PdfDirect(uint32_t triangle, const Vec3& p, const Vec3& on_light) const {
+    if (triangle >= emitter_of_triangle_.size() || emitter_of_triangle_[triangle] < 0) return 0;
+    const auto index = static_cast<uint32_t>(emitter_of_triangle_[triangle]);
+    const EmissiveTriangle& emissive = triangles_[emitters_[index].index];
+    const Vec3 to_light = on_light - p;
+    const float distance_sq = LengthSquared(to_light);
+    const float cos_light = -Dot(emissive.frame.n, to_light) / std::sqrt(distance_sq);
+    if (!(cos_light > 0) || !(distance_sq > 0)) return 0;
+    return static_cast<float>(distribution_.Probability(index)) * distance_sq / (cos_light * emissive.area);
 }
 
 }  // namespace pf

@@ -28,6 +28,10 @@ struct LightSample {
     Ray shadow_ray;         // from the receiver toward the light, t_max short of it
     Vec3 direction;         // unit, receiver to light
     Rgb radiance_over_pdf;  // incident radiance / pdf(solid angle), cosine at the receiver excluded
+    // The sample's density in solid angle at the receiver, the emitter's pick included, for
+    // multiple importance sampling; 0 for a punctual light (a delta, which only light
+    // sampling can find).
+    float pdf = 0;
 };
 
 class Emitters {
@@ -44,6 +48,10 @@ public:
     // One light sample for direct lighting at receiver point p with facing normal n.
     // Returns false when the sample carries no light (behind the light, outside a spot cone).
     bool SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample* sample) const;
+    // The density in solid angle with which SampleDirect, at receiver point p, picks the point
+    // `on_light` of world triangle `triangle` (0 if the triangle emits nothing): for weighing
+    // a path that found the light by scattering against light sampling (Veach 1997, ch. 9).
+    float PdfDirect(uint32_t triangle, const Vec3& p, const Vec3& on_light) const;
 
     // Each emitter as another backend needs it to emit and sample the same light (the Vulkan
     // backend uploads these), in selection order.
@@ -85,6 +93,8 @@ private:
     std::vector<EmissiveTriangle> triangles_;
     DiscreteDistribution distribution_;     // over emitters_, by power
     std::vector<float> inverse_probability_;  // 1 / selection probability, per emitter
+    // Per world triangle, its index into emitters_, or -1 where it emits nothing.
+    std::vector<int32_t> emitter_of_triangle_;
     Rgbd power_rgb_;
     double total_power_ = 0;
     Vec3 scene_center_;

@@ -338,7 +338,7 @@ public:
     v1::TallyVerdict Report(const v1::JobInputs& job, const v1::BatchSpec& spec, const std::string& worker = "") {
         BatchResult result;
         result.spec = FromProto(spec);
-        result.direct.assign(spec.direct_end() - spec.direct_begin(), Rgb(0.0f));
+        result.samples.assign(spec.sample_end() - spec.sample_begin(), Rgb(0.0f));
         result.photons_emitted = spec.photons();
         v1::ReportTallyRequest request;
         request.set_worker_id(worker.empty() ? id_ : worker);

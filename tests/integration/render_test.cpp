@@ -241,7 +241,7 @@ TEST(RenderTest, PhotonsAndDirectSamplesTurnedNanAreDroppedAndCounted) {
     ASSERT_EQ(results.size(), 1u);
     EXPECT_GT(results[0].nonfinite_discarded, hit_points.size()) << "the direct samples and the scattered photons";
     for (const Rgb& flux : results[0].tally.flux) EXPECT_TRUE(IsFinite(flux));
-    for (const Rgb& direct : results[0].direct) EXPECT_TRUE(IsFinite(direct));
+    for (const Rgb& direct : results[0].samples) EXPECT_TRUE(IsFinite(direct));
 }
 
 }  // namespace

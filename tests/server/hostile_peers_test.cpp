@@ -205,8 +205,8 @@ public:
             result.mutable_tally()->add_inner_photons(0);
             for (int c = 0; c < 3; ++c) result.mutable_tally()->add_flux(1.0f);
         }
-        for (uint32_t i = spec.direct_begin(); i < spec.direct_end(); ++i)
-            for (int c = 0; c < 3; ++c) result.add_direct(0.5f);
+        for (uint32_t i = spec.sample_begin(); i < spec.sample_end(); ++i)
+            for (int c = 0; c < 3; ++c) result.add_samples(0.5f);
         result.set_photons_emitted(spec.photons());
         return result;
     }
@@ -283,7 +283,7 @@ TEST_F(HostilePeersTest, HostileWorkerMergesNothingAndTheJobStillRendersExactly)
         poisoned.mutable_tally()->set_flux(4, bad);
         EXPECT_EQ(hostile.Report(job_id, poisoned, &verdict).error_code(), grpc::StatusCode::INVALID_ARGUMENT) << bad;
         v1::BatchResult poisoned_direct = HostileWorker::Plausible(held);
-        poisoned_direct.set_direct(0, bad);
+        poisoned_direct.set_samples(0, bad);
         EXPECT_EQ(hostile.Report(job_id, poisoned_direct, &verdict).error_code(), grpc::StatusCode::INVALID_ARGUMENT) << bad;
     }
     v1::BatchResult repeated = HostileWorker::Plausible(held);

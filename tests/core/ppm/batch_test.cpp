@@ -16,8 +16,8 @@ TEST(BatchTest, DirectSlicesTileTheHitPointsAndIndicesAreGlobal) {
             EXPECT_EQ(spec.index, 3u * 7u + j);
             EXPECT_EQ(spec.epoch, 3u);
             EXPECT_EQ(spec.photons, 1000u);
-            EXPECT_EQ(spec.direct_begin, next);
-            next = spec.direct_end;
+            EXPECT_EQ(spec.sample_begin, next);
+            next = spec.sample_end;
         }
         EXPECT_EQ(next, hit_points);
     }

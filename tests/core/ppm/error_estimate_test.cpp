@@ -38,7 +38,7 @@ BatchResult Batch(const ProgressiveEstimate& estimate, uint32_t batch_in_epoch, 
     result.tally.photons = {photons};
     result.tally.inner_photons = {inner};
     result.tally.flux = {Rgb(flux)};
-    result.direct.assign(result.spec.direct_end - result.spec.direct_begin, Rgb(0.0f));
+    result.samples.assign(result.spec.sample_end - result.spec.sample_begin, Rgb(0.0f));
     result.photons_emitted = kPhotons;
     return result;
 }
@@ -100,10 +100,10 @@ TEST(ErrorEstimateTest, AgreeingHalvesGiveZeroAndTheTargetEndsTheBudget) {
     EXPECT_EQ(error.rmse, 0.0);
     JobSpec spec;
     spec.target_error = 0.01;
-    EXPECT_EQ(BudgetFraction(spec, 0, 0, std::nullopt), 0.0) << "an unknown error spends none of the budget";
-    EXPECT_DOUBLE_EQ(BudgetFraction(spec, 0, 0, 0.02), 0.25) << "half the error needs four times the photons";
-    EXPECT_EQ(BudgetFraction(spec, 0, 0, 0.01), 1.0);
-    EXPECT_EQ(BudgetFraction(spec, 0, 0, error.RelativeError()), 1.0) << "no noise at all meets any target";
+    EXPECT_EQ(BudgetFraction(spec, 0, 0, 0, std::nullopt), 0.0) << "an unknown error spends none of the budget";
+    EXPECT_DOUBLE_EQ(BudgetFraction(spec, 0, 0, 0, 0.02), 0.25) << "half the error needs four times the photons";
+    EXPECT_EQ(BudgetFraction(spec, 0, 0, 0, 0.01), 1.0);
+    EXPECT_EQ(BudgetFraction(spec, 0, 0, 0, error.RelativeError()), 1.0) << "no noise at all meets any target";
 }
 
 }  // namespace

@@ -41,8 +41,8 @@ BatchResult RandomBatch(const BatchSpec& spec) {
         result.tally.inner_photons.push_back(rng() % (photons + 1));
         result.tally.flux.push_back(Rgb(float(rng() % 1000) * 1e-3f, float(rng() % 1000) * 1e-3f, 0.25f));
     }
-    for (uint32_t i = spec.direct_begin; i < spec.direct_end; ++i)
-        result.direct.push_back(Rgb(float(rng() % 100) * 1e-2f, 0.5f, 0.0f));
+    for (uint32_t i = spec.sample_begin; i < spec.sample_end; ++i)
+        result.samples.push_back(Rgb(float(rng() % 100) * 1e-2f, 0.5f, 0.0f));
     result.photons_emitted = spec.photons;
     return result;
 }

@@ -1,8 +1,11 @@
 // CPU batch execution.
 #include "worker/backends/cpu_embree/cpu_backend.h"
 
+#include <cmath>
+
 #include "absl/strings/str_cat.h"
 #include "core/ppm/photon_pass.h"
+#include "core/render/path_tracer.h"
 #include "core/util/check.h"
 
 namespace pf::embree {
@@ -13,16 +16,35 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     job_ = job;
     features_ = AnalyseFeatures(*job.scene, *job.emitters);
     grid_ = HashGrid();
+    radiance_ = nullptr;
+    switch (job.spec != nullptr ? job.spec->integrator : Integrator::kPpm) {
+        case Integrator::kPpm:
+        case Integrator::kSppm: break;
+        case Integrator::kPath: {
+            const float filter_angle = job.scene->camera.PixelAngle(job.spec->height) /
+                                       std::sqrt(static_cast<float>(job.spec->samples_per_pixel));
+            radiance_ = [inputs = PathInputs{job.scene, job.emitters, &tracer_, features_, filter_angle}](
+                            const Ray& ray, Rng& rng) { return TracePath(inputs, ray, rng); };
+            break;
+        }
+        case Integrator::kPm:
+            return absl::UnimplementedError("classic photon mapping is not built yet (issue 8)");
+    }
     return absl::OkStatus();
 }
 
 absl::Status CpuBackend::BeginEpoch(std::span<const float> radius_sq) {
     PF_CHECK(radius_sq.size() == job_.hit_points.size());
-    grid_.Build(job_.hit_points, radius_sq);
+    if (!radius_sq.empty()) grid_.Build(job_.hit_points, radius_sq);
     return absl::OkStatus();
 }
 
 absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const BatchSpec> specs) {
+    if (radiance_) {
+        const JobSpec& spec = *job_.spec;
+        return RunPixelBatches(job_.scene->camera, {spec.width, spec.height, spec.samples_per_pixel}, job_.seed, specs,
+                               radiance_);
+    }
     return RunPhotonBatches({job_.scene, job_.emitters, &tracer_, job_.hit_points, &grid_, job_.seed, features_}, specs,
                             scratch_);
 }

@@ -1,5 +1,6 @@
-// The CPU photon backend: batches' chunks run in parallel on the calling TBB arena, photons
-// traced through a Tracer (Embree), gathered through a hit-point hash grid rebuilt each epoch.
+// The CPU backend: batches' chunks run in parallel on the calling TBB arena, photons traced
+// through a Tracer (Embree), gathered through a hit-point hash grid rebuilt each epoch; or,
+// for the integrators that render pixels, pixels in parallel.
 #pragma once
 
 #include <vector>
@@ -7,6 +8,7 @@
 #include "core/geometry/tracer.h"
 #include "core/ppm/hash_grid.h"
 #include "core/ppm/photon_pass.h"
+#include "core/render/pixel_pass.h"
 #include "worker/backend.h"
 
 namespace pf::embree {
@@ -27,6 +29,7 @@ private:
     SceneFeatures features_;  // the job's, selecting the photon loop's variant
     HashGrid grid_;
     PhotonPassScratch scratch_;
+    RadianceFunction radiance_;  // path, pm: a camera sample's radiance
 };
 
 }  // namespace pf::embree

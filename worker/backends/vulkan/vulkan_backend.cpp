@@ -199,6 +199,9 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     if (job.scene == nullptr || job.emitters == nullptr || !job.emitters->HasPower())
         return absl::InvalidArgumentError("job has no scene or no light");
     if (job.scene != &scene_) return absl::InvalidArgumentError("job's scene is not the backend's");
+    if (job.spec != nullptr && !RunsOnBackend(job.spec->integrator, Name()))
+        return absl::FailedPreconditionError(absl::StrCat("the vulkan backend does not run the ",
+                                                          std::string(IntegratorName(job.spec->integrator)), " integrator"));
     if (job.hit_points.size() >= (size_t{1} << 31)) return absl::ResourceExhaustedError("over 2^31 hit points");
     buffers_.reset();
     kernels_.reset();
@@ -315,13 +318,13 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
         kernels_->Dispatch(*commands, Kernel::kPhotonTrace, params,
                            Groups(std::min<uint64_t>(per_dispatch, spec.photons - first), gpu::kWorkgroupSize));
     }
-    const uint32_t direct_count = spec.direct_end - spec.direct_begin;
+    const uint32_t direct_count = spec.sample_end - spec.sample_begin;
     gpu::GpuParams direct = BaseParams();
     direct.seed_prefix = DirectLightSeeds(job_.seed, spec.epoch).Prefix();
-    direct.end = spec.direct_end;
-    direct.direct_begin = spec.direct_begin;
+    direct.end = spec.sample_end;
+    direct.direct_begin = spec.sample_begin;
     for (uint64_t first = 0; first < direct_count; first += per_dispatch) {
-        direct.first = static_cast<uint32_t>(spec.direct_begin + first);
+        direct.first = static_cast<uint32_t>(spec.sample_begin + first);
         kernels_->Dispatch(*commands, Kernel::kDirectLight, direct,
                            Groups(std::min<uint64_t>(per_dispatch, direct_count - first), gpu::kWorkgroupSize));
     }
@@ -346,7 +349,7 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
 }
 
 BatchResult VulkanBackend::ReadResult(const BatchSpec& spec) const {
-    const uint32_t direct_count = spec.direct_end - spec.direct_begin;
+    const uint32_t direct_count = spec.sample_end - spec.sample_begin;
     const auto n = static_cast<uint32_t>(job_.hit_points.size());
     BatchResult result;
     result.spec = spec;
@@ -371,9 +374,9 @@ BatchResult VulkanBackend::ReadResult(const BatchSpec& spec) const {
         out.flux[e] = {entries[e].flux[0], entries[e].flux[1], entries[e].flux[2]};
     }
     const auto* direct_samples = static_cast<const gpu::vec4*>(buffers_->direct_readback.Mapped());
-    result.direct.resize(direct_count);
+    result.samples.resize(direct_count);
     for (uint32_t i = 0; i < direct_count; ++i)
-        result.direct[i] = {direct_samples[i].x, direct_samples[i].y, direct_samples[i].z};
+        result.samples[i] = {direct_samples[i].x, direct_samples[i].y, direct_samples[i].z};
     return result;
 }
 

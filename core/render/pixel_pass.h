@@ -1,0 +1,33 @@
+// Batches of the integrators that render pixels (path, pm): each takes every pixel of its
+// slice `samples_per_pixel` times and returns the mean per pixel. A pixel's samples in an
+// epoch draw from a stream seeded by (seed, epoch, pixel) alone, so a batch is a pure
+// function of its spec, whoever runs it.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <vector>
+
+#include "core/geometry/ray.h"
+#include "core/ppm/batch.h"
+#include "core/render/pixel_sample.h"
+#include "core/sampling/rng.h"
+#include "core/scene/camera.h"
+
+namespace pf {
+
+// The radiance arriving along a camera ray, one sample; called from many threads at once.
+using RadianceFunction = std::function<Rgb(const Ray& ray, Rng& rng)>;
+
+// The streams of epoch `epoch`'s pixel samples: pixel p draws from
+// Rng(PixelSeeds(seed, epoch).Seed(p)).
+SeedFamily PixelSeeds(uint64_t seed, uint64_t epoch);
+
+// Runs the batches on the calling TBB arena, pixels in parallel; results in the order of
+// `specs`. A sample that comes out NaN or Inf counts as black and is counted in
+// nonfinite_discarded.
+std::vector<BatchResult> RunPixelBatches(const Camera& camera, const Film& film, uint64_t seed,
+                                         std::span<const BatchSpec> specs, const RadianceFunction& radiance);
+
+}  // namespace pf
