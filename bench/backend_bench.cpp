@@ -46,7 +46,7 @@ absl::StatusOr<Rate> Measure(const std::string& backend_name, const std::string&
     if (!backend.ok()) return backend.status();
     if (absl::Status status = (*backend)->BeginJob({&*scene, &emitters, estimate.HitPoints(), 1}); !status.ok())
         return status;
-    if (absl::Status status = (*backend)->BeginEpoch(estimate.SearchRadiusSq()); !status.ok()) return status;
+    if (absl::Status status = (*backend)->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq()); !status.ok()) return status;
     const std::vector<BatchSpec> batches = estimate.EpochBatches();
     if (absl::StatusOr<std::vector<BatchResult>> warm = (*backend)->RunBatches(std::span(batches).first(1)); !warm.ok())
         return warm.status();

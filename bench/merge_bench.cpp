@@ -56,7 +56,7 @@ Recorded& Record() {
     const Emitters emitters(r.scene);
     std::unique_ptr<Backend> backend = std::move(*CreateBackend("cpu", r.scene));
     (void)backend->BeginJob({&r.scene, &emitters, estimate.HitPoints(), 1});
-    (void)backend->BeginEpoch(estimate.SearchRadiusSq());
+    (void)backend->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq());
     const std::vector<BatchSpec> specs = estimate.EpochBatches();
     {
         tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
@@ -70,7 +70,7 @@ Recorded& Record() {
     // real epochs later they have spread out as in any long run.
     estimate.MergeEpoch(r.results);
     for (int epoch = 1; epoch < 4; ++epoch) {
-        (void)backend->BeginEpoch(estimate.SearchRadiusSq());
+        (void)backend->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq());
         estimate.MergeEpoch(*backend->RunBatches(estimate.EpochBatches()));
     }
     {

@@ -16,6 +16,7 @@
 #include "core/ppm/caustic_probe.h"
 #include "core/ppm/progressive_estimate.h"
 #include "core/render/pixel_estimate.h"
+#include "server/camera_passes.h"
 #include "core/scene/scene_loader.h"
 #include "core/scene/scene_features.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
@@ -86,14 +87,22 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, const CoordinatorOptions
                      request.name, 100 * probe.Fraction());
     }
     PreparedJob prepared;
-    if (GathersAtHitPoints(request.spec.integrator)) {
+    const Integrator integrator = request.spec.integrator;
+    if (GathersAtHitPoints(integrator)) {
         const auto start = Clock::now();
-        CameraPassResult camera_pass = RunCameraPass(payload->scene, **tracer, *film);
-        const EstimateSettings settings = EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
+        EpochCameraPass passes;
+        if (integrator == Integrator::kSppm) {
+            absl::StatusOr<EpochCameraPass> stochastic = StochasticCameraPasses(payload, *film);
+            if (!stochastic.ok()) return stochastic.status();
+            passes = std::move(*stochastic);
+        }
+        CameraPassResult camera_pass = passes ? passes(0) : RunCameraPass(payload->scene, **tracer, *film);
+        EstimateSettings settings = EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
+        settings.stochastic = integrator == Integrator::kSppm;
         spdlog::info("{}: camera pass: {}x{}, {} hit points in {:.2f} s, initial radius {:.4g}", request.name, film->width,
                      film->height, camera_pass.hit_points.size(),
                      std::chrono::duration<double>(Clock::now() - start).count(), settings.initial_radius);
-        prepared.estimate = std::make_unique<ProgressiveEstimate>(std::move(camera_pass), settings);
+        prepared.estimate = std::make_unique<ProgressiveEstimate>(std::move(camera_pass), settings, std::move(passes));
     } else {
         const PhotonMapSettings& maps = request.spec.photon_map;
         prepared.estimate = std::make_unique<PixelEstimate>(PixelEstimateSettings{
@@ -101,7 +110,9 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, const CoordinatorOptions
             request.spec.layout.batches_per_epoch,
             request.spec.integrator == Integrator::kPm ? maps.global_photons + maps.caustic_photons : 0});
     }
-    payload->hit_points = prepared.estimate->SharedHitPoints();
+    // Workers trace a stochastic job's hit points themselves, epoch by epoch.
+    payload->hit_points = integrator == Integrator::kSppm ? std::make_shared<const std::vector<HitPoint>>()
+                                                          : prepared.estimate->SharedHitPoints();
     prepared.payload = std::move(payload);
     prepared.name = std::move(request.name);
     prepared.owner = std::move(request.owner);

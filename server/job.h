@@ -109,6 +109,8 @@ public:
     const std::string& Owner() const { return owner_; }
     int Priority() const { return priority_; }
     Integrator Kind() const { return spec_.integrator; }
+    // The hit points batches gather at (0 for the integrators that render pixels).
+    uint64_t HitPointCount() const { return hit_point_count_; }
     // What a batch's sample slice indexes: hit points, or pixels (Estimate::ItemCount).
     uint64_t ItemCount() const { return item_count_; }
     bool Running() const;

@@ -4,6 +4,10 @@
 
 #include "absl/strings/str_cat.h"
 #include "server/job.h"
+
+#include "core/ppm/progressive_estimate.h"
+#include "core/scene/scene_features.h"
+#include "server/camera_passes.h"
 #include "worker/proto_convert.h"
 
 namespace pf {
@@ -103,7 +107,19 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     prepared.owner = record.owner();
     prepared.spec = *spec;
     prepared.priority = record.settings().priority();
-    prepared.payload = std::make_shared<JobPayload>(std::move(*scene), (*estimate)->SharedHitPoints(), *spec);
+    const bool stochastic = spec->integrator == Integrator::kSppm;
+    auto payload = std::make_shared<JobPayload>(
+        std::move(*scene),
+        stochastic ? std::make_shared<const std::vector<HitPoint>>() : (*estimate)->SharedHitPoints(), *spec);
+    if (stochastic) {  // its next epochs' hit points are traced here again
+        absl::StatusOr<CameraPassSettings> film = FilmFor(*spec, payload->scene);
+        if (!film.ok()) return lost(std::string(film.status().message()));
+        film->features = AnalyseFeatures(payload->scene, payload->emitters);
+        absl::StatusOr<EpochCameraPass> passes = StochasticCameraPasses(payload, *film);
+        if (!passes.ok()) return passes.status();
+        static_cast<ProgressiveEstimate&>(**estimate).SetEpochCameraPass(std::move(*passes));
+    }
+    prepared.payload = std::move(payload);
     prepared.estimate = std::move(*estimate);
     prepared.bundle = std::move(*bundle);
     prepared.warnings.assign(record.warnings().begin(), record.warnings().end());

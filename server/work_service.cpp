@@ -84,7 +84,7 @@ grpc::Status WorkService::LeaseBatches(grpc::ServerContext* context, const v1::L
     job->set_job_id(lease->grant.job_id);
     job->set_scene_digest(scene->Get().digest);
     job->set_hit_points_digest(hit_points->Get().digest);
-    job->set_hit_point_count(lease->grant.job->hit_points->size());
+    job->set_hit_point_count(lease->job->HitPointCount());
     *job->mutable_settings() = ToProto(lease->grant.job->spec);
     response->set_radii_digest(lease->epoch->blob.Get().digest);
     for (const BatchSpec& spec : lease->grant.batches) *response->add_batches() = ToProto(spec);

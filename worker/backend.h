@@ -35,9 +35,11 @@ public:
     virtual std::string_view Name() const = 0;
     // Makes `job` the job that following epochs and batches belong to.
     virtual absl::Status BeginJob(const JobInputs& job) = 0;
-    // Sets the current epoch's squared search radii, one per hit point (copied); none for
-    // the integrators that render pixels.
-    virtual absl::Status BeginEpoch(std::span<const float> radius_sq) = 0;
+    // Begins epoch `epoch`: sets its squared search radii, one per hit point (copied); none
+    // for the integrators that render pixels. For stochastic progressive photon mapping the
+    // backend first traces the epoch's hit points itself (StochasticCameraPass), as the
+    // coordinator does, rather than receiving them.
+    virtual absl::Status BeginEpoch(uint64_t epoch, std::span<const float> radius_sq) = 0;
     // Runs the batches, in parallel where the backend can; results in the order of `specs`.
     // Errors are the device's (a lost GPU), never the batches'.
     virtual absl::StatusOr<std::vector<BatchResult>> RunBatches(std::span<const BatchSpec> specs) = 0;

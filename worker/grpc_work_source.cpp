@@ -136,16 +136,16 @@ absl::StatusOr<WorkGrant> GrpcWorkSource::Lease(uint32_t chunks) {
     WorkGrant grant;
     if (response.batches().empty()) return grant;
     const v1::JobInputs& job = response.job();
-    absl::StatusOr<JobSpec> spec = FromProto(job.settings());
-    if (!spec.ok()) return absl::InternalError(absl::StrCat(address_, ": a job's settings: ", spec.status().message()));
-    const bool gathers = GathersAtHitPoints(spec->integrator);
-    if ((job.hit_point_count() == 0) == gathers || job.hit_point_count() > kMaxHitPoints || spec->width == 0 ||
-        spec->height == 0)
-        return absl::InternalError(absl::StrCat(address_, ": a ", std::string(IntegratorName(spec->integrator)), " job of ",
-                                                job.hit_point_count(), " hit points and a ", spec->width, "x",
-                                                spec->height, " film"));
-    const uint64_t items = gathers ? job.hit_point_count() : uint64_t(spec->width) * uint64_t(spec->height);
-    absl::StatusOr<std::shared_ptr<const JobPayload>> payload = PayloadFor(job, *spec);
+    absl::StatusOr<JobSpec> settings = FromProto(job.settings());
+    if (!settings.ok()) return absl::InternalError(absl::StrCat(address_, ": a job's settings: ", settings.status().message()));
+    const bool gathers = GathersAtHitPoints(settings->integrator);
+    if ((job.hit_point_count() == 0) == gathers || job.hit_point_count() > kMaxHitPoints || settings->width == 0 ||
+        settings->height == 0)
+        return absl::InternalError(absl::StrCat(address_, ": a ", std::string(IntegratorName(settings->integrator)), " job of ",
+                                                job.hit_point_count(), " hit points and a ", settings->width, "x",
+                                                settings->height, " film"));
+    const uint64_t items = gathers ? job.hit_point_count() : uint64_t(settings->width) * uint64_t(settings->height);
+    absl::StatusOr<std::shared_ptr<const JobPayload>> payload = PayloadFor(job, *settings);
     if (!payload.ok()) return payload.status();
     absl::StatusOr<std::shared_ptr<const std::vector<float>>> radii = RadiiFor(response.radii_digest(), job.hit_point_count());
     if (!radii.ok()) return radii.status();
@@ -246,14 +246,16 @@ absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(con
     // whatever they were (the bundle's own size limit still bounds it).
     SceneLoadOptions options;
     options.limits.max_triangles = options.limits.max_image_pixels = options.limits.max_instances = uint64_t{1} << 31;
-    // Photons look textures up at a point; camera samples (path, pm) filter them over their
-    // footprint, as the camera pass does.
-    options.texture_filter = !GathersAtHitPoints(spec.integrator);
+    // Photons look textures up at a point; camera samples traced here (sppm, path, pm) filter
+    // them over their footprint, as the coordinator's camera pass does.
+    options.texture_filter = spec.integrator != Integrator::kPpm;
     absl::StatusOr<Scene> scene = LoadScene(*bundle, bundle->main_file, options);
     if (!scene.ok()) return scene.status();
     absl::StatusOr<std::string> hit_point_bytes = FetchBlob(job.hit_points_digest(), true);
     if (!hit_point_bytes.ok()) return hit_point_bytes.status();
-    absl::StatusOr<std::vector<HitPoint>> hit_points = DecodeHitPoints(*hit_point_bytes, job.hit_point_count());
+    // A stochastic job's hit points are traced here, epoch by epoch (CpuBackend::BeginEpoch).
+    const uint64_t sent = spec.integrator == Integrator::kSppm ? 0 : job.hit_point_count();
+    absl::StatusOr<std::vector<HitPoint>> hit_points = DecodeHitPoints(*hit_point_bytes, sent);
     if (!hit_points.ok()) return hit_points.status();
     auto payload = std::make_shared<const JobPayload>(
         std::move(*scene), std::make_shared<const std::vector<HitPoint>>(std::move(*hit_points)), spec);

@@ -100,7 +100,7 @@ absl::StatusOr<WorkerLoop::JobBackend*> WorkerLoop::BackendFor(const WorkGrant& 
     }
     JobBackend& current = backends_.front();
     if (current.epoch != grant.epoch) {
-        if (absl::Status status = current.backend->BeginEpoch(*grant.radius_sq); !status.ok())
+        if (absl::Status status = current.backend->BeginEpoch(grant.epoch, *grant.radius_sq); !status.ok())
             return BackendError(status, backend_name_, grant.job_id);
         current.epoch = grant.epoch;
     }

@@ -28,7 +28,7 @@ struct CameraPath {
 };
 
 // Traces one camera sample; appends the hit points it reaches and returns the emission it saw.
-// At its first kCameraSplits glass interfaces the path follows both reflection and
+// At its first `splits` (up to kCameraSplits) glass interfaces the path follows both reflection and
 // transmission, each weighted by its probability, instead of choosing one at random: the few
 // percent of reflection on glass would otherwise show as speckle, since hit points are kept.
 // Instantiated for the scene's features: without specular materials every path ends at its
@@ -37,12 +37,12 @@ struct CameraPath {
 // the square root of its samples, as pbrt-v4 scales its ray differentials).
 template <bool kSpecular, bool kTextures>
 Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& primary, uint32_t pixel,
-                      float pixel_angle, float filter_angle, Rng& rng, std::vector<HitPoint>& hit_points,
+                      float pixel_angle, float filter_angle, int splits, Rng& rng, std::vector<HitPoint>& hit_points,
                       std::vector<float>& footprints) {
     Rgb emission(0.0f);
     CameraPath stack[kCameraSplits + 1];
     int pending = 0;
-    stack[pending++] = {primary, Rgb(1.0f), 0.0f, 0, kCameraSplits};
+    stack[pending++] = {primary, Rgb(1.0f), 0.0f, 0, splits};
     while (pending > 0) {
         CameraPath path = stack[--pending];
         for (; path.depth < kMaxCameraDepth; ++path.depth) {
@@ -118,6 +118,7 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     const Film film{width, height, spp};
     const float pixel_angle = scene.camera.PixelAngle(height);
     const float filter_angle = pixel_angle / std::sqrt(static_cast<float>(settings.samples_per_pixel));
+    const int splits = settings.stochastic ? 0 : kCameraSplits;
 
     std::vector<std::vector<HitPoint>> row_hit_points(height);
     std::vector<std::vector<float>> row_footprints(height);
@@ -136,8 +137,14 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                 Rgb emission(0.0f);
                 for (int s = 0; s < spp; ++s) {
                     const Ray ray = PixelSampleRay(scene.camera, film, x, y, s, rng);
-                    emission += trace(scene, tracer, ray, pixel, pixel_angle, filter_angle, rng, row_hit_points[y],
-                                      row_footprints[y]);
+                    const size_t before = row_hit_points[y].size();
+                    emission += trace(scene, tracer, ray, pixel, pixel_angle, filter_angle, splits, rng,
+                                      row_hit_points[y], row_footprints[y]);
+                    // A stochastic pass keeps one slot per sample, black where it found nothing.
+                    if (settings.stochastic && row_hit_points[y].size() == before) {
+                        row_hit_points[y].push_back({Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), Rgb(0.0f), pixel});
+                        row_footprints[y].push_back(0.0f);
+                    }
                 }
                 result.emission.At(x, y) = emission / static_cast<float>(spp);
             }
@@ -148,6 +155,11 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     for (int y = 0; y < height; ++y) {
         hit_points.insert(hit_points.end(), row_hit_points[y].begin(), row_hit_points[y].end());
         footprints.insert(footprints.end(), row_footprints[y].begin(), row_footprints[y].end());
+    }
+    if (settings.stochastic) {  // slots stay in pixel order: slot i is the state's index i
+        result.hit_points = std::move(hit_points);
+        result.footprint = std::move(footprints);
+        return result;
     }
     // Order hit points along a Morton curve: those a photon finds together then lie together
     // in memory, for the grid's candidates and the tally's sums alike.
@@ -161,9 +173,19 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     return result;
 }
 
+CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, uint64_t epoch) {
+    constexpr uint64_t kStochasticStream = 0x73707070ull;
+    CameraPassSettings settings = film;
+    settings.seed = HashSeed(film.seed, kStochasticStream, epoch);
+    settings.stochastic = true;
+    return settings;
+}
+
 float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& scene) {
-    if (camera_pass.footprint.empty()) return 0.0f;
-    std::vector<float> footprints = camera_pass.footprint;
+    std::vector<float> footprints;  // of the slots that hold a hit point
+    for (float footprint : camera_pass.footprint)
+        if (footprint > 0) footprints.push_back(footprint);
+    if (footprints.empty()) return 0.0f;
     auto middle = footprints.begin() + static_cast<std::ptrdiff_t>(footprints.size() / 2);
     std::nth_element(footprints.begin(), middle, footprints.end());
     return std::min(*middle, 0.01f * scene.bounds.Diagonal());

@@ -19,14 +19,21 @@ struct CameraPassSettings {
     int width = 512, height = 512;
     int samples_per_pixel = 4;  // k: hit points traced per pixel
     uint64_t seed = 0;
+    // Stochastic progressive photon mapping's pass (Hachisuka & Jensen 2009), traced anew
+    // every epoch: each sample follows one branch at glass rather than splitting, and leaves
+    // exactly one hit point, in slot order (pixel * k + sample), black where the path found no
+    // diffuse surface, so that slot i carries N, R, tau across epochs.
+    bool stochastic = false;
     // What the scene uses (AnalyseFeatures): camera paths run code instantiated for it. All
     // by default.
     SceneFeatures features = SceneFeatures::All();
 };
 
 struct CameraPassResult {
-    std::vector<HitPoint> hit_points;  // ordered along a Morton curve through the scene
-    std::vector<float> footprint;      // per hit point: a pixel's width at its distance, world units
+    // Ordered along a Morton curve through the scene; in slot order for a stochastic pass.
+    std::vector<HitPoint> hit_points;
+    // Per hit point: a pixel's width at its distance, world units (0 for an empty slot).
+    std::vector<float> footprint;
     Image emission;                    // emission reaching each pixel, averaged over its k paths
 };
 
@@ -40,6 +47,11 @@ inline constexpr int kCameraSplits = 2;
 // thread count.
 CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                                const CameraPassSettings& settings);
+
+// Stochastic progressive photon mapping's pass of `epoch` for a job: the film and seed of
+// `spec` (its size resolved), a seed of its own per epoch. The coordinator and every worker
+// trace the same hit points from it.
+CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, uint64_t epoch);
 
 // The initial search radius R0: the median pixel footprint over the hit points, capped at 1%
 // of the scene's diagonal. A disk of that radius covers about pi pixels, so with k = 4 hit

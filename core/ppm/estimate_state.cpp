@@ -9,7 +9,7 @@ namespace pf {
 namespace {
 
 constexpr uint32_t kMagic = 0x53455046;  // "PFES" in a little-endian file
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;
 
 absl::Status Corrupt(const std::string& what) {
     return absl::DataLossError(absl::StrCat("estimate state: ", what));
@@ -27,9 +27,15 @@ void ProgressiveEstimate::Save(ByteWriter& out) const {
     out.Value(settings_.layout.photons_per_batch);
     out.Value(settings_.layout.batches_per_epoch);
     out.Value(settings_.min_radius);
+    out.Value(static_cast<uint8_t>(settings_.stochastic));
     out.Value(emission_.width);
     out.Value(emission_.height);
     out.Array(std::span<const Rgb>(emission_.pixels));
+    if (settings_.stochastic) {
+        out.Array(std::span<const Rgbd>(emission_sum_));
+        out.Array(std::span<const Rgbd>(emission_even_));
+        out.Array(std::span<const Rgb>(epoch_emission_.pixels));
+    }
     out.Array(std::span<const PointEstimate>(points_));
     out.Array(std::span<const Rgbd>(direct_sum_));
     out.Array(std::span<const Rgbd>(flux_even_));
@@ -57,10 +63,12 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
     auto hit_points = std::make_shared<std::vector<HitPoint>>();
     if (!in.Array(hit_points.get(), kMaxHitPoints)) return Corrupt("hit points");
     EstimateSettings& settings = e.settings_;
+    uint8_t stochastic = 0;
     if (!(in.Value(&settings.alpha) && in.Value(&settings.initial_radius) && in.Value(&settings.samples_per_pixel) &&
           in.Value(&settings.layout.photons_per_batch) && in.Value(&settings.layout.batches_per_epoch) &&
-          in.Value(&settings.min_radius)))
+          in.Value(&settings.min_radius) && in.Value(&stochastic)))
         return Corrupt("truncated settings");
+    settings.stochastic = stochastic != 0;
     if (!(settings.alpha > 0 && settings.alpha <= 1 && settings.initial_radius > 0 &&
           std::isfinite(settings.initial_radius) && settings.min_radius >= 0 &&
           settings.min_radius <= settings.initial_radius && settings.samples_per_pixel > 0 &&
@@ -72,6 +80,13 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
         return Corrupt("image size");
     const uint64_t pixels = uint64_t(e.emission_.width) * e.emission_.height;
     if (!in.Array(&e.emission_.pixels, pixels) || e.emission_.pixels.size() != pixels) return Corrupt("emission");
+    if (settings.stochastic) {
+        e.epoch_emission_ = Image(e.emission_.width, e.emission_.height);
+        if (!in.Array(&e.emission_sum_, pixels) || !in.Array(&e.emission_even_, pixels) ||
+            !in.Array(&e.epoch_emission_.pixels, pixels) || e.emission_sum_.size() != pixels ||
+            e.emission_even_.size() != pixels || e.epoch_emission_.pixels.size() != pixels)
+            return Corrupt("emission sums");
+    }
     for (const HitPoint& hit_point : *hit_points)
         if (hit_point.pixel >= pixels) return Corrupt("a hit point lies outside the image");
     const uint64_t n = hit_points->size();

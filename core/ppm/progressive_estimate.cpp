@@ -10,10 +10,18 @@
 
 namespace pf {
 
-ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings)
-    : hit_points_(std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points))),
-      emission_(std::move(camera_pass.emission)),
-      settings_(settings) {
+ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings,
+                                         EpochCameraPass next_passes)
+    : next_passes_(std::move(next_passes)), settings_(settings) {
+    PF_CHECK(!settings.stochastic || next_passes_);
+    emission_ = Image(camera_pass.emission.width, camera_pass.emission.height);
+    if (settings.stochastic) {
+        emission_sum_.assign(emission_.pixels.size(), Rgbd(0.0));
+        emission_even_.assign(emission_.pixels.size(), Rgbd(0.0));
+    } else {
+        emission_ = camera_pass.emission;
+    }
+    BeginEpochPass(std::move(camera_pass));
     PF_CHECK(settings.alpha > 0 && settings.alpha <= 1);
     PF_CHECK(settings.initial_radius > 0 && std::isfinite(settings.initial_radius));
     PF_CHECK(settings.min_radius >= 0 && settings.min_radius <= settings.initial_radius);
@@ -29,6 +37,17 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass, const Est
     epoch_flux_.assign(hit_points_->size(), Rgbd(0.0));
     epoch_flux_even_.assign(hit_points_->size(), Rgbd(0.0));
     epoch_direct_.assign(hit_points_->size(), Rgb(0.0f));
+}
+
+void ProgressiveEstimate::BeginEpochPass(CameraPassResult camera_pass) {
+    PF_CHECK(!hit_points_ || camera_pass.hit_points.size() == hit_points_->size());
+    hit_points_ = std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points));
+    if (settings_.stochastic) epoch_emission_ = std::move(camera_pass.emission);
+}
+
+Rgbd ProgressiveEstimate::Emission(size_t p) const {
+    if (!settings_.stochastic) return Rgbd(emission_.pixels[p]);
+    return epoch_ > 0 ? emission_sum_[p] / static_cast<double>(epoch_) : Rgbd(0.0);
 }
 
 std::vector<float> ProgressiveEstimate::SearchRadiusSq() const {
@@ -112,6 +131,15 @@ void ProgressiveEstimate::FinishEpoch() {
     epoch_photons_emitted_ = 0;
     epoch_photons_emitted_even_ = 0;
     batches_folded_ = 0;
+    if (settings_.stochastic) {
+        for (size_t p = 0; p < emission_sum_.size(); ++p) {
+            emission_sum_[p] += Rgbd(epoch_emission_.pixels[p]);
+            if (even_epoch) emission_even_[p] += Rgbd(epoch_emission_.pixels[p]);
+        }
+        ++epoch_;
+        BeginEpochPass(next_passes_(epoch_));
+        return;
+    }
     ++epoch_;
 }
 
@@ -126,8 +154,7 @@ Image ProgressiveEstimate::Resolve() const {
     }
     Image image(emission_.width, emission_.height);
     const double inverse_spp = 1.0 / settings_.samples_per_pixel;
-    for (size_t p = 0; p < sums.size(); ++p)
-        image.pixels[p] = emission_.pixels[p] + Rgb(sums[p] * inverse_spp);
+    for (size_t p = 0; p < sums.size(); ++p) image.pixels[p] = Rgb(Emission(p) + sums[p] * inverse_spp);
     return image;
 }
 
@@ -172,8 +199,10 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
     double squared = 0, relative = 0, bias_squared = 0, bias_relative = 0;
     for (size_t p = 0; p < pixels; ++p)
         for (int c = 0; c < 3; ++c) {
-            const double d = difference[p][c] * inverse_spp;
-            const double v = emission_.pixels[p][c] + value[p][c] * inverse_spp;
+            double d = difference[p][c] * inverse_spp;
+            if (settings_.stochastic)  // emission seen differs between epochs too
+                d += emission_even_[p][c] / epochs_even - (emission_sum_[p][c] - emission_even_[p][c]) / epochs_odd;
+            const double v = Emission(p)[c] + value[p][c] * inverse_spp;
             AddHalfVariance(v, d, variance_scale, &squared, &relative);
             // b^2 overestimates the squared bias by b's variance: take it off (the sum over
             // pixels is clamped at zero below, not each pixel, to stay unbiased).

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -34,22 +35,37 @@ struct EstimateSettings {
     int samples_per_pixel = 4;     // k: camera paths per pixel (the resolve divides by it)
     BatchLayout layout;
     double min_radius = 0;  // radii shrink no further (ShrinkRatio), world units, <= R0
+    // Stochastic progressive photon mapping: hit points traced anew for every epoch (by the
+    // EpochCameraPass given), N, R, tau kept per slot (pixel * k + sample), emission averaged
+    // over epochs. Otherwise one set of hit points for the whole render.
+    bool stochastic = false;
 };
+
+// The camera pass of an epoch, for a stochastic estimate (StochasticCameraPass); must give
+// as many hit points, in the same slots, every epoch.
+using EpochCameraPass = std::function<CameraPassResult(uint64_t epoch)>;
 
 class ProgressiveEstimate final : public Estimate {
 public:
-    ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings);
+    // `camera_pass`: the hit points (of epoch 0 for a stochastic estimate, which traces each
+    // later epoch's with `next_passes` as the previous one ends).
+    ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings,
+                        EpochCameraPass next_passes = {});
+    // A stochastic estimate restored by Load needs its camera passes again.
+    void SetEpochCameraPass(EpochCameraPass next_passes) { next_passes_ = std::move(next_passes); }
 
     std::span<const HitPoint> HitPoints() const { return *hit_points_; }
     // The same hit points, shared with whoever needs them past this object's life.
     std::shared_ptr<const std::vector<HitPoint>> SharedHitPoints() const override { return hit_points_; }
     const PointEstimate& Point(size_t hit_point) const { return points_[hit_point]; }
     const EstimateSettings& Settings() const { return settings_; }
-    Integrator Kind() const override { return Integrator::kPpm; }
+    Integrator Kind() const override { return settings_.stochastic ? Integrator::kSppm : Integrator::kPpm; }
     uint64_t ItemCount() const override { return hit_points_->size(); }
     uint64_t Epoch() const override { return epoch_; }  // the next epoch to merge; also epochs merged
     uint64_t PhotonsEmitted() const override { return photons_emitted_; }  // over the merged epochs
-    uint64_t CameraSamples() const override { return emission_.pixels.size() * uint64_t(settings_.samples_per_pixel); }
+    uint64_t CameraSamples() const override {
+        return emission_.pixels.size() * uint64_t(settings_.samples_per_pixel) * (settings_.stochastic ? epoch_ : 1);
+    }
     double InitialRadius() const override { return settings_.initial_radius; }
     // Photon paths and direct samples the batches dropped for NaN or Inf, over the merged
     // epochs (BatchResult::nonfinite_discarded); should be 0.
@@ -88,8 +104,18 @@ public:
 private:
     ProgressiveEstimate() = default;
 
+    // Sets the epoch's hit points and emission (a stochastic estimate's, as an epoch begins).
+    void BeginEpochPass(CameraPassResult camera_pass);
+    // The emission of pixel p: the fixed image, or a stochastic estimate's mean over merged epochs.
+    Rgbd Emission(size_t p) const;
+
     std::shared_ptr<const std::vector<HitPoint>> hit_points_;
+    // Emission reaching each pixel: fixed, or for a stochastic estimate the sum over merged
+    // epochs (with that of the even epochs, and the current epoch's apart).
     Image emission_;
+    std::vector<Rgbd> emission_sum_, emission_even_;
+    Image epoch_emission_;
+    EpochCameraPass next_passes_;
     EstimateSettings settings_;
     std::vector<PointEstimate> points_;
     std::vector<Rgbd> direct_sum_;  // sum of one direct-light sample per merged epoch

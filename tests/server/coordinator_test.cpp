@@ -75,7 +75,7 @@ public:
             epoch_ = UINT64_MAX;
         }
         if (epoch_ != lease.grant.epoch) {
-            EXPECT_TRUE(backend_->BeginEpoch(*lease.grant.radius_sq).ok());
+            EXPECT_TRUE(backend_->BeginEpoch(lease.grant.epoch, *lease.grant.radius_sq).ok());
         }
         epoch_ = lease.grant.epoch;
         return *backend_->RunBatches(lease.grant.batches);

@@ -49,7 +49,7 @@ std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size) {
     setup->vulkan = std::move(*vulkan);
     for (Backend* backend : {setup->cpu.get(), setup->vulkan.get()}) {
         EXPECT_TRUE(backend->BeginJob({&setup->scene, setup->emitters.get(), setup->estimate->HitPoints(), 7}).ok());
-        EXPECT_TRUE(backend->BeginEpoch(setup->estimate->SearchRadiusSq()).ok());
+        EXPECT_TRUE(backend->BeginEpoch(setup->estimate->Epoch(), setup->estimate->SearchRadiusSq()).ok());
     }
     return setup;
 }
@@ -88,7 +88,7 @@ TEST_F(VulkanBackendTest, BatchIsAPureFunctionOfItsSpec) {
     ASSERT_TRUE(all.ok()) << all.status();
     // The second batch alone, after the grid was rebuilt: the same integers summed in
     // whatever order the device's threads arrived.
-    ASSERT_TRUE(setup->vulkan->BeginEpoch(setup->estimate->SearchRadiusSq()).ok());
+    ASSERT_TRUE(setup->vulkan->BeginEpoch(setup->estimate->Epoch(), setup->estimate->SearchRadiusSq()).ok());
     const absl::StatusOr<std::vector<BatchResult>> one = setup->vulkan->RunBatches(std::span(specs).subspan(1, 1));
     ASSERT_TRUE(one.ok()) << one.status();
     const BatchResult& a = (*all)[1];

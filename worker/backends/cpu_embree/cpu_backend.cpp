@@ -17,9 +17,16 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     features_ = AnalyseFeatures(*job.scene, *job.emitters);
     grid_ = HashGrid();
     radiance_ = nullptr;
+    stochastic_film_.reset();
     switch (job.spec != nullptr ? job.spec->integrator : Integrator::kPpm) {
-        case Integrator::kPpm:
-        case Integrator::kSppm: break;
+        case Integrator::kPpm: break;
+        case Integrator::kSppm: {
+            absl::StatusOr<CameraPassSettings> film = FilmFor(*job.spec, *job.scene);
+            if (!film.ok()) return film.status();
+            film->features = features_;
+            stochastic_film_ = *film;
+            break;
+        }
         case Integrator::kPath: {
             const float filter_angle = job.scene->camera.PixelAngle(job.spec->height) /
                                        std::sqrt(static_cast<float>(job.spec->samples_per_pixel));
@@ -33,7 +40,11 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     return absl::OkStatus();
 }
 
-absl::Status CpuBackend::BeginEpoch(std::span<const float> radius_sq) {
+absl::Status CpuBackend::BeginEpoch(uint64_t epoch, std::span<const float> radius_sq) {
+    if (stochastic_film_) {
+        epoch_hit_points_ = RunCameraPass(*job_.scene, tracer_, StochasticCameraPass(*stochastic_film_, epoch)).hit_points;
+        job_.hit_points = epoch_hit_points_;
+    }
     PF_CHECK(radius_sq.size() == job_.hit_points.size());
     if (!radius_sq.empty()) grid_.Build(job_.hit_points, radius_sq);
     return absl::OkStatus();

@@ -3,9 +3,11 @@
 // for the integrators that render pixels, pixels in parallel.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "core/geometry/tracer.h"
+#include "core/ppm/camera_pass.h"
 #include "core/ppm/hash_grid.h"
 #include "core/ppm/photon_pass.h"
 #include "core/render/pixel_pass.h"
@@ -20,7 +22,7 @@ public:
 
     std::string_view Name() const override { return "cpu"; }
     absl::Status BeginJob(const JobInputs& job) override;
-    absl::Status BeginEpoch(std::span<const float> radius_sq) override;
+    absl::Status BeginEpoch(uint64_t epoch, std::span<const float> radius_sq) override;
     absl::StatusOr<std::vector<BatchResult>> RunBatches(std::span<const BatchSpec> specs) override;
 
 private:
@@ -30,6 +32,9 @@ private:
     HashGrid grid_;
     PhotonPassScratch scratch_;
     RadianceFunction radiance_;  // path, pm: a camera sample's radiance
+    // sppm: the film its camera passes trace, and the current epoch's hit points.
+    std::optional<CameraPassSettings> stochastic_film_;
+    std::vector<HitPoint> epoch_hit_points_;
 };
 
 }  // namespace pf::embree

@@ -254,7 +254,7 @@ gpu::GpuParams VulkanBackend::BaseParams() const {
     return params;
 }
 
-absl::Status VulkanBackend::BeginEpoch(std::span<const float> radius_sq) {
+absl::Status VulkanBackend::BeginEpoch(uint64_t /*epoch*/, std::span<const float> radius_sq) {
     if (buffers_ == nullptr) return absl::FailedPreconditionError("BeginEpoch before a job");
     const size_t n = job_.hit_points.size();
     if (radius_sq.size() != n) return absl::InvalidArgumentError("one radius per hit point expected");

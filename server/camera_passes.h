@@ -1,0 +1,19 @@
+// The coordinator's camera passes for a stochastic progressive photon mapping job: each
+// epoch's hit points traced anew (StochasticCameraPass), as its workers trace them.
+#pragma once
+
+#include <memory>
+
+#include "absl/status/statusor.h"
+#include "core/ppm/camera_pass.h"
+#include "core/ppm/progressive_estimate.h"
+#include "worker/work_source.h"
+
+namespace pf {
+
+// Passes over the payload's scene, kept alive by the result (with an Embree scene of its
+// own); `film` the job's film, its features analysed. The scene's load errors, or Embree's.
+absl::StatusOr<EpochCameraPass> StochasticCameraPasses(std::shared_ptr<const JobPayload> payload,
+                                                       const CameraPassSettings& film);
+
+}  // namespace pf
