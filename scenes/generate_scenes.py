@@ -45,10 +45,12 @@ class GltfWriter:
         self.doc["accessors"].append(accessor)
         return len(self.doc["accessors"]) - 1
 
-    def material(self, name, color=(0.8, 0.8, 0.8), emission=None, mirror=False, glass_ior=None):
+    def material(self, name, color=(0.8, 0.8, 0.8), emission=None, mirror=False, glass_ior=None, alpha=0.0):
+        """alpha: GGX roughness of a mirror or glass (rough metal, rough glass); glTF's
+        roughnessFactor is its square root."""
         material = {"name": name, "pbrMetallicRoughness": {
             "baseColorFactor": list(color) + [1.0], "metallicFactor": 1.0 if mirror else 0.0,
-            "roughnessFactor": 0.0 if mirror or glass_ior else 1.0}}
+            "roughnessFactor": math.sqrt(alpha) if mirror or glass_ior else 1.0}}
         extensions = {}
         if emission is not None:
             strength = max(emission)
@@ -241,6 +243,17 @@ def cornell_glass(writer):
                   writer.material("glass", (1.0, 1.0, 1.0), glass_ior=1.5))
 
 
+def cornell_glossy(writer):
+    """The Cornell room with a rough metal sphere and a rough glass sphere: glossy reflections
+    and a blurred caustic, which stochastic progressive photon mapping resolves and plain
+    progressive photon mapping, whose hit points never move, leaves noisy."""
+    cornell_room(writer)
+    writer.sphere("rough_metal_sphere", [0.385, 0.1, 0.37], 0.1,
+                  writer.material("rough_metal", (0.9, 0.75, 0.45), mirror=True, alpha=0.1))
+    writer.sphere("rough_glass_sphere", [0.175, 0.1, 0.18], 0.1,
+                  writer.material("rough_glass", (1.0, 1.0, 1.0), glass_ior=1.5, alpha=0.05))
+
+
 def caustic_glass(writer):
     writer.quads("plane", [[[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]],
                  writer.material("plane", (0.75, 0.75, 0.75)))
@@ -293,11 +306,12 @@ class PbrtWriter:
     def _out(self):
         return self.shared[1] if self.shared else self.world
 
-    def material(self, name, color=(0.8, 0.8, 0.8), emission=None, mirror=False, glass_ior=None):
+    def material(self, name, color=(0.8, 0.8, 0.8), emission=None, mirror=False, glass_ior=None, alpha=0.0):
+        rough = ' "float roughness" %s "bool remaproughness" false' % num(alpha) if alpha > 0 else ""
         if mirror:
-            line = 'MakeNamedMaterial "%s" "string type" "conductor" "rgb reflectance" %s' % (name, rgb(color))
+            line = 'MakeNamedMaterial "%s" "string type" "conductor" "rgb reflectance" %s%s' % (name, rgb(color), rough)
         elif glass_ior is not None:
-            line = 'MakeNamedMaterial "%s" "string type" "dielectric" "float eta" %s' % (name, num(glass_ior))
+            line = 'MakeNamedMaterial "%s" "string type" "dielectric" "float eta" %s%s' % (name, num(glass_ior), rough)
         else:
             line = 'MakeNamedMaterial "%s" "string type" "diffuse" "rgb reflectance" %s' % (name, rgb(color))
         self._out().append(line)
@@ -426,7 +440,7 @@ def ply_quads(quad_list):
     return header.encode() + body
 
 
-SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass,
+SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass, "cornell-glossy": cornell_glossy,
           "caustic-glass": caustic_glass, "furnace": furnace, "furnace-glass": furnace_glass}
 
 if __name__ == "__main__":

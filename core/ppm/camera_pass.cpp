@@ -11,7 +11,7 @@
 #include "core/render/pixel_sample.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/specular.h"
+#include "core/scene/glossy.h"
 
 namespace pf {
 namespace {
@@ -79,7 +79,7 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
                 bounce = ReflectSpecular(material, path.ray.direction, n, front_facing, base_color);
                 bounce.weight *= reflect;
             } else {
-                bounce = ScatterSpecular(material, path.ray.direction, n, front_facing, base_color, rng.NextFloat());
+                bounce = ScatterNonDiffuse(material, path.ray.direction, n, front_facing, base_color, rng);
             }
             path.throughput *= bounce.weight;
             if (path.depth >= kCameraRouletteDepth) {

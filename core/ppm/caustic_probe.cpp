@@ -3,7 +3,7 @@
 
 #include "core/ppm/camera_pass.h"
 #include "core/sampling/rng.h"
-#include "core/scene/specular.h"
+#include "core/scene/glossy.h"
 
 namespace pf {
 
@@ -26,8 +26,8 @@ CausticProbe ProbeCaustics(const Scene& scene, const Emitters& emitters, const T
                 break;
             }
             const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-            const SpecularBounce next = ScatterSpecular(material, ray.direction, surface.shading_normal, front_facing,
-                                                        scene.BaseColor(surface), rng.NextFloat());
+            const SpecularBounce next = ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
+                                                          scene.BaseColor(surface), rng);
             if (IsBlack(next.weight)) break;
             const Vec3 side = front_facing == next.transmitted ? -surface.geometric_normal : surface.geometric_normal;
             ray = {OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude()), next.direction};

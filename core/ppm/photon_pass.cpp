@@ -12,7 +12,7 @@
 #include "core/ppm/direct_light.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/specular.h"
+#include "core/scene/glossy.h"
 #include "core/util/check.h"
 #include "core/util/radix_sort.h"
 
@@ -65,8 +65,8 @@ bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath
         if (!(Dot(ray.direction, geometric) > 0)) return false;  // shading normal pointed it inside
         ray.origin = OffsetRayOrigin(surface.position, geometric, scene.bounds.Magnitude());
     } else {
-        const SpecularBounce bounce = ScatterSpecular(material, ray.direction, surface.shading_normal, front_facing,
-                                                      base_color, path.rng.NextFloat());
+        const SpecularBounce bounce =
+            ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing, base_color, path.rng);
         const float survive = std::min(1.0f, MaxComponent(bounce.weight));
         if (!(path.rng.NextFloat() < survive)) return false;
         path.flux *= bounce.weight / survive;

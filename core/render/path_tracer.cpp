@@ -6,7 +6,7 @@
 
 #include "core/math/frame.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/specular.h"
+#include "core/scene/glossy.h"
 
 namespace pf {
 namespace {
@@ -76,9 +76,30 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
             bounced_at = surface.position;
             specular_bounce = false;
             ray = {OffsetRayOrigin(surface.position, geometric, scale), direction};
+        } else if (material.type == MaterialType::kRoughConductor) {
+            // Light sampling weighed against the GGX lobe's own sampling, as at diffuse surfaces.
+            const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
+            const Vec3 wo = -ray.direction;
+            LightSample light;
+            if (inputs.emitters->SampleDirect(surface.position, normal, rng, &light) &&
+                !inputs.tracer->Occluded(light.shadow_ray)) {
+                const RoughReflection f = EvaluateRoughConductor(material, base_color, normal, wo, light.direction);
+                const float weight = light.pdf > 0 ? PowerHeuristic(light.pdf, f.pdf) : 1.0f;
+                radiance += throughput * f.value * light.radiance_over_pdf * weight;
+            }
+            const SpecularBounce bounce = ScatterNonDiffuse(material, ray.direction, surface.shading_normal,
+                                                            front_facing, base_color, rng);
+            throughput *= bounce.weight;
+            bsdf_pdf = EvaluateRoughConductor(material, base_color, normal, wo, bounce.direction).pdf;
+            bounced_at = surface.position;
+            specular_bounce = false;
+            ray = {OffsetRayOrigin(surface.position, front_facing ? surface.geometric_normal : -surface.geometric_normal,
+                                   scale),
+                   bounce.direction};
         } else {
-            const SpecularBounce bounce = ScatterSpecular(material, ray.direction, surface.shading_normal,
-                                                          front_facing, base_color, rng.NextFloat());
+            // Specular surfaces, and rough glass, whose light is found by its own sampling alone.
+            const SpecularBounce bounce = ScatterNonDiffuse(material, ray.direction, surface.shading_normal,
+                                                            front_facing, base_color, rng);
             throughput *= bounce.weight;
             specular_bounce = true;
             const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;

@@ -32,9 +32,10 @@ struct PathInputs {
 };
 
 // One sample of the radiance arriving at ray.origin along -ray.direction, W/(m^2 sr).
-// At every diffuse vertex one light sample (next-event estimation) and one cosine-weighted
-// continuation, the two weighted by the power heuristic where both can find the light (area
-// lights); specular vertices are followed by their one direction. May return NaN or Inf for
+// At every diffuse or rough-metal vertex one light sample (next-event estimation) and one
+// continuation sampled from the BSDF, the two weighted by the power heuristic where both can
+// find the light (area lights); specular vertices are followed by their one direction, and
+// rough glass by its sampled one alone. May return NaN or Inf for
 // a pathological scene: the caller discards and counts such samples.
 Rgb TracePath(const PathInputs& inputs, Ray ray, Rng& rng);
 

@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -407,10 +408,16 @@ absl::Status GltfSceneBuilder::SetCamera(int camera_index, const Transform& worl
     return absl::OkStatus();
 }
 
+// GGX alpha from glTF's perceptual roughness in (0, 1]: its square, as glTF's BRDF defines.
+float RoughnessAlpha(double roughness) {
+    return static_cast<float>(std::clamp(roughness * roughness, double(kMinRoughness), 1.0));
+}
+
 // Maps a glTF material to the kinds photon mapping distinguishes:
 //  - transmission > 0 with KHR_materials_volume: solid glass (refracts, index from
 //    KHR_materials_ior, default 1.5); transmission alone: a thin sheet that does not refract;
-//  - metallic = 1 and roughness = 0: a perfect mirror tinted by the base colour;
+//  - metallic = 1: a mirror tinted by the base colour, rough metal (GGX, alpha = roughness^2)
+//    where roughness > 0; solid glass with roughness > 0 is rough glass likewise;
 //  - anything else: Lambertian diffuse with the base colour (factor x texture).
 // Emission is emissiveFactor x KHR_materials_emissive_strength, radiance in W/(m^2 sr).
 absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
@@ -452,8 +459,13 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
                                 ? MaterialType::kDielectric : MaterialType::kThinDielectric;
             if (transmission < 1)
                 spdlog::warn("{}: {}: transmissionFactor {} taken as 1 (no diffuse-transmission mix)", path_, element, transmission);
-        } else if (pbr.metallicFactor >= 1.0 && pbr.roughnessFactor <= 0.0) {
-            material.type = MaterialType::kMirror;
+            if (material.type == MaterialType::kDielectric && pbr.roughnessFactor > 0.0) {
+                material.type = MaterialType::kRoughDielectric;
+                material.roughness = RoughnessAlpha(pbr.roughnessFactor);
+            }
+        } else if (pbr.metallicFactor >= 1.0) {
+            material.type = pbr.roughnessFactor > 0.0 ? MaterialType::kRoughConductor : MaterialType::kMirror;
+            if (pbr.roughnessFactor > 0.0) material.roughness = RoughnessAlpha(pbr.roughnessFactor);
         } else if (pbr.metallicFactor > 0.0) {
             spdlog::warn("{}: {}: rough or partly metallic surfaces are shaded as diffuse", path_, element);
         }

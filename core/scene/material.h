@@ -1,5 +1,5 @@
-// Surface materials: what the photon mapper distinguishes. Diffuse surfaces store hit points
-// and photons; the others scatter specularly and are followed by both passes.
+// Surface materials: what the photon mappers distinguish. Diffuse surfaces store hit points
+// and photons; the others scatter specularly or glossily and are followed by every pass.
 #pragma once
 
 #include <cstdint>
@@ -13,7 +13,13 @@ enum class MaterialType : uint32_t {
     kMirror,          // perfect specular reflection, reflectance base_color
     kDielectric,      // solid glass: Fresnel reflection and refraction with index ior
     kThinDielectric,  // thin glass sheet: Fresnel reflection, straight-through transmission
+    kRoughConductor,  // rough metal: GGX microfacet reflection with roughness alpha, tinted by base_color
+    kRoughDielectric,  // rough solid glass: GGX microfacet reflection and refraction with index ior
 };
+
+// Roughness below this is taken as this: a GGX lobe narrower is a mirror to float precision
+// (the loaders make a smooth surface a specular material instead).
+inline constexpr float kMinRoughness = 1e-3f;
 
 inline constexpr int32_t kNoTexture = -1;
 
@@ -22,9 +28,14 @@ struct Material {
     Rgb base_color{0.8f};          // reflectance (diffuse, mirror) or transmission tint (glass)
     int32_t base_color_texture = kNoTexture;  // index into Scene::textures
     float ior = 1.5f;              // index of refraction inside the dielectric
+    float roughness = 0.0f;        // GGX alpha of the rough materials, in [kMinRoughness, 1]
     Rgb emission{0.0f};            // emitted radiance, W/(m^2 sr), from the front face only
 
-    bool IsSpecular() const { return type != MaterialType::kDiffuse; }
+    // Scatters into one direction (a mirror, smooth glass): a delta distribution.
+    bool IsSpecular() const {
+        return type == MaterialType::kMirror || type == MaterialType::kDielectric || type == MaterialType::kThinDielectric;
+    }
+    bool IsRough() const { return type == MaterialType::kRoughConductor || type == MaterialType::kRoughDielectric; }
     bool IsEmissive() const { return !IsBlack(emission); }
 };
 

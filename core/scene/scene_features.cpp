@@ -8,7 +8,12 @@
 namespace pf {
 
 SceneFeatures SceneFeatures::All() {
-    return {true, true, true, true, true, true, true, true, true, true};
+        SceneFeatures all;
+    for (bool* flag : {&all.mirror, &all.dielectric, &all.thin_dielectric, &all.rough_conductor, &all.rough_dielectric,
+                       &all.textures, &all.smooth_normals, &all.triangle_lights, &all.point_lights, &all.spot_lights,
+                       &all.directional_lights, &all.caustics})
+        *flag = true;
+    return all;
 }
 
 std::string SceneFeatures::ToString() const {
@@ -16,6 +21,8 @@ std::string SceneFeatures::ToString() const {
     if (mirror) parts.push_back("mirror");
     if (dielectric) parts.push_back("glass");
     if (thin_dielectric) parts.push_back("thin glass");
+    if (rough_conductor) parts.push_back("rough metal");
+    if (rough_dielectric) parts.push_back("rough glass");
     if (textures) parts.push_back("textures");
     if (smooth_normals) parts.push_back("smooth normals");
     if (triangle_lights) parts.push_back("area lights");
@@ -39,6 +46,8 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
         features.mirror |= material.type == MaterialType::kMirror;
         features.dielectric |= material.type == MaterialType::kDielectric;
         features.thin_dielectric |= material.type == MaterialType::kThinDielectric;
+        features.rough_conductor |= material.type == MaterialType::kRoughConductor;
+        features.rough_dielectric |= material.type == MaterialType::kRoughDielectric;
         features.textures |= material.base_color_texture != kNoTexture;
     }
     for (const Emitters::Record& record : emitters.Records()) {

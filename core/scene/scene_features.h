@@ -13,6 +13,7 @@ namespace pf {
 struct SceneFeatures {
     // Materials on at least one triangle.
     bool mirror = false, dielectric = false, thin_dielectric = false;
+    bool rough_conductor = false, rough_dielectric = false;  // GGX
     bool textures = false;        // a used material has a base colour texture
     bool smooth_normals = false;  // a triangle interpolates vertex normals
     // Emitters with power.
@@ -22,7 +23,9 @@ struct SceneFeatures {
     // for scenes with specular materials; false otherwise.
     bool caustics = false;
 
-    bool Specular() const { return mirror || dielectric || thin_dielectric; }
+    // Anything but diffuse surfaces: what the passes' variants with non-diffuse scattering handle.
+    bool Specular() const { return mirror || dielectric || thin_dielectric || Rough(); }
+    bool Rough() const { return rough_conductor || rough_dielectric; }
     // Every feature on: the general code path, for comparison (bench/photon_bench).
     static SceneFeatures All();
     // "diffuse, glass, area lights, caustics": for logs, job metadata and EXR headers.

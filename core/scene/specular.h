@@ -40,7 +40,9 @@ inline float ReflectionProbability(const Material& material, const Vec3& d, cons
             return 2.0f * r / (1.0f + r);
         }
         case MaterialType::kMirror: return 1.0f;
-        case MaterialType::kDiffuse: break;
+        case MaterialType::kDiffuse:
+        case MaterialType::kRoughConductor:
+        case MaterialType::kRoughDielectric: break;  // not specular (glossy.h)
     }
     return 0.0f;
 }

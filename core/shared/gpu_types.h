@@ -48,7 +48,9 @@ PF_CONST(uint32_t) kSpecHasTriangleLights = 5;
 PF_CONST(uint32_t) kSpecHasPointLights = 6;
 PF_CONST(uint32_t) kSpecHasSpotLights = 7;
 PF_CONST(uint32_t) kSpecHasDirectionalLights = 8;
-PF_CONST(uint32_t) kSpecCount = 9;
+PF_CONST(uint32_t) kSpecHasRoughConductor = 9;
+PF_CONST(uint32_t) kSpecHasRoughDielectric = 10;
+PF_CONST(uint32_t) kSpecCount = 11;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -62,6 +64,8 @@ PF_CONST(uint32_t) kMaterialDiffuse = 0;
 PF_CONST(uint32_t) kMaterialMirror = 1;
 PF_CONST(uint32_t) kMaterialDielectric = 2;
 PF_CONST(uint32_t) kMaterialThinDielectric = 3;
+PF_CONST(uint32_t) kMaterialRoughConductor = 4;
+PF_CONST(uint32_t) kMaterialRoughDielectric = 5;
 PF_CONST(uint32_t) kEmitterTriangle = 0;
 PF_CONST(uint32_t) kEmitterPoint = 1;
 PF_CONST(uint32_t) kEmitterSpot = 2;
@@ -97,7 +101,8 @@ struct GpuMaterial {
     vec4 base_color;  // xyz; w: index of refraction
     uint32_t type;    // kMaterial*
     int32_t texture;  // base colour texture, or -1
-    uint32_t pad0, pad1;
+    float roughness;  // GGX alpha of the rough materials
+    uint32_t pad;
 };
 PF_GPU_LAYOUT(GpuMaterial, 32);
 

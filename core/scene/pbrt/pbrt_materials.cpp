@@ -1,6 +1,7 @@
 // pbrt-v4 materials and textures onto photonfarm's: diffuse, smooth dielectric and
 // conductor (a mirror with the metal's normal-incidence reflectance), thin dielectric, and
 // coateddiffuse shaded as its diffuse base; image textures through OpenImageIO.
+#include <algorithm>
 #include <cmath>
 
 #include "absl/strings/match.h"
@@ -60,14 +61,23 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, Para
                                                    const Location& where) {
     MaterialRef material;
     absl::Status status;
-    auto warn_rough = [&](const char* what) {
-        for (const char* name : {"roughness", "uroughness", "vroughness"}) {
-            const Parameter* p = parameters.Consume(name);
-            if (p == nullptr) continue;
-            if (p->type != "float" || p->numbers.empty() || p->numbers[0] != 0)
-                Warn(p->where, absl::StrCat("Material \"", type, "\": roughness is not supported; ", what, " rendered smooth"));
+    // GGX alpha from pbrt's roughness parameters (remapped by sqrt, as pbrt-v4's
+    // RoughnessToAlpha, unless remaproughness is false); anisotropy is averaged away.
+    auto roughness_alpha = [&]() -> absl::StatusOr<float> {
+        const bool remap = parameters.Bool("remaproughness", true);
+        double u = parameters.Float("roughness", 0.0), v = u;
+        if (parameters.Has("uroughness") || parameters.Has("vroughness")) {
+            u = parameters.Float("uroughness", u);
+            v = parameters.Float("vroughness", v);
+            if (u != v)
+                Warn(where, absl::StrCat("Material \"", type, "\": anisotropic roughness (", u, ", ", v,
+                                         ") rendered isotropic with their mean"));
         }
-        parameters.Bool("remaproughness", true);
+        const double roughness = 0.5 * (u + v);
+        if (!(roughness >= 0 && roughness <= 1e3))
+            return ErrorAt(where, absl::StrCat("Material \"", type, "\": roughness must lie in [0, 1000]"));
+        const double alpha = remap ? std::sqrt(roughness) : roughness;
+        return alpha <= 0 ? 0.0f : static_cast<float>(std::clamp(alpha, double(kMinRoughness), 1.0));
     };
     auto index_of_refraction = [&](double fallback) {
         const Parameter* eta = parameters.Find("eta");
@@ -85,12 +95,24 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, Para
         material.material.type = type == "dielectric" ? MaterialType::kDielectric : MaterialType::kThinDielectric;
         material.material.base_color = Rgb(1.0f);
         material.material.ior = static_cast<float>(index_of_refraction(1.5));
-        if (type == "dielectric") warn_rough("the glass is");
+        if (type == "dielectric") {
+            const absl::StatusOr<float> alpha = roughness_alpha();
+            if (!alpha.ok()) return alpha.status();
+            if (*alpha > 0) {
+                material.material.type = MaterialType::kRoughDielectric;
+                material.material.roughness = *alpha;
+            }
+        }
         if (!(material.material.ior >= 1.0f && std::isfinite(material.material.ior)))
             return ErrorAt(where, absl::StrCat("Material \"", type, "\": \"eta\" must be at least 1"));
     } else if (type == "conductor") {
         material.material.type = MaterialType::kMirror;
-        warn_rough("the metal is");
+        const absl::StatusOr<float> alpha = roughness_alpha();
+        if (!alpha.ok()) return alpha.status();
+        if (*alpha > 0) {
+            material.material.type = MaterialType::kRoughConductor;
+            material.material.roughness = *alpha;
+        }
         if (parameters.Has("reflectance")) {
             status = BaseColor(parameters, "reflectance", Rgb(1.0f), where, &material);
         } else {

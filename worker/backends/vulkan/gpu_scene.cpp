@@ -30,7 +30,7 @@ void AddGeometry(const Scene& scene, const embree::GpuBvh& bvh, GpuScene& gpu_sc
         for (const Point2& uv : scene.uvs) gpu_scene.uvs.push_back({uv.x, uv.y});
     for (const Material& material : scene.materials)
         gpu_scene.materials.push_back({Vec4(material.base_color, material.ior), static_cast<uint32_t>(material.type),
-                                       material.base_color_texture, 0, 0});
+                                       material.base_color_texture, material.roughness, 0});
     if (!gpu_scene.features.textures) return;
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {
         gpu_scene.textures.push_back({static_cast<uint32_t>(gpu_scene.texels.size()), texture->width, texture->height, 0});
@@ -87,6 +87,8 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasPointLights] = features.point_lights;
     spec[gpu::kSpecHasSpotLights] = features.spot_lights;
     spec[gpu::kSpecHasDirectionalLights] = features.directional_lights;
+    spec[gpu::kSpecHasRoughConductor] = features.rough_conductor;
+    spec[gpu::kSpecHasRoughDielectric] = features.rough_dielectric;
     return spec;
 }
 

@@ -11,6 +11,8 @@
 layout(constant_id = kSpecHasMirror) const bool kHasMirror = true;
 layout(constant_id = kSpecHasDielectric) const bool kHasDielectric = true;
 layout(constant_id = kSpecHasThinDielectric) const bool kHasThinDielectric = true;
+layout(constant_id = kSpecHasRoughConductor) const bool kHasRoughConductor = true;
+layout(constant_id = kSpecHasRoughDielectric) const bool kHasRoughDielectric = true;
 layout(constant_id = kSpecHasTextures) const bool kHasTextures = true;
 layout(constant_id = kSpecHasSmoothNormals) const bool kHasSmoothNormals = true;
 layout(constant_id = kSpecHasTriangleLights) const bool kHasTriangleLights = true;

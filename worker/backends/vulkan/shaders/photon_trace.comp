@@ -81,9 +81,19 @@ uint TracePhoton(uint photon, out bool discarded) {
             direction = FrameFromNormal(normal) * SampleCosineHemisphere(u1, u2);
             if (!(dot(direction, geometric) > 0)) break;  // the shading normal pointed it inside
             origin = OffsetRayOrigin(surface.position, geometric);
-        } else if (kHasMirror || kHasDielectric || kHasThinDielectric) {
-            const SpecularBounce bounce = ScatterSpecular(material, direction, surface.shading_normal, front_facing,
-                                                          surface.base_color, Pcg32NextFloat(rng));
+        } else if (kHasMirror || kHasDielectric || kHasThinDielectric || kHasRoughConductor || kHasRoughDielectric) {
+            // As ScatterNonDiffuse: one number for a specular surface, three for a rough one.
+            const float u_branch = Pcg32NextFloat(rng);
+            SpecularBounce bounce;
+            if ((kHasRoughConductor && material.type == kMaterialRoughConductor) ||
+                (kHasRoughDielectric && material.type == kMaterialRoughDielectric)) {
+                const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+                bounce = ScatterRough(material, direction, surface.shading_normal, front_facing, surface.base_color,
+                                      u_branch, u1, u2);
+            } else {
+                bounce = ScatterSpecular(material, direction, surface.shading_normal, front_facing, surface.base_color,
+                                         u_branch);
+            }
             const float survive = min(1.0, MaxComponent(bounce.weight));
             if (!(Pcg32NextFloat(rng) < survive)) break;
             flux *= bounce.weight / survive;

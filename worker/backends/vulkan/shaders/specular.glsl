@@ -1,6 +1,9 @@
-// Specular scattering, as core/scene/specular.h (Fresnel and refraction from
-// core/shared/path_sampling.h): the branch is chosen with its Fresnel probability, so the
-// carried weight is the tint alone. Materials the scene lacks are compiled out.
+// Specular and rough scattering, as core/scene/specular.h and core/scene/glossy.h (Fresnel
+// and refraction from core/shared/path_sampling.h, the GGX lobes from core/shared/microfacet.h):
+// the branch is chosen with its Fresnel probability, so the carried weight is the tint alone
+// (times the masking ratio G2 / G1 on rough surfaces). Materials the scene lacks are compiled out.
+#include "core/shared/microfacet.h"
+
 struct SpecularBounce {
     vec3 direction;
     vec3 weight;
@@ -29,4 +32,31 @@ SpecularBounce ScatterSpecular(GpuMaterial material, vec3 d, vec3 normal, bool f
     vec3 refracted;
     if (!Refract(d, n, front_facing ? 1.0 / ior : ior, refracted)) return reflected;
     return SpecularBounce(refracted, tint, true);
+}
+
+// d arrives at a rough surface; u_branch chooses reflection or refraction (rough glass),
+// (u1, u2) the microfacet. A black weight ends the path.
+SpecularBounce ScatterRough(GpuMaterial material, vec3 d, vec3 normal, bool front_facing, vec3 tint, float u_branch,
+                            float u1, float u2) {
+    const vec3 n = front_facing ? normal : -normal;  // facing the incident side
+    const mat3 frame = FrameFromNormal(n);
+    const vec3 wo = -d * frame;  // to the local frame: the transpose
+    const SpecularBounce absorbed = SpecularBounce(d, vec3(0.0), false);
+    if (!(wo.z > 0.0)) return absorbed;
+    const float alpha = max(material.roughness, 1e-3);
+    const vec3 m = SampleGgxVisibleNormal(wo, alpha, u1, u2);
+    const float cos_om = dot(wo, m);
+    const vec3 reflected = m * (2.0 * cos_om) - wo;
+    const bool conductor = material.type == kMaterialRoughConductor;
+    const float ior = material.base_color.w;
+    const float eta = front_facing ? 1.0 / ior : ior;
+    vec3 wi;
+    const bool refracts = !conductor && u_branch >= FresnelDielectric(cos_om, eta) && Refract(-wo, m, eta, wi);
+    if (!refracts) {
+        if (!(reflected.z > 0.0)) return absorbed;
+        return SpecularBounce(frame * reflected, (conductor ? tint : vec3(1.0)) * GgxMaskingRatio(wo.z, reflected.z, alpha),
+                              false);
+    }
+    if (!(wi.z < 0.0)) return absorbed;
+    return SpecularBounce(frame * wi, tint * GgxMaskingRatio(wo.z, -wi.z, alpha), true);
 }

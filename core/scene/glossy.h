@@ -1,0 +1,83 @@
+// Scattering at the surfaces that are not diffuse, shared by the camera, photon and light
+// paths of every integrator: specular ones (core/scene/specular.h) and the rough ones, whose
+// GGX lobes are sampled through their visible normals (core/shared/microfacet.h). As at
+// specular surfaces, a branch of rough glass is chosen with its Fresnel probability, so the
+// carried weight is the tint times the masking ratio G2 / G1.
+#pragma once
+
+#include <algorithm>
+
+#include "core/math/frame.h"
+#include "core/sampling/rng.h"
+#include "core/scene/material.h"
+#include "core/scene/specular.h"
+#include "core/shared/microfacet.h"
+
+namespace pf {
+
+using shared::GgxDistribution;
+using shared::GgxMaskingRatio;
+using shared::GgxReflectionPdf;
+using shared::SampleGgxVisibleNormal;
+
+// Scatters d at a rough surface; `normal` is the shading normal on the triangle's front
+// side, u_branch chooses reflection or refraction (rough glass), (u1, u2) the microfacet. A
+// black weight ends the path (the sample left the hemisphere it must stay in).
+inline SpecularBounce ScatterRough(const Material& material, const Vec3& d, const Vec3& normal, bool front_facing,
+                                   const Rgb& tint, float u_branch, float u1, float u2) {
+    const Vec3 n = front_facing ? normal : -normal;  // facing the incident side
+    const Frame frame = Frame::FromNormal(n);
+    const Vec3 wo = frame.ToLocal(-d);
+    const SpecularBounce absorbed{d, Rgb(0.0f), false};
+    if (!(wo.z > 0)) return absorbed;  // arrives from behind the shading normal
+    const float alpha = std::max(material.roughness, kMinRoughness);
+    const Vec3 m = SampleGgxVisibleNormal(wo, alpha, u1, u2);
+    const float cos_om = Dot(wo, m);
+    const auto reflect = [&](const Rgb& weight) {
+        const Vec3 wi = m * (2.0f * cos_om) - wo;
+        if (!(wi.z > 0)) return absorbed;
+        return SpecularBounce{frame.ToWorld(wi), weight * GgxMaskingRatio(wo.z, wi.z, alpha), false};
+    };
+    if (material.type == MaterialType::kRoughConductor) return reflect(tint);
+    // Rough glass: front faces lead into the glass, as for smooth glass.
+    const float eta = front_facing ? 1.0f / material.ior : material.ior;
+    if (u_branch < FresnelDielectric(cos_om, eta)) return reflect(Rgb(1.0f));
+    Vec3 wi;
+    if (!Refract(-wo, m, eta, wi)) return reflect(Rgb(1.0f));  // rounding against the Fresnel term
+    if (!(wi.z < 0)) return absorbed;
+    return {frame.ToWorld(wi), tint * GgxMaskingRatio(wo.z, -wi.z, alpha), true};
+}
+
+// Scatters d at a surface that is not diffuse, drawing one number (specular) or three
+// (rough) from rng.
+inline SpecularBounce ScatterNonDiffuse(const Material& material, const Vec3& d, const Vec3& normal, bool front_facing,
+                                        const Rgb& tint, Rng& rng) {
+    const float u_branch = rng.NextFloat();
+    if (!material.IsRough()) return ScatterSpecular(material, d, normal, front_facing, tint, u_branch);
+    const float u1 = rng.NextFloat();
+    const float u2 = rng.NextFloat();
+    return ScatterRough(material, d, normal, front_facing, tint, u_branch, u1, u2);
+}
+
+// For light sampling at rough metal (the path tracer's next-event estimation): with wo toward
+// the viewer and wi toward the light, both unit and in world space, and `n` the shading
+// normal on the viewer's side, f cos(wi) and the density in solid angle of ScatterRough
+// choosing wi. Zero below the surface.
+struct RoughReflection {
+    Rgb value;   // f(wo, wi) cos(wi)
+    float pdf = 0;
+};
+inline RoughReflection EvaluateRoughConductor(const Material& material, const Rgb& tint, const Vec3& n, const Vec3& wo,
+                                              const Vec3& wi) {
+    const float cos_o = Dot(wo, n), cos_i = Dot(wi, n);
+    if (!(cos_o > 0 && cos_i > 0)) return {Rgb(0.0f), 0.0f};
+    const Vec3 h = Normalize(wo + wi);
+    const float cos_h = Dot(h, n);
+    const float alpha = std::max(material.roughness, kMinRoughness);
+    const float lambda_o = shared::GgxLambda(cos_o, alpha), lambda_i = shared::GgxLambda(cos_i, alpha);
+    const float d = GgxDistribution(cos_h, alpha);
+    // f cos_i = F D G2 / (4 cos_o), the tint standing for F.
+    return {tint * (d / ((1.0f + lambda_o + lambda_i) * 4.0f * cos_o)), GgxReflectionPdf(cos_o, cos_h, alpha)};
+}
+
+}  // namespace pf
