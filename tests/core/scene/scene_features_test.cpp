@@ -36,8 +36,8 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     EXPECT_FALSE(features.point_lights) << "a light of no power is no emitter";
     EXPECT_FALSE(features.triangle_lights) << "an emissive material on no triangle emits nothing";
     EXPECT_EQ(SceneFeatures::All().ToString(),
-              "diffuse, mirror, glass, thin glass, textures, smooth normals, area lights, point lights, spot lights, "
-              "directional lights, caustics");
+              "diffuse, mirror, glass, thin glass, rough metal, rough glass, textures, smooth normals, area lights, "
+              "point lights, spot lights, directional lights, caustics");
 }
 
 }  // namespace
