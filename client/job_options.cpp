@@ -21,7 +21,7 @@ CLI::CheckedTransformer EnumChoices(const std::vector<std::string>& names, std::
 
 void AddPhotonMapOptions(CLI::App* command, PhotonMapSettings* m, const CLI::AsNumberWithUnit& count) {
     command->add_option("--pm-photons", m->global_photons,
-                        "pm: photons emitted for the global map. The maps are kept in memory, about 64 bytes per "
+                        "pm: photons emitted for the global map. The maps are kept in memory, about 40 bytes per "
                         "photon stored (a photon is stored at every diffuse bounce): a count that will not fit "
                         "is refused")
         ->capture_default_str()->transform(count);

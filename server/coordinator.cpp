@@ -13,6 +13,7 @@
 #include "absl/strings/str_format.h"
 #include "core/film/image_metrics.h"
 #include "core/ppm/camera_pass.h"
+#include "core/pm/photon_map.h"
 #include "core/ppm/caustic_probe.h"
 #include "core/ppm/progressive_estimate.h"
 #include "core/render/pixel_estimate.h"
@@ -105,10 +106,19 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, const CoordinatorOptions
         prepared.estimate = std::make_unique<ProgressiveEstimate>(std::move(camera_pass), settings, std::move(passes));
     } else {
         const PhotonMapSettings& maps = request.spec.photon_map;
+        if (integrator == Integrator::kPm) {  // refused here rather than by every worker
+            const PhotonMapForecast forecast =
+                ForecastPhotonMaps(payload->scene, payload->emitters, **tracer, film->features, maps, payload->seed);
+            if (absl::Status status = CheckPhotonMapsFit(forecast, maps, AvailableMemoryBytes()); !status.ok())
+                return status;
+            spdlog::info("{}: the photon maps will hold about {:.3g} MB", request.name, forecast.bytes / 1e6);
+        }
         prepared.estimate = std::make_unique<PixelEstimate>(PixelEstimateSettings{
             request.spec.integrator, film->width, film->height, film->samples_per_pixel,
             request.spec.layout.batches_per_epoch,
-            request.spec.integrator == Integrator::kPm ? maps.global_photons + maps.caustic_photons : 0});
+            integrator == Integrator::kPm
+                ? maps.global_photons + (film->features.Specular() ? maps.caustic_photons : 0)  // as BuildPhotonMaps
+                : 0});
     }
     // Workers trace a stochastic job's hit points themselves, epoch by epoch.
     payload->hit_points = integrator == Integrator::kSppm ? std::make_shared<const std::vector<HitPoint>>()

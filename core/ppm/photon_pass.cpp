@@ -10,9 +10,9 @@
 
 #include "core/math/frame.h"
 #include "core/ppm/direct_light.h"
+#include "core/ppm/photon_walk.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/glossy.h"
 #include "core/util/check.h"
 #include "core/util/radix_sort.h"
 
@@ -39,42 +39,16 @@ PhotonPath StartPhoton(const PhotonPassInputs& inputs, const SeedFamily& seeds, 
     return path;
 }
 
-// Continues a path at its hit: a deposit at every diffuse hit after the first scattering,
-// Russian roulette, the next ray. Returns false where the path ends. Instantiated for the
-// scene's features: without specular materials every surface is diffuse, without textures
-// every base colour is the material's.
+// Continues a path at its hit (ScatterPhotonAt): a deposit at every diffuse hit after the
+// first scattering. Returns false where the path ends.
 template <bool kSpecular, bool kTextures>
 bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath& path,
                    std::vector<PhotonDeposit>& deposits) {
-    const Scene& scene = *inputs.scene;
-    Ray& ray = path.ray;
-    const SurfacePoint surface = scene.Surface(hit);
-    const Material& material = scene.materials[surface.material];
-    const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-    const Rgb base_color = kTextures ? scene.BaseColor(surface) : material.base_color;
-    if (!kSpecular || material.type == MaterialType::kDiffuse) {
-        if (path.scattered) deposits.push_back({surface.position, ray.direction, path.flux});
-        // Russian roulette by albedo: survivors carry flux * albedo / p (Jensen 2001, 2.3.3).
-        const float survive = std::min(1.0f, MaxComponent(base_color));
-        if (!(path.rng.NextFloat() < survive)) return false;
-        path.flux *= base_color / survive;
-        const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
-        const Vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
-        ray.direction = Frame::FromNormal(normal).ToWorld(
-            SampleCosineHemisphere(path.rng.NextFloat(), path.rng.NextFloat()));
-        if (!(Dot(ray.direction, geometric) > 0)) return false;  // shading normal pointed it inside
-        ray.origin = OffsetRayOrigin(surface.position, geometric, scene.bounds.Magnitude());
-    } else {
-        const SpecularBounce bounce =
-            ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing, base_color, path.rng);
-        const float survive = std::min(1.0f, MaxComponent(bounce.weight));
-        if (!(path.rng.NextFloat() < survive)) return false;
-        path.flux *= bounce.weight / survive;
-        const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;
-        ray.origin = OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude());
-        ray.direction = bounce.direction;
-    }
-    ray.t_max = std::numeric_limits<float>::infinity();
+    const PhotonEvent event = ScatterPhotonAt<kSpecular, kTextures>(
+        *inputs.scene, hit, path.ray, path.flux, path.rng, [&](const Vec3& position, const Vec3& direction, const Rgb& flux) {
+            if (path.scattered) deposits.push_back({position, direction, flux});
+        });
+    if (event == PhotonEvent::kEnded) return false;
     path.scattered = true;
     return ++path.bounces < kMaxPhotonBounces;
 }

@@ -5,6 +5,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/ppm/photon_pass.h"
+#include "core/pm/photon_mapping.h"
 #include "core/render/path_tracer.h"
 #include "core/util/check.h"
 
@@ -18,6 +19,11 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     grid_ = HashGrid();
     radiance_ = nullptr;
     stochastic_film_.reset();
+    maps_.reset();
+    // A camera sample's cone, for textures where the integrators that render pixels meet them.
+    const float filter_angle = job.spec == nullptr ? 0.0f
+                                                   : job.scene->camera.PixelAngle(job.spec->height) /
+                                                         std::sqrt(static_cast<float>(job.spec->samples_per_pixel));
     switch (job.spec != nullptr ? job.spec->integrator : Integrator::kPpm) {
         case Integrator::kPpm: break;
         case Integrator::kSppm: {
@@ -28,14 +34,24 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
             break;
         }
         case Integrator::kPath: {
-            const float filter_angle = job.scene->camera.PixelAngle(job.spec->height) /
-                                       std::sqrt(static_cast<float>(job.spec->samples_per_pixel));
             radiance_ = [inputs = PathInputs{job.scene, job.emitters, &tracer_, features_, filter_angle}](
                             const Ray& ray, Rng& rng) { return TracePath(inputs, ray, rng); };
             break;
         }
-        case Integrator::kPm:
-            return absl::UnimplementedError("classic photon mapping is not built yet (issue 8)");
+        case Integrator::kPm: {
+            // Every worker builds the same maps from the job's seed; they must fit here too.
+            const PhotonMapSettings& settings = job.spec->photon_map;
+            const PhotonMapForecast forecast =
+                ForecastPhotonMaps(*job.scene, *job.emitters, tracer_, features_, settings, job.seed);
+            if (absl::Status status = CheckPhotonMapsFit(forecast, settings, AvailableMemoryBytes()); !status.ok())
+                return status;
+            maps_ = std::make_shared<const PhotonMaps>(
+                BuildPhotonMaps(*job.scene, *job.emitters, tracer_, features_, settings, job.seed));
+            const PhotonMappingInputs inputs{job.scene, job.emitters, &tracer_, maps_.get(), settings,
+                                             MaxSearchRadius(settings, *job.scene), filter_angle, features_};
+            radiance_ = [inputs, maps = maps_](const Ray& ray, Rng& rng) { return PhotonMappingRadiance(inputs, ray, rng); };
+            break;
+        }
     }
     return absl::OkStatus();
 }

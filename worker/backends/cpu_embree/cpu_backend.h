@@ -3,10 +3,12 @@
 // for the integrators that render pixels, pixels in parallel.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "core/geometry/tracer.h"
+#include "core/pm/photon_map.h"
 #include "core/ppm/camera_pass.h"
 #include "core/ppm/hash_grid.h"
 #include "core/ppm/photon_pass.h"
@@ -32,6 +34,7 @@ private:
     HashGrid grid_;
     PhotonPassScratch scratch_;
     RadianceFunction radiance_;  // path, pm: a camera sample's radiance
+    std::shared_ptr<const PhotonMaps> maps_;  // pm: the job's photon maps
     // sppm: the film its camera passes trace, and the current epoch's hit points.
     std::optional<CameraPassSettings> stochastic_film_;
     std::vector<HitPoint> epoch_hit_points_;

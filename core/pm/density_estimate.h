@@ -1,0 +1,30 @@
+// Radiance from the photons nearest a point (Jensen 1996, eq. 7; the filters of Jensen 2001,
+// section 7.1): L = rho / pi * sum_p w_p Phi_p / (c pi r^2), with r the distance to the k-th
+// photon and c the filter's normalisation, so that a uniform photon density is estimated
+// without bias whatever the filter. Photons arriving from behind the surface are left out.
+#pragma once
+
+#include "core/math/vec3.h"
+#include "core/pm/photon_map.h"
+#include "core/render/integrator.h"
+
+namespace pf {
+
+// The cone filter's constant k >= 1: weights fall from 1 at the point to 1 - 1/k at r.
+inline constexpr float kConeFilterK = 1.1f;
+// The Gaussian filter's beta (Pavicic 1990, as Jensen uses it).
+inline constexpr float kGaussianBeta = 1.953f;
+
+// The weight of a photon at squared distance distance_sq from the point, in a disc of
+// squared radius radius_sq, and the filter's normalisation c = (1 / (pi r^2)) integral of
+// the weight over the disc.
+float FilterWeight(DensityFilter filter, float distance_sq, float radius_sq);
+float FilterNormalisation(DensityFilter filter);
+
+// Reflected radiance at point p of a diffuse surface with unit normal n (on the side light is
+// gathered from) and albedo rho, from `lookup`'s k nearest photons within max_radius_sq.
+// `scratch` is the caller's, one per thread.
+Rgb EstimateDiffuseRadiance(const PhotonLookup& lookup, const Vec3& p, const Vec3& n, const Rgb& albedo, uint32_t k,
+                            float max_radius_sq, DensityFilter filter, NearestPhotons& scratch);
+
+}  // namespace pf

@@ -1,0 +1,115 @@
+// The rendering pass of classic photon mapping.
+#include "core/pm/photon_mapping.h"
+
+#include <algorithm>
+
+#include "core/math/frame.h"
+#include "core/pm/density_estimate.h"
+#include "core/ppm/camera_pass.h"
+#include "core/sampling/sampling.h"
+#include "core/scene/glossy.h"
+
+namespace pf {
+namespace {
+
+// Gather rays follow specular and rough bounces this far at most before giving up.
+constexpr int kMaxGatherDepth = 16;
+
+// Reflected radiance from the global map where a gather ray from `origin` lands (after any
+// specular or rough bounces, whose emission is left out: light through them is a caustic,
+// the caustic map's), times the bounces' weight.
+Rgb GatherRay(const PhotonMappingInputs& inputs, Ray ray, Rng& rng, NearestPhotons& scratch) {
+    const Scene& scene = *inputs.scene;
+    Rgb weight(1.0f);
+    for (int depth = 0; depth < kMaxGatherDepth; ++depth) {
+        RayHit hit;
+        if (!inputs.tracer->Intersect(ray, &hit)) return Rgb(0.0f);
+        const SurfacePoint surface = scene.Surface(hit);
+        const Material& material = scene.materials[surface.material];
+        const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
+        const Rgb base_color = scene.BaseColor(surface);
+        if (material.type == MaterialType::kDiffuse) {
+            const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
+            const float max_radius_sq = inputs.max_radius * inputs.max_radius;
+            return weight * EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal, base_color,
+                                                    inputs.settings.nearest, max_radius_sq, inputs.settings.filter,
+                                                    scratch);
+        }
+        const SpecularBounce bounce =
+            ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing, base_color, rng);
+        weight *= bounce.weight;
+        if (IsBlack(weight)) return Rgb(0.0f);
+        const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;
+        ray = {OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude()), bounce.direction};
+    }
+    return Rgb(0.0f);
+}
+
+// The light leaving diffuse point `surface` toward the camera path, its albedo `albedo`.
+Rgb DiffuseRadiance(const PhotonMappingInputs& inputs, const SurfacePoint& surface, const Vec3& normal,
+                    const Vec3& geometric, const Rgb& albedo, Rng& rng, NearestPhotons& scratch) {
+    const float max_radius_sq = inputs.max_radius * inputs.max_radius;
+    const PhotonMapSettings& settings = inputs.settings;
+    Rgb radiance(0.0f);
+    LightSample light;
+    if (inputs.emitters->SampleDirect(surface.position, normal, rng, &light) && !inputs.tracer->Occluded(light.shadow_ray))
+        radiance += albedo / kPi * light.radiance_over_pdf * Dot(light.direction, normal);
+    if (!inputs.maps->caustic->Photons().empty())
+        radiance += EstimateDiffuseRadiance(*inputs.maps->caustic, surface.position, normal, albedo, settings.nearest,
+                                            max_radius_sq, settings.filter, scratch);
+    if (settings.final_gather == 0)
+        return radiance + EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal, albedo,
+                                                  settings.nearest, max_radius_sq, settings.filter, scratch);
+    // Final gathering: cosine-weighted rays, each carrying albedo (f cos / pdf = rho).
+    const Frame frame = Frame::FromNormal(normal);
+    const Vec3 origin = OffsetRayOrigin(surface.position, geometric, inputs.scene->bounds.Magnitude());
+    Rgb gathered(0.0f);
+    for (uint32_t i = 0; i < settings.final_gather; ++i) {
+        const float u1 = rng.NextFloat();
+        const float u2 = rng.NextFloat();
+        const Vec3 direction = frame.ToWorld(SampleCosineHemisphere(u1, u2));
+        if (!(Dot(direction, geometric) > 0)) continue;
+        gathered += GatherRay(inputs, {origin, direction}, rng, scratch);
+    }
+    return radiance + albedo * gathered / static_cast<float>(settings.final_gather);
+}
+
+}  // namespace
+
+Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) {
+    thread_local NearestPhotons scratch;
+    const Scene& scene = *inputs.scene;
+    Rgb radiance(0.0f), throughput(1.0f);
+    float length = 0;
+    for (int depth = 0; depth < kMaxCameraDepth; ++depth) {
+        RayHit hit;
+        if (!inputs.tracer->Intersect(ray, &hit)) break;
+        length += hit.t;
+        const SurfacePoint surface = scene.Surface(hit);
+        const Material& material = scene.materials[surface.material];
+        const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
+        // Emission seen directly or through specular and rough bounces (no light map holds it).
+        if (front_facing && material.IsEmissive()) radiance += throughput * material.emission;
+        if (material.type == MaterialType::kDiffuse) {
+            const Rgb albedo = inputs.filter_angle > 0 ? scene.BaseColor(surface, length * inputs.filter_angle)
+                                                       : scene.BaseColor(surface);
+            const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
+            const Vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
+            return radiance + throughput * DiffuseRadiance(inputs, surface, normal, geometric, albedo, rng, scratch);
+        }
+        const SpecularBounce bounce = ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
+                                                        scene.BaseColor(surface), rng);
+        throughput *= bounce.weight;
+        if (depth >= kCameraRouletteDepth) {
+            const float survive = std::min(1.0f, MaxComponent(throughput));
+            if (!(rng.NextFloat() < survive)) break;
+            throughput /= survive;
+        }
+        if (IsBlack(throughput)) break;
+        const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;
+        ray = {OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude()), bounce.direction};
+    }
+    return radiance;
+}
+
+}  // namespace pf
