@@ -1,0 +1,89 @@
+// The rough materials: sampling rough metal agrees with its evaluation (what the path tracer's
+// light sampling weighs against), the sampled density integrates to at most one, and rough
+// glass loses energy only to masking.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/math/frame.h"
+#include "core/sampling/rng.h"
+#include "core/sampling/sampling.h"
+#include "core/scene/glossy.h"
+
+namespace pf {
+namespace {
+
+struct Lobe {
+    float alpha;
+    float cos_incident;
+};
+
+class RoughMetalTest : public ::testing::TestWithParam<Lobe> {};
+
+TEST_P(RoughMetalTest, SamplingAgreesWithEvaluation) {
+    const Lobe lobe = GetParam();
+    Material metal;
+    metal.type = MaterialType::kRoughConductor;
+    metal.roughness = lobe.alpha;
+    const Vec3 n(0, 0, 1);
+    const float sin_incident = std::sqrt(1 - lobe.cos_incident * lobe.cos_incident);
+    const Vec3 d(sin_incident, 0, -lobe.cos_incident);  // arriving at the surface
+    const Vec3 wo = -d;
+    constexpr int kSamples = 400000;
+    // E[f cos / pdf] by the sampler, against the integral of f cos over the hemisphere by
+    // uniform directions; and the integral of the density, which is at most 1 (directions
+    // reflected below the surface are lost).
+    Rng rng(7);
+    double sampled = 0, integrated = 0, density = 0;
+    for (int i = 0; i < kSamples; ++i) {
+        const SpecularBounce bounce = ScatterNonDiffuse(metal, d, n, true, Rgb(1.0f), rng);
+        sampled += Average(bounce.weight);
+        const float u1 = rng.NextFloat();
+        const float u2 = rng.NextFloat();
+        Vec3 wi = SampleUniformSphere(u1, u2);
+        wi.z = std::abs(wi.z);
+        const RoughReflection f = EvaluateRoughConductor(metal, Rgb(1.0f), n, wo, wi);
+        integrated += Average(f.value) * 2 * kPi;
+        density += f.pdf * 2 * kPi;
+    }
+    sampled /= kSamples, integrated /= kSamples, density /= kSamples;
+    EXPECT_NEAR(sampled, integrated, 0.02 * integrated) << "alpha " << lobe.alpha << ", cos " << lobe.cos_incident;
+    EXPECT_LE(sampled, 1.0) << "a rough mirror of tint 1 reflects at most what arrives";
+    EXPECT_LE(density, 1.03) << "the sampled density integrates to at most 1";
+    if (lobe.alpha <= 0.4f) {  // single-scattering GGX loses much more when very rough
+        EXPECT_GT(sampled, 0.75) << "a moderately rough mirror loses little to masking";
+        EXPECT_GT(density, 0.8);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Lobes, RoughMetalTest,
+                         ::testing::Values(Lobe{0.1f, 1.0f}, Lobe{0.1f, 0.5f}, Lobe{0.4f, 0.9f}, Lobe{0.8f, 0.7f}),
+                         [](const auto& info) {
+                             return "alpha" + std::to_string(int(info.param.alpha * 100)) + "_cos" +
+                                    std::to_string(int(info.param.cos_incident * 100));
+                         });
+
+TEST(RoughGlassTest, LosesEnergyOnlyToMaskingAndRefractsMostLight) {
+    Material glass;
+    glass.type = MaterialType::kRoughDielectric;
+    glass.roughness = 0.2f;
+    glass.ior = 1.5f;
+    Rng rng(3);
+    constexpr int kSamples = 200000;
+    double carried = 0;
+    int transmitted = 0;
+    for (int i = 0; i < kSamples; ++i) {
+        const SpecularBounce bounce = ScatterNonDiffuse(glass, Normalize(Vec3(0.3f, 0, -1)), {0, 0, 1}, true, Rgb(1.0f), rng);
+        ASSERT_LE(MaxComponent(bounce.weight), 1.0f + 1e-5f);
+        carried += Average(bounce.weight);
+        if (bounce.transmitted) {
+            ++transmitted;
+            ASSERT_LT(bounce.direction.z, 0) << "a refracted direction goes into the glass";
+        }
+    }
+    EXPECT_GT(carried / kSamples, 0.9);
+    EXPECT_NEAR(double(transmitted) / kSamples, 0.95, 0.03) << "about 4% of light is reflected at near-normal incidence";
+}
+
+}  // namespace
+}  // namespace pf
