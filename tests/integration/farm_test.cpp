@@ -168,6 +168,30 @@ TEST_F(FarmTest, OneWorkerThreeWorkersAndRenderGiveTheSameImage) {
     EXPECT_TRUE(Identical(Pixels(TempPath("three.exr")), reference)) << "three workers differ from photonfarm render";
 }
 
+TEST_F(FarmTest, EveryIntegratorGivesRendersImageOnTwoWorkers) {
+    // Stochastic ppm's workers trace each epoch's hit points themselves, classic pm's build
+    // the photon maps themselves, and the path tracer's render pixels: every one must still
+    // give the image `photonfarm render` gives, byte for byte.
+    StartWorker();
+    StartWorker();
+    // Rough metal and rough glass: caustics for the caustic map, glossy paths for all.
+    const std::string scene = std::string(PF_SOURCE_DIR) + "/scenes/cornell-glossy.gltf";
+    for (const std::string integrator : {"sppm", "pm", "path"}) {
+        const std::vector<std::string> flags =
+            Concat(kJobFlags, {"--integrator", integrator, "--epochs", "3", "--pm-photons", "20k",
+                               "--pm-caustic-photons", "20k", "--log-level", "warn"});
+        const std::string farm = TempPath("farm-" + integrator + ".exr");
+        ChildProcess submit(Concat({kBin + "/client/photonfarm", "submit", scene, "--server", address_, "--watch",
+                                    "--interval", "0", "--out", farm},
+                                   Concat(flags, Credentials().ClientFlags())));
+        ASSERT_EQ(submit.Wait(300), 0) << integrator;
+        const std::string local = TempPath("render-" + integrator + ".exr");
+        ChildProcess render(Concat({kBin + "/client/photonfarm", "render", scene, "--threads", "2", "--out", local}, flags));
+        ASSERT_EQ(render.Wait(300), 0) << integrator;
+        EXPECT_TRUE(Identical(Pixels(farm), Pixels(local))) << integrator << ": the farm's image differs from render's";
+    }
+}
+
 TEST_F(FarmTest, CpuAndVulkanWorkersShareAJob) {
     testing::SkipWithoutVulkan();
     if (IsSkipped() || HasFatalFailure()) return;
