@@ -64,6 +64,8 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
             const JobProgress state = job->Progress(Clock::now());
             progress.epochs = state.epochs;
             progress.photons = state.photons;
+            progress.integrator = state.integrator;
+            progress.camera_samples = state.camera_samples;
             progress.segments = worker.Stats().segments;
             progress.seconds = state.elapsed_seconds;
             progress.estimated_error = state.estimated_error;

@@ -30,7 +30,9 @@ struct RenderSettings {
 
 struct RenderProgress {
     uint64_t epochs = 0;
+    Integrator integrator = Integrator::kPpm;
     uint64_t photons = 0;
+    uint64_t camera_samples = 0;  // camera paths traced (path, pm, sppm: every epoch's)
     uint64_t segments = 0;  // photon rays traced
     double seconds = 0;     // since the camera pass began
     double fraction = 0;    // of the budget, in [0, 1]

@@ -20,9 +20,17 @@ std::string Count(double value) {
 }
 
 std::string Status(const RenderProgress& p) {
-    const double rate = p.seconds > 0 ? p.photons / p.seconds : 0;
-    std::string status = absl::StrFormat("%s photons, epoch %d, %.1f s, %s photons/s", Count(double(p.photons)),
-                                         p.epochs, p.seconds, Count(rate));
+    std::string status;
+    if (GathersAtHitPoints(p.integrator)) {
+        const double rate = p.seconds > 0 ? p.photons / p.seconds : 0;
+        status = absl::StrFormat("%s photons, epoch %d, %.1f s, %s photons/s", Count(double(p.photons)), p.epochs,
+                                 p.seconds, Count(rate));
+    } else {  // path, pm: camera samples are the work; pm's photons are its maps', traced once
+        const double rate = p.seconds > 0 ? p.camera_samples / p.seconds : 0;
+        status = absl::StrFormat("%s samples, epoch %d, %.1f s, %s samples/s", Count(double(p.camera_samples)),
+                                 p.epochs, p.seconds, Count(rate));
+        if (p.photons > 0) status += absl::StrFormat(", maps of %s photons", Count(double(p.photons)));
+    }
     if (p.estimated_error) status += absl::StrFormat(", error ~%.2g%%", 100 * *p.estimated_error);
     if (p.measured_error) status += absl::StrFormat(", against the reference %.2g%%", 100 * *p.measured_error);
     if (p.workers > 0) status += absl::StrFormat(", %d workers", p.workers);
@@ -58,6 +66,11 @@ void ProgressDisplay::Finish(const RenderOutcome& outcome) {
     if (terminal_) std::fprintf(out_, "\n");
     const RenderProgress& p = outcome.progress;
     const double seconds = p.seconds - outcome.camera_pass_seconds;
+    if (!GathersAtHitPoints(p.integrator)) {
+        std::fprintf(out_, "done: %s\n", Status(p).c_str());
+        std::fflush(out_);
+        return;
+    }
     std::fprintf(out_, "done: %s; %s hit points, camera pass %.2f s, %s photon segments/s\n", Status(p).c_str(),
                  Count(double(outcome.hit_points)).c_str(), outcome.camera_pass_seconds,
                  Count(seconds > 0 ? p.segments / seconds : 0).c_str());

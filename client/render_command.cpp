@@ -53,6 +53,8 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
             {"photonfarm:alpha", absl::StrFormat("%.17g", s.job.alpha)},
             {"photonfarm:initial_radius", absl::StrFormat("%.9g", outcome.initial_radius)},
             {"photonfarm:scene_features", outcome.scene_features},
+            {"photonfarm:integrator", std::string(IntegratorName(s.job.integrator))},
+            {"photonfarm:camera_samples", absl::StrCat(outcome.progress.camera_samples)},
             {"photonfarm:backend", s.backend},
             {"photonfarm:spp", absl::StrCat(s.job.samples_per_pixel)},
             {"photonfarm:photons_per_batch", absl::StrCat(s.job.layout.photons_per_batch)},

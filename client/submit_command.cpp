@@ -49,6 +49,9 @@ RenderProgress ProgressOf(const v1::JobStatus& status) {
     RenderProgress progress;
     progress.epochs = status.epochs();
     progress.photons = status.photons();
+    if (status.integrator() != v1::INTEGRATOR_UNSPECIFIED)
+        progress.integrator = static_cast<Integrator>(static_cast<int>(status.integrator()) - 1);
+    progress.camera_samples = status.camera_samples();
     progress.seconds = status.elapsed_seconds();
     progress.fraction = status.budget_fraction();
     progress.workers = status.workers_active();
@@ -69,7 +72,9 @@ ImageMetadata JobMetadata(const photonfarm::v1::JobStatus& status) {
             {"photonfarm:estimated_error",
              status.has_estimated_error() ? absl::StrFormat("%.4g", status.estimated_error()) : "unknown"},
             {"photonfarm:nonfinite_discarded", absl::StrCat(status.nonfinite_discarded())},
-            {"photonfarm:scene_features", status.scene_features()}};
+            {"photonfarm:scene_features", status.scene_features()},
+            {"photonfarm:camera_samples", absl::StrCat(status.camera_samples())},
+            {"photonfarm:integrator", std::string(IntegratorName(ProgressOf(status).integrator))}};
 }
 
 absl::Status WriteJobReport(FarmClient& client, const std::string& job_id, const std::string& dir) {

@@ -204,7 +204,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
         }
         // Every batch of the epoch is folded: update the estimate and start the next epoch.
         std::vector<float> radius_sq;
-        uint64_t photons = 0, discarded = 0;
+        uint64_t photons = 0, discarded = 0, samples = 0;
         bool reached = true;
         ErrorEstimate error;
         std::optional<ImageDifference> measured;
@@ -215,6 +215,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
                 estimate_->FinishEpoch();
                 radius_sq = estimate_->SearchRadiusSq();
                 photons = estimate_->PhotonsEmitted();
+                samples = estimate_->CameraSamples();
                 discarded = estimate_->NonfiniteDiscarded();
                 reached = estimate_->LightReachedAnything();
                 error = estimate_->EstimateError();
@@ -225,6 +226,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
         if (state_ != JobState::kRunning) break;
         ++epochs_merged_;
         photons_merged_ = photons;
+        camera_samples_ = samples;
         nonfinite_discarded_ = discarded;
         if (error.known) estimated_error_ = error.RelativeError();
         measured_error_ = measured;
@@ -328,6 +330,8 @@ JobProgress Job::Progress(Clock::time_point now) const {
     progress.priority = priority_;
     progress.epochs = epochs_merged_;
     progress.photons = photons_merged_;
+    progress.integrator = spec_.integrator;
+    progress.camera_samples = camera_samples_;
     progress.hit_points = hit_point_count_;
     progress.initial_radius = initial_radius_;
     progress.scene_features = scene_features_;

@@ -68,7 +68,9 @@ struct JobProgress {
     std::string owner;  // who submitted it (JobRequest::owner)
     JobState state = JobState::kRunning;
     int priority = 0;
+    Integrator integrator = Integrator::kPpm;
     uint64_t epochs = 0, photons = 0, hit_points = 0;
+    uint64_t camera_samples = 0;  // camera paths traced over the merged epochs (Estimate::CameraSamples)
     double initial_radius = 0;  // R0, world units
     std::string scene_features;  // what the scene uses (SceneFeatures::ToString)
     double elapsed_seconds = 0;
@@ -225,7 +227,7 @@ private:
     std::vector<std::string> warnings_;  // from submission, and one if no light reached anything
     Clock::time_point ended_{};
     uint64_t version_ = 0;
-    uint64_t epochs_merged_ = 0, photons_merged_ = 0, nonfinite_discarded_ = 0;
+    uint64_t epochs_merged_ = 0, photons_merged_ = 0, nonfinite_discarded_ = 0, camera_samples_ = 0;
     std::optional<double> estimated_error_;
     std::optional<ImageDifference> measured_error_;  // the last point's, with a reference
     ConvergenceLog convergence_;

@@ -132,6 +132,7 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     prepared.checkpointed = true;
     const Estimate& restored = *prepared.estimate;
     const uint64_t epochs = restored.Epoch(), photons = restored.PhotonsEmitted(), discarded = restored.NonfiniteDiscarded();
+    const uint64_t samples = restored.CameraSamples();
     const uint32_t restored_folded = restored.BatchesFolded();
     const uint64_t pixels = prepared.reference ? prepared.reference->pixels.size() : 0;
     const auto started = now - std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(record.elapsed_seconds()));
@@ -143,6 +144,7 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
         for (const v1::ConvergencePoint& point : record.convergence()) job->convergence_.Add(FromProto(point, pixels));
         job->epochs_merged_ = epochs;
         job->photons_merged_ = photons;
+        job->camera_samples_ = samples;
         job->nonfinite_discarded_ = discarded;
         if (!job->convergence_.Points().empty()) {
             const ConvergencePoint& last = job->convergence_.Points().back();

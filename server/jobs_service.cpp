@@ -33,6 +33,8 @@ v1::JobStatus ToProto(const JobProgress& progress) {
     if (progress.measured_error) *status.mutable_reference_error() = ToProto(*progress.measured_error);
     status.set_nonfinite_discarded(progress.nonfinite_discarded);
     status.set_scene_features(progress.scene_features);
+    status.set_integrator(static_cast<v1::Integrator>(static_cast<int>(progress.integrator) + 1));
+    status.set_camera_samples(progress.camera_samples);
     status.set_message(progress.message);
     for (const std::string& warning : progress.warnings) status.add_warnings(warning);
     return status;
