@@ -1,10 +1,11 @@
 # Plots convergence.csv (written by `photonfarm render|submit|result --report DIR`): RMSE
-# against seconds and against photons on log-log axes, the estimate (variance from the
+# against seconds and against photons (or camera samples) on log-log axes, the estimate (variance from the
 # half-estimates plus bias from the inner discs, and the bias part alone) and, when the render
 # had a reference, the error measured against it, each with its fitted power law. photonfarm writes this script into DIR after a header that sets the variables
 # below, and runs `gnuplot convergence.gp` there; run it again by hand to re-plot.
 #
-# Set by the header: title; has_reference (0 or 1); for each fit f in est_t, est_n, ref_t,
+# Set by the header: title; has_reference (0 or 1); work and work_label, the column and name
+# of the second panel's axis (photons, or camera samples for path and pm); for each fit f in est_t, est_n, ref_t,
 # ref_n: f_ok (0 or 1), f_slope and f_log_scale (y = exp(f_log_scale) * x^f_slope).
 
 set datafile separator comma
@@ -51,19 +52,19 @@ do for [out in "png svg"] {
              "convergence.csv" using "seconds":"estimated_bias_rmse" with lines ls 5 title "of which bias"
     }
 
-    set title panel_title("photons")
-    set xlabel "photons emitted"
+    set title panel_title(work_label)
+    set xlabel work_label
     set format x "10^{%L}"
     if (has_reference) {
-        plot "convergence.csv" using "photons":"reference_rmse" with linespoints ls 2 title "against the reference", \
+        plot "convergence.csv" using work:"reference_rmse" with linespoints ls 2 title "against the reference", \
              power(x, ref_n_ok, ref_n_slope, ref_n_log_scale) with lines ls 4 title fit_label(ref_n_ok, ref_n_slope), \
-             "convergence.csv" using "photons":"estimated_rmse" with linespoints ls 1 title "estimated (variance + bias)", \
+             "convergence.csv" using work:"estimated_rmse" with linespoints ls 1 title "estimated (variance + bias)", \
              power(x, est_n_ok, est_n_slope, est_n_log_scale) with lines ls 3 title fit_label(est_n_ok, est_n_slope), \
-             "convergence.csv" using "photons":"estimated_bias_rmse" with lines ls 5 title "of which bias"
+             "convergence.csv" using work:"estimated_bias_rmse" with lines ls 5 title "of which bias"
     } else {
-        plot "convergence.csv" using "photons":"estimated_rmse" with linespoints ls 1 title "estimated (variance + bias)", \
+        plot "convergence.csv" using work:"estimated_rmse" with linespoints ls 1 title "estimated (variance + bias)", \
              power(x, est_n_ok, est_n_slope, est_n_log_scale) with lines ls 3 title fit_label(est_n_ok, est_n_slope), \
-             "convergence.csv" using "photons":"estimated_bias_rmse" with lines ls 5 title "of which bias"
+             "convergence.csv" using work:"estimated_bias_rmse" with lines ls 5 title "of which bias"
     }
 
     unset multiplot

@@ -76,6 +76,8 @@ std::string ConvergencePlotScript(const std::string& title, std::span<const Conv
     const std::string quoted = absl::StrReplaceAll(title, {{"\\", "\\\\"}, {"\"", "\\\""}, {"_", "\\\\_"}, {"^", "\\\\^"}});
     return absl::StrCat("# Written by photonfarm --report.\n", "title = \"", quoted, "\"\n",
                         "has_reference = ", has_reference ? 1 : 0, "\n",
+                        WorkIsCameraSamples(points) ? "work = \"camera_samples\"\nwork_label = \"camera samples\"\n"
+                                                    : "work = \"photons\"\nwork_label = \"photons emitted\"\n",
                         FitVariables("est_t", fits.estimated_vs_seconds), FitVariables("est_n", fits.estimated_vs_photons),
                         FitVariables("ref_t", fits.measured_vs_seconds), FitVariables("ref_n", fits.measured_vs_photons),
                         "\n", absl::string_view(kConvergencePlotScript.data(), kConvergencePlotScript.size()));

@@ -1,6 +1,7 @@
 // The embedded render: one coordinator, one in-process worker.
 #include "client/local_render.h"
 
+#include <sys/resource.h>
 #include <tbb/task_arena.h>
 
 #include <cmath>
@@ -78,6 +79,10 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
         outcome->convergence = job->Convergence();
         outcome->warnings = job->Progress(Clock::now()).warnings;
     });
+    if (outcome.ok()) {
+        rusage usage{};
+        if (getrusage(RUSAGE_SELF, &usage) == 0) outcome->peak_memory_bytes = uint64_t(usage.ru_maxrss) * 1024;
+    }
     return outcome;
 }
 

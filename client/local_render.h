@@ -51,6 +51,7 @@ struct RenderOutcome {
     double camera_pass_seconds = 0;
     std::vector<ConvergencePoint> convergence;  // one point per epoch
     std::vector<std::string> warnings;           // the job's (also logged as they arise)
+    uint64_t peak_memory_bytes = 0;  // this process's peak resident memory, at the end (getrusage)
 };
 
 // Called after every merged epoch, on the rendering thread; `job` gives the current image.

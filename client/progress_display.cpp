@@ -66,14 +66,15 @@ void ProgressDisplay::Finish(const RenderOutcome& outcome) {
     if (terminal_) std::fprintf(out_, "\n");
     const RenderProgress& p = outcome.progress;
     const double seconds = p.seconds - outcome.camera_pass_seconds;
+    const std::string memory = absl::StrFormat("peak memory %.0f MB", double(outcome.peak_memory_bytes) / 1e6);
     if (!GathersAtHitPoints(p.integrator)) {
-        std::fprintf(out_, "done: %s\n", Status(p).c_str());
+        std::fprintf(out_, "done: %s; %s\n", Status(p).c_str(), memory.c_str());
         std::fflush(out_);
         return;
     }
-    std::fprintf(out_, "done: %s; %s hit points, camera pass %.2f s, %s photon segments/s\n", Status(p).c_str(),
+    std::fprintf(out_, "done: %s; %s hit points, camera pass %.2f s, %s photon segments/s, %s\n", Status(p).c_str(),
                  Count(double(outcome.hit_points)).c_str(), outcome.camera_pass_seconds,
-                 Count(seconds > 0 ? p.segments / seconds : 0).c_str());
+                 Count(seconds > 0 ? p.segments / seconds : 0).c_str(), memory.c_str());
     std::fflush(out_);
 }
 

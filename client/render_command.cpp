@@ -55,6 +55,7 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
             {"photonfarm:scene_features", outcome.scene_features},
             {"photonfarm:integrator", std::string(IntegratorName(s.job.integrator))},
             {"photonfarm:camera_samples", absl::StrCat(outcome.progress.camera_samples)},
+            {"photonfarm:peak_memory_bytes", absl::StrCat(outcome.peak_memory_bytes)},
             {"photonfarm:backend", s.backend},
             {"photonfarm:spp", absl::StrCat(s.job.samples_per_pixel)},
             {"photonfarm:photons_per_batch", absl::StrCat(s.job.layout.photons_per_batch)},

@@ -232,7 +232,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
         measured_error_ = measured;
         convergence_.Add({Seconds(now - started_), epochs_merged_, photons_merged_,
                           error.known ? std::optional(error) : std::nullopt, measured,
-                          reference_ ? reference_->pixels.size() : 0});
+                          reference_ ? reference_->pixels.size() : 0, camera_samples_});
         ++version_;
         finished = true;
         if (BudgetFraction(spec_, photons_merged_, epochs_merged_, Seconds(now - started_), estimated_error_) >= 1.0) {

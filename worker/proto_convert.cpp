@@ -249,6 +249,7 @@ photonfarm::v1::ConvergencePoint ToProto(const ConvergencePoint& point) {
     out.set_seconds(point.seconds);
     out.set_epochs(point.epochs);
     out.set_photons(point.photons);
+    out.set_camera_samples(point.camera_samples);
     if (point.estimated) {
         out.set_estimated_rmse(point.estimated->rmse);
         out.set_estimated_rel_mse(point.estimated->rel_mse);
@@ -263,6 +264,7 @@ ConvergencePoint FromProto(const photonfarm::v1::ConvergencePoint& point, uint64
     out.seconds = point.seconds();
     out.epochs = point.epochs();
     out.photons = point.photons();
+    out.camera_samples = point.camera_samples();
     if (point.has_estimated_rmse() && point.has_estimated_rel_mse())
         out.estimated =
             ErrorEstimate{true, point.estimated_rmse(), point.estimated_rel_mse(), point.estimated_bias_rmse()};

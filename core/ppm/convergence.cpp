@@ -43,12 +43,18 @@ std::optional<PowerLaw> FitPowerLaw(std::span<const double> x, std::span<const d
     return PowerLaw{slope, (sy - slope * sx) / n};
 }
 
+bool WorkIsCameraSamples(std::span<const ConvergencePoint> points) {
+    return !points.empty() && points.front().photons == points.back().photons &&
+           (points.back().photons == 0 || points.size() > 1);
+}
+
 ConvergenceFits FitConvergence(std::span<const ConvergencePoint> points) {
     std::vector<double> seconds, photons, measured, estimated;
+    const bool samples = WorkIsCameraSamples(points);
     for (const ConvergencePoint& point : points) {
         if (point.epochs <= kFitSkipEpochs) continue;
         seconds.push_back(point.seconds);
-        photons.push_back(static_cast<double>(point.photons));
+        photons.push_back(static_cast<double>(samples ? point.camera_samples : point.photons));
         measured.push_back(point.measured ? point.measured->rmse : 0.0);  // 0: left out of the fit
         estimated.push_back(point.estimated ? point.estimated->rmse : 0.0);
     }
@@ -59,7 +65,7 @@ ConvergenceFits FitConvergence(std::span<const ConvergencePoint> points) {
 std::string ConvergenceCsv(std::span<const ConvergencePoint> points) {
     std::string csv =
         "seconds,epochs,photons,estimated_rmse,estimated_rel_error,estimated_bias_rmse,reference_rmse,"
-        "reference_rel_mse,reference_rel_error,reference_nonfinite_fraction\n";
+        "reference_rel_mse,reference_rel_error,reference_nonfinite_fraction,camera_samples\n";
     for (const ConvergencePoint& p : points) {
         std::optional<double> estimated_rmse, estimated_rel, estimated_bias, rmse, rel_mse, rel, nonfinite;
         if (p.estimated) {
@@ -73,9 +79,9 @@ std::string ConvergenceCsv(std::span<const ConvergencePoint> points) {
             rel = std::sqrt(p.measured->rel_mse);
             nonfinite = p.pixels > 0 ? double(p.measured->nonfinite_pixels) / double(p.pixels) : 0.0;
         }
-        csv += absl::StrFormat("%.6f,%d,%d,%s,%s,%s,%s,%s,%s,%s\n", p.seconds, p.epochs, p.photons,
+        csv += absl::StrFormat("%.6f,%d,%d,%s,%s,%s,%s,%s,%s,%s,%d\n", p.seconds, p.epochs, p.photons,
                                Cell(estimated_rmse), Cell(estimated_rel), Cell(estimated_bias), Cell(rmse),
-                               Cell(rel_mse), Cell(rel), Cell(nonfinite));
+                               Cell(rel_mse), Cell(rel), Cell(nonfinite), p.camera_samples);
     }
     return csv;
 }

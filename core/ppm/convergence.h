@@ -21,6 +21,7 @@ struct ConvergencePoint {
     std::optional<ErrorEstimate> estimated;   // from the half-estimates, once known
     std::optional<ImageDifference> measured;  // against the reference, when there is one
     uint64_t pixels = 0;                      // of the image, for the non-finite fraction
+    uint64_t camera_samples = 0;              // camera paths traced (Estimate::CameraSamples)
 };
 
 // A job's points, bounded: past kMaxPoints it keeps every second one and records only every
@@ -53,7 +54,12 @@ struct ConvergenceFits {
     std::optional<PowerLaw> estimated_vs_seconds, estimated_vs_photons;
 };
 inline constexpr uint64_t kFitSkipEpochs = 3;  // the estimate is unknown before epoch 2
+// The "photons" fits are against camera samples for a log without photons (WorkIsCameraSamples).
 ConvergenceFits FitConvergence(std::span<const ConvergencePoint> points);
+// Whether a log's work is camera samples rather than photons: photons that do not grow from
+// its first point to its last, as for the integrators that render pixels (path traces none,
+// pm all of its maps' before the first epoch).
+bool WorkIsCameraSamples(std::span<const ConvergencePoint> points);
 
 // convergence.csv: one row per point; columns seconds, epochs, photons, estimated_rmse,
 // estimated_rel_error, estimated_bias_rmse, reference_rmse, reference_rel_mse, reference_rel_error,

@@ -1,0 +1,96 @@
+#!/usr/bin/env bash
+# The photon mapping family side by side (docs/integrators.md): every shipped scene rendered by
+# each integrator and measured against a long reference, as error against run time, with the
+# memory each run took.
+#  - The reference: the path tracer for REF_SECONDS with a seed of its own; for caustic-glass,
+#    whose small light the path tracer finds through the glass only by chance, stochastic
+#    progressive photon mapping; for the furnaces the exact image L = 2.
+#  - path, ppm and sppm: one render of SECONDS each; their convergence logs (every epoch
+#    measured against the reference) are the curves.
+#  - pm: its error is fixed by its maps, so it runs once per map size (PM_SIZES photons per
+#    map, PM_EPOCHS epochs each); each run is one point.
+# Writes OUT/<scene>.png (log-log relative error against seconds, one curve per integrator),
+# OUT/<scene>.csv (integrator,photons,seconds,relative_error,peak_memory_mb per run) and
+# OUT/table.md (the last point of every run), and prints the table.
+# Usage: bench/compare_integrators.sh BUILD_DIR [OUT_DIR] [SIZE] [SECONDS] [REF_SECONDS]
+set -euo pipefail
+build=${1:?usage: compare_integrators.sh BUILD_DIR [OUT_DIR] [SIZE] [SECONDS] [REF_SECONDS]}
+out=${2:-docs/integrators}
+size=${3:-96}
+seconds=${4:-20}
+ref_seconds=${5:-120}
+pm_sizes=${PM_SIZES:-"30k 100k 300k 1M 3M"}
+pm_epochs=${PM_EPOCHS:-4}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$out"
+photonfarm="$build/client/photonfarm"
+common=(--width "$size" --height "$size" --log-level warn)
+
+# render NAME ARGS...: one render into $work/NAME (image, report, log); prints "seconds error memory".
+render() {
+    local name=$1
+    shift
+    "$photonfarm" render "$@" "${common[@]}" --out "$work/$name.exr" --report "$work/$name" >"$work/$name.log" 2>&1 ||
+        { cat "$work/$name.log" >&2; exit 1; }
+    local memory
+    memory=$(sed -n 's/.*peak memory \([0-9]*\) MB.*/\1/p' "$work/$name.log" | tail -1)
+    awk -F, -v memory="${memory:-0}" 'NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+        { s = $col["seconds"]; e = $col["reference_rel_error"]; p = $col["photons"] }
+        END { printf "%s %s %s %s\n", s, e, memory, p }' "$work/$name/convergence.csv"
+}
+
+table="$out/table.md"
+{
+    echo "| scene | integrator | settings | photons | seconds | relative error | peak memory (MB) |"
+    echo "|---|---|---|---:|---:|---:|---:|"
+} >"$table"
+for gltf in scenes/*.gltf; do
+    scene=$(basename "$gltf" .gltf)
+    reference="$work/$scene-reference.exr"
+    if [[ $scene == furnace* ]]; then
+        oiiotool --pattern constant:color=2,2,2 "${size}x${size}" 3 -d float -o "$reference"
+    else
+        ref_integrator=path
+        [[ $scene == caustic-glass ]] && ref_integrator=sppm
+        "$photonfarm" render "$gltf" "${common[@]}" --integrator "$ref_integrator" --seed 977 \
+            --seconds "$ref_seconds" --out "$reference" 2>"$work/log" >/dev/null || { cat "$work/log" >&2; exit 1; }
+    fi
+    csv="$out/$scene.csv"
+    echo "integrator,photons,seconds,relative_error,peak_memory_mb" >"$csv"
+    plots=()
+    for integrator in path ppm sppm; do
+        read -r s e m p < <(render "$scene-$integrator" "$gltf" --integrator "$integrator" --seconds "$seconds" \
+                               --reference "$reference")
+        echo "$integrator,$p,$s,$e,$m" >>"$csv"
+        printf '| %s | %s | %s s | %s | %.1f | %.2f%% | %s |\n' "$scene" "$integrator" "$seconds" "$p" "$s" \
+            "$(awk -v e="$e" 'BEGIN { print 100 * e }')" "$m" >>"$table"
+        cp "$work/$scene-$integrator/convergence.csv" "$work/$scene-$integrator.curve.csv"
+        plots+=("'$work/$scene-$integrator.curve.csv' using (column(\"seconds\")):(column(\"reference_rel_error\")) with lines lw 2 title '$integrator'")
+    done
+    pm_points="$work/$scene-pm.points"
+    : >"$pm_points"
+    for photons in $pm_sizes; do
+        read -r s e m p < <(render "$scene-pm-$photons" "$gltf" --integrator pm --pm-photons "$photons" \
+                               --pm-caustic-photons "$photons" --epochs "$pm_epochs" --reference "$reference")
+        echo "pm,$p,$s,$e,$m" >>"$csv"
+        echo "$s,$e,$photons" >>"$pm_points"
+        printf '| %s | pm | %s photons a map, %s epochs | %s | %.1f | %.2f%% | %s |\n' "$scene" "$photons" \
+            "$pm_epochs" "$p" "$s" "$(awk -v e="$e" 'BEGIN { print 100 * e }')" "$m" >>"$table"
+    done
+    gnuplot <<EOF
+set terminal pngcairo size 900,600 font ",11"
+set output "$out/$scene.png"
+set datafile separator ","
+set logscale xy
+set xlabel "seconds (2 cores)"
+set ylabel "relative error against the reference"
+set title "$scene, ${size}x${size}: error against run time"
+set grid
+set key top right
+plot ${plots[0]}, ${plots[1]}, ${plots[2]}, \\
+     "$pm_points" using 1:2 with linespoints pt 7 lw 2 title "pm (one run per map size)", \\
+     "$pm_points" using 1:2:3 with labels offset 0,1 notitle
+EOF
+done
+cat "$table"
