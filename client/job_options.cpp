@@ -11,12 +11,22 @@ namespace pf {
 
 namespace {
 
-// The choices of an enum flag, by name.
+// An enum flag given by name: the names checked (the error lists them), then turned into the
+// enum's value.
 template <typename Enum>
-CLI::CheckedTransformer EnumChoices(const std::vector<std::string>& names, std::optional<Enum> (*parse)(std::string_view)) {
-    std::map<std::string, Enum> choices;
-    for (const std::string& name : names) choices.emplace(name, *parse(name));
-    return CLI::CheckedTransformer(choices, CLI::ignore_case);
+void EnumChoices(CLI::Option* option, const std::vector<std::string>& names,
+                 std::optional<Enum> (*parse)(std::string_view)) {
+    std::map<std::string, std::string> values;
+    for (const std::string& name : names) values.emplace(name, std::to_string(static_cast<int>(*parse(name))));
+    const std::string choices = "{" + CLI::detail::join(names, ",") + "}";
+    option->transform(CLI::Validator(
+        [values, choices](std::string& input) -> std::string {
+            const auto it = values.find(CLI::detail::to_lower(input));
+            if (it == values.end()) return input + " not in " + choices;
+            input = it->second;
+            return std::string();
+        },
+        choices));
 }
 
 void AddPhotonMapOptions(CLI::App* command, PhotonMapSettings* m, const CLI::AsNumberWithUnit& count) {
@@ -35,15 +45,14 @@ void AddPhotonMapOptions(CLI::App* command, PhotonMapSettings* m, const CLI::AsN
                         "pm: largest radius of the nearest-photon search, world units (default: 2% of the scene's "
                         "diagonal)")
         ->check(FinitePositive());
-    command->add_option("--pm-filter", m->filter, "pm: density estimation filter")
-        ->transform(EnumChoices<DensityFilter>({"box", "cone", "gaussian"}, ParseDensityFilter))
-        ->default_str("cone");
+    EnumChoices(command->add_option("--pm-filter", m->filter, "pm: density estimation filter")->default_str("cone"),
+                {"box", "cone", "gaussian"}, ParseDensityFilter);
     command->add_option("--final-gather", m->final_gather,
                         "pm: gather rays per camera sample for indirect light (0: read the global map directly)")
         ->capture_default_str()->check(CLI::Range(0u, kMaxFinalGatherRays));
-    command->add_option("--photon-index", m->index, "pm: how photons are stored and searched")
-        ->transform(EnumChoices<PhotonIndex>({"kdtree", "grid"}, ParsePhotonIndex))
-        ->default_str("kdtree");
+    EnumChoices(command->add_option("--photon-index", m->index, "pm: how photons are stored and searched")
+                    ->default_str("kdtree"),
+                {"kdtree", "grid"}, ParsePhotonIndex);
 }
 
 }  // namespace
@@ -52,12 +61,13 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
     const auto count = CLI::AsNumberWithUnit(
         std::map<std::string, uint64_t>{{"k", 1000}, {"m", 1000000}, {"g", 1000000000}, {"t", 1000000000000}},
         CLI::AsNumberWithUnit::CASE_INSENSITIVE, "COUNT");
-    command->add_option("--integrator", s->integrator,
-                        "Light transport: ppm (progressive photon mapping), sppm (stochastic ppm), pm (classic "
-                        "photon mapping, maps stored in memory), path (path tracing, the unbiased reference); "
-                        "docs/integrators.md")
-        ->transform(EnumChoices<Integrator>(IntegratorNames(), ParseIntegrator))
-        ->default_str("ppm");
+    EnumChoices(command
+                    ->add_option("--integrator", s->integrator,
+                                 "Light transport: ppm (progressive photon mapping), sppm (stochastic ppm), pm "
+                                 "(classic photon mapping, maps stored in memory), path (path tracing, the unbiased "
+                                 "reference); docs/integrators.md")
+                    ->default_str("ppm"),
+                IntegratorNames(), ParseIntegrator);
     auto* photons = command->add_option("--photons", s->photon_budget,
                                         "Photon budget of ppm and sppm, e.g. 20M (finishes the epoch that reaches it; "
                                         "default 20M)")

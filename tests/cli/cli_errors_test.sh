@@ -58,6 +58,14 @@ VK_ICD_FILENAMES=/nonexistent/icd.json expect_failure "vulkan without a driver" 
 expect_failure "unknown backend" "--backend" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" \
     --backend cuda
 expect_failure "bad alpha" "alpha" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --alpha 2
+expect_failure "unknown integrator" "--integrator" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" \
+    --integrator bdpt
+expect_failure "photon budget for the path tracer" "--photons is a budget of photons traced progressively" \
+    render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --integrator path --photons 1M
+expect_failure "photon maps that will not fit" "--pm-photons/--pm-caustic-photons: .* would store about" \
+    render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --integrator pm --pm-photons 16G --epochs 1
+expect_failure "unknown photon index" "--photon-index" render "$source_dir/scenes/cornell-box.gltf" \
+    --out "$work/a.exr" --integrator pm --photon-index octree
 # NaN and Inf in any number flag: refused by name before any work.
 for flag in --alpha --radius --seconds --target-error --exposure --snapshot-every; do
     for value in nan inf -inf 1e999; do
