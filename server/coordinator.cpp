@@ -12,14 +12,14 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "core/film/image_metrics.h"
-#include "core/ppm/camera_pass.h"
 #include "core/pm/photon_map.h"
+#include "core/ppm/camera_pass.h"
 #include "core/ppm/caustic_probe.h"
 #include "core/ppm/progressive_estimate.h"
 #include "core/render/pixel_estimate.h"
-#include "server/camera_passes.h"
-#include "core/scene/scene_loader.h"
 #include "core/scene/scene_features.h"
+#include "core/scene/scene_loader.h"
+#include "server/camera_passes.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf {

@@ -84,7 +84,14 @@ absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& sce
     }
     if (film.width == 0) film.width = std::max(1, static_cast<int>(std::lround(film.height * aspect)));
     if (film.height == 0) film.height = std::max(1, static_cast<int>(std::lround(film.width / aspect)));
-    const uint64_t most_hit_points = uint64_t(film.width) * uint64_t(film.height) * uint64_t(film.samples_per_pixel);
+    const uint64_t pixels = uint64_t(film.width) * uint64_t(film.height);
+    if (!GathersAtHitPoints(spec.integrator)) {  // they keep a sum per pixel, whatever the spp
+        if (pixels > kMaxHitPoints)
+            return absl::ResourceExhaustedError(
+                absl::StrFormat("%dx%d = %d pixels exceeds the limit of %d", film.width, film.height, pixels, kMaxHitPoints));
+        return film;
+    }
+    const uint64_t most_hit_points = pixels * uint64_t(film.samples_per_pixel);
     if (most_hit_points > kMaxHitPoints)
         return absl::ResourceExhaustedError(absl::StrFormat(
             "%dx%d pixels x %d spp = %d hit points exceeds the limit of %d (about %d bytes each)", film.width,

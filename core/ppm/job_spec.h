@@ -65,7 +65,7 @@ inline constexpr uint32_t kMaxFinalGatherRays = 4096;
 absl::Status CheckJobSpec(const JobSpec& spec, SettingNames names = SettingNames::kFlags);
 absl::Status CheckPhotonMapSettings(const PhotonMapSettings& settings, SettingNames names);
 // Film size: what was asked, else the scene's own (pbrt's Film), else 512 wide with the
-// camera's aspect ratio; RESOURCE_EXHAUSTED if its hit points would not fit.
+// camera's aspect ratio; RESOURCE_EXHAUSTED if its hit points (path, pm: its pixels) would not fit.
 absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& scene);
 // The estimator's settings, R0 from the scene (pbrt's sppm "radius") or else the camera pass
 // where not given. `scene_name` names the

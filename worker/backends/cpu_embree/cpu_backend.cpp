@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
-#include "core/ppm/photon_pass.h"
 #include "core/pm/photon_mapping.h"
+#include "core/ppm/photon_pass.h"
 #include "core/render/path_tracer.h"
 #include "core/util/check.h"
 
