@@ -14,6 +14,7 @@
 #include "client/farm_client.h"
 #include "client/output_files.h"
 #include "client/submit_command.h"
+#include "core/render/integrator.h"
 #include "worker/proto_convert.h"
 
 namespace pf {
@@ -37,9 +38,12 @@ void Run(const CommandOptions& options, int* exit_code, const std::function<absl
 }
 
 void PrintJobRow(const v1::JobStatus& job) {
-    std::printf("%-20s %-10s %8.1f%% %10s %8d %9.1f %8d  %s\n", job.job_id().c_str(), StateName(job.state()).c_str(),
-                100 * job.budget_fraction(), absl::StrCat(job.photons()).c_str(), static_cast<int>(job.epochs()),
-                job.elapsed_seconds(), static_cast<int>(job.workers_active()), job.name().c_str());
+    const std::string integrator =
+        job.integrator() == v1::INTEGRATOR_UNSPECIFIED ? "ppm" : std::string(IntegratorName(Integrator(job.integrator() - 1)));
+    std::printf("%-20s %-10s %-10s %8.1f%% %10s %8d %9.1f %8d  %s\n", job.job_id().c_str(), StateName(job.state()).c_str(),
+                integrator.c_str(), 100 * job.budget_fraction(), absl::StrCat(job.photons()).c_str(),
+                static_cast<int>(job.epochs()), job.elapsed_seconds(), static_cast<int>(job.workers_active()),
+                job.name().c_str());
 }
 
 }  // namespace
@@ -72,8 +76,8 @@ void AddJobCommands(CLI::App& app, int* exit_code) {
                 std::printf("%s\n", ToJson(*list).c_str());
                 return absl::OkStatus();
             }
-            std::printf("%-20s %-10s %9s %10s %8s %9s %8s  %s\n", "JOB", "STATE", "BUDGET", "PHOTONS", "EPOCHS",
-                        "SECONDS", "WORKERS", "NAME");
+            std::printf("%-20s %-10s %-10s %9s %10s %8s %9s %8s  %s\n", "JOB", "STATE", "INTEGRATOR", "BUDGET", "PHOTONS",
+                        "EPOCHS", "SECONDS", "WORKERS", "NAME");
             for (const v1::JobStatus& job : list->jobs()) PrintJobRow(job);
             return absl::OkStatus();
         });

@@ -1,6 +1,9 @@
 // CPU batch execution.
 #include "worker/backends/cpu_embree/cpu_backend.h"
 
+#include <spdlog/spdlog.h>
+
+#include <chrono>
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
@@ -45,8 +48,12 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
                 ForecastPhotonMaps(*job.scene, *job.emitters, tracer_, features_, settings, job.seed);
             if (absl::Status status = CheckPhotonMapsFit(forecast, settings, AvailableMemoryBytes()); !status.ok())
                 return status;
+            const auto start = std::chrono::steady_clock::now();
             maps_ = std::make_shared<const PhotonMaps>(
                 BuildPhotonMaps(*job.scene, *job.emitters, tracer_, features_, settings, job.seed));
+            spdlog::info("photon maps: {} global and {} caustic photons stored ({:.0f} MB) in {:.2f} s",
+                         maps_->global->Photons().size(), maps_->caustic->Photons().size(), maps_->Bytes() / 1e6,
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
             const PhotonMappingInputs inputs{job.scene, job.emitters, &tracer_, maps_.get(), settings,
                                              MaxSearchRadius(settings, *job.scene), filter_angle, features_};
             radiance_ = [inputs, maps = maps_](const Ray& ray, Rng& rng) { return PhotonMappingRadiance(inputs, ray, rng); };
