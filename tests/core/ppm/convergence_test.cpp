@@ -72,14 +72,32 @@ TEST(ConvergenceTest, LogStaysBoundedSpreadOverTheRunAndEndsAtTheLatestEpoch) {
 
 TEST(ConvergenceTest, CsvHasOneRowPerPointAndEmptyCellsWhereUnknown) {
     ConvergencePoint first{1.25, 1, 4096, std::nullopt, std::nullopt, 64};
-    ConvergencePoint second{2.5, 2, 8192, ErrorEstimate{true, 0.02, 0.0004, 0.01}, ImageDifference{0.03, 0.0009}, 64};
+    ConvergencePoint second{2.5, 2, 8192, ErrorEstimate{true, 0.02, 0.0004, 0.01}, ImageDifference{0.03, 0.0009}, 64, 9};
     second.measured->nonfinite_pixels = 16;
     const std::vector<ConvergencePoint> points = {first, second};
     EXPECT_EQ(ConvergenceCsv(points),
               "seconds,epochs,photons,estimated_rmse,estimated_rel_error,estimated_bias_rmse,reference_rmse,"
-              "reference_rel_mse,reference_rel_error,reference_nonfinite_fraction\n"
-              "1.250000,1,4096,,,,,,,\n"
-              "2.500000,2,8192,0.02,0.02,0.01,0.03,0.0009,0.03,0.25\n");
+              "reference_rel_mse,reference_rel_error,reference_nonfinite_fraction,camera_samples\n"
+              "1.250000,1,4096,,,,,,,,0\n"
+              "2.500000,2,8192,0.02,0.02,0.01,0.03,0.0009,0.03,0.25,9\n");
+    EXPECT_FALSE(WorkIsCameraSamples(points)) << "photons grow: a photon mapper's log";
+}
+
+TEST(ConvergenceTest, LogsWithoutGrowingPhotonsAreMeasuredInCameraSamples) {
+    // The path tracer traces no photons, classic photon mapping all of its maps' before its
+    // first epoch: their fits and plots run against camera samples.
+    std::vector<ConvergencePoint> points;
+    for (uint64_t epoch = 1; epoch <= 8; ++epoch) {
+        const double error = 0.1 / std::sqrt(double(epoch));
+        points.push_back({double(epoch), epoch, 0, ErrorEstimate{true, error, error * error, 0}, std::nullopt, 64,
+                          epoch * 1000});
+    }
+    EXPECT_TRUE(WorkIsCameraSamples(points));
+    const ConvergenceFits fits = FitConvergence(points);
+    ASSERT_TRUE(fits.estimated_vs_photons.has_value());
+    EXPECT_NEAR(fits.estimated_vs_photons->slope, -0.5, 1e-9) << "error against camera samples falls as 1/sqrt(n)";
+    for (ConvergencePoint& point : points) point.photons = 2'000'000;  // a pm job's maps
+    EXPECT_TRUE(WorkIsCameraSamples(points));
 }
 
 }  // namespace
