@@ -6,6 +6,7 @@
 #include "core/math/frame.h"
 #include "core/pm/density_estimate.h"
 #include "core/ppm/camera_pass.h"
+#include "core/ppm/direct_light.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/glossy.h"
 
@@ -50,10 +51,7 @@ Rgb DiffuseRadiance(const PhotonMappingInputs& inputs, const SurfacePoint& surfa
                     const Vec3& geometric, const Rgb& albedo, Rng& rng, NearestPhotons& scratch) {
     const float max_radius_sq = inputs.max_radius * inputs.max_radius;
     const PhotonMapSettings& settings = inputs.settings;
-    Rgb radiance(0.0f);
-    LightSample light;
-    if (inputs.emitters->SampleDirect(surface.position, normal, rng, &light) && !inputs.tracer->Occluded(light.shadow_ray))
-        radiance += albedo / kPi * light.radiance_over_pdf * Dot(light.direction, normal);
+    Rgb radiance = albedo / kPi * SampleDirectIrradiance(*inputs.emitters, *inputs.tracer, surface.position, normal, rng);
     if (!inputs.maps->caustic->Photons().empty())
         radiance += EstimateDiffuseRadiance(*inputs.maps->caustic, surface.position, normal, albedo, settings.nearest,
                                             max_radius_sq, settings.filter, scratch);

@@ -3,10 +3,51 @@
 
 #include <algorithm>
 
-#include "core/sampling/rng.h"
+#include "core/math/frame.h"
+#include "core/sampling/sampling.h"
 #include "core/util/check.h"
 
 namespace pf {
+
+DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const Vec3& n, Rng& rng) {
+    DirectLightRays rays;
+    rays.light_active = emitters.SampleDirect(p, n, rng, &rays.light);
+    if (!emitters.HasTriangles()) return rays;
+    const float u1 = rng.NextFloat();
+    const float u2 = rng.NextFloat();
+    const Vec3 direction = Frame::FromNormal(n).ToWorld(SampleCosineHemisphere(u1, u2));
+    rays.bsdf_ray = {OffsetRayOrigin(p, n, emitters.SceneScale()), direction};
+    rays.bsdf_active = true;
+    return rays;
+}
+
+Rgb FinishDirectLight(const Emitters& emitters, const Vec3& n, const DirectLightRays& rays, bool occluded,
+                      const RayHit* bsdf_hit) {
+    Rgb irradiance(0.0f);
+    if (rays.light_active && !occluded) {
+        const float cosine = Dot(rays.light.direction, n);
+        // A punctual light (pdf 0) is found by light sampling alone.
+        const float weight = rays.light.pdf > 0 ? PowerHeuristic(rays.light.pdf, cosine / kPi) : 1.0f;
+        irradiance += rays.light.radiance_over_pdf * (cosine * weight);
+    }
+    if (bsdf_hit != nullptr && bsdf_hit->instance == Instance::kNone) {
+        const Ray& ray = rays.bsdf_ray;
+        const Emitters::Hit hit =
+            emitters.HitEmitter(bsdf_hit->triangle, ray.origin, ray.origin + ray.direction * bsdf_hit->t);
+        // L cos / (cos / pi): the cosine ray's own weight is pi.
+        if (hit.pdf > 0) irradiance += hit.radiance * (kPi * PowerHeuristic(Dot(ray.direction, n) / kPi, hit.pdf));
+    }
+    return irradiance;
+}
+
+Rgb SampleDirectIrradiance(const Emitters& emitters, const Tracer& tracer, const Vec3& p, const Vec3& n, Rng& rng) {
+    const DirectLightRays rays = StartDirectLight(emitters, p, n, rng);
+    const bool occluded = rays.light_active && tracer.Occluded(rays.light.shadow_ray);
+    RayHit hit;
+    const bool found = rays.bsdf_active && tracer.Intersect(rays.bsdf_ray, &hit);
+    return FinishDirectLight(emitters, n, rays, occluded, found ? &hit : nullptr);
+}
+
 SeedFamily DirectLightSeeds(uint64_t seed, uint64_t epoch) {
     constexpr uint64_t kDirectStream = 0x646972656374ull;
     return SeedFamily(seed, kDirectStream, epoch);
@@ -20,22 +61,26 @@ uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer, std::
     const SeedFamily seeds = DirectLightSeeds(seed, epoch);
     for (size_t begin = 0; begin < out.size(); begin += kLanes) {
         const int lanes = static_cast<int>(std::min<size_t>(kLanes, out.size() - begin));
-        Ray rays[kLanes] = {};
-        bool active[kLanes] = {}, occluded[kLanes];
-        LightSample samples[kLanes];
+        DirectLightRays samples[kLanes];
+        Ray shadow_rays[kLanes] = {}, bsdf_rays[kLanes] = {};
+        bool shadow_active[kLanes] = {}, bsdf_active[kLanes] = {}, occluded[kLanes] = {}, found[kLanes] = {};
+        RayHit hits[kLanes];
         for (int lane = 0; lane < lanes; ++lane) {
             const uint32_t index = first + static_cast<uint32_t>(begin) + lane;
             const HitPoint& hit_point = hit_points[index];
             Rng rng(seeds.Seed(index));
-            active[lane] = emitters.SampleDirect(hit_point.position, hit_point.normal, rng, &samples[lane]);
-            if (active[lane]) rays[lane] = samples[lane].shadow_ray;
+            samples[lane] = StartDirectLight(emitters, hit_point.position, hit_point.normal, rng);
+            shadow_active[lane] = samples[lane].light_active;
+            shadow_rays[lane] = samples[lane].light.shadow_ray;
+            bsdf_active[lane] = samples[lane].bsdf_active;
+            bsdf_rays[lane] = samples[lane].bsdf_ray;
         }
-        tracer.OccludedPacket(rays, active, occluded);
+        tracer.OccludedPacket(shadow_rays, shadow_active, occluded);
+        if (emitters.HasTriangles()) tracer.IntersectPacket(bsdf_rays, bsdf_active, hits, found);
         for (int lane = 0; lane < lanes; ++lane) {
             const HitPoint& hit_point = hit_points[first + begin + lane];
-            const Rgb sample = active[lane] && !occluded[lane] ? hit_point.weight * samples[lane].radiance_over_pdf *
-                                                                     Dot(samples[lane].direction, hit_point.normal)
-                                                               : Rgb(0.0f);
+            const Rgb sample = hit_point.weight * FinishDirectLight(emitters, hit_point.normal, samples[lane],
+                                                                    occluded[lane], found[lane] ? &hits[lane] : nullptr);
             const bool finite = IsFinite(sample);
             discarded += !finite;
             out[begin + lane] = finite ? sample : Rgb(0.0f);

@@ -1,6 +1,9 @@
-// Direct lighting at hit points by explicit light sampling with shadow rays. Taken once per
-// hit point per epoch and averaged, so direct light converges like the photons do while the
-// photons carry only indirect light.
+// Direct lighting at diffuse points: one light sample with a shadow ray and, where the scene
+// has emitting triangles, one cosine-distributed ray that may hit one, weighed against each
+// other by the power heuristic (Veach 1997, ch. 9). Light sampling alone leaves fireflies
+// wherever a point sits close to an emitting surface (its 1/d^2); the cosine ray finds that
+// light with a bounded weight. Taken once per hit point per epoch and averaged, so direct
+// light converges like the photons do while the photons carry only indirect light.
 #pragma once
 
 #include <cstdint>
@@ -13,16 +16,36 @@
 
 namespace pf {
 
-// One sample each of the light reflected at hit_points[first + i] toward its camera path,
-// already multiplied by the hit point's weight (throughput x BSDF), in W/(m^2 sr), into
-// out[i]. Hit point h's sample in `epoch` draws from a stream seeded by (seed, epoch, h)
-// alone. Shadow rays are cast in packets. A sample that comes out NaN or Inf is set to 0;
-// returns how many were.
+// The rays of one direct-light sample at point p with unit normal n (toward the side lit),
+// drawn from rng: 3 numbers for the light sample, then 2 for the cosine ray where the
+// emitters include triangles. The Vulkan kernel draws the same numbers in the same order.
+struct DirectLightRays {
+    LightSample light;
+    bool light_active = false;
+    Ray bsdf_ray;
+    bool bsdf_active = false;
+};
+DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const Vec3& n, Rng& rng);
+
+// The sample's estimate of the irradiance at p, the integral of L_i cos over the hemisphere
+// (a diffuse point reflects it times albedo / pi), from whether the shadow ray was occluded
+// and what the cosine ray hit (nullptr where it hit nothing or was not cast).
+Rgb FinishDirectLight(const Emitters& emitters, const Vec3& n, const DirectLightRays& rays, bool occluded,
+                      const RayHit* bsdf_hit);
+
+// Both steps with single rays.
+Rgb SampleDirectIrradiance(const Emitters& emitters, const Tracer& tracer, const Vec3& p, const Vec3& n, Rng& rng);
+
 // The streams of epoch `epoch`'s direct-light samples: hit point h draws from
 // Rng(DirectLightSeeds(seed, epoch).Seed(h)), on every backend.
 SeedFamily DirectLightSeeds(uint64_t seed, uint64_t epoch);
 
+// One sample each of the light reflected at hit_points[first + i] toward its camera path,
+// already multiplied by the hit point's weight (throughput x BSDF), in W/(m^2 sr), into
+// out[i]. Hit point h's sample in `epoch` draws from a stream seeded by (seed, epoch, h)
+// alone. Rays are cast in packets. A sample that comes out NaN or Inf is set to 0; returns
+// how many were.
 uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer, std::span<const HitPoint> hit_points,
-                       uint32_t first, uint64_t seed, uint64_t epoch, std::span<Rgb> out);
+                           uint32_t first, uint64_t seed, uint64_t epoch, std::span<Rgb> out);
 
 }  // namespace pf

@@ -11,13 +11,6 @@
 namespace pf {
 namespace {
 
-// Veach's power heuristic with beta = 2: the weight of a sample drawn with density `chosen`
-// where another strategy would have drawn it with density `other`.
-float PowerHeuristic(float chosen, float other) {
-    const float a = chosen * chosen, b = other * other;
-    return a + b > 0 ? a / (a + b) : 0.0f;
-}
-
 // Instantiated for the scene's features, as the camera and photon passes are: without
 // specular materials every surface is diffuse, without textures every base colour is the
 // material's.

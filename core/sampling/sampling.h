@@ -9,6 +9,7 @@
 
 namespace pf {
 
+using shared::PowerHeuristic;          // multiple importance sampling's weight
 using shared::SampleCosineHemisphere;  // density cos(theta) / pi about +z
 using shared::SampleUniformCone;       // density 1 / (2 pi (1 - cos_max)) about +z
 using shared::SampleUniformDisk;       // density 1 / pi on the unit disk

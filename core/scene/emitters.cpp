@@ -123,7 +123,7 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
     const auto pick = distribution_.Draw(rng.NextFloat());
     const Emitter& emitter = emitters_[pick.index];
     const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
-    const Vec3 origin = OffsetRayOrigin(p, n, scene_.bounds.Magnitude());
+    const Vec3 origin = OffsetRayOrigin(p, n, SceneScale());
     Vec3 to_light;
     float distance = std::numeric_limits<float>::infinity();
     Rgb radiance_over_pdf;
@@ -166,14 +166,20 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
 }
 
 float Emitters::PdfDirect(uint32_t triangle, const Vec3& p, const Vec3& on_light) const {
-    if (triangle >= emitter_of_triangle_.size() || emitter_of_triangle_[triangle] < 0) return 0;
-    const auto index = static_cast<uint32_t>(emitter_of_triangle_[triangle]);
+    return HitEmitter(triangle, p, on_light).pdf;
+}
+
+Emitters::Hit Emitters::HitEmitter(uint32_t triangle, const Vec3& p, const Vec3& on_light) const {
+    const int32_t emitter = EmitterOfTriangle(triangle);
+    if (emitter < 0) return {};
+    const auto index = static_cast<uint32_t>(emitter);
     const EmissiveTriangle& emissive = triangles_[emitters_[index].index];
     const Vec3 to_light = on_light - p;
     const float distance_sq = LengthSquared(to_light);
     const float cos_light = -Dot(emissive.frame.n, to_light) / std::sqrt(distance_sq);
-    if (!(cos_light > 0) || !(distance_sq > 0)) return 0;
-    return static_cast<float>(distribution_.Probability(index)) * distance_sq / (cos_light * emissive.area);
+    if (!(cos_light > 0) || !(distance_sq > 0)) return {};
+    return {emissive.radiance,
+            static_cast<float>(distribution_.Probability(index)) * distance_sq / (cos_light * emissive.area)};
 }
 
 }  // namespace pf

@@ -52,6 +52,21 @@ public:
     // `on_light` of world triangle `triangle` (0 if the triangle emits nothing): for weighing
     // a path that found the light by scattering against light sampling (Veach 1997, ch. 9).
     float PdfDirect(uint32_t triangle, const Vec3& p, const Vec3& on_light) const;
+    // What a ray from p finds where it hits point `on_light` of world triangle `triangle`: the
+    // radiance emitted toward p, and PdfDirect's density. Both 0 where the triangle emits
+    // nothing, or not toward p.
+    struct Hit {
+        Rgb radiance;
+        float pdf = 0;
+    };
+    Hit HitEmitter(uint32_t triangle, const Vec3& p, const Vec3& on_light) const;
+    // Whether any emitter is a triangle, which a ray can hit (punctual lights only light
+    // sampling finds).
+    bool HasTriangles() const { return !triangles_.empty(); }
+    // The index into Records() of world triangle `triangle`'s emitter, or -1.
+    int32_t EmitterOfTriangle(uint32_t triangle) const {
+        return triangle < emitter_of_triangle_.size() ? emitter_of_triangle_[triangle] : -1;
+    }
 
     // Each emitter as another backend needs it to emit and sample the same light (the Vulkan
     // backend uploads these), in selection order.
@@ -69,6 +84,8 @@ public:
     std::vector<Record> Records() const;
     // The bounding sphere directional lights emit across.
     Vec3 SceneCenter() const { return scene_center_; }
+    // The scene's largest coordinate magnitude, which ray origins are offset by (OffsetRayOrigin).
+    float SceneScale() const { return scene_.bounds.Magnitude(); }
     float SceneRadius() const { return scene_radius_; }
 
 private:

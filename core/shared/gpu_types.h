@@ -91,11 +91,13 @@ PF_GPU_LAYOUT(GpuTriangle, 48);
 
 // What shading a hit needs beyond its position, in scene triangle order.
 struct GpuTriangleShading {
-    vec4 normal;     // unit geometric normal (the winding's front)
+    vec4 normal;     // unit geometric normal (the winding's front); w: the index of the
+                     // triangle's emitter (uint bits), or kNoEmitter
     uvec4 vertices;  // xyz: vertex indices (normals, uvs); w: material | kSmoothBit
 };
 PF_GPU_LAYOUT(GpuTriangleShading, 32);
 PF_CONST(uint32_t) kSmoothBit = 0x80000000u;
+PF_CONST(uint32_t) kNoEmitter = 0xffffffffu;
 
 struct GpuMaterial {
     vec4 base_color;  // xyz; w: index of refraction

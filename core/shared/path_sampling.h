@@ -76,6 +76,13 @@ PF_SHARED_FN vec2 SampleUniformTriangle(float u1, float u2) {
     return vec2(u2 * root, 1.0f - root);
 }
 
+// Veach's power heuristic with beta = 2 (Veach 1997, section 9.2.4): the weight of a sample
+// drawn with density `chosen` where another strategy would have drawn it with density `other`.
+PF_SHARED_FN float PowerHeuristic(float chosen, float other) {
+    const float a = chosen * chosen, b = other * other;
+    return a + b > 0.0f ? a / (a + b) : 0.0f;
+}
+
 // Tangents s, t completing the unit normal n to an orthonormal frame, without branches on
 // the sign of n.z (Duff et al. 2017, "Building an Orthonormal Basis, Revisited", JCGT 6(1)).
 PF_SHARED_FN void OrthonormalBasis(vec3 n, PF_OUT(vec3) s, PF_OUT(vec3) t) {

@@ -115,7 +115,7 @@ TEST_F(VulkanBackendTest, BatchesMatchTheCpuBackendsOnTheSameStreams) {
     // intersection) move deposits a little, and those near a hit point's radius go the other
     // way. The totals must agree within the photon noise of independent streams, 4/sqrt(M),
     // which is conservative here; each direct-light sample (same numbers, no radius) must match.
-    for (const char* scene : {"cornell-box.gltf", "cornell-glass.gltf"}) {
+    for (const char* scene : {"cornell-box.gltf", "cornell-glass.gltf", "furnace.gltf"}) {
         SCOPED_TRACE(scene);
         std::unique_ptr<Rendering> setup = BeginBoth(scene, 32);
         ASSERT_NE(setup, nullptr);

@@ -12,17 +12,21 @@ namespace {
 gpu::vec4 Vec4(const Vec3& v, float w = 0) { return {v.x, v.y, v.z, w}; }
 gpu::vec4 Vec4(const Vec3& v, uint32_t w_bits) { return {v.x, v.y, v.z, std::bit_cast<float>(w_bits)}; }
 
-void AddGeometry(const Scene& scene, const embree::GpuBvh& bvh, GpuScene& gpu_scene) {
+void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::GpuBvh& bvh, GpuScene& gpu_scene) {
     for (uint32_t t : bvh.order) {
         const Triangle& triangle = scene.triangles[t];
         const Vec3& p0 = scene.positions[triangle.vertex[0]];
         gpu_scene.triangles.push_back({Vec4(p0, t), Vec4(scene.positions[triangle.vertex[1]] - p0),
                                        Vec4(scene.positions[triangle.vertex[2]] - p0)});
     }
-    for (const Triangle& triangle : scene.triangles)
-        gpu_scene.shading.push_back({Vec4(triangle.normal),
+    for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
+        const Triangle& triangle = scene.triangles[t];
+        // Emitters name world triangles, which flattening keeps first, under their indices.
+        const int32_t emitter = emitters.EmitterOfTriangle(t);
+        gpu_scene.shading.push_back({Vec4(triangle.normal, emitter < 0 ? gpu::kNoEmitter : static_cast<uint32_t>(emitter)),
                                      {triangle.vertex[0], triangle.vertex[1], triangle.vertex[2],
                                       triangle.material | (triangle.smooth ? gpu::kSmoothBit : 0u)}});
+    }
     // What no kernel of this scene reads is neither built nor uploaded.
     if (gpu_scene.features.smooth_normals)
         for (const Vec3& normal : scene.normals) gpu_scene.normals.push_back(Vec4(normal));
@@ -119,9 +123,9 @@ absl::StatusOr<GpuScene> BuildGpuScene(const Scene& job_scene, const Emitters& e
     gpu_scene.nodes = std::move(bvh->nodes);
     if (scene.triangles.empty()) {
         gpu_scene.triangles.push_back({Vec4(Vec3(0.0f), 0u), Vec4(Vec3(0.0f)), Vec4(Vec3(0.0f))});
-        gpu_scene.shading.push_back({Vec4(Vec3(0, 0, 1)), {0, 0, 0, 0}});
+        gpu_scene.shading.push_back({Vec4(Vec3(0, 0, 1), gpu::kNoEmitter), {0, 0, 0, 0}});
     } else {
-        AddGeometry(scene, *bvh, gpu_scene);
+        AddGeometry(scene, emitters, *bvh, gpu_scene);
     }
     AddEmitters(scene, emitters, gpu_scene);
     gpu_scene.sphere = Vec4(emitters.SceneCenter(), emitters.SceneRadius());

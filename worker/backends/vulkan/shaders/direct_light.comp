@@ -1,6 +1,8 @@
 #version 460
 // One direct-light sample for each hit point of a batch's slice (core/ppm/direct_light.cpp on
-// the CPU, with the same random numbers): a light sample, a shadow ray, the weighted result.
+// the CPU, with the same random numbers): a light sample with its shadow ray and, in a scene
+// with emitting triangles, a cosine-distributed ray that may hit one, weighed by the power
+// heuristic; the result times the hit point's weight.
 #include "common.glsl"
 #include "trace.glsl"
 #include "lights.glsl"
@@ -16,12 +18,28 @@ void main() {
     if (index < params.end) {
         const GpuHitPoint point = hit_points[index];
         Pcg32 rng = Pcg32Seeded(FamilySeed(params.seed_prefix, index));
+        const vec3 normal = point.normal.xyz;
         LightSample light;
-        vec3 value = vec3(0);
+        vec3 irradiance = vec3(0);
         RayHit hit;
-        if (SampleLight(point.position.xyz, point.normal.xyz, rng, light) &&
-            !TraceRay(light.origin, light.direction, light.distance, true, hit))
-            value = point.weight.xyz * light.radiance_over_pdf * dot(light.direction, point.normal.xyz);
+        if (SampleLight(point.position.xyz, normal, rng, light) &&
+            !TraceRay(light.origin, light.direction, light.distance, true, hit)) {
+            const float cosine = dot(light.direction, normal);
+            const float weight = light.pdf > 0 ? PowerHeuristic(light.pdf, cosine / kPi) : 1.0;
+            irradiance += light.radiance_over_pdf * (cosine * weight);
+        }
+        if (kHasTriangleLights) {
+            const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+            const vec3 direction = FrameFromNormal(normal) * SampleCosineHemisphere(u1, u2);
+            const vec3 origin = OffsetRayOrigin(point.position.xyz, normal);
+            if (TraceRay(origin, direction, kInfinity, false, hit)) {
+                float pdf;
+                const vec3 radiance = HitEmitter(hit, origin, origin + direction * hit.t, pdf);
+                // L cos / (cos / pi): the cosine ray's own weight is pi.
+                if (pdf > 0) irradiance += radiance * (kPi * PowerHeuristic(dot(direction, normal) / kPi, pdf));
+            }
+        }
+        vec3 value = point.weight.xyz * irradiance;
         if (!IsFinite(value)) {
             atomicAdd(group_discarded, 1u);
             value = vec3(0);

@@ -70,6 +70,7 @@ struct LightSample {
     vec3 origin, direction;  // the shadow ray, toward the light
     float distance;          // how far the shadow ray goes
     vec3 radiance_over_pdf;  // incident radiance / pdf(solid angle), receiver cosine excluded
+    float pdf;               // that pdf, the pick included; 0 for a punctual light
 };
 
 // One light sample at receiver p with facing normal n; false where it carries no light.
@@ -80,6 +81,7 @@ bool SampleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample sample_out) {
     const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
     sample_out.origin = OffsetRayOrigin(p, n);
     sample_out.distance = kInfinity;
+    sample_out.pdf = 0;
     vec3 to_light = vec3(0);
     vec3 radiance_over_pdf = vec3(0);
     if (kHasTriangleLights && kind == kEmitterTriangle) {
@@ -92,6 +94,7 @@ bool SampleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample sample_out) {
         const float cos_light = -dot(emitter.direction.xyz, to_light);
         if (!(cos_light > 0) || !(distance_sq > 0)) return false;
         radiance_over_pdf = emitter.radiance.xyz * (cos_light * emitter.edge1.w / distance_sq);
+        sample_out.pdf = distance_sq / (cos_light * emitter.edge1.w * emitter.power.w);
     } else if (kHasDirectionalLights && kind == kEmitterDirectional) {
         to_light = -emitter.direction.xyz;
         radiance_over_pdf = emitter.radiance.xyz;
@@ -110,4 +113,20 @@ bool SampleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample sample_out) {
     sample_out.distance *= 1.0 - 1e-4;  // stop short of the light, by a margin that scales
     sample_out.radiance_over_pdf = radiance_over_pdf * emitter.power.w;
     return true;
+}
+
+// What a ray from p finds where it hits point on_light of triangle `hit` (Emitters::HitEmitter):
+// the radiance emitted toward p and the density with which SampleLight picks that point; both
+// 0 where the triangle emits nothing or not toward p.
+vec3 HitEmitter(RayHit hit, vec3 p, vec3 on_light, out float pdf) {
+    pdf = 0;
+    const uint index = floatBitsToUint(shading[floatBitsToUint(triangles[hit.triangle].p0.w)].normal.w);
+    if (index == kNoEmitter) return vec3(0);
+    const GpuEmitter emitter = emitters[index];
+    const vec3 to_light = on_light - p;
+    const float distance_sq = dot(to_light, to_light);
+    const float cos_light = -dot(emitter.direction.xyz, to_light) / sqrt(distance_sq);
+    if (!(cos_light > 0) || !(distance_sq > 0)) return vec3(0);
+    pdf = distance_sq / (cos_light * emitter.edge1.w * emitter.power.w);
+    return emitter.radiance.xyz;
 }
