@@ -8,9 +8,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <random>
+#include <set>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
 #include "core/film/image_metrics.h"
 #include "core/pm/photon_map.h"
 #include "core/ppm/camera_pass.h"
@@ -268,8 +270,19 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
         std::lock_guard lock(mutex_);
         // An epoch's chunks are all the work there is until it is merged: fewer than the
         // workers' threads leave threads idle.
+        const Integrator integrator = prepared->spec.integrator;
         uint64_t threads = 0;
-        for (const auto& [id, worker] : workers_) threads += worker.registration.threads;
+        std::set<std::string> other_backends;
+        for (const auto& [id, worker] : workers_) {
+            if (RunsOnBackend(integrator, worker.registration.backend))
+                threads += worker.registration.threads;
+            else
+                other_backends.insert(worker.registration.backend);
+        }
+        if (threads == 0 && !other_backends.empty())
+            prepared->warnings.push_back(absl::StrCat(
+                "no connected worker runs the ", std::string(IntegratorName(integrator)), " integrator (connected: ",
+                absl::StrJoin(other_backends, ", "), "): the job waits for one that does (cpu workers run every integrator)"));
         const BatchLayout& layout = prepared->spec.layout;
         const uint64_t chunks = uint64_t{layout.batches_per_epoch} * ChunkCount(MakeBatchSpec(layout, 0, 0, 0));
         if (GathersAtHitPoints(prepared->spec.integrator) && chunks < threads)
