@@ -12,6 +12,7 @@
 # Writes OUT/<scene>.png (log-log relative error against seconds, one curve per integrator),
 # OUT/<scene>.csv (integrator,photons,seconds,relative_error,peak_memory_mb per run) and
 # OUT/table.md (the last point of every run), and prints the table.
+# SCENES="a b" renders those scenes alone and keeps the other scenes' rows of OUT/table.md.
 # Usage: bench/compare_integrators.sh BUILD_DIR [OUT_DIR] [SIZE] [SECONDS] [REF_SECONDS]
 set -euo pipefail
 build=${1:?usage: compare_integrators.sh BUILD_DIR [OUT_DIR] [SIZE] [SECONDS] [REF_SECONDS]}
@@ -41,12 +42,20 @@ render() {
 }
 
 table="$out/table.md"
+kept="$work/kept.md"  # the rows of the scenes not rendered this time
+: >"$kept"
+if [[ -n ${SCENES:-} && -f $table ]]; then
+    tail -n +3 "$table" | awk -v scenes=" $SCENES " -F' [|] ' 'index(scenes, " " substr($1, 3) " ") == 0' >"$kept"
+fi
 {
     echo "| scene | integrator | settings | photons | seconds | relative error | peak memory (MB) |"
     echo "|---|---|---|---:|---:|---:|---:|"
 } >"$table"
+rows="$work/rows.md"
+: >"$rows"
 for gltf in scenes/*.gltf; do
     scene=$(basename "$gltf" .gltf)
+    [[ -n ${SCENES:-} && " $SCENES " != *" $scene "* ]] && continue
     reference="$work/$scene-reference.exr"
     if [[ $scene == furnace* ]]; then
         oiiotool --pattern constant:color=2,2,2 "${size}x${size}" 3 -d float -o "$reference"
@@ -64,7 +73,7 @@ for gltf in scenes/*.gltf; do
                                --reference "$reference")
         echo "$integrator,$p,$s,$e,$m" >>"$csv"
         printf '| %s | %s | %s s | %s | %.1f | %.2f%% | %s |\n' "$scene" "$integrator" "$seconds" "$p" "$s" \
-            "$(awk -v e="$e" 'BEGIN { print 100 * e }')" "$m" >>"$table"
+            "$(awk -v e="$e" 'BEGIN { print 100 * e }')" "$m" >>"$rows"
         cp "$work/$scene-$integrator/convergence.csv" "$work/$scene-$integrator.curve.csv"
         plots+=("'$work/$scene-$integrator.curve.csv' using (column(\"seconds\")):(column(\"reference_rel_error\")) with lines lw 2 title '$integrator'")
     done
@@ -76,7 +85,7 @@ for gltf in scenes/*.gltf; do
         echo "pm,$p,$s,$e,$m" >>"$csv"
         echo "$s,$e,$photons" >>"$pm_points"
         printf '| %s | pm | %s photons a map, %s epochs | %s | %.1f | %.2f%% | %s |\n' "$scene" "$photons" \
-            "$pm_epochs" "$p" "$s" "$(awk -v e="$e" 'BEGIN { print 100 * e }')" "$m" >>"$table"
+            "$pm_epochs" "$p" "$s" "$(awk -v e="$e" 'BEGIN { print 100 * e }')" "$m" >>"$rows"
     done
     gnuplot <<EOF
 set terminal pngcairo size 900,600 font ",11"
@@ -93,4 +102,5 @@ plot ${plots[0]}, ${plots[1]}, ${plots[2]}, \\
      "$pm_points" using 1:2:3 with labels offset 0,1 notitle
 EOF
 done
+cat "$kept" "$rows" | sort -s -t'|' -k2,2 >>"$table"
 cat "$table"

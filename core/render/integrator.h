@@ -38,10 +38,10 @@ inline bool GathersAtHitPoints(Integrator integrator) {
 }
 
 // Whether the photon backend named `backend` (worker/backend_factory.h) runs jobs of
-// `integrator`: the cpu backend runs every one, the vulkan backend progressive photon
-// mapping. A coordinator leases a worker only jobs its backend runs.
+// `integrator`: the cpu backend runs every one, the vulkan backend the progressive photon
+// mappers (ppm and sppm). A coordinator leases a worker only jobs its backend runs.
 inline bool RunsOnBackend(Integrator integrator, std::string_view backend) {
-    return backend != "vulkan" || integrator == Integrator::kPpm;
+    return backend != "vulkan" || integrator == Integrator::kPpm || integrator == Integrator::kSppm;
 }
 
 // How classic photon mapping finds a point's nearest photons.

@@ -109,41 +109,70 @@ TEST_F(VulkanBackendTest, BatchIsAPureFunctionOfItsSpec) {
     }
 }
 
+// The shaders draw the same random numbers as the CPU (core/shared/rng.h) in the same order,
+// so the two backends follow nearly the same paths; float differences (trig, intersection)
+// move deposits a little, and those near a hit point's radius go the other way. The totals
+// must agree within the photon noise of independent streams, 4/sqrt(M), which is
+// conservative here; each direct-light sample (same numbers, no radius) must match.
+void ExpectBatchesAgree(Backend& cpu_backend, Backend& vulkan_backend, const std::vector<BatchSpec>& specs) {
+    const absl::StatusOr<std::vector<BatchResult>> cpu = cpu_backend.RunBatches(specs);
+    const absl::StatusOr<std::vector<BatchResult>> gpu = vulkan_backend.RunBatches(specs);
+    ASSERT_TRUE(cpu.ok() && gpu.ok());
+    double cpu_photons = 0, gpu_photons = 0, cpu_flux = 0, gpu_flux = 0, cpu_segments = 0, gpu_segments = 0;
+    size_t samples = 0, differing = 0;
+    for (size_t b = 0; b < specs.size(); ++b) {
+        const BatchResult& c = (*cpu)[b];
+        const BatchResult& g = (*gpu)[b];
+        cpu_photons += TotalPhotons(c.tally), gpu_photons += TotalPhotons(g.tally);
+        cpu_flux += TotalFlux(c.tally), gpu_flux += TotalFlux(g.tally);
+        cpu_segments += c.segments_traced, gpu_segments += g.segments_traced;
+        EXPECT_EQ(g.photons_emitted, c.photons_emitted);
+        EXPECT_EQ(g.nonfinite_discarded, 0u);
+        ASSERT_EQ(g.samples.size(), c.samples.size());
+        for (size_t i = 0; i < c.samples.size(); ++i, ++samples) {
+            const double expected = Average(c.samples[i]), actual = Average(g.samples[i]);
+            differing += std::abs(actual - expected) > 1e-3 * std::abs(expected) + 1e-6;
+        }
+    }
+    const double noise = 4 / std::sqrt(cpu_photons);
+    EXPECT_GT(cpu_photons, 1000);
+    EXPECT_NEAR(gpu_photons / cpu_photons, 1.0, noise) << cpu_photons << " photons gathered on the CPU";
+    EXPECT_NEAR(gpu_flux / cpu_flux, 1.0, noise);
+    EXPECT_NEAR(gpu_segments / cpu_segments, 1.0, 4 / std::sqrt(cpu_segments));
+    EXPECT_LE(differing, samples / 100) << "direct-light samples must match but for a few grazing shadow rays";
+}
+
 TEST_F(VulkanBackendTest, BatchesMatchTheCpuBackendsOnTheSameStreams) {
-    // The shaders draw the same random numbers as the CPU (core/shared/rng.h) in the same
-    // order, so the two backends follow nearly the same paths; float differences (trig,
-    // intersection) move deposits a little, and those near a hit point's radius go the other
-    // way. The totals must agree within the photon noise of independent streams, 4/sqrt(M),
-    // which is conservative here; each direct-light sample (same numbers, no radius) must match.
     for (const char* scene : {"cornell-box.gltf", "cornell-glass.gltf", "furnace.gltf"}) {
         SCOPED_TRACE(scene);
         std::unique_ptr<Rendering> setup = BeginBoth(scene, 32);
         ASSERT_NE(setup, nullptr);
-        const std::vector<BatchSpec> specs = setup->estimate->EpochBatches();
-        const absl::StatusOr<std::vector<BatchResult>> cpu = setup->cpu->RunBatches(specs);
-        const absl::StatusOr<std::vector<BatchResult>> gpu = setup->vulkan->RunBatches(specs);
-        ASSERT_TRUE(cpu.ok() && gpu.ok());
-        double cpu_photons = 0, gpu_photons = 0, cpu_flux = 0, gpu_flux = 0, cpu_segments = 0, gpu_segments = 0;
-        size_t samples = 0, differing = 0;
-        for (size_t b = 0; b < specs.size(); ++b) {
-            const BatchResult& c = (*cpu)[b];
-            const BatchResult& g = (*gpu)[b];
-            cpu_photons += TotalPhotons(c.tally), gpu_photons += TotalPhotons(g.tally);
-            cpu_flux += TotalFlux(c.tally), gpu_flux += TotalFlux(g.tally);
-            cpu_segments += c.segments_traced, gpu_segments += g.segments_traced;
-            EXPECT_EQ(g.photons_emitted, c.photons_emitted);
-            EXPECT_EQ(g.nonfinite_discarded, 0u);
-            ASSERT_EQ(g.samples.size(), c.samples.size());
-            for (size_t i = 0; i < c.samples.size(); ++i, ++samples) {
-                const double expected = Average(c.samples[i]), actual = Average(g.samples[i]);
-                differing += std::abs(actual - expected) > 1e-3 * std::abs(expected) + 1e-6;
-            }
-        }
-        const double noise = 4 / std::sqrt(cpu_photons);
-        EXPECT_NEAR(gpu_photons / cpu_photons, 1.0, noise) << cpu_photons << " photons gathered on the CPU";
-        EXPECT_NEAR(gpu_flux / cpu_flux, 1.0, noise);
-        EXPECT_NEAR(gpu_segments / cpu_segments, 1.0, 4 / std::sqrt(cpu_segments));
-        EXPECT_LE(differing, samples / 100) << "direct-light samples must match but for a few grazing shadow rays";
+        ExpectBatchesAgree(*setup->cpu, *setup->vulkan, setup->estimate->EpochBatches());
+    }
+}
+
+TEST_F(VulkanBackendTest, SppmEpochsTraceTheirOwnHitPointsAndMatchTheCpuBackend) {
+    // Each backend traces the epoch's stochastic camera pass itself; both must gather on the
+    // same hit points, epoch after epoch (the slots move with every epoch's jitter).
+    Scene scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-glossy.gltf");
+    const Emitters emitters(scene);
+    JobSpec spec;
+    spec.integrator = Integrator::kSppm;
+    spec.width = spec.height = 24;
+    spec.samples_per_pixel = 2;
+    spec.photon_budget = 1;
+    spec.layout = {1u << 16, 4};
+    const std::vector<float> radius_sq(size_t{24} * 24 * 2, 0.03f * 0.03f);
+    std::unique_ptr<Backend> cpu = std::move(*CreateBackend("cpu", scene));
+    absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", scene);
+    ASSERT_TRUE(vulkan.ok()) << vulkan.status();
+    for (Backend* backend : {cpu.get(), vulkan->get()}) ASSERT_TRUE(backend->BeginJob({&scene, &emitters, {}, 7, &spec}).ok());
+    for (uint64_t epoch : {0u, 5u}) {
+        SCOPED_TRACE(epoch);
+        for (Backend* backend : {cpu.get(), vulkan->get()}) ASSERT_TRUE(backend->BeginEpoch(epoch, radius_sq).ok());
+        std::vector<BatchSpec> specs;
+        for (uint32_t b = 0; b < 4; ++b) specs.push_back(MakeBatchSpec(spec.layout, epoch, b, static_cast<uint32_t>(radius_sq.size())));
+        ExpectBatchesAgree(*cpu, **vulkan, specs);
     }
 }
 

@@ -19,8 +19,12 @@
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
+#include "core/ppm/camera_pass.h"
 #include "core/ppm/direct_light.h"
+#include "core/ppm/job_spec.h"
 #include "core/ppm/photon_pass.h"
+#include "core/util/check.h"
+#include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf::vk {
 namespace {
@@ -37,6 +41,11 @@ std::span<const std::byte> Bytes(const std::vector<T>& values) {
 }
 
 uint32_t Groups(uint64_t threads, uint32_t per_group) { return static_cast<uint32_t>((threads + per_group - 1) / per_group); }
+
+gpu::GpuHitPoint ToGpu(const HitPoint& h) {
+    return {{h.position.x, h.position.y, h.position.z, 0}, {h.normal.x, h.normal.y, h.normal.z, 0},
+            {h.weight.x, h.weight.y, h.weight.z, 0}};
+}
 
 // Device buffers filled from host data through staging buffers, all copies in one submission.
 class Uploader {
@@ -114,13 +123,13 @@ struct VulkanBackend::JobBuffers {
     Buffer nodes, triangles, shading, normals, uvs, materials, textures, texels, emitters, emitter_cdf;
     Buffer hit_points, radius_sq, grid_begin, grid_cursor, grid_entries, scan_blocks, tally, direct, counters;
     Buffer tally_offsets, tally_entries;
-    Buffer radius_upload, direct_readback, counters_readback;
+    Buffer radius_upload, hit_point_upload, direct_readback, counters_readback;
 
     // Uploads what kernels read and makes the rest; RESOURCE_EXHAUSTED where the device runs out.
     static absl::StatusOr<std::unique_ptr<JobBuffers>> Create(const Context& context, CommandStream& stream,
                                                               const GpuScene& gpu_scene,
                                                               std::span<const gpu::GpuHitPoint> hit_points,
-                                                              uint32_t buckets) {
+                                                              uint32_t buckets, bool hit_points_per_epoch) {
         const size_t n = hit_points.size();
         auto buffers = std::make_unique<JobBuffers>();
         Uploader uploader(context, stream);
@@ -160,6 +169,7 @@ struct VulkanBackend::JobBuffers {
         make(buffers->direct, n * sizeof(gpu::vec4), MemoryUse::kDevice);
         make(buffers->counters, sizeof(gpu::GpuCounters), MemoryUse::kDevice);
         make(buffers->radius_upload, n * sizeof(float), MemoryUse::kUpload);
+        if (hit_points_per_epoch) make(buffers->hit_point_upload, n * sizeof(gpu::GpuHitPoint), MemoryUse::kUpload);
         make(buffers->direct_readback, n * sizeof(gpu::vec4), MemoryUse::kReadback);
         make(buffers->counters_readback, sizeof(gpu::GpuCounters), MemoryUse::kReadback);
         if (absl::Status finished = uploader.Finish(); status.ok()) status = finished;
@@ -202,15 +212,31 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     if (job.spec != nullptr && !RunsOnBackend(job.spec->integrator, Name()))
         return absl::FailedPreconditionError(absl::StrCat("the vulkan backend does not run the ",
                                                           std::string(IntegratorName(job.spec->integrator)), " integrator"));
-    if (job.hit_points.size() >= (size_t{1} << 31)) return absl::ResourceExhaustedError("over 2^31 hit points");
     buffers_.reset();
     kernels_.reset();
+    stochastic_film_.reset();
     job_ = job;
+    if (job.spec != nullptr && job.spec->integrator == Integrator::kSppm) {
+        // sppm's hit points are traced on this machine's CPU every epoch, as the CPU backend
+        // does; the device holds one slot per pixel sample, black until the first epoch.
+        absl::StatusOr<CameraPassSettings> film = FilmFor(*job.spec, scene_);
+        if (!film.ok()) return film.status();
+        film->features = AnalyseFeatures(scene_, *job.emitters);
+        if (camera_tracer_ == nullptr) {
+            absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(scene_);
+            if (!tracer.ok()) return tracer.status();
+            camera_tracer_ = std::move(*tracer);
+        }
+        stochastic_film_ = *film;
+        epoch_hit_points_.assign(size_t(film->width) * size_t(film->height) * size_t(film->samples_per_pixel), {});
+        job_.hit_points = epoch_hit_points_;
+    }
+    if (job_.hit_points.size() >= (size_t{1} << 31)) return absl::ResourceExhaustedError("over 2^31 hit points");
     absl::StatusOr<GpuScene> gpu_scene = BuildGpuScene(scene_, *job.emitters);
     if (!gpu_scene.ok()) return gpu_scene.status();
     const DeviceCapacity capacity{context_->Info().name, context_->Limits().maxStorageBufferRange,
                                   context_->Info().device_local_bytes};
-    if (absl::Status status = CheckJobFits(capacity, *gpu_scene, job.hit_points.size()); !status.ok()) return status;
+    if (absl::Status status = CheckJobFits(capacity, *gpu_scene, job_.hit_points.size()); !status.ok()) return status;
     features_ = gpu_scene->features;
     scene_sphere_ = gpu_scene->sphere;
     scene_magnitude_ = gpu_scene->magnitude;
@@ -223,16 +249,13 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     if (!kernels.ok()) return kernels.status();
     kernels_ = std::move(*kernels);
 
-    const size_t n = job.hit_points.size();
-    std::vector<gpu::GpuHitPoint> hit_points;
-    hit_points.reserve(n);
-    for (const HitPoint& h : job.hit_points)
-        hit_points.push_back({{h.position.x, h.position.y, h.position.z, 0},
-                              {h.normal.x, h.normal.y, h.normal.z, 0},
-                              {h.weight.x, h.weight.y, h.weight.z, 0}});
+    const size_t n = job_.hit_points.size();
+    std::vector<gpu::GpuHitPoint> hit_points(n);
+    std::ranges::transform(job_.hit_points, hit_points.begin(), ToGpu);
     buckets_ = std::clamp<uint32_t>(std::bit_ceil(static_cast<uint32_t>(2 * n + 1)), gpu::kScanBlock, kMaxBuckets);
 
-    absl::StatusOr<std::unique_ptr<JobBuffers>> buffers = JobBuffers::Create(*context_, stream_, *gpu_scene, hit_points, buckets_);
+    absl::StatusOr<std::unique_ptr<JobBuffers>> buffers =
+        JobBuffers::Create(*context_, stream_, *gpu_scene, hit_points, buckets_, stochastic_film_.has_value());
     if (!buffers.ok()) return buffers.status();
     kernels_->BindBuffers((*buffers)->Bindings());
     buffers_ = std::move(*buffers);
@@ -254,10 +277,19 @@ gpu::GpuParams VulkanBackend::BaseParams() const {
     return params;
 }
 
-absl::Status VulkanBackend::BeginEpoch(uint64_t /*epoch*/, std::span<const float> radius_sq) {
+absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, std::span<const float> radius_sq) {
     if (buffers_ == nullptr) return absl::FailedPreconditionError("BeginEpoch before a job");
     const size_t n = job_.hit_points.size();
     if (radius_sq.size() != n) return absl::InvalidArgumentError("one radius per hit point expected");
+    if (stochastic_film_) {
+        std::vector<HitPoint> traced =
+            RunCameraPass(scene_, *camera_tracer_, StochasticCameraPass(*stochastic_film_, epoch)).hit_points;
+        PF_CHECK(traced.size() == n);
+        epoch_hit_points_ = std::move(traced);
+        job_.hit_points = epoch_hit_points_;
+        auto* mapped = static_cast<gpu::GpuHitPoint*>(buffers_->hit_point_upload.Mapped());
+        std::ranges::transform(epoch_hit_points_, mapped, ToGpu);
+    }
     // Cells two of the largest radius wide, as the CPU grid: the largest over the hit points
     // the grid holds (a radius and a weight).
     float max_radius_sq = 0;
@@ -270,6 +302,9 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t /*epoch*/, std::span<const float
     if (!commands.ok()) return commands.status();
     const VkBufferCopy radii{.size = n * sizeof(float)};
     if (n > 0) vkCmdCopyBuffer(*commands, buffers_->radius_upload.Handle(), buffers_->radius_sq.Handle(), 1, &radii);
+    const VkBufferCopy points{.size = n * sizeof(gpu::GpuHitPoint)};
+    if (stochastic_film_ && n > 0)
+        vkCmdCopyBuffer(*commands, buffers_->hit_point_upload.Handle(), buffers_->hit_points.Handle(), 1, &points);
     vkCmdFillBuffer(*commands, buffers_->grid_begin.Handle(), 0, VK_WHOLE_SIZE, 0);
     stream_.Barrier();
     gpu::GpuParams params = BaseParams();

@@ -1,14 +1,18 @@
 // The Vulkan compute photon backend: the same batches as the CPU backend, traced by
 // compute kernels on the chosen device (a GPU, or lavapipe). Per job: the scene's buffers
 // and kernels specialised to its features; per epoch: the radii uploaded and the hit-point
-// grid rebuilt on the device; per batch: photon and direct-light kernels, then the tally
-// read back and made sparse. Not thread-safe; one job at a time.
+// grid rebuilt on the device (for sppm, the epoch's hit points traced on the CPU and uploaded
+// first); per batch: photon and direct-light kernels, then the tally read back and made
+// sparse. Not thread-safe; one job at a time.
 #pragma once
 
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "core/geometry/tracer.h"
+#include "core/ppm/camera_pass.h"
 #include "worker/backend.h"
 #include "worker/backends/vulkan/buffer.h"
 #include "worker/backends/vulkan/command_stream.h"
@@ -69,6 +73,11 @@ private:
     SceneFeatures features_;
     std::unique_ptr<Kernels> kernels_;
     std::unique_ptr<JobBuffers> buffers_;
+    // sppm: the film each epoch's camera pass traces, on the CPU through camera_tracer_ (made
+    // for the first sppm job), and the epoch's hit points, which job_.hit_points views.
+    std::optional<CameraPassSettings> stochastic_film_;
+    std::unique_ptr<Tracer> camera_tracer_;
+    std::vector<HitPoint> epoch_hit_points_;
     gpu::vec4 scene_sphere_{};
     float scene_magnitude_ = 0;
     float flux_to_fixed_ = 0;  // fixed-point tally units per watt
