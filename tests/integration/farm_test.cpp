@@ -104,11 +104,11 @@ protected:
     }
 
     // `photonfarm submit --watch` to the end; returns its exit code.
-    int SubmitAndWatch(const std::string& out, int epochs = kEpochs) {
+    int SubmitAndWatch(const std::string& out, int epochs = kEpochs, const std::vector<std::string>& flags = {}) {
         ChildProcess submit(Concat({kBin + "/client/photonfarm", "submit", kScene, "--server", address_, "--watch",
                                     "--interval", "0", "--out", out, "--photons", std::to_string(epochs * 8 * 8192),
                                     "--log-level", "warn"},
-                                   Concat(kJobFlags, Credentials().ClientFlags())));
+                                   Concat(Concat(kJobFlags, flags), Credentials().ClientFlags())));
         return submit.Wait(300).value_or(-1);
     }
 
@@ -141,12 +141,12 @@ protected:
     }
 
     // `photonfarm render` of the job (another photon stream of its seed where `stream` > 0).
-    std::vector<Rgb> Reference(int epochs = kEpochs, int stream = 0) {
+    std::vector<Rgb> Reference(int epochs = kEpochs, int stream = 0, const std::vector<std::string>& flags = {}) {
         const std::string out = TempPath("render-" + std::to_string(stream) + ".exr");
         ChildProcess render(Concat({kBin + "/client/photonfarm", "render", kScene, "--threads", "2", "--out", out,
                                     "--photons", std::to_string(epochs * 8 * 8192), "--photon-stream",
                                     std::to_string(stream), "--log-level", "warn"},
-                                   kJobFlags));
+                                   Concat(kJobFlags, flags)));
         EXPECT_EQ(render.Wait(300), 0);
         return Pixels(out);
     }
@@ -202,22 +202,31 @@ TEST_F(FarmTest, CpuAndVulkanWorkersShareAJob) {
     while (client_->ListWorkers().value_or(v1::ListWorkersResponse{}).workers_size() < 2 &&
            std::chrono::steady_clock::now() < deadline)
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    ASSERT_EQ(SubmitAndWatch(TempPath("mixed.exr")), 0);
-    const absl::StatusOr<v1::ListWorkersResponse> workers = client_->ListWorkers();
-    ASSERT_TRUE(workers.ok()) << workers.status();
-    ASSERT_EQ(workers->workers_size(), 2);
-    for (const v1::WorkerStatus& worker : workers->workers())
-        EXPECT_GT(worker.batches_done(), 0u) << worker.backend() << " worker ran no batch";
-    EXPECT_TRUE(workers->workers(0).backend().starts_with("vulkan: ") || workers->workers(1).backend().starts_with("vulkan: "))
-        << "a Vulkan worker registers with its device's name";
     // The Vulkan worker's batches follow nearly the CPU's paths (the same streams): the
     // image must be a draw of the CPU-only estimator, by the bound of image_agreement.cpp.
+    // ppm, then sppm, whose Vulkan worker traces each epoch's hit points on its CPU.
     const auto image = [](std::vector<Rgb> pixels) {
         Image result(48, 48);
         result.pixels = std::move(pixels);
         return result;
     };
-    testing::ExpectSameEstimator(image(Pixels(TempPath("mixed.exr"))), image(Reference()), image(Reference(kEpochs, 2)));
+    uint64_t vulkan_batches = 0;
+    for (const std::vector<std::string>& flags : {std::vector<std::string>{}, {"--integrator", "sppm"}}) {
+        SCOPED_TRACE(flags.empty() ? "ppm" : "sppm");
+        ASSERT_EQ(SubmitAndWatch(TempPath("mixed.exr"), kEpochs, flags), 0);
+        const absl::StatusOr<v1::ListWorkersResponse> workers = client_->ListWorkers();
+        ASSERT_TRUE(workers.ok()) << workers.status();
+        ASSERT_EQ(workers->workers_size(), 2);
+        for (const v1::WorkerStatus& worker : workers->workers()) {
+            EXPECT_GT(worker.batches_done(), 0u) << worker.backend() << " worker ran no batch";
+            if (!worker.backend().starts_with("vulkan: ")) continue;
+            EXPECT_GT(worker.batches_done(), vulkan_batches) << "the Vulkan worker ran none of this job's batches";
+            vulkan_batches = worker.batches_done();
+        }
+        EXPECT_GT(vulkan_batches, 0u) << "a Vulkan worker registers with its device's name";
+        testing::ExpectSameEstimator(image(Pixels(TempPath("mixed.exr"))), image(Reference(kEpochs, 0, flags)),
+                                     image(Reference(kEpochs, 2, flags)));
+    }
     // The Vulkan worker exits 1 should the validation layer have reported an error.
     for (ChildProcess* worker : {&vulkan, &cpu}) {
         worker->Signal(SIGTERM);
