@@ -16,6 +16,7 @@
 #include "client/output_files.h"
 #include "client/progress_display.h"
 #include "core/film/exr_io.h"
+#include "core/render/integrator.h"
 #include "core/util/command_line.h"
 #include "worker/backend_factory.h"
 
@@ -64,7 +65,12 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
 
 int RunRender(const RenderOptions& options) {
     RenderSettings settings = options.settings;
-    absl::Status prepared = PrepareOutputs(options.out, options.png, options.snapshot_dir);
+    absl::Status prepared =
+        RunsOnBackend(settings.job.integrator, settings.backend)
+            ? PrepareOutputs(options.out, options.png, options.snapshot_dir)
+            : absl::InvalidArgumentError(absl::StrCat("--backend ", settings.backend, " runs --integrator ppm or sppm, not ",
+                                                      std::string(IntegratorName(settings.job.integrator)),
+                                                      ": use --backend cpu"));
     if (prepared.ok() && !options.report_dir.empty()) prepared = PrepareReportDir(options.report_dir);
     if (prepared.ok() && !options.reference_path.empty()) {
         absl::StatusOr<Image> reference = ReadExr(options.reference_path);

@@ -55,6 +55,8 @@ expect_failure "outputs without --watch" "need --watch" submit "$source_dir/scen
     --server 127.0.0.1:1 --out "$work/a.exr"
 VK_ICD_FILENAMES=/nonexistent/icd.json expect_failure "vulkan without a driver" "vulkan backend: no Vulkan driver" \
     render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --backend vulkan
+expect_failure "an integrator the backend does not run" "--backend vulkan runs --integrator ppm or sppm, not pm" \
+    render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --backend vulkan --integrator pm
 expect_failure "unknown backend" "--backend" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" \
     --backend cuda
 expect_failure "bad alpha" "alpha" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --alpha 2
