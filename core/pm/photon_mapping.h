@@ -1,8 +1,8 @@
 // Classic photon mapping's rendering pass (Jensen 1996, section 3): a camera path follows
 // specular and rough bounces to its first diffuse surface, where the light leaving it is the
-// sum of direct light (one light sample), caustics (the caustic map's estimate) and indirect
-// light, read from the global map there or, with final gathering, from the global map where
-// gather rays land. Each part of the light is counted by exactly one of them.
+// sum of direct light (core/ppm/direct_light.h), caustics (the caustic map's estimate) and
+// indirect light, read from the global map there or, with final gathering, from the global map
+// where gather rays land. Each part of the light is counted by exactly one of them.
 #pragma once
 
 #include <cstdint>
