@@ -6,13 +6,12 @@
 //   ./build/bench/backend_bench [--seconds S] [--photons-per-batch N] [--backends cpu,vulkan]
 #include <tbb/task_arena.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
 #include <map>
 #include <memory>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 #include "absl/strings/str_split.h"
 #include "core/ppm/camera_pass.h"
@@ -31,30 +30,38 @@ struct Rate {
 };
 
 // Runs batches of `photons` each, all of one epoch's radii, for about `seconds`.
-absl::StatusOr<Rate> Measure(const std::string& backend_name, const std::string& scene_name, uint32_t photons,
-                             double seconds) {
-    absl::StatusOr<Scene> scene = LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + scene_name + ".gltf");
+absl::StatusOr<Rate> Measure(const std::string& backend_name, const std::string& scene_name,
+                             uint32_t photons, double seconds) {
+    absl::StatusOr<Scene> scene =
+        LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + scene_name + ".gltf");
     if (!scene.ok()) return scene.status();
     auto tracer = std::move(*embree::EmbreeTracer::Create(*scene));
     const CameraPassResult camera_pass = RunCameraPass(*scene, *tracer, {512, 512, 4, 1});
     JobSpec spec;
     spec.photon_budget = 1;
     spec.layout = {photons, 8};
-    const ProgressiveEstimate estimate(camera_pass, EstimateFor(spec, camera_pass, *scene, scene_name));
+    const ProgressiveEstimate estimate(camera_pass,
+                                       EstimateFor(spec, camera_pass, *scene, scene_name));
     const Emitters emitters(*scene);
     absl::StatusOr<std::unique_ptr<Backend>> backend = CreateBackend(backend_name, *scene);
     if (!backend.ok()) return backend.status();
-    if (absl::Status status = (*backend)->BeginJob({&*scene, &emitters, estimate.HitPoints(), 1}); !status.ok())
+    if (absl::Status status = (*backend)->BeginJob({&*scene, &emitters, estimate.HitPoints(), 1});
+        !status.ok())
         return status;
-    if (absl::Status status = (*backend)->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq()); !status.ok()) return status;
+    if (absl::Status status = (*backend)->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq());
+        !status.ok())
+        return status;
     const std::vector<BatchSpec> batches = estimate.EpochBatches();
-    if (absl::StatusOr<std::vector<BatchResult>> warm = (*backend)->RunBatches(std::span(batches).first(1)); !warm.ok())
+    if (absl::StatusOr<std::vector<BatchResult>> warm =
+            (*backend)->RunBatches(std::span(batches).first(1));
+        !warm.ok())
         return warm.status();
     uint64_t photons_run = 0, segments = 0;
     const auto start = std::chrono::steady_clock::now();
     double elapsed = 0;
     for (size_t next = 0; elapsed < seconds; next = (next + 1) % batches.size()) {
-        absl::StatusOr<std::vector<BatchResult>> results = (*backend)->RunBatches(std::span(batches).subspan(next, 1));
+        absl::StatusOr<std::vector<BatchResult>> results =
+            (*backend)->RunBatches(std::span(batches).subspan(next, 1));
         if (!results.ok()) return results.status();
         photons_run += (*results)[0].photons_emitted;
         segments += (*results)[0].segments_traced;
@@ -71,8 +78,10 @@ int main(int argc, char** argv) {
     double seconds = 5;
     uint32_t photons = 1u << 19;
     std::string backends = "cpu,vulkan";
-    app.add_option("--seconds", seconds, "Seconds per backend and scene")->check(CLI::PositiveNumber);
-    app.add_option("--photons-per-batch", photons, "Photons per batch")->check(CLI::Range(1u, 1u << 26));
+    app.add_option("--seconds", seconds, "Seconds per backend and scene")
+        ->check(CLI::PositiveNumber);
+    app.add_option("--photons-per-batch", photons, "Photons per batch")
+        ->check(CLI::Range(1u, 1u << 26));
     app.add_option("--backends", backends, "Comma-separated backends");
     CLI11_PARSE(app, argc, argv);
     std::printf("%-14s %-8s %16s %18s\n", "scene", "backend", "photons/s", "segments/s");
@@ -81,16 +90,18 @@ int main(int argc, char** argv) {
         for (const std::string& backend : std::vector<std::string>(absl::StrSplit(backends, ','))) {
             const absl::StatusOr<pf::Rate> rate = pf::Measure(backend, scene, photons, seconds);
             if (!rate.ok()) {
-                std::printf("%-14s %-8s unavailable: %s\n", scene, backend.c_str(), std::string(rate.status().message()).c_str());
+                std::printf("%-14s %-8s unavailable: %s\n", scene, backend.c_str(),
+                            std::string(rate.status().message()).c_str());
                 continue;
             }
-            std::printf("%-14s %-8s %16.0f %18.0f\n", scene, backend.c_str(), rate->photons_per_second,
-                        rate->segments_per_second);
+            std::printf("%-14s %-8s %16.0f %18.0f\n", scene, backend.c_str(),
+                        rate->photons_per_second, rate->segments_per_second);
             segments[backend] = rate->segments_per_second;
         }
         if (segments["cpu"] > 0 && segments["vulkan"] > 0)
             std::printf("%-14s vulkan/cpu segments per second: %.3f (cpu on %d threads)\n", scene,
-                        segments["vulkan"] / segments["cpu"], tbb::this_task_arena::max_concurrency());
+                        segments["vulkan"] / segments["cpu"],
+                        tbb::this_task_arena::max_concurrency());
     }
     return 0;
 }

@@ -33,17 +33,20 @@ Scene LoadBallsScene() {
     for (const char* file : {"cornell-room.pbrt", "meshes/glass-sphere.ply"})
         bundle.files[file] = std::string(*ReadWholeFile(folder + file));
     std::string scene =
-        "Scale -1 1 1\nLookAt 0.278 0.273 -0.8  0.278 0.273 0.0  0.0 1.0 0.0\nCamera \"perspective\" \"float fov\" 39.3\n"
+        "Scale -1 1 1\nLookAt 0.278 0.273 -0.8  0.278 0.273 0.0  0.0 1.0 0.0\nCamera "
+        "\"perspective\" \"float fov\" 39.3\n"
         "WorldBegin\nInclude \"cornell-room.pbrt\"\nObjectBegin \"ball\"\nNamedMaterial \"white\"\n"
-        "Scale 0.04 0.04 0.04\nShape \"plymesh\" \"string filename\" \"meshes/glass-sphere.ply\"\nObjectEnd\n";
+        "Scale 0.04 0.04 0.04\nShape \"plymesh\" \"string filename\" "
+        "\"meshes/glass-sphere.ply\"\nObjectEnd\n";
     for (int i = 0; i < kGrid; ++i)
         for (int j = 0; j < kGrid; ++j)
-            absl::StrAppend(&scene, "AttributeBegin\nTranslate ", 0.03 + 0.045 * i, " 0 ", 0.03 + 0.045 * j,
-                            "\nObjectInstance \"ball\"\nAttributeEnd\n");
+            absl::StrAppend(&scene, "AttributeBegin\nTranslate ", 0.03 + 0.045 * i, " 0 ",
+                            0.03 + 0.045 * j, "\nObjectInstance \"ball\"\nAttributeEnd\n");
     bundle.files[bundle.main_file] = scene;
     absl::StatusOr<Scene> loaded = LoadScene(bundle, bundle.main_file);
     if (!loaded.ok()) {
-        std::fprintf(stderr, "instancing_bench: %s\n", std::string(loaded.status().message()).c_str());
+        std::fprintf(stderr, "instancing_bench: %s\n",
+                     std::string(loaded.status().message()).c_str());
         std::exit(1);
     }
     return std::move(*loaded);
@@ -92,7 +95,8 @@ void BM_EmbreeRandomRays(benchmark::State& state, bool instanced) {
         for (int axis = 0; axis < 3; ++axis) {
             const float u = rng.NextFloat();
             const float extent = axis == 1 ? 0.1f : 1.0f;
-            ray.origin[axis] = bounds.lower[axis] + extent * u * (bounds.upper[axis] - bounds.lower[axis]);
+            ray.origin[axis] =
+                bounds.lower[axis] + extent * u * (bounds.upper[axis] - bounds.lower[axis]);
         }
         const float u1 = rng.NextFloat();
         const float u2 = rng.NextFloat();
@@ -118,12 +122,15 @@ int main(int argc, char** argv) {
     // One thread for the ray rate (Embree's build uses TBB: also one, for a like-for-like ratio).
     tbb::global_control single_thread(tbb::global_control::max_allowed_parallelism, 1);
     for (bool instanced : {true, false}) {
-        benchmark::RegisterBenchmark(absl::StrCat("BM_EmbreeBuild/", pf::Name(instanced)).c_str(), pf::BM_EmbreeBuild,
-                                     instanced)
-            ->Unit(benchmark::kMillisecond)->MinTime(1.0);
-        benchmark::RegisterBenchmark(absl::StrCat("BM_EmbreeRandomRays/", pf::Name(instanced)).c_str(),
-                                     pf::BM_EmbreeRandomRays, instanced)
-            ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+        benchmark::RegisterBenchmark(absl::StrCat("BM_EmbreeBuild/", pf::Name(instanced)).c_str(),
+                                     pf::BM_EmbreeBuild, instanced)
+            ->Unit(benchmark::kMillisecond)
+            ->MinTime(1.0);
+        benchmark::RegisterBenchmark(
+            absl::StrCat("BM_EmbreeRandomRays/", pf::Name(instanced)).c_str(),
+            pf::BM_EmbreeRandomRays, instanced)
+            ->Unit(benchmark::kMillisecond)
+            ->MinTime(1.0);
     }
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
@@ -131,13 +138,17 @@ int main(int argc, char** argv) {
     benchmark::Shutdown();
     const pf::Scene& instanced = pf::Balls(true);
     const pf::Scene& expanded = pf::Balls(false);
-    std::printf("\n%d balls of %u triangles: %zu triangles stored instanced, %zu expanded\n", pf::kGrid * pf::kGrid,
-                instanced.prototypes.at(0).triangle_count, instanced.triangles.size(), expanded.triangles.size());
-    std::printf("instanced over expanded: geometry memory %.3f", double(pf::GeometryBytes(instanced)) /
-                                                                      double(pf::GeometryBytes(expanded)));
+    std::printf("\n%d balls of %u triangles: %zu triangles stored instanced, %zu expanded\n",
+                pf::kGrid * pf::kGrid, instanced.prototypes.at(0).triangle_count,
+                instanced.triangles.size(), expanded.triangles.size());
+    std::printf("instanced over expanded: geometry memory %.3f",
+                double(pf::GeometryBytes(instanced)) / double(pf::GeometryBytes(expanded)));
     auto& figures = pf::g_figures;
-    if (figures["build/expanded"] > 0) std::printf(", Embree build time %.3f", figures["build/instanced"] / figures["build/expanded"]);
-    if (figures["rays/expanded"] > 0) std::printf(", random rays/s %.3f", figures["rays/instanced"] / figures["rays/expanded"]);
+    if (figures["build/expanded"] > 0)
+        std::printf(", Embree build time %.3f",
+                    figures["build/instanced"] / figures["build/expanded"]);
+    if (figures["rays/expanded"] > 0)
+        std::printf(", random rays/s %.3f", figures["rays/instanced"] / figures["rays/expanded"]);
     std::printf("\n");
     return 0;
 }

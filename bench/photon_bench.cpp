@@ -20,8 +20,8 @@
 #include "core/ppm/photon_pass.h"
 #include "core/ppm/progressive_estimate.h"
 #include "core/scene/emitters.h"
-#include "core/scene/scene_loader.h"
 #include "core/scene/scene_features.h"
+#include "core/scene/scene_loader.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf {
@@ -44,7 +44,8 @@ BenchScene& Load(const std::string& name) {
     auto& entry = cache[name];
     if (entry) return *entry;
     entry = std::make_unique<BenchScene>();
-    absl::StatusOr<Scene> scene = LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + name + ".gltf");
+    absl::StatusOr<Scene> scene =
+        LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + name + ".gltf");
     if (!scene.ok()) {
         std::fprintf(stderr, "photon_bench: %s\n", std::string(scene.status().message()).c_str());
         std::exit(1);
@@ -63,29 +64,39 @@ BenchScene& Load(const std::string& name) {
 std::map<std::string, double> g_rates;
 
 // "pass/", "batch/": the photon loop for the scene's features; "general/": the general one.
-void BM_PhotonBatch(benchmark::State& state, const std::string& name, bool with_direct, bool general) {
+void BM_PhotonBatch(benchmark::State& state, const std::string& name, bool with_direct,
+                    bool general) {
     BenchScene& bench = Load(name);
-    const SceneFeatures features = general ? SceneFeatures::All() : AnalyseFeatures(bench.scene, *bench.emitters);
-    const PhotonPassInputs inputs{&bench.scene, bench.emitters.get(), bench.tracer.get(),
-                                  bench.camera_pass.hit_points, &bench.grid, 1, features};
+    const SceneFeatures features =
+        general ? SceneFeatures::All() : AnalyseFeatures(bench.scene, *bench.emitters);
+    const PhotonPassInputs inputs{&bench.scene,
+                                  bench.emitters.get(),
+                                  bench.tracer.get(),
+                                  bench.camera_pass.hit_points,
+                                  &bench.grid,
+                                  1,
+                                  features};
     PhotonPassScratch scratch;
     tbb::task_arena one_thread(1);
     const BatchLayout layout;
     uint64_t segments = 0, photons = 0, epoch = 0;
     double seconds = 0;
     for (auto _ : state) {
-        BatchSpec spec = MakeBatchSpec(layout, epoch++, 0, static_cast<uint32_t>(bench.camera_pass.hit_points.size()));
+        BatchSpec spec = MakeBatchSpec(layout, epoch++, 0,
+                                       static_cast<uint32_t>(bench.camera_pass.hit_points.size()));
         if (!with_direct) spec.sample_end = spec.sample_begin;
         const auto start = std::chrono::steady_clock::now();
         BatchResult result;
-        one_thread.execute([&] { result = std::move(RunPhotonBatches(inputs, std::span(&spec, 1), scratch)[0]); });
+        one_thread.execute(
+            [&] { result = std::move(RunPhotonBatches(inputs, std::span(&spec, 1), scratch)[0]); });
         seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         segments += result.segments_traced;
         photons += result.photons_emitted;
         benchmark::DoNotOptimize(result.tally.Size());
     }
     state.counters["photons/s"] = benchmark::Counter(double(photons), benchmark::Counter::kIsRate);
-    state.counters["segments/s"] = benchmark::Counter(double(segments), benchmark::Counter::kIsRate);
+    state.counters["segments/s"] =
+        benchmark::Counter(double(segments), benchmark::Counter::kIsRate);
     g_rates[(general ? "general/" : with_direct ? "batch/" : "pass/") + name] = segments / seconds;
 }
 
@@ -119,33 +130,47 @@ int main(int argc, char** argv) {
     // One thread: the figures are per thread.
     tbb::global_control single_thread(tbb::global_control::max_allowed_parallelism, 1);
     for (const char* scene : {"cornell-box", "cornell-glass"}) {
-        benchmark::RegisterBenchmark((std::string("BM_PhotonPass/") + scene).c_str(), pf::BM_PhotonBatch, scene, false, false)
-            ->Unit(benchmark::kMillisecond)->MinTime(2.0);
-        benchmark::RegisterBenchmark((std::string("BM_PhotonBatch/") + scene).c_str(), pf::BM_PhotonBatch, scene, true, false)
-            ->Unit(benchmark::kMillisecond)->MinTime(2.0);
-        benchmark::RegisterBenchmark((std::string("BM_EmbreeRandomRays/") + scene).c_str(), pf::BM_EmbreeRandomRays, scene)
-            ->Unit(benchmark::kMillisecond)->MinTime(1.0);
+        benchmark::RegisterBenchmark((std::string("BM_PhotonPass/") + scene).c_str(),
+                                     pf::BM_PhotonBatch, scene, false, false)
+            ->Unit(benchmark::kMillisecond)
+            ->MinTime(2.0);
+        benchmark::RegisterBenchmark((std::string("BM_PhotonBatch/") + scene).c_str(),
+                                     pf::BM_PhotonBatch, scene, true, false)
+            ->Unit(benchmark::kMillisecond)
+            ->MinTime(2.0);
+        benchmark::RegisterBenchmark((std::string("BM_EmbreeRandomRays/") + scene).c_str(),
+                                     pf::BM_EmbreeRandomRays, scene)
+            ->Unit(benchmark::kMillisecond)
+            ->MinTime(1.0);
     }
-    benchmark::RegisterBenchmark("BM_PhotonPassGeneral/cornell-box", pf::BM_PhotonBatch, "cornell-box", false, true)
-        ->Unit(benchmark::kMillisecond)->MinTime(2.0);
+    benchmark::RegisterBenchmark("BM_PhotonPassGeneral/cornell-box", pf::BM_PhotonBatch,
+                                 "cornell-box", false, true)
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(2.0);
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     benchmark::RunSpecifiedBenchmarks();
     benchmark::Shutdown();
-    std::printf("\nphoton segments/s per thread over raw rtcIntersect1 rays/s (target: at least 0.5)\n");
-    std::printf("%-14s %14s %14s %14s %11s %12s\n", "scene", "pass seg/s", "batch seg/s", "raw rays/s",
-                "pass ratio", "batch ratio");
+    std::printf(
+        "\nphoton segments/s per thread over raw rtcIntersect1 rays/s (target: at least 0.5)\n");
+    std::printf("%-14s %14s %14s %14s %11s %12s\n", "scene", "pass seg/s", "batch seg/s",
+                "raw rays/s", "pass ratio", "batch ratio");
     for (const char* scene : {"cornell-box", "cornell-glass"}) {
         const double pass = pf::g_rates["pass/" + std::string(scene)];
         const double batch = pf::g_rates["batch/" + std::string(scene)];
         const double rays = pf::g_rates["rays/" + std::string(scene)];
         if (pass > 0 && batch > 0 && rays > 0)
-            std::printf("%-14s %14.0f %14.0f %14.0f %11.2f %12.2f\n", scene, pass, batch, rays, pass / rays, batch / rays);
+            std::printf("%-14s %14.0f %14.0f %14.0f %11.2f %12.2f\n", scene, pass, batch, rays,
+                        pass / rays, batch / rays);
     }
-    const double specialised = pf::g_rates["pass/cornell-box"], general = pf::g_rates["general/cornell-box"];
+    const double specialised = pf::g_rates["pass/cornell-box"],
+                 general = pf::g_rates["general/cornell-box"];
     if (specialised > 0 && general > 0)
-        std::printf("\ncornell-box photon pass for its features (%s) over the general path: %.3f\n",
-                    pf::AnalyseFeatures(pf::Load("cornell-box").scene, *pf::Load("cornell-box").emitters).ToString().c_str(),
-                    specialised / general);
+        std::printf(
+            "\ncornell-box photon pass for its features (%s) over the general path: %.3f\n",
+            pf::AnalyseFeatures(pf::Load("cornell-box").scene, *pf::Load("cornell-box").emitters)
+                .ToString()
+                .c_str(),
+            specialised / general);
     return 0;
 }

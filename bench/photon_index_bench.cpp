@@ -37,7 +37,8 @@ struct Fixture {
 Fixture& TheFixture() {
     static Fixture* fixture = [] {
         auto* f = new Fixture;
-        absl::StatusOr<Scene> scene = LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
+        absl::StatusOr<Scene> scene =
+            LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
         if (!scene.ok()) std::abort();
         f->scene = std::move(*scene);
         f->emitters = std::make_unique<Emitters>(f->scene);
@@ -47,7 +48,8 @@ Fixture& TheFixture() {
         settings.caustic_photons = 0;
         settings.global_photons = kFramePixels;
         settings.final_gather = 1;  // store every landing, as a global map for final gathering does
-        const PhotonMaps maps = BuildPhotonMaps(f->scene, *f->emitters, *f->tracer, f->features, settings, 99);
+        const PhotonMaps maps =
+            BuildPhotonMaps(f->scene, *f->emitters, *f->tracer, f->features, settings, 99);
         f->queries.assign(maps.global->Photons().begin(), maps.global->Photons().end());
         return f;
     }();
@@ -62,7 +64,8 @@ const std::vector<StoredPhoton>& PhotonsOf(uint64_t emitted) {
         settings.caustic_photons = 0;
         settings.global_photons = emitted;
         settings.final_gather = 1;
-        const PhotonMaps maps = BuildPhotonMaps(f.scene, *f.emitters, *f.tracer, f.features, settings, 1);
+        const PhotonMaps maps =
+            BuildPhotonMaps(f.scene, *f.emitters, *f.tracer, f.features, settings, 1);
         photons.assign(maps.global->Photons().begin(), maps.global->Photons().end());
     }
     return photons;
@@ -71,8 +74,9 @@ const std::vector<StoredPhoton>& PhotonsOf(uint64_t emitted) {
 std::unique_ptr<PhotonLookup> Build(PhotonIndex index, const std::vector<StoredPhoton>& photons) {
     const Fixture& f = TheFixture();
     const float max_radius = 0.02f * f.scene.bounds.Diagonal();
-    return BuildPhotonLookup(index, photons,
-                             GridCellSize(photons.size(), SceneSurfaceArea(f.scene), kNearest, max_radius));
+    return BuildPhotonLookup(
+        index, photons,
+        GridCellSize(photons.size(), SceneSurfaceArea(f.scene), kNearest, max_radius));
 }
 
 void BM_Build(benchmark::State& state, PhotonIndex index) {
@@ -90,13 +94,15 @@ void BM_Frame(benchmark::State& state, PhotonIndex index) {
     for (auto _ : state) {
         Rgb sum(0.0f);
         for (const StoredPhoton& query : f.queries)
-            sum += EstimateDiffuseRadiance(*lookup, query.position, -query.direction, Rgb(0.7f), kNearest,
-                                           max_radius * max_radius, DensityFilter::kCone, scratch);
+            sum += EstimateDiffuseRadiance(*lookup, query.position, -query.direction, Rgb(0.7f),
+                                           kNearest, max_radius * max_radius, DensityFilter::kCone,
+                                           scratch);
         benchmark::DoNotOptimize(sum);
     }
     state.counters["stored"] = double(photons.size());
-    state.counters["fps"] = benchmark::Counter(double(kFramePixels) / double(f.queries.size()) * double(state.iterations()),
-                                               benchmark::Counter::kIsRate);
+    state.counters["fps"] = benchmark::Counter(
+        double(kFramePixels) / double(f.queries.size()) * double(state.iterations()),
+        benchmark::Counter::kIsRate);
 }
 
 void Sizes(benchmark::internal::Benchmark* benchmark) {
@@ -117,15 +123,19 @@ int main(int argc, char** argv) {
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     // Seconds per run by (kind, index, photons emitted), for the ratios.
     struct Ratios : benchmark::ConsoleReporter {
-        std::map<std::string, std::map<std::string, double>> seconds;  // "Build/100000" -> index -> s
+        std::map<std::string, std::map<std::string, double>>
+            seconds;  // "Build/100000" -> index -> s
         std::map<std::string, double> stored;
         void ReportRuns(const std::vector<Run>& runs) override {
             ConsoleReporter::ReportRuns(runs);
             for (const Run& run : runs) {
                 const std::string name = run.benchmark_name();  // BM_Frame/grid/100000/real_time
-                const size_t first = name.find('/'), second = name.find('/', first + 1), third = name.find('/', second + 1);
-                const std::string key = name.substr(3, first - 3) + "/" + name.substr(second + 1, third - second - 1);
-                seconds[key][name.substr(first + 1, second - first - 1)] = run.GetAdjustedRealTime();
+                const size_t first = name.find('/'), second = name.find('/', first + 1),
+                             third = name.find('/', second + 1);
+                const std::string key =
+                    name.substr(3, first - 3) + "/" + name.substr(second + 1, third - second - 1);
+                seconds[key][name.substr(first + 1, second - first - 1)] =
+                    run.GetAdjustedRealTime();
                 stored[key] = run.counters.at("stored");
             }
         }

@@ -3,10 +3,9 @@
 // with its fitted slopes (docs/convergence.md).
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <span>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 #include "absl/status/status.h"
 #include "core/ppm/convergence.h"
@@ -21,7 +20,8 @@ void AddReportOption(CLI::App* command, std::string* dir);
 absl::Status PrepareReportDir(const std::string& dir);
 
 // The gnuplot script for a log, the template with the fits and title set in a header.
-std::string ConvergencePlotScript(const std::string& title, std::span<const ConvergencePoint> points);
+std::string ConvergencePlotScript(const std::string& title,
+                                  std::span<const ConvergencePoint> points);
 
 // Writes the CSV and the script, then runs gnuplot in `dir`. The CSV and script are written
 // even when gnuplot is missing or fails; the error says which and how to plot by hand.

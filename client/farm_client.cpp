@@ -23,29 +23,39 @@ constexpr double kSubmitSeconds = 600;
 }  // namespace
 
 void AddServerOption(CLI::App* command, ServerFlags* server) {
-    command->add_option("--server", server->address, "Coordinator address HOST:PORT")->envname("PHOTONFARM_SERVER")->required();
+    command->add_option("--server", server->address, "Coordinator address HOST:PORT")
+        ->envname("PHOTONFARM_SERVER")
+        ->required();
     AddChannelSecurityOptions(command, &server->security, kClientTokenEnv);
 }
 
 FarmClient::FarmClient(std::string address, std::shared_ptr<grpc::Channel> channel)
-    : peer_(absl::StrCat("coordinator at ", address)), channel_(std::move(channel)), stub_(v1::Jobs::NewStub(channel_)) {}
+    : peer_(absl::StrCat("coordinator at ", address)),
+      channel_(std::move(channel)),
+      stub_(v1::Jobs::NewStub(channel_)) {}
 
 absl::StatusOr<FarmClient> FarmClient::Connect(const ServerFlags& server, double timeout_seconds) {
-    absl::StatusOr<ChannelSecurity> security = LoadChannelSecurity(server.security, kClientTokenEnv);
+    absl::StatusOr<ChannelSecurity> security =
+        LoadChannelSecurity(server.security, kClientTokenEnv);
     if (!security.ok()) return security.status();
     return Connect(server.address, *security, timeout_seconds);
 }
 
-absl::StatusOr<FarmClient> FarmClient::Connect(const std::string& address, const ChannelSecurity& security,
+absl::StatusOr<FarmClient> FarmClient::Connect(const std::string& address,
+                                               const ChannelSecurity& security,
                                                double timeout_seconds) {
     std::shared_ptr<grpc::Channel> channel = OpenChannel(address, security);
     const auto deadline = std::chrono::system_clock::now() +
-                          std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(timeout_seconds));
+                          std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                              std::chrono::duration<double>(timeout_seconds));
     if (!channel->WaitForConnected(deadline))
         return absl::UnavailableError(absl::StrCat(
-            "cannot reach the coordinator at ", address, " (no ", security.plaintext ? "plain-text" : "TLS",
-            " connection within ", timeout_seconds, " s: nothing listening, ",
-            security.plaintext ? "or it serves TLS" : "a certificate not from --tls-ca or not for this name, or --plaintext there",
+            "cannot reach the coordinator at ", address, " (no ",
+            security.plaintext ? "plain-text" : "TLS", " connection within ", timeout_seconds,
+            " s: nothing listening, ",
+            security.plaintext
+                ? "or it serves TLS"
+                : "a certificate not from --tls-ca or not for this name, or --plaintext there",
             ")"));
     return FarmClient(address, std::move(channel));
 }
@@ -77,11 +87,13 @@ absl::StatusOr<v1::JobStatus> FarmClient::Cancel(const std::string& job_id) {
 }
 
 absl::StatusOr<v1::ListJobsResponse> FarmClient::ListJobs() {
-    return Unary<v1::ListJobsResponse>(&v1::Jobs::Stub::ListJobs, v1::ListJobsRequest(), kCallSeconds);
+    return Unary<v1::ListJobsResponse>(&v1::Jobs::Stub::ListJobs, v1::ListJobsRequest(),
+                                       kCallSeconds);
 }
 
 absl::StatusOr<v1::ListWorkersResponse> FarmClient::ListWorkers() {
-    return Unary<v1::ListWorkersResponse>(&v1::Jobs::Stub::ListWorkers, v1::ListWorkersRequest(), kCallSeconds);
+    return Unary<v1::ListWorkersResponse>(&v1::Jobs::Stub::ListWorkers, v1::ListWorkersRequest(),
+                                          kCallSeconds);
 }
 
 absl::StatusOr<v1::GetResultResponse> FarmClient::GetResult(const std::string& job_id) {
@@ -94,12 +106,13 @@ absl::Status FarmClient::CheckHealth() {
     grpc::ClientContext context;
     SetDeadline(&context, kCallSeconds);
     grpc::health::v1::HealthCheckResponse response;
-    const grpc::Status status =
-        grpc::health::v1::Health::NewStub(channel_)->Check(&context, grpc::health::v1::HealthCheckRequest(), &response);
+    const grpc::Status status = grpc::health::v1::Health::NewStub(channel_)->Check(
+        &context, grpc::health::v1::HealthCheckRequest(), &response);
     if (!status.ok()) return FromGrpcStatus(status, peer_);
     if (response.status() != grpc::health::v1::HealthCheckResponse::SERVING)
-        return absl::UnavailableError(absl::StrCat(peer_, ": health ",
-                                                   grpc::health::v1::HealthCheckResponse::ServingStatus_Name(response.status())));
+        return absl::UnavailableError(absl::StrCat(
+            peer_, ": health ",
+            grpc::health::v1::HealthCheckResponse::ServingStatus_Name(response.status())));
     return absl::OkStatus();
 }
 
@@ -115,8 +128,9 @@ absl::StatusOr<JobConvergence> FarmClient::Convergence(const std::string& job_id
     return convergence;
 }
 
-absl::StatusOr<v1::Snapshot> FarmClient::Watch(const std::string& job_id, double interval_seconds, bool images,
-                                               const std::function<bool(const v1::Snapshot&)>& on_snapshot) {
+absl::StatusOr<v1::Snapshot> FarmClient::Watch(
+    const std::string& job_id, double interval_seconds, bool images,
+    const std::function<bool(const v1::Snapshot&)>& on_snapshot) {
     grpc::ClientContext context;
     v1::WatchJobRequest request;
     request.set_job_id(job_id);
@@ -136,7 +150,8 @@ absl::StatusOr<v1::Snapshot> FarmClient::Watch(const std::string& job_id, double
             break;
         }
     }
-    if (grpc::Status status = reader->Finish(); !status.ok() && !stopped) return FromGrpcStatus(status, peer_);
+    if (grpc::Status status = reader->Finish(); !status.ok() && !stopped)
+        return FromGrpcStatus(status, peer_);
     return last;
 }
 
@@ -151,11 +166,16 @@ std::string ToJson(const google::protobuf::Message& message) {
 
 std::string StateName(v1::JobState state) {
     switch (state) {
-        case v1::JOB_STATE_RUNNING: return "running";
-        case v1::JOB_STATE_DONE: return "done";
-        case v1::JOB_STATE_CANCELLED: return "cancelled";
-        case v1::JOB_STATE_FAILED: return "failed";
-        default: return "unknown";
+        case v1::JOB_STATE_RUNNING:
+            return "running";
+        case v1::JOB_STATE_DONE:
+            return "done";
+        case v1::JOB_STATE_CANCELLED:
+            return "cancelled";
+        case v1::JOB_STATE_FAILED:
+            return "failed";
+        default:
+            return "unknown";
     }
 }
 

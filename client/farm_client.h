@@ -5,12 +5,11 @@
 
 #include <grpcpp/channel.h>
 
+#include <CLI/CLI.hpp>
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "absl/status/statusor.h"
 #include "core/ppm/convergence.h"
@@ -39,12 +38,15 @@ class FarmClient {
 public:
     // Waits up to `timeout_seconds` for the coordinator: UNAVAILABLE naming it if it cannot be
     // reached (nothing listening, or a TLS handshake that failed).
-    static absl::StatusOr<FarmClient> Connect(const std::string& address, const ChannelSecurity& security,
+    static absl::StatusOr<FarmClient> Connect(const std::string& address,
+                                              const ChannelSecurity& security,
                                               double timeout_seconds = 5);
     // Reads the files the flags name first.
-    static absl::StatusOr<FarmClient> Connect(const ServerFlags& server, double timeout_seconds = 5);
+    static absl::StatusOr<FarmClient> Connect(const ServerFlags& server,
+                                              double timeout_seconds = 5);
 
-    absl::StatusOr<photonfarm::v1::JobStatus> Submit(const photonfarm::v1::SubmitJobRequest& request);
+    absl::StatusOr<photonfarm::v1::JobStatus> Submit(
+        const photonfarm::v1::SubmitJobRequest& request);
     absl::StatusOr<photonfarm::v1::JobStatus> Cancel(const std::string& job_id);
     absl::StatusOr<photonfarm::v1::ListJobsResponse> ListJobs();
     absl::StatusOr<photonfarm::v1::ListWorkersResponse> ListWorkers();
@@ -55,8 +57,9 @@ public:
     absl::Status CheckHealth();
     // Streams snapshots to `on_snapshot` until the job ends or `on_snapshot` returns false;
     // returns the last one.
-    absl::StatusOr<photonfarm::v1::Snapshot> Watch(const std::string& job_id, double interval_seconds, bool images,
-                                                   const std::function<bool(const photonfarm::v1::Snapshot&)>& on_snapshot);
+    absl::StatusOr<photonfarm::v1::Snapshot> Watch(
+        const std::string& job_id, double interval_seconds, bool images,
+        const std::function<bool(const photonfarm::v1::Snapshot&)>& on_snapshot);
 
 private:
     FarmClient(std::string address, std::shared_ptr<grpc::Channel> channel);

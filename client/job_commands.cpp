@@ -30,7 +30,8 @@ struct CommandOptions {
 };
 
 // Connects and runs `body`; one line and exit code 1 on any error.
-void Run(const CommandOptions& options, int* exit_code, const std::function<absl::Status(FarmClient&)>& body) {
+void Run(const CommandOptions& options, int* exit_code,
+         const std::function<absl::Status(FarmClient&)>& body) {
     absl::StatusOr<FarmClient> client = FarmClient::Connect(options.server);
     absl::Status status = client.ok() ? body(*client) : client.status();
     if (!status.ok()) spdlog::error("{}", std::string(status.message()));
@@ -39,11 +40,13 @@ void Run(const CommandOptions& options, int* exit_code, const std::function<absl
 
 void PrintJobRow(const v1::JobStatus& job) {
     const std::string integrator =
-        job.integrator() == v1::INTEGRATOR_UNSPECIFIED ? "ppm" : std::string(IntegratorName(Integrator(job.integrator() - 1)));
-    std::printf("%-20s %-10s %-10s %8.1f%% %10s %8d %9.1f %8d  %s\n", job.job_id().c_str(), StateName(job.state()).c_str(),
-                integrator.c_str(), 100 * job.budget_fraction(), absl::StrCat(job.photons()).c_str(),
-                static_cast<int>(job.epochs()), job.elapsed_seconds(), static_cast<int>(job.workers_active()),
-                job.name().c_str());
+        job.integrator() == v1::INTEGRATOR_UNSPECIFIED
+            ? "ppm"
+            : std::string(IntegratorName(Integrator(job.integrator() - 1)));
+    std::printf("%-20s %-10s %-10s %8.1f%% %10s %8d %9.1f %8d  %s\n", job.job_id().c_str(),
+                StateName(job.state()).c_str(), integrator.c_str(), 100 * job.budget_fraction(),
+                absl::StrCat(job.photons()).c_str(), static_cast<int>(job.epochs()),
+                job.elapsed_seconds(), static_cast<int>(job.workers_active()), job.name().c_str());
 }
 
 }  // namespace
@@ -58,8 +61,11 @@ void AddJobCommands(CLI::App& app, int* exit_code) {
         Run(*cancel_options, exit_code, [&](FarmClient& client) -> absl::Status {
             absl::StatusOr<v1::JobStatus> status = client.Cancel(cancel_options->job_id);
             if (!status.ok()) return status.status();
-            if (cancel_options->json) std::printf("%s\n", ToJson(*status).c_str());
-            else std::printf("%s %s\n", status->job_id().c_str(), StateName(status->state()).c_str());
+            if (cancel_options->json)
+                std::printf("%s\n", ToJson(*status).c_str());
+            else
+                std::printf("%s %s\n", status->job_id().c_str(),
+                            StateName(status->state()).c_str());
             return absl::OkStatus();
         });
     });
@@ -76,8 +82,8 @@ void AddJobCommands(CLI::App& app, int* exit_code) {
                 std::printf("%s\n", ToJson(*list).c_str());
                 return absl::OkStatus();
             }
-            std::printf("%-20s %-10s %-10s %9s %10s %8s %9s %8s  %s\n", "JOB", "STATE", "INTEGRATOR", "BUDGET", "PHOTONS",
-                        "EPOCHS", "SECONDS", "WORKERS", "NAME");
+            std::printf("%-20s %-10s %-10s %9s %10s %8s %9s %8s  %s\n", "JOB", "STATE",
+                        "INTEGRATOR", "BUDGET", "PHOTONS", "EPOCHS", "SECONDS", "WORKERS", "NAME");
             for (const v1::JobStatus& job : list->jobs()) PrintJobRow(job);
             return absl::OkStatus();
         });
@@ -95,42 +101,51 @@ void AddJobCommands(CLI::App& app, int* exit_code) {
                 std::printf("%s\n", ToJson(*list).c_str());
                 return absl::OkStatus();
             }
-            std::printf("%-22s %-8s %7s %7s %9s %10s  %s\n", "WORKER", "BACKEND", "THREADS", "LEASED", "DONE",
-                        "HEARTBEAT", "PEER");
+            std::printf("%-22s %-8s %7s %7s %9s %10s  %s\n", "WORKER", "BACKEND", "THREADS",
+                        "LEASED", "DONE", "HEARTBEAT", "PEER");
             for (const v1::WorkerStatus& w : list->workers())
-                std::printf("%-22s %-8s %7d %7d %9s %8.1f s  %s\n", w.worker_id().c_str(), w.backend().c_str(),
-                            static_cast<int>(w.threads()), static_cast<int>(w.batches_leased()),
-                            absl::StrCat(w.batches_done()).c_str(), w.seconds_since_heartbeat(), w.peer().c_str());
+                std::printf("%-22s %-8s %7d %7d %9s %8.1f s  %s\n", w.worker_id().c_str(),
+                            w.backend().c_str(), static_cast<int>(w.threads()),
+                            static_cast<int>(w.batches_leased()),
+                            absl::StrCat(w.batches_done()).c_str(), w.seconds_since_heartbeat(),
+                            w.peer().c_str());
             return absl::OkStatus();
         });
     });
 
     auto result_options = std::make_shared<CommandOptions>();
-    CLI::App* result = app.add_subcommand("result", "Fetch a farm job's image (final once the job is done)");
+    CLI::App* result =
+        app.add_subcommand("result", "Fetch a farm job's image (final once the job is done)");
     result->add_option("job", result_options->job_id, "Job id")->required();
     AddServerOption(result, &result_options->server);
-    result->add_option("--out", result_options->out, "Write the image here (float RGB OpenEXR)")->required();
+    result->add_option("--out", result_options->out, "Write the image here (float RGB OpenEXR)")
+        ->required();
     result->add_option("--png", result_options->png, "Also write a tone-mapped PNG");
     AddReportOption(result, &result_options->report_dir);
     result->callback([result_options, exit_code] {
         absl::Status prepared = PrepareOutputs(result_options->out, result_options->png, "");
-        if (prepared.ok() && !result_options->report_dir.empty()) prepared = PrepareReportDir(result_options->report_dir);
+        if (prepared.ok() && !result_options->report_dir.empty())
+            prepared = PrepareReportDir(result_options->report_dir);
         if (!prepared.ok()) {
             spdlog::error("{}", std::string(prepared.message()));
             *exit_code = 1;
             return;
         }
         Run(*result_options, exit_code, [&](FarmClient& client) -> absl::Status {
-            absl::StatusOr<v1::GetResultResponse> response = client.GetResult(result_options->job_id);
+            absl::StatusOr<v1::GetResultResponse> response =
+                client.GetResult(result_options->job_id);
             if (!response.ok()) return response.status();
-            if (!response->has_image()) return absl::NotFoundError(absl::StrCat("job ", result_options->job_id, " has no image"));
+            if (!response->has_image())
+                return absl::NotFoundError(
+                    absl::StrCat("job ", result_options->job_id, " has no image"));
             absl::StatusOr<Image> image = FromProto(response->image());
             if (!image.ok()) return image.status();
             const v1::JobStatus& status = response->status();
             if (status.state() != v1::JOB_STATE_DONE)
-                spdlog::warn("job {} is {}: writing its image so far", status.job_id(), StateName(status.state()));
-            absl::Status written =
-                WriteImageFiles(*image, JobMetadata(status), result_options->out, result_options->png, 0.0f);
+                spdlog::warn("job {} is {}: writing its image so far", status.job_id(),
+                             StateName(status.state()));
+            absl::Status written = WriteImageFiles(*image, JobMetadata(status), result_options->out,
+                                                   result_options->png, 0.0f);
             if (!written.ok() || result_options->report_dir.empty()) return written;
             return WriteJobReport(client, status.job_id(), result_options->report_dir);
         });
@@ -138,7 +153,8 @@ void AddJobCommands(CLI::App& app, int* exit_code) {
 
     auto health_options = std::make_shared<CommandOptions>();
     CLI::App* health = app.add_subcommand(
-        "health", "Ask the coordinator's gRPC health service whether it serves (exit 0 if so): for probes");
+        "health",
+        "Ask the coordinator's gRPC health service whether it serves (exit 0 if so): for probes");
     AddServerOption(health, &health_options->server);
     health->callback([health_options, exit_code] {
         Run(*health_options, exit_code, [&](FarmClient& client) -> absl::Status {

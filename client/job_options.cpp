@@ -17,7 +17,8 @@ template <typename Enum>
 void EnumChoices(CLI::Option* option, const std::vector<std::string>& names,
                  std::optional<Enum> (*parse)(std::string_view)) {
     std::map<std::string, std::string> values;
-    for (const std::string& name : names) values.emplace(name, std::to_string(static_cast<int>(*parse(name))));
+    for (const std::string& name : names)
+        values.emplace(name, std::to_string(static_cast<int>(*parse(name))));
     const std::string choices = "{" + CLI::detail::join(names, ",") + "}";
     option->transform(CLI::Validator(
         [values, choices](std::string& input) -> std::string {
@@ -29,88 +30,142 @@ void EnumChoices(CLI::Option* option, const std::vector<std::string>& names,
         choices));
 }
 
-void AddPhotonMapOptions(CLI::App* command, PhotonMapSettings* m, const CLI::AsNumberWithUnit& count) {
-    command->add_option("--pm-photons", m->global_photons,
-                        "pm: photons emitted for the global map. The maps are kept in memory, about 40 bytes per "
-                        "photon stored (a photon is stored at every diffuse bounce): a count that will not fit "
-                        "is refused")
-        ->capture_default_str()->transform(count);
-    command->add_option("--pm-caustic-photons", m->caustic_photons,
-                        "pm: photons emitted for the caustic map (those reaching a diffuse surface through "
-                        "specular bounces are stored)")
-        ->capture_default_str()->transform(count);
+void AddPhotonMapOptions(CLI::App* command, PhotonMapSettings* m,
+                         const CLI::AsNumberWithUnit& count) {
+    command
+        ->add_option(
+            "--pm-photons", m->global_photons,
+            "pm: photons emitted for the global map. The maps are kept in memory, about 40 bytes "
+            "per "
+            "photon stored (a photon is stored at every diffuse bounce): a count that will not fit "
+            "is refused")
+        ->capture_default_str()
+        ->transform(count);
+    command
+        ->add_option(
+            "--pm-caustic-photons", m->caustic_photons,
+            "pm: photons emitted for the caustic map (those reaching a diffuse surface through "
+            "specular bounces are stored)")
+        ->capture_default_str()
+        ->transform(count);
     command->add_option("--pm-nearest", m->nearest, "pm: k, photons per density estimate")
-        ->capture_default_str()->check(CLI::Range(1u, kMaxNearestPhotons));
-    command->add_option("--pm-max-radius", m->max_radius,
-                        "pm: largest radius of the nearest-photon search, world units (default: 2% of the scene's "
-                        "diagonal)")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, kMaxNearestPhotons));
+    command
+        ->add_option("--pm-max-radius", m->max_radius,
+                     "pm: largest radius of the nearest-photon search, world units (default: 2% of "
+                     "the scene's "
+                     "diagonal)")
         ->check(FinitePositive());
-    EnumChoices(command->add_option("--pm-filter", m->filter, "pm: density estimation filter")->default_str("cone"),
+    EnumChoices(command->add_option("--pm-filter", m->filter, "pm: density estimation filter")
+                    ->default_str("cone"),
                 {"box", "cone", "gaussian"}, ParseDensityFilter);
-    command->add_option("--final-gather", m->final_gather,
-                        "pm: gather rays per camera sample for indirect light (0: read the global map directly)")
-        ->capture_default_str()->check(CLI::Range(0u, kMaxFinalGatherRays));
-    EnumChoices(command->add_option("--photon-index", m->index, "pm: how photons are stored and searched")
-                    ->default_str("kdtree"),
-                {"kdtree", "grid"}, ParsePhotonIndex);
+    command
+        ->add_option("--final-gather", m->final_gather,
+                     "pm: gather rays per camera sample for indirect light (0: read the global map "
+                     "directly)")
+        ->capture_default_str()
+        ->check(CLI::Range(0u, kMaxFinalGatherRays));
+    EnumChoices(
+        command->add_option("--photon-index", m->index, "pm: how photons are stored and searched")
+            ->default_str("kdtree"),
+        {"kdtree", "grid"}, ParsePhotonIndex);
 }
 
 }  // namespace
 
 void AddJobOptions(CLI::App* command, JobSpec* s) {
     const auto count = CLI::AsNumberWithUnit(
-        std::map<std::string, uint64_t>{{"k", 1000}, {"m", 1000000}, {"g", 1000000000}, {"t", 1000000000000}},
+        std::map<std::string, uint64_t>{
+            {"k", 1000}, {"m", 1000000}, {"g", 1000000000}, {"t", 1000000000000}},
         CLI::AsNumberWithUnit::CASE_INSENSITIVE, "COUNT");
-    EnumChoices(command
-                    ->add_option("--integrator", s->integrator,
-                                 "Light transport: ppm (progressive photon mapping), sppm (stochastic ppm), pm "
-                                 "(classic photon mapping, maps stored in memory), path (path tracing, the unbiased "
-                                 "reference); docs/integrators.md")
-                    ->default_str("ppm"),
-                IntegratorNames(), ParseIntegrator);
-    auto* photons = command->add_option("--photons", s->photon_budget,
-                                        "Photon budget of ppm and sppm, e.g. 20M (finishes the epoch that reaches it; "
-                                        "default 20M)")
-                        ->transform(count);
-    command->add_option("--epochs", s->epoch_budget,
-                        "Epoch budget: stop after this many (default for path and pm: 16)")
+    EnumChoices(
+        command
+            ->add_option(
+                "--integrator", s->integrator,
+                "Light transport: ppm (progressive photon mapping), sppm (stochastic ppm), pm "
+                "(classic photon mapping, maps stored in memory), path (path tracing, the unbiased "
+                "reference); docs/integrators.md")
+            ->default_str("ppm"),
+        IntegratorNames(), ParseIntegrator);
+    auto* photons =
+        command
+            ->add_option(
+                "--photons", s->photon_budget,
+                "Photon budget of ppm and sppm, e.g. 20M (finishes the epoch that reaches it; "
+                "default 20M)")
+            ->transform(count);
+    command
+        ->add_option("--epochs", s->epoch_budget,
+                     "Epoch budget: stop after this many (default for path and pm: 16)")
         ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
-    command->add_option("--seconds", s->seconds_budget, "Time budget in seconds (finishes the epoch that reaches it)")
-        ->check(FinitePositive())->excludes(photons);
-    command->add_option("--target-error", s->target_error,
-                        "Stop once the estimated relative error (from even and odd batches) is at most this, e.g. "
-                        "0.02; with --photons or --seconds, whichever comes first")
+    command
+        ->add_option("--seconds", s->seconds_budget,
+                     "Time budget in seconds (finishes the epoch that reaches it)")
+        ->check(FinitePositive())
+        ->excludes(photons);
+    command
+        ->add_option("--target-error", s->target_error,
+                     "Stop once the estimated relative error (from even and odd batches) is at "
+                     "most this, e.g. "
+                     "0.02; with --photons or --seconds, whichever comes first")
         ->check(FiniteRange(1e-9, 999.0));
-    command->add_option("--photons-per-batch", s->layout.photons_per_batch, "Photon paths per batch, the unit of work")
-        ->default_val(s->layout.photons_per_batch)->check(CLI::Range(1u, kMaxPhotonsPerBatch));
-    command->add_option("--batches-per-epoch", s->layout.batches_per_epoch,
-                        "Batches per epoch; radii shrink once per epoch, and a farm runs at most this many batches at once")
-        ->default_val(s->layout.batches_per_epoch)->check(CLI::Range(1u, kMaxBatchesPerEpoch));
+    command
+        ->add_option("--photons-per-batch", s->layout.photons_per_batch,
+                     "Photon paths per batch, the unit of work")
+        ->default_val(s->layout.photons_per_batch)
+        ->check(CLI::Range(1u, kMaxPhotonsPerBatch));
+    command
+        ->add_option("--batches-per-epoch", s->layout.batches_per_epoch,
+                     "Batches per epoch; radii shrink once per epoch, and a farm runs at most this "
+                     "many batches at once")
+        ->default_val(s->layout.batches_per_epoch)
+        ->check(CLI::Range(1u, kMaxBatchesPerEpoch));
     // capture_default_str, not default_val: default_val would re-parse "0.666667" into alpha,
     // and the render would no longer match a farm job left at the default 2/3.
-    command->add_option("--alpha", s->alpha, "Radius reduction ratio alpha in (0, 1]")->capture_default_str()->check(FiniteRange(1e-9, 1.0));
-    command->add_option("--radius", s->initial_radius, "Initial search radius R0, world units (default: one pixel footprint)")
+    command->add_option("--alpha", s->alpha, "Radius reduction ratio alpha in (0, 1]")
+        ->capture_default_str()
+        ->check(FiniteRange(1e-9, 1.0));
+    command
+        ->add_option("--radius", s->initial_radius,
+                     "Initial search radius R0, world units (default: one pixel footprint)")
         ->check(FinitePositive());
-    command->add_option("--spp", s->samples_per_pixel,
-                        "Camera paths per pixel: hit points (ppm), hit points per epoch (sppm), samples per epoch "
-                        "(path, pm)")
+    command
+        ->add_option("--spp", s->samples_per_pixel,
+                     "Camera paths per pixel: hit points (ppm), hit points per epoch (sppm), "
+                     "samples per epoch "
+                     "(path, pm)")
         ->default_val(s->samples_per_pixel)
         ->check(CLI::Range(1, 1024));
-    command->add_option("--seed", s->seed, "Random seed; the same seed and batch layout give the same image")->default_val(s->seed);
-    command->add_option("--photon-stream", s->photon_stream,
-                        "Another photon stream of the same --seed: the same hit points, independent photons "
-                        "(to render a reference for --reference)")
+    command
+        ->add_option("--seed", s->seed,
+                     "Random seed; the same seed and batch layout give the same image")
+        ->default_val(s->seed);
+    command
+        ->add_option(
+            "--photon-stream", s->photon_stream,
+            "Another photon stream of the same --seed: the same hit points, independent photons "
+            "(to render a reference for --reference)")
         ->default_val(s->photon_stream);
-    command->add_option("--width", s->width, "Image width in pixels (default: the scene's own (a pbrt Film), else 512)")->check(CLI::Range(1, 32768));
-    command->add_option("--height", s->height, "Image height in pixels (default: width / camera aspect)")->check(CLI::Range(1, 32768));
+    command
+        ->add_option("--width", s->width,
+                     "Image width in pixels (default: the scene's own (a pbrt Film), else 512)")
+        ->check(CLI::Range(1, 32768));
+    command
+        ->add_option("--height", s->height,
+                     "Image height in pixels (default: width / camera aspect)")
+        ->check(CLI::Range(1, 32768));
     AddPhotonMapOptions(command, &s->photon_map, count);
 }
 
 void ApplyDefaultBudget(JobSpec* spec) {
-    if (spec->photon_budget != 0 || spec->epoch_budget != 0 || spec->seconds_budget != 0 || spec->target_error != 0)
+    if (spec->photon_budget != 0 || spec->epoch_budget != 0 || spec->seconds_budget != 0 ||
+        spec->target_error != 0)
         return;
-    if (GathersAtHitPoints(spec->integrator)) spec->photon_budget = 20'000'000;
-    else spec->epoch_budget = 16;
+    if (GathersAtHitPoints(spec->integrator))
+        spec->photon_budget = 20'000'000;
+    else
+        spec->epoch_budget = 16;
 }
 
 }  // namespace pf

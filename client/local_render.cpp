@@ -15,7 +15,8 @@
 
 namespace pf {
 
-absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, const EpochCallback& on_epoch) {
+absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings,
+                                            const EpochCallback& on_epoch) {
     const JobSpec& spec = settings.job;
     if (absl::Status status = CheckJobSpec(spec, SettingNames::kFlags); !status.ok()) return status;
     // The backend's device first: without one, say so before any work.
@@ -27,11 +28,12 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
     CoordinatorOptions options;
     options.setting_names = SettingNames::kFlags;
     Coordinator coordinator(options);
-    tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::this_task_arena::max_concurrency());
+    tbb::task_arena arena(settings.threads > 0 ? settings.threads
+                                               : tbb::this_task_arena::max_concurrency());
     absl::StatusOr<RenderOutcome> outcome = RenderOutcome{};
     arena.execute([&] {
-        absl::StatusOr<JobProgress> submitted =
-            coordinator.Submit({settings.scene_path, "this process", std::move(*bundle), spec, 0, settings.reference});
+        absl::StatusOr<JobProgress> submitted = coordinator.Submit(
+            {settings.scene_path, "this process", std::move(*bundle), spec, 0, settings.reference});
         if (!submitted.ok()) {
             outcome = submitted.status();
             return;
@@ -44,11 +46,14 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
 
         // The worker leases a whole epoch at a time: its batches' chunks run in parallel on
         // this arena.
-        InProcessSource source(coordinator, {device->description, static_cast<uint32_t>(arena.max_concurrency()),
-                                             std::string(kPhotonfarmVersion), ""}, 0.0);
+        InProcessSource source(coordinator,
+                               {device->description, static_cast<uint32_t>(arena.max_concurrency()),
+                                std::string(kPhotonfarmVersion), ""},
+                               0.0);
         const uint64_t epoch_chunks = uint64_t{spec.layout.batches_per_epoch} *
                                       ChunkCount(MakeBatchSpec(spec.layout, 0, 0, 0));
-        WorkerLoop worker(source, settings.backend, static_cast<uint32_t>(std::min<uint64_t>(epoch_chunks, UINT32_MAX)));
+        WorkerLoop worker(source, settings.backend,
+                          static_cast<uint32_t>(std::min<uint64_t>(epoch_chunks, UINT32_MAX)));
         uint64_t version = job->Version();
         RenderProgress& progress = outcome->progress;
         while (job->Progress(Clock::now()).state == JobState::kRunning) {
@@ -71,7 +76,8 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
             progress.seconds = state.elapsed_seconds;
             progress.estimated_error = state.estimated_error;
             progress.nonfinite_discarded = state.nonfinite_discarded;
-            if (state.measured_error) progress.measured_error = std::sqrt(state.measured_error->rel_mse);
+            if (state.measured_error)
+                progress.measured_error = std::sqrt(state.measured_error->rel_mse);
             progress.fraction = state.state == JobState::kDone ? 1.0 : state.budget_fraction;
             if (on_epoch) on_epoch(progress, *job);
         }
@@ -81,7 +87,8 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, cons
     });
     if (outcome.ok()) {
         rusage usage{};
-        if (getrusage(RUSAGE_SELF, &usage) == 0) outcome->peak_memory_bytes = uint64_t(usage.ru_maxrss) * 1024;
+        if (getrusage(RUSAGE_SELF, &usage) == 0)
+            outcome->peak_memory_bytes = uint64_t(usage.ru_maxrss) * 1024;
     }
     return outcome;
 }

@@ -22,21 +22,22 @@ namespace pf {
 struct RenderSettings {
     std::string scene_path;
     JobSpec job;
-    int threads = 0;               // 0: all hardware threads
-    std::string backend = "cpu";   // the photon backend (worker/backend_factory.h)
+    int threads = 0;                         // 0: all hardware threads
+    std::string backend = "cpu";             // the photon backend (worker/backend_factory.h)
     std::shared_ptr<const Image> reference;  // every epoch is measured against it, when set
-    const std::atomic<bool>* stop = nullptr;  // set from elsewhere (a signal) to stop after an epoch
+    const std::atomic<bool>* stop =
+        nullptr;  // set from elsewhere (a signal) to stop after an epoch
 };
 
 struct RenderProgress {
     uint64_t epochs = 0;
     Integrator integrator = Integrator::kPpm;
     uint64_t photons = 0;
-    uint64_t camera_samples = 0;  // camera paths traced (path, pm, sppm: every epoch's)
-    uint64_t segments = 0;  // photon rays traced
-    double seconds = 0;     // since the camera pass began
-    double fraction = 0;    // of the budget, in [0, 1]
-    uint32_t workers = 0;   // workers active on a farm job (0: not shown)
+    uint64_t camera_samples = 0;            // camera paths traced (path, pm, sppm: every epoch's)
+    uint64_t segments = 0;                  // photon rays traced
+    double seconds = 0;                     // since the camera pass began
+    double fraction = 0;                    // of the budget, in [0, 1]
+    uint32_t workers = 0;                   // workers active on a farm job (0: not shown)
     std::optional<double> estimated_error;  // relative, from the half-estimates, once known
     std::optional<double> measured_error;   // relative (sqrt of relMSE), against the reference
     uint64_t nonfinite_discarded = 0;       // NaN/Inf paths and samples dropped (should be 0)
@@ -50,7 +51,7 @@ struct RenderOutcome {
     std::string scene_features;  // what the scene uses (SceneFeatures::ToString)
     double camera_pass_seconds = 0;
     std::vector<ConvergencePoint> convergence;  // one point per epoch
-    std::vector<std::string> warnings;           // the job's (also logged as they arise)
+    std::vector<std::string> warnings;          // the job's (also logged as they arise)
     uint64_t peak_memory_bytes = 0;  // this process's peak resident memory, at the end (getrusage)
 };
 
@@ -59,6 +60,7 @@ using EpochCallback = std::function<void(const RenderProgress&, const Job& job)>
 
 // Packs the scene into a bundle and renders it. Errors: the scene's load errors, bad settings
 // (naming the command-line flag).
-absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings, const EpochCallback& on_epoch = {});
+absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings,
+                                            const EpochCallback& on_epoch = {});
 
 }  // namespace pf

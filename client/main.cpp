@@ -28,7 +28,8 @@ int main(int argc, char** argv) {
         pf::AddCompareCommand(app, &exit_code);
         pf::SetUpLogging("photonfarm");
         pf::RouteGrpcLogsToDebug();
-        if (std::optional<int> parse_exit = pf::ParseCommandLine(app, argc, argv, "photonfarm")) return *parse_exit;
+        if (std::optional<int> parse_exit = pf::ParseCommandLine(app, argc, argv, "photonfarm"))
+            return *parse_exit;
         return exit_code;
     } catch (const std::exception& error) {
         std::fprintf(stderr, "photonfarm: error: %s\n", error.what());

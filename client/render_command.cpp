@@ -45,9 +45,10 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
             {"photonfarm:photons", absl::StrCat(outcome.progress.photons)},
             {"photonfarm:epochs", absl::StrCat(outcome.progress.epochs)},
             {"photonfarm:seconds", absl::StrFormat("%.3f", outcome.progress.seconds)},
-            {"photonfarm:estimated_error", outcome.progress.estimated_error
-                                               ? absl::StrFormat("%.4g", *outcome.progress.estimated_error)
-                                               : "unknown"},
+            {"photonfarm:estimated_error",
+             outcome.progress.estimated_error
+                 ? absl::StrFormat("%.4g", *outcome.progress.estimated_error)
+                 : "unknown"},
             {"photonfarm:nonfinite_discarded", absl::StrCat(outcome.progress.nonfinite_discarded)},
             {"photonfarm:seed", absl::StrCat(s.job.seed)},
             {"photonfarm:photon_stream", absl::StrCat(s.job.photon_stream)},
@@ -68,14 +69,17 @@ int RunRender(const RenderOptions& options) {
     absl::Status prepared =
         RunsOnBackend(settings.job.integrator, settings.backend)
             ? PrepareOutputs(options.out, options.png, options.snapshot_dir)
-            : absl::InvalidArgumentError(absl::StrCat("--backend ", settings.backend, " runs --integrator ppm or sppm, not ",
-                                                      std::string(IntegratorName(settings.job.integrator)),
-                                                      ": use --backend cpu"));
-    if (prepared.ok() && !options.report_dir.empty()) prepared = PrepareReportDir(options.report_dir);
+            : absl::InvalidArgumentError(absl::StrCat(
+                  "--backend ", settings.backend, " runs --integrator ppm or sppm, not ",
+                  std::string(IntegratorName(settings.job.integrator)), ": use --backend cpu"));
+    if (prepared.ok() && !options.report_dir.empty())
+        prepared = PrepareReportDir(options.report_dir);
     if (prepared.ok() && !options.reference_path.empty()) {
         absl::StatusOr<Image> reference = ReadExr(options.reference_path);
-        if (reference.ok()) settings.reference = std::make_shared<const Image>(std::move(*reference));
-        else prepared = reference.status();
+        if (reference.ok())
+            settings.reference = std::make_shared<const Image>(std::move(*reference));
+        else
+            prepared = reference.status();
     }
     if (!prepared.ok()) {
         spdlog::error("{}", std::string(prepared.message()));
@@ -92,12 +96,16 @@ int RunRender(const RenderOptions& options) {
     absl::Status snapshot_status;
     const auto on_epoch = [&](const RenderProgress& progress, const Job& job) {
         display.Update(progress);
-        if (options.snapshot_every <= 0 || progress.seconds < next_snapshot || !snapshot_status.ok()) return;
+        if (options.snapshot_every <= 0 || progress.seconds < next_snapshot ||
+            !snapshot_status.ok())
+            return;
         next_snapshot = progress.seconds + options.snapshot_every;
-        const std::string path = absl::StrFormat("%s/snapshot-%04d.exr", options.snapshot_dir, ++snapshot_count);
-        snapshot_status = WriteExr(path, *job.CurrentImage(),
-                                   {{"photonfarm:photons", absl::StrCat(progress.photons)},
-                                    {"photonfarm:seconds", absl::StrFormat("%.3f", progress.seconds)}});
+        const std::string path =
+            absl::StrFormat("%s/snapshot-%04d.exr", options.snapshot_dir, ++snapshot_count);
+        snapshot_status =
+            WriteExr(path, *job.CurrentImage(),
+                     {{"photonfarm:photons", absl::StrCat(progress.photons)},
+                      {"photonfarm:seconds", absl::StrFormat("%.3f", progress.seconds)}});
     };
     const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings, on_epoch);
     std::signal(SIGINT, SIG_DFL);
@@ -108,19 +116,23 @@ int RunRender(const RenderOptions& options) {
     }
     display.Finish(*outcome);
     if (outcome->progress.nonfinite_discarded > 0)
-        spdlog::warn("{} photon paths or direct-light samples became NaN or Inf and were left out; "
-                     "please report the scene (docs/numerics.md)", outcome->progress.nonfinite_discarded);
+        spdlog::warn(
+            "{} photon paths or direct-light samples became NaN or Inf and were left out; "
+            "please report the scene (docs/numerics.md)",
+            outcome->progress.nonfinite_discarded);
     if (g_stop_requested) spdlog::warn("stopped early by a signal; writing what was rendered");
     if (!snapshot_status.ok()) spdlog::error("{}", std::string(snapshot_status.message()));
-    if (absl::Status status = WriteImageFiles(outcome->image, Metadata(options, *outcome), options.out, options.png,
-                                              options.exposure);
+    if (absl::Status status = WriteImageFiles(outcome->image, Metadata(options, *outcome),
+                                              options.out, options.png, options.exposure);
         !status.ok()) {
         spdlog::error("{}", std::string(status.message()));
         return 1;
     }
     if (!options.report_dir.empty()) {
         const std::string title = std::filesystem::path(settings.scene_path).filename().string();
-        if (absl::Status status = WriteConvergenceReport(options.report_dir, title, outcome->convergence); !status.ok()) {
+        if (absl::Status status =
+                WriteConvergenceReport(options.report_dir, title, outcome->convergence);
+            !status.ok()) {
             spdlog::error("{}", std::string(status.message()));
             return 1;
         }
@@ -134,18 +146,29 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
     auto options = std::make_shared<RenderOptions>();
     RenderSettings& s = options->settings;
     CLI::App* render = app.add_subcommand("render", "Render a scene on this machine (no server)");
-    render->add_option("scene", s.scene_path, "Scene file (.gltf or .glb)")->required()->check(CLI::ExistingFile);
-    render->add_option("--out", options->out, "Output image: float RGB OpenEXR with metadata")->required();
+    render->add_option("scene", s.scene_path, "Scene file (.gltf or .glb)")
+        ->required()
+        ->check(CLI::ExistingFile);
+    render->add_option("--out", options->out, "Output image: float RGB OpenEXR with metadata")
+        ->required();
     render->add_option("--png", options->png, "Also write a tone-mapped sRGB PNG");
-    render->add_option("--exposure", options->exposure, "PNG exposure in stops")->default_val(0.0f)->check(FiniteNumber());
+    render->add_option("--exposure", options->exposure, "PNG exposure in stops")
+        ->default_val(0.0f)
+        ->check(FiniteNumber());
     AddJobOptions(render, &s.job);
-    render->add_option("--threads", s.threads, "Worker threads (default: all cores)")->check(CLI::Range(1, 4096));
-    render->add_option("--backend", s.backend, "Photon backend: cpu (Embree) or vulkan (compute on a GPU)")
+    render->add_option("--threads", s.threads, "Worker threads (default: all cores)")
+        ->check(CLI::Range(1, 4096));
+    render
+        ->add_option("--backend", s.backend,
+                     "Photon backend: cpu (Embree) or vulkan (compute on a GPU)")
         ->default_val(s.backend)
         ->check(CLI::IsMember(BackendNames()));
-    auto* every = render->add_option("--snapshot-every", options->snapshot_every, "Write a snapshot EXR every SECONDS")
+    auto* every = render
+                      ->add_option("--snapshot-every", options->snapshot_every,
+                                   "Write a snapshot EXR every SECONDS")
                       ->check(FinitePositive());
-    auto* dir = render->add_option("--snapshot-dir", options->snapshot_dir, "Directory for snapshot-NNNN.exr");
+    auto* dir = render->add_option("--snapshot-dir", options->snapshot_dir,
+                                   "Directory for snapshot-NNNN.exr");
     every->needs(dir);
     dir->needs(every);
     AddReferenceOption(render, &options->reference_path);

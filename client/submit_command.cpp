@@ -38,10 +38,16 @@ void AddWatchOptions(CLI::App* command, WatchOptions* options) {
     AddServerOption(command, &options->server);
     command->add_option("--out", options->out, "Write the final image here (float RGB OpenEXR)");
     command->add_option("--png", options->png, "Also write the final image as a tone-mapped PNG");
-    command->add_option("--exposure", options->exposure, "PNG exposure in stops")->default_val(0.0f)->check(FiniteNumber());
-    command->add_option("--snapshot-dir", options->snapshot_dir, "Write every snapshot here (snapshot-NNNN.exr and .png)");
-    command->add_option("--interval", options->interval, "Seconds between snapshots")->default_val(1.0)->check(FiniteRange(0.0, 3600.0));
-    command->add_flag("--json", options->json, "One JSON status per snapshot on stdout, for scripts");
+    command->add_option("--exposure", options->exposure, "PNG exposure in stops")
+        ->default_val(0.0f)
+        ->check(FiniteNumber());
+    command->add_option("--snapshot-dir", options->snapshot_dir,
+                        "Write every snapshot here (snapshot-NNNN.exr and .png)");
+    command->add_option("--interval", options->interval, "Seconds between snapshots")
+        ->default_val(1.0)
+        ->check(FiniteRange(0.0, 3600.0));
+    command->add_flag("--json", options->json,
+                      "One JSON status per snapshot on stdout, for scripts");
     AddReportOption(command, &options->report_dir);
 }
 
@@ -56,7 +62,8 @@ RenderProgress ProgressOf(const v1::JobStatus& status) {
     progress.fraction = status.budget_fraction();
     progress.workers = status.workers_active();
     if (status.has_estimated_error()) progress.estimated_error = status.estimated_error();
-    if (status.has_reference_error()) progress.measured_error = std::sqrt(status.reference_error().rel_mse());
+    if (status.has_reference_error())
+        progress.measured_error = std::sqrt(status.reference_error().rel_mse());
     progress.nonfinite_discarded = status.nonfinite_discarded();
     return progress;
 }
@@ -69,8 +76,9 @@ ImageMetadata JobMetadata(const photonfarm::v1::JobStatus& status) {
             {"photonfarm:photons", absl::StrCat(status.photons())},
             {"photonfarm:epochs", absl::StrCat(status.epochs())},
             {"photonfarm:seconds", absl::StrFormat("%.3f", status.elapsed_seconds())},
-            {"photonfarm:estimated_error",
-             status.has_estimated_error() ? absl::StrFormat("%.4g", status.estimated_error()) : "unknown"},
+            {"photonfarm:estimated_error", status.has_estimated_error()
+                                               ? absl::StrFormat("%.4g", status.estimated_error())
+                                               : "unknown"},
             {"photonfarm:nonfinite_discarded", absl::StrCat(status.nonfinite_discarded())},
             {"photonfarm:scene_features", status.scene_features()},
             {"photonfarm:camera_samples", absl::StrCat(status.camera_samples())},
@@ -90,7 +98,8 @@ namespace {
 // arrived is written either way.
 int Follow(FarmClient& client, const WatchOptions& options) {
     absl::Status prepared = PrepareOutputs(options.out, options.png, options.snapshot_dir);
-    if (prepared.ok() && !options.report_dir.empty()) prepared = PrepareReportDir(options.report_dir);
+    if (prepared.ok() && !options.report_dir.empty())
+        prepared = PrepareReportDir(options.report_dir);
     if (!prepared.ok()) {
         spdlog::error("{}", std::string(prepared.message()));
         return 1;
@@ -100,30 +109,34 @@ int Follow(FarmClient& client, const WatchOptions& options) {
     v1::JobStatus last;
     int snapshots = 0;
     absl::Status write_status;
-    const bool images = !options.out.empty() || !options.png.empty() || !options.snapshot_dir.empty();
+    const bool images =
+        !options.out.empty() || !options.png.empty() || !options.snapshot_dir.empty();
     int first_warnings = -1;
-    absl::StatusOr<v1::Snapshot> outcome = client.Watch(options.job_id, options.interval, images, [&](const v1::Snapshot& snapshot) {
-        last = snapshot.status();
-        if (first_warnings < 0) first_warnings = last.warnings_size();
-        if (options.json) {
-            std::printf("%s\n", ToJson(snapshot.status()).c_str());
-            std::fflush(stdout);
-        } else {
-            display.Update(ProgressOf(snapshot.status()));
-        }
-        if (!snapshot.has_image()) return true;
-        absl::StatusOr<Image> decoded = FromProto(snapshot.image());
-        if (!decoded.ok()) {
-            write_status = decoded.status();
+    absl::StatusOr<v1::Snapshot> outcome =
+        client.Watch(options.job_id, options.interval, images, [&](const v1::Snapshot& snapshot) {
+            last = snapshot.status();
+            if (first_warnings < 0) first_warnings = last.warnings_size();
+            if (options.json) {
+                std::printf("%s\n", ToJson(snapshot.status()).c_str());
+                std::fflush(stdout);
+            } else {
+                display.Update(ProgressOf(snapshot.status()));
+            }
+            if (!snapshot.has_image()) return true;
+            absl::StatusOr<Image> decoded = FromProto(snapshot.image());
+            if (!decoded.ok()) {
+                write_status = decoded.status();
+                return true;
+            }
+            image = std::move(*decoded);
+            if (!options.snapshot_dir.empty() && write_status.ok()) {
+                const std::string stem =
+                    absl::StrFormat("%s/snapshot-%04d", options.snapshot_dir, ++snapshots);
+                write_status = WriteImageFiles(image, JobMetadata(snapshot.status()), stem + ".exr",
+                                               stem + ".png", options.exposure);
+            }
             return true;
-        }
-        image = std::move(*decoded);
-        if (!options.snapshot_dir.empty() && write_status.ok()) {
-            const std::string stem = absl::StrFormat("%s/snapshot-%04d", options.snapshot_dir, ++snapshots);
-            write_status = WriteImageFiles(image, JobMetadata(snapshot.status()), stem + ".exr", stem + ".png", options.exposure);
-        }
-        return true;
-    });
+        });
     if (!options.json) display.Finish();
     // Warnings that arose while the job ran (those from its submission were shown then).
     if (outcome.ok())
@@ -138,22 +151,25 @@ int Follow(FarmClient& client, const WatchOptions& options) {
                       last.message().empty() ? "" : absl::StrCat(": ", last.message()));
         exit_code = 1;
     } else if (!options.json) {
-        std::fprintf(stderr, "done: job %s, %s photons in %d epochs, %.1f s\n", last.job_id().c_str(),
-                     absl::StrCat(last.photons()).c_str(), static_cast<int>(last.epochs()), last.elapsed_seconds());
+        std::fprintf(stderr, "done: job %s, %s photons in %d epochs, %.1f s\n",
+                     last.job_id().c_str(), absl::StrCat(last.photons()).c_str(),
+                     static_cast<int>(last.epochs()), last.elapsed_seconds());
     }
     if (!write_status.ok()) {
         spdlog::error("{}", std::string(write_status.message()));
         exit_code = 1;
     }
     if (!options.out.empty() && image.width > 0) {
-        if (absl::Status status = WriteImageFiles(image, JobMetadata(last), options.out, options.png, options.exposure);
+        if (absl::Status status = WriteImageFiles(image, JobMetadata(last), options.out,
+                                                  options.png, options.exposure);
             !status.ok()) {
             spdlog::error("{}", std::string(status.message()));
             exit_code = 1;
         }
     }
     if (!options.report_dir.empty()) {
-        if (absl::Status status = WriteJobReport(client, options.job_id, options.report_dir); !status.ok()) {
+        if (absl::Status status = WriteJobReport(client, options.job_id, options.report_dir);
+            !status.ok()) {
             spdlog::error("{}", std::string(status.message()));
             exit_code = 1;
         }
@@ -200,13 +216,15 @@ int RunSubmit(SubmitOptions& options) {
         }
         *request.mutable_reference() = ToProto(*reference);
     }
-    spdlog::info("submitting {} ({} files, {} bytes)", options.scene_path, bundle->files.size(), bundle->TotalBytes());
+    spdlog::info("submitting {} ({} files, {} bytes)", options.scene_path, bundle->files.size(),
+                 bundle->TotalBytes());
     absl::StatusOr<v1::JobStatus> status = client->Submit(request);
     if (!status.ok()) {
         spdlog::error("{}", std::string(status.status().message()));
         return 1;
     }
-    for (const std::string& warning : status->warnings()) spdlog::warn("job {}: {}", status->job_id(), warning);
+    for (const std::string& warning : status->warnings())
+        spdlog::warn("job {}: {}", status->job_id(), warning);
     if (options.watch_options.json) {
         std::printf("%s\n", ToJson(*status).c_str());
         std::fflush(stdout);
@@ -225,21 +243,31 @@ int RunSubmit(SubmitOptions& options) {
 
 void AddSubmitCommand(CLI::App& app, int* exit_code) {
     auto options = std::make_shared<SubmitOptions>();
-    CLI::App* submit = app.add_subcommand("submit", "Submit a scene to a render farm (prints the job id)");
-    submit->add_option("scene", options->scene_path, "Scene file (.gltf or .glb); it and every file it references are sent")
-        ->required()->check(CLI::ExistingFile);
-    submit->add_option("--name", options->name, "Name in listings (default: the scene's file name)");
-    submit->add_option("--priority", options->priority, "Higher runs first; equal priorities share workers")->default_val(0);
+    CLI::App* submit =
+        app.add_subcommand("submit", "Submit a scene to a render farm (prints the job id)");
+    submit
+        ->add_option("scene", options->scene_path,
+                     "Scene file (.gltf or .glb); it and every file it references are sent")
+        ->required()
+        ->check(CLI::ExistingFile);
+    submit->add_option("--name", options->name,
+                       "Name in listings (default: the scene's file name)");
+    submit
+        ->add_option("--priority", options->priority,
+                     "Higher runs first; equal priorities share workers")
+        ->default_val(0);
     AddJobOptions(submit, &options->spec);
     AddReferenceOption(submit, &options->reference_path);
-    submit->add_flag("--watch", options->watch, "Follow the job to its end: progress, snapshots, final image");
+    submit->add_flag("--watch", options->watch,
+                     "Follow the job to its end: progress, snapshots, final image");
     AddWatchOptions(submit, &options->watch_options);
     submit->callback([options, exit_code] {
         const WatchOptions& watch = options->watch_options;
-        if (!options->watch &&
-            (!watch.out.empty() || !watch.png.empty() || !watch.snapshot_dir.empty() || !watch.report_dir.empty())) {
+        if (!options->watch && (!watch.out.empty() || !watch.png.empty() ||
+                                !watch.snapshot_dir.empty() || !watch.report_dir.empty())) {
             spdlog::error(
-                "--out, --png, --snapshot-dir and --report need --watch (or use `photonfarm watch JOB --out ...` later)");
+                "--out, --png, --snapshot-dir and --report need --watch (or use `photonfarm watch "
+                "JOB --out ...` later)");
             *exit_code = 2;
             return;
         }
@@ -249,7 +277,8 @@ void AddSubmitCommand(CLI::App& app, int* exit_code) {
 
 void AddWatchCommand(CLI::App& app, int* exit_code) {
     auto options = std::make_shared<WatchOptions>();
-    CLI::App* watch = app.add_subcommand("watch", "Follow a farm job: progress, snapshots, final image");
+    CLI::App* watch =
+        app.add_subcommand("watch", "Follow a farm job: progress, snapshots, final image");
     watch->add_option("job", options->job_id, "Job id (from submit or jobs)")->required();
     AddWatchOptions(watch, options.get());
     watch->callback([options, exit_code] {

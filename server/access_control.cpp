@@ -45,45 +45,55 @@ std::vector<AccessControl::Digest> AccessControl::Digests(const std::vector<Toke
     return digests;
 }
 
-const std::string* AccessControl::Find(const std::vector<Digest>& accepted, const std::string& sha256) {
+const std::string* AccessControl::Find(const std::vector<Digest>& accepted,
+                                       const std::string& sha256) {
     const std::string* name = nullptr;
     for (const Digest& digest : accepted)  // every entry, match or not: no early exit to time
         if (ConstantTimeEqual(digest.sha256, sha256) && name == nullptr) name = &digest.name;
     return name;
 }
 
-bool AccessControl::Open() const { return plaintext_ && client_tokens_.empty() && worker_tokens_.empty(); }
+bool AccessControl::Open() const {
+    return plaintext_ && client_tokens_.empty() && worker_tokens_.empty();
+}
 
-absl::StatusOr<std::string> AccessControl::Authorize(const grpc::ServerContext& context, Role role) const {
+absl::StatusOr<std::string> AccessControl::Authorize(const grpc::ServerContext& context,
+                                                     Role role) const {
     if (role == Role::kWorker && worker_certificates_) {
         const std::shared_ptr<const grpc::AuthContext> auth = context.auth_context();
         if (!auth || !auth->IsPeerAuthenticated())
             return absl::UnauthenticatedError(
-                "this coordinator requires workers to present a TLS certificate signed by its worker CA (--tls-cert, --tls-key)");
+                "this coordinator requires workers to present a TLS certificate signed by its "
+                "worker CA (--tls-cert, --tls-key)");
     }
     const std::vector<Digest>& accepted = role == Role::kClient ? client_tokens_ : worker_tokens_;
     if (accepted.empty()) return PeerHost(context.peer());  // an open role: plain text, local use
     const auto& metadata = context.client_metadata();
     const auto header = metadata.find(kTokenMetadataKey);
     if (header == metadata.end())
-        return absl::UnauthenticatedError(absl::StrCat("no token: a ", RoleName(role), " must send one (--token-file)"));
+        return absl::UnauthenticatedError(
+            absl::StrCat("no token: a ", RoleName(role), " must send one (--token-file)"));
     const std::string value(header->second.data(), header->second.size());
     if (!value.starts_with(kTokenPrefix))
-        return absl::UnauthenticatedError(absl::StrCat("the ", kTokenMetadataKey, " header must read \"", kTokenPrefix, "TOKEN\""));
+        return absl::UnauthenticatedError(absl::StrCat(
+            "the ", kTokenMetadataKey, " header must read \"", kTokenPrefix, "TOKEN\""));
     const std::string sha256 = Sha256Hex(std::string_view(value).substr(sizeof(kTokenPrefix) - 1));
     if (const std::string* name = Find(accepted, sha256)) return *name;
     const std::vector<Digest>& other = role == Role::kClient ? worker_tokens_ : client_tokens_;
     if (Find(other, sha256) != nullptr)
-        return absl::PermissionDeniedError(absl::StrCat("a ", RoleName(role == Role::kClient ? Role::kWorker : Role::kClient),
-                                                        "'s token does not open the ", RoleName(role), "s' service"));
+        return absl::PermissionDeniedError(
+            absl::StrCat("a ", RoleName(role == Role::kClient ? Role::kWorker : Role::kClient),
+                         "'s token does not open the ", RoleName(role), "s' service"));
     return absl::UnauthenticatedError("the token is not valid here");
 }
 
 std::string PeerHost(const std::string& peer) {
     std::string_view host = peer;
-    if (const size_t scheme = host.find(':'); scheme != std::string_view::npos && !host.starts_with("["))
+    if (const size_t scheme = host.find(':');
+        scheme != std::string_view::npos && !host.starts_with("["))
         host.remove_prefix(scheme + 1);  // "ipv4:" or "ipv6:"
-    if (const size_t port = host.rfind(':'); port != std::string_view::npos) host = host.substr(0, port);
+    if (const size_t port = host.rfind(':'); port != std::string_view::npos)
+        host = host.substr(0, port);
     return std::string(host);
 }
 

@@ -24,7 +24,9 @@ constexpr std::string_view kSuffix = ".pfc";
 constexpr size_t kKept = 2;
 
 absl::StatusOr<JobCheckpointData> Decode(const std::string& bytes, const std::string& path) {
-    const auto corrupt = [&](const std::string& what) { return absl::DataLossError(absl::StrCat(path, ": ", what)); };
+    const auto corrupt = [&](const std::string& what) {
+        return absl::DataLossError(absl::StrCat(path, ": ", what));
+    };
     if (!std::string_view(bytes).starts_with(kMagic)) return corrupt("not a photonfarm checkpoint");
     uint64_t length = 0;
     if (bytes.size() < kMagic.size() + sizeof(length)) return corrupt("truncated");
@@ -32,7 +34,8 @@ absl::StatusOr<JobCheckpointData> Decode(const std::string& bytes, const std::st
     const size_t start = kMagic.size() + sizeof(length);
     if (length > bytes.size() - start) return corrupt("truncated record");
     JobCheckpointData checkpoint;
-    if (!checkpoint.record.ParseFromArray(bytes.data() + start, static_cast<int>(length))) return corrupt("unreadable record");
+    if (!checkpoint.record.ParseFromArray(bytes.data() + start, static_cast<int>(length)))
+        return corrupt("unreadable record");
     checkpoint.estimate = bytes.substr(start + length);
     return checkpoint;
 }
@@ -43,7 +46,8 @@ std::vector<fs::path> CheckpointFiles(const fs::path& job_dir) {
     std::error_code error;
     for (const fs::directory_entry& entry : fs::directory_iterator(job_dir, error)) {
         const std::string name = entry.path().filename().string();
-        if (entry.is_regular_file() && name.starts_with(kPrefix) && name.ends_with(kSuffix)) files.push_back(entry.path());
+        if (entry.is_regular_file() && name.starts_with(kPrefix) && name.ends_with(kSuffix))
+            files.push_back(entry.path());
     }
     std::sort(files.begin(), files.end());  // fixed-width sequence numbers sort as text
     return files;
@@ -51,19 +55,26 @@ std::vector<fs::path> CheckpointFiles(const fs::path& job_dir) {
 
 }  // namespace
 
-std::string CheckpointStore::JobDir(const std::string& job_id) const { return (fs::path(dir_) / job_id).string(); }
+std::string CheckpointStore::JobDir(const std::string& job_id) const {
+    return (fs::path(dir_) / job_id).string();
+}
 
 absl::Status CheckpointStore::Write(const JobCheckpointData& checkpoint) const {
     const std::string job_dir = JobDir(checkpoint.record.job_id());
     std::error_code error;
     fs::create_directories(job_dir, error);
-    if (error) return absl::UnavailableError(absl::StrCat(job_dir, ": cannot create: ", error.message()));
+    if (error)
+        return absl::UnavailableError(absl::StrCat(job_dir, ": cannot create: ", error.message()));
     const std::string path =
-        (fs::path(job_dir) / absl::StrFormat("%s%012d%s", kPrefix, checkpoint.record.sequence(), kSuffix)).string();
+        (fs::path(job_dir) /
+         absl::StrFormat("%s%012d%s", kPrefix, checkpoint.record.sequence(), kSuffix))
+            .string();
     const std::string record = checkpoint.record.SerializeAsString();
     const uint64_t length = record.size();
     const std::string_view length_bytes(reinterpret_cast<const char*>(&length), sizeof(length));
-    if (absl::Status status = WriteChecksummedFile(path, {kMagic, length_bytes, record, checkpoint.estimate}); !status.ok())
+    if (absl::Status status =
+            WriteChecksummedFile(path, {kMagic, length_bytes, record, checkpoint.estimate});
+        !status.ok())
         return status;
     std::vector<fs::path> files = CheckpointFiles(job_dir);
     for (size_t i = 0; i + kKept < files.size(); ++i) fs::remove(files[i], error);
@@ -81,9 +92,11 @@ std::vector<JobCheckpointData> CheckpointStore::ReadAll() const {
         for (auto file = files.rbegin(); file != files.rend() && !found; ++file) {
             absl::StatusOr<std::string> bytes = ReadChecksummedFile(file->string());
             absl::StatusOr<JobCheckpointData> checkpoint =
-                bytes.ok() ? Decode(*bytes, file->string()) : absl::StatusOr<JobCheckpointData>(bytes.status());
+                bytes.ok() ? Decode(*bytes, file->string())
+                           : absl::StatusOr<JobCheckpointData>(bytes.status());
             if (checkpoint.ok() && checkpoint->record.job_id() != job_id)
-                checkpoint = absl::DataLossError(absl::StrCat(file->string(), ": holds job ", checkpoint->record.job_id()));
+                checkpoint = absl::DataLossError(
+                    absl::StrCat(file->string(), ": holds job ", checkpoint->record.job_id()));
             if (!checkpoint.ok()) {
                 spdlog::error("checkpoint {}{}", std::string(checkpoint.status().message()),
                               std::next(file) != files.rend() ? "; using the one before it" : "");
@@ -92,7 +105,9 @@ std::vector<JobCheckpointData> CheckpointStore::ReadAll() const {
             jobs.push_back(std::move(*checkpoint));
             found = true;
         }
-        if (!found && !files.empty()) spdlog::error("job {}: no readable checkpoint in {}; not resumed", job_id, entry.path().string());
+        if (!found && !files.empty())
+            spdlog::error("job {}: no readable checkpoint in {}; not resumed", job_id,
+                          entry.path().string());
     }
     if (error && error != std::errc::no_such_file_or_directory)
         spdlog::error("checkpoints in {}: {}", dir_, error.message());

@@ -34,11 +34,12 @@ const char* SettingName(SettingNames names, const char* field, const char* flag)
 absl::Status CheckReference(const Image* reference, int width, int height) {
     if (reference == nullptr) return absl::OkStatus();
     if (reference->width != width || reference->height != height)
-        return absl::InvalidArgumentError(absl::StrFormat("reference: the image is %dx%d but the job renders %dx%d",
-                                                          reference->width, reference->height, width, height));
-    if (const uint64_t nonfinite = NonfinitePixels(*reference); nonfinite > 0)
         return absl::InvalidArgumentError(
-            absl::StrFormat("reference: %d pixels hold NaN or Inf; a reference must be finite", nonfinite));
+            absl::StrFormat("reference: the image is %dx%d but the job renders %dx%d",
+                            reference->width, reference->height, width, height));
+    if (const uint64_t nonfinite = NonfinitePixels(*reference); nonfinite > 0)
+        return absl::InvalidArgumentError(absl::StrFormat(
+            "reference: %d pixels hold NaN or Inf; a reference must be finite", nonfinite));
     return absl::OkStatus();
 }
 
@@ -50,44 +51,57 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, const CoordinatorOptions
     if (absl::Status status = CheckJobSpec(request.spec, names); !status.ok()) return status;
     if (absl::Status status = CheckSceneBundle(request.bundle); !status.ok()) return status;
     if (const uint64_t bytes = request.bundle.TotalBytes(); bytes > client_limits.max_bundle_bytes)
-        return absl::ResourceExhaustedError(absl::StrCat("scene: the bundle holds ", bytes,
-                                                         " bytes, over this coordinator's limit of ",
-                                                         client_limits.max_bundle_bytes, " (--max-bundle-bytes)"));
+        return absl::ResourceExhaustedError(absl::StrCat(
+            "scene: the bundle holds ", bytes, " bytes, over this coordinator's limit of ",
+            client_limits.max_bundle_bytes, " (--max-bundle-bytes)"));
     if (request.spec.layout.photons_per_batch > client_limits.max_photons_per_batch)
         return absl::ResourceExhaustedError(absl::StrCat(
-            SettingName(names, "settings.photons_per_batch", "--photons-per-batch"), ": ", request.spec.layout.photons_per_batch,
-            " is over this coordinator's limit of ", client_limits.max_photons_per_batch, " (--max-photons-per-batch)"));
-    if (request.name.empty()) request.name = std::filesystem::path(request.bundle.main_file).filename().string();
-    absl::StatusOr<Scene> scene = LoadScene(request.bundle, request.bundle.main_file, {options.scene_limits, nullptr});
+            SettingName(names, "settings.photons_per_batch", "--photons-per-batch"), ": ",
+            request.spec.layout.photons_per_batch, " is over this coordinator's limit of ",
+            client_limits.max_photons_per_batch, " (--max-photons-per-batch)"));
+    if (request.name.empty())
+        request.name = std::filesystem::path(request.bundle.main_file).filename().string();
+    absl::StatusOr<Scene> scene =
+        LoadScene(request.bundle, request.bundle.main_file, {options.scene_limits, nullptr});
     if (!scene.ok()) return scene.status();
     absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, *scene);
     if (!film.ok()) return film.status();
-    if (const uint64_t pixels = uint64_t(film->width) * film->height; pixels > client_limits.max_render_pixels)
-        return absl::ResourceExhaustedError(absl::StrFormat(
-            "%s: the image is %dx%d, %d pixels, over this coordinator's limit of %d (--max-render-pixels)",
-            SettingName(names, "settings.width", "--width"), film->width, film->height, pixels, client_limits.max_render_pixels));
+    if (const uint64_t pixels = uint64_t(film->width) * film->height;
+        pixels > client_limits.max_render_pixels)
+        return absl::ResourceExhaustedError(
+            absl::StrFormat("%s: the image is %dx%d, %d pixels, over this coordinator's limit of "
+                            "%d (--max-render-pixels)",
+                            SettingName(names, "settings.width", "--width"), film->width,
+                            film->height, pixels, client_limits.max_render_pixels));
     // The film size resolved: workers that render pixels need it.
     request.spec.width = film->width;
     request.spec.height = film->height;
     auto payload = std::make_shared<JobPayload>(std::move(*scene), nullptr, request.spec);
     if (!payload->emitters.HasPower())
-        return absl::InvalidArgumentError(absl::StrCat(request.bundle.main_file, ": lights emit no power"));
+        return absl::InvalidArgumentError(
+            absl::StrCat(request.bundle.main_file, ": lights emit no power"));
     if (const double power = MaxComponent(payload->emitters.TotalPower()); power > kMaxLightPower)
-        return absl::InvalidArgumentError(absl::StrFormat(
-            "%s: lights emit %.3g W in all, over the %.3g W that single-precision photon sums hold (docs/numerics.md)",
-            request.bundle.main_file, power, kMaxLightPower));
+        return absl::InvalidArgumentError(
+            absl::StrFormat("%s: lights emit %.3g W in all, over the %.3g W that single-precision "
+                            "photon sums hold (docs/numerics.md)",
+                            request.bundle.main_file, power, kMaxLightPower));
     // For the camera pass and the job's record; each backend analyses the scene it is given
     // the same way (AnalyseFeatures) for its photon loop.
     film->features = AnalyseFeatures(payload->scene, payload->emitters);
-    if (absl::Status status = CheckReference(request.reference.get(), film->width, film->height); !status.ok())
+    if (absl::Status status = CheckReference(request.reference.get(), film->width, film->height);
+        !status.ok())
         return status;
-    absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(payload->scene);
+    absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer =
+        embree::EmbreeTracer::Create(payload->scene);
     if (!tracer.ok()) return tracer.status();
     if (film->features.Specular()) {
-        const CausticProbe probe = ProbeCaustics(payload->scene, payload->emitters, **tracer, request.spec.seed);
+        const CausticProbe probe =
+            ProbeCaustics(payload->scene, payload->emitters, **tracer, request.spec.seed);
         film->features.caustics = probe.caustic > 0;
-        spdlog::info("{}: {:.2f}% of light paths reach a diffuse surface through specular bounces (caustics)",
-                     request.name, 100 * probe.Fraction());
+        spdlog::info(
+            "{}: {:.2f}% of light paths reach a diffuse surface through specular bounces "
+            "(caustics)",
+            request.name, 100 * probe.Fraction());
     }
     PreparedJob prepared;
     const Integrator integrator = request.spec.integrator;
@@ -99,32 +113,40 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, const CoordinatorOptions
             if (!stochastic.ok()) return stochastic.status();
             passes = std::move(*stochastic);
         }
-        CameraPassResult camera_pass = passes ? passes(0) : RunCameraPass(payload->scene, **tracer, *film);
-        EstimateSettings settings = EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
+        CameraPassResult camera_pass =
+            passes ? passes(0) : RunCameraPass(payload->scene, **tracer, *film);
+        EstimateSettings settings =
+            EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
         settings.stochastic = integrator == Integrator::kSppm;
-        spdlog::info("{}: camera pass: {}x{}, {} hit points in {:.2f} s, initial radius {:.4g}", request.name, film->width,
-                     film->height, camera_pass.hit_points.size(),
-                     std::chrono::duration<double>(Clock::now() - start).count(), settings.initial_radius);
-        prepared.estimate = std::make_unique<ProgressiveEstimate>(std::move(camera_pass), settings, std::move(passes));
+        spdlog::info("{}: camera pass: {}x{}, {} hit points in {:.2f} s, initial radius {:.4g}",
+                     request.name, film->width, film->height, camera_pass.hit_points.size(),
+                     std::chrono::duration<double>(Clock::now() - start).count(),
+                     settings.initial_radius);
+        prepared.estimate = std::make_unique<ProgressiveEstimate>(std::move(camera_pass), settings,
+                                                                  std::move(passes));
     } else {
         const PhotonMapSettings& maps = request.spec.photon_map;
         if (integrator == Integrator::kPm) {  // refused here rather than by every worker
-            const PhotonMapForecast forecast =
-                ForecastPhotonMaps(payload->scene, payload->emitters, **tracer, film->features, maps, payload->seed);
-            if (absl::Status status = CheckPhotonMapsFit(forecast, maps, AvailableMemoryBytes()); !status.ok())
+            const PhotonMapForecast forecast = ForecastPhotonMaps(
+                payload->scene, payload->emitters, **tracer, film->features, maps, payload->seed);
+            if (absl::Status status = CheckPhotonMapsFit(forecast, maps, AvailableMemoryBytes());
+                !status.ok())
                 return status;
-            spdlog::info("{}: the photon maps will hold about {:.3g} MB", request.name, forecast.bytes / 1e6);
+            spdlog::info("{}: the photon maps will hold about {:.3g} MB", request.name,
+                         forecast.bytes / 1e6);
         }
         prepared.estimate = std::make_unique<PixelEstimate>(PixelEstimateSettings{
             request.spec.integrator, film->width, film->height, film->samples_per_pixel,
             request.spec.layout.batches_per_epoch,
             integrator == Integrator::kPm
-                ? maps.global_photons + (film->features.Specular() ? maps.caustic_photons : 0)  // as BuildPhotonMaps
+                ? maps.global_photons +
+                      (film->features.Specular() ? maps.caustic_photons : 0)  // as BuildPhotonMaps
                 : 0});
     }
     // Workers trace a stochastic job's hit points themselves, epoch by epoch.
-    payload->hit_points = integrator == Integrator::kSppm ? std::make_shared<const std::vector<HitPoint>>()
-                                                          : prepared.estimate->SharedHitPoints();
+    payload->hit_points = integrator == Integrator::kSppm
+                              ? std::make_shared<const std::vector<HitPoint>>()
+                              : prepared.estimate->SharedHitPoints();
     prepared.payload = std::move(payload);
     prepared.name = std::move(request.name);
     prepared.owner = std::move(request.owner);
@@ -145,7 +167,8 @@ std::string RandomHex(int digits) {
 
 }  // namespace
 
-Coordinator::Coordinator(CoordinatorOptions options) : options_(std::move(options)), id_salt_(RandomHex(4)) {
+Coordinator::Coordinator(CoordinatorOptions options)
+    : options_(std::move(options)), id_salt_(RandomHex(4)) {
     if (options_.checkpoint_dir.empty()) return;
     checkpoints_ = std::make_unique<CheckpointStore>(options_.checkpoint_dir);
     checkpoint_thread_ = std::thread([this] { CheckpointLoop(); });
@@ -200,10 +223,12 @@ void Coordinator::WriteCheckpoints(bool running_too) {
         if (!checkpoint) continue;
         const auto start = Clock::now();
         if (absl::Status status = checkpoints_->Write(*checkpoint); !status.ok()) {
-            spdlog::error("job {}: checkpoint not written: {}", job->Id(), std::string(status.message()));
+            spdlog::error("job {}: checkpoint not written: {}", job->Id(),
+                          std::string(status.message()));
             continue;
         }
-        spdlog::debug("job {}: checkpoint {} written in {:.3f} s ({} MB)", job->Id(), checkpoint->record.sequence(),
+        spdlog::debug("job {}: checkpoint {} written in {:.3f} s ({} MB)", job->Id(),
+                      checkpoint->record.sequence(),
                       std::chrono::duration<double>(Clock::now() - start).count(),
                       (checkpoint->record.ByteSizeLong() + checkpoint->estimate.size()) >> 20);
     }
@@ -218,18 +243,22 @@ size_t Coordinator::RestoreCheckpoints() {
         std::sscanf(checkpoint.record.job_id().c_str(), "job-%" SCNu64, &n);
         return n;
     };
-    std::sort(checkpoints.begin(), checkpoints.end(), [&](const auto& a, const auto& b) { return number(a) < number(b); });
+    std::sort(checkpoints.begin(), checkpoints.end(),
+              [&](const auto& a, const auto& b) { return number(a) < number(b); });
     size_t restored = 0;
     for (const JobCheckpointData& checkpoint : checkpoints) {
         const std::string& id = checkpoint.record.job_id();
-        absl::StatusOr<std::shared_ptr<Job>> job = Job::Restore(checkpoint, options_.scene_limits, Now());
+        absl::StatusOr<std::shared_ptr<Job>> job =
+            Job::Restore(checkpoint, options_.scene_limits, Now());
         if (!job.ok()) {
             spdlog::error("job {}: not resumed: {}", id, std::string(job.status().message()));
             continue;
         }
         const JobProgress progress = (*job)->Progress(Now());
-        spdlog::info("job {} resumed from checkpoint {}: {}, epoch {}, {} photons", id, checkpoint.record.sequence(),
-                     progress.state == JobState::kRunning ? "running" : "ended", progress.epochs, progress.photons);
+        spdlog::info("job {} resumed from checkpoint {}: {}, epoch {}, {} photons", id,
+                     checkpoint.record.sequence(),
+                     progress.state == JobState::kRunning ? "running" : "ended", progress.epochs,
+                     progress.photons);
         std::lock_guard lock(mutex_);
         if (jobs_.contains(id)) continue;
         jobs_[id] = *job;
@@ -258,8 +287,9 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
             return entry.second->Owner() == request.owner && entry.second->Running();
         });
         if (owned >= options_.client_limits.max_jobs_per_client)
-            return absl::ResourceExhaustedError(absl::StrCat("client '", request.owner, "' runs ", owned,
-                                                             " jobs, this coordinator's limit (--max-jobs-per-client)"));
+            return absl::ResourceExhaustedError(
+                absl::StrCat("client '", request.owner, "' runs ", owned,
+                             " jobs, this coordinator's limit (--max-jobs-per-client)"));
     }
     const Clock::time_point submitted = Now();  // a job's clock includes its camera pass
     absl::StatusOr<PreparedJob> prepared = Prepare(std::move(request), options_);
@@ -281,16 +311,20 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
         }
         if (threads == 0 && !other_backends.empty())
             prepared->warnings.push_back(absl::StrCat(
-                "no connected worker runs the ", std::string(IntegratorName(integrator)), " integrator (connected: ",
-                absl::StrJoin(other_backends, ", "), "): the job waits for one that does (cpu workers run every integrator)"));
+                "no connected worker runs the ", std::string(IntegratorName(integrator)),
+                " integrator (connected: ", absl::StrJoin(other_backends, ", "),
+                "): the job waits for one that does (cpu workers run every integrator)"));
         const BatchLayout& layout = prepared->spec.layout;
-        const uint64_t chunks = uint64_t{layout.batches_per_epoch} * ChunkCount(MakeBatchSpec(layout, 0, 0, 0));
+        const uint64_t chunks =
+            uint64_t{layout.batches_per_epoch} * ChunkCount(MakeBatchSpec(layout, 0, 0, 0));
         if (GathersAtHitPoints(prepared->spec.integrator) && chunks < threads)
-            prepared->warnings.push_back(absl::StrFormat(
-                "an epoch runs as %d chunks of photons but the workers have %d threads, so at most %d of them "
-                "work at once: ask for more photons per epoch (batches_per_epoch x photons_per_batch, %d photons "
-                "per chunk; see docs/farm.md)",
-                chunks, threads, chunks, kPhotonsPerChunk));
+            prepared->warnings.push_back(
+                absl::StrFormat("an epoch runs as %d chunks of photons but the workers have %d "
+                                "threads, so at most %d of them "
+                                "work at once: ask for more photons per epoch (batches_per_epoch x "
+                                "photons_per_batch, %d photons "
+                                "per chunk; see docs/farm.md)",
+                                chunks, threads, chunks, kPhotonsPerChunk));
         const std::string id = absl::StrCat("job-", next_id_++, "-", id_salt_);
         job = std::make_shared<Job>(id, std::move(*prepared), submitted);
         jobs_[id] = job;
@@ -298,7 +332,8 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
         ForgetEndedJobsLocked();
     }
     spdlog::info("job {} submitted", job->Id());
-    for (const std::string& warning : job->Progress(Now()).warnings) spdlog::warn("job {}: {}", job->Id(), warning);
+    for (const std::string& warning : job->Progress(Now()).warnings)
+        spdlog::warn("job {}: {}", job->Id(), warning);
     NotifyWork();
     return job->Progress(Now());
 }
@@ -306,11 +341,13 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
 absl::StatusOr<std::shared_ptr<Job>> Coordinator::FindJob(const std::string& job_id) const {
     std::lock_guard lock(mutex_);
     auto it = jobs_.find(job_id);
-    if (it == jobs_.end()) return absl::NotFoundError(absl::StrCat("job_id: no job '", job_id, "'"));
+    if (it == jobs_.end())
+        return absl::NotFoundError(absl::StrCat("job_id: no job '", job_id, "'"));
     return it->second;
 }
 
-absl::StatusOr<JobProgress> Coordinator::Cancel(const std::string& job_id, const std::string& reason) {
+absl::StatusOr<JobProgress> Coordinator::Cancel(const std::string& job_id,
+                                                const std::string& reason) {
     absl::StatusOr<std::shared_ptr<Job>> job = FindJob(job_id);
     if (!job.ok()) return job.status();
     if ((*job)->Cancel(reason, Now())) spdlog::info("job {} cancelled: {}", job_id, reason);
@@ -331,8 +368,10 @@ std::vector<JobProgress> Coordinator::ListJobs() const {
 
 void Coordinator::ForgetEndedJobsLocked() {
     size_t ended = 0;
-    for (const std::string& id : job_order_) ended += jobs_.at(id)->Progress(Now()).state != JobState::kRunning;
-    for (auto it = job_order_.begin(); it != job_order_.end() && ended > options_.finished_jobs_kept;) {
+    for (const std::string& id : job_order_)
+        ended += jobs_.at(id)->Progress(Now()).state != JobState::kRunning;
+    for (auto it = job_order_.begin();
+         it != job_order_.end() && ended > options_.finished_jobs_kept;) {
         if (jobs_.at(*it)->Progress(Now()).state != JobState::kRunning) {
             if (checkpoints_) forgotten_.push_back(*it);
             jobs_.erase(*it);
@@ -346,14 +385,16 @@ void Coordinator::ForgetEndedJobsLocked() {
 
 absl::StatusOr<std::string> Coordinator::RegisterWorker(const WorkerRegistration& registration) {
     if (registration.version != kPhotonfarmVersion)
-        return absl::FailedPreconditionError(absl::StrCat("version: worker runs photonfarm ", registration.version,
-                                                          ", the coordinator ", std::string(kPhotonfarmVersion)));
+        return absl::FailedPreconditionError(
+            absl::StrCat("version: worker runs photonfarm ", registration.version,
+                         ", the coordinator ", std::string(kPhotonfarmVersion)));
     std::lock_guard lock(mutex_);
     ReapWorkersLocked(Now());
     // Unguessable, since it is all a worker's later calls show: one worker cannot act for another.
     const std::string id = absl::StrCat("worker-", next_id_++, "-", RandomHex(16));
     workers_[id] = {registration, Now()};
-    spdlog::info("worker {} registered ({}, {} threads, from {})", id, registration.backend, registration.threads,
+    spdlog::info("worker {} registered ({}, {} threads, from {})", id, registration.backend,
+                 registration.threads,
                  registration.peer.empty() ? "this process" : registration.peer);
     return id;
 }
@@ -362,7 +403,8 @@ absl::Status Coordinator::Heartbeat(const std::string& worker_id) {
     std::lock_guard lock(mutex_);
     ReapWorkersLocked(Now());
     auto it = workers_.find(worker_id);
-    if (it == workers_.end()) return absl::NotFoundError(absl::StrCat("worker_id: unknown worker '", worker_id, "'"));
+    if (it == workers_.end())
+        return absl::NotFoundError(absl::StrCat("worker_id: unknown worker '", worker_id, "'"));
     it->second.last_seen = Now();
     return absl::OkStatus();
 }
@@ -383,8 +425,8 @@ void Coordinator::ReapWorkersLocked(Clock::time_point now) {
         if (now - it->second.last_seen > Duration(options_.worker_timeout_seconds)) {
             uint32_t released = 0;
             for (const auto& [id, job] : jobs_) released += job->ReleaseLeases(it->first);
-            spdlog::warn("worker {} silent for {:.0f} s: gone; {} leases handed out again", it->first,
-                         options_.worker_timeout_seconds, released);
+            spdlog::warn("worker {} silent for {:.0f} s: gone; {} leases handed out again",
+                         it->first, options_.worker_timeout_seconds, released);
             it = workers_.erase(it);
             work_available_.notify_all();
         } else {
@@ -398,7 +440,8 @@ std::vector<WorkerView> Coordinator::ListWorkers() const {
     const Clock::time_point now = Now();
     std::vector<WorkerView> views;
     for (const auto& [id, worker] : workers_) {
-        WorkerView view{id, worker.registration, std::chrono::duration<double>(now - worker.last_seen).count(), 0,
+        WorkerView view{id, worker.registration,
+                        std::chrono::duration<double>(now - worker.last_seen).count(), 0,
                         worker.batches_done};
         for (const auto& [job_id, job] : jobs_) view.batches_leased += job->LeasedBy(id, now);
         views.push_back(std::move(view));
@@ -406,7 +449,8 @@ std::vector<WorkerView> Coordinator::ListWorkers() const {
     return views;
 }
 
-std::shared_ptr<Job> Coordinator::PickJobLocked(const std::string& backend, Clock::time_point now) const {
+std::shared_ptr<Job> Coordinator::PickJobLocked(const std::string& backend,
+                                                Clock::time_point now) const {
     std::shared_ptr<Job> best;
     uint32_t best_leased = 0;
     for (const std::string& id : job_order_) {  // oldest first: ties go to the older job
@@ -436,28 +480,31 @@ absl::StatusOr<CoordinatorLease> Coordinator::Lease(const std::string& worker_id
             return absl::NotFoundError(absl::StrCat("worker_id: unknown worker '", worker_id, "'"));
         worker->second.last_seen = now;
         if (std::shared_ptr<Job> job = PickJobLocked(worker->second.registration.backend, now)) {
-            Job::Lease granted = job->LeaseBatches(worker_id, chunks, now, now + Duration(options_.lease_seconds));
+            Job::Lease granted =
+                job->LeaseBatches(worker_id, chunks, now, now + Duration(options_.lease_seconds));
             if (!granted.batches.empty()) {
-                lease.grant = {job->Id(), std::move(granted.payload), granted.epoch->epoch, granted.epoch->radius_sq,
-                               std::move(granted.batches)};
+                lease.grant = {job->Id(), std::move(granted.payload), granted.epoch->epoch,
+                               granted.epoch->radius_sq, std::move(granted.batches)};
                 lease.epoch = std::move(granted.epoch);
                 lease.job = std::move(job);
                 return lease;
             }
         }
-        if (shut_down_ || work_available_.wait_until(lock, until) == std::cv_status::timeout) return lease;
+        if (shut_down_ || work_available_.wait_until(lock, until) == std::cv_status::timeout)
+            return lease;
     }
 }
 
-absl::StatusOr<TallyVerdict> Coordinator::Report(const std::string& worker_id, const std::string& job_id,
-                                                 BatchResult result) {
+absl::StatusOr<TallyVerdict> Coordinator::Report(const std::string& worker_id,
+                                                 const std::string& job_id, BatchResult result) {
     std::shared_ptr<Job> job;
     {
         std::lock_guard lock(mutex_);
         auto worker = workers_.find(worker_id);
         if (worker == workers_.end()) {
             ++refusals_.unknown_worker;
-            return absl::NotFoundError(absl::StrCat("worker_id: unknown worker '", worker_id, "'; register again"));
+            return absl::NotFoundError(
+                absl::StrCat("worker_id: unknown worker '", worker_id, "'; register again"));
         }
         worker->second.last_seen = Now();
         ++worker->second.batches_done;
@@ -482,11 +529,20 @@ absl::StatusOr<TallyVerdict> Coordinator::Report(const std::string& worker_id, c
         return outcome.status();
     }
     switch (outcome->verdict) {
-        case TallyVerdict::kAccepted: break;
-        case TallyVerdict::kDuplicate: ++refusals_.duplicate; break;
-        case TallyVerdict::kStale: ++refusals_.stale; break;
-        case TallyVerdict::kJobGone: ++refusals_.job_gone; break;
-        case TallyVerdict::kNotLeased: ++refusals_.not_leased; break;
+        case TallyVerdict::kAccepted:
+            break;
+        case TallyVerdict::kDuplicate:
+            ++refusals_.duplicate;
+            break;
+        case TallyVerdict::kStale:
+            ++refusals_.stale;
+            break;
+        case TallyVerdict::kJobGone:
+            ++refusals_.job_gone;
+            break;
+        case TallyVerdict::kNotLeased:
+            ++refusals_.not_leased;
+            break;
     }
     if (outcome->epoch_finished) {
         work_available_.notify_all();

@@ -29,20 +29,21 @@ namespace pf {
 // Limits on what one client may ask of the coordinator; over one, RESOURCE_EXHAUSTED naming
 // the coordinator's flag. The scene's own limits (triangles, textures) are SceneLimits.
 struct ClientLimits {
-    size_t max_jobs_per_client = 16;        // running at once, per client (token name or address)
-    uint32_t max_watchers_per_job = 64;     // snapshot streams open at once on one job
-    uint64_t max_bundle_bytes = kMaxBundleBytes;  // a scene with every file it references
+    size_t max_jobs_per_client = 16;     // running at once, per client (token name or address)
+    uint32_t max_watchers_per_job = 64;  // snapshot streams open at once on one job
+    uint64_t max_bundle_bytes = kMaxBundleBytes;     // a scene with every file it references
     uint64_t max_render_pixels = uint64_t{1} << 24;  // width x height of a job's image
     uint32_t max_photons_per_batch = kMaxPhotonsPerBatch;
 };
 
 struct CoordinatorOptions {
-    double heartbeat_seconds = 2;        // workers heartbeat this often
-    double worker_timeout_seconds = 10;  // a worker silent this long is gone; its leases are re-handed
-    double lease_seconds = 300;          // a batch not reported within this is handed out again
-    double lease_wait_seconds = 1;       // a lease request waits this long for work to appear
+    double heartbeat_seconds = 2;  // workers heartbeat this often
+    double worker_timeout_seconds =
+        10;                         // a worker silent this long is gone; its leases are re-handed
+    double lease_seconds = 300;     // a batch not reported within this is handed out again
+    double lease_wait_seconds = 1;  // a lease request waits this long for work to appear
     size_t max_running_jobs = 64;
-    size_t finished_jobs_kept = 64;      // ended jobs (their final images) kept for GetResult
+    size_t finished_jobs_kept = 64;  // ended jobs (their final images) kept for GetResult
     // How errors name a job's settings: the farm's fields, or the embedded renderer's flags.
     SettingNames setting_names = SettingNames::kFields;
     // What a submitted scene may build (triangles, image sizes); over it, RESOURCE_EXHAUSTED.
@@ -58,7 +59,8 @@ struct CoordinatorOptions {
 
 struct JobRequest {
     std::string name;  // for listings; the main file's name if empty
-    std::string owner;  // who submitted it, for the per-client limits: a token's name, or an address
+    std::string
+        owner;  // who submitted it, for the per-client limits: a token's name, or an address
     SceneBundle bundle;
     JobSpec spec;
     int priority = 0;  // higher first; equal priorities share workers fairly
@@ -77,14 +79,15 @@ struct WorkerView {
 
 // Tallies refused, by reason, since the coordinator started.
 struct RefusalCounts {
-    uint64_t duplicate = 0, stale = 0, job_gone = 0, unknown_worker = 0, malformed = 0, not_leased = 0;
+    uint64_t duplicate = 0, stale = 0, job_gone = 0, unknown_worker = 0, malformed = 0,
+             not_leased = 0;
 };
 
 // A lease as the coordinator hands it out: the grant, and the job for its blobs.
 struct CoordinatorLease {
     WorkGrant grant;
-    std::shared_ptr<Job> job;                   // null when no work
-    std::shared_ptr<const EpochInputs> epoch;   // null when no work
+    std::shared_ptr<Job> job;                  // null when no work
+    std::shared_ptr<const EpochInputs> epoch;  // null when no work
     double lease_seconds = 0;
 };
 
@@ -99,7 +102,8 @@ public:
     // it returns: INVALID_ARGUMENT for a bad scene or settings, naming the file or field.
     absl::StatusOr<JobProgress> Submit(JobRequest request);
     absl::StatusOr<std::shared_ptr<Job>> FindJob(const std::string& job_id) const;  // NOT_FOUND
-    absl::StatusOr<JobProgress> Cancel(const std::string& job_id, const std::string& reason = "cancelled by a client");
+    absl::StatusOr<JobProgress> Cancel(const std::string& job_id,
+                                       const std::string& reason = "cancelled by a client");
     std::vector<JobProgress> ListJobs() const;
 
     // Workers. An unknown worker id is NOT_FOUND: the worker registers again.
@@ -110,8 +114,10 @@ public:
     // Batches of one job covering about `chunks` chunks (at least one batch), the highest
     // priority first, then the job with the fewest batches out; waits up to `wait_seconds`
     // for work when there is none.
-    absl::StatusOr<CoordinatorLease> Lease(const std::string& worker_id, uint32_t chunks, double wait_seconds);
-    absl::StatusOr<TallyVerdict> Report(const std::string& worker_id, const std::string& job_id, BatchResult result);
+    absl::StatusOr<CoordinatorLease> Lease(const std::string& worker_id, uint32_t chunks,
+                                           double wait_seconds);
+    absl::StatusOr<TallyVerdict> Report(const std::string& worker_id, const std::string& job_id,
+                                        BatchResult result);
     // A tally that failed to decode, counted with the refusals.
     void CountMalformed();
     RefusalCounts Refusals() const;
@@ -157,14 +163,14 @@ private:
     const CoordinatorOptions options_;
     std::unique_ptr<CheckpointStore> checkpoints_;  // null without a checkpoint folder
     std::mutex checkpoint_mutex_;                   // one writer at a time
-    std::vector<std::string> forgotten_;            // ended jobs whose checkpoints go (under mutex_)
-    std::condition_variable checkpoint_wake_;       // with mutex_
-    bool checkpoints_stopping_ = false;             // under mutex_
+    std::vector<std::string> forgotten_;       // ended jobs whose checkpoints go (under mutex_)
+    std::condition_variable checkpoint_wake_;  // with mutex_
+    bool checkpoints_stopping_ = false;        // under mutex_
     std::thread checkpoint_thread_;
     mutable std::mutex mutex_;
     std::condition_variable work_available_;
     std::map<std::string, std::shared_ptr<Job>> jobs_;  // by id
-    std::vector<std::string> job_order_;                // submission order, for fairness ties and listings
+    std::vector<std::string> job_order_;  // submission order, for fairness ties and listings
     std::map<std::string, Worker> workers_;
     RefusalCounts refusals_;
     uint64_t photons_accepted_ = 0;

@@ -29,7 +29,8 @@ class CoordinatorServer {
 public:
     // UNAVAILABLE if it cannot bind; INVALID_ARGUMENT if TLS is asked for without a certificate,
     // or with neither client nor worker tokens.
-    static absl::StatusOr<std::unique_ptr<CoordinatorServer>> Start(Coordinator& coordinator, ServerOptions options);
+    static absl::StatusOr<std::unique_ptr<CoordinatorServer>> Start(Coordinator& coordinator,
+                                                                    ServerOptions options);
     ~CoordinatorServer();
 
     int Port() const { return port_; }

@@ -14,7 +14,8 @@ class InProcessSource final : public WorkSource {
 public:
     // Registers a worker with `coordinator` (which must outlive this) and unregisters it on
     // destruction. `wait_seconds`: how long a lease waits for work.
-    InProcessSource(Coordinator& coordinator, const WorkerRegistration& registration, double wait_seconds);
+    InProcessSource(Coordinator& coordinator, const WorkerRegistration& registration,
+                    double wait_seconds);
     ~InProcessSource() override;
 
     absl::StatusOr<WorkGrant> Lease(uint32_t chunks) override;

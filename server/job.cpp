@@ -17,8 +17,8 @@ constexpr auto kActiveWindow = std::chrono::seconds(10);
 double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
 bool SameSpec(const BatchSpec& a, const BatchSpec& b) {
-    return a.index == b.index && a.epoch == b.epoch && a.photons == b.photons && a.sample_begin == b.sample_begin &&
-           a.sample_end == b.sample_end;
+    return a.index == b.index && a.epoch == b.epoch && a.photons == b.photons &&
+           a.sample_begin == b.sample_begin && a.sample_end == b.sample_end;
 }
 
 }  // namespace
@@ -43,7 +43,8 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
       spec_(prepared.spec),
       priority_(prepared.priority),
       started_(submitted),
-      hit_point_count_(GathersAtHitPoints(prepared.estimate->Kind()) ? prepared.estimate->ItemCount() : 0),
+      hit_point_count_(
+          GathersAtHitPoints(prepared.estimate->Kind()) ? prepared.estimate->ItemCount() : 0),
       item_count_(prepared.estimate->ItemCount()),
       initial_radius_(prepared.estimate->InitialRadius()),
       scene_features_(std::move(prepared.scene_features)),
@@ -55,7 +56,8 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
         [bundle = std::make_shared<const SceneBundle>(std::move(prepared.bundle))] {
             return ToProto(*bundle).SerializeAsString();
         });
-    hit_points_blob_ = std::make_shared<const LazyBlob>([payload = payload_] { return EncodeHitPoints(*payload->hit_points); });
+    hit_points_blob_ = std::make_shared<const LazyBlob>(
+        [payload = payload_] { return EncodeHitPoints(*payload->hit_points); });
     if (checkpointed_) durable_scene_ = scene_blob_;
     std::lock_guard lock(mutex_);
     warnings_ = std::move(prepared.warnings);
@@ -76,9 +78,11 @@ std::shared_ptr<const Blob> Job::FindBlob(const std::string& digest) const {
     std::lock_guard lock(mutex_);
     if (state_ != JobState::kRunning) return nullptr;
     // Only blobs already encoded can have been announced to a worker, so none is encoded here.
-    auto match = [&](const std::shared_ptr<const void>& owner, const LazyBlob& lazy) -> std::shared_ptr<const Blob> {
+    auto match = [&](const std::shared_ptr<const void>& owner,
+                     const LazyBlob& lazy) -> std::shared_ptr<const Blob> {
         const Blob* blob = lazy.IfEncoded();
-        return blob != nullptr && blob->digest == digest ? std::shared_ptr<const Blob>(owner, blob) : nullptr;
+        return blob != nullptr && blob->digest == digest ? std::shared_ptr<const Blob>(owner, blob)
+                                                         : nullptr;
     };
     for (const std::shared_ptr<const LazyBlob>& lazy : {scene_blob_, hit_points_blob_})
         if (std::shared_ptr<const Blob> blob = match(lazy, *lazy)) return blob;
@@ -102,7 +106,8 @@ bool Job::LeasableLocked(const Slot& slot, Clock::time_point now) const {
 uint32_t Job::Leasable(Clock::time_point now) const {
     std::lock_guard lock(mutex_);
     if (state_ != JobState::kRunning) return 0;
-    return static_cast<uint32_t>(std::count_if(slots_.begin(), slots_.end(), [&](const Slot& s) { return LeasableLocked(s, now); }));
+    return static_cast<uint32_t>(std::count_if(
+        slots_.begin(), slots_.end(), [&](const Slot& s) { return LeasableLocked(s, now); }));
 }
 
 uint32_t Job::Leased(Clock::time_point now) const {
@@ -156,7 +161,8 @@ uint32_t Job::ReleaseLeases(const std::string& worker) {
     return released;
 }
 
-absl::StatusOr<Job::ReportOutcome> Job::Report(const std::string& worker, BatchResult result, Clock::time_point now) {
+absl::StatusOr<Job::ReportOutcome> Job::Report(const std::string& worker, BatchResult result,
+                                               Clock::time_point now) {
     std::unique_lock lock(mutex_);
     if (state_ != JobState::kRunning) return ReportOutcome{TallyVerdict::kJobGone};
     const uint64_t epoch = epoch_->epoch;
@@ -165,13 +171,16 @@ absl::StatusOr<Job::ReportOutcome> Job::Report(const std::string& worker, BatchR
     // from a checkpoint (whose epochs may run ahead of the one resumed).
     if (result.spec.epoch != epoch) return ReportOutcome{TallyVerdict::kStale};
     if (result.spec.index < first || result.spec.index - first >= slots_.size())
-        return absl::InvalidArgumentError(absl::StrCat("result.spec: epoch ", epoch, " has no batch ", result.spec.index));
+        return absl::InvalidArgumentError(
+            absl::StrCat("result.spec: epoch ", epoch, " has no batch ", result.spec.index));
     Slot& slot = slots_[result.spec.index - first];
     if (!SameSpec(slot.spec, result.spec))
-        return absl::InvalidArgumentError(absl::StrCat("result.spec: does not match batch ", slot.spec.index));
+        return absl::InvalidArgumentError(
+            absl::StrCat("result.spec: does not match batch ", slot.spec.index));
     for (uint32_t hit_point : result.tally.hit_point)
         if (hit_point >= hit_point_count_)
-            return absl::InvalidArgumentError(absl::StrCat("result.tally: hit point ", hit_point, " of ", hit_point_count_));
+            return absl::InvalidArgumentError(
+                absl::StrCat("result.tally: hit point ", hit_point, " of ", hit_point_count_));
     // Only a worker that held the slot may fill it: a result cannot be checked but by running
     // the batch again, so one from a worker never given the batch is refused unread.
     if (std::find(slot.lessees.begin(), slot.lessees.end(), worker) == slot.lessees.end())
@@ -235,11 +244,13 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
                           reference_ ? reference_->pixels.size() : 0, camera_samples_});
         ++version_;
         finished = true;
-        if (BudgetFraction(spec_, photons_merged_, epochs_merged_, Seconds(now - started_), estimated_error_) >= 1.0) {
+        if (BudgetFraction(spec_, photons_merged_, epochs_merged_, Seconds(now - started_),
+                           estimated_error_) >= 1.0) {
             if (!reached) {
-                warnings_.push_back(absl::StrCat("no light reached anything the camera sees in ", photons_merged_,
-                                                 " photons: the image is emission only (a light shut inside a closed "
-                                                 "object, or a camera that sees only unlit surfaces?)"));
+                warnings_.push_back(absl::StrCat(
+                    "no light reached anything the camera sees in ", photons_merged_,
+                    " photons: the image is emission only (a light shut inside a closed "
+                    "object, or a camera that sees only unlit surfaces?)"));
                 spdlog::warn("job {}: {}", id_, warnings_.back());
             }
             EndLocked(JobState::kDone, "", now);
@@ -337,9 +348,12 @@ JobProgress Job::Progress(Clock::time_point now) const {
     progress.scene_features = scene_features_;
     const Clock::time_point end = state_ == JobState::kRunning ? now : ended_;
     progress.elapsed_seconds = Seconds(end - started_);
-    progress.photons_per_second = progress.elapsed_seconds > 0 ? photons_merged_ / progress.elapsed_seconds : 0;
-    progress.budget_fraction =
-        state_ == JobState::kDone ? 1.0 : BudgetFraction(spec_, photons_merged_, epochs_merged_, progress.elapsed_seconds, estimated_error_);
+    progress.photons_per_second =
+        progress.elapsed_seconds > 0 ? photons_merged_ / progress.elapsed_seconds : 0;
+    progress.budget_fraction = state_ == JobState::kDone
+                                   ? 1.0
+                                   : BudgetFraction(spec_, photons_merged_, epochs_merged_,
+                                                    progress.elapsed_seconds, estimated_error_);
     progress.estimated_error = estimated_error_;
     progress.measured_error = measured_error_;
     progress.nonfinite_discarded = nonfinite_discarded_;
@@ -347,7 +361,8 @@ JobProgress Job::Progress(Clock::time_point now) const {
         if (now - seen < kActiveWindow) ++progress.workers_active;
     for (const Slot& slot : slots_) {
         progress.batches_pending += LeasableLocked(slot, now);
-        progress.batches_leased += slot.leased && !slot.result && !slot.folded && slot.deadline > now;
+        progress.batches_leased +=
+            slot.leased && !slot.result && !slot.folded && slot.deadline > now;
     }
     progress.message = message_;
     progress.warnings = warnings_;
@@ -375,7 +390,8 @@ std::optional<ImageDifference> Job::MeasureLocked() const {
     if (!reference_) return std::nullopt;
     ResolveLocked();
     const absl::StatusOr<ImageDifference> difference = CompareImages(*image_, *reference_);
-    return difference.ok() ? std::optional(*difference) : std::nullopt;  // sizes were checked at submission
+    return difference.ok() ? std::optional(*difference)
+                           : std::nullopt;  // sizes were checked at submission
 }
 
 std::vector<ConvergencePoint> Job::Convergence() const {

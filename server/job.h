@@ -40,7 +40,9 @@ class LazyBlob {
 public:
     explicit LazyBlob(std::function<std::string()> encode) : encode_(std::move(encode)) {}
     const Blob& Get() const;
-    const Blob* IfEncoded() const { return encoded_.load(std::memory_order_acquire) ? &blob_ : nullptr; }
+    const Blob* IfEncoded() const {
+        return encoded_.load(std::memory_order_acquire) ? &blob_ : nullptr;
+    }
 
 private:
     std::function<std::string()> encode_;
@@ -70,8 +72,9 @@ struct JobProgress {
     int priority = 0;
     Integrator integrator = Integrator::kPpm;
     uint64_t epochs = 0, photons = 0, hit_points = 0;
-    uint64_t camera_samples = 0;  // camera paths traced over the merged epochs (Estimate::CameraSamples)
-    double initial_radius = 0;  // R0, world units
+    uint64_t camera_samples =
+        0;  // camera paths traced over the merged epochs (Estimate::CameraSamples)
+    double initial_radius = 0;   // R0, world units
     std::string scene_features;  // what the scene uses (SceneFeatures::ToString)
     double elapsed_seconds = 0;
     double photons_per_second = 0;
@@ -82,7 +85,7 @@ struct JobProgress {
     uint32_t workers_active = 0;
     // The current epoch's batches waiting for a worker, and those under a live lease.
     uint32_t batches_pending = 0, batches_leased = 0;
-    std::string message;  // why it failed or was cancelled
+    std::string message;                // why it failed or was cancelled
     std::vector<std::string> warnings;  // found when it was submitted
 };
 
@@ -96,7 +99,7 @@ struct PreparedJob {
     std::unique_ptr<Estimate> estimate;
     std::vector<std::string> warnings;
     std::shared_ptr<const Image> reference;  // measured against after every epoch, when set
-    std::string scene_features;  // SceneFeatures::ToString of the scene
+    std::string scene_features;              // SceneFeatures::ToString of the scene
     // The coordinator keeps checkpoints: the job's final state is kept for one when it ends
     // (TakeFinalCheckpoint).
     bool checkpointed = false;
@@ -140,7 +143,8 @@ public:
     uint32_t LeasedBy(const std::string& worker, Clock::time_point now) const;
     // Leases slots to `worker` until `deadline`, lowest index first, until their chunks cover
     // `chunks` (at least one slot).
-    Lease LeaseBatches(const std::string& worker, uint32_t chunks, Clock::time_point now, Clock::time_point deadline);
+    Lease LeaseBatches(const std::string& worker, uint32_t chunks, Clock::time_point now,
+                       Clock::time_point deadline);
     // A worker that left or went silent: its slots may be leased again at once.
     uint32_t ReleaseLeases(const std::string& worker);
 
@@ -151,7 +155,8 @@ public:
     // A result for a slot of the current epoch, accepted once. INVALID_ARGUMENT when its spec
     // does not match the slot's (a forged or corrupted result), or it names hit points the job
     // does not have.
-    absl::StatusOr<ReportOutcome> Report(const std::string& worker, BatchResult result, Clock::time_point now);
+    absl::StatusOr<ReportOutcome> Report(const std::string& worker, BatchResult result,
+                                         Clock::time_point now);
 
     // Ends a running job; its image as of the last merged epoch stays. False if already ended.
     bool Cancel(const std::string& reason, Clock::time_point now);
@@ -166,7 +171,8 @@ public:
     // A job as a checkpoint left it: running jobs go on from the state saved (the epoch's
     // batches folded before it are not handed out again), ended ones hold their final image.
     // DATA_LOSS or the scene's load error when the checkpoint cannot be such a job.
-    static absl::StatusOr<std::shared_ptr<Job>> Restore(const JobCheckpointData& checkpoint, const SceneLimits& limits,
+    static absl::StatusOr<std::shared_ptr<Job>> Restore(const JobCheckpointData& checkpoint,
+                                                        const SceneLimits& limits,
                                                         Clock::time_point now);
 
     JobProgress Progress(Clock::time_point now) const;
@@ -185,7 +191,8 @@ private:
     struct Slot {
         BatchSpec spec;
         std::string worker;  // holding the lease
-        std::vector<std::string> lessees;  // every worker that held it this epoch: who may report it
+        std::vector<std::string>
+            lessees;  // every worker that held it this epoch: who may report it
         Clock::time_point deadline{};
         bool leased = false;
         std::optional<BatchResult> result;  // reported, waiting for its turn to fold
@@ -248,7 +255,7 @@ private:
     std::pair<uint64_t, uint32_t> checkpointed_at_{UINT64_MAX, 0};
     std::optional<JobCheckpointData> final_checkpoint_;
 
-    mutable std::mutex estimate_mutex_;  // guards the estimate and the image cache
+    mutable std::mutex estimate_mutex_;   // guards the estimate and the image cache
     std::unique_ptr<Estimate> estimate_;  // null once the job has ended
     mutable std::shared_ptr<const Image> image_;
     mutable uint64_t image_epoch_ = UINT64_MAX;

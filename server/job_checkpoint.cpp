@@ -3,11 +3,10 @@
 #include <spdlog/spdlog.h>
 
 #include "absl/strings/str_cat.h"
-#include "server/job.h"
-
 #include "core/ppm/progressive_estimate.h"
 #include "core/scene/scene_features.h"
 #include "server/camera_passes.h"
+#include "server/job.h"
 #include "worker/proto_convert.h"
 
 namespace pf {
@@ -21,10 +20,14 @@ double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).coun
 
 v1::JobState ToProto(JobState state) {
     switch (state) {
-        case JobState::kRunning: return v1::JOB_STATE_RUNNING;
-        case JobState::kDone: return v1::JOB_STATE_DONE;
-        case JobState::kCancelled: return v1::JOB_STATE_CANCELLED;
-        case JobState::kFailed: return v1::JOB_STATE_FAILED;
+        case JobState::kRunning:
+            return v1::JOB_STATE_RUNNING;
+        case JobState::kDone:
+            return v1::JOB_STATE_DONE;
+        case JobState::kCancelled:
+            return v1::JOB_STATE_CANCELLED;
+        case JobState::kFailed:
+            return v1::JOB_STATE_FAILED;
     }
     return v1::JOB_STATE_UNSPECIFIED;
 }
@@ -43,7 +46,8 @@ v1::JobCheckpoint Job::RecordLocked(Clock::time_point now) {
     for (const std::string& warning : warnings_) record.add_warnings(warning);
     record.set_elapsed_seconds(Seconds((state_ == JobState::kRunning ? now : ended_) - started_));
     record.set_scene_features(scene_features_);
-    for (const ConvergencePoint& point : convergence_.Points()) *record.add_convergence() = ToProto(point);
+    for (const ConvergencePoint& point : convergence_.Points())
+        *record.add_convergence() = ToProto(point);
     record.set_sequence(++checkpoint_sequence_);
     return record;
 }
@@ -51,8 +55,10 @@ v1::JobCheckpoint Job::RecordLocked(Clock::time_point now) {
 absl::StatusOr<JobCheckpointData> Job::Checkpoint(Clock::time_point now) {
     {
         std::lock_guard estimate_lock(estimate_mutex_);
-        if (estimate_ && std::pair(estimate_->Epoch(), estimate_->BatchesFolded()) == checkpointed_at_)
-            return absl::AlreadyExistsError(absl::StrCat("job ", id_, ": nothing folded since its last checkpoint"));
+        if (estimate_ &&
+            std::pair(estimate_->Epoch(), estimate_->BatchesFolded()) == checkpointed_at_)
+            return absl::AlreadyExistsError(
+                absl::StrCat("job ", id_, ": nothing folded since its last checkpoint"));
     }
     JobCheckpointData checkpoint;
     {
@@ -79,7 +85,8 @@ std::optional<JobCheckpointData> Job::TakeFinalCheckpoint() {
     return final_state;
 }
 
-absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& checkpoint, const SceneLimits& limits,
+absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& checkpoint,
+                                                  const SceneLimits& limits,
                                                   Clock::time_point now) {
     const v1::JobCheckpoint& record = checkpoint.record;
     const auto lost = [&](const std::string& what) {
@@ -91,7 +98,8 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     if (!bundle.ok()) return lost(std::string(bundle.status().message()));
     absl::StatusOr<JobSpec> spec = FromProto(record.settings());
     if (!spec.ok()) return lost(std::string(spec.status().message()));
-    if (!(record.elapsed_seconds() >= 0 && record.elapsed_seconds() < 1e9)) return lost("elapsed time out of range");
+    if (!(record.elapsed_seconds() >= 0 && record.elapsed_seconds() < 1e9))
+        return lost("elapsed time out of range");
     absl::StatusOr<Scene> scene = LoadScene(*bundle, bundle->main_file, {limits, nullptr});
     if (!scene.ok()) return scene.status();
     ByteReader reader(checkpoint.estimate);
@@ -99,8 +107,9 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     if (!estimate.ok()) return lost(std::string(estimate.status().message()));
     if (!reader.AtEnd()) return lost("bytes after the estimate");
     if ((*estimate)->Kind() != spec->integrator)
-        return lost(absl::StrCat("a ", std::string(IntegratorName((*estimate)->Kind())), " estimate for a ",
-                                 std::string(IntegratorName(spec->integrator)), " job"));
+        return lost(absl::StrCat("a ", std::string(IntegratorName((*estimate)->Kind())),
+                                 " estimate for a ", std::string(IntegratorName(spec->integrator)),
+                                 " job"));
 
     PreparedJob prepared;
     prepared.name = record.name();
@@ -108,9 +117,11 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     prepared.spec = *spec;
     prepared.priority = record.settings().priority();
     const bool stochastic = spec->integrator == Integrator::kSppm;
-    auto payload = std::make_shared<JobPayload>(
-        std::move(*scene),
-        stochastic ? std::make_shared<const std::vector<HitPoint>>() : (*estimate)->SharedHitPoints(), *spec);
+    auto payload =
+        std::make_shared<JobPayload>(std::move(*scene),
+                                     stochastic ? std::make_shared<const std::vector<HitPoint>>()
+                                                : (*estimate)->SharedHitPoints(),
+                                     *spec);
     if (stochastic) {  // its next epochs' hit points are traced here again
         absl::StatusOr<CameraPassSettings> film = FilmFor(*spec, payload->scene);
         if (!film.ok()) return lost(std::string(film.status().message()));
@@ -131,17 +142,20 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     prepared.scene_features = record.scene_features();
     prepared.checkpointed = true;
     const Estimate& restored = *prepared.estimate;
-    const uint64_t epochs = restored.Epoch(), photons = restored.PhotonsEmitted(), discarded = restored.NonfiniteDiscarded();
+    const uint64_t epochs = restored.Epoch(), photons = restored.PhotonsEmitted(),
+                   discarded = restored.NonfiniteDiscarded();
     const uint64_t samples = restored.CameraSamples();
     const uint32_t restored_folded = restored.BatchesFolded();
     const uint64_t pixels = prepared.reference ? prepared.reference->pixels.size() : 0;
-    const auto started = now - std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(record.elapsed_seconds()));
+    const auto started = now - std::chrono::duration_cast<Clock::duration>(
+                                   std::chrono::duration<double>(record.elapsed_seconds()));
     auto job = std::make_shared<Job>(record.job_id(), std::move(prepared), started);
     job->checkpointed_at_ = {epochs, restored_folded};
     {
         std::lock_guard lock(job->mutex_);
         job->checkpoint_sequence_ = record.sequence();
-        for (const v1::ConvergencePoint& point : record.convergence()) job->convergence_.Add(FromProto(point, pixels));
+        for (const v1::ConvergencePoint& point : record.convergence())
+            job->convergence_.Add(FromProto(point, pixels));
         job->epochs_merged_ = epochs;
         job->photons_merged_ = photons;
         job->camera_samples_ = samples;
@@ -157,7 +171,7 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
                                                                            : JobState::kFailed;
         job->EndLocked(state, record.message(), now);
     }
-    job->ReleaseInputs();  // the final image, from the state saved
+    job->ReleaseInputs();        // the final image, from the state saved
     job->TakeFinalCheckpoint();  // already on disk
     return job;
 }

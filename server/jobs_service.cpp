@@ -30,7 +30,8 @@ v1::JobStatus ToProto(const JobProgress& progress) {
     status.set_hit_points(progress.hit_points);
     status.set_budget_fraction(progress.budget_fraction);
     if (progress.estimated_error) status.set_estimated_error(*progress.estimated_error);
-    if (progress.measured_error) *status.mutable_reference_error() = ToProto(*progress.measured_error);
+    if (progress.measured_error)
+        *status.mutable_reference_error() = ToProto(*progress.measured_error);
     status.set_nonfinite_discarded(progress.nonfinite_discarded);
     status.set_scene_features(progress.scene_features);
     status.set_integrator(static_cast<v1::Integrator>(static_cast<int>(progress.integrator) + 1));
@@ -48,7 +49,8 @@ grpc::Status JobsService::Authorize(const grpc::ServerContext& context) const {
     return ToGrpcStatus(access_.Authorize(context, Role::kClient).status());
 }
 
-grpc::Status JobsService::SubmitJob(grpc::ServerContext* context, const v1::SubmitJobRequest* request,
+grpc::Status JobsService::SubmitJob(grpc::ServerContext* context,
+                                    const v1::SubmitJobRequest* request,
                                     v1::SubmitJobResponse* response) {
     absl::StatusOr<std::string> owner = access_.Authorize(*context, Role::kClient);
     if (!owner.ok()) return ToGrpcStatus(owner.status());
@@ -60,11 +62,14 @@ grpc::Status JobsService::SubmitJob(grpc::ServerContext* context, const v1::Subm
     std::shared_ptr<const Image> reference;
     if (request->has_reference()) {
         absl::StatusOr<Image> image = FromProto(request->reference());
-        if (!image.ok()) return Invalid(absl::InvalidArgumentError(absl::StrCat("reference: ", image.status().message())));
+        if (!image.ok())
+            return Invalid(
+                absl::InvalidArgumentError(absl::StrCat("reference: ", image.status().message())));
         reference = std::make_shared<const Image>(std::move(*image));
     }
-    absl::StatusOr<JobProgress> progress = coordinator_.Submit(
-        {request->name(), std::move(*owner), std::move(*bundle), *spec, request->settings().priority(), std::move(reference)});
+    absl::StatusOr<JobProgress> progress =
+        coordinator_.Submit({request->name(), std::move(*owner), std::move(*bundle), *spec,
+                             request->settings().priority(), std::move(reference)});
     if (!progress.ok()) return ToGrpcStatus(progress.status());
     *response->mutable_status() = ToProto(*progress);
     return grpc::Status::OK;
@@ -74,14 +79,17 @@ grpc::Status JobsService::WatchJob(grpc::ServerContext* context, const v1::Watch
                                    grpc::ServerWriter<v1::Snapshot>* writer) {
     if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     if (!(std::isfinite(request->interval_seconds()) && request->interval_seconds() >= 0))
-        return Invalid(absl::InvalidArgumentError("interval_seconds: must be a non-negative number"));
+        return Invalid(
+            absl::InvalidArgumentError("interval_seconds: must be a non-negative number"));
     absl::StatusOr<std::shared_ptr<Job>> job = coordinator_.FindJob(request->job_id());
     if (!job.ok()) return ToGrpcStatus(job.status());
     const uint32_t max_watchers = coordinator_.Options().client_limits.max_watchers_per_job;
     if (!(*job)->AddWatcher(max_watchers))
-        return ToGrpcStatus(absl::ResourceExhaustedError(absl::StrCat(
-            "job ", request->job_id(), " has ", max_watchers, " watchers, this coordinator's limit (--max-watchers-per-job)")));
-    const std::unique_ptr<Job, void (*)(Job*)> watcher(job->get(), [](Job* watched) { watched->RemoveWatcher(); });
+        return ToGrpcStatus(absl::ResourceExhaustedError(
+            absl::StrCat("job ", request->job_id(), " has ", max_watchers,
+                         " watchers, this coordinator's limit (--max-watchers-per-job)")));
+    const std::unique_ptr<Job, void (*)(Job*)> watcher(
+        job->get(), [](Job* watched) { watched->RemoveWatcher(); });
     const auto interval = std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(std::min(request->interval_seconds(), 3600.0)));
     uint64_t version = (*job)->Version();
@@ -91,24 +99,31 @@ grpc::Status JobsService::WatchJob(grpc::ServerContext* context, const v1::Watch
         v1::Snapshot snapshot;
         *snapshot.mutable_status() = ToProto(progress);
         if (request->images())
-            if (std::shared_ptr<const Image> image = (*job)->CurrentImage()) *snapshot.mutable_image() = ToProto(*image);
-        if (!writer->Write(snapshot)) return grpc::Status(grpc::StatusCode::CANCELLED, "watcher went away");
+            if (std::shared_ptr<const Image> image = (*job)->CurrentImage())
+                *snapshot.mutable_image() = ToProto(*image);
+        if (!writer->Write(snapshot))
+            return grpc::Status(grpc::StatusCode::CANCELLED, "watcher went away");
         if (progress.state != JobState::kRunning) return grpc::Status::OK;
         const Clock::time_point next = Clock::now() + interval;
         bool changed = false;
         while (!changed || Clock::now() < next) {
             if (context->IsCancelled() || stopping_.load())
-                return grpc::Status(grpc::StatusCode::UNAVAILABLE, "the coordinator is shutting down");
-            const Clock::time_point until = std::min(changed ? next : Clock::time_point::max(), Clock::now() + kWatchPoll);
+                return grpc::Status(grpc::StatusCode::UNAVAILABLE,
+                                    "the coordinator is shutting down");
+            const Clock::time_point until =
+                std::min(changed ? next : Clock::time_point::max(), Clock::now() + kWatchPoll);
             const uint64_t now_version = (*job)->WaitForChange(version, until);
             changed = changed || now_version != version;
             version = now_version;
-            if (changed && (*job)->Progress(coordinator_.Options().now()).state != JobState::kRunning) break;
+            if (changed &&
+                (*job)->Progress(coordinator_.Options().now()).state != JobState::kRunning)
+                break;
         }
     }
 }
 
-grpc::Status JobsService::CancelJob(grpc::ServerContext* context, const v1::CancelJobRequest* request,
+grpc::Status JobsService::CancelJob(grpc::ServerContext* context,
+                                    const v1::CancelJobRequest* request,
                                     v1::CancelJobResponse* response) {
     if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     absl::StatusOr<JobProgress> progress = coordinator_.Cancel(request->job_id());
@@ -117,30 +132,36 @@ grpc::Status JobsService::CancelJob(grpc::ServerContext* context, const v1::Canc
     return grpc::Status::OK;
 }
 
-grpc::Status JobsService::ListJobs(grpc::ServerContext* context, const v1::ListJobsRequest*, v1::ListJobsResponse* response) {
+grpc::Status JobsService::ListJobs(grpc::ServerContext* context, const v1::ListJobsRequest*,
+                                   v1::ListJobsResponse* response) {
     if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
-    for (const JobProgress& progress : coordinator_.ListJobs()) *response->add_jobs() = ToProto(progress);
+    for (const JobProgress& progress : coordinator_.ListJobs())
+        *response->add_jobs() = ToProto(progress);
     return grpc::Status::OK;
 }
 
-grpc::Status JobsService::GetResult(grpc::ServerContext* context, const v1::GetResultRequest* request,
+grpc::Status JobsService::GetResult(grpc::ServerContext* context,
+                                    const v1::GetResultRequest* request,
                                     v1::GetResultResponse* response) {
     if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     absl::StatusOr<std::shared_ptr<Job>> job = coordinator_.FindJob(request->job_id());
     if (!job.ok()) return ToGrpcStatus(job.status());
     *response->mutable_status() = ToProto((*job)->Progress(coordinator_.Options().now()));
-    if (std::shared_ptr<const Image> image = (*job)->CurrentImage()) *response->mutable_image() = ToProto(*image);
+    if (std::shared_ptr<const Image> image = (*job)->CurrentImage())
+        *response->mutable_image() = ToProto(*image);
     return grpc::Status::OK;
 }
 
-grpc::Status JobsService::GetConvergence(grpc::ServerContext* context, const v1::GetConvergenceRequest* request,
+grpc::Status JobsService::GetConvergence(grpc::ServerContext* context,
+                                         const v1::GetConvergenceRequest* request,
                                          v1::GetConvergenceResponse* response) {
     if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     absl::StatusOr<std::shared_ptr<Job>> job = coordinator_.FindJob(request->job_id());
     if (!job.ok()) return ToGrpcStatus(job.status());
     const JobProgress progress = (*job)->Progress(coordinator_.Options().now());
     *response->mutable_status() = ToProto(progress);
-    for (const ConvergencePoint& point : (*job)->Convergence()) *response->add_points() = ToProto(point);
+    for (const ConvergencePoint& point : (*job)->Convergence())
+        *response->add_points() = ToProto(point);
     if (std::shared_ptr<const Image> image = (*job)->CurrentImage())
         response->set_pixels(static_cast<uint64_t>(image->width) * image->height);
     return grpc::Status::OK;

@@ -34,8 +34,8 @@ private:
 // Serves `metrics` at http://ADDRESS/metrics ("host:port"; port 0 picks a free one).
 class MetricsServer {
 public:
-    static absl::StatusOr<std::unique_ptr<MetricsServer>> Start(const std::string& address,
-                                                                std::shared_ptr<CoordinatorMetrics> metrics);
+    static absl::StatusOr<std::unique_ptr<MetricsServer>> Start(
+        const std::string& address, std::shared_ptr<CoordinatorMetrics> metrics);
     int Port() const { return port_; }
 
 private:

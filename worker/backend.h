@@ -42,7 +42,8 @@ public:
     virtual absl::Status BeginEpoch(uint64_t epoch, std::span<const float> radius_sq) = 0;
     // Runs the batches, in parallel where the backend can; results in the order of `specs`.
     // Errors are the device's (a lost GPU), never the batches'.
-    virtual absl::StatusOr<std::vector<BatchResult>> RunBatches(std::span<const BatchSpec> specs) = 0;
+    virtual absl::StatusOr<std::vector<BatchResult>> RunBatches(
+        std::span<const BatchSpec> specs) = 0;
 };
 
 }  // namespace pf

@@ -24,21 +24,25 @@ std::string Compress(const std::vector<uint8_t>& raw) {
     std::string out(8 + ZSTD_compressBound(raw.size()), '\0');
     const uint64_t size = raw.size();
     std::memcpy(out.data(), &size, 8);
-    const size_t written = ZSTD_compress(out.data() + 8, out.size() - 8, raw.data(), raw.size(), kZstdLevel);
+    const size_t written =
+        ZSTD_compress(out.data() + 8, out.size() - 8, raw.data(), raw.size(), kZstdLevel);
     out.resize(8 + written);  // compression into a bound-sized buffer cannot fail
     return out;
 }
 
-absl::StatusOr<std::vector<uint8_t>> Decompress(std::string_view bytes, uint64_t expected_size, const char* what) {
+absl::StatusOr<std::vector<uint8_t>> Decompress(std::string_view bytes, uint64_t expected_size,
+                                                const char* what) {
     uint64_t size = 0;
     if (bytes.size() < 8) return absl::InvalidArgumentError(absl::StrCat(what, ": truncated blob"));
     std::memcpy(&size, bytes.data(), 8);
     if (size != expected_size)
-        return absl::InvalidArgumentError(absl::StrCat(what, ": blob holds ", size, " bytes, expected ", expected_size));
+        return absl::InvalidArgumentError(
+            absl::StrCat(what, ": blob holds ", size, " bytes, expected ", expected_size));
     std::vector<uint8_t> raw(size);
     const size_t got = ZSTD_decompress(raw.data(), raw.size(), bytes.data() + 8, bytes.size() - 8);
     if (ZSTD_isError(got) || got != size)
-        return absl::InvalidArgumentError(absl::StrCat(what, ": corrupt blob (", ZSTD_isError(got) ? ZSTD_getErrorName(got) : "short", ")"));
+        return absl::InvalidArgumentError(absl::StrCat(
+            what, ": corrupt blob (", ZSTD_isError(got) ? ZSTD_getErrorName(got) : "short", ")"));
     return raw;
 }
 
@@ -71,7 +75,8 @@ template <typename T>
 void ReadField(const uint8_t* planes, size_t offset, std::span<T> items) {
     std::vector<uint32_t> words(items.size());
     ReadPlanes(planes, items.size(), words.data());
-    for (size_t i = 0; i < items.size(); ++i) std::memcpy(reinterpret_cast<uint8_t*>(&items[i]) + offset, &words[i], 4);
+    for (size_t i = 0; i < items.size(); ++i)
+        std::memcpy(reinterpret_cast<uint8_t*>(&items[i]) + offset, &words[i], 4);
 }
 
 // The HitPoint words a worker reads, in wire order: position, normal, weight. The tenth, the
@@ -108,12 +113,15 @@ std::string EncodeHitPoints(std::span<const HitPoint> hit_points) {
     return Compress(raw);
 }
 
-absl::StatusOr<std::vector<HitPoint>> DecodeHitPoints(std::string_view bytes, uint64_t expected_count) {
-    absl::StatusOr<std::vector<uint8_t>> raw = Decompress(bytes, 4 * kHitPointWords * expected_count, "hit points");
+absl::StatusOr<std::vector<HitPoint>> DecodeHitPoints(std::string_view bytes,
+                                                      uint64_t expected_count) {
+    absl::StatusOr<std::vector<uint8_t>> raw =
+        Decompress(bytes, 4 * kHitPointWords * expected_count, "hit points");
     if (!raw.ok()) return raw.status();
     std::vector<HitPoint> hit_points(expected_count);
     for (size_t word = 0; word < kHitPointWords; ++word)
-        ReadField(raw->data() + 4 * word * expected_count, 4 * word, std::span<HitPoint>(hit_points));
+        ReadField(raw->data() + 4 * word * expected_count, 4 * word,
+                  std::span<HitPoint>(hit_points));
     return hit_points;
 }
 
@@ -127,7 +135,8 @@ absl::StatusOr<Image> DecodeImagePixels(std::string_view bytes, int width, int h
     absl::StatusOr<std::vector<float>> values = DecodeFloats(bytes, 3ull * width * height);
     if (!values.ok()) return values.status();
     Image image(width, height);
-    std::memcpy(static_cast<void*>(image.pixels.data()), values->data(), values->size() * sizeof(float));
+    std::memcpy(static_cast<void*>(image.pixels.data()), values->data(),
+                values->size() * sizeof(float));
     return image;
 }
 

@@ -32,7 +32,8 @@ absl::StatusOr<std::vector<float>> DecodeFloats(std::string_view bytes, uint64_t
 // What the photon pass reads of each hit point (position, normal, weight); the pixel stays
 // with the coordinator and decodes as 0.
 std::string EncodeHitPoints(std::span<const HitPoint> hit_points);
-absl::StatusOr<std::vector<HitPoint>> DecodeHitPoints(std::string_view bytes, uint64_t expected_count);
+absl::StatusOr<std::vector<HitPoint>> DecodeHitPoints(std::string_view bytes,
+                                                      uint64_t expected_count);
 
 // An image's RGB floats, row-major from the top; the size travels beside it. Images of more
 // than kMaxImagePixels (the hit point limit at one per pixel) are refused.

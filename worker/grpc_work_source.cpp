@@ -26,7 +26,8 @@ constexpr size_t kPayloadsKept = 4;
 constexpr size_t kRadiiKept = 4;
 
 template <typename T>
-std::shared_ptr<const T> Lookup(std::list<std::pair<std::string, std::shared_ptr<const T>>>& cache, const std::string& key) {
+std::shared_ptr<const T> Lookup(std::list<std::pair<std::string, std::shared_ptr<const T>>>& cache,
+                                const std::string& key) {
     for (auto it = cache.begin(); it != cache.end(); ++it)
         if (it->first == key) {
             cache.splice(cache.begin(), cache, it);
@@ -36,8 +37,8 @@ std::shared_ptr<const T> Lookup(std::list<std::pair<std::string, std::shared_ptr
 }
 
 template <typename T>
-void Remember(std::list<std::pair<std::string, std::shared_ptr<const T>>>& cache, const std::string& key,
-              std::shared_ptr<const T> value, size_t kept) {
+void Remember(std::list<std::pair<std::string, std::shared_ptr<const T>>>& cache,
+              const std::string& key, std::shared_ptr<const T> value, size_t kept) {
     cache.emplace_front(key, std::move(value));
     if (cache.size() > kept) cache.pop_back();
 }
@@ -57,9 +58,10 @@ GrpcWorkSource::GrpcWorkSource(std::shared_ptr<grpc::Channel> channel, std::stri
       cache_dir_(std::move(cache_dir)) {}
 
 bool GrpcWorkSource::WaitForConnection(double seconds) {
-    return channel_->WaitForConnected(std::chrono::system_clock::now() +
-                                      std::chrono::duration_cast<std::chrono::system_clock::duration>(
-                                          std::chrono::duration<double>(seconds)));
+    return channel_->WaitForConnected(
+        std::chrono::system_clock::now() +
+        std::chrono::duration_cast<std::chrono::system_clock::duration>(
+            std::chrono::duration<double>(seconds)));
 }
 
 double GrpcWorkSource::HeartbeatSeconds() const {
@@ -102,7 +104,8 @@ absl::Status GrpcWorkSource::Heartbeat() {
     grpc::ClientContext context;
     SetDeadline(&context, 10);
     const grpc::Status status = stub_->Heartbeat(&context, request, &response);
-    if (status.error_code() == grpc::StatusCode::NOT_FOUND) Forget(*id);  // forgotten: register again next time
+    if (status.error_code() == grpc::StatusCode::NOT_FOUND)
+        Forget(*id);  // forgotten: register again next time
     return FromGrpcStatus(status, address_);
 }
 
@@ -137,17 +140,22 @@ absl::StatusOr<WorkGrant> GrpcWorkSource::Lease(uint32_t chunks) {
     if (response.batches().empty()) return grant;
     const v1::JobInputs& job = response.job();
     absl::StatusOr<JobSpec> settings = FromProto(job.settings());
-    if (!settings.ok()) return absl::InternalError(absl::StrCat(address_, ": a job's settings: ", settings.status().message()));
+    if (!settings.ok())
+        return absl::InternalError(
+            absl::StrCat(address_, ": a job's settings: ", settings.status().message()));
     const bool gathers = GathersAtHitPoints(settings->integrator);
-    if ((job.hit_point_count() == 0) == gathers || job.hit_point_count() > kMaxHitPoints || settings->width == 0 ||
-        settings->height == 0)
-        return absl::InternalError(absl::StrCat(address_, ": a ", std::string(IntegratorName(settings->integrator)), " job of ",
-                                                job.hit_point_count(), " hit points and a ", settings->width, "x",
-                                                settings->height, " film"));
-    const uint64_t items = gathers ? job.hit_point_count() : uint64_t(settings->width) * uint64_t(settings->height);
+    if ((job.hit_point_count() == 0) == gathers || job.hit_point_count() > kMaxHitPoints ||
+        settings->width == 0 || settings->height == 0)
+        return absl::InternalError(
+            absl::StrCat(address_, ": a ", std::string(IntegratorName(settings->integrator)),
+                         " job of ", job.hit_point_count(), " hit points and a ", settings->width,
+                         "x", settings->height, " film"));
+    const uint64_t items =
+        gathers ? job.hit_point_count() : uint64_t(settings->width) * uint64_t(settings->height);
     absl::StatusOr<std::shared_ptr<const JobPayload>> payload = PayloadFor(job, *settings);
     if (!payload.ok()) return payload.status();
-    absl::StatusOr<std::shared_ptr<const std::vector<float>>> radii = RadiiFor(response.radii_digest(), job.hit_point_count());
+    absl::StatusOr<std::shared_ptr<const std::vector<float>>> radii =
+        RadiiFor(response.radii_digest(), job.hit_point_count());
     if (!radii.ok()) return radii.status();
     grant.job_id = job.job_id();
     grant.job = *payload;
@@ -157,8 +165,9 @@ absl::StatusOr<WorkGrant> GrpcWorkSource::Lease(uint32_t chunks) {
         if (grant.batches.back().epoch != grant.batches.front().epoch)
             return absl::InternalError(absl::StrCat(address_, ": a lease mixed epochs"));
         if (grant.batches.back().sample_end > items)
-            return absl::InternalError(absl::StrCat(address_, ": a batch's sample slice lies outside the job's ", items,
-                                                    gathers ? " hit points" : " pixels"));
+            return absl::InternalError(
+                absl::StrCat(address_, ": a batch's sample slice lies outside the job's ", items,
+                             gathers ? " hit points" : " pixels"));
     }
     grant.epoch = grant.batches.front().epoch;
     return grant;
@@ -178,18 +187,28 @@ absl::StatusOr<TallyVerdict> GrpcWorkSource::Report(const std::string& job_id, B
     if (status.error_code() == grpc::StatusCode::NOT_FOUND) Forget(*id);
     if (!status.ok()) return FromGrpcStatus(status, address_);
     switch (response.verdict()) {
-        case v1::TALLY_VERDICT_ACCEPTED: return TallyVerdict::kAccepted;
-        case v1::TALLY_VERDICT_DUPLICATE: return TallyVerdict::kDuplicate;
-        case v1::TALLY_VERDICT_STALE: return TallyVerdict::kStale;
-        case v1::TALLY_VERDICT_JOB_GONE: return TallyVerdict::kJobGone;
-        case v1::TALLY_VERDICT_NOT_LEASED: return TallyVerdict::kNotLeased;
-        default: return absl::InternalError(absl::StrCat(address_, ": unknown tally verdict ", response.verdict()));
+        case v1::TALLY_VERDICT_ACCEPTED:
+            return TallyVerdict::kAccepted;
+        case v1::TALLY_VERDICT_DUPLICATE:
+            return TallyVerdict::kDuplicate;
+        case v1::TALLY_VERDICT_STALE:
+            return TallyVerdict::kStale;
+        case v1::TALLY_VERDICT_JOB_GONE:
+            return TallyVerdict::kJobGone;
+        case v1::TALLY_VERDICT_NOT_LEASED:
+            return TallyVerdict::kNotLeased;
+        default:
+            return absl::InternalError(
+                absl::StrCat(address_, ": unknown tally verdict ", response.verdict()));
     }
 }
 
-absl::StatusOr<std::string> GrpcWorkSource::FetchBlob(const std::string& digest, bool keep_on_disk) {
-    if (!IsHexDigest(digest)) return absl::InternalError(absl::StrCat(address_, ": malformed blob digest"));
-    const std::filesystem::path cached = cache_dir_.empty() ? std::filesystem::path() : std::filesystem::path(cache_dir_) / digest;
+absl::StatusOr<std::string> GrpcWorkSource::FetchBlob(const std::string& digest,
+                                                      bool keep_on_disk) {
+    if (!IsHexDigest(digest))
+        return absl::InternalError(absl::StrCat(address_, ": malformed blob digest"));
+    const std::filesystem::path cached =
+        cache_dir_.empty() ? std::filesystem::path() : std::filesystem::path(cache_dir_) / digest;
     if (keep_on_disk && !cached.empty()) {
         std::ifstream in(cached, std::ios::binary);
         std::stringstream bytes;
@@ -208,27 +227,33 @@ absl::StatusOr<std::string> GrpcWorkSource::FetchBlob(const std::string& digest,
         if (bytes.empty() && chunk.total_bytes() != 0) {
             total = chunk.total_bytes();
             if (total > uint64_t{kMaxMessageBytes} * 4)
-                return absl::InternalError(absl::StrCat(address_, ": blob of ", total, " bytes is over the limit"));
+                return absl::InternalError(
+                    absl::StrCat(address_, ": blob of ", total, " bytes is over the limit"));
             bytes.reserve(total);
         }
         bytes += chunk.data();
-        if (bytes.size() > total) return absl::InternalError(absl::StrCat(address_, ": blob longer than announced"));
+        if (bytes.size() > total)
+            return absl::InternalError(absl::StrCat(address_, ": blob longer than announced"));
     }
-    if (grpc::Status status = reader->Finish(); !status.ok()) return FromGrpcStatus(status, address_);
+    if (grpc::Status status = reader->Finish(); !status.ok())
+        return FromGrpcStatus(status, address_);
     if (bytes.size() != total || Sha256Hex(bytes) != digest)
-        return absl::DataLossError(absl::StrCat(address_, ": blob ", digest.substr(0, 12), " arrived corrupted"));
+        return absl::DataLossError(
+            absl::StrCat(address_, ": blob ", digest.substr(0, 12), " arrived corrupted"));
     if (keep_on_disk && !cached.empty()) {
         std::error_code error;
         std::filesystem::create_directories(cache_dir_, error);
         const std::filesystem::path partial = cached.string() + ".partial";
-        std::ofstream(partial, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+        std::ofstream(partial, std::ios::binary)
+            .write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         std::filesystem::rename(partial, cached, error);
         if (error) spdlog::warn("{}: cannot cache a blob here: {}", cache_dir_, error.message());
     }
     return bytes;
 }
 
-absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(const v1::JobInputs& job, const JobSpec& spec) {
+absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(
+    const v1::JobInputs& job, const JobSpec& spec) {
     const std::string key = absl::StrCat(job.scene_digest(), "/", job.hit_points_digest(), "/",
                                          Sha256Hex(job.settings().SerializeAsString()));
     {
@@ -239,13 +264,15 @@ absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(con
     absl::StatusOr<std::string> scene_bytes = FetchBlob(job.scene_digest(), true);
     if (!scene_bytes.ok()) return scene_bytes.status();
     v1::SceneBundle message;
-    if (!message.ParseFromString(*scene_bytes)) return absl::DataLossError(absl::StrCat(address_, ": scene blob does not parse"));
+    if (!message.ParseFromString(*scene_bytes))
+        return absl::DataLossError(absl::StrCat(address_, ": scene blob does not parse"));
     absl::StatusOr<SceneBundle> bundle = FromProto(message);
     if (!bundle.ok()) return bundle.status();
     // The coordinator accepted this scene under its configured limits; the worker takes it
     // whatever they were (the bundle's own size limit still bounds it).
     SceneLoadOptions options;
-    options.limits.max_triangles = options.limits.max_image_pixels = options.limits.max_instances = uint64_t{1} << 31;
+    options.limits.max_triangles = options.limits.max_image_pixels = options.limits.max_instances =
+        uint64_t{1} << 31;
     // Photons look textures up at a point; camera samples traced here (sppm, path, pm) filter
     // them over their footprint, as the coordinator's camera pass does.
     options.texture_filter = spec.integrator != Integrator::kPpm;
@@ -258,16 +285,18 @@ absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(con
     absl::StatusOr<std::vector<HitPoint>> hit_points = DecodeHitPoints(*hit_point_bytes, sent);
     if (!hit_points.ok()) return hit_points.status();
     auto payload = std::make_shared<const JobPayload>(
-        std::move(*scene), std::make_shared<const std::vector<HitPoint>>(std::move(*hit_points)), spec);
-    spdlog::info("job {}: scene ({} bytes) and {} hit points ({} bytes) fetched in {:.2f} s", job.job_id(),
-                 scene_bytes->size(), job.hit_point_count(), hit_point_bytes->size(),
+        std::move(*scene), std::make_shared<const std::vector<HitPoint>>(std::move(*hit_points)),
+        spec);
+    spdlog::info("job {}: scene ({} bytes) and {} hit points ({} bytes) fetched in {:.2f} s",
+                 job.job_id(), scene_bytes->size(), job.hit_point_count(), hit_point_bytes->size(),
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     std::lock_guard lock(mutex_);
     Remember(payloads_, key, std::shared_ptr<const JobPayload>(payload), kPayloadsKept);
     return std::shared_ptr<const JobPayload>(payload);
 }
 
-absl::StatusOr<std::shared_ptr<const std::vector<float>>> GrpcWorkSource::RadiiFor(const std::string& digest, uint64_t count) {
+absl::StatusOr<std::shared_ptr<const std::vector<float>>> GrpcWorkSource::RadiiFor(
+    const std::string& digest, uint64_t count) {
     {
         std::lock_guard lock(mutex_);
         if (std::shared_ptr<const std::vector<float>> radii = Lookup(radii_, digest)) return radii;

@@ -21,8 +21,8 @@ class GrpcWorkSource final : public WorkSource {
 public:
     // `address` names the coordinator in errors; `cache_dir` (may be empty: no disk cache)
     // keeps scene and hit point blobs across restarts.
-    GrpcWorkSource(std::shared_ptr<grpc::Channel> channel, std::string address, WorkerRegistration registration,
-                   std::string cache_dir);
+    GrpcWorkSource(std::shared_ptr<grpc::Channel> channel, std::string address,
+                   WorkerRegistration registration, std::string cache_dir);
 
     absl::StatusOr<WorkGrant> Lease(uint32_t chunks) override;
     absl::StatusOr<TallyVerdict> Report(const std::string& job_id, BatchResult result) override;
@@ -40,8 +40,10 @@ private:
     absl::StatusOr<std::string> WorkerId();
     void Forget(const std::string& worker_id);
     absl::StatusOr<std::string> FetchBlob(const std::string& digest, bool keep_on_disk);
-    absl::StatusOr<std::shared_ptr<const JobPayload>> PayloadFor(const photonfarm::v1::JobInputs& job, const JobSpec& spec);
-    absl::StatusOr<std::shared_ptr<const std::vector<float>>> RadiiFor(const std::string& digest, uint64_t count);
+    absl::StatusOr<std::shared_ptr<const JobPayload>> PayloadFor(
+        const photonfarm::v1::JobInputs& job, const JobSpec& spec);
+    absl::StatusOr<std::shared_ptr<const std::vector<float>>> RadiiFor(const std::string& digest,
+                                                                       uint64_t count);
 
     std::shared_ptr<grpc::Channel> channel_;
     std::unique_ptr<photonfarm::v1::Work::Stub> stub_;

@@ -2,7 +2,6 @@
 #include "worker/proto_convert.h"
 
 #include <cmath>
-
 #include <limits>
 
 #include "absl/strings/str_cat.h"
@@ -59,8 +58,8 @@ photonfarm::v1::BatchResult ToProto(const BatchResult& result) {
     return out;
 }
 
-absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message, uint32_t hit_point_count,
-                                      uint32_t item_count) {
+absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message,
+                                      uint32_t hit_point_count, uint32_t item_count) {
     BatchResult result;
     result.spec = FromProto(message.spec());
     const BatchSpec& spec = result.spec;
@@ -69,12 +68,14 @@ absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message
                                     ") lies outside the job's ", item_count, " items"));
     const photonfarm::v1::Tally& tally = message.tally();
     const int entries = tally.hit_point_delta_size();
-    if (tally.photons_size() != entries || tally.inner_photons_size() != entries || tally.flux_size() != 3 * entries)
-        return Invalid(absl::StrCat("tally sizes disagree: ", entries, " hit points, ", tally.photons_size(),
-                                    " counts, ", tally.inner_photons_size(), " inner counts, ", tally.flux_size(),
-                                    " flux values"));
+    if (tally.photons_size() != entries || tally.inner_photons_size() != entries ||
+        tally.flux_size() != 3 * entries)
+        return Invalid(absl::StrCat("tally sizes disagree: ", entries, " hit points, ",
+                                    tally.photons_size(), " counts, ", tally.inner_photons_size(),
+                                    " inner counts, ", tally.flux_size(), " flux values"));
     if (static_cast<uint64_t>(entries) > hit_point_count)
-        return Invalid(absl::StrCat("tally has ", entries, " entries for ", hit_point_count, " hit points"));
+        return Invalid(
+            absl::StrCat("tally has ", entries, " entries for ", hit_point_count, " hit points"));
     result.tally.hit_point.resize(entries);
     result.tally.photons.resize(entries);
     result.tally.inner_photons.resize(entries);
@@ -82,11 +83,14 @@ absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message
     uint64_t hit_point = 0;
     for (int e = 0; e < entries; ++e) {
         const uint32_t delta = tally.hit_point_delta(e);
-        if (e > 0 && delta == 0) return Invalid(absl::StrCat("tally entry ", e, " repeats or is out of order"));
+        if (e > 0 && delta == 0)
+            return Invalid(absl::StrCat("tally entry ", e, " repeats or is out of order"));
         hit_point += delta;
         if (hit_point >= hit_point_count)
-            return Invalid(absl::StrCat("tally entry ", e, " names hit point ", hit_point, " of ", hit_point_count));
-        if (tally.photons(e) == 0) return Invalid(absl::StrCat("tally entry ", e, " has no photons"));
+            return Invalid(absl::StrCat("tally entry ", e, " names hit point ", hit_point, " of ",
+                                        hit_point_count));
+        if (tally.photons(e) == 0)
+            return Invalid(absl::StrCat("tally entry ", e, " has no photons"));
         if (tally.inner_photons(e) > tally.photons(e))
             return Invalid(absl::StrCat("tally entry ", e, " has more inner photons than photons"));
         const Rgb flux(tally.flux(3 * e), tally.flux(3 * e + 1), tally.flux(3 * e + 2));
@@ -99,16 +103,20 @@ absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message
     }
     const uint32_t slice = spec.sample_end - spec.sample_begin;
     if (static_cast<uint64_t>(message.samples_size()) != 3ull * slice)
-        return Invalid(absl::StrCat("samples has ", message.samples_size(), " values for a slice of ", slice));
+        return Invalid(
+            absl::StrCat("samples has ", message.samples_size(), " values for a slice of ", slice));
     result.samples.resize(slice);
     for (uint32_t i = 0; i < slice; ++i) {
-        const Rgb direct(message.samples(3 * i), message.samples(3 * i + 1), message.samples(3 * i + 2));
-        if (!NonNegativeFinite(direct.x) || !NonNegativeFinite(direct.y) || !NonNegativeFinite(direct.z))
+        const Rgb direct(message.samples(3 * i), message.samples(3 * i + 1),
+                         message.samples(3 * i + 2));
+        if (!NonNegativeFinite(direct.x) || !NonNegativeFinite(direct.y) ||
+            !NonNegativeFinite(direct.z))
             return Invalid(absl::StrCat("sample ", i, " is negative, NaN or Inf"));
         result.samples[i] = direct;
     }
     if (message.photons_emitted() != spec.photons)
-        return Invalid(absl::StrCat("emitted ", message.photons_emitted(), " photons for a batch of ", spec.photons));
+        return Invalid(absl::StrCat("emitted ", message.photons_emitted(),
+                                    " photons for a batch of ", spec.photons));
     result.photons_emitted = message.photons_emitted();
     result.segments_traced = message.segments_traced();
     result.nonfinite_discarded = message.nonfinite_discarded();
@@ -133,7 +141,8 @@ absl::StatusOr<SceneBundle> FromProto(const photonfarm::v1::SceneBundle& message
         if (absl::Status status = CheckBundlePath(file.path()); !status.ok())
             return absl::InvalidArgumentError(absl::StrCat("scene.files: ", status.message()));
         if (!bundle.files.emplace(file.path(), file.content()).second)
-            return absl::InvalidArgumentError(absl::StrCat("scene.files: '", file.path(), "' given twice"));
+            return absl::InvalidArgumentError(
+                absl::StrCat("scene.files: '", file.path(), "' given twice"));
     }
     if (absl::Status status = CheckSceneBundle(bundle); !status.ok())
         return absl::InvalidArgumentError(absl::StrCat("scene: ", status.message()));
@@ -154,7 +163,8 @@ photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
     out.set_photon_stream(spec.photon_stream);
     out.set_photons_per_batch(spec.layout.photons_per_batch);
     out.set_batches_per_epoch(spec.layout.batches_per_epoch);
-    out.set_integrator(static_cast<photonfarm::v1::Integrator>(static_cast<int>(spec.integrator) + 1));
+    out.set_integrator(
+        static_cast<photonfarm::v1::Integrator>(static_cast<int>(spec.integrator) + 1));
     out.set_epoch_budget(spec.epoch_budget);
     if (spec.integrator == Integrator::kPm) {
         const PhotonMapSettings& maps = spec.photon_map;
@@ -163,9 +173,11 @@ photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
         out_maps->set_caustic_photons(maps.caustic_photons);
         out_maps->set_nearest(maps.nearest);
         out_maps->set_max_radius(maps.max_radius);
-        out_maps->set_filter(static_cast<photonfarm::v1::DensityFilter>(static_cast<int>(maps.filter) + 1));
+        out_maps->set_filter(
+            static_cast<photonfarm::v1::DensityFilter>(static_cast<int>(maps.filter) + 1));
         out_maps->set_final_gather(maps.final_gather);
-        out_maps->set_index(static_cast<photonfarm::v1::PhotonIndex>(static_cast<int>(maps.index) + 1));
+        out_maps->set_index(
+            static_cast<photonfarm::v1::PhotonIndex>(static_cast<int>(maps.index) + 1));
     }
     return out;
 }
@@ -173,35 +185,42 @@ photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
 absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings) {
     JobSpec spec;
     auto too_large = [](const char* field, uint64_t value) {
-        return absl::InvalidArgumentError(absl::StrCat("settings.", field, " ", value, " is out of range"));
+        return absl::InvalidArgumentError(
+            absl::StrCat("settings.", field, " ", value, " is out of range"));
     };
     if (settings.width() > 32768) return too_large("width", settings.width());
     if (settings.height() > 32768) return too_large("height", settings.height());
-    if (settings.samples_per_pixel() > 1024) return too_large("samples_per_pixel", settings.samples_per_pixel());
+    if (settings.samples_per_pixel() > 1024)
+        return too_large("samples_per_pixel", settings.samples_per_pixel());
     spec.width = static_cast<int>(settings.width());
     spec.height = static_cast<int>(settings.height());
-    if (settings.samples_per_pixel() != 0) spec.samples_per_pixel = static_cast<int>(settings.samples_per_pixel());
+    if (settings.samples_per_pixel() != 0)
+        spec.samples_per_pixel = static_cast<int>(settings.samples_per_pixel());
     spec.photon_budget = settings.photon_budget();
     spec.seconds_budget = settings.seconds_budget();
     if (settings.alpha() != 0) spec.alpha = settings.alpha();
     spec.initial_radius = settings.initial_radius();
     spec.seed = settings.seed();
     spec.photon_stream = settings.photon_stream();
-    if (settings.photons_per_batch() != 0) spec.layout.photons_per_batch = settings.photons_per_batch();
-    if (settings.batches_per_epoch() != 0) spec.layout.batches_per_epoch = settings.batches_per_epoch();
+    if (settings.photons_per_batch() != 0)
+        spec.layout.photons_per_batch = settings.photons_per_batch();
+    if (settings.batches_per_epoch() != 0)
+        spec.layout.batches_per_epoch = settings.batches_per_epoch();
     spec.target_error = settings.target_error();
     spec.epoch_budget = settings.epoch_budget();
     // The enums are the core ones shifted by one, 0 meaning the default.
-    const auto enum_value = [&](int value, int count, const char* field, auto* out) -> absl::Status {
+    const auto enum_value = [&](int value, int count, const char* field,
+                                auto* out) -> absl::Status {
         if (value < 0 || value > count) return too_large(field, static_cast<uint64_t>(value));
         if (value > 0) *out = static_cast<std::remove_pointer_t<decltype(out)>>(value - 1);
         return absl::OkStatus();
     };
     PhotonMapSettings& maps = spec.photon_map;
     const photonfarm::v1::PhotonMapSettings& in_maps = settings.photon_map();
-    for (absl::Status status : {enum_value(settings.integrator(), 4, "integrator", &spec.integrator),
-                                enum_value(in_maps.filter(), 3, "photon_map.filter", &maps.filter),
-                                enum_value(in_maps.index(), 2, "photon_map.index", &maps.index)})
+    for (absl::Status status :
+         {enum_value(settings.integrator(), 4, "integrator", &spec.integrator),
+          enum_value(in_maps.filter(), 3, "photon_map.filter", &maps.filter),
+          enum_value(in_maps.index(), 2, "photon_map.index", &maps.index)})
         if (!status.ok()) return status;
     if (in_maps.global_photons() != 0 || in_maps.caustic_photons() != 0) {
         maps.global_photons = in_maps.global_photons();
@@ -210,7 +229,8 @@ absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings) {
     if (in_maps.nearest() != 0) maps.nearest = in_maps.nearest();
     maps.max_radius = in_maps.max_radius();
     maps.final_gather = in_maps.final_gather();
-    if (absl::Status status = CheckJobSpec(spec, SettingNames::kFields); !status.ok()) return status;
+    if (absl::Status status = CheckJobSpec(spec, SettingNames::kFields); !status.ok())
+        return status;
     return spec;
 }
 
@@ -223,9 +243,11 @@ photonfarm::v1::Image ToProto(const Image& image) {
 }
 
 absl::StatusOr<Image> FromProto(const photonfarm::v1::Image& image) {
-    if (image.width() > std::numeric_limits<int>::max() || image.height() > std::numeric_limits<int>::max())
+    if (image.width() > std::numeric_limits<int>::max() ||
+        image.height() > std::numeric_limits<int>::max())
         return absl::InvalidArgumentError("image: size out of range");
-    return DecodeImagePixels(image.rgb_f32_zstd(), static_cast<int>(image.width()), static_cast<int>(image.height()));
+    return DecodeImagePixels(image.rgb_f32_zstd(), static_cast<int>(image.width()),
+                             static_cast<int>(image.height()));
 }
 
 photonfarm::v1::ReferenceError ToProto(const ImageDifference& difference) {
@@ -266,8 +288,8 @@ ConvergencePoint FromProto(const photonfarm::v1::ConvergencePoint& point, uint64
     out.photons = point.photons();
     out.camera_samples = point.camera_samples();
     if (point.has_estimated_rmse() && point.has_estimated_rel_mse())
-        out.estimated =
-            ErrorEstimate{true, point.estimated_rmse(), point.estimated_rel_mse(), point.estimated_bias_rmse()};
+        out.estimated = ErrorEstimate{true, point.estimated_rmse(), point.estimated_rel_mse(),
+                                      point.estimated_bias_rmse()};
     if (point.has_reference_error()) out.measured = FromProto(point.reference_error());
     out.pixels = pixels;
     return out;

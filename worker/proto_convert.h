@@ -8,8 +8,8 @@
 #include "absl/status/statusor.h"
 #include "core/film/image.h"
 #include "core/film/image_metrics.h"
-#include "core/ppm/convergence.h"
 #include "core/ppm/batch.h"
+#include "core/ppm/convergence.h"
 #include "core/ppm/job_spec.h"
 #include "core/scene/scene_bundle.h"
 #include "photonfarm/v1/batch.pb.h"
@@ -26,8 +26,8 @@ photonfarm::v1::BatchResult ToProto(const BatchResult& result);
 // entries sorted and in range, one photon count and three finite, non-negative flux values
 // per entry, counts > 0, the sample slice inside the items with three finite, non-negative
 // values per item.
-absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& result, uint32_t hit_point_count,
-                                      uint32_t item_count);
+absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& result,
+                                      uint32_t hit_point_count, uint32_t item_count);
 
 photonfarm::v1::SceneBundle ToProto(const SceneBundle& bundle);
 // Checks paths and limits (CheckSceneBundle) and refuses a path given twice.

@@ -3,10 +3,10 @@
 // NOT_FOUND, a limit RESOURCE_EXHAUSTED: never a blanket UNKNOWN.
 #pragma once
 
-#include <string>
-
 #include <grpcpp/client_context.h>
 #include <grpcpp/support/status.h>
+
+#include <string>
 
 #include "absl/status/status.h"
 

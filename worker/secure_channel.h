@@ -6,11 +6,10 @@
 
 #include <grpcpp/channel.h>
 
+#include <CLI/CLI.hpp>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "absl/status/statusor.h"
 
@@ -28,7 +27,7 @@ inline constexpr char kClientTokenEnv[] = "PHOTONFARM_CLIENT_TOKEN";
 inline constexpr char kWorkerTokenEnv[] = "PHOTONFARM_WORKER_TOKEN";
 
 struct Token {
-    std::string name;    // for logs and per-client limits; never the secret
+    std::string name;  // for logs and per-client limits; never the secret
     std::string secret;
 };
 
@@ -47,14 +46,15 @@ absl::StatusOr<std::string> ReadPemFile(const std::string& path, const std::stri
 // Command-line choices, before the files are read.
 struct ChannelSecurityFlags {
     bool plaintext = false;
-    std::string ca_file;           // trusted roots (PEM); empty: the system's
+    std::string ca_file;              // trusted roots (PEM); empty: the system's
     std::string cert_file, key_file;  // our certificate for mutual TLS; both or neither
-    std::string server_name;       // the name the coordinator's certificate must hold; empty: the host's
-    std::string token_file;        // empty: the token environment variable, if set
+    std::string server_name;  // the name the coordinator's certificate must hold; empty: the host's
+    std::string token_file;   // empty: the token environment variable, if set
 };
 
 // Adds --plaintext, --tls-ca, --tls-cert, --tls-key, --tls-server-name and --token-file (each
-// also from a PHOTONFARM_* variable) to `app`; `token_env` names where else the token may come from.
+// also from a PHOTONFARM_* variable) to `app`; `token_env` names where else the token may come
+// from.
 void AddChannelSecurityOptions(CLI::App* app, ChannelSecurityFlags* flags, const char* token_env);
 
 struct ChannelSecurity {
@@ -65,10 +65,12 @@ struct ChannelSecurity {
 };
 
 // Reads the files the flags name and the token (from its file or `token_env`).
-absl::StatusOr<ChannelSecurity> LoadChannelSecurity(const ChannelSecurityFlags& flags, const char* token_env);
+absl::StatusOr<ChannelSecurity> LoadChannelSecurity(const ChannelSecurityFlags& flags,
+                                                    const char* token_env);
 
 // A channel to `address` (HOST:PORT) with the security given, the largest messages we send or
 // accept (kMaxMessageBytes), and the token added to every call. Connects lazily.
-std::shared_ptr<grpc::Channel> OpenChannel(const std::string& address, const ChannelSecurity& security);
+std::shared_ptr<grpc::Channel> OpenChannel(const std::string& address,
+                                           const ChannelSecurity& security);
 
 }  // namespace pf

@@ -21,7 +21,8 @@ namespace pf {
 // What every batch of a job needs, fixed for the job. Not copyable: the emitters refer to
 // the scene.
 struct JobPayload {
-    JobPayload(Scene scene_in, std::shared_ptr<const std::vector<HitPoint>> hit_points_in, const JobSpec& spec_in)
+    JobPayload(Scene scene_in, std::shared_ptr<const std::vector<HitPoint>> hit_points_in,
+               const JobSpec& spec_in)
         : scene(std::move(scene_in)),
           emitters(scene),
           hit_points(std::move(hit_points_in)),
@@ -32,8 +33,9 @@ struct JobPayload {
 
     Scene scene;
     Emitters emitters;
-    std::shared_ptr<const std::vector<HitPoint>> hit_points;  // empty for the integrators that render pixels
-    uint64_t seed;  // of the photons, light and pixel samples (PhotonSeed)
+    std::shared_ptr<const std::vector<HitPoint>>
+        hit_points;  // empty for the integrators that render pixels
+    uint64_t seed;   // of the photons, light and pixel samples (PhotonSeed)
     // The job's settings, its film size resolved (FilmFor): the integrator and its settings.
     JobSpec spec;
 };

@@ -6,7 +6,6 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
-
 #include "worker/backend_factory.h"
 
 namespace pf {
@@ -19,15 +18,19 @@ constexpr size_t kBackendsKept = 4;
 // A backend's failure (a job too large for the GPU, a lost device) is this worker's to
 // report, not the network's: FAILED_PRECONDITION, which the worker does not retry. It leaves,
 // returning its leases, and the job goes on elsewhere.
-absl::Status BackendError(const absl::Status& status, const std::string& backend, const std::string& job_id) {
+absl::Status BackendError(const absl::Status& status, const std::string& backend,
+                          const std::string& job_id) {
     return absl::FailedPreconditionError(
         absl::StrCat("the ", backend, " backend cannot run job ", job_id, ": ", status.message()));
 }
 
 }  // namespace
 
-WorkerLoop::WorkerLoop(WorkSource& source, std::string backend, uint32_t chunks_per_lease, bool report_in_background)
-    : source_(source), backend_name_(std::move(backend)), chunks_per_lease_(std::max(1u, chunks_per_lease)) {
+WorkerLoop::WorkerLoop(WorkSource& source, std::string backend, uint32_t chunks_per_lease,
+                       bool report_in_background)
+    : source_(source),
+      backend_name_(std::move(backend)),
+      chunks_per_lease_(std::max(1u, chunks_per_lease)) {
     if (report_in_background) reporter_ = std::thread([this] { ReportInBackground(); });
 }
 
@@ -54,7 +57,8 @@ absl::Status WorkerLoop::Report(Pending pending) {
         if (*verdict != TallyVerdict::kAccepted) {
             std::lock_guard lock(mutex_);
             ++stats_.batches_refused;
-            spdlog::debug("batch {} of job {} refused ({})", index, pending.job_id, static_cast<int>(*verdict));
+            spdlog::debug("batch {} of job {} refused ({})", index, pending.job_id,
+                          static_cast<int>(*verdict));
         }
     }
     return absl::OkStatus();
@@ -87,10 +91,12 @@ absl::StatusOr<WorkerLoop::JobBackend*> WorkerLoop::BackendFor(const WorkGrant& 
     auto it = backends_.begin();
     while (it != backends_.end() && !(it->job_id == grant.job_id && it->job == grant.job)) ++it;
     if (it == backends_.end()) {
-        absl::StatusOr<std::unique_ptr<Backend>> backend = CreateBackend(backend_name_, grant.job->scene);
+        absl::StatusOr<std::unique_ptr<Backend>> backend =
+            CreateBackend(backend_name_, grant.job->scene);
         if (!backend.ok()) return BackendError(backend.status(), backend_name_, grant.job_id);
         const JobPayload& job = *grant.job;
-        if (absl::Status status = (*backend)->BeginJob({&job.scene, &job.emitters, *job.hit_points, job.seed, &job.spec});
+        if (absl::Status status = (*backend)->BeginJob(
+                {&job.scene, &job.emitters, *job.hit_points, job.seed, &job.spec});
             !status.ok())
             return BackendError(status, backend_name_, grant.job_id);
         backends_.push_front({grant.job_id, grant.job, std::move(*backend)});
@@ -100,7 +106,8 @@ absl::StatusOr<WorkerLoop::JobBackend*> WorkerLoop::BackendFor(const WorkGrant& 
     }
     JobBackend& current = backends_.front();
     if (current.epoch != grant.epoch) {
-        if (absl::Status status = current.backend->BeginEpoch(grant.epoch, *grant.radius_sq); !status.ok())
+        if (absl::Status status = current.backend->BeginEpoch(grant.epoch, *grant.radius_sq);
+            !status.ok())
             return BackendError(status, backend_name_, grant.job_id);
         current.epoch = grant.epoch;
     }
@@ -117,7 +124,8 @@ absl::StatusOr<size_t> WorkerLoop::Step() {
     if (grant->batches.empty()) return 0;
     absl::StatusOr<JobBackend*> backend = BackendFor(*grant);
     if (!backend.ok()) return backend.status();
-    absl::StatusOr<std::vector<BatchResult>> results = (*backend)->backend->RunBatches(grant->batches);
+    absl::StatusOr<std::vector<BatchResult>> results =
+        (*backend)->backend->RunBatches(grant->batches);
     if (!results.ok()) return BackendError(results.status(), backend_name_, grant->job_id);
     Pending pending{grant->job_id, std::move(*results)};
     const size_t ran = pending.results.size();

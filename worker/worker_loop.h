@@ -32,7 +32,8 @@ public:
     // a thread of its own sends each lease's results while the next lease runs, so a slow
     // network does not idle the cores (a farm worker); otherwise Step reports before it
     // returns (the embedded render, whose report is the merge itself).
-    WorkerLoop(WorkSource& source, std::string backend, uint32_t chunks_per_lease, bool report_in_background = false);
+    WorkerLoop(WorkSource& source, std::string backend, uint32_t chunks_per_lease,
+               bool report_in_background = false);
     ~WorkerLoop();  // sends what is still pending
 
     // One lease: runs what it got and reports it (or hands it to the reporting thread, once

@@ -63,8 +63,9 @@ constexpr double kMaxBackoffSeconds = 2;
 
 // Errors worth waiting out (the coordinator restarting, the network); others end the worker.
 bool Retryable(const absl::Status& status) {
-    return absl::IsUnavailable(status) || absl::IsDeadlineExceeded(status) || absl::IsNotFound(status) ||
-           absl::IsDataLoss(status) || absl::IsResourceExhausted(status) || absl::IsAborted(status) ||
+    return absl::IsUnavailable(status) || absl::IsDeadlineExceeded(status) ||
+           absl::IsNotFound(status) || absl::IsDataLoss(status) ||
+           absl::IsResourceExhausted(status) || absl::IsAborted(status) ||
            absl::IsCancelled(status);
 }
 
@@ -82,24 +83,31 @@ int main(int argc, char** argv) {
         std::string cache_dir;
         uint32_t chunks_per_lease = 0;
         app.add_option("--coordinator", coordinator, "Coordinator address HOST:PORT")
-            ->envname("PHOTONFARM_COORDINATOR")->required();
+            ->envname("PHOTONFARM_COORDINATOR")
+            ->required();
         app.add_option("--threads", threads, "Threads (default: all cores)")
-            ->envname("PHOTONFARM_THREADS")->check(CLI::Range(1, 4096));
-        app.add_option("--backend", backend, "Photon backend: cpu (Embree) or vulkan (compute on a GPU)")
+            ->envname("PHOTONFARM_THREADS")
+            ->check(CLI::Range(1, 4096));
+        app.add_option("--backend", backend,
+                       "Photon backend: cpu (Embree) or vulkan (compute on a GPU)")
             ->default_val(backend)
             ->check(CLI::IsMember(pf::BackendNames()));
         app.add_flag_callback(
             "--list-devices",
             [&] {
-                std::fputs(pf::DescribeDevices(threads > 0 ? threads : tbb::this_task_arena::max_concurrency()).c_str(),
+                std::fputs(pf::DescribeDevices(
+                               threads > 0 ? threads : tbb::this_task_arena::max_concurrency())
+                               .c_str(),
                            stdout);
                 throw CLI::Success();
             },
             "List the devices each backend can run on, and exit");
-        app.add_option("--cache-dir", cache_dir, "Keep fetched scenes and hit points here across restarts");
+        app.add_option("--cache-dir", cache_dir,
+                       "Keep fetched scenes and hit points here across restarts");
         std::string alive_file;
         app.add_option("--alive-file", alive_file,
-                       "Touch this file at every heartbeat the coordinator answers (for container health checks)")
+                       "Touch this file at every heartbeat the coordinator answers (for container "
+                       "health checks)")
             ->envname("PHOTONFARM_ALIVE_FILE");
         app.add_option("--chunks-per-lease", chunks_per_lease,
                        "Chunks of 2^19 photons to lease at once (default: one per thread)")
@@ -107,20 +115,26 @@ int main(int argc, char** argv) {
         pf::ChannelSecurityFlags security_flags;
         pf::AddChannelSecurityOptions(&app, &security_flags, pf::kWorkerTokenEnv);
         pf::AddLogLevelOption(app);
-        if (std::optional<int> exit_code = pf::ParseCommandLine(app, argc, argv, "photonfarm-worker")) return *exit_code;
-        const absl::StatusOr<pf::ChannelSecurity> security = pf::LoadChannelSecurity(security_flags, pf::kWorkerTokenEnv);
+        if (std::optional<int> exit_code =
+                pf::ParseCommandLine(app, argc, argv, "photonfarm-worker"))
+            return *exit_code;
+        const absl::StatusOr<pf::ChannelSecurity> security =
+            pf::LoadChannelSecurity(security_flags, pf::kWorkerTokenEnv);
         if (!security.ok()) {
-            std::fprintf(stderr, "photonfarm-worker: error: %s\n", std::string(security.status().message()).c_str());
+            std::fprintf(stderr, "photonfarm-worker: error: %s\n",
+                         std::string(security.status().message()).c_str());
             return 2;
         }
-        if (security->plaintext) spdlog::warn("--plaintext: talking to the coordinator without TLS");
+        if (security->plaintext)
+            spdlog::warn("--plaintext: talking to the coordinator without TLS");
         // Signals are taken by one thread with sigwait; every other thread inherits the block.
         const sigset_t signals = StopSignals();
         pthread_sigmask(SIG_BLOCK, &signals, nullptr);
         // After the mask, so that the device's own threads (lavapipe's) inherit it too.
         const absl::StatusOr<pf::BackendDevice> device = pf::OpenBackendDevice(backend);
         if (!device.ok()) {
-            std::fprintf(stderr, "photonfarm-worker: error: %s\n", std::string(device.status().message()).c_str());
+            std::fprintf(stderr, "photonfarm-worker: error: %s\n",
+                         std::string(device.status().message()).c_str());
             return 1;
         }
         StopFlag stop;
@@ -128,7 +142,8 @@ int main(int argc, char** argv) {
             int signal = 0;
             sigwait(&signals, &signal);
             if (signal != 0 && !stop.IsSet()) {
-                spdlog::info("{}: finishing the batches in hand, then leaving", signal == SIGTERM ? "SIGTERM" : "SIGINT");
+                spdlog::info("{}: finishing the batches in hand, then leaving",
+                             signal == SIGTERM ? "SIGTERM" : "SIGINT");
                 stop.Set();
             }
         });
@@ -139,7 +154,8 @@ int main(int argc, char** argv) {
             {device->description.substr(0, 64), static_cast<uint32_t>(arena.max_concurrency()),
              std::string(pf::kPhotonfarmVersion), ""},
             cache_dir);
-        pf::WorkerLoop loop(source, backend, chunks_per_lease > 0 ? chunks_per_lease : arena.max_concurrency(),
+        pf::WorkerLoop loop(source, backend,
+                            chunks_per_lease > 0 ? chunks_per_lease : arena.max_concurrency(),
                             /*report_in_background=*/true);
 
         std::thread heartbeat_thread([&] {
@@ -169,12 +185,14 @@ int main(int argc, char** argv) {
                 exit_code = 1;
                 break;
             }
-            if (!reported_outage) spdlog::warn("{}; retrying with back-off", std::string(ran.status().message()));
+            if (!reported_outage)
+                spdlog::warn("{}; retrying with back-off", std::string(ran.status().message()));
             reported_outage = true;
             // Exponential back-off with jitter, so a restarted coordinator is not stormed.
             const double wait = backoff * std::uniform_real_distribution<double>(0.5, 1.0)(jitter);
             backoff = std::min(backoff * 2, kMaxBackoffSeconds);
-            if (absl::IsUnavailable(ran.status()) || absl::IsDeadlineExceeded(ran.status())) source.WaitForConnection(wait);
+            if (absl::IsUnavailable(ran.status()) || absl::IsDeadlineExceeded(ran.status()))
+                source.WaitForConnection(wait);
             if (stop.WaitFor(absl::IsUnavailable(ran.status()) ? 0.0 : wait)) break;
         }
         if (absl::Status status = loop.Flush(); !status.ok())
@@ -188,7 +206,8 @@ int main(int argc, char** argv) {
             exit_code = 1;
         }
         const pf::WorkerStats stats = loop.Stats();
-        spdlog::info("ran {} batches ({} refused), {} photons", stats.batches_run, stats.batches_refused, stats.photons);
+        spdlog::info("ran {} batches ({} refused), {} photons", stats.batches_run,
+                     stats.batches_refused, stats.photons);
         // Wake the signal thread if no signal came, then join it.
         pthread_kill(signal_thread.native_handle(), SIGTERM);
         signal_thread.join();

@@ -32,9 +32,9 @@ absl::Status WriteExr(const std::string& path, const Image& image, const ImageMe
     try {
         Imf::Header header(image.width, image.height);
         header.compression() = Imf::ZIP_COMPRESSION;
-        for (const char* channel : {"R", "G", "B"}) header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
-        for (const auto& [key, value] : metadata)
-            header.insert(key, Imf::StringAttribute(value));
+        for (const char* channel : {"R", "G", "B"})
+            header.channels().insert(channel, Imf::Channel(Imf::FLOAT));
+        for (const auto& [key, value] : metadata) header.insert(key, Imf::StringAttribute(value));
         Imf::FrameBuffer frame_buffer;
         AddChannels(frame_buffer, const_cast<Rgb*>(image.pixels.data()), image.width);
         Imf::OutputFile file(temporary.c_str(), header);
@@ -56,10 +56,12 @@ absl::StatusOr<Image> ReadExr(const std::string& path, ImageMetadata* metadata) 
         Image image(window.max.x - window.min.x + 1, window.max.y - window.min.y + 1);
         for (const char* channel : {"R", "G", "B"})
             if (file.header().channels().findChannel(channel) == nullptr)
-                return absl::InvalidArgumentError(absl::StrCat(path, ": EXR has no ", channel, " channel"));
+                return absl::InvalidArgumentError(
+                    absl::StrCat(path, ": EXR has no ", channel, " channel"));
         Imf::FrameBuffer frame_buffer;
         // Slices are addressed relative to the data window's origin.
-        Rgb* origin = image.pixels.data() - window.min.x - static_cast<ptrdiff_t>(window.min.y) * image.width;
+        Rgb* origin =
+            image.pixels.data() - window.min.x - static_cast<ptrdiff_t>(window.min.y) * image.width;
         AddChannels(frame_buffer, origin, image.width);
         file.setFrameBuffer(frame_buffer);
         file.readPixels(window.min.y, window.max.y);

@@ -16,7 +16,8 @@ using ImageMetadata = std::map<std::string, std::string>;
 // Writes 32-bit float R, G, B channels, ZIP-compressed, with each metadata entry as a
 // string attribute. Writes to a temporary file first and renames, so an existing file is
 // replaced only by a complete one.
-absl::Status WriteExr(const std::string& path, const Image& image, const ImageMetadata& metadata = {});
+absl::Status WriteExr(const std::string& path, const Image& image,
+                      const ImageMetadata& metadata = {});
 
 // Reads the R, G, B channels of an EXR file as float; string attributes go to *metadata.
 absl::StatusOr<Image> ReadExr(const std::string& path, ImageMetadata* metadata = nullptr);

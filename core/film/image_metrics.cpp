@@ -10,13 +10,15 @@
 namespace pf {
 
 uint64_t NonfinitePixels(const Image& image) {
-    return std::count_if(image.pixels.begin(), image.pixels.end(), [](const Rgb& p) { return !IsFinite(p); });
+    return std::count_if(image.pixels.begin(), image.pixels.end(),
+                         [](const Rgb& p) { return !IsFinite(p); });
 }
 
 absl::StatusOr<ImageDifference> CompareImages(const Image& image, const Image& reference) {
     if (image.width != reference.width || image.height != reference.height)
-        return absl::InvalidArgumentError(absl::StrCat("the images differ in size: ", image.width, "x", image.height,
-                                                       " against ", reference.width, "x", reference.height));
+        return absl::InvalidArgumentError(absl::StrCat("the images differ in size: ", image.width,
+                                                       "x", image.height, " against ",
+                                                       reference.width, "x", reference.height));
     ImageDifference difference;
     double squared = 0, relative = 0, peak = 0;
     uint64_t samples = 0;
@@ -41,7 +43,7 @@ absl::StatusOr<ImageDifference> CompareImages(const Image& image, const Image& r
         difference.rel_mse = relative / samples;
     }
     difference.psnr = difference.rmse > 0 && peak > 0 ? 20 * std::log10(peak / difference.rmse)
-                                                       : std::numeric_limits<double>::infinity();
+                                                      : std::numeric_limits<double>::infinity();
     return difference;
 }
 

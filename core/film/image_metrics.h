@@ -12,10 +12,10 @@ namespace pf {
 // Over every channel of every pixel where both values are finite; NaN and Inf values are
 // counted apart, per pixel of `image` that holds one.
 struct ImageDifference {
-    double rmse = 0;             // root mean squared error
-    double rel_mse = 0;          // mean of (image - reference)^2 / (reference^2 + 0.01)
-    double psnr = 0;             // dB, against the reference's largest finite value; +Inf if equal
-    double max_abs = 0;          // largest |image - reference|
+    double rmse = 0;     // root mean squared error
+    double rel_mse = 0;  // mean of (image - reference)^2 / (reference^2 + 0.01)
+    double psnr = 0;     // dB, against the reference's largest finite value; +Inf if equal
+    double max_abs = 0;  // largest |image - reference|
     uint64_t nonfinite_pixels = 0;  // pixels of `image` with a NaN or Inf channel
 };
 

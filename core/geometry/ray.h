@@ -21,9 +21,10 @@ struct Ray {
 // What a tracer reports for the closest hit: enough to rebuild the surface point.
 struct RayHit {
     float t = 0;
-    uint32_t triangle = 0;   // index into Scene::triangles
-    float b1 = 0, b2 = 0;    // barycentrics of vertices 1 and 2
-    uint32_t instance = ~0u; // index into Scene::instances, or ~0u (Instance::kNone) for a world triangle
+    uint32_t triangle = 0;  // index into Scene::triangles
+    float b1 = 0, b2 = 0;   // barycentrics of vertices 1 and 2
+    uint32_t instance =
+        ~0u;  // index into Scene::instances, or ~0u (Instance::kNone) for a world triangle
 };
 
 // Moves p off the surface along the geometric normal n, toward the side `n` faces, by a few
@@ -32,7 +33,8 @@ struct RayHit {
 // shared::OffsetCoordinate, the one definition for the CPU and the Vulkan kernels. A scene
 // scaled by 1e-4 or 1e+4 is offset exactly as at unit scale (tests/integration/numerics_test.cpp).
 inline Vec3 OffsetRayOrigin(const Vec3& p, const Vec3& n, float scene_scale) {
-    return {shared::OffsetCoordinate(p.x, n.x, scene_scale), shared::OffsetCoordinate(p.y, n.y, scene_scale),
+    return {shared::OffsetCoordinate(p.x, n.x, scene_scale),
+            shared::OffsetCoordinate(p.y, n.y, scene_scale),
             shared::OffsetCoordinate(p.z, n.z, scene_scale)};
 }
 

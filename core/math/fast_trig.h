@@ -8,6 +8,8 @@
 namespace pf {
 
 // Sets *sine = sin(2 pi u) and *cosine = cos(2 pi u), for u in [0, 1).
-inline void SinCosTurns(float u, float* sine, float* cosine) { shared::SinCosTurns(u, *sine, *cosine); }
+inline void SinCosTurns(float u, float* sine, float* cosine) {
+    shared::SinCosTurns(u, *sine, *cosine);
+}
 
 }  // namespace pf

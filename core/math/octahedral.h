@@ -19,7 +19,8 @@ inline uint32_t EncodeOctahedral(const Vec3& n) {
         u = fu, v = fv;
     }
     const auto quantise = [](float x) {
-        return static_cast<uint32_t>(static_cast<uint16_t>(static_cast<int16_t>(std::lround(x * 32767.0f))));
+        return static_cast<uint32_t>(
+            static_cast<uint16_t>(static_cast<int16_t>(std::lround(x * 32767.0f))));
     };
     return quantise(u) | quantise(v) << 16;
 }

@@ -12,7 +12,8 @@ namespace pf {
 
 // Row-major 4x4 matrix; points are column vectors (p' = M p).
 struct Transform {
-    std::array<std::array<double, 4>, 4> m{{{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
+    std::array<std::array<double, 4>, 4> m{
+        {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}, {0, 0, 0, 1}}};
 
     static Transform FromColumnMajor(const double* values) {
         Transform t;
@@ -21,14 +22,17 @@ struct Transform {
         return t;
     }
     // glTF's T * R * S with rotation as a unit quaternion (x, y, z, w).
-    static Transform FromTrs(const Vec3d& translation, const double rotation[4], const Vec3d& scale) {
+    static Transform FromTrs(const Vec3d& translation, const double rotation[4],
+                             const Vec3d& scale) {
         const double x = rotation[0], y = rotation[1], z = rotation[2], w = rotation[3];
-        const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-                                {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-                                {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+        const double r[3][3] = {
+            {1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+            {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+            {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
         Transform t;
         for (int row = 0; row < 3; ++row) {
-            for (int column = 0; column < 3; ++column) t.m[row][column] = r[row][column] * scale[column];
+            for (int column = 0; column < 3; ++column)
+                t.m[row][column] = r[row][column] * scale[column];
             t.m[row][3] = translation[row];
         }
         return t;
@@ -47,11 +51,15 @@ struct Transform {
     // Counter-clockwise by `degrees` about `axis` (normalised here), seen looking down the axis.
     static Transform Rotate(double degrees, const Vec3d& axis) {
         const Vec3d a = Normalize(axis);
-        const double radians = degrees * (kPiD / 180.0), s = std::sin(radians), c = std::cos(radians);
+        const double radians = degrees * (kPiD / 180.0), s = std::sin(radians),
+                     c = std::cos(radians);
         Transform t;
-        t.m[0] = {a.x * a.x + (1 - a.x * a.x) * c, a.x * a.y * (1 - c) - a.z * s, a.x * a.z * (1 - c) + a.y * s, 0};
-        t.m[1] = {a.x * a.y * (1 - c) + a.z * s, a.y * a.y + (1 - a.y * a.y) * c, a.y * a.z * (1 - c) - a.x * s, 0};
-        t.m[2] = {a.x * a.z * (1 - c) - a.y * s, a.y * a.z * (1 - c) + a.x * s, a.z * a.z + (1 - a.z * a.z) * c, 0};
+        t.m[0] = {a.x * a.x + (1 - a.x * a.x) * c, a.x * a.y * (1 - c) - a.z * s,
+                  a.x * a.z * (1 - c) + a.y * s, 0};
+        t.m[1] = {a.x * a.y * (1 - c) + a.z * s, a.y * a.y + (1 - a.y * a.y) * c,
+                  a.y * a.z * (1 - c) - a.x * s, 0};
+        t.m[2] = {a.x * a.z * (1 - c) - a.y * s, a.y * a.z * (1 - c) + a.x * s,
+                  a.z * a.z + (1 - a.z * a.z) * c, 0};
         return t;
     }
 
@@ -71,7 +79,9 @@ struct Transform {
             for (int row = 0; row < 4; ++row) {
                 if (row == column) continue;
                 const double factor = a[row][column];
-                for (int k = 0; k < 4; ++k) a[row][k] -= factor * a[column][k], inverse.m[row][k] -= factor * inverse.m[column][k];
+                for (int k = 0; k < 4; ++k)
+                    a[row][k] -= factor * a[column][k],
+                        inverse.m[row][k] -= factor * inverse.m[column][k];
             }
         }
         if (!inverse.IsFinite()) return std::nullopt;
@@ -95,7 +105,8 @@ struct Transform {
                 m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
     }
     Vec3d ApplyVector(const Vec3d& v) const {
-        return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+        return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
+                m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
                 m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
     }
     // Normals transform by the inverse transpose of the linear part; the cofactor matrix is

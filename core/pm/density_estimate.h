@@ -24,7 +24,8 @@ float FilterNormalisation(DensityFilter filter);
 // Reflected radiance at point p of a diffuse surface with unit normal n (on the side light is
 // gathered from) and albedo rho, from `lookup`'s k nearest photons within max_radius_sq.
 // `scratch` is the caller's, one per thread.
-Rgb EstimateDiffuseRadiance(const PhotonLookup& lookup, const Vec3& p, const Vec3& n, const Rgb& albedo, uint32_t k,
-                            float max_radius_sq, DensityFilter filter, NearestPhotons& scratch);
+Rgb EstimateDiffuseRadiance(const PhotonLookup& lookup, const Vec3& p, const Vec3& n,
+                            const Rgb& albedo, uint32_t k, float max_radius_sq,
+                            DensityFilter filter, NearestPhotons& scratch);
 
 }  // namespace pf

@@ -9,7 +9,8 @@ namespace pf {
 
 float GridCellSize(uint64_t photons, double surface_area, uint32_t k, float max_radius) {
     double size = max_radius;
-    if (photons > 0 && surface_area > 0) size = std::sqrt(double(k) * surface_area / (kPiD * double(photons)));
+    if (photons > 0 && surface_area > 0)
+        size = std::sqrt(double(k) * surface_area / (kPiD * double(photons)));
     return static_cast<float>(std::clamp(size, double(max_radius) / 8, double(max_radius)));
 }
 
@@ -40,7 +41,8 @@ PhotonGrid::Cell PhotonGrid::CellOf(const Vec3& p) const {
 
 uint64_t PhotonGrid::Bucket(const Cell& cell) const {
     // Teschner et al. 2003, "Optimized Spatial Hashing for Collision Detection".
-    const uint64_t h = (uint64_t(cell.x) * 73856093u) ^ (uint64_t(cell.y) * 19349663u) ^ (uint64_t(cell.z) * 83492791u);
+    const uint64_t h = (uint64_t(cell.x) * 73856093u) ^ (uint64_t(cell.y) * 19349663u) ^
+                       (uint64_t(cell.z) * 83492791u);
     return h & bucket_mask_;
 }
 
@@ -55,12 +57,14 @@ void PhotonGrid::Visit(const Vec3& p, float radius, NearestPhotons& out) const {
                     const StoredPhoton& photon = photons_[i];
                     const float distance_sq = LengthSquared(photon.position - p);
                     // Other cells may share the bucket: each photon counts in its own cell only.
-                    if (distance_sq < out.max_distance_sq && CellOf(photon.position) == cell) out.Offer(distance_sq, i);
+                    if (distance_sq < out.max_distance_sq && CellOf(photon.position) == cell)
+                        out.Offer(distance_sq, i);
                 }
             }
 }
 
-void PhotonGrid::Nearest(const Vec3& p, uint32_t k, float max_distance_sq, NearestPhotons& out) const {
+void PhotonGrid::Nearest(const Vec3& p, uint32_t k, float max_distance_sq,
+                         NearestPhotons& out) const {
     for (float radius = cell_size_;; radius *= 2) {
         const float radius_sq = std::min(radius * radius, max_distance_sq);
         out.Reset(k, radius_sq);

@@ -15,7 +15,8 @@ class PhotonGrid final : public PhotonLookup {
 public:
     // `cell_size`: world units, > 0; best about the radius that holds k photons.
     PhotonGrid(std::vector<StoredPhoton> photons, float cell_size);
-    void Nearest(const Vec3& p, uint32_t k, float max_distance_sq, NearestPhotons& out) const override;
+    void Nearest(const Vec3& p, uint32_t k, float max_distance_sq,
+                 NearestPhotons& out) const override;
     uint64_t Bytes() const override {
         return photons_.size() * sizeof(StoredPhoton) + bucket_begin_.size() * sizeof(uint32_t);
     }

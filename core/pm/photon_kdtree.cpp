@@ -25,9 +25,12 @@ void PhotonKdTree::Build(uint32_t lo, uint32_t hi) {
     if (hi - lo <= 1) return;
     // Split across the widest extent of the range's photons, at the median.
     Vec3 lower(std::numeric_limits<float>::max()), upper(-std::numeric_limits<float>::max());
-    for (uint32_t i = lo; i < hi; ++i) lower = Min(lower, photons_[i].position), upper = Max(upper, photons_[i].position);
+    for (uint32_t i = lo; i < hi; ++i)
+        lower = Min(lower, photons_[i].position), upper = Max(upper, photons_[i].position);
     const Vec3 extent = upper - lower;
-    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+    const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                     : extent.y >= extent.z                       ? 1
+                                                                  : 2;
     const uint32_t middle = lo + (hi - lo) / 2;
     std::nth_element(photons_.begin() + lo, photons_.begin() + middle, photons_.begin() + hi,
                      [axis](const StoredPhoton& a, const StoredPhoton& b) {
@@ -50,17 +53,22 @@ void PhotonKdTree::Search(const Vec3& p, uint32_t lo, uint32_t hi, NearestPhoton
         const float delta = Coordinate(p, axis) - Coordinate(photon.position, axis);
         // The near side first; the far side only if the split plane is within reach, after.
         const bool left_first = delta < 0;
-        if (left_first) Search(p, lo, middle, out);
-        else Search(p, middle + 1, hi, out);
+        if (left_first)
+            Search(p, lo, middle, out);
+        else
+            Search(p, middle + 1, hi, out);
         const float distance_sq = LengthSquared(photon.position - p);
         if (distance_sq < out.max_distance_sq) out.Offer(distance_sq, middle);
         if (!(delta * delta < out.max_distance_sq)) return;
-        if (left_first) lo = middle + 1;
-        else hi = middle;
+        if (left_first)
+            lo = middle + 1;
+        else
+            hi = middle;
     }
 }
 
-void PhotonKdTree::Nearest(const Vec3& p, uint32_t k, float max_distance_sq, NearestPhotons& out) const {
+void PhotonKdTree::Nearest(const Vec3& p, uint32_t k, float max_distance_sq,
+                           NearestPhotons& out) const {
     out.Reset(k, max_distance_sq);
     Search(p, 0, static_cast<uint32_t>(photons_.size()), out);
 }

@@ -15,8 +15,11 @@ class PhotonKdTree final : public PhotonLookup {
 public:
     // Builds in parallel on the calling TBB arena; the order does not depend on the thread count.
     explicit PhotonKdTree(std::vector<StoredPhoton> photons);
-    void Nearest(const Vec3& p, uint32_t k, float max_distance_sq, NearestPhotons& out) const override;
-    uint64_t Bytes() const override { return photons_.size() * (sizeof(StoredPhoton) + sizeof(uint8_t)); }
+    void Nearest(const Vec3& p, uint32_t k, float max_distance_sq,
+                 NearestPhotons& out) const override;
+    uint64_t Bytes() const override {
+        return photons_.size() * (sizeof(StoredPhoton) + sizeof(uint8_t));
+    }
 
 private:
     void Build(uint32_t lo, uint32_t hi);

@@ -20,7 +20,7 @@
 namespace pf {
 namespace {
 
-constexpr uint64_t kGlobalStream = 0x676c6f62616cull;   // "global"
+constexpr uint64_t kGlobalStream = 0x676c6f62616cull;  // "global"
 constexpr uint64_t kCausticStream = 0x63617573746963ull + 1;
 // Photons traced per task; tasks' photons are concatenated in task order, so the maps do not
 // depend on the thread count.
@@ -37,8 +37,9 @@ enum class MapKind { kGlobal, kCaustic };
 // read the whole reflected light there). Caustic map: the first landing after specular or
 // rough bounces alone.
 template <bool kSpecular, bool kTextures>
-void TraceMapPhotons(const Scene& scene, const Emitters& emitters, const Tracer& tracer, MapKind kind, bool everything,
-                     uint64_t seed, uint64_t begin, uint64_t end, double inverse_emitted, std::vector<StoredPhoton>& out) {
+void TraceMapPhotons(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
+                     MapKind kind, bool everything, uint64_t seed, uint64_t begin, uint64_t end,
+                     double inverse_emitted, std::vector<StoredPhoton>& out) {
     const SeedFamily seeds(seed, kind == MapKind::kGlobal ? kGlobalStream : kCausticStream, 0);
     for (uint64_t p = begin; p < end; ++p) {
         Rng rng(seeds.Seed(p));
@@ -51,10 +52,12 @@ void TraceMapPhotons(const Scene& scene, const Emitters& emitters, const Tracer&
             if (!IsFinite(flux) || !tracer.Intersect(ray, &hit)) break;
             bool stop = false;
             const PhotonEvent event = ScatterPhotonAt<kSpecular, kTextures>(
-                scene, hit, ray, flux, rng, [&](const Vec3& position, const Vec3& direction, const Rgb& power) {
+                scene, hit, ray, flux, rng,
+                [&](const Vec3& position, const Vec3& direction, const Rgb& power) {
                     const Rgb stored = power * static_cast<float>(inverse_emitted);
                     if (kind == MapKind::kCaustic) {
-                        if (other_bounces > 0 && diffuse_bounces == 0) out.push_back({position, direction, stored});
+                        if (other_bounces > 0 && diffuse_bounces == 0)
+                            out.push_back({position, direction, stored});
                         stop = true;  // a caustic photon ends at its first diffuse surface
                     } else if (everything || diffuse_bounces > 0) {
                         out.push_back({position, direction, stored});
@@ -67,12 +70,14 @@ void TraceMapPhotons(const Scene& scene, const Emitters& emitters, const Tracer&
 }
 
 // Photons [0, count) of one map, in parallel by tasks, concatenated in task order.
-std::vector<StoredPhoton> TraceMap(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
-                                   const SceneFeatures& features, MapKind kind, bool everything, uint64_t seed,
-                                   uint64_t count, uint64_t emitted) {
-    const auto trace = features.Specular()
-                           ? (features.textures ? TraceMapPhotons<true, true> : TraceMapPhotons<true, false>)
-                           : (features.textures ? TraceMapPhotons<false, true> : TraceMapPhotons<false, false>);
+std::vector<StoredPhoton> TraceMap(const Scene& scene, const Emitters& emitters,
+                                   const Tracer& tracer, const SceneFeatures& features,
+                                   MapKind kind, bool everything, uint64_t seed, uint64_t count,
+                                   uint64_t emitted) {
+    const auto trace =
+        features.Specular()
+            ? (features.textures ? TraceMapPhotons<true, true> : TraceMapPhotons<true, false>)
+            : (features.textures ? TraceMapPhotons<false, true> : TraceMapPhotons<false, false>);
     const uint64_t tasks = (count + kPhotonsPerTask - 1) / kPhotonsPerTask;
     std::vector<std::vector<StoredPhoton>> parts(tasks);
     const double inverse_emitted = emitted > 0 ? 1.0 / static_cast<double>(emitted) : 0.0;
@@ -109,19 +114,24 @@ void NearestPhotons::Offer(float distance_sq, uint32_t photon) {
     max_distance_sq = entries.front().distance_sq;
 }
 
-PhotonMapForecast ForecastPhotonMaps(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
-                                     const SceneFeatures& features, const PhotonMapSettings& settings, uint64_t seed) {
+PhotonMapForecast ForecastPhotonMaps(const Scene& scene, const Emitters& emitters,
+                                     const Tracer& tracer, const SceneFeatures& features,
+                                     const PhotonMapSettings& settings, uint64_t seed) {
     PhotonMapForecast forecast;
     const bool everything = settings.final_gather > 0;
     // The pilot's own streams: the maps' first photons would do too, but then the pilot and
     // the maps would share their luck.
     const uint64_t pilot_seed = HashSeed(seed, 0x70696c6f74ull);
     forecast.global_stored_per_emitted =
-        double(TraceMap(scene, emitters, tracer, features, MapKind::kGlobal, everything, pilot_seed, kPilotPhotons, 1).size()) /
+        double(TraceMap(scene, emitters, tracer, features, MapKind::kGlobal, everything, pilot_seed,
+                        kPilotPhotons, 1)
+                   .size()) /
         kPilotPhotons;
     if (features.Specular())
         forecast.caustic_stored_per_emitted =
-            double(TraceMap(scene, emitters, tracer, features, MapKind::kCaustic, false, pilot_seed, kPilotPhotons, 1).size()) /
+            double(TraceMap(scene, emitters, tracer, features, MapKind::kCaustic, false, pilot_seed,
+                            kPilotPhotons, 1)
+                       .size()) /
             kPilotPhotons;
     const double stored = forecast.global_stored_per_emitted * double(settings.global_photons) +
                           forecast.caustic_stored_per_emitted * double(settings.caustic_photons);
@@ -133,7 +143,8 @@ uint64_t AvailableMemoryBytes() {
     struct sysinfo info {};
     uint64_t available = sysinfo(&info) == 0 ? uint64_t(info.totalram) * info.mem_unit : UINT64_MAX;
     // A container's limit (cgroup v2, then v1): "max" or a number of bytes.
-    for (const char* path : {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
+    for (const char* path :
+         {"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"}) {
         std::ifstream in(path);
         std::string limit;
         if (in >> limit && !limit.empty() && std::isdigit(static_cast<unsigned char>(limit[0])))
@@ -142,27 +153,34 @@ uint64_t AvailableMemoryBytes() {
     return available;
 }
 
-absl::Status CheckPhotonMapsFit(const PhotonMapForecast& forecast, const PhotonMapSettings& settings,
-                                uint64_t available) {
+absl::Status CheckPhotonMapsFit(const PhotonMapForecast& forecast,
+                                const PhotonMapSettings& settings, uint64_t available) {
     const double allowed = kMapMemoryShare * static_cast<double>(available);
     if (static_cast<double>(forecast.bytes) <= allowed) return absl::OkStatus();
     const double gib = 1024.0 * 1024.0 * 1024.0;
     return absl::ResourceExhaustedError(absl::StrFormat(
-        "--pm-photons/--pm-caustic-photons: %d + %d photons would store about %.3g GiB of photon maps (%.2f and %.2f "
-        "photons stored per photon emitted), over the %.3g GiB this machine can spare (%.0f%% of %.3g GiB); emit "
-        "fewer, or use a progressive integrator (ppm, sppm), whose memory does not grow with photons",
+        "--pm-photons/--pm-caustic-photons: %d + %d photons would store about %.3g GiB of photon "
+        "maps (%.2f and %.2f "
+        "photons stored per photon emitted), over the %.3g GiB this machine can spare (%.0f%% of "
+        "%.3g GiB); emit "
+        "fewer, or use a progressive integrator (ppm, sppm), whose memory does not grow with "
+        "photons",
         settings.global_photons, settings.caustic_photons, double(forecast.bytes) / gib,
         forecast.global_stored_per_emitted, forecast.caustic_stored_per_emitted, allowed / gib,
         100 * kMapMemoryShare, double(available) / gib));
 }
 
-std::unique_ptr<PhotonLookup> BuildPhotonLookup(PhotonIndex index, std::vector<StoredPhoton> photons, float cell_size) {
-    if (index == PhotonIndex::kGrid) return std::make_unique<PhotonGrid>(std::move(photons), cell_size);
+std::unique_ptr<PhotonLookup> BuildPhotonLookup(PhotonIndex index,
+                                                std::vector<StoredPhoton> photons,
+                                                float cell_size) {
+    if (index == PhotonIndex::kGrid)
+        return std::make_unique<PhotonGrid>(std::move(photons), cell_size);
     return std::make_unique<PhotonKdTree>(std::move(photons));
 }
 
 float MaxSearchRadius(const PhotonMapSettings& settings, const Scene& scene) {
-    return settings.max_radius > 0 ? static_cast<float>(settings.max_radius) : 0.02f * scene.bounds.Diagonal();
+    return settings.max_radius > 0 ? static_cast<float>(settings.max_radius)
+                                   : 0.02f * scene.bounds.Diagonal();
 }
 
 double SceneSurfaceArea(const Scene& scene) {
@@ -171,11 +189,12 @@ double SceneSurfaceArea(const Scene& scene) {
     for (const Instance& instance : scene.instances) {
         const Prototype& prototype = scene.prototypes[instance.prototype];
         double prototype_area = 0;
-        for (uint32_t t = prototype.first_triangle; t < prototype.first_triangle + prototype.triangle_count; ++t) {
+        for (uint32_t t = prototype.first_triangle;
+             t < prototype.first_triangle + prototype.triangle_count; ++t) {
             const Triangle& triangle = scene.triangles[t];
             const Vec3& p0 = scene.positions[triangle.vertex[0]];
             prototype_area += 0.5 * Length(Cross(scene.positions[triangle.vertex[1]] - p0,
-                                                  scene.positions[triangle.vertex[2]] - p0));
+                                                 scene.positions[triangle.vertex[2]] - p0));
         }
         // Areas scale by |det|^(2/3) under a uniform scale, the common case.
         const std::array<float, 12>& m = instance.to_world;
@@ -188,16 +207,19 @@ double SceneSurfaceArea(const Scene& scene) {
 }
 
 PhotonMaps BuildPhotonMaps(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
-                           const SceneFeatures& features, const PhotonMapSettings& settings, uint64_t seed) {
+                           const SceneFeatures& features, const PhotonMapSettings& settings,
+                           uint64_t seed) {
     PhotonMaps maps;
     maps.global_emitted = settings.global_photons;
     maps.caustic_emitted = features.Specular() ? settings.caustic_photons : 0;
     const float max_radius = MaxSearchRadius(settings, scene);
     const double area = SceneSurfaceArea(scene);
-    std::vector<StoredPhoton> global = TraceMap(scene, emitters, tracer, features, MapKind::kGlobal,
-                                                settings.final_gather > 0, seed, maps.global_emitted, maps.global_emitted);
-    std::vector<StoredPhoton> caustic = TraceMap(scene, emitters, tracer, features, MapKind::kCaustic, false, seed,
-                                                 maps.caustic_emitted, maps.caustic_emitted);
+    std::vector<StoredPhoton> global =
+        TraceMap(scene, emitters, tracer, features, MapKind::kGlobal, settings.final_gather > 0,
+                 seed, maps.global_emitted, maps.global_emitted);
+    std::vector<StoredPhoton> caustic =
+        TraceMap(scene, emitters, tracer, features, MapKind::kCaustic, false, seed,
+                 maps.caustic_emitted, maps.caustic_emitted);
     const float global_cell = GridCellSize(global.size(), area, settings.nearest, max_radius);
     const float caustic_cell = GridCellSize(caustic.size(), area, settings.nearest, max_radius);
     maps.global = BuildPhotonLookup(settings.index, std::move(global), global_cell);

@@ -55,7 +55,8 @@ public:
     virtual ~PhotonLookup() = default;
     std::span<const StoredPhoton> Photons() const { return photons_; }
     // The (up to) k photons nearest to p within sqrt(max_distance_sq) into `out`. Thread-safe.
-    virtual void Nearest(const Vec3& p, uint32_t k, float max_distance_sq, NearestPhotons& out) const = 0;
+    virtual void Nearest(const Vec3& p, uint32_t k, float max_distance_sq,
+                         NearestPhotons& out) const = 0;
     // Bytes held, photons included.
     virtual uint64_t Bytes() const = 0;
 
@@ -65,7 +66,8 @@ protected:
 
 // Builds the lookup of `index` over the photons (consumed); `cell_size` is the grid's
 // (GridCellSize). Runs on the calling TBB arena.
-std::unique_ptr<PhotonLookup> BuildPhotonLookup(PhotonIndex index, std::vector<StoredPhoton> photons, float cell_size);
+std::unique_ptr<PhotonLookup> BuildPhotonLookup(PhotonIndex index,
+                                                std::vector<StoredPhoton> photons, float cell_size);
 
 // The k-nearest search's limit: the settings' max_radius, or 2% of the scene's diagonal.
 float MaxSearchRadius(const PhotonMapSettings& settings, const Scene& scene);
@@ -88,21 +90,23 @@ struct PhotonMapForecast {
     double global_stored_per_emitted = 0, caustic_stored_per_emitted = 0;
     uint64_t bytes = 0;
 };
-PhotonMapForecast ForecastPhotonMaps(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
-                                     const SceneFeatures& features, const PhotonMapSettings& settings, uint64_t seed);
+PhotonMapForecast ForecastPhotonMaps(const Scene& scene, const Emitters& emitters,
+                                     const Tracer& tracer, const SceneFeatures& features,
+                                     const PhotonMapSettings& settings, uint64_t seed);
 
 // Memory this process may use: the physical memory available, or the cgroup's limit where
 // it is lower (a container), bytes.
 uint64_t AvailableMemoryBytes();
 // RESOURCE_EXHAUSTED naming the flags when the forecast does not fit in `available` bytes
 // (with room left for the rest of the render).
-absl::Status CheckPhotonMapsFit(const PhotonMapForecast& forecast, const PhotonMapSettings& settings,
-                                uint64_t available);
+absl::Status CheckPhotonMapsFit(const PhotonMapForecast& forecast,
+                                const PhotonMapSettings& settings, uint64_t available);
 
 // Traces and stores the maps (photon p of the global map draws from a stream of (seed, p)
 // alone, so every worker builds the same maps), in parallel on the calling TBB arena.
 // Without specular or rough materials there are no caustics and no caustic photons are traced.
 PhotonMaps BuildPhotonMaps(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
-                           const SceneFeatures& features, const PhotonMapSettings& settings, uint64_t seed);
+                           const SceneFeatures& features, const PhotonMapSettings& settings,
+                           uint64_t seed);
 
 }  // namespace pf

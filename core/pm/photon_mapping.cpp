@@ -32,35 +32,42 @@ Rgb GatherRay(const PhotonMappingInputs& inputs, Ray ray, Rng& rng, NearestPhoto
         if (material.type == MaterialType::kDiffuse) {
             const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
             const float max_radius_sq = inputs.max_radius * inputs.max_radius;
-            return weight * EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal, base_color,
-                                                    inputs.settings.nearest, max_radius_sq, inputs.settings.filter,
-                                                    scratch);
+            return weight * EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal,
+                                                    base_color, inputs.settings.nearest,
+                                                    max_radius_sq, inputs.settings.filter, scratch);
         }
-        const SpecularBounce bounce =
-            ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing, base_color, rng);
+        const SpecularBounce bounce = ScatterNonDiffuse(
+            material, ray.direction, surface.shading_normal, front_facing, base_color, rng);
         weight *= bounce.weight;
         if (IsBlack(weight)) return Rgb(0.0f);
-        const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;
+        const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal
+                                                             : surface.geometric_normal;
         ray = {OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude()), bounce.direction};
     }
     return Rgb(0.0f);
 }
 
 // The light leaving diffuse point `surface` toward the camera path, its albedo `albedo`.
-Rgb DiffuseRadiance(const PhotonMappingInputs& inputs, const SurfacePoint& surface, const Vec3& normal,
-                    const Vec3& geometric, const Rgb& albedo, Rng& rng, NearestPhotons& scratch) {
+Rgb DiffuseRadiance(const PhotonMappingInputs& inputs, const SurfacePoint& surface,
+                    const Vec3& normal, const Vec3& geometric, const Rgb& albedo, Rng& rng,
+                    NearestPhotons& scratch) {
     const float max_radius_sq = inputs.max_radius * inputs.max_radius;
     const PhotonMapSettings& settings = inputs.settings;
-    Rgb radiance = albedo / kPi * SampleDirectIrradiance(*inputs.emitters, *inputs.tracer, surface.position, normal, rng);
+    Rgb radiance =
+        albedo / kPi *
+        SampleDirectIrradiance(*inputs.emitters, *inputs.tracer, surface.position, normal, rng);
     if (!inputs.maps->caustic->Photons().empty())
-        radiance += EstimateDiffuseRadiance(*inputs.maps->caustic, surface.position, normal, albedo, settings.nearest,
-                                            max_radius_sq, settings.filter, scratch);
+        radiance +=
+            EstimateDiffuseRadiance(*inputs.maps->caustic, surface.position, normal, albedo,
+                                    settings.nearest, max_radius_sq, settings.filter, scratch);
     if (settings.final_gather == 0)
-        return radiance + EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal, albedo,
-                                                  settings.nearest, max_radius_sq, settings.filter, scratch);
+        return radiance + EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal,
+                                                  albedo, settings.nearest, max_radius_sq,
+                                                  settings.filter, scratch);
     // Final gathering: cosine-weighted rays, each carrying albedo (f cos / pdf = rho).
     const Frame frame = Frame::FromNormal(normal);
-    const Vec3 origin = OffsetRayOrigin(surface.position, geometric, inputs.scene->bounds.Magnitude());
+    const Vec3 origin =
+        OffsetRayOrigin(surface.position, geometric, inputs.scene->bounds.Magnitude());
     Rgb gathered(0.0f);
     for (uint32_t i = 0; i < settings.final_gather; ++i) {
         const float u1 = rng.NextFloat();
@@ -89,14 +96,18 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
         // Emission seen directly or through specular and rough bounces (no light map holds it).
         if (front_facing && material.IsEmissive()) radiance += throughput * material.emission;
         if (material.type == MaterialType::kDiffuse) {
-            const Rgb albedo = inputs.filter_angle > 0 ? scene.BaseColor(surface, length * inputs.filter_angle)
-                                                       : scene.BaseColor(surface);
+            const Rgb albedo = inputs.filter_angle > 0
+                                   ? scene.BaseColor(surface, length * inputs.filter_angle)
+                                   : scene.BaseColor(surface);
             const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
-            const Vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
-            return radiance + throughput * DiffuseRadiance(inputs, surface, normal, geometric, albedo, rng, scratch);
+            const Vec3 geometric =
+                front_facing ? surface.geometric_normal : -surface.geometric_normal;
+            return radiance + throughput * DiffuseRadiance(inputs, surface, normal, geometric,
+                                                           albedo, rng, scratch);
         }
-        const SpecularBounce bounce = ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                                                        scene.BaseColor(surface), rng);
+        const SpecularBounce bounce =
+            ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
+                              scene.BaseColor(surface), rng);
         throughput *= bounce.weight;
         if (depth >= kCameraRouletteDepth) {
             const float survive = std::min(1.0f, MaxComponent(throughput));
@@ -104,7 +115,8 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
             throughput /= survive;
         }
         if (IsBlack(throughput)) break;
-        const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;
+        const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal
+                                                             : surface.geometric_normal;
         ray = {OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude()), bounce.direction};
     }
     return radiance;

@@ -23,10 +23,12 @@ struct PhotonMappingInputs {
     const Scene* scene = nullptr;
     const Emitters* emitters = nullptr;
     const Tracer* tracer = nullptr;
-    const PhotonMaps* maps = nullptr;  // built with these settings (final gathering decides the global map's content)
+    const PhotonMaps* maps =
+        nullptr;  // built with these settings (final gathering decides the global map's content)
     PhotonMapSettings settings;
-    float max_radius = 0;    // of the k-nearest search (MaxSearchRadius)
-    float filter_angle = 0;  // a camera sample's cone, for textures at its diffuse hit (as PathInputs)
+    float max_radius = 0;  // of the k-nearest search (MaxSearchRadius)
+    float filter_angle =
+        0;  // a camera sample's cone, for textures at its diffuse hit (as PathInputs)
     SceneFeatures features = SceneFeatures::All();
 };
 

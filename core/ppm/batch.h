@@ -31,9 +31,9 @@ struct BatchLayout {
 inline constexpr uint32_t kPhotonsPerChunk = 1u << 19;
 
 struct BatchSpec {
-    uint64_t index = 0;       // global batch index: epoch * batches_per_epoch + batch_in_epoch
+    uint64_t index = 0;  // global batch index: epoch * batches_per_epoch + batch_in_epoch
     uint64_t epoch = 0;
-    uint32_t photons = 0;     // photon paths to emit
+    uint32_t photons = 0;  // photon paths to emit
     // Each batch also takes one sample for each item of a slice: for the photon mappers a
     // direct-light sample per hit point, so the direct estimate is refined progressively and
     // shared out like the photons; for the integrators that sample pixels (path, pm) the
@@ -54,7 +54,7 @@ BatchSpec MakeBatchSpec(const BatchLayout& layout, uint64_t epoch, uint32_t batc
 // Photon contributions of one batch, sorted by hit point index, one entry per hit point reached.
 struct Tally {
     std::vector<uint32_t> hit_point;
-    std::vector<uint32_t> photons;  // M: photons found within the hit point's radius
+    std::vector<uint32_t> photons;        // M: photons found within the hit point's radius
     std::vector<uint32_t> inner_photons;  // those of them within R / sqrt(2), for the bias estimate
     // Their raw photon flux (W x N_emitted), summed in float in photon order; the merge
     // multiplies it by the hit point's BSDF weight to give Phi_M. Float is exact enough

@@ -22,7 +22,7 @@ constexpr uint64_t kCameraStream = 0x63616d657261ull;
 struct CameraPath {
     Ray ray;
     Rgb throughput;
-    float length = 0;     // distance travelled, for the pixel footprint
+    float length = 0;  // distance travelled, for the pixel footprint
     int depth = 0;
     int splits_left = 0;  // glass interfaces still to split rather than choose at random
 };
@@ -37,8 +37,8 @@ struct CameraPath {
 // the square root of its samples, as pbrt-v4 scales its ray differentials).
 template <bool kSpecular, bool kTextures>
 Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& primary, uint32_t pixel,
-                      float pixel_angle, float filter_angle, int splits, Rng& rng, std::vector<HitPoint>& hit_points,
-                      std::vector<float>& footprints) {
+                      float pixel_angle, float filter_angle, int splits, Rng& rng,
+                      std::vector<HitPoint>& hit_points, std::vector<float>& footprints) {
     Rgb emission(0.0f);
     CameraPath stack[kCameraSplits + 1];
     int pending = 0;
@@ -52,25 +52,31 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
             const SurfacePoint surface = scene.Surface(hit);
             const Material& material = scene.materials[surface.material];
             const bool front_facing = Dot(path.ray.direction, surface.geometric_normal) < 0;
-            if (front_facing && material.IsEmissive()) emission += path.throughput * material.emission;
-            const Rgb base_color = kTextures ? scene.BaseColor(surface, path.length * filter_angle) : material.base_color;
+            if (front_facing && material.IsEmissive())
+                emission += path.throughput * material.emission;
+            const Rgb base_color = kTextures ? scene.BaseColor(surface, path.length * filter_angle)
+                                             : material.base_color;
             if (!kSpecular || material.type == MaterialType::kDiffuse) {
                 const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
-                hit_points.push_back({surface.position, normal, path.throughput * base_color / kPi, pixel});
+                hit_points.push_back(
+                    {surface.position, normal, path.throughput * base_color / kPi, pixel});
                 footprints.push_back(path.length * pixel_angle);
                 break;
             }
             const Vec3& n = surface.shading_normal;
-            const float reflect = ReflectionProbability(material, path.ray.direction, n, front_facing);
+            const float reflect =
+                ReflectionProbability(material, path.ray.direction, n, front_facing);
             SpecularBounce bounce;
             if (path.splits_left > 0 && reflect > 0 && reflect < 1) {
                 // Continue with the reflection; the transmission waits on the stack.
-                const SpecularBounce transmitted = TransmitSpecular(material, path.ray.direction, n, front_facing, base_color);
+                const SpecularBounce transmitted =
+                    TransmitSpecular(material, path.ray.direction, n, front_facing, base_color);
                 CameraPath& other = stack[pending++];
                 other = path;
                 other.throughput *= transmitted.weight * (1.0f - reflect);
                 other.ray = {OffsetRayOrigin(surface.position,
-                                             front_facing ? -surface.geometric_normal : surface.geometric_normal,
+                                             front_facing ? -surface.geometric_normal
+                                                          : surface.geometric_normal,
                                              scene.bounds.Magnitude()),
                              transmitted.direction};
                 ++other.depth;
@@ -79,7 +85,8 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
                 bounce = ReflectSpecular(material, path.ray.direction, n, front_facing, base_color);
                 bounce.weight *= reflect;
             } else {
-                bounce = ScatterNonDiffuse(material, path.ray.direction, n, front_facing, base_color, rng);
+                bounce = ScatterNonDiffuse(material, path.ray.direction, n, front_facing,
+                                           base_color, rng);
             }
             path.throughput *= bounce.weight;
             if (path.depth >= kCameraRouletteDepth) {
@@ -90,7 +97,8 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
             if (IsBlack(path.throughput)) break;
             const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal
                                                                  : surface.geometric_normal;
-            path.ray = {OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude()), bounce.direction};
+            path.ray = {OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude()),
+                        bounce.direction};
         }
     }
     return emission;
@@ -102,7 +110,8 @@ std::vector<uint32_t> MortonOrder(const std::vector<HitPoint>& hit_points, const
     const Vec3 extent = Max(bounds.upper - bounds.lower, Vec3(1e-30f));
     std::vector<std::pair<uint64_t, uint32_t>> keys(hit_points.size());
     for (size_t i = 0; i < hit_points.size(); ++i) {
-        keys[i] = {MortonCode(hit_points[i].position, bounds.lower, extent), static_cast<uint32_t>(i)};
+        keys[i] = {MortonCode(hit_points[i].position, bounds.lower, extent),
+                   static_cast<uint32_t>(i)};
     }
     std::sort(keys.begin(), keys.end());
     std::vector<uint32_t> order(keys.size());
@@ -117,7 +126,8 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     const int width = settings.width, height = settings.height, spp = settings.samples_per_pixel;
     const Film film{width, height, spp};
     const float pixel_angle = scene.camera.PixelAngle(height);
-    const float filter_angle = pixel_angle / std::sqrt(static_cast<float>(settings.samples_per_pixel));
+    const float filter_angle =
+        pixel_angle / std::sqrt(static_cast<float>(settings.samples_per_pixel));
     const int splits = settings.stochastic ? 0 : kCameraSplits;
 
     std::vector<std::vector<HitPoint>> row_hit_points(height);
@@ -126,9 +136,11 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     result.emission = Image(width, height);
     // The camera path for the scene's features, chosen once.
     const SceneFeatures& features = settings.features;
-    const auto trace = features.Specular()
-                           ? (features.textures ? TraceCameraSample<true, true> : TraceCameraSample<true, false>)
-                           : (features.textures ? TraceCameraSample<false, true> : TraceCameraSample<false, false>);
+    const auto trace =
+        features.Specular()
+            ? (features.textures ? TraceCameraSample<true, true> : TraceCameraSample<true, false>)
+            : (features.textures ? TraceCameraSample<false, true>
+                                 : TraceCameraSample<false, false>);
     tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
         for (int y = rows.begin(); y < rows.end(); ++y) {
             for (int x = 0; x < width; ++x) {
@@ -138,11 +150,12 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                 for (int s = 0; s < spp; ++s) {
                     const Ray ray = PixelSampleRay(scene.camera, film, x, y, s, rng);
                     const size_t before = row_hit_points[y].size();
-                    emission += trace(scene, tracer, ray, pixel, pixel_angle, filter_angle, splits, rng,
-                                      row_hit_points[y], row_footprints[y]);
+                    emission += trace(scene, tracer, ray, pixel, pixel_angle, filter_angle, splits,
+                                      rng, row_hit_points[y], row_footprints[y]);
                     // A stochastic pass keeps one slot per sample, black where it found nothing.
                     if (settings.stochastic && row_hit_points[y].size() == before) {
-                        row_hit_points[y].push_back({Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), Rgb(0.0f), pixel});
+                        row_hit_points[y].push_back(
+                            {Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), Rgb(0.0f), pixel});
                         row_footprints[y].push_back(0.0f);
                     }
                 }

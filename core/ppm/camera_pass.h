@@ -34,7 +34,7 @@ struct CameraPassResult {
     std::vector<HitPoint> hit_points;
     // Per hit point: a pixel's width at its distance, world units (0 for an empty slot).
     std::vector<float> footprint;
-    Image emission;                    // emission reaching each pixel, averaged over its k paths
+    Image emission;  // emission reaching each pixel, averaged over its k paths
 };
 
 // Longest specular chain followed; Russian roulette applies after kCameraRouletteDepth; the

@@ -7,8 +7,8 @@
 
 namespace pf {
 
-CausticProbe ProbeCaustics(const Scene& scene, const Emitters& emitters, const Tracer& tracer, uint64_t seed,
-                           uint32_t paths) {
+CausticProbe ProbeCaustics(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
+                           uint64_t seed, uint32_t paths) {
     CausticProbe probe;
     if (!emitters.HasPower()) return probe;
     constexpr uint64_t kProbeStream = 0x63617573746963ull;  // "caustic"
@@ -26,11 +26,14 @@ CausticProbe ProbeCaustics(const Scene& scene, const Emitters& emitters, const T
                 break;
             }
             const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-            const SpecularBounce next = ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                                                          scene.BaseColor(surface), rng);
+            const SpecularBounce next =
+                ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
+                                  scene.BaseColor(surface), rng);
             if (IsBlack(next.weight)) break;
-            const Vec3 side = front_facing == next.transmitted ? -surface.geometric_normal : surface.geometric_normal;
-            ray = {OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude()), next.direction};
+            const Vec3 side = front_facing == next.transmitted ? -surface.geometric_normal
+                                                               : surface.geometric_normal;
+            ray = {OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude()),
+                   next.direction};
         }
     }
     return probe;

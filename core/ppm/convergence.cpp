@@ -10,7 +10,9 @@
 namespace pf {
 namespace {
 
-std::string Cell(const std::optional<double>& value) { return value ? absl::StrFormat("%.9g", *value) : ""; }
+std::string Cell(const std::optional<double>& value) {
+    return value ? absl::StrFormat("%.9g", *value) : "";
+}
 
 }  // namespace
 
@@ -58,16 +60,18 @@ ConvergenceFits FitConvergence(std::span<const ConvergencePoint> points) {
         measured.push_back(point.measured ? point.measured->rmse : 0.0);  // 0: left out of the fit
         estimated.push_back(point.estimated ? point.estimated->rmse : 0.0);
     }
-    return {FitPowerLaw(seconds, measured), FitPowerLaw(photons, measured), FitPowerLaw(seconds, estimated),
-            FitPowerLaw(photons, estimated)};
+    return {FitPowerLaw(seconds, measured), FitPowerLaw(photons, measured),
+            FitPowerLaw(seconds, estimated), FitPowerLaw(photons, estimated)};
 }
 
 std::string ConvergenceCsv(std::span<const ConvergencePoint> points) {
     std::string csv =
-        "seconds,epochs,photons,estimated_rmse,estimated_rel_error,estimated_bias_rmse,reference_rmse,"
+        "seconds,epochs,photons,estimated_rmse,estimated_rel_error,estimated_bias_rmse,reference_"
+        "rmse,"
         "reference_rel_mse,reference_rel_error,reference_nonfinite_fraction,camera_samples\n";
     for (const ConvergencePoint& p : points) {
-        std::optional<double> estimated_rmse, estimated_rel, estimated_bias, rmse, rel_mse, rel, nonfinite;
+        std::optional<double> estimated_rmse, estimated_rel, estimated_bias, rmse, rel_mse, rel,
+            nonfinite;
         if (p.estimated) {
             estimated_rmse = p.estimated->rmse;
             estimated_rel = p.estimated->RelativeError();
@@ -77,16 +81,19 @@ std::string ConvergenceCsv(std::span<const ConvergencePoint> points) {
             rmse = p.measured->rmse;
             rel_mse = p.measured->rel_mse;
             rel = std::sqrt(p.measured->rel_mse);
-            nonfinite = p.pixels > 0 ? double(p.measured->nonfinite_pixels) / double(p.pixels) : 0.0;
+            nonfinite =
+                p.pixels > 0 ? double(p.measured->nonfinite_pixels) / double(p.pixels) : 0.0;
         }
-        csv += absl::StrFormat("%.6f,%d,%d,%s,%s,%s,%s,%s,%s,%s,%d\n", p.seconds, p.epochs, p.photons,
-                               Cell(estimated_rmse), Cell(estimated_rel), Cell(estimated_bias), Cell(rmse),
-                               Cell(rel_mse), Cell(rel), Cell(nonfinite), p.camera_samples);
+        csv += absl::StrFormat("%.6f,%d,%d,%s,%s,%s,%s,%s,%s,%s,%d\n", p.seconds, p.epochs,
+                               p.photons, Cell(estimated_rmse), Cell(estimated_rel),
+                               Cell(estimated_bias), Cell(rmse), Cell(rel_mse), Cell(rel),
+                               Cell(nonfinite), p.camera_samples);
     }
     return csv;
 }
 
-absl::Status WriteConvergenceCsv(const std::string& path, std::span<const ConvergencePoint> points) {
+absl::Status WriteConvergenceCsv(const std::string& path,
+                                 std::span<const ConvergencePoint> points) {
     return WriteFileAtomically(path, ConvergenceCsv(points));
 }
 

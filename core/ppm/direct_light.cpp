@@ -21,26 +21,30 @@ DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const 
     return rays;
 }
 
-Rgb FinishDirectLight(const Emitters& emitters, const Vec3& n, const DirectLightRays& rays, bool occluded,
-                      const RayHit* bsdf_hit) {
+Rgb FinishDirectLight(const Emitters& emitters, const Vec3& n, const DirectLightRays& rays,
+                      bool occluded, const RayHit* bsdf_hit) {
     Rgb irradiance(0.0f);
     if (rays.light_active && !occluded) {
         const float cosine = Dot(rays.light.direction, n);
         // A punctual light (pdf 0) is found by light sampling alone.
-        const float weight = rays.light.pdf > 0 ? PowerHeuristic(rays.light.pdf, cosine / kPi) : 1.0f;
+        const float weight =
+            rays.light.pdf > 0 ? PowerHeuristic(rays.light.pdf, cosine / kPi) : 1.0f;
         irradiance += rays.light.radiance_over_pdf * (cosine * weight);
     }
     if (bsdf_hit != nullptr && bsdf_hit->instance == Instance::kNone) {
         const Ray& ray = rays.bsdf_ray;
-        const Emitters::Hit hit =
-            emitters.HitEmitter(bsdf_hit->triangle, ray.origin, ray.origin + ray.direction * bsdf_hit->t);
+        const Emitters::Hit hit = emitters.HitEmitter(bsdf_hit->triangle, ray.origin,
+                                                      ray.origin + ray.direction * bsdf_hit->t);
         // L cos / (cos / pi): the cosine ray's own weight is pi.
-        if (hit.pdf > 0) irradiance += hit.radiance * (kPi * PowerHeuristic(Dot(ray.direction, n) / kPi, hit.pdf));
+        if (hit.pdf > 0)
+            irradiance +=
+                hit.radiance * (kPi * PowerHeuristic(Dot(ray.direction, n) / kPi, hit.pdf));
     }
     return irradiance;
 }
 
-Rgb SampleDirectIrradiance(const Emitters& emitters, const Tracer& tracer, const Vec3& p, const Vec3& n, Rng& rng) {
+Rgb SampleDirectIrradiance(const Emitters& emitters, const Tracer& tracer, const Vec3& p,
+                           const Vec3& n, Rng& rng) {
     const DirectLightRays rays = StartDirectLight(emitters, p, n, rng);
     const bool occluded = rays.light_active && tracer.Occluded(rays.light.shadow_ray);
     RayHit hit;
@@ -53,8 +57,9 @@ SeedFamily DirectLightSeeds(uint64_t seed, uint64_t epoch) {
     return SeedFamily(seed, kDirectStream, epoch);
 }
 
-uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer, std::span<const HitPoint> hit_points,
-                           uint32_t first, uint64_t seed, uint64_t epoch, std::span<Rgb> out) {
+uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
+                           std::span<const HitPoint> hit_points, uint32_t first, uint64_t seed,
+                           uint64_t epoch, std::span<Rgb> out) {
     uint64_t discarded = 0;
     PF_CHECK(first + out.size() <= hit_points.size());
     constexpr int kLanes = Tracer::kPacketSize;
@@ -63,7 +68,8 @@ uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer, std::
         const int lanes = static_cast<int>(std::min<size_t>(kLanes, out.size() - begin));
         DirectLightRays samples[kLanes];
         Ray shadow_rays[kLanes] = {}, bsdf_rays[kLanes] = {};
-        bool shadow_active[kLanes] = {}, bsdf_active[kLanes] = {}, occluded[kLanes] = {}, found[kLanes] = {};
+        bool shadow_active[kLanes] = {}, bsdf_active[kLanes] = {}, occluded[kLanes] = {},
+             found[kLanes] = {};
         RayHit hits[kLanes];
         for (int lane = 0; lane < lanes; ++lane) {
             const uint32_t index = first + static_cast<uint32_t>(begin) + lane;
@@ -79,8 +85,10 @@ uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer, std::
         if (emitters.HasTriangles()) tracer.IntersectPacket(bsdf_rays, bsdf_active, hits, found);
         for (int lane = 0; lane < lanes; ++lane) {
             const HitPoint& hit_point = hit_points[first + begin + lane];
-            const Rgb sample = hit_point.weight * FinishDirectLight(emitters, hit_point.normal, samples[lane],
-                                                                    occluded[lane], found[lane] ? &hits[lane] : nullptr);
+            const Rgb sample =
+                hit_point.weight * FinishDirectLight(emitters, hit_point.normal, samples[lane],
+                                                     occluded[lane],
+                                                     found[lane] ? &hits[lane] : nullptr);
             const bool finite = IsFinite(sample);
             discarded += !finite;
             out[begin + lane] = finite ? sample : Rgb(0.0f);

@@ -30,11 +30,12 @@ DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const 
 // The sample's estimate of the irradiance at p, the integral of L_i cos over the hemisphere
 // (a diffuse point reflects it times albedo / pi), from whether the shadow ray was occluded
 // and what the cosine ray hit (nullptr where it hit nothing or was not cast).
-Rgb FinishDirectLight(const Emitters& emitters, const Vec3& n, const DirectLightRays& rays, bool occluded,
-                      const RayHit* bsdf_hit);
+Rgb FinishDirectLight(const Emitters& emitters, const Vec3& n, const DirectLightRays& rays,
+                      bool occluded, const RayHit* bsdf_hit);
 
 // Both steps with single rays.
-Rgb SampleDirectIrradiance(const Emitters& emitters, const Tracer& tracer, const Vec3& p, const Vec3& n, Rng& rng);
+Rgb SampleDirectIrradiance(const Emitters& emitters, const Tracer& tracer, const Vec3& p,
+                           const Vec3& n, Rng& rng);
 
 // The streams of epoch `epoch`'s direct-light samples: hit point h draws from
 // Rng(DirectLightSeeds(seed, epoch).Seed(h)), on every backend.
@@ -45,7 +46,8 @@ SeedFamily DirectLightSeeds(uint64_t seed, uint64_t epoch);
 // out[i]. Hit point h's sample in `epoch` draws from a stream seeded by (seed, epoch, h)
 // alone. Rays are cast in packets. A sample that comes out NaN or Inf is set to 0; returns
 // how many were.
-uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer, std::span<const HitPoint> hit_points,
-                           uint32_t first, uint64_t seed, uint64_t epoch, std::span<Rgb> out);
+uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
+                           std::span<const HitPoint> hit_points, uint32_t first, uint64_t seed,
+                           uint64_t epoch, std::span<Rgb> out);
 
 }  // namespace pf

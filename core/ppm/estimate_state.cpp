@@ -41,7 +41,8 @@ void ProgressiveEstimate::Save(ByteWriter& out) const {
     out.Array(std::span<const Rgbd>(flux_even_));
     out.Array(std::span<const Rgbd>(direct_even_));
     out.Array(std::span<const GatherCounts>(counts_));
-    for (uint64_t value : {epoch_, photons_emitted_, photons_emitted_even_, nonfinite_discarded_}) out.Value(value);
+    for (uint64_t value : {epoch_, photons_emitted_, photons_emitted_even_, nonfinite_discarded_})
+        out.Value(value);
     out.Value(static_cast<uint8_t>(light_reached_));
     out.Value(static_cast<uint8_t>(epoch_light_reached_));
     out.Value(batches_folded_);
@@ -50,7 +51,9 @@ void ProgressiveEstimate::Save(ByteWriter& out) const {
     out.Array(std::span<const Rgbd>(epoch_flux_));
     out.Array(std::span<const Rgbd>(epoch_flux_even_));
     out.Array(std::span<const Rgb>(epoch_direct_));
-    for (uint64_t value : {epoch_photons_emitted_, epoch_photons_emitted_even_, epoch_nonfinite_discarded_}) out.Value(value);
+    for (uint64_t value :
+         {epoch_photons_emitted_, epoch_photons_emitted_even_, epoch_nonfinite_discarded_})
+        out.Value(value);
 }
 
 absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(ByteReader& in) {
@@ -59,27 +62,32 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
     uint32_t magic = 0, version = 0;
     if (!in.Value(&magic) || magic != kMagic) return Corrupt("not an estimate");
     if (!in.Value(&version) || version != kVersion)
-        return Corrupt(absl::StrCat("format version ", version, "; this build reads version ", kVersion));
+        return Corrupt(
+            absl::StrCat("format version ", version, "; this build reads version ", kVersion));
     auto hit_points = std::make_shared<std::vector<HitPoint>>();
     if (!in.Array(hit_points.get(), kMaxHitPoints)) return Corrupt("hit points");
     EstimateSettings& settings = e.settings_;
     uint8_t stochastic = 0;
-    if (!(in.Value(&settings.alpha) && in.Value(&settings.initial_radius) && in.Value(&settings.samples_per_pixel) &&
-          in.Value(&settings.layout.photons_per_batch) && in.Value(&settings.layout.batches_per_epoch) &&
-          in.Value(&settings.min_radius) && in.Value(&stochastic)))
+    if (!(in.Value(&settings.alpha) && in.Value(&settings.initial_radius) &&
+          in.Value(&settings.samples_per_pixel) && in.Value(&settings.layout.photons_per_batch) &&
+          in.Value(&settings.layout.batches_per_epoch) && in.Value(&settings.min_radius) &&
+          in.Value(&stochastic)))
         return Corrupt("truncated settings");
     settings.stochastic = stochastic != 0;
     if (!(settings.alpha > 0 && settings.alpha <= 1 && settings.initial_radius > 0 &&
           std::isfinite(settings.initial_radius) && settings.min_radius >= 0 &&
           settings.min_radius <= settings.initial_radius && settings.samples_per_pixel > 0 &&
-          settings.layout.photons_per_batch >= 1 && settings.layout.photons_per_batch <= kMaxPhotonsPerBatch &&
-          settings.layout.batches_per_epoch >= 1 && settings.layout.batches_per_epoch <= kMaxBatchesPerEpoch))
+          settings.layout.photons_per_batch >= 1 &&
+          settings.layout.photons_per_batch <= kMaxPhotonsPerBatch &&
+          settings.layout.batches_per_epoch >= 1 &&
+          settings.layout.batches_per_epoch <= kMaxBatchesPerEpoch))
         return Corrupt("settings out of range");
     if (!(in.Value(&e.emission_.width) && in.Value(&e.emission_.height)) || e.emission_.width < 1 ||
         e.emission_.height < 1 || e.emission_.width > 32768 || e.emission_.height > 32768)
         return Corrupt("image size");
     const uint64_t pixels = uint64_t(e.emission_.width) * e.emission_.height;
-    if (!in.Array(&e.emission_.pixels, pixels) || e.emission_.pixels.size() != pixels) return Corrupt("emission");
+    if (!in.Array(&e.emission_.pixels, pixels) || e.emission_.pixels.size() != pixels)
+        return Corrupt("emission");
     if (settings.stochastic) {
         e.epoch_emission_ = Image(e.emission_.width, e.emission_.height);
         if (!in.Array(&e.emission_sum_, pixels) || !in.Array(&e.emission_even_, pixels) ||
@@ -91,24 +99,30 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
         if (hit_point.pixel >= pixels) return Corrupt("a hit point lies outside the image");
     const uint64_t n = hit_points->size();
     const auto array = [&](auto* values, const char* what) -> absl::Status {
-        if (!in.Array(values, n) || values->size() != n) return Corrupt(absl::StrCat(what, ": not one per hit point"));
+        if (!in.Array(values, n) || values->size() != n)
+            return Corrupt(absl::StrCat(what, ": not one per hit point"));
         return absl::OkStatus();
     };
-    for (absl::Status status : {array(&e.points_, "N, R, tau"), array(&e.direct_sum_, "direct sums"),
-                                array(&e.flux_even_, "even flux"), array(&e.direct_even_, "even direct sums"),
-                                array(&e.counts_, "gather counts")})
+    for (absl::Status status :
+         {array(&e.points_, "N, R, tau"), array(&e.direct_sum_, "direct sums"),
+          array(&e.flux_even_, "even flux"), array(&e.direct_even_, "even direct sums"),
+          array(&e.counts_, "gather counts")})
         if (!status.ok()) return status;
     uint8_t light_reached = 0, epoch_light_reached = 0;
-    if (!(in.Value(&e.epoch_) && in.Value(&e.photons_emitted_) && in.Value(&e.photons_emitted_even_) &&
-          in.Value(&e.nonfinite_discarded_) && in.Value(&light_reached) && in.Value(&epoch_light_reached) &&
+    if (!(in.Value(&e.epoch_) && in.Value(&e.photons_emitted_) &&
+          in.Value(&e.photons_emitted_even_) && in.Value(&e.nonfinite_discarded_) &&
+          in.Value(&light_reached) && in.Value(&epoch_light_reached) &&
           in.Value(&e.batches_folded_)))
         return Corrupt("truncated counters");
     e.light_reached_ = light_reached != 0;
     e.epoch_light_reached_ = epoch_light_reached != 0;
-    if (e.batches_folded_ >= settings.layout.batches_per_epoch) return Corrupt("more batches folded than an epoch has");
-    for (absl::Status status : {array(&e.epoch_photons_, "epoch photons"), array(&e.epoch_inner_photons_, "epoch inner photons"),
-                                array(&e.epoch_flux_, "epoch flux"), array(&e.epoch_flux_even_, "epoch even flux"),
-                                array(&e.epoch_direct_, "epoch direct light")})
+    if (e.batches_folded_ >= settings.layout.batches_per_epoch)
+        return Corrupt("more batches folded than an epoch has");
+    for (absl::Status status :
+         {array(&e.epoch_photons_, "epoch photons"),
+          array(&e.epoch_inner_photons_, "epoch inner photons"),
+          array(&e.epoch_flux_, "epoch flux"), array(&e.epoch_flux_even_, "epoch even flux"),
+          array(&e.epoch_direct_, "epoch direct light")})
         if (!status.ok()) return status;
     if (!(in.Value(&e.epoch_photons_emitted_) && in.Value(&e.epoch_photons_emitted_even_) &&
           in.Value(&e.epoch_nonfinite_discarded_)))

@@ -31,19 +31,22 @@ struct PointEstimate {
 // shrink into denormals and lose tau's precision; from there on its estimate is a density
 // estimate of fixed radius. EstimateFor sets the floor far below anything a float position
 // resolves (docs/numerics.md).
-inline double ShrinkRatio(const PointEstimate& estimate, double new_photons, double alpha, double min_radius_sq = 0) {
+inline double ShrinkRatio(const PointEstimate& estimate, double new_photons, double alpha,
+                          double min_radius_sq = 0) {
     PF_DCHECK(alpha > 0 && alpha <= 1 && new_photons >= 0);
     if (new_photons <= 0) return 1.0;
-    const double ratio = (estimate.photon_count + alpha * new_photons) / (estimate.photon_count + new_photons);
+    const double ratio =
+        (estimate.photon_count + alpha * new_photons) / (estimate.photon_count + new_photons);
     if (estimate.radius_sq * ratio >= min_radius_sq) return ratio;
     return estimate.radius_sq > min_radius_sq ? min_radius_sq / estimate.radius_sq : 1.0;
 }
 
-inline PointEstimate UpdateEstimate(const PointEstimate& estimate, double new_photons, const Rgbd& new_flux,
-                                    double alpha, double min_radius_sq = 0) {
+inline PointEstimate UpdateEstimate(const PointEstimate& estimate, double new_photons,
+                                    const Rgbd& new_flux, double alpha, double min_radius_sq = 0) {
     if (new_photons <= 0) return estimate;
     const double ratio = ShrinkRatio(estimate, new_photons, alpha, min_radius_sq);
-    return {estimate.photon_count + alpha * new_photons, estimate.radius_sq * ratio, (estimate.flux + new_flux) * ratio};
+    return {estimate.photon_count + alpha * new_photons, estimate.radius_sq * ratio,
+            (estimate.flux + new_flux) * ratio};
 }
 
 // Reflected radiance estimate tau / (pi R^2 N_emitted), with N_emitted counting every emitted

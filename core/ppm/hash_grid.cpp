@@ -20,7 +20,8 @@ int HashGrid::OverlappedBuckets(const Vec3& center, float radius, uint32_t bucke
             for (int64_t z = z0; z <= z1; ++z) {
                 // Different cells can share a bucket: store the hit point there once only.
                 const uint32_t bucket = Bucket(x, y, z);
-                if (std::find(buckets, buckets + count, bucket) == buckets + count) buckets[count++] = bucket;
+                if (std::find(buckets, buckets + count, bucket) == buckets + count)
+                    buckets[count++] = bucket;
             }
     return count;
 }
@@ -53,7 +54,8 @@ void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float
     for (uint64_t b = 0; b < bucket_count; ++b) counts[b + 1] += counts[b];
     bucket_begin_ = counts;
     const size_t entry_count = counts[bucket_count];
-    for (auto* entries : {&entry_x_, &entry_y_, &entry_z_, &entry_radius_sq_}) entries->resize(entry_count + kEntryPadding);
+    for (auto* entries : {&entry_x_, &entry_y_, &entry_z_, &entry_radius_sq_})
+        entries->resize(entry_count + kEntryPadding);
     entry_normal_.resize(entry_count);
     entry_index_.resize(entry_count);
     // Second pass: the buckets are computed again rather than kept from the first, which

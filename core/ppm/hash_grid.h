@@ -73,7 +73,8 @@ private:
     // conversion; clamped cells only merge, which costs candidates, never correctness.
     int64_t CellOf(float coordinate) const {
         constexpr float kLimit = 0x1p50f;
-        return static_cast<int64_t>(std::floor(std::clamp(coordinate * inverse_cell_size_, -kLimit, kLimit)));
+        return static_cast<int64_t>(
+            std::floor(std::clamp(coordinate * inverse_cell_size_, -kLimit, kLimit)));
     }
     // Cells are grouped in blocks of 4x4x4: a block's 64 cells take 64 consecutive buckets in
     // Morton order, and blocks are spread over the table by the hash of Teschner et al. 2003
@@ -82,7 +83,8 @@ private:
     uint32_t Bucket(int64_t x, int64_t y, int64_t z) const {
         const uint64_t within = SpreadBits3(uint64_t(x) & 3) | SpreadBits3(uint64_t(y) & 3) << 1 |
                                 SpreadBits3(uint64_t(z) & 3) << 2;
-        const uint64_t block = static_cast<uint64_t>(x >> 2) * 73856093u ^ static_cast<uint64_t>(y >> 2) * 19349663u ^
+        const uint64_t block = static_cast<uint64_t>(x >> 2) * 73856093u ^
+                               static_cast<uint64_t>(y >> 2) * 19349663u ^
                                static_cast<uint64_t>(z >> 2) * 83492791u;
         return static_cast<uint32_t>((block << 6 | within) & bucket_mask_);
     }
@@ -101,7 +103,8 @@ private:
             const __m128 dx = _mm_sub_ps(_mm_loadu_ps(xs + k), px);
             const __m128 dy = _mm_sub_ps(_mm_loadu_ps(ys + k), py);
             const __m128 dz = _mm_sub_ps(_mm_loadu_ps(zs + k), pz);
-            const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+            const __m128 d2 =
+                _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
             inside |= uint64_t(_mm_movemask_ps(_mm_cmple_ps(d2, _mm_loadu_ps(radii_sq + k)))) << k;
         }
 #else

@@ -9,10 +9,10 @@
 namespace pf {
 
 struct HitPoint {
-    Vec3 position;    // world space
-    Vec3 normal;      // unit shading normal, turned toward the camera path's side
-    Rgb weight;       // camera-path throughput x diffuse BSDF (albedo / pi), 1/sr
-    uint32_t pixel;   // y * width + x
+    Vec3 position;   // world space
+    Vec3 normal;     // unit shading normal, turned toward the camera path's side
+    Rgb weight;      // camera-path throughput x diffuse BSDF (albedo / pi), 1/sr
+    uint32_t pixel;  // y * width + x
 };
 
 }  // namespace pf

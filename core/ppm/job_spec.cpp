@@ -18,10 +18,12 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
         return absl::InvalidArgumentError(absl::StrCat(flags ? flag : field, " ", what));
     };
     if (s.width < 0 || s.height < 0 || s.width > 32768 || s.height > 32768)
-        return invalid("--width/--height", "settings.width/settings.height", "must lie in [1, 32768]");
+        return invalid("--width/--height", "settings.width/settings.height",
+                       "must lie in [1, 32768]");
     if (s.samples_per_pixel < 1 || s.samples_per_pixel > 1024)
         return invalid("--spp", "settings.samples_per_pixel", "must lie in [1, 1024]");
-    if (!(s.alpha > 0 && s.alpha <= 1)) return invalid("--alpha", "settings.alpha", "must lie in (0, 1]");
+    if (!(s.alpha > 0 && s.alpha <= 1))
+        return invalid("--alpha", "settings.alpha", "must lie in (0, 1]");
     if (!(s.initial_radius >= 0 && std::isfinite(s.initial_radius)))
         return invalid("--radius", "settings.initial_radius", "must be positive and finite");
     if (s.layout.photons_per_batch < 1 || s.layout.photons_per_batch > kMaxPhotonsPerBatch)
@@ -33,16 +35,21 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
     if (!(s.seconds_budget >= 0 && std::isfinite(s.seconds_budget)))
         return invalid("--seconds", "settings.seconds_budget", "must be positive and finite");
     if (!(s.target_error >= 0 && s.target_error < 1e3))
-        return invalid("--target-error", "settings.target_error", "must lie in [0, 1000) (a relative error, 0.01 = 1%)");
+        return invalid("--target-error", "settings.target_error",
+                       "must lie in [0, 1000) (a relative error, 0.01 = 1%)");
     if (s.photon_budget == 0 && s.epoch_budget == 0 && s.seconds_budget == 0 && s.target_error == 0)
         return absl::InvalidArgumentError(
             flags ? "give a budget: --photons N, --epochs N, --seconds S or --target-error E"
-                  : "settings: give a budget (photon_budget, epoch_budget, seconds_budget or target_error)");
+                  : "settings: give a budget (photon_budget, epoch_budget, seconds_budget or "
+                    "target_error)");
     if (s.photon_budget > 0 && !GathersAtHitPoints(s.integrator))
-        return invalid("--photons", "settings.photon_budget",
-                       absl::StrCat("is a budget of photons traced progressively, and the ", std::string(IntegratorName(s.integrator)),
-                                    " integrator traces none as it goes: give --epochs, --seconds or --target-error",
-                                    s.integrator == Integrator::kPm ? " (its maps' size is --pm-photons)" : ""));
+        return invalid(
+            "--photons", "settings.photon_budget",
+            absl::StrCat(
+                "is a budget of photons traced progressively, and the ",
+                std::string(IntegratorName(s.integrator)),
+                " integrator traces none as it goes: give --epochs, --seconds or --target-error",
+                s.integrator == Integrator::kPm ? " (its maps' size is --pm-photons)" : ""));
     if (s.integrator == Integrator::kPm) return CheckPhotonMapSettings(s.photon_map, names);
     return absl::OkStatus();
 }
@@ -54,12 +61,15 @@ absl::Status CheckPhotonMapSettings(const PhotonMapSettings& m, SettingNames nam
     };
     if (m.global_photons + m.caustic_photons == 0 || m.global_photons > kMaxMapPhotons ||
         m.caustic_photons > kMaxMapPhotons)
-        return invalid("--pm-photons/--pm-caustic-photons", "settings.photon_map.global_photons/caustic_photons",
+        return invalid("--pm-photons/--pm-caustic-photons",
+                       "settings.photon_map.global_photons/caustic_photons",
                        absl::StrCat("must lie in [0, ", kMaxMapPhotons, "], not both 0"));
     if (m.nearest < 1 || m.nearest > kMaxNearestPhotons)
-        return invalid("--pm-nearest", "settings.photon_map.nearest", absl::StrCat("must lie in [1, ", kMaxNearestPhotons, "]"));
+        return invalid("--pm-nearest", "settings.photon_map.nearest",
+                       absl::StrCat("must lie in [1, ", kMaxNearestPhotons, "]"));
     if (!(m.max_radius >= 0 && std::isfinite(m.max_radius)))
-        return invalid("--pm-max-radius", "settings.photon_map.max_radius", "must be positive and finite");
+        return invalid("--pm-max-radius", "settings.photon_map.max_radius",
+                       "must be positive and finite");
     if (m.final_gather > kMaxFinalGatherRays)
         return invalid("--final-gather", "settings.photon_map.final_gather",
                        absl::StrCat("must lie in [0, ", kMaxFinalGatherRays, "]"));
@@ -72,7 +82,8 @@ absl::Status CheckPhotonMapSettings(const PhotonMapSettings& m, SettingNames nam
 
 uint64_t PhotonSeed(const JobSpec& spec) {
     constexpr uint64_t kPhotonStreams = 0x73747265616d73ull;
-    return spec.photon_stream == 0 ? spec.seed : HashSeed(spec.seed, kPhotonStreams, spec.photon_stream);
+    return spec.photon_stream == 0 ? spec.seed
+                                   : HashSeed(spec.seed, kPhotonStreams, spec.photon_stream);
 }
 
 absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& scene) {
@@ -82,42 +93,51 @@ absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& sce
         film.width = scene.hints.width > 0 ? scene.hints.width : 512;
         film.height = scene.hints.height;
     }
-    if (film.width == 0) film.width = std::max(1, static_cast<int>(std::lround(film.height * aspect)));
-    if (film.height == 0) film.height = std::max(1, static_cast<int>(std::lround(film.width / aspect)));
+    if (film.width == 0)
+        film.width = std::max(1, static_cast<int>(std::lround(film.height * aspect)));
+    if (film.height == 0)
+        film.height = std::max(1, static_cast<int>(std::lround(film.width / aspect)));
     const uint64_t pixels = uint64_t(film.width) * uint64_t(film.height);
     if (!GathersAtHitPoints(spec.integrator)) {  // they keep a sum per pixel, whatever the spp
         if (pixels > kMaxHitPoints)
             return absl::ResourceExhaustedError(
-                absl::StrFormat("%dx%d = %d pixels exceeds the limit of %d", film.width, film.height, pixels, kMaxHitPoints));
+                absl::StrFormat("%dx%d = %d pixels exceeds the limit of %d", film.width,
+                                film.height, pixels, kMaxHitPoints));
         return film;
     }
     const uint64_t most_hit_points = pixels * uint64_t(film.samples_per_pixel);
     if (most_hit_points > kMaxHitPoints)
         return absl::ResourceExhaustedError(absl::StrFormat(
-            "%dx%d pixels x %d spp = %d hit points exceeds the limit of %d (about %d bytes each)", film.width,
-            film.height, film.samples_per_pixel, most_hit_points, kMaxHitPoints, kBytesPerHitPoint));
+            "%dx%d pixels x %d spp = %d hit points exceeds the limit of %d (about %d bytes each)",
+            film.width, film.height, film.samples_per_pixel, most_hit_points, kMaxHitPoints,
+            kBytesPerHitPoint));
     return film;
 }
 
-EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass, const Scene& scene,
-                             const std::string& scene_name) {
+EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass,
+                             const Scene& scene, const std::string& scene_name) {
     EstimateSettings estimate{spec.alpha, spec.initial_radius, spec.samples_per_pixel, spec.layout};
     if (estimate.initial_radius == 0) estimate.initial_radius = scene.hints.initial_radius;
-    if (estimate.initial_radius == 0) estimate.initial_radius = DefaultInitialRadius(camera_pass, scene);
+    if (estimate.initial_radius == 0)
+        estimate.initial_radius = DefaultInitialRadius(camera_pass, scene);
     if (camera_pass.hit_points.empty() || !(estimate.initial_radius > 0)) {
-        spdlog::warn("{}: the camera sees no diffuse surface; the image holds emission only", scene_name);
+        spdlog::warn("{}: the camera sees no diffuse surface; the image holds emission only",
+                     scene_name);
         estimate.initial_radius = std::max(estimate.initial_radius, 1e-3 * scene.bounds.Diagonal());
     }
     // 2^-20 of the scene's largest coordinate is 16 float steps of a position there: radii
     // below it gather by rounding error, not by distance.
-    estimate.min_radius = std::min(estimate.initial_radius, std::ldexp(double(scene.bounds.Magnitude()), -20));
+    estimate.min_radius =
+        std::min(estimate.initial_radius, std::ldexp(double(scene.bounds.Magnitude()), -20));
     return estimate;
 }
 
 double BudgetFraction(const JobSpec& spec, uint64_t photons, uint64_t epochs, double seconds,
                       std::optional<double> estimated_error) {
-    const double by_photons = spec.photon_budget > 0 ? double(photons) / double(spec.photon_budget) : 0.0;
-    const double by_epochs = spec.epoch_budget > 0 ? double(epochs) / double(spec.epoch_budget) : 0.0;
+    const double by_photons =
+        spec.photon_budget > 0 ? double(photons) / double(spec.photon_budget) : 0.0;
+    const double by_epochs =
+        spec.epoch_budget > 0 ? double(epochs) / double(spec.epoch_budget) : 0.0;
     const double by_time = spec.seconds_budget > 0 ? seconds / spec.seconds_budget : 0.0;
     double by_error = 0.0;
     if (spec.target_error > 0 && estimated_error) {

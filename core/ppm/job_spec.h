@@ -20,17 +20,17 @@ namespace pf {
 
 struct JobSpec {
     Integrator integrator = Integrator::kPpm;
-    int width = 0, height = 0;   // 0: 512 wide, or derived from the other and the camera's aspect
+    int width = 0, height = 0;  // 0: 512 wide, or derived from the other and the camera's aspect
     // k: hit points per pixel (ppm), per pixel and epoch (sppm), camera samples per pixel and
     // epoch (path, pm).
     int samples_per_pixel = 4;
-    uint64_t seed = 1;           // the same seed and layout give the same image
+    uint64_t seed = 1;  // the same seed and layout give the same image
     // Renders with the same seed and another photon stream share their hit points (the camera
     // pass) but trace independent photons and light samples: how a reference for the error
     // against run time is made (docs/convergence.md). 0: the stream of `seed` itself.
     uint64_t photon_stream = 0;
     double alpha = kDefaultAlpha;
-    double initial_radius = 0;   // R0, world units; 0: one pixel footprint
+    double initial_radius = 0;  // R0, world units; 0: one pixel footprint
     BatchLayout layout;
     uint64_t photon_budget = 0;  // stop after the epoch that reaches it (0: no limit); ppm, sppm
     uint64_t epoch_budget = 0;   // stop after this many epochs (0: no limit)
@@ -70,8 +70,8 @@ absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& sce
 // The estimator's settings, R0 from the scene (pbrt's sppm "radius") or else the camera pass
 // where not given. `scene_name` names the
 // scene in the warning for a camera that sees no diffuse surface.
-EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass, const Scene& scene,
-                             const std::string& scene_name);
+EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass,
+                             const Scene& scene, const std::string& scene_name);
 // The seed of the photon pass and direct light: `seed` itself for stream 0.
 uint64_t PhotonSeed(const JobSpec& spec);
 // The share of the budget spent, in [0, 1]; 1 ends the render after the current epoch.

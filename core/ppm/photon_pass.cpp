@@ -45,7 +45,8 @@ template <bool kSpecular, bool kTextures>
 bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath& path,
                    std::vector<PhotonDeposit>& deposits) {
     const PhotonEvent event = ScatterPhotonAt<kSpecular, kTextures>(
-        *inputs.scene, hit, path.ray, path.flux, path.rng, [&](const Vec3& position, const Vec3& direction, const Rgb& flux) {
+        *inputs.scene, hit, path.ray, path.flux, path.rng,
+        [&](const Vec3& position, const Vec3& direction, const Rgb& flux) {
             if (path.scattered) deposits.push_back({position, direction, flux});
         });
     if (event == PhotonEvent::kEnded) return false;
@@ -71,8 +72,9 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     sorted.resize(deposits.size());
     for (size_t i = 0; i < keys.size(); ++i) sorted[i] = deposits[static_cast<uint32_t>(keys[i])];
     for (const PhotonDeposit& deposit : sorted) {
-        inputs.grid->ForEachGathering(deposit.position, deposit.direction,
-                                      [&](uint32_t index, bool inner) { scratch.tally.Add(index, deposit.flux, inner); });
+        inputs.grid->ForEachGathering(
+            deposit.position, deposit.direction,
+            [&](uint32_t index, bool inner) { scratch.tally.Add(index, deposit.flux, inner); });
     }
     scratch.deposits.clear();
 }
@@ -82,8 +84,8 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
 // random numbers depend on its index alone, and lanes are filled in a fixed order, so the
 // deposits (and their order) depend only on the batch. Returns the segments traced.
 template <bool kSpecular, bool kTextures>
-uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t begin, uint32_t end,
-                      BatchScratch& scratch) {
+uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t begin,
+                      uint32_t end, BatchScratch& scratch) {
     constexpr int kLanes = Tracer::kPacketSize;
     PhotonPath paths[kLanes];
     Ray rays[kLanes] = {};
@@ -109,7 +111,8 @@ uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, uin
             const bool finite = IsFinite(paths[lane].flux);
             scratch.nonfinite_discarded += !finite;
             if (finite && found[lane] &&
-                ScatterPhoton<kSpecular, kTextures>(inputs, hits[lane], paths[lane], scratch.deposits))
+                ScatterPhoton<kSpecular, kTextures>(inputs, hits[lane], paths[lane],
+                                                    scratch.deposits))
                 continue;
             if (next < end) {
                 paths[lane] = StartPhoton(inputs, seeds, next++);
@@ -133,7 +136,8 @@ SeedFamily PhotonSeeds(uint64_t seed, uint64_t batch_index) {
     return SeedFamily(seed, kPhotonStream, batch_index);
 }
 
-ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t chunk, BatchScratch& scratch) {
+ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t chunk,
+                           BatchScratch& scratch) {
     PF_CHECK(chunk < ChunkCount(spec));
     const uint32_t begin = chunk * kPhotonsPerChunk;
     const uint32_t end = std::min(spec.photons, begin + kPhotonsPerChunk);
@@ -143,8 +147,10 @@ ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec
     ChunkResult result;
     // The photon loop for the scene's features, chosen once per chunk.
     const SceneFeatures& features = inputs.features;
-    const auto trace = features.Specular() ? (features.textures ? TracePhotons<true, true> : TracePhotons<true, false>)
-                                           : (features.textures ? TracePhotons<false, true> : TracePhotons<false, false>);
+    const auto trace =
+        features.Specular()
+            ? (features.textures ? TracePhotons<true, true> : TracePhotons<true, false>)
+            : (features.textures ? TracePhotons<false, true> : TracePhotons<false, false>);
     result.segments_traced = trace(inputs, spec, begin, end, scratch);
     result.nonfinite_discarded = scratch.nonfinite_discarded;
     GatherDeposits(inputs, scratch);
@@ -152,7 +158,8 @@ ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec
     return result;
 }
 
-std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs, std::span<const BatchSpec> specs,
+std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs,
+                                          std::span<const BatchSpec> specs,
                                           PhotonPassScratch& scratch) {
     std::vector<BatchResult> results(specs.size());
     // Chunks flow through a pipeline: handed out in (batch, chunk) order, run in parallel,
@@ -168,43 +175,41 @@ std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs, std::s
     const size_t tokens = 2 * static_cast<size_t>(tbb::this_task_arena::max_concurrency());
     tbb::parallel_pipeline(
         tokens,
-        tbb::make_filter<void, Item>(tbb::filter_mode::serial_in_order,
-                                     [&](tbb::flow_control& control) {
-                                         while (next_batch < specs.size() && next_chunk >= ChunkCount(specs[next_batch]))
-                                             ++next_batch, next_chunk = 0;
-                                         if (next_batch == specs.size()) {
-                                             control.stop();
-                                             return Item{};
-                                         }
-                                         return Item{next_batch, next_chunk++, {}};
-                                     }) &
-            tbb::make_filter<Item, Item>(tbb::filter_mode::parallel,
-                                         [&](Item item) {
-                                             item.result = RunPhotonChunk(inputs, specs[item.batch], item.chunk,
-                                                                          scratch.threads.local());
-                                             return item;
-                                         }) &
-            tbb::make_filter<Item, void>(tbb::filter_mode::serial_in_order, [&](Item item) {
-                BatchResult& result = results[item.batch];
-                const uint32_t chunks = ChunkCount(specs[item.batch]);
-                result.segments_traced += item.result.segments_traced;
-                result.nonfinite_discarded += item.result.nonfinite_discarded;
-                if (chunks == 1) {
-                    result.tally = std::move(item.result.tally);
-                    return;
-                }
-                scratch.combined.Resize(inputs.hit_points.size());
-                scratch.combined.Add(item.result.tally);
-                if (item.chunk + 1 == chunks) result.tally = scratch.combined.Extract();
-            }));
+        tbb::make_filter<void, Item>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control&
+                                                                                control) {
+            while (next_batch < specs.size() && next_chunk >= ChunkCount(specs[next_batch]))
+                ++next_batch, next_chunk = 0;
+            if (next_batch == specs.size()) {
+                control.stop();
+                return Item{};
+            }
+            return Item{next_batch, next_chunk++, {}};
+        }) & tbb::make_filter<Item, Item>(tbb::filter_mode::parallel, [&](Item item) {
+            item.result =
+                RunPhotonChunk(inputs, specs[item.batch], item.chunk, scratch.threads.local());
+            return item;
+        }) & tbb::make_filter<Item, void>(tbb::filter_mode::serial_in_order, [&](Item item) {
+            BatchResult& result = results[item.batch];
+            const uint32_t chunks = ChunkCount(specs[item.batch]);
+            result.segments_traced += item.result.segments_traced;
+            result.nonfinite_discarded += item.result.nonfinite_discarded;
+            if (chunks == 1) {
+                result.tally = std::move(item.result.tally);
+                return;
+            }
+            scratch.combined.Resize(inputs.hit_points.size());
+            scratch.combined.Add(item.result.tally);
+            if (item.chunk + 1 == chunks) result.tally = scratch.combined.Extract();
+        }));
     tbb::parallel_for(size_t{0}, specs.size(), [&](size_t i) {
         const BatchSpec& spec = specs[i];
         BatchResult& result = results[i];
         result.spec = spec;
         result.photons_emitted = spec.photons;
         result.samples.resize(spec.sample_end - spec.sample_begin);
-        result.nonfinite_discarded += SampleDirectLight(*inputs.emitters, *inputs.tracer, inputs.hit_points,
-                                                        spec.sample_begin, inputs.seed, spec.epoch, result.samples);
+        result.nonfinite_discarded +=
+            SampleDirectLight(*inputs.emitters, *inputs.tracer, inputs.hit_points,
+                              spec.sample_begin, inputs.seed, spec.epoch, result.samples);
     });
     return results;
 }

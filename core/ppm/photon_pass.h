@@ -56,7 +56,7 @@ struct BatchScratch {
     TallyAccumulator tally;
     std::vector<PhotonDeposit> deposits;         // in path order
     std::vector<PhotonDeposit> sorted_deposits;  // in gather order
-    std::vector<uint64_t> sort_keys;  // grid bucket << 32 | deposit index
+    std::vector<uint64_t> sort_keys;             // grid bucket << 32 | deposit index
     std::vector<uint64_t> sort_scratch;
     uint64_t nonfinite_discarded = 0;  // of the chunk being traced
 };
@@ -77,12 +77,14 @@ struct ChunkResult {
 
 // Chunk `chunk` of batch `spec` (photons [chunk, chunk + 1) x kPhotonsPerChunk of it): traces
 // its photons, then gathers their deposits at the hit points.
-ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t chunk, BatchScratch& scratch);
+ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t chunk,
+                           BatchScratch& scratch);
 
 // Runs the batches on the calling TBB arena: every chunk of every batch in parallel, each
 // batch's chunk tallies summed in chunk order, and each batch's slice of direct-light
 // samples. Results in the order of `specs`, each a pure function of its spec.
-std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs, std::span<const BatchSpec> specs,
+std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs,
+                                          std::span<const BatchSpec> specs,
                                           PhotonPassScratch& scratch);
 
 }  // namespace pf

@@ -24,7 +24,8 @@ enum class PhotonEvent { kEnded, kDiffuse, kNonDiffuse };
 // Instantiated for the scene's features: without specular materials every surface is
 // diffuse, without textures every base colour is the material's.
 template <bool kSpecular, bool kTextures, typename Land>
-PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb& flux, Rng& rng, Land&& land) {
+PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb& flux, Rng& rng,
+                            Land&& land) {
     const SurfacePoint surface = scene.Surface(hit);
     const Material& material = scene.materials[surface.material];
     const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
@@ -38,17 +39,20 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
         flux *= base_color / survive;
         const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
         const Vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
-        ray.direction = Frame::FromNormal(normal).ToWorld(SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
-        if (!(Dot(ray.direction, geometric) > 0)) return PhotonEvent::kEnded;  // shading normal pointed it inside
+        ray.direction = Frame::FromNormal(normal).ToWorld(
+            SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
+        if (!(Dot(ray.direction, geometric) > 0))
+            return PhotonEvent::kEnded;  // shading normal pointed it inside
         ray.origin = OffsetRayOrigin(surface.position, geometric, scene.bounds.Magnitude());
         return PhotonEvent::kDiffuse;
     }
-    const SpecularBounce bounce = ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                                                    base_color, rng);
+    const SpecularBounce bounce = ScatterNonDiffuse(material, ray.direction, surface.shading_normal,
+                                                    front_facing, base_color, rng);
     const float survive = std::min(1.0f, MaxComponent(bounce.weight));
     if (!(rng.NextFloat() < survive)) return PhotonEvent::kEnded;
     flux *= bounce.weight / survive;
-    const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;
+    const Vec3 side =
+        front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;
     ray.origin = OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude());
     ray.direction = bounce.direction;
     return PhotonEvent::kNonDiffuse;

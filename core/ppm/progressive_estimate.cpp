@@ -10,7 +10,8 @@
 
 namespace pf {
 
-ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings,
+ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
+                                         const EstimateSettings& settings,
                                          EpochCameraPass next_passes)
     : next_passes_(std::move(next_passes)), settings_(settings) {
     PF_CHECK(!settings.stochastic || next_passes_);
@@ -52,14 +53,16 @@ Rgbd ProgressiveEstimate::Emission(size_t p) const {
 
 std::vector<float> ProgressiveEstimate::SearchRadiusSq() const {
     std::vector<float> radius_sq(points_.size());
-    for (size_t i = 0; i < points_.size(); ++i) radius_sq[i] = static_cast<float>(points_[i].radius_sq);
+    for (size_t i = 0; i < points_.size(); ++i)
+        radius_sq[i] = static_cast<float>(points_[i].radius_sq);
     return radius_sq;
 }
 
 std::vector<BatchSpec> ProgressiveEstimate::EpochBatches() const {
     std::vector<BatchSpec> specs;
     for (uint32_t j = 0; j < settings_.layout.batches_per_epoch; ++j)
-        specs.push_back(MakeBatchSpec(settings_.layout, epoch_, j, static_cast<uint32_t>(hit_points_->size())));
+        specs.push_back(
+            MakeBatchSpec(settings_.layout, epoch_, j, static_cast<uint32_t>(hit_points_->size())));
     return specs;
 }
 
@@ -76,25 +79,29 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
     // Entries are sorted by hit point and each names a hit point once, so disjoint ranges of
     // entries touch disjoint sums: folded in parallel, each sum still gets its batches in
     // batch-index order, and the result does not depend on the thread count.
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tally.Size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t e = r.begin(); e < r.end(); ++e) {
-            const uint32_t i = tally.hit_point[e];
-            epoch_photons_[i] += tally.photons[e];
-            epoch_inner_photons_[i] += tally.inner_photons[e];
-            // Phi_M: the photons' flux times the BSDF weight (a float product, exact in double).
-            const Rgbd flux = Rgbd(tally.flux[e]) * Rgbd(hit_points[i].weight);
-            epoch_flux_[i] += flux;
-            if (even) epoch_flux_even_[i] += flux;
-        }
-    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tally.Size(), 1 << 14),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t e = r.begin(); e < r.end(); ++e) {
+                              const uint32_t i = tally.hit_point[e];
+                              epoch_photons_[i] += tally.photons[e];
+                              epoch_inner_photons_[i] += tally.inner_photons[e];
+                              // Phi_M: the photons' flux times the BSDF weight (a float product,
+                              // exact in double).
+                              const Rgbd flux = Rgbd(tally.flux[e]) * Rgbd(hit_points[i].weight);
+                              epoch_flux_[i] += flux;
+                              if (even) epoch_flux_even_[i] += flux;
+                          }
+                      });
     PF_CHECK(result.samples.size() == result.spec.sample_end - result.spec.sample_begin &&
              result.spec.sample_end <= hit_points.size());
     // The epoch's direct slices are disjoint and cover every hit point once.
-    std::copy(result.samples.begin(), result.samples.end(), epoch_direct_.begin() + result.spec.sample_begin);
+    std::copy(result.samples.begin(), result.samples.end(),
+              epoch_direct_.begin() + result.spec.sample_begin);
     epoch_photons_emitted_ += result.photons_emitted;
     epoch_nonfinite_discarded_ += result.nonfinite_discarded;
     epoch_light_reached_ = epoch_light_reached_ || tally.Size() > 0 ||
-                           std::any_of(result.samples.begin(), result.samples.end(), [](const Rgb& d) { return !IsBlack(d); });
+                           std::any_of(result.samples.begin(), result.samples.end(),
+                                       [](const Rgb& d) { return !IsBlack(d); });
     if (even) epoch_photons_emitted_even_ += result.photons_emitted;
     ++batches_folded_;
 }
@@ -104,24 +111,27 @@ void ProgressiveEstimate::FinishEpoch() {
     const double alpha = settings_.alpha;
     const double min_radius_sq = settings_.min_radius * settings_.min_radius;
     const bool even_epoch = epoch_ % 2 == 0;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, points_.size()), [&](const tbb::blocked_range<size_t>& r) {
-        for (size_t i = r.begin(); i < r.end(); ++i) {
-            const double photons = static_cast<double>(epoch_photons_[i]);
-            const double shrink = ShrinkRatio(points_[i], photons, alpha, min_radius_sq);
-            flux_even_[i] = (flux_even_[i] + epoch_flux_even_[i]) * shrink;
-            GatherCounts& counts = counts_[i];
-            counts.all = (counts.all + photons) * shrink;
-            counts.inner = (counts.inner + static_cast<double>(epoch_inner_photons_[i])) * shrink;
-            counts.weight_sq = (counts.weight_sq + photons) * shrink * shrink;
-            points_[i] = UpdateEstimate(points_[i], photons, epoch_flux_[i], alpha, min_radius_sq);
-            direct_sum_[i] += Rgbd(epoch_direct_[i]);
-            if (even_epoch) direct_even_[i] += Rgbd(epoch_direct_[i]);
-            epoch_photons_[i] = 0;
-            epoch_inner_photons_[i] = 0;
-            epoch_flux_[i] = Rgbd(0.0);
-            epoch_flux_even_[i] = Rgbd(0.0);
-        }
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, points_.size()), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                const double photons = static_cast<double>(epoch_photons_[i]);
+                const double shrink = ShrinkRatio(points_[i], photons, alpha, min_radius_sq);
+                flux_even_[i] = (flux_even_[i] + epoch_flux_even_[i]) * shrink;
+                GatherCounts& counts = counts_[i];
+                counts.all = (counts.all + photons) * shrink;
+                counts.inner =
+                    (counts.inner + static_cast<double>(epoch_inner_photons_[i])) * shrink;
+                counts.weight_sq = (counts.weight_sq + photons) * shrink * shrink;
+                points_[i] =
+                    UpdateEstimate(points_[i], photons, epoch_flux_[i], alpha, min_radius_sq);
+                direct_sum_[i] += Rgbd(epoch_direct_[i]);
+                if (even_epoch) direct_even_[i] += Rgbd(epoch_direct_[i]);
+                epoch_photons_[i] = 0;
+                epoch_inner_photons_[i] = 0;
+                epoch_flux_[i] = Rgbd(0.0);
+                epoch_flux_even_[i] = Rgbd(0.0);
+            }
+        });
     photons_emitted_ += epoch_photons_emitted_;
     nonfinite_discarded_ += epoch_nonfinite_discarded_;
     epoch_nonfinite_discarded_ = 0;
@@ -154,7 +164,8 @@ Image ProgressiveEstimate::Resolve() const {
     }
     Image image(emission_.width, emission_.height);
     const double inverse_spp = 1.0 / settings_.samples_per_pixel;
-    for (size_t p = 0; p < sums.size(); ++p) image.pixels[p] = Rgb(Emission(p) + sums[p] * inverse_spp);
+    for (size_t p = 0; p < sums.size(); ++p)
+        image.pixels[p] = Rgb(Emission(p) + sums[p] * inverse_spp);
     return image;
 }
 
@@ -162,20 +173,24 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
     const double photons = static_cast<double>(photons_emitted_);
     const double photons_even = static_cast<double>(photons_emitted_even_);
     const double photons_odd = photons - photons_even;
-    const double epochs_even = static_cast<double>((epoch_ + 1) / 2), epochs_odd = static_cast<double>(epoch_ / 2);
+    const double epochs_even = static_cast<double>((epoch_ + 1) / 2),
+                 epochs_odd = static_cast<double>(epoch_ / 2);
     ErrorEstimate error;
     if (!(photons_even > 0 && photons_odd > 0 && epochs_odd > 0)) return error;
     // Per pixel, summed over its hit points: the full estimate, the difference of the halves,
     // the bias estimate 2 (L - L_inner) of the photon part, and that estimate's own variance.
     const size_t pixels = emission_.pixels.size();
-    std::vector<Rgbd> value(pixels, Rgbd(0.0)), difference(pixels, Rgbd(0.0)), bias(pixels, Rgbd(0.0));
+    std::vector<Rgbd> value(pixels, Rgbd(0.0)), difference(pixels, Rgbd(0.0)),
+        bias(pixels, Rgbd(0.0));
     std::vector<Rgbd> bias_noise(pixels, Rgbd(0.0));
     const std::vector<HitPoint>& hit_points = *hit_points_;
     for (size_t i = 0; i < hit_points.size(); ++i) {
         const PointEstimate& point = points_[i];
-        const Rgbd even = EstimateRadiance({0, point.radius_sq, flux_even_[i]}, photons_even) + direct_even_[i] / epochs_even;
-        const Rgbd odd = EstimateRadiance({0, point.radius_sq, point.flux - flux_even_[i]}, photons_odd) +
-                         (direct_sum_[i] - direct_even_[i]) / epochs_odd;
+        const Rgbd even = EstimateRadiance({0, point.radius_sq, flux_even_[i]}, photons_even) +
+                          direct_even_[i] / epochs_even;
+        const Rgbd odd =
+            EstimateRadiance({0, point.radius_sq, point.flux - flux_even_[i]}, photons_odd) +
+            (direct_sum_[i] - direct_even_[i]) / epochs_odd;
         const uint32_t pixel = hit_points[i].pixel;
         const Rgbd photon_part = EstimateRadiance(point, photons);
         value[pixel] += photon_part + direct_sum_[i] / static_cast<double>(epoch_);
@@ -190,7 +205,8 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
             const double f = counts.inner / counts.all;
             bias[pixel] += photon_part * (2 * (1 - 2 * f));
             const double f_smooth = (counts.inner + 0.5) / (counts.all + 1);
-            const double f_variance = f_smooth * (1 - f_smooth) * counts.weight_sq / (counts.all * counts.all);
+            const double f_variance =
+                f_smooth * (1 - f_smooth) * counts.weight_sq / (counts.all * counts.all);
             bias_noise[pixel] += photon_part * photon_part * (16 * f_variance);
         }
     }
@@ -201,7 +217,8 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
         for (int c = 0; c < 3; ++c) {
             double d = difference[p][c] * inverse_spp;
             if (settings_.stochastic)  // emission seen differs between epochs too
-                d += emission_even_[p][c] / epochs_even - (emission_sum_[p][c] - emission_even_[p][c]) / epochs_odd;
+                d += emission_even_[p][c] / epochs_even -
+                     (emission_sum_[p][c] - emission_even_[p][c]) / epochs_odd;
             const double v = Emission(p)[c] + value[p][c] * inverse_spp;
             AddHalfVariance(v, d, variance_scale, &squared, &relative);
             // b^2 overestimates the squared bias by b's variance: take it off (the sum over

@@ -6,8 +6,8 @@
 #pragma once
 
 #include <cmath>
-#include <functional>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <vector>
@@ -56,15 +56,22 @@ public:
 
     std::span<const HitPoint> HitPoints() const { return *hit_points_; }
     // The same hit points, shared with whoever needs them past this object's life.
-    std::shared_ptr<const std::vector<HitPoint>> SharedHitPoints() const override { return hit_points_; }
+    std::shared_ptr<const std::vector<HitPoint>> SharedHitPoints() const override {
+        return hit_points_;
+    }
     const PointEstimate& Point(size_t hit_point) const { return points_[hit_point]; }
     const EstimateSettings& Settings() const { return settings_; }
-    Integrator Kind() const override { return settings_.stochastic ? Integrator::kSppm : Integrator::kPpm; }
+    Integrator Kind() const override {
+        return settings_.stochastic ? Integrator::kSppm : Integrator::kPpm;
+    }
     uint64_t ItemCount() const override { return hit_points_->size(); }
-    uint64_t Epoch() const override { return epoch_; }  // the next epoch to merge; also epochs merged
+    uint64_t Epoch() const override {
+        return epoch_;
+    }  // the next epoch to merge; also epochs merged
     uint64_t PhotonsEmitted() const override { return photons_emitted_; }  // over the merged epochs
     uint64_t CameraSamples() const override {
-        return emission_.pixels.size() * uint64_t(settings_.samples_per_pixel) * (settings_.stochastic ? epoch_ : 1);
+        return emission_.pixels.size() * uint64_t(settings_.samples_per_pixel) *
+               (settings_.stochastic ? epoch_ : 1);
     }
     double InitialRadius() const override { return settings_.initial_radius; }
     // Photon paths and direct samples the batches dropped for NaN or Inf, over the merged

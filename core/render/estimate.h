@@ -25,9 +25,9 @@ namespace pf {
 // the full estimate is (L_even - L_odd)^2 N_even N_odd / N^2. The photon mappers add a bias
 // estimate (ProgressiveEstimate::EstimateError).
 struct ErrorEstimate {
-    bool known = false;   // false until both halves have samples
-    double rmse = 0;      // root mean squared error over pixels and channels
-    double rel_mse = 0;   // mean of squared error / (value^2 + 0.01), as the reference metrics
+    bool known = false;    // false until both halves have samples
+    double rmse = 0;       // root mean squared error over pixels and channels
+    double rel_mse = 0;    // mean of squared error / (value^2 + 0.01), as the reference metrics
     double bias_rmse = 0;  // the part of rmse that is bias: rmse^2 = variance + bias_rmse^2
     double RelativeError() const { return std::sqrt(rel_mse); }
 };
@@ -39,7 +39,7 @@ public:
     virtual Integrator Kind() const = 0;
     // How many items a batch's sample slice indexes (hit points or pixels).
     virtual uint64_t ItemCount() const = 0;
-    virtual uint64_t Epoch() const = 0;  // the next epoch to merge; also epochs merged
+    virtual uint64_t Epoch() const = 0;           // the next epoch to merge; also epochs merged
     virtual uint64_t PhotonsEmitted() const = 0;  // over the merged epochs (pm: its maps')
     // Camera samples taken over the merged epochs (ppm: the hit points' paths, once).
     virtual uint64_t CameraSamples() const = 0;
@@ -85,7 +85,8 @@ absl::StatusOr<std::unique_ptr<Estimate>> LoadEstimate(ByteReader& in);
 // The half-estimate variance of one value per pixel and channel: `value` the full estimate,
 // `difference` L_even - L_odd, scaled by `variance_scale` = N_even N_odd / N^2. Adds to the
 // sums of squared error and relative squared error.
-inline void AddHalfVariance(double value, double difference, double variance_scale, double* squared, double* relative) {
+inline void AddHalfVariance(double value, double difference, double variance_scale, double* squared,
+                            double* relative) {
     const double variance = difference * difference * variance_scale;
     *squared += variance;
     *relative += variance / (value * value + 0.01);

@@ -58,12 +58,14 @@ std::optional<DensityFilter> ParseDensityFilter(std::string_view name);
 // the job's seed, so every worker holds the same maps) and kept in memory: their size grows
 // with the photons emitted, and PhotonMapBytes says how much.
 struct PhotonMapSettings {
-    uint64_t global_photons = 1'000'000;   // emitted for the global map (indirect light)
-    uint64_t caustic_photons = 1'000'000;  // emitted for the caustic map (light through specular chains)
-    uint32_t nearest = 64;                 // k: photons per density estimate
-    double max_radius = 0;                 // of the k-nearest search, world units; 0: 2% of the scene's diagonal
+    uint64_t global_photons = 1'000'000;  // emitted for the global map (indirect light)
+    uint64_t caustic_photons =
+        1'000'000;          // emitted for the caustic map (light through specular chains)
+    uint32_t nearest = 64;  // k: photons per density estimate
+    double max_radius = 0;  // of the k-nearest search, world units; 0: 2% of the scene's diagonal
     DensityFilter filter = DensityFilter::kCone;
-    uint32_t final_gather = 0;  // gather rays per camera sample for indirect light; 0: read the global map directly
+    uint32_t final_gather =
+        0;  // gather rays per camera sample for indirect light; 0: read the global map directly
     PhotonIndex index = PhotonIndex::kKdTree;
 };
 

@@ -36,21 +36,24 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
         if (front_facing && material.IsEmissive()) {
             float weight = 1.0f;
             if (!specular_bounce) {
-                const float light_pdf = hit.instance == Instance::kNone
-                                            ? inputs.emitters->PdfDirect(hit.triangle, bounced_at, surface.position)
-                                            : 0.0f;
+                const float light_pdf =
+                    hit.instance == Instance::kNone
+                        ? inputs.emitters->PdfDirect(hit.triangle, bounced_at, surface.position)
+                        : 0.0f;
                 weight = PowerHeuristic(bsdf_pdf, light_pdf);
             }
             radiance += throughput * material.emission * weight;
         }
         Rgb base_color = material.base_color;
         if constexpr (kTextures)
-            base_color = diffuse_seen || inputs.filter_angle <= 0 ? scene.BaseColor(surface)
-                                                                   : scene.BaseColor(surface, length * inputs.filter_angle);
+            base_color = diffuse_seen || inputs.filter_angle <= 0
+                             ? scene.BaseColor(surface)
+                             : scene.BaseColor(surface, length * inputs.filter_angle);
         if (!kSpecular || material.type == MaterialType::kDiffuse) {
             diffuse_seen = true;
             const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
-            const Vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
+            const Vec3 geometric =
+                front_facing ? surface.geometric_normal : -surface.geometric_normal;
             const Rgb bsdf = base_color / kPi;
             LightSample light;
             if (inputs.emitters->SampleDirect(surface.position, normal, rng, &light) &&
@@ -76,26 +79,30 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
             LightSample light;
             if (inputs.emitters->SampleDirect(surface.position, normal, rng, &light) &&
                 !inputs.tracer->Occluded(light.shadow_ray)) {
-                const RoughReflection f = EvaluateRoughConductor(material, base_color, normal, wo, light.direction);
+                const RoughReflection f =
+                    EvaluateRoughConductor(material, base_color, normal, wo, light.direction);
                 const float weight = light.pdf > 0 ? PowerHeuristic(light.pdf, f.pdf) : 1.0f;
                 radiance += throughput * f.value * light.radiance_over_pdf * weight;
             }
-            const SpecularBounce bounce = ScatterNonDiffuse(material, ray.direction, surface.shading_normal,
-                                                            front_facing, base_color, rng);
+            const SpecularBounce bounce = ScatterNonDiffuse(
+                material, ray.direction, surface.shading_normal, front_facing, base_color, rng);
             throughput *= bounce.weight;
-            bsdf_pdf = EvaluateRoughConductor(material, base_color, normal, wo, bounce.direction).pdf;
+            bsdf_pdf =
+                EvaluateRoughConductor(material, base_color, normal, wo, bounce.direction).pdf;
             bounced_at = surface.position;
             specular_bounce = false;
-            ray = {OffsetRayOrigin(surface.position, front_facing ? surface.geometric_normal : -surface.geometric_normal,
-                                   scale),
+            ray = {OffsetRayOrigin(
+                       surface.position,
+                       front_facing ? surface.geometric_normal : -surface.geometric_normal, scale),
                    bounce.direction};
         } else {
             // Specular surfaces, and rough glass, whose light is found by its own sampling alone.
-            const SpecularBounce bounce = ScatterNonDiffuse(material, ray.direction, surface.shading_normal,
-                                                            front_facing, base_color, rng);
+            const SpecularBounce bounce = ScatterNonDiffuse(
+                material, ray.direction, surface.shading_normal, front_facing, base_color, rng);
             throughput *= bounce.weight;
             specular_bounce = true;
-            const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;
+            const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal
+                                                                 : surface.geometric_normal;
             ray = {OffsetRayOrigin(surface.position, side, scale), bounce.direction};
         }
         if (depth >= kPathRouletteDepth) {
@@ -113,8 +120,10 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
 Rgb TracePath(const PathInputs& inputs, Ray ray, Rng& rng) {
     const SceneFeatures& features = inputs.features;
     if (features.Specular())
-        return features.textures ? TracePathFor<true, true>(inputs, ray, rng) : TracePathFor<true, false>(inputs, ray, rng);
-    return features.textures ? TracePathFor<false, true>(inputs, ray, rng) : TracePathFor<false, false>(inputs, ray, rng);
+        return features.textures ? TracePathFor<true, true>(inputs, ray, rng)
+                                 : TracePathFor<true, false>(inputs, ray, rng);
+    return features.textures ? TracePathFor<false, true>(inputs, ray, rng)
+                             : TracePathFor<false, false>(inputs, ray, rng);
 }
 
 }  // namespace pf

@@ -17,9 +17,9 @@ inline constexpr uint32_t kPixelEstimateMagic = 0x58504650;
 struct PixelEstimateSettings {
     Integrator integrator = Integrator::kPath;
     int width = 0, height = 0;
-    int samples_per_pixel = 1;     // camera samples per pixel per epoch
+    int samples_per_pixel = 1;       // camera samples per pixel per epoch
     uint32_t batches_per_epoch = 8;  // an epoch's pixels split into this many slices
-    uint64_t map_photons = 0;      // pm: the photons its maps were built from, for the records
+    uint64_t map_photons = 0;        // pm: the photons its maps were built from, for the records
 };
 
 class PixelEstimate final : public Estimate {
@@ -32,7 +32,9 @@ public:
     uint64_t ItemCount() const override { return sum_.size(); }
     uint64_t Epoch() const override { return epoch_; }
     uint64_t PhotonsEmitted() const override { return epoch_ > 0 ? settings_.map_photons : 0; }
-    uint64_t CameraSamples() const override { return epoch_ * sum_.size() * uint64_t(settings_.samples_per_pixel); }
+    uint64_t CameraSamples() const override {
+        return epoch_ * sum_.size() * uint64_t(settings_.samples_per_pixel);
+    }
     uint64_t NonfiniteDiscarded() const override { return nonfinite_discarded_; }
     bool LightReachedAnything() const override { return light_reached_; }
     double InitialRadius() const override { return 0; }

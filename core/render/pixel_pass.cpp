@@ -15,7 +15,8 @@ SeedFamily PixelSeeds(uint64_t seed, uint64_t epoch) {
 }
 
 std::vector<BatchResult> RunPixelBatches(const Camera& camera, const Film& film, uint64_t seed,
-                                         std::span<const BatchSpec> specs, const RadianceFunction& radiance) {
+                                         std::span<const BatchSpec> specs,
+                                         const RadianceFunction& radiance) {
     std::vector<BatchResult> results(specs.size());
     const float inverse_spp = 1.0f / static_cast<float>(film.samples_per_pixel);
     for (size_t b = 0; b < specs.size(); ++b) {
@@ -34,9 +35,12 @@ std::vector<BatchResult> RunPixelBatches(const Camera& camera, const Film& film,
                                   const int y = static_cast<int>(pixel / film.width);
                                   Rgb sum(0.0f);
                                   for (int s = 0; s < film.samples_per_pixel; ++s) {
-                                      const Rgb sample = radiance(PixelSampleRay(camera, film, x, y, s, rng), rng);
-                                      if (IsFinite(sample)) sum += sample;
-                                      else ++discarded.local();
+                                      const Rgb sample =
+                                          radiance(PixelSampleRay(camera, film, x, y, s, rng), rng);
+                                      if (IsFinite(sample))
+                                          sum += sample;
+                                      else
+                                          ++discarded.local();
                                   }
                                   result.samples[pixel - spec.sample_begin] = sum * inverse_spp;
                               }

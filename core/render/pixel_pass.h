@@ -28,6 +28,7 @@ SeedFamily PixelSeeds(uint64_t seed, uint64_t epoch);
 // `specs`. A sample that comes out NaN or Inf counts as black and is counted in
 // nonfinite_discarded.
 std::vector<BatchResult> RunPixelBatches(const Camera& camera, const Film& film, uint64_t seed,
-                                         std::span<const BatchSpec> specs, const RadianceFunction& radiance);
+                                         std::span<const BatchSpec> specs,
+                                         const RadianceFunction& radiance);
 
 }  // namespace pf

@@ -15,7 +15,9 @@ namespace pf {
 struct Film {
     int width = 0, height = 0;
     int samples_per_pixel = 1;
-    int Strata() const { return static_cast<int>(std::ceil(std::sqrt(static_cast<double>(samples_per_pixel)))); }
+    int Strata() const {
+        return static_cast<int>(std::ceil(std::sqrt(static_cast<double>(samples_per_pixel))));
+    }
     float Aspect() const { return static_cast<float>(width) / static_cast<float>(height); }
     uint64_t Pixels() const { return uint64_t(width) * uint64_t(height); }
 };

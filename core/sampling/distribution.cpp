@@ -35,7 +35,8 @@ DiscreteDistribution::Sample DiscreteDistribution::Draw(float u) const {
     if (cdf_.size() <= kLinearSearchLimit) {
         for (double value : cdf_) index += value <= u;
     } else {
-        index = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), static_cast<double>(u)) - cdf_.begin());
+        index = static_cast<size_t>(
+            std::upper_bound(cdf_.begin(), cdf_.end(), static_cast<double>(u)) - cdf_.begin());
     }
     index = std::min(index, cdf_.size() - 1);
     return {static_cast<uint32_t>(index), probabilities_[index]};

@@ -27,7 +27,7 @@ public:
 
 private:
     static constexpr size_t kLinearSearchLimit = 32;
-    std::vector<double> cdf_;           // cdf_[i] = sum of weights [0, i] / total
+    std::vector<double> cdf_;            // cdf_[i] = sum of weights [0, i] / total
     std::vector<double> probabilities_;  // weight / total
     double total_ = 0;
 };

@@ -16,7 +16,8 @@ using gpu::Mix64;
 // batch seeds each of its photons' streams for one mix instead of four.
 class SeedFamily {
 public:
-    constexpr SeedFamily(uint64_t a, uint64_t b, uint64_t c) : prefix_(gpu::FamilyPrefix(a, b, c)) {}
+    constexpr SeedFamily(uint64_t a, uint64_t b, uint64_t c)
+        : prefix_(gpu::FamilyPrefix(a, b, c)) {}
     constexpr uint64_t Seed(uint64_t d) const { return gpu::FamilySeed(prefix_, d); }
     // The shared part, which the Vulkan shaders take to derive the same seeds.
     constexpr uint64_t Prefix() const { return prefix_; }

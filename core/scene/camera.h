@@ -13,10 +13,10 @@ namespace pf {
 struct Camera {
     Vec3 position;
     Vec3 forward{0, 0, -1}, right{1, 0, 0}, up{0, 1, 0};  // orthonormal, world space
-    float y_fov = 0.8f;          // vertical field of view, radians
-    float aspect_ratio = 0.0f;   // width / height from the scene; 0 when the scene gives none
-    float lens_radius = 0.0f;    // world units; 0: a pinhole
-    float focal_distance = 1e6f; // along forward, world units: where the lens is in focus
+    float y_fov = 0.8f;                                   // vertical field of view, radians
+    float aspect_ratio = 0.0f;    // width / height from the scene; 0 when the scene gives none
+    float lens_radius = 0.0f;     // world units; 0: a pinhole
+    float focal_distance = 1e6f;  // along forward, world units: where the lens is in focus
 
     bool HasLens() const { return lens_radius > 0; }
 
@@ -33,12 +33,15 @@ struct Camera {
     Ray GenerateRay(float x, float y, float film_aspect, Point2 lens) const {
         const Ray pinhole = GenerateRay(x, y, film_aspect);
         if (!HasLens()) return pinhole;
-        const Vec3 focus = position + pinhole.direction * (focal_distance / Dot(pinhole.direction, forward));
+        const Vec3 focus =
+            position + pinhole.direction * (focal_distance / Dot(pinhole.direction, forward));
         const Vec3 origin = position + (right * lens.x + up * lens.y) * lens_radius;
         return {origin, Normalize(focus - origin)};
     }
     // Solid angle subtended by one pixel at the image centre, as a length per unit distance.
-    float PixelAngle(int height) const { return 2.0f * std::tan(0.5f * y_fov) / static_cast<float>(height); }
+    float PixelAngle(int height) const {
+        return 2.0f * std::tan(0.5f * y_fov) / static_cast<float>(height);
+    }
 };
 
 }  // namespace pf

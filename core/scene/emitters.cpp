@@ -23,7 +23,8 @@ std::vector<Emitters::Record> Emitters::Records() const {
         if (record.is_triangle) {
             const EmissiveTriangle& triangle = triangles_[emitters_[i].index];
             record.p0 = triangle.p0, record.edge1 = triangle.edge1, record.edge2 = triangle.edge2;
-            record.normal = triangle.frame.n, record.radiance = triangle.radiance, record.area = triangle.area;
+            record.normal = triangle.frame.n, record.radiance = triangle.radiance,
+            record.area = triangle.area;
         } else {
             record.light = emitters_[i].index;
         }
@@ -49,9 +50,11 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
         if (!material.IsEmissive()) continue;
         const Triangle& triangle = scene.triangles[t];
         const Vec3& p0 = scene.positions[triangle.vertex[0]];
-        const Vec3 edge1 = scene.positions[triangle.vertex[1]] - p0, edge2 = scene.positions[triangle.vertex[2]] - p0;
+        const Vec3 edge1 = scene.positions[triangle.vertex[1]] - p0,
+                   edge2 = scene.positions[triangle.vertex[2]] - p0;
         const auto index = static_cast<uint32_t>(triangles_.size());
-        triangles_.push_back({p0, edge1, edge2, Frame::FromNormal(triangle.normal), material.emission, scene.TriangleArea(t)});
+        triangles_.push_back({p0, edge1, edge2, Frame::FromNormal(triangle.normal),
+                              material.emission, scene.TriangleArea(t)});
         if (add(true, index, Rgbd(material.emission) * (kPiD * triangles_.back().area)))
             emitter_of_triangle_[t] = static_cast<int32_t>(emitters_.size() - 1);
     }
@@ -59,8 +62,12 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
         const PunctualLight& light = scene.lights[l];
         const Rgbd intensity(light.intensity);
         switch (light.type) {
-            case LightType::kPoint: add(false, l, intensity * (4.0 * kPiD)); break;
-            case LightType::kSpot: add(false, l, intensity * double(SpotSolidAngle(light))); break;
+            case LightType::kPoint:
+                add(false, l, intensity * (4.0 * kPiD));
+                break;
+            case LightType::kSpot:
+                add(false, l, intensity * double(SpotSolidAngle(light)));
+                break;
             case LightType::kDirectional:
                 add(false, l, intensity * (kPiD * scene_radius_ * scene_radius_));
                 break;
@@ -89,7 +96,8 @@ Vec3 Emitters::EmissiveTriangle::Point(float u1, float u2) const {
 
 EmittedPhoton Emitters::EmitFromTriangle(const EmissiveTriangle& triangle, Rng& rng) const {
     const Vec3 point = triangle.Point(rng.NextFloat(), rng.NextFloat());
-    const Vec3 direction = triangle.frame.ToWorld(SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
+    const Vec3 direction =
+        triangle.frame.ToWorld(SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
     // Cosine-weighted emission of radiance Le from area A carries flux pi * A * Le.
     return {{OffsetRayOrigin(point, triangle.frame.n, scene_.bounds.Magnitude()), direction},
             triangle.radiance * (kPi * triangle.area)};
@@ -153,7 +161,8 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
             to_light /= distance;
             if (!(distance_sq > 0)) return false;
             float falloff = 1.0f;
-            if (light.type == LightType::kSpot) falloff = light.SpotFalloff(-Dot(to_light, light.direction));
+            if (light.type == LightType::kSpot)
+                falloff = light.SpotFalloff(-Dot(to_light, light.direction));
             radiance_over_pdf = light.intensity * (falloff / distance_sq);
         }
     }
@@ -178,8 +187,8 @@ Emitters::Hit Emitters::HitEmitter(uint32_t triangle, const Vec3& p, const Vec3&
     const float distance_sq = LengthSquared(to_light);
     const float cos_light = -Dot(emissive.frame.n, to_light) / std::sqrt(distance_sq);
     if (!(cos_light > 0) || !(distance_sq > 0)) return {};
-    return {emissive.radiance,
-            static_cast<float>(distribution_.Probability(index)) * distance_sq / (cos_light * emissive.area)};
+    return {emissive.radiance, static_cast<float>(distribution_.Probability(index)) * distance_sq /
+                                   (cos_light * emissive.area)};
 }
 
 }  // namespace pf

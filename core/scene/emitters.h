@@ -72,14 +72,14 @@ public:
     // backend uploads these), in selection order.
     struct Record {
         bool is_triangle = false;
-        uint32_t light = 0;                 // punctual: index into Scene::lights
-        Vec3 p0, edge1, edge2, normal;      // triangle: corners and unit emitting normal
-        Rgb radiance;                       // triangle: Le
-        float area = 0;                     // triangle
+        uint32_t light = 0;             // punctual: index into Scene::lights
+        Vec3 p0, edge1, edge2, normal;  // triangle: corners and unit emitting normal
+        Rgb radiance;                   // triangle: Le
+        float area = 0;                 // triangle
         // W per channel: a photon's flux before the 1 / probability of its pick (and, for a
         // spot light, before the falloff of its direction).
         Rgb power;
-        double probability = 0;             // of being picked by Emit and SampleDirect
+        double probability = 0;  // of being picked by Emit and SampleDirect
     };
     std::vector<Record> Records() const;
     // The bounding sphere directional lights emit across.
@@ -108,7 +108,7 @@ private:
     const Scene& scene_;
     std::vector<Emitter> emitters_;
     std::vector<EmissiveTriangle> triangles_;
-    DiscreteDistribution distribution_;     // over emitters_, by power
+    DiscreteDistribution distribution_;       // over emitters_, by power
     std::vector<float> inverse_probability_;  // 1 / selection probability, per emitter
     // Per world triangle, its index into emitters_, or -1 where it emits nothing.
     std::vector<int32_t> emitter_of_triangle_;

@@ -23,8 +23,9 @@ using shared::SampleGgxVisibleNormal;
 // Scatters d at a rough surface; `normal` is the shading normal on the triangle's front
 // side, u_branch chooses reflection or refraction (rough glass), (u1, u2) the microfacet. A
 // black weight ends the path (the sample left the hemisphere it must stay in).
-inline SpecularBounce ScatterRough(const Material& material, const Vec3& d, const Vec3& normal, bool front_facing,
-                                   const Rgb& tint, float u_branch, float u1, float u2) {
+inline SpecularBounce ScatterRough(const Material& material, const Vec3& d, const Vec3& normal,
+                                   bool front_facing, const Rgb& tint, float u_branch, float u1,
+                                   float u2) {
     const Vec3 n = front_facing ? normal : -normal;  // facing the incident side
     const Frame frame = Frame::FromNormal(n);
     const Vec3 wo = frame.ToLocal(-d);
@@ -36,7 +37,8 @@ inline SpecularBounce ScatterRough(const Material& material, const Vec3& d, cons
     const auto reflect = [&](const Rgb& weight) {
         const Vec3 wi = m * (2.0f * cos_om) - wo;
         if (!(wi.z > 0)) return absorbed;
-        return SpecularBounce{frame.ToWorld(wi), weight * GgxMaskingRatio(wo.z, wi.z, alpha), false};
+        return SpecularBounce{frame.ToWorld(wi), weight * GgxMaskingRatio(wo.z, wi.z, alpha),
+                              false};
     };
     if (material.type == MaterialType::kRoughConductor) return reflect(tint);
     // Rough glass: front faces lead into the glass, as for smooth glass.
@@ -50,10 +52,11 @@ inline SpecularBounce ScatterRough(const Material& material, const Vec3& d, cons
 
 // Scatters d at a surface that is not diffuse, drawing one number (specular) or three
 // (rough) from rng.
-inline SpecularBounce ScatterNonDiffuse(const Material& material, const Vec3& d, const Vec3& normal, bool front_facing,
-                                        const Rgb& tint, Rng& rng) {
+inline SpecularBounce ScatterNonDiffuse(const Material& material, const Vec3& d, const Vec3& normal,
+                                        bool front_facing, const Rgb& tint, Rng& rng) {
     const float u_branch = rng.NextFloat();
-    if (!material.IsRough()) return ScatterSpecular(material, d, normal, front_facing, tint, u_branch);
+    if (!material.IsRough())
+        return ScatterSpecular(material, d, normal, front_facing, tint, u_branch);
     const float u1 = rng.NextFloat();
     const float u2 = rng.NextFloat();
     return ScatterRough(material, d, normal, front_facing, tint, u_branch, u1, u2);
@@ -64,20 +67,22 @@ inline SpecularBounce ScatterNonDiffuse(const Material& material, const Vec3& d,
 // normal on the viewer's side, f cos(wi) and the density in solid angle of ScatterRough
 // choosing wi. Zero below the surface.
 struct RoughReflection {
-    Rgb value;   // f(wo, wi) cos(wi)
+    Rgb value;  // f(wo, wi) cos(wi)
     float pdf = 0;
 };
-inline RoughReflection EvaluateRoughConductor(const Material& material, const Rgb& tint, const Vec3& n, const Vec3& wo,
-                                              const Vec3& wi) {
+inline RoughReflection EvaluateRoughConductor(const Material& material, const Rgb& tint,
+                                              const Vec3& n, const Vec3& wo, const Vec3& wi) {
     const float cos_o = Dot(wo, n), cos_i = Dot(wi, n);
     if (!(cos_o > 0 && cos_i > 0)) return {Rgb(0.0f), 0.0f};
     const Vec3 h = Normalize(wo + wi);
     const float cos_h = Dot(h, n);
     const float alpha = std::max(material.roughness, kMinRoughness);
-    const float lambda_o = shared::GgxLambda(cos_o, alpha), lambda_i = shared::GgxLambda(cos_i, alpha);
+    const float lambda_o = shared::GgxLambda(cos_o, alpha),
+                lambda_i = shared::GgxLambda(cos_i, alpha);
     const float d = GgxDistribution(cos_h, alpha);
     // f cos_i = F D G2 / (4 cos_o), the tint standing for F.
-    return {tint * (d / ((1.0f + lambda_o + lambda_i) * 4.0f * cos_o)), GgxReflectionPdf(cos_o, cos_h, alpha)};
+    return {tint * (d / ((1.0f + lambda_o + lambda_i) * 4.0f * cos_o)),
+            GgxReflectionPdf(cos_o, cos_h, alpha)};
 }
 
 }  // namespace pf

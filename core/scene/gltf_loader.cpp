@@ -23,7 +23,8 @@ namespace {
 constexpr int kMaxNodeDepth = 256;
 
 std::string Describe(const std::string& kind, int index, const std::string& name) {
-    return name.empty() ? absl::StrCat(kind, " #", index) : absl::StrCat(kind, " '", name, "' (#", index, ")");
+    return name.empty() ? absl::StrCat(kind, " #", index)
+                        : absl::StrCat(kind, " '", name, "' (#", index, ")");
 }
 
 double NumberOr(const tinygltf::Value& object, const char* key, double fallback) {
@@ -39,13 +40,15 @@ const tinygltf::Value* Extension(const tinygltf::ExtensionMap& extensions, const
 // Whether `count` elements of `element_size` bytes, `stride` apart, starting `offset` bytes
 // into buffer view `view`, lie inside it and the view inside its buffer; overflow-safe, since
 // every number here comes from the file.
-bool AccessorFits(const tinygltf::Model& model, const tinygltf::BufferView& view, size_t offset, size_t count,
-                  size_t stride, size_t element_size) {
+bool AccessorFits(const tinygltf::Model& model, const tinygltf::BufferView& view, size_t offset,
+                  size_t count, size_t stride, size_t element_size) {
     if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size())) return false;
     const size_t buffer_size = model.buffers[view.buffer].data.size();
-    if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset) return false;
+    if (view.byteOffset > buffer_size || view.byteLength > buffer_size - view.byteOffset)
+        return false;
     if (count == 0) return true;
-    if (offset > view.byteLength || element_size > view.byteLength - offset || stride == 0) return false;
+    if (offset > view.byteLength || element_size > view.byteLength - offset || stride == 0)
+        return false;
     return count - 1 <= (view.byteLength - offset - element_size) / stride;
 }
 
@@ -59,15 +62,20 @@ absl::Status ReadFloats(const tinygltf::Model& model, int index, int components,
     if (tinygltf::GetNumComponentsInType(accessor.type) != components)
         return absl::InvalidArgumentError(absl::StrCat("accessor #", index, " has the wrong type"));
     if (accessor.sparse.isSparse)
-        return absl::InvalidArgumentError(absl::StrCat("accessor #", index, " is sparse (unsupported)"));
-    if (accessor.bufferView < 0 || accessor.bufferView >= static_cast<int>(model.bufferViews.size()))
+        return absl::InvalidArgumentError(
+            absl::StrCat("accessor #", index, " is sparse (unsupported)"));
+    if (accessor.bufferView < 0 ||
+        accessor.bufferView >= static_cast<int>(model.bufferViews.size()))
         return absl::InvalidArgumentError(absl::StrCat("accessor #", index, " has no buffer view"));
     const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];
     const int component_size = tinygltf::GetComponentSizeInBytes(accessor.componentType);
-    const size_t stride = view.byteStride != 0 ? view.byteStride : size_t(component_size) * components;
+    const size_t stride =
+        view.byteStride != 0 ? view.byteStride : size_t(component_size) * components;
     if (component_size <= 0 || accessor.count == 0 ||
-        !AccessorFits(model, view, accessor.byteOffset, accessor.count, stride, size_t(component_size) * components))
-        return absl::InvalidArgumentError(absl::StrCat("accessor #", index, " lies outside its buffer"));
+        !AccessorFits(model, view, accessor.byteOffset, accessor.count, stride,
+                      size_t(component_size) * components))
+        return absl::InvalidArgumentError(
+            absl::StrCat("accessor #", index, " lies outside its buffer"));
     const tinygltf::Buffer& buffer = model.buffers[view.buffer];
     const size_t begin = view.byteOffset + accessor.byteOffset;
     out->resize(accessor.count * components);
@@ -77,8 +85,12 @@ absl::Status ReadFloats(const tinygltf::Model& model, int index, int components,
             const unsigned char* p = element + c * component_size;
             float value;
             switch (accessor.componentType) {
-                case TINYGLTF_COMPONENT_TYPE_FLOAT: std::memcpy(&value, p, 4); break;
-                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: value = *p / 255.0f; break;
+                case TINYGLTF_COMPONENT_TYPE_FLOAT:
+                    std::memcpy(&value, p, 4);
+                    break;
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                    value = *p / 255.0f;
+                    break;
                 case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
                     uint16_t v;
                     std::memcpy(&v, p, 2);
@@ -86,7 +98,8 @@ absl::Status ReadFloats(const tinygltf::Model& model, int index, int components,
                     break;
                 }
                 default:
-                    return absl::InvalidArgumentError(absl::StrCat("accessor #", index, " has an unsupported component type"));
+                    return absl::InvalidArgumentError(
+                        absl::StrCat("accessor #", index, " has an unsupported component type"));
             }
             (*out)[i * components + c] = value;
         }
@@ -96,31 +109,41 @@ absl::Status ReadFloats(const tinygltf::Model& model, int index, int components,
 
 absl::Status ReadIndices(const tinygltf::Model& model, int index, std::vector<uint32_t>* out) {
     if (index < 0 || index >= static_cast<int>(model.accessors.size()))
-        return absl::InvalidArgumentError(absl::StrCat("index accessor #", index, " does not exist"));
+        return absl::InvalidArgumentError(
+            absl::StrCat("index accessor #", index, " does not exist"));
     const tinygltf::Accessor& accessor = model.accessors[index];
-    if (accessor.bufferView < 0 || accessor.bufferView >= static_cast<int>(model.bufferViews.size()) ||
+    if (accessor.bufferView < 0 ||
+        accessor.bufferView >= static_cast<int>(model.bufferViews.size()) ||
         accessor.type != TINYGLTF_TYPE_SCALAR)
         return absl::InvalidArgumentError(absl::StrCat("index accessor #", index, " is malformed"));
     const tinygltf::BufferView& view = model.bufferViews[accessor.bufferView];
     const int size = tinygltf::GetComponentSizeInBytes(accessor.componentType);
     const size_t stride = view.byteStride != 0 ? view.byteStride : size_t(size);
-    if (size <= 0 || !AccessorFits(model, view, accessor.byteOffset, accessor.count, stride, size_t(size)))
-        return absl::InvalidArgumentError(absl::StrCat("index accessor #", index, " lies outside its buffer"));
+    if (size <= 0 ||
+        !AccessorFits(model, view, accessor.byteOffset, accessor.count, stride, size_t(size)))
+        return absl::InvalidArgumentError(
+            absl::StrCat("index accessor #", index, " lies outside its buffer"));
     const tinygltf::Buffer& buffer = model.buffers[view.buffer];
     const size_t begin = view.byteOffset + accessor.byteOffset;
     out->resize(accessor.count);
     for (size_t i = 0; i < accessor.count; ++i) {
         const unsigned char* p = buffer.data.data() + begin + i * stride;
         switch (accessor.componentType) {
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: (*out)[i] = *p; break;
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                (*out)[i] = *p;
+                break;
             case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
                 uint16_t v;
                 std::memcpy(&v, p, 2);
                 (*out)[i] = v;
                 break;
             }
-            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&(*out)[i], p, 4); break;
-            default: return absl::InvalidArgumentError(absl::StrCat("index accessor #", index, " has a non-integer type"));
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+                std::memcpy(&(*out)[i], p, 4);
+                break;
+            default:
+                return absl::InvalidArgumentError(
+                    absl::StrCat("index accessor #", index, " has a non-integer type"));
         }
     }
     return absl::OkStatus();
@@ -137,12 +160,15 @@ using GltfImages = std::map<int, EncodedImage>;
 UvTransform TextureTransform(const tinygltf::Value& transform) {
     double offset[2] = {0, 0}, scale[2] = {1, 1};
     for (int i = 0; i < 2; ++i) {
-        if (transform.Has("offset") && transform.Get("offset").IsArray() && transform.Get("offset").ArrayLen() == 2)
+        if (transform.Has("offset") && transform.Get("offset").IsArray() &&
+            transform.Get("offset").ArrayLen() == 2)
             offset[i] = transform.Get("offset").Get(i).GetNumberAsDouble();
-        if (transform.Has("scale") && transform.Get("scale").IsArray() && transform.Get("scale").ArrayLen() == 2)
+        if (transform.Has("scale") && transform.Get("scale").IsArray() &&
+            transform.Get("scale").ArrayLen() == 2)
             scale[i] = transform.Get("scale").Get(i).GetNumberAsDouble();
     }
-    const double rotation = NumberOr(transform, "rotation", 0.0), c = std::cos(rotation), s = std::sin(rotation);
+    const double rotation = NumberOr(transform, "rotation", 0.0), c = std::cos(rotation),
+                 s = std::sin(rotation);
     UvTransform uv;
     uv.m[0] = c * scale[0], uv.m[1] = s * scale[1], uv.m[2] = offset[0];
     uv.m[3] = -s * scale[0], uv.m[4] = c * scale[1], uv.m[5] = offset[1];
@@ -150,8 +176,11 @@ UvTransform TextureTransform(const tinygltf::Value& transform) {
 }
 
 // The extension OpenImageIO needs to pick a reader: from the bytes' signature, else the URI's.
-std::string ImageName(int index, const tinygltf::Image& image, const unsigned char* bytes, int size) {
-    const std::string label = image.uri.empty() || absl::StartsWith(image.uri, "data:") ? absl::StrCat("image #", index) : image.uri;
+std::string ImageName(int index, const tinygltf::Image& image, const unsigned char* bytes,
+                      int size) {
+    const std::string label = image.uri.empty() || absl::StartsWith(image.uri, "data:")
+                                  ? absl::StrCat("image #", index)
+                                  : image.uri;
     const char* extension = "";
     if (size >= 8 && std::memcmp(bytes, "\x89PNG", 4) == 0) extension = ".png";
     if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) extension = ".jpg";
@@ -163,14 +192,15 @@ std::string ImageName(int index, const tinygltf::Image& image, const unsigned ch
 bool KeepEncodedImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
                       const unsigned char* bytes, int size, void* user) {
     auto* images = static_cast<GltfImages*>(user);
-    (*images)[index] = {std::string(reinterpret_cast<const char*>(bytes), size), ImageName(index, *image, bytes, size)};
+    (*images)[index] = {std::string(reinterpret_cast<const char*>(bytes), size),
+                        ImageName(index, *image, bytes, size)};
     return true;
 }
 
 class GltfSceneBuilder {
 public:
-    GltfSceneBuilder(const std::string& path, const tinygltf::Model& model, const SceneLimits& limits,
-                     const GltfImages& images)
+    GltfSceneBuilder(const std::string& path, const tinygltf::Model& model,
+                     const SceneLimits& limits, const GltfImages& images)
         : path_(path), model_(model), limits_(limits), images_(images) {
         scene_.source = path;
     }
@@ -183,9 +213,11 @@ private:
     }
     absl::Status VisitNode(int index, const Transform& parent, int depth);
     absl::Status AddMesh(int mesh_index, const Transform& world);
-    absl::StatusOr<TriangleMesh> ReadPrimitive(const tinygltf::Primitive& primitive, const std::string& element) const;
-    absl::Status AddPrimitive(int mesh_index, size_t primitive_index, const std::string& element, const Transform& world,
-                              uint32_t material, std::optional<uint32_t> prototype);
+    absl::StatusOr<TriangleMesh> ReadPrimitive(const tinygltf::Primitive& primitive,
+                                               const std::string& element) const;
+    absl::Status AddPrimitive(int mesh_index, size_t primitive_index, const std::string& element,
+                              const Transform& world, uint32_t material,
+                              std::optional<uint32_t> prototype);
     absl::Status AddLight(int light_index, const Transform& world);
     absl::Status SetCamera(int camera_index, const Transform& world);
     absl::StatusOr<uint32_t> MaterialIndex(int gltf_material);
@@ -195,12 +227,14 @@ private:
     const tinygltf::Model& model_;
     Scene scene_;
     bool has_camera_ = false;
-    std::map<int, uint32_t> material_indices_;  // glTF material -> Scene::materials
-    std::map<int, int32_t> texture_indices_;    // glTF image -> Scene::textures
+    std::map<int, uint32_t> material_indices_;      // glTF material -> Scene::materials
+    std::map<int, int32_t> texture_indices_;        // glTF image -> Scene::textures
     std::map<uint32_t, UvTransform> material_uvs_;  // Scene::materials -> its texture's transform
-    std::map<std::pair<int, size_t>, TriangleMesh> meshes_;  // (mesh, primitive) emitting in several nodes
-    std::map<int, int> mesh_uses_;                  // glTF mesh -> how many nodes name it
-    std::map<int, uint32_t> mesh_prototypes_;       // glTF mesh used by several nodes -> Scene::prototypes
+    std::map<std::pair<int, size_t>, TriangleMesh>
+        meshes_;                    // (mesh, primitive) emitting in several nodes
+    std::map<int, int> mesh_uses_;  // glTF mesh -> how many nodes name it
+    std::map<int, uint32_t>
+        mesh_prototypes_;  // glTF mesh used by several nodes -> Scene::prototypes
     const SceneLimits& limits_;
     const GltfImages& images_;
 };
@@ -223,9 +257,11 @@ absl::StatusOr<Scene> GltfSceneBuilder::Build() {
     if (!has_camera_) return Error("scene", "has no camera (add a perspective camera node)");
     if (scene_.triangles.empty()) return Error("scene", "has no triangles");
     bool has_light = !scene_.lights.empty();
-    for (const Triangle& t : scene_.triangles) has_light |= scene_.materials[t.material].IsEmissive();
+    for (const Triangle& t : scene_.triangles)
+        has_light |= scene_.materials[t.material].IsEmissive();
     if (!has_light)
-        return Error("scene", "has no light (no KHR_lights_punctual light and no emissive material)");
+        return Error("scene",
+                     "has no light (no KHR_lights_punctual light and no emissive material)");
     return std::move(scene_);
 }
 
@@ -239,10 +275,14 @@ absl::Status GltfSceneBuilder::VisitNode(int index, const Transform& parent, int
     if (node.matrix.size() == 16) {
         local = Transform::FromColumnMajor(node.matrix.data());
     } else {
-        const Vec3d t = node.translation.size() == 3 ? Vec3d(node.translation[0], node.translation[1], node.translation[2]) : Vec3d(0.0);
-        const Vec3d s = node.scale.size() == 3 ? Vec3d(node.scale[0], node.scale[1], node.scale[2]) : Vec3d(1.0);
+        const Vec3d t = node.translation.size() == 3
+                            ? Vec3d(node.translation[0], node.translation[1], node.translation[2])
+                            : Vec3d(0.0);
+        const Vec3d s = node.scale.size() == 3 ? Vec3d(node.scale[0], node.scale[1], node.scale[2])
+                                               : Vec3d(1.0);
         const double identity[4] = {0, 0, 0, 1};
-        local = Transform::FromTrs(t, node.rotation.size() == 4 ? node.rotation.data() : identity, s);
+        local =
+            Transform::FromTrs(t, node.rotation.size() == 4 ? node.rotation.data() : identity, s);
     }
     if (!local.IsFinite()) return Error(element, "transform has NaN or Inf");
     const Transform world = parent * local;
@@ -252,7 +292,8 @@ absl::Status GltfSceneBuilder::VisitNode(int index, const Transform& parent, int
     if (node.camera >= 0 && !has_camera_)
         if (absl::Status status = SetCamera(node.camera, world); !status.ok()) return status;
     if (const tinygltf::Value* light = Extension(node.extensions, "KHR_lights_punctual"))
-        if (absl::Status status = AddLight(static_cast<int>(NumberOr(*light, "light", -1)), world); !status.ok())
+        if (absl::Status status = AddLight(static_cast<int>(NumberOr(*light, "light", -1)), world);
+            !status.ok())
             return status;
     for (int child : node.children)
         if (absl::Status status = VisitNode(child, world, depth + 1); !status.ok()) return status;
@@ -271,8 +312,9 @@ absl::Status GltfSceneBuilder::AddMesh(int mesh_index, const Transform& world) {
             absl::StatusOr<uint32_t> material = MaterialIndex(mesh.primitives[p].material);
             if (!material.ok()) return material.status();
             if (emitting && scene_.materials[*material].IsEmissive() != *emitting) continue;
-            if (absl::Status status = AddPrimitive(mesh_index, p, absl::StrCat(name, " primitive ", p), placement,
-                                                   *material, prototype);
+            if (absl::Status status =
+                    AddPrimitive(mesh_index, p, absl::StrCat(name, " primitive ", p), placement,
+                                 *material, prototype);
                 !status.ok())
                 return status;
         }
@@ -284,36 +326,44 @@ absl::Status GltfSceneBuilder::AddMesh(int mesh_index, const Transform& world) {
     auto [prototype, first] = mesh_prototypes_.try_emplace(mesh_index, 0);
     if (first) {
         prototype->second = BeginPrototype(&scene_);
-        if (absl::Status status = add_primitives(false, Transform{}, prototype->second); !status.ok()) return status;
+        if (absl::Status status = add_primitives(false, Transform{}, prototype->second);
+            !status.ok())
+            return status;
     }
-    if (absl::Status status = add_primitives(true, world, std::nullopt); !status.ok()) return status;
+    if (absl::Status status = add_primitives(true, world, std::nullopt); !status.ok())
+        return status;
     return AddInstance(prototype->second, world, limits_, absl::StrCat(path_, ": ", name), &scene_);
 }
 
 absl::StatusOr<TriangleMesh> GltfSceneBuilder::ReadPrimitive(const tinygltf::Primitive& primitive,
-                                                              const std::string& element) const {
+                                                             const std::string& element) const {
     const auto position_it = primitive.attributes.find("POSITION");
-    if (position_it == primitive.attributes.end()) return Error(element, "has no POSITION attribute");
+    if (position_it == primitive.attributes.end())
+        return Error(element, "has no POSITION attribute");
     std::vector<float> positions, normals, uvs;
     if (absl::Status s = ReadFloats(model_, position_it->second, 3, &positions); !s.ok())
         return Error(element, std::string(s.message()));
     const size_t vertex_count = positions.size() / 3;
     for (size_t v = 0; v < 3 * vertex_count; ++v)
-        if (!std::isfinite(positions[v])) return Error(element, absl::StrCat("vertex ", v / 3, " position has NaN or Inf"));
+        if (!std::isfinite(positions[v]))
+            return Error(element, absl::StrCat("vertex ", v / 3, " position has NaN or Inf"));
     if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
         if (absl::Status s = ReadFloats(model_, it->second, 3, &normals); !s.ok())
             return Error(element, std::string(s.message()));
-        if (normals.size() != positions.size()) return Error(element, "NORMAL and POSITION counts differ");
+        if (normals.size() != positions.size())
+            return Error(element, "NORMAL and POSITION counts differ");
     }
     if (auto it = primitive.attributes.find("TEXCOORD_0"); it != primitive.attributes.end()) {
         if (absl::Status s = ReadFloats(model_, it->second, 2, &uvs); !s.ok())
             return Error(element, std::string(s.message()));
-        if (uvs.size() / 2 != vertex_count) return Error(element, "TEXCOORD_0 and POSITION counts differ");
+        if (uvs.size() / 2 != vertex_count)
+            return Error(element, "TEXCOORD_0 and POSITION counts differ");
     }
     TriangleMesh mesh;
     for (size_t v = 0; v < vertex_count; ++v) {
         mesh.positions.emplace_back(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
-        if (!normals.empty()) mesh.normals.emplace_back(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
+        if (!normals.empty())
+            mesh.normals.emplace_back(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
         if (!uvs.empty()) mesh.uvs.push_back({uvs[2 * v], uvs[2 * v + 1]});
     }
     if (primitive.indices >= 0) {
@@ -325,19 +375,21 @@ absl::StatusOr<TriangleMesh> GltfSceneBuilder::ReadPrimitive(const tinygltf::Pri
     if (mesh.indices.size() % 3 != 0) return Error(element, "index count is not a multiple of 3");
     for (size_t i = 0; i < mesh.indices.size(); ++i)
         if (mesh.indices[i] >= vertex_count)
-            return Error(element, absl::StrCat("triangle ", i / 3, " has an index beyond the ", vertex_count, " vertices"));
+            return Error(element, absl::StrCat("triangle ", i / 3, " has an index beyond the ",
+                                               vertex_count, " vertices"));
     return mesh;
 }
 
-absl::Status GltfSceneBuilder::AddPrimitive(int mesh_index, size_t primitive_index, const std::string& element,
-                                            const Transform& world, uint32_t material,
-                                            std::optional<uint32_t> prototype) {
+absl::Status GltfSceneBuilder::AddPrimitive(int mesh_index, size_t primitive_index,
+                                            const std::string& element, const Transform& world,
+                                            uint32_t material, std::optional<uint32_t> prototype) {
     const tinygltf::Primitive& primitive = model_.meshes[mesh_index].primitives[primitive_index];
     if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
         spdlog::warn("{}: {}: mode {} is not triangles; skipped", path_, element, primitive.mode);
         return absl::OkStatus();
     }
-    const MeshPlacement placement{world, material, FrontFace::kObjectWinding, false, material_uvs_[material]};
+    const MeshPlacement placement{world, material, FrontFace::kObjectWinding, false,
+                                  material_uvs_[material]};
     const std::string where = absl::StrCat(path_, ": ", element);
     if (mesh_uses_[mesh_index] < 2 || prototype) {  // placed once
         absl::StatusOr<TriangleMesh> mesh = ReadPrimitive(primitive, element);
@@ -362,13 +414,18 @@ absl::Status GltfSceneBuilder::AddLight(int light_index, const Transform& world)
     const std::string element = Describe("light", light_index, source.name);
     PunctualLight light;
     light.name = source.name;
-    const Vec3d color = source.color.size() == 3 ? Vec3d(source.color[0], source.color[1], source.color[2]) : Vec3d(1.0);
+    const Vec3d color = source.color.size() == 3
+                            ? Vec3d(source.color[0], source.color[1], source.color[2])
+                            : Vec3d(1.0);
     light.intensity = Rgb(color * source.intensity);
-    if (!IsFinite(light.intensity) || MaxComponent(light.intensity) < 0) return Error(element, "intensity or colour is negative, NaN or Inf");
+    if (!IsFinite(light.intensity) || MaxComponent(light.intensity) < 0)
+        return Error(element, "intensity or colour is negative, NaN or Inf");
     light.position = Vec3(world.ApplyPoint(Vec3d(0.0)));
     light.direction = Vec3(Normalize(world.ApplyVector(Vec3d(0, 0, -1))));
-    if (!IsFinite(light.direction)) return Error(element, "node transform collapses the light's direction");
-    if (source.range > 0) spdlog::warn("{}: {}: range is ignored (lights fall off physically)", path_, element);
+    if (!IsFinite(light.direction))
+        return Error(element, "node transform collapses the light's direction");
+    if (source.range > 0)
+        spdlog::warn("{}: {}: range is ignored (lights fall off physically)", path_, element);
     if (source.type == "point") {
         light.type = LightType::kPoint;
     } else if (source.type == "spot") {
@@ -376,7 +433,8 @@ absl::Status GltfSceneBuilder::AddLight(int light_index, const Transform& world)
         light.cos_inner = static_cast<float>(std::cos(source.spot.innerConeAngle));
         light.cos_outer = static_cast<float>(std::cos(source.spot.outerConeAngle));
         if (!(source.spot.outerConeAngle > 0 && source.spot.outerConeAngle <= kPiD / 2 &&
-              source.spot.innerConeAngle >= 0 && source.spot.innerConeAngle < source.spot.outerConeAngle))
+              source.spot.innerConeAngle >= 0 &&
+              source.spot.innerConeAngle < source.spot.outerConeAngle))
             return Error(element, "spot cone angles must satisfy 0 <= inner < outer <= pi/2");
     } else if (source.type == "directional") {
         light.type = LightType::kDirectional;
@@ -392,11 +450,14 @@ absl::Status GltfSceneBuilder::SetCamera(int camera_index, const Transform& worl
         return Error(absl::StrCat("camera #", camera_index), "does not exist");
     const tinygltf::Camera& source = model_.cameras[camera_index];
     const std::string element = Describe("camera", camera_index, source.name);
-    if (source.type != "perspective") return Error(element, absl::StrCat("type '", source.type, "' is unsupported (perspective only)"));
+    if (source.type != "perspective")
+        return Error(element,
+                     absl::StrCat("type '", source.type, "' is unsupported (perspective only)"));
     Camera& camera = scene_.camera;
     camera.y_fov = static_cast<float>(source.perspective.yfov);
     camera.aspect_ratio = static_cast<float>(source.perspective.aspectRatio);
-    if (!(camera.y_fov > 0 && camera.y_fov < kPi)) return Error(element, "yfov must lie in (0, pi)");
+    if (!(camera.y_fov > 0 && camera.y_fov < kPi))
+        return Error(element, "yfov must lie in (0, pi)");
     camera.position = Vec3(world.ApplyPoint(Vec3d(0.0)));
     camera.forward = Vec3(Normalize(world.ApplyVector(Vec3d(0, 0, -1))));
     const Vec3 up_hint(Normalize(world.ApplyVector(Vec3d(0, 1, 0))));
@@ -421,7 +482,8 @@ float RoughnessAlpha(double roughness) {
 //  - anything else: Lambertian diffuse with the base colour (factor x texture).
 // Emission is emissiveFactor x KHR_materials_emissive_strength, radiance in W/(m^2 sr).
 absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
-    if (const auto it = material_indices_.find(gltf_material); it != material_indices_.end()) return it->second;
+    if (const auto it = material_indices_.find(gltf_material); it != material_indices_.end())
+        return it->second;
     Material material;
     UvTransform uv;
     if (gltf_material >= 0) {
@@ -431,23 +493,31 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
         const std::string element = Describe("material", gltf_material, source.name);
         const auto& pbr = source.pbrMetallicRoughness;
         if (pbr.baseColorFactor.size() == 4)
-            material.base_color = Rgb(Vec3d(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]));
+            material.base_color =
+                Rgb(Vec3d(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]));
         if (pbr.baseColorTexture.index >= 0) {
-            const absl::StatusOr<int32_t> texture = TextureIndex(pbr.baseColorTexture.index, element);
+            const absl::StatusOr<int32_t> texture =
+                TextureIndex(pbr.baseColorTexture.index, element);
             if (!texture.ok()) return texture.status();
             material.base_color_texture = *texture;
-            if (const tinygltf::Value* transform = Extension(pbr.baseColorTexture.extensions, "KHR_texture_transform"))
+            if (const tinygltf::Value* transform =
+                    Extension(pbr.baseColorTexture.extensions, "KHR_texture_transform"))
                 uv = TextureTransform(*transform);
             if (pbr.baseColorTexture.texCoord != 0)
-                spdlog::warn("{}: {}: texCoord {} unsupported; using TEXCOORD_0", path_, element, pbr.baseColorTexture.texCoord);
+                spdlog::warn("{}: {}: texCoord {} unsupported; using TEXCOORD_0", path_, element,
+                             pbr.baseColorTexture.texCoord);
         }
         double strength = 1.0;
-        if (const tinygltf::Value* e = Extension(source.extensions, "KHR_materials_emissive_strength"))
+        if (const tinygltf::Value* e =
+                Extension(source.extensions, "KHR_materials_emissive_strength"))
             strength = NumberOr(*e, "emissiveStrength", 1.0);
         if (source.emissiveFactor.size() == 3)
-            material.emission = Rgb(Vec3d(source.emissiveFactor[0], source.emissiveFactor[1], source.emissiveFactor[2]) * strength);
+            material.emission = Rgb(Vec3d(source.emissiveFactor[0], source.emissiveFactor[1],
+                                          source.emissiveFactor[2]) *
+                                    strength);
         if (source.emissiveTexture.index >= 0)
-            spdlog::warn("{}: {}: emissive textures are unsupported; using emissiveFactor alone", path_, element);
+            spdlog::warn("{}: {}: emissive textures are unsupported; using emissiveFactor alone",
+                         path_, element);
         double transmission = 0.0;
         if (const tinygltf::Value* e = Extension(source.extensions, "KHR_materials_transmission"))
             transmission = NumberOr(*e, "transmissionFactor", 0.0);
@@ -456,25 +526,32 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
         const tinygltf::Value* volume = Extension(source.extensions, "KHR_materials_volume");
         if (transmission > 0) {
             material.type = volume != nullptr && NumberOr(*volume, "thicknessFactor", 0.0) > 0
-                                ? MaterialType::kDielectric : MaterialType::kThinDielectric;
+                                ? MaterialType::kDielectric
+                                : MaterialType::kThinDielectric;
             if (transmission < 1)
-                spdlog::warn("{}: {}: transmissionFactor {} taken as 1 (no diffuse-transmission mix)", path_, element, transmission);
+                spdlog::warn(
+                    "{}: {}: transmissionFactor {} taken as 1 (no diffuse-transmission mix)", path_,
+                    element, transmission);
             if (material.type == MaterialType::kDielectric && pbr.roughnessFactor > 0.0) {
                 material.type = MaterialType::kRoughDielectric;
                 material.roughness = RoughnessAlpha(pbr.roughnessFactor);
             }
         } else if (pbr.metallicFactor >= 1.0) {
-            material.type = pbr.roughnessFactor > 0.0 ? MaterialType::kRoughConductor : MaterialType::kMirror;
+            material.type =
+                pbr.roughnessFactor > 0.0 ? MaterialType::kRoughConductor : MaterialType::kMirror;
             if (pbr.roughnessFactor > 0.0) material.roughness = RoughnessAlpha(pbr.roughnessFactor);
         } else if (pbr.metallicFactor > 0.0) {
-            spdlog::warn("{}: {}: rough or partly metallic surfaces are shaded as diffuse", path_, element);
+            spdlog::warn("{}: {}: rough or partly metallic surfaces are shaded as diffuse", path_,
+                         element);
         }
-        if (!IsFinite(material.base_color) || MaxComponent(material.base_color) > 1.0f || material.base_color.x < 0 ||
-            material.base_color.y < 0 || material.base_color.z < 0)
+        if (!IsFinite(material.base_color) || MaxComponent(material.base_color) > 1.0f ||
+            material.base_color.x < 0 || material.base_color.y < 0 || material.base_color.z < 0)
             return Error(element, "baseColorFactor must lie in [0, 1]");
-        if (!IsFinite(material.emission) || material.emission.x < 0 || material.emission.y < 0 || material.emission.z < 0)
+        if (!IsFinite(material.emission) || material.emission.x < 0 || material.emission.y < 0 ||
+            material.emission.z < 0)
             return Error(element, "emission must be finite and non-negative");
-        if (!(material.ior >= 1.0f && std::isfinite(material.ior))) return Error(element, "ior must be at least 1");
+        if (!(material.ior >= 1.0f && std::isfinite(material.ior)))
+            return Error(element, "ior must be at least 1");
     }
     const auto index = static_cast<uint32_t>(scene_.materials.size());
     scene_.materials.push_back(material);
@@ -483,18 +560,24 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
     return index;
 }
 
-absl::StatusOr<int32_t> GltfSceneBuilder::TextureIndex(int gltf_texture, const std::string& element) {
-    if (gltf_texture >= static_cast<int>(model_.textures.size()) || model_.textures[gltf_texture].source < 0 ||
+absl::StatusOr<int32_t> GltfSceneBuilder::TextureIndex(int gltf_texture,
+                                                       const std::string& element) {
+    if (gltf_texture >= static_cast<int>(model_.textures.size()) ||
+        model_.textures[gltf_texture].source < 0 ||
         model_.textures[gltf_texture].source >= static_cast<int>(model_.images.size()))
         return Error(element, absl::StrCat("texture #", gltf_texture, " has no image"));
     const int image_index = model_.textures[gltf_texture].source;
-    if (const auto it = texture_indices_.find(image_index); it != texture_indices_.end()) return it->second;
+    if (const auto it = texture_indices_.find(image_index); it != texture_indices_.end())
+        return it->second;
     const auto encoded = images_.find(image_index);
-    if (encoded == images_.end()) return Error(element, absl::StrCat("image #", image_index, " has no data"));
+    if (encoded == images_.end())
+        return Error(element, absl::StrCat("image #", image_index, " has no data"));
     // glTF base colour textures are sRGB-encoded 8-bit images (PNG or JPEG).
-    absl::StatusOr<Texture> texture = DecodeImage(encoded->second.bytes, encoded->second.name, limits_, {ImageEncoding::kSrgb});
+    absl::StatusOr<Texture> texture =
+        DecodeImage(encoded->second.bytes, encoded->second.name, limits_, {ImageEncoding::kSrgb});
     if (!texture.ok())
-        return absl::Status(texture.status().code(), absl::StrCat(path_, ": ", element, ": ", texture.status().message()));
+        return absl::Status(texture.status().code(),
+                            absl::StrCat(path_, ": ", element, ": ", texture.status().message()));
     const auto index = static_cast<int32_t>(scene_.textures.size());
     scene_.textures.push_back(std::make_shared<const Texture>(std::move(*texture)));
     texture_indices_[image_index] = index;
@@ -503,10 +586,12 @@ absl::StatusOr<int32_t> GltfSceneBuilder::TextureIndex(int gltf_texture, const s
 
 // tinygltf's file callbacks over a bundle: only the bundle's files exist.
 bool BundleFileExists(const std::string& path, void* user) {
-    return CheckBundlePath(path).ok() && static_cast<const SceneBundle*>(user)->files.contains(path);
+    return CheckBundlePath(path).ok() &&
+           static_cast<const SceneBundle*>(user)->files.contains(path);
 }
 std::string BundleExpandFilePath(const std::string& path, void*) { return path; }
-bool BundleReadWholeFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user) {
+bool BundleReadWholeFile(std::vector<unsigned char>* out, std::string* error,
+                         const std::string& path, void* user) {
     if (!BundleFileExists(path, user)) {
         if (error) *error = absl::StrCat(path, ": not in the scene bundle");
         return false;
@@ -515,27 +600,33 @@ bool BundleReadWholeFile(std::vector<unsigned char>* out, std::string* error, co
     out->assign(contents.begin(), contents.end());
     return true;
 }
-bool BundleWriteWholeFile(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+bool BundleWriteWholeFile(std::string*, const std::string&, const std::vector<unsigned char>&,
+                          void*) {
+    return false;
+}
 
 }  // namespace
 
-absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name, const SceneLimits& limits) {
+absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name,
+                               const SceneLimits& limits) {
     tinygltf::TinyGLTF loader;
-    loader.SetFsCallbacks({BundleFileExists, BundleExpandFilePath, BundleReadWholeFile, BundleWriteWholeFile,
-                           const_cast<SceneBundle*>(&bundle)});
+    loader.SetFsCallbacks({BundleFileExists, BundleExpandFilePath, BundleReadWholeFile,
+                           BundleWriteWholeFile, const_cast<SceneBundle*>(&bundle)});
     GltfImages images;
     loader.SetImageLoader(KeepEncodedImage, &images);
     tinygltf::Model model;
     std::string error, warning;
     const std::string& main = bundle.files.at(bundle.main_file);
     const std::string::size_type slash = bundle.main_file.rfind('/');
-    const std::string base_dir = slash == std::string::npos ? "" : bundle.main_file.substr(0, slash);
+    const std::string base_dir =
+        slash == std::string::npos ? "" : bundle.main_file.substr(0, slash);
     const bool loaded =
         absl::EndsWithIgnoreCase(bundle.main_file, ".glb")
-            ? loader.LoadBinaryFromMemory(&model, &error, &warning, reinterpret_cast<const unsigned char*>(main.data()),
+            ? loader.LoadBinaryFromMemory(&model, &error, &warning,
+                                          reinterpret_cast<const unsigned char*>(main.data()),
                                           static_cast<unsigned int>(main.size()), base_dir)
-            : loader.LoadASCIIFromString(&model, &error, &warning, main.data(), static_cast<unsigned int>(main.size()),
-                                         base_dir);
+            : loader.LoadASCIIFromString(&model, &error, &warning, main.data(),
+                                         static_cast<unsigned int>(main.size()), base_dir);
     // Image files a bundle leaves out (no material reads them; PackSceneBundle) are expected
     // missing; a base colour image that is missing is an error below.
     for (size_t begin = 0; begin < warning.size();) {
@@ -549,7 +640,8 @@ absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& nam
     }
     if (!loaded) {
         const std::string first_line = error.substr(0, error.find('\n'));
-        return absl::InvalidArgumentError(absl::StrCat(name, ": not a valid glTF file: ", first_line.empty() ? "parse failed" : first_line));
+        return absl::InvalidArgumentError(absl::StrCat(
+            name, ": not a valid glTF file: ", first_line.empty() ? "parse failed" : first_line));
     }
     return GltfSceneBuilder(name, model, limits, images).Build();
 }

@@ -17,6 +17,7 @@ namespace pf {
 // `bundle` has passed CheckSceneBundle (LoadScene checks it). Meshes used by several nodes
 // are read once; images are decoded (through OpenImageIO) only where a material uses them,
 // within `limits`.
-absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name, const SceneLimits& limits);
+absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name,
+                               const SceneLimits& limits);
 
 }  // namespace pf

@@ -17,9 +17,11 @@ std::string FirstLine(const std::string& text) { return text.substr(0, text.find
 
 }  // namespace
 
-absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& name, const SceneLimits& limits,
-                                    const ImageDecodeOptions& options) {
-    auto error = [&](const std::string& what) { return absl::InvalidArgumentError(absl::StrCat(name, ": ", what)); };
+absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& name,
+                                    const SceneLimits& limits, const ImageDecodeOptions& options) {
+    auto error = [&](const std::string& what) {
+        return absl::InvalidArgumentError(absl::StrCat(name, ": ", what));
+    };
     const size_t dot = name.rfind('.');
     if (dot == std::string::npos) return error("image file has no extension to tell its format");
     // OpenImageIO probes the file name on disk while it picks a reader; a name under
@@ -28,17 +30,21 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
     OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
     std::unique_ptr<OIIO::ImageInput> input =
         OIIO::ImageInput::create(OIIO::string_view(probe_name), false, nullptr, &proxy);
-    if (!input) return error(absl::StrCat("not a readable image (", FirstLine(OIIO::geterror()), ")"));
+    if (!input)
+        return error(absl::StrCat("not a readable image (", FirstLine(OIIO::geterror()), ")"));
     if (!input->supports("ioproxy"))
-        return error(absl::StrCat("image format '", input->format_name(), "' cannot be read from a scene bundle"));
+        return error(absl::StrCat("image format '", input->format_name(),
+                                  "' cannot be read from a scene bundle"));
     input->set_ioproxy(&proxy);
     OIIO::ImageSpec spec;
-    if (!input->open(probe_name, spec)) return error(absl::StrCat("not a readable image (", FirstLine(input->geterror()), ")"));
+    if (!input->open(probe_name, spec))
+        return error(absl::StrCat("not a readable image (", FirstLine(input->geterror()), ")"));
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth != 1)
         return error("image has no pixels or is a volume");
     const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
     if (pixels > limits.max_image_pixels)
-        return absl::ResourceExhaustedError(absl::StrCat(name, ": image is ", spec.width, "x", spec.height, ", over the limit of ",
+        return absl::ResourceExhaustedError(absl::StrCat(name, ": image is ", spec.width, "x",
+                                                         spec.height, ", over the limit of ",
                                                          limits.max_image_pixels, " pixels"));
     std::vector<float> values(pixels * size_t(spec.nchannels));
     if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data()))
@@ -49,9 +55,12 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
     auto to_linear = [&](float value) {
         if (!std::isfinite(value)) return 0.0f;
         switch (encoding) {
-            case ImageEncoding::kSrgb: return SrgbToLinear(std::clamp(value, 0.0f, 1.0f));
-            case ImageEncoding::kGamma: return static_cast<float>(std::pow(std::max(value, 0.0f), options.gamma));
-            default: return std::max(value, 0.0f);
+            case ImageEncoding::kSrgb:
+                return SrgbToLinear(std::clamp(value, 0.0f, 1.0f));
+            case ImageEncoding::kGamma:
+                return static_cast<float>(std::pow(std::max(value, 0.0f), options.gamma));
+            default:
+                return std::max(value, 0.0f);
         }
     };
     Texture texture;
@@ -60,7 +69,8 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
     texture.texels.resize(pixels);
     for (size_t i = 0; i < pixels; ++i)
         for (int c = 0; c < 3; ++c)
-            texture.texels[i][c] = to_linear(values[i * spec.nchannels + (spec.nchannels < 3 ? 0 : c)]);
+            texture.texels[i][c] =
+                to_linear(values[i * spec.nchannels + (spec.nchannels < 3 ? 0 : c)]);
     return texture;
 }
 

@@ -13,10 +13,10 @@ namespace pf {
 
 // How an image's values map to linear reflectance.
 enum class ImageEncoding {
-    kAuto,    // 8- and 16-bit integer images are sRGB, floating point ones linear (pbrt-v4, glTF)
+    kAuto,  // 8- and 16-bit integer images are sRGB, floating point ones linear (pbrt-v4, glTF)
     kSrgb,
     kLinear,
-    kGamma,   // value^gamma
+    kGamma,  // value^gamma
 };
 
 struct ImageDecodeOptions {
@@ -28,7 +28,8 @@ struct ImageDecodeOptions {
 // Nothing is read from disk: formats OpenImageIO cannot read from memory are refused. An
 // image over `limits.max_image_pixels` is refused before its pixels are decoded
 // (RESOURCE_EXHAUSTED); errors name `name`. Grey images give grey RGB; alpha is ignored.
-absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& name, const SceneLimits& limits,
+absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& name,
+                                    const SceneLimits& limits,
                                     const ImageDecodeOptions& options = {});
 
 }  // namespace pf

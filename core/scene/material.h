@@ -9,11 +9,12 @@
 namespace pf {
 
 enum class MaterialType : uint32_t {
-    kDiffuse,         // Lambertian, reflectance base_color (x texture)
-    kMirror,          // perfect specular reflection, reflectance base_color
-    kDielectric,      // solid glass: Fresnel reflection and refraction with index ior
-    kThinDielectric,  // thin glass sheet: Fresnel reflection, straight-through transmission
-    kRoughConductor,  // rough metal: GGX microfacet reflection with roughness alpha, tinted by base_color
+    kDiffuse,          // Lambertian, reflectance base_color (x texture)
+    kMirror,           // perfect specular reflection, reflectance base_color
+    kDielectric,       // solid glass: Fresnel reflection and refraction with index ior
+    kThinDielectric,   // thin glass sheet: Fresnel reflection, straight-through transmission
+    kRoughConductor,   // rough metal: GGX microfacet reflection with roughness alpha, tinted by
+                       // base_color
     kRoughDielectric,  // rough solid glass: GGX microfacet reflection and refraction with index ior
 };
 
@@ -25,17 +26,20 @@ inline constexpr int32_t kNoTexture = -1;
 
 struct Material {
     MaterialType type = MaterialType::kDiffuse;
-    Rgb base_color{0.8f};          // reflectance (diffuse, mirror) or transmission tint (glass)
+    Rgb base_color{0.8f};  // reflectance (diffuse, mirror) or transmission tint (glass)
     int32_t base_color_texture = kNoTexture;  // index into Scene::textures
-    float ior = 1.5f;              // index of refraction inside the dielectric
-    float roughness = 0.0f;        // GGX alpha of the rough materials, in [kMinRoughness, 1]
-    Rgb emission{0.0f};            // emitted radiance, W/(m^2 sr), from the front face only
+    float ior = 1.5f;                         // index of refraction inside the dielectric
+    float roughness = 0.0f;  // GGX alpha of the rough materials, in [kMinRoughness, 1]
+    Rgb emission{0.0f};      // emitted radiance, W/(m^2 sr), from the front face only
 
     // Scatters into one direction (a mirror, smooth glass): a delta distribution.
     bool IsSpecular() const {
-        return type == MaterialType::kMirror || type == MaterialType::kDielectric || type == MaterialType::kThinDielectric;
+        return type == MaterialType::kMirror || type == MaterialType::kDielectric ||
+               type == MaterialType::kThinDielectric;
     }
-    bool IsRough() const { return type == MaterialType::kRoughConductor || type == MaterialType::kRoughDielectric; }
+    bool IsRough() const {
+        return type == MaterialType::kRoughConductor || type == MaterialType::kRoughDielectric;
+    }
     bool IsEmissive() const { return !IsBlack(emission); }
 };
 

@@ -20,34 +20,44 @@ UvTransform UvTransform::Then(const UvTransform& next) const {
     return out;
 }
 
-absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement, const SceneLimits& limits,
-                        const std::string& element, Scene* scene, std::optional<uint32_t> prototype) {
+absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement,
+                        const SceneLimits& limits, const std::string& element, Scene* scene,
+                        std::optional<uint32_t> prototype) {
     PF_CHECK(!prototype || (*prototype + 1 == scene->prototypes.size() &&
-                            scene->prototypes[*prototype].first_triangle + scene->prototypes[*prototype].triangle_count ==
+                            scene->prototypes[*prototype].first_triangle +
+                                    scene->prototypes[*prototype].triangle_count ==
                                 scene->triangles.size()));
     Bounds& bounds = prototype ? scene->prototypes[*prototype].bounds : scene->bounds;
-    auto error = [&](const std::string& what) { return absl::InvalidArgumentError(absl::StrCat(element, ": ", what)); };
+    auto error = [&](const std::string& what) {
+        return absl::InvalidArgumentError(absl::StrCat(element, ": ", what));
+    };
     const size_t vertex_count = mesh.positions.size();
-    if (!mesh.normals.empty() && mesh.normals.size() != vertex_count) return error("normal and position counts differ");
-    if (!mesh.uvs.empty() && mesh.uvs.size() != vertex_count) return error("uv and position counts differ");
+    if (!mesh.normals.empty() && mesh.normals.size() != vertex_count)
+        return error("normal and position counts differ");
+    if (!mesh.uvs.empty() && mesh.uvs.size() != vertex_count)
+        return error("uv and position counts differ");
     if (mesh.indices.size() % 3 != 0) return error("index count is not a multiple of 3");
     if (scene->triangles.size() + mesh.indices.size() / 3 > limits.max_triangles)
-        return absl::ResourceExhaustedError(absl::StrCat(element, ": the scene would hold more than ",
-                                                         limits.max_triangles, " triangles, the loading limit"));
+        return absl::ResourceExhaustedError(
+            absl::StrCat(element, ": the scene would hold more than ", limits.max_triangles,
+                         " triangles, the loading limit"));
     for (size_t i = 0; i < mesh.indices.size(); ++i)
         if (mesh.indices[i] >= vertex_count)
-            return error(absl::StrCat("triangle ", i / 3, " has an index beyond the ", vertex_count, " vertices"));
+            return error(absl::StrCat("triangle ", i / 3, " has an index beyond the ", vertex_count,
+                                      " vertices"));
     const Transform& world = placement.world;
     const auto base = static_cast<uint32_t>(scene->positions.size());
     for (size_t v = 0; v < vertex_count; ++v) {
         const Vec3 p(world.ApplyPoint(Vec3d(mesh.positions[v])));
-        if (!IsFinite(p)) return error(absl::StrCat("vertex ", v, " is not finite after its transform"));
+        if (!IsFinite(p))
+            return error(absl::StrCat("vertex ", v, " is not finite after its transform"));
         scene->positions.push_back(p);
         bounds.Extend(p);
         Vec3 n(0.0f);
         if (!mesh.normals.empty()) {
             const Vec3d transformed = world.ApplyNormal(Vec3d(mesh.normals[v]));
-            if (LengthSquared(transformed) > 0 && IsFinite(transformed)) n = Vec3(Normalize(transformed));
+            if (LengthSquared(transformed) > 0 && IsFinite(transformed))
+                n = Vec3(Normalize(transformed));
             if (placement.reverse) n = -n;
         }
         scene->normals.push_back(n);
@@ -58,18 +68,24 @@ absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement
     const bool mirrored = world.Determinant() < 0;
     const bool smooth = !mesh.normals.empty();
     for (size_t i = 0; i < mesh.indices.size(); i += 3) {
-        uint32_t a = base + mesh.indices[i], b = base + mesh.indices[i + 1], c = base + mesh.indices[i + 2];
+        uint32_t a = base + mesh.indices[i], b = base + mesh.indices[i + 1],
+                 c = base + mesh.indices[i + 2];
         const Vec3d pa(scene->positions[a]), pb(scene->positions[b]), pc(scene->positions[c]);
         const Vec3d cross = Cross(pb - pa, pc - pa);
         // Degenerate, or a sliver thinner than float resolves against its longest edge (a
         // tessellated pole, whose corners a transform may round together): no surface.
-        const double longest = std::max({LengthSquared(pb - pa), LengthSquared(pc - pb), LengthSquared(pa - pc)});
+        const double longest =
+            std::max({LengthSquared(pb - pa), LengthSquared(pc - pb), LengthSquared(pa - pc)});
         if (!(Length(cross) > 1e-7 * longest)) continue;
         Vec3 normal(Normalize(cross));
         bool flip = false;
         switch (placement.front) {
-            case FrontFace::kObjectWinding: flip = mirrored != placement.reverse; break;
-            case FrontFace::kWorldWinding: flip = placement.reverse; break;
+            case FrontFace::kObjectWinding:
+                flip = mirrored != placement.reverse;
+                break;
+            case FrontFace::kWorldWinding:
+                flip = placement.reverse;
+                break;
             case FrontFace::kVertexNormals: {
                 const Vec3 shading = scene->normals[a] + scene->normals[b] + scene->normals[c];
                 flip = Dot(shading, normal) < 0;
@@ -88,16 +104,18 @@ uint32_t BeginPrototype(Scene* scene) {
     return static_cast<uint32_t>(scene->prototypes.size() - 1);
 }
 
-absl::Status AddInstance(uint32_t prototype, const Transform& from_object, const SceneLimits& limits,
-                         const std::string& element, Scene* scene) {
+absl::Status AddInstance(uint32_t prototype, const Transform& from_object,
+                         const SceneLimits& limits, const std::string& element, Scene* scene) {
     PF_CHECK(prototype < scene->prototypes.size());
     const Prototype& placed = scene->prototypes[prototype];
     if (placed.triangle_count == 0) return absl::OkStatus();
     if (scene->instances.size() >= limits.max_instances)
-        return absl::ResourceExhaustedError(absl::StrCat(element, ": the scene would hold more than ",
-                                                         limits.max_instances, " instances, the loading limit"));
+        return absl::ResourceExhaustedError(
+            absl::StrCat(element, ": the scene would hold more than ", limits.max_instances,
+                         " instances, the loading limit"));
     if (!from_object.IsFinite() || !from_object.Inverse())
-        return absl::InvalidArgumentError(absl::StrCat(element, ": the instance's transform is singular or not finite"));
+        return absl::InvalidArgumentError(
+            absl::StrCat(element, ": the instance's transform is singular or not finite"));
     // The world bounds take the prototype's box corners, transformed.
     Bounds bounds = scene->bounds;
     for (int corner = 0; corner < 8; ++corner) {
@@ -105,7 +123,9 @@ absl::Status AddInstance(uint32_t prototype, const Transform& from_object, const
                       (corner & 2 ? placed.bounds.upper : placed.bounds.lower).y,
                       (corner & 4 ? placed.bounds.upper : placed.bounds.lower).z);
         const Vec3 world(from_object.ApplyPoint(p));
-        if (!IsFinite(world)) return absl::InvalidArgumentError(absl::StrCat(element, ": the instance lies beyond float's range"));
+        if (!IsFinite(world))
+            return absl::InvalidArgumentError(
+                absl::StrCat(element, ": the instance lies beyond float's range"));
         bounds.Extend(world);
     }
     scene->bounds = bounds;
@@ -117,7 +137,8 @@ void FinishInstancing(Scene* scene) {
     if (scene->prototypes.empty()) return;
     std::vector<bool> in_prototype(scene->triangles.size(), false);
     for (const Prototype& prototype : scene->prototypes)
-        std::fill_n(in_prototype.begin() + prototype.first_triangle, prototype.triangle_count, true);
+        std::fill_n(in_prototype.begin() + prototype.first_triangle, prototype.triangle_count,
+                    true);
     std::vector<Triangle> ordered;
     ordered.reserve(scene->triangles.size());
     for (size_t t = 0; t < scene->triangles.size(); ++t)
@@ -132,10 +153,12 @@ void FinishInstancing(Scene* scene) {
 
 absl::StatusOr<Scene> FlattenInstances(const Scene& scene, uint64_t max_triangles) {
     uint64_t total = scene.WorldTriangleCount();
-    for (const Instance& instance : scene.instances) total += scene.prototypes[instance.prototype].triangle_count;
+    for (const Instance& instance : scene.instances)
+        total += scene.prototypes[instance.prototype].triangle_count;
     if (total > max_triangles)
-        return absl::ResourceExhaustedError(absl::StrCat(scene.source, ": its ", scene.instances.size(), " instances expand to ",
-                                                         total, " triangles, more than the ", max_triangles, " this backend holds"));
+        return absl::ResourceExhaustedError(absl::StrCat(
+            scene.source, ": its ", scene.instances.size(), " instances expand to ", total,
+            " triangles, more than the ", max_triangles, " this backend holds"));
     // Each prototype's vertices, once, and its triangles over them (AppendMesh gives every mesh
     // vertices of its own: no vertex belongs to two prototypes).
     struct Local {
@@ -147,7 +170,8 @@ absl::StatusOr<Scene> FlattenInstances(const Scene& scene, uint64_t max_triangle
     for (size_t p = 0; p < scene.prototypes.size(); ++p) {
         const Prototype& prototype = scene.prototypes[p];
         Local& local = locals[p];
-        for (uint32_t t = prototype.first_triangle; t < prototype.first_triangle + prototype.triangle_count; ++t) {
+        for (uint32_t t = prototype.first_triangle;
+             t < prototype.first_triangle + prototype.triangle_count; ++t) {
             Triangle triangle = scene.triangles[t];
             for (uint32_t& v : triangle.vertex) {
                 if (local_index[v] == ~0u) {

@@ -17,15 +17,17 @@ namespace pf {
 
 struct TriangleMesh {
     std::vector<Vec3> positions;
-    std::vector<Vec3> normals;   // empty, or one per position
-    std::vector<Point2> uvs;     // empty, or one per position
+    std::vector<Vec3> normals;      // empty, or one per position
+    std::vector<Point2> uvs;        // empty, or one per position
     std::vector<uint32_t> indices;  // 3 per triangle, each below positions.size()
 };
 
 // Which side of a triangle is its front (where emission leaves and what "outside" is for glass).
 enum class FrontFace {
-    kObjectWinding,  // counter-clockwise in the mesh's own space, kept under a mirroring transform (glTF, pbrt meshes)
-    kWorldWinding,   // counter-clockwise after the transform (pbrt's quadrics, which a mirror turns inside out)
+    kObjectWinding,  // counter-clockwise in the mesh's own space, kept under a mirroring transform
+                     // (glTF, pbrt meshes)
+    kWorldWinding,   // counter-clockwise after the transform (pbrt's quadrics, which a mirror turns
+                     // inside out)
     kVertexNormals,  // the side the interpolated vertex normals point to (pbrt meshes with "N")
 };
 
@@ -35,24 +37,26 @@ enum class FrontFace {
 struct UvTransform {
     double m[6] = {1, 0, 0, 0, 1, 0};
     Point2 Apply(const Point2& uv) const {
-        return {static_cast<float>(m[0] * uv.x + m[1] * uv.y + m[2]), static_cast<float>(m[3] * uv.x + m[4] * uv.y + m[5])};
+        return {static_cast<float>(m[0] * uv.x + m[1] * uv.y + m[2]),
+                static_cast<float>(m[3] * uv.x + m[4] * uv.y + m[5])};
     }
     UvTransform Then(const UvTransform& next) const;  // next after this
 };
 
 // Limits on what loading a scene may build, so a small hostile file cannot exhaust memory.
 struct SceneLimits {
-    uint64_t max_triangles = uint64_t{1} << 26;      // 64 M stored (a prototype's once): ~5 GiB of scene
-    uint64_t max_instances = uint64_t{1} << 24;      // 16 M: ~1.3 GiB
-    uint64_t max_image_pixels = uint64_t{1} << 26;   // per image: 8192 x 8192
+    uint64_t max_triangles = uint64_t{1}
+                             << 26;  // 64 M stored (a prototype's once): ~5 GiB of scene
+    uint64_t max_instances = uint64_t{1} << 24;     // 16 M: ~1.3 GiB
+    uint64_t max_image_pixels = uint64_t{1} << 26;  // per image: 8192 x 8192
     int max_include_depth = 32;
 };
 
 struct MeshPlacement {
-    Transform world;           // object to world
-    uint32_t material = 0;     // index into Scene::materials
+    Transform world;        // object to world
+    uint32_t material = 0;  // index into Scene::materials
     FrontFace front = FrontFace::kObjectWinding;
-    bool reverse = false;      // flip the front (pbrt's ReverseOrientation)
+    bool reverse = false;  // flip the front (pbrt's ReverseOrientation)
     UvTransform uv;
 };
 
@@ -60,8 +64,9 @@ struct MeshPlacement {
 // which must be the last begun (placement.world then maps into the prototype's space).
 // Triangles with no area are dropped. Errors name `element`: a vertex not finite after the
 // transform, an index out of range, the triangle limit exceeded (RESOURCE_EXHAUSTED).
-absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement, const SceneLimits& limits,
-                        const std::string& element, Scene* scene, std::optional<uint32_t> prototype = std::nullopt);
+absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement,
+                        const SceneLimits& limits, const std::string& element, Scene* scene,
+                        std::optional<uint32_t> prototype = std::nullopt);
 
 // Starts a prototype, empty until meshes are appended to it; returns its index.
 uint32_t BeginPrototype(Scene* scene);
@@ -69,8 +74,8 @@ uint32_t BeginPrototype(Scene* scene);
 // Places `prototype` in the world by `from_object` (a prototype without triangles places
 // nothing). Errors name `element`: a transform that is singular or not finite, the instance
 // limit exceeded (RESOURCE_EXHAUSTED).
-absl::Status AddInstance(uint32_t prototype, const Transform& from_object, const SceneLimits& limits,
-                         const std::string& element, Scene* scene);
+absl::Status AddInstance(uint32_t prototype, const Transform& from_object,
+                         const SceneLimits& limits, const std::string& element, Scene* scene);
 
 // Puts the world's triangles before the prototypes' (Scene::WorldTriangleCount), as loaders
 // build them in file order; each loader calls it once, when done.

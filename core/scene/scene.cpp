@@ -19,42 +19,52 @@ Instance Instance::Make(uint32_t prototype, const Transform& from_object) {
     for (int row = 0; row < 3; ++row)
         for (int column = 0; column < 4; ++column)
             instance.to_world[4 * row + column] = static_cast<float>(from_object.m[row][column]);
-    const Vec3d normal_columns[3] = {from_object.ApplyNormal({1, 0, 0}), from_object.ApplyNormal({0, 1, 0}),
+    const Vec3d normal_columns[3] = {from_object.ApplyNormal({1, 0, 0}),
+                                     from_object.ApplyNormal({0, 1, 0}),
                                      from_object.ApplyNormal({0, 0, 1})};
-    // Scaled so the largest entry is 1: the cofactors of a tiny or huge scale stay in float's range.
+    // Scaled so the largest entry is 1: the cofactors of a tiny or huge scale stay in float's
+    // range.
     double largest = 0;
-    for (const Vec3d& column : normal_columns) largest = std::max(largest, MaxComponent(Abs(column)));
+    for (const Vec3d& column : normal_columns)
+        largest = std::max(largest, MaxComponent(Abs(column)));
     for (int row = 0; row < 3; ++row)
         for (int column = 0; column < 3; ++column)
-            instance.normal_map[3 * row + column] = static_cast<float>(normal_columns[column][row] / largest);
+            instance.normal_map[3 * row + column] =
+                static_cast<float>(normal_columns[column][row] / largest);
     return instance;
 }
 
 SurfacePoint Scene::Surface(const RayHit& hit) const {
     const Triangle& triangle = triangles[hit.triangle];
     const Instance* instance = hit.instance == Instance::kNone ? nullptr : &instances[hit.instance];
-    Vec3 p0 = positions[triangle.vertex[0]], p1 = positions[triangle.vertex[1]], p2 = positions[triangle.vertex[2]];
-    if (instance) p0 = instance->ApplyPoint(p0), p1 = instance->ApplyPoint(p1), p2 = instance->ApplyPoint(p2);
+    Vec3 p0 = positions[triangle.vertex[0]], p1 = positions[triangle.vertex[1]],
+         p2 = positions[triangle.vertex[2]];
+    if (instance)
+        p0 = instance->ApplyPoint(p0), p1 = instance->ApplyPoint(p1), p2 = instance->ApplyPoint(p2);
     const float b0 = 1.0f - hit.b1 - hit.b2;
     SurfacePoint surface;
     // Barycentric interpolation is more accurate than origin + t * direction far from the origin.
     surface.position = p0 * b0 + p1 * hit.b1 + p2 * hit.b2;
-    surface.geometric_normal = instance ? Normalize(instance->ApplyNormal(triangle.normal)) : triangle.normal;
+    surface.geometric_normal =
+        instance ? Normalize(instance->ApplyNormal(triangle.normal)) : triangle.normal;
     surface.shading_normal = surface.geometric_normal;
     if (triangle.smooth) {
         Vec3 n = normals[triangle.vertex[0]] * b0 + normals[triangle.vertex[1]] * hit.b1 +
                  normals[triangle.vertex[2]] * hit.b2;
         if (instance) n = instance->ApplyNormal(n);
-        if (LengthSquared(n) > 0) surface.shading_normal = FaceForward(Normalize(n), surface.geometric_normal);
+        if (LengthSquared(n) > 0)
+            surface.shading_normal = FaceForward(Normalize(n), surface.geometric_normal);
     }
     surface.material = triangle.material;
     if (materials[triangle.material].base_color_texture != kNoTexture) {  // only textures read uv
         const Point2& t0 = uvs[triangle.vertex[0]];
         const Point2& t1 = uvs[triangle.vertex[1]];
         const Point2& t2 = uvs[triangle.vertex[2]];
-        surface.uv = {t0.x * b0 + t1.x * hit.b1 + t2.x * hit.b2, t0.y * b0 + t1.y * hit.b1 + t2.y * hit.b2};
+        surface.uv = {t0.x * b0 + t1.x * hit.b1 + t2.x * hit.b2,
+                      t0.y * b0 + t1.y * hit.b1 + t2.y * hit.b2};
         // An isotropic scale: the square root of the triangle's area in uv over its area in space.
-        const float uv_area = std::abs((t1.x - t0.x) * (t2.y - t0.y) - (t2.x - t0.x) * (t1.y - t0.y));
+        const float uv_area =
+            std::abs((t1.x - t0.x) * (t2.y - t0.y) - (t2.x - t0.x) * (t1.y - t0.y));
         const float area = Length(Cross(p1 - p0, p2 - p0));
         surface.uv_per_length = area > 0 ? std::sqrt(uv_area / area) : 0.0f;
     }
@@ -64,14 +74,16 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
 Rgb Scene::BaseColor(const SurfacePoint& surface) const {
     const Material& material = materials[surface.material];
     if (material.base_color_texture == kNoTexture) return material.base_color;
-    return material.base_color * textures[material.base_color_texture]->Sample(surface.uv.x, surface.uv.y);
+    return material.base_color *
+           textures[material.base_color_texture]->Sample(surface.uv.x, surface.uv.y);
 }
 
 Rgb Scene::BaseColor(const SurfacePoint& surface, float width) const {
     const Material& material = materials[surface.material];
     if (material.base_color_texture == kNoTexture) return material.base_color;
     if (!texture_filter) return BaseColor(surface);
-    return material.base_color * texture_filter->Sample(material.base_color_texture, surface.uv.x, surface.uv.y,
+    return material.base_color * texture_filter->Sample(material.base_color_texture, surface.uv.x,
+                                                        surface.uv.y,
                                                         width * surface.uv_per_length);
 }
 

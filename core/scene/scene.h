@@ -23,8 +23,8 @@ namespace pf {
 struct Triangle {
     uint32_t vertex[3];
     uint32_t material;
-    bool smooth;    // interpolate vertex normals; otherwise shade with the geometric normal
-    Vec3 normal;    // unit geometric normal, on the side counter-clockwise winding makes front
+    bool smooth;  // interpolate vertex normals; otherwise shade with the geometric normal
+    Vec3 normal;  // unit geometric normal, on the side counter-clockwise winding makes front
 };
 
 enum class LightType : uint32_t { kPoint, kSpot, kDirectional };
@@ -33,11 +33,11 @@ enum class LightType : uint32_t { kPoint, kSpot, kDirectional };
 // irradiance in W/m^2 for directional.
 struct PunctualLight {
     LightType type = LightType::kPoint;
-    Vec3 position;                 // point, spot
-    Vec3 direction{0, 0, -1};      // spot, directional: the direction light travels
-    Rgb intensity{1.0f};           // colour x intensity
+    Vec3 position;                                // point, spot
+    Vec3 direction{0, 0, -1};                     // spot, directional: the direction light travels
+    Rgb intensity{1.0f};                          // colour x intensity
     float cos_inner = 1.0f, cos_outer = 0.7071f;  // spot cone, cosines of the half angles
-    bool smooth_falloff = false;   // pbrt's smoothstep between the cones, not glTF's quadratic
+    bool smooth_falloff = false;  // pbrt's smoothstep between the cones, not glTF's quadratic
     std::string name;
 
     // The spot's falloff for a direction whose cosine to the axis is cos_axis: glTF's
@@ -64,7 +64,8 @@ struct SurfacePoint {
     Vec3 geometric_normal;  // unit, on the side the triangle's winding makes its front
     Vec3 shading_normal;    // unit, interpolated, on the same side as geometric_normal
     Point2 uv;              // texture coordinates; set only where the material has a texture
-    float uv_per_length = 0;  // texture-coordinate units per world length on this triangle; likewise
+    float uv_per_length =
+        0;  // texture-coordinate units per world length on this triangle; likewise
     uint32_t material = 0;
 };
 
@@ -82,15 +83,16 @@ struct Prototype {
 struct Instance {
     static constexpr uint32_t kNone = ~0u;
     uint32_t prototype = 0;
-    std::array<float, 12> to_world{};    // row-major 3x4: [linear | translation]
-    std::array<float, 9> normal_map{};   // row-major 3x3: the inverse transpose of the linear part,
-                                         // up to a positive scale (normals keep their side)
+    std::array<float, 12> to_world{};   // row-major 3x4: [linear | translation]
+    std::array<float, 9> normal_map{};  // row-major 3x3: the inverse transpose of the linear part,
+                                        // up to a positive scale (normals keep their side)
 
     // from_object must be invertible and finite (AddInstance checks).
     static Instance Make(uint32_t prototype, const Transform& from_object);
     Vec3 ApplyPoint(const Vec3& p) const {
         const float* m = to_world.data();
-        return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3], m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
+        return {m[0] * p.x + m[1] * p.y + m[2] * p.z + m[3],
+                m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
                 m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
     }
     // Not normalised.
@@ -106,20 +108,21 @@ struct Instance {
 // where the scene says nothing.
 struct SceneRenderHints {
     int width = 0, height = 0;
-    double initial_radius = 0;        // R0, world units
+    double initial_radius = 0;  // R0, world units
 };
 
 struct Scene {
     std::string source;  // the file it was loaded from, for messages
     std::vector<Vec3> positions;
-    std::vector<Vec3> normals;  // one per position (zero where the mesh had none)
-    std::vector<Point2> uvs;    // one per position
+    std::vector<Vec3> normals;        // one per position (zero where the mesh had none)
+    std::vector<Point2> uvs;          // one per position
     std::vector<Triangle> triangles;  // the world's own, then each prototype's (in its space)
     std::vector<Prototype> prototypes;
     std::vector<Instance> instances;
     std::vector<Material> materials;
     std::vector<std::shared_ptr<const Texture>> textures;  // shared with texture_filter
-    std::shared_ptr<const TextureFilter> texture_filter;   // set by the loaders where there are textures
+    std::shared_ptr<const TextureFilter>
+        texture_filter;  // set by the loaders where there are textures
     std::vector<PunctualLight> lights;
     Camera camera;
     Bounds bounds;  // of everything, instances included
@@ -127,7 +130,8 @@ struct Scene {
 
     // Triangles [0, WorldTriangleCount()) are in world space; the prototypes' follow.
     uint32_t WorldTriangleCount() const {
-        return prototypes.empty() ? static_cast<uint32_t>(triangles.size()) : prototypes.front().first_triangle;
+        return prototypes.empty() ? static_cast<uint32_t>(triangles.size())
+                                  : prototypes.front().first_triangle;
     }
 
     SurfacePoint Surface(const RayHit& hit) const;

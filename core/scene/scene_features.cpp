@@ -8,10 +8,11 @@
 namespace pf {
 
 SceneFeatures SceneFeatures::All() {
-        SceneFeatures all;
-    for (bool* flag : {&all.mirror, &all.dielectric, &all.thin_dielectric, &all.rough_conductor, &all.rough_dielectric,
-                       &all.textures, &all.smooth_normals, &all.triangle_lights, &all.point_lights, &all.spot_lights,
-                       &all.directional_lights, &all.caustics})
+    SceneFeatures all;
+    for (bool* flag :
+         {&all.mirror, &all.dielectric, &all.thin_dielectric, &all.rough_conductor,
+          &all.rough_dielectric, &all.textures, &all.smooth_normals, &all.triangle_lights,
+          &all.point_lights, &all.spot_lights, &all.directional_lights, &all.caustics})
         *flag = true;
     return all;
 }
@@ -56,9 +57,15 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
             continue;
         }
         switch (scene.lights[record.light].type) {
-            case LightType::kPoint: features.point_lights = true; break;
-            case LightType::kSpot: features.spot_lights = true; break;
-            case LightType::kDirectional: features.directional_lights = true; break;
+            case LightType::kPoint:
+                features.point_lights = true;
+                break;
+            case LightType::kSpot:
+                features.spot_lights = true;
+                break;
+            case LightType::kDirectional:
+                features.directional_lights = true;
+                break;
         }
     }
     return features;

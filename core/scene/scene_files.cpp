@@ -23,29 +23,36 @@ absl::StatusOr<std::string> ReadWholeFile(const std::filesystem::path& path) {
 absl::StatusOr<std::string_view> BundleFiles::Read(const std::string& path) {
     if (absl::Status status = CheckBundlePath(path); !status.ok()) return status;
     const auto it = bundle_.files.find(path);
-    if (it == bundle_.files.end()) return absl::NotFoundError(absl::StrCat("'", path, "' is not in the scene bundle"));
+    if (it == bundle_.files.end())
+        return absl::NotFoundError(absl::StrCat("'", path, "' is not in the scene bundle"));
     return std::string_view(it->second);
 }
 
 absl::StatusOr<std::string_view> PackingFiles::Read(const std::string& path) {
     if (absl::Status status = CheckBundlePath(path); !status.ok()) return status;
-    if (const auto it = bundle_->files.find(path); it != bundle_->files.end()) return std::string_view(it->second);
+    if (const auto it = bundle_->files.find(path); it != bundle_->files.end())
+        return std::string_view(it->second);
     const std::filesystem::path file = root_ / path;
     if (!std::filesystem::is_regular_file(file))
-        return absl::NotFoundError(absl::StrCat("'", path, "' is not a file in the scene's folder"));
+        return absl::NotFoundError(
+            absl::StrCat("'", path, "' is not a file in the scene's folder"));
     absl::StatusOr<std::string> contents = ReadWholeFile(file);
     if (!contents.ok()) return contents.status();
     if (bundle_->TotalBytes() + contents->size() > kMaxBundleBytes)
-        return absl::ResourceExhaustedError(absl::StrCat("'", path, "' makes the scene bundle larger than ", kMaxBundleBytes, " bytes"));
+        return absl::ResourceExhaustedError(absl::StrCat(
+            "'", path, "' makes the scene bundle larger than ", kMaxBundleBytes, " bytes"));
     return std::string_view(bundle_->files.emplace(path, std::move(*contents)).first->second);
 }
 
 absl::StatusOr<std::string> ResolveReference(std::string_view reference) {
     auto refuse = [&](const char* why) {
-        return absl::InvalidArgumentError(absl::StrCat("scene reference '", std::string(reference), "' ", why));
+        return absl::InvalidArgumentError(
+            absl::StrCat("scene reference '", std::string(reference), "' ", why));
     };
-    if (reference.find("://") != std::string_view::npos) return refuse("is a URL; only files inside the scene's folder are allowed");
-    if (!reference.empty() && reference.front() == '/') return refuse("is absolute; only paths inside the scene's folder are allowed");
+    if (reference.find("://") != std::string_view::npos)
+        return refuse("is a URL; only files inside the scene's folder are allowed");
+    if (!reference.empty() && reference.front() == '/')
+        return refuse("is absolute; only paths inside the scene's folder are allowed");
     std::vector<std::string> parts;
     for (size_t begin = 0; begin <= reference.size();) {
         const size_t end = std::min(reference.find('/', begin), reference.size());

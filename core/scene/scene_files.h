@@ -33,7 +33,8 @@ private:
 // Files under `root` on disk, each recorded into `bundle` as it is read.
 class PackingFiles : public SceneFiles {
 public:
-    PackingFiles(std::filesystem::path root, SceneBundle* bundle) : root_(std::move(root)), bundle_(bundle) {}
+    PackingFiles(std::filesystem::path root, SceneBundle* bundle)
+        : root_(std::move(root)), bundle_(bundle) {}
     absl::StatusOr<std::string_view> Read(const std::string& path) override;
 
 private:

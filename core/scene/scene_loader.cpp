@@ -1,9 +1,8 @@
 // The scene formats behind one door, and packing a scene's files into a bundle.
 #include "core/scene/scene_loader.h"
 
-#include <tiny_gltf.h>
-
 #include <spdlog/spdlog.h>
+#include <tiny_gltf.h>
 
 #include <filesystem>
 #include <set>
@@ -28,8 +27,8 @@ SceneFormat FormatOf(const std::string& path) {
 }
 
 absl::Status UnknownFormat(const std::string& name) {
-    return absl::InvalidArgumentError(
-        absl::StrCat(name, ": unknown scene format (photonfarm reads .gltf, .glb and .pbrt files)"));
+    return absl::InvalidArgumentError(absl::StrCat(
+        name, ": unknown scene format (photonfarm reads .gltf, .glb and .pbrt files)"));
 }
 
 // The folder part of the name the user gave, so pbrt messages name files as the user sees them.
@@ -58,35 +57,41 @@ bool PackFileExists(const std::string& path, void* user) {
 
 std::string PackExpandFilePath(const std::string& path, void*) { return path; }
 
-bool PackReadWholeFile(std::vector<unsigned char>* out, std::string* error, const std::string& path, void* user) {
+bool PackReadWholeFile(std::vector<unsigned char>* out, std::string* error, const std::string& path,
+                       void* user) {
     auto* state = static_cast<PackState*>(user);
     if (!PackFileExists(path, user)) return false;
     absl::StatusOr<std::string_view> contents = state->files->Read(path);
     if (!contents.ok()) {
         if (error) *error = std::string(contents.status().message());
-        if (contents.status().code() == absl::StatusCode::kResourceExhausted && state->error.ok()) state->error = contents.status();
+        if (contents.status().code() == absl::StatusCode::kResourceExhausted && state->error.ok())
+            state->error = contents.status();
         return false;
     }
     out->assign(contents->begin(), contents->end());
     return true;
 }
 
-bool NoWrite(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+bool NoWrite(std::string*, const std::string&, const std::vector<unsigned char>&, void*) {
+    return false;
+}
 
 // Packing only needs to know which files the scene reads; images are decoded once, by the load.
-bool SkipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                       void*) {
+bool SkipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                       const unsigned char*, int, void*) {
     return true;
 }
 
 // Image files no material reads as its base colour (normal, roughness, occlusion maps...):
 // left out of the bundle, so they are neither uploaded nor sent to workers. Files that also
 // hold a buffer or a used image stay.
-void LeaveOutUnusedImages(const std::string& scene_path, const tinygltf::Model& model, SceneBundle* bundle) {
+void LeaveOutUnusedImages(const std::string& scene_path, const tinygltf::Model& model,
+                          SceneBundle* bundle) {
     std::set<int> used;
     for (const tinygltf::Material& material : model.materials) {
         const int texture = material.pbrMetallicRoughness.baseColorTexture.index;
-        if (texture >= 0 && texture < static_cast<int>(model.textures.size())) used.insert(model.textures[texture].source);
+        if (texture >= 0 && texture < static_cast<int>(model.textures.size()))
+            used.insert(model.textures[texture].source);
     }
     std::set<std::string> kept;
     for (const tinygltf::Buffer& buffer : model.buffers) kept.insert(buffer.uri);
@@ -100,12 +105,13 @@ void LeaveOutUnusedImages(const std::string& scene_path, const tinygltf::Model& 
         left_out.push_back(uri);
     }
     if (!left_out.empty())
-        spdlog::info("{}: left out {} image file(s) no material reads as its base colour ({}{})", scene_path,
-                     left_out.size(), left_out.front(), left_out.size() > 1 ? ", ..." : "");
+        spdlog::info("{}: left out {} image file(s) no material reads as its base colour ({}{})",
+                     scene_path, left_out.size(), left_out.front(),
+                     left_out.size() > 1 ? ", ..." : "");
 }
 
-absl::Status PackGltf(const std::string& scene_path, const std::string& main, bool binary, PackingFiles* files,
-                      SceneBundle* bundle) {
+absl::Status PackGltf(const std::string& scene_path, const std::string& main, bool binary,
+                      PackingFiles* files, SceneBundle* bundle) {
     PackState state{files, absl::OkStatus()};
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({PackFileExists, PackExpandFilePath, PackReadWholeFile, NoWrite, &state});
@@ -113,13 +119,17 @@ absl::Status PackGltf(const std::string& scene_path, const std::string& main, bo
     tinygltf::Model model;
     std::string error, warning;
     const auto* bytes = reinterpret_cast<const unsigned char*>(main.data());
-    const bool loaded = binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, bytes, main.size(), "")
-                               : loader.LoadASCIIFromString(&model, &error, &warning, main.data(), main.size(), "");
-    if (!state.error.ok()) return absl::Status(state.error.code(), absl::StrCat(scene_path, ": ", state.error.message()));
+    const bool loaded =
+        binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, bytes, main.size(), "")
+               : loader.LoadASCIIFromString(&model, &error, &warning, main.data(), main.size(), "");
+    if (!state.error.ok())
+        return absl::Status(state.error.code(),
+                            absl::StrCat(scene_path, ": ", state.error.message()));
     if (!loaded) {
         const std::string first_line = error.substr(0, error.find('\n'));
-        return absl::InvalidArgumentError(
-            absl::StrCat(scene_path, ": not a valid glTF file: ", first_line.empty() ? "parse failed" : first_line));
+        return absl::InvalidArgumentError(absl::StrCat(
+            scene_path,
+            ": not a valid glTF file: ", first_line.empty() ? "parse failed" : first_line));
     }
     LeaveOutUnusedImages(scene_path, model, bundle);
     return absl::OkStatus();
@@ -129,20 +139,24 @@ absl::Status PackGltf(const std::string& scene_path, const std::string& main, bo
 
 bool IsSceneFile(const std::string& path) { return FormatOf(path) != SceneFormat::kUnknown; }
 
-absl::StatusOr<Scene> LoadScene(const SceneBundle& bundle, const std::string& name, const SceneLoadOptions& options) {
+absl::StatusOr<Scene> LoadScene(const SceneBundle& bundle, const std::string& name,
+                                const SceneLoadOptions& options) {
     if (absl::Status status = CheckSceneBundle(bundle); !status.ok())
         return absl::Status(status.code(), absl::StrCat(name, ": ", status.message()));
     absl::StatusOr<Scene> scene = UnknownFormat(name);
     switch (FormatOf(bundle.main_file)) {
         case SceneFormat::kGltf:
-        case SceneFormat::kGlb: scene = LoadGltf(bundle, name, options.limits); break;
+        case SceneFormat::kGlb:
+            scene = LoadGltf(bundle, name, options.limits);
+            break;
         case SceneFormat::kPbrt: {
             BundleFiles files(bundle);
             scene = LoadPbrt(files, bundle.main_file, DisplayRoot(name, bundle.main_file),
                              {options.limits, false, options.warnings});
             break;
         }
-        case SceneFormat::kUnknown: break;
+        case SceneFormat::kUnknown:
+            break;
     }
     if (scene.ok() && options.texture_filter && !scene->textures.empty())
         scene->texture_filter = MakeTextureFilter(scene->textures);
@@ -164,8 +178,11 @@ absl::StatusOr<SceneBundle> PackSceneBundle(const std::string& scene_path) {
     PackingFiles files(path.parent_path(), &bundle);
     absl::Status status;
     if (format == SceneFormat::kPbrt) {
-        if (!std::filesystem::is_regular_file(path)) return absl::NotFoundError(absl::StrCat(scene_path, ": cannot open file"));
-        status = LoadPbrt(files, bundle.main_file, path.parent_path().string(), {SceneLimits{}, true, nullptr}).status();
+        if (!std::filesystem::is_regular_file(path))
+            return absl::NotFoundError(absl::StrCat(scene_path, ": cannot open file"));
+        status = LoadPbrt(files, bundle.main_file, path.parent_path().string(),
+                          {SceneLimits{}, true, nullptr})
+                     .status();
     } else {
         absl::StatusOr<std::string> main = ReadWholeFile(path);
         if (!main.ok()) return main.status();

@@ -22,7 +22,8 @@ struct SceneLoadOptions {
 };
 
 // Loads the bundle's main file. `name` names the scene in errors (the path the user gave).
-absl::StatusOr<Scene> LoadScene(const SceneBundle& bundle, const std::string& name, const SceneLoadOptions& options = {});
+absl::StatusOr<Scene> LoadScene(const SceneBundle& bundle, const std::string& name,
+                                const SceneLoadOptions& options = {});
 // Packs the scene at `path` into a bundle and loads that.
 absl::StatusOr<Scene> LoadScene(const std::string& path, const SceneLoadOptions& options = {});
 

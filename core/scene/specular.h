@@ -29,7 +29,8 @@ struct SpecularBounce {
 // transmitted: Fresnel's for solid glass (1 under total internal reflection), the sum over a
 // thin sheet's internal reflections 2R/(1+R) for thin glass, 1 for a mirror. `normal` is the
 // shading normal on the triangle's front side, `front_facing` whether d arrives at that side.
-inline float ReflectionProbability(const Material& material, const Vec3& d, const Vec3& normal, bool front_facing) {
+inline float ReflectionProbability(const Material& material, const Vec3& d, const Vec3& normal,
+                                   bool front_facing) {
     const Vec3 n = front_facing ? normal : -normal;  // facing the incident side
     switch (material.type) {
         case MaterialType::kDielectric:
@@ -39,10 +40,12 @@ inline float ReflectionProbability(const Material& material, const Vec3& d, cons
             const float r = FresnelDielectric(-Dot(d, n), 1.0f / material.ior);
             return 2.0f * r / (1.0f + r);
         }
-        case MaterialType::kMirror: return 1.0f;
+        case MaterialType::kMirror:
+            return 1.0f;
         case MaterialType::kDiffuse:
         case MaterialType::kRoughConductor:
-        case MaterialType::kRoughDielectric: break;  // not specular (glossy.h)
+        case MaterialType::kRoughDielectric:
+            break;  // not specular (glossy.h)
     }
     return 0.0f;
 }

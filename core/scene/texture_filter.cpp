@@ -28,8 +28,10 @@ public:
         errorf("%s: photonfarm textures open only with their configuration", name);
         return false;
     }
-    bool open(const std::string& name, OIIO::ImageSpec& spec, const OIIO::ImageSpec& config) override {
-        const OIIO::ParamValue* pointer = config.find_attribute(kTextureAttribute, OIIO::TypeDesc::PTR);
+    bool open(const std::string& name, OIIO::ImageSpec& spec,
+              const OIIO::ImageSpec& config) override {
+        const OIIO::ParamValue* pointer =
+            config.find_attribute(kTextureAttribute, OIIO::TypeDesc::PTR);
         if (pointer == nullptr) return open(name, spec);
         texture_ = *static_cast<const Texture* const*>(pointer->data());
         m_spec = OIIO::ImageSpec(texture_->width, texture_->height, 3, OIIO::TypeDesc::FLOAT);
@@ -41,7 +43,8 @@ public:
         return true;
     }
     bool read_native_scanline(int subimage, int miplevel, int y, int, void* data) override {
-        if (texture_ == nullptr || subimage != 0 || miplevel != 0 || y < 0 || y >= texture_->height) return false;
+        if (texture_ == nullptr || subimage != 0 || miplevel != 0 || y < 0 || y >= texture_->height)
+            return false;
         static_assert(sizeof(Rgb) == 3 * sizeof(float), "texels are packed float RGB");
         std::memcpy(data, texture_->texels.data() + static_cast<size_t>(y) * texture_->width,
                     sizeof(Rgb) * texture_->width);
@@ -59,7 +62,7 @@ OIIO::ImageInput* CreateTextureInput() { return new TextureInput; }
 OIIO::TextureSystem& ProcessTextureSystem() {
     static OIIO::TextureSystem* const system = [] {
         OIIO::TextureSystem* made = OIIO::TextureSystem::create(false);
-        made->attribute("automip", 1);   // MIP levels made from level 0 on first use
+        made->attribute("automip", 1);    // MIP levels made from level 0 on first use
         made->attribute("autotile", 64);  // cached in tiles, not whole levels
         return made;
     }();
@@ -94,9 +97,11 @@ public:
         options.mipmode = OIIO::TextureOpt::MipModeTrilinear;
         options.interpmode = OIIO::TextureOpt::InterpBilinear;
         float result[3] = {0, 0, 0};
-        if (!system_.texture(handles_[texture], nullptr, options, u, v, footprint, 0, 0, footprint, 3, result)) {
+        if (!system_.texture(handles_[texture], nullptr, options, u, v, footprint, 0, 0, footprint,
+                             3, result)) {
             // Cannot happen for textures in memory; should it, the point lookup stands in.
-            if (!warned_.exchange(true)) spdlog::warn("texture lookup failed: {}", system_.geterror());
+            if (!warned_.exchange(true))
+                spdlog::warn("texture lookup failed: {}", system_.geterror());
             return textures_[texture]->Sample(u, v);
         }
         return {result[0], result[1], result[2]};
@@ -112,7 +117,8 @@ private:
 
 }  // namespace
 
-std::shared_ptr<const TextureFilter> MakeTextureFilter(std::vector<std::shared_ptr<const Texture>> textures) {
+std::shared_ptr<const TextureFilter> MakeTextureFilter(
+    std::vector<std::shared_ptr<const Texture>> textures) {
     return std::make_shared<OiioTextureFilter>(std::move(textures));
 }
 

@@ -11,6 +11,7 @@ namespace pf {
 
 // A filter over `textures` (indices as in Scene::textures), which it keeps alive: OpenImageIO
 // reads their texels from memory (never from disk) when a lookup first needs them.
-std::shared_ptr<const TextureFilter> MakeTextureFilter(std::vector<std::shared_ptr<const Texture>> textures);
+std::shared_ptr<const TextureFilter> MakeTextureFilter(
+    std::vector<std::shared_ptr<const Texture>> textures);
 
 }  // namespace pf

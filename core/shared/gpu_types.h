@@ -126,7 +126,8 @@ struct GpuEmitter {
                      // point: 4 pi I; spot: I x cone solid angle; directional: E pi r^2);
                      // w: 1 / selection probability
     vec4 radiance;   // triangle: Le; point, spot: intensity I; directional: irradiance E
-    vec4 cone;       // spot: cos_inner, cos_outer, 1 / max(0.001, cos_inner - cos_outer), smoothstep (1) or quadratic (0)
+    vec4 cone;  // spot: cos_inner, cos_outer, 1 / max(0.001, cos_inner - cos_outer), smoothstep (1)
+                // or quadratic (0)
 };
 PF_GPU_LAYOUT(GpuEmitter, 112);
 
@@ -175,20 +176,20 @@ PF_GPU_LAYOUT(GpuCounters, 32);
 
 // Push constants, the same block for every pipeline.
 struct GpuParams {
-    vec4 scene_sphere;         // xyz centre, w radius: the bounding sphere (directional lights)
-    float scene_magnitude;     // Bounds::Magnitude, for ray offsets
-    float grid_inverse_cell;   // 1 / grid cell size
-    uint32_t grid_bucket_mask; // buckets - 1
+    vec4 scene_sphere;          // xyz centre, w radius: the bounding sphere (directional lights)
+    float scene_magnitude;      // Bounds::Magnitude, for ray offsets
+    float grid_inverse_cell;    // 1 / grid cell size
+    uint32_t grid_bucket_mask;  // buckets - 1
     uint32_t hit_point_count;
-    float flux_to_fixed;       // fixed-point units per watt of photon flux
+    float flux_to_fixed;  // fixed-point units per watt of photon flux
     uint32_t emitter_count;
-    uint32_t first;            // photons: first photon of this dispatch; direct: first hit point
-    uint32_t end;              // photons: one past the batch's last photon; direct: of the slice
-    uint64_t seed_prefix;      // the stream family of the batch's photons or direct samples
-    uint32_t scan_count;       // elements the scan covers
+    uint32_t first;        // photons: first photon of this dispatch; direct: first hit point
+    uint32_t end;          // photons: one past the batch's last photon; direct: of the slice
+    uint64_t seed_prefix;  // the stream family of the batch's photons or direct samples
+    uint32_t scan_count;   // elements the scan covers
     uint32_t max_bounces;
-    uint32_t direct_begin;     // direct: the slice's first hit point (output index 0)
-    uint32_t scan_target;      // kScanGridBegin or kScanTallyOffsets
+    uint32_t direct_begin;  // direct: the slice's first hit point (output index 0)
+    uint32_t scan_target;   // kScanGridBegin or kScanTallyOffsets
     uint32_t pad0, pad1;
 };
 PF_GPU_LAYOUT(GpuParams, 80);

@@ -44,7 +44,8 @@ PF_SHARED_FN vec3 SampleGgxVisibleNormal(vec3 wo, float alpha, float u1, float u
     const vec3 v = normalize(vec3(alpha * wo.x, alpha * wo.y, wo.z));
     const float length_sq = v.x * v.x + v.y * v.y;
     const float inverse = length_sq > 0.0f ? 1.0f / sqrt(length_sq) : 0.0f;
-    const vec3 t1 = length_sq > 0.0f ? vec3(-v.y * inverse, v.x * inverse, 0.0f) : vec3(1.0f, 0.0f, 0.0f);
+    const vec3 t1 =
+        length_sq > 0.0f ? vec3(-v.y * inverse, v.x * inverse, 0.0f) : vec3(1.0f, 0.0f, 0.0f);
     const vec3 t2 = vec3(-v.z * t1.y, v.z * t1.x, v.x * t1.y - v.y * t1.x);  // cross(v, t1)
     // A point of the projected hemisphere: a disk whose far half is squashed by v.z.
     const float r = sqrt(u1);

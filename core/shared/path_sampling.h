@@ -19,7 +19,8 @@ PF_SHARED_FN void SinCosTurns(float u, PF_OUT(float) sine, PF_OUT(float) cosine)
     const int32_t k = int32_t(4.0f * u + 0.5f);
     const float angle = 6.28318530717958647692f * (u - 0.25f * float(k));
     const float a2 = angle * angle;
-    const float s = angle * (1.0f + a2 * (-1.0f / 6.0f + a2 * (1.0f / 120.0f + a2 * (-1.0f / 5040.0f))));
+    const float s =
+        angle * (1.0f + a2 * (-1.0f / 6.0f + a2 * (1.0f / 120.0f + a2 * (-1.0f / 5040.0f))));
     const float c =
         1.0f + a2 * (-0.5f + a2 * (1.0f / 24.0f + a2 * (-1.0f / 720.0f + a2 * (1.0f / 40320.0f))));
     // Rotate by k quarter turns: k odd swaps sine and cosine; the signs follow the quadrant.
@@ -86,7 +87,8 @@ PF_SHARED_FN float PowerHeuristic(float chosen, float other) {
 // Tangents s, t completing the unit normal n to an orthonormal frame, without branches on
 // the sign of n.z (Duff et al. 2017, "Building an Orthonormal Basis, Revisited", JCGT 6(1)).
 PF_SHARED_FN void OrthonormalBasis(vec3 n, PF_OUT(vec3) s, PF_OUT(vec3) t) {
-    const float sign = uintBitsToFloat((floatBitsToUint(n.z) & 0x80000000u) | 0x3f800000u);  // copysign(1, z)
+    const float sign =
+        uintBitsToFloat((floatBitsToUint(n.z) & 0x80000000u) | 0x3f800000u);  // copysign(1, z)
     const float a = -1.0f / (sign + n.z);
     const float b = n.x * n.y * a;
     s = vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
@@ -125,9 +127,11 @@ PF_SHARED_FN bool Refract(vec3 d, vec3 n, float eta, PF_OUT(vec3) refracted) {
 // scaled by 1e-4 or 1e+4 is offset exactly as the same scene at unit scale.
 PF_SHARED_FN float OffsetCoordinate(float coordinate, float normal, float scene_scale) {
     const int32_t offset = int32_t(256.0f * normal);
-    const float moved = intBitsToFloat(floatBitsToInt(coordinate) + (coordinate < 0.0f ? -offset : offset));
-    return abs(coordinate) < scene_scale * (1.0f / 32.0f) ? coordinate + scene_scale * (1.0f / 65536.0f) * normal
-                                                          : moved;
+    const float moved =
+        intBitsToFloat(floatBitsToInt(coordinate) + (coordinate < 0.0f ? -offset : offset));
+    return abs(coordinate) < scene_scale * (1.0f / 32.0f)
+               ? coordinate + scene_scale * (1.0f / 65536.0f) * normal
+               : moved;
 }
 
 PF_SHARED_END

@@ -19,7 +19,9 @@ PF_GPU_FN uint64_t Mix64(uint64_t x) {
 
 // The seed of member d of the family whose (a, b, c) mixed once gave `prefix`
 // (FamilyPrefix): a batch mixes its shared part once, each photon once more.
-PF_GPU_FN uint64_t FamilyPrefix(uint64_t a, uint64_t b, uint64_t c) { return Mix64(Mix64(Mix64(a) ^ b) ^ c); }
+PF_GPU_FN uint64_t FamilyPrefix(uint64_t a, uint64_t b, uint64_t c) {
+    return Mix64(Mix64(Mix64(a) ^ b) ^ c);
+}
 PF_GPU_FN uint64_t FamilySeed(uint64_t prefix, uint64_t d) { return Mix64(prefix ^ d); }
 
 struct Pcg32 {
@@ -29,7 +31,8 @@ struct Pcg32 {
     // For GLSL's constructor syntax, Pcg32(state, increment): clang before 16 lacks C++20's
     // parenthesised aggregate initialisation.
     Pcg32() = default;
-    constexpr Pcg32(uint64_t state_in, uint64_t increment_in) : state(state_in), increment(increment_in) {}
+    constexpr Pcg32(uint64_t state_in, uint64_t increment_in)
+        : state(state_in), increment(increment_in) {}
 #endif
 };
 
@@ -50,7 +53,9 @@ PF_GPU_FN Pcg32 Pcg32Seeded(uint64_t seed) {
 }
 
 // Uniform in [0, 1): the top 24 bits, so the result is never rounded up to 1.
-PF_GPU_FN float Pcg32NextFloat(PF_INOUT(Pcg32) rng) { return float(Pcg32Next(rng) >> 8) * 5.9604644775390625e-8f; }
+PF_GPU_FN float Pcg32NextFloat(PF_INOUT(Pcg32) rng) {
+    return float(Pcg32Next(rng) >> 8) * 5.9604644775390625e-8f;
+}
 
 PF_GPU_END
 

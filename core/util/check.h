@@ -12,10 +12,10 @@ namespace pf::detail {
 }
 }  // namespace pf::detail
 
-#define PF_CHECK(condition)                                                \
-    do {                                                                   \
-        if (!(condition)) [[unlikely]]                                     \
-            ::pf::detail::CheckFailed(#condition, __FILE__, __LINE__);     \
+#define PF_CHECK(condition)                                            \
+    do {                                                               \
+        if (!(condition)) [[unlikely]]                                 \
+            ::pf::detail::CheckFailed(#condition, __FILE__, __LINE__); \
     } while (false)
 
 #ifdef NDEBUG

@@ -13,7 +13,8 @@ namespace pf {
 namespace {
 
 // A validator over the option's text read as a double: `check` says what is wrong, or "".
-CLI::Validator NumberValidator(const std::string& description, std::function<std::string(double)> check) {
+CLI::Validator NumberValidator(const std::string& description,
+                               std::function<std::string(double)> check) {
     return CLI::Validator(
         [check = std::move(check)](std::string& text) -> std::string {
             char* end = nullptr;
@@ -38,13 +39,17 @@ CLI::Validator FiniteNumber() {
 }
 
 CLI::Validator FinitePositive() {
-    return NumberValidator("POSITIVE", [](double value) { return value > 0 ? std::string() : "must be positive"; });
+    return NumberValidator(
+        "POSITIVE", [](double value) { return value > 0 ? std::string() : "must be positive"; });
 }
 
 CLI::Validator FiniteRange(double low, double high) {
-    return NumberValidator("[" + Format(low) + " - " + Format(high) + "]", [low, high](double value) {
-        return value >= low && value <= high ? std::string() : "must lie in [" + Format(low) + ", " + Format(high) + "]";
-    });
+    return NumberValidator(
+        "[" + Format(low) + " - " + Format(high) + "]", [low, high](double value) {
+            return value >= low && value <= high
+                       ? std::string()
+                       : "must lie in [" + Format(low) + ", " + Format(high) + "]";
+        });
 }
 
 void SetUpLogging(const std::string& program) {
@@ -54,12 +59,14 @@ void SetUpLogging(const std::string& program) {
 
 void AddLogLevelOption(CLI::App& app) {
     app.add_option_function<std::string>(
-           "--log-level", [](const std::string& level) { spdlog::set_level(spdlog::level::from_str(level)); },
+           "--log-level",
+           [](const std::string& level) { spdlog::set_level(spdlog::level::from_str(level)); },
            "trace, debug, info, warn, error or off (default info)")
         ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
 }
 
-std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv, const std::string& program) {
+std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv,
+                                    const std::string& program) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& error) {

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
-
 #include <optional>
 #include <string>
 
@@ -25,6 +24,7 @@ CLI::Validator FiniteRange(double low, double high);
 // Parses the command line (running the subcommands' callbacks). Returns the exit code to end
 // with: 0 after --help, 2 after "PROGRAM: error: ... (see --help)" on stderr; nothing when
 // parsing succeeded.
-std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv, const std::string& program);
+std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv,
+                                    const std::string& program);
 
 }  // namespace pf

@@ -18,7 +18,8 @@ absl::Status WriteFileAtomically(const std::string& path, std::string_view conte
 // marker, written to a temporary file, flushed to disk (fsync), renamed over `path`, and the
 // folder flushed, so that after a crash at any moment `path` holds the old file or the new
 // one, whole. UNAVAILABLE naming the path when a step fails.
-absl::Status WriteChecksummedFile(const std::string& path, std::initializer_list<std::string_view> pieces);
+absl::Status WriteChecksummedFile(const std::string& path,
+                                  std::initializer_list<std::string_view> pieces);
 // The pieces of such a file, joined. DATA_LOSS naming the path when it is truncated or its
 // contents do not match their checksum; NOT_FOUND when it does not exist.
 absl::StatusOr<std::string> ReadChecksummedFile(const std::string& path);

@@ -11,7 +11,8 @@ namespace pf {
 
 // Sorts `keys` stably by bits [first_bit, first_bit + bit_count) of each key; `scratch` is
 // working memory (resized as needed). Keys equal in those bits keep their relative order.
-inline void RadixSortBits(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch, int first_bit, int bit_count) {
+inline void RadixSortBits(std::vector<uint64_t>& keys, std::vector<uint64_t>& scratch,
+                          int first_bit, int bit_count) {
     constexpr int kDigitBits = 11;
     constexpr size_t kRadix = size_t{1} << kDigitBits;
     scratch.resize(keys.size());

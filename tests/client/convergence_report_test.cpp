@@ -22,7 +22,8 @@ std::vector<ConvergencePoint> PowerLawLog(bool with_reference) {
         point.pixels = 1024;
         const double n = static_cast<double>(point.photons);
         if (epoch >= 2) point.estimated = ErrorEstimate{true, std::pow(n, -0.5), std::pow(n, -1.0)};
-        if (with_reference) point.measured = ImageDifference{2 * std::pow(n, -1.0 / 3.0), std::pow(n, -0.6)};
+        if (with_reference)
+            point.measured = ImageDifference{2 * std::pow(n, -1.0 / 3.0), std::pow(n, -0.6)};
         points.push_back(point);
     }
     return points;
@@ -37,7 +38,8 @@ std::string Slurp(const std::filesystem::path& path) {
 
 TEST(ConvergenceReportTest, ScriptHeaderCarriesTheFitsAndAQuotedTitle) {
     const std::string script = ConvergencePlotScript("my_scene \"v2\".gltf", PowerLawLog(true));
-    EXPECT_NE(script.find("title = \"my\\\\_scene \\\"v2\\\".gltf\"\n"), std::string::npos) << script;
+    EXPECT_NE(script.find("title = \"my\\\\_scene \\\"v2\\\".gltf\"\n"), std::string::npos)
+        << script;
     EXPECT_NE(script.find("has_reference = 1\n"), std::string::npos);
     EXPECT_NE(script.find("est_n_ok = 1\nest_n_slope = -0.5\n"), std::string::npos);
     EXPECT_NE(script.find("ref_n_ok = 1\nref_n_slope = -0.333333333\n"), std::string::npos);
@@ -47,11 +49,13 @@ TEST(ConvergenceReportTest, ScriptHeaderCarriesTheFitsAndAQuotedTitle) {
 }
 
 TEST(ConvergenceReportTest, WritesCsvScriptAndPlotsThroughGnuplot) {
-    const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "pf-convergence-report";
+    const std::filesystem::path dir =
+        std::filesystem::path(testing::TempDir()) / "pf-convergence-report";
     std::filesystem::remove_all(dir);
     ASSERT_TRUE(PrepareReportDir(dir.string()).ok());
     for (const bool with_reference : {false, true}) {
-        const absl::Status status = WriteConvergenceReport(dir.string(), "cornell-box.gltf", PowerLawLog(with_reference));
+        const absl::Status status =
+            WriteConvergenceReport(dir.string(), "cornell-box.gltf", PowerLawLog(with_reference));
         ASSERT_TRUE(status.ok()) << status;  // gnuplot-nox is a dependency (deploy/install-deps.sh)
         const std::string csv = Slurp(dir / "convergence.csv");
         EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 31);

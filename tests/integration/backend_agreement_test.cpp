@@ -14,12 +14,12 @@
 namespace pf {
 namespace {
 
-
 // A Vulkan render of the scene (stream 3) against two CPU renders (streams 1 and 2), with no
 // validation error on the way.
 void ExpectVulkanAgreesWithTheCpu(const std::string& scene_path) {
     const unsigned long long errors_before = testing::VulkanValidationErrors();
-    testing::ExpectSameEstimator(testing::RenderSmall(scene_path, "vulkan", 3), testing::RenderSmall(scene_path, "cpu", 1),
+    testing::ExpectSameEstimator(testing::RenderSmall(scene_path, "vulkan", 3),
+                                 testing::RenderSmall(scene_path, "cpu", 1),
                                  testing::RenderSmall(scene_path, "cpu", 2));
     EXPECT_EQ(testing::VulkanValidationErrors(), errors_before);
 }
@@ -42,7 +42,9 @@ TEST(BackendAgreementTextures, LightOffATexturedWallMatchesTheCpus) {
     testing::TestScene scene = testing::LitQuadScene();
     testing::TestMaterial wall;
     wall.base_color = Rgb(1.0f, 1.0f, 0.5f);
-    wall.texture_png_base64 = "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTkSuQmCC";
+    wall.texture_png_base64 =
+        "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTk"
+        "SuQmCC";
     scene.materials.push_back(wall);
     // At x = 1, from z = 0 to 1, facing -x (toward the floor and the light).
     scene.meshes.push_back({{{1, -1, 0}, {1, 1, 1}, {1, 1, 0}, {1, -1, 0}, {1, -1, 1}, {1, 1, 1}},
@@ -51,7 +53,8 @@ TEST(BackendAgreementTextures, LightOffATexturedWallMatchesTheCpus) {
     ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "textured-wall.gltf"));
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, BackendAgreement, ::testing::Values("cornell-box.gltf", "cornell-glass.gltf"),
+INSTANTIATE_TEST_SUITE_P(Scenes, BackendAgreement,
+                         ::testing::Values("cornell-box.gltf", "cornell-glass.gltf"),
                          [](const ::testing::TestParamInfo<std::string>& scene) {
                              std::string name = scene.param.substr(0, scene.param.find('.'));
                              std::replace(name.begin(), name.end(), '-', '_');

@@ -13,13 +13,15 @@ namespace {
 
 CausticProbe Probe(const Scene& scene) {
     const Emitters emitters(scene);
-    absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(scene);
+    absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer =
+        embree::EmbreeTracer::Create(scene);
     EXPECT_TRUE(tracer.ok()) << tracer.status();
     return ProbeCaustics(scene, emitters, **tracer, 1);
 }
 
 TEST(CausticProbeTest, GlassUnderTheLightCastsCaustics) {
-    const absl::StatusOr<Scene> scene = LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-glass.gltf");
+    const absl::StatusOr<Scene> scene =
+        LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-glass.gltf");
     ASSERT_TRUE(scene.ok()) << scene.status();
     const CausticProbe probe = Probe(*scene);
     EXPECT_EQ(probe.paths, 1u << 14);
@@ -34,11 +36,15 @@ TEST(CausticProbeTest, AMirrorTheLightCannotSeeCastsNone) {
     scene.meshes.push_back({{{-0.5f, -0.5f, -1}, {0.5f, 0.5f, -1}, {0.5f, -0.5f, -1}}, 2});
     std::string json = testing::GltfJson(scene);
     // Make material 2 a mirror: metallic 1, roughness 0.
-    const std::string last = R"({"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":0})";
+    const std::string last =
+        R"({"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":0})";
     const size_t at = json.rfind(last);
     ASSERT_NE(at, std::string::npos);
-    json.replace(at, last.size(), R"({"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":1,"roughnessFactor":0})");
-    const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteTextFile(json, "hidden-mirror.gltf"));
+    json.replace(
+        at, last.size(),
+        R"({"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":1,"roughnessFactor":0})");
+    const absl::StatusOr<Scene> loaded =
+        LoadScene(testing::WriteTextFile(json, "hidden-mirror.gltf"));
     ASSERT_TRUE(loaded.ok()) << loaded.status();
     EXPECT_EQ(loaded->materials[2].type, MaterialType::kMirror);
     EXPECT_EQ(Probe(*loaded).caustic, 0u);

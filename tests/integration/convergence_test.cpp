@@ -20,7 +20,7 @@ namespace {
 
 constexpr int kSize = 32;
 constexpr uint32_t kEpochPhotons = 1u << 12;
-constexpr uint64_t kPhotons = 400 * kEpochPhotons;      // 1.6M: two decades past epoch 4
+constexpr uint64_t kPhotons = 400 * kEpochPhotons;         // 1.6M: two decades past epoch 4
 constexpr uint64_t kReferencePhotons = uint64_t{1} << 25;  // 20x
 constexpr uint64_t kFirstCheckedEpoch = 8;
 
@@ -30,8 +30,8 @@ struct SceneCase {
     bool check_slope;
 };
 
-RenderSettings Settings(const std::string& file, uint64_t photons, uint32_t photons_per_batch, uint32_t batches,
-                        uint64_t stream) {
+RenderSettings Settings(const std::string& file, uint64_t photons, uint32_t photons_per_batch,
+                        uint32_t batches, uint64_t stream) {
     RenderSettings settings;
     settings.scene_path = std::string(PF_SOURCE_DIR) + "/scenes/" + file;
     settings.job.width = kSize;
@@ -62,7 +62,8 @@ TEST_P(ShippedSceneConvergence, ErrorFallsAndTheEstimateTracksIt) {
     ASSERT_TRUE(outcome.ok()) << outcome.status();
     const std::vector<ConvergencePoint>& log = outcome->convergence;
     ASSERT_EQ(log.size(), kPhotons / kEpochPhotons);
-    EXPECT_EQ(outcome->progress.nonfinite_discarded, 0u) << "no photon path or direct sample may become NaN or Inf";
+    EXPECT_EQ(outcome->progress.nonfinite_discarded, 0u)
+        << "no photon path or direct sample may become NaN or Inf";
 
     double worst_low = 1e9, worst_high = 0;
     for (const ConvergencePoint& point : log) {
@@ -74,18 +75,21 @@ TEST_P(ShippedSceneConvergence, ErrorFallsAndTheEstimateTracksIt) {
         worst_low = std::min(worst_low, ratio);
         worst_high = std::max(worst_high, ratio);
         EXPECT_TRUE(ratio >= 0.5 && ratio <= 2.0)
-            << scene.file << " epoch " << point.epochs << ": estimated RMSE " << point.estimated->rmse
-            << " against a measured " << point.measured->rmse;
+            << scene.file << " epoch " << point.epochs << ": estimated RMSE "
+            << point.estimated->rmse << " against a measured " << point.measured->rmse;
     }
     RecordProperty("estimate_over_measured_min", std::to_string(worst_low));
     RecordProperty("estimate_over_measured_max", std::to_string(worst_high));
-    EXPECT_LT(log.back().measured->rmse, 0.5 * log[kFirstCheckedEpoch].measured->rmse) << "the error must fall";
+    EXPECT_LT(log.back().measured->rmse, 0.5 * log[kFirstCheckedEpoch].measured->rmse)
+        << "the error must fall";
 
     if (scene.check_slope) {
         const ConvergenceFits fits = FitConvergence(log);
         ASSERT_TRUE(fits.measured_vs_photons.has_value());
         const ConvergencePoint& first_fitted = log[kFitSkipEpochs];
-        ASSERT_GE(static_cast<double>(log.back().photons) / static_cast<double>(first_fitted.photons), 100.0)
+        ASSERT_GE(
+            static_cast<double>(log.back().photons) / static_cast<double>(first_fitted.photons),
+            100.0)
             << "the fit must span two decades";
         EXPECT_LE(fits.measured_vs_photons->slope, -0.25);
         RecordProperty("slope", std::to_string(fits.measured_vs_photons->slope));

@@ -18,7 +18,8 @@ namespace {
 TEST(DirectLightTest, SamplesNearEmittingWallsAreBoundedAndUnbiased) {
     // The white furnace: a closed cube, every wall of albedo 0.5 emitting Le = 1 inward, so
     // the irradiance at any point inside is pi Le and the reflected direct light rho Le = 0.5.
-    const absl::StatusOr<Scene> scene = LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/furnace.gltf");
+    const absl::StatusOr<Scene> scene =
+        LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/furnace.gltf");
     ASSERT_TRUE(scene.ok()) << scene.status();
     const Emitters emitters(*scene);
     auto tracer = embree::EmbreeTracer::Create(*scene);
@@ -47,7 +48,8 @@ TEST(DirectLightTest, SamplesNearEmittingWallsAreBoundedAndUnbiased) {
     EXPECT_LE(largest, 1.5f * kAlbedo * 1.001f);
     for (size_t i = 0; i < hit_points.size(); ++i) {
         const double mean = sum[i] / kEpochs;
-        const double standard_error = std::sqrt(std::max(0.0, sum_sq[i] / kEpochs - mean * mean) / kEpochs);
+        const double standard_error =
+            std::sqrt(std::max(0.0, sum_sq[i] / kEpochs - mean * mean) / kEpochs);
         EXPECT_NEAR(mean, kAlbedo, 5 * standard_error + 1e-3) << "hit point " << i;
     }
 }

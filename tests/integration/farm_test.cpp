@@ -1,9 +1,9 @@
 // The farm as users run it: a real photonfarm-coordinator and photonfarm-worker processes on
 // 127.0.0.1 with ephemeral ports, jobs submitted through the client. Images must come out
 // bit-identical to `photonfarm render` however many workers ran them and whichever died.
-#include <gtest/gtest.h>
 #include <grpcpp/client_context.h>
 #include <grpcpp/create_channel.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 
 #include <chrono>
@@ -37,8 +37,9 @@ using testing::ChildProcess;
 const std::string kBin = PF_BINARY_DIR;
 const std::string kScene = std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf";
 // 48x48, 4 spp, epochs of 8 batches of 2^13 photons.
-const std::vector<std::string> kJobFlags = {"--width", "48", "--height", "48", "--photons-per-batch", "8192",
-                                            "--batches-per-epoch", "8", "--seed", "11"};
+const std::vector<std::string> kJobFlags = {
+    "--width", "48",     "--height", "48", "--photons-per-batch", "8192", "--batches-per-epoch",
+    "8",       "--seed", "11"};
 constexpr int kEpochs = 6;
 // Long enough (~1 s on two cores) for something to happen while the job runs.
 constexpr int kLongEpochs = 40;
@@ -47,7 +48,8 @@ constexpr int kLongEpochs = 40;
 const testing::FarmCredentials& Credentials() { return testing::TestCredentials(PF_SOURCE_DIR); }
 
 std::string TempPath(const std::string& name) {
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("pf-farm-test-" + std::to_string(getpid()));
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("pf-farm-test-" + std::to_string(getpid()));
     std::filesystem::create_directories(dir);
     return (dir / name).string();
 }
@@ -65,7 +67,8 @@ std::vector<Rgb> Pixels(const std::string& path) {
 }
 
 bool Identical(const std::vector<Rgb>& a, const std::vector<Rgb>& b) {
-    return !a.empty() && a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Rgb)) == 0;
+    return !a.empty() && a.size() == b.size() &&
+           std::memcmp(a.data(), b.data(), a.size() * sizeof(Rgb)) == 0;
 }
 
 class FarmTest : public ::testing::Test {
@@ -75,9 +78,10 @@ protected:
     // Starts the coordinator on `listen` with the fixture's flags and connects the client.
     void StartCoordinator(const std::string& listen, const std::vector<std::string>& flags = {}) {
         coordinator_ = std::make_unique<ChildProcess>(Concat(
-            Concat({kBin + "/server/photonfarm-coordinator", "--listen", listen, "--heartbeat-seconds", "0.2",
-                    "--worker-timeout-seconds", "1.5", "--log-level", "warn"},
-                   Credentials().CoordinatorFlags()),
+            Concat(
+                {kBin + "/server/photonfarm-coordinator", "--listen", listen, "--heartbeat-seconds",
+                 "0.2", "--worker-timeout-seconds", "1.5", "--log-level", "warn"},
+                Credentials().CoordinatorFlags()),
             flags));
         const std::optional<std::string> line = coordinator_->ReadLine(30);
         ASSERT_TRUE(line && line->starts_with("listening on ")) << "the coordinator did not start";
@@ -97,18 +101,20 @@ protected:
 
     ChildProcess& StartWorker(const std::string& backend = "cpu") {
         workers_.push_back(std::make_unique<ChildProcess>(
-            Concat({kBin + "/worker/photonfarm-worker", "--coordinator", address_, "--threads", "1", "--backend",
-                    backend, "--log-level", "warn"},
+            Concat({kBin + "/worker/photonfarm-worker", "--coordinator", address_, "--threads", "1",
+                    "--backend", backend, "--log-level", "warn"},
                    Credentials().WorkerFlags())));
         return *workers_.back();
     }
 
     // `photonfarm submit --watch` to the end; returns its exit code.
-    int SubmitAndWatch(const std::string& out, int epochs = kEpochs, const std::vector<std::string>& flags = {}) {
-        ChildProcess submit(Concat({kBin + "/client/photonfarm", "submit", kScene, "--server", address_, "--watch",
-                                    "--interval", "0", "--out", out, "--photons", std::to_string(epochs * 8 * 8192),
-                                    "--log-level", "warn"},
-                                   Concat(Concat(kJobFlags, flags), Credentials().ClientFlags())));
+    int SubmitAndWatch(const std::string& out, int epochs = kEpochs,
+                       const std::vector<std::string>& flags = {}) {
+        ChildProcess submit(
+            Concat({kBin + "/client/photonfarm", "submit", kScene, "--server", address_, "--watch",
+                    "--interval", "0", "--out", out, "--photons", std::to_string(epochs * 8 * 8192),
+                    "--log-level", "warn"},
+                   Concat(Concat(kJobFlags, flags), Credentials().ClientFlags())));
         return submit.Wait(300).value_or(-1);
     }
 
@@ -132,21 +138,25 @@ protected:
     }
 
     // Watches the job until `predicate` holds for a snapshot, or to its end without one.
-    v1::JobStatus WatchUntil(const std::string& job_id, const std::function<bool(const v1::JobStatus&)>& predicate = {}) {
-        absl::StatusOr<v1::Snapshot> last = client_->Watch(job_id, 0, false, [&](const v1::Snapshot& snapshot) {
-            return !(predicate && predicate(snapshot.status()));
-        });
+    v1::JobStatus WatchUntil(const std::string& job_id,
+                             const std::function<bool(const v1::JobStatus&)>& predicate = {}) {
+        absl::StatusOr<v1::Snapshot> last =
+            client_->Watch(job_id, 0, false, [&](const v1::Snapshot& snapshot) {
+                return !(predicate && predicate(snapshot.status()));
+            });
         EXPECT_TRUE(last.ok()) << last.status();
         return last.ok() ? last->status() : v1::JobStatus{};
     }
 
     // `photonfarm render` of the job (another photon stream of its seed where `stream` > 0).
-    std::vector<Rgb> Reference(int epochs = kEpochs, int stream = 0, const std::vector<std::string>& flags = {}) {
+    std::vector<Rgb> Reference(int epochs = kEpochs, int stream = 0,
+                               const std::vector<std::string>& flags = {}) {
         const std::string out = TempPath("render-" + std::to_string(stream) + ".exr");
-        ChildProcess render(Concat({kBin + "/client/photonfarm", "render", kScene, "--threads", "2", "--out", out,
-                                    "--photons", std::to_string(epochs * 8 * 8192), "--photon-stream",
-                                    std::to_string(stream), "--log-level", "warn"},
-                                   Concat(kJobFlags, flags)));
+        ChildProcess render(
+            Concat({kBin + "/client/photonfarm", "render", kScene, "--threads", "2", "--out", out,
+                    "--photons", std::to_string(epochs * 8 * 8192), "--photon-stream",
+                    std::to_string(stream), "--log-level", "warn"},
+                   Concat(kJobFlags, flags)));
         EXPECT_EQ(render.Wait(300), 0);
         return Pixels(out);
     }
@@ -164,8 +174,10 @@ TEST_F(FarmTest, OneWorkerThreeWorkersAndRenderGiveTheSameImage) {
     StartWorker();
     ASSERT_EQ(SubmitAndWatch(TempPath("three.exr")), 0);
     const std::vector<Rgb> reference = Reference();
-    EXPECT_TRUE(Identical(Pixels(TempPath("one.exr")), reference)) << "one worker differs from photonfarm render";
-    EXPECT_TRUE(Identical(Pixels(TempPath("three.exr")), reference)) << "three workers differ from photonfarm render";
+    EXPECT_TRUE(Identical(Pixels(TempPath("one.exr")), reference))
+        << "one worker differs from photonfarm render";
+    EXPECT_TRUE(Identical(Pixels(TempPath("three.exr")), reference))
+        << "three workers differ from photonfarm render";
 }
 
 TEST_F(FarmTest, EveryIntegratorGivesRendersImageOnTwoWorkers) {
@@ -181,14 +193,17 @@ TEST_F(FarmTest, EveryIntegratorGivesRendersImageOnTwoWorkers) {
             Concat(kJobFlags, {"--integrator", integrator, "--epochs", "3", "--pm-photons", "20k",
                                "--pm-caustic-photons", "20k", "--log-level", "warn"});
         const std::string farm = TempPath("farm-" + integrator + ".exr");
-        ChildProcess submit(Concat({kBin + "/client/photonfarm", "submit", scene, "--server", address_, "--watch",
-                                    "--interval", "0", "--out", farm},
+        ChildProcess submit(Concat({kBin + "/client/photonfarm", "submit", scene, "--server",
+                                    address_, "--watch", "--interval", "0", "--out", farm},
                                    Concat(flags, Credentials().ClientFlags())));
         ASSERT_EQ(submit.Wait(300), 0) << integrator;
         const std::string local = TempPath("render-" + integrator + ".exr");
-        ChildProcess render(Concat({kBin + "/client/photonfarm", "render", scene, "--threads", "2", "--out", local}, flags));
+        ChildProcess render(
+            Concat({kBin + "/client/photonfarm", "render", scene, "--threads", "2", "--out", local},
+                   flags));
         ASSERT_EQ(render.Wait(300), 0) << integrator;
-        EXPECT_TRUE(Identical(Pixels(farm), Pixels(local))) << integrator << ": the farm's image differs from render's";
+        EXPECT_TRUE(Identical(Pixels(farm), Pixels(local)))
+            << integrator << ": the farm's image differs from render's";
     }
 }
 
@@ -211,7 +226,8 @@ TEST_F(FarmTest, CpuAndVulkanWorkersShareAJob) {
         return result;
     };
     uint64_t vulkan_batches = 0;
-    for (const std::vector<std::string>& flags : {std::vector<std::string>{}, {"--integrator", "sppm"}}) {
+    for (const std::vector<std::string>& flags :
+         {std::vector<std::string>{}, {"--integrator", "sppm"}}) {
         SCOPED_TRACE(flags.empty() ? "ppm" : "sppm");
         ASSERT_EQ(SubmitAndWatch(TempPath("mixed.exr"), kEpochs, flags), 0);
         const absl::StatusOr<v1::ListWorkersResponse> workers = client_->ListWorkers();
@@ -220,11 +236,13 @@ TEST_F(FarmTest, CpuAndVulkanWorkersShareAJob) {
         for (const v1::WorkerStatus& worker : workers->workers()) {
             EXPECT_GT(worker.batches_done(), 0u) << worker.backend() << " worker ran no batch";
             if (!worker.backend().starts_with("vulkan: ")) continue;
-            EXPECT_GT(worker.batches_done(), vulkan_batches) << "the Vulkan worker ran none of this job's batches";
+            EXPECT_GT(worker.batches_done(), vulkan_batches)
+                << "the Vulkan worker ran none of this job's batches";
             vulkan_batches = worker.batches_done();
         }
         EXPECT_GT(vulkan_batches, 0u) << "a Vulkan worker registers with its device's name";
-        testing::ExpectSameEstimator(image(Pixels(TempPath("mixed.exr"))), image(Reference(kEpochs, 0, flags)),
+        testing::ExpectSameEstimator(image(Pixels(TempPath("mixed.exr"))),
+                                     image(Reference(kEpochs, 0, flags)),
                                      image(Reference(kEpochs, 2, flags)));
     }
     // The Vulkan worker exits 1 should the validation layer have reported an error.
@@ -238,7 +256,8 @@ TEST_F(FarmTest, WorkerKilledMidJobChangesNothing) {
     ChildProcess& doomed = StartWorker();
     StartWorker();
     const v1::JobStatus job = Submit(kLongEpochs);
-    const v1::JobStatus at = WatchUntil(job.job_id(), [&](const v1::JobStatus& status) { return status.epochs() >= 2; });
+    const v1::JobStatus at =
+        WatchUntil(job.job_id(), [&](const v1::JobStatus& status) { return status.epochs() >= 2; });
     ASSERT_EQ(at.state(), v1::JOB_STATE_RUNNING) << "the job must still run when the worker dies";
     doomed.Signal(SIGKILL);  // its leases die with it
     ASSERT_EQ(WatchUntil(job.job_id()).state(), v1::JOB_STATE_DONE);
@@ -253,8 +272,10 @@ TEST_F(FarmTest, LateWorkerGetsWorkAndTwoJobsBothFinish) {
     StartWorker();
     const v1::JobStatus first = Submit(kLongEpochs);
     const v1::JobStatus second = Submit(kLongEpochs);
-    ASSERT_EQ(WatchUntil(first.job_id(), [](const v1::JobStatus& status) { return status.epochs() >= 1; }).state(),
-              v1::JOB_STATE_RUNNING);
+    ASSERT_EQ(
+        WatchUntil(first.job_id(), [](const v1::JobStatus& status) { return status.epochs() >= 1; })
+            .state(),
+        v1::JOB_STATE_RUNNING);
     StartWorker();
     EXPECT_EQ(WatchUntil(first.job_id()).state(), v1::JOB_STATE_DONE);
     EXPECT_EQ(WatchUntil(second.job_id()).state(), v1::JOB_STATE_DONE);
@@ -280,23 +301,26 @@ TEST_F(FarmTest, TargetErrorEndsTheJobAndSnapshotsCarryTheEstimate) {
     ASSERT_EQ(last.state(), v1::JOB_STATE_DONE);
     ASSERT_TRUE(last.has_estimated_error());
     EXPECT_LE(last.estimated_error(), 0.03);
-    EXPECT_LT(last.photons(), uint64_t(kCapEpochs) * 8 * 8192) << "the target, not the photon cap, ended the job";
+    EXPECT_LT(last.photons(), uint64_t(kCapEpochs) * 8 * 8192)
+        << "the target, not the photon cap, ended the job";
 }
 
 TEST_F(FarmTest, JobWithAReferenceLogsItsErrorAndWritesTheReport) {
     StartWorker();
     // The reference: the same hit points (seed), independent photons (another stream), 4x longer.
     const std::string reference = TempPath("reference.exr");
-    ChildProcess render(Concat({kBin + "/client/photonfarm", "render", kScene, "--threads", "2", "--out", reference,
-                                "--photons", std::to_string(4 * kEpochs * 8 * 8192), "--photon-stream", "1",
-                                "--log-level", "warn"},
-                               kJobFlags));
+    ChildProcess render(
+        Concat({kBin + "/client/photonfarm", "render", kScene, "--threads", "2", "--out", reference,
+                "--photons", std::to_string(4 * kEpochs * 8 * 8192), "--photon-stream", "1",
+                "--log-level", "warn"},
+               kJobFlags));
     ASSERT_EQ(render.Wait(300), 0);
     const std::string out = TempPath("measured.exr"), report = TempPath("report");
-    ChildProcess submit(Concat({kBin + "/client/photonfarm", "submit", kScene, "--server", address_, "--watch",
-                                "--interval", "0", "--out", out, "--photons", std::to_string(kEpochs * 8 * 8192),
-                                "--reference", reference, "--report", report, "--log-level", "warn"},
-                               Concat(kJobFlags, Credentials().ClientFlags())));
+    ChildProcess submit(
+        Concat({kBin + "/client/photonfarm", "submit", kScene, "--server", address_, "--watch",
+                "--interval", "0", "--out", out, "--photons", std::to_string(kEpochs * 8 * 8192),
+                "--reference", reference, "--report", report, "--log-level", "warn"},
+               Concat(kJobFlags, Credentials().ClientFlags())));
     ASSERT_EQ(submit.Wait(300), 0);
 
     // One CSV row per epoch; the last one's measurement is what `compare` finds between the
@@ -316,8 +340,10 @@ TEST_F(FarmTest, JobWithAReferenceLogsItsErrorAndWritesTheReport) {
     ASSERT_TRUE(final.ok());
     EXPECT_DOUBLE_EQ(log->points.back().measured->rmse, final->rmse);
     EXPECT_DOUBLE_EQ(log->points.back().measured->rel_mse, final->rel_mse);
-    EXPECT_LT(log->points.back().measured->rmse, log->points.front().measured->rmse) << "the error must fall";
-    for (const char* file : {"convergence.csv", "convergence.gp", "convergence.png", "convergence.svg"})
+    EXPECT_LT(log->points.back().measured->rmse, log->points.front().measured->rmse)
+        << "the error must fall";
+    for (const char* file :
+         {"convergence.csv", "convergence.gp", "convergence.png", "convergence.svg"})
         EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(report) / file)) << file;
 
     // A reference of another size is refused before any work, naming it.
@@ -328,7 +354,8 @@ TEST_F(FarmTest, JobWithAReferenceLogsItsErrorAndWritesTheReport) {
     *request.mutable_reference() = ToProto(*ReadExr(reference));
     const absl::Status status = client_->Submit(request).status();
     EXPECT_TRUE(absl::IsInvalidArgument(status)) << status;
-    EXPECT_NE(status.message().find("reference: the image is 48x48 but the job renders 32x32"), std::string::npos)
+    EXPECT_NE(status.message().find("reference: the image is 48x48 but the job renders 32x32"),
+              std::string::npos)
         << status;
 }
 
@@ -336,13 +363,15 @@ TEST_F(FarmTest, CancelledJobStopsItsLeasesAndKeepsItsImage) {
     StartWorker();
     const v1::JobStatus job = Submit(1000);
     WatchUntil(job.job_id(), [&](const v1::JobStatus& status) { return status.epochs() >= 1; });
-    ChildProcess cancel(Concat({kBin + "/client/photonfarm", "cancel", job.job_id(), "--server", address_},
-                               Credentials().ClientFlags()));
+    ChildProcess cancel(
+        Concat({kBin + "/client/photonfarm", "cancel", job.job_id(), "--server", address_},
+               Credentials().ClientFlags()));
     ASSERT_EQ(cancel.Wait(60), 0);
     EXPECT_EQ(WatchUntil(job.job_id()).state(), v1::JOB_STATE_CANCELLED);
     const absl::StatusOr<v1::ListWorkersResponse> workers = client_->ListWorkers();
     ASSERT_TRUE(workers.ok());
-    for (const v1::WorkerStatus& worker : workers->workers()) EXPECT_EQ(worker.batches_leased(), 0u);
+    for (const v1::WorkerStatus& worker : workers->workers())
+        EXPECT_EQ(worker.batches_leased(), 0u);
     const absl::StatusOr<v1::GetResultResponse> result = client_->GetResult(job.job_id());
     ASSERT_TRUE(result.ok() && result->has_image());
     EXPECT_GE(result->status().epochs(), 1u);
@@ -368,7 +397,8 @@ public:
         grpc::ClientContext context;
         return stub_->LeaseBatches(&context, request, response);
     }
-    v1::TallyVerdict Report(const v1::JobInputs& job, const v1::BatchSpec& spec, const std::string& worker = "") {
+    v1::TallyVerdict Report(const v1::JobInputs& job, const v1::BatchSpec& spec,
+                            const std::string& worker = "") {
         BatchResult result;
         result.spec = FromProto(spec);
         result.samples.assign(spec.sample_end() - spec.sample_begin(), Rgb(0.0f));
@@ -397,8 +427,10 @@ TEST_F(FarmTest, DuplicateStaleAndUnknownTalliesAreRefused) {
     ASSERT_EQ(epoch0.batches_size(), 8);
     EXPECT_EQ(worker.Report(epoch0.job(), epoch0.batches(0)), v1::TALLY_VERDICT_ACCEPTED);
     EXPECT_EQ(worker.Report(epoch0.job(), epoch0.batches(0)), v1::TALLY_VERDICT_DUPLICATE);
-    for (int i = 1; i < 8; ++i) EXPECT_EQ(worker.Report(epoch0.job(), epoch0.batches(i)), v1::TALLY_VERDICT_ACCEPTED);
-    EXPECT_EQ(worker.Report(epoch0.job(), epoch0.batches(3)), v1::TALLY_VERDICT_STALE) << "epoch 0 is merged";
+    for (int i = 1; i < 8; ++i)
+        EXPECT_EQ(worker.Report(epoch0.job(), epoch0.batches(i)), v1::TALLY_VERDICT_ACCEPTED);
+    EXPECT_EQ(worker.Report(epoch0.job(), epoch0.batches(3)), v1::TALLY_VERDICT_STALE)
+        << "epoch 0 is merged";
     worker.Report(epoch0.job(), epoch0.batches(3), "worker-forged");
     EXPECT_EQ(worker.last_status_.error_code(), grpc::StatusCode::NOT_FOUND) << "an unknown worker";
     ASSERT_TRUE(client_->Cancel(job.job_id()).ok());
@@ -448,7 +480,8 @@ TEST_F(FarmTest, HealthServiceAnswersServing) {
 // bit-identical to uninterrupted renders.
 TEST_F(FarmTest, CoordinatorKilledAtRandomMomentsResumesEveryJobBitIdentical) {
     const std::string port = address_.substr(address_.rfind(':') + 1);
-    const std::vector<std::string> durable = {"--checkpoint-dir", TempPath("checkpoints"), "--checkpoint-seconds", "0.05"};
+    const std::vector<std::string> durable = {"--checkpoint-dir", TempPath("checkpoints"),
+                                              "--checkpoint-seconds", "0.05"};
     StartCoordinator("127.0.0.1:" + port, durable);  // the same port, with checkpoints
     ASSERT_FALSE(HasFatalFailure());
     StartWorker();
@@ -464,7 +497,8 @@ TEST_F(FarmTest, CoordinatorKilledAtRandomMomentsResumesEveryJobBitIdentical) {
             return status.epochs() >= static_cast<uint64_t>(epochs);
         });
         if (before.state() != v1::JOB_STATE_RUNNING) break;  // ran to its end first
-        std::this_thread::sleep_for(std::chrono::milliseconds(std::uniform_int_distribution<int>(0, 60)(rng)));
+        std::this_thread::sleep_for(
+            std::chrono::milliseconds(std::uniform_int_distribution<int>(0, 60)(rng)));
         coordinator_->Signal(SIGKILL);
         ASSERT_EQ(coordinator_->Wait(30), 128 + SIGKILL);
         StartCoordinator("127.0.0.1:" + port, durable);
@@ -473,17 +507,19 @@ TEST_F(FarmTest, CoordinatorKilledAtRandomMomentsResumesEveryJobBitIdentical) {
         ASSERT_TRUE(jobs.ok()) << jobs.status();
         ASSERT_EQ(jobs->jobs_size(), 2) << "both jobs resume";
         EXPECT_EQ(jobs->jobs(0).job_id(), first.job_id());
-        EXPECT_GT(jobs->jobs(0).epochs(), 0u) << "the work before the kill was kept (checkpoints every 0.05 s)";
+        EXPECT_GT(jobs->jobs(0).epochs(), 0u)
+            << "the work before the kill was kept (checkpoints every 0.05 s)";
     }
     ASSERT_EQ(WatchUntil(first.job_id()).state(), v1::JOB_STATE_DONE);
     ASSERT_EQ(WatchUntil(second.job_id()).state(), v1::JOB_STATE_DONE);
     for (const auto& [job, expected] : {std::pair{first.job_id(), Reference(2 * kLongEpochs)},
-                                         std::pair{second.job_id(), Reference(kLongEpochs, 2)}}) {
+                                        std::pair{second.job_id(), Reference(kLongEpochs, 2)}}) {
         const absl::StatusOr<v1::GetResultResponse> result = client_->GetResult(job);
         ASSERT_TRUE(result.ok()) << result.status();
         const absl::StatusOr<Image> image = FromProto(result->image());
         ASSERT_TRUE(image.ok());
-        EXPECT_TRUE(Identical(image->pixels, expected)) << job << " differs from an uninterrupted render";
+        EXPECT_TRUE(Identical(image->pixels, expected))
+            << job << " differs from an uninterrupted render";
     }
 }
 

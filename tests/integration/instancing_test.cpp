@@ -25,13 +25,17 @@ namespace {
 // A block of white quads with a glass ball (a PLY mesh) on top, in the object's own space.
 constexpr char kBlock[] =
     "    NamedMaterial \"white\"\n"
-    "    Shape \"bilinearmesh\" \"point3 P\" [ -0.08 0.12 -0.08  0.08 0.12 -0.08  -0.08 0.12 0.08  0.08 0.12 0.08 ]"
+    "    Shape \"bilinearmesh\" \"point3 P\" [ -0.08 0.12 -0.08  0.08 0.12 -0.08  -0.08 0.12 0.08  "
+    "0.08 0.12 0.08 ]"
     " \"integer indices\" [ 0 1 2 3 ]\n"
-    "    Shape \"bilinearmesh\" \"point3 P\" [ -0.08 0 -0.08  -0.08 0.12 -0.08  0.08 0 -0.08  0.08 0.12 -0.08 ]"
+    "    Shape \"bilinearmesh\" \"point3 P\" [ -0.08 0 -0.08  -0.08 0.12 -0.08  0.08 0 -0.08  0.08 "
+    "0.12 -0.08 ]"
     " \"integer indices\" [ 0 1 2 3 ]\n"
-    "    Shape \"bilinearmesh\" \"point3 P\" [ 0.08 0 -0.08  0.08 0.12 -0.08  0.08 0 0.08  0.08 0.12 0.08 ]"
+    "    Shape \"bilinearmesh\" \"point3 P\" [ 0.08 0 -0.08  0.08 0.12 -0.08  0.08 0 0.08  0.08 "
+    "0.12 0.08 ]"
     " \"integer indices\" [ 0 1 2 3 ]\n"
-    "    Shape \"bilinearmesh\" \"point3 P\" [ -0.08 0 0.08  -0.08 0.12 0.08  -0.08 0 -0.08  -0.08 0.12 -0.08 ]"
+    "    Shape \"bilinearmesh\" \"point3 P\" [ -0.08 0 0.08  -0.08 0.12 0.08  -0.08 0 -0.08  -0.08 "
+    "0.12 -0.08 ]"
     " \"integer indices\" [ 0 1 2 3 ]\n"
     "    AttributeBegin\n"
     "        Material \"dielectric\" \"float eta\" 1.5\n"
@@ -68,11 +72,15 @@ std::string ObjectsScene(bool instanced) {
         "Scale -1 1 1\nLookAt 0.278 0.273 -0.8  0.278 0.273 0.0  0.0 1.0 0.0\n"
         "Camera \"perspective\" \"float fov\" 39.3\nWorldBegin\nInclude \"cornell-room.pbrt\"\n";
     if (instanced)
-        scene += std::string("ObjectBegin \"block\"\n") + kBlock + "ObjectEnd\nObjectBegin \"ball\"\n" + kBall + "ObjectEnd\n";
+        scene += std::string("ObjectBegin \"block\"\n") + kBlock +
+                 "ObjectEnd\nObjectBegin \"ball\"\n" + kBall + "ObjectEnd\n";
     for (const Placement& placement : kPlacements) {
         const std::string object = placement.object;
         scene += std::string("AttributeBegin\n") + placement.transform +
-                 (instanced ? "ObjectInstance \"" + object + "\"\n" : object == "block" ? kBlock : kBall) + "AttributeEnd\n";
+                 (instanced           ? "ObjectInstance \"" + object + "\"\n"
+                  : object == "block" ? kBlock
+                                      : kBall) +
+                 "AttributeEnd\n";
     }
     return scene;
 }
@@ -82,10 +90,12 @@ protected:
     static void SetUpTestSuite() {
         folder_ = std::filesystem::path(::testing::TempDir()) / "instancing";
         std::filesystem::create_directories(folder_);
-        std::filesystem::copy_file(std::filesystem::path(PF_SOURCE_DIR) / "scenes/pbrt/cornell-room.pbrt",
-                                   folder_ / "cornell-room.pbrt", std::filesystem::copy_options::overwrite_existing);
-        std::filesystem::copy_file(std::filesystem::path(PF_SOURCE_DIR) / "scenes/pbrt/meshes/glass-sphere.ply",
-                                   folder_ / "glass-sphere.ply", std::filesystem::copy_options::overwrite_existing);
+        std::filesystem::copy_file(
+            std::filesystem::path(PF_SOURCE_DIR) / "scenes/pbrt/cornell-room.pbrt",
+            folder_ / "cornell-room.pbrt", std::filesystem::copy_options::overwrite_existing);
+        std::filesystem::copy_file(
+            std::filesystem::path(PF_SOURCE_DIR) / "scenes/pbrt/meshes/glass-sphere.ply",
+            folder_ / "glass-sphere.ply", std::filesystem::copy_options::overwrite_existing);
         std::ofstream(folder_ / "instanced.pbrt") << ObjectsScene(true);
         std::ofstream(folder_ / "written-out.pbrt") << ObjectsScene(false);
     }
@@ -100,9 +110,11 @@ TEST_F(Instancing, ObjectsAreStoredOnceAndPlacedByInstances) {
     ASSERT_TRUE(written_out.ok()) << written_out.status();
     ASSERT_EQ(instanced->prototypes.size(), 2u);
     EXPECT_EQ(instanced->instances.size(), 5u);
-    const uint32_t block = instanced->prototypes[0].triangle_count, ball = instanced->prototypes[1].triangle_count;
+    const uint32_t block = instanced->prototypes[0].triangle_count,
+                   ball = instanced->prototypes[1].triangle_count;
     EXPECT_EQ(instanced->triangles.size(), instanced->WorldTriangleCount() + block + ball);
-    EXPECT_EQ(written_out->triangles.size(), instanced->WorldTriangleCount() + 3 * block + 2 * ball);
+    EXPECT_EQ(written_out->triangles.size(),
+              instanced->WorldTriangleCount() + 3 * block + 2 * ball);
     // An instance's bounds are its prototype's box turned: they hold the shapes, a little loosely.
     for (int axis = 0; axis < 3; ++axis) {
         EXPECT_LE(instanced->bounds.lower[axis], written_out->bounds.lower[axis] + 1e-6f);
@@ -132,7 +144,9 @@ TEST_F(Instancing, RaysMeetTheSameSurfacesAsInTheExpandedScene) {
         Ray ray;
         for (int axis = 0; axis < 3; ++axis) {
             const float u = rng.NextFloat();
-            ray.origin[axis] = scene->bounds.lower[axis] + (0.05f + 0.9f * u) * (scene->bounds.upper[axis] - scene->bounds.lower[axis]);
+            ray.origin[axis] =
+                scene->bounds.lower[axis] +
+                (0.05f + 0.9f * u) * (scene->bounds.upper[axis] - scene->bounds.lower[axis]);
         }
         const float u1 = rng.NextFloat();
         const float u2 = rng.NextFloat();
@@ -162,14 +176,16 @@ TEST_F(Instancing, RaysMeetTheSameSurfacesAsInTheExpandedScene) {
         shadow.t_max = 0.999f * hit.t;
         EXPECT_EQ((*instanced_tracer)->Occluded(shadow), (*flat_tracer)->Occluded(shadow));
         if (i % Tracer::kPacketSize == Tracer::kPacketSize - 1) {
-            const bool active[Tracer::kPacketSize] = {true, true, true, true, true, true, true, true};
+            const bool active[Tracer::kPacketSize] = {true, true, true, true,
+                                                      true, true, true, true};
             RayHit hits[Tracer::kPacketSize];
             bool packet_found[Tracer::kPacketSize];
             (*instanced_tracer)->IntersectPacket(packet, active, hits, packet_found);
             for (int lane = 0; lane < Tracer::kPacketSize; ++lane)
-                packet_mismatches += packet_found[lane] != expected_found[lane] ||
-                                     (packet_found[lane] && (hits[lane].triangle != expected[lane].triangle ||
-                                                             hits[lane].instance != expected[lane].instance));
+                packet_mismatches +=
+                    packet_found[lane] != expected_found[lane] ||
+                    (packet_found[lane] && (hits[lane].triangle != expected[lane].triangle ||
+                                            hits[lane].instance != expected[lane].instance));
         }
     }
     EXPECT_GT(instance_hits, kRays / 50);  // the blocks are in the way of some rays

@@ -15,7 +15,9 @@
 namespace pf {
 namespace {
 
-std::string ScenePath(const std::string& name) { return std::string(PF_SOURCE_DIR) + "/scenes/" + name; }
+std::string ScenePath(const std::string& name) {
+    return std::string(PF_SOURCE_DIR) + "/scenes/" + name;
+}
 
 // A small render of `scene` with `integrator`, on two threads, with a budget that puts its
 // noise well below the bounds below in a few seconds.
@@ -32,19 +34,27 @@ RenderSettings Small(const std::string& scene, Integrator integrator, int size) 
         // Progressive photon mapping keeps its k camera samples a pixel for good: with 4, the
         // light's edge pixels alone move a 64-pixel image's mean by a few percent from seed to
         // seed, error that no photon removes (stochastic ppm re-samples them every epoch).
-        case Integrator::kPpm: job.samples_per_pixel = 16, job.photon_budget = 12'000'000; break;
-        case Integrator::kSppm: job.photon_budget = 12'000'000; break;
+        case Integrator::kPpm:
+            job.samples_per_pixel = 16, job.photon_budget = 12'000'000;
+            break;
+        case Integrator::kSppm:
+            job.photon_budget = 12'000'000;
+            break;
         case Integrator::kPm:
             job.photon_map.global_photons = 1'000'000;
             job.photon_map.caustic_photons = 1'000'000;
             job.epoch_budget = 8;
             break;
-        case Integrator::kPath: job.epoch_budget = 96; break;
+        case Integrator::kPath:
+            job.epoch_budget = 96;
+            break;
     }
     return settings;
 }
 
-std::string Name(const ::testing::TestParamInfo<Integrator>& info) { return std::string(IntegratorName(info.param)); }
+std::string Name(const ::testing::TestParamInfo<Integrator>& info) {
+    return std::string(IntegratorName(info.param));
+}
 
 // Means over square blocks of pixels, per channel, averaged into one value a block.
 std::vector<double> BlockMeans(const Image& image, int block) {
@@ -64,7 +74,8 @@ class WhiteFurnace : public ::testing::TestWithParam<Integrator> {};
 TEST_P(WhiteFurnace, ConvergesToEmissionOverOneMinusAlbedo) {
     // furnace.gltf: a closed room of albedo 0.5 emitting Le = 1 everywhere, so L = 2 exactly,
     // through every path length: direct emission, light sampling, photons and MIS weights alike.
-    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(Small("furnace.gltf", GetParam(), 32));
+    const absl::StatusOr<RenderOutcome> outcome =
+        RenderLocally(Small("furnace.gltf", GetParam(), 32));
     ASSERT_TRUE(outcome.ok()) << outcome.status();
     std::vector<float> values;
     double sum = 0;
@@ -74,12 +85,14 @@ TEST_P(WhiteFurnace, ConvergesToEmissionOverOneMinusAlbedo) {
         sum += values.back();
     }
     std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-    EXPECT_NEAR(sum / values.size(), 2.0, 0.03) << "the image mean must be within 1.5% of Le / (1 - rho)";
+    EXPECT_NEAR(sum / values.size(), 2.0, 0.03)
+        << "the image mean must be within 1.5% of Le / (1 - rho)";
     EXPECT_NEAR(values[values.size() / 2], 2.0, 0.08) << "the typical pixel must be within 4%";
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, WhiteFurnace,
-                         ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm, Integrator::kPath),
+                         ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
+                                           Integrator::kPath),
                          Name);
 
 // The path tracer's image of a scene, with each block's standard error measured from the
@@ -102,14 +115,16 @@ Reference PathTracerReference(const std::string& scene, int size, int block) {
         epochs.push_back(BlockMeans(epoch, block));
         previous = current;
     };
-    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(Small(scene, Integrator::kPath, size), on_epoch);
+    const absl::StatusOr<RenderOutcome> outcome =
+        RenderLocally(Small(scene, Integrator::kPath, size), on_epoch);
     EXPECT_TRUE(outcome.ok()) << outcome.status();
     if (!outcome.ok() || epochs.size() < 2) return reference;
     reference.mean = BlockMeans(outcome->image, block);
     const double n = static_cast<double>(epochs.size());
     for (size_t b = 0; b < reference.mean.size(); ++b) {
         double squares = 0;
-        for (const std::vector<double>& epoch : epochs) squares += (epoch[b] - reference.mean[b]) * (epoch[b] - reference.mean[b]);
+        for (const std::vector<double>& epoch : epochs)
+            squares += (epoch[b] - reference.mean[b]) * (epoch[b] - reference.mean[b]);
         reference.standard_error.push_back(std::sqrt(squares / (n - 1) / n));
     }
     return reference;
@@ -127,7 +142,8 @@ TEST_P(AgreesWithThePathTracer, BlockByBlockAndOverall) {
     const SceneCase& c = GetParam();
     const Reference reference = PathTracerReference(c.scene, kSize, kBlock);
     ASSERT_FALSE(reference.mean.empty());
-    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(Small(c.scene, c.integrator, kSize));
+    const absl::StatusOr<RenderOutcome> outcome =
+        RenderLocally(Small(c.scene, c.integrator, kSize));
     ASSERT_TRUE(outcome.ok()) << outcome.status();
     const std::vector<double> blocks = BlockMeans(outcome->image, kBlock);
     // Each block within 4 of the path tracer's standard errors plus 4% for the photon mapper's
@@ -137,14 +153,17 @@ TEST_P(AgreesWithThePathTracer, BlockByBlockAndOverall) {
     for (size_t b = 0; b < blocks.size(); ++b) {
         const double expected = reference.mean[b];
         EXPECT_NEAR(blocks[b], expected, 4 * reference.standard_error[b] + 0.04 * expected)
-            << IntegratorName(c.integrator) << " on " << c.scene << ", block " << b << " of " << blocks.size();
+            << IntegratorName(c.integrator) << " on " << c.scene << ", block " << b << " of "
+            << blocks.size();
         sum += blocks[b];
         reference_sum += expected;
         variance += reference.standard_error[b] * reference.standard_error[b];
     }
     const double count = static_cast<double>(blocks.size());
-    EXPECT_NEAR(sum / count, reference_sum / count, 4 * std::sqrt(variance) / count + 0.015 * reference_sum / count)
-        << IntegratorName(c.integrator) << " on " << c.scene << ": the image mean against the path tracer's";
+    EXPECT_NEAR(sum / count, reference_sum / count,
+                4 * std::sqrt(variance) / count + 0.015 * reference_sum / count)
+        << IntegratorName(c.integrator) << " on " << c.scene
+        << ": the image mean against the path tracer's";
 }
 
 std::string CaseName(const ::testing::TestParamInfo<SceneCase>& info) {

@@ -18,13 +18,16 @@ TEST_P(Numerics, MeetsItsCriterion) {
     RecordProperty("measured", std::to_string(result.measured));
     RecordProperty("bound", std::to_string(result.bound));
     EXPECT_TRUE(result.ok) << c.name << ": " << result.detail;
-    EXPECT_LE(result.measured, result.bound) << c.name << " (" << c.criterion << "): " << result.detail;
+    EXPECT_LE(result.measured, result.bound)
+        << c.name << " (" << c.criterion << "): " << result.detail;
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, Numerics, ::testing::ValuesIn(NumericsCases()),
                          [](const ::testing::TestParamInfo<NumericsCase>& param) {
                              std::string name = param.param.group + "_" + param.param.name;
-                             std::replace_if(name.begin(), name.end(), [](char ch) { return !std::isalnum(ch); }, '_');
+                             std::replace_if(
+                                 name.begin(), name.end(),
+                                 [](char ch) { return !std::isalnum(ch); }, '_');
                              return name;
                          });
 

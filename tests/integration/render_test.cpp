@@ -21,9 +21,12 @@
 namespace pf {
 namespace {
 
-std::string ScenePath(const std::string& name) { return std::string(PF_SOURCE_DIR) + "/scenes/" + name; }
+std::string ScenePath(const std::string& name) {
+    return std::string(PF_SOURCE_DIR) + "/scenes/" + name;
+}
 
-RenderSettings SmallRender(const std::string& scene, uint64_t photons, int threads, const std::string& backend = "cpu") {
+RenderSettings SmallRender(const std::string& scene, uint64_t photons, int threads,
+                           const std::string& backend = "cpu") {
     RenderSettings settings;
     settings.backend = backend;
     settings.scene_path = ScenePath(scene);
@@ -43,7 +46,9 @@ protected:
         if (GetParam() == "vulkan") testing::SkipWithoutVulkan();
         errors_before_ = testing::VulkanValidationErrors();
     }
-    void TearDown() override { EXPECT_EQ(testing::VulkanValidationErrors(), errors_before_) << "Vulkan validation errors"; }
+    void TearDown() override {
+        EXPECT_EQ(testing::VulkanValidationErrors(), errors_before_) << "Vulkan validation errors";
+    }
 
 private:
     unsigned long long errors_before_ = 0;
@@ -51,7 +56,8 @@ private:
 
 TEST_P(AnalyticRender, WhiteFurnaceConvergesToEmissionOverOneMinusAlbedo) {
     // furnace.gltf: a closed room of albedo 0.5 emitting Le = 1 everywhere, so L = 2 exactly.
-    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(SmallRender("furnace.gltf", 3'000'000, 2, GetParam()));
+    const absl::StatusOr<RenderOutcome> outcome =
+        RenderLocally(SmallRender("furnace.gltf", 3'000'000, 2, GetParam()));
     ASSERT_TRUE(outcome.ok()) << outcome.status();
     double sum = 0;
     std::vector<float> luminance;
@@ -89,8 +95,8 @@ TEST_P(AnalyticRender, GlassInTheFurnaceConservesEnergy) {
 
 // Renders a 2x2 quad of albedo 0.5 at z = 0, seen from above, lit by one punctual light, and
 // returns the mean of the 4x4 pixels at the image's centre (the point under the camera).
-double CentreOfQuadLitBy(const std::string& light, const std::string& node_fields, const std::string& name,
-                         const std::string& backend) {
+double CentreOfQuadLitBy(const std::string& light, const std::string& node_fields,
+                         const std::string& name, const std::string& backend) {
     testing::TestScene scene = testing::LitQuadScene();
     scene.meshes.resize(1);  // no area light
     scene.lights = {light};
@@ -115,7 +121,8 @@ double CentreIrradianceFromPointAbove(double intensity) {
     constexpr int kSteps = 64;
     for (int i = 0; i < kSteps; ++i)
         for (int j = 0; j < kSteps; ++j) {
-            const double x = (-2 + 4 * (i + 0.5) / kSteps) * pixel, y = (-2 + 4 * (j + 0.5) / kSteps) * pixel;
+            const double x = (-2 + 4 * (i + 0.5) / kSteps) * pixel,
+                         y = (-2 + 4 * (j + 0.5) / kSteps) * pixel;
             sum += intensity / std::pow(1 + x * x + y * y, 1.5);
         }
     return sum / (kSteps * kSteps);
@@ -128,22 +135,28 @@ TEST_P(AnalyticRender, PunctualLightsGiveTheirAnalyticRadiance) {
     const double rho_over_pi = 0.5 / kPiD;
     const double point_expected = rho_over_pi * CentreIrradianceFromPointAbove(4.0);
     const std::string& backend = GetParam();
-    EXPECT_NEAR(
-        CentreOfQuadLitBy(R"({"type":"point","intensity":4})", R"(,"translation":[0,0,1])", "point.gltf", backend),
-        point_expected, 0.005 * point_expected);
-    // Within the inner cone a spot light is a point light.
-    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"spot","intensity":4,"spot":{"innerConeAngle":0.3,"outerConeAngle":0.6}})",
-                                  R"(,"translation":[0,0,1])", "spot.gltf", backend),
+    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"point","intensity":4})", R"(,"translation":[0,0,1])",
+                                  "point.gltf", backend),
                 point_expected, 0.005 * point_expected);
-    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"directional","intensity":3})", "", "directional.gltf", backend),
+    // Within the inner cone a spot light is a point light.
+    EXPECT_NEAR(
+        CentreOfQuadLitBy(
+            R"({"type":"spot","intensity":4,"spot":{"innerConeAngle":0.3,"outerConeAngle":0.6}})",
+            R"(,"translation":[0,0,1])", "spot.gltf", backend),
+        point_expected, 0.005 * point_expected);
+    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"directional","intensity":3})", "", "directional.gltf",
+                                  backend),
                 rho_over_pi * 3.0, 0.01 * rho_over_pi * 3.0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, AnalyticRender, ::testing::ValuesIn(BackendNames()),
-                         [](const ::testing::TestParamInfo<std::string>& backend) { return backend.param; });
+                         [](const ::testing::TestParamInfo<std::string>& backend) {
+                             return backend.param;
+                         });
 
 TEST(RenderTest, GlassSceneHasNoNaNOrInf) {
-    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(SmallRender("cornell-glass.gltf", 400'000, 2));
+    const absl::StatusOr<RenderOutcome> outcome =
+        RenderLocally(SmallRender("cornell-glass.gltf", 400'000, 2));
     ASSERT_TRUE(outcome.ok()) << outcome.status();
     double sum = 0;
     for (const Rgb& pixel : outcome->image.pixels) {
@@ -161,7 +174,9 @@ TEST(RenderTest, SameSeedGivesBitIdenticalImagesForOneAndTwoThreads) {
         ASSERT_TRUE(one.ok() && two.ok());
         ASSERT_EQ(one->image.pixels.size(), two->image.pixels.size());
         EXPECT_EQ(std::memcmp(one->image.pixels.data(), two->image.pixels.data(),
-                              one->image.pixels.size() * sizeof(Rgb)), 0) << scene;
+                              one->image.pixels.size() * sizeof(Rgb)),
+                  0)
+            << scene;
         EXPECT_EQ(one->progress.photons, two->progress.photons);
     }
 }
@@ -177,7 +192,8 @@ TEST(RenderTest, BatchesOfSeveralChunksGiveTheSameImageForOneAndTwoThreads) {
     const absl::StatusOr<RenderOutcome> two = RenderLocally(settings);
     ASSERT_TRUE(one.ok() && two.ok());
     EXPECT_EQ(one->progress.photons, settings.job.layout.PhotonsPerEpoch());
-    EXPECT_EQ(std::memcmp(one->image.pixels.data(), two->image.pixels.data(), one->image.pixels.size() * sizeof(Rgb)),
+    EXPECT_EQ(std::memcmp(one->image.pixels.data(), two->image.pixels.data(),
+                          one->image.pixels.size() * sizeof(Rgb)),
               0);
 }
 
@@ -188,7 +204,8 @@ TEST(RenderTest, TargetErrorEndsTheRenderOnceTheEstimateMeetsIt) {
     ASSERT_TRUE(outcome.ok()) << outcome.status();
     ASSERT_TRUE(outcome->progress.estimated_error.has_value());
     EXPECT_LE(*outcome->progress.estimated_error, 0.03);
-    EXPECT_LT(outcome->progress.photons, settings.job.photon_budget) << "the target, not the photons, ended it";
+    EXPECT_LT(outcome->progress.photons, settings.job.photon_budget)
+        << "the target, not the photons, ended it";
 }
 
 TEST(RenderTest, DifferentSeedsGiveDifferentImages) {
@@ -197,7 +214,8 @@ TEST(RenderTest, DifferentSeedsGiveDifferentImages) {
     const absl::StatusOr<RenderOutcome> first = RenderLocally(a), second = RenderLocally(b);
     ASSERT_TRUE(first.ok() && second.ok());
     EXPECT_NE(std::memcmp(first->image.pixels.data(), second->image.pixels.data(),
-                          first->image.pixels.size() * sizeof(Rgb)), 0);
+                          first->image.pixels.size() * sizeof(Rgb)),
+              0);
 }
 
 TEST(RenderTest, BadSettingsAreRefusedWithAClearError) {
@@ -215,31 +233,37 @@ TEST(RenderTest, TooManyHitPointsAreRefusedBeforeAnyWork) {
     const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
     ASSERT_FALSE(outcome.ok());
     EXPECT_EQ(outcome.status().code(), absl::StatusCode::kResourceExhausted);
-    EXPECT_NE(std::string(outcome.status().message()).find("hit points exceeds the limit"), std::string::npos);
+    EXPECT_NE(std::string(outcome.status().message()).find("hit points exceeds the limit"),
+              std::string::npos);
 }
 
 TEST(RenderTest, PhotonsAndDirectSamplesTurnedNanAreDroppedAndCounted) {
     // Loaded input cannot hold NaN (the loader refuses it), so it is planted after loading: the
     // quad's albedo becomes NaN. Every photon that scatters off it, and every direct sample
     // there, turns NaN: each must be dropped and counted, and the tally must stay finite.
-    absl::StatusOr<Scene> scene = LoadScene(testing::WriteGltf(testing::LitQuadScene(), "nan-albedo.gltf"));
+    absl::StatusOr<Scene> scene =
+        LoadScene(testing::WriteGltf(testing::LitQuadScene(), "nan-albedo.gltf"));
     ASSERT_TRUE(scene.ok()) << scene.status();
-    absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(*scene);
+    absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer =
+        embree::EmbreeTracer::Create(*scene);
     ASSERT_TRUE(tracer.ok());
     const CameraPassResult camera_pass = RunCameraPass(*scene, **tracer, {16, 16, 1, 1});
     ASSERT_FALSE(camera_pass.hit_points.empty());
     scene->materials[0].base_color = Rgb(std::nanf(""));
     std::vector<HitPoint> hit_points = camera_pass.hit_points;
-    for (HitPoint& hit_point : hit_points) hit_point.weight = Rgb(std::nanf(""));  // direct samples turn NaN
+    for (HitPoint& hit_point : hit_points)
+        hit_point.weight = Rgb(std::nanf(""));  // direct samples turn NaN
     const Emitters emitters(*scene);
     HashGrid grid;
     grid.Build(hit_points, std::vector<float>(hit_points.size(), 0.01f));
     const PhotonPassInputs inputs{&*scene, &emitters, tracer->get(), hit_points, &grid, 1};
     PhotonPassScratch scratch;
-    const BatchSpec spec = MakeBatchSpec({20000, 1}, 0, 0, static_cast<uint32_t>(hit_points.size()));
+    const BatchSpec spec =
+        MakeBatchSpec({20000, 1}, 0, 0, static_cast<uint32_t>(hit_points.size()));
     const std::vector<BatchResult> results = RunPhotonBatches(inputs, std::vector{spec}, scratch);
     ASSERT_EQ(results.size(), 1u);
-    EXPECT_GT(results[0].nonfinite_discarded, hit_points.size()) << "the direct samples and the scattered photons";
+    EXPECT_GT(results[0].nonfinite_discarded, hit_points.size())
+        << "the direct samples and the scattered photons";
     for (const Rgb& flux : results[0].tally.flux) EXPECT_TRUE(IsFinite(flux));
     for (const Rgb& direct : results[0].samples) EXPECT_TRUE(IsFinite(direct));
 }

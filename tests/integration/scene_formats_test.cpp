@@ -23,16 +23,19 @@ TEST_P(SceneFormats, PbrtFormRendersTheGltfFormsImage) {
     // the same triangles in both forms: with the same random numbers, the same image.
     const bool pbrt_spheres = GetParam() == "cornell-glass" || GetParam() == "furnace-glass";
     if (pbrt_spheres) {
-        testing::ExpectSameEstimator(testing::RenderSmall(pbrt_path, "cpu", 3), gltf, gltf_other_stream);
+        testing::ExpectSameEstimator(testing::RenderSmall(pbrt_path, "cpu", 3), gltf,
+                                     gltf_other_stream);
         return;
     }
     const Image pbrt = testing::RenderSmall(pbrt_path, "cpu", 1);
     ASSERT_EQ(pbrt.pixels.size(), gltf.pixels.size());
-    EXPECT_LE(testing::MeanSquaredDifference(pbrt, gltf), 1e-9 * testing::MeanSquaredDifference(gltf, gltf_other_stream));
+    EXPECT_LE(testing::MeanSquaredDifference(pbrt, gltf),
+              1e-9 * testing::MeanSquaredDifference(gltf, gltf_other_stream));
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, SceneFormats,
-                         ::testing::Values("cornell-box", "cornell-glass", "caustic-glass", "furnace", "furnace-glass"),
+                         ::testing::Values("cornell-box", "cornell-glass", "caustic-glass",
+                                           "furnace", "furnace-glass"),
                          [](const ::testing::TestParamInfo<std::string>& scene) {
                              std::string name = scene.param;
                              std::replace(name.begin(), name.end(), '-', '_');

@@ -4,9 +4,8 @@
 // checkpoints and their restoring, and the Prometheus metrics.
 #include "server/coordinator.h"
 
-#include <gtest/gtest.h>
-
 #include <arpa/inet.h>
+#include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
@@ -18,9 +17,9 @@
 #include <fstream>
 #include <random>
 
+#include "absl/strings/str_split.h"
 #include "client/local_render.h"
 #include "core/scene/scene_loader.h"
-#include "absl/strings/str_split.h"
 #include "server/in_process_source.h"
 #include "server/metrics.h"
 #include "worker/backend_factory.h"
@@ -29,7 +28,9 @@
 namespace pf {
 namespace {
 
-std::string ScenePath(const std::string& name) { return std::string(PF_SOURCE_DIR) + "/scenes/" + name; }
+std::string ScenePath(const std::string& name) {
+    return std::string(PF_SOURCE_DIR) + "/scenes/" + name;
+}
 
 JobSpec SmallSpec(uint64_t photons) {
     JobSpec spec;
@@ -71,7 +72,9 @@ public:
         if (!backend_ || job_ != lease.grant.job) {
             backend_ = *CreateBackend("cpu", lease.grant.job->scene);
             job_ = lease.grant.job;
-            EXPECT_TRUE(backend_->BeginJob({&job_->scene, &job_->emitters, *job_->hit_points, job_->seed}).ok());
+            EXPECT_TRUE(
+                backend_->BeginJob({&job_->scene, &job_->emitters, *job_->hit_points, job_->seed})
+                    .ok());
             epoch_ = UINT64_MAX;
         }
         if (epoch_ != lease.grant.epoch) {
@@ -102,9 +105,11 @@ TEST(CoordinatorTest, ResultsInAnyOrderFromAnyWorkerGiveTheEmbeddedImage) {
 
     FakeClock clock;
     Coordinator coordinator(Options(&clock));
-    const absl::StatusOr<JobProgress> job = coordinator.Submit(SmallJob(settings.job.photon_budget));
+    const absl::StatusOr<JobProgress> job =
+        coordinator.Submit(SmallJob(settings.job.photon_budget));
     ASSERT_TRUE(job.ok()) << job.status();
-    const std::string a = *coordinator.RegisterWorker(Cpu()), b = *coordinator.RegisterWorker(Cpu());
+    const std::string a = *coordinator.RegisterWorker(Cpu()),
+                      b = *coordinator.RegisterWorker(Cpu());
     BatchRunner runner;
     std::mt19937 shuffle(7);
     for (int epoch = 0; epoch < 3; ++epoch) {
@@ -113,15 +118,18 @@ TEST(CoordinatorTest, ResultsInAnyOrderFromAnyWorkerGiveTheEmbeddedImage) {
         for (const std::string& worker : {a, b}) {
             const absl::StatusOr<CoordinatorLease> lease = coordinator.Lease(worker, 2, 0);
             ASSERT_TRUE(lease.ok() && lease->grant.batches.size() == 2);
-            for (BatchResult& result : runner.Run(*lease)) reports.emplace_back(worker, std::move(result));
+            for (BatchResult& result : runner.Run(*lease))
+                reports.emplace_back(worker, std::move(result));
         }
         std::shuffle(reports.begin(), reports.end(), shuffle);
         for (auto& [worker, result] : reports)
-            EXPECT_EQ(*coordinator.Report(worker, job->job_id, std::move(result)), TallyVerdict::kAccepted);
+            EXPECT_EQ(*coordinator.Report(worker, job->job_id, std::move(result)),
+                      TallyVerdict::kAccepted);
     }
     const std::shared_ptr<Job> done = *coordinator.FindJob(job->job_id);
     EXPECT_EQ(done->Progress(clock.now).state, JobState::kDone);
-    EXPECT_TRUE(SamePixels(*done->CurrentImage(), reference->image)) << "the merge must not depend on arrival order";
+    EXPECT_TRUE(SamePixels(*done->CurrentImage(), reference->image))
+        << "the merge must not depend on arrival order";
 }
 
 TEST(CoordinatorTest, ScenesOverTheConfiguredLimitsAreRefused) {
@@ -132,7 +140,8 @@ TEST(CoordinatorTest, ScenesOverTheConfiguredLimitsAreRefused) {
     const absl::StatusOr<JobProgress> refused = coordinator.Submit(SmallJob(1000));
     ASSERT_FALSE(refused.ok());
     EXPECT_EQ(refused.status().code(), absl::StatusCode::kResourceExhausted);
-    EXPECT_NE(refused.status().message().find("more than 10 triangles"), std::string::npos) << refused.status();
+    EXPECT_NE(refused.status().message().find("more than 10 triangles"), std::string::npos)
+        << refused.status();
     options.scene_limits.max_triangles = 32;
     Coordinator roomy(options);
     EXPECT_TRUE(roomy.Submit(SmallJob(1000)).ok());
@@ -168,15 +177,18 @@ TEST(CoordinatorTest, RequestsOverTheClientLimitsAreRefused) {
     const std::string first = coordinator.Submit(SmallJob(1'000'000, 0, "alice"))->job_id;
     ASSERT_TRUE(coordinator.Submit(SmallJob(1'000'000, 0, "alice")).ok());
     ExpectOverLimit(coordinator.Submit(SmallJob(1'000'000, 0, "alice")), "--max-jobs-per-client");
-    EXPECT_TRUE(coordinator.Submit(SmallJob(1'000'000, 0, "bob")).ok()) << "the limit is per client";
+    EXPECT_TRUE(coordinator.Submit(SmallJob(1'000'000, 0, "bob")).ok())
+        << "the limit is per client";
     ASSERT_TRUE(coordinator.Cancel(first).ok());
-    EXPECT_TRUE(coordinator.Submit(SmallJob(1'000'000, 0, "alice")).ok()) << "an ended job no longer counts";
+    EXPECT_TRUE(coordinator.Submit(SmallJob(1'000'000, 0, "alice")).ok())
+        << "an ended job no longer counts";
 }
 
 TEST(CoordinatorTest, WatchersPerJobAreCounted) {
     FakeClock clock;
     Coordinator coordinator(Options(&clock));
-    const std::shared_ptr<Job> job = *coordinator.FindJob(coordinator.Submit(SmallJob(1000))->job_id);
+    const std::shared_ptr<Job> job =
+        *coordinator.FindJob(coordinator.Submit(SmallJob(1000))->job_id);
     EXPECT_TRUE(job->AddWatcher(2));
     EXPECT_TRUE(job->AddWatcher(2));
     EXPECT_FALSE(job->AddWatcher(2));
@@ -194,7 +206,8 @@ TEST(CoordinatorTest, DuplicateStaleGoneAndUnknownTalliesAreRefusedAndCounted) {
     ASSERT_TRUE(lease.ok());
     std::vector<BatchResult> epoch0 = runner.Run(*lease);
     const BatchResult first = epoch0[0];
-    for (BatchResult& result : epoch0) EXPECT_EQ(*coordinator.Report(worker, job_id, std::move(result)), TallyVerdict::kAccepted);
+    for (BatchResult& result : epoch0)
+        EXPECT_EQ(*coordinator.Report(worker, job_id, std::move(result)), TallyVerdict::kAccepted);
     // Epoch 0 is merged: its batch again is stale, whoever sends it.
     EXPECT_EQ(*coordinator.Report(worker, job_id, first), TallyVerdict::kStale);
     lease = coordinator.Lease(worker, 1, 0);
@@ -230,7 +243,8 @@ TEST(CoordinatorTest, ExpiredLeasesAndSilentWorkersHandTheirBatchesOut) {
     const std::string other = *coordinator.RegisterWorker(Cpu());
     ASSERT_EQ(coordinator.Lease(slow, 4, 0)->grant.batches.size(), 4u);
     EXPECT_TRUE(coordinator.Lease(other, 4, 0)->grant.batches.empty()) << "every batch is out";
-    // Both keep heartbeating, but the slow worker's lease (30 s) runs out: its batches go out again.
+    // Both keep heartbeating, but the slow worker's lease (30 s) runs out: its batches go out
+    // again.
     for (int beat = 0; beat < 4; ++beat) {
         clock.Advance(beat < 3 ? 9 : 4);
         ASSERT_TRUE(coordinator.Heartbeat(slow).ok());
@@ -259,7 +273,8 @@ TEST(CoordinatorTest, CancelEndsLeasesKeepsTheImageAndFreesTheInputs) {
     absl::StatusOr<CoordinatorLease> lease = coordinator.Lease(worker, 4, 0);
     std::weak_ptr<const JobPayload> payload = lease->grant.job;
     BatchRunner runner;
-    for (BatchResult& result : runner.Run(*lease)) (void)coordinator.Report(worker, job_id, std::move(result));
+    for (BatchResult& result : runner.Run(*lease))
+        (void)coordinator.Report(worker, job_id, std::move(result));
     lease = coordinator.Lease(worker, 4, 0);
     const std::shared_ptr<Job> job = *coordinator.FindJob(job_id);
     ASSERT_TRUE(coordinator.Cancel(job_id).ok());
@@ -282,9 +297,11 @@ TEST(CoordinatorTest, HigherPriorityFirstThenFewestBatchesOut) {
     const std::string worker = *coordinator.RegisterWorker(Cpu());
     std::vector<std::string> order;
     for (int i = 0; i < 8; ++i) order.push_back(coordinator.Lease(worker, 1, 0)->grant.job_id);
-    EXPECT_EQ(std::count(order.begin(), order.begin() + 4, high), 4) << "the high-priority job's epoch goes first";
+    EXPECT_EQ(std::count(order.begin(), order.begin() + 4, high), 4)
+        << "the high-priority job's epoch goes first";
     // Then the two equal jobs alternate, the older first.
-    EXPECT_EQ(std::vector<std::string>(order.begin() + 4, order.end()), (std::vector<std::string>{low, low2, low, low2}));
+    EXPECT_EQ(std::vector<std::string>(order.begin() + 4, order.end()),
+              (std::vector<std::string>{low, low2, low, low2}));
 }
 
 TEST(CoordinatorTest, BadRequestsNameTheFieldOrFile) {
@@ -314,7 +331,8 @@ TEST(CoordinatorTest, AJobWhoseEpochsCannotKeepTheWorkersBusyIsSubmittedWithAWar
     WorkerRegistration big = Cpu();
     big.threads = 64;
     ASSERT_TRUE(coordinator.RegisterWorker(big).ok());
-    const absl::StatusOr<JobProgress> starved = coordinator.Submit(SmallJob(4 * 4096));  // 4 one-chunk batches
+    const absl::StatusOr<JobProgress> starved =
+        coordinator.Submit(SmallJob(4 * 4096));  // 4 one-chunk batches
     ASSERT_TRUE(starved.ok()) << starved.status();
     ASSERT_EQ(starved->warnings.size(), 1u);
     EXPECT_NE(starved->warnings[0].find("4 chunks"), std::string::npos) << starved->warnings[0];
@@ -324,7 +342,8 @@ TEST(CoordinatorTest, AJobWhoseEpochsCannotKeepTheWorkersBusyIsSubmittedWithAWar
 TEST(CoordinatorTest, AJobNoConnectedWorkerRunsIsSubmittedWithAWarningAndWaits) {
     FakeClock clock;
     Coordinator coordinator(Options(&clock));
-    const std::string gpu = *coordinator.RegisterWorker({"vulkan", 1, std::string(kPhotonfarmVersion), ""});
+    const std::string gpu =
+        *coordinator.RegisterWorker({"vulkan", 1, std::string(kPhotonfarmVersion), ""});
     JobRequest request = SmallJob(4 * 4096);
     request.spec.integrator = Integrator::kPath;
     request.spec.photon_budget = 0;
@@ -332,12 +351,14 @@ TEST(CoordinatorTest, AJobNoConnectedWorkerRunsIsSubmittedWithAWarningAndWaits) 
     const absl::StatusOr<JobProgress> waiting = coordinator.Submit(std::move(request));
     ASSERT_TRUE(waiting.ok()) << waiting.status();
     ASSERT_EQ(waiting->warnings.size(), 1u);
-    EXPECT_NE(waiting->warnings[0].find("no connected worker runs the path integrator (connected: vulkan)"),
+    EXPECT_NE(waiting->warnings[0].find(
+                  "no connected worker runs the path integrator (connected: vulkan)"),
               std::string::npos)
         << waiting->warnings[0];
     const absl::StatusOr<CoordinatorLease> lease = coordinator.Lease(gpu, 4, 0);
     ASSERT_TRUE(lease.ok()) << lease.status();
-    EXPECT_TRUE(lease->grant.batches.empty()) << "a vulkan worker is never leased a path tracing job";
+    EXPECT_TRUE(lease->grant.batches.empty())
+        << "a vulkan worker is never leased a path tracing job";
     // A ppm job, which the vulkan worker runs, comes without the warning.
     const absl::StatusOr<JobProgress> ppm = coordinator.Submit(SmallJob(64 * 4096));
     ASSERT_TRUE(ppm.ok()) << ppm.status();
@@ -352,9 +373,10 @@ namespace {
 
 // A checkpoint folder of its own, removed at the end.
 struct TempDir {
-    std::string path = (std::filesystem::temp_directory_path() /
-                        ("pf-checkpoints-" + std::to_string(getpid()) + "-" + std::to_string(std::random_device{}())))
-                           .string();
+    std::string path =
+        (std::filesystem::temp_directory_path() / ("pf-checkpoints-" + std::to_string(getpid()) +
+                                                   "-" + std::to_string(std::random_device{}())))
+            .string();
     ~TempDir() { std::filesystem::remove_all(path); }
 };
 
@@ -366,19 +388,22 @@ CoordinatorOptions Durable(FakeClock* clock, const std::string& dir) {
 }
 
 // Leases and reports `batches` batches of the job, one at a time.
-void RunBatches(Coordinator& coordinator, const std::string& worker, const std::string& job_id, int batches,
-                BatchRunner& runner) {
+void RunBatches(Coordinator& coordinator, const std::string& worker, const std::string& job_id,
+                int batches, BatchRunner& runner) {
     for (int i = 0; i < batches; ++i) {
         const absl::StatusOr<CoordinatorLease> lease = coordinator.Lease(worker, 1, 0);
         ASSERT_TRUE(lease.ok() && lease->grant.batches.size() == 1);
         for (BatchResult& result : runner.Run(*lease))
-            ASSERT_EQ(*coordinator.Report(worker, job_id, std::move(result)), TallyVerdict::kAccepted);
+            ASSERT_EQ(*coordinator.Report(worker, job_id, std::move(result)),
+                      TallyVerdict::kAccepted);
     }
 }
 
-std::vector<std::filesystem::path> CheckpointFiles(const std::string& dir, const std::string& job_id) {
+std::vector<std::filesystem::path> CheckpointFiles(const std::string& dir,
+                                                   const std::string& job_id) {
     std::vector<std::filesystem::path> files;
-    for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(dir) / job_id))
+    for (const auto& entry :
+         std::filesystem::directory_iterator(std::filesystem::path(dir) / job_id))
         files.push_back(entry.path());
     std::sort(files.begin(), files.end());
     return files;
@@ -405,7 +430,8 @@ TEST(CoordinatorCheckpointTest, JobsResumeInANewCoordinatorBitIdentical) {
         const std::string worker = *first.RegisterWorker(Cpu());
         BatchRunner runner;
         RunBatches(first, worker, running, 4, runner);  // epoch 0
-        RunBatches(first, worker, running, 2, runner);  // half of epoch 1: a checkpoint between folds
+        RunBatches(first, worker, running, 2,
+                   runner);  // half of epoch 1: a checkpoint between folds
         first.WriteCheckpoints();
     }  // and at the end, as a stopping coordinator does
 
@@ -431,7 +457,8 @@ TEST(CoordinatorCheckpointTest, JobsResumeInANewCoordinatorBitIdentical) {
     RunBatches(second, worker, running, 4, runner);  // epoch 2
     const std::shared_ptr<Job> done = *second.FindJob(running);
     EXPECT_EQ(done->Progress(clock.now).state, JobState::kDone);
-    EXPECT_TRUE(SamePixels(*done->CurrentImage(), reference->image)) << "resumed, it ends as an uninterrupted render";
+    EXPECT_TRUE(SamePixels(*done->CurrentImage(), reference->image))
+        << "resumed, it ends as an uninterrupted render";
     const std::string next = second.Submit(SmallJob(1000))->job_id;
     EXPECT_NE(next, running);
     EXPECT_NE(next, cancelled);
@@ -468,7 +495,8 @@ TEST(CoordinatorCheckpointTest, CorruptOrTruncatedCheckpointsFallBackToThePrevio
     std::ofstream(files.back(), std::ios::binary | std::ios::trunc) << bytes;
     EXPECT_EQ(epochs_resumed(), 1u);
     // Both cut short: nothing is resumed, and nothing crashes.
-    for (const std::filesystem::path& file : CheckpointFiles(dir.path, job_id)) std::filesystem::resize_file(file, 100);
+    for (const std::filesystem::path& file : CheckpointFiles(dir.path, job_id))
+        std::filesystem::resize_file(file, 100);
     EXPECT_EQ(epochs_resumed(), 0u);
 }
 
@@ -510,7 +538,8 @@ std::string Scrape(int port) {
     EXPECT_EQ(write(fd, request.data(), request.size()), static_cast<ssize_t>(request.size()));
     std::string response;
     char buffer[4096];
-    for (ssize_t n; (n = read(fd, buffer, sizeof(buffer))) > 0;) response.append(buffer, static_cast<size_t>(n));
+    for (ssize_t n; (n = read(fd, buffer, sizeof(buffer))) > 0;)
+        response.append(buffer, static_cast<size_t>(n));
     close(fd);
     const size_t body = response.find("\r\n\r\n");
     return body == std::string::npos ? "" : response.substr(body + 4);
@@ -545,16 +574,20 @@ TEST(CoordinatorMetricsTest, ScrapesShowPhotonsBatchesWorkersMergesAndRefusals) 
     EXPECT_EQ(Sample(scrape, "photonfarm_batches_leased"), 4);
     std::vector<BatchResult> results = runner.Run(*lease);
     BatchResult copy = results[0];
-    for (BatchResult& result : results) ASSERT_EQ(*coordinator.Report(worker, job_id, std::move(result)), TallyVerdict::kAccepted);
-    EXPECT_EQ(*coordinator.Report(worker, job_id, std::move(copy)), TallyVerdict::kStale);  // epoch 0 is merged
+    for (BatchResult& result : results)
+        ASSERT_EQ(*coordinator.Report(worker, job_id, std::move(result)), TallyVerdict::kAccepted);
+    EXPECT_EQ(*coordinator.Report(worker, job_id, std::move(copy)),
+              TallyVerdict::kStale);  // epoch 0 is merged
 
     scrape = Scrape((*server)->Port());
     EXPECT_EQ(Sample(scrape, "photonfarm_photons_total"), 4 * 4096);
-    EXPECT_EQ(Sample(scrape, "photonfarm_merge_seconds_count"), 4) << "one merge per accepted tally";
+    EXPECT_EQ(Sample(scrape, "photonfarm_merge_seconds_count"), 4)
+        << "one merge per accepted tally";
     EXPECT_EQ(Sample(scrape, "photonfarm_tallies_refused_total{reason=\"stale\"}"), 1);
     EXPECT_EQ(Sample(scrape, "photonfarm_tallies_refused_total{reason=\"duplicate\"}"), 0);
     EXPECT_EQ(Sample(scrape, "photonfarm_batches_pending"), 4) << "the next epoch's";
-    EXPECT_TRUE(std::isnan(Sample(scrape, "photonfarm_job_estimated_error{job=\"" + job_id + "\"}")))
+    EXPECT_TRUE(
+        std::isnan(Sample(scrape, "photonfarm_job_estimated_error{job=\"" + job_id + "\"}")))
         << "no estimate after one epoch";
     const absl::StatusOr<CoordinatorLease> second = coordinator.Lease(worker, 4, 0);
     for (BatchResult& result : runner.Run(*second))

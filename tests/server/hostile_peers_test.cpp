@@ -4,8 +4,8 @@
 // oversized messages and scenes, and paths that climb out of the bundle. None may be merged
 // or read; the server stays up; the job's image stays as it was, and the job then renders
 // bit-identical to `photonfarm render`.
-#include <gtest/gtest.h>
 #include <grpcpp/client_context.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
@@ -100,7 +100,8 @@ protected:
     std::string SubmitJob() {
         grpc::ClientContext context;
         v1::SubmitJobResponse response;
-        const grpc::Status status = Jobs(Credentials().Client())->SubmitJob(&context, SubmitRequest(), &response);
+        const grpc::Status status =
+            Jobs(Credentials().Client())->SubmitJob(&context, SubmitRequest(), &response);
         EXPECT_TRUE(status.ok()) << status.error_message();
         return response.status().job_id();
     }
@@ -127,11 +128,13 @@ grpc::Status CallWork(v1::Work::Stub& work) {
 
 TEST_F(HostilePeersTest, TokensOpenOnlyTheirOwnService) {
     const testing::FarmCredentials& files = Credentials();
-    ChannelSecurity none = files.Client(), wrong = files.Client(), worker_as_client = files.Client();
+    ChannelSecurity none = files.Client(), wrong = files.Client(),
+                    worker_as_client = files.Client();
     none.token.clear();
     wrong.token = std::string(64, 'x');
     worker_as_client.token = files.WorkerToken();
-    ChannelSecurity worker_none = files.Worker(), worker_wrong = files.Worker(), client_as_worker = files.Worker();
+    ChannelSecurity worker_none = files.Worker(), worker_wrong = files.Worker(),
+                    client_as_worker = files.Worker();
     worker_none.token.clear();
     worker_wrong.token = std::string(64, 'y');
     client_as_worker.token = files.ClientToken();
@@ -149,14 +152,16 @@ TEST_F(HostilePeersTest, TokensOpenOnlyTheirOwnService) {
     EXPECT_EQ(CallWork(*Work(client_as_worker)).error_code(), grpc::StatusCode::PERMISSION_DENIED);
     const grpc::Status uncertified = CallWork(*Work(no_certificate));
     EXPECT_EQ(uncertified.error_code(), grpc::StatusCode::UNAUTHENTICATED);
-    EXPECT_NE(uncertified.error_message().find("certificate"), std::string::npos) << uncertified.error_message();
+    EXPECT_NE(uncertified.error_message().find("certificate"), std::string::npos)
+        << uncertified.error_message();
 
     // A worker's token cannot submit; a client's cannot report.
     {
         grpc::ClientContext context;
         v1::SubmitJobResponse response;
-        EXPECT_EQ(Jobs(worker_as_client)->SubmitJob(&context, SubmitRequest(), &response).error_code(),
-                  grpc::StatusCode::PERMISSION_DENIED);
+        EXPECT_EQ(
+            Jobs(worker_as_client)->SubmitJob(&context, SubmitRequest(), &response).error_code(),
+            grpc::StatusCode::PERMISSION_DENIED);
     }
     {
         grpc::ClientContext context;
@@ -165,12 +170,15 @@ TEST_F(HostilePeersTest, TokensOpenOnlyTheirOwnService) {
                   grpc::StatusCode::PERMISSION_DENIED);
     }
     EXPECT_TRUE(coordinator_->ListJobs().empty()) << "nothing was submitted";
-    EXPECT_EQ(coordinator_->ListWorkers().size(), 1u) << "only the worker with its token registered";
+    EXPECT_EQ(coordinator_->ListWorkers().size(), 1u)
+        << "only the worker with its token registered";
 
     // Probes need no token.
     grpc::ClientContext context;
     grpc::health::v1::HealthCheckResponse health;
-    ASSERT_TRUE(grpc::health::v1::Health::NewStub(OpenChannel(address_, none))->Check(&context, {}, &health).ok());
+    ASSERT_TRUE(grpc::health::v1::Health::NewStub(OpenChannel(address_, none))
+                    ->Check(&context, {}, &health)
+                    .ok());
     EXPECT_EQ(health.status(), grpc::health::v1::HealthCheckResponse::SERVING);
 }
 
@@ -210,8 +218,8 @@ public:
         result.set_photons_emitted(spec.photons());
         return result;
     }
-    grpc::Status Report(const std::string& job_id, const v1::BatchResult& result, v1::TallyVerdict* verdict,
-                        const std::string& as = "") {
+    grpc::Status Report(const std::string& job_id, const v1::BatchResult& result,
+                        v1::TallyVerdict* verdict, const std::string& as = "") {
         grpc::ClientContext context;
         v1::ReportTallyRequest request;
         request.set_worker_id(as.empty() ? id : as);
@@ -239,7 +247,8 @@ private:
 bool SameImage(const v1::Image& a, const v1::Image& b) {
     absl::StatusOr<Image> left = FromProto(a), right = FromProto(b);
     return left.ok() && right.ok() && left->pixels.size() == right->pixels.size() &&
-           std::memcmp(left->pixels.data(), right->pixels.data(), left->pixels.size() * sizeof(Rgb)) == 0;
+           std::memcmp(left->pixels.data(), right->pixels.data(),
+                       left->pixels.size() * sizeof(Rgb)) == 0;
 }
 
 TEST_F(HostilePeersTest, HostileWorkerMergesNothingAndTheJobStillRendersExactly) {
@@ -252,7 +261,8 @@ TEST_F(HostilePeersTest, HostileWorkerMergesNothingAndTheJobStillRendersExactly)
     const uint32_t hit_points = static_cast<uint32_t>(lease.job().hit_point_count());
     v1::TallyVerdict verdict;
 
-    // Forged batch ids: a batch leased to another worker, one of a later epoch, one the epoch lacks.
+    // Forged batch ids: a batch leased to another worker, one of a later epoch, one the epoch
+    // lacks.
     HostileWorker accomplice(Work(Credentials().Worker()));
     const v1::LeaseBatchesResponse other = accomplice.Lease(1);
     ASSERT_EQ(other.batches_size(), 1);
@@ -270,29 +280,41 @@ TEST_F(HostilePeersTest, HostileWorkerMergesNothingAndTheJobStillRendersExactly)
     v1::BatchSpec bigger = held;
     bigger.set_photons(held.photons() * 2);
     EXPECT_EQ(hostile.Report(job_id, HostileWorker::Plausible(bigger), &verdict).error_code(),
-              grpc::StatusCode::INVALID_ARGUMENT) << "a spec that does not match the slot's";
+              grpc::StatusCode::INVALID_ARGUMENT)
+        << "a spec that does not match the slot's";
     // Another worker's identity.
-    EXPECT_EQ(hostile.Report(job_id, HostileWorker::Plausible(held), &verdict, "worker-1-0000000000000000").error_code(),
-              grpc::StatusCode::NOT_FOUND);
+    EXPECT_EQ(
+        hostile
+            .Report(job_id, HostileWorker::Plausible(held), &verdict, "worker-1-0000000000000000")
+            .error_code(),
+        grpc::StatusCode::NOT_FOUND);
     // Tallies naming hit points the job lacks, with NaN, Inf or negative flux, out of order.
     v1::BatchResult out_of_range = HostileWorker::Plausible(held);
     out_of_range.mutable_tally()->set_hit_point_delta(2, hit_points);
-    EXPECT_EQ(hostile.Report(job_id, out_of_range, &verdict).error_code(), grpc::StatusCode::INVALID_ARGUMENT);
-    for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), -1.0f}) {
+    EXPECT_EQ(hostile.Report(job_id, out_of_range, &verdict).error_code(),
+              grpc::StatusCode::INVALID_ARGUMENT);
+    for (float bad :
+         {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), -1.0f}) {
         v1::BatchResult poisoned = HostileWorker::Plausible(held);
         poisoned.mutable_tally()->set_flux(4, bad);
-        EXPECT_EQ(hostile.Report(job_id, poisoned, &verdict).error_code(), grpc::StatusCode::INVALID_ARGUMENT) << bad;
+        EXPECT_EQ(hostile.Report(job_id, poisoned, &verdict).error_code(),
+                  grpc::StatusCode::INVALID_ARGUMENT)
+            << bad;
         v1::BatchResult poisoned_direct = HostileWorker::Plausible(held);
         poisoned_direct.set_samples(0, bad);
-        EXPECT_EQ(hostile.Report(job_id, poisoned_direct, &verdict).error_code(), grpc::StatusCode::INVALID_ARGUMENT) << bad;
+        EXPECT_EQ(hostile.Report(job_id, poisoned_direct, &verdict).error_code(),
+                  grpc::StatusCode::INVALID_ARGUMENT)
+            << bad;
     }
     v1::BatchResult repeated = HostileWorker::Plausible(held);
     repeated.mutable_tally()->set_hit_point_delta(1, 0);
-    EXPECT_EQ(hostile.Report(job_id, repeated, &verdict).error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+    EXPECT_EQ(hostile.Report(job_id, repeated, &verdict).error_code(),
+              grpc::StatusCode::INVALID_ARGUMENT);
     // A message over the coordinator's limit.
     v1::BatchResult oversized = HostileWorker::Plausible(held);
     for (int i = 0; i < kMaxMessageBytes / 4; ++i) oversized.mutable_tally()->add_flux(1.0f);
-    EXPECT_EQ(hostile.Report(job_id, oversized, &verdict).error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+    EXPECT_EQ(hostile.Report(job_id, oversized, &verdict).error_code(),
+              grpc::StatusCode::RESOURCE_EXHAUSTED);
 
     const RefusalCounts refused = coordinator_->Refusals();
     EXPECT_EQ(refused.not_leased, 1u);
@@ -328,7 +350,8 @@ TEST_F(HostilePeersTest, HostileClientIsRefusedAndChangesNothing) {
         v1::SubmitJobResponse response;
         return jobs->SubmitJob(&context, request, &response);
     };
-    const auto expect = [](const grpc::Status& status, grpc::StatusCode code, const std::string& words) {
+    const auto expect = [](const grpc::Status& status, grpc::StatusCode code,
+                           const std::string& words) {
         EXPECT_EQ(status.error_code(), code) << status.error_message();
         EXPECT_NE(status.error_message().find(words), std::string::npos) << status.error_message();
     };
@@ -341,13 +364,18 @@ TEST_F(HostilePeersTest, HostileClientIsRefusedAndChangesNothing) {
     expect(submit(absolute), grpc::StatusCode::INVALID_ARGUMENT, "scene");
     v1::SubmitJobRequest big_scene = SubmitRequest();
     big_scene.mutable_scene()->add_files()->set_path("padding.bin");
-    big_scene.mutable_scene()->mutable_files(big_scene.scene().files_size() - 1)->set_content(std::string(kMaxBundleBytes, 'x'));
+    big_scene.mutable_scene()
+        ->mutable_files(big_scene.scene().files_size() - 1)
+        ->set_content(std::string(kMaxBundleBytes, 'x'));
     expect(submit(big_scene), grpc::StatusCode::RESOURCE_EXHAUSTED, "--max-bundle-bytes");
     v1::SubmitJobRequest oversized = big_scene;
-    oversized.mutable_scene()->mutable_files(oversized.scene().files_size() - 1)->set_content(std::string(kMaxMessageBytes, 'x'));
+    oversized.mutable_scene()
+        ->mutable_files(oversized.scene().files_size() - 1)
+        ->set_content(std::string(kMaxMessageBytes, 'x'));
     EXPECT_EQ(submit(oversized).error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
     v1::SubmitJobRequest huge_image = SubmitRequest();
-    huge_image.mutable_settings()->set_width(4097);  // 2^24 + 8193 pixels, over the default limit of 2^24
+    huge_image.mutable_settings()->set_width(
+        4097);  // 2^24 + 8193 pixels, over the default limit of 2^24
     huge_image.mutable_settings()->set_height(4097);
     huge_image.mutable_settings()->set_samples_per_pixel(1);
     expect(submit(huge_image), grpc::StatusCode::RESOURCE_EXHAUSTED, "--max-render-pixels");
@@ -377,7 +405,8 @@ TEST_F(HostilePeersTest, HostileClientIsRefusedAndChangesNothing) {
     }
     v1::Snapshot snapshot;
     EXPECT_FALSE(readers.back()->Read(&snapshot));
-    expect(readers.back()->Finish(), grpc::StatusCode::RESOURCE_EXHAUSTED, "--max-watchers-per-job");
+    expect(readers.back()->Finish(), grpc::StatusCode::RESOURCE_EXHAUSTED,
+           "--max-watchers-per-job");
     for (size_t i = 0; i < 2; ++i) contexts[i]->TryCancel();
     for (size_t i = 0; i < 2; ++i) readers[i]->Finish();
 

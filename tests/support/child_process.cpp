@@ -19,7 +19,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 Clock::time_point Deadline(double seconds) {
-    return Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+    return Clock::now() +
+           std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
 }
 
 }  // namespace
@@ -58,7 +59,8 @@ std::optional<std::string> ChildProcess::ReadLine(double seconds) {
             buffer_.erase(0, end + 1);
             return line;
         }
-        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
         if (left <= 0) return std::nullopt;
         pollfd fd{stdout_fd_, POLLIN, 0};
         if (poll(&fd, 1, static_cast<int>(left)) <= 0) continue;

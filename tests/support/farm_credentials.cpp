@@ -20,13 +20,16 @@ std::string FarmCredentials::Read(const std::string& name) const {
 }
 
 std::vector<std::string> FarmCredentials::CoordinatorFlags() const {
-    return {"--tls-cert", Path("coordinator.pem"), "--tls-key", Path("coordinator.key"), "--worker-ca", Path("ca.pem"),
-            "--client-token-file", Path("client-tokens"), "--worker-token-file", Path("worker-tokens")};
+    return {"--tls-cert",          Path("coordinator.pem"),
+            "--tls-key",           Path("coordinator.key"),
+            "--worker-ca",         Path("ca.pem"),
+            "--client-token-file", Path("client-tokens"),
+            "--worker-token-file", Path("worker-tokens")};
 }
 
 std::vector<std::string> FarmCredentials::WorkerFlags() const {
-    return {"--tls-ca", Path("ca.pem"), "--tls-cert", Path("worker.pem"), "--tls-key", Path("worker.key"),
-            "--token-file", Path("worker-token")};
+    return {"--tls-ca",  Path("ca.pem"),     "--tls-cert",   Path("worker.pem"),
+            "--tls-key", Path("worker.key"), "--token-file", Path("worker-token")};
 }
 
 std::vector<std::string> FarmCredentials::ClientFlags() const {
@@ -51,9 +54,12 @@ ChannelSecurity FarmCredentials::Worker() const {
 const FarmCredentials& TestCredentials(const std::string& source_dir) {
     static const FarmCredentials credentials = [&] {
         FarmCredentials made;
-        made.dir = (std::filesystem::temp_directory_path() / ("pf-test-credentials-" + std::to_string(getpid()))).string();
+        made.dir = (std::filesystem::temp_directory_path() /
+                    ("pf-test-credentials-" + std::to_string(getpid())))
+                       .string();
         ChildProcess script({"/bin/bash", source_dir + "/deploy/make-certs.sh", made.dir});
-        while (script.ReadLine(60)) {}
+        while (script.ReadLine(60)) {
+        }
         EXPECT_EQ(script.Wait(60), 0) << "deploy/make-certs.sh failed";
         return made;
     }();

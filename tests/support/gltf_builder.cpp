@@ -26,21 +26,27 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
     for (const TestMaterial& m : scene.materials) {
         std::string texture;
         if (!m.texture_png_base64.empty()) {
-            texture = absl::StrCat(R"(,"baseColorTexture":{"index":)", images.size(), m.texture_extra, "}");
+            texture = absl::StrCat(R"(,"baseColorTexture":{"index":)", images.size(),
+                                   m.texture_extra, "}");
             if (scene.images_in_buffer) {
                 std::string png;
                 absl::Base64Unescape(m.texture_png_base64, &png);
-                views.push_back(absl::StrCat(R"({"buffer":0,"byteOffset":)", blob->size(), R"(,"byteLength":)", png.size(), "}"));
+                views.push_back(absl::StrCat(R"({"buffer":0,"byteOffset":)", blob->size(),
+                                             R"(,"byteLength":)", png.size(), "}"));
                 blob->append(png);
                 while (blob->size() % 4) blob->push_back('\0');
-                images.push_back(absl::StrCat(R"({"bufferView":)", views.size() - 1, R"(,"mimeType":"image/png"})"));
+                images.push_back(absl::StrCat(R"({"bufferView":)", views.size() - 1,
+                                              R"(,"mimeType":"image/png"})"));
             } else {
-                images.push_back(absl::StrCat(R"({"uri":"data:image/png;base64,)", m.texture_png_base64, "\"}"));
+                images.push_back(
+                    absl::StrCat(R"({"uri":"data:image/png;base64,)", m.texture_png_base64, "\"}"));
             }
         }
-        std::string material = absl::StrCat(R"({"pbrMetallicRoughness":{"baseColorFactor":[)", m.base_color.x, ",",
-                                            m.base_color.y, ",", m.base_color.z, R"(,1],"metallicFactor":0)", texture, "}");
-        if (!IsBlack(m.emission)) absl::StrAppend(&material, R"(,"emissiveFactor":)", Floats(m.emission));
+        std::string material = absl::StrCat(
+            R"({"pbrMetallicRoughness":{"baseColorFactor":[)", m.base_color.x, ",", m.base_color.y,
+            ",", m.base_color.z, R"(,1],"metallicFactor":0)", texture, "}");
+        if (!IsBlack(m.emission))
+            absl::StrAppend(&material, R"(,"emissiveFactor":)", Floats(m.emission));
         materials.push_back(material + "}");
     }
     for (const TestMesh& mesh : scene.meshes) {
@@ -49,52 +55,63 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
         std::memcpy(blob->data() + offset, mesh.positions.data(), mesh.positions.size() * 12);
         Vec3 lower(1e30f), upper(-1e30f);
         for (const Vec3& p : mesh.positions) lower = Min(lower, p), upper = Max(upper, p);
-        views.push_back(absl::StrCat(R"({"buffer":0,"byteOffset":)", offset, R"(,"byteLength":)", mesh.positions.size() * 12, "}"));
-        accessors.push_back(absl::StrCat(R"({"bufferView":)", views.size() - 1, R"(,"componentType":5126,"count":)",
-                                         mesh.positions.size(), R"(,"type":"VEC3","min":)", Floats(lower), R"(,"max":)",
+        views.push_back(absl::StrCat(R"({"buffer":0,"byteOffset":)", offset, R"(,"byteLength":)",
+                                     mesh.positions.size() * 12, "}"));
+        accessors.push_back(absl::StrCat(R"({"bufferView":)", views.size() - 1,
+                                         R"(,"componentType":5126,"count":)", mesh.positions.size(),
+                                         R"(,"type":"VEC3","min":)", Floats(lower), R"(,"max":)",
                                          Floats(upper), "}"));
         std::string attributes = absl::StrCat(R"("POSITION":)", accessors.size() - 1);
         if (!mesh.uvs.empty()) {
             const size_t uv_offset = blob->size();
             blob->resize(uv_offset + mesh.uvs.size() * 4);
             std::memcpy(blob->data() + uv_offset, mesh.uvs.data(), mesh.uvs.size() * 4);
-            views.push_back(absl::StrCat(R"({"buffer":0,"byteOffset":)", uv_offset, R"(,"byteLength":)", mesh.uvs.size() * 4, "}"));
-            accessors.push_back(absl::StrCat(R"({"bufferView":)", views.size() - 1, R"(,"componentType":5126,"count":)",
+            views.push_back(absl::StrCat(R"({"buffer":0,"byteOffset":)", uv_offset,
+                                         R"(,"byteLength":)", mesh.uvs.size() * 4, "}"));
+            accessors.push_back(absl::StrCat(R"({"bufferView":)", views.size() - 1,
+                                             R"(,"componentType":5126,"count":)",
                                              mesh.uvs.size() / 2, R"(,"type":"VEC2"})"));
             absl::StrAppend(&attributes, R"(,"TEXCOORD_0":)", accessors.size() - 1);
         }
-        meshes.push_back(absl::StrCat(R"({"primitives":[{"attributes":{)", attributes, R"(},"material":)",
-                                      mesh.material, "}]}"));
+        meshes.push_back(absl::StrCat(R"({"primitives":[{"attributes":{)", attributes,
+                                      R"(},"material":)", mesh.material, "}]}"));
         nodes.push_back(absl::StrCat(R"({"mesh":)", meshes.size() - 1, "}"));
     }
     std::string cameras = "[]";
     if (scene.camera) {
         cameras = R"([{"type":"perspective","perspective":{"yfov":0.8,"znear":0.01}}])";
-        nodes.push_back(absl::StrCat(R"({"camera":0,"translation":)", Floats(scene.camera_position), scene.camera_extra, "}"));
+        nodes.push_back(absl::StrCat(R"({"camera":0,"translation":)", Floats(scene.camera_position),
+                                     scene.camera_extra, "}"));
     }
     std::string extensions;
     if (!images.empty()) {
         std::vector<std::string> textures;
-        for (size_t i = 0; i < images.size(); ++i) textures.push_back(absl::StrCat(R"({"source":)", i, "}"));
+        for (size_t i = 0; i < images.size(); ++i)
+            textures.push_back(absl::StrCat(R"({"source":)", i, "}"));
         extensions = absl::StrCat(R"(,"images":[)", absl::StrJoin(images, ","), R"(],"textures":[)",
                                   absl::StrJoin(textures, ","), "]");
     }
     for (const std::string& node : scene.extra_nodes) nodes.push_back(node);
     for (size_t i = 0; i < scene.lights.size(); ++i)
-        nodes.push_back(absl::StrCat(R"({"extensions":{"KHR_lights_punctual":{"light":)", i, "}}",
-                                     i < scene.light_node_fields.size() ? scene.light_node_fields[i] : "", "}"));
+        nodes.push_back(absl::StrCat(
+            R"({"extensions":{"KHR_lights_punctual":{"light":)", i, "}}",
+            i < scene.light_node_fields.size() ? scene.light_node_fields[i] : "", "}"));
     if (!scene.lights.empty())
         absl::StrAppend(&extensions, R"(,"extensions":{"KHR_lights_punctual":{"lights":[)",
                         absl::StrJoin(scene.lights, ","), "]}}");
     std::vector<std::string> roots;
     for (size_t i = 0; i < nodes.size(); ++i) roots.push_back(absl::StrCat(i));
     while (blob->size() % 4) blob->push_back('\0');
-    const std::string uri = embed ? absl::StrCat(R"(,"uri":"data:application/octet-stream;base64,)", absl::Base64Escape(*blob), "\"") : "";
-    return absl::StrCat(R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)", absl::StrJoin(roots, ","),
-                        R"(]}],"nodes":[)", absl::StrJoin(nodes, ","), R"(],"meshes":[)", absl::StrJoin(meshes, ","),
-                        R"(],"materials":[)", absl::StrJoin(materials, ","), R"(],"accessors":[)", absl::StrJoin(accessors, ","),
-                        R"(],"bufferViews":[)", absl::StrJoin(views, ","), R"(],"buffers":[{"byteLength":)", blob->size(), uri,
-                        R"(}],"cameras":)", cameras, extensions, "}");
+    const std::string uri = embed ? absl::StrCat(R"(,"uri":"data:application/octet-stream;base64,)",
+                                                 absl::Base64Escape(*blob), "\"")
+                                  : "";
+    return absl::StrCat(R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)",
+                        absl::StrJoin(roots, ","), R"(]}],"nodes":[)", absl::StrJoin(nodes, ","),
+                        R"(],"meshes":[)", absl::StrJoin(meshes, ","), R"(],"materials":[)",
+                        absl::StrJoin(materials, ","), R"(],"accessors":[)",
+                        absl::StrJoin(accessors, ","), R"(],"bufferViews":[)",
+                        absl::StrJoin(views, ","), R"(],"buffers":[{"byteLength":)", blob->size(),
+                        uri, R"(}],"cameras":)", cameras, extensions, "}");
 }
 
 void AppendU32(std::string* out, uint32_t v) { out->append(reinterpret_cast<const char*>(&v), 4); }
@@ -104,10 +121,16 @@ void AppendU32(std::string* out, uint32_t v) { out->append(reinterpret_cast<cons
 TestScene LitQuadScene() {
     TestScene scene;
     scene.materials = {TestMaterial{Rgb(0.5f), Rgb(0.0f)}, TestMaterial{Rgb(0.0f), Rgb(10.0f)}};
-    scene.meshes.push_back({{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}, 0});
+    scene.meshes.push_back(
+        {{{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, -1, 0}, {1, 1, 0}, {-1, 1, 0}}, 0});
     // The light faces -z (down onto the quad): wound clockwise seen from +z.
-    scene.meshes.push_back({{{-0.2f, -0.2f, 1}, {0.2f, 0.2f, 1}, {0.2f, -0.2f, 1},
-                             {-0.2f, -0.2f, 1}, {-0.2f, 0.2f, 1}, {0.2f, 0.2f, 1}}, 1});
+    scene.meshes.push_back({{{-0.2f, -0.2f, 1},
+                             {0.2f, 0.2f, 1},
+                             {0.2f, -0.2f, 1},
+                             {-0.2f, -0.2f, 1},
+                             {-0.2f, 0.2f, 1},
+                             {0.2f, 0.2f, 1}},
+                            1});
     return scene;
 }
 
@@ -122,7 +145,9 @@ std::string WriteTextFile(const std::string& text, const std::string& name) {
     return path;
 }
 
-std::string WriteGltf(const TestScene& scene, const std::string& name) { return WriteTextFile(GltfJson(scene), name); }
+std::string WriteGltf(const TestScene& scene, const std::string& name) {
+    return WriteTextFile(GltfJson(scene), name);
+}
 
 std::string WriteGlb(const TestScene& scene, const std::string& name) {
     std::string blob;

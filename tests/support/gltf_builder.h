@@ -20,19 +20,19 @@ struct TestMaterial {
 struct TestMesh {
     std::vector<Vec3> positions;  // three per triangle
     int material = 0;
-    std::vector<float> uvs;       // TEXCOORD_0, two per position, or empty
+    std::vector<float> uvs;  // TEXCOORD_0, two per position, or empty
 };
 
 struct TestScene {
     std::vector<TestMaterial> materials{TestMaterial{}};
     std::vector<TestMesh> meshes;
     bool camera = true;
-    Vec3 camera_position{0, 0, 3};   // looking down -z
-    std::string camera_extra;        // raw JSON fields appended to the camera node
-    std::vector<std::string> lights; // raw KHR_lights_punctual light objects
+    Vec3 camera_position{0, 0, 3};               // looking down -z
+    std::string camera_extra;                    // raw JSON fields appended to the camera node
+    std::vector<std::string> lights;             // raw KHR_lights_punctual light objects
     std::vector<std::string> light_node_fields;  // raw JSON fields of each light's node, e.g.
                                                  // R"(,"translation":[0,0,1])"; none: at the origin
-    bool images_in_buffer = false;   // textures in the buffer (a .glb's binary chunk), not data URIs
+    bool images_in_buffer = false;  // textures in the buffer (a .glb's binary chunk), not data URIs
     std::vector<std::string> extra_nodes;  // raw node objects added to the scene, e.g. instances
 };
 

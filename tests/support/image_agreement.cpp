@@ -43,10 +43,12 @@ void ExpectSameEstimator(const Image& image, const Image& a, const Image& b) {
     const double pixels = static_cast<double>(a.pixels.size());
     const double reference_spread = MeanSquaredDifference(a, b);
     const double spread = (MeanSquaredDifference(image, a) + MeanSquaredDifference(image, b)) / 2;
-    EXPECT_LE(spread, 1.5 * reference_spread) << "the image strays further from the references than they do from each other";
+    EXPECT_LE(spread, 1.5 * reference_spread)
+        << "the image strays further from the references than they do from each other";
     const double mean_sigma = std::sqrt(1.5 * 4 * (reference_spread / 2) / pixels);
     EXPECT_NEAR(Mean(image), (Mean(a) + Mean(b)) / 2, 4 * mean_sigma)
-        << "reference means " << Mean(a) << ", " << Mean(b) << "; spread " << spread << " against " << reference_spread;
+        << "reference means " << Mean(a) << ", " << Mean(b) << "; spread " << spread << " against "
+        << reference_spread;
 }
 
 }  // namespace pf::testing

@@ -20,7 +20,9 @@
 namespace pf::testing {
 namespace {
 
-std::string ShippedScene(const std::string& name) { return std::string(PF_SOURCE_DIR) + "/scenes/" + name; }
+std::string ShippedScene(const std::string& name) {
+    return std::string(PF_SOURCE_DIR) + "/scenes/" + name;
+}
 
 // A shipped scene with `edit` applied to its glTF JSON, written under the temporary folder.
 std::string EditedScene(const std::string& shipped, const std::string& name,
@@ -28,7 +30,8 @@ std::string EditedScene(const std::string& shipped, const std::string& name,
     std::ifstream in(ShippedScene(shipped));
     nlohmann::json gltf = nlohmann::json::parse(in);
     edit(gltf);
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "photonfarm-numerics";
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / "photonfarm-numerics";
     std::filesystem::create_directories(dir);
     const std::filesystem::path path = dir / (name + ".gltf");
     std::ofstream(path) << gltf.dump();
@@ -37,7 +40,9 @@ std::string EditedScene(const std::string& shipped, const std::string& name,
 
 // Every root node moved under one that scales the scene (camera included) by `scale`.
 void ScaleScene(nlohmann::json& gltf, double scale) {
-    nlohmann::json root = {{"name", "scaled"}, {"scale", {scale, scale, scale}}, {"children", gltf["scenes"][0]["nodes"]}};
+    nlohmann::json root = {{"name", "scaled"},
+                           {"scale", {scale, scale, scale}},
+                           {"children", gltf["scenes"][0]["nodes"]}};
     gltf["nodes"].push_back(root);
     gltf["scenes"][0]["nodes"] = {gltf["nodes"].size() - 1};
 }
@@ -46,11 +51,12 @@ void ScaleScene(nlohmann::json& gltf, double scale) {
 void ScaleCornellLight(nlohmann::json& gltf, double k) {
     for (auto& material : gltf["materials"])
         if (material.contains("extensions"))
-            material["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = 17.0 * k;
+            material["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] =
+                17.0 * k;
 }
 
-RenderOutcome Render(const std::string& path, int size, uint64_t photons, uint32_t photons_per_batch,
-                     uint32_t batches, double radius = 0) {
+RenderOutcome Render(const std::string& path, int size, uint64_t photons,
+                     uint32_t photons_per_batch, uint32_t batches, double radius = 0) {
     RenderSettings settings;
     settings.scene_path = path;
     settings.job.width = size;
@@ -65,11 +71,11 @@ RenderOutcome Render(const std::string& path, int size, uint64_t photons, uint32
 
 // cornell-box rendered as shipped and with `edit` applied (saved as `name`), with the same
 // seed, size and layout: the pair a scale-invariance case compares.
-std::pair<RenderOutcome, RenderOutcome> UnitAndEdited(const std::string& name,
-                                                      const std::function<void(nlohmann::json&)>& edit,
-                                                      uint64_t photons) {
+std::pair<RenderOutcome, RenderOutcome> UnitAndEdited(
+    const std::string& name, const std::function<void(nlohmann::json&)>& edit, uint64_t photons) {
     RenderOutcome unit = Render(ShippedScene("cornell-box.gltf"), 32, photons, 1 << 17, 2);
-    RenderOutcome edited = Render(EditedScene("cornell-box.gltf", name, edit), 32, photons, 1 << 17, 2);
+    RenderOutcome edited =
+        Render(EditedScene("cornell-box.gltf", name, edit), 32, photons, 1 << 17, 2);
     return {std::move(unit), std::move(edited)};
 }
 
@@ -78,28 +84,36 @@ std::pair<RenderOutcome, RenderOutcome> UnitAndEdited(const std::string& name,
 // constant), so the budget is 2^24 segments: N = 2^24 (1-rho) photons, at least 2^12.
 NumericsCase Furnace(double rho) {
     const double expected = 1.0 / (1.0 - rho);
-    const uint64_t photons = std::max<uint64_t>(4096, static_cast<uint64_t>(std::ldexp(1.0 - rho, 24)));
+    const uint64_t photons =
+        std::max<uint64_t>(4096, static_cast<uint64_t>(std::ldexp(1.0 - rho, 24)));
     // The image mean is a mean over N photons of their deposits; a photon's deposit count is
     // geometric, of relative deviation 1/sqrt(rho), so the mean's is 1/sqrt(rho N). Allowed:
-    // 1% for the discs cut by the cube's edges (the furnace test of render_test.cpp) plus 4 of those.
+    // 1% for the discs cut by the cube's edges (the furnace test of render_test.cpp) plus 4 of
+    // those.
     const double sigma = 1.0 / std::sqrt(rho * static_cast<double>(photons));
     const double bound = 0.01 + 4 * sigma;
     return {"stiff", absl::StrFormat("furnace_rho_%g", rho),
-            absl::StrFormat("|mean / (Le/(1-rho)) - 1| <= 1%% + 4/sqrt(rho N) = %.2f%% (N = %d photons); no NaN/Inf",
+            absl::StrFormat("|mean / (Le/(1-rho)) - 1| <= 1%% + 4/sqrt(rho N) = %.2f%% (N = %d "
+                            "photons); no NaN/Inf",
                             100 * bound, photons),
             [=] {
-                const std::string path = EditedScene("furnace.gltf", absl::StrFormat("furnace-%g", rho), [&](auto& gltf) {
-                    gltf["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {rho, rho, rho, 1.0};
-                });
-                const uint32_t per_batch = static_cast<uint32_t>(std::max<uint64_t>(photons / 32, 1));
+                const std::string path = EditedScene(
+                    "furnace.gltf", absl::StrFormat("furnace-%g", rho), [&](auto& gltf) {
+                        gltf["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {
+                            rho, rho, rho, 1.0};
+                    });
+                const uint32_t per_batch =
+                    static_cast<uint32_t>(std::max<uint64_t>(photons / 32, 1));
                 const RenderOutcome outcome = Render(path, 32, photons, per_batch, 2);
                 double sum = 0;
                 for (const Rgb& pixel : outcome.image.pixels) sum += Average(pixel);
                 NumericsResult result;
-                result.measured = std::abs(sum / static_cast<double>(outcome.image.pixels.size()) / expected - 1);
+                result.measured =
+                    std::abs(sum / static_cast<double>(outcome.image.pixels.size()) / expected - 1);
                 result.bound = bound;
                 result.ok = NonfinitePixels(outcome.image) == 0;
-                result.detail = absl::StrFormat("mean %.5g against %.5g", sum / outcome.image.pixels.size(), expected);
+                result.detail = absl::StrFormat("mean %.5g against %.5g",
+                                                sum / outcome.image.pixels.size(), expected);
                 return result;
             }};
 }
@@ -110,17 +124,18 @@ NumericsCase Furnace(double rho) {
 // of itself; allowed: twice that.
 NumericsCase Scaled(double scale) {
     return {"scale", absl::StrFormat("cornell_box_scaled_%g", scale),
-            "RMSE(scaled - unit) <= 2 sqrt(2) x the unit render's estimated RMSE; no NaN/Inf",
-            [=] {
-                const auto [unit, scaled] = UnitAndEdited(absl::StrFormat("cornell-%g", scale),
-                                                          [&](auto& gltf) { ScaleScene(gltf, scale); }, 1 << 21);
+            "RMSE(scaled - unit) <= 2 sqrt(2) x the unit render's estimated RMSE; no NaN/Inf", [=] {
+                const auto [unit, scaled] = UnitAndEdited(
+                    absl::StrFormat("cornell-%g", scale),
+                    [&](auto& gltf) { ScaleScene(gltf, scale); }, 1 << 21);
                 NumericsResult result;
                 const ImageDifference difference = *CompareImages(scaled.image, unit.image);
                 const ErrorEstimate& estimate = *unit.convergence.back().estimated;
                 result.measured = difference.rmse;
                 result.bound = 2 * std::sqrt(2.0) * estimate.rmse;
                 result.ok = NonfinitePixels(scaled.image) == 0;
-                result.detail = absl::StrFormat("RMSE %.3g, estimated %.3g", difference.rmse, estimate.rmse);
+                result.detail =
+                    absl::StrFormat("RMSE %.3g, estimated %.3g", difference.rmse, estimate.rmse);
                 return result;
             }};
 }
@@ -131,18 +146,22 @@ NumericsCase Scaled(double scale) {
 // 2^19 photons, 2^-24 sqrt(2^19) ~ 4e-5 relative at worst typical. Allowed: 1e-4.
 NumericsCase LightPower(double k) {
     return {"power", absl::StrFormat("cornell_box_light_x%g", k),
-            "max |image/k - image_1| / image_1 <= 1e-4 over pixels above 1e-3 of the brightest; no NaN/Inf",
+            "max |image/k - image_1| / image_1 <= 1e-4 over pixels above 1e-3 of the brightest; no "
+            "NaN/Inf",
             [=] {
-                const auto [unit, scaled] = UnitAndEdited(absl::StrFormat("cornell-light-%g", k),
-                                                          [&](auto& gltf) { ScaleCornellLight(gltf, k); }, 1 << 20);
+                const auto [unit, scaled] = UnitAndEdited(
+                    absl::StrFormat("cornell-light-%g", k),
+                    [&](auto& gltf) { ScaleCornellLight(gltf, k); }, 1 << 20);
                 float brightest = 0;
-                for (const Rgb& p : unit.image.pixels) brightest = std::max(brightest, MaxComponent(p));
+                for (const Rgb& p : unit.image.pixels)
+                    brightest = std::max(brightest, MaxComponent(p));
                 double worst = 0;
                 for (size_t i = 0; i < unit.image.pixels.size(); ++i)
                     for (int c = 0; c < 3; ++c) {
                         const double reference = unit.image.pixels[i][c];
                         if (reference <= 1e-3 * brightest) continue;
-                        worst = std::max(worst, std::abs(scaled.image.pixels[i][c] / k - reference) / reference);
+                        worst = std::max(
+                            worst, std::abs(scaled.image.pixels[i][c] / k - reference) / reference);
                     }
                 NumericsResult result;
                 result.measured = worst;
@@ -161,45 +180,50 @@ NumericsCase LightPower(double k) {
 // sets stops it), whose double result must agree. Allowed: 1e-9 relative, R^2 never growing,
 // all finite.
 NumericsCase LongRun(double alpha) {
-    return {"estimator", absl::StrFormat("long_run_alpha_%g", alpha),
-            "10^6 epochs, 10^18 photons: |estimate - exact| / exact <= 1e-9 (flat field) and double vs long double "
-            "<= 1e-9 (constant M); R^2 monotone, finite",
-            [=] {
-                constexpr int kEpochs = 1'000'000;
-                const double emitted_per_epoch = std::ldexp(1.0, 40), phi = 3.0;
-                const double c = 1e6 / emitted_per_epoch;  // photons per unit R^2 per emitted photon
-                const double floor = std::ldexp(1.0, -40);  // R_min^2 for R0 = 1
-                PointEstimate flat{0, 1.0, Rgbd(0.0)}, constant{0, 1.0, Rgbd(0.0)};
-                long double n = 0, r2 = 1, tau = 0;
-                bool ok = true;
-                double emitted = 0;
-                for (int epoch = 0; epoch < kEpochs; ++epoch) {
-                    emitted += emitted_per_epoch;
-                    const double m_flat = c * flat.radius_sq * emitted_per_epoch;
-                    const PointEstimate next = UpdateEstimate(flat, m_flat, Rgbd(m_flat * phi), alpha);
-                    ok = ok && next.radius_sq <= flat.radius_sq && next.radius_sq > 0;
-                    flat = next;
-                    const double m = emitted_per_epoch;  // every photon lands here
-                    constant = UpdateEstimate(constant, m, Rgbd(m * phi), alpha, floor);
-                    long double ratio = (n + alpha * m) / (n + m);
-                    if (r2 * ratio < floor) ratio = r2 > floor ? floor / r2 : 1.0L;
-                    n += alpha * m;
-                    r2 *= ratio;
-                    tau = (tau + m * phi) * ratio;
-                }
-                const double exact_flat = c * phi / kPiD;
-                const double flat_error = std::abs(EstimateRadiance(flat, emitted).x / exact_flat - 1);
-                const long double exact_constant = tau / (3.14159265358979323846264338327950288L * r2 * emitted);
-                const double constant_error =
-                    static_cast<double>(std::abs(EstimateRadiance(constant, emitted).x / exact_constant - 1));
-                NumericsResult result;
-                result.measured = std::max(flat_error, constant_error);
-                result.bound = 1e-9;
-                result.ok = ok && IsFinite(flat.flux) && IsFinite(constant.flux) && constant.photon_count > 0x1p53;
-                result.detail = absl::StrFormat("flat %.2g, constant %.2g; N %.3g, R^2 %.3g", flat_error, constant_error,
-                                                constant.photon_count, constant.radius_sq);
-                return result;
-            }};
+    return {
+        "estimator", absl::StrFormat("long_run_alpha_%g", alpha),
+        "10^6 epochs, 10^18 photons: |estimate - exact| / exact <= 1e-9 (flat field) and double vs "
+        "long double "
+        "<= 1e-9 (constant M); R^2 monotone, finite",
+        [=] {
+            constexpr int kEpochs = 1'000'000;
+            const double emitted_per_epoch = std::ldexp(1.0, 40), phi = 3.0;
+            const double c = 1e6 / emitted_per_epoch;   // photons per unit R^2 per emitted photon
+            const double floor = std::ldexp(1.0, -40);  // R_min^2 for R0 = 1
+            PointEstimate flat{0, 1.0, Rgbd(0.0)}, constant{0, 1.0, Rgbd(0.0)};
+            long double n = 0, r2 = 1, tau = 0;
+            bool ok = true;
+            double emitted = 0;
+            for (int epoch = 0; epoch < kEpochs; ++epoch) {
+                emitted += emitted_per_epoch;
+                const double m_flat = c * flat.radius_sq * emitted_per_epoch;
+                const PointEstimate next = UpdateEstimate(flat, m_flat, Rgbd(m_flat * phi), alpha);
+                ok = ok && next.radius_sq <= flat.radius_sq && next.radius_sq > 0;
+                flat = next;
+                const double m = emitted_per_epoch;  // every photon lands here
+                constant = UpdateEstimate(constant, m, Rgbd(m * phi), alpha, floor);
+                long double ratio = (n + alpha * m) / (n + m);
+                if (r2 * ratio < floor) ratio = r2 > floor ? floor / r2 : 1.0L;
+                n += alpha * m;
+                r2 *= ratio;
+                tau = (tau + m * phi) * ratio;
+            }
+            const double exact_flat = c * phi / kPiD;
+            const double flat_error = std::abs(EstimateRadiance(flat, emitted).x / exact_flat - 1);
+            const long double exact_constant =
+                tau / (3.14159265358979323846264338327950288L * r2 * emitted);
+            const double constant_error = static_cast<double>(
+                std::abs(EstimateRadiance(constant, emitted).x / exact_constant - 1));
+            NumericsResult result;
+            result.measured = std::max(flat_error, constant_error);
+            result.bound = 1e-9;
+            result.ok = ok && IsFinite(flat.flux) && IsFinite(constant.flux) &&
+                        constant.photon_count > 0x1p53;
+            result.detail =
+                absl::StrFormat("flat %.2g, constant %.2g; N %.3g, R^2 %.3g", flat_error,
+                                constant_error, constant.photon_count, constant.radius_sq);
+            return result;
+        }};
 }
 
 // cornell-box with the initial radius at `fraction` of the scene's diagonal (1.0 m): tiny radii
@@ -207,11 +231,10 @@ NumericsCase LongRun(double alpha) {
 // point (a blur); neither may produce NaN or Inf, or a negative value.
 NumericsCase InitialRadius(double fraction) {
     return {"estimator", absl::StrFormat("initial_radius_%g_of_scene", fraction),
-            "no NaN, Inf or negative pixel (count <= 0)",
-            [=] {
+            "no NaN, Inf or negative pixel (count <= 0)", [=] {
                 const double diagonal = 1.0;  // cornell-box spans about 0.56 m x 0.55 m x 0.56 m
-                const RenderOutcome outcome =
-                    Render(ShippedScene("cornell-box.gltf"), 16, 1 << 18, 1 << 16, 2, fraction * diagonal);
+                const RenderOutcome outcome = Render(ShippedScene("cornell-box.gltf"), 16, 1 << 18,
+                                                     1 << 16, 2, fraction * diagonal);
                 NumericsResult result;
                 uint64_t bad = NonfinitePixels(outcome.image);
                 for (const Rgb& p : outcome.image.pixels) bad += p.x < 0 || p.y < 0 || p.z < 0;
@@ -225,18 +248,20 @@ NumericsCase InitialRadius(double fraction) {
 // a batch sums up to 2^26 of them in float, which would overflow; the scene is refused before
 // any work, naming the power and the limit.
 NumericsCase LightTooStrong() {
-    return {"input", "cornell_box_light_x1e30_refused", "refused with an error naming the lights' power (count of failures <= 0)",
-            [] {
-                const std::string path = EditedScene("cornell-box.gltf", "cornell-light-1e30",
-                                                     [](auto& gltf) { ScaleCornellLight(gltf, 1e30); });
+    return {"input", "cornell_box_light_x1e30_refused",
+            "refused with an error naming the lights' power (count of failures <= 0)", [] {
+                const std::string path =
+                    EditedScene("cornell-box.gltf", "cornell-light-1e30",
+                                [](auto& gltf) { ScaleCornellLight(gltf, 1e30); });
                 RenderSettings settings;
                 settings.scene_path = path;
                 settings.job.width = 8;
                 settings.job.photon_budget = 1000;
                 const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
                 NumericsResult result;
-                const bool refused = !outcome.ok() && absl::IsInvalidArgument(outcome.status()) &&
-                                     outcome.status().message().find("W in all, over the") != std::string::npos;
+                const bool refused =
+                    !outcome.ok() && absl::IsInvalidArgument(outcome.status()) &&
+                    outcome.status().message().find("W in all, over the") != std::string::npos;
                 result.measured = refused ? 0 : 1;
                 result.bound = 0;
                 result.detail = outcome.ok() ? "rendered" : std::string(outcome.status().message());
@@ -259,56 +284,70 @@ uint64_t BadPixels(const Image& image) {
 // the inside of a face, near an edge, lie within the gather radius of hit points on the
 // outside of the next face, a leak the radius's shrinking removes.)
 NumericsCase LightInClosedBox() {
-    return {"geometry", "light_inside_closed_box",
-            "finite, black image and a warning that no light reached what the camera sees (failures <= 0)", [] {
-                TestScene scene;
-                scene.materials = {TestMaterial{Rgb(0.5f), Rgb(0.0f)}, TestMaterial{Rgb(0.0f), Rgb(10.0f)}};
-                const float h = 0.5f;
-                std::vector<Vec3> box;
-                const Vec3 o(5, 0, 0);  // out of the camera's view
-                const Vec3 p[8] = {o + Vec3(-h, -h, -h), o + Vec3(h, -h, -h), o + Vec3(h, h, -h), o + Vec3(-h, h, -h),
-                                   o + Vec3(-h, -h, h),  o + Vec3(h, -h, h),  o + Vec3(h, h, h),  o + Vec3(-h, h, h)};
-                for (const auto& face : std::vector<std::vector<Vec3>>{
-                         Quad(p[4], p[5], p[6], p[7]), Quad(p[1], p[0], p[3], p[2]), Quad(p[0], p[4], p[7], p[3]),
-                         Quad(p[5], p[1], p[2], p[6]), Quad(p[7], p[6], p[2], p[3]), Quad(p[0], p[1], p[5], p[4])})
-                    box.insert(box.end(), face.begin(), face.end());
-                scene.meshes.push_back({box, 0});
-                scene.meshes.push_back({Quad(o + Vec3(-0.1f, -0.1f, 0.3f), o + Vec3(-0.1f, 0.1f, 0.3f),
-                                             o + Vec3(0.1f, 0.1f, 0.3f), o + Vec3(0.1f, -0.1f, 0.3f)),
-                                        1});  // facing -z, inside
-                scene.meshes.push_back({Quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}), 0});  // in view
-                RenderSettings settings;
-                settings.scene_path = WriteGltf(scene, "light-in-box.gltf");
-                settings.job.width = 16;
-                settings.job.photon_budget = 1 << 16;
-                settings.job.layout = {1 << 14, 2};
-                const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
-                NumericsResult result;
-                if (!outcome.ok()) {
-                    result.measured = 1, result.detail = std::string(outcome.status().message());
-                    return result;
-                }
-                const bool black = std::all_of(outcome->image.pixels.begin(), outcome->image.pixels.end(),
-                                               [](const Rgb& pixel) { return IsBlack(pixel); });
-                const bool warned = std::any_of(outcome->warnings.begin(), outcome->warnings.end(), [](const auto& w) {
-                    return w.find("no light reached") != std::string::npos;
-                });
-                result.measured = static_cast<double>(BadPixels(outcome->image) + !black + !warned);
-                result.bound = 0;
-                result.detail = warned ? outcome->warnings.back() : "no warning";
+    return {
+        "geometry", "light_inside_closed_box",
+        "finite, black image and a warning that no light reached what the camera sees (failures <= "
+        "0)",
+        [] {
+            TestScene scene;
+            scene.materials = {TestMaterial{Rgb(0.5f), Rgb(0.0f)},
+                               TestMaterial{Rgb(0.0f), Rgb(10.0f)}};
+            const float h = 0.5f;
+            std::vector<Vec3> box;
+            const Vec3 o(5, 0, 0);  // out of the camera's view
+            const Vec3 p[8] = {o + Vec3(-h, -h, -h), o + Vec3(h, -h, -h), o + Vec3(h, h, -h),
+                               o + Vec3(-h, h, -h),  o + Vec3(-h, -h, h), o + Vec3(h, -h, h),
+                               o + Vec3(h, h, h),    o + Vec3(-h, h, h)};
+            for (const auto& face : std::vector<std::vector<Vec3>>{
+                     Quad(p[4], p[5], p[6], p[7]), Quad(p[1], p[0], p[3], p[2]),
+                     Quad(p[0], p[4], p[7], p[3]), Quad(p[5], p[1], p[2], p[6]),
+                     Quad(p[7], p[6], p[2], p[3]), Quad(p[0], p[1], p[5], p[4])})
+                box.insert(box.end(), face.begin(), face.end());
+            scene.meshes.push_back({box, 0});
+            scene.meshes.push_back({Quad(o + Vec3(-0.1f, -0.1f, 0.3f), o + Vec3(-0.1f, 0.1f, 0.3f),
+                                         o + Vec3(0.1f, 0.1f, 0.3f), o + Vec3(0.1f, -0.1f, 0.3f)),
+                                    1});  // facing -z, inside
+            scene.meshes.push_back(
+                {Quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}), 0});  // in view
+            RenderSettings settings;
+            settings.scene_path = WriteGltf(scene, "light-in-box.gltf");
+            settings.job.width = 16;
+            settings.job.photon_budget = 1 << 16;
+            settings.job.layout = {1 << 14, 2};
+            const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+            NumericsResult result;
+            if (!outcome.ok()) {
+                result.measured = 1, result.detail = std::string(outcome.status().message());
                 return result;
-            }};
+            }
+            const bool black =
+                std::all_of(outcome->image.pixels.begin(), outcome->image.pixels.end(),
+                            [](const Rgb& pixel) { return IsBlack(pixel); });
+            const bool warned = std::any_of(
+                outcome->warnings.begin(), outcome->warnings.end(),
+                [](const auto& w) { return w.find("no light reached") != std::string::npos; });
+            result.measured = static_cast<double>(BadPixels(outcome->image) + !black + !warned);
+            result.bound = 0;
+            result.detail = warned ? outcome->warnings.back() : "no warning";
+            return result;
+        }};
 }
 
 // A lit quad with a second quad of another albedo in the same plane (coincident surfaces),
 // and degenerate triangles (a point, a line) beside it: no crash, no NaN or Inf, nothing negative.
 NumericsCase DegenerateAndCoincident() {
-    return {"geometry", "degenerate_and_coincident_triangles", "no NaN, Inf or negative pixel (count <= 0)", [] {
+    return {"geometry", "degenerate_and_coincident_triangles",
+            "no NaN, Inf or negative pixel (count <= 0)", [] {
                 TestScene scene = LitQuadScene();
                 scene.materials.push_back(TestMaterial{Rgb(0.9f), Rgb(0.0f)});
                 scene.meshes.push_back({Quad({-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}), 2});
-                scene.meshes.push_back({{{0.5f, 0.5f, 0.1f}, {0.5f, 0.5f, 0.1f}, {0.5f, 0.5f, 0.1f},
-                                         {-0.5f, 0, 0.1f}, {0, 0, 0.1f}, {0.5f, 0, 0.1f}}, 0});
+                scene.meshes.push_back({{{0.5f, 0.5f, 0.1f},
+                                         {0.5f, 0.5f, 0.1f},
+                                         {0.5f, 0.5f, 0.1f},
+                                         {-0.5f, 0, 0.1f},
+                                         {0, 0, 0.1f},
+                                         {0.5f, 0, 0.1f}},
+                                        0});
                 RenderSettings settings;
                 settings.scene_path = WriteGltf(scene, "degenerate.gltf");
                 settings.job.width = 16;
@@ -316,7 +355,8 @@ NumericsCase DegenerateAndCoincident() {
                 settings.job.layout = {1 << 15, 2};
                 const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
                 NumericsResult result;
-                result.measured = outcome.ok() ? static_cast<double>(BadPixels(outcome->image)) : 1.0;
+                result.measured =
+                    outcome.ok() ? static_cast<double>(BadPixels(outcome->image)) : 1.0;
                 result.bound = 0;
                 if (!outcome.ok()) result.detail = std::string(outcome.status().message());
                 return result;
@@ -328,10 +368,11 @@ NumericsCase DegenerateAndCoincident() {
 // 3%, the furnace's 1% edge allowance and the noise of 2^21 photons at 16x16 with margin).
 NumericsCase CameraInsideGlass() {
     return {"geometry", "camera_inside_glass", "|mean / 2 - 1| <= 3%; no NaN/Inf", [] {
-                const std::string path = EditedScene("furnace-glass.gltf", "camera-in-glass", [](auto& gltf) {
-                    for (auto& node : gltf["nodes"])
-                        if (node.contains("camera")) node["translation"] = {0.25, -0.3, -0.45};
-                });
+                const std::string path =
+                    EditedScene("furnace-glass.gltf", "camera-in-glass", [](auto& gltf) {
+                        for (auto& node : gltf["nodes"])
+                            if (node.contains("camera")) node["translation"] = {0.25, -0.3, -0.45};
+                    });
                 const RenderOutcome outcome = Render(path, 16, 1 << 21, 1 << 17, 2);
                 double sum = 0;
                 for (const Rgb& pixel : outcome.image.pixels) sum += Average(pixel);

@@ -12,8 +12,8 @@ namespace pf::testing {
 struct NumericsResult {
     double measured = 0;  // the quantity the criterion bounds
     double bound = 0;     // pass when measured <= bound (and `ok`)
-    bool ok = true;       // everything else the case checks held (finite images, monotone radii, ...)
-    std::string detail;   // what failed, or a note on what was seen
+    bool ok = true;  // everything else the case checks held (finite images, monotone radii, ...)
+    std::string detail;  // what failed, or a note on what was seen
     bool Passed() const { return ok && measured <= bound; }
 };
 

@@ -12,7 +12,8 @@
 namespace pf::testing {
 namespace {
 
-[[maybe_unused]] const bool kValidationOn = setenv("PHOTONFARM_VULKAN_VALIDATION", "1", /*overwrite=*/1) == 0;
+[[maybe_unused]] const bool kValidationOn =
+    setenv("PHOTONFARM_VULKAN_VALIDATION", "1", /*overwrite=*/1) == 0;
 
 }  // namespace
 
@@ -28,7 +29,8 @@ void SkipWithoutVulkan() {
     }
     const absl::StatusOr<std::shared_ptr<vk::Context>> context = vk::Context::Shared();
     ASSERT_TRUE(context.ok()) << context.status();
-    ASSERT_TRUE((*context)->Validating()) << "tests run the Vulkan backend under the Khronos validation layer";
+    ASSERT_TRUE((*context)->Validating())
+        << "tests run the Vulkan backend under the Khronos validation layer";
 }
 
 unsigned long long VulkanValidationErrors() { return vk::Context::ValidationErrors(); }

@@ -18,14 +18,17 @@ TEST(BlobCodecTest, FloatsAndHitPointsRoundTripExactly) {
     floats[0] = 0.0f;
     floats[1] = -0.0f;
     floats[2] = std::numeric_limits<float>::denorm_min();
-    const absl::StatusOr<std::vector<float>> decoded = DecodeFloats(EncodeFloats(floats), floats.size());
+    const absl::StatusOr<std::vector<float>> decoded =
+        DecodeFloats(EncodeFloats(floats), floats.size());
     ASSERT_TRUE(decoded.ok()) << decoded.status();
     EXPECT_EQ(std::memcmp(decoded->data(), floats.data(), floats.size() * 4), 0);
 
     std::vector<HitPoint> hit_points(999);
     for (size_t i = 0; i < hit_points.size(); ++i)
-        hit_points[i] = {Vec3(uniform(rng), uniform(rng), uniform(rng)), Vec3(0, 0, 1), Rgb(0.1f * i), uint32_t(i * 7)};
-    const absl::StatusOr<std::vector<HitPoint>> back = DecodeHitPoints(EncodeHitPoints(hit_points), hit_points.size());
+        hit_points[i] = {Vec3(uniform(rng), uniform(rng), uniform(rng)), Vec3(0, 0, 1),
+                         Rgb(0.1f * i), uint32_t(i * 7)};
+    const absl::StatusOr<std::vector<HitPoint>> back =
+        DecodeHitPoints(EncodeHitPoints(hit_points), hit_points.size());
     ASSERT_TRUE(back.ok()) << back.status();
     // What workers read comes back bit for bit; the pixel, which only the coordinator's merge
     // reads, is not sent.
@@ -59,7 +62,8 @@ TEST(BlobCodecTest, DamagedBlobsAreRefused) {
 }
 
 TEST(BlobCodecTest, BlobDigestIsSha256OfTheBytes) {
-    EXPECT_EQ(Blob::Of("abc").digest, "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+    EXPECT_EQ(Blob::Of("abc").digest,
+              "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
 }
 
 }  // namespace

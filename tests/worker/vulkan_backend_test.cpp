@@ -1,6 +1,8 @@
 // The Vulkan backend against the CPU backend on the same batches, with the Khronos validation
 // layer on (tests/support/vulkan_validation.cpp): every test ends with zero validation
 // errors. Skipped only where no Vulkan device exists at all (lavapipe counts as one).
+#include "worker/backends/vulkan/vulkan_backend.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,7 +21,6 @@
 #include "worker/backends/cpu_embree/embree_tracer.h"
 #include "worker/backends/vulkan/context.h"
 #include "worker/backends/vulkan/gpu_scene.h"
-#include "worker/backends/vulkan/vulkan_backend.h"
 
 namespace pf {
 namespace {
@@ -40,7 +41,8 @@ std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size) {
     JobSpec spec;
     spec.photon_budget = 1;
     spec.layout = {1u << 16, 4};
-    setup->estimate = std::make_unique<ProgressiveEstimate>(camera_pass, EstimateFor(spec, camera_pass, setup->scene, name));
+    setup->estimate = std::make_unique<ProgressiveEstimate>(
+        camera_pass, EstimateFor(spec, camera_pass, setup->scene, name));
     setup->emitters = std::make_unique<Emitters>(setup->scene);
     setup->cpu = std::move(*CreateBackend("cpu", setup->scene));
     absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", setup->scene);
@@ -48,8 +50,12 @@ std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size) {
     if (!vulkan.ok()) return nullptr;
     setup->vulkan = std::move(*vulkan);
     for (Backend* backend : {setup->cpu.get(), setup->vulkan.get()}) {
-        EXPECT_TRUE(backend->BeginJob({&setup->scene, setup->emitters.get(), setup->estimate->HitPoints(), 7}).ok());
-        EXPECT_TRUE(backend->BeginEpoch(setup->estimate->Epoch(), setup->estimate->SearchRadiusSq()).ok());
+        EXPECT_TRUE(
+            backend
+                ->BeginJob({&setup->scene, setup->emitters.get(), setup->estimate->HitPoints(), 7})
+                .ok());
+        EXPECT_TRUE(
+            backend->BeginEpoch(setup->estimate->Epoch(), setup->estimate->SearchRadiusSq()).ok());
     }
     return setup;
 }
@@ -88,8 +94,11 @@ TEST_F(VulkanBackendTest, BatchIsAPureFunctionOfItsSpec) {
     ASSERT_TRUE(all.ok()) << all.status();
     // The second batch alone, after the grid was rebuilt: the same integers summed in
     // whatever order the device's threads arrived.
-    ASSERT_TRUE(setup->vulkan->BeginEpoch(setup->estimate->Epoch(), setup->estimate->SearchRadiusSq()).ok());
-    const absl::StatusOr<std::vector<BatchResult>> one = setup->vulkan->RunBatches(std::span(specs).subspan(1, 1));
+    ASSERT_TRUE(
+        setup->vulkan->BeginEpoch(setup->estimate->Epoch(), setup->estimate->SearchRadiusSq())
+            .ok());
+    const absl::StatusOr<std::vector<BatchResult>> one =
+        setup->vulkan->RunBatches(std::span(specs).subspan(1, 1));
     ASSERT_TRUE(one.ok()) << one.status();
     const BatchResult& a = (*all)[1];
     const BatchResult& b = (*one)[0];
@@ -101,8 +110,8 @@ TEST_F(VulkanBackendTest, BatchIsAPureFunctionOfItsSpec) {
     EXPECT_EQ(a.segments_traced, b.segments_traced);
     EXPECT_GT(a.tally.Size(), 0u);
     // Compacted on the device in hit point order, one entry per hit point reached.
-    EXPECT_TRUE(std::adjacent_find(a.tally.hit_point.begin(), a.tally.hit_point.end(), std::greater_equal<>()) ==
-                a.tally.hit_point.end());
+    EXPECT_TRUE(std::adjacent_find(a.tally.hit_point.begin(), a.tally.hit_point.end(),
+                                   std::greater_equal<>()) == a.tally.hit_point.end());
     for (size_t e = 0; e < a.tally.Size(); ++e) {
         EXPECT_GT(a.tally.photons[e], 0u);
         EXPECT_LE(a.tally.inner_photons[e], a.tally.photons[e]);
@@ -114,11 +123,13 @@ TEST_F(VulkanBackendTest, BatchIsAPureFunctionOfItsSpec) {
 // move deposits a little, and those near a hit point's radius go the other way. The totals
 // must agree within the photon noise of independent streams, 4/sqrt(M), which is
 // conservative here; each direct-light sample (same numbers, no radius) must match.
-void ExpectBatchesAgree(Backend& cpu_backend, Backend& vulkan_backend, const std::vector<BatchSpec>& specs) {
+void ExpectBatchesAgree(Backend& cpu_backend, Backend& vulkan_backend,
+                        const std::vector<BatchSpec>& specs) {
     const absl::StatusOr<std::vector<BatchResult>> cpu = cpu_backend.RunBatches(specs);
     const absl::StatusOr<std::vector<BatchResult>> gpu = vulkan_backend.RunBatches(specs);
     ASSERT_TRUE(cpu.ok() && gpu.ok());
-    double cpu_photons = 0, gpu_photons = 0, cpu_flux = 0, gpu_flux = 0, cpu_segments = 0, gpu_segments = 0;
+    double cpu_photons = 0, gpu_photons = 0, cpu_flux = 0, gpu_flux = 0, cpu_segments = 0,
+           gpu_segments = 0;
     size_t samples = 0, differing = 0;
     for (size_t b = 0; b < specs.size(); ++b) {
         const BatchResult& c = (*cpu)[b];
@@ -136,10 +147,12 @@ void ExpectBatchesAgree(Backend& cpu_backend, Backend& vulkan_backend, const std
     }
     const double noise = 4 / std::sqrt(cpu_photons);
     EXPECT_GT(cpu_photons, 1000);
-    EXPECT_NEAR(gpu_photons / cpu_photons, 1.0, noise) << cpu_photons << " photons gathered on the CPU";
+    EXPECT_NEAR(gpu_photons / cpu_photons, 1.0, noise)
+        << cpu_photons << " photons gathered on the CPU";
     EXPECT_NEAR(gpu_flux / cpu_flux, 1.0, noise);
     EXPECT_NEAR(gpu_segments / cpu_segments, 1.0, 4 / std::sqrt(cpu_segments));
-    EXPECT_LE(differing, samples / 100) << "direct-light samples must match but for a few grazing shadow rays";
+    EXPECT_LE(differing, samples / 100)
+        << "direct-light samples must match but for a few grazing shadow rays";
 }
 
 TEST_F(VulkanBackendTest, BatchesMatchTheCpuBackendsOnTheSameStreams) {
@@ -166,12 +179,16 @@ TEST_F(VulkanBackendTest, SppmEpochsTraceTheirOwnHitPointsAndMatchTheCpuBackend)
     std::unique_ptr<Backend> cpu = std::move(*CreateBackend("cpu", scene));
     absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", scene);
     ASSERT_TRUE(vulkan.ok()) << vulkan.status();
-    for (Backend* backend : {cpu.get(), vulkan->get()}) ASSERT_TRUE(backend->BeginJob({&scene, &emitters, {}, 7, &spec}).ok());
+    for (Backend* backend : {cpu.get(), vulkan->get()})
+        ASSERT_TRUE(backend->BeginJob({&scene, &emitters, {}, 7, &spec}).ok());
     for (uint64_t epoch : {0u, 5u}) {
         SCOPED_TRACE(epoch);
-        for (Backend* backend : {cpu.get(), vulkan->get()}) ASSERT_TRUE(backend->BeginEpoch(epoch, radius_sq).ok());
+        for (Backend* backend : {cpu.get(), vulkan->get()})
+            ASSERT_TRUE(backend->BeginEpoch(epoch, radius_sq).ok());
         std::vector<BatchSpec> specs;
-        for (uint32_t b = 0; b < 4; ++b) specs.push_back(MakeBatchSpec(spec.layout, epoch, b, static_cast<uint32_t>(radius_sq.size())));
+        for (uint32_t b = 0; b < 4; ++b)
+            specs.push_back(
+                MakeBatchSpec(spec.layout, epoch, b, static_cast<uint32_t>(radius_sq.size())));
         ExpectBatchesAgree(*cpu, **vulkan, specs);
     }
 }
@@ -184,8 +201,10 @@ TEST_F(VulkanBackendTest, BatchLargerThanOneDispatchTracesEveryPhoton) {
     ASSERT_NE(setup, nullptr);
     BatchSpec spec = setup->estimate->EpochBatches()[0];
     spec.photons = vk::kMaxThreadsPerDispatch + vk::kMaxThreadsPerDispatch / 12;
-    const absl::StatusOr<std::vector<BatchResult>> cpu = setup->cpu->RunBatches(std::span(&spec, 1));
-    const absl::StatusOr<std::vector<BatchResult>> gpu = setup->vulkan->RunBatches(std::span(&spec, 1));
+    const absl::StatusOr<std::vector<BatchResult>> cpu =
+        setup->cpu->RunBatches(std::span(&spec, 1));
+    const absl::StatusOr<std::vector<BatchResult>> gpu =
+        setup->vulkan->RunBatches(std::span(&spec, 1));
     ASSERT_TRUE(cpu.ok() && gpu.ok());
     const double cpu_segments = (*cpu)[0].segments_traced;
     EXPECT_NEAR((*gpu)[0].segments_traced / cpu_segments, 1.0, 4 / std::sqrt(cpu_segments));
@@ -194,15 +213,18 @@ TEST_F(VulkanBackendTest, BatchLargerThanOneDispatchTracesEveryPhoton) {
 }
 
 TEST_F(VulkanBackendTest, KernelsAreSpecialisedToTheScenesFeatures) {
-    for (const auto& [name, glass] : {std::pair{"cornell-box.gltf", false}, std::pair{"cornell-glass.gltf", true}}) {
+    for (const auto& [name, glass] :
+         {std::pair{"cornell-box.gltf", false}, std::pair{"cornell-glass.gltf", true}}) {
         const Scene scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + name);
         const absl::StatusOr<vk::GpuScene> gpu_scene = vk::BuildGpuScene(scene, Emitters(scene));
         ASSERT_TRUE(gpu_scene.ok());
         EXPECT_EQ(gpu_scene->features.dielectric, glass) << name;
-        EXPECT_EQ(gpu_scene->features.mirror, glass) << name;  // cornell-glass has a mirror sphere too
+        EXPECT_EQ(gpu_scene->features.mirror, glass)
+            << name;  // cornell-glass has a mirror sphere too
         EXPECT_TRUE(gpu_scene->features.triangle_lights) << name;
         EXPECT_FALSE(gpu_scene->features.point_lights || gpu_scene->features.spot_lights) << name;
-        EXPECT_EQ(vk::SpecConstantsFor(gpu_scene->features)[gpu::kSpecHasDielectric], glass ? 1u : 0u);
+        EXPECT_EQ(vk::SpecConstantsFor(gpu_scene->features)[gpu::kSpecHasDielectric],
+                  glass ? 1u : 0u);
         // Data no kernel of the scene reads is not built.
         EXPECT_EQ(gpu_scene->normals.empty(), !gpu_scene->features.smooth_normals) << name;
         EXPECT_TRUE(gpu_scene->uvs.empty() && gpu_scene->texels.empty()) << name;
@@ -218,7 +240,8 @@ TEST_F(VulkanBackendTest, JobTooLargeForTheDeviceIsRefusedNamingTheLimit) {
     EXPECT_TRUE(absl::IsResourceExhausted(buffer));
     EXPECT_NE(buffer.message().find("small GPU"), std::string::npos) << buffer;
     EXPECT_NE(buffer.message().find("maxStorageBufferRange"), std::string::npos) << buffer;
-    const absl::Status memory = vk::CheckJobFits({"small GPU", uint64_t{4} << 30, 64u << 20}, gpu_scene, 1'000'000);
+    const absl::Status memory =
+        vk::CheckJobFits({"small GPU", uint64_t{4} << 30, 64u << 20}, gpu_scene, 1'000'000);
     EXPECT_TRUE(absl::IsResourceExhausted(memory));
     EXPECT_NE(memory.message().find("the device has 64 MiB"), std::string::npos) << memory;
 }

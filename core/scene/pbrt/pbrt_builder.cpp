@@ -10,10 +10,14 @@
 
 namespace pf::pbrt {
 
-absl::Status PbrtSceneBuilder::Camera(const std::string& type, ParameterList& parameters, const Location& where) {
+absl::Status PbrtSceneBuilder::Camera(const std::string& type, ParameterList& parameters,
+                                      const Location& where) {
     if (type != "perspective")
-        return ErrorAt(where, absl::StrCat("Camera \"", type, "\" is not supported (only \"perspective\")"));
-    if (camera_) return ErrorAt(where, absl::StrCat("a second Camera; the first is at ", camera_->where.ToString()));
+        return ErrorAt(
+            where, absl::StrCat("Camera \"", type, "\" is not supported (only \"perspective\")"));
+    if (camera_)
+        return ErrorAt(
+            where, absl::StrCat("a second Camera; the first is at ", camera_->where.ToString()));
     CameraSettings camera;
     camera.camera_from_world = state_.ctm;
     camera.fov_degrees = parameters.Float("fov", 90.0);
@@ -21,9 +25,12 @@ absl::Status PbrtSceneBuilder::Camera(const std::string& type, ParameterList& pa
     camera.focal_distance = parameters.Float("focaldistance", 1e6);
     camera.frame_aspect = parameters.Float("frameaspectratio", 0.0);
     camera.where = where;
-    if (!(camera.fov_degrees > 0 && camera.fov_degrees < 180)) return ErrorAt(where, "Camera: \"float fov\" must lie in (0, 180)");
+    if (!(camera.fov_degrees > 0 && camera.fov_degrees < 180))
+        return ErrorAt(where, "Camera: \"float fov\" must lie in (0, 180)");
     if (!(camera.lens_radius >= 0 && camera.focal_distance > 0))
-        return ErrorAt(where, "Camera: \"float lensradius\" must be at least 0 and \"float focaldistance\" positive");
+        return ErrorAt(
+            where,
+            "Camera: \"float lensradius\" must be at least 0 and \"float focaldistance\" positive");
     if (const std::optional<Transform> world_from_camera = state_.ctm.Inverse())
         coordinate_systems_["camera"] = *world_from_camera;
     else
@@ -35,7 +42,8 @@ absl::Status PbrtSceneBuilder::Camera(const std::string& type, ParameterList& pa
 absl::Status PbrtSceneBuilder::FinishCamera() {
     if (camera_finished_) return absl::OkStatus();
     camera_finished_ = true;
-    const CameraSettings camera = camera_.value_or(CameraSettings{});  // pbrt's default: at the origin, looking down +z
+    const CameraSettings camera =
+        camera_.value_or(CameraSettings{});  // pbrt's default: at the origin, looking down +z
     const Transform world_from_camera = *camera.camera_from_world.Inverse();
     pf::Camera& out = scene_.camera;
     out.position = Vec3(world_from_camera.ApplyPoint(Vec3d(0.0)));
@@ -44,9 +52,11 @@ absl::Status PbrtSceneBuilder::FinishCamera() {
     out.forward = Vec3(Normalize(world_from_camera.ApplyVector(Vec3d(0, 0, 1))));
     out.right = Vec3(Normalize(world_from_camera.ApplyVector(Vec3d(1, 0, 0))));
     out.up = Vec3(Normalize(world_from_camera.ApplyVector(Vec3d(0, 1, 0))));
-    if (!IsFinite(out.position) || !IsFinite(out.forward) || !IsFinite(out.right) || !IsFinite(out.up))
+    if (!IsFinite(out.position) || !IsFinite(out.forward) || !IsFinite(out.right) ||
+        !IsFinite(out.up))
         return ErrorAt(camera.where, "Camera: the transform is degenerate");
-    const double aspect = camera.frame_aspect > 0 ? camera.frame_aspect : double(film_width_) / film_height_;
+    const double aspect =
+        camera.frame_aspect > 0 ? camera.frame_aspect : double(film_width_) / film_height_;
     // pbrt's fov spans the image's shorter side.
     const double half = 0.5 * camera.fov_degrees * kPiD / 180.0;
     out.y_fov = static_cast<float>(aspect >= 1 ? 2 * half : 2 * std::atan(std::tan(half) / aspect));
@@ -63,17 +73,20 @@ absl::Status PbrtSceneBuilder::Film(ParameterList& parameters, const Location& w
     film_height_ = parameters.Integer("yresolution", 720);
     if (parameters.Has("filename")) {
         parameters.String("filename", "");
-        Warn(parameters.Find("filename")->where, "Film: \"filename\" is not used; the image goes where --out says");
+        Warn(parameters.Find("filename")->where,
+             "Film: \"filename\" is not used; the image goes where --out says");
     }
     if (film_width_ < 1 || film_height_ < 1 || film_width_ > 32768 || film_height_ > 32768)
         return ErrorAt(where, "Film: resolution must lie in 1..32768");
     return absl::OkStatus();
 }
 
-absl::Status PbrtSceneBuilder::Integrator(const std::string& type, ParameterList& parameters, const Location& where) {
+absl::Status PbrtSceneBuilder::Integrator(const std::string& type, ParameterList& parameters,
+                                          const Location& where) {
     if (type != "sppm") {
         parameters.ConsumeAll();
-        Warn(where, absl::StrCat("Integrator \"", type, "\": photonfarm renders with progressive photon mapping"));
+        Warn(where, absl::StrCat("Integrator \"", type,
+                                 "\": photonfarm renders with progressive photon mapping"));
         return absl::OkStatus();
     }
     // SPPM's settings, mapped to ours: radius is R0 (where the render gives no --radius); the
@@ -87,15 +100,20 @@ absl::Status PbrtSceneBuilder::Integrator(const std::string& type, ParameterList
         return ErrorAt(where, "Integrator \"sppm\": parameters must not be negative");
     scene_.hints.initial_radius = radius;
     if (iterations > 0 && photons_per_iteration > 0)
-        Warn(where, absl::StrCat("Integrator \"sppm\": ", iterations, " iterations of ", photons_per_iteration,
-                                 " photons: render with --photons ", uint64_t(iterations) * uint64_t(photons_per_iteration),
-                                 " for the same photon count (radii shrink once per --batches-per-epoch x --photons-per-batch)"));
+        Warn(where, absl::StrCat("Integrator \"sppm\": ", iterations, " iterations of ",
+                                 photons_per_iteration, " photons: render with --photons ",
+                                 uint64_t(iterations) * uint64_t(photons_per_iteration),
+                                 " for the same photon count (radii shrink once per "
+                                 "--batches-per-epoch x --photons-per-batch)"));
     if (max_depth > 0)
-        Warn(where, "Integrator \"sppm\": \"maxdepth\" is not used; photonfarm ends paths by Russian roulette (unbiased)");
+        Warn(where,
+             "Integrator \"sppm\": \"maxdepth\" is not used; photonfarm ends paths by Russian "
+             "roulette (unbiased)");
     return absl::OkStatus();
 }
 
-absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& parameters, const Location& where) {
+absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& parameters,
+                                     const Location& where) {
     const std::string element = absl::StrCat(where.ToString(), ": Shape \"", type, "\"");
     if (const Parameter* alpha = parameters.Consume("alpha");
         alpha && (alpha->type != "float" || alpha->numbers.empty() || alpha->numbers[0] != 1.0))
@@ -123,12 +141,17 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
         const std::string filename = parameters.String("filename", "");
         if (filename.empty()) return ErrorAt(where, "Shape \"plymesh\" needs \"string filename\"");
         absl::StatusOr<std::string> path = ResolveReference(filename);
-        if (!path.ok()) return ErrorAt(where, absl::StrCat("Shape \"plymesh\": ", path.status().message()));
+        if (!path.ok())
+            return ErrorAt(where, absl::StrCat("Shape \"plymesh\": ", path.status().message()));
         absl::StatusOr<std::string_view> bytes = files_.Read(*path);
-        if (!bytes.ok()) return absl::Status(bytes.status().code(), absl::StrCat(element, ": ", bytes.status().message()));
+        if (!bytes.ok())
+            return absl::Status(bytes.status().code(),
+                                absl::StrCat(element, ": ", bytes.status().message()));
         if (options_.references_only) return absl::OkStatus();
         mesh = ReadPly(*bytes, *path, options_.limits);
-        if (!mesh.ok()) return absl::Status(mesh.status().code(), absl::StrCat(element, ": ", mesh.status().message()));
+        if (!mesh.ok())
+            return absl::Status(mesh.status().code(),
+                                absl::StrCat(element, ": ", mesh.status().message()));
     } else if (type == "curve" || type == "hyperboloid" || type == "paraboloid" || type == "cone") {
         parameters.ConsumeAll();
         Warn(where, absl::StrCat("Shape \"", type, "\" is not supported; the shape is left out"));
@@ -138,7 +161,8 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
     }
     if (!mesh.ok()) return mesh.status();
     if (!parameters.status().ok()) return parameters.status();
-    if (front == FrontFace::kObjectWinding && !mesh->normals.empty()) front = FrontFace::kVertexNormals;
+    if (front == FrontFace::kObjectWinding && !mesh->normals.empty())
+        front = FrontFace::kVertexNormals;
     if (!current_object_.empty()) {
         objects_[current_object_].push_back({std::move(*mesh), state_.ctm, front, state_, element});
         return absl::OkStatus();
@@ -146,7 +170,8 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
     return AddShape(*mesh, state_.ctm, front, state_, element);
 }
 
-absl::Status PbrtSceneBuilder::ObjectInstance(const std::string& name, const std::vector<ObjectShape>& shapes,
+absl::Status PbrtSceneBuilder::ObjectInstance(const std::string& name,
+                                              const std::vector<ObjectShape>& shapes,
                                               const Location& where) {
     const std::string element = absl::StrCat(where.ToString(), ": ObjectInstance \"", name, "\"");
     // The object's shapes are stored once, as a prototype in the space of the CTM where each was
@@ -156,8 +181,9 @@ absl::Status PbrtSceneBuilder::ObjectInstance(const std::string& name, const std
         prototype->second = BeginPrototype(&scene_);
         for (const ObjectShape& shape : shapes)
             if (!shape.state.area_light)
-                if (absl::Status status = AddShape(shape.mesh, shape.world, shape.front, shape.state,
-                                                   absl::StrCat(element, ": ", shape.element), prototype->second);
+                if (absl::Status status =
+                        AddShape(shape.mesh, shape.world, shape.front, shape.state,
+                                 absl::StrCat(element, ": ", shape.element), prototype->second);
                     !status.ok())
                     return status;
     }
@@ -165,21 +191,26 @@ absl::Status PbrtSceneBuilder::ObjectInstance(const std::string& name, const std
     // world triangles (pbrt-v4 refuses area lights in instances).
     for (const ObjectShape& shape : shapes)
         if (shape.state.area_light)
-            if (absl::Status status = AddShape(shape.mesh, state_.ctm * shape.world, shape.front, shape.state,
-                                               absl::StrCat(element, ": ", shape.element));
+            if (absl::Status status =
+                    AddShape(shape.mesh, state_.ctm * shape.world, shape.front, shape.state,
+                             absl::StrCat(element, ": ", shape.element));
                 !status.ok())
                 return status;
     if (options_.references_only) return absl::OkStatus();
     return AddInstance(prototype->second, state_.ctm, options_.limits, element, &scene_);
 }
 
-absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transform& world, FrontFace front,
-                                        const GraphicsState& state, const std::string& element,
+absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transform& world,
+                                        FrontFace front, const GraphicsState& state,
+                                        const std::string& element,
                                         std::optional<uint32_t> prototype) {
     if (options_.references_only) return absl::OkStatus();
-    const MaterialRef& material = state.material >= 0 ? materials_[state.material] : DefaultMaterial();
+    const MaterialRef& material =
+        state.material >= 0 ? materials_[state.material] : DefaultMaterial();
     if (material.interface) {
-        if (state.area_light) Warn(Location{}, absl::StrCat(element, ": an emitting \"interface\" shape is left out"));
+        if (state.area_light)
+            Warn(Location{},
+                 absl::StrCat(element, ": an emitting \"interface\" shape is left out"));
         return absl::OkStatus();
     }
     Rgb emission(0.0f);
@@ -221,8 +252,10 @@ const MaterialRef& PbrtSceneBuilder::DefaultMaterial() {
     return kDefault;
 }
 
-absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterList& parameters, const Location& where) {
-    if (!current_object_.empty()) return ErrorAt(where, "LightSource inside ObjectBegin is not allowed");
+absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterList& parameters,
+                                           const Location& where) {
+    if (!current_object_.empty())
+        return ErrorAt(where, "LightSource inside ObjectBegin is not allowed");
     PunctualLight light;
     const float scale = static_cast<float>(parameters.Float("scale", 1.0));
     const double power = parameters.Float("power", 0.0);
@@ -234,15 +267,19 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
         double solid_angle = 4 * kPiD;
         if (type == "spot") {
             const Vec3d to = parameters.Point3("to").value_or(Vec3d(0, 0, 1));
-            const double cone = parameters.Float("coneangle", 30.0), delta = parameters.Float("conedelta", 5.0);
+            const double cone = parameters.Float("coneangle", 30.0),
+                         delta = parameters.Float("conedelta", 5.0);
             if (!(cone > 0 && cone <= 90 && delta >= 0 && delta <= cone))
-                return ErrorAt(where, "LightSource \"spot\": needs 0 < coneangle <= 90 and 0 <= conedelta <= coneangle");
+                return ErrorAt(where,
+                               "LightSource \"spot\": needs 0 < coneangle <= 90 and 0 <= conedelta "
+                               "<= coneangle");
             light.type = LightType::kSpot;
             light.direction = Vec3(Normalize(state_.ctm.ApplyVector(to - from)));
             light.cos_outer = static_cast<float>(std::cos(cone * kPiD / 180));
             light.cos_inner = static_cast<float>(std::cos((cone - delta) * kPiD / 180));
             light.smooth_falloff = true;  // pbrt's smoothstep between the cones
-            solid_angle = 2 * kPiD * ((1 - light.cos_inner) + (light.cos_inner - light.cos_outer) / 2);
+            solid_angle =
+                2 * kPiD * ((1 - light.cos_inner) + (light.cos_inner - light.cos_outer) / 2);
         }
         // As pbrt-v4: "power" scales I by power / (the cone's solid angle), whatever I's colour.
         if (power > 0) light.intensity *= static_cast<float>(power / solid_angle);
@@ -256,15 +293,17 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
         if (illuminance > 0) light.intensity *= static_cast<float>(illuminance);
     } else if (type == "infinite" || type == "goniometric" || type == "projection") {
         parameters.ConsumeAll();
-        Warn(where, absl::StrCat("LightSource \"", type, "\" is not supported; the light is left out"));
+        Warn(where,
+             absl::StrCat("LightSource \"", type, "\" is not supported; the light is left out"));
         return absl::OkStatus();
     } else {
         return ErrorAt(where, absl::StrCat("LightSource \"", type, "\" is unknown"));
     }
     if (!parameters.status().ok()) return parameters.status();
-    if (!IsFinite(light.intensity) || MinComponent(light.intensity) < 0 || !IsFinite(light.position) ||
-        !IsFinite(light.direction) || power < 0)
-        return ErrorAt(where, absl::StrCat("LightSource \"", type, "\": intensity, power and position must be finite and "
+    if (!IsFinite(light.intensity) || MinComponent(light.intensity) < 0 ||
+        !IsFinite(light.position) || !IsFinite(light.direction) || power < 0)
+        return ErrorAt(where, absl::StrCat("LightSource \"", type,
+                                           "\": intensity, power and position must be finite and "
                                            "non-negative, from and to distinct"));
     light.name = where.ToString();
     if (!options_.references_only) scene_.lights.push_back(light);

@@ -9,11 +9,15 @@ namespace pf::pbrt {
 namespace {
 
 bool IsWordCharacter(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
-bool StartsNumber(char c) { return std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.'; }
+bool StartsNumber(char c) {
+    return std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.';
+}
 
 }  // namespace
 
-std::string Location::ToString() const { return absl::StrCat(std::string(file), ":", line, ":", column); }
+std::string Location::ToString() const {
+    return absl::StrCat(std::string(file), ":", line, ":", column);
+}
 
 std::string Describe(const Token& token) {
     return token.kind == TokenKind::kString ? absl::StrCat("\"", token.text, "\"") : token.text;
@@ -42,7 +46,8 @@ absl::StatusOr<std::vector<Token>> Tokenize(std::string_view file, std::string_v
         } else if (c == '#') {
             while (i < contents.size() && contents[i] != '\n') advance();
         } else if (c == '[' || c == ']') {
-            tokens.push_back({c == '[' ? TokenKind::kOpenBracket : TokenKind::kCloseBracket, std::string(1, c), here});
+            tokens.push_back({c == '[' ? TokenKind::kOpenBracket : TokenKind::kCloseBracket,
+                              std::string(1, c), here});
             advance();
         } else if (c == '"') {
             const Location start = here;
@@ -54,13 +59,25 @@ absl::StatusOr<std::vector<Token>> Tokenize(std::string_view file, std::string_v
                 if (contents[i] == '"') break;
                 if (contents[i] == '\\') {
                     advance();
-                    if (i >= contents.size()) return error(start, "string is not closed on its line");
+                    if (i >= contents.size())
+                        return error(start, "string is not closed on its line");
                     switch (contents[i]) {
-                        case 'n': text += '\n'; break;
-                        case 't': text += '\t'; break;
-                        case '\\': text += '\\'; break;
-                        case '"': text += '"'; break;
-                        default: return error(here, absl::StrCat("unknown escape '\\", std::string(1, contents[i]), "' in a string"));
+                        case 'n':
+                            text += '\n';
+                            break;
+                        case 't':
+                            text += '\t';
+                            break;
+                        case '\\':
+                            text += '\\';
+                            break;
+                        case '"':
+                            text += '"';
+                            break;
+                        default:
+                            return error(
+                                here, absl::StrCat("unknown escape '\\",
+                                                   std::string(1, contents[i]), "' in a string"));
                     }
                 } else {
                     text += contents[i];
@@ -72,19 +89,22 @@ absl::StatusOr<std::vector<Token>> Tokenize(std::string_view file, std::string_v
         } else if (StartsNumber(c)) {
             const Location start = here;
             const size_t begin = i;
-            while (i < contents.size() &&
-                   (IsWordCharacter(contents[i]) || contents[i] == '.' || contents[i] == '-' || contents[i] == '+'))
+            while (i < contents.size() && (IsWordCharacter(contents[i]) || contents[i] == '.' ||
+                                           contents[i] == '-' || contents[i] == '+'))
                 advance();
-            tokens.push_back({TokenKind::kNumber, std::string(contents.substr(begin, i - begin)), start});
+            tokens.push_back(
+                {TokenKind::kNumber, std::string(contents.substr(begin, i - begin)), start});
         } else if (IsWordCharacter(c)) {
             const Location start = here;
             const size_t begin = i;
             while (i < contents.size() && IsWordCharacter(contents[i])) advance();
-            tokens.push_back({TokenKind::kWord, std::string(contents.substr(begin, i - begin)), start});
+            tokens.push_back(
+                {TokenKind::kWord, std::string(contents.substr(begin, i - begin)), start});
         } else {
             const unsigned char byte = static_cast<unsigned char>(c);
-            return error(here, std::isprint(byte) ? absl::StrCat("unexpected character '", std::string(1, c), "'")
-                                                  : absl::StrCat("unexpected byte 0x", absl::Hex(byte)));
+            return error(here, std::isprint(byte)
+                                   ? absl::StrCat("unexpected character '", std::string(1, c), "'")
+                                   : absl::StrCat("unexpected byte 0x", absl::Hex(byte)));
         }
     }
     return tokens;

@@ -30,38 +30,50 @@ void PbrtSceneBuilder::Warn(const Location& where, const std::string& what) {
 
 void PbrtSceneBuilder::WarnUnused(const ParameterList& parameters, const std::string& directive) {
     for (const Parameter* parameter : parameters.Unused())
-        Warn(parameter->where, absl::StrCat(directive, ": parameter \"", parameter->type, " ", parameter->name,
-                                            "\" is not supported; ignored"));
+        Warn(parameter->where, absl::StrCat(directive, ": parameter \"", parameter->type, " ",
+                                            parameter->name, "\" is not supported; ignored"));
 }
 
 absl::StatusOr<Scene> PbrtSceneBuilder::Load(const std::string& main_file) {
     scene_.source = display_root_.empty() ? main_file : absl::StrCat(display_root_, "/", main_file);
     if (absl::Status status = ParseFile(main_file, nullptr, 0); !status.ok()) return status;
     const Location end{file_names_.front(), 0, 0};
-    if (!attribute_stack_.empty()) Warn(end, "AttributeBegin without AttributeEnd at the end of the scene");
-    if (!current_object_.empty()) return ErrorAt(end, absl::StrCat("ObjectBegin \"", current_object_, "\" is never ended"));
+    if (!attribute_stack_.empty())
+        Warn(end, "AttributeBegin without AttributeEnd at the end of the scene");
+    if (!current_object_.empty())
+        return ErrorAt(end, absl::StrCat("ObjectBegin \"", current_object_, "\" is never ended"));
     if (absl::Status status = FinishCamera(); !status.ok()) return status;
     for (const auto& [what, count] : warning_counts_)
-        if (count > 1) spdlog::warn("{}: ... and {} more times: {}", scene_.source, count - 1, what);
+        if (count > 1)
+            spdlog::warn("{}: ... and {} more times: {}", scene_.source, count - 1, what);
     FinishInstancing(&scene_);
     if (options_.references_only) return std::move(scene_);
-    if (scene_.triangles.empty()) return absl::InvalidArgumentError(absl::StrCat(scene_.source, ": scene has no shapes"));
+    if (scene_.triangles.empty())
+        return absl::InvalidArgumentError(absl::StrCat(scene_.source, ": scene has no shapes"));
     bool has_light = !scene_.lights.empty();
-    for (const Triangle& t : scene_.triangles) has_light |= scene_.materials[t.material].IsEmissive();
+    for (const Triangle& t : scene_.triangles)
+        has_light |= scene_.materials[t.material].IsEmissive();
     if (!has_light)
-        return absl::InvalidArgumentError(
-            absl::StrCat(scene_.source, ": scene has no light (no LightSource point, spot or distant, no AreaLightSource)"));
+        return absl::InvalidArgumentError(absl::StrCat(
+            scene_.source,
+            ": scene has no light (no LightSource point, spot or distant, no AreaLightSource)"));
     return std::move(scene_);
 }
 
-absl::Status PbrtSceneBuilder::ParseFile(const std::string& path, const Location* included_from, int depth) {
-    const std::string& display = file_names_.emplace_back(display_root_.empty() ? path : absl::StrCat(display_root_, "/", path));
+absl::Status PbrtSceneBuilder::ParseFile(const std::string& path, const Location* included_from,
+                                         int depth) {
+    const std::string& display = file_names_.emplace_back(
+        display_root_.empty() ? path : absl::StrCat(display_root_, "/", path));
     if (depth > options_.limits.max_include_depth)
-        return ErrorAt(*included_from, absl::StrCat("includes nest deeper than ", options_.limits.max_include_depth, " files"));
+        return ErrorAt(*included_from, absl::StrCat("includes nest deeper than ",
+                                                    options_.limits.max_include_depth, " files"));
     absl::StatusOr<std::string_view> contents = files_.Read(path);
     if (!contents.ok()) {
-        if (included_from == nullptr) return absl::Status(contents.status().code(), absl::StrCat(display, ": ", contents.status().message()));
-        return absl::Status(contents.status().code(), absl::StrCat(included_from->ToString(), ": ", contents.status().message()));
+        if (included_from == nullptr)
+            return absl::Status(contents.status().code(),
+                                absl::StrCat(display, ": ", contents.status().message()));
+        return absl::Status(contents.status().code(), absl::StrCat(included_from->ToString(), ": ",
+                                                                   contents.status().message()));
     }
     absl::StatusOr<std::vector<Token>> tokens = pbrt::Tokenize(display, *contents);
     if (!tokens.ok()) return tokens.status();
@@ -70,74 +82,93 @@ absl::Status PbrtSceneBuilder::ParseFile(const std::string& path, const Location
     return absl::OkStatus();
 }
 
-absl::StatusOr<std::string> PbrtSceneBuilder::ReadString(const std::vector<Token>& tokens, size_t* pos,
-                                                         const Token& directive) {
+absl::StatusOr<std::string> PbrtSceneBuilder::ReadString(const std::vector<Token>& tokens,
+                                                         size_t* pos, const Token& directive) {
     if (*pos >= tokens.size() || tokens[*pos].kind != TokenKind::kString)
-        return ErrorAt(directive.where, absl::StrCat(directive.text, " needs a quoted string after it"));
+        return ErrorAt(directive.where,
+                       absl::StrCat(directive.text, " needs a quoted string after it"));
     return tokens[(*pos)++].text;
 }
 
-absl::StatusOr<std::vector<double>> PbrtSceneBuilder::ReadNumbers(const std::vector<Token>& tokens, size_t* pos,
-                                                                  const Token& directive, size_t count) {
+absl::StatusOr<std::vector<double>> PbrtSceneBuilder::ReadNumbers(const std::vector<Token>& tokens,
+                                                                  size_t* pos,
+                                                                  const Token& directive,
+                                                                  size_t count) {
     const bool bracketed = *pos < tokens.size() && tokens[*pos].kind == TokenKind::kOpenBracket;
     if (bracketed) ++*pos;
     std::vector<double> numbers;
     while (numbers.size() < count) {
         if (*pos >= tokens.size() || tokens[*pos].kind != TokenKind::kNumber)
-            return ErrorAt(directive.where, absl::StrCat(directive.text, " needs ", count, " numbers"));
+            return ErrorAt(directive.where,
+                           absl::StrCat(directive.text, " needs ", count, " numbers"));
         double value;
         if (!absl::SimpleAtod(tokens[*pos].text, &value) || !std::isfinite(value))
-            return ErrorAt(tokens[*pos].where, absl::StrCat("'", tokens[*pos].text, "' is not a finite number"));
+            return ErrorAt(tokens[*pos].where,
+                           absl::StrCat("'", tokens[*pos].text, "' is not a finite number"));
         numbers.push_back(value);
         ++*pos;
     }
     if (bracketed) {
         if (*pos >= tokens.size() || tokens[*pos].kind != TokenKind::kCloseBracket)
-            return ErrorAt(directive.where, absl::StrCat(directive.text, " needs exactly ", count, " numbers in [ ]"));
+            return ErrorAt(directive.where, absl::StrCat(directive.text, " needs exactly ", count,
+                                                         " numbers in [ ]"));
         ++*pos;
     }
     return numbers;
 }
 
-absl::StatusOr<ParameterList> PbrtSceneBuilder::ReadParameters(const std::vector<Token>& tokens, size_t* pos) {
+absl::StatusOr<ParameterList> PbrtSceneBuilder::ReadParameters(const std::vector<Token>& tokens,
+                                                               size_t* pos) {
     static const std::map<std::string, std::string> kTypes = {
-        {"float", "float"},     {"integer", "integer"},   {"bool", "bool"},       {"string", "string"},
-        {"texture", "texture"}, {"rgb", "rgb"},           {"color", "rgb"},       {"blackbody", "blackbody"},
-        {"spectrum", "spectrum"}, {"point2", "point2"},   {"vector2", "vector2"}, {"point3", "point3"},
-        {"point", "point3"},    {"vector3", "vector3"},   {"vector", "vector3"},  {"normal3", "normal3"},
-        {"normal", "normal3"},
+        {"float", "float"},     {"integer", "integer"},     {"bool", "bool"},
+        {"string", "string"},   {"texture", "texture"},     {"rgb", "rgb"},
+        {"color", "rgb"},       {"blackbody", "blackbody"}, {"spectrum", "spectrum"},
+        {"point2", "point2"},   {"vector2", "vector2"},     {"point3", "point3"},
+        {"point", "point3"},    {"vector3", "vector3"},     {"vector", "vector3"},
+        {"normal3", "normal3"}, {"normal", "normal3"},
     };
     std::vector<Parameter> parameters;
     while (*pos < tokens.size() && tokens[*pos].kind == TokenKind::kString) {
         const Token& declaration = tokens[(*pos)++];
-        const std::vector<std::string> words = absl::StrSplit(declaration.text, ' ', absl::SkipWhitespace());
+        const std::vector<std::string> words =
+            absl::StrSplit(declaration.text, ' ', absl::SkipWhitespace());
         if (words.size() != 2)
-            return ErrorAt(declaration.where, absl::StrCat("parameter ", Describe(declaration), " is not \"type name\""));
+            return ErrorAt(declaration.where, absl::StrCat("parameter ", Describe(declaration),
+                                                           " is not \"type name\""));
         const auto type = kTypes.find(words[0]);
         if (type == kTypes.end())
-            return ErrorAt(declaration.where, absl::StrCat("parameter ", Describe(declaration), " has unknown type '", words[0], "'"));
+            return ErrorAt(declaration.where, absl::StrCat("parameter ", Describe(declaration),
+                                                           " has unknown type '", words[0], "'"));
         Parameter parameter{type->second, words[1], declaration.where};
         auto add_value = [&](const Token& value) -> absl::Status {
             if (value.kind == TokenKind::kNumber) {
                 double number;
                 if (!absl::SimpleAtod(value.text, &number) || !std::isfinite(number))
-                    return ErrorAt(value.where, absl::StrCat("'", value.text, "' is not a finite number"));
+                    return ErrorAt(value.where,
+                                   absl::StrCat("'", value.text, "' is not a finite number"));
                 parameter.numbers.push_back(number);
-            } else if (parameter.type == "bool" && (value.text == "true" || value.text == "false")) {
+            } else if (parameter.type == "bool" &&
+                       (value.text == "true" || value.text == "false")) {
                 parameter.bools.push_back(value.text == "true");
             } else if (value.kind == TokenKind::kString) {
                 parameter.strings.push_back(value.text);
             } else {
-                return ErrorAt(value.where, absl::StrCat("unexpected ", Describe(value), " in the value of parameter ",
-                                                         Describe(declaration)));
+                return ErrorAt(value.where,
+                               absl::StrCat("unexpected ", Describe(value),
+                                            " in the value of parameter ", Describe(declaration)));
             }
             return absl::OkStatus();
         };
-        if (*pos >= tokens.size()) return ErrorAt(declaration.where, absl::StrCat("parameter ", Describe(declaration), " has no value"));
+        if (*pos >= tokens.size())
+            return ErrorAt(declaration.where,
+                           absl::StrCat("parameter ", Describe(declaration), " has no value"));
         if (tokens[*pos].kind == TokenKind::kOpenBracket) {
-            for (++*pos; *pos < tokens.size() && tokens[*pos].kind != TokenKind::kCloseBracket; ++*pos)
+            for (++*pos; *pos < tokens.size() && tokens[*pos].kind != TokenKind::kCloseBracket;
+                 ++*pos)
                 if (absl::Status status = add_value(tokens[*pos]); !status.ok()) return status;
-            if (*pos >= tokens.size()) return ErrorAt(declaration.where, absl::StrCat("parameter ", Describe(declaration), ": '[' is never closed"));
+            if (*pos >= tokens.size())
+                return ErrorAt(declaration.where, absl::StrCat("parameter ", Describe(declaration),
+                                                               ": '[' is never closed"));
             ++*pos;
         } else {
             if (absl::Status status = add_value(tokens[(*pos)++]); !status.ok()) return status;
@@ -145,17 +176,22 @@ absl::StatusOr<ParameterList> PbrtSceneBuilder::ReadParameters(const std::vector
         if (parameter.type == "integer")
             for (double number : parameter.numbers)
                 if (number != std::floor(number) || std::abs(number) > 2147483647.0)
-                    return ErrorAt(declaration.where, absl::StrCat("parameter ", Describe(declaration), ": ", number,
-                                                                   " is not a 32-bit integer"));
-        const bool numeric = parameter.type != "string" && parameter.type != "texture" && parameter.type != "bool" &&
-                             parameter.type != "spectrum";
+                    return ErrorAt(declaration.where,
+                                   absl::StrCat("parameter ", Describe(declaration), ": ", number,
+                                                " is not a 32-bit integer"));
+        const bool numeric = parameter.type != "string" && parameter.type != "texture" &&
+                             parameter.type != "bool" && parameter.type != "spectrum";
         std::string wrong;
-        if (numeric && !parameter.strings.empty()) wrong = absl::StrCat("needs numbers, found \"", parameter.strings[0], "\"");
-        if ((parameter.type == "string" || parameter.type == "texture") && !parameter.numbers.empty())
+        if (numeric && !parameter.strings.empty())
+            wrong = absl::StrCat("needs numbers, found \"", parameter.strings[0], "\"");
+        if ((parameter.type == "string" || parameter.type == "texture") &&
+            !parameter.numbers.empty())
             wrong = absl::StrCat("needs a quoted string, found ", parameter.numbers[0]);
         if (parameter.type == "bool" && (parameter.bools.empty() || !parameter.numbers.empty()))
             wrong = "needs true or false";
-        if (!wrong.empty()) return ErrorAt(declaration.where, absl::StrCat("parameter ", Describe(declaration), " ", wrong));
+        if (!wrong.empty())
+            return ErrorAt(declaration.where,
+                           absl::StrCat("parameter ", Describe(declaration), " ", wrong));
         parameters.push_back(std::move(parameter));
     }
     return ParameterList(std::move(parameters));
@@ -164,12 +200,14 @@ absl::StatusOr<ParameterList> PbrtSceneBuilder::ReadParameters(const std::vector
 absl::Status PbrtSceneBuilder::ApplyTransform(const Transform& transform) {
     // Only the start-time transform is kept: motion blur is not rendered.
     if (transform_at_start_) state_.ctm = state_.ctm * transform;
-    if (!state_.ctm.IsFinite()) return absl::InvalidArgumentError("transform overflows to NaN or Inf");
+    if (!state_.ctm.IsFinite())
+        return absl::InvalidArgumentError("transform overflows to NaN or Inf");
     return absl::OkStatus();
 }
 
 // Directives with a type (or name) and a parameter list.
-absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, const std::vector<Token>& tokens, size_t* pos) {
+absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive,
+                                              const std::vector<Token>& tokens, size_t* pos) {
     const std::string& name = directive.text;
     const Location& where = directive.where;
     auto string_argument = [&]() { return ReadString(tokens, pos, directive); };
@@ -185,8 +223,11 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, const std:
     } else if (name == "Sampler" || name == "PixelFilter" || name == "Accelerator") {
         parameters->ConsumeAll();
         if (name != "Accelerator")
-            Warn(where, name == "Sampler" ? "Sampler: hit points per pixel come from photonfarm's --spp, samples from its own sequence"
-                                          : "PixelFilter: photonfarm averages each pixel's hit points (a box filter)");
+            Warn(where,
+                 name == "Sampler"
+                     ? "Sampler: hit points per pixel come from photonfarm's --spp, samples from "
+                       "its own sequence"
+                     : "PixelFilter: photonfarm averages each pixel's hit points (a box filter)");
     } else if (name == "Integrator") {
         status = Integrator(*type, *parameters, where);
     } else if (name == "Shape") {
@@ -197,27 +238,37 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, const std:
         state_.material = *material;
     } else if (name == "MakeNamedMaterial") {
         const std::string material_type = parameters->String("type", "");
-        if (material_type.empty()) return ErrorAt(where, absl::StrCat("MakeNamedMaterial \"", *type, "\" needs \"string type\""));
+        if (material_type.empty())
+            return ErrorAt(where,
+                           absl::StrCat("MakeNamedMaterial \"", *type, "\" needs \"string type\""));
         absl::StatusOr<int> material = MakeMaterial(material_type, *parameters, where);
         if (!material.ok()) return material.status();
         named_materials_[*type] = *material;
     } else if (name == "LightSource") {
         status = LightSource(*type, *parameters, where);
     } else if (name == "AreaLightSource") {
-        if (*type != "diffuse") return ErrorAt(where, absl::StrCat("AreaLightSource \"", *type, "\" is unknown (\"diffuse\" is pbrt-v4's only one)"));
-        const Rgb radiance = parameters->Color("L").value_or(Rgb(1.0f)) * static_cast<float>(parameters->Float("scale", 1.0));
+        if (*type != "diffuse")
+            return ErrorAt(where,
+                           absl::StrCat("AreaLightSource \"", *type,
+                                        "\" is unknown (\"diffuse\" is pbrt-v4's only one)"));
+        const Rgb radiance = parameters->Color("L").value_or(Rgb(1.0f)) *
+                             static_cast<float>(parameters->Float("scale", 1.0));
         AreaLight light{radiance, parameters->Float("power", 0.0)};
         if (parameters->Bool("twosided", false))
-            Warn(where, "AreaLightSource: \"twosided\" lights emit from their front side only in photonfarm");
+            Warn(where,
+                 "AreaLightSource: \"twosided\" lights emit from their front side only in "
+                 "photonfarm");
         if (!IsFinite(radiance) || MinComponent(radiance) < 0 || light.power < 0)
-            return ErrorAt(where, "AreaLightSource: L, scale and power must be finite and non-negative");
+            return ErrorAt(where,
+                           "AreaLightSource: L, scale and power must be finite and non-negative");
         state_.area_light = light;
     } else if (name == "MakeNamedMedium") {
         parameters->ConsumeAll();
         Warn(where, "MakeNamedMedium: participating media are not rendered; the medium is ignored");
     } else if (name == "Attribute") {
         parameters->ConsumeAll();
-        Warn(where, "Attribute: default parameters for a class of objects are not supported; ignored");
+        Warn(where,
+             "Attribute: default parameters for a class of objects are not supported; ignored");
     }
     if (!status.ok()) return status;
     if (!parameters->status().ok()) return parameters->status();
@@ -226,7 +277,8 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, const std:
 }
 
 // Transform directives; nullopt for any other.
-std::optional<absl::Status> PbrtSceneBuilder::TransformDirective(const Token& directive, const std::vector<Token>& tokens,
+std::optional<absl::Status> PbrtSceneBuilder::TransformDirective(const Token& directive,
+                                                                 const std::vector<Token>& tokens,
                                                                  size_t* pos) {
     const std::string& name = directive.text;
     const Location& where = directive.where;
@@ -238,20 +290,25 @@ std::optional<absl::Status> PbrtSceneBuilder::TransformDirective(const Token& di
     if (name == "LookAt") {
         absl::StatusOr<std::vector<double>> v = numbers(9);
         if (!v.ok()) return v.status();
-        const Vec3d eye((*v)[0], (*v)[1], (*v)[2]), look((*v)[3], (*v)[4], (*v)[5]), up((*v)[6], (*v)[7], (*v)[8]);
+        const Vec3d eye((*v)[0], (*v)[1], (*v)[2]), look((*v)[3], (*v)[4], (*v)[5]),
+            up((*v)[6], (*v)[7], (*v)[8]);
         const Vec3d dir = Normalize(look - eye);
         const Vec3d right = Normalize(Cross(Normalize(up), dir));
-        if (!IsFinite(dir) || !IsFinite(right)) return ErrorAt(where, "LookAt: eye and look coincide, or up is parallel to the view direction");
+        if (!IsFinite(dir) || !IsFinite(right))
+            return ErrorAt(
+                where, "LookAt: eye and look coincide, or up is parallel to the view direction");
         const Vec3d new_up = Cross(dir, right);
         Transform world_from_camera;
-        for (int row = 0; row < 3; ++row) world_from_camera.m[row] = {right[row], new_up[row], dir[row], eye[row]};
+        for (int row = 0; row < 3; ++row)
+            world_from_camera.m[row] = {right[row], new_up[row], dir[row], eye[row]};
         return transform_error(ApplyTransform(*world_from_camera.Inverse()));
     }
     if (name == "Translate" || name == "Scale") {
         absl::StatusOr<std::vector<double>> v = numbers(3);
         if (!v.ok()) return v.status();
         const Vec3d value((*v)[0], (*v)[1], (*v)[2]);
-        return transform_error(ApplyTransform(name == "Translate" ? Transform::Translate(value) : Transform::Scale(value)));
+        return transform_error(ApplyTransform(name == "Translate" ? Transform::Translate(value)
+                                                                  : Transform::Scale(value)));
     }
     if (name == "Rotate") {
         absl::StatusOr<std::vector<double>> v = numbers(4);
@@ -263,7 +320,8 @@ std::optional<absl::Status> PbrtSceneBuilder::TransformDirective(const Token& di
     if (name == "Transform" || name == "ConcatTransform") {
         absl::StatusOr<std::vector<double>> v = numbers(16);
         if (!v.ok()) return v.status();
-        const Transform given = Transform::FromColumnMajor(v->data());  // pbrt lists the matrix transposed
+        const Transform given =
+            Transform::FromColumnMajor(v->data());  // pbrt lists the matrix transposed
         if (name == "Transform") {
             if (transform_at_start_) state_.ctm = given;
             return absl::OkStatus();
@@ -279,10 +337,12 @@ std::optional<absl::Status> PbrtSceneBuilder::TransformDirective(const Token& di
         if (!system.ok()) return system.status();
         if (name == "CoordinateSystem") {
             coordinate_systems_[*system] = state_.ctm;
-        } else if (const auto it = coordinate_systems_.find(*system); it != coordinate_systems_.end()) {
+        } else if (const auto it = coordinate_systems_.find(*system);
+                   it != coordinate_systems_.end()) {
             state_.ctm = it->second;
         } else {
-            Warn(where, absl::StrCat("CoordSysTransform: no coordinate system \"", *system, "\"; the transform is unchanged"));
+            Warn(where, absl::StrCat("CoordSysTransform: no coordinate system \"", *system,
+                                     "\"; the transform is unchanged"));
         }
         return absl::OkStatus();
     }
@@ -291,9 +351,13 @@ std::optional<absl::Status> PbrtSceneBuilder::TransformDirective(const Token& di
             return ErrorAt(where, "ActiveTransform needs StartTime, EndTime or All");
         const std::string& which = tokens[(*pos)++].text;
         if (which != "StartTime" && which != "EndTime" && which != "All")
-            return ErrorAt(where, absl::StrCat("ActiveTransform: '", which, "' is not StartTime, EndTime or All"));
+            return ErrorAt(where, absl::StrCat("ActiveTransform: '", which,
+                                               "' is not StartTime, EndTime or All"));
         transform_at_start_ = which != "EndTime";
-            if (which == "EndTime") Warn(where, "ActiveTransform EndTime: motion blur is not rendered; end-time transforms are ignored");
+        if (which == "EndTime")
+            Warn(where,
+                 "ActiveTransform EndTime: motion blur is not rendered; end-time transforms are "
+                 "ignored");
         return absl::OkStatus();
     }
     if (name == "TransformTimes") {
@@ -304,7 +368,8 @@ std::optional<absl::Status> PbrtSceneBuilder::TransformDirective(const Token& di
 }
 
 // Directives on the graphics state, the world and objects; nullopt for any other.
-std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& directive, const std::vector<Token>& tokens,
+std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& directive,
+                                                             const std::vector<Token>& tokens,
                                                              size_t* pos) {
     const std::string& name = directive.text;
     const Location& where = directive.where;
@@ -321,7 +386,8 @@ std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& direct
         coordinate_systems_["world"] = state_.ctm;
         return absl::OkStatus();
     }
-    if (name == "WorldEnd") return absl::OkStatus();  // pbrt-v3's; v4 ends the world at the end of the file
+    if (name == "WorldEnd")
+        return absl::OkStatus();  // pbrt-v3's; v4 ends the world at the end of the file
     if (name == "AttributeBegin") {
         attribute_stack_.push_back(state_);
         return absl::OkStatus();
@@ -346,22 +412,29 @@ std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& direct
         absl::StatusOr<std::string> material = string_argument();
         if (!material.ok()) return material.status();
         const auto it = named_materials_.find(*material);
-        if (it == named_materials_.end()) return ErrorAt(where, absl::StrCat("NamedMaterial: no material named \"", *material, "\""));
+        if (it == named_materials_.end())
+            return ErrorAt(where,
+                           absl::StrCat("NamedMaterial: no material named \"", *material, "\""));
         state_.material = it->second;
         return absl::OkStatus();
     }
     if (name == "ObjectBegin") {
         absl::StatusOr<std::string> object = string_argument();
         if (!object.ok()) return object.status();
-        if (!current_object_.empty()) return ErrorAt(where, absl::StrCat("ObjectBegin \"", *object, "\" inside ObjectBegin \"", current_object_, "\""));
-        if (objects_.contains(*object)) return ErrorAt(where, absl::StrCat("ObjectBegin: object \"", *object, "\" is defined twice"));
+        if (!current_object_.empty())
+            return ErrorAt(where, absl::StrCat("ObjectBegin \"", *object,
+                                               "\" inside ObjectBegin \"", current_object_, "\""));
+        if (objects_.contains(*object))
+            return ErrorAt(where,
+                           absl::StrCat("ObjectBegin: object \"", *object, "\" is defined twice"));
         attribute_stack_.push_back(state_);
         current_object_ = *object;
         objects_[*object];
         return absl::OkStatus();
     }
     if (name == "ObjectEnd") {
-        if (current_object_.empty() || attribute_stack_.empty()) return ErrorAt(where, "ObjectEnd without ObjectBegin");
+        if (current_object_.empty() || attribute_stack_.empty())
+            return ErrorAt(where, "ObjectEnd without ObjectBegin");
         state_ = attribute_stack_.back();
         attribute_stack_.pop_back();
         current_object_.clear();
@@ -372,7 +445,9 @@ std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& direct
         if (!object.ok()) return object.status();
         if (!current_object_.empty()) return ErrorAt(where, "ObjectInstance inside ObjectBegin");
         const auto it = objects_.find(*object);
-        if (it == objects_.end()) return ErrorAt(where, absl::StrCat("ObjectInstance: no object named \"", *object, "\""));
+        if (it == objects_.end())
+            return ErrorAt(where,
+                           absl::StrCat("ObjectInstance: no object named \"", *object, "\""));
         return ObjectInstance(*object, it->second, where);
     }
     if (name == "MediumInterface") {
@@ -385,13 +460,16 @@ std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& direct
     if (name == "ColorSpace") {
         absl::StatusOr<std::string> space = string_argument();
         if (!space.ok()) return space.status();
-        if (*space != "srgb") Warn(where, absl::StrCat("ColorSpace \"", *space, "\": colours are read as linear sRGB"));
+        if (*space != "srgb")
+            Warn(where,
+                 absl::StrCat("ColorSpace \"", *space, "\": colours are read as linear sRGB"));
         return absl::OkStatus();
     }
     if (name == "Option") {
         absl::StatusOr<ParameterList> parameters = ReadParameters(tokens, pos);
         if (!parameters.ok()) return parameters.status();
-        for (const Parameter* p : parameters->Unused()) Warn(p->where, absl::StrCat("Option \"", p->name, "\" is not supported; ignored"));
+        for (const Parameter* p : parameters->Unused())
+            Warn(p->where, absl::StrCat("Option \"", p->name, "\" is not supported; ignored"));
         return absl::OkStatus();
     }
     return std::nullopt;
@@ -404,9 +482,19 @@ absl::Status PbrtSceneBuilder::Directive(const std::vector<Token>& tokens, size_
     if (directive.kind != TokenKind::kWord)
         return ErrorAt(where, absl::StrCat("expected a directive, found ", Describe(directive)));
     auto string_argument = [&]() { return ReadString(tokens, pos, directive); };
-    static const std::set<std::string> kTyped = {"Camera", "Film", "Sampler", "PixelFilter", "Integrator", "Accelerator",
-                                                 "Shape", "Material", "MakeNamedMaterial", "LightSource", "AreaLightSource",
-                                                 "MakeNamedMedium", "Attribute"};
+    static const std::set<std::string> kTyped = {"Camera",
+                                                 "Film",
+                                                 "Sampler",
+                                                 "PixelFilter",
+                                                 "Integrator",
+                                                 "Accelerator",
+                                                 "Shape",
+                                                 "Material",
+                                                 "MakeNamedMaterial",
+                                                 "LightSource",
+                                                 "AreaLightSource",
+                                                 "MakeNamedMedium",
+                                                 "Attribute"};
     if (kTyped.contains(name)) return TypedDirective(directive, tokens, pos);
     if (name == "Texture") {
         absl::StatusOr<std::string> texture_name = string_argument();
@@ -417,7 +505,9 @@ absl::Status PbrtSceneBuilder::Directive(const std::vector<Token>& tokens, size_
         if (!type.ok()) return type.status();
         absl::StatusOr<ParameterList> parameters = ReadParameters(tokens, pos);
         if (!parameters.ok()) return parameters.status();
-        if (absl::Status status = Texture(*texture_name, *kind, *type, *parameters, where); !status.ok()) return status;
+        if (absl::Status status = Texture(*texture_name, *kind, *type, *parameters, where);
+            !status.ok())
+            return status;
         if (!parameters->status().ok()) return parameters->status();
         WarnUnused(*parameters, absl::StrCat("Texture \"", *texture_name, "\""));
         return absl::OkStatus();
@@ -429,7 +519,8 @@ absl::Status PbrtSceneBuilder::Directive(const std::vector<Token>& tokens, size_
         if (!path.ok()) return ErrorAt(where, absl::StrCat(name, ": ", path.status().message()));
         return ParseFile(*path, &where, depth + 1);
     }
-    if (std::optional<absl::Status> status = TransformDirective(directive, tokens, pos)) return *status;
+    if (std::optional<absl::Status> status = TransformDirective(directive, tokens, pos))
+        return *status;
     if (std::optional<absl::Status> status = StateDirective(directive, tokens, pos)) return *status;
     return ErrorAt(where, absl::StrCat("unknown directive '", name, "'"));
 }
@@ -438,8 +529,8 @@ absl::Status PbrtSceneBuilder::Directive(const std::vector<Token>& tokens, size_
 
 namespace pf {
 
-absl::StatusOr<Scene> LoadPbrt(SceneFiles& files, const std::string& main_file, const std::string& display_root,
-                               const PbrtLoadOptions& options) {
+absl::StatusOr<Scene> LoadPbrt(SceneFiles& files, const std::string& main_file,
+                               const std::string& display_root, const PbrtLoadOptions& options) {
     return pbrt::PbrtSceneBuilder(files, display_root, options).Load(main_file);
 }
 

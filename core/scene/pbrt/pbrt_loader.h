@@ -25,7 +25,7 @@ struct PbrtLoadOptions {
 
 // Loads `main_file` (a bundle path) and what it includes from `files`. `display_root` is
 // prefixed to bundle paths in messages (the folder the user named the scene in).
-absl::StatusOr<Scene> LoadPbrt(SceneFiles& files, const std::string& main_file, const std::string& display_root,
-                               const PbrtLoadOptions& options);
+absl::StatusOr<Scene> LoadPbrt(SceneFiles& files, const std::string& main_file,
+                               const std::string& display_root, const PbrtLoadOptions& options);
 
 }  // namespace pf

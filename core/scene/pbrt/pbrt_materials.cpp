@@ -17,26 +17,31 @@ namespace {
 Rgb ConductorReflectance(const Rgb& eta, const Rgb& k) {
     Rgb f0;
     for (int c = 0; c < 3; ++c)
-        f0[c] = ((eta[c] - 1) * (eta[c] - 1) + k[c] * k[c]) / ((eta[c] + 1) * (eta[c] + 1) + k[c] * k[c]);
+        f0[c] = ((eta[c] - 1) * (eta[c] - 1) + k[c] * k[c]) /
+                ((eta[c] + 1) * (eta[c] + 1) + k[c] * k[c]);
     return f0;
 }
 
 }  // namespace
 
-absl::Status PbrtSceneBuilder::BaseColor(ParameterList& parameters, const std::string& name, Rgb fallback,
-                                         const Location& where, MaterialRef* material) {
+absl::Status PbrtSceneBuilder::BaseColor(ParameterList& parameters, const std::string& name,
+                                         Rgb fallback, const Location& where,
+                                         MaterialRef* material) {
     material->material.base_color = fallback;
     if (const std::optional<std::string> texture_name = parameters.TextureName(name)) {
         const auto it = textures_.find(*texture_name);
         if (it == textures_.end()) {
             if (float_textures_.contains(*texture_name))
-                return ErrorAt(where, absl::StrCat("\"", name, "\" names float texture \"", *texture_name, "\"; it needs a spectrum texture"));
+                return ErrorAt(where,
+                               absl::StrCat("\"", name, "\" names float texture \"", *texture_name,
+                                            "\"; it needs a spectrum texture"));
             return ErrorAt(where, absl::StrCat("no texture named \"", *texture_name, "\""));
         }
         const TextureRef& texture = it->second;
         if (!texture.unsupported.empty()) {
-            Warn(where, absl::StrCat("texture \"", *texture_name, "\" (", texture.unsupported, ") is not supported; using ",
-                                     "its material's default colour"));
+            Warn(where,
+                 absl::StrCat("texture \"", *texture_name, "\" (", texture.unsupported,
+                              ") is not supported; using ", "its material's default colour"));
             return absl::OkStatus();
         }
         absl::StatusOr<int32_t> index = ImageIndex(texture);
@@ -57,7 +62,8 @@ absl::Status PbrtSceneBuilder::BaseColor(ParameterList& parameters, const std::s
     return absl::OkStatus();
 }
 
-absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, ParameterList& parameters,
+absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
+                                                   ParameterList& parameters,
                                                    const Location& where) {
     MaterialRef material;
     absl::Status status;
@@ -70,14 +76,16 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, Para
             u = parameters.Float("uroughness", u);
             v = parameters.Float("vroughness", v);
             if (u != v)
-                Warn(where, absl::StrCat("Material \"", type, "\": anisotropic roughness (", u, ", ", v,
-                                         ") rendered isotropic with their mean"));
+                Warn(where, absl::StrCat("Material \"", type, "\": anisotropic roughness (", u,
+                                         ", ", v, ") rendered isotropic with their mean"));
         }
         const double roughness = 0.5 * (u + v);
         if (!(roughness >= 0 && roughness <= 1e3))
-            return ErrorAt(where, absl::StrCat("Material \"", type, "\": roughness must lie in [0, 1000]"));
+            return ErrorAt(
+                where, absl::StrCat("Material \"", type, "\": roughness must lie in [0, 1000]"));
         const double alpha = remap ? std::sqrt(roughness) : roughness;
-        return alpha <= 0 ? 0.0f : static_cast<float>(std::clamp(alpha, double(kMinRoughness), 1.0));
+        return alpha <= 0 ? 0.0f
+                          : static_cast<float>(std::clamp(alpha, double(kMinRoughness), 1.0));
     };
     auto index_of_refraction = [&](double fallback) {
         const Parameter* eta = parameters.Find("eta");
@@ -90,9 +98,11 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, Para
     } else if (type == "coateddiffuse") {
         status = BaseColor(parameters, "reflectance", Rgb(0.5f), where, &material);
         parameters.ConsumeAll();
-        Warn(where, "Material \"coateddiffuse\": shaded as its diffuse base, without the glossy coating");
+        Warn(where,
+             "Material \"coateddiffuse\": shaded as its diffuse base, without the glossy coating");
     } else if (type == "dielectric" || type == "thindielectric") {
-        material.material.type = type == "dielectric" ? MaterialType::kDielectric : MaterialType::kThinDielectric;
+        material.material.type =
+            type == "dielectric" ? MaterialType::kDielectric : MaterialType::kThinDielectric;
         material.material.base_color = Rgb(1.0f);
         material.material.ior = static_cast<float>(index_of_refraction(1.5));
         if (type == "dielectric") {
@@ -104,7 +114,8 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, Para
             }
         }
         if (!(material.material.ior >= 1.0f && std::isfinite(material.material.ior)))
-            return ErrorAt(where, absl::StrCat("Material \"", type, "\": \"eta\" must be at least 1"));
+            return ErrorAt(where,
+                           absl::StrCat("Material \"", type, "\": \"eta\" must be at least 1"));
     } else if (type == "conductor") {
         material.material.type = MaterialType::kMirror;
         const absl::StatusOr<float> alpha = roughness_alpha();
@@ -121,27 +132,32 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, Para
             const std::optional<Rgb> eta = parameters.Color("eta");
             const std::optional<Rgb> k = parameters.Color("k");
             if (named && eta) {
-                material.material.base_color = *eta;  // a named metal's spectrum gives its reflectance
+                material.material.base_color =
+                    *eta;  // a named metal's spectrum gives its reflectance
             } else if (eta || k) {
-                material.material.base_color = ConductorReflectance(eta.value_or(Rgb(0.2f)), k.value_or(Rgb(3.9f)));
+                material.material.base_color =
+                    ConductorReflectance(eta.value_or(Rgb(0.2f)), k.value_or(Rgb(3.9f)));
             } else {
-                material.material.base_color = *NamedMetalReflectance("metal-Cu-eta");  // pbrt's default, copper
+                material.material.base_color =
+                    *NamedMetalReflectance("metal-Cu-eta");  // pbrt's default, copper
             }
         }
     } else if (type == "interface") {
         material.interface = true;
-    } else if (type == "coatedconductor" || type == "measured" || type == "mix" || type == "subsurface" || type == "hair" ||
-               type == "diffusetransmission") {
+    } else if (type == "coatedconductor" || type == "measured" || type == "mix" ||
+               type == "subsurface" || type == "hair" || type == "diffusetransmission") {
         parameters.ConsumeAll();
         material.material.base_color = Rgb(0.5f);
-        Warn(where, absl::StrCat("Material \"", type, "\" is not supported; shaded as grey diffuse (0.5)"));
+        Warn(where, absl::StrCat("Material \"", type,
+                                 "\" is not supported; shaded as grey diffuse (0.5)"));
     } else {
         return ErrorAt(where, absl::StrCat("Material \"", type, "\" is unknown"));
     }
     if (!status.ok()) return status;
     parameters.String("type", "");  // MakeNamedMaterial's
     for (const char* name : {"displacement", "normalmap"})
-        if (parameters.Consume(name)) Warn(where, absl::StrCat("Material: \"", name, "\" is not supported; ignored"));
+        if (parameters.Consume(name))
+            Warn(where, absl::StrCat("Material: \"", name, "\" is not supported; ignored"));
     materials_.push_back(material);
     return static_cast<int>(materials_.size() - 1);
 }
@@ -149,43 +165,55 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type, Para
 absl::StatusOr<int32_t> PbrtSceneBuilder::ImageIndex(const TextureRef& texture) {
     if (texture.path.empty()) return kNoTexture;
     absl::StatusOr<std::string_view> bytes = files_.Read(texture.path);
-    if (!bytes.ok()) return absl::Status(bytes.status().code(), absl::StrCat(texture.element, ": ", bytes.status().message()));
+    if (!bytes.ok())
+        return absl::Status(bytes.status().code(),
+                            absl::StrCat(texture.element, ": ", bytes.status().message()));
     if (options_.references_only) return kNoTexture;
     const auto key = std::make_tuple(texture.path, texture.decode.encoding, texture.decode.gamma);
     if (const auto it = images_.find(key); it != images_.end()) return it->second;
-    absl::StatusOr<pf::Texture> image = DecodeImage(*bytes, texture.path, options_.limits, texture.decode);
-    if (!image.ok()) return absl::Status(image.status().code(), absl::StrCat(texture.element, ": ", image.status().message()));
+    absl::StatusOr<pf::Texture> image =
+        DecodeImage(*bytes, texture.path, options_.limits, texture.decode);
+    if (!image.ok())
+        return absl::Status(image.status().code(),
+                            absl::StrCat(texture.element, ": ", image.status().message()));
     const auto index = static_cast<int32_t>(scene_.textures.size());
     scene_.textures.push_back(std::make_shared<const pf::Texture>(std::move(*image)));
     images_[key] = index;
     return index;
 }
 
-absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::string& kind, const std::string& type,
-                                       ParameterList& parameters, const Location& where) {
+absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::string& kind,
+                                       const std::string& type, ParameterList& parameters,
+                                       const Location& where) {
     if (kind == "float") {
         parameters.ConsumeAll();
         float_textures_[name] = type;
         return absl::OkStatus();
     }
-    if (kind != "spectrum") return ErrorAt(where, absl::StrCat("Texture \"", name, "\": class '", kind, "' is not \"spectrum\" or \"float\""));
+    if (kind != "spectrum")
+        return ErrorAt(where, absl::StrCat("Texture \"", name, "\": class '", kind,
+                                           "' is not \"spectrum\" or \"float\""));
     TextureRef texture;
     if (type == "imagemap") {
         const std::string filename = parameters.String("filename", "");
-        if (filename.empty()) return ErrorAt(where, absl::StrCat("Texture \"", name, "\" needs \"string filename\""));
+        if (filename.empty())
+            return ErrorAt(where, absl::StrCat("Texture \"", name, "\" needs \"string filename\""));
         absl::StatusOr<std::string> path = ResolveReference(filename);
-        if (!path.ok()) return ErrorAt(where, absl::StrCat("Texture \"", name, "\": ", path.status().message()));
+        if (!path.ok())
+            return ErrorAt(where,
+                           absl::StrCat("Texture \"", name, "\": ", path.status().message()));
         ImageDecodeOptions& decode = texture.decode;
         const std::string encoding = parameters.String("encoding", "");
         if (encoding == "sRGB") {
             decode.encoding = ImageEncoding::kSrgb;
         } else if (encoding == "linear") {
             decode.encoding = ImageEncoding::kLinear;
-        } else if (absl::StartsWith(encoding, "gamma ") && absl::SimpleAtod(encoding.substr(6), &decode.gamma) &&
-                   decode.gamma > 0) {
+        } else if (absl::StartsWith(encoding, "gamma ") &&
+                   absl::SimpleAtod(encoding.substr(6), &decode.gamma) && decode.gamma > 0) {
             decode.encoding = ImageEncoding::kGamma;
         } else if (!encoding.empty()) {
-            return ErrorAt(where, absl::StrCat("Texture \"", name, "\": encoding '", encoding, "' is not sRGB, linear or \"gamma g\""));
+            return ErrorAt(where, absl::StrCat("Texture \"", name, "\": encoding '", encoding,
+                                               "' is not sRGB, linear or \"gamma g\""));
         }
         const double su = parameters.Float("uscale", 1), sv = parameters.Float("vscale", 1);
         const double du = parameters.Float("udelta", 0), dv = parameters.Float("vdelta", 0);
@@ -193,9 +221,13 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
         // textures put v = 0 at the top.
         texture.uv.m[0] = su, texture.uv.m[2] = du, texture.uv.m[4] = -sv, texture.uv.m[5] = 1 - dv;
         texture.scale = Rgb(static_cast<float>(parameters.Float("scale", 1.0)));
-        if (parameters.Bool("invert", false)) Warn(where, absl::StrCat("Texture \"", name, "\": \"invert\" is not supported; ignored"));
+        if (parameters.Bool("invert", false))
+            Warn(where,
+                 absl::StrCat("Texture \"", name, "\": \"invert\" is not supported; ignored"));
         const std::string wrap = parameters.String("wrap", "repeat");
-        if (wrap != "repeat") Warn(where, absl::StrCat("Texture \"", name, "\": wrap \"", wrap, "\" is rendered as \"repeat\""));
+        if (wrap != "repeat")
+            Warn(where, absl::StrCat("Texture \"", name, "\": wrap \"", wrap,
+                                     "\" is rendered as \"repeat\""));
         parameters.String("filter", "");
         parameters.Float("maxanisotropy", 8);
         texture.path = *path;
@@ -206,7 +238,9 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
         const float scale = static_cast<float>(parameters.Float("scale", 1.0));
         if (const std::optional<std::string> inner = parameters.TextureName("tex")) {
             const auto it = textures_.find(*inner);
-            if (it == textures_.end()) return ErrorAt(where, absl::StrCat("Texture \"", name, "\": no texture named \"", *inner, "\""));
+            if (it == textures_.end())
+                return ErrorAt(where, absl::StrCat("Texture \"", name, "\": no texture named \"",
+                                                   *inner, "\""));
             texture = it->second;
         } else {
             texture.scale = parameters.Color("tex").value_or(Rgb(1.0f));
@@ -218,7 +252,8 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
     }
     if (!parameters.status().ok()) return parameters.status();
     if (!IsFinite(texture.scale) || MinComponent(texture.scale) < 0)
-        return ErrorAt(where, absl::StrCat("Texture \"", name, "\": its values must be finite and non-negative"));
+        return ErrorAt(where, absl::StrCat("Texture \"", name,
+                                           "\": its values must be finite and non-negative"));
     textures_[name] = texture;
     return absl::OkStatus();
 }

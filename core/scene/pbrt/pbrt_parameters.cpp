@@ -8,18 +8,20 @@
 #include "absl/strings/str_cat.h"
 
 namespace pf::pbrt {
-Parameter* ParameterList::Lookup(std::string_view name, std::initializer_list<std::string_view> types,
-                                 size_t min_count) {
+Parameter* ParameterList::Lookup(std::string_view name,
+                                 std::initializer_list<std::string_view> types, size_t min_count) {
     for (Parameter& parameter : parameters_) {
         if (parameter.name != name) continue;
         parameter.used = true;
         if (std::find(types.begin(), types.end(), parameter.type) == types.end()) {
             std::string expected;
-            for (std::string_view type : types) absl::StrAppend(&expected, expected.empty() ? "" : " or ", std::string(type));
+            for (std::string_view type : types)
+                absl::StrAppend(&expected, expected.empty() ? "" : " or ", std::string(type));
             Fail(parameter, absl::StrCat("has type '", parameter.type, "', expected ", expected));
             return nullptr;
         }
-        const size_t count = std::max({parameter.numbers.size(), parameter.strings.size(), parameter.bools.size()});
+        const size_t count =
+            std::max({parameter.numbers.size(), parameter.strings.size(), parameter.bools.size()});
         if (count < min_count) {
             Fail(parameter, absl::StrCat("needs at least ", min_count, " values, has ", count));
             return nullptr;
@@ -31,8 +33,9 @@ Parameter* ParameterList::Lookup(std::string_view name, std::initializer_list<st
 
 void ParameterList::Fail(const Parameter& parameter, const std::string& what) {
     if (status_.ok())
-        status_ = absl::InvalidArgumentError(
-            absl::StrCat(parameter.where.ToString(), ": parameter \"", parameter.type, " ", parameter.name, "\" ", what));
+        status_ = absl::InvalidArgumentError(absl::StrCat(parameter.where.ToString(),
+                                                          ": parameter \"", parameter.type, " ",
+                                                          parameter.name, "\" ", what));
 }
 
 double ParameterList::Float(std::string_view name, double fallback) {
@@ -77,7 +80,8 @@ namespace {
 std::vector<Vec3d> Triples(const Parameter* p) {
     std::vector<Vec3d> out;
     if (!p) return out;
-    for (size_t i = 0; i + 2 < p->numbers.size(); i += 3) out.emplace_back(p->numbers[i], p->numbers[i + 1], p->numbers[i + 2]);
+    for (size_t i = 0; i + 2 < p->numbers.size(); i += 3)
+        out.emplace_back(p->numbers[i], p->numbers[i + 1], p->numbers[i + 2]);
     return out;
 }
 
@@ -116,8 +120,10 @@ std::optional<Rgb> ParameterList::Color(std::string_view name) {
     // "spectrum": a named spectrum, or (wavelength, value) pairs.
     if (!p->strings.empty()) {
         if (std::optional<Rgb> metal = NamedMetalReflectance(p->strings[0])) return metal;
-        if (std::optional<double> ior = NamedGlassIor(p->strings[0])) return Rgb(static_cast<float>(*ior));
-        Fail(*p, absl::StrCat("names spectrum '", p->strings[0], "', which photonfarm does not know"));
+        if (std::optional<double> ior = NamedGlassIor(p->strings[0]))
+            return Rgb(static_cast<float>(*ior));
+        Fail(*p,
+             absl::StrCat("names spectrum '", p->strings[0], "', which photonfarm does not know"));
         return std::nullopt;
     }
     if (p->numbers.size() % 2 != 0) {
@@ -129,7 +135,10 @@ std::optional<Rgb> ParameterList::Color(std::string_view name) {
     std::array<double, 3> sum{}, count{};
     for (size_t i = 0; i < p->numbers.size(); i += 2) {
         const double lambda = p->numbers[i];
-        const int band = lambda < 400 || lambda >= 700 ? -1 : lambda < 500 ? 2 : lambda < 600 ? 1 : 0;
+        const int band = lambda < 400 || lambda >= 700 ? -1
+                         : lambda < 500                ? 2
+                         : lambda < 600                ? 1
+                                                       : 0;
         if (band >= 0) sum[band] += p->numbers[i + 1], count[band] += 1;
     }
     Rgb rgb;
@@ -182,8 +191,9 @@ std::vector<const Parameter*> ParameterList::Unused() const {
 std::optional<double> NamedGlassIor(std::string_view name) {
     // pbrt-v4's named glasses (Schott catalogue), index at 550 nm.
     static constexpr std::pair<std::string_view, double> kGlasses[] = {
-        {"glass-BK7", 1.5185},  {"glass-BAF10", 1.6718}, {"glass-FK51A", 1.4875}, {"glass-LASF9", 1.8550},
-        {"glass-F5", 1.6055},   {"glass-F10", 1.6259},   {"glass-F11", 1.6242},
+        {"glass-BK7", 1.5185},   {"glass-BAF10", 1.6718}, {"glass-FK51A", 1.4875},
+        {"glass-LASF9", 1.8550}, {"glass-F5", 1.6055},    {"glass-F10", 1.6259},
+        {"glass-F11", 1.6242},
     };
     for (const auto& [glass, ior] : kGlasses)
         if (glass == name) return ior;
@@ -194,26 +204,31 @@ std::optional<Rgb> NamedMetalReflectance(std::string_view name) {
     // Normal-incidence reflectance ((n-1)^2 + k^2) / ((n+1)^2 + k^2) of pbrt-v4's measured
     // metals, integrated to linear sRGB.
     static constexpr std::pair<std::string_view, std::array<float, 3>> kMetals[] = {
-        {"Ag", {0.972f, 0.960f, 0.915f}}, {"Al", {0.913f, 0.922f, 0.924f}}, {"Au", {1.000f, 0.766f, 0.336f}},
-        {"Cu", {0.955f, 0.638f, 0.538f}}, {"CuZn", {0.910f, 0.778f, 0.423f}}, {"MgO", {0.068f, 0.069f, 0.072f}},
+        {"Ag", {0.972f, 0.960f, 0.915f}},   {"Al", {0.913f, 0.922f, 0.924f}},
+        {"Au", {1.000f, 0.766f, 0.336f}},   {"Cu", {0.955f, 0.638f, 0.538f}},
+        {"CuZn", {0.910f, 0.778f, 0.423f}}, {"MgO", {0.068f, 0.069f, 0.072f}},
         {"TiO2", {0.180f, 0.185f, 0.205f}},
     };
     for (const auto& [metal, f0] : kMetals)
         for (std::string_view suffix : {"-eta", "-k"})
-            if (name == absl::StrCat("metal-", std::string(metal), std::string(suffix))) return Rgb(f0[0], f0[1], f0[2]);
+            if (name == absl::StrCat("metal-", std::string(metal), std::string(suffix)))
+                return Rgb(f0[0], f0[1], f0[2]);
     return std::nullopt;
 }
 
 Rgb BlackbodyColor(double kelvin) {
     // Kim et al. 2002's cubic fit of the Planckian locus in CIE xy, 1667 K to 25000 K.
     const double t = std::clamp(kelvin, 1667.0, 25000.0);
-    const double x = t <= 4000 ? -0.2661239e9 / (t * t * t) - 0.2343589e6 / (t * t) + 0.8776956e3 / t + 0.179910
-                               : -3.0258469e9 / (t * t * t) + 2.1070379e6 / (t * t) + 0.2226347e3 / t + 0.240390;
-    const double y = t <= 2222   ? -1.1063814 * x * x * x - 1.34811020 * x * x + 2.18555832 * x - 0.20219683
-                     : t <= 4000 ? -0.9549476 * x * x * x - 1.37418593 * x * x + 2.09137015 * x - 0.16748867
-                                 : 3.0817580 * x * x * x - 5.87338670 * x * x + 3.75112997 * x - 0.37001483;
+    const double x =
+        t <= 4000 ? -0.2661239e9 / (t * t * t) - 0.2343589e6 / (t * t) + 0.8776956e3 / t + 0.179910
+                  : -3.0258469e9 / (t * t * t) + 2.1070379e6 / (t * t) + 0.2226347e3 / t + 0.240390;
+    const double y =
+        t <= 2222   ? -1.1063814 * x * x * x - 1.34811020 * x * x + 2.18555832 * x - 0.20219683
+        : t <= 4000 ? -0.9549476 * x * x * x - 1.37418593 * x * x + 2.09137015 * x - 0.16748867
+                    : 3.0817580 * x * x * x - 5.87338670 * x * x + 3.75112997 * x - 0.37001483;
     const double X = x / y, Y = 1.0, Z = (1.0 - x - y) / y;
-    const Vec3d rgb(3.2404542 * X - 1.5371385 * Y - 0.4985314 * Z, -0.9692660 * X + 1.8760108 * Y + 0.0415560 * Z,
+    const Vec3d rgb(3.2404542 * X - 1.5371385 * Y - 0.4985314 * Z,
+                    -0.9692660 * X + 1.8760108 * Y + 0.0415560 * Z,
                     0.0556434 * X - 0.2040259 * Y + 1.0572252 * Z);
     return Rgb(Vec3d(std::max(rgb.x, 0.0), std::max(rgb.y, 0.0), std::max(rgb.z, 0.0)));
 }

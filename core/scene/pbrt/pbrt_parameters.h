@@ -28,7 +28,8 @@ struct Parameter {
 class ParameterList {
 public:
     ParameterList() = default;
-    explicit ParameterList(std::vector<Parameter> parameters) : parameters_(std::move(parameters)) {}
+    explicit ParameterList(std::vector<Parameter> parameters)
+        : parameters_(std::move(parameters)) {}
 
     // Single values; `fallback` when absent. Wrong type or count: an error, and `fallback`.
     double Float(std::string_view name, double fallback);
@@ -39,9 +40,9 @@ public:
     // Arrays, empty when absent.
     std::vector<double> Floats(std::string_view name);
     std::vector<int> Integers(std::string_view name);
-    std::vector<Vec3d> Point3s(std::string_view name);    // point3 (and point)
-    std::vector<Vec3d> Normals(std::string_view name);    // normal3 (and normal)
-    std::vector<double> Point2s(std::string_view name);   // point2, flattened (u0 v0 u1 v1 ...)
+    std::vector<Vec3d> Point3s(std::string_view name);   // point3 (and point)
+    std::vector<Vec3d> Normals(std::string_view name);   // normal3 (and normal)
+    std::vector<double> Point2s(std::string_view name);  // point2, flattened (u0 v0 u1 v1 ...)
 
     // A colour parameter (rgb, blackbody, spectrum or float) as linear sRGB: rgb as given;
     // blackbody T as the colour of a black body at T kelvin with luminance 1 (pbrt-v4
@@ -65,7 +66,8 @@ public:
     std::vector<const Parameter*> Unused() const;
 
 private:
-    Parameter* Lookup(std::string_view name, std::initializer_list<std::string_view> types, size_t min_count);
+    Parameter* Lookup(std::string_view name, std::initializer_list<std::string_view> types,
+                      size_t min_count);
     void Fail(const Parameter& parameter, const std::string& what);
 
     std::vector<Parameter> parameters_;

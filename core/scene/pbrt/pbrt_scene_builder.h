@@ -27,36 +27,36 @@ absl::Status ErrorAt(const Location& where, const std::string& what);
 // is read and decoded when a material first uses it, so unused textures cost nothing and are
 // not packed.
 struct TextureRef {
-    std::string path;            // the image's bundle path; empty for a constant
+    std::string path;  // the image's bundle path; empty for a constant
     ImageDecodeOptions decode;
-    std::string element;         // "file:line:column: Texture "name"", for errors
+    std::string element;  // "file:line:column: Texture "name"", for errors
     Rgb scale{1.0f};
     UvTransform uv;
-    std::string unsupported;     // non-empty: the texture class photonfarm cannot evaluate
+    std::string unsupported;  // non-empty: the texture class photonfarm cannot evaluate
 };
 
 struct MaterialRef {
-    Material material;           // emission left zero: it comes from the shape's area light
-    UvTransform uv;              // of its base colour texture
-    bool interface = false;      // "interface": a medium boundary, not a surface
+    Material material;       // emission left zero: it comes from the shape's area light
+    UvTransform uv;          // of its base colour texture
+    bool interface = false;  // "interface": a medium boundary, not a surface
 };
 
 struct AreaLight {
-    Rgb radiance;                // L x scale, W/(m^2 sr)
-    double power = 0;            // "power": total watts wanted from the shape, 0 if not given
+    Rgb radiance;      // L x scale, W/(m^2 sr)
+    double power = 0;  // "power": total watts wanted from the shape, 0 if not given
 };
 
 struct GraphicsState {
     Transform ctm;
     bool reverse_orientation = false;
-    int material = -1;           // into materials_; -1: pbrt's default, diffuse 0.5
+    int material = -1;  // into materials_; -1: pbrt's default, diffuse 0.5
     std::optional<AreaLight> area_light;
 };
 
 // A shape inside ObjectBegin/ObjectEnd, kept in the object's space until instanced.
 struct ObjectShape {
     TriangleMesh mesh;
-    Transform world;             // the CTM where it was defined
+    Transform world;  // the CTM where it was defined
     FrontFace front;
     GraphicsState state;
     std::string element;
@@ -79,32 +79,41 @@ private:
     // Parsing.
     absl::Status ParseFile(const std::string& path, const Location* included_from, int depth);
     absl::Status Directive(const std::vector<Token>& tokens, size_t* pos, int depth);
-    absl::Status TypedDirective(const Token& directive, const std::vector<Token>& tokens, size_t* pos);
-    std::optional<absl::Status> TransformDirective(const Token& directive, const std::vector<Token>& tokens, size_t* pos);
-    std::optional<absl::Status> StateDirective(const Token& directive, const std::vector<Token>& tokens, size_t* pos);
-    absl::StatusOr<std::string> ReadString(const std::vector<Token>& tokens, size_t* pos, const Token& directive);
-    absl::StatusOr<std::vector<double>> ReadNumbers(const std::vector<Token>& tokens, size_t* pos, const Token& directive,
-                                                    size_t count);
+    absl::Status TypedDirective(const Token& directive, const std::vector<Token>& tokens,
+                                size_t* pos);
+    std::optional<absl::Status> TransformDirective(const Token& directive,
+                                                   const std::vector<Token>& tokens, size_t* pos);
+    std::optional<absl::Status> StateDirective(const Token& directive,
+                                               const std::vector<Token>& tokens, size_t* pos);
+    absl::StatusOr<std::string> ReadString(const std::vector<Token>& tokens, size_t* pos,
+                                           const Token& directive);
+    absl::StatusOr<std::vector<double>> ReadNumbers(const std::vector<Token>& tokens, size_t* pos,
+                                                    const Token& directive, size_t count);
     absl::StatusOr<ParameterList> ReadParameters(const std::vector<Token>& tokens, size_t* pos);
 
     // Directives.
     absl::Status Camera(const std::string& type, ParameterList& parameters, const Location& where);
     absl::Status Film(ParameterList& parameters, const Location& where);
-    absl::Status Integrator(const std::string& type, ParameterList& parameters, const Location& where);
+    absl::Status Integrator(const std::string& type, ParameterList& parameters,
+                            const Location& where);
     absl::Status Shape(const std::string& type, ParameterList& parameters, const Location& where);
     // Adds a shape to the world or, given `prototype`, to that prototype.
-    absl::Status AddShape(const TriangleMesh& mesh, const Transform& world, FrontFace front, const GraphicsState& state,
-                          const std::string& element, std::optional<uint32_t> prototype = std::nullopt);
-    absl::Status ObjectInstance(const std::string& name, const std::vector<ObjectShape>& shapes, const Location& where);
-    absl::StatusOr<int> MakeMaterial(const std::string& type, ParameterList& parameters, const Location& where);
-    absl::Status BaseColor(ParameterList& parameters, const std::string& name, Rgb fallback, const Location& where,
-                           MaterialRef* material);
+    absl::Status AddShape(const TriangleMesh& mesh, const Transform& world, FrontFace front,
+                          const GraphicsState& state, const std::string& element,
+                          std::optional<uint32_t> prototype = std::nullopt);
+    absl::Status ObjectInstance(const std::string& name, const std::vector<ObjectShape>& shapes,
+                                const Location& where);
+    absl::StatusOr<int> MakeMaterial(const std::string& type, ParameterList& parameters,
+                                     const Location& where);
+    absl::Status BaseColor(ParameterList& parameters, const std::string& name, Rgb fallback,
+                           const Location& where, MaterialRef* material);
     absl::Status Texture(const std::string& name, const std::string& kind, const std::string& type,
                          ParameterList& parameters, const Location& where);
     // The scene texture of `texture`'s image, read and decoded on first use (kNoTexture while
     // packing, which only reads it).
     absl::StatusOr<int32_t> ImageIndex(const TextureRef& texture);
-    absl::Status LightSource(const std::string& type, ParameterList& parameters, const Location& where);
+    absl::Status LightSource(const std::string& type, ParameterList& parameters,
+                             const Location& where);
     absl::Status ApplyTransform(const Transform& transform);
     absl::Status FinishCamera();
 
@@ -131,11 +140,13 @@ private:
     std::map<std::string, int> named_materials_;
     std::map<std::string, TextureRef> textures_;
     std::map<std::string, std::string> float_textures_;  // name -> class, unused by photonfarm
-    std::map<std::tuple<std::string, ImageEncoding, double>, int32_t> images_;  // (path, encoding, gamma) -> Scene::textures
+    std::map<std::tuple<std::string, ImageEncoding, double>, int32_t>
+        images_;  // (path, encoding, gamma) -> Scene::textures
     std::map<std::tuple<int, float, float, float>, uint32_t> scene_materials_;
 
     std::map<std::string, std::vector<ObjectShape>> objects_;
-    std::map<std::string, uint32_t> object_prototypes_;  // objects instanced so far -> Scene::prototypes
+    std::map<std::string, uint32_t>
+        object_prototypes_;  // objects instanced so far -> Scene::prototypes
     std::string current_object_;
     std::map<std::string, int> warning_counts_;
 };

@@ -22,28 +22,34 @@ absl::Status ReadVertices(ParameterList& parameters, const Location& where, Tria
     for (size_t i = 0; i + 1 < uv.size(); i += 2)
         mesh->uvs.push_back({static_cast<float>(uv[i]), static_cast<float>(uv[i + 1])});
     if (!mesh->normals.empty() && mesh->normals.size() != mesh->positions.size())
-        return Invalid(where, absl::StrCat("\"normal N\" has ", mesh->normals.size(), " normals for ", mesh->positions.size(), " points"));
+        return Invalid(where, absl::StrCat("\"normal N\" has ", mesh->normals.size(),
+                                           " normals for ", mesh->positions.size(), " points"));
     if (!mesh->uvs.empty() && mesh->uvs.size() != mesh->positions.size())
-        return Invalid(where, absl::StrCat("\"point2 uv\" has ", mesh->uvs.size(), " values for ", mesh->positions.size(), " points"));
+        return Invalid(where, absl::StrCat("\"point2 uv\" has ", mesh->uvs.size(), " values for ",
+                                           mesh->positions.size(), " points"));
     for (size_t v = 0; v < mesh->positions.size(); ++v)
-        if (!IsFinite(mesh->positions[v])) return Invalid(where, absl::StrCat("point ", v, " of \"point3 P\" is not finite"));
+        if (!IsFinite(mesh->positions[v]))
+            return Invalid(where, absl::StrCat("point ", v, " of \"point3 P\" is not finite"));
     return parameters.status();
 }
 
-absl::Status ReadIndices(ParameterList& parameters, const Location& where, size_t per_face, TriangleMesh* mesh,
-                         std::vector<uint32_t>* indices) {
+absl::Status ReadIndices(ParameterList& parameters, const Location& where, size_t per_face,
+                         TriangleMesh* mesh, std::vector<uint32_t>* indices) {
     const std::vector<int> given = parameters.Integers("indices");
     if (given.empty()) {
         if (mesh->positions.size() != per_face)
-            return Invalid(where, absl::StrCat("shape needs \"integer indices\" (it has ", mesh->positions.size(), " points)"));
+            return Invalid(where, absl::StrCat("shape needs \"integer indices\" (it has ",
+                                               mesh->positions.size(), " points)"));
         for (uint32_t i = 0; i < per_face; ++i) indices->push_back(i);
         return absl::OkStatus();
     }
     if (given.size() % per_face != 0)
-        return Invalid(where, absl::StrCat("\"integer indices\" has ", given.size(), " values, not a multiple of ", per_face));
+        return Invalid(where, absl::StrCat("\"integer indices\" has ", given.size(),
+                                           " values, not a multiple of ", per_face));
     for (size_t i = 0; i < given.size(); ++i) {
         if (given[i] < 0 || static_cast<size_t>(given[i]) >= mesh->positions.size())
-            return Invalid(where, absl::StrCat("index ", i, " (", given[i], ") is outside the ", mesh->positions.size(), " points"));
+            return Invalid(where, absl::StrCat("index ", i, " (", given[i], ") is outside the ",
+                                               mesh->positions.size(), " points"));
         indices->push_back(static_cast<uint32_t>(given[i]));
     }
     return absl::OkStatus();
@@ -52,7 +58,8 @@ absl::Status ReadIndices(ParameterList& parameters, const Location& where, size_
 // A full-turn angle parameter in degrees, in (0, 360].
 absl::StatusOr<double> PhiMax(ParameterList& parameters, const Location& where) {
     const double degrees = parameters.Float("phimax", 360.0);
-    if (!(degrees > 0 && degrees <= 360)) return Invalid(where, "\"float phimax\" must lie in (0, 360]");
+    if (!(degrees > 0 && degrees <= 360))
+        return Invalid(where, "\"float phimax\" must lie in (0, 360]");
     return degrees * kPiD / 180.0;
 }
 
@@ -61,7 +68,8 @@ absl::StatusOr<double> PhiMax(ParameterList& parameters, const Location& where) 
 absl::StatusOr<TriangleMesh> TriangleMeshShape(ParameterList& parameters, const Location& where) {
     TriangleMesh mesh;
     if (absl::Status status = ReadVertices(parameters, where, &mesh); !status.ok()) return status;
-    if (absl::Status status = ReadIndices(parameters, where, 3, &mesh, &mesh.indices); !status.ok()) return status;
+    if (absl::Status status = ReadIndices(parameters, where, 3, &mesh, &mesh.indices); !status.ok())
+        return status;
     return mesh;
 }
 
@@ -69,10 +77,12 @@ absl::StatusOr<TriangleMesh> BilinearMeshShape(ParameterList& parameters, const 
     TriangleMesh mesh;
     if (absl::Status status = ReadVertices(parameters, where, &mesh); !status.ok()) return status;
     std::vector<uint32_t> patches;
-    if (absl::Status status = ReadIndices(parameters, where, 4, &mesh, &patches); !status.ok()) return status;
+    if (absl::Status status = ReadIndices(parameters, where, 4, &mesh, &patches); !status.ok())
+        return status;
     // Corners p00 p10 p01 p11: around the patch they run p00, p10, p11, p01.
     for (size_t i = 0; i < patches.size(); i += 4) {
-        const uint32_t p00 = patches[i], p10 = patches[i + 1], p01 = patches[i + 2], p11 = patches[i + 3];
+        const uint32_t p00 = patches[i], p10 = patches[i + 1], p01 = patches[i + 2],
+                       p11 = patches[i + 3];
         mesh.indices.insert(mesh.indices.end(), {p00, p10, p11, p00, p11, p01});
     }
     return mesh;
@@ -85,17 +95,22 @@ absl::StatusOr<TriangleMesh> SphereShape(ParameterList& parameters, const Locati
     const absl::StatusOr<double> phi_max = PhiMax(parameters, where);
     if (!parameters.status().ok()) return parameters.status();
     if (!phi_max.ok()) return phi_max.status();
-    if (!(radius > 0 && std::isfinite(radius))) return Invalid(where, "\"float radius\" must be positive and finite");
+    if (!(radius > 0 && std::isfinite(radius)))
+        return Invalid(where, "\"float radius\" must be positive and finite");
     if (!(z_min < z_max)) return Invalid(where, "\"float zmin\" must be below \"float zmax\"");
-    const double theta_min = std::acos(z_max / radius), theta_max = std::acos(z_min / radius);  // from +z
-    const int rings = std::max(2, static_cast<int>(std::ceil(kSphereRings * (theta_max - theta_min) / kPiD)));
-    const int segments = std::max(3, static_cast<int>(std::ceil(kQuadricSegments * *phi_max / (2 * kPiD))));
+    const double theta_min = std::acos(z_max / radius),
+                 theta_max = std::acos(z_min / radius);  // from +z
+    const int rings =
+        std::max(2, static_cast<int>(std::ceil(kSphereRings * (theta_max - theta_min) / kPiD)));
+    const int segments =
+        std::max(3, static_cast<int>(std::ceil(kQuadricSegments * *phi_max / (2 * kPiD))));
     TriangleMesh mesh;
     for (int i = 0; i <= rings; ++i) {
         const double v = double(i) / rings, theta = theta_min + v * (theta_max - theta_min);
         for (int j = 0; j <= segments; ++j) {
             const double u = double(j) / segments, phi = u * *phi_max;
-            const Vec3d n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+            const Vec3d n(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                          std::cos(theta));
             mesh.positions.emplace_back(n * radius);
             mesh.normals.emplace_back(n);
             // pbrt's v runs from z_min up: theta_max down to theta_min.
@@ -118,9 +133,11 @@ absl::StatusOr<TriangleMesh> DiskShape(ParameterList& parameters, const Location
     const absl::StatusOr<double> phi_max = PhiMax(parameters, where);
     if (!parameters.status().ok()) return parameters.status();
     if (!phi_max.ok()) return phi_max.status();
-    if (!(radius > 0 && std::isfinite(radius) && inner >= 0 && inner < radius && std::isfinite(height)))
+    if (!(radius > 0 && std::isfinite(radius) && inner >= 0 && inner < radius &&
+          std::isfinite(height)))
         return Invalid(where, "disk needs 0 <= innerradius < radius, all finite");
-    const int segments = std::max(3, static_cast<int>(std::ceil(kQuadricSegments * *phi_max / (2 * kPiD))));
+    const int segments =
+        std::max(3, static_cast<int>(std::ceil(kQuadricSegments * *phi_max / (2 * kPiD))));
     TriangleMesh mesh;
     for (int j = 0; j <= segments; ++j) {
         const double u = double(j) / segments, phi = u * *phi_max;
@@ -144,15 +161,18 @@ absl::StatusOr<TriangleMesh> CylinderShape(ParameterList& parameters, const Loca
     const absl::StatusOr<double> phi_max = PhiMax(parameters, where);
     if (!parameters.status().ok()) return parameters.status();
     if (!phi_max.ok()) return phi_max.status();
-    if (!(radius > 0 && std::isfinite(radius) && std::isfinite(z_min) && std::isfinite(z_max) && z_min != z_max))
+    if (!(radius > 0 && std::isfinite(radius) && std::isfinite(z_min) && std::isfinite(z_max) &&
+          z_min != z_max))
         return Invalid(where, "cylinder needs a positive radius and zmin != zmax, all finite");
-    const int segments = std::max(3, static_cast<int>(std::ceil(kQuadricSegments * *phi_max / (2 * kPiD))));
+    const int segments =
+        std::max(3, static_cast<int>(std::ceil(kQuadricSegments * *phi_max / (2 * kPiD))));
     TriangleMesh mesh;
     for (int j = 0; j <= segments; ++j) {
         const double u = double(j) / segments, phi = u * *phi_max;
         const Vec3d n(std::cos(phi), std::sin(phi), 0);
         for (const double v : {0.0, 1.0}) {
-            mesh.positions.emplace_back(Vec3d(radius * n.x, radius * n.y, z_min + v * (z_max - z_min)));
+            mesh.positions.emplace_back(
+                Vec3d(radius * n.x, radius * n.y, z_min + v * (z_max - z_min)));
             mesh.normals.emplace_back(n);
             mesh.uvs.push_back({static_cast<float>(u), static_cast<float>(v)});
         }

@@ -14,7 +14,8 @@ inline constexpr int kQuadricSegments = 128, kSphereRings = 64;
 
 // "point3 P", "integer indices" (optional for exactly 3 vertices), "normal N", "point2 uv".
 absl::StatusOr<TriangleMesh> TriangleMeshShape(ParameterList& parameters, const Location& where);
-// Bilinear patches given by "point3 P" and 4 "indices" each (p00 p10 p01 p11), two triangles a patch.
+// Bilinear patches given by "point3 P" and 4 "indices" each (p00 p10 p01 p11), two triangles a
+// patch.
 absl::StatusOr<TriangleMesh> BilinearMeshShape(ParameterList& parameters, const Location& where);
 // "radius" (1), "zmin" (-radius), "zmax" (radius), "phimax" (360): normals point outward,
 // uv as pbrt's (phi / phimax, (theta - theta_min) / (theta_max - theta_min)).

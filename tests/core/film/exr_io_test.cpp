@@ -10,9 +10,12 @@ namespace {
 
 TEST(ExrIoTest, FloatRgbAndMetadataRoundTripExactly) {
     Image image(5, 3);
-    for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = Rgb(0.1f * i, 1e-30f * i, 3e30f);
-    const std::string path = (std::filesystem::temp_directory_path() / "pf-exr-roundtrip.exr").string();
-    ASSERT_TRUE(WriteExr(path, image, {{"photonfarm:seed", "42"}, {"photonfarm:scene", "a.gltf"}}).ok());
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        image.pixels[i] = Rgb(0.1f * i, 1e-30f * i, 3e30f);
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "pf-exr-roundtrip.exr").string();
+    ASSERT_TRUE(
+        WriteExr(path, image, {{"photonfarm:seed", "42"}, {"photonfarm:scene", "a.gltf"}}).ok());
     ImageMetadata metadata;
     const absl::StatusOr<Image> read = ReadExr(path, &metadata);
     ASSERT_TRUE(read.ok()) << read.status();

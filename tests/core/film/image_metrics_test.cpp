@@ -38,7 +38,8 @@ TEST(ImageMetricsTest, CountNonFinitePixelsApartAndSkipThem) {
 TEST(ImageMetricsTest, DifferentSizesAreAnErrorNamingBoth) {
     const absl::StatusOr<ImageDifference> d = CompareImages(Image(4, 2), Image(2, 4));
     ASSERT_FALSE(d.ok());
-    EXPECT_NE(std::string(d.status().message()).find("4x2 against 2x4"), std::string::npos) << d.status();
+    EXPECT_NE(std::string(d.status().message()).find("4x2 against 2x4"), std::string::npos)
+        << d.status();
 }
 
 }  // namespace

@@ -21,8 +21,12 @@ TEST(FastTrigTest, MatchesLibmOverAFullTurn) {
 }
 
 TEST(FastTrigTest, QuadrantsHaveTheRightSigns) {
-    const float cases[][3] = {{0.0f, 0.0f, 1.0f}, {0.25f, 1.0f, 0.0f}, {0.5f, 0.0f, -1.0f}, {0.75f, -1.0f, 0.0f},
-                              {0.125f, 0.70710678f, 0.70710678f}, {0.625f, -0.70710678f, -0.70710678f}};
+    const float cases[][3] = {{0.0f, 0.0f, 1.0f},
+                              {0.25f, 1.0f, 0.0f},
+                              {0.5f, 0.0f, -1.0f},
+                              {0.75f, -1.0f, 0.0f},
+                              {0.125f, 0.70710678f, 0.70710678f},
+                              {0.625f, -0.70710678f, -0.70710678f}};
     for (const auto& [u, sine, cosine] : cases) {
         float s, c;
         SinCosTurns(u, &s, &c);

@@ -23,7 +23,8 @@ TEST(OctahedralTest, RoundTripsEveryDirectionClosely) {
         worst_degrees = std::max(worst_degrees, degrees);
     }
     EXPECT_LT(worst_degrees, 0.01);
-    for (const Vec3& axis : {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)}) {
+    for (const Vec3& axis : {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0),
+                             Vec3(0, 0, 1), Vec3(0, 0, -1)}) {
         const Vec3 decoded = Normalize(DecodeOctahedral(EncodeOctahedral(axis)));
         EXPECT_NEAR(Dot(decoded, axis), 1.0f, 1e-6f);
     }

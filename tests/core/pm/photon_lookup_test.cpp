@@ -23,13 +23,16 @@ std::vector<StoredPhoton> WallPhotons(size_t count, uint32_t seed, float power =
     std::vector<StoredPhoton> photons;
     for (size_t i = 0; i < count; ++i) {
         const float a = u(random), b = u(random);
-        if (i % 2 == 0) photons.push_back({{a, b, 0.0f}, {0, 0, -1}, Rgb(power)});
-        else photons.push_back({{0.0f, a, b}, {-1, 0, 0}, Rgb(power)});
+        if (i % 2 == 0)
+            photons.push_back({{a, b, 0.0f}, {0, 0, -1}, Rgb(power)});
+        else
+            photons.push_back({{0.0f, a, b}, {-1, 0, 0}, Rgb(power)});
     }
     return photons;
 }
 
-std::vector<float> NearestDistances(const PhotonLookup& lookup, const Vec3& p, uint32_t k, float max_sq) {
+std::vector<float> NearestDistances(const PhotonLookup& lookup, const Vec3& p, uint32_t k,
+                                    float max_sq) {
     NearestPhotons nearest;
     lookup.Nearest(p, k, max_sq, nearest);
     std::vector<float> distances;
@@ -65,11 +68,13 @@ TEST(PhotonLookupTest, TheDiscReachesTheKthPhotonOrTheLimit) {
     NearestPhotons nearest;
     tree.Nearest({0.5f, 0.5f, 0.0f}, 8, 1.0f, nearest);
     ASSERT_EQ(nearest.entries.size(), 8u);
-    const float farthest = std::max_element(nearest.entries.begin(), nearest.entries.end())->distance_sq;
+    const float farthest =
+        std::max_element(nearest.entries.begin(), nearest.entries.end())->distance_sq;
     EXPECT_EQ(nearest.RadiusSq(), farthest);
     tree.Nearest({5.0f, 5.0f, 5.0f}, 8, 0.01f, nearest);
     EXPECT_TRUE(nearest.entries.empty());
-    EXPECT_EQ(nearest.RadiusSq(), 0.01f) << "too few photons: the estimate's disc is the search's limit";
+    EXPECT_EQ(nearest.RadiusSq(), 0.01f)
+        << "too few photons: the estimate's disc is the search's limit";
 }
 
 class FilterTest : public ::testing::TestWithParam<DensityFilter> {};
@@ -87,7 +92,8 @@ TEST_P(FilterTest, EstimatesAUniformDensityWithoutBias) {
     constexpr int kQueries = 2000;
     for (int q = 0; q < kQueries; ++q) {
         const Vec3 p(u(random), u(random), 0.0f);
-        sum += Average(EstimateDiffuseRadiance(tree, p, {0, 0, 1}, Rgb(0.6f), 64, 0.01f, GetParam(), scratch));
+        sum += Average(
+            EstimateDiffuseRadiance(tree, p, {0, 0, 1}, Rgb(0.6f), 64, 0.01f, GetParam(), scratch));
     }
     // k = 64 photons give each estimate about 1/8 relative noise; 2000 of them, partly
     // sharing photons, average it to well under 1%.
@@ -95,8 +101,11 @@ TEST_P(FilterTest, EstimatesAUniformDensityWithoutBias) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Filters, FilterTest,
-                         ::testing::Values(DensityFilter::kBox, DensityFilter::kCone, DensityFilter::kGaussian),
-                         [](const auto& info) { return std::string(DensityFilterName(info.param)); });
+                         ::testing::Values(DensityFilter::kBox, DensityFilter::kCone,
+                                           DensityFilter::kGaussian),
+                         [](const auto& info) {
+                             return std::string(DensityFilterName(info.param));
+                         });
 
 TEST(PhotonMapMemoryTest, MapsThatWillNotFitAreRefusedNamingTheFlags) {
     PhotonMapSettings settings;
@@ -105,8 +114,10 @@ TEST(PhotonMapMemoryTest, MapsThatWillNotFitAreRefusedNamingTheFlags) {
     const absl::Status status = CheckPhotonMapsFit(forecast, settings, uint64_t{16} << 30);
     EXPECT_EQ(status.code(), absl::StatusCode::kResourceExhausted);
     EXPECT_NE(status.message().find("--pm-photons"), std::string::npos) << status.message();
-    EXPECT_NE(status.message().find("ppm, sppm"), std::string::npos) << "it names the way out: " << status.message();
-    EXPECT_TRUE(CheckPhotonMapsFit({2.5, 0.1, uint64_t{1} << 30}, settings, uint64_t{16} << 30).ok());
+    EXPECT_NE(status.message().find("ppm, sppm"), std::string::npos)
+        << "it names the way out: " << status.message();
+    EXPECT_TRUE(
+        CheckPhotonMapsFit({2.5, 0.1, uint64_t{1} << 30}, settings, uint64_t{16} << 30).ok());
     EXPECT_GT(AvailableMemoryBytes(), uint64_t{1} << 26);
 }
 

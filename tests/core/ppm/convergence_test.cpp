@@ -29,7 +29,8 @@ TEST(ConvergenceTest, FitPowerLawSkipsUnusablePairsAndRefusesTooFew) {
     ASSERT_TRUE(fit.has_value());
     EXPECT_NEAR(fit->slope, -0.5, 1e-12);
     EXPECT_FALSE(FitPowerLaw(std::vector<double>{5}, std::vector<double>{1}).has_value());
-    EXPECT_FALSE(FitPowerLaw(std::vector<double>{5, 5, 5}, std::vector<double>{1, 2, 3}).has_value());
+    EXPECT_FALSE(
+        FitPowerLaw(std::vector<double>{5, 5, 5}, std::vector<double>{1, 2, 3}).has_value());
 }
 
 TEST(ConvergenceTest, FitsLeaveOutTheFirstEpochsAndMissingErrors) {
@@ -51,7 +52,8 @@ TEST(ConvergenceTest, FitsLeaveOutTheFirstEpochsAndMissingErrors) {
     ASSERT_TRUE(fits.estimated_vs_photons && fits.measured_vs_photons && fits.measured_vs_seconds);
     EXPECT_NEAR(fits.estimated_vs_photons->slope, -0.4, 1e-12);
     EXPECT_NEAR(fits.measured_vs_photons->slope, -0.3, 1e-12);
-    EXPECT_NEAR(fits.measured_vs_seconds->slope, -0.3, 1e-12);  // seconds proportional to photons here
+    EXPECT_NEAR(fits.measured_vs_seconds->slope, -0.3,
+                1e-12);  // seconds proportional to photons here
 }
 
 TEST(ConvergenceTest, LogStaysBoundedSpreadOverTheRunAndEndsAtTheLatestEpoch) {
@@ -66,17 +68,21 @@ TEST(ConvergenceTest, LogStaysBoundedSpreadOverTheRunAndEndsAtTheLatestEpoch) {
     }
     const std::vector<ConvergencePoint>& points = log.Points();
     EXPECT_GT(points.size(), ConvergenceLog::kMaxPoints / 2);
-    // Evenly spread: a stride of 32 epochs (100003 / 4096 rounded up to a power of two), then the latest.
+    // Evenly spread: a stride of 32 epochs (100003 / 4096 rounded up to a power of two), then the
+    // latest.
     for (size_t i = 0; i + 1 < points.size(); ++i) ASSERT_EQ(points[i].epochs, 32 * (i + 1));
 }
 
 TEST(ConvergenceTest, CsvHasOneRowPerPointAndEmptyCellsWhereUnknown) {
     ConvergencePoint first{1.25, 1, 4096, std::nullopt, std::nullopt, 64};
-    ConvergencePoint second{2.5, 2, 8192, ErrorEstimate{true, 0.02, 0.0004, 0.01}, ImageDifference{0.03, 0.0009}, 64, 9};
+    ConvergencePoint second{
+        2.5, 2, 8192, ErrorEstimate{true, 0.02, 0.0004, 0.01}, ImageDifference{0.03, 0.0009},
+        64,  9};
     second.measured->nonfinite_pixels = 16;
     const std::vector<ConvergencePoint> points = {first, second};
     EXPECT_EQ(ConvergenceCsv(points),
-              "seconds,epochs,photons,estimated_rmse,estimated_rel_error,estimated_bias_rmse,reference_rmse,"
+              "seconds,epochs,photons,estimated_rmse,estimated_rel_error,estimated_bias_rmse,"
+              "reference_rmse,"
               "reference_rel_mse,reference_rel_error,reference_nonfinite_fraction,camera_samples\n"
               "1.250000,1,4096,,,,,,,,0\n"
               "2.500000,2,8192,0.02,0.02,0.01,0.03,0.0009,0.03,0.25,9\n");
@@ -89,13 +95,14 @@ TEST(ConvergenceTest, LogsWithoutGrowingPhotonsAreMeasuredInCameraSamples) {
     std::vector<ConvergencePoint> points;
     for (uint64_t epoch = 1; epoch <= 8; ++epoch) {
         const double error = 0.1 / std::sqrt(double(epoch));
-        points.push_back({double(epoch), epoch, 0, ErrorEstimate{true, error, error * error, 0}, std::nullopt, 64,
-                          epoch * 1000});
+        points.push_back({double(epoch), epoch, 0, ErrorEstimate{true, error, error * error, 0},
+                          std::nullopt, 64, epoch * 1000});
     }
     EXPECT_TRUE(WorkIsCameraSamples(points));
     const ConvergenceFits fits = FitConvergence(points);
     ASSERT_TRUE(fits.estimated_vs_photons.has_value());
-    EXPECT_NEAR(fits.estimated_vs_photons->slope, -0.5, 1e-9) << "error against camera samples falls as 1/sqrt(n)";
+    EXPECT_NEAR(fits.estimated_vs_photons->slope, -0.5, 1e-9)
+        << "error against camera samples falls as 1/sqrt(n)";
     for (ConvergencePoint& point : points) point.photons = 2'000'000;  // a pm job's maps
     EXPECT_TRUE(WorkIsCameraSamples(points));
 }

@@ -30,8 +30,8 @@ ProgressiveEstimate OnePointEstimate() {
 
 // Batch `index % 2` of the epoch, whose one tally entry carries `flux` (W x N_emitted) in
 // `photons` photons, `inner` of them within R / sqrt(2) (half of them: a flat density, no bias).
-BatchResult Batch(const ProgressiveEstimate& estimate, uint32_t batch_in_epoch, float flux, uint32_t photons = 2,
-                  uint32_t inner = 1) {
+BatchResult Batch(const ProgressiveEstimate& estimate, uint32_t batch_in_epoch, float flux,
+                  uint32_t photons = 2, uint32_t inner = 1) {
     BatchResult result;
     result.spec = MakeBatchSpec(estimate.Settings().layout, estimate.Epoch(), batch_in_epoch, 1);
     result.tally.hit_point = {0};
@@ -76,7 +76,8 @@ TEST(ErrorEstimateTest, PhotonsCrowdingTheInnerDiscShowAsBias) {
     // bias 2 (L - L_inner) = -L, less the little its own noise claims (4000 photons).
     ProgressiveEstimate estimate = OnePointEstimate();
     for (int epoch = 0; epoch < 2; ++epoch)
-        estimate.MergeEpoch(std::vector{Batch(estimate, 0, 3, 1000, 750), Batch(estimate, 1, 3, 1000, 750)});
+        estimate.MergeEpoch(
+            std::vector{Batch(estimate, 0, 3, 1000, 750), Batch(estimate, 1, 3, 1000, 750)});
     const double value = estimate.Resolve().pixels[0].x;
     const ErrorEstimate error = estimate.EstimateError();
     ASSERT_TRUE(error.known);
@@ -100,10 +101,13 @@ TEST(ErrorEstimateTest, AgreeingHalvesGiveZeroAndTheTargetEndsTheBudget) {
     EXPECT_EQ(error.rmse, 0.0);
     JobSpec spec;
     spec.target_error = 0.01;
-    EXPECT_EQ(BudgetFraction(spec, 0, 0, 0, std::nullopt), 0.0) << "an unknown error spends none of the budget";
-    EXPECT_DOUBLE_EQ(BudgetFraction(spec, 0, 0, 0, 0.02), 0.25) << "half the error needs four times the photons";
+    EXPECT_EQ(BudgetFraction(spec, 0, 0, 0, std::nullopt), 0.0)
+        << "an unknown error spends none of the budget";
+    EXPECT_DOUBLE_EQ(BudgetFraction(spec, 0, 0, 0, 0.02), 0.25)
+        << "half the error needs four times the photons";
     EXPECT_EQ(BudgetFraction(spec, 0, 0, 0, 0.01), 1.0);
-    EXPECT_EQ(BudgetFraction(spec, 0, 0, 0, error.RelativeError()), 1.0) << "no noise at all meets any target";
+    EXPECT_EQ(BudgetFraction(spec, 0, 0, 0, error.RelativeError()), 1.0)
+        << "no noise at all meets any target";
 }
 
 }  // namespace

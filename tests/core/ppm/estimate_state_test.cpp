@@ -21,7 +21,8 @@ ProgressiveEstimate MakeEstimate() {
     std::mt19937 rng(7);
     for (uint32_t i = 0; i < kHitPoints; ++i)
         camera_pass.hit_points.push_back({Vec3(float(i), 0, 0), Vec3(0, 0, 1),
-                                          Rgb(0.1f + 0.001f * float(i % 17), 0.2f, 0.3f), uint32_t(rng() % 100)});
+                                          Rgb(0.1f + 0.001f * float(i % 17), 0.2f, 0.3f),
+                                          uint32_t(rng() % 100)});
     EstimateSettings settings;
     settings.initial_radius = 0.5;
     settings.samples_per_pixel = 3;
@@ -40,7 +41,8 @@ BatchResult RandomBatch(const BatchSpec& spec) {
         result.tally.hit_point.push_back(i);
         result.tally.photons.push_back(photons);
         result.tally.inner_photons.push_back(rng() % (photons + 1));
-        result.tally.flux.push_back(Rgb(float(rng() % 1000) * 1e-3f, float(rng() % 1000) * 1e-3f, 0.25f));
+        result.tally.flux.push_back(
+            Rgb(float(rng() % 1000) * 1e-3f, float(rng() % 1000) * 1e-3f, 0.25f));
     }
     for (uint32_t i = spec.sample_begin; i < spec.sample_end; ++i)
         result.samples.push_back(Rgb(float(rng() % 100) * 1e-2f, 0.5f, 0.0f));
@@ -50,7 +52,8 @@ BatchResult RandomBatch(const BatchSpec& spec) {
 
 void FoldNext(ProgressiveEstimate& estimate) {
     estimate.FoldBatch(RandomBatch(estimate.EpochBatches()[estimate.BatchesFolded()]));
-    if (estimate.BatchesFolded() == estimate.Settings().layout.batches_per_epoch) estimate.FinishEpoch();
+    if (estimate.BatchesFolded() == estimate.Settings().layout.batches_per_epoch)
+        estimate.FinishEpoch();
 }
 
 bool SamePixels(const Image& a, const Image& b) {
@@ -71,7 +74,8 @@ TEST(EstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
         ByteWriter writer;
         current.Save(writer);
         ByteReader reader(writer.Bytes());
-        absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> loaded = ProgressiveEstimate::Load(reader);
+        absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> loaded =
+            ProgressiveEstimate::Load(reader);
         ASSERT_TRUE(loaded.ok()) << loaded.status();
         EXPECT_TRUE(reader.AtEnd());
         EXPECT_TRUE(SamePixels((*loaded)->Resolve(), current.Resolve())) << "after fold " << b;
@@ -81,7 +85,9 @@ TEST(EstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
     EXPECT_EQ(estimate->Epoch(), uint64_t(kEpochs));
     ASSERT_EQ(estimate->HitPoints().size(), uninterrupted.HitPoints().size());
     EXPECT_EQ(std::memcmp(estimate->HitPoints().data(), uninterrupted.HitPoints().data(),
-                          kHitPoints * sizeof(HitPoint)), 0) << "hit points, pixels included, come back as they were";
+                          kHitPoints * sizeof(HitPoint)),
+              0)
+        << "hit points, pixels included, come back as they were";
     EXPECT_EQ(estimate->PhotonsEmitted(), uninterrupted.PhotonsEmitted());
     EXPECT_TRUE(SamePixels(estimate->Resolve(), expected));
     const ErrorEstimate error = estimate->EstimateError();
@@ -102,8 +108,9 @@ CameraPassResult StochasticPass(uint64_t epoch) {
     std::mt19937 rng(static_cast<uint32_t>(epoch + 3));
     for (uint32_t i = 0; i < kHitPoints; ++i) {
         const bool empty = rng() % 7 == 0;
-        pass.hit_points.push_back({Vec3(float(i) + 0.1f * float(epoch), 0, 0), Vec3(0, 0, 1),
-                                   empty ? Rgb(0.0f) : Rgb(0.1f + 0.01f * float(rng() % 17), 0.2f, 0.3f), i / 3});
+        pass.hit_points.push_back(
+            {Vec3(float(i) + 0.1f * float(epoch), 0, 0), Vec3(0, 0, 1),
+             empty ? Rgb(0.0f) : Rgb(0.1f + 0.01f * float(rng() % 17), 0.2f, 0.3f), i / 3});
         pass.footprint.push_back(empty ? 0.0f : 0.5f);
     }
     return pass;
@@ -127,7 +134,8 @@ std::unique_ptr<Estimate> MakeStochastic() {
 }
 
 std::unique_ptr<Estimate> MakePixels() {
-    return std::make_unique<PixelEstimate>(PixelEstimateSettings{Integrator::kPath, 10, 10, 2, 4, 0});
+    return std::make_unique<PixelEstimate>(
+        PixelEstimateSettings{Integrator::kPath, 10, 10, 2, 4, 0});
 }
 
 class AnyEstimateStateTest : public ::testing::TestWithParam<EstimateKind> {};
@@ -151,7 +159,8 @@ TEST_P(AnyEstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
         EXPECT_TRUE(reader.AtEnd());
         EXPECT_EQ((*loaded)->Kind(), estimate->Kind());
         EXPECT_TRUE(SamePixels((*loaded)->Resolve(), estimate->Resolve())) << "after fold " << b;
-        if ((*loaded)->Kind() == Integrator::kSppm)  // its next epochs' camera passes, as the coordinator reattaches them
+        if ((*loaded)->Kind() == Integrator::kSppm)  // its next epochs' camera passes, as the
+                                                     // coordinator reattaches them
             static_cast<ProgressiveEstimate&>(**loaded).SetEpochCameraPass(StochasticPass);
         estimate = std::move(*loaded);
         fold_next(*estimate);
@@ -163,7 +172,8 @@ TEST_P(AnyEstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Kinds, AnyEstimateStateTest,
-                         ::testing::Values(EstimateKind{"sppm", MakeStochastic}, EstimateKind{"path", MakePixels}),
+                         ::testing::Values(EstimateKind{"sppm", MakeStochastic},
+                                           EstimateKind{"path", MakePixels}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 TEST(EstimateStateTest, TruncatedOrAlteredStatesAreRefused) {
@@ -174,7 +184,8 @@ TEST(EstimateStateTest, TruncatedOrAlteredStatesAreRefused) {
     const std::string bytes = writer.Bytes();
     for (size_t length : {size_t{0}, size_t{7}, bytes.size() / 2, bytes.size() - 1}) {
         ByteReader reader(std::string_view(bytes).substr(0, length));
-        const absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> loaded = ProgressiveEstimate::Load(reader);
+        const absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> loaded =
+            ProgressiveEstimate::Load(reader);
         ASSERT_FALSE(loaded.ok()) << length << " bytes";
         EXPECT_TRUE(absl::IsDataLoss(loaded.status())) << loaded.status();
     }

@@ -41,7 +41,8 @@ TEST(EstimatorTest, GeneralUpdateMatchesTheEquations) {
 
 TEST(EstimatorTest, AlphaOneNeverShrinksTheRadius) {
     PointEstimate estimate{0.0, 1.0, Rgbd(0.0)};
-    for (int pass = 0; pass < 100; ++pass) estimate = UpdateEstimate(estimate, 10.0, Rgbd(1.0), 1.0);
+    for (int pass = 0; pass < 100; ++pass)
+        estimate = UpdateEstimate(estimate, 10.0, Rgbd(1.0), 1.0);
     EXPECT_EQ(estimate.radius_sq, 1.0);
     EXPECT_DOUBLE_EQ(estimate.photon_count, 1000.0);
     EXPECT_DOUBLE_EQ(estimate.flux.x, 100.0);
@@ -88,7 +89,8 @@ TEST(EstimatorTest, RadiusNeverGrowsAndDensityIsPreservedByTheShrink) {
         ASSERT_LE(next.radius_sq, estimate.radius_sq);
         if (m > 0) {
             // tau'/R'^2 == (tau + Phi)/R^2: the shrink moves flux with area, not density.
-            ASSERT_NEAR(next.flux.x / next.radius_sq, (estimate.flux.x + phi.x) / estimate.radius_sq,
+            ASSERT_NEAR(next.flux.x / next.radius_sq,
+                        (estimate.flux.x + phi.x) / estimate.radius_sq,
                         1e-9 * (estimate.flux.x + phi.x) / estimate.radius_sq);
         }
         estimate = next;

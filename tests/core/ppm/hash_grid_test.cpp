@@ -17,8 +17,9 @@ TEST(HashGridTest, MatchesBruteForceForMixedRadii) {
     std::vector<HitPoint> hit_points(3000);
     std::vector<float> radius_sq(hit_points.size());
     for (size_t i = 0; i < hit_points.size(); ++i) {
-        hit_points[i] = {Vec3(rng.NextFloat(), rng.NextFloat(), rng.NextFloat()) * 4.0f - Vec3(2.0f),
-                         SampleUniformSphere(rng.NextFloat(), rng.NextFloat()), Rgb(0.5f), uint32_t(i)};
+        hit_points[i] = {
+            Vec3(rng.NextFloat(), rng.NextFloat(), rng.NextFloat()) * 4.0f - Vec3(2.0f),
+            SampleUniformSphere(rng.NextFloat(), rng.NextFloat()), Rgb(0.5f), uint32_t(i)};
         const float r = 0.02f + 0.2f * rng.NextFloat();
         radius_sq[i] = i % 17 == 0 ? 0.0f : r * r;  // some hit points have no radius at all
     }
@@ -29,10 +30,12 @@ TEST(HashGridTest, MatchesBruteForceForMixedRadii) {
         const Vec3 direction = SampleUniformSphere(rng.NextFloat(), rng.NextFloat());
         // Each found hit point with whether p lies in its inner disc (R / sqrt(2)).
         std::vector<std::pair<uint32_t, bool>> found, expected;
-        grid.ForEachGathering(p, direction, [&](uint32_t i, bool inner) { found.emplace_back(i, inner); });
+        grid.ForEachGathering(p, direction,
+                              [&](uint32_t i, bool inner) { found.emplace_back(i, inner); });
         for (uint32_t i = 0; i < hit_points.size(); ++i) {
             const float distance_sq = LengthSquared(hit_points[i].position - p);
-            if (radius_sq[i] > 0 && distance_sq <= radius_sq[i] && Dot(hit_points[i].normal, direction) < 0)
+            if (radius_sq[i] > 0 && distance_sq <= radius_sq[i] &&
+                Dot(hit_points[i].normal, direction) < 0)
                 expected.emplace_back(i, 2 * distance_sq <= radius_sq[i]);
         }
         std::sort(found.begin(), found.end());
@@ -43,13 +46,15 @@ TEST(HashGridTest, MatchesBruteForceForMixedRadii) {
 TEST(HashGridTest, RadiiFarBelowTheCoordinatesStillFindTheirPhotons) {
     // Radii shrinking toward zero far from the origin: cell indices would overflow without the
     // clamp. A photon exactly at a hit point must still be found, and a neighbour not.
-    const std::vector<HitPoint> hit_points = {{Vec3(1e4f, -1e4f, 3e3f), Vec3(0, 0, 1), Rgb(0.5f), 0},
-                                              {Vec3(1e4f, -1e4f + 1.0f, 3e3f), Vec3(0, 0, 1), Rgb(0.5f), 1}};
+    const std::vector<HitPoint> hit_points = {
+        {Vec3(1e4f, -1e4f, 3e3f), Vec3(0, 0, 1), Rgb(0.5f), 0},
+        {Vec3(1e4f, -1e4f + 1.0f, 3e3f), Vec3(0, 0, 1), Rgb(0.5f), 1}};
     const std::vector<float> radius_sq = {1e-30f, 1e-30f};
     HashGrid grid;
     grid.Build(hit_points, radius_sq);
     std::vector<uint32_t> found;
-    grid.ForEachGathering(hit_points[0].position, Vec3(0, 0, -1), [&](uint32_t i, bool) { found.push_back(i); });
+    grid.ForEachGathering(hit_points[0].position, Vec3(0, 0, -1),
+                          [&](uint32_t i, bool) { found.push_back(i); });
     EXPECT_EQ(found, std::vector<uint32_t>{0});
 }
 

@@ -7,7 +7,8 @@
 
 namespace pf::testing {
 
-bool ChiSquarePasses(std::span<const double> observed, std::span<const double> expected, double significance) {
+bool ChiSquarePasses(std::span<const double> observed, std::span<const double> expected,
+                     double significance) {
     constexpr double kMinExpected = 5.0;
     double statistic = 0, pooled_observed = 0, pooled_expected = 0;
     int bins = 0;
@@ -21,7 +22,8 @@ bool ChiSquarePasses(std::span<const double> observed, std::span<const double> e
         ++bins;
     }
     if (pooled_expected > 0) {
-        statistic += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / pooled_expected;
+        statistic += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) /
+                     pooled_expected;
         ++bins;
     }
     const double dof = bins - 1;

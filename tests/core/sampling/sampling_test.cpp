@@ -68,13 +68,15 @@ TEST(SamplingTest, UniformTriangleCoversAreaEvenly) {
     for (int i = 0; i < kSamples; ++i) {
         const Point2 b = SampleUniformTriangle(rng.NextFloat(), rng.NextFloat());
         ASSERT_LE(b.x + b.y, 1.0f + 1e-6f);
-        observed[std::min(kGrid - 1, int(b.x * kGrid)) * kGrid + std::min(kGrid - 1, int(b.y * kGrid))] += 1;
+        observed[std::min(kGrid - 1, int(b.x * kGrid)) * kGrid +
+                 std::min(kGrid - 1, int(b.y * kGrid))] += 1;
     }
     // Area of each cell inside the triangle, by fine midpoint integration.
     constexpr int kFine = 60;
     for (int x = 0; x < kGrid * kFine; ++x)
         for (int y = 0; y < kGrid * kFine; ++y)
-            if ((x + 0.5) + (y + 0.5) < kGrid * kFine) expected[(x / kFine) * kGrid + y / kFine] += 1;
+            if ((x + 0.5) + (y + 0.5) < kGrid * kFine)
+                expected[(x / kFine) * kGrid + y / kFine] += 1;
     double total = 0;
     for (double e : expected) total += e;
     for (double& e : expected) e *= kSamples / total;
@@ -95,7 +97,8 @@ TEST(SamplingTest, DiscreteDistributionFollowsWeightsAndSkipsZeros) {
     for (size_t i = 0; i < weights.size(); ++i) expected[i] = kSamples * weights[i] / 10.0;
     std::vector<double> nonzero_observed, nonzero_expected;
     for (size_t i = 0; i < weights.size(); ++i)
-        if (weights[i] > 0) nonzero_observed.push_back(observed[i]), nonzero_expected.push_back(expected[i]);
+        if (weights[i] > 0)
+            nonzero_observed.push_back(observed[i]), nonzero_expected.push_back(expected[i]);
     EXPECT_TRUE(testing::ChiSquarePasses(nonzero_observed, nonzero_expected));
     EXPECT_EQ(distribution.Draw(0.0f).index, 0u);
     EXPECT_EQ(distribution.Draw(0.99999994f).index, 5u);

@@ -24,7 +24,8 @@ TEST(CameraTest, LensRaysMeetOnThePlaneInFocus) {
         const Ray pinhole = camera.GenerateRay(film.x, film.y, 1.5f);
         // The pinhole ray's point at depth focal_distance along forward.
         const Vec3 focus = pinhole.origin + pinhole.direction * (4.0f / -pinhole.direction.z);
-        for (const Point2& lens : {Point2{0, 0}, Point2{1, 0}, Point2{-0.6f, 0.8f}, Point2{0.3f, -0.2f}}) {
+        for (const Point2& lens :
+             {Point2{0, 0}, Point2{1, 0}, Point2{-0.6f, 0.8f}, Point2{0.3f, -0.2f}}) {
             const Ray ray = camera.GenerateRay(film.x, film.y, 1.5f, lens);
             EXPECT_NEAR(Length(ray.direction), 1.0f, 1e-6f);
             // It leaves from the lens disk around the camera position...

@@ -14,7 +14,8 @@ namespace pf {
 namespace {
 
 TEST(EmittersTest, AreaLightPowerIsPiTimesAreaTimesRadiance) {
-    const absl::StatusOr<Scene> scene = LoadScene(testing::WriteGltf(testing::LitQuadScene(), "emit-quad.gltf"));
+    const absl::StatusOr<Scene> scene =
+        LoadScene(testing::WriteGltf(testing::LitQuadScene(), "emit-quad.gltf"));
     ASSERT_TRUE(scene.ok()) << scene.status();
     const Emitters emitters(*scene);
     // A 0.4 x 0.4 quad of radiance 10: pi * 0.16 * 10.
@@ -24,7 +25,8 @@ TEST(EmittersTest, AreaLightPowerIsPiTimesAreaTimesRadiance) {
 TEST(EmittersTest, PhotonsLeaveLightsInProportionToPowerAndCarryTheTotal) {
     testing::TestScene test_scene = testing::LitQuadScene();
     test_scene.lights = {R"({"type":"point","intensity":1})", R"({"type":"point","intensity":3})"};
-    const absl::StatusOr<Scene> scene = LoadScene(testing::WriteGltf(test_scene, "emit-mixed.gltf"));
+    const absl::StatusOr<Scene> scene =
+        LoadScene(testing::WriteGltf(test_scene, "emit-mixed.gltf"));
     ASSERT_TRUE(scene.ok()) << scene.status();
     const Emitters emitters(*scene);
     // Emitters: 2 area triangles (power pi*0.08*10 each), point lights 4 pi and 12 pi.
@@ -51,7 +53,8 @@ TEST(EmittersTest, DirectSamplesIntegrateToThePointLightIrradiance) {
     testing::TestScene test_scene = testing::LitQuadScene();
     test_scene.materials[1].emission = Rgb(0.0f);
     test_scene.lights = {R"({"type":"point","intensity":2})"};
-    const absl::StatusOr<Scene> scene = LoadScene(testing::WriteGltf(test_scene, "emit-point.gltf"));
+    const absl::StatusOr<Scene> scene =
+        LoadScene(testing::WriteGltf(test_scene, "emit-point.gltf"));
     ASSERT_TRUE(scene.ok()) << scene.status();
     const Emitters emitters(*scene);
     Rng rng(2);
@@ -64,7 +67,8 @@ TEST(EmittersTest, DirectSamplesIntegrateToThePointLightIrradiance) {
 }
 
 TEST(EmittersTest, AreaLightDirectSamplesConvergeToTheAnalyticIrradiance) {
-    const absl::StatusOr<Scene> scene = LoadScene(testing::WriteGltf(testing::LitQuadScene(), "emit-area.gltf"));
+    const absl::StatusOr<Scene> scene =
+        LoadScene(testing::WriteGltf(testing::LitQuadScene(), "emit-area.gltf"));
     ASSERT_TRUE(scene.ok()) << scene.status();
     const Emitters emitters(*scene);
     // Irradiance at the centre below a square of half-side a at height h with radiance L:

@@ -1,6 +1,8 @@
 // The rough materials: sampling rough metal agrees with its evaluation (what the path tracer's
 // light sampling weighs against), the sampled density integrates to at most one, and rough
 // glass loses energy only to masking.
+#include "core/scene/glossy.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 #include "core/math/frame.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/glossy.h"
 
 namespace pf {
 namespace {
@@ -47,7 +48,8 @@ TEST_P(RoughMetalTest, SamplingAgreesWithEvaluation) {
         density += f.pdf * 2 * kPi;
     }
     sampled /= kSamples, integrated /= kSamples, density /= kSamples;
-    EXPECT_NEAR(sampled, integrated, 0.02 * integrated) << "alpha " << lobe.alpha << ", cos " << lobe.cos_incident;
+    EXPECT_NEAR(sampled, integrated, 0.02 * integrated)
+        << "alpha " << lobe.alpha << ", cos " << lobe.cos_incident;
     EXPECT_LE(sampled, 1.0) << "a rough mirror of tint 1 reflects at most what arrives";
     EXPECT_LE(density, 1.03) << "the sampled density integrates to at most 1";
     if (lobe.alpha <= 0.4f) {  // single-scattering GGX loses much more when very rough
@@ -57,7 +59,8 @@ TEST_P(RoughMetalTest, SamplingAgreesWithEvaluation) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Lobes, RoughMetalTest,
-                         ::testing::Values(Lobe{0.1f, 1.0f}, Lobe{0.1f, 0.5f}, Lobe{0.4f, 0.9f}, Lobe{0.8f, 0.7f}),
+                         ::testing::Values(Lobe{0.1f, 1.0f}, Lobe{0.1f, 0.5f}, Lobe{0.4f, 0.9f},
+                                           Lobe{0.8f, 0.7f}),
                          [](const auto& info) {
                              return "alpha" + std::to_string(int(info.param.alpha * 100)) + "_cos" +
                                     std::to_string(int(info.param.cos_incident * 100));
@@ -73,7 +76,8 @@ TEST(RoughGlassTest, LosesEnergyOnlyToMaskingAndRefractsMostLight) {
     double carried = 0;
     int transmitted = 0;
     for (int i = 0; i < kSamples; ++i) {
-        const SpecularBounce bounce = ScatterNonDiffuse(glass, Normalize(Vec3(0.3f, 0, -1)), {0, 0, 1}, true, Rgb(1.0f), rng);
+        const SpecularBounce bounce =
+            ScatterNonDiffuse(glass, Normalize(Vec3(0.3f, 0, -1)), {0, 0, 1}, true, Rgb(1.0f), rng);
         ASSERT_LE(MaxComponent(bounce.weight), 1.0f + 1e-5f);
         carried += Average(bounce.weight);
         if (bounce.transmitted) {
@@ -82,7 +86,8 @@ TEST(RoughGlassTest, LosesEnergyOnlyToMaskingAndRefractsMostLight) {
         }
     }
     EXPECT_GT(carried / kSamples, 0.9);
-    EXPECT_NEAR(double(transmitted) / kSamples, 0.95, 0.03) << "about 4% of light is reflected at near-normal incidence";
+    EXPECT_NEAR(double(transmitted) / kSamples, 0.95, 0.03)
+        << "about 4% of light is reflected at near-normal incidence";
 }
 
 }  // namespace

@@ -1,7 +1,4 @@
 // Loading the shipped scenes, and one-line errors that name the file and element for bad ones.
-#include "core/scene/mesh_builder.h"
-#include "core/scene/scene_loader.h"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,12 +6,16 @@
 #include <limits>
 #include <string>
 
+#include "core/scene/mesh_builder.h"
+#include "core/scene/scene_loader.h"
 #include "tests/support/gltf_builder.h"
 
 namespace pf {
 namespace {
 
-std::string ScenePath(const std::string& name) { return std::string(PF_SOURCE_DIR) + "/scenes/" + name; }
+std::string ScenePath(const std::string& name) {
+    return std::string(PF_SOURCE_DIR) + "/scenes/" + name;
+}
 
 int CountMaterials(const Scene& scene, MaterialType type) {
     return static_cast<int>(std::count_if(scene.materials.begin(), scene.materials.end(),
@@ -22,8 +23,8 @@ int CountMaterials(const Scene& scene, MaterialType type) {
 }
 
 // Writes the scene's JSON with the first occurrence of `from` replaced by `to`.
-std::string WriteEdited(const testing::TestScene& scene, const std::string& from, const std::string& to,
-                        const std::string& name) {
+std::string WriteEdited(const testing::TestScene& scene, const std::string& from,
+                        const std::string& to, const std::string& name) {
     std::string json = testing::GltfJson(scene);
     const size_t at = json.find(from);
     EXPECT_NE(at, std::string::npos) << from;
@@ -31,7 +32,8 @@ std::string WriteEdited(const testing::TestScene& scene, const std::string& from
     return testing::WriteTextFile(json, name);
 }
 
-void ExpectError(const absl::StatusOr<Scene>& scene, const std::string& file, const std::string& fragment) {
+void ExpectError(const absl::StatusOr<Scene>& scene, const std::string& file,
+                 const std::string& fragment) {
     ASSERT_FALSE(scene.ok());
     const std::string message(scene.status().message());
     EXPECT_NE(message.find(file), std::string::npos) << message;
@@ -40,7 +42,8 @@ void ExpectError(const absl::StatusOr<Scene>& scene, const std::string& file, co
 }
 
 TEST(GltfLoaderTest, LoadsTheShippedScenes) {
-    for (const char* name : {"cornell-box.gltf", "cornell-glass.gltf", "caustic-glass.gltf", "furnace.gltf"}) {
+    for (const char* name :
+         {"cornell-box.gltf", "cornell-glass.gltf", "caustic-glass.gltf", "furnace.gltf"}) {
         const absl::StatusOr<Scene> scene = LoadScene(ScenePath(name));
         ASSERT_TRUE(scene.ok()) << scene.status();
         EXPECT_GT(scene->triangles.size(), 0u);
@@ -66,15 +69,17 @@ TEST(GltfLoaderTest, GlbAndGltfLoadTheSameGeometry) {
     ASSERT_TRUE(text.ok()) << text.status();
     ASSERT_TRUE(binary.ok()) << binary.status();
     ASSERT_EQ(text->positions.size(), binary->positions.size());
-    for (size_t i = 0; i < text->positions.size(); ++i) EXPECT_EQ(text->positions[i], binary->positions[i]);
+    for (size_t i = 0; i < text->positions.size(); ++i)
+        EXPECT_EQ(text->positions[i], binary->positions[i]);
 }
 
 TEST(GltfLoaderTest, PunctualLightsAreRead) {
     testing::TestScene scene = testing::LitQuadScene();
     scene.materials[1].emission = Rgb(0.0f);
-    scene.lights = {R"({"type":"point","intensity":5,"color":[1,0.5,0.25]})",
-                    R"({"type":"spot","intensity":2,"spot":{"innerConeAngle":0.1,"outerConeAngle":0.5}})",
-                    R"({"type":"directional","intensity":3})"};
+    scene.lights = {
+        R"({"type":"point","intensity":5,"color":[1,0.5,0.25]})",
+        R"({"type":"spot","intensity":2,"spot":{"innerConeAngle":0.1,"outerConeAngle":0.5}})",
+        R"({"type":"directional","intensity":3})"};
     const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "lights.gltf"));
     ASSERT_TRUE(loaded.ok()) << loaded.status();
     ASSERT_EQ(loaded->lights.size(), 3u);
@@ -91,7 +96,8 @@ TEST(GltfLoaderTest, BaseColourTextureIsDecodedToLinearAndSampled) {
     testing::TestScene scene = testing::LitQuadScene();
     scene.materials[0].base_color = Rgb(1.0f, 1.0f, 0.5f);
     scene.materials[0].texture_png_base64 =
-        "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTkSuQmCC";
+        "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTk"
+        "SuQmCC";
     scene.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
     const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "textured.gltf"));
     ASSERT_TRUE(loaded.ok()) << loaded.status();
@@ -109,7 +115,8 @@ TEST(GltfLoaderTest, BaseColourTextureIsDecodedToLinearAndSampled) {
 }
 
 constexpr char kTwoTexelPng[] =
-    "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTkSuQmCC";
+    "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTkSuQm"
+    "CC";
 
 TEST(GltfLoaderTest, TextureTransformIsAppliedToTheTextureCoordinates) {
     // KHR_texture_transform: uv' = offset + rotation(scale uv); a quarter turn maps (1, 0) to
@@ -119,7 +126,8 @@ TEST(GltfLoaderTest, TextureTransformIsAppliedToTheTextureCoordinates) {
     scene.materials[0].texture_extra =
         R"(,"extensions":{"KHR_texture_transform":{"offset":[0.5,0.25],"scale":[2,3],"rotation":1.5707963267948966}})";
     scene.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
-    const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "texture-transform.gltf"));
+    const absl::StatusOr<Scene> loaded =
+        LoadScene(testing::WriteGltf(scene, "texture-transform.gltf"));
     ASSERT_TRUE(loaded.ok()) << loaded.status();
     // Vertex 1 had uv (1, 0): scaled (2, 0), turned to (0, -2), offset to (0.5, -1.75).
     EXPECT_NEAR(loaded->uvs[1].x, 0.5f, 1e-6f);
@@ -146,10 +154,12 @@ TEST(GltfLoaderTest, GlbWithTheImageInItsBinaryChunk) {
 
 TEST(GltfLoaderTest, MeshesUsedByManyNodesAreInstanced) {
     testing::TestScene scene = testing::LitQuadScene();
-    scene.extra_nodes = {R"({"mesh":0,"translation":[0,0,-2]})", R"({"mesh":0,"translation":[0,0,-4],"scale":[-1,1,1]})"};
+    scene.extra_nodes = {R"({"mesh":0,"translation":[0,0,-2]})",
+                         R"({"mesh":0,"translation":[0,0,-4],"scale":[-1,1,1]})"};
     const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "instanced.gltf"));
     ASSERT_TRUE(loaded.ok()) << loaded.status();
-    // The quad is stored once and placed three times; the light, used by one node, is not a prototype.
+    // The quad is stored once and placed three times; the light, used by one node, is not a
+    // prototype.
     ASSERT_EQ(loaded->prototypes.size(), 1u);
     EXPECT_EQ(loaded->prototypes[0].triangle_count, 2u);
     EXPECT_EQ(loaded->instances.size(), 3u);
@@ -187,7 +197,8 @@ TEST(GltfLoaderTest, MissingFileIsNamed) {
 }
 
 TEST(GltfLoaderTest, MalformedJsonIsRefused) {
-    const std::string path = testing::WriteTextFile("{\"asset\": {\"version\": \"2.0\"", "broken.gltf");
+    const std::string path =
+        testing::WriteTextFile("{\"asset\": {\"version\": \"2.0\"", "broken.gltf");
     ExpectError(LoadScene(path), path, "not a valid glTF");
 }
 
@@ -210,15 +221,19 @@ TEST(GltfLoaderTest, NonFiniteTransformIsRefusedNamingTheNode) {
     // overflow. The camera node (#2) scales by 1e200 and so does its child (#3): 1e400 is Inf.
     testing::TestScene scene = testing::LitQuadScene();
     scene.camera_extra = R"(,"scale":[1e200,1,1],"children":[3])";
-    const std::string path = WriteEdited(scene, R"(],"meshes")", R"(,{"name":"inner","scale":[1e200,1,1]}],"meshes")",
-                                         "inf-transform.gltf");
-    ExpectError(LoadScene(path), path, "node 'inner' (#3): world transform overflows to NaN or Inf");
+    const std::string path =
+        WriteEdited(scene, R"(],"meshes")", R"(,{"name":"inner","scale":[1e200,1,1]}],"meshes")",
+                    "inf-transform.gltf");
+    ExpectError(LoadScene(path), path,
+                "node 'inner' (#3): world transform overflows to NaN or Inf");
 }
 
 TEST(GltfLoaderTest, VertexOverflowingItsTransformIsRefused) {
-    const std::string path = WriteEdited(testing::LitQuadScene(), R"({"mesh":0})", R"({"mesh":0,"scale":[1e300,1,1]})",
-                                         "vertex-overflow.gltf");
-    ExpectError(LoadScene(path), path, "mesh #0 primitive 0: vertex 0 is not finite after its transform");
+    const std::string path =
+        WriteEdited(testing::LitQuadScene(), R"({"mesh":0})", R"({"mesh":0,"scale":[1e300,1,1]})",
+                    "vertex-overflow.gltf");
+    ExpectError(LoadScene(path), path,
+                "mesh #0 primitive 0: vertex 0 is not finite after its transform");
 }
 
 TEST(GltfLoaderTest, NonFiniteVertexIsRefusedNamingTheMesh) {
@@ -229,7 +244,8 @@ TEST(GltfLoaderTest, NonFiniteVertexIsRefusedNamingTheMesh) {
 }
 
 TEST(GltfLoaderTest, IndexOutOfRangeCannotReadOutsideTheBuffer) {
-    const std::string path = WriteEdited(testing::LitQuadScene(), R"("count":6)", R"("count":600)", "overrun.gltf");
+    const std::string path =
+        WriteEdited(testing::LitQuadScene(), R"("count":6)", R"("count":600)", "overrun.gltf");
     ExpectError(LoadScene(path), path, "accessor #0 lies outside its buffer");
 }
 

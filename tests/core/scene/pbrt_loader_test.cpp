@@ -2,9 +2,8 @@
 // warnings and errors that point at file:line:column, and bundles that cannot reach outside.
 #include "core/scene/pbrt/pbrt_loader.h"
 
-#include <gtest/gtest.h>
-
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
@@ -24,14 +23,17 @@ namespace {
 SceneBundle Bundle(const std::string& world, std::map<std::string, std::string> files = {}) {
     SceneBundle bundle;
     bundle.main_file = "scene.pbrt";
-    files["scene.pbrt"] = "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 40\n"
-                          "Film \"rgb\" \"integer xresolution\" 200 \"integer yresolution\" 100\nWorldBegin\n"
-                          "LightSource \"point\" \"rgb I\" [1 1 1]\n" + world;
+    files["scene.pbrt"] =
+        "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 40\n"
+        "Film \"rgb\" \"integer xresolution\" 200 \"integer yresolution\" 100\nWorldBegin\n"
+        "LightSource \"point\" \"rgb I\" [1 1 1]\n" +
+        world;
     bundle.files = std::move(files);
     return bundle;
 }
 
-absl::StatusOr<Scene> Load(const SceneBundle& bundle, std::vector<std::string>* warnings = nullptr) {
+absl::StatusOr<Scene> Load(const SceneBundle& bundle,
+                           std::vector<std::string>* warnings = nullptr) {
     SceneLoadOptions options;
     options.warnings = warnings;
     return LoadScene(bundle, "scenes/" + bundle.main_file, options);
@@ -50,7 +52,9 @@ bool Contains(const std::vector<std::string>& lines, const std::string& fragment
     return false;
 }
 
-constexpr char kQuad[] = "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0] \"integer indices\" [0 1 2 3]\n";
+constexpr char kQuad[] =
+    "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0] \"integer indices\" [0 1 "
+    "2 3]\n";
 
 double TotalArea(const Scene& scene) {
     double area = 0;
@@ -69,7 +73,8 @@ TEST(PbrtLexerTest, TokensKnowWhereTheyStart) {
     EXPECT_EQ((*tokens)[1].where.ToString(), "a.pbrt:2:9");
     EXPECT_EQ((*tokens)[3].text, "1.5e-3");
     EXPECT_EQ((*tokens)[5].text, "esc\"aped");
-    const absl::StatusOr<std::vector<pbrt::Token>> open = pbrt::Tokenize("b.pbrt", "Shape\n  \"sphere");
+    const absl::StatusOr<std::vector<pbrt::Token>> open =
+        pbrt::Tokenize("b.pbrt", "Shape\n  \"sphere");
     ASSERT_FALSE(open.ok());
     EXPECT_NE(open.status().message().find("b.pbrt:2:3"), std::string::npos) << open.status();
 }
@@ -91,7 +96,8 @@ TEST(PbrtLoaderTest, CameraFollowsLookAtAndFovSpansTheShorterSide) {
     SceneBundle tall = Bundle(kQuad);
     const std::string film = "\"integer xresolution\" 200 \"integer yresolution\" 100";
     std::string& main = tall.files["scene.pbrt"];
-    main.replace(main.find(film), film.size(), "\"integer xresolution\" 100 \"integer yresolution\" 200");
+    main.replace(main.find(film), film.size(),
+                 "\"integer xresolution\" 100 \"integer yresolution\" 200");
     const absl::StatusOr<Scene> portrait = Load(tall);
     ASSERT_TRUE(portrait.ok()) << portrait.status();
     // 100x200: x is the shorter side, so the vertical angle is wider.
@@ -100,14 +106,17 @@ TEST(PbrtLoaderTest, CameraFollowsLookAtAndFovSpansTheShorterSide) {
 
 TEST(PbrtLoaderTest, FilmAndSppmSettingsBecomeTheRenderDefaults) {
     SceneBundle bundle = Bundle(kQuad);
-    bundle.files["scene.pbrt"] = "Integrator \"sppm\" \"float radius\" 0.25 \"integer iterations\" 10 "
-                                 "\"integer photonsperiteration\" 1000\n" + bundle.files["scene.pbrt"];
+    bundle.files["scene.pbrt"] =
+        "Integrator \"sppm\" \"float radius\" 0.25 \"integer iterations\" 10 "
+        "\"integer photonsperiteration\" 1000\n" +
+        bundle.files["scene.pbrt"];
     std::vector<std::string> warnings;
     const absl::StatusOr<Scene> scene = Load(bundle, &warnings);
     ASSERT_TRUE(scene.ok()) << scene.status();
     EXPECT_EQ(scene->hints.initial_radius, 0.25);
     EXPECT_TRUE(Contains(warnings, "render with --photons 10000 for the same photon count"));
-    const absl::StatusOr<CameraPassSettings> film = FilmFor(JobSpec{}, *scene);  // no --width, --height
+    const absl::StatusOr<CameraPassSettings> film =
+        FilmFor(JobSpec{}, *scene);  // no --width, --height
     ASSERT_TRUE(film.ok());
     EXPECT_EQ(film->width, 200);
     EXPECT_EQ(film->height, 100);
@@ -118,9 +127,9 @@ TEST(PbrtLoaderTest, FilmAndSppmSettingsBecomeTheRenderDefaults) {
 
 TEST(PbrtLoaderTest, TransformsComposeAsPbrtDefines) {
     // Translate then Rotate then Scale: a point p lands at T(R(S(p))).
-    const absl::StatusOr<Scene> scene =
-        Load(Bundle("Translate 1 2 3\nRotate 90 0 0 1\nScale 2 2 2\n"
-                    "Shape \"trianglemesh\" \"point3 P\" [1 0 0  0 1 0  0 0 1] \"integer indices\" [0 1 2]\n"));
+    const absl::StatusOr<Scene> scene = Load(Bundle(
+        "Translate 1 2 3\nRotate 90 0 0 1\nScale 2 2 2\n"
+        "Shape \"trianglemesh\" \"point3 P\" [1 0 0  0 1 0  0 0 1] \"integer indices\" [0 1 2]\n"));
     ASSERT_TRUE(scene.ok()) << scene.status();
     ASSERT_EQ(scene->positions.size(), 3u);
     // (1,0,0) scaled to (2,0,0), turned 90 degrees about z to (0,2,0), moved to (1,4,3).
@@ -131,28 +140,32 @@ TEST(PbrtLoaderTest, TransformsComposeAsPbrtDefines) {
 
 TEST(PbrtLoaderTest, AttributesRestoreTheStateAndInstancesRepeatAnObject) {
     const std::string world = std::string("AttributeBegin\nTranslate 10 0 0\nAttributeEnd\n") +
-                              "ObjectBegin \"quad\"\n" + kQuad + "ObjectEnd\n"
-                              "ObjectInstance \"quad\"\nAttributeBegin\nTranslate 0 0 5\nObjectInstance \"quad\"\nAttributeEnd\n";
+                              "ObjectBegin \"quad\"\n" + kQuad +
+                              "ObjectEnd\n"
+                              "ObjectInstance \"quad\"\nAttributeBegin\nTranslate 0 0 "
+                              "5\nObjectInstance \"quad\"\nAttributeEnd\n";
     const absl::StatusOr<Scene> scene = Load(Bundle(world));
     ASSERT_TRUE(scene.ok()) << scene.status();
     ASSERT_EQ(scene->triangles.size(), 2u);  // the object's two triangles, stored once,
     ASSERT_EQ(scene->prototypes.size(), 1u);
-    ASSERT_EQ(scene->instances.size(), 2u);  // placed twice
+    ASSERT_EQ(scene->instances.size(), 2u);            // placed twice
     EXPECT_NEAR(scene->bounds.lower.x, -1.0f, 1e-6f);  // the first Translate was undone
     EXPECT_NEAR(scene->bounds.upper.z, 5.0f, 1e-6f);
     EXPECT_NEAR(scene->instances[1].ApplyPoint(Vec3(0.0f)).z, 5.0f, 1e-6f);
 }
 
 TEST(PbrtLoaderTest, EmittingShapesOfAnObjectArePlacedAsWorldTriangles) {
-    const std::string world = std::string("ObjectBegin \"lamp\"\n") + kQuad +
-                              "AttributeBegin\nTranslate 0 0 1\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1]\n" + kQuad +
-                              "AttributeEnd\nObjectEnd\nObjectInstance \"lamp\"\nTranslate 3 0 0\nObjectInstance \"lamp\"\n";
+    const std::string world =
+        std::string("ObjectBegin \"lamp\"\n") + kQuad +
+        "AttributeBegin\nTranslate 0 0 1\nAreaLightSource \"diffuse\" \"rgb L\" [1 1 1]\n" + kQuad +
+        "AttributeEnd\nObjectEnd\nObjectInstance \"lamp\"\nTranslate 3 0 0\nObjectInstance "
+        "\"lamp\"\n";
     const absl::StatusOr<Scene> scene = Load(Bundle(world));
     ASSERT_TRUE(scene.ok()) << scene.status();
     ASSERT_EQ(scene->prototypes.size(), 1u);
     EXPECT_EQ(scene->prototypes[0].triangle_count, 2u);  // the plain quad
     EXPECT_EQ(scene->instances.size(), 2u);
-    ASSERT_EQ(scene->WorldTriangleCount(), 4u);          // the emitting quad, once per instance
+    ASSERT_EQ(scene->WorldTriangleCount(), 4u);  // the emitting quad, once per instance
     for (uint32_t t = 0; t < scene->WorldTriangleCount(); ++t)
         EXPECT_TRUE(scene->materials[scene->triangles[t].material].IsEmissive());
     EXPECT_NEAR(scene->bounds.upper.x, 4.0f, 1e-6f);
@@ -163,27 +176,33 @@ TEST(PbrtLoaderTest, InstanceLimitAndSingularInstancesAreRefused) {
     SceneLoadOptions options;
     options.limits.max_instances = 1;
     const absl::StatusOr<Scene> limited =
-        LoadScene(Bundle(object + "ObjectInstance \"quad\"\nObjectInstance \"quad\"\n"), "scenes/scene.pbrt", options);
-    ExpectError(limited, "scenes/scene.pbrt:10:1: ObjectInstance \"quad\": the scene would hold more than 1 instances");
+        LoadScene(Bundle(object + "ObjectInstance \"quad\"\nObjectInstance \"quad\"\n"),
+                  "scenes/scene.pbrt", options);
+    ExpectError(limited,
+                "scenes/scene.pbrt:10:1: ObjectInstance \"quad\": the scene would hold more than 1 "
+                "instances");
     EXPECT_EQ(limited.status().code(), absl::StatusCode::kResourceExhausted);
-    ExpectError(Load(Bundle(object + "Scale 1 0 1\nObjectInstance \"quad\"\n")), "transform is singular");
+    ExpectError(Load(Bundle(object + "Scale 1 0 1\nObjectInstance \"quad\"\n")),
+                "transform is singular");
 }
 
 TEST(PbrtLoaderTest, MaterialsMapOntoPhotonfarms) {
-    const std::string world = std::string("MakeNamedMaterial \"gold\" \"string type\" \"conductor\" \"spectrum eta\" \"metal-Au-eta\" \"spectrum k\" \"metal-Au-k\"\n") +
-                              "NamedMaterial \"gold\"\n" + kQuad +
-                              "Material \"dielectric\" \"float eta\" 1.33\n" + kQuad +
-                              "Material \"dielectric\" \"spectrum eta\" \"glass-BK7\"\n" + kQuad +
-                              "Material \"coateddiffuse\" \"rgb reflectance\" [0.2 0.4 0.6] \"float roughness\" 0.1\n" + kQuad +
-                              "Material \"conductor\" \"rgb reflectance\" [0.9 0.9 0.9]\n" + kQuad +
-                              "Material \"thindielectric\"\n" + kQuad;
+    const std::string world =
+        std::string(
+            "MakeNamedMaterial \"gold\" \"string type\" \"conductor\" \"spectrum eta\" "
+            "\"metal-Au-eta\" \"spectrum k\" \"metal-Au-k\"\n") +
+        "NamedMaterial \"gold\"\n" + kQuad + "Material \"dielectric\" \"float eta\" 1.33\n" +
+        kQuad + "Material \"dielectric\" \"spectrum eta\" \"glass-BK7\"\n" + kQuad +
+        "Material \"coateddiffuse\" \"rgb reflectance\" [0.2 0.4 0.6] \"float roughness\" 0.1\n" +
+        kQuad + "Material \"conductor\" \"rgb reflectance\" [0.9 0.9 0.9]\n" + kQuad +
+        "Material \"thindielectric\"\n" + kQuad;
     std::vector<std::string> warnings;
     const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
     ASSERT_TRUE(scene.ok()) << scene.status();
     ASSERT_EQ(scene->materials.size(), 6u);
     EXPECT_EQ(scene->materials[0].type, MaterialType::kMirror);
-    EXPECT_NEAR(scene->materials[0].base_color.x, 1.0f, 1e-6f);   // gold's F0: red high,
-    EXPECT_NEAR(scene->materials[0].base_color.z, 0.336f, 1e-6f); // blue low
+    EXPECT_NEAR(scene->materials[0].base_color.x, 1.0f, 1e-6f);    // gold's F0: red high,
+    EXPECT_NEAR(scene->materials[0].base_color.z, 0.336f, 1e-6f);  // blue low
     EXPECT_EQ(scene->materials[1].type, MaterialType::kDielectric);
     EXPECT_NEAR(scene->materials[1].ior, 1.33f, 1e-6f);
     EXPECT_NEAR(scene->materials[2].ior, 1.5185f, 1e-4f);
@@ -197,9 +216,12 @@ TEST(PbrtLoaderTest, MaterialsMapOntoPhotonfarms) {
 TEST(PbrtLoaderTest, AreaLightsEmitFromTheirShapesFront) {
     // A 2x2 square facing +z with L = 2; "power" P scales L by P / (pi x area), as pbrt-v4
     // does whatever L's colour: 8 pi / (pi x 4) = 2, so L = 4.
-    const std::string world = std::string("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2]\n") + kQuad +
-                              "AttributeEnd\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2] \"float power\" " +
-                              std::to_string(8 * kPiD) + "\nTranslate 0 0 1\nReverseOrientation\n" + kQuad + "AttributeEnd\n";
+    const std::string world =
+        std::string("AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2]\n") + kQuad +
+        "AttributeEnd\nAttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [2 2 2] \"float "
+        "power\" " +
+        std::to_string(8 * kPiD) + "\nTranslate 0 0 1\nReverseOrientation\n" + kQuad +
+        "AttributeEnd\n";
     const absl::StatusOr<Scene> scene = Load(Bundle(world));
     ASSERT_TRUE(scene.ok()) << scene.status();
     ASSERT_EQ(scene->triangles.size(), 4u);
@@ -214,14 +236,17 @@ TEST(PbrtLoaderTest, AreaLightsEmitFromTheirShapesFront) {
 TEST(PbrtLoaderTest, QuadricsAreTessellatedFaithfully) {
     const absl::StatusOr<Scene> sphere = Load(Bundle("Shape \"sphere\" \"float radius\" 2\n"));
     ASSERT_TRUE(sphere.ok()) << sphere.status();
-    EXPECT_NEAR(TotalArea(*sphere), 4 * kPiD * 4, 4 * kPiD * 4 * 2e-3);  // 4 pi r^2 within the facets' shortfall
+    EXPECT_NEAR(TotalArea(*sphere), 4 * kPiD * 4,
+                4 * kPiD * 4 * 2e-3);  // 4 pi r^2 within the facets' shortfall
     for (const Triangle& t : sphere->triangles) {
-        const Vec3 centre = (sphere->positions[t.vertex[0]] + sphere->positions[t.vertex[1]] + sphere->positions[t.vertex[2]]) / 3.0f;
+        const Vec3 centre = (sphere->positions[t.vertex[0]] + sphere->positions[t.vertex[1]] +
+                             sphere->positions[t.vertex[2]]) /
+                            3.0f;
         ASSERT_GT(Dot(t.normal, centre), 0.0f) << "sphere triangles face outward";
         ASSERT_TRUE(t.smooth);
     }
-    const absl::StatusOr<Scene> disk =
-        Load(Bundle("Shape \"disk\" \"float radius\" 1 \"float innerradius\" 0.5 \"float height\" 0.25\n"));
+    const absl::StatusOr<Scene> disk = Load(Bundle(
+        "Shape \"disk\" \"float radius\" 1 \"float innerradius\" 0.5 \"float height\" 0.25\n"));
     ASSERT_TRUE(disk.ok()) << disk.status();
     EXPECT_NEAR(TotalArea(*disk), kPiD * 0.75, kPiD * 0.75 * 2e-3);
     for (const Triangle& t : disk->triangles) EXPECT_NEAR(t.normal.z, 1.0f, 1e-5f);
@@ -232,17 +257,21 @@ TEST(PbrtLoaderTest, QuadricsAreTessellatedFaithfully) {
     EXPECT_NEAR(TotalArea(*cylinder), 2 * kPiD * 0.5 * 2, 2 * kPiD * 0.5 * 2 * 2e-3);  // 2 pi r h
     for (const Triangle& t : cylinder->triangles) {
         const Vec3 centre = (cylinder->positions[t.vertex[0]] + cylinder->positions[t.vertex[1]] +
-                             cylinder->positions[t.vertex[2]]) / 3.0f;
-        ASSERT_GT(t.normal.x * centre.x + t.normal.y * centre.y, 0.0f) << "cylinder triangles face outward";
+                             cylinder->positions[t.vertex[2]]) /
+                            3.0f;
+        ASSERT_GT(t.normal.x * centre.x + t.normal.y * centre.y, 0.0f)
+            << "cylinder triangles face outward";
     }
 }
 
 TEST(PbrtLoaderTest, LightsTakePbrtsParameters) {
     SceneBundle bundle = Bundle(kQuad);
     bundle.files["scene.pbrt"] +=
-        "LightSource \"spot\" \"point3 from\" [0 0 1] \"point3 to\" [0 0 0] \"float coneangle\" 30 \"float conedelta\" 10 "
+        "LightSource \"spot\" \"point3 from\" [0 0 1] \"point3 to\" [0 0 0] \"float coneangle\" 30 "
+        "\"float conedelta\" 10 "
         "\"blackbody I\" 6500\n"
-        "AttributeBegin\nRotate 90 1 0 0\nLightSource \"distant\" \"point3 from\" [0 0 0] \"point3 to\" [0 0 1] \"rgb L\" [3 3 3]\nAttributeEnd\n"
+        "AttributeBegin\nRotate 90 1 0 0\nLightSource \"distant\" \"point3 from\" [0 0 0] \"point3 "
+        "to\" [0 0 1] \"rgb L\" [3 3 3]\nAttributeEnd\n"
         "LightSource \"point\" \"rgb I\" [1 1 1] \"float power\" 100\n";
     const absl::StatusOr<Scene> scene = Load(bundle);
     ASSERT_TRUE(scene.ok()) << scene.status();
@@ -254,10 +283,13 @@ TEST(PbrtLoaderTest, LightsTakePbrtsParameters) {
     EXPECT_NEAR(spot.cos_inner, std::cos(20 * kPiD / 180), 1e-6);
     EXPECT_TRUE(spot.smooth_falloff);
     // pbrt's smoothstep in the cosine between the cones: t^2 (3 - 2t).
-    const double t = (std::cos(25 * kPiD / 180) - std::cos(30 * kPiD / 180)) / (std::cos(20 * kPiD / 180) - std::cos(30 * kPiD / 180));
+    const double t = (std::cos(25 * kPiD / 180) - std::cos(30 * kPiD / 180)) /
+                     (std::cos(20 * kPiD / 180) - std::cos(30 * kPiD / 180));
     EXPECT_NEAR(spot.SpotFalloff(std::cos(25 * kPiD / 180)), t * t * (3 - 2 * t), 1e-5);
     // 6500 K is close to D65 white, with luminance 1.
-    EXPECT_NEAR(0.2126f * spot.intensity.x + 0.7152f * spot.intensity.y + 0.0722f * spot.intensity.z, 1.0f, 1e-3f);
+    EXPECT_NEAR(
+        0.2126f * spot.intensity.x + 0.7152f * spot.intensity.y + 0.0722f * spot.intensity.z, 1.0f,
+        1e-3f);
     EXPECT_NEAR(spot.intensity.x / spot.intensity.z, 1.0f, 0.05f);
     const PunctualLight& distant = scene->lights[2];
     EXPECT_EQ(distant.type, LightType::kDirectional);
@@ -269,20 +301,25 @@ TEST(PbrtLoaderTest, LightsTakePbrtsParameters) {
 
 TEST(PbrtLoaderTest, IncludesPlyMeshesAndImageTexturesComeFromTheBundle) {
     // A binary PLY quad (two triangles after triangulation) and a 2x1 PNG: red, then grey.
-    std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
-                      "property float z\nproperty float u\nproperty float v\nelement face 1\n"
-                      "property list uchar int vertex_indices\nend_header\n";
-    const float vertices[4][5] = {{-1, -1, 0, 0, 0}, {1, -1, 0, 1, 0}, {1, 1, 0, 1, 1}, {-1, 1, 0, 0, 1}};
+    std::string ply =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 4\nproperty float x\nproperty float "
+        "y\n"
+        "property float z\nproperty float u\nproperty float v\nelement face 1\n"
+        "property list uchar int vertex_indices\nend_header\n";
+    const float vertices[4][5] = {
+        {-1, -1, 0, 0, 0}, {1, -1, 0, 1, 0}, {1, 1, 0, 1, 1}, {-1, 1, 0, 0, 1}};
     ply.append(reinterpret_cast<const char*>(vertices), sizeof vertices);
     const unsigned char count = 4;
     const int32_t face[4] = {0, 1, 2, 3};
     ply.append(reinterpret_cast<const char*>(&count), 1);
     ply.append(reinterpret_cast<const char*>(face), sizeof face);
-    const std::filesystem::path png_path = std::filesystem::temp_directory_path() / "photonfarm-pbrt-texture.png";
+    const std::filesystem::path png_path =
+        std::filesystem::temp_directory_path() / "photonfarm-pbrt-texture.png";
     {
         const unsigned char pixels[6] = {255, 0, 0, 128, 128, 128};
         auto out = OIIO::ImageOutput::create(png_path.string());
-        ASSERT_TRUE(out && out->open(png_path.string(), OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8)));
+        ASSERT_TRUE(out &&
+                    out->open(png_path.string(), OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8)));
         ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels));
         out->close();
     }
@@ -290,19 +327,23 @@ TEST(PbrtLoaderTest, IncludesPlyMeshesAndImageTexturesComeFromTheBundle) {
     ASSERT_TRUE(png.ok());
     const std::string world = "Include \"parts/wall.pbrt\"\n";
     // "unused" names a file the bundle lacks: no material uses it, so it is never read.
-    const std::string wall = "Texture \"unused\" \"spectrum\" \"imagemap\" \"string filename\" \"textures/absent.png\"\n"
-                             "Texture \"checks\" \"spectrum\" \"imagemap\" \"string filename\" \"textures/two.png\" \"float uscale\" 2\n"
-                             "Material \"diffuse\" \"texture reflectance\" \"checks\"\n"
-                             "Shape \"plymesh\" \"string filename\" \"meshes/./quad.ply\"\n";
-    const SceneBundle bundle =
-        Bundle(world, {{"parts/wall.pbrt", wall}, {"meshes/quad.ply", ply}, {"textures/two.png", *png}});
+    const std::string wall =
+        "Texture \"unused\" \"spectrum\" \"imagemap\" \"string filename\" \"textures/absent.png\"\n"
+        "Texture \"checks\" \"spectrum\" \"imagemap\" \"string filename\" \"textures/two.png\" "
+        "\"float uscale\" 2\n"
+        "Material \"diffuse\" \"texture reflectance\" \"checks\"\n"
+        "Shape \"plymesh\" \"string filename\" \"meshes/./quad.ply\"\n";
+    const SceneBundle bundle = Bundle(
+        world, {{"parts/wall.pbrt", wall}, {"meshes/quad.ply", ply}, {"textures/two.png", *png}});
     const absl::StatusOr<Scene> scene = Load(bundle);
     ASSERT_TRUE(scene.ok()) << scene.status();
     EXPECT_EQ(scene->triangles.size(), 2u);
     ASSERT_EQ(scene->textures.size(), 1u);
     EXPECT_NEAR(scene->textures[0]->texels[0].x, 1.0f, 1e-6f);
-    EXPECT_NEAR(scene->textures[0]->texels[1].x, SrgbToLinear(128 / 255.0f), 1e-6f);  // sRGB decoded
-    // pbrt's v runs up the image and uscale 2 repeats it twice: the vertex at uv (1, 1) maps to (2, 0).
+    EXPECT_NEAR(scene->textures[0]->texels[1].x, SrgbToLinear(128 / 255.0f),
+                1e-6f);  // sRGB decoded
+    // pbrt's v runs up the image and uscale 2 repeats it twice: the vertex at uv (1, 1) maps to (2,
+    // 0).
     bool found = false;
     for (size_t v = 0; v < scene->positions.size(); ++v)
         if (scene->positions[v].x > 0.5f && scene->positions[v].y > 0.5f) {
@@ -316,39 +357,54 @@ TEST(PbrtLoaderTest, IncludesPlyMeshesAndImageTexturesComeFromTheBundle) {
 
 TEST(PbrtLoaderTest, UnsupportedThingsWarnAtTheirLocation) {
     std::vector<std::string> warnings;
-    const std::string world = std::string("Shape \"sphere\" \"float radius\" 1 \"float bogus\" 3\n") +
-                              "Shape \"curve\"\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n";
+    const std::string world =
+        std::string("Shape \"sphere\" \"float radius\" 1 \"float bogus\" 3\n") +
+        "Shape \"curve\"\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n";
     SceneBundle bundle = Bundle(world);
-    bundle.files["scene.pbrt"] = "Sampler \"zsobol\" \"integer pixelsamples\" 64\n" + bundle.files["scene.pbrt"];
+    bundle.files["scene.pbrt"] =
+        "Sampler \"zsobol\" \"integer pixelsamples\" 64\n" + bundle.files["scene.pbrt"];
     const absl::StatusOr<Scene> scene = Load(bundle, &warnings);
     ASSERT_TRUE(scene.ok()) << scene.status();
     // The parameter's own line and column: line 7 (the Sampler and 5 lines of preamble before it).
-    EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:7:33: warning: Shape \"sphere\": parameter \"float bogus\""));
-    EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:8:1: warning: Shape \"curve\" is not supported"));
+    EXPECT_TRUE(Contains(
+        warnings, "scenes/scene.pbrt:7:33: warning: Shape \"sphere\": parameter \"float bogus\""));
+    EXPECT_TRUE(
+        Contains(warnings, "scenes/scene.pbrt:8:1: warning: Shape \"curve\" is not supported"));
     EXPECT_TRUE(Contains(warnings, "MakeNamedMedium"));
     EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:1:1: warning: Sampler"));
 }
 
 TEST(PbrtLoaderTest, BadInputIsAOneLineErrorNamingFileLineAndColumn) {
-    ExpectError(Load(Bundle("Shapee \"sphere\"\n")), "scenes/scene.pbrt:6:1: unknown directive 'Shapee'");
-    ExpectError(Load(Bundle("Shape \"sphere\" \"float radius\" \"big\"\n")), "scenes/scene.pbrt:6:16");
-    ExpectError(Load(Bundle("Shape \"sphere\" \"float radius\" -1\n")), "\"float radius\" must be positive");
-    ExpectError(Load(Bundle("Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 7]\n")),
+    ExpectError(Load(Bundle("Shapee \"sphere\"\n")),
+                "scenes/scene.pbrt:6:1: unknown directive 'Shapee'");
+    ExpectError(Load(Bundle("Shape \"sphere\" \"float radius\" \"big\"\n")),
+                "scenes/scene.pbrt:6:16");
+    ExpectError(Load(Bundle("Shape \"sphere\" \"float radius\" -1\n")),
+                "\"float radius\" must be positive");
+    ExpectError(Load(Bundle("Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer "
+                            "indices\" [0 1 7]\n")),
                 "index 2 (7) is outside the 3 points");
-    ExpectError(Load(Bundle("Material \"plastic\"\n")), "scenes/scene.pbrt:6:1: Material \"plastic\" is unknown");
+    ExpectError(Load(Bundle("Material \"plastic\"\n")),
+                "scenes/scene.pbrt:6:1: Material \"plastic\" is unknown");
     ExpectError(Load(Bundle("NamedMaterial \"nothing\"\n")), "no material named \"nothing\"");
     ExpectError(Load(Bundle("AttributeEnd\n")), "AttributeEnd without AttributeBegin");
     ExpectError(Load(Bundle("Translate 1 2\n")), "Translate needs 3 numbers");
     ExpectError(Load(Bundle("Include \"../outside.pbrt\"\n")), "leaves the scene's folder");
     ExpectError(Load(Bundle("Include \"/etc/passwd\"\n")), "is absolute");
-    ExpectError(Load(Bundle("Include \"missing.pbrt\"\n")), "scenes/scene.pbrt:6:1: 'missing.pbrt' is not in the scene bundle");
-    ExpectError(Load(Bundle("Include \"loop.pbrt\"\n", {{"loop.pbrt", "Include \"loop.pbrt\"\n"}})), "includes nest deeper than");
-    ExpectError(Load(Bundle("Shape \"plymesh\" \"string filename\" \"bad.ply\"\n", {{"bad.ply", "ply\nformat nonsense\n"}})),
+    ExpectError(Load(Bundle("Include \"missing.pbrt\"\n")),
+                "scenes/scene.pbrt:6:1: 'missing.pbrt' is not in the scene bundle");
+    ExpectError(Load(Bundle("Include \"loop.pbrt\"\n", {{"loop.pbrt", "Include \"loop.pbrt\"\n"}})),
+                "includes nest deeper than");
+    ExpectError(Load(Bundle("Shape \"plymesh\" \"string filename\" \"bad.ply\"\n",
+                            {{"bad.ply", "ply\nformat nonsense\n"}})),
                 "bad.ply: not a valid PLY mesh");
-    ExpectError(Load(Bundle(std::string("Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"t.png\"\n"
-                                        "Material \"diffuse\" \"texture reflectance\" \"t\"\n") + kQuad,
-                            {{"t.png", "not a png"}})),
-                "scenes/scene.pbrt:6:1: Texture \"t\": t.png");
+    ExpectError(
+        Load(Bundle(
+            std::string("Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"t.png\"\n"
+                        "Material \"diffuse\" \"texture reflectance\" \"t\"\n") +
+                kQuad,
+            {{"t.png", "not a png"}})),
+        "scenes/scene.pbrt:6:1: Texture \"t\": t.png");
     SceneBundle no_light = Bundle(kQuad);
     std::string& main = no_light.files["scene.pbrt"];
     main.erase(main.find("LightSource"), std::strlen("LightSource \"point\" \"rgb I\" [1 1 1]\n"));
@@ -358,25 +414,31 @@ TEST(PbrtLoaderTest, BadInputIsAOneLineErrorNamingFileLineAndColumn) {
 TEST(PbrtLoaderTest, LimitsRefuseOversizedScenes) {
     SceneLoadOptions options;
     options.limits.max_triangles = 100;
-    const absl::StatusOr<Scene> scene = LoadScene(Bundle("Shape \"sphere\"\n"), "scene.pbrt", options);
+    const absl::StatusOr<Scene> scene =
+        LoadScene(Bundle("Shape \"sphere\"\n"), "scene.pbrt", options);
     ASSERT_FALSE(scene.ok());
     EXPECT_EQ(scene.status().code(), absl::StatusCode::kResourceExhausted);
-    EXPECT_NE(scene.status().message().find("more than 100 triangles"), std::string::npos) << scene.status();
+    EXPECT_NE(scene.status().message().find("more than 100 triangles"), std::string::npos)
+        << scene.status();
 }
 
 TEST(PbrtLoaderTest, PackingGathersIncludedMeshesAndNothingElse) {
-    const absl::StatusOr<SceneBundle> bundle = PackSceneBundle(std::string(PF_SOURCE_DIR) + "/scenes/pbrt/cornell-box.pbrt");
+    const absl::StatusOr<SceneBundle> bundle =
+        PackSceneBundle(std::string(PF_SOURCE_DIR) + "/scenes/pbrt/cornell-box.pbrt");
     ASSERT_TRUE(bundle.ok()) << bundle.status();
     std::vector<std::string> paths;
     for (const auto& [path, contents] : bundle->files) paths.push_back(path);
-    EXPECT_EQ(paths, (std::vector<std::string>{"cornell-box.pbrt", "cornell-room.pbrt", "meshes/tall-block.ply"}));
+    EXPECT_EQ(paths, (std::vector<std::string>{"cornell-box.pbrt", "cornell-room.pbrt",
+                                               "meshes/tall-block.ply"}));
     const absl::StatusOr<Scene> scene = LoadScene(*bundle, "cornell-box.pbrt");
     ASSERT_TRUE(scene.ok()) << scene.status();
-    EXPECT_EQ(scene->triangles.size(), 32u);  // 5 walls and the light: 12; two blocks of 5 quads: 20
+    EXPECT_EQ(scene->triangles.size(),
+              32u);  // 5 walls and the light: 12; two blocks of 5 quads: 20
 }
 
 TEST(PbrtLoaderTest, ShippedScenesLoadWithoutWarnings) {
-    for (const char* name : {"cornell-box", "cornell-glass", "caustic-glass", "furnace", "furnace-glass"}) {
+    for (const char* name :
+         {"cornell-box", "cornell-glass", "caustic-glass", "furnace", "furnace-glass"}) {
         std::vector<std::string> warnings;
         SceneLoadOptions options;
         options.warnings = &warnings;

@@ -34,7 +34,8 @@ std::string WriteWithExternalBuffer(const std::string& folder, const std::string
     std::string bytes;
     int value = 0, bits = 0;
     for (char c : base64) {
-        const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        const std::string alphabet =
+            "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
         const size_t digit = alphabet.find(c);
         if (digit == std::string::npos) break;
         value = value << 6 | static_cast<int>(digit), bits += 6;
@@ -62,19 +63,26 @@ TEST(SceneBundleTest, PacksReferencedFilesAndLoadsFromTheBundleAlone) {
 TEST(SceneBundleTest, LeavesOutImagesNoMaterialReadsAsItsBaseColour) {
     // The fuzz corpus's textured quad reads image.png as its base colour; give it a normal map
     // too, which photonfarm does not read.
-    const std::filesystem::path root = std::filesystem::temp_directory_path() / "photonfarm-tests" / "unused-images";
+    const std::filesystem::path root =
+        std::filesystem::temp_directory_path() / "photonfarm-tests" / "unused-images";
     std::filesystem::create_directories(root);
     std::ifstream in(std::string(PF_SOURCE_DIR) + "/tests/fuzz/corpus/gltf/textured-quad.gltf");
     std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    json.replace(json.find(R"("images":[{"uri":"image.png"}])"), std::strlen(R"("images":[{"uri":"image.png"}])"),
+    json.replace(json.find(R"("images":[{"uri":"image.png"}])"),
+                 std::strlen(R"("images":[{"uri":"image.png"}])"),
                  R"("images":[{"uri":"image.png"},{"uri":"normal.png"}])");
-    json.replace(json.find(R"("textures":[{"source":0}])"), std::strlen(R"("textures":[{"source":0}])"),
+    json.replace(json.find(R"("textures":[{"source":0}])"),
+                 std::strlen(R"("textures":[{"source":0}])"),
                  R"("textures":[{"source":0},{"source":1}])");
-    json.replace(json.find(R"("emissiveFactor")"), std::strlen(R"("emissiveFactor")"), R"("normalTexture":{"index":1},"emissiveFactor")");
+    json.replace(json.find(R"("emissiveFactor")"), std::strlen(R"("emissiveFactor")"),
+                 R"("normalTexture":{"index":1},"emissiveFactor")");
     std::ofstream(root / "quad.gltf") << json;
     // A 2x1 PNG for both (the same bytes: what matters is which files travel).
     std::string png;
-    absl::Base64Unescape("iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTkSuQmCC", &png);
+    absl::Base64Unescape(
+        "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTk"
+        "SuQmCC",
+        &png);
     std::ofstream(root / "image.png", std::ios::binary) << png;
     std::ofstream(root / "normal.png", std::ios::binary) << png;
     const absl::StatusOr<SceneBundle> bundle = PackSceneBundle((root / "quad.gltf").string());
@@ -88,8 +96,10 @@ TEST(SceneBundleTest, LeavesOutImagesNoMaterialReadsAsItsBaseColour) {
 }
 
 TEST(SceneBundleTest, DigestIsAContentAddress) {
-    const absl::StatusOr<SceneBundle> a = PackSceneBundle(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
-    const absl::StatusOr<SceneBundle> b = PackSceneBundle(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
+    const absl::StatusOr<SceneBundle> a =
+        PackSceneBundle(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
+    const absl::StatusOr<SceneBundle> b =
+        PackSceneBundle(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
     ASSERT_TRUE(a.ok() && b.ok());
     EXPECT_EQ(a->Digest(), b->Digest());
     EXPECT_EQ(a->Digest().size(), 64u);
@@ -108,8 +118,10 @@ TEST(SceneBundleTest, RefusesReferencesOutsideTheFolder) {
 }
 
 TEST(SceneBundleTest, ChecksPaths) {
-    for (const char* good : {"a.bin", "meshes/a.bin", "a/b/c.png"}) EXPECT_TRUE(CheckBundlePath(good).ok()) << good;
-    for (const char* bad : {"", "/etc/passwd", "../a", "a/../../b", "a//b", "./a", "C:\\a", "http://x/a", "a/"})
+    for (const char* good : {"a.bin", "meshes/a.bin", "a/b/c.png"})
+        EXPECT_TRUE(CheckBundlePath(good).ok()) << good;
+    for (const char* bad :
+         {"", "/etc/passwd", "../a", "a/../../b", "a//b", "./a", "C:\\a", "http://x/a", "a/"})
         EXPECT_FALSE(CheckBundlePath(bad).ok()) << bad;
     SceneBundle bundle;
     bundle.main_file = "scene.gltf";

@@ -11,7 +11,9 @@ namespace {
 
 SceneFeatures FeaturesOf(const Scene& scene) { return AnalyseFeatures(scene, Emitters(scene)); }
 
-Scene Shipped(const std::string& name) { return *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + name); }
+Scene Shipped(const std::string& name) {
+    return *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + name);
+}
 
 TEST(SceneFeaturesTest, ShippedScenesUseWhatTheyShow) {
     const SceneFeatures box = FeaturesOf(Shipped("cornell-box.gltf"));
@@ -29,14 +31,17 @@ TEST(SceneFeaturesTest, ShippedScenesUseWhatTheyShow) {
 TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     testing::TestScene scene = testing::LitQuadScene();
     scene.meshes.resize(1);  // the emissive quad's material stays, unused
-    scene.lights = {R"({"type":"spot","intensity":4,"spot":{"outerConeAngle":0.6}})", R"({"type":"point","intensity":0})"};
+    scene.lights = {R"({"type":"spot","intensity":4,"spot":{"outerConeAngle":0.6}})",
+                    R"({"type":"point","intensity":0})"};
     scene.light_node_fields = {R"(,"translation":[0,0,1])", ""};
-    const SceneFeatures features = FeaturesOf(*LoadScene(testing::WriteGltf(scene, "features.gltf")));
+    const SceneFeatures features =
+        FeaturesOf(*LoadScene(testing::WriteGltf(scene, "features.gltf")));
     EXPECT_TRUE(features.spot_lights);
     EXPECT_FALSE(features.point_lights) << "a light of no power is no emitter";
     EXPECT_FALSE(features.triangle_lights) << "an emissive material on no triangle emits nothing";
     EXPECT_EQ(SceneFeatures::All().ToString(),
-              "diffuse, mirror, glass, thin glass, rough metal, rough glass, textures, smooth normals, area lights, "
+              "diffuse, mirror, glass, thin glass, rough metal, rough glass, textures, smooth "
+              "normals, area lights, "
               "point lights, spot lights, directional lights, caustics");
 }
 

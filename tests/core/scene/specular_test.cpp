@@ -45,7 +45,8 @@ TEST(SpecularTest, RefractionObeysSnellsLaw) {
         d = Normalize(d);
         Vec3 t;
         ASSERT_TRUE(Refract(d, n, 1.0f / 1.5f, t));
-        const float sin_i = std::sqrt(std::max(0.0f, 1 - d.z * d.z)), sin_t = std::sqrt(std::max(0.0f, 1 - t.z * t.z));
+        const float sin_i = std::sqrt(std::max(0.0f, 1 - d.z * d.z)),
+                    sin_t = std::sqrt(std::max(0.0f, 1 - t.z * t.z));
         EXPECT_NEAR(sin_i, 1.5f * sin_t, 1e-4f);
         EXPECT_LT(t.z, 0.0f);
         EXPECT_NEAR(Length(t), 1.0f, 1e-5f);
@@ -62,7 +63,8 @@ TEST(SpecularTest, ClearGlassConservesEnergyAndReflectsAtTheFresnelRate) {
         int reflected = 0;
         constexpr int kTrials = 200000;
         for (int i = 0; i < kTrials; ++i) {
-            const SpecularBounce b = ScatterSpecular(glass, d, Vec3(0, 0, 1), true, Rgb(1.0f), rng.NextFloat());
+            const SpecularBounce b =
+                ScatterSpecular(glass, d, Vec3(0, 0, 1), true, Rgb(1.0f), rng.NextFloat());
             ASSERT_EQ(b.weight, Rgb(1.0f));
             reflected += !b.transmitted;
         }
@@ -87,10 +89,13 @@ TEST(SpecularTest, ThinGlassPassesStraightThroughAndConservesEnergy) {
     const Vec3 d = Normalize(Vec3(0.3f, 0.2f, -1.0f));
     Rng rng(9);
     for (int i = 0; i < 1000; ++i) {
-        const SpecularBounce b = ScatterSpecular(sheet, d, Vec3(0, 0, 1), true, Rgb(1.0f), rng.NextFloat());
+        const SpecularBounce b =
+            ScatterSpecular(sheet, d, Vec3(0, 0, 1), true, Rgb(1.0f), rng.NextFloat());
         EXPECT_EQ(b.weight, Rgb(1.0f));
-        if (b.transmitted) EXPECT_EQ(b.direction, d);
-        else EXPECT_NEAR(b.direction.z, -d.z, 1e-6f);
+        if (b.transmitted)
+            EXPECT_EQ(b.direction, d);
+        else
+            EXPECT_NEAR(b.direction.z, -d.z, 1e-6f);
     }
 }
 

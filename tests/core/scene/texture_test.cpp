@@ -2,9 +2,8 @@
 // MIP-mapped) average what the footprint covers; the point lookup agrees with it at a point.
 #include "core/scene/texture.h"
 
-#include <gtest/gtest.h>
-
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include <filesystem>
 
@@ -21,7 +20,8 @@ std::string CheckerboardPng() {
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x)
             for (int c = 0; c < 3; ++c) pixels[(y * 64 + x) * 3 + c] = (x + y) % 2 ? 255 : 0;
-    const std::string path = (std::filesystem::temp_directory_path() / "photonfarm-checkerboard.png").string();
+    const std::string path =
+        (std::filesystem::temp_directory_path() / "photonfarm-checkerboard.png").string();
     auto out = OIIO::ImageOutput::create(path);
     EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(64, 64, 3, OIIO::TypeDesc::UINT8)));
     EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
@@ -54,9 +54,11 @@ TEST(TextureTest, PointLookupsAgreeWithTheFiltersFinestLevelAndWrap) {
     auto texture = std::make_shared<Texture>();
     texture->width = 5, texture->height = 3;
     for (int y = 0; y < 3; ++y)
-        for (int x = 0; x < 5; ++x) texture->texels.push_back(Rgb(0.1f * x, 0.3f * y, 0.05f * (x + y)));
+        for (int x = 0; x < 5; ++x)
+            texture->texels.push_back(Rgb(0.1f * x, 0.3f * y, 0.05f * (x + y)));
     const std::shared_ptr<const TextureFilter> filter = MakeTextureFilter({texture});
-    for (const auto& [u, v] : {std::pair{0.13f, 0.71f}, {0.5f, 0.5f}, {0.95f, 0.02f}, {1.3f, -0.4f}, {-2.7f, 3.2f}}) {
+    for (const auto& [u, v] :
+         {std::pair{0.13f, 0.71f}, {0.5f, 0.5f}, {0.95f, 0.02f}, {1.3f, -0.4f}, {-2.7f, 3.2f}}) {
         const Rgb point = texture->Sample(u, v), filtered = filter->Sample(0, u, v, 0.0f);
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(filtered[c], point[c], 1e-5f) << u << ", " << v;
     }

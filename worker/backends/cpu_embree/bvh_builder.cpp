@@ -39,17 +39,21 @@ void SetNodeChildren(void* node, void** children, unsigned int child_count, void
 }
 
 void SetNodeBounds(void* node, const RTCBounds** bounds, unsigned int child_count, void* /*user*/) {
-    for (unsigned int i = 0; i < child_count; ++i) static_cast<InnerNode*>(node)->bounds[i] = *bounds[i];
+    for (unsigned int i = 0; i < child_count; ++i)
+        static_cast<InnerNode*>(node)->bounds[i] = *bounds[i];
 }
 
-void* CreateLeaf(RTCThreadLocalAllocator allocator, const RTCBuildPrimitive* primitives, size_t count, void* /*user*/) {
+void* CreateLeaf(RTCThreadLocalAllocator allocator, const RTCBuildPrimitive* primitives,
+                 size_t count, void* /*user*/) {
     void* memory = rtcThreadLocalAlloc(allocator, sizeof(LeafNode) + count * sizeof(uint32_t), 16);
     auto* leaf = new (memory) LeafNode{{true}, static_cast<uint32_t>(count), {0}};
     for (size_t i = 0; i < count; ++i) leaf->primitives[i] = primitives[i].primID;
     return leaf;
 }
 
-gpu::vec4 Corner(float x, float y, float z, uint32_t bits) { return {x, y, z, std::bit_cast<float>(bits)}; }
+gpu::vec4 Corner(float x, float y, float z, uint32_t bits) {
+    return {x, y, z, std::bit_cast<float>(bits)};
+}
 
 // Appends `node`'s subtree below GPU node `parent`'s child `side`.
 class Flattener {
@@ -72,7 +76,8 @@ public:
         const auto [right, right_count] = Add(inner->children[1]);
         const RTCBounds& a = inner->bounds[0];
         const RTCBounds& b = inner->bounds[1];
-        bvh_.nodes[index] = {Corner(a.lower_x, a.lower_y, a.lower_z, left), Corner(a.upper_x, a.upper_y, a.upper_z, left_count),
+        bvh_.nodes[index] = {Corner(a.lower_x, a.lower_y, a.lower_z, left),
+                             Corner(a.upper_x, a.upper_y, a.upper_z, left_count),
                              Corner(b.lower_x, b.lower_y, b.lower_z, right),
                              Corner(b.upper_x, b.upper_y, b.upper_z, right_count)};
         return {index, 0};
@@ -93,7 +98,8 @@ struct BuilderHandles {
 };
 
 void OnError(void* user, RTCError code, const char* message) {
-    *static_cast<std::string*>(user) = absl::StrCat("Embree BVH builder error ", static_cast<int>(code), ": ", message ? message : "");
+    *static_cast<std::string*>(user) = absl::StrCat(
+        "Embree BVH builder error ", static_cast<int>(code), ": ", message ? message : "");
 }
 
 }  // namespace
@@ -109,8 +115,13 @@ absl::StatusOr<GpuBvh> BuildGpuBvh(std::span<const Bounds> boxes) {
     std::vector<RTCBuildPrimitive> primitives(boxes.size());
     for (size_t i = 0; i < boxes.size(); ++i) {
         const Bounds& box = boxes[i];
-        primitives[i] = {.lower_x = box.lower.x, .lower_y = box.lower.y, .lower_z = box.lower.z, .geomID = 0,
-                         .upper_x = box.upper.x, .upper_y = box.upper.y, .upper_z = box.upper.z,
+        primitives[i] = {.lower_x = box.lower.x,
+                         .lower_y = box.lower.y,
+                         .lower_z = box.lower.z,
+                         .geomID = 0,
+                         .upper_x = box.upper.x,
+                         .upper_y = box.upper.y,
+                         .upper_z = box.upper.z,
                          .primID = static_cast<unsigned>(i)};
     }
     RTCBuildArguments arguments = rtcDefaultBuildArguments();
@@ -131,7 +142,8 @@ absl::StatusOr<GpuBvh> BuildGpuBvh(std::span<const Bounds> boxes) {
     arguments.createLeaf = CreateLeaf;
     const auto* root = static_cast<const BuildNode*>(rtcBuildBVH(&arguments));
     if (root == nullptr || !handles.error.empty())
-        return absl::InternalError(handles.error.empty() ? "Embree's BVH builder returned nothing" : handles.error);
+        return absl::InternalError(handles.error.empty() ? "Embree's BVH builder returned nothing"
+                                                         : handles.error);
     GpuBvh bvh;
     Flattener flattener(bvh);
     if (root->leaf) {

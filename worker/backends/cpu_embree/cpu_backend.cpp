@@ -24,11 +24,13 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     stochastic_film_.reset();
     maps_.reset();
     // A camera sample's cone, for textures where the integrators that render pixels meet them.
-    const float filter_angle = job.spec == nullptr ? 0.0f
-                                                   : job.scene->camera.PixelAngle(job.spec->height) /
-                                                         std::sqrt(static_cast<float>(job.spec->samples_per_pixel));
+    const float filter_angle = job.spec == nullptr
+                                   ? 0.0f
+                                   : job.scene->camera.PixelAngle(job.spec->height) /
+                                         std::sqrt(static_cast<float>(job.spec->samples_per_pixel));
     switch (job.spec != nullptr ? job.spec->integrator : Integrator::kPpm) {
-        case Integrator::kPpm: break;
+        case Integrator::kPpm:
+            break;
         case Integrator::kSppm: {
             absl::StatusOr<CameraPassSettings> film = FilmFor(*job.spec, *job.scene);
             if (!film.ok()) return film.status();
@@ -37,26 +39,35 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
             break;
         }
         case Integrator::kPath: {
-            radiance_ = [inputs = PathInputs{job.scene, job.emitters, &tracer_, features_, filter_angle}](
-                            const Ray& ray, Rng& rng) { return TracePath(inputs, ray, rng); };
+            radiance_ =
+                [inputs = PathInputs{job.scene, job.emitters, &tracer_, features_, filter_angle}](
+                    const Ray& ray, Rng& rng) { return TracePath(inputs, ray, rng); };
             break;
         }
         case Integrator::kPm: {
             // Every worker builds the same maps from the job's seed; they must fit here too.
             const PhotonMapSettings& settings = job.spec->photon_map;
-            const PhotonMapForecast forecast =
-                ForecastPhotonMaps(*job.scene, *job.emitters, tracer_, features_, settings, job.seed);
-            if (absl::Status status = CheckPhotonMapsFit(forecast, settings, AvailableMemoryBytes()); !status.ok())
+            const PhotonMapForecast forecast = ForecastPhotonMaps(
+                *job.scene, *job.emitters, tracer_, features_, settings, job.seed);
+            if (absl::Status status =
+                    CheckPhotonMapsFit(forecast, settings, AvailableMemoryBytes());
+                !status.ok())
                 return status;
             const auto start = std::chrono::steady_clock::now();
             maps_ = std::make_shared<const PhotonMaps>(
                 BuildPhotonMaps(*job.scene, *job.emitters, tracer_, features_, settings, job.seed));
-            spdlog::info("photon maps: {} global and {} caustic photons stored ({:.0f} MB) in {:.2f} s",
-                         maps_->global->Photons().size(), maps_->caustic->Photons().size(), maps_->Bytes() / 1e6,
-                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-            const PhotonMappingInputs inputs{job.scene, job.emitters, &tracer_, maps_.get(), settings,
-                                             MaxSearchRadius(settings, *job.scene), filter_angle, features_};
-            radiance_ = [inputs, maps = maps_](const Ray& ray, Rng& rng) { return PhotonMappingRadiance(inputs, ray, rng); };
+            spdlog::info(
+                "photon maps: {} global and {} caustic photons stored ({:.0f} MB) in {:.2f} s",
+                maps_->global->Photons().size(), maps_->caustic->Photons().size(),
+                maps_->Bytes() / 1e6,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+            const PhotonMappingInputs inputs{job.scene,    job.emitters,
+                                             &tracer_,     maps_.get(),
+                                             settings,     MaxSearchRadius(settings, *job.scene),
+                                             filter_angle, features_};
+            radiance_ = [inputs, maps = maps_](const Ray& ray, Rng& rng) {
+                return PhotonMappingRadiance(inputs, ray, rng);
+            };
             break;
         }
     }
@@ -65,7 +76,9 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
 
 absl::Status CpuBackend::BeginEpoch(uint64_t epoch, std::span<const float> radius_sq) {
     if (stochastic_film_) {
-        epoch_hit_points_ = RunCameraPass(*job_.scene, tracer_, StochasticCameraPass(*stochastic_film_, epoch)).hit_points;
+        epoch_hit_points_ =
+            RunCameraPass(*job_.scene, tracer_, StochasticCameraPass(*stochastic_film_, epoch))
+                .hit_points;
         job_.hit_points = epoch_hit_points_;
     }
     PF_CHECK(radius_sq.size() == job_.hit_points.size());
@@ -76,11 +89,13 @@ absl::Status CpuBackend::BeginEpoch(uint64_t epoch, std::span<const float> radiu
 absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const BatchSpec> specs) {
     if (radiance_) {
         const JobSpec& spec = *job_.spec;
-        return RunPixelBatches(job_.scene->camera, {spec.width, spec.height, spec.samples_per_pixel}, job_.seed, specs,
+        return RunPixelBatches(job_.scene->camera,
+                               {spec.width, spec.height, spec.samples_per_pixel}, job_.seed, specs,
                                radiance_);
     }
-    return RunPhotonBatches({job_.scene, job_.emitters, &tracer_, job_.hit_points, &grid_, job_.seed, features_}, specs,
-                            scratch_);
+    return RunPhotonBatches(
+        {job_.scene, job_.emitters, &tracer_, job_.hit_points, &grid_, job_.seed, features_}, specs,
+        scratch_);
 }
 
 }  // namespace pf::embree

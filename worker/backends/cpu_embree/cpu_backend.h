@@ -33,7 +33,7 @@ private:
     SceneFeatures features_;  // the job's, selecting the photon loop's variant
     HashGrid grid_;
     PhotonPassScratch scratch_;
-    RadianceFunction radiance_;  // path, pm: a camera sample's radiance
+    RadianceFunction radiance_;               // path, pm: a camera sample's radiance
     std::shared_ptr<const PhotonMaps> maps_;  // pm: the job's photon maps
     // sppm: the film its camera passes trace, and the current epoch's hit points.
     std::optional<CameraPassSettings> stochastic_film_;

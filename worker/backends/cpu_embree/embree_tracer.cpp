@@ -16,7 +16,8 @@ namespace {
 
 void OnEmbreeError(void* user, RTCError code, const char* message) {
     auto* last_error = static_cast<std::string*>(user);
-    *last_error = absl::StrCat("Embree error ", static_cast<int>(code), ": ", message ? message : "");
+    *last_error =
+        absl::StrCat("Embree error ", static_cast<int>(code), ": ", message ? message : "");
     spdlog::error("{}", *last_error);
 }
 
@@ -38,8 +39,10 @@ void ToRtcRays(const Ray (&rays)[Tracer::kPacketSize], const bool (&active)[Trac
     for (int i = 0; i < Tracer::kPacketSize; ++i) {
         valid[i] = active[i] ? -1 : 0;
         const Ray& ray = rays[i];
-        packet->org_x[i] = ray.origin.x, packet->org_y[i] = ray.origin.y, packet->org_z[i] = ray.origin.z;
-        packet->dir_x[i] = ray.direction.x, packet->dir_y[i] = ray.direction.y, packet->dir_z[i] = ray.direction.z;
+        packet->org_x[i] = ray.origin.x, packet->org_y[i] = ray.origin.y,
+        packet->org_z[i] = ray.origin.z;
+        packet->dir_x[i] = ray.direction.x, packet->dir_y[i] = ray.direction.y,
+        packet->dir_z[i] = ray.direction.z;
         packet->tnear[i] = 0.0f;
         packet->tfar[i] = active[i] ? ray.t_max : 0.0f;
         packet->time[i] = 0.0f;
@@ -54,9 +57,10 @@ void ToRtcRays(const Ray (&rays)[Tracer::kPacketSize], const bool (&active)[Trac
 struct EmbreeTracer::Handles {
     std::string last_error;
     RTCDevice device = nullptr;
-    RTCBuffer vertices = nullptr;        // every position, shared by the world's and prototypes' geometries
-    std::vector<RTCScene> prototypes;    // one scene per Scene::prototypes entry
-    RTCScene scene = nullptr;            // geometry 0: the world's triangles; 1 + i: instance i
+    RTCBuffer vertices =
+        nullptr;  // every position, shared by the world's and prototypes' geometries
+    std::vector<RTCScene> prototypes;  // one scene per Scene::prototypes entry
+    RTCScene scene = nullptr;          // geometry 0: the world's triangles; 1 + i: instance i
     std::vector<uint32_t> instance_first_triangle;  // per instance: its prototype's first triangle
     ~Handles() {
         if (scene) rtcReleaseScene(scene);
@@ -66,13 +70,13 @@ struct EmbreeTracer::Handles {
     }
 
     // Attaches triangles [first, first + count) of `triangles` as geometry `id` of `target`.
-    bool AttachTriangles(RTCScene target, const std::vector<Triangle>& triangles, uint32_t first, uint32_t count,
-                         size_t vertex_count, unsigned id) {
+    bool AttachTriangles(RTCScene target, const std::vector<Triangle>& triangles, uint32_t first,
+                         uint32_t count, size_t vertex_count, unsigned id) {
         RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        rtcSetGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices, 0, sizeof(float) * 3,
-                             vertex_count);
-        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
-                                                                        RTC_FORMAT_UINT3, sizeof(unsigned) * 3, count));
+        rtcSetGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices, 0,
+                             sizeof(float) * 3, vertex_count);
+        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(unsigned) * 3, count));
         if (indices == nullptr) {
             rtcReleaseGeometry(geometry);
             return false;
@@ -104,12 +108,15 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Scene& 
         return absl::UnavailableError("cannot create an Embree device (CPU without SSE2?)");
     rtcSetDeviceErrorFunction(handles->device, OnEmbreeError, &handles->last_error);
     const auto out_of_memory = [&] {
-        return absl::ResourceExhaustedError(absl::StrCat("cannot allocate Embree buffers: ", handles->last_error));
+        return absl::ResourceExhaustedError(
+            absl::StrCat("cannot allocate Embree buffers: ", handles->last_error));
     };
     // Embree reads vertices 16 bytes at a time: the last one needs 4 bytes of padding.
     const size_t vertex_count = scene.positions.size();
-    handles->vertices = rtcNewBuffer(handles->device, sizeof(float) * 3 * vertex_count + sizeof(float));
-    auto* vertices = handles->vertices ? static_cast<float*>(rtcGetBufferData(handles->vertices)) : nullptr;
+    handles->vertices =
+        rtcNewBuffer(handles->device, sizeof(float) * 3 * vertex_count + sizeof(float));
+    auto* vertices =
+        handles->vertices ? static_cast<float*>(rtcGetBufferData(handles->vertices)) : nullptr;
     if (vertices == nullptr) return out_of_memory();
     for (size_t v = 0; v < vertex_count; ++v) {
         vertices[3 * v] = scene.positions[v].x;
@@ -128,17 +135,20 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Scene& 
     handles->scene = rtcNewScene(handles->device);
     rtcSetSceneBuildQuality(handles->scene, RTC_BUILD_QUALITY_HIGH);
     if (scene.WorldTriangleCount() > 0 &&
-        !handles->AttachTriangles(handles->scene, scene.triangles, 0, scene.WorldTriangleCount(), vertex_count, 0))
+        !handles->AttachTriangles(handles->scene, scene.triangles, 0, scene.WorldTriangleCount(),
+                                  vertex_count, 0))
         return out_of_memory();
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
         RTCGeometry geometry = rtcNewGeometry(handles->device, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(geometry, handles->prototypes[instance.prototype]);
-        rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, instance.to_world.data());
+        rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR,
+                                instance.to_world.data());
         rtcCommitGeometry(geometry);
         rtcAttachGeometryByID(handles->scene, geometry, i + 1);
         rtcReleaseGeometry(geometry);
-        handles->instance_first_triangle.push_back(scene.prototypes[instance.prototype].first_triangle);
+        handles->instance_first_triangle.push_back(
+            scene.prototypes[instance.prototype].first_triangle);
     }
     rtcCommitScene(handles->scene);
     if (!handles->last_error.empty()) return absl::InternalError(handles->last_error);
@@ -164,8 +174,9 @@ bool EmbreeTracer::Intersect(const Ray& ray, RayHit* hit) const {
     return true;
 }
 
-void EmbreeTracer::IntersectPacket(const Ray (&rays)[kPacketSize], const bool (&active)[kPacketSize],
-                                   RayHit (&hits)[kPacketSize], bool (&found)[kPacketSize]) const {
+void EmbreeTracer::IntersectPacket(const Ray (&rays)[kPacketSize],
+                                   const bool (&active)[kPacketSize], RayHit (&hits)[kPacketSize],
+                                   bool (&found)[kPacketSize]) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     alignas(32) int valid[kPacketSize];

@@ -25,8 +25,8 @@ public:
 
     bool Intersect(const Ray& ray, RayHit* hit) const override;
     bool Occluded(const Ray& ray) const override;
-    void IntersectPacket(const Ray (&rays)[kPacketSize], const bool (&active)[kPacketSize], RayHit (&hits)[kPacketSize],
-                         bool (&found)[kPacketSize]) const override;
+    void IntersectPacket(const Ray (&rays)[kPacketSize], const bool (&active)[kPacketSize],
+                         RayHit (&hits)[kPacketSize], bool (&found)[kPacketSize]) const override;
     void OccludedPacket(const Ray (&rays)[kPacketSize], const bool (&active)[kPacketSize],
                         bool (&occluded)[kPacketSize]) const override;
 

@@ -50,8 +50,9 @@ absl::Status CreateInstance(bool validation, InstanceHolder& holder) {
     uint32_t version = 0;
     PF_VK_TRY(vkEnumerateInstanceVersion(&version));
     if (version < kApiVersion)
-        return absl::FailedPreconditionError(absl::StrCat("the Vulkan loader supports Vulkan ", VK_API_VERSION_MAJOR(version),
-                                                          ".", VK_API_VERSION_MINOR(version), "; photonfarm needs 1.2"));
+        return absl::FailedPreconditionError(
+            absl::StrCat("the Vulkan loader supports Vulkan ", VK_API_VERSION_MAJOR(version), ".",
+                         VK_API_VERSION_MINOR(version), "; photonfarm needs 1.2"));
     if (validation)
         if (absl::Status status = CheckValidationAvailable(); !status.ok()) return status;
     const VkApplicationInfo application{.sType = VK_STRUCTURE_TYPE_APPLICATION_INFO,
@@ -71,7 +72,8 @@ absl::Status CreateInstance(bool validation, InstanceHolder& holder) {
     const VkResult result = vkCreateInstance(&info, nullptr, &holder.instance);
     if (result == VK_ERROR_INCOMPATIBLE_DRIVER)
         return absl::FailedPreconditionError(
-            "no Vulkan driver (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER); install one, or mesa-vulkan-drivers "
+            "no Vulkan driver (vkCreateInstance: VK_ERROR_INCOMPATIBLE_DRIVER); install one, or "
+            "mesa-vulkan-drivers "
             "for the CPU implementation lavapipe");
     PF_VK_TRY(result);
     return absl::OkStatus();
@@ -79,18 +81,24 @@ absl::Status CreateInstance(bool validation, InstanceHolder& holder) {
 
 std::string TypeName(VkPhysicalDeviceType type) {
     switch (type) {
-        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
-        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
-        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
-        case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
-        default: return "other";
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+            return "discrete";
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+            return "integrated";
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+            return "virtual";
+        case VK_PHYSICAL_DEVICE_TYPE_CPU:
+            return "cpu";
+        default:
+            return "other";
     }
 }
 
 // Discrete before integrated before virtual before a CPU implementation.
 int Preference(const std::string& type) {
     static const char* order[] = {"discrete", "integrated", "virtual", "cpu", "other"};
-    return static_cast<int>(std::find(std::begin(order), std::end(order), type) - std::begin(order));
+    return static_cast<int>(std::find(std::begin(order), std::end(order), type) -
+                            std::begin(order));
 }
 
 // The queue family photonfarm submits to: one with compute, or none (-1).
@@ -118,17 +126,23 @@ DeviceInfo Describe(VkPhysicalDevice device, uint32_t index) {
                                     VK_API_VERSION_PATCH(properties.apiVersion));
     for (uint32_t h = 0; h < memory.memoryHeapCount; ++h)
         if (memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-            info.device_local_bytes = std::max<uint64_t>(info.device_local_bytes, memory.memoryHeaps[h].size);
-    VkPhysicalDeviceVulkan12Features features12{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &features12};
+            info.device_local_bytes =
+                std::max<uint64_t>(info.device_local_bytes, memory.memoryHeaps[h].size);
+    VkPhysicalDeviceVulkan12Features features12{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+                                       .pNext = &features12};
     if (properties.apiVersion < kApiVersion) {
         info.unusable = "supports only Vulkan " + info.api_version + " (1.2 needed)";
         return info;
     }
     vkGetPhysicalDeviceFeatures2(device, &features);
-    if (!features.features.shaderInt64) info.unusable = "no 64-bit integers in shaders (shaderInt64)";
-    else if (!features12.shaderBufferInt64Atomics) info.unusable = "no 64-bit buffer atomics (shaderBufferInt64Atomics)";
-    else if (ComputeQueueFamily(device) < 0) info.unusable = "no compute queue";
+    if (!features.features.shaderInt64)
+        info.unusable = "no 64-bit integers in shaders (shaderInt64)";
+    else if (!features12.shaderBufferInt64Atomics)
+        info.unusable = "no 64-bit buffer atomics (shaderBufferInt64Atomics)";
+    else if (ComputeQueueFamily(device) < 0)
+        info.unusable = "no compute queue";
     return info;
 }
 
@@ -154,25 +168,30 @@ absl::StatusOr<std::vector<DeviceInfo>> ListDevices() {
 }
 
 absl::StatusOr<uint32_t> ChooseDevice(const std::vector<DeviceInfo>& devices) {
-    if (const char* wanted = std::getenv("PHOTONFARM_VULKAN_DEVICE"); wanted != nullptr && *wanted != '\0') {
+    if (const char* wanted = std::getenv("PHOTONFARM_VULKAN_DEVICE");
+        wanted != nullptr && *wanted != '\0') {
         uint32_t index = 0;
         if (!absl::SimpleAtoi(wanted, &index) || index >= devices.size())
-            return absl::InvalidArgumentError(absl::StrCat("PHOTONFARM_VULKAN_DEVICE=", wanted, ": there are ", devices.size(),
-                                                           " Vulkan devices (photonfarm-worker --list-devices)"));
+            return absl::InvalidArgumentError(
+                absl::StrCat("PHOTONFARM_VULKAN_DEVICE=", wanted, ": there are ", devices.size(),
+                             " Vulkan devices (photonfarm-worker --list-devices)"));
         if (!devices[index].unusable.empty())
-            return absl::FailedPreconditionError(absl::StrCat("Vulkan device ", index, " (", devices[index].name,
-                                                              ") cannot run photonfarm: ", devices[index].unusable));
+            return absl::FailedPreconditionError(
+                absl::StrCat("Vulkan device ", index, " (", devices[index].name,
+                             ") cannot run photonfarm: ", devices[index].unusable));
         return index;
     }
     int chosen = -1;
     for (uint32_t i = 0; i < devices.size(); ++i)
-        if (devices[i].unusable.empty() && (chosen < 0 || Preference(devices[i].type) < Preference(devices[chosen].type)))
+        if (devices[i].unusable.empty() &&
+            (chosen < 0 || Preference(devices[i].type) < Preference(devices[chosen].type)))
             chosen = static_cast<int>(i);
     if (chosen >= 0) return static_cast<uint32_t>(chosen);
     std::string reasons;
-    for (const DeviceInfo& info : devices) absl::StrAppend(&reasons, "; ", info.name, ": ", info.unusable);
-    return absl::FailedPreconditionError(
-        absl::StrCat("no Vulkan device photonfarm can use (", devices.size(), " found", reasons, ")"));
+    for (const DeviceInfo& info : devices)
+        absl::StrAppend(&reasons, "; ", info.name, ": ", info.unusable);
+    return absl::FailedPreconditionError(absl::StrCat("no Vulkan device photonfarm can use (",
+                                                      devices.size(), " found", reasons, ")"));
 }
 
 absl::StatusOr<std::shared_ptr<Context>> Context::Create(const ContextOptions& options) {
@@ -183,8 +202,10 @@ absl::StatusOr<std::shared_ptr<Context>> Context::Create(const ContextOptions& o
     if (validation) {
         const VkDebugUtilsMessengerCreateInfoEXT info{
             .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
-            .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
-            .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+            .messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                               VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT,
+            .messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                           VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                            VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
             .pfnUserCallback = &Context::OnMessage};
         const auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
@@ -192,7 +213,8 @@ absl::StatusOr<std::shared_ptr<Context>> Context::Create(const ContextOptions& o
         context->destroy_messenger_ = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(holder.instance, "vkDestroyDebugUtilsMessengerEXT"));
         if (create == nullptr || context->destroy_messenger_ == nullptr)
-            return absl::FailedPreconditionError("the Vulkan loader does not provide VK_EXT_debug_utils for validation");
+            return absl::FailedPreconditionError(
+                "the Vulkan loader does not provide VK_EXT_debug_utils for validation");
         PF_VK_TRY(create(holder.instance, &info, nullptr, &context->messenger_));
     }
     context->instance_ = std::exchange(holder.instance, VK_NULL_HANDLE);
@@ -206,8 +228,10 @@ absl::StatusOr<std::shared_ptr<Context>> Context::Create(const ContextOptions& o
     context->info_ = infos[*chosen];
     context->physical_ = (*devices)[*chosen];
     if (context->info_.type == "cpu")
-        spdlog::warn("Vulkan: no GPU, computing on the CPU implementation '{}' (the cpu backend is faster here)",
-                     context->info_.name);
+        spdlog::warn(
+            "Vulkan: no GPU, computing on the CPU implementation '{}' (the cpu backend is faster "
+            "here)",
+            context->info_.name);
     VkPhysicalDeviceProperties properties;
     vkGetPhysicalDeviceProperties(context->physical_, &properties);
     context->limits_ = properties.limits;
@@ -219,9 +243,11 @@ absl::StatusOr<std::shared_ptr<Context>> Context::Create(const ContextOptions& o
                                         .queueFamilyIndex = context->queue_family_,
                                         .queueCount = 1,
                                         .pQueuePriorities = &priority};
-    VkPhysicalDeviceVulkan12Features features12{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
-                                                .shaderBufferInt64Atomics = VK_TRUE};
-    VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, .pNext = &features12};
+    VkPhysicalDeviceVulkan12Features features12{
+        .sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES,
+        .shaderBufferInt64Atomics = VK_TRUE};
+    VkPhysicalDeviceFeatures2 features{.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2,
+                                       .pNext = &features12};
     features.features.shaderInt64 = VK_TRUE;
     const VkDeviceCreateInfo info{.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO,
                                   .pNext = &features,
@@ -257,7 +283,8 @@ uint64_t Context::ValidationErrors() { return validation_errors.load(); }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL Context::OnMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                   VkDebugUtilsMessageTypeFlagsEXT /*types*/,
-                                                  const VkDebugUtilsMessengerCallbackDataEXT* data, void* /*user*/) {
+                                                  const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                  void* /*user*/) {
     const char* message = data != nullptr && data->pMessage != nullptr ? data->pMessage : "";
     if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
         ++validation_errors;

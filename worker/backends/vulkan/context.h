@@ -17,10 +17,10 @@ namespace pf::vk {
 struct DeviceInfo {
     uint32_t index = 0;  // in the loader's enumeration
     std::string name;
-    std::string type;    // "discrete", "integrated", "virtual", "cpu", "other"
+    std::string type;  // "discrete", "integrated", "virtual", "cpu", "other"
     std::string api_version;
     uint64_t device_local_bytes = 0;  // the largest device-local heap
-    std::string unusable;  // why photonfarm cannot use it; empty where it can
+    std::string unusable;             // why photonfarm cannot use it; empty where it can
 };
 
 // Every device the loader reports, usable or not, in enumeration order.
@@ -57,9 +57,9 @@ public:
 
 private:
     Context() = default;
-    static VKAPI_ATTR VkBool32 VKAPI_CALL OnMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                                    VkDebugUtilsMessageTypeFlagsEXT types,
-                                                    const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
+    static VKAPI_ATTR VkBool32 VKAPI_CALL OnMessage(
+        VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT types,
+        const VkDebugUtilsMessengerCallbackDataEXT* data, void* user);
 
     VkInstance instance_ = VK_NULL_HANDLE;
     VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;

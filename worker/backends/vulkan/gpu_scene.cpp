@@ -10,9 +10,12 @@ namespace pf::vk {
 namespace {
 
 gpu::vec4 Vec4(const Vec3& v, float w = 0) { return {v.x, v.y, v.z, w}; }
-gpu::vec4 Vec4(const Vec3& v, uint32_t w_bits) { return {v.x, v.y, v.z, std::bit_cast<float>(w_bits)}; }
+gpu::vec4 Vec4(const Vec3& v, uint32_t w_bits) {
+    return {v.x, v.y, v.z, std::bit_cast<float>(w_bits)};
+}
 
-void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::GpuBvh& bvh, GpuScene& gpu_scene) {
+void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::GpuBvh& bvh,
+                 GpuScene& gpu_scene) {
     for (uint32_t t : bvh.order) {
         const Triangle& triangle = scene.triangles[t];
         const Vec3& p0 = scene.positions[triangle.vertex[0]];
@@ -23,9 +26,10 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
         const Triangle& triangle = scene.triangles[t];
         // Emitters name world triangles, which flattening keeps first, under their indices.
         const int32_t emitter = emitters.EmitterOfTriangle(t);
-        gpu_scene.shading.push_back({Vec4(triangle.normal, emitter < 0 ? gpu::kNoEmitter : static_cast<uint32_t>(emitter)),
-                                     {triangle.vertex[0], triangle.vertex[1], triangle.vertex[2],
-                                      triangle.material | (triangle.smooth ? gpu::kSmoothBit : 0u)}});
+        gpu_scene.shading.push_back(
+            {Vec4(triangle.normal, emitter < 0 ? gpu::kNoEmitter : static_cast<uint32_t>(emitter)),
+             {triangle.vertex[0], triangle.vertex[1], triangle.vertex[2],
+              triangle.material | (triangle.smooth ? gpu::kSmoothBit : 0u)}});
     }
     // What no kernel of this scene reads is neither built nor uploaded.
     if (gpu_scene.features.smooth_normals)
@@ -33,11 +37,13 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
     if (gpu_scene.features.textures)
         for (const Point2& uv : scene.uvs) gpu_scene.uvs.push_back({uv.x, uv.y});
     for (const Material& material : scene.materials)
-        gpu_scene.materials.push_back({Vec4(material.base_color, material.ior), static_cast<uint32_t>(material.type),
+        gpu_scene.materials.push_back({Vec4(material.base_color, material.ior),
+                                       static_cast<uint32_t>(material.type),
                                        material.base_color_texture, material.roughness, 0});
     if (!gpu_scene.features.textures) return;
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {
-        gpu_scene.textures.push_back({static_cast<uint32_t>(gpu_scene.texels.size()), texture->width, texture->height, 0});
+        gpu_scene.textures.push_back(
+            {static_cast<uint32_t>(gpu_scene.texels.size()), texture->width, texture->height, 0});
         for (const Rgb& texel : texture->texels) gpu_scene.texels.push_back(Vec4(texel));
     }
 }
@@ -58,18 +64,25 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
             emitter.position = Vec4(light.position);
             emitter.direction = Vec4(light.direction);
             emitter.radiance = Vec4(light.intensity);
-            emitter.cone = {light.cos_inner, light.cos_outer, 1.0f / std::max(0.001f, light.cos_inner - light.cos_outer),
+            emitter.cone = {light.cos_inner, light.cos_outer,
+                            1.0f / std::max(0.001f, light.cos_inner - light.cos_outer),
                             light.smooth_falloff ? 1.0f : 0.0f};
             uint32_t kind = gpu::kEmitterPoint;
             switch (light.type) {
-                case LightType::kPoint: break;
-                case LightType::kSpot: kind = gpu::kEmitterSpot; break;
-                case LightType::kDirectional: kind = gpu::kEmitterDirectional; break;
+                case LightType::kPoint:
+                    break;
+                case LightType::kSpot:
+                    kind = gpu::kEmitterSpot;
+                    break;
+                case LightType::kDirectional:
+                    kind = gpu::kEmitterDirectional;
+                    break;
             }
             emitter.position.w = std::bit_cast<float>(kind);
         }
         emitter.power = Vec4(record.power, inverse_probability);
-        gpu_scene.max_photon_flux = std::max(gpu_scene.max_photon_flux, MaxComponent(record.power) * inverse_probability);
+        gpu_scene.max_photon_flux =
+            std::max(gpu_scene.max_photon_flux, MaxComponent(record.power) * inverse_probability);
         gpu_scene.emitters.push_back(emitter);
         cumulative += record.probability;
         gpu_scene.emitter_cdf.push_back(static_cast<float>(cumulative));

@@ -30,8 +30,8 @@ struct GpuScene {
     std::vector<gpu::GpuEmitter> emitters;
     std::vector<float> emitter_cdf;
     SceneFeatures features;
-    gpu::vec4 sphere{};      // the scene's bounding sphere, centre and radius (directional lights)
-    float magnitude = 0;     // Bounds::Magnitude
+    gpu::vec4 sphere{};   // the scene's bounding sphere, centre and radius (directional lights)
+    float magnitude = 0;  // Bounds::Magnitude
     // The largest flux one photon can carry in any channel, W: albedos are at most 1, so no
     // path gains flux; the fixed-point tally's unit is a fraction of it.
     float max_photon_flux = 0;

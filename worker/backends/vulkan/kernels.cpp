@@ -38,9 +38,9 @@ constexpr uint32_t kTallyCompactSpirv[] = {
 };
 
 // In the order of Kernel.
-constexpr std::span<const uint32_t> kSpirv[] = {kGridCountSpirv,   kScanBlocksSpirv,  kScanTotalsSpirv,
-                                                kScanAddSpirv,     kGridFillSpirv,    kPhotonTraceSpirv,
-                                                kDirectLightSpirv, kTallyFlagsSpirv, kTallyCompactSpirv};
+constexpr std::span<const uint32_t> kSpirv[] = {
+    kGridCountSpirv,   kScanBlocksSpirv,  kScanTotalsSpirv, kScanAddSpirv,     kGridFillSpirv,
+    kPhotonTraceSpirv, kDirectLightSpirv, kTallyFlagsSpirv, kTallyCompactSpirv};
 static_assert(std::size(kSpirv) == static_cast<size_t>(Kernel::kCount));
 
 // A shader module destroyed with its scope (pipelines keep what they need).
@@ -54,7 +54,8 @@ struct ShaderModule {
 
 }  // namespace
 
-absl::StatusOr<std::unique_ptr<Kernels>> Kernels::Create(const Context& context, const SpecConstants& spec) {
+absl::StatusOr<std::unique_ptr<Kernels>> Kernels::Create(const Context& context,
+                                                         const SpecConstants& spec) {
     std::unique_ptr<Kernels> kernels(new Kernels(context.Device()));
     const VkDevice device = context.Device();
     std::vector<VkDescriptorSetLayoutBinding> bindings;
@@ -63,11 +64,13 @@ absl::StatusOr<std::unique_ptr<Kernels>> Kernels::Create(const Context& context,
                             .descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
                             .descriptorCount = 1,
                             .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT});
-    const VkDescriptorSetLayoutCreateInfo set_layout{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
-                                                     .bindingCount = static_cast<uint32_t>(bindings.size()),
-                                                     .pBindings = bindings.data()};
+    const VkDescriptorSetLayoutCreateInfo set_layout{
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO,
+        .bindingCount = static_cast<uint32_t>(bindings.size()),
+        .pBindings = bindings.data()};
     PF_VK_TRY(vkCreateDescriptorSetLayout(device, &set_layout, nullptr, &kernels->set_layout_));
-    const VkPushConstantRange push{.stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .offset = 0, .size = sizeof(gpu::GpuParams)};
+    const VkPushConstantRange push{
+        .stageFlags = VK_SHADER_STAGE_COMPUTE_BIT, .offset = 0, .size = sizeof(gpu::GpuParams)};
     const VkPipelineLayoutCreateInfo layout{.sType = VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO,
                                             .setLayoutCount = 1,
                                             .pSetLayouts = &kernels->set_layout_,
@@ -75,21 +78,24 @@ absl::StatusOr<std::unique_ptr<Kernels>> Kernels::Create(const Context& context,
                                             .pPushConstantRanges = &push};
     PF_VK_TRY(vkCreatePipelineLayout(device, &layout, nullptr, &kernels->layout_));
 
-    const VkDescriptorPoolSize pool_size{.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, .descriptorCount = gpu::kBindingCount};
+    const VkDescriptorPoolSize pool_size{.type = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER,
+                                         .descriptorCount = gpu::kBindingCount};
     const VkDescriptorPoolCreateInfo pool{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO,
                                           .maxSets = 1,
                                           .poolSizeCount = 1,
                                           .pPoolSizes = &pool_size};
     PF_VK_TRY(vkCreateDescriptorPool(device, &pool, nullptr, &kernels->pool_));
-    const VkDescriptorSetAllocateInfo allocate{.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
-                                               .descriptorPool = kernels->pool_,
-                                               .descriptorSetCount = 1,
-                                               .pSetLayouts = &kernels->set_layout_};
+    const VkDescriptorSetAllocateInfo allocate{
+        .sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO,
+        .descriptorPool = kernels->pool_,
+        .descriptorSetCount = 1,
+        .pSetLayouts = &kernels->set_layout_};
     PF_VK_TRY(vkAllocateDescriptorSets(device, &allocate, &kernels->set_));
 
     std::array<VkSpecializationMapEntry, gpu::kSpecCount> entries;
     for (uint32_t id = 0; id < gpu::kSpecCount; ++id)
-        entries[id] = {.constantID = id, .offset = id * uint32_t{sizeof(uint32_t)}, .size = sizeof(uint32_t)};
+        entries[id] = {
+            .constantID = id, .offset = id * uint32_t{sizeof(uint32_t)}, .size = sizeof(uint32_t)};
     const VkSpecializationInfo specialization{.mapEntryCount = gpu::kSpecCount,
                                               .pMapEntries = entries.data(),
                                               .dataSize = sizeof(spec),
@@ -108,7 +114,8 @@ absl::StatusOr<std::unique_ptr<Kernels>> Kernels::Create(const Context& context,
                       .pName = "main",
                       .pSpecializationInfo = &specialization},
             .layout = kernels->layout_};
-        PF_VK_TRY(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipeline, nullptr, &kernels->pipelines_[k]));
+        PF_VK_TRY(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipeline, nullptr,
+                                           &kernels->pipelines_[k]));
     }
     return kernels;
 }
@@ -136,10 +143,13 @@ void Kernels::BindBuffers(const std::array<VkBuffer, gpu::kBindingCount>& buffer
     vkUpdateDescriptorSets(device_, gpu::kBindingCount, writes.data(), 0, nullptr);
 }
 
-void Kernels::Dispatch(VkCommandBuffer commands, Kernel kernel, const gpu::GpuParams& params, uint32_t groups) const {
+void Kernels::Dispatch(VkCommandBuffer commands, Kernel kernel, const gpu::GpuParams& params,
+                       uint32_t groups) const {
     if (groups == 0) return;
-    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[static_cast<size_t>(kernel)]);
-    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE,
+                      pipelines_[static_cast<size_t>(kernel)]);
+    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0,
+                            nullptr);
     vkCmdPushConstants(commands, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(params), &params);
     vkCmdDispatch(commands, groups, 1, 1);
 }

@@ -30,7 +30,8 @@ using SpecConstants = std::array<uint32_t, gpu::kSpecCount>;
 
 class Kernels {
 public:
-    static absl::StatusOr<std::unique_ptr<Kernels>> Create(const Context& context, const SpecConstants& spec);
+    static absl::StatusOr<std::unique_ptr<Kernels>> Create(const Context& context,
+                                                           const SpecConstants& spec);
     ~Kernels();
     Kernels(const Kernels&) = delete;
     Kernels& operator=(const Kernels&) = delete;
@@ -38,7 +39,8 @@ public:
     // Points binding b of the set at buffers[b] (whole buffers).
     void BindBuffers(const std::array<VkBuffer, gpu::kBindingCount>& buffers);
     // Records a dispatch of `groups` workgroups of `kernel` with `params`.
-    void Dispatch(VkCommandBuffer commands, Kernel kernel, const gpu::GpuParams& params, uint32_t groups) const;
+    void Dispatch(VkCommandBuffer commands, Kernel kernel, const gpu::GpuParams& params,
+                  uint32_t groups) const;
 
 private:
     explicit Kernels(VkDevice device) : device_(device) {}

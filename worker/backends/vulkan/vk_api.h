@@ -15,61 +15,61 @@ namespace pf::vk {
 // Core functions, which the loader exports: taken from libvulkan.so.1 itself, they serve
 // every instance and device, as if linked. (Extension functions come per instance, through
 // vkGetInstanceProcAddr: Context does that for debug utils.)
-#define PF_VK_CORE_FUNCTIONS(X)                \
-    X(vkGetInstanceProcAddr)                   \
-    X(vkCreateInstance)                        \
-    X(vkEnumerateInstanceVersion)              \
-    X(vkEnumerateInstanceLayerProperties)      \
-    X(vkDestroyInstance)                       \
-    X(vkEnumeratePhysicalDevices)              \
-    X(vkGetPhysicalDeviceProperties)           \
-    X(vkGetPhysicalDeviceFeatures2)            \
+#define PF_VK_CORE_FUNCTIONS(X)                 \
+    X(vkGetInstanceProcAddr)                    \
+    X(vkCreateInstance)                         \
+    X(vkEnumerateInstanceVersion)               \
+    X(vkEnumerateInstanceLayerProperties)       \
+    X(vkDestroyInstance)                        \
+    X(vkEnumeratePhysicalDevices)               \
+    X(vkGetPhysicalDeviceProperties)            \
+    X(vkGetPhysicalDeviceFeatures2)             \
     X(vkGetPhysicalDeviceQueueFamilyProperties) \
-    X(vkGetPhysicalDeviceMemoryProperties)     \
-    X(vkEnumerateDeviceExtensionProperties)    \
-    X(vkCreateDevice)                          \
-    X(vkDestroyDevice)                         \
-    X(vkGetDeviceQueue)                        \
-    X(vkCreateBuffer)                          \
-    X(vkDestroyBuffer)                         \
-    X(vkGetBufferMemoryRequirements)           \
-    X(vkAllocateMemory)                        \
-    X(vkFreeMemory)                            \
-    X(vkBindBufferMemory)                      \
-    X(vkMapMemory)                             \
-    X(vkUnmapMemory)                           \
-    X(vkInvalidateMappedMemoryRanges)          \
-    X(vkFlushMappedMemoryRanges)               \
-    X(vkCreateShaderModule)                    \
-    X(vkDestroyShaderModule)                   \
-    X(vkCreateDescriptorSetLayout)             \
-    X(vkDestroyDescriptorSetLayout)            \
-    X(vkCreatePipelineLayout)                  \
-    X(vkDestroyPipelineLayout)                 \
-    X(vkCreateComputePipelines)                \
-    X(vkDestroyPipeline)                       \
-    X(vkCreateDescriptorPool)                  \
-    X(vkDestroyDescriptorPool)                 \
-    X(vkAllocateDescriptorSets)                \
-    X(vkUpdateDescriptorSets)                  \
-    X(vkCreateCommandPool)                     \
-    X(vkDestroyCommandPool)                    \
-    X(vkAllocateCommandBuffers)                \
-    X(vkBeginCommandBuffer)                    \
-    X(vkEndCommandBuffer)                      \
-    X(vkResetCommandBuffer)                    \
-    X(vkCmdBindPipeline)                       \
-    X(vkCmdBindDescriptorSets)                 \
-    X(vkCmdPushConstants)                      \
-    X(vkCmdDispatch)                           \
-    X(vkCmdPipelineBarrier)                    \
-    X(vkCmdFillBuffer)                         \
-    X(vkCmdCopyBuffer)                         \
-    X(vkQueueSubmit)                           \
-    X(vkCreateFence)                           \
-    X(vkDestroyFence)                          \
-    X(vkWaitForFences)                         \
-    X(vkResetFences)                           \
+    X(vkGetPhysicalDeviceMemoryProperties)      \
+    X(vkEnumerateDeviceExtensionProperties)     \
+    X(vkCreateDevice)                           \
+    X(vkDestroyDevice)                          \
+    X(vkGetDeviceQueue)                         \
+    X(vkCreateBuffer)                           \
+    X(vkDestroyBuffer)                          \
+    X(vkGetBufferMemoryRequirements)            \
+    X(vkAllocateMemory)                         \
+    X(vkFreeMemory)                             \
+    X(vkBindBufferMemory)                       \
+    X(vkMapMemory)                              \
+    X(vkUnmapMemory)                            \
+    X(vkInvalidateMappedMemoryRanges)           \
+    X(vkFlushMappedMemoryRanges)                \
+    X(vkCreateShaderModule)                     \
+    X(vkDestroyShaderModule)                    \
+    X(vkCreateDescriptorSetLayout)              \
+    X(vkDestroyDescriptorSetLayout)             \
+    X(vkCreatePipelineLayout)                   \
+    X(vkDestroyPipelineLayout)                  \
+    X(vkCreateComputePipelines)                 \
+    X(vkDestroyPipeline)                        \
+    X(vkCreateDescriptorPool)                   \
+    X(vkDestroyDescriptorPool)                  \
+    X(vkAllocateDescriptorSets)                 \
+    X(vkUpdateDescriptorSets)                   \
+    X(vkCreateCommandPool)                      \
+    X(vkDestroyCommandPool)                     \
+    X(vkAllocateCommandBuffers)                 \
+    X(vkBeginCommandBuffer)                     \
+    X(vkEndCommandBuffer)                       \
+    X(vkResetCommandBuffer)                     \
+    X(vkCmdBindPipeline)                        \
+    X(vkCmdBindDescriptorSets)                  \
+    X(vkCmdPushConstants)                       \
+    X(vkCmdDispatch)                            \
+    X(vkCmdPipelineBarrier)                     \
+    X(vkCmdFillBuffer)                          \
+    X(vkCmdCopyBuffer)                          \
+    X(vkQueueSubmit)                            \
+    X(vkCreateFence)                            \
+    X(vkDestroyFence)                           \
+    X(vkWaitForFences)                          \
+    X(vkResetFences)                            \
     X(vkDeviceWaitIdle)
 
 #define PF_VK_DECLARE(name) inline PFN_##name name = nullptr;
@@ -88,8 +88,8 @@ absl::Status ResultStatus(std::string_view what, VkResult result);
 }  // namespace pf::vk
 
 // Returns the failure as an absl::Status from the enclosing function.
-#define PF_VK_TRY(call)                                                                         \
-    do {                                                                                       \
-        if (const VkResult pf_vk_result = (call); pf_vk_result != VK_SUCCESS)                  \
-            return ::pf::vk::ResultStatus(#call, pf_vk_result);                                \
+#define PF_VK_TRY(call)                                                       \
+    do {                                                                      \
+        if (const VkResult pf_vk_result = (call); pf_vk_result != VK_SUCCESS) \
+            return ::pf::vk::ResultStatus(#call, pf_vk_result);               \
     } while (false)

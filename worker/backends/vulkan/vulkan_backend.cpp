@@ -40,10 +40,13 @@ std::span<const std::byte> Bytes(const std::vector<T>& values) {
     return std::as_bytes(std::span(values));
 }
 
-uint32_t Groups(uint64_t threads, uint32_t per_group) { return static_cast<uint32_t>((threads + per_group - 1) / per_group); }
+uint32_t Groups(uint64_t threads, uint32_t per_group) {
+    return static_cast<uint32_t>((threads + per_group - 1) / per_group);
+}
 
 gpu::GpuHitPoint ToGpu(const HitPoint& h) {
-    return {{h.position.x, h.position.y, h.position.z, 0}, {h.normal.x, h.normal.y, h.normal.z, 0},
+    return {{h.position.x, h.position.y, h.position.z, 0},
+            {h.normal.x, h.normal.y, h.normal.z, 0},
             {h.weight.x, h.weight.y, h.weight.z, 0}};
 }
 
@@ -86,7 +89,8 @@ private:
 
 }  // namespace
 
-absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scene, size_t hit_points) {
+absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scene,
+                          size_t hit_points) {
     struct Need {
         const char* what;
         uint64_t bytes;
@@ -104,32 +108,35 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
         total += need.bytes;
         if (need.bytes > device.max_buffer_bytes)
             return absl::ResourceExhaustedError(absl::StrCat(
-                "job too large for Vulkan device ", device.name, ": its ", need.what, " (", hit_points,
-                " hit points) need ", Mib(need.bytes), " MiB in one buffer, the device allows ",
-                Mib(device.max_buffer_bytes), " MiB (maxStorageBufferRange); use fewer pixels or samples, or the cpu backend"));
+                "job too large for Vulkan device ", device.name, ": its ", need.what, " (",
+                hit_points, " hit points) need ", Mib(need.bytes),
+                " MiB in one buffer, the device allows ", Mib(device.max_buffer_bytes),
+                " MiB (maxStorageBufferRange); use fewer pixels or samples, or the cpu backend"));
     }
     // Direct samples, radii, the grid's buckets and the staging buffers come on top: under
     // 100 bytes a hit point.
     total += hit_points * 100;
     if (total > device.memory_bytes)
-        return absl::ResourceExhaustedError(absl::StrCat("job too large for Vulkan device ", device.name, ": it needs ",
-                                                         Mib(total), " MiB, the device has ", Mib(device.memory_bytes),
-                                                         " MiB; use fewer pixels or samples, or the cpu backend"));
+        return absl::ResourceExhaustedError(
+            absl::StrCat("job too large for Vulkan device ", device.name, ": it needs ", Mib(total),
+                         " MiB, the device has ", Mib(device.memory_bytes),
+                         " MiB; use fewer pixels or samples, or the cpu backend"));
     return absl::OkStatus();
 }
 
 // Every buffer of a job, named by what it holds; Bindings() lists them in binding order.
 struct VulkanBackend::JobBuffers {
-    Buffer nodes, triangles, shading, normals, uvs, materials, textures, texels, emitters, emitter_cdf;
-    Buffer hit_points, radius_sq, grid_begin, grid_cursor, grid_entries, scan_blocks, tally, direct, counters;
+    Buffer nodes, triangles, shading, normals, uvs, materials, textures, texels, emitters,
+        emitter_cdf;
+    Buffer hit_points, radius_sq, grid_begin, grid_cursor, grid_entries, scan_blocks, tally, direct,
+        counters;
     Buffer tally_offsets, tally_entries;
     Buffer radius_upload, hit_point_upload, direct_readback, counters_readback;
 
     // Uploads what kernels read and makes the rest; RESOURCE_EXHAUSTED where the device runs out.
-    static absl::StatusOr<std::unique_ptr<JobBuffers>> Create(const Context& context, CommandStream& stream,
-                                                              const GpuScene& gpu_scene,
-                                                              std::span<const gpu::GpuHitPoint> hit_points,
-                                                              uint32_t buckets, bool hit_points_per_epoch) {
+    static absl::StatusOr<std::unique_ptr<JobBuffers>> Create(
+        const Context& context, CommandStream& stream, const GpuScene& gpu_scene,
+        std::span<const gpu::GpuHitPoint> hit_points, uint32_t buckets, bool hit_points_per_epoch) {
         const size_t n = hit_points.size();
         auto buffers = std::make_unique<JobBuffers>();
         Uploader uploader(context, stream);
@@ -137,14 +144,18 @@ struct VulkanBackend::JobBuffers {
         const auto upload = [&](Buffer& buffer, std::span<const std::byte> data) {
             if (!status.ok()) return;
             absl::StatusOr<Buffer> made = uploader.Upload(data);
-            if (made.ok()) buffer = std::move(*made);
-            else status = made.status();
+            if (made.ok())
+                buffer = std::move(*made);
+            else
+                status = made.status();
         };
         const auto make = [&](Buffer& buffer, uint64_t bytes, MemoryUse use) {
             if (!status.ok()) return;
             absl::StatusOr<Buffer> made = Buffer::Create(context, bytes, use);
-            if (made.ok()) buffer = std::move(*made);
-            else status = made.status();
+            if (made.ok())
+                buffer = std::move(*made);
+            else
+                status = made.status();
         };
         upload(buffers->nodes, Bytes(gpu_scene.nodes));
         upload(buffers->triangles, Bytes(gpu_scene.triangles));
@@ -162,14 +173,16 @@ struct VulkanBackend::JobBuffers {
         make(buffers->grid_cursor, buckets * sizeof(uint32_t), MemoryUse::kDevice);
         make(buffers->grid_entries, n * sizeof(gpu::GpuGridEntry), MemoryUse::kDevice);
         const uint64_t scanned = std::max<uint64_t>(buckets, n) + 1;  // the longest array scanned
-        make(buffers->scan_blocks, Groups(scanned, gpu::kScanBlock) * sizeof(uint32_t), MemoryUse::kDevice);
+        make(buffers->scan_blocks, Groups(scanned, gpu::kScanBlock) * sizeof(uint32_t),
+             MemoryUse::kDevice);
         make(buffers->tally, n * sizeof(gpu::GpuTallySum), MemoryUse::kDevice);
         make(buffers->tally_offsets, (n + 1) * sizeof(uint32_t), MemoryUse::kDevice);
         make(buffers->tally_entries, n * sizeof(gpu::GpuTallyEntry), MemoryUse::kKernelToHost);
         make(buffers->direct, n * sizeof(gpu::vec4), MemoryUse::kDevice);
         make(buffers->counters, sizeof(gpu::GpuCounters), MemoryUse::kDevice);
         make(buffers->radius_upload, n * sizeof(float), MemoryUse::kUpload);
-        if (hit_points_per_epoch) make(buffers->hit_point_upload, n * sizeof(gpu::GpuHitPoint), MemoryUse::kUpload);
+        if (hit_points_per_epoch)
+            make(buffers->hit_point_upload, n * sizeof(gpu::GpuHitPoint), MemoryUse::kUpload);
         make(buffers->direct_readback, n * sizeof(gpu::vec4), MemoryUse::kReadback);
         make(buffers->counters_readback, sizeof(gpu::GpuCounters), MemoryUse::kReadback);
         if (absl::Status finished = uploader.Finish(); status.ok()) status = finished;
@@ -183,24 +196,32 @@ struct VulkanBackend::JobBuffers {
         b[gpu::kBindingShading] = shading.Handle(), b[gpu::kBindingNormals] = normals.Handle();
         b[gpu::kBindingUvs] = uvs.Handle(), b[gpu::kBindingMaterials] = materials.Handle();
         b[gpu::kBindingTextures] = textures.Handle(), b[gpu::kBindingTexels] = texels.Handle();
-        b[gpu::kBindingEmitters] = emitters.Handle(), b[gpu::kBindingEmitterCdf] = emitter_cdf.Handle();
-        b[gpu::kBindingHitPoints] = hit_points.Handle(), b[gpu::kBindingRadiusSq] = radius_sq.Handle();
-        b[gpu::kBindingGridBegin] = grid_begin.Handle(), b[gpu::kBindingGridCursor] = grid_cursor.Handle();
-        b[gpu::kBindingGridEntries] = grid_entries.Handle(), b[gpu::kBindingScanBlocks] = scan_blocks.Handle();
+        b[gpu::kBindingEmitters] = emitters.Handle(),
+        b[gpu::kBindingEmitterCdf] = emitter_cdf.Handle();
+        b[gpu::kBindingHitPoints] = hit_points.Handle(),
+        b[gpu::kBindingRadiusSq] = radius_sq.Handle();
+        b[gpu::kBindingGridBegin] = grid_begin.Handle(),
+        b[gpu::kBindingGridCursor] = grid_cursor.Handle();
+        b[gpu::kBindingGridEntries] = grid_entries.Handle(),
+        b[gpu::kBindingScanBlocks] = scan_blocks.Handle();
         b[gpu::kBindingTally] = tally.Handle(), b[gpu::kBindingDirect] = direct.Handle();
         b[gpu::kBindingCounters] = counters.Handle();
-        b[gpu::kBindingTallyOffsets] = tally_offsets.Handle(), b[gpu::kBindingTallyEntries] = tally_entries.Handle();
+        b[gpu::kBindingTallyOffsets] = tally_offsets.Handle(),
+        b[gpu::kBindingTallyEntries] = tally_entries.Handle();
         return b;
     }
 };
 
-absl::StatusOr<std::unique_ptr<VulkanBackend>> VulkanBackend::Create(std::shared_ptr<Context> context, const Scene& scene) {
+absl::StatusOr<std::unique_ptr<VulkanBackend>> VulkanBackend::Create(
+    std::shared_ptr<Context> context, const Scene& scene) {
     absl::StatusOr<CommandStream> stream = CommandStream::Create(*context);
     if (!stream.ok()) return stream.status();
-    return std::unique_ptr<VulkanBackend>(new VulkanBackend(std::move(context), scene, std::move(*stream)));
+    return std::unique_ptr<VulkanBackend>(
+        new VulkanBackend(std::move(context), scene, std::move(*stream)));
 }
 
-VulkanBackend::VulkanBackend(std::shared_ptr<Context> context, const Scene& scene, CommandStream stream)
+VulkanBackend::VulkanBackend(std::shared_ptr<Context> context, const Scene& scene,
+                             CommandStream stream)
     : context_(std::move(context)), scene_(scene), stream_(std::move(stream)) {}
 
 VulkanBackend::~VulkanBackend() = default;
@@ -210,8 +231,9 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
         return absl::InvalidArgumentError("job has no scene or no light");
     if (job.scene != &scene_) return absl::InvalidArgumentError("job's scene is not the backend's");
     if (job.spec != nullptr && !RunsOnBackend(job.spec->integrator, Name()))
-        return absl::FailedPreconditionError(absl::StrCat("the vulkan backend does not run the ",
-                                                          std::string(IntegratorName(job.spec->integrator)), " integrator"));
+        return absl::FailedPreconditionError(
+            absl::StrCat("the vulkan backend does not run the ",
+                         std::string(IntegratorName(job.spec->integrator)), " integrator"));
     buffers_.reset();
     kernels_.reset();
     stochastic_film_.reset();
@@ -223,20 +245,25 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
         if (!film.ok()) return film.status();
         film->features = AnalyseFeatures(scene_, *job.emitters);
         if (camera_tracer_ == nullptr) {
-            absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer = embree::EmbreeTracer::Create(scene_);
+            absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer =
+                embree::EmbreeTracer::Create(scene_);
             if (!tracer.ok()) return tracer.status();
             camera_tracer_ = std::move(*tracer);
         }
         stochastic_film_ = *film;
-        epoch_hit_points_.assign(size_t(film->width) * size_t(film->height) * size_t(film->samples_per_pixel), {});
+        epoch_hit_points_.assign(
+            size_t(film->width) * size_t(film->height) * size_t(film->samples_per_pixel), {});
         job_.hit_points = epoch_hit_points_;
     }
-    if (job_.hit_points.size() >= (size_t{1} << 31)) return absl::ResourceExhaustedError("over 2^31 hit points");
+    if (job_.hit_points.size() >= (size_t{1} << 31))
+        return absl::ResourceExhaustedError("over 2^31 hit points");
     absl::StatusOr<GpuScene> gpu_scene = BuildGpuScene(scene_, *job.emitters);
     if (!gpu_scene.ok()) return gpu_scene.status();
     const DeviceCapacity capacity{context_->Info().name, context_->Limits().maxStorageBufferRange,
                                   context_->Info().device_local_bytes};
-    if (absl::Status status = CheckJobFits(capacity, *gpu_scene, job_.hit_points.size()); !status.ok()) return status;
+    if (absl::Status status = CheckJobFits(capacity, *gpu_scene, job_.hit_points.size());
+        !status.ok())
+        return status;
     features_ = gpu_scene->features;
     scene_sphere_ = gpu_scene->sphere;
     scene_magnitude_ = gpu_scene->magnitude;
@@ -245,22 +272,24 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     if (!(gpu_scene->max_photon_flux > 0) || !std::isfinite(flux_to_fixed_))
         return absl::InvalidArgumentError("the scene's lights carry no finite power");
 
-    absl::StatusOr<std::unique_ptr<Kernels>> kernels = Kernels::Create(*context_, SpecConstantsFor(features_));
+    absl::StatusOr<std::unique_ptr<Kernels>> kernels =
+        Kernels::Create(*context_, SpecConstantsFor(features_));
     if (!kernels.ok()) return kernels.status();
     kernels_ = std::move(*kernels);
 
     const size_t n = job_.hit_points.size();
     std::vector<gpu::GpuHitPoint> hit_points(n);
     std::ranges::transform(job_.hit_points, hit_points.begin(), ToGpu);
-    buckets_ = std::clamp<uint32_t>(std::bit_ceil(static_cast<uint32_t>(2 * n + 1)), gpu::kScanBlock, kMaxBuckets);
+    buckets_ = std::clamp<uint32_t>(std::bit_ceil(static_cast<uint32_t>(2 * n + 1)),
+                                    gpu::kScanBlock, kMaxBuckets);
 
-    absl::StatusOr<std::unique_ptr<JobBuffers>> buffers =
-        JobBuffers::Create(*context_, stream_, *gpu_scene, hit_points, buckets_, stochastic_film_.has_value());
+    absl::StatusOr<std::unique_ptr<JobBuffers>> buffers = JobBuffers::Create(
+        *context_, stream_, *gpu_scene, hit_points, buckets_, stochastic_film_.has_value());
     if (!buffers.ok()) return buffers.status();
     kernels_->BindBuffers((*buffers)->Bindings());
     buffers_ = std::move(*buffers);
-    spdlog::debug("Vulkan job: {} hit points, {} triangles, kernels for {}", n, scene_.triangles.size(),
-                  features_.ToString());
+    spdlog::debug("Vulkan job: {} hit points, {} triangles, kernels for {}", n,
+                  scene_.triangles.size(), features_.ToString());
     return absl::OkStatus();
 }
 
@@ -280,10 +309,12 @@ gpu::GpuParams VulkanBackend::BaseParams() const {
 absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, std::span<const float> radius_sq) {
     if (buffers_ == nullptr) return absl::FailedPreconditionError("BeginEpoch before a job");
     const size_t n = job_.hit_points.size();
-    if (radius_sq.size() != n) return absl::InvalidArgumentError("one radius per hit point expected");
+    if (radius_sq.size() != n)
+        return absl::InvalidArgumentError("one radius per hit point expected");
     if (stochastic_film_) {
         std::vector<HitPoint> traced =
-            RunCameraPass(scene_, *camera_tracer_, StochasticCameraPass(*stochastic_film_, epoch)).hit_points;
+            RunCameraPass(scene_, *camera_tracer_, StochasticCameraPass(*stochastic_film_, epoch))
+                .hit_points;
         PF_CHECK(traced.size() == n);
         epoch_hit_points_ = std::move(traced);
         job_.hit_points = epoch_hit_points_;
@@ -294,17 +325,21 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, std::span<const float> ra
     // the grid holds (a radius and a weight).
     float max_radius_sq = 0;
     for (size_t i = 0; i < n; ++i)
-        if (MaxComponent(job_.hit_points[i].weight) > 0) max_radius_sq = std::max(max_radius_sq, radius_sq[i]);
+        if (MaxComponent(job_.hit_points[i].weight) > 0)
+            max_radius_sq = std::max(max_radius_sq, radius_sq[i]);
     grid_inverse_cell_ = max_radius_sq > 0 ? 0.5f / std::sqrt(max_radius_sq) : 1.0f;
     if (n > 0) std::memcpy(buffers_->radius_upload.Mapped(), radius_sq.data(), n * sizeof(float));
 
     absl::StatusOr<VkCommandBuffer> commands = stream_.Begin();
     if (!commands.ok()) return commands.status();
     const VkBufferCopy radii{.size = n * sizeof(float)};
-    if (n > 0) vkCmdCopyBuffer(*commands, buffers_->radius_upload.Handle(), buffers_->radius_sq.Handle(), 1, &radii);
+    if (n > 0)
+        vkCmdCopyBuffer(*commands, buffers_->radius_upload.Handle(), buffers_->radius_sq.Handle(),
+                        1, &radii);
     const VkBufferCopy points{.size = n * sizeof(gpu::GpuHitPoint)};
     if (stochastic_film_ && n > 0)
-        vkCmdCopyBuffer(*commands, buffers_->hit_point_upload.Handle(), buffers_->hit_points.Handle(), 1, &points);
+        vkCmdCopyBuffer(*commands, buffers_->hit_point_upload.Handle(),
+                        buffers_->hit_points.Handle(), 1, &points);
     vkCmdFillBuffer(*commands, buffers_->grid_begin.Handle(), 0, VK_WHOLE_SIZE, 0);
     stream_.Barrier();
     gpu::GpuParams params = BaseParams();
@@ -314,7 +349,8 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, std::span<const float> ra
     // Exclusive scan of buckets + 1 counts: the last offset is the number of entries.
     RecordScan(*commands, gpu::kScanGridBegin, buckets_ + 1);
     const VkBufferCopy cursor{.size = buckets_ * sizeof(uint32_t)};
-    vkCmdCopyBuffer(*commands, buffers_->grid_begin.Handle(), buffers_->grid_cursor.Handle(), 1, &cursor);
+    vkCmdCopyBuffer(*commands, buffers_->grid_begin.Handle(), buffers_->grid_cursor.Handle(), 1,
+                    &cursor);
     stream_.Barrier();
     kernels_->Dispatch(*commands, Kernel::kGridFill, params, hit_point_groups);
     return stream_.SubmitAndWait();
@@ -347,11 +383,13 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
     params.seed_prefix = PhotonSeeds(job_.seed, spec.index).Prefix();
     params.end = spec.photons;
     const uint64_t per_dispatch = std::min<uint64_t>(
-        kMaxThreadsPerDispatch, uint64_t{context_->Limits().maxComputeWorkGroupCount[0]} * gpu::kWorkgroupSize);
+        kMaxThreadsPerDispatch,
+        uint64_t{context_->Limits().maxComputeWorkGroupCount[0]} * gpu::kWorkgroupSize);
     for (uint64_t first = 0; first < spec.photons; first += per_dispatch) {
         params.first = static_cast<uint32_t>(first);
-        kernels_->Dispatch(*commands, Kernel::kPhotonTrace, params,
-                           Groups(std::min<uint64_t>(per_dispatch, spec.photons - first), gpu::kWorkgroupSize));
+        kernels_->Dispatch(
+            *commands, Kernel::kPhotonTrace, params,
+            Groups(std::min<uint64_t>(per_dispatch, spec.photons - first), gpu::kWorkgroupSize));
     }
     const uint32_t direct_count = spec.sample_end - spec.sample_begin;
     gpu::GpuParams direct = BaseParams();
@@ -360,23 +398,28 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
     direct.direct_begin = spec.sample_begin;
     for (uint64_t first = 0; first < direct_count; first += per_dispatch) {
         direct.first = static_cast<uint32_t>(spec.sample_begin + first);
-        kernels_->Dispatch(*commands, Kernel::kDirectLight, direct,
-                           Groups(std::min<uint64_t>(per_dispatch, direct_count - first), gpu::kWorkgroupSize));
+        kernels_->Dispatch(
+            *commands, Kernel::kDirectLight, direct,
+            Groups(std::min<uint64_t>(per_dispatch, direct_count - first), gpu::kWorkgroupSize));
     }
     stream_.Barrier();
     // The sparse tally, made on the device in hit point order: flags, their prefix sum, and
     // each reached hit point's entry written to host-visible memory.
     const auto n = static_cast<uint32_t>(job_.hit_points.size());
-    kernels_->Dispatch(*commands, Kernel::kTallyFlags, BaseParams(), Groups(uint64_t{n} + 1, gpu::kWorkgroupSize));
+    kernels_->Dispatch(*commands, Kernel::kTallyFlags, BaseParams(),
+                       Groups(uint64_t{n} + 1, gpu::kWorkgroupSize));
     stream_.Barrier();
     RecordScan(*commands, gpu::kScanTallyOffsets, n + 1);
-    kernels_->Dispatch(*commands, Kernel::kTallyCompact, BaseParams(), Groups(uint64_t{n} + 1, gpu::kWorkgroupSize));
+    kernels_->Dispatch(*commands, Kernel::kTallyCompact, BaseParams(),
+                       Groups(uint64_t{n} + 1, gpu::kWorkgroupSize));
     stream_.Barrier();
     const VkBufferCopy samples{.size = direct_count * sizeof(gpu::vec4)};
     const VkBufferCopy counters{.size = sizeof(gpu::GpuCounters)};
     if (direct_count > 0)
-        vkCmdCopyBuffer(*commands, buffers_->direct.Handle(), buffers_->direct_readback.Handle(), 1, &samples);
-    vkCmdCopyBuffer(*commands, buffers_->counters.Handle(), buffers_->counters_readback.Handle(), 1, &counters);
+        vkCmdCopyBuffer(*commands, buffers_->direct.Handle(), buffers_->direct_readback.Handle(), 1,
+                        &samples);
+    vkCmdCopyBuffer(*commands, buffers_->counters.Handle(), buffers_->counters_readback.Handle(), 1,
+                    &counters);
     stream_.Barrier();
     if (absl::Status status = stream_.SubmitAndWait(); !status.ok()) return status;
 
@@ -392,11 +435,13 @@ BatchResult VulkanBackend::ReadResult(const BatchSpec& spec) const {
     buffers_->tally_entries.InvalidateForRead();
     buffers_->direct_readback.InvalidateForRead();
     buffers_->counters_readback.InvalidateForRead();
-    const auto* counted = static_cast<const gpu::GpuCounters*>(buffers_->counters_readback.Mapped());
+    const auto* counted =
+        static_cast<const gpu::GpuCounters*>(buffers_->counters_readback.Mapped());
     result.segments_traced = counted->segments;
     result.nonfinite_discarded = counted->nonfinite_discarded;
-    const auto entries = std::span(static_cast<const gpu::GpuTallyEntry*>(buffers_->tally_entries.Mapped()),
-                                   std::min<uint64_t>(counted->tally_entries, n));
+    const auto entries =
+        std::span(static_cast<const gpu::GpuTallyEntry*>(buffers_->tally_entries.Mapped()),
+                  std::min<uint64_t>(counted->tally_entries, n));
     Tally& out = result.tally;
     out.hit_point.resize(entries.size());
     out.photons.resize(entries.size());
@@ -415,7 +460,8 @@ BatchResult VulkanBackend::ReadResult(const BatchSpec& spec) const {
     return result;
 }
 
-absl::StatusOr<std::vector<BatchResult>> VulkanBackend::RunBatches(std::span<const BatchSpec> specs) {
+absl::StatusOr<std::vector<BatchResult>> VulkanBackend::RunBatches(
+    std::span<const BatchSpec> specs) {
     if (buffers_ == nullptr) return absl::FailedPreconditionError("RunBatches before a job");
     std::vector<BatchResult> results;
     results.reserve(specs.size());

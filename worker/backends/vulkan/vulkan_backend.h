@@ -31,7 +31,8 @@ struct DeviceCapacity {
 
 // OK where a job over `gpu_scene` with `hit_points` fits `device`; RESOURCE_EXHAUSTED naming
 // the buffer, the need and the limit otherwise.
-absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scene, size_t hit_points);
+absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scene,
+                          size_t hit_points);
 
 // Threads of one photon or direct-light dispatch at most: enough to fill the largest GPUs
 // (an H100 holds 270k resident threads), short enough to keep each dispatch brief; bigger
@@ -41,7 +42,8 @@ inline constexpr uint32_t kMaxThreadsPerDispatch = 1u << 20;
 class VulkanBackend final : public Backend {
 public:
     // A backend on `context`'s device for jobs over `scene` (which must outlive it).
-    static absl::StatusOr<std::unique_ptr<VulkanBackend>> Create(std::shared_ptr<Context> context, const Scene& scene);
+    static absl::StatusOr<std::unique_ptr<VulkanBackend>> Create(std::shared_ptr<Context> context,
+                                                                 const Scene& scene);
     ~VulkanBackend() override;
 
     std::string_view Name() const override { return "vulkan"; }
@@ -82,7 +84,7 @@ private:
     float scene_magnitude_ = 0;
     float flux_to_fixed_ = 0;  // fixed-point tally units per watt
     uint32_t emitter_count_ = 0;
-    uint32_t buckets_ = 0;     // of the hit-point grid, a power of two
+    uint32_t buckets_ = 0;  // of the hit-point grid, a power of two
     float grid_inverse_cell_ = 0;
 };
 
