@@ -25,9 +25,18 @@ function(pf_add_executable name)
     target_link_libraries(${name} PRIVATE pf_warnings ${ARG_DEPS})
 endfunction()
 
-# pf_add_test(NAME SOURCES ... [DEPS ...]): one GoogleTest binary, each case its own CTest test.
+# pf_add_test(NAME SOURCES ... [DEPS ...] [LABELS ...] [TIMEOUT SECONDS]): one GoogleTest
+# binary, each case its own CTest test with the binary's labels (unit unless given) and a
+# TIMEOUT per case (60 s unless given: the binary's slowest case on a loaded 2-core machine,
+# with room).
 function(pf_add_test name)
-    cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+    cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+    if(NOT ARG_TIMEOUT)
+        set(ARG_TIMEOUT 60)
+    endif()
+    if(NOT ARG_LABELS)
+        set(ARG_LABELS unit)
+    endif()
     add_executable(${name} ${ARG_SOURCES})
     target_link_libraries(${name} PRIVATE pf_warnings ${ARG_DEPS} GTest::gtest GTest::gtest_main)
     target_compile_definitions(${name} PRIVATE
@@ -35,7 +44,9 @@ function(pf_add_test name)
     # NO_PRETTY_VALUES: parameterised tests are named by their name generators alone, not by
     # gtest's printout of the parameter (bytes of pointers, for a struct of strings).
     gtest_discover_tests(${name} WORKING_DIRECTORY "${PROJECT_BINARY_DIR}" NO_PRETTY_VALUES
-        PROPERTIES ENVIRONMENT "PF_SOURCE_DIR=${PROJECT_SOURCE_DIR}" DISCOVERY_TIMEOUT 60)
+        PROPERTIES ENVIRONMENT "PF_SOURCE_DIR=${PROJECT_SOURCE_DIR}" TIMEOUT ${ARG_TIMEOUT}
+                   LABELS "${ARG_LABELS}"
+        DISCOVERY_TIMEOUT 60)
 endfunction()
 
 # pf_add_proto_library(NAME PROTO ...): runs protoc with the gRPC plugin on protos given

@@ -1,7 +1,8 @@
 # Sourced by the container tests: podman as it works on these machines (../shared notes:
 # runc instead of crun, explicit ulimits), with its storage, networks and temporary files in a
 # folder of the build tree, so nothing touches /var/lib/containers and cleaning up is rm -rf.
-# Exits 77 (CTest's skip code) with a message when podman cannot run containers at all.
+# Exits 77 (CTest's skip code) with a message when podman cannot run containers at all, and
+# fails instead under CI=true (tests/support/prerequisite.sh).
 # Needs: BUILD (the build folder), SOURCE (the source folder). Sets: W, PF_BASE, PF_TAG.
 set -euo pipefail
 BUILD=$(cd "$BUILD" && pwd) SOURCE=$(cd "$SOURCE" && pwd)
@@ -29,7 +30,8 @@ network_config_dir = "$W/networks"
 EOC
 export CONTAINERS_STORAGE_CONF="$W/conf/storage.conf" CONTAINERS_CONF="$W/conf/containers.conf" TMPDIR="$W/tmp"
 
-skip() { echo "SKIPPED: $*"; exit 77; }
+source "$SOURCE/tests/support/prerequisite.sh"
+skip() { skip_for_want_of "$@"; }
 say() { echo "[$(date +%T)] $*"; }
 command -v podman >/dev/null || skip "podman is not installed (deploy/install-deps.sh installs it)"
 [ "$(id -u)" -eq 0 ] || skip "the container tests run rootful podman: run them as root"

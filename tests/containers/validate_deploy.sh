@@ -8,7 +8,8 @@ set -euo pipefail
 source_dir=$(cd "$1" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-command -v docker-compose >/dev/null || { echo "SKIPPED: docker-compose is not installed"; exit 77; }
+source "$source_dir/tests/support/prerequisite.sh"
+command -v docker-compose >/dev/null || skip_for_want_of "docker-compose is not installed (deploy/install-deps.sh installs it)"
 docker-compose -f "$source_dir/deploy/compose.yaml" config -q
 echo "ok   compose.yaml"
 python3 - "$source_dir/deploy/k8s" <<'PY'

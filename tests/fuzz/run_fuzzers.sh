@@ -7,10 +7,9 @@ set -euo pipefail
 source_dir=$1
 build_dir=$2
 seconds=${3:-${PF_FUZZ_SECONDS:-30}}
-if ! command -v clang++ >/dev/null; then
-    echo "run_fuzzers: clang++ is not installed (package clang); cannot build the fuzzers" >&2
-    exit 1
-fi
+source "$source_dir/tests/support/prerequisite.sh"
+command -v clang++ >/dev/null ||
+    skip_for_want_of "run_fuzzers: clang++ is not installed (package clang); cannot build the fuzzers"
 # Not float-cast-overflow: a double beyond float's range becomes +-inf on every target
 # photonfarm builds for, and the loaders check converted values with IsFinite.
 flags="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize=float-cast-overflow -fno-sanitize-recover=undefined -fno-omit-frame-pointer"

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <string>
+#include <string_view>
 
 #include "worker/backends/vulkan/context.h"
 
@@ -17,15 +19,28 @@ namespace {
 
 }  // namespace
 
+bool PrerequisitesRequired() {
+    const char* ci = std::getenv("CI");
+    return ci != nullptr && std::string_view(ci) == "true";
+}
+
 void SkipWithoutVulkan() {
     // Skip only where the loader, a driver or a usable device is missing; anything else (the
-    // validation layer missing, say) fails the test.
+    // validation layer missing, say) fails the test. Under CI=true the skip is a failure.
+    std::string missing;
     const absl::StatusOr<std::vector<vk::DeviceInfo>> devices = vk::ListDevices();
     if (!devices.ok()) {
-        GTEST_SKIP() << "no Vulkan: " << devices.status();
+        missing = "no Vulkan: " + devices.status().ToString();
+    } else if (const absl::StatusOr<uint32_t> chosen = vk::ChooseDevice(*devices); !chosen.ok()) {
+        missing = "no usable Vulkan device: " + chosen.status().ToString();
     }
-    if (const absl::StatusOr<uint32_t> chosen = vk::ChooseDevice(*devices); !chosen.ok()) {
-        GTEST_SKIP() << "no usable Vulkan device: " << chosen.status();
+    if (!missing.empty()) {
+        if (PrerequisitesRequired()) {
+            GTEST_FAIL() << missing
+                         << " (CI=true requires Vulkan: install mesa-vulkan-drivers, which "
+                            "deploy/install-deps.sh lists, for lavapipe)";
+        }
+        GTEST_SKIP() << missing;
     }
     const absl::StatusOr<std::shared_ptr<vk::Context>> context = vk::Context::Shared();
     ASSERT_TRUE(context.ok()) << context.status();
