@@ -7,14 +7,15 @@
 
 namespace pf::testing {
 
-Image RenderSmall(const std::string& scene_path, const std::string& backend, uint64_t stream) {
+Image RenderSmall(const std::string& scene_path, const std::string& backend, uint64_t stream,
+                  uint64_t photons) {
     RenderSettings settings;
     settings.scene_path = scene_path;
     settings.backend = backend;
     settings.threads = 2;
     settings.job.width = 32;
     settings.job.height = 32;
-    settings.job.photon_budget = 1'000'000;
+    settings.job.photon_budget = photons;
     settings.job.layout = {1u << 16, 4};
     settings.job.photon_stream = stream;
     absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);

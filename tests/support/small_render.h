@@ -1,5 +1,5 @@
-// One small local render for tests that compare images statistically: 32x32, 1M photons in
-// batches of 2^16, two threads.
+// One small local render for tests that compare images statistically: 32x32, 1M photons (unless
+// given) in batches of 2^16, two threads.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +11,7 @@ namespace pf::testing {
 
 // Renders `scene_path` on `backend` with photon stream `stream`; a failed render adds a test
 // failure and gives an empty image.
-Image RenderSmall(const std::string& scene_path, const std::string& backend, uint64_t stream);
+Image RenderSmall(const std::string& scene_path, const std::string& backend, uint64_t stream,
+                  uint64_t photons = 1'000'000);
 
 }  // namespace pf::testing
