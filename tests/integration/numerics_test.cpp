@@ -1,5 +1,7 @@
 // Stiff and extreme cases (docs/numerics.md): each case of tests/support/numerics_cases.h as
-// one test, passing when its stated criterion holds.
+// one test, passing when its stated criterion holds and, for a criterion about a mean (the
+// stiff, scale and power cases), failing when the same criterion is applied to the case's own
+// measurement given a known 2% bias: a criterion that passed those could not catch one.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,6 +22,12 @@ TEST_P(Numerics, MeetsItsCriterion) {
     EXPECT_TRUE(result.ok) << c.name << ": " << result.detail;
     EXPECT_LE(result.measured, result.bound)
         << c.name << " (" << c.criterion << "): " << result.detail;
+    if (c.group == "stiff" || c.group == "scale" || c.group == "power") {
+        EXPECT_GT(result.biased_checks, 0) << c.name << " must show that a 2% bias fails it";
+    }
+    EXPECT_EQ(result.biased_that_passed, "")
+        << c.name << ": its criterion passed a measurement biased so (" << c.criterion
+        << "; measured " << result.measured << ", bound " << result.bound << ")";
 }
 
 INSTANTIATE_TEST_SUITE_P(Cases, Numerics, ::testing::ValuesIn(NumericsCases()),

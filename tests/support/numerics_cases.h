@@ -14,6 +14,12 @@ struct NumericsResult {
     double bound = 0;     // pass when measured <= bound (and `ok`)
     bool ok = true;  // everything else the case checks held (finite images, monotone radii, ...)
     std::string detail;  // what failed, or a note on what was seen
+    // The case's criterion applied again to its own measurement given a known bias (2%
+    // brighter, 2% darker, one channel tinted, red and blue swapped): every one must fail, or
+    // the criterion could not tell a biased render from a right one. How many were tried (0
+    // where the criterion is not about a mean), and the names of those that passed.
+    int biased_checks = 0;
+    std::string biased_that_passed;
     bool Passed() const { return ok && measured <= bound; }
 };
 
@@ -25,5 +31,16 @@ struct NumericsCase {
 };
 
 std::vector<NumericsCase> NumericsCases();
+
+// The pixels of a `width` x `height` render of an axis-aligned box seen from inside through a
+// pinhole (the furnaces) whose every camera sample meets one face farther than `radius` from
+// its edges, so that every gather sphere about their hit points cuts that face alone, in a full
+// disc; and the fraction of the box's surface their footprints cover.
+struct BoxInterior {
+    std::vector<bool> pixels;  // row-major, as Image::pixels
+    size_t count = 0;
+    double area_fraction = 0;
+};
+BoxInterior BoxInteriorPixels(const std::string& scene_path, int width, int height, double radius);
 
 }  // namespace pf::testing
