@@ -19,8 +19,27 @@ TEST(ImageMetricsTest, MatchTheDefinitions) {
     EXPECT_NEAR(d->rmse, std::sqrt((4.0 + 0.01) / 6), 1e-6);
     EXPECT_NEAR(d->rel_mse, (4.0 / 1.01 + 0.01 / 0.01) / 6, 1e-6);
     EXPECT_NEAR(d->max_abs, 2.0, 1e-6);
-    EXPECT_NEAR(d->psnr, 20 * std::log10(1.0 / d->rmse), 1e-9);
+    // Peak 1 (the reference's largest value), MSE 4.01 / 6: PSNR = 10 log10(6 / 4.01) dB =
+    // 1.75007 dB, worked out by hand rather than from the RMSE above.
+    EXPECT_NEAR(d->psnr, 1.75007, 1e-5);
     EXPECT_EQ(d->nonfinite_pixels, 0u);
+}
+
+TEST(ImageMetricsTest, ConstantOffsetGivesTheClosedFormPsnr) {
+    // A 4x3 reference of 0.5 everywhere but one pixel of 0.8 (the peak), and the image 0.1
+    // above it in every value: MSE = 0.01, RMSE = 0.1, PSNR = 20 log10(0.8 / 0.1) = 20 log10 8
+    // = 18.0618 dB; relative MSE = (11 x 0.01 / 0.26 + 0.01 / 0.65) / 12 = 0.0365385.
+    Image reference(4, 3), image(4, 3);
+    for (Rgb& pixel : reference.pixels) pixel = Rgb(0.5f);
+    reference.pixels[7] = Rgb(0.8f);
+    for (size_t p = 0; p < image.pixels.size(); ++p)
+        image.pixels[p] = reference.pixels[p] + Rgb(0.1f);
+    const absl::StatusOr<ImageDifference> d = CompareImages(image, reference);
+    ASSERT_TRUE(d.ok()) << d.status();
+    EXPECT_NEAR(d->rmse, 0.1, 1e-6);
+    EXPECT_NEAR(d->psnr, 18.0618, 1e-4);
+    EXPECT_NEAR(d->rel_mse, 0.0365385, 1e-6);
+    EXPECT_NEAR(d->max_abs, 0.1, 1e-6);
 }
 
 TEST(ImageMetricsTest, CountNonFinitePixelsApartAndSkipThem) {
