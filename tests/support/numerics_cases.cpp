@@ -130,14 +130,11 @@ NumericsCase Furnace(double rho) {
                     BoxInteriorPixels(path, kSize, kSize, outcome.initial_radius);
                 NumericsResult result;
                 result.ok = NonfinitePixels(outcome.image) == 0 && interior.count >= 64;
-                const double n = static_cast<double>(photons);
-                const double f = interior.area_fraction, kappa = 1;
-                const double r = 1 / rho + ((1 + kappa) / f - 1) * (1 - rho) / rho;
-                const double direct_samples = static_cast<double>(interior.count) *
-                                              kSamplesPerPixel * outcome.progress.epochs;
+                const double f = interior.area_fraction;
                 const double sigma =
-                    std::sqrt(std::pow(rho, 4) * r / n +
-                              0.5 * rho * rho * (1 - rho) * (1 - rho) / direct_samples);
+                    FurnaceMeanSigma(rho, static_cast<double>(photons), f,
+                                     static_cast<double>(interior.count) * kSamplesPerPixel *
+                                         static_cast<double>(outcome.progress.epochs));
                 result.bound = 4 * sigma;
                 Rgbd sum(0.0);
                 for (size_t p = 0; p < outcome.image.pixels.size(); ++p)
@@ -486,6 +483,13 @@ NumericsCase CameraInsideGlass() {
 }
 
 }  // namespace
+
+double FurnaceMeanSigma(double rho, double photons, double area_fraction, double direct_samples) {
+    constexpr double kappa = 1;  // the relative variance of a deposit's weight, at most
+    const double r = 1 / rho + ((1 + kappa) / area_fraction - 1) * (1 - rho) / rho;
+    return std::sqrt(std::pow(rho, 4) * r / photons +
+                     0.5 * rho * rho * (1 - rho) * (1 - rho) / direct_samples);
+}
 
 BoxInterior BoxInteriorPixels(const std::string& scene_path, int width, int height, double radius) {
     BoxInterior interior;

@@ -43,4 +43,10 @@ struct BoxInterior {
 };
 BoxInterior BoxInteriorPixels(const std::string& scene_path, int width, int height, double radius);
 
+// The standard deviation, relative to L = Le / (1 - rho), of a white furnace render's mean over
+// BoxInterior pixels, derived at Furnace in numerics_cases.cpp: `photons` emitted, whose
+// deposits from the second hit on make the photon part (rho^2 of L), `area_fraction` of the
+// box's surface under the interior, and `direct_samples` direct-light samples taken there.
+double FurnaceMeanSigma(double rho, double photons, double area_fraction, double direct_samples);
+
 }  // namespace pf::testing
