@@ -37,16 +37,26 @@ int RunCompare(const CompareOptions& options) {
     const ImageDifference& d = *difference;
     if (options.json) {
         std::printf(
-            "{\"rmse\":%s,\"rel_mse\":%s,\"psnr\":%s,\"max_abs\":%s,\"nonfinite_pixels\":%llu}\n",
+            "{\"rmse\":%s,\"rel_mse\":%s,\"psnr\":%s,\"max_abs\":%s,\"nonfinite_pixels\":%llu,"
+            "\"nonfinite_reference_pixels\":%llu}\n",
             JsonNumber(d.rmse).c_str(), JsonNumber(d.rel_mse).c_str(), JsonNumber(d.psnr).c_str(),
-            JsonNumber(d.max_abs).c_str(), static_cast<unsigned long long>(d.nonfinite_pixels));
+            JsonNumber(d.max_abs).c_str(), static_cast<unsigned long long>(d.nonfinite_pixels),
+            static_cast<unsigned long long>(d.nonfinite_reference_pixels));
     } else {
-        std::printf("rmse %.6g\nrel_mse %.6g\npsnr %.2f dB\nmax_abs %.6g\nnonfinite_pixels %llu\n",
-                    d.rmse, d.rel_mse, d.psnr, d.max_abs,
-                    static_cast<unsigned long long>(d.nonfinite_pixels));
+        std::printf(
+            "rmse %.6g\nrel_mse %.6g\npsnr %.2f dB\nmax_abs %.6g\nnonfinite_pixels %llu\n"
+            "nonfinite_reference_pixels %llu\n",
+            d.rmse, d.rel_mse, d.psnr, d.max_abs,
+            static_cast<unsigned long long>(d.nonfinite_pixels),
+            static_cast<unsigned long long>(d.nonfinite_reference_pixels));
     }
-    // A NaN or Inf pixel is a defect worth failing a script on.
-    return d.nonfinite_pixels == 0 ? 0 : 3;
+    // A NaN or Inf pixel, in either image, is a defect worth failing a script on: the metrics
+    // leave it out, so they alone would not show it.
+    if (!d.AllFinite())
+        spdlog::error("{} NaN/Inf pixels in {}, {} in {}: left out of the metrics",
+                      d.nonfinite_pixels, options.image, d.nonfinite_reference_pixels,
+                      options.reference);
+    return d.AllFinite() ? 0 : 3;
 }
 
 }  // namespace

@@ -23,13 +23,13 @@ absl::StatusOr<ImageDifference> CompareImages(const Image& image, const Image& r
     double squared = 0, relative = 0, peak = 0;
     uint64_t samples = 0;
     for (size_t p = 0; p < image.pixels.size(); ++p) {
-        if (!IsFinite(image.pixels[p])) {
-            ++difference.nonfinite_pixels;
-            continue;
-        }
+        const bool finite = IsFinite(image.pixels[p]),
+                   reference_finite = IsFinite(reference.pixels[p]);
+        difference.nonfinite_pixels += finite ? 0 : 1;
+        difference.nonfinite_reference_pixels += reference_finite ? 0 : 1;
+        if (!finite || !reference_finite) continue;
         for (int c = 0; c < 3; ++c) {
             const double value = image.pixels[p][c], expected = reference.pixels[p][c];
-            if (!std::isfinite(expected)) continue;
             const double error = value - expected;
             squared += error * error;
             relative += error * error / (expected * expected + 0.01);
@@ -37,6 +37,11 @@ absl::StatusOr<ImageDifference> CompareImages(const Image& image, const Image& r
             peak = std::max(peak, std::abs(expected));
             ++samples;
         }
+    }
+    if (samples == 0 && !image.pixels.empty()) {
+        const double nothing = std::numeric_limits<double>::quiet_NaN();
+        difference.rmse = difference.rel_mse = difference.psnr = difference.max_abs = nothing;
+        return difference;
     }
     if (samples > 0) {
         difference.rmse = std::sqrt(squared / samples);

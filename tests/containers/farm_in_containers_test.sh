@@ -20,6 +20,40 @@ cleanup() {
 }
 trap cleanup EXIT
 free_port() { python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'; }
+# same_image IMAGE REFERENCE: bit-identical, with no NaN or Inf pixel in either. `compare`
+# leaves such pixels out of its metrics (max_abs alone would pass an all-NaN image) and exits 3
+# on them, so its exit status is checked as well as max_abs and the counts.
+same_image() {
+    local report
+    if ! report=$("${client[@]}" compare "$1" "$2" --json --log-level warn 2>&1); then
+        echo "compare $1 $2 failed: $report"
+        return 1
+    fi
+    grep -q '"max_abs":0,' <<< "$report" && grep -q '"nonfinite_pixels":0,' <<< "$report" \
+        && grep -q '"nonfinite_reference_pixels":0}' <<< "$report" || { echo "$report"; return 1; }
+}
+# nan_exr PATH WIDTH HEIGHT: an uncompressed float EXR whose every channel is NaN.
+nan_exr() {
+    python3 - "$@" <<'PY'
+import struct, sys
+path, width, height = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+def attribute(name, kind, data):
+    return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(data)) + data
+channels = b"".join(c.encode() + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1) for c in "BGR") + b"\0"
+window = struct.pack("<4i", 0, 0, width - 1, height - 1)
+header = (struct.pack("<ii", 20000630, 2) + attribute("channels", "chlist", channels)
+          + attribute("compression", "compression", b"\0") + attribute("dataWindow", "box2i", window)
+          + attribute("displayWindow", "box2i", window) + attribute("lineOrder", "lineOrder", b"\0")
+          + attribute("pixelAspectRatio", "float", struct.pack("<f", 1))
+          + attribute("screenWindowCenter", "v2f", struct.pack("<ff", 0, 0))
+          + attribute("screenWindowWidth", "float", struct.pack("<f", 1)) + b"\0")
+line = struct.pack("<%df" % (3 * width), *[float("nan")] * (3 * width))
+first = len(header) + 8 * height
+offsets = struct.pack("<%dQ" % height, *(first + y * (8 + len(line)) for y in range(height)))
+with open(path, "wb") as out:
+    out.write(header + offsets + b"".join(struct.pack("<ii", y, len(line)) + line for y in range(height)))
+PY
+}
 
 build_images
 bash "$SOURCE/deploy/make-certs.sh" "$secrets" localhost 127.0.0.1 coordinator > /dev/null
@@ -53,9 +87,14 @@ job=(--width 48 --height 48 --photons-per-batch 8192 --batches-per-epoch 6 --see
 "${client[@]}" submit "$SOURCE/scenes/cornell-box.gltf" "${farm[@]}" "${job[@]}" --watch --interval 0 --out "$out/farm.exr" \
     || { echo "FAIL: the job did not finish"; exit 1; }
 "${client[@]}" render "$SOURCE/scenes/cornell-box.gltf" "${job[@]}" --threads 2 --out "$out/local.exr" --log-level warn
-difference=$("${client[@]}" compare "$out/farm.exr" "$out/local.exr" | awk '/^max_abs/{print $2}')
-[ "$difference" = "0" ] || { echo "FAIL: the farm's image differs from photonfarm render (max_abs $difference)"; exit 1; }
-say "the image is bit-identical to photonfarm render"
+# The check can fail: an all-NaN image of the same size, on either side, is refused.
+nan_exr "$out/nan.exr" 48 48
+for pair in "$out/nan.exr $out/local.exr" "$out/local.exr $out/nan.exr"; do
+    # shellcheck disable=SC2086
+    ! same_image $pair > /dev/null || { echo "FAIL: same_image passed an all-NaN image ($pair)"; exit 1; }
+done
+same_image "$out/farm.exr" "$out/local.exr" || { echo "FAIL: the farm's image differs from photonfarm render"; exit 1; }
+say "the image is bit-identical to photonfarm render (and an all-NaN image is refused)"
 
 # Every worker ran batches.
 idle=$("${client[@]}" workers "${farm[@]}" | awk 'NR > 1 && $5 == 0' | wc -l)

@@ -50,8 +50,43 @@ TEST(ImageMetricsTest, CountNonFinitePixelsApartAndSkipThem) {
     const absl::StatusOr<ImageDifference> d = CompareImages(image, reference);
     ASSERT_TRUE(d.ok());
     EXPECT_EQ(d->nonfinite_pixels, 2u);
+    EXPECT_FALSE(d->AllFinite());
     EXPECT_EQ(d->rmse, 0.0);
     EXPECT_TRUE(std::isinf(d->psnr));
+}
+
+// An image with nothing finite in it is not a perfect match: the metrics are NaN, so that a
+// check on max_abs == 0 or rmse == 0 fails, and every pixel is counted.
+TEST(ImageMetricsTest, AnAllNanImageMeasuresNothingAndMatchesNothing) {
+    Image reference(2, 2), image(2, 2);
+    reference.pixels.assign(4, Rgb(0.5f));
+    image.pixels.assign(4, Rgb(std::numeric_limits<float>::quiet_NaN()));
+    const absl::StatusOr<ImageDifference> d = CompareImages(image, reference);
+    ASSERT_TRUE(d.ok());
+    EXPECT_EQ(d->nonfinite_pixels, 4u);
+    EXPECT_FALSE(d->AllFinite());
+    EXPECT_TRUE(std::isnan(d->max_abs));
+    EXPECT_TRUE(std::isnan(d->rmse));
+    EXPECT_TRUE(std::isnan(d->rel_mse));
+    EXPECT_TRUE(std::isnan(d->psnr));
+    EXPECT_FALSE(d->max_abs == 0.0);
+}
+
+// A NaN or Inf in the reference is counted too (it used to be skipped without a word), and the
+// pixel left out whole.
+TEST(ImageMetricsTest, NonFiniteReferencePixelsAreCountedAndLeftOut) {
+    Image reference(2, 1), image(2, 1);
+    reference.pixels = {Rgb(1.0f, std::numeric_limits<float>::infinity(), 1.0f), Rgb(1.0f)};
+    image.pixels = {Rgb(5.0f), Rgb(1.0f)};
+    const absl::StatusOr<ImageDifference> d = CompareImages(image, reference);
+    ASSERT_TRUE(d.ok());
+    EXPECT_EQ(d->nonfinite_pixels, 0u);
+    EXPECT_EQ(d->nonfinite_reference_pixels, 1u);
+    EXPECT_FALSE(d->AllFinite());
+    EXPECT_EQ(d->max_abs, 0.0) << "the finite channels of a pixel with an Inf are left out too";
+    Image clean = reference;
+    clean.pixels[0] = Rgb(1.0f);
+    EXPECT_TRUE(CompareImages(image, clean)->AllFinite());
 }
 
 TEST(ImageMetricsTest, DifferentSizesAreAnErrorNamingBoth) {
