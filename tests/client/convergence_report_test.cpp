@@ -9,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/support/test_env.h"
+
 namespace pf {
 namespace {
 
@@ -49,9 +51,7 @@ TEST(ConvergenceReportTest, ScriptHeaderCarriesTheFitsAndAQuotedTitle) {
 }
 
 TEST(ConvergenceReportTest, WritesCsvScriptAndPlotsThroughGnuplot) {
-    const std::filesystem::path dir =
-        std::filesystem::path(testing::TempDir()) / "pf-convergence-report";
-    std::filesystem::remove_all(dir);
+    const std::filesystem::path dir = testing::FreshTempDir("convergence-report");
     ASSERT_TRUE(PrepareReportDir(dir.string()).ok());
     for (const bool with_reference : {false, true}) {
         const absl::Status status =

@@ -16,6 +16,7 @@
 #include "core/scene/scene_loader.h"
 #include "tests/support/image_agreement.h"
 #include "tests/support/small_render.h"
+#include "tests/support/test_env.h"
 #include "tests/support/vulkan_validation.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
 
@@ -88,8 +89,7 @@ std::string ObjectsScene(bool instanced) {
 class Instancing : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
-        folder_ = std::filesystem::path(::testing::TempDir()) / "instancing";
-        std::filesystem::create_directories(folder_);
+        folder_ = testing::FreshTempDir("instancing");  // this process's own
         std::filesystem::copy_file(
             std::filesystem::path(PF_SOURCE_DIR) / "scenes/pbrt/cornell-room.pbrt",
             folder_ / "cornell-room.pbrt", std::filesystem::copy_options::overwrite_existing);

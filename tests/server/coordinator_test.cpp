@@ -22,6 +22,7 @@
 #include "core/scene/scene_loader.h"
 #include "server/in_process_source.h"
 #include "server/metrics.h"
+#include "tests/support/test_env.h"
 #include "worker/backend_factory.h"
 #include "worker/worker_loop.h"
 
@@ -111,7 +112,7 @@ TEST(CoordinatorTest, ResultsInAnyOrderFromAnyWorkerGiveTheEmbeddedImage) {
     const std::string a = *coordinator.RegisterWorker(Cpu()),
                       b = *coordinator.RegisterWorker(Cpu());
     BatchRunner runner;
-    std::mt19937 shuffle(7);
+    std::mt19937_64 shuffle(testing::TestSeed());  // printed: PF_TEST_SEED repeats the order
     for (int epoch = 0; epoch < 3; ++epoch) {
         // Two workers take two batches each; their results come back in a random order.
         std::vector<std::pair<std::string, BatchResult>> reports;
@@ -121,7 +122,15 @@ TEST(CoordinatorTest, ResultsInAnyOrderFromAnyWorkerGiveTheEmbeddedImage) {
             for (BatchResult& result : runner.Run(*lease))
                 reports.emplace_back(worker, std::move(result));
         }
-        std::shuffle(reports.begin(), reports.end(), shuffle);
+        // Out of order every epoch, whatever the seed: an in-order shuffle is drawn again.
+        const auto in_order = [&] {
+            return std::is_sorted(reports.begin(), reports.end(), [](const auto& x, const auto& y) {
+                return x.second.spec.index < y.second.spec.index;
+            });
+        };
+        do {
+            std::shuffle(reports.begin(), reports.end(), shuffle);
+        } while (in_order());
         for (auto& [worker, result] : reports)
             EXPECT_EQ(*coordinator.Report(worker, job->job_id, std::move(result)),
                       TallyVerdict::kAccepted);
@@ -371,12 +380,9 @@ TEST(CoordinatorTest, AJobNoConnectedWorkerRunsIsSubmittedWithAWarningAndWaits) 
 namespace pf {
 namespace {
 
-// A checkpoint folder of its own, removed at the end.
+// A checkpoint folder of its own, in this process's own temporary folder, removed at the end.
 struct TempDir {
-    std::string path =
-        (std::filesystem::temp_directory_path() / ("pf-checkpoints-" + std::to_string(getpid()) +
-                                                   "-" + std::to_string(std::random_device{}())))
-            .string();
+    std::string path = testing::FreshTempDir("checkpoints").string();
     ~TempDir() { std::filesystem::remove_all(path); }
 };
 

@@ -1,12 +1,15 @@
-// fork/exec with a stdout pipe, poll() for reads with deadlines, waitpid for reaping.
+// fork/exec with a stdout pipe, poll() for reads with deadlines, and for the exit on a pidfd
+// (waitpid has no timeout), waitpid for reaping.
 #include "tests/support/child_process.h"
 
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -41,6 +44,9 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv) {
     }
     close(fds[1]);
     stdout_fd_ = fds[0];
+    // Readable once the child exits (a zombie still has one: it is not reaped yet); -1 on a
+    // kernel without pidfd_open (before Linux 5.3), where Wait polls instead.
+    pidfd_ = static_cast<int>(syscall(SYS_pidfd_open, pid_, 0));
 }
 
 ChildProcess::~ChildProcess() {
@@ -49,6 +55,7 @@ ChildProcess::~ChildProcess() {
         Wait(30);
     }
     if (stdout_fd_ >= 0) close(stdout_fd_);
+    if (pidfd_ >= 0) close(pidfd_);
 }
 
 std::optional<std::string> ChildProcess::ReadLine(double seconds) {
@@ -84,9 +91,16 @@ std::optional<int> ChildProcess::Wait(double seconds) {
             exit_code_ = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
             break;
         }
-        if (Clock::now() >= deadline) break;
-        // waitpid has no timeout; poll for the exit at a fine grain.
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        const auto left =
+            std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+        if (left <= 0) break;
+        const int wait_ms = static_cast<int>(std::min<int64_t>(left, 60'000));
+        if (pidfd_ >= 0) {
+            pollfd fd{pidfd_, POLLIN, 0};
+            poll(&fd, 1, wait_ms);
+        } else {
+            std::this_thread::sleep_for(std::chrono::milliseconds(std::min(wait_ms, 5)));
+        }
     }
     return exit_code_;
 }

@@ -28,6 +28,7 @@ public:
 private:
     pid_t pid_ = -1;
     int stdout_fd_ = -1;
+    int pidfd_ = -1;  // readable when the child exits
     std::string buffer_;
     std::optional<int> exit_code_;
 };

@@ -2,13 +2,12 @@
 #include "tests/support/farm_credentials.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "tests/support/child_process.h"
+#include "tests/support/test_env.h"
 
 namespace pf::testing {
 
@@ -52,21 +51,17 @@ ChannelSecurity FarmCredentials::Worker() const {
 }
 
 const FarmCredentials& TestCredentials(const std::string& source_dir) {
+    // In this process's own folder (removed with it at exit), so that no other test's files
+    // are ever read, nor a stale set left by an earlier process of the same pid.
     static const FarmCredentials credentials = [&] {
         FarmCredentials made;
-        made.dir = (std::filesystem::temp_directory_path() /
-                    ("pf-test-credentials-" + std::to_string(getpid())))
-                       .string();
+        made.dir = FreshTempDir("credentials").string();
         ChildProcess script({"/bin/bash", source_dir + "/deploy/make-certs.sh", made.dir});
         while (script.ReadLine(60)) {
         }
         EXPECT_EQ(script.Wait(60), 0) << "deploy/make-certs.sh failed";
         return made;
     }();
-    static const struct Remover {
-        std::string dir;
-        ~Remover() { std::filesystem::remove_all(dir); }
-    } remover{credentials.dir};
     return credentials;
 }
 

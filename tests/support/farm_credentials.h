@@ -1,6 +1,7 @@
 // TLS certificates and tokens for farm tests: a CA, the coordinator's certificate (for
 // 127.0.0.1 and localhost), a worker certificate and one token per role, made once per test
-// process by deploy/make-certs.sh into a temporary folder, with the flags that use them.
+// process by deploy/make-certs.sh into the process's temporary folder (test_env.h), with the
+// flags that use them.
 #pragma once
 
 #include <string>

@@ -2,21 +2,15 @@
 #include "tests/support/gltf_builder.h"
 
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 
 #include "absl/strings/escaping.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "tests/support/test_env.h"
 
 namespace pf::testing {
 namespace {
-
-std::string TempPath(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / "photonfarm-tests";
-    std::filesystem::create_directories(dir);
-    return (dir / name).string();
-}
 
 std::string Floats(const Vec3& v) { return absl::StrCat("[", v.x, ",", v.y, ",", v.z, "]"); }
 

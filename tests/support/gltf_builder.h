@@ -39,12 +39,13 @@ struct TestScene {
 // A unit quad in the z = 0 plane facing +z, lit by an emissive quad above it.
 TestScene LitQuadScene();
 
-// Serialises the scene; returns the file's path under the test's temporary directory.
+// Serialises the scene; returns the file's path under this process's own temporary folder
+// (test_env.h's TempPath: tests running side by side never write the same file).
 std::string WriteGltf(const TestScene& scene, const std::string& name);
 std::string WriteGlb(const TestScene& scene, const std::string& name);
 // The JSON text alone (with the buffer as a data URI), for tests that corrupt it.
 std::string GltfJson(const TestScene& scene);
-// Writes text to a temporary file; returns its path.
+// Writes text to a file of that name in this process's temporary folder; returns its path.
 std::string WriteTextFile(const std::string& text, const std::string& name);
 
 }  // namespace pf::testing

@@ -12,6 +12,7 @@
 
 #include "absl/strings/escaping.h"
 #include "core/scene/scene_loader.h"
+#include "tests/support/test_env.h"
 
 namespace pf {
 namespace {
@@ -27,7 +28,7 @@ std::string WriteWithExternalBuffer(const std::string& folder, const std::string
     const size_t end = json.find('"', begin);
     const std::string base64 = json.substr(begin + marker.size(), end - begin - marker.size());
     json.replace(begin, end - begin, buffer_uri);
-    const std::filesystem::path root = std::filesystem::path(::testing::TempDir()) / folder;
+    const std::filesystem::path root = testing::FreshTempDir(folder);  // this process's own
     std::filesystem::create_directories(root / "scene");
     std::ofstream(root / "scene" / "box.gltf") << json;
     // The buffer's bytes: decode the base64 the generator wrote.
@@ -63,9 +64,7 @@ TEST(SceneBundleTest, PacksReferencedFilesAndLoadsFromTheBundleAlone) {
 TEST(SceneBundleTest, LeavesOutImagesNoMaterialReadsAsItsBaseColour) {
     // The fuzz corpus's textured quad reads image.png as its base colour; give it a normal map
     // too, which photonfarm does not read.
-    const std::filesystem::path root =
-        std::filesystem::temp_directory_path() / "photonfarm-tests" / "unused-images";
-    std::filesystem::create_directories(root);
+    const std::filesystem::path root = testing::FreshTempDir("unused-images");
     std::ifstream in(std::string(PF_SOURCE_DIR) + "/tests/fuzz/corpus/gltf/textured-quad.gltf");
     std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     json.replace(json.find(R"("images":[{"uri":"image.png"}])"),
