@@ -3,7 +3,6 @@
 // on the shipped Cornell scenes, within statistical bounds measured from the path tracer's own
 // epochs: a photon mapper that comes out darker or brighter than the path tracer has lost or
 // invented light.
-#include <absl/strings/str_format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -74,66 +73,9 @@ std::vector<double> BlockMeans(const Image& image, int block) {
     return means;
 }
 
-// The white furnace's check, on the pixels away from the cube's edges (BoxInteriorPixels),
-// whose expected value every integrator knows in closed form. Each channel's mean must lie
-// within 4 sigma of it (relative; a true render fails with probability 6e-5), sigma derived
-// for each integrator below. The median of the pixels (channel averages) is checked too, for
-// pixels wrong in opposite directions that the mean averages away; it needs more room than the
-// mean: a pixel's noise is skewed (photons in a small disc, light samples near the emitting
-// edges), so the pixels' median sits off their mean by up to one standard deviation s of a
-// pixel (|median - mean| <= s for every distribution), and the sample median has a standard
-// error of about 1.2533 s / sqrt(n) of its own: allowed s (1 + 4 x 1.2533 / sqrt(n)), with s
-// measured over the n pixels (1 to 2.5% of L here, so 1 to 3%). A bias of the whole image is
-// the mean's to catch, which it does at 2%: the same check fails the render made 2% brighter,
-// 2% darker or green 2% brighter.
-struct FurnaceCheck {
-    Rgbd mean{0.0};
-    double expected = 0, sigma = 0;                            // sigma relative to `expected`
-    double median = 0, pixel_deviation = 0, median_bound = 0;  // relative
-    size_t pixels = 0;
-
-    double MeanError() const {
-        return std::max({std::abs(mean.x / expected - 1), std::abs(mean.y / expected - 1),
-                         std::abs(mean.z / expected - 1)});
-    }
-    bool Passed() const {
-        return MeanError() <= 4 * sigma && std::abs(median / expected - 1) <= median_bound;
-    }
-    std::string Describe() const {
-        return absl::StrFormat(
-            "RGB means %.5f %.5f %.5f against %.5f (worst %.3f%%, allowed %.3f%%); median %.5f "
-            "(allowed %.3f%%, pixel deviation %.3f%%); %d pixels",
-            mean.x, mean.y, mean.z, expected, 100 * MeanError(), 400 * sigma, median,
-            100 * median_bound, 100 * pixel_deviation, pixels);
-    }
-};
-
-// `sigma` < 0: the pixels are independent (the path tracer), so sigma is measured from them.
-FurnaceCheck CheckFurnace(const Image& image, const testing::BoxInterior& interior, double expected,
-                          double sigma, const Rgbd& bias = Rgbd(1.0)) {
-    FurnaceCheck check;
-    check.expected = expected;
-    check.pixels = interior.count;
-    std::vector<double> values;
-    double squares = 0;
-    for (size_t p = 0; p < image.pixels.size(); ++p) {
-        if (!interior.pixels[p]) continue;
-        const Rgbd pixel = Rgbd(image.pixels[p]) * bias;
-        check.mean = check.mean + pixel;
-        values.push_back((pixel.x + pixel.y + pixel.z) / 3);
-    }
-    const double n = static_cast<double>(values.size());
-    check.mean = check.mean / n;
-    const double average = (check.mean.x + check.mean.y + check.mean.z) / 3;
-    for (double value : values) squares += (value - average) * (value - average);
-    check.pixel_deviation = std::sqrt(squares / (n - 1)) / expected;
-    check.sigma = sigma >= 0 ? sigma : check.pixel_deviation / std::sqrt(n);
-    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
-    check.median = values[values.size() / 2];
-    check.median_bound = check.pixel_deviation * (1 + 4 * 1.2533 / std::sqrt(n));
-    return check;
-}
-
+// Every integrator's white furnace, checked on the pixels away from the cube's edges, whose
+// expected value each knows in closed form, within 4 sigma derived for it below, and the
+// median (testing::CheckFurnace, which says why the median needs more room).
 class WhiteFurnace : public ::testing::TestWithParam<Integrator> {};
 
 TEST_P(WhiteFurnace, ConvergesToEmissionOverOneMinusAlbedo) {
@@ -179,12 +121,14 @@ TEST_P(WhiteFurnace, ConvergesToEmissionOverOneMinusAlbedo) {
         case Integrator::kPath:
             break;  // unbiased, and its pixels independent: sigma from their spread
     }
-    const FurnaceCheck check = CheckFurnace(outcome->image, interior, expected, sigma);
+    const testing::FurnaceCheck check =
+        testing::CheckFurnace(outcome->image, interior, expected, sigma);
     EXPECT_TRUE(check.Passed()) << check.Describe();
     std::printf("%s: %s\n", std::string(IntegratorName(GetParam())).c_str(),
                 check.Describe().c_str());
     for (const Rgbd& bias : {Rgbd(1.02), Rgbd(0.98), Rgbd(1.0, 1.02, 1.0)}) {
-        const FurnaceCheck biased = CheckFurnace(outcome->image, interior, expected, sigma, bias);
+        const testing::FurnaceCheck biased =
+            testing::CheckFurnace(outcome->image, interior, expected, sigma, bias);
         EXPECT_FALSE(biased.Passed()) << "biased " << bias.x << " " << bias.y << " " << bias.z
                                       << " and passed: " << biased.Describe();
     }

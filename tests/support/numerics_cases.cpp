@@ -550,6 +550,49 @@ BoxInterior BoxInteriorPixels(const std::string& scene_path, int width, int heig
     return interior;
 }
 
+double FurnaceCheck::MeanError() const {
+    return std::max({std::abs(mean.x / expected - 1), std::abs(mean.y / expected - 1),
+                     std::abs(mean.z / expected - 1)});
+}
+
+bool FurnaceCheck::Passed() const {
+    return MeanError() <= 4 * sigma && std::abs(median / expected - 1) <= median_bound;
+}
+
+std::string FurnaceCheck::Describe() const {
+    return absl::StrFormat(
+        "RGB means %.5f %.5f %.5f against %.5f (worst %.3f%%, allowed %.3f%%); median %.5f "
+        "(allowed %.3f%%, pixel deviation %.3f%%); %d pixels",
+        mean.x, mean.y, mean.z, expected, 100 * MeanError(), 400 * sigma, median,
+        100 * median_bound, 100 * pixel_deviation, pixels);
+}
+
+FurnaceCheck CheckFurnace(const Image& image, const BoxInterior& interior, double expected,
+                          double sigma, const Rgbd& bias) {
+    FurnaceCheck check;
+    check.expected = expected;
+    check.pixels = interior.count;
+    std::vector<double> values;
+    for (size_t p = 0; p < image.pixels.size(); ++p) {
+        if (!interior.pixels[p]) continue;
+        const Rgbd pixel = Rgbd(image.pixels[p]) * bias;
+        check.mean = check.mean + pixel;
+        values.push_back((pixel.x + pixel.y + pixel.z) / 3);
+    }
+    if (values.size() < 2) return check;  // fails: no mean, no bound
+    const double n = static_cast<double>(values.size());
+    check.mean = check.mean / n;
+    const double average = (check.mean.x + check.mean.y + check.mean.z) / 3;
+    double squares = 0;
+    for (double value : values) squares += (value - average) * (value - average);
+    check.pixel_deviation = std::sqrt(squares / (n - 1)) / expected;
+    check.sigma = sigma >= 0 ? sigma : check.pixel_deviation / std::sqrt(n);
+    std::nth_element(values.begin(), values.begin() + values.size() / 2, values.end());
+    check.median = values[values.size() / 2];
+    check.median_bound = check.pixel_deviation * (1 + 4 * 1.2533 / std::sqrt(n));
+    return check;
+}
+
 std::vector<NumericsCase> NumericsCases() {
     std::vector<NumericsCase> cases;
     for (double rho : {0.5, 0.9, 0.99, 0.999}) cases.push_back(Furnace(rho));

@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "core/film/image.h"
+#include "core/math/vec3.h"
+
 namespace pf::testing {
 
 struct NumericsResult {
@@ -48,5 +51,31 @@ BoxInterior BoxInteriorPixels(const std::string& scene_path, int width, int heig
 // deposits from the second hit on make the photon part (rho^2 of L), `area_fraction` of the
 // box's surface under the interior, and `direct_samples` direct-light samples taken there.
 double FurnaceMeanSigma(double rho, double photons, double area_fraction, double direct_samples);
+
+// A white furnace render checked on its BoxInterior pixels against the value `expected` there.
+// Each channel's mean must lie within 4 sigma (sigma relative to `expected`; a true render
+// fails with probability 6e-5). The median of the pixels (channel averages) is checked too,
+// for pixels wrong in opposite directions that the mean averages away; it needs more room than
+// the mean: a pixel's noise is skewed (photons in a small disc, light samples near the
+// emitting edges), so the pixels' median sits off their mean by up to one standard deviation s
+// of a pixel (|median - mean| <= s for every distribution), and the sample median has a
+// standard error of about 1.2533 s / sqrt(n) of its own: allowed s (1 + 4 x 1.2533 / sqrt(n)),
+// s measured over the n pixels (1 to 2.5% of L in the tests, so 1 to 3%). A bias of the whole
+// image is the mean's to catch, at 2% and less: the tests apply the check again to the render
+// made 2% brighter, 2% darker and green 2% brighter (`bias`), which must fail.
+struct FurnaceCheck {
+    Rgbd mean{0.0};
+    double expected = 0, sigma = 0;                            // sigma relative to `expected`
+    double median = 0, pixel_deviation = 0, median_bound = 0;  // relative
+    size_t pixels = 0;
+
+    double MeanError() const;  // the worst channel's |mean / expected - 1|
+    bool Passed() const;
+    std::string Describe() const;
+};
+
+// `sigma` < 0: the pixels are independent (a path tracer's), so sigma is measured from them.
+FurnaceCheck CheckFurnace(const Image& image, const BoxInterior& interior, double expected,
+                          double sigma, const Rgbd& bias = Rgbd(1.0));
 
 }  // namespace pf::testing
