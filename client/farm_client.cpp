@@ -130,8 +130,9 @@ absl::StatusOr<JobConvergence> FarmClient::Convergence(const std::string& job_id
 
 absl::StatusOr<v1::Snapshot> FarmClient::Watch(
     const std::string& job_id, double interval_seconds, bool images,
-    const std::function<bool(const v1::Snapshot&)>& on_snapshot) {
+    const std::function<bool(const v1::Snapshot&)>& on_snapshot, double deadline_seconds) {
     grpc::ClientContext context;
+    if (deadline_seconds > 0) SetDeadline(&context, deadline_seconds);
     v1::WatchJobRequest request;
     request.set_job_id(job_id);
     request.set_interval_seconds(interval_seconds);
@@ -150,9 +151,13 @@ absl::StatusOr<v1::Snapshot> FarmClient::Watch(
             break;
         }
     }
-    if (grpc::Status status = reader->Finish(); !status.ok() && !stopped)
-        return FromGrpcStatus(status, peer_);
-    return last;
+    const grpc::Status status = reader->Finish();
+    if (status.ok() || stopped) return last;
+    if (status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED && deadline_seconds > 0)
+        return absl::DeadlineExceededError(absl::StrCat(
+            peer_, ": job ", job_id, " did not end within ", deadline_seconds,
+            " s; last seen: ", last.has_status() ? StatusLine(last.status()) : "no snapshot"));
+    return FromGrpcStatus(status, peer_);
 }
 
 std::string ToJson(const google::protobuf::Message& message) {
@@ -162,6 +167,16 @@ std::string ToJson(const google::protobuf::Message& message) {
     std::string json;
     (void)google::protobuf::util::MessageToJsonString(message, &json, options);
     return json;
+}
+
+std::string StatusLine(const v1::JobStatus& status) {
+    std::string line = absl::StrCat(StateName(status.state()), ", ", status.epochs(), " epochs, ",
+                                    status.photons(), " photons, ", status.workers_active(),
+                                    " workers active, ", status.elapsed_seconds(), " s");
+    if (status.has_estimated_error())
+        absl::StrAppend(&line, ", estimated error ", status.estimated_error());
+    if (!status.message().empty()) absl::StrAppend(&line, ", ", status.message());
+    return line;
 }
 
 std::string StateName(v1::JobState state) {

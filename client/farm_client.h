@@ -55,11 +55,16 @@ public:
     // The standard health service (grpc.health.v1, no token needed): OK when it answers
     // SERVING, UNAVAILABLE naming the status otherwise.
     absl::Status CheckHealth();
-    // Streams snapshots to `on_snapshot` until the job ends or `on_snapshot` returns false;
-    // returns the last one.
+    // Streams snapshots to `on_snapshot` until the job ends or `on_snapshot` returns false
+    // (the cancel path: the stream is cancelled at once); returns the last one. The coordinator
+    // sends a snapshot only when the job changes, so a stalled job sends none: with
+    // `deadline_seconds` > 0 the watch gives up that many seconds after it began with
+    // DEADLINE_EXCEEDED naming the job and its last state seen. 0 (the command line's watch):
+    // no deadline, since a user's watch of a long job must last as long as the job.
     absl::StatusOr<photonfarm::v1::Snapshot> Watch(
         const std::string& job_id, double interval_seconds, bool images,
-        const std::function<bool(const photonfarm::v1::Snapshot&)>& on_snapshot);
+        const std::function<bool(const photonfarm::v1::Snapshot&)>& on_snapshot,
+        double deadline_seconds = 0);
 
 private:
     FarmClient(std::string address, std::shared_ptr<grpc::Channel> channel);
@@ -76,5 +81,8 @@ private:
 std::string ToJson(const google::protobuf::Message& message);
 // A job's state in words: "running", "done", ...
 std::string StateName(photonfarm::v1::JobState state);
+// A job's status in one line, for messages: state, epochs, photons, workers, seconds, the
+// estimated error once known, and why it ended where it failed or was cancelled.
+std::string StatusLine(const photonfarm::v1::JobStatus& status);
 
 }  // namespace pf

@@ -2,8 +2,9 @@
 // and missing tokens, one role's token on the other's service, a worker without its
 // certificate, forged batches, tallies that name hit points the job lacks or carry NaN,
 // oversized messages and scenes, and paths that climb out of the bundle. None may be merged
-// or read; the server stays up; the job's image stays as it was, and the job then renders
-// bit-identical to `photonfarm render`.
+// or read; the server stays up; the job's image (past its first epoch, so that it is not the
+// black one every job starts with) stays as it was, and the job then renders bit-identical to
+// `photonfarm render`.
 #include <grpcpp/client_context.h>
 #include <gtest/gtest.h>
 
@@ -68,6 +69,8 @@ protected:
     void SetUp() override {
         CoordinatorOptions options;
         options.lease_seconds = 60;
+        // The in-process worker sends no heartbeats: it must not be timed out mid-test.
+        options.worker_timeout_seconds = 3600;
         options.client_limits.max_bundle_bytes = kMaxBundleBytes;
         options.client_limits.max_jobs_per_client = 2;
         options.client_limits.max_watchers_per_job = 2;
@@ -79,6 +82,8 @@ protected:
         address_ = "127.0.0.1:" + std::to_string(server_->Port());
     }
     void TearDown() override {
+        worker_loop_.reset();
+        worker_source_.reset();
         if (server_) server_->Shutdown();
     }
 
@@ -105,10 +110,35 @@ protected:
         EXPECT_TRUE(status.ok()) << status.error_message();
         return response.status().job_id();
     }
+    // A real worker, in this process over TLS, stepped by the test.
+    WorkerLoop& Worker() {
+        if (!worker_loop_) {
+            worker_source_ = std::make_unique<GrpcWorkSource>(
+                OpenChannel(address_, Credentials().Worker()), address_,
+                WorkerRegistration{"cpu", 1, std::string(kPhotonfarmVersion), ""}, "");
+            worker_loop_ = std::make_unique<WorkerLoop>(*worker_source_, "cpu", 1);
+        }
+        return *worker_loop_;
+    }
+    // Runs the job with the real worker until `epochs` are merged (or it ends); returns the
+    // image then. Step reports before it returns, so the epoch that completes is merged by then.
+    v1::GetResultResponse RunUntil(const std::string& job_id, uint64_t epochs) {
+        v1::GetResultResponse result = Result(job_id);
+        while (result.status().state() == v1::JOB_STATE_RUNNING &&
+               result.status().epochs() < epochs) {
+            const absl::StatusOr<size_t> ran = Worker().Step();
+            EXPECT_TRUE(ran.ok()) << ran.status();
+            if (!ran.ok()) break;
+            result = Result(job_id);
+        }
+        return result;
+    }
 
     std::unique_ptr<Coordinator> coordinator_;
     std::unique_ptr<CoordinatorServer> server_;
     std::string address_;
+    std::unique_ptr<GrpcWorkSource> worker_source_;
+    std::unique_ptr<WorkerLoop> worker_loop_;
 };
 
 // Calls one RPC of each service and returns the statuses.
@@ -253,10 +283,20 @@ bool SameImage(const v1::Image& a, const v1::Image& b) {
 
 TEST_F(HostilePeersTest, HostileWorkerMergesNothingAndTheJobStillRendersExactly) {
     const std::string job_id = SubmitJob();
-    const v1::GetResultResponse before = Result(job_id);
+    // A real worker merges epoch 0 first: the image to guard is then a real one, which the
+    // comparison below can tell from the black image the job began with.
+    const v1::GetResultResponse black = Result(job_id);
+    const v1::GetResultResponse before = RunUntil(job_id, 1);
+    ASSERT_EQ(before.status().epochs(), 1u);
+    ASSERT_FALSE(SameImage(black.image(), before.image()))
+        << "the comparison must see an epoch's difference, or it proves nothing";
+
+    // The hostile worker holds the whole of epoch 1: had any forged result below been taken,
+    // the epoch would fold and the image change (or a slot be filled: see the end).
     HostileWorker hostile(Work(Credentials().Worker()));
-    const v1::LeaseBatchesResponse lease = hostile.Lease(1);  // one batch of the epoch's four
-    ASSERT_EQ(lease.batches_size(), 1);
+    const v1::LeaseBatchesResponse lease = hostile.Lease(4);
+    ASSERT_EQ(lease.batches_size(), 4);
+    ASSERT_EQ(lease.batches(0).epoch(), 1u);
     const v1::BatchSpec held = lease.batches(0);
     const uint32_t hit_points = static_cast<uint32_t>(lease.job().hit_point_count());
     v1::TallyVerdict verdict;
@@ -264,10 +304,8 @@ TEST_F(HostilePeersTest, HostileWorkerMergesNothingAndTheJobStillRendersExactly)
     // Forged batch ids: a batch leased to another worker, one of a later epoch, one the epoch
     // lacks.
     HostileWorker accomplice(Work(Credentials().Worker()));
-    const v1::LeaseBatchesResponse other = accomplice.Lease(1);
-    ASSERT_EQ(other.batches_size(), 1);
-    ASSERT_TRUE(hostile.Report(job_id, HostileWorker::Plausible(other.batches(0)), &verdict).ok());
-    EXPECT_EQ(verdict, v1::TALLY_VERDICT_NOT_LEASED);
+    ASSERT_TRUE(accomplice.Report(job_id, HostileWorker::Plausible(held), &verdict).ok());
+    EXPECT_EQ(verdict, v1::TALLY_VERDICT_NOT_LEASED) << "the batch is the hostile worker's";
     accomplice.Leave();
     v1::BatchSpec later = held;
     later.set_epoch(held.epoch() + 3);
@@ -288,28 +326,33 @@ TEST_F(HostilePeersTest, HostileWorkerMergesNothingAndTheJobStillRendersExactly)
             .Report(job_id, HostileWorker::Plausible(held), &verdict, "worker-1-0000000000000000")
             .error_code(),
         grpc::StatusCode::NOT_FOUND);
-    // Tallies naming hit points the job lacks, with NaN, Inf or negative flux, out of order.
-    v1::BatchResult out_of_range = HostileWorker::Plausible(held);
-    out_of_range.mutable_tally()->set_hit_point_delta(2, hit_points);
-    EXPECT_EQ(hostile.Report(job_id, out_of_range, &verdict).error_code(),
-              grpc::StatusCode::INVALID_ARGUMENT);
-    for (float bad :
-         {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(), -1.0f}) {
-        v1::BatchResult poisoned = HostileWorker::Plausible(held);
-        poisoned.mutable_tally()->set_flux(4, bad);
-        EXPECT_EQ(hostile.Report(job_id, poisoned, &verdict).error_code(),
-                  grpc::StatusCode::INVALID_ARGUMENT)
-            << bad;
-        v1::BatchResult poisoned_direct = HostileWorker::Plausible(held);
-        poisoned_direct.set_samples(0, bad);
-        EXPECT_EQ(hostile.Report(job_id, poisoned_direct, &verdict).error_code(),
-                  grpc::StatusCode::INVALID_ARGUMENT)
-            << bad;
+    // For every batch of the epoch: tallies naming hit points the job lacks, with NaN, Inf or
+    // negative flux or direct light, out of order.
+    constexpr int kMalformedPerBatch = 8;
+    for (const v1::BatchSpec& batch : lease.batches()) {
+        SCOPED_TRACE(::testing::Message() << "batch " << batch.index());
+        v1::BatchResult out_of_range = HostileWorker::Plausible(batch);
+        out_of_range.mutable_tally()->set_hit_point_delta(2, hit_points);
+        EXPECT_EQ(hostile.Report(job_id, out_of_range, &verdict).error_code(),
+                  grpc::StatusCode::INVALID_ARGUMENT);
+        for (float bad : {std::numeric_limits<float>::quiet_NaN(),
+                          std::numeric_limits<float>::infinity(), -1.0f}) {
+            v1::BatchResult poisoned = HostileWorker::Plausible(batch);
+            poisoned.mutable_tally()->set_flux(4, bad);
+            EXPECT_EQ(hostile.Report(job_id, poisoned, &verdict).error_code(),
+                      grpc::StatusCode::INVALID_ARGUMENT)
+                << bad;
+            v1::BatchResult poisoned_direct = HostileWorker::Plausible(batch);
+            poisoned_direct.set_samples(0, bad);
+            EXPECT_EQ(hostile.Report(job_id, poisoned_direct, &verdict).error_code(),
+                      grpc::StatusCode::INVALID_ARGUMENT)
+                << bad;
+        }
+        v1::BatchResult repeated = HostileWorker::Plausible(batch);
+        repeated.mutable_tally()->set_hit_point_delta(1, 0);
+        EXPECT_EQ(hostile.Report(job_id, repeated, &verdict).error_code(),
+                  grpc::StatusCode::INVALID_ARGUMENT);
     }
-    v1::BatchResult repeated = HostileWorker::Plausible(held);
-    repeated.mutable_tally()->set_hit_point_delta(1, 0);
-    EXPECT_EQ(hostile.Report(job_id, repeated, &verdict).error_code(),
-              grpc::StatusCode::INVALID_ARGUMENT);
     // A message over the coordinator's limit.
     v1::BatchResult oversized = HostileWorker::Plausible(held);
     for (int i = 0; i < kMaxMessageBytes / 4; ++i) oversized.mutable_tally()->add_flux(1.0f);
@@ -320,30 +363,34 @@ TEST_F(HostilePeersTest, HostileWorkerMergesNothingAndTheJobStillRendersExactly)
     EXPECT_EQ(refused.not_leased, 1u);
     EXPECT_EQ(refused.stale, 1u);
     EXPECT_EQ(refused.unknown_worker, 1u);
-    EXPECT_EQ(refused.malformed, 10u);
+    EXPECT_EQ(refused.malformed, 2u + 4u * kMalformedPerBatch);
     const v1::GetResultResponse after = Result(job_id);
-    EXPECT_EQ(after.status().epochs(), 0u);
-    EXPECT_EQ(after.status().photons(), 0u);
+    EXPECT_EQ(after.status().epochs(), 1u);
+    EXPECT_EQ(after.status().photons(), before.status().photons());
     EXPECT_TRUE(SameImage(before.image(), after.image())) << "nothing hostile may reach the image";
-    hostile.Leave();  // its lease goes back
+    hostile.Leave();  // its leases go back
 
-    // A real worker finishes the job: the image is the one `photonfarm render` makes.
-    GrpcWorkSource source(OpenChannel(address_, Credentials().Worker()), address_,
-                          {"cpu", 1, std::string(kPhotonfarmVersion), ""}, "");
-    WorkerLoop loop(source, "cpu", 1);
-    while (Result(job_id).status().state() == v1::JOB_STATE_RUNNING) ASSERT_TRUE(loop.Step().ok());
+    // The real worker finishes the job: every one of its results is taken (none finds its slot
+    // filled by a forged one), and the image is the one `photonfarm render` makes.
+    const v1::GetResultResponse done = RunUntil(job_id, UINT64_MAX);
+    EXPECT_EQ(done.status().state(), v1::JOB_STATE_DONE);
+    EXPECT_EQ(coordinator_->Refusals().duplicate, 0u);
+    EXPECT_EQ(coordinator_->Refusals().stale, 1u);
     RenderSettings local;
     local.scene_path = kScene;
     local.job = Spec();
     local.threads = 1;
     absl::StatusOr<RenderOutcome> rendered = RenderLocally(local);
     ASSERT_TRUE(rendered.ok()) << rendered.status();
-    EXPECT_TRUE(SameImage(Result(job_id).image(), ToProto(rendered->image)));
+    EXPECT_TRUE(SameImage(done.image(), ToProto(rendered->image)));
 }
 
 TEST_F(HostilePeersTest, HostileClientIsRefusedAndChangesNothing) {
     const std::string job_id = SubmitJob();
-    const v1::GetResultResponse before = Result(job_id);
+    const v1::GetResultResponse black = Result(job_id);
+    const v1::GetResultResponse before = RunUntil(job_id, 1);  // a real image, not the black one
+    ASSERT_EQ(before.status().epochs(), 1u);
+    ASSERT_FALSE(SameImage(black.image(), before.image()));
     std::unique_ptr<v1::Jobs::Stub> jobs = Jobs(Credentials().Client());
     const auto submit = [&](const v1::SubmitJobRequest& request) {
         grpc::ClientContext context;
@@ -412,6 +459,7 @@ TEST_F(HostilePeersTest, HostileClientIsRefusedAndChangesNothing) {
 
     const v1::GetResultResponse after = Result(job_id);
     EXPECT_EQ(after.status().state(), v1::JOB_STATE_RUNNING);
+    EXPECT_EQ(after.status().epochs(), 1u);
     EXPECT_TRUE(SameImage(before.image(), after.image()));
     EXPECT_TRUE(CallJobs(*jobs).ok()) << "the server is still up";
 }
