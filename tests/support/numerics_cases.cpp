@@ -4,6 +4,7 @@
 #include "tests/support/numerics_cases.h"
 
 #include <absl/strings/str_format.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <string>
 #include <utility>
 
 #include "client/local_render.h"
@@ -33,8 +35,9 @@ std::string EditedScene(const std::string& shipped, const std::string& name,
     std::ifstream in(ShippedScene(shipped));
     nlohmann::json gltf = nlohmann::json::parse(in);
     edit(gltf);
-    const std::filesystem::path dir =
-        std::filesystem::temp_directory_path() / "photonfarm-numerics";
+    // One folder per process: test processes run side by side under ctest -j.
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                      ("photonfarm-numerics-" + std::to_string(getpid()));
     std::filesystem::create_directories(dir);
     const std::filesystem::path path = dir / (name + ".gltf");
     std::ofstream(path) << gltf.dump();
