@@ -5,6 +5,8 @@
 
 #include <filesystem>
 
+#include "tests/support/test_env.h"
+
 namespace pf {
 namespace {
 
@@ -12,8 +14,7 @@ TEST(ExrIoTest, FloatRgbAndMetadataRoundTripExactly) {
     Image image(5, 3);
     for (size_t i = 0; i < image.pixels.size(); ++i)
         image.pixels[i] = Rgb(0.1f * i, 1e-30f * i, 3e30f);
-    const std::string path =
-        (std::filesystem::temp_directory_path() / "pf-exr-roundtrip.exr").string();
+    const std::string path = testing::TempPath("pf-exr-roundtrip.exr");
     ASSERT_TRUE(
         WriteExr(path, image, {{"photonfarm:seed", "42"}, {"photonfarm:scene", "a.gltf"}}).ok());
     ImageMetadata metadata;
@@ -34,7 +35,7 @@ TEST(ExrIoTest, UnwritablePathFailsWithTheFileNamed) {
 }
 
 TEST(ExrIoTest, NonExrFileIsRefused) {
-    const std::string path = (std::filesystem::temp_directory_path() / "pf-not-an.exr").string();
+    const std::string path = testing::TempPath("pf-not-an.exr");
     FILE* file = std::fopen(path.c_str(), "w");
     std::fputs("not an image", file);
     std::fclose(file);

@@ -15,6 +15,7 @@
 #include "core/scene/pbrt/pbrt_parameters.h"
 #include "core/scene/scene_files.h"
 #include "core/scene/scene_loader.h"
+#include "tests/support/test_env.h"
 
 namespace pf {
 namespace {
@@ -314,7 +315,7 @@ TEST(PbrtLoaderTest, IncludesPlyMeshesAndImageTexturesComeFromTheBundle) {
     ply.append(reinterpret_cast<const char*>(&count), 1);
     ply.append(reinterpret_cast<const char*>(face), sizeof face);
     const std::filesystem::path png_path =
-        std::filesystem::temp_directory_path() / "photonfarm-pbrt-texture.png";
+        std::filesystem::path(testing::TempPath("photonfarm-pbrt-texture.png"));
     {
         const unsigned char pixels[6] = {255, 0, 0, 128, 128, 128};
         auto out = OIIO::ImageOutput::create(png_path.string());

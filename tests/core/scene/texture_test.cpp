@@ -10,6 +10,7 @@
 #include "core/scene/image_decode.h"
 #include "core/scene/scene_files.h"
 #include "core/scene/texture_filter.h"
+#include "tests/support/test_env.h"
 
 namespace pf {
 namespace {
@@ -20,8 +21,7 @@ std::string CheckerboardPng() {
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x)
             for (int c = 0; c < 3; ++c) pixels[(y * 64 + x) * 3 + c] = (x + y) % 2 ? 255 : 0;
-    const std::string path =
-        (std::filesystem::temp_directory_path() / "photonfarm-checkerboard.png").string();
+    const std::string path = testing::TempPath("photonfarm-checkerboard.png");
     auto out = OIIO::ImageOutput::create(path);
     EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(64, 64, 3, OIIO::TypeDesc::UINT8)));
     EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
