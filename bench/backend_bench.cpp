@@ -19,6 +19,7 @@
 #include "core/ppm/progressive_estimate.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene_loader.h"
+#include "core/util/command_line.h"
 #include "worker/backend_factory.h"
 #include "worker/backends/cpu_embree/embree_tracer.h"
 
@@ -79,9 +80,9 @@ int main(int argc, char** argv) {
     uint32_t photons = 1u << 19;
     std::string backends = "cpu,vulkan";
     app.add_option("--seconds", seconds, "Seconds per backend and scene")
-        ->check(CLI::PositiveNumber);
+        ->check(pf::FiniteRange(0.01, 3600.0));
     app.add_option("--photons-per-batch", photons, "Photons per batch")
-        ->check(CLI::Range(1u, 1u << 26));
+        ->check(pf::WholeNumber(1, pf::kMaxPhotonsPerBatch));
     app.add_option("--backends", backends, "Comma-separated backends");
     CLI11_PARSE(app, argc, argv);
     std::printf("%-14s %-8s %16s %18s\n", "scene", "backend", "photons/s", "segments/s");

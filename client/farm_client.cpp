@@ -7,6 +7,7 @@
 #include <chrono>
 
 #include "absl/strings/str_cat.h"
+#include "core/util/command_line.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "worker/proto_convert.h"
 #include "worker/rpc_status.h"
@@ -25,7 +26,8 @@ constexpr double kSubmitSeconds = 600;
 void AddServerOption(CLI::App* command, ServerFlags* server) {
     command->add_option("--server", server->address, "Coordinator address HOST:PORT")
         ->envname("PHOTONFARM_SERVER")
-        ->required();
+        ->required()
+        ->check(HostAndPort(1));
     AddChannelSecurityOptions(command, &server->security, kClientTokenEnv);
 }
 

@@ -30,8 +30,7 @@ void EnumChoices(CLI::Option* option, const std::vector<std::string>& names,
         choices));
 }
 
-void AddPhotonMapOptions(CLI::App* command, PhotonMapSettings* m,
-                         const CLI::AsNumberWithUnit& count) {
+void AddPhotonMapOptions(CLI::App* command, PhotonMapSettings* m) {
     command
         ->add_option(
             "--pm-photons", m->global_photons,
@@ -40,17 +39,17 @@ void AddPhotonMapOptions(CLI::App* command, PhotonMapSettings* m,
             "photon stored (a photon is stored at every diffuse bounce): a count that will not fit "
             "is refused")
         ->capture_default_str()
-        ->transform(count);
+        ->transform(CountWithUnit(0, kMaxMapPhotons));
     command
         ->add_option(
             "--pm-caustic-photons", m->caustic_photons,
             "pm: photons emitted for the caustic map (those reaching a diffuse surface through "
             "specular bounces are stored)")
         ->capture_default_str()
-        ->transform(count);
+        ->transform(CountWithUnit(0, kMaxMapPhotons));
     command->add_option("--pm-nearest", m->nearest, "pm: k, photons per density estimate")
         ->capture_default_str()
-        ->check(CLI::Range(1u, kMaxNearestPhotons));
+        ->check(WholeNumber(1, kMaxNearestPhotons));
     command
         ->add_option("--pm-max-radius", m->max_radius,
                      "pm: largest radius of the nearest-photon search, world units (default: 2% of "
@@ -65,7 +64,7 @@ void AddPhotonMapOptions(CLI::App* command, PhotonMapSettings* m,
                      "pm: gather rays per camera sample for indirect light (0: read the global map "
                      "directly)")
         ->capture_default_str()
-        ->check(CLI::Range(0u, kMaxFinalGatherRays));
+        ->check(WholeNumber(0, kMaxFinalGatherRays));
     EnumChoices(
         command->add_option("--photon-index", m->index, "pm: how photons are stored and searched")
             ->default_str("kdtree"),
@@ -75,10 +74,6 @@ void AddPhotonMapOptions(CLI::App* command, PhotonMapSettings* m,
 }  // namespace
 
 void AddJobOptions(CLI::App* command, JobSpec* s) {
-    const auto count = CLI::AsNumberWithUnit(
-        std::map<std::string, uint64_t>{
-            {"k", 1000}, {"m", 1000000}, {"g", 1000000000}, {"t", 1000000000000}},
-        CLI::AsNumberWithUnit::CASE_INSENSITIVE, "COUNT");
     EnumChoices(
         command
             ->add_option(
@@ -94,33 +89,42 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
                 "--photons", s->photon_budget,
                 "Photon budget of ppm and sppm, e.g. 20M (finishes the epoch that reaches it; "
                 "default 20M)")
-            ->transform(count);
+            ->transform(CountWithUnit(1, kMaxPhotonBudget));
+    auto* epochs =
+        command
+            ->add_option("--epochs", s->epoch_budget,
+                         "Epoch budget: stop after this many (default for path and pm: 16)")
+            ->check(WholeNumber(1, kMaxEpochBudget));
+    auto* seconds = command
+                        ->add_option("--seconds", s->seconds_budget,
+                                     "Time budget in seconds (finishes the epoch that reaches it)")
+                        ->check(FiniteRange(1e-3, kMaxSecondsBudget))
+                        ->excludes(photons);
+    auto* target_error =
+        command
+            ->add_option("--target-error", s->target_error,
+                         "Stop once the estimated relative error (from even and odd batches) is at "
+                         "most this, e.g. "
+                         "0.02; with --photons or --seconds, whichever comes first")
+            ->check(FiniteRange(1e-9, 999.0));
     command
-        ->add_option("--epochs", s->epoch_budget,
-                     "Epoch budget: stop after this many (default for path and pm: 16)")
-        ->check(CLI::Range(uint64_t{1}, uint64_t{1} << 40));
-    command
-        ->add_option("--seconds", s->seconds_budget,
-                     "Time budget in seconds (finishes the epoch that reaches it)")
-        ->check(FinitePositive())
-        ->excludes(photons);
-    command
-        ->add_option("--target-error", s->target_error,
-                     "Stop once the estimated relative error (from even and odd batches) is at "
-                     "most this, e.g. "
-                     "0.02; with --photons or --seconds, whichever comes first")
-        ->check(FiniteRange(1e-9, 999.0));
+        ->add_flag("--until-cancelled", s->until_cancelled,
+                   "No budget: render until stopped (Ctrl-C, or `photonfarm cancel` on a farm)")
+        ->excludes(photons)
+        ->excludes(epochs)
+        ->excludes(seconds)
+        ->excludes(target_error);
     command
         ->add_option("--photons-per-batch", s->layout.photons_per_batch,
                      "Photon paths per batch, the unit of work")
         ->default_val(s->layout.photons_per_batch)
-        ->check(CLI::Range(1u, kMaxPhotonsPerBatch));
+        ->check(WholeNumber(1, kMaxPhotonsPerBatch));
     command
         ->add_option("--batches-per-epoch", s->layout.batches_per_epoch,
                      "Batches per epoch; radii shrink once per epoch, and a farm runs at most this "
                      "many batches at once")
         ->default_val(s->layout.batches_per_epoch)
-        ->check(CLI::Range(1u, kMaxBatchesPerEpoch));
+        ->check(WholeNumber(1, kMaxBatchesPerEpoch));
     // capture_default_str, not default_val: default_val would re-parse "0.666667" into alpha,
     // and the render would no longer match a farm job left at the default 2/3.
     command->add_option("--alpha", s->alpha, "Radius reduction ratio alpha in (0, 1]")
@@ -136,31 +140,33 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
                      "samples per epoch "
                      "(path, pm)")
         ->default_val(s->samples_per_pixel)
-        ->check(CLI::Range(1, 1024));
+        ->check(WholeNumber(1, 1024));
     command
         ->add_option("--seed", s->seed,
                      "Random seed; the same seed and batch layout give the same image")
-        ->default_val(s->seed);
+        ->default_val(s->seed)
+        ->check(WholeNumber(0, UINT64_MAX));
     command
         ->add_option(
             "--photon-stream", s->photon_stream,
             "Another photon stream of the same --seed: the same hit points, independent photons "
             "(to render a reference for --reference)")
-        ->default_val(s->photon_stream);
+        ->default_val(s->photon_stream)
+        ->check(WholeNumber(0, UINT64_MAX));
     command
         ->add_option("--width", s->width,
                      "Image width in pixels (default: the scene's own (a pbrt Film), else 512)")
-        ->check(CLI::Range(1, 32768));
+        ->check(WholeNumber(1, 32768));
     command
         ->add_option("--height", s->height,
                      "Image height in pixels (default: width / camera aspect)")
-        ->check(CLI::Range(1, 32768));
-    AddPhotonMapOptions(command, &s->photon_map, count);
+        ->check(WholeNumber(1, 32768));
+    AddPhotonMapOptions(command, &s->photon_map);
 }
 
 void ApplyDefaultBudget(JobSpec* spec) {
-    if (spec->photon_budget != 0 || spec->epoch_budget != 0 || spec->seconds_budget != 0 ||
-        spec->target_error != 0)
+    if (spec->until_cancelled || spec->photon_budget != 0 || spec->epoch_budget != 0 ||
+        spec->seconds_budget != 0 || spec->target_error != 0)
         return;
     if (GathersAtHitPoints(spec->integrator))
         spec->photon_budget = 20'000'000;

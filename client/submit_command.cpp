@@ -255,7 +255,8 @@ void AddSubmitCommand(CLI::App& app, int* exit_code) {
     submit
         ->add_option("--priority", options->priority,
                      "Higher runs first; equal priorities share workers")
-        ->default_val(0);
+        ->default_val(0)
+        ->check(SignedWholeNumber(-kMaxJobPriority, kMaxJobPriority));
     AddJobOptions(submit, &options->spec);
     AddReferenceOption(submit, &options->reference_path);
     submit->add_flag("--watch", options->watch,

@@ -49,6 +49,10 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, const CoordinatorOptions
     const SettingNames names = options.setting_names;
     const ClientLimits& client_limits = options.client_limits;
     if (absl::Status status = CheckJobSpec(request.spec, names); !status.ok()) return status;
+    if (request.priority < -kMaxJobPriority || request.priority > kMaxJobPriority)
+        return absl::InvalidArgumentError(
+            absl::StrCat(SettingName(names, "settings.priority", "--priority"), " must lie in [",
+                         -kMaxJobPriority, ", ", kMaxJobPriority, "], not ", request.priority));
     if (absl::Status status = CheckSceneBundle(request.bundle); !status.ok()) return status;
     if (const uint64_t bytes = request.bundle.TotalBytes(); bytes > client_limits.max_bundle_bytes)
         return absl::ResourceExhaustedError(absl::StrCat(

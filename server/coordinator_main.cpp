@@ -129,7 +129,8 @@ int main(int argc, char** argv) {
         pf::CoordinatorOptions options;
         app.add_option("--listen", listen,
                        "Address to listen on, HOST:PORT (port 0: any free port)")
-            ->default_val(listen);
+            ->default_val(listen)
+            ->check(pf::HostAndPort(0));
         app.add_option("--heartbeat-seconds", options.heartbeat_seconds,
                        "How often workers heartbeat")
             ->default_val(options.heartbeat_seconds)
@@ -162,7 +163,8 @@ int main(int argc, char** argv) {
         app.add_option("--metrics-listen", metrics_listen,
                        "Serve Prometheus metrics at http://HOST:PORT/metrics (plain HTTP: bind it "
                        "to a private address)")
-            ->envname("PHOTONFARM_METRICS_LISTEN");
+            ->envname("PHOTONFARM_METRICS_LISTEN")
+            ->check(pf::HostAndPort(0));
         app.add_option("--checkpoint-dir", options.checkpoint_dir,
                        "Keep every job's state here, and resume the jobs found here at start "
                        "(after a crash or a stop)")

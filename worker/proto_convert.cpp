@@ -166,6 +166,7 @@ photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
     out.set_integrator(
         static_cast<photonfarm::v1::Integrator>(static_cast<int>(spec.integrator) + 1));
     out.set_epoch_budget(spec.epoch_budget);
+    out.set_until_cancelled(spec.until_cancelled);
     if (spec.integrator == Integrator::kPm) {
         const PhotonMapSettings& maps = spec.photon_map;
         photonfarm::v1::PhotonMapSettings* out_maps = out.mutable_photon_map();
@@ -208,6 +209,7 @@ absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings) {
         spec.layout.batches_per_epoch = settings.batches_per_epoch();
     spec.target_error = settings.target_error();
     spec.epoch_budget = settings.epoch_budget();
+    spec.until_cancelled = settings.until_cancelled();
     // The enums are the core ones shifted by one, 0 meaning the default.
     const auto enum_value = [&](int value, int count, const char* field,
                                 auto* out) -> absl::Status {

@@ -84,7 +84,8 @@ int main(int argc, char** argv) {
         uint32_t chunks_per_lease = 0;
         app.add_option("--coordinator", coordinator, "Coordinator address HOST:PORT")
             ->envname("PHOTONFARM_COORDINATOR")
-            ->required();
+            ->required()
+            ->check(pf::HostAndPort(1));
         app.add_option("--threads", threads, "Threads (default: all cores)")
             ->envname("PHOTONFARM_THREADS")
             ->check(CLI::Range(1, 4096));

@@ -32,16 +32,33 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
     if (s.layout.batches_per_epoch < 1 || s.layout.batches_per_epoch > kMaxBatchesPerEpoch)
         return invalid("--batches-per-epoch", "settings.batches_per_epoch",
                        absl::StrCat("must lie in [1, ", kMaxBatchesPerEpoch, "]"));
-    if (!(s.seconds_budget >= 0 && std::isfinite(s.seconds_budget)))
-        return invalid("--seconds", "settings.seconds_budget", "must be positive and finite");
+    if (s.photon_budget > kMaxPhotonBudget)
+        return invalid("--photons", "settings.photon_budget",
+                       absl::StrCat("must lie in [0, ", kMaxPhotonBudget, "], not ",
+                                    s.photon_budget, " (0: none)"));
+    if (s.epoch_budget > kMaxEpochBudget)
+        return invalid("--epochs", "settings.epoch_budget",
+                       absl::StrCat("must lie in [0, ", kMaxEpochBudget, "], not ", s.epoch_budget,
+                                    " (0: none)"));
+    if (!(s.seconds_budget >= 0 && s.seconds_budget <= kMaxSecondsBudget))
+        return invalid("--seconds", "settings.seconds_budget",
+                       absl::StrFormat("must lie in [0, %g], not %g (0: none)", kMaxSecondsBudget,
+                                       s.seconds_budget));
     if (!(s.target_error >= 0 && s.target_error < 1e3))
         return invalid("--target-error", "settings.target_error",
                        "must lie in [0, 1000) (a relative error, 0.01 = 1%)");
-    if (s.photon_budget == 0 && s.epoch_budget == 0 && s.seconds_budget == 0 && s.target_error == 0)
+    const bool budgeted =
+        s.photon_budget != 0 || s.epoch_budget != 0 || s.seconds_budget != 0 || s.target_error != 0;
+    if (!budgeted && !s.until_cancelled)
         return absl::InvalidArgumentError(
-            flags ? "give a budget: --photons N, --epochs N, --seconds S or --target-error E"
+            flags ? "give a budget: --photons N, --epochs N, --seconds S or --target-error E "
+                    "(or --until-cancelled)"
                   : "settings: give a budget (photon_budget, epoch_budget, seconds_budget or "
-                    "target_error)");
+                    "target_error), or until_cancelled for none");
+    if (budgeted && s.until_cancelled)
+        return invalid("--until-cancelled", "settings.until_cancelled",
+                       "asks for no budget: give it without --photons, --epochs, --seconds and "
+                       "--target-error");
     if (s.photon_budget > 0 && !GathersAtHitPoints(s.integrator))
         return invalid(
             "--photons", "settings.photon_budget",

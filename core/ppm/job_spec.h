@@ -38,6 +38,9 @@ struct JobSpec {
     // Stop after the epoch whose estimated relative error (ErrorEstimate::RelativeError) is
     // at most this (0: no target).
     double target_error = 0;
+    // No budget: the job runs until it is cancelled (or the render stopped). A job with no
+    // budget must say so here, so that no budget is never a slip.
+    bool until_cancelled = false;
     PhotonMapSettings photon_map;  // pm only
 };
 
@@ -53,6 +56,13 @@ inline constexpr uint64_t kBytesPerHitPoint = 468;
 inline constexpr uint32_t kMaxPhotonsPerBatch = 1u << 26;
 inline constexpr uint32_t kMaxBatchesPerEpoch = 1u << 16;
 
+// The largest budgets a job may ask for: past them a budget is a mistake (a negative count
+// read as unsigned), not a render; a job that should run on says --until-cancelled.
+inline constexpr uint64_t kMaxPhotonBudget = 1'000'000'000'000'000;  // 1000T: months of a farm
+inline constexpr uint64_t kMaxEpochBudget = uint64_t{1} << 40;
+inline constexpr double kMaxSecondsBudget = 1e8;  // three years
+// A farm job's priority (higher runs first) lies in [-kMaxJobPriority, kMaxJobPriority].
+inline constexpr int kMaxJobPriority = 1'000'000;
 // How errors name a setting: as `photonfarm render`'s flags or as the farm's message fields.
 enum class SettingNames { kFlags, kFields };
 
@@ -61,7 +71,8 @@ inline constexpr uint64_t kMaxMapPhotons = uint64_t{1} << 34;
 inline constexpr uint32_t kMaxNearestPhotons = 4096;
 inline constexpr uint32_t kMaxFinalGatherRays = 4096;
 
-// Every field in range and a budget given; errors name the flag or field.
+// Every field in range and a budget given (or until_cancelled, and then none); errors name the
+// flag or field and its range.
 absl::Status CheckJobSpec(const JobSpec& spec, SettingNames names = SettingNames::kFlags);
 absl::Status CheckPhotonMapSettings(const PhotonMapSettings& settings, SettingNames names);
 // Film size: what was asked, else the scene's own (pbrt's Film), else 512 wide with the

@@ -1,19 +1,37 @@
 #!/usr/bin/env bash
-# The photonfarm command line meets bad input with one clear line and a non-zero exit code,
-# and a good render writes its outputs. Usage: cli_errors_test.sh PHOTONFARM SOURCE_DIR
+# The photonfarm executables meet bad input with one clear line and a non-zero exit code, and
+# a good render writes its outputs. Every class of numeric flag (counts with units, whole
+# numbers, reals, addresses) refuses negative, zero where meaningless, NaN, infinite and
+# overflowing values on render, submit, the coordinator and the worker, naming the flag and
+# its range.
+# Usage: cli_errors_test.sh PHOTONFARM COORDINATOR WORKER SOURCE_DIR
 set -u
 photonfarm=$1
-source_dir=$2
+coordinator=$2
+worker=$3
+source_dir=$4
 work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 failures=0
 
-# expect_failure NAME PATTERN ARGS...: the command must exit non-zero, print one line on stderr
-# containing PATTERN, and nothing on stdout.
-expect_failure() {
-    local name=$1 pattern=$2
-    shift 2
-    "$photonfarm" "$@" >"$work/out" 2>"$work/err"
+# A port nothing listens on: held bound (not listening) by a helper for the whole test, so no
+# other process can take it; connecting to it is refused at once.
+coproc PORT_HOLDER {
+    exec python3 -c 'import socket, sys
+s = socket.socket()
+s.bind(("127.0.0.1", 0))
+print(s.getsockname()[1], flush=True)
+sys.stdin.read()'
+}
+read -r closed_port <&"${PORT_HOLDER[0]}"
+closed=127.0.0.1:$closed_port
+trap 'kill "$PORT_HOLDER_PID" 2>/dev/null; rm -rf "$work"' EXIT
+
+# expect_failure_of BINARY NAME PATTERN ARGS...: the command must exit non-zero, print one line
+# on stderr containing PATTERN, and nothing on stdout.
+expect_failure_of() {
+    local binary=$1 name=$2 pattern=$3
+    shift 3
+    timeout 60 "$binary" "$@" >"$work/out" 2>"$work/err"
     local code=$?
     local lines
     lines=$(grep -c . "$work/err")
@@ -25,6 +43,7 @@ expect_failure() {
         echo "ok   $name: $(cat "$work/err")"
     fi
 }
+expect_failure() { expect_failure_of "$photonfarm" "$@"; }
 
 oiiotool --pattern constant:color=1,1,1 4x4 3 -d float -o "$work/small.exr"
 printf '{"asset": {"version": "2.0"' >"$work/broken.gltf"
@@ -38,21 +57,21 @@ printf 'WorldBegin\nInclude "../secret.pbrt"\n' >"$work/escape.pbrt"
 expect_failure "pbrt include outside the folder" "escape.pbrt:2:1: Include: scene reference '../secret.pbrt' leaves" \
     render "$work/escape.pbrt" --out "$work/a.exr" --photons 1000
 expect_failure "unknown scene format" "unknown scene format" render "$work/small.exr" --out "$work/a.exr" --photons 1000
-# The farm commands: nothing listens on port 1 here.
-expect_failure "unreachable server" "cannot reach the coordinator at 127.0.0.1:1" jobs --server 127.0.0.1:1
+# The farm commands, against a port nothing listens on.
+expect_failure "unreachable server" "cannot reach the coordinator at $closed" jobs --server $closed
 expect_failure "unreachable server on submit" "cannot reach the coordinator" submit "$source_dir/scenes/cornell-box.gltf" \
-    --server 127.0.0.1:1 --photons 1000
+    --server $closed --photons 1000
 expect_failure "no server given" "server" workers
 expect_failure "certificate without its key" "--tls-cert and --tls-key: give both or neither" \
-    jobs --server 127.0.0.1:1 --tls-cert "$work/small.exr"
-expect_failure "missing token file" "token file $work/none: cannot open" jobs --server 127.0.0.1:1 --token-file "$work/none"
+    jobs --server $closed --tls-cert "$work/small.exr"
+expect_failure "missing token file" "token file $work/none: cannot open" jobs --server $closed --token-file "$work/none"
 printf 'short\n' >"$work/short-token"
 expect_failure "guessable token" "short-token:1: the token is 5 characters" \
-    jobs --server 127.0.0.1:1 --token-file "$work/short-token"
+    jobs --server $closed --token-file "$work/short-token"
 PHOTONFARM_CLIENT_TOKEN=tiny expect_failure "guessable token from the environment" "PHOTONFARM_CLIENT_TOKEN: the token is 4" \
-    jobs --server 127.0.0.1:1
+    jobs --server $closed
 expect_failure "outputs without --watch" "need --watch" submit "$source_dir/scenes/cornell-box.gltf" \
-    --server 127.0.0.1:1 --out "$work/a.exr"
+    --server $closed --out "$work/a.exr"
 VK_ICD_FILENAMES=/nonexistent/icd.json expect_failure "vulkan without a driver" "vulkan backend: no Vulkan driver" \
     render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --backend vulkan
 expect_failure "an integrator the backend does not run" "--backend vulkan runs --integrator ppm or sppm, not pm" \
@@ -75,6 +94,71 @@ for flag in --alpha --radius --seconds --target-error --exposure --snapshot-ever
             --out "$work/a.exr" "$flag" "$value"
     done
 done
+
+# Every numeric flag class, on render and on submit alike (submit parses before it connects).
+scene=$source_dir/scenes/cornell-box.gltf
+for command in render submit; do
+    if [ "$command" = render ]; then target=(--out "$work/a.exr"); else target=(--server "$closed"); fi
+    # Counts with units: a sign, zero, overflow, a fraction left over, unknown units, NaN.
+    for value in -5 =-5 0 99999999999T 5X 1.0000005k nan 1e999 ""; do
+        if [ "$value" = "=-5" ]; then args=(--photons=-5); else args=(--photons "$value"); fi
+        expect_failure "$command --photons '$value'" "--photons: must be a count in \[1, 1000T\]" \
+            "$command" "$scene" "${target[@]}" "${args[@]}"
+    done
+    for value in -1 99999999999999T 2.5; do
+        expect_failure "$command --pm-photons $value" "--pm-photons: must be a count in \[0, " \
+            "$command" "$scene" "${target[@]}" --integrator pm --epochs 1 --pm-photons "$value"
+    done
+    # Whole numbers: negative, zero where meaningless, too large, fractions.
+    for case in "--spp 0 [1, 1024]" "--spp 1025 [1, 1024]" "--width -3 [1, 32768]" "--width 1.5 [1, 32768]" \
+        "--height 40000 [1, 32768]" "--epochs 0 [1, 1099511627776]" "--epochs -1 [1, 1099511627776]" \
+        "--seed -1 [0, 18446744073709551615]" "--seed 18446744073709551616 [0, 18446744073709551615]" \
+        "--photon-stream -2 [0, 18446744073709551615]" "--photons-per-batch 0 [1, 67108864]" \
+        "--photons-per-batch 4294967297 [1, 67108864]" "--batches-per-epoch -1 [1, 65536]" \
+        "--pm-nearest 0 [1, 4096]" "--final-gather -1 [0, 4096]"; do
+        read -r flag value range <<<"$case"
+        expect_failure "$command $flag $value" "$flag: must be a whole number in \\$range" \
+            "$command" "$scene" "${target[@]}" "$flag" "$value"
+    done
+    # Reals: out of range and negative (NaN and Inf below).
+    for case in "--alpha 0" "--alpha -1" "--alpha 1.5" "--seconds -1" "--seconds 0" "--seconds 1e9" \
+        "--radius -1" "--radius 0" "--target-error 0" "--target-error -0.1" "--pm-max-radius -1"; do
+        read -r flag value <<<"$case"
+        expect_failure "$command $flag $value" "$flag: must .*, not '$value'" \
+            "$command" "$scene" "${target[@]}" "$flag" "$value"
+    done
+    expect_failure "$command --until-cancelled with a budget" "excludes --until-cancelled" \
+        "$command" "$scene" "${target[@]}" --until-cancelled --photons 1M
+done
+for value in 99999999999 -1000001 1.5; do
+    expect_failure "submit --priority $value" "--priority: must be a whole number in \[-1000000, 1000000\]" \
+        submit "$scene" --server "$closed" --priority "$value"
+done
+expect_failure "submit --interval -1" "--interval: must lie in \[0, 3600\]" submit "$scene" --server "$closed" \
+    --interval -1
+for value in 0 -1 5000 two; do
+    expect_failure "render --threads $value" "--threads" render "$scene" --out "$work/a.exr" --threads "$value"
+done
+# Addresses: the port in range and a number, IPv6 hosts in brackets.
+for address in 127.0.0.1:70000 127.0.0.1:-1 127.0.0.1:abc 127.0.0.1: nocolon ::1:50 127.0.0.1:0; do
+    expect_failure "jobs --server $address" "--server: must be HOST:PORT with a port in \[1, 65535\]" \
+        jobs --server "$address"
+done
+# The coordinator and the worker: addresses, durations, limits and thread counts.
+for case in "--listen 127.0.0.1:70000" "--listen localhost:x" "--metrics-listen 127.0.0.1:-1" \
+    "--heartbeat-seconds 0" "--heartbeat-seconds nan" "--worker-timeout-seconds -1" "--lease-seconds inf" \
+    "--checkpoint-seconds 0" "--max-jobs 0" "--max-jobs-per-client -1" "--max-watchers-per-job 0" \
+    "--max-bundle-bytes -1" "--max-render-pixels 0" "--max-photons-per-batch 0" "--max-message-bytes 0" \
+    "--max-scene-triangles -5" "--max-scene-instances 0" "--max-image-pixels 0"; do
+    read -r flag value <<<"$case"
+    expect_failure_of "$coordinator" "coordinator $flag $value" "$flag" --plaintext "$flag" "$value"
+done
+for case in "--coordinator 127.0.0.1:0" "--coordinator 127.0.0.1:65536" "--threads 0" "--threads -2" \
+    "--chunks-per-lease 0" "--chunks-per-lease 99999999"; do
+    read -r flag value <<<"$case"
+    expect_failure_of "$worker" "worker $flag $value" "$flag" --coordinator "$closed" "$flag" "$value"
+done
+
 expect_failure "reference of another size" "reference: the image is" render "$source_dir/scenes/cornell-box.gltf" \
     --out "$work/b.exr" --width 8 --height 8 --photons 1000 --reference "$work/small.exr"
 expect_failure "both budgets" "excludes" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --photons 1000 --seconds 1
@@ -98,18 +182,25 @@ else
 fi
 
 # Ctrl-C stops after the current epoch and still writes the image: nothing computed is lost.
+# The render must be under way (its first snapshot written) before the signal: if it never
+# gets there within a minute the check fails, rather than interrupting a render not started.
 "$photonfarm" render "$source_dir/scenes/furnace.gltf" --out "$work/interrupted.exr" --seconds 120 \
     --photons-per-batch 65536 --batches-per-epoch 2 --width 16 --threads 1 \
     --snapshot-every 0.001 --snapshot-dir "$work/interrupt-snapshots" >/dev/null 2>"$work/err" &
 render_pid=$!
-for _ in $(seq 300); do  # wait (at most 30 s) until the render is under way
-    [ -s "$work/interrupt-snapshots/snapshot-0001.exr" ] && break
+started=no
+for _ in $(seq 600); do  # poll (at most 60 s) for the first snapshot
+    [ -s "$work/interrupt-snapshots/snapshot-0001.exr" ] && { started=yes; break; }
+    kill -0 "$render_pid" 2>/dev/null || break
     sleep 0.1
 done
 kill -INT "$render_pid"
 wait "$render_pid"
 code=$?
-if [ "$code" -eq 0 ] && [ -s "$work/interrupted.exr" ] && grep -q "stopped early" "$work/err"; then
+if [ "$started" != yes ]; then
+    echo "FAIL SIGINT: the render wrote no snapshot within 60 s (exit $code)"; cat "$work/err"
+    failures=$((failures + 1))
+elif [ "$code" -eq 0 ] && [ -s "$work/interrupted.exr" ] && grep -q "stopped early" "$work/err"; then
     echo "ok   SIGINT stops after the epoch and writes the image"
 else
     echo "FAIL SIGINT: exit $code"; cat "$work/err"; failures=$((failures + 1))

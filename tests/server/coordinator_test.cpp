@@ -15,6 +15,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 #include <random>
 
 #include "absl/strings/str_split.h"
@@ -329,6 +331,51 @@ TEST(CoordinatorTest, BadRequestsNameTheFieldOrFile) {
     WorkerRegistration old = Cpu();
     old.version = "0.0.1";
     EXPECT_TRUE(absl::IsFailedPrecondition(coordinator.RegisterWorker(old).status()));
+}
+
+// What a hand-made SubmitJob may carry (the CLI refuses the same as flags): each bad number is
+// refused naming its field and range, and a job with no budget only when it says so.
+TEST(CoordinatorTest, SubmittedSettingsOutOfRangeAreRefusedNamingTheField) {
+    Coordinator coordinator;
+    struct Case {
+        const char* field;
+        std::function<void(JobRequest&)> edit;
+    };
+    const std::vector<Case> cases = {
+        // A negative count read as unsigned: 2^64 - 5 photons is no budget at all.
+        {"settings.photon_budget", [](JobRequest& r) { r.spec.photon_budget = ~uint64_t{0} - 4; }},
+        {"settings.epoch_budget", [](JobRequest& r) { r.spec.epoch_budget = uint64_t{1} << 41; }},
+        {"settings.seconds_budget",
+         [](JobRequest& r) { r.spec.seconds_budget = std::numeric_limits<double>::quiet_NaN(); }},
+        {"settings.seconds_budget", [](JobRequest& r) { r.spec.seconds_budget = -1; }},
+        {"settings.seconds_budget", [](JobRequest& r) { r.spec.seconds_budget = 1e300; }},
+        {"settings.target_error",
+         [](JobRequest& r) { r.spec.target_error = std::numeric_limits<double>::infinity(); }},
+        {"settings.alpha", [](JobRequest& r) { r.spec.alpha = 0; }},
+        {"settings.initial_radius", [](JobRequest& r) { r.spec.initial_radius = -1; }},
+        {"settings.photons_per_batch", [](JobRequest& r) { r.spec.layout.photons_per_batch = 0; }},
+        {"settings.batches_per_epoch", [](JobRequest& r) { r.spec.layout.batches_per_epoch = 0; }},
+        {"settings.samples_per_pixel", [](JobRequest& r) { r.spec.samples_per_pixel = 0; }},
+        {"settings.width", [](JobRequest& r) { r.spec.width = -3; }},
+        {"settings.priority", [](JobRequest& r) { r.priority = 1 << 30; }},
+        {"budget", [](JobRequest& r) { r.spec.photon_budget = 0; }},
+        {"settings.until_cancelled", [](JobRequest& r) { r.spec.until_cancelled = true; }},
+    };
+    for (const Case& c : cases) {
+        JobRequest request = SmallJob(1000);
+        c.edit(request);
+        const absl::Status status = coordinator.Submit(request).status();
+        EXPECT_TRUE(absl::IsInvalidArgument(status)) << c.field << ": " << status;
+        EXPECT_NE(status.message().find(c.field), std::string::npos) << status;
+    }
+    EXPECT_TRUE(coordinator.ListJobs().empty()) << "a refused job must leave nothing behind";
+    // No budget, said explicitly: accepted, and it runs until cancelled.
+    JobRequest open_ended = SmallJob(1000);
+    open_ended.spec.photon_budget = 0;
+    open_ended.spec.until_cancelled = true;
+    const absl::StatusOr<JobProgress> submitted = coordinator.Submit(open_ended);
+    ASSERT_TRUE(submitted.ok()) << submitted.status();
+    EXPECT_TRUE(coordinator.Cancel(submitted->job_id).ok());
 }
 
 TEST(CoordinatorTest, AJobWhoseEpochsCannotKeepTheWorkersBusyIsSubmittedWithAWarning) {
