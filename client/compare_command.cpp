@@ -66,7 +66,7 @@ void AddCompareCommand(CLI::App& app, int* exit_code) {
     CLI::App* compare = app.add_subcommand("compare",
                                            "Compare an EXR image with a reference: RMSE, relative "
                                            "MSE, PSNR, max difference, NaN/Inf pixels "
-                                           "(exit code 3 when the image has NaN or Inf pixels)");
+                                           "(exit code 3 when either image has NaN or Inf pixels)");
     compare->add_option("image", options->image, "The image (EXR)")
         ->required()
         ->check(CLI::ExistingFile);
