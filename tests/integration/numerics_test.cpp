@@ -19,6 +19,7 @@ TEST_P(Numerics, MeetsItsCriterion) {
     const NumericsResult result = c.run();
     RecordProperty("measured", std::to_string(result.measured));
     RecordProperty("bound", std::to_string(result.bound));
+    RecordProperty("detail", result.detail);
     EXPECT_TRUE(result.ok) << c.name << ": " << result.detail;
     EXPECT_LE(result.measured, result.bound)
         << c.name << " (" << c.criterion << "): " << result.detail;

@@ -9,6 +9,7 @@
 
 #include "core/film/image.h"
 #include "core/math/vec3.h"
+#include "core/ppm/job_spec.h"
 
 namespace pf::testing {
 
@@ -77,5 +78,52 @@ struct FurnaceCheck {
 // `sigma` < 0: the pixels are independent (a path tracer's), so sigma is measured from them.
 FurnaceCheck CheckFurnace(const Image& image, const BoxInterior& interior, double expected,
                           double sigma, const Rgbd& bias = Rgbd(1.0));
+
+// A furnace seen through glass (furnace-glass.gltf: a closed box of albedo rho emitting Le
+// everywhere, with a clear glass sphere in it). Lossless glass leaves the uniform radiance
+// L = Le / (1 - rho) uniform, so a pixel is L times the throughput of its camera paths, which is
+// what the pass's emission image holds (Le carried to the pixel through the glass): given its
+// camera pass, a pixel's expectation is emission / (1 - rho), wherever its hit points' gather
+// discs lie flat within one wall (PPM's estimate is unbiased on a flat density, derived at
+// Furnace in numerics_cases.cpp). The camera pass is the job's own, traced again here (the same
+// film and seed: the hit points are the same, checked by their count and R0); renders with the
+// same seed and other photon streams share it.
+struct FurnacePass {
+    Image emission;                   // the pass's emission image: Le through specular chains
+    std::vector<bool> flat;           // every hit point of the pixel farther than `radius`
+                                      // from the box's edges (row-major, as Image::pixels)
+    std::vector<bool> through_glass;  // all its camera rays (corners, centre) meet glass first
+    uint64_t hit_points = 0;
+    double initial_radius = 0;  // R0 the job takes from the pass (DefaultInitialRadius)
+};
+FurnacePass TraceFurnacePass(const std::string& scene_path, const JobSpec& job, double radius);
+
+// The median over the pixels of `region` of each channel of the pass's emission. Where no
+// camera path met Russian roulette (after kCameraRouletteDepth specular bounces; a few pixels in
+// a hundred), a pixel's throughputs sum to exactly 1 (Fresnel's R + T at every split or choice),
+// so the median is Le to float rounding unless the glass loses or makes light.
+Rgbd MedianEmission(const FurnacePass& pass, const std::vector<bool>& region);
+
+// K renders sharing `pass` (one seed, photon streams of their own) checked on the pixels of
+// `region` against their expectation given the pass, per channel: each render's
+// e_k = sum over the region of (pixel x bias) / sum of emission / (1 - rho), minus 1, is an
+// independent draw of mean 0 (the photons and light samples are the stream's own), so
+// mean(e) / (sd(e) / sqrt(K)) is Student's t with K - 1 degrees of freedom, allowed to its
+// two-sided kFalseAlarm quantile, plus `known_bias` (relative). A channel off by b fails with
+// probability 0.999 when (limit + 3.1 sigma) <= b (DetectableBias).
+struct FurnaceStreamsCheck {
+    size_t pixels = 0;
+    int renders = 0;
+    Rgbd error{0.0}, sigma{0.0};  // mean(e) and its standard error, per channel
+    double quantile = 0, known_bias = 0;
+
+    double Limit(int channel) const { return quantile * sigma[channel] + known_bias; }
+    bool Passed() const;
+    double DetectableBias() const;  // the worst channel's
+    std::string Describe() const;
+};
+FurnaceStreamsCheck CheckFurnaceStreams(const std::vector<Image>& renders, const FurnacePass& pass,
+                                        const std::vector<bool>& region, double rho,
+                                        double known_bias, const Rgbd& bias = Rgbd(1.0));
 
 }  // namespace pf::testing

@@ -318,22 +318,36 @@ TEST_F(VulkanBackendTest, SppmEpochsTraceTheirOwnHitPointsAndMatchTheCpuBackend)
 }
 
 TEST_F(VulkanBackendTest, BatchLargerThanOneDispatchTracesEveryPhoton) {
-    // A batch of more photons than one dispatch takes runs as several; the paths traced match
-    // the CPU's (the same streams) within 4/sqrt(segments), which a lost dispatch (8% of the
-    // photons here) would exceed many times over.
+    // A batch of more photons than one dispatch takes runs as several. 8 independent batches of
+    // 1 + 1/12 dispatches each, against the CPU's on the same streams by the paired t-tests
+    // above (7 degrees of freedom): a lost or skipped second dispatch (1/13 of the photons,
+    // 7.7%) must lie beyond what the check can miss, so its detectable bias is held under 4%.
     std::unique_ptr<Rendering> setup = BeginBoth("cornell-box.gltf", 16);
     ASSERT_NE(setup, nullptr);
-    BatchSpec spec = setup->estimate->EpochBatches()[0];
-    spec.photons = vk::kMaxThreadsPerDispatch + vk::kMaxThreadsPerDispatch / 12;
-    const absl::StatusOr<std::vector<BatchResult>> cpu =
-        setup->cpu->RunBatches(std::span(&spec, 1));
-    const absl::StatusOr<std::vector<BatchResult>> gpu =
-        setup->vulkan->RunBatches(std::span(&spec, 1));
-    ASSERT_TRUE(cpu.ok() && gpu.ok());
-    const double cpu_segments = (*cpu)[0].segments_traced;
-    EXPECT_NEAR((*gpu)[0].segments_traced / cpu_segments, 1.0, 4 / std::sqrt(cpu_segments));
-    EXPECT_NEAR(TotalPhotons((*gpu)[0].tally) / TotalPhotons((*cpu)[0].tally), 1.0,
-                4 / std::sqrt(TotalPhotons((*cpu)[0].tally)));
+    std::vector<BatchSpec> specs;
+    for (uint32_t b = 0; b < 8; ++b) {
+        BatchSpec spec = MakeBatchSpec({1u << 16, 8}, 0, b, 0);
+        spec.photons = vk::kMaxThreadsPerDispatch + vk::kMaxThreadsPerDispatch / 12;
+        specs.push_back(spec);
+    }
+    const auto [cpu, gpu] = ExpectBatchesAgree(*setup->cpu, *setup->vulkan, specs);
+    ASSERT_EQ(gpu.size(), specs.size());
+    const BatchComparison measured = CompareBatches(cpu, gpu);
+    EXPECT_LE(measured.photons.DetectableBias(measured.batches), 0.04);
+    EXPECT_LE(measured.segments.DetectableBias(measured.batches), 0.04);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_LE(measured.flux[c].DetectableBias(measured.batches), 0.04) << "channel " << c;
+        RecordProperty("flux_detectable_bias_" + std::to_string(c),
+                       std::to_string(measured.flux[c].DetectableBias(measured.batches)));
+    }
+    // The same results with the photons of the second dispatch dropped must fail.
+    std::vector<BatchResult> lost = gpu;
+    for (BatchResult& result : lost) {
+        for (Rgb& flux : result.tally.flux) flux = flux * (12.0f / 13.0f);
+        for (uint32_t& photons : result.tally.photons) photons = photons * 12 / 13;
+        result.segments_traced = result.segments_traced * 12 / 13;
+    }
+    EXPECT_NE(CompareBatches(cpu, lost).Failures(), "") << "a lost dispatch passed";
 }
 
 TEST_F(VulkanBackendTest, KernelsAreSpecialisedToTheScenesFeatures) {
