@@ -14,14 +14,14 @@
 #include <string>
 
 #include "absl/strings/str_split.h"
-#include "core/ppm/camera_pass.h"
-#include "core/ppm/job_spec.h"
-#include "core/ppm/progressive_estimate.h"
+#include "core/camera/camera_pass.h"
+#include "core/estimate/progressive_estimate.h"
+#include "core/job/job_spec.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene_loader.h"
 #include "core/util/command_line.h"
+#include "embree/embree_tracer.h"
 #include "worker/backend_factory.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf {
 namespace {

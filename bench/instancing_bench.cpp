@@ -19,7 +19,7 @@
 #include "core/scene/mesh_builder.h"
 #include "core/scene/scene_files.h"
 #include "core/scene/scene_loader.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
+#include "embree/embree_tracer.h"
 
 namespace pf {
 namespace {

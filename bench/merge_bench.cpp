@@ -13,15 +13,15 @@
 #include <cstdio>
 #include <memory>
 
-#include "core/ppm/camera_pass.h"
-#include "core/ppm/job_spec.h"
-#include "core/ppm/progressive_estimate.h"
+#include "core/camera/camera_pass.h"
+#include "core/estimate/progressive_estimate.h"
+#include "core/job/job_spec.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene_loader.h"
+#include "embree/embree_tracer.h"
+#include "wire/blob_codec.h"
+#include "wire/proto_convert.h"
 #include "worker/backend_factory.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
-#include "worker/blob_codec.h"
-#include "worker/proto_convert.h"
 
 namespace pf {
 namespace {

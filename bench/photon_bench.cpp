@@ -16,13 +16,13 @@
 #include <memory>
 #include <string>
 
-#include "core/ppm/camera_pass.h"
+#include "core/camera/camera_pass.h"
+#include "core/estimate/progressive_estimate.h"
 #include "core/ppm/photon_pass.h"
-#include "core/ppm/progressive_estimate.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene_features.h"
 #include "core/scene/scene_loader.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
+#include "embree/embree_tracer.h"
 
 namespace pf {
 namespace {

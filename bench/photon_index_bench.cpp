@@ -16,7 +16,7 @@
 #include "core/pm/photon_map.h"
 #include "core/scene/scene_features.h"
 #include "core/scene/scene_loader.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
+#include "embree/embree_tracer.h"
 
 namespace pf {
 namespace {

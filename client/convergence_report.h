@@ -8,7 +8,7 @@
 #include <string>
 
 #include "absl/status/status.h"
-#include "core/ppm/convergence.h"
+#include "core/estimate/convergence.h"
 
 namespace pf {
 

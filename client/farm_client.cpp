@@ -9,8 +9,8 @@
 #include "absl/strings/str_cat.h"
 #include "core/util/command_line.h"
 #include "grpc/health/v1/health.grpc.pb.h"
-#include "worker/proto_convert.h"
-#include "worker/rpc_status.h"
+#include "wire/proto_convert.h"
+#include "wire/rpc_status.h"
 
 namespace pf {
 namespace {

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "core/ppm/convergence.h"
+#include "core/estimate/convergence.h"
 #include "photonfarm/v1/jobs.grpc.pb.h"
-#include "worker/secure_channel.h"
+#include "wire/secure_channel.h"
 
 namespace pf {
 

@@ -14,8 +14,8 @@
 #include "client/farm_client.h"
 #include "client/output_files.h"
 #include "client/submit_command.h"
-#include "core/render/integrator.h"
-#include "worker/proto_convert.h"
+#include "core/job/integrator.h"
+#include "wire/proto_convert.h"
 
 namespace pf {
 namespace {
@@ -39,10 +39,8 @@ void Run(const CommandOptions& options, int* exit_code,
 }
 
 void PrintJobRow(const v1::JobStatus& job) {
-    const std::string integrator =
-        job.integrator() == v1::INTEGRATOR_UNSPECIFIED
-            ? "ppm"
-            : std::string(IntegratorName(Integrator(job.integrator() - 1)));
+    const absl::StatusOr<Integrator> known = IntegratorFromProto(job.integrator(), "integrator");
+    const std::string integrator = known.ok() ? std::string(IntegratorName(*known)) : "?";
     std::printf("%-20s %-10s %-10s %8.1f%% %10s %8d %9.1f %8d  %s\n", job.job_id().c_str(),
                 StateName(job.state()).c_str(), integrator.c_str(), 100 * job.budget_fraction(),
                 absl::StrCat(job.photons()).c_str(), static_cast<int>(job.epochs()),

@@ -1,4 +1,5 @@
-// `photonfarm cancel`, `jobs`, `workers` and `result`: managing a farm from the command line.
+// `photonfarm cancel`, `jobs`, `workers`, `result` and `health`: managing a farm from the
+// command line.
 #pragma once
 
 #include <CLI/CLI.hpp>

@@ -4,7 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "core/ppm/job_spec.h"
+#include "core/job/job_spec.h"
 
 namespace pf {
 

@@ -1,4 +1,6 @@
-// photonfarm: the client command line. One file per subcommand; this one parses and dispatches.
+// photonfarm: the client command line. One file per subcommand or family of them (render;
+// submit and watch; compare; cancel, jobs, workers, result and health in job_commands); this
+// one parses and dispatches.
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -11,7 +13,7 @@
 #include "client/submit_command.h"
 #include "core/util/allocator.h"
 #include "core/util/command_line.h"
-#include "worker/rpc_status.h"
+#include "wire/rpc_status.h"
 
 int main(int argc, char** argv) {
     pf::KeepLargeBuffersForReuse();

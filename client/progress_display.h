@@ -4,7 +4,7 @@
 
 #include <cstdio>
 
-#include "client/local_render.h"
+#include "embedded/local_render.h"
 
 namespace pf {
 

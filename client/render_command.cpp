@@ -12,13 +12,12 @@
 #include "absl/strings/str_format.h"
 #include "client/convergence_report.h"
 #include "client/job_options.h"
-#include "client/local_render.h"
 #include "client/output_files.h"
 #include "client/progress_display.h"
 #include "core/film/exr_io.h"
-#include "core/render/integrator.h"
+#include "core/job/integrator.h"
 #include "core/util/command_line.h"
-#include "worker/backend_factory.h"
+#include "embedded/local_render.h"
 
 namespace pf {
 namespace {

@@ -18,7 +18,7 @@
 #include "core/scene/scene_bundle.h"
 #include "core/scene/scene_loader.h"
 #include "core/util/command_line.h"
-#include "worker/proto_convert.h"
+#include "wire/proto_convert.h"
 
 namespace pf {
 namespace {
@@ -55,8 +55,10 @@ RenderProgress ProgressOf(const v1::JobStatus& status) {
     RenderProgress progress;
     progress.epochs = status.epochs();
     progress.photons = status.photons();
-    if (status.integrator() != v1::INTEGRATOR_UNSPECIFIED)
-        progress.integrator = static_cast<Integrator>(static_cast<int>(status.integrator()) - 1);
+    if (absl::StatusOr<Integrator> integrator =
+            IntegratorFromProto(status.integrator(), "integrator");
+        integrator.ok())
+        progress.integrator = *integrator;
     progress.camera_samples = status.camera_samples();
     progress.seconds = status.elapsed_seconds();
     progress.fraction = status.budget_fraction();

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Copies photonfarm's three programs from a build folder into DEST/bin and writes
-# DEST/runtime-packages.txt: the Debian packages holding the shared libraries they load, which
-# is what a container image installs to run them (deploy/Containerfile).
+# DEST/runtime-packages-{coordinator,worker}.txt: the Debian packages holding the shared
+# libraries each image's programs load, which is what that image installs to run them
+# (deploy/Containerfile).
 # Usage: deploy/stage-binaries.sh BUILD_DIR DEST
 set -euo pipefail
 build=$1 dest=$2
@@ -12,8 +13,15 @@ for program in "${programs[@]}"; do
     install -m 0755 "$program" "$dest/bin/"
 done
 strip --strip-unneeded "$dest"/bin/* 2>/dev/null || true
-# Every library ldd resolves, mapped to its package (dpkg -S answers "package:arch: /path").
-ldd "${programs[@]}" | awk '/=> \//{print $3}' | sort -u | while read -r library; do
-    dpkg -S "$(readlink -f "$library")" 2>/dev/null || dpkg -S "$library" 2>/dev/null || true
-done | cut -d: -f1 | sort -u | grep -v -E '^(libc6|libgcc-s1|libstdc\+\+6)$' > "$dest/runtime-packages.txt"
-echo "stage-binaries: $(wc -l < "$dest/runtime-packages.txt") runtime packages for ${#programs[@]} programs in $dest"
+# The Debian packages holding every library ldd resolves for the programs given, one per line
+# (dpkg -S answers "package:arch: /path"); libc and the compiler's runtime come with the base.
+packages_for() {
+    ldd "$@" | awk '/=> \//{print $3}' | sort -u | while read -r library; do
+        dpkg -S "$(readlink -f "$library")" 2>/dev/null || dpkg -S "$library" 2>/dev/null || true
+    done | cut -d: -f1 | sort -u | grep -v -E '^(libc6|libgcc-s1|libstdc\+\+6)$'
+}
+# One list per image: the worker's holds no scene parser and no image library.
+packages_for "$dest/bin/photonfarm-coordinator" "$dest/bin/photonfarm" > "$dest/runtime-packages-coordinator.txt"
+packages_for "$dest/bin/photonfarm-worker" > "$dest/runtime-packages-worker.txt"
+echo "stage-binaries: $(wc -l < "$dest/runtime-packages-coordinator.txt") runtime packages for the" \
+    "coordinator image, $(wc -l < "$dest/runtime-packages-worker.txt") for the worker's, in $dest"

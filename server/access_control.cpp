@@ -21,18 +21,6 @@ const char* RoleName(Role role) { return role == Role::kClient ? "client" : "wor
 
 }  // namespace
 
-std::shared_ptr<grpc::ServerCredentials> MakeServerCredentials(const ServerSecurity& security) {
-    if (security.plaintext) return grpc::InsecureServerCredentials();
-    // Ask every peer for a certificate and verify any that comes, but require none: clients
-    // connect without one; Authorize refuses a worker that has none when workers must.
-    grpc::SslServerCredentialsOptions options(security.worker_ca_pem.empty()
-                                                  ? GRPC_SSL_DONT_REQUEST_CLIENT_CERTIFICATE
-                                                  : GRPC_SSL_REQUEST_CLIENT_CERTIFICATE_AND_VERIFY);
-    options.pem_root_certs = security.worker_ca_pem;
-    options.pem_key_cert_pairs.push_back({security.key_pem, security.cert_pem});
-    return grpc::SslServerCredentials(options);
-}
-
 AccessControl::AccessControl(ServerSecurity security)
     : plaintext_(security.plaintext),
       worker_certificates_(!security.plaintext && !security.worker_ca_pem.empty()),

@@ -4,7 +4,6 @@
 // and grpcurl. Thread-safe once built.
 #pragma once
 
-#include <grpcpp/security/server_credentials.h>
 #include <grpcpp/server_context.h>
 
 #include <memory>
@@ -12,26 +11,11 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "worker/secure_channel.h"
+#include "wire/server_security.h"
 
 namespace pf {
 
 enum class Role { kClient, kWorker };
-
-struct ServerSecurity {
-    // No TLS. Tokens, if any, are still checked, but cross the network in clear.
-    bool plaintext = false;
-    std::string cert_pem, key_pem;  // the coordinator's certificate chain and key
-    // When set, a worker must present a certificate signed by one of these CAs (mutual TLS);
-    // clients need none.
-    std::string worker_ca_pem;
-    // Accepted tokens per role. Empty lists are allowed only in plain-text mode, and then
-    // anyone may call anything.
-    std::vector<Token> client_tokens, worker_tokens;
-};
-
-// The credentials to listen with.
-std::shared_ptr<grpc::ServerCredentials> MakeServerCredentials(const ServerSecurity& security);
 
 class AccessControl {
 public:

@@ -1,7 +1,7 @@
 // Camera passes traced with the coordinator's own Embree scene.
 #include "server/camera_passes.h"
 
-#include "worker/backends/cpu_embree/embree_tracer.h"
+#include "embree/embree_tracer.h"
 
 namespace pf {
 

@@ -5,9 +5,9 @@
 #include <memory>
 
 #include "absl/status/statusor.h"
-#include "core/ppm/camera_pass.h"
-#include "core/ppm/progressive_estimate.h"
-#include "worker/work_source.h"
+#include "core/camera/camera_pass.h"
+#include "core/estimate/progressive_estimate.h"
+#include "core/job/work_source.h"
 
 namespace pf {
 

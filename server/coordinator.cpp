@@ -13,16 +13,16 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
+#include "core/camera/camera_pass.h"
+#include "core/estimate/pixel_estimate.h"
+#include "core/estimate/progressive_estimate.h"
 #include "core/film/image_metrics.h"
 #include "core/pm/photon_map.h"
-#include "core/ppm/camera_pass.h"
 #include "core/ppm/caustic_probe.h"
-#include "core/ppm/progressive_estimate.h"
-#include "core/render/pixel_estimate.h"
 #include "core/scene/scene_features.h"
 #include "core/scene/scene_loader.h"
+#include "embree/embree_tracer.h"
 #include "server/camera_passes.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf {
 namespace {

@@ -17,12 +17,12 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
-#include "core/ppm/job_spec.h"
+#include "core/job/job_spec.h"
+#include "core/job/work_source.h"
 #include "core/scene/mesh_builder.h"
 #include "core/scene/scene_bundle.h"
 #include "server/checkpoint_store.h"
 #include "server/job.h"
-#include "worker/work_source.h"
 
 namespace pf {
 

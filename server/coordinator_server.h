@@ -14,7 +14,7 @@
 #include "server/coordinator.h"
 #include "server/jobs_service.h"
 #include "server/work_service.h"
-#include "worker/rpc_status.h"
+#include "wire/rpc_status.h"
 
 namespace pf {
 

@@ -5,8 +5,8 @@
 
 #include <string>
 
+#include "core/job/work_source.h"
 #include "server/coordinator.h"
-#include "worker/work_source.h"
 
 namespace pf {
 

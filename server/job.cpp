@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "absl/strings/str_cat.h"
-#include "worker/proto_convert.h"
+#include "wire/proto_convert.h"
 
 namespace pf {
 namespace {
@@ -52,13 +52,17 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
       payload_(std::move(prepared.payload)),
       checkpointed_(prepared.checkpointed),
       estimate_(std::move(prepared.estimate)) {
+    // Workers get the prepared scene (parsed here once); checkpoints keep the bundle, which a
+    // restarted coordinator parses again.
     scene_blob_ = std::make_shared<const LazyBlob>(
-        [bundle = std::make_shared<const SceneBundle>(std::move(prepared.bundle))] {
-            return ToProto(*bundle).SerializeAsString();
-        });
+        [payload = payload_] { return EncodeSceneBlob(payload->scene); });
     hit_points_blob_ = std::make_shared<const LazyBlob>(
         [payload = payload_] { return EncodeHitPoints(*payload->hit_points); });
-    if (checkpointed_) durable_scene_ = scene_blob_;
+    if (checkpointed_)
+        durable_scene_ = std::make_shared<const LazyBlob>(
+            [bundle = std::make_shared<const SceneBundle>(std::move(prepared.bundle))] {
+                return ToProto(*bundle).SerializeAsString();
+            });
     std::lock_guard lock(mutex_);
     warnings_ = std::move(prepared.warnings);
     StartEpochLocked(estimate_->SearchRadiusSq());

@@ -21,15 +21,16 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "core/estimate/convergence.h"
+#include "core/estimate/estimate.h"
 #include "core/film/image.h"
-#include "core/ppm/convergence.h"
-#include "core/ppm/job_spec.h"
-#include "core/render/estimate.h"
+#include "core/job/job_progress.h"
+#include "core/job/job_spec.h"
+#include "core/job/work_source.h"
 #include "core/scene/scene_bundle.h"
 #include "core/scene/scene_loader.h"
 #include "server/checkpoint_store.h"
-#include "worker/blob_codec.h"
-#include "worker/work_source.h"
+#include "wire/blob_codec.h"
 
 namespace pf {
 
@@ -57,36 +58,6 @@ struct EpochInputs {
     uint64_t epoch;
     std::shared_ptr<const std::vector<float>> radius_sq;
     LazyBlob blob;  // EncodeFloats(radius_sq)
-};
-
-enum class JobState { kRunning, kDone, kCancelled, kFailed };
-
-// The job state on the wire.
-photonfarm::v1::JobState ToProto(JobState state);
-
-// A job's state for listings and snapshots.
-struct JobProgress {
-    std::string job_id, name;
-    std::string owner;  // who submitted it (JobRequest::owner)
-    JobState state = JobState::kRunning;
-    int priority = 0;
-    Integrator integrator = Integrator::kPpm;
-    uint64_t epochs = 0, photons = 0, hit_points = 0;
-    uint64_t camera_samples =
-        0;  // camera paths traced over the merged epochs (Estimate::CameraSamples)
-    double initial_radius = 0;   // R0, world units
-    std::string scene_features;  // what the scene uses (SceneFeatures::ToString)
-    double elapsed_seconds = 0;
-    double photons_per_second = 0;
-    double budget_fraction = 0;
-    std::optional<double> estimated_error;  // relative (ErrorEstimate::RelativeError), once known
-    std::optional<ImageDifference> measured_error;  // against the reference, when the job has one
-    uint64_t nonfinite_discarded = 0;  // NaN/Inf paths and samples dropped (ProgressiveEstimate)
-    uint32_t workers_active = 0;
-    // The current epoch's batches waiting for a worker, and those under a live lease.
-    uint32_t batches_pending = 0, batches_leased = 0;
-    std::string message;                // why it failed or was cancelled
-    std::vector<std::string> warnings;  // found when it was submitted
 };
 
 // What a job's constructor needs: prepared by Coordinator::Submit (scene loaded, camera pass run).
@@ -124,8 +95,8 @@ public:
     bool AddWatcher(uint32_t limit);
     void RemoveWatcher();
 
-    // Blobs a remote worker fetches: the scene bundle (a serialized photonfarm.v1.SceneBundle)
-    // and the hit points. Null once the job has ended.
+    // Blobs a remote worker fetches: the prepared scene (EncodeSceneBlob: what tracing needs,
+    // parsed here once) and the hit points. Null once the job has ended.
     std::shared_ptr<const LazyBlob> SceneBlob() const;
     std::shared_ptr<const LazyBlob> HitPointsBlob() const;
     // The blob with this digest among the job's encoded ones (scene, hit points, current

@@ -3,11 +3,11 @@
 #include <spdlog/spdlog.h>
 
 #include "absl/strings/str_cat.h"
-#include "core/ppm/progressive_estimate.h"
+#include "core/estimate/progressive_estimate.h"
 #include "core/scene/scene_features.h"
 #include "server/camera_passes.h"
 #include "server/job.h"
-#include "worker/proto_convert.h"
+#include "wire/proto_convert.h"
 
 namespace pf {
 namespace {
@@ -17,20 +17,6 @@ namespace v1 = photonfarm::v1;
 double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
 
 }  // namespace
-
-v1::JobState ToProto(JobState state) {
-    switch (state) {
-        case JobState::kRunning:
-            return v1::JOB_STATE_RUNNING;
-        case JobState::kDone:
-            return v1::JOB_STATE_DONE;
-        case JobState::kCancelled:
-            return v1::JOB_STATE_CANCELLED;
-        case JobState::kFailed:
-            return v1::JOB_STATE_FAILED;
-    }
-    return v1::JOB_STATE_UNSPECIFIED;
-}
 
 v1::JobCheckpoint Job::RecordLocked(Clock::time_point now) {
     v1::JobCheckpoint record;

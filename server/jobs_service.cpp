@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
-#include "worker/proto_convert.h"
-#include "worker/rpc_status.h"
+#include "wire/proto_convert.h"
+#include "wire/rpc_status.h"
 
 namespace pf {
 namespace {
@@ -15,31 +15,6 @@ namespace v1 = photonfarm::v1;
 
 // A watch stream checks for cancellation (client gone, server stopping) at least this often.
 constexpr auto kWatchPoll = std::chrono::milliseconds(250);
-
-v1::JobStatus ToProto(const JobProgress& progress) {
-    v1::JobStatus status;
-    status.set_job_id(progress.job_id);
-    status.set_name(progress.name);
-    status.set_state(ToProto(progress.state));
-    status.set_epochs(progress.epochs);
-    status.set_photons(progress.photons);
-    status.set_elapsed_seconds(progress.elapsed_seconds);
-    status.set_photons_per_second(progress.photons_per_second);
-    status.set_workers_active(progress.workers_active);
-    status.set_priority(progress.priority);
-    status.set_hit_points(progress.hit_points);
-    status.set_budget_fraction(progress.budget_fraction);
-    if (progress.estimated_error) status.set_estimated_error(*progress.estimated_error);
-    if (progress.measured_error)
-        *status.mutable_reference_error() = ToProto(*progress.measured_error);
-    status.set_nonfinite_discarded(progress.nonfinite_discarded);
-    status.set_scene_features(progress.scene_features);
-    status.set_integrator(static_cast<v1::Integrator>(static_cast<int>(progress.integrator) + 1));
-    status.set_camera_samples(progress.camera_samples);
-    status.set_message(progress.message);
-    for (const std::string& warning : progress.warnings) status.add_warnings(warning);
-    return status;
-}
 
 grpc::Status Invalid(const absl::Status& status) { return ToGrpcStatus(status); }
 

@@ -4,8 +4,8 @@
 #include <algorithm>
 
 #include "absl/strings/str_cat.h"
-#include "worker/proto_convert.h"
-#include "worker/rpc_status.h"
+#include "wire/proto_convert.h"
+#include "wire/rpc_status.h"
 
 namespace pf {
 namespace {
@@ -16,22 +16,6 @@ namespace v1 = photonfarm::v1;
 constexpr size_t kChunkBytes = size_t{1} << 20;
 // The most batches one lease may ask for.
 constexpr uint32_t kMaxChunksPerLease = 1 << 16;
-
-v1::TallyVerdict ToProto(TallyVerdict verdict) {
-    switch (verdict) {
-        case TallyVerdict::kAccepted:
-            return v1::TALLY_VERDICT_ACCEPTED;
-        case TallyVerdict::kDuplicate:
-            return v1::TALLY_VERDICT_DUPLICATE;
-        case TallyVerdict::kStale:
-            return v1::TALLY_VERDICT_STALE;
-        case TallyVerdict::kJobGone:
-            return v1::TALLY_VERDICT_JOB_GONE;
-        case TallyVerdict::kNotLeased:
-            return v1::TALLY_VERDICT_NOT_LEASED;
-    }
-    return v1::TALLY_VERDICT_UNSPECIFIED;
-}
 
 }  // namespace
 
@@ -93,7 +77,7 @@ grpc::Status WorkService::LeaseBatches(grpc::ServerContext* context,
     // The blobs are encoded here, on first use, outside every lock.
     v1::JobInputs* job = response->mutable_job();
     job->set_job_id(lease->grant.job_id);
-    job->set_scene_digest(scene->Get().digest);
+    job->set_prepared_scene_digest(scene->Get().digest);
     job->set_hit_points_digest(hit_points->Get().digest);
     job->set_hit_point_count(lease->job->HitPointCount());
     *job->mutable_settings() = ToProto(lease->grant.job->spec);

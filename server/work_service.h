@@ -1,5 +1,5 @@
 // The photonfarm.v1.Work service: gRPC glue for workers over a Coordinator. Every tally is
-// decoded as hostile (worker/proto_convert.h) before the coordinator sees it.
+// decoded as hostile (wire/proto_convert.h) before the coordinator sees it.
 #pragma once
 
 #include "photonfarm/v1/work.grpc.pb.h"

@@ -10,9 +10,9 @@
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
-#include "core/ppm/batch.h"
-#include "core/ppm/hit_point.h"
-#include "core/ppm/job_spec.h"
+#include "core/job/batch.h"
+#include "core/job/hit_point.h"
+#include "core/job/job_spec.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene.h"
 

@@ -3,8 +3,8 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "embree/embree_tracer.h"
 #include "worker/backends/cpu_embree/cpu_backend.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
 #include "worker/backends/vulkan/vulkan_backend.h"
 
 namespace pf {
@@ -63,8 +63,6 @@ std::string DescribeDevices(int cpu_threads) {
     if (!chosen.ok()) absl::StrAppend(&lines, "vulkan: ", chosen.status().message(), "\n");
     return lines;
 }
-
-std::vector<std::string> BackendNames() { return {"cpu", "vulkan"}; }
 
 absl::StatusOr<std::unique_ptr<Backend>> CreateBackend(std::string_view name, const Scene& scene) {
     if (name == "cpu") {

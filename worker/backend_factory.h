@@ -12,9 +12,6 @@
 
 namespace pf {
 
-// The names CreateBackend accepts, for --backend's help and checks.
-std::vector<std::string> BackendNames();
-
 // A backend for jobs over `scene` (which must outlive it): "cpu" (Embree, the default) or
 // "vulkan" (compute kernels on the process's Vulkan device, shared by its backends).
 // INVALID_ARGUMENT for an unknown name; the backend's own errors otherwise.

@@ -10,12 +10,11 @@
 #include <sstream>
 
 #include "absl/strings/str_cat.h"
-#include "core/ppm/job_spec.h"
-#include "core/scene/scene_loader.h"
+#include "core/job/job_spec.h"
 #include "core/util/sha256.h"
-#include "worker/blob_codec.h"
-#include "worker/proto_convert.h"
-#include "worker/rpc_status.h"
+#include "wire/blob_codec.h"
+#include "wire/proto_convert.h"
+#include "wire/rpc_status.h"
 
 namespace pf {
 namespace {
@@ -186,21 +185,10 @@ absl::StatusOr<TallyVerdict> GrpcWorkSource::Report(const std::string& job_id, B
     const grpc::Status status = stub_->ReportTally(&context, request, &response);
     if (status.error_code() == grpc::StatusCode::NOT_FOUND) Forget(*id);
     if (!status.ok()) return FromGrpcStatus(status, address_);
-    switch (response.verdict()) {
-        case v1::TALLY_VERDICT_ACCEPTED:
-            return TallyVerdict::kAccepted;
-        case v1::TALLY_VERDICT_DUPLICATE:
-            return TallyVerdict::kDuplicate;
-        case v1::TALLY_VERDICT_STALE:
-            return TallyVerdict::kStale;
-        case v1::TALLY_VERDICT_JOB_GONE:
-            return TallyVerdict::kJobGone;
-        case v1::TALLY_VERDICT_NOT_LEASED:
-            return TallyVerdict::kNotLeased;
-        default:
-            return absl::InternalError(
-                absl::StrCat(address_, ": unknown tally verdict ", response.verdict()));
-    }
+    absl::StatusOr<TallyVerdict> verdict = TallyVerdictFromProto(response.verdict(), "verdict");
+    if (!verdict.ok())
+        return absl::InternalError(absl::StrCat(address_, ": ", verdict.status().message()));
+    return *verdict;
 }
 
 absl::StatusOr<std::string> GrpcWorkSource::FetchBlob(const std::string& digest,
@@ -254,30 +242,23 @@ absl::StatusOr<std::string> GrpcWorkSource::FetchBlob(const std::string& digest,
 
 absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(
     const v1::JobInputs& job, const JobSpec& spec) {
-    const std::string key = absl::StrCat(job.scene_digest(), "/", job.hit_points_digest(), "/",
-                                         Sha256Hex(job.settings().SerializeAsString()));
+    const std::string key = absl::StrCat(job.prepared_scene_digest(), "/", job.hit_points_digest(),
+                                         "/", Sha256Hex(job.settings().SerializeAsString()));
     {
         std::lock_guard lock(mutex_);
         if (std::shared_ptr<const JobPayload> payload = Lookup(payloads_, key)) return payload;
     }
     const auto start = std::chrono::steady_clock::now();
-    absl::StatusOr<std::string> scene_bytes = FetchBlob(job.scene_digest(), true);
+    absl::StatusOr<std::string> scene_bytes = FetchBlob(job.prepared_scene_digest(), true);
     if (!scene_bytes.ok()) return scene_bytes.status();
-    v1::SceneBundle message;
-    if (!message.ParseFromString(*scene_bytes))
-        return absl::DataLossError(absl::StrCat(address_, ": scene blob does not parse"));
-    absl::StatusOr<SceneBundle> bundle = FromProto(message);
-    if (!bundle.ok()) return bundle.status();
-    // The coordinator accepted this scene under its configured limits; the worker takes it
-    // whatever they were (the bundle's own size limit still bounds it).
-    SceneLoadOptions options;
-    options.limits.max_triangles = options.limits.max_image_pixels = options.limits.max_instances =
-        uint64_t{1} << 31;
-    // Photons look textures up at a point; camera samples traced here (sppm, path, pm) filter
-    // them over their footprint, as the coordinator's camera pass does.
-    options.texture_filter = spec.integrator != Integrator::kPpm;
-    absl::StatusOr<Scene> scene = LoadScene(*bundle, bundle->main_file, options);
-    if (!scene.ok()) return scene.status();
+    // The coordinator parsed the scene's files once and sends what tracing needs (a prepared
+    // scene); it is hostile input all the same. Photons look textures up at a point; camera
+    // samples traced here (sppm, path, pm) filter them over their footprint, as the
+    // coordinator's camera pass does.
+    absl::StatusOr<Scene> scene =
+        DecodeSceneBlob(*scene_bytes, /*texture_filter=*/spec.integrator != Integrator::kPpm);
+    if (!scene.ok())
+        return absl::DataLossError(absl::StrCat(address_, ": ", scene.status().message()));
     absl::StatusOr<std::string> hit_point_bytes = FetchBlob(job.hit_points_digest(), true);
     if (!hit_point_bytes.ok()) return hit_point_bytes.status();
     // A stochastic job's hit points are traced here, epoch by epoch (CpuBackend::BeginEpoch).

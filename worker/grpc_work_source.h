@@ -12,8 +12,8 @@
 #include <string>
 #include <utility>
 
+#include "core/job/work_source.h"
 #include "photonfarm/v1/work.grpc.pb.h"
-#include "worker/work_source.h"
 
 namespace pf {
 

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "absl/status/statusor.h"
+#include "core/job/work_source.h"
 #include "worker/backend.h"
-#include "worker/work_source.h"
 
 namespace pf {
 

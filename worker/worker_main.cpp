@@ -19,10 +19,11 @@
 
 #include "core/util/allocator.h"
 #include "core/util/command_line.h"
+#include "wire/rpc_status.h"
+#include "wire/secure_channel.h"
 #include "worker/backend_factory.h"
 #include "worker/grpc_work_source.h"
-#include "worker/rpc_status.h"
-#include "worker/secure_channel.h"
+#include "worker/retry_policy.h"
 #include "worker/worker_loop.h"
 
 namespace {
@@ -57,16 +58,122 @@ sigset_t StopSignals() {
     return signals;
 }
 
-// A restarted coordinator is found again within this (plus the channel's own reconnect), yet
-// a thousand waiting workers ask it less than a thousand times a second.
-constexpr double kMaxBackoffSeconds = 2;
+// What the command line sets.
+struct WorkerFlags {
+    std::string coordinator;
+    int threads = 0;
+    std::string backend = "cpu";
+    std::string cache_dir;
+    std::string alive_file;
+    uint32_t chunks_per_lease = 0;
+    pf::ChannelSecurityFlags security;
+};
 
-// Errors worth waiting out (the coordinator restarting, the network); others end the worker.
-bool Retryable(const absl::Status& status) {
-    return absl::IsUnavailable(status) || absl::IsDeadlineExceeded(status) ||
-           absl::IsNotFound(status) || absl::IsDataLoss(status) ||
-           absl::IsResourceExhausted(status) || absl::IsAborted(status) ||
-           absl::IsCancelled(status);
+void AddWorkerOptions(CLI::App& app, WorkerFlags* flags) {
+    app.add_option("--coordinator", flags->coordinator, "Coordinator address HOST:PORT")
+        ->envname("PHOTONFARM_COORDINATOR")
+        ->required()
+        ->check(pf::HostAndPort(1));
+    app.add_option("--threads", flags->threads, "Threads (default: all cores)")
+        ->envname("PHOTONFARM_THREADS")
+        ->check(CLI::Range(1, 4096));
+    app.add_option("--backend", flags->backend,
+                   "Photon backend: cpu (Embree) or vulkan (compute on a GPU)")
+        ->default_val(flags->backend)
+        ->check(CLI::IsMember(pf::BackendNames()));
+    app.add_flag_callback(
+        "--list-devices",
+        [flags] {
+            const int threads =
+                flags->threads > 0 ? flags->threads : tbb::this_task_arena::max_concurrency();
+            std::fputs(pf::DescribeDevices(threads).c_str(), stdout);
+            throw CLI::Success();
+        },
+        "List the devices each backend can run on, and exit");
+    app.add_option("--cache-dir", flags->cache_dir,
+                   "Keep fetched scenes and hit points here across restarts");
+    app.add_option("--alive-file", flags->alive_file,
+                   "Touch this file at every heartbeat the coordinator answers (for container "
+                   "health checks)")
+        ->envname("PHOTONFARM_ALIVE_FILE");
+    app.add_option("--chunks-per-lease", flags->chunks_per_lease,
+                   "Chunks of 2^19 photons to lease at once (default: one per thread)")
+        ->check(CLI::Range(1, 1 << 16));
+    pf::AddChannelSecurityOptions(&app, &flags->security, pf::kWorkerTokenEnv);
+    pf::AddLogLevelOption(app);
+}
+
+// Steps the loop until `stop` or an error not worth waiting out (retry_policy.h); 0, or 1 for
+// such an error.
+int RunUntilStopped(pf::WorkerLoop& loop, pf::GrpcWorkSource& source, tbb::task_arena& arena,
+                    StopFlag& stop) {
+    pf::Backoff backoff(std::random_device{}());
+    bool reported_outage = false;
+    while (!stop.IsSet()) {
+        absl::StatusOr<size_t> ran;
+        arena.execute([&] { ran = loop.Step(); });
+        if (ran.ok()) {
+            if (reported_outage) spdlog::info("coordinator reachable again");
+            reported_outage = false;
+            backoff.Reset();
+            continue;
+        }
+        if (!pf::Retryable(ran.status())) {
+            spdlog::error("{}", std::string(ran.status().message()));
+            return 1;
+        }
+        if (!reported_outage)
+            spdlog::warn("{}; retrying with back-off", std::string(ran.status().message()));
+        reported_outage = true;
+        const double wait = backoff.NextWait();
+        const bool unavailable = absl::IsUnavailable(ran.status());
+        if (unavailable || absl::IsDeadlineExceeded(ran.status())) source.WaitForConnection(wait);
+        if (stop.WaitFor(unavailable ? 0.0 : wait)) break;
+    }
+    return 0;
+}
+
+// Works for the coordinator until `stop` (or an error not worth waiting out), heartbeating
+// beside; then reports what is in hand and leaves. The exit code: 1 also for Vulkan validation
+// errors.
+int Serve(const WorkerFlags& flags, const pf::ChannelSecurity& security,
+          const pf::BackendDevice& device, StopFlag& stop) {
+    tbb::task_arena arena(flags.threads > 0 ? flags.threads
+                                            : tbb::this_task_arena::max_concurrency());
+    pf::GrpcWorkSource source(
+        pf::OpenChannel(flags.coordinator, security), flags.coordinator,
+        {device.description.substr(0, 64), static_cast<uint32_t>(arena.max_concurrency()),
+         std::string(pf::kPhotonfarmVersion), ""},
+        flags.cache_dir);
+    pf::WorkerLoop loop(
+        source, flags.backend,
+        flags.chunks_per_lease > 0 ? flags.chunks_per_lease : arena.max_concurrency(),
+        /*report_in_background=*/true);
+
+    std::thread heartbeat_thread([&] {
+        while (!stop.WaitFor(source.HeartbeatSeconds())) {
+            if (absl::Status status = source.Heartbeat(); !status.ok())
+                spdlog::debug("heartbeat: {}", std::string(status.message()));
+            else if (!flags.alive_file.empty())
+                std::ofstream(flags.alive_file, std::ios::trunc) << "alive\n";
+        }
+    });
+
+    int exit_code = RunUntilStopped(loop, source, arena, stop);
+    if (absl::Status status = loop.Flush(); !status.ok())
+        spdlog::warn("reporting the last results: {}", std::string(status.message()));
+    stop.Set();
+    heartbeat_thread.join();
+    if (absl::Status status = source.Unregister(); !status.ok())
+        spdlog::warn("leaving: {}", std::string(status.message()));
+    if (const uint64_t errors = pf::BackendValidationErrors(); errors > 0) {
+        spdlog::error("the Vulkan validation layer reported {} errors", errors);
+        exit_code = 1;
+    }
+    const pf::WorkerStats stats = loop.Stats();
+    spdlog::info("ran {} batches ({} refused), {} photons", stats.batches_run,
+                 stats.batches_refused, stats.photons);
+    return exit_code;
 }
 
 }  // namespace
@@ -77,50 +184,13 @@ int main(int argc, char** argv) {
         pf::SetUpLogging("photonfarm-worker");
         pf::RouteGrpcLogsToDebug();
         CLI::App app{"photonfarm-worker: runs photon batches for a photonfarm coordinator"};
-        std::string coordinator;
-        int threads = 0;
-        std::string backend = "cpu";
-        std::string cache_dir;
-        uint32_t chunks_per_lease = 0;
-        app.add_option("--coordinator", coordinator, "Coordinator address HOST:PORT")
-            ->envname("PHOTONFARM_COORDINATOR")
-            ->required()
-            ->check(pf::HostAndPort(1));
-        app.add_option("--threads", threads, "Threads (default: all cores)")
-            ->envname("PHOTONFARM_THREADS")
-            ->check(CLI::Range(1, 4096));
-        app.add_option("--backend", backend,
-                       "Photon backend: cpu (Embree) or vulkan (compute on a GPU)")
-            ->default_val(backend)
-            ->check(CLI::IsMember(pf::BackendNames()));
-        app.add_flag_callback(
-            "--list-devices",
-            [&] {
-                std::fputs(pf::DescribeDevices(
-                               threads > 0 ? threads : tbb::this_task_arena::max_concurrency())
-                               .c_str(),
-                           stdout);
-                throw CLI::Success();
-            },
-            "List the devices each backend can run on, and exit");
-        app.add_option("--cache-dir", cache_dir,
-                       "Keep fetched scenes and hit points here across restarts");
-        std::string alive_file;
-        app.add_option("--alive-file", alive_file,
-                       "Touch this file at every heartbeat the coordinator answers (for container "
-                       "health checks)")
-            ->envname("PHOTONFARM_ALIVE_FILE");
-        app.add_option("--chunks-per-lease", chunks_per_lease,
-                       "Chunks of 2^19 photons to lease at once (default: one per thread)")
-            ->check(CLI::Range(1, 1 << 16));
-        pf::ChannelSecurityFlags security_flags;
-        pf::AddChannelSecurityOptions(&app, &security_flags, pf::kWorkerTokenEnv);
-        pf::AddLogLevelOption(app);
+        WorkerFlags flags;
+        AddWorkerOptions(app, &flags);
         if (std::optional<int> exit_code =
                 pf::ParseCommandLine(app, argc, argv, "photonfarm-worker"))
             return *exit_code;
         const absl::StatusOr<pf::ChannelSecurity> security =
-            pf::LoadChannelSecurity(security_flags, pf::kWorkerTokenEnv);
+            pf::LoadChannelSecurity(flags.security, pf::kWorkerTokenEnv);
         if (!security.ok()) {
             std::fprintf(stderr, "photonfarm-worker: error: %s\n",
                          std::string(security.status().message()).c_str());
@@ -132,7 +202,7 @@ int main(int argc, char** argv) {
         const sigset_t signals = StopSignals();
         pthread_sigmask(SIG_BLOCK, &signals, nullptr);
         // After the mask, so that the device's own threads (lavapipe's) inherit it too.
-        const absl::StatusOr<pf::BackendDevice> device = pf::OpenBackendDevice(backend);
+        const absl::StatusOr<pf::BackendDevice> device = pf::OpenBackendDevice(flags.backend);
         if (!device.ok()) {
             std::fprintf(stderr, "photonfarm-worker: error: %s\n",
                          std::string(device.status().message()).c_str());
@@ -149,66 +219,7 @@ int main(int argc, char** argv) {
             }
         });
 
-        tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
-        pf::GrpcWorkSource source(
-            pf::OpenChannel(coordinator, *security), coordinator,
-            {device->description.substr(0, 64), static_cast<uint32_t>(arena.max_concurrency()),
-             std::string(pf::kPhotonfarmVersion), ""},
-            cache_dir);
-        pf::WorkerLoop loop(source, backend,
-                            chunks_per_lease > 0 ? chunks_per_lease : arena.max_concurrency(),
-                            /*report_in_background=*/true);
-
-        std::thread heartbeat_thread([&] {
-            while (!stop.WaitFor(source.HeartbeatSeconds())) {
-                if (absl::Status status = source.Heartbeat(); !status.ok())
-                    spdlog::debug("heartbeat: {}", std::string(status.message()));
-                else if (!alive_file.empty())
-                    std::ofstream(alive_file, std::ios::trunc) << "alive\n";
-            }
-        });
-
-        int exit_code = 0;
-        double backoff = 0.25;
-        std::mt19937 jitter(std::random_device{}());
-        bool reported_outage = false;
-        while (!stop.IsSet()) {
-            absl::StatusOr<size_t> ran;
-            arena.execute([&] { ran = loop.Step(); });
-            if (ran.ok()) {
-                if (reported_outage) spdlog::info("coordinator reachable again");
-                reported_outage = false;
-                backoff = 0.25;
-                continue;
-            }
-            if (!Retryable(ran.status())) {
-                spdlog::error("{}", std::string(ran.status().message()));
-                exit_code = 1;
-                break;
-            }
-            if (!reported_outage)
-                spdlog::warn("{}; retrying with back-off", std::string(ran.status().message()));
-            reported_outage = true;
-            // Exponential back-off with jitter, so a restarted coordinator is not stormed.
-            const double wait = backoff * std::uniform_real_distribution<double>(0.5, 1.0)(jitter);
-            backoff = std::min(backoff * 2, kMaxBackoffSeconds);
-            if (absl::IsUnavailable(ran.status()) || absl::IsDeadlineExceeded(ran.status()))
-                source.WaitForConnection(wait);
-            if (stop.WaitFor(absl::IsUnavailable(ran.status()) ? 0.0 : wait)) break;
-        }
-        if (absl::Status status = loop.Flush(); !status.ok())
-            spdlog::warn("reporting the last results: {}", std::string(status.message()));
-        stop.Set();
-        heartbeat_thread.join();
-        if (absl::Status status = source.Unregister(); !status.ok())
-            spdlog::warn("leaving: {}", std::string(status.message()));
-        if (const uint64_t errors = pf::BackendValidationErrors(); errors > 0) {
-            spdlog::error("the Vulkan validation layer reported {} errors", errors);
-            exit_code = 1;
-        }
-        const pf::WorkerStats stats = loop.Stats();
-        spdlog::info("ran {} batches ({} refused), {} photons", stats.batches_run,
-                     stats.batches_refused, stats.photons);
+        const int exit_code = Serve(flags, *security, *device, stop);
         // Wake the signal thread if no signal came, then join it.
         pthread_kill(signal_thread.native_handle(), SIGTERM);
         signal_thread.join();

@@ -30,12 +30,12 @@ struct RayHit {
 // Moves p off the surface along the geometric normal n, toward the side `n` faces, by a few
 // units in the last place of each coordinate, or near zero by a small fraction of
 // `scene_scale`, the scene's largest coordinate magnitude (Bounds::Magnitude): see
-// shared::OffsetCoordinate, the one definition for the CPU and the Vulkan kernels. A scene
+// gpu::OffsetCoordinate, the one definition for the CPU and the Vulkan kernels. A scene
 // scaled by 1e-4 or 1e+4 is offset exactly as at unit scale (tests/integration/numerics_test.cpp).
 inline Vec3 OffsetRayOrigin(const Vec3& p, const Vec3& n, float scene_scale) {
-    return {shared::OffsetCoordinate(p.x, n.x, scene_scale),
-            shared::OffsetCoordinate(p.y, n.y, scene_scale),
-            shared::OffsetCoordinate(p.z, n.z, scene_scale)};
+    return {gpu::OffsetCoordinate(p.x, n.x, scene_scale),
+            gpu::OffsetCoordinate(p.y, n.y, scene_scale),
+            gpu::OffsetCoordinate(p.z, n.z, scene_scale)};
 }
 
 }  // namespace pf

@@ -3,7 +3,7 @@
 
 namespace pf {
 
-struct Point2 {
+struct alignas(8) Point2 {  // aligned as std430 vec2 (gpu_prelude.h)
     float x = 0, y = 0;
 
     // Spelled out for the shared headers' GLSL-style vec2(x, y): clang before 16 lacks C++20's

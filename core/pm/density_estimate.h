@@ -4,9 +4,9 @@
 // without bias whatever the filter. Photons arriving from behind the surface are left out.
 #pragma once
 
+#include "core/job/integrator.h"
 #include "core/math/vec3.h"
 #include "core/pm/photon_map.h"
-#include "core/render/integrator.h"
 
 namespace pf {
 

@@ -11,8 +11,8 @@
 
 #include "absl/status/statusor.h"
 #include "core/geometry/tracer.h"
+#include "core/job/integrator.h"
 #include "core/math/vec3.h"
-#include "core/render/integrator.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene.h"
 #include "core/scene/scene_features.h"

@@ -3,10 +3,10 @@
 
 #include <algorithm>
 
-#include "core/math/frame.h"
+#include "core/camera/camera_pass.h"
 #include "core/pm/density_estimate.h"
-#include "core/ppm/camera_pass.h"
 #include "core/ppm/direct_light.h"
+#include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/glossy.h"
 

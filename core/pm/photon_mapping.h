@@ -9,8 +9,8 @@
 
 #include "core/geometry/ray.h"
 #include "core/geometry/tracer.h"
+#include "core/job/integrator.h"
 #include "core/pm/photon_map.h"
-#include "core/render/integrator.h"
 #include "core/sampling/rng.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene.h"

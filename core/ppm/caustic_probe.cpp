@@ -1,7 +1,7 @@
 // The caustic probe: light paths followed through specular bounces to their first diffuse hit.
 #include "core/ppm/caustic_probe.h"
 
-#include "core/ppm/camera_pass.h"
+#include "core/camera/camera_pass.h"
 #include "core/sampling/rng.h"
 #include "core/scene/glossy.h"
 

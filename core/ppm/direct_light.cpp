@@ -3,7 +3,7 @@
 
 #include <algorithm>
 
-#include "core/math/frame.h"
+#include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
 #include "core/util/check.h"
 

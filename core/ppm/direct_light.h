@@ -10,7 +10,7 @@
 #include <span>
 
 #include "core/geometry/tracer.h"
-#include "core/ppm/hit_point.h"
+#include "core/job/hit_point.h"
 #include "core/sampling/rng.h"
 #include "core/scene/emitters.h"
 

@@ -18,10 +18,10 @@
 #include <span>
 #include <vector>
 
+#include "core/job/hit_point.h"
 #include "core/math/morton.h"
 #include "core/math/octahedral.h"
 #include "core/math/vec3.h"
-#include "core/ppm/hit_point.h"
 
 #if defined(__SSE2__)
 #include <immintrin.h>

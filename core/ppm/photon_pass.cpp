@@ -8,9 +8,9 @@
 
 #include <algorithm>
 
-#include "core/math/frame.h"
 #include "core/ppm/direct_light.h"
 #include "core/ppm/photon_walk.h"
+#include "core/sampling/frame.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/util/check.h"

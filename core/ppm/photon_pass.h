@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "core/geometry/tracer.h"
-#include "core/ppm/batch.h"
+#include "core/job/batch.h"
+#include "core/job/hit_point.h"
 #include "core/ppm/hash_grid.h"
-#include "core/ppm/hit_point.h"
 #include "core/ppm/tally_accumulator.h"
 #include "core/sampling/rng.h"
 #include "core/scene/emitters.h"

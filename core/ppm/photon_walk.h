@@ -8,7 +8,7 @@
 #include <limits>
 
 #include "core/geometry/ray.h"
-#include "core/math/frame.h"
+#include "core/sampling/frame.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/glossy.h"

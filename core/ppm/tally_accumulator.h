@@ -11,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/ppm/batch.h"
+#include "core/job/batch.h"
 
 namespace pf {
 

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "core/math/frame.h"
+#include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/glossy.h"
 

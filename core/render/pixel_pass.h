@@ -9,9 +9,9 @@
 #include <span>
 #include <vector>
 
+#include "core/camera/pixel_sample.h"
 #include "core/geometry/ray.h"
-#include "core/ppm/batch.h"
-#include "core/render/pixel_sample.h"
+#include "core/job/batch.h"
 #include "core/sampling/rng.h"
 #include "core/scene/camera.h"
 

@@ -9,11 +9,11 @@
 
 namespace pf {
 
-using shared::PowerHeuristic;          // multiple importance sampling's weight
-using shared::SampleCosineHemisphere;  // density cos(theta) / pi about +z
-using shared::SampleUniformCone;       // density 1 / (2 pi (1 - cos_max)) about +z
-using shared::SampleUniformDisk;       // density 1 / pi on the unit disk
-using shared::SampleUniformSphere;     // density 1 / (4 pi)
-using shared::SampleUniformTriangle;   // barycentrics (b1, b2), density 1 / area
+using gpu::PowerHeuristic;          // multiple importance sampling's weight
+using gpu::SampleCosineHemisphere;  // density cos(theta) / pi about +z
+using gpu::SampleUniformCone;       // density 1 / (2 pi (1 - cos_max)) about +z
+using gpu::SampleUniformDisk;       // density 1 / pi on the unit disk
+using gpu::SampleUniformSphere;     // density 1 / (4 pi)
+using gpu::SampleUniformTriangle;   // barycentrics (b1, b2), density 1 / area
 
 }  // namespace pf

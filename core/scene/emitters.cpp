@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "core/math/frame.h"
+#include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
 
 namespace pf {

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "core/geometry/ray.h"
-#include "core/math/frame.h"
 #include "core/math/vec3.h"
 #include "core/sampling/distribution.h"
+#include "core/sampling/frame.h"
 #include "core/sampling/rng.h"
 #include "core/scene/scene.h"
 

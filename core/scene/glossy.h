@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-#include "core/math/frame.h"
+#include "core/sampling/frame.h"
 #include "core/sampling/rng.h"
 #include "core/scene/material.h"
 #include "core/scene/specular.h"
@@ -15,10 +15,10 @@
 
 namespace pf {
 
-using shared::GgxDistribution;
-using shared::GgxMaskingRatio;
-using shared::GgxReflectionPdf;
-using shared::SampleGgxVisibleNormal;
+using gpu::GgxDistribution;
+using gpu::GgxMaskingRatio;
+using gpu::GgxReflectionPdf;
+using gpu::SampleGgxVisibleNormal;
 
 // Scatters d at a rough surface; `normal` is the shading normal on the triangle's front
 // side, u_branch chooses reflection or refraction (rough glass), (u1, u2) the microfacet. A
@@ -77,8 +77,7 @@ inline RoughReflection EvaluateRoughConductor(const Material& material, const Rg
     const Vec3 h = Normalize(wo + wi);
     const float cos_h = Dot(h, n);
     const float alpha = std::max(material.roughness, kMinRoughness);
-    const float lambda_o = shared::GgxLambda(cos_o, alpha),
-                lambda_i = shared::GgxLambda(cos_i, alpha);
+    const float lambda_o = gpu::GgxLambda(cos_o, alpha), lambda_i = gpu::GgxLambda(cos_i, alpha);
     const float d = GgxDistribution(cos_h, alpha);
     // f cos_i = F D G2 / (4 cos_o), the tint standing for F.
     return {tint * (d / ((1.0f + lambda_o + lambda_i) * 4.0f * cos_o)),

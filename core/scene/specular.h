@@ -13,8 +13,8 @@
 namespace pf {
 
 // Fresnel reflectance and refraction, defined once for the CPU and the Vulkan kernels.
-using shared::FresnelDielectric;  // (cos_incident, eta = n_incident / n_transmitted)
-using shared::Refract;            // (d, n facing d's side, eta, out refracted); false under TIR
+using gpu::FresnelDielectric;  // (cos_incident, eta = n_incident / n_transmitted)
+using gpu::Refract;            // (d, n facing d's side, eta, out refracted); false under TIR
 
 // Mirror direction of d about n.
 inline Vec3 Reflect(const Vec3& d, const Vec3& n) { return d - n * (2.0f * Dot(d, n)); }

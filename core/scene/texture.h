@@ -36,7 +36,7 @@ struct Texture {
 // Filtered lookups of a scene's textures: the average over a footprint `footprint`
 // texture-coordinate units across around (u, v), from MIP levels (a camera sample's cone where
 // it meets the surface). The scene loaders give every scene with textures one
-// (core/scene/texture_filter.h: OpenImageIO's TextureSystem). Safe to call from many threads.
+// (core/scene/texture_filter.h: MIP levels, trilinear). Safe to call from many threads.
 class TextureFilter {
 public:
     virtual ~TextureFilter() = default;

@@ -1,125 +1,71 @@
-// OpenImageIO's TextureSystem reading our decoded textures through an ImageInput of its own
-// (OpenImageIO calls it whenever its cache needs texels). One TextureSystem serves the process,
-// so all scenes share one cache budget; each filter's textures have names of their own and are
-// dropped from it when the filter goes.
+// MIP levels by 2x2 box filtering and trilinear lookups between them.
 #include "core/scene/texture_filter.h"
 
-#include <OpenImageIO/imagecache.h>
-#include <OpenImageIO/imageio.h>
-#include <OpenImageIO/texture.h>
-#include <spdlog/spdlog.h>
-
-#include <atomic>
-#include <cstring>
-#include <string>
-
-#include "absl/strings/str_cat.h"
+#include <algorithm>
+#include <cmath>
 
 namespace pf {
 namespace {
 
-constexpr char kTextureAttribute[] = "photonfarm:texture";
-
-// Serves one Texture, named by a pointer in the open() configuration, as a float RGB image.
-class TextureInput final : public OIIO::ImageInput {
-public:
-    const char* format_name() const override { return "photonfarm-texture"; }
-    bool open(const std::string& name, OIIO::ImageSpec&) override {
-        errorf("%s: photonfarm textures open only with their configuration", name);
-        return false;
-    }
-    bool open(const std::string& name, OIIO::ImageSpec& spec,
-              const OIIO::ImageSpec& config) override {
-        const OIIO::ParamValue* pointer =
-            config.find_attribute(kTextureAttribute, OIIO::TypeDesc::PTR);
-        if (pointer == nullptr) return open(name, spec);
-        texture_ = *static_cast<const Texture* const*>(pointer->data());
-        m_spec = OIIO::ImageSpec(texture_->width, texture_->height, 3, OIIO::TypeDesc::FLOAT);
-        spec = m_spec;
-        return true;
-    }
-    bool close() override {
-        texture_ = nullptr;
-        return true;
-    }
-    bool read_native_scanline(int subimage, int miplevel, int y, int, void* data) override {
-        if (texture_ == nullptr || subimage != 0 || miplevel != 0 || y < 0 || y >= texture_->height)
-            return false;
-        static_assert(sizeof(Rgb) == 3 * sizeof(float), "texels are packed float RGB");
-        std::memcpy(data, texture_->texels.data() + static_cast<size_t>(y) * texture_->width,
-                    sizeof(Rgb) * texture_->width);
-        return true;
-    }
-
-private:
-    const Texture* texture_ = nullptr;
-};
-
-OIIO::ImageInput* CreateTextureInput() { return new TextureInput; }
-
-// Made once and kept for the process (OpenImageIO 2.4's TextureSystem::destroy frees its
-// implementation through the interface's type, which AddressSanitizer reports).
-OIIO::TextureSystem& ProcessTextureSystem() {
-    static OIIO::TextureSystem* const system = [] {
-        OIIO::TextureSystem* made = OIIO::TextureSystem::create(false);
-        made->attribute("automip", 1);    // MIP levels made from level 0 on first use
-        made->attribute("autotile", 64);  // cached in tiles, not whole levels
-        return made;
-    }();
-    return *system;
+// The next coarser level: each texel the average of the 2x2 texels under it (a level of odd
+// width or height wraps its last texel with its first, as the periodic lookups do).
+Texture Downsample(const Texture& fine) {
+    Texture coarse;
+    coarse.width = std::max(1, fine.width / 2);
+    coarse.height = std::max(1, fine.height / 2);
+    coarse.texels.resize(static_cast<size_t>(coarse.width) * coarse.height);
+    for (int y = 0; y < coarse.height; ++y)
+        for (int x = 0; x < coarse.width; ++x) {
+            const int x0 = 2 * x, y0 = 2 * y;
+            coarse.texels[static_cast<size_t>(y) * coarse.width + x] =
+                (fine.Texel(x0, y0) + fine.Texel(x0 + 1, y0) + fine.Texel(x0, y0 + 1) +
+                 fine.Texel(x0 + 1, y0 + 1)) *
+                0.25f;
+        }
+    return coarse;
 }
 
-class OiioTextureFilter final : public TextureFilter {
+class MipTextureFilter final : public TextureFilter {
 public:
-    explicit OiioTextureFilter(std::vector<std::shared_ptr<const Texture>> textures)
-        : textures_(std::move(textures)), system_(ProcessTextureSystem()) {
-        static std::atomic<uint64_t> filters{0};
-        const uint64_t filter = filters++;
-        for (size_t i = 0; i < textures_.size(); ++i) {
-            names_.emplace_back(absl::StrCat("photonfarm-texture-", filter, "-", i));
-            OIIO::ImageSpec config;
-            const Texture* texture = textures_[i].get();
-            config.attribute(kTextureAttribute, OIIO::TypeDesc::PTR, &texture);
-            system_.imagecache()->add_file(names_.back(), CreateTextureInput, &config);
-            handles_.push_back(system_.get_texture_handle(names_.back()));
+    explicit MipTextureFilter(std::vector<std::shared_ptr<const Texture>> textures)
+        : textures_(std::move(textures)), levels_(textures_.size()) {
+        for (size_t t = 0; t < textures_.size(); ++t) {
+            const Texture* level = textures_[t].get();
+            if (level == nullptr || level->texels.empty()) continue;
+            while (level->width > 1 || level->height > 1) {
+                levels_[t].push_back(Downsample(*level));
+                level = &levels_[t].back();
+            }
         }
     }
-    // The cache lets go of the tiles and inputs of textures about to be freed.
-    ~OiioTextureFilter() override {
-        for (const OIIO::ustring& name : names_) system_.invalidate(name, true);
-    }
-    OiioTextureFilter(const OiioTextureFilter&) = delete;
-    OiioTextureFilter& operator=(const OiioTextureFilter&) = delete;
 
     Rgb Sample(uint32_t texture, float u, float v, float footprint) const override {
-        OIIO::TextureOpt options;
-        options.swrap = options.twrap = OIIO::TextureOpt::WrapPeriodic;
-        options.mipmode = OIIO::TextureOpt::MipModeTrilinear;
-        options.interpmode = OIIO::TextureOpt::InterpBilinear;
-        float result[3] = {0, 0, 0};
-        if (!system_.texture(handles_[texture], nullptr, options, u, v, footprint, 0, 0, footprint,
-                             3, result)) {
-            // Cannot happen for textures in memory; should it, the point lookup stands in.
-            if (!warned_.exchange(true))
-                spdlog::warn("texture lookup failed: {}", system_.geterror());
-            return textures_[texture]->Sample(u, v);
-        }
-        return {result[0], result[1], result[2]};
+        const Texture& finest = *textures_[texture];
+        const std::vector<Texture>& coarser = levels_[texture];
+        const auto level = [&](int l) -> const Texture& {
+            return l == 0 ? finest : coarser[l - 1];
+        };
+        // The level whose texels are as wide as the footprint (level 0 below one texel).
+        const int last = static_cast<int>(coarser.size());
+        const float resolution = static_cast<float>(std::max(finest.width, finest.height));
+        const float lod = std::log2(std::max(footprint * resolution, 1e-8f));
+        if (!(lod > 0)) return finest.Sample(u, v);
+        if (lod >= static_cast<float>(last)) return level(last).Sample(u, v);
+        const int below = static_cast<int>(lod);
+        const float t = lod - static_cast<float>(below);
+        return level(below).Sample(u, v) * (1 - t) + level(below + 1).Sample(u, v) * t;
     }
 
 private:
     std::vector<std::shared_ptr<const Texture>> textures_;
-    OIIO::TextureSystem& system_;
-    std::vector<OIIO::ustring> names_;
-    std::vector<OIIO::TextureSystem::TextureHandle*> handles_;
-    mutable std::atomic<bool> warned_{false};
+    std::vector<std::vector<Texture>> levels_;  // per texture: levels 1, 2, ... down to 1x1
 };
 
 }  // namespace
 
 std::shared_ptr<const TextureFilter> MakeTextureFilter(
     std::vector<std::shared_ptr<const Texture>> textures) {
-    return std::make_shared<OiioTextureFilter>(std::move(textures));
+    return std::make_shared<MipTextureFilter>(std::move(textures));
 }
 
 }  // namespace pf

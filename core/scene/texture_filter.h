@@ -1,5 +1,7 @@
-// Filtered texture lookups through OpenImageIO's TextureSystem: MIP levels made on first use
-// (automip) and trilinear lookups with periodic wrapping, over a scene's decoded textures.
+// Filtered texture lookups: MIP levels made once from each texture by 2x2 box filtering, and
+// trilinear lookups with periodic wrapping (as pbrt-v4's MIPMap does with its bilinear
+// filter). Plain C++ in pf_core, so that the coordinator's camera pass and every worker's
+// camera samples (sppm, path, pm) filter alike, with no image library on the workers.
 #pragma once
 
 #include <memory>
@@ -9,8 +11,8 @@
 
 namespace pf {
 
-// A filter over `textures` (indices as in Scene::textures), which it keeps alive: OpenImageIO
-// reads their texels from memory (never from disk) when a lookup first needs them.
+// A filter over `textures` (indices as in Scene::textures), which it keeps alive. Its levels
+// are built here, one pass per texture (a third more memory than the textures).
 std::shared_ptr<const TextureFilter> MakeTextureFilter(
     std::vector<std::shared_ptr<const Texture>> textures);
 

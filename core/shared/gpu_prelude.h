@@ -1,20 +1,27 @@
-// The common ground of the headers in core/shared/, which both C++ and GLSL compile: in C++
-// the GLSL vector types they use (std430-aligned) and the spelling of functions and
-// constants; in GLSL the same macros with GLSL's meaning. Shared structs use only vec2, vec4,
-// uvec4 and 32/64-bit scalars, whose std430 layout C++ reproduces exactly; each struct's
-// size is asserted in C++ (PF_GPU_LAYOUT), so the two cannot drift apart.
+// The one prelude of the headers in core/shared/, which both C++ and GLSL compile: in C++,
+// namespace pf::gpu gets the GLSL vocabulary they are written in (vec2 and vec3 are Point2 and
+// Vec3; vec4 and uvec4 std430-aligned storage; sqrt, abs, min, max, clamp, dot, normalize and
+// the bit casts are GLSL's functions) and the macros spell C++; in GLSL the same macros mean
+// GLSL. Shared structs use only vec2, vec4, uvec4 and 32/64-bit scalars, whose std430 layout
+// C++ reproduces exactly; each struct's size is asserted in C++ (PF_GPU_LAYOUT), so the two
+// cannot drift apart.
 #ifndef PF_CORE_SHARED_GPU_PRELUDE_H
 #define PF_CORE_SHARED_GPU_PRELUDE_H
 
 #ifdef __cplusplus
+#include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
+#include "core/math/point2.h"
+#include "core/math/vec3.h"
+
 namespace pf::gpu {
 
-struct alignas(8) vec2 {
-    float x, y;
-};
+using vec2 = ::pf::Point2;  // 8 bytes, aligned to 8 as std430's vec2
+using vec3 = ::pf::Vec3;  // maths only: std430's vec3 is 16-aligned, so no shared struct holds one
 struct alignas(16) vec4 {
     float x, y, z, w;
 };
@@ -22,13 +29,28 @@ struct alignas(16) uvec4 {
     uint32_t x, y, z, w;
 };
 
+inline float sqrt(float x) { return std::sqrt(x); }
+inline float abs(float x) { return std::abs(x); }
+inline float min(float a, float b) { return std::min(a, b); }
+inline float max(float a, float b) { return std::max(a, b); }
+inline float clamp(float x, float low, float high) { return std::clamp(x, low, high); }
+inline float dot(const vec3& a, const vec3& b) { return Dot(a, b); }
+inline vec3 normalize(const vec3& v) { return Normalize(v); }
+inline uint32_t floatBitsToUint(float x) { return std::bit_cast<uint32_t>(x); }
+inline int32_t floatBitsToInt(float x) { return std::bit_cast<int32_t>(x); }
+inline float uintBitsToFloat(uint32_t x) { return std::bit_cast<float>(x); }
+inline float intBitsToFloat(int32_t x) { return std::bit_cast<float>(x); }
+
 }  // namespace pf::gpu
 
 #define PF_GPU_BEGIN namespace pf::gpu {
 #define PF_GPU_END }
-// A function both languages compile.
-#define PF_GPU_FN constexpr inline
+// A function both languages compile; PF_GPU_CONSTEXPR_FN one that C++ constant expressions
+// call too (the RNG's seeding), so nothing in it may call libm.
+#define PF_GPU_FN inline
+#define PF_GPU_CONSTEXPR_FN constexpr inline
 #define PF_INOUT(Type) Type&
+#define PF_OUT(Type) Type&
 #define PF_CONST(Type) inline constexpr Type
 // The struct's std430 size; alignment follows from its largest member in both languages.
 #define PF_GPU_LAYOUT(Type, bytes) \
@@ -39,7 +61,9 @@ struct alignas(16) uvec4 {
 #define PF_GPU_BEGIN
 #define PF_GPU_END
 #define PF_GPU_FN
+#define PF_GPU_CONSTEXPR_FN
 #define PF_INOUT(Type) inout Type
+#define PF_OUT(Type) out Type
 #define PF_CONST(Type) const Type
 #define PF_GPU_LAYOUT(Type, bytes)
 

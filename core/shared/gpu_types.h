@@ -9,6 +9,12 @@
 
 PF_GPU_BEGIN
 
+// The BVH's depth limit (embree/bvh_builder.cpp builds no leaf deeper) and the shaders'
+// traversal stack (trace.glsl), which must hold a pointer for every level: one definition
+// ties them.
+PF_CONST(uint32_t) kMaxBvhDepth = 60;
+PF_CONST(uint32_t) kBvhStackSize = kMaxBvhDepth + 4;
+
 // Descriptor set 0, one layout for every pipeline.
 PF_CONST(uint32_t) kBindingBvhNodes = 0;       // GpuBvhNode[]
 PF_CONST(uint32_t) kBindingTriangles = 1;      // GpuTriangle[], in BVH leaf order
@@ -156,7 +162,7 @@ struct GpuTallySum {
 };
 PF_GPU_LAYOUT(GpuTallySum, 32);
 
-// One hit point's entry of the sparse tally a batch returns (Tally in core/ppm/batch.h),
+// One hit point's entry of the sparse tally a batch returns (Tally in core/job/batch.h),
 // written in hit point order by tally_compact.comp.
 struct GpuTallyEntry {
     uint32_t hit_point;

@@ -1,13 +1,13 @@
 // The sampling and scattering maths of photon and light paths, one definition for the CPU
-// (core/math/fast_trig.h, core/sampling/sampling.h, core/math/frame.h, core/scene/specular.h
-// and core/geometry/ray.h call it) and the Vulkan kernels: the same numbers in, nearly the
-// same paths out. Written in the vocabulary of math_prelude.h.
+// (core/sampling/fast_trig.h, core/sampling/sampling.h, core/sampling/frame.h,
+// core/scene/specular.h and core/geometry/ray.h call it) and the Vulkan kernels: the same numbers
+// in, nearly the same paths out. Written in the vocabulary of gpu_prelude.h.
 #ifndef PF_CORE_SHARED_PATH_SAMPLING_H
 #define PF_CORE_SHARED_PATH_SAMPLING_H
 
-#include "core/shared/math_prelude.h"
+#include "core/shared/gpu_prelude.h"
 
-PF_SHARED_BEGIN
+PF_GPU_BEGIN
 
 // sin(2 pi u) and cos(2 pi u) for u in [0, 1), without a libm call: the photon loop samples a
 // direction at every bounce, and libm's sincosf (about 15 ns here) was its largest single
@@ -15,7 +15,7 @@ PF_SHARED_BEGIN
 // u = k/4 + r with |r| <= 1/8, so the polynomials only need |angle| <= pi/4, where their
 // truncation error is below 3.2e-7 (sine) and 2.5e-8 (cosine); truncation rounds here since
 // 4u + 1/2 >= 0.
-PF_SHARED_FN void SinCosTurns(float u, PF_OUT(float) sine, PF_OUT(float) cosine) {
+PF_GPU_FN void SinCosTurns(float u, PF_OUT(float) sine, PF_OUT(float) cosine) {
     const int32_t k = int32_t(4.0f * u + 0.5f);
     const float angle = 6.28318530717958647692f * (u - 0.25f * float(k));
     const float a2 = angle * angle;
@@ -36,7 +36,7 @@ PF_SHARED_FN void SinCosTurns(float u, PF_OUT(float) sine, PF_OUT(float) cosine)
 // Shirley and Chiu's concentric map, whose lower distortion matters only for stratified
 // samples: its choice of wedge is a branch the predictor loses half the time, and this is the
 // innermost loop of the photon pass.
-PF_SHARED_FN vec2 SampleUniformDisk(float u1, float u2) {
+PF_GPU_FN vec2 SampleUniformDisk(float u1, float u2) {
     const float radius = sqrt(u1);
     float sine, cosine;
     SinCosTurns(u2, sine, cosine);
@@ -46,13 +46,13 @@ PF_SHARED_FN vec2 SampleUniformDisk(float u1, float u2) {
 // Cosine-weighted direction about +z (Malley's method: the disk lifted to the hemisphere);
 // density cos(theta)/pi. The disk point's squared radius is u1, so z comes from u1 directly,
 // in parallel with the disk point rather than after it.
-PF_SHARED_FN vec3 SampleCosineHemisphere(float u1, float u2) {
+PF_GPU_FN vec3 SampleCosineHemisphere(float u1, float u2) {
     const vec2 d = SampleUniformDisk(u1, u2);
     return vec3(d.x, d.y, sqrt(max(0.0f, 1.0f - u1)));
 }
 
 // Uniform direction on the unit sphere; density 1/(4 pi).
-PF_SHARED_FN vec3 SampleUniformSphere(float u1, float u2) {
+PF_GPU_FN vec3 SampleUniformSphere(float u1, float u2) {
     const float z = 1.0f - 2.0f * u1;
     const float r = sqrt(max(0.0f, 1.0f - z * z));
     float sine, cosine;
@@ -62,7 +62,7 @@ PF_SHARED_FN vec3 SampleUniformSphere(float u1, float u2) {
 
 // Uniform direction in the cone about +z with cos(half angle) = cos_max;
 // density 1/(2 pi (1 - cos_max)).
-PF_SHARED_FN vec3 SampleUniformCone(float u1, float u2, float cos_max) {
+PF_GPU_FN vec3 SampleUniformCone(float u1, float u2, float cos_max) {
     const float cos_theta = 1.0f - u1 * (1.0f - cos_max);
     const float sin_theta = sqrt(max(0.0f, 1.0f - cos_theta * cos_theta));
     float sine, cosine;
@@ -72,21 +72,21 @@ PF_SHARED_FN vec3 SampleUniformCone(float u1, float u2, float cos_max) {
 
 // Uniform barycentrics (b1, b2) on a triangle by the square-root map (Shirley 1990); density
 // 1/area. Branch-free, unlike Heitz's lower-distortion map, for the reason given above.
-PF_SHARED_FN vec2 SampleUniformTriangle(float u1, float u2) {
+PF_GPU_FN vec2 SampleUniformTriangle(float u1, float u2) {
     const float root = sqrt(u1);
     return vec2(u2 * root, 1.0f - root);
 }
 
 // Veach's power heuristic with beta = 2 (Veach 1997, section 9.2.4): the weight of a sample
 // drawn with density `chosen` where another strategy would have drawn it with density `other`.
-PF_SHARED_FN float PowerHeuristic(float chosen, float other) {
+PF_GPU_FN float PowerHeuristic(float chosen, float other) {
     const float a = chosen * chosen, b = other * other;
     return a + b > 0.0f ? a / (a + b) : 0.0f;
 }
 
 // Tangents s, t completing the unit normal n to an orthonormal frame, without branches on
 // the sign of n.z (Duff et al. 2017, "Building an Orthonormal Basis, Revisited", JCGT 6(1)).
-PF_SHARED_FN void OrthonormalBasis(vec3 n, PF_OUT(vec3) s, PF_OUT(vec3) t) {
+PF_GPU_FN void OrthonormalBasis(vec3 n, PF_OUT(vec3) s, PF_OUT(vec3) t) {
     const float sign =
         uintBitsToFloat((floatBitsToUint(n.z) & 0x80000000u) | 0x3f800000u);  // copysign(1, z)
     const float a = -1.0f / (sign + n.z);
@@ -97,7 +97,7 @@ PF_SHARED_FN void OrthonormalBasis(vec3 n, PF_OUT(vec3) s, PF_OUT(vec3) t) {
 
 // Unpolarised Fresnel reflectance of a dielectric interface. cos_incident in [0, 1] on the
 // incident side; eta = n_incident / n_transmitted. Total internal reflection gives 1.
-PF_SHARED_FN float FresnelDielectric(float cos_incident, float eta) {
+PF_GPU_FN float FresnelDielectric(float cos_incident, float eta) {
     cos_incident = clamp(cos_incident, 0.0f, 1.0f);
     const float sin_t_sq = eta * eta * (1.0f - cos_incident * cos_incident);
     if (sin_t_sq >= 1.0f) return 1.0f;
@@ -109,7 +109,7 @@ PF_SHARED_FN float FresnelDielectric(float cos_incident, float eta) {
 
 // Refracts direction d through the interface with normal n facing the incident side
 // (dot(d, n) < 0); eta = n_incident / n_transmitted. False under total internal reflection.
-PF_SHARED_FN bool Refract(vec3 d, vec3 n, float eta, PF_OUT(vec3) refracted) {
+PF_GPU_FN bool Refract(vec3 d, vec3 n, float eta, PF_OUT(vec3) refracted) {
     const float cos_i = -dot(d, n);
     const float sin_t_sq = eta * eta * max(0.0f, 1.0f - cos_i * cos_i);
     if (sin_t_sq >= 1.0f) return false;
@@ -125,7 +125,7 @@ PF_SHARED_FN bool Refract(vec3 d, vec3 n, float eta, PF_OUT(vec3) refracted) {
 // against the hit's rounding error, move by a small fixed fraction of the scene instead:
 // `scene_scale` is the scene's largest coordinate magnitude (Bounds::Magnitude), so a scene
 // scaled by 1e-4 or 1e+4 is offset exactly as the same scene at unit scale.
-PF_SHARED_FN float OffsetCoordinate(float coordinate, float normal, float scene_scale) {
+PF_GPU_FN float OffsetCoordinate(float coordinate, float normal, float scene_scale) {
     const int32_t offset = int32_t(256.0f * normal);
     const float moved =
         intBitsToFloat(floatBitsToInt(coordinate) + (coordinate < 0.0f ? -offset : offset));
@@ -134,6 +134,6 @@ PF_SHARED_FN float OffsetCoordinate(float coordinate, float normal, float scene_
                : moved;
 }
 
-PF_SHARED_END
+PF_GPU_END
 
 #endif  // PF_CORE_SHARED_PATH_SAMPLING_H

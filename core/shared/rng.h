@@ -10,7 +10,7 @@
 PF_GPU_BEGIN
 
 // SplitMix64 finaliser (Steele et al. 2014): a bijective 64-bit mix.
-PF_GPU_FN uint64_t Mix64(uint64_t x) {
+PF_GPU_CONSTEXPR_FN uint64_t Mix64(uint64_t x) {
     x += 0x9e3779b97f4a7c15ul;
     x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ul;
     x = (x ^ (x >> 27)) * 0x94d049bb133111ebul;
@@ -19,10 +19,10 @@ PF_GPU_FN uint64_t Mix64(uint64_t x) {
 
 // The seed of member d of the family whose (a, b, c) mixed once gave `prefix`
 // (FamilyPrefix): a batch mixes its shared part once, each photon once more.
-PF_GPU_FN uint64_t FamilyPrefix(uint64_t a, uint64_t b, uint64_t c) {
+PF_GPU_CONSTEXPR_FN uint64_t FamilyPrefix(uint64_t a, uint64_t b, uint64_t c) {
     return Mix64(Mix64(Mix64(a) ^ b) ^ c);
 }
-PF_GPU_FN uint64_t FamilySeed(uint64_t prefix, uint64_t d) { return Mix64(prefix ^ d); }
+PF_GPU_CONSTEXPR_FN uint64_t FamilySeed(uint64_t prefix, uint64_t d) { return Mix64(prefix ^ d); }
 
 struct Pcg32 {
     uint64_t state;
@@ -36,7 +36,7 @@ struct Pcg32 {
 #endif
 };
 
-PF_GPU_FN uint32_t Pcg32Next(PF_INOUT(Pcg32) rng) {
+PF_GPU_CONSTEXPR_FN uint32_t Pcg32Next(PF_INOUT(Pcg32) rng) {
     const uint64_t old = rng.state;
     rng.state = old * 6364136223846793005ul + rng.increment;
     const uint32_t xorshifted = uint32_t(((old >> 18) ^ old) >> 27);
@@ -44,7 +44,7 @@ PF_GPU_FN uint32_t Pcg32Next(PF_INOUT(Pcg32) rng) {
     return (xorshifted >> rotation) | (xorshifted << ((32u - rotation) & 31u));
 }
 
-PF_GPU_FN Pcg32 Pcg32Seeded(uint64_t seed) {
+PF_GPU_CONSTEXPR_FN Pcg32 Pcg32Seeded(uint64_t seed) {
     Pcg32 rng = Pcg32(0ul, (Mix64(seed) << 1) | 1ul);
     Pcg32Next(rng);
     rng.state += seed;
@@ -53,7 +53,7 @@ PF_GPU_FN Pcg32 Pcg32Seeded(uint64_t seed) {
 }
 
 // Uniform in [0, 1): the top 24 bits, so the result is never rounded up to 1.
-PF_GPU_FN float Pcg32NextFloat(PF_INOUT(Pcg32) rng) {
+PF_GPU_CONSTEXPR_FN float Pcg32NextFloat(PF_INOUT(Pcg32) rng) {
     return float(Pcg32Next(rng) >> 8) * 5.9604644775390625e-8f;
 }
 

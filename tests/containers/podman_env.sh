@@ -71,4 +71,15 @@ build_images() {
         podman build --runtime runc --network host --format docker -q -f "$context/deploy/Containerfile" --target "$target" \
             --build-arg BASE="$PF_BASE" --build-arg BINARIES=prebuilt -t "$PF_TAG-$target:test" "$context" > /dev/null
     done
+    # Every node of a scaling cluster pulls the worker image: it carries no scene parser and
+    # no image library, and stays within 300 MB (issue 22).
+    local base_bytes worker_bytes coordinator_bytes
+    base_bytes=$(podman image inspect --format '{{.Size}}' "$PF_BASE")
+    worker_bytes=$(podman image inspect --format '{{.Size}}' "$PF_TAG-worker:test")
+    coordinator_bytes=$(podman image inspect --format '{{.Size}}' "$PF_TAG-coordinator:test")
+    say "images: worker $((worker_bytes / 1000000)) MB, coordinator $((coordinator_bytes / 1000000)) MB, base $((base_bytes / 1000000)) MB"
+    if [ "$worker_bytes" -gt 300000000 ]; then
+        echo "FAIL: the worker image is $((worker_bytes / 1000000)) MB, over 300 MB" >&2
+        return 1
+    fi
 }

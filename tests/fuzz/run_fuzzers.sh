@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the scene-parser fuzzers with clang (libFuzzer, AddressSanitizer, UBSan) in their own
+# Builds the scene-parser fuzzers and the prepared-scene decoder's with clang (libFuzzer, AddressSanitizer, UBSan) in their own
 # build folder and runs each for a fixed time over a copy of its seed corpus. Fails if a fuzzer
 # finds a crash, a sanitizer error, a leak or a hang (the input is left in the build folder).
 # Usage: run_fuzzers.sh SOURCE_DIR FUZZ_BUILD_DIR [SECONDS_EACH]
@@ -20,16 +20,24 @@ if [ ! -f "$build_dir/build.ninja" ]; then
         -DPF_BUILD_TESTS=OFF -DPF_BUILD_BENCH=OFF -DPF_BUILD_FUZZERS=ON >"$build_dir.configure.log" 2>&1 ||
         { cat "$build_dir.configure.log" >&2; exit 1; }
 fi
-cmake --build "$build_dir" --target pbrt_fuzzer gltf_fuzzer -- -j "$(nproc)" >"$build_dir.build.log" 2>&1 ||
+cmake --build "$build_dir" --target pbrt_fuzzer gltf_fuzzer prepared_scene_fuzzer prepared_scene_seeds -- -j "$(nproc)" >"$build_dir.build.log" 2>&1 ||
     { tail -50 "$build_dir.build.log" >&2; exit 1; }
 status=0
-for format in pbrt gltf; do
+for format in pbrt gltf prepared_scene; do
     corpus="$build_dir/corpus-$format"
-    rm -rf "$corpus" && mkdir -p "$corpus" && cp "$source_dir/tests/fuzz/corpus/$format"/* "$corpus"/
+    rm -rf "$corpus" && mkdir -p "$corpus"
+    if [ "$format" = prepared_scene ]; then  # seeds made from the shipped scenes, not kept
+        ASAN_OPTIONS=detect_leaks=0 "$build_dir/tests/fuzz/prepared_scene_seeds" "$corpus" "$source_dir/scenes/cornell-box.gltf" \
+            "$source_dir/scenes/pbrt/caustic-glass.pbrt" 2>/dev/null
+        seeds=()
+    else
+        cp "$source_dir/tests/fuzz/corpus/$format"/* "$corpus"/
+        seeds=("$source_dir/tests/fuzz/corpus/$format")
+    fi
     echo "run_fuzzers: $format for ${seconds}s over $(ls "$corpus" | wc -l) seed inputs"
     # -close_fd_mask=3: the loaders' warnings would flood the log.
     if ! (cd "$build_dir" && "./tests/fuzz/${format}_fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-            -max_len=16384 -close_fd_mask=3 -print_final_stats=1 "$corpus" "$source_dir/tests/fuzz/corpus/$format" \
+            -max_len=16384 -close_fd_mask=3 -print_final_stats=1 "$corpus" "${seeds[@]}" \
             >"$build_dir/$format.log" 2>&1); then
         echo "run_fuzzers: the $format fuzzer found a problem:" >&2
         grep -E "ERROR|SUMMARY|Test unit written|artifact" "$build_dir/$format.log" >&2 || tail -30 "$build_dir/$format.log" >&2

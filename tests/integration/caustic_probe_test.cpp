@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "core/scene/scene_loader.h"
+#include "embree/embree_tracer.h"
 #include "tests/support/gltf_builder.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf {
 namespace {

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "client/local_render.h"
+#include "embedded/local_render.h"
 
 namespace pf {
 namespace {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/scene/scene_loader.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
+#include "embree/embree_tracer.h"
 
 namespace pf {
 namespace {

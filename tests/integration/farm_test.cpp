@@ -24,6 +24,7 @@
 #include "client/farm_client.h"
 #include "core/film/exr_io.h"
 #include "core/film/image_metrics.h"
+#include "core/job/work_source.h"
 #include "core/scene/scene_bundle.h"
 #include "core/scene/scene_loader.h"
 #include "grpc/health/v1/health.grpc.pb.h"
@@ -33,9 +34,8 @@
 #include "tests/support/image_agreement.h"
 #include "tests/support/test_env.h"
 #include "tests/support/vulkan_validation.h"
-#include "worker/proto_convert.h"
-#include "worker/secure_channel.h"
-#include "worker/work_source.h"
+#include "wire/proto_convert.h"
+#include "wire/secure_channel.h"
 
 namespace pf {
 namespace {

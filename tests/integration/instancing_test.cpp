@@ -14,11 +14,11 @@
 #include "core/sampling/sampling.h"
 #include "core/scene/mesh_builder.h"
 #include "core/scene/scene_loader.h"
+#include "embree/embree_tracer.h"
 #include "tests/support/image_agreement.h"
 #include "tests/support/small_render.h"
 #include "tests/support/test_env.h"
 #include "tests/support/vulkan_validation.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf {
 namespace {

@@ -15,14 +15,14 @@
 #include <vector>
 
 #include "absl/strings/str_format.h"
-#include "client/local_render.h"
+#include "core/job/integrator.h"
 #include "core/pm/density_estimate.h"
 #include "core/pm/photon_map.h"
-#include "core/render/integrator.h"
 #include "core/scene/scene_loader.h"
+#include "embedded/local_render.h"
+#include "embree/embree_tracer.h"
 #include "tests/support/image_agreement.h"
 #include "tests/support/numerics_cases.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf {
 namespace {

@@ -11,15 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "client/local_render.h"
-#include "core/ppm/camera_pass.h"
+#include "core/camera/camera_pass.h"
 #include "core/ppm/photon_pass.h"
 #include "core/scene/scene_loader.h"
+#include "embedded/local_render.h"
+#include "embree/embree_tracer.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/numerics_cases.h"
 #include "tests/support/vulkan_validation.h"
 #include "worker/backend_factory.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
 
 namespace pf {
 namespace {

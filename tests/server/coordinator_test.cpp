@@ -20,8 +20,8 @@
 #include <random>
 
 #include "absl/strings/str_split.h"
-#include "client/local_render.h"
 #include "core/scene/scene_loader.h"
+#include "embedded/local_render.h"
 #include "server/in_process_source.h"
 #include "server/metrics.h"
 #include "tests/support/test_env.h"

@@ -14,15 +14,15 @@
 #include <thread>
 
 #include "client/farm_client.h"
-#include "client/local_render.h"
 #include "core/scene/scene_loader.h"
+#include "embedded/local_render.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "photonfarm/v1/jobs.grpc.pb.h"
 #include "photonfarm/v1/work.grpc.pb.h"
 #include "server/coordinator_server.h"
 #include "tests/support/farm_credentials.h"
+#include "wire/proto_convert.h"
 #include "worker/grpc_work_source.h"
-#include "worker/proto_convert.h"
 #include "worker/worker_loop.h"
 
 namespace pf {

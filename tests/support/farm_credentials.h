@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "worker/secure_channel.h"
+#include "wire/secure_channel.h"
 
 namespace pf::testing {
 

@@ -4,11 +4,9 @@
 #include "tests/support/numerics_cases.h"
 
 #include <absl/strings/str_format.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <memory>
@@ -16,14 +14,15 @@
 #include <string>
 #include <utility>
 
-#include "client/local_render.h"
+#include "core/camera/camera_pass.h"
+#include "core/estimate/estimator.h"
 #include "core/film/image_metrics.h"
-#include "core/ppm/camera_pass.h"
-#include "core/ppm/estimator.h"
 #include "core/scene/scene_loader.h"
+#include "embedded/local_render.h"
+#include "embree/embree_tracer.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/image_agreement.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
+#include "tests/support/test_env.h"
 
 namespace pf::testing {
 namespace {
@@ -38,13 +37,11 @@ std::string EditedScene(const std::string& shipped, const std::string& name,
     std::ifstream in(ShippedScene(shipped));
     nlohmann::json gltf = nlohmann::json::parse(in);
     edit(gltf);
-    // One folder per process: test processes run side by side under ctest -j.
-    const std::filesystem::path dir = std::filesystem::temp_directory_path() /
-                                      ("photonfarm-numerics-" + std::to_string(getpid()));
-    std::filesystem::create_directories(dir);
-    const std::filesystem::path path = dir / (name + ".gltf");
+    // The process's own folder (test processes run side by side under ctest -j), removed when
+    // it exits.
+    const std::string path = TempPath("numerics/" + name + ".gltf");
     std::ofstream(path) << gltf.dump();
-    return path.string();
+    return path;
 }
 
 // Every root node moved under one that scales the scene (camera included) by `scale`.

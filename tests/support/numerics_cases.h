@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/film/image.h"
+#include "core/job/job_spec.h"
 #include "core/math/vec3.h"
-#include "core/ppm/job_spec.h"
 
 namespace pf::testing {
 

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "client/local_render.h"
+#include "embedded/local_render.h"
 
 namespace pf::testing {
 

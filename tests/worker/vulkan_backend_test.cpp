@@ -15,15 +15,15 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "core/ppm/camera_pass.h"
-#include "core/ppm/job_spec.h"
-#include "core/ppm/progressive_estimate.h"
+#include "core/camera/camera_pass.h"
+#include "core/estimate/progressive_estimate.h"
+#include "core/job/job_spec.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene_loader.h"
+#include "embree/embree_tracer.h"
 #include "tests/support/image_agreement.h"
 #include "tests/support/vulkan_validation.h"
 #include "worker/backend_factory.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
 #include "worker/backends/vulkan/context.h"
 #include "worker/backends/vulkan/gpu_scene.h"
 

@@ -8,7 +8,7 @@
 
 #include "core/sampling/distribution.h"
 #include "core/sampling/rng.h"
-#include "tests/core/sampling/chi_square.h"
+#include "tests/support/chi_square.h"
 
 namespace pf {
 namespace {

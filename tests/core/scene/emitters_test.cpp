@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "core/scene/scene_loader.h"
-#include "tests/core/sampling/chi_square.h"
+#include "tests/support/chi_square.h"
 #include "tests/support/gltf_builder.h"
 
 namespace pf {

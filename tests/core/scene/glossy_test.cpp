@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "core/math/frame.h"
+#include "core/sampling/frame.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 

@@ -10,7 +10,8 @@
 #include <filesystem>
 #include <string>
 
-#include "core/ppm/job_spec.h"
+#include "core/camera/camera_pass.h"
+#include "core/job/job_spec.h"
 #include "core/scene/pbrt/pbrt_lexer.h"
 #include "core/scene/pbrt/pbrt_parameters.h"
 #include "core/scene/scene_files.h"

@@ -1,5 +1,5 @@
-// Image decoding and texture filtering: lookups over a footprint (OpenImageIO's TextureSystem,
-// MIP-mapped) average what the footprint covers; the point lookup agrees with it at a point.
+// Image decoding and texture filtering: lookups over a footprint (MIP levels, trilinear)
+// average what the footprint covers; the point lookup agrees with it at a point.
 #include "core/scene/texture.h"
 
 #include <OpenImageIO/imageio.h>
@@ -64,7 +64,7 @@ TEST(TextureTest, PointLookupsAgreeWithTheFiltersFinestLevelAndWrap) {
     }
 }
 
-TEST(TextureTest, FiltersShareOneTextureSystemAndLetGoOfTheirTextures) {
+TEST(TextureTest, FiltersKeepTheirOwnTextures) {
     // Scenes come and go in a coordinator: each filter's textures are its own, and a filter
     // outlived by another leaves that one's lookups intact.
     const auto solid = [](float value) {

@@ -7,9 +7,9 @@
 #include <optional>
 #include <vector>
 
+#include "core/camera/camera_pass.h"
 #include "core/geometry/tracer.h"
 #include "core/pm/photon_map.h"
-#include "core/ppm/camera_pass.h"
 #include "core/ppm/hash_grid.h"
 #include "core/ppm/photon_pass.h"
 #include "core/render/pixel_pass.h"

@@ -4,7 +4,7 @@
 #include <bit>
 
 #include "core/scene/mesh_builder.h"
-#include "worker/backends/cpu_embree/bvh_builder.h"
+#include "embree/bvh_builder.h"
 
 namespace pf::vk {
 namespace {

@@ -19,12 +19,12 @@
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
-#include "core/ppm/camera_pass.h"
+#include "core/camera/camera_pass.h"
+#include "core/job/job_spec.h"
 #include "core/ppm/direct_light.h"
-#include "core/ppm/job_spec.h"
 #include "core/ppm/photon_pass.h"
 #include "core/util/check.h"
-#include "worker/backends/cpu_embree/embree_tracer.h"
+#include "embree/embree_tracer.h"
 
 namespace pf::vk {
 namespace {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "core/camera/camera_pass.h"
 #include "core/geometry/tracer.h"
-#include "core/ppm/camera_pass.h"
 #include "worker/backend.h"
 #include "worker/backends/vulkan/buffer.h"
 #include "worker/backends/vulkan/command_stream.h"

@@ -2,7 +2,7 @@
 // does on the CPU, with the shared warps (core/shared/path_sampling.h) and consuming random
 // numbers in the same order; light kinds the scene lacks are compiled out.
 
-// A frame around a unit normal, as core/math/frame.h: columns s, t, n.
+// A frame around a unit normal, as core/sampling/frame.h: columns s, t, n.
 mat3 FrameFromNormal(vec3 n) {
     vec3 s, t;
     OrthonormalBasis(n, s, t);

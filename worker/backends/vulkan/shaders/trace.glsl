@@ -7,8 +7,6 @@ struct RayHit {
     float b1, b2;   // barycentrics of vertices 1 and 2
 };
 
-const uint kStackSize = 64;  // the builder's depth limit (gpu_scene.cpp)
-
 // Entry distance of the ray into the box, or infinity where it misses within (0, t_max).
 float EnterBox(vec3 lower, vec3 upper, vec3 origin, vec3 inverse_direction, float t_max) {
     const vec3 t0 = (lower - origin) * inverse_direction, t1 = (upper - origin) * inverse_direction;
@@ -43,7 +41,7 @@ bool TraceRay(vec3 origin, vec3 direction, float t_max, bool any_hit, out RayHit
     // Zero components become tiny ones, so the slab test never computes 0 x infinity.
     const vec3 safe = mix(vec3(1e-30), direction, greaterThan(abs(direction), vec3(1e-30)));
     const vec3 inverse_direction = 1.0 / safe;
-    uint stack[kStackSize];
+    uint stack[kBvhStackSize];  // core/shared/gpu_types.h: the builder's depth limit
     uint depth = 0;
     uint node = 0;
     bool found = false;

@@ -1,0 +1,236 @@
+// Tracing camera paths to hit points.
+#include "core/camera/camera_pass.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "absl/strings/str_format.h"
+#include "core/camera/pixel_sample.h"
+#include "core/math/morton.h"
+#include "core/sampling/rng.h"
+#include "core/sampling/sampling.h"
+#include "core/scene/glossy.h"
+
+namespace pf {
+namespace {
+
+constexpr uint64_t kCameraStream = 0x63616d657261ull;
+
+// A camera path in flight: where it goes and what it carries.
+struct CameraPath {
+    Ray ray;
+    Rgb throughput;
+    float length = 0;  // distance travelled, for the pixel footprint
+    int depth = 0;
+    int splits_left = 0;  // glass interfaces still to split rather than choose at random
+};
+
+// Traces one camera sample; appends the hit points it reaches and returns the emission it saw.
+// At its first `splits` (up to kCameraSplits) glass interfaces the path follows both reflection and
+// transmission, each weighted by its probability, instead of choosing one at random: the few
+// percent of reflection on glass would otherwise show as speckle, since hit points are kept.
+// Instantiated for the scene's features: without specular materials every path ends at its
+// first hit, without textures every base colour is the material's.
+// Textures are filtered over the sample's share of the pixel's cone (the pixel's angle over
+// the square root of its samples, as pbrt-v4 scales its ray differentials).
+template <bool kSpecular, bool kTextures>
+Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& primary, uint32_t pixel,
+                      float pixel_angle, float filter_angle, int splits, Rng& rng,
+                      std::vector<HitPoint>& hit_points, std::vector<float>& footprints) {
+    Rgb emission(0.0f);
+    CameraPath stack[kCameraSplits + 1];
+    int pending = 0;
+    stack[pending++] = {primary, Rgb(1.0f), 0.0f, 0, splits};
+    while (pending > 0) {
+        CameraPath path = stack[--pending];
+        for (; path.depth < kMaxCameraDepth; ++path.depth) {
+            RayHit hit;
+            if (!tracer.Intersect(path.ray, &hit)) break;
+            path.length += hit.t;
+            const SurfacePoint surface = scene.Surface(hit);
+            const Material& material = scene.materials[surface.material];
+            const bool front_facing = Dot(path.ray.direction, surface.geometric_normal) < 0;
+            if (front_facing && material.IsEmissive())
+                emission += path.throughput * material.emission;
+            const Rgb base_color = kTextures ? scene.BaseColor(surface, path.length * filter_angle)
+                                             : material.base_color;
+            if (!kSpecular || material.type == MaterialType::kDiffuse) {
+                const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
+                hit_points.push_back(
+                    {surface.position, normal, path.throughput * base_color / kPi, pixel});
+                footprints.push_back(path.length * pixel_angle);
+                break;
+            }
+            const Vec3& n = surface.shading_normal;
+            const float reflect =
+                ReflectionProbability(material, path.ray.direction, n, front_facing);
+            SpecularBounce bounce;
+            if (path.splits_left > 0 && reflect > 0 && reflect < 1) {
+                // Continue with the reflection; the transmission waits on the stack.
+                const SpecularBounce transmitted =
+                    TransmitSpecular(material, path.ray.direction, n, front_facing, base_color);
+                CameraPath& other = stack[pending++];
+                other = path;
+                other.throughput *= transmitted.weight * (1.0f - reflect);
+                other.ray = {OffsetRayOrigin(surface.position,
+                                             front_facing ? -surface.geometric_normal
+                                                          : surface.geometric_normal,
+                                             scene.bounds.Magnitude()),
+                             transmitted.direction};
+                ++other.depth;
+                --other.splits_left;
+                --path.splits_left;
+                bounce = ReflectSpecular(material, path.ray.direction, n, front_facing, base_color);
+                bounce.weight *= reflect;
+            } else {
+                bounce = ScatterNonDiffuse(material, path.ray.direction, n, front_facing,
+                                           base_color, rng);
+            }
+            path.throughput *= bounce.weight;
+            if (path.depth >= kCameraRouletteDepth) {
+                const float survive = std::min(1.0f, MaxComponent(path.throughput));
+                if (!(rng.NextFloat() < survive)) break;
+                path.throughput /= survive;
+            }
+            if (IsBlack(path.throughput)) break;
+            const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal
+                                                                 : surface.geometric_normal;
+            path.ray = {OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude()),
+                        bounce.direction};
+        }
+    }
+    return emission;
+}
+
+// Indices of hit_points sorted by the Morton code of their position in bounds (ties by index,
+// so the order is deterministic).
+std::vector<uint32_t> MortonOrder(const std::vector<HitPoint>& hit_points, const Bounds& bounds) {
+    const Vec3 extent = Max(bounds.upper - bounds.lower, Vec3(1e-30f));
+    std::vector<std::pair<uint64_t, uint32_t>> keys(hit_points.size());
+    for (size_t i = 0; i < hit_points.size(); ++i) {
+        keys[i] = {MortonCode(hit_points[i].position, bounds.lower, extent),
+                   static_cast<uint32_t>(i)};
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<uint32_t> order(keys.size());
+    for (size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].second;
+    return order;
+}
+
+}  // namespace
+
+CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
+                               const CameraPassSettings& settings) {
+    const int width = settings.width, height = settings.height, spp = settings.samples_per_pixel;
+    const Film film{width, height, spp};
+    const float pixel_angle = scene.camera.PixelAngle(height);
+    const float filter_angle =
+        pixel_angle / std::sqrt(static_cast<float>(settings.samples_per_pixel));
+    const int splits = settings.stochastic ? 0 : kCameraSplits;
+
+    std::vector<std::vector<HitPoint>> row_hit_points(height);
+    std::vector<std::vector<float>> row_footprints(height);
+    CameraPassResult result;
+    result.emission = Image(width, height);
+    // The camera path for the scene's features, chosen once.
+    const SceneFeatures& features = settings.features;
+    const auto trace =
+        features.Specular()
+            ? (features.textures ? TraceCameraSample<true, true> : TraceCameraSample<true, false>)
+            : (features.textures ? TraceCameraSample<false, true>
+                                 : TraceCameraSample<false, false>);
+    tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
+        for (int y = rows.begin(); y < rows.end(); ++y) {
+            for (int x = 0; x < width; ++x) {
+                const auto pixel = static_cast<uint32_t>(y * width + x);
+                Rng rng(HashSeed(settings.seed, kCameraStream, pixel));
+                Rgb emission(0.0f);
+                for (int s = 0; s < spp; ++s) {
+                    const Ray ray = PixelSampleRay(scene.camera, film, x, y, s, rng);
+                    const size_t before = row_hit_points[y].size();
+                    emission += trace(scene, tracer, ray, pixel, pixel_angle, filter_angle, splits,
+                                      rng, row_hit_points[y], row_footprints[y]);
+                    // A stochastic pass keeps one slot per sample, black where it found nothing.
+                    if (settings.stochastic && row_hit_points[y].size() == before) {
+                        row_hit_points[y].push_back(
+                            {Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), Rgb(0.0f), pixel});
+                        row_footprints[y].push_back(0.0f);
+                    }
+                }
+                result.emission.At(x, y) = emission / static_cast<float>(spp);
+            }
+        }
+    });
+    std::vector<HitPoint> hit_points;
+    std::vector<float> footprints;
+    for (int y = 0; y < height; ++y) {
+        hit_points.insert(hit_points.end(), row_hit_points[y].begin(), row_hit_points[y].end());
+        footprints.insert(footprints.end(), row_footprints[y].begin(), row_footprints[y].end());
+    }
+    if (settings.stochastic) {  // slots stay in pixel order: slot i is the state's index i
+        result.hit_points = std::move(hit_points);
+        result.footprint = std::move(footprints);
+        return result;
+    }
+    // Order hit points along a Morton curve: those a photon finds together then lie together
+    // in memory, for the grid's candidates and the tally's sums alike.
+    const std::vector<uint32_t> order = MortonOrder(hit_points, scene.bounds);
+    result.hit_points.reserve(order.size());
+    result.footprint.reserve(order.size());
+    for (uint32_t index : order) {
+        result.hit_points.push_back(hit_points[index]);
+        result.footprint.push_back(footprints[index]);
+    }
+    return result;
+}
+
+CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, uint64_t epoch) {
+    constexpr uint64_t kStochasticStream = 0x73707070ull;
+    CameraPassSettings settings = film;
+    settings.seed = HashSeed(film.seed, kStochasticStream, epoch);
+    settings.stochastic = true;
+    return settings;
+}
+
+float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& scene) {
+    std::vector<float> footprints;  // of the slots that hold a hit point
+    for (float footprint : camera_pass.footprint)
+        if (footprint > 0) footprints.push_back(footprint);
+    if (footprints.empty()) return 0.0f;
+    auto middle = footprints.begin() + static_cast<std::ptrdiff_t>(footprints.size() / 2);
+    std::nth_element(footprints.begin(), middle, footprints.end());
+    return std::min(*middle, 0.01f * scene.bounds.Diagonal());
+}
+
+absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& scene) {
+    CameraPassSettings film{spec.width, spec.height, spec.samples_per_pixel, spec.seed};
+    const double aspect = scene.camera.aspect_ratio > 0 ? scene.camera.aspect_ratio : 1.0;
+    if (film.width == 0 && film.height == 0) {
+        film.width = scene.hints.width > 0 ? scene.hints.width : 512;
+        film.height = scene.hints.height;
+    }
+    if (film.width == 0)
+        film.width = std::max(1, static_cast<int>(std::lround(film.height * aspect)));
+    if (film.height == 0)
+        film.height = std::max(1, static_cast<int>(std::lround(film.width / aspect)));
+    const uint64_t pixels = uint64_t(film.width) * uint64_t(film.height);
+    if (!GathersAtHitPoints(spec.integrator)) {  // they keep a sum per pixel, whatever the spp
+        if (pixels > kMaxHitPoints)
+            return absl::ResourceExhaustedError(
+                absl::StrFormat("%dx%d = %d pixels exceeds the limit of %d", film.width,
+                                film.height, pixels, kMaxHitPoints));
+        return film;
+    }
+    const uint64_t most_hit_points = pixels * uint64_t(film.samples_per_pixel);
+    if (most_hit_points > kMaxHitPoints)
+        return absl::ResourceExhaustedError(absl::StrFormat(
+            "%dx%d pixels x %d spp = %d hit points exceeds the limit of %d (about %d bytes each)",
+            film.width, film.height, film.samples_per_pixel, most_hit_points, kMaxHitPoints,
+            kBytesPerHitPoint));
+    return film;
+}
+
+}  // namespace pf

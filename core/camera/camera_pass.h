@@ -1,0 +1,68 @@
+// The camera pass (Hachisuka et al. 2008, section 4.1): k jittered paths per pixel follow
+// specular chains to the first diffuse surface, where each leaves a hit point (a path split at
+// glass leaves one per branch, weighted by the branch's probability). Emission seen directly
+// or through specular chains goes straight to the pixel.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/film/image.h"
+#include "core/geometry/tracer.h"
+#include "core/job/hit_point.h"
+#include "core/job/job_spec.h"
+#include "core/scene/scene.h"
+#include "core/scene/scene_features.h"
+
+namespace pf {
+
+struct CameraPassSettings {
+    int width = 512, height = 512;
+    int samples_per_pixel = 4;  // k: hit points traced per pixel
+    uint64_t seed = 0;
+    // Stochastic progressive photon mapping's pass (Hachisuka & Jensen 2009), traced anew
+    // every epoch: each sample follows one branch at glass rather than splitting, and leaves
+    // exactly one hit point, in slot order (pixel * k + sample), black where the path found no
+    // diffuse surface, so that slot i carries N, R, tau across epochs.
+    bool stochastic = false;
+    // What the scene uses (AnalyseFeatures): camera paths run code instantiated for it. All
+    // by default.
+    SceneFeatures features = SceneFeatures::All();
+};
+
+struct CameraPassResult {
+    // Ordered along a Morton curve through the scene; in slot order for a stochastic pass.
+    std::vector<HitPoint> hit_points;
+    // Per hit point: a pixel's width at its distance, world units (0 for an empty slot).
+    std::vector<float> footprint;
+    Image emission;  // emission reaching each pixel, averaged over its k paths
+};
+
+// Longest specular chain followed; Russian roulette applies after kCameraRouletteDepth; the
+// first kCameraSplits glass interfaces of a sample are split into both branches.
+inline constexpr int kMaxCameraDepth = 64;
+inline constexpr int kCameraRouletteDepth = 4;
+inline constexpr int kCameraSplits = 2;
+
+// Runs in parallel over rows (on the calling TBB arena); the result does not depend on the
+// thread count.
+CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
+                               const CameraPassSettings& settings);
+
+// Stochastic progressive photon mapping's pass of `epoch` for a job: the film and seed of
+// `spec` (its size resolved), a seed of its own per epoch. The coordinator and every worker
+// trace the same hit points from it.
+CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, uint64_t epoch);
+
+// The initial search radius R0: the median pixel footprint over the hit points, capped at 1%
+// of the scene's diagonal. A disk of that radius covers about pi pixels, so with k = 4 hit
+// points per pixel a photon reaches about 12 hit points at first: enough overlap to smooth
+// the first epochs, little enough blur to start near the image's resolution. Zero when there
+// are no hit points.
+// Film size: what was asked, else the scene's own (pbrt's Film), else 512 wide with the
+// camera's aspect ratio; RESOURCE_EXHAUSTED if its hit points (path, pm: its pixels) would not fit.
+absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& scene);
+
+float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& scene);
+
+}  // namespace pf

@@ -1,0 +1,260 @@
+// Merging epochs into the per-hit-point estimates and resolving the image.
+#include "core/estimate/progressive_estimate.h"
+
+#include <spdlog/spdlog.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/util/check.h"
+
+namespace pf {
+
+ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
+                                         const EstimateSettings& settings,
+                                         EpochCameraPass next_passes)
+    : next_passes_(std::move(next_passes)), settings_(settings) {
+    PF_CHECK(!settings.stochastic || next_passes_);
+    emission_ = Image(camera_pass.emission.width, camera_pass.emission.height);
+    if (settings.stochastic) {
+        emission_sum_.assign(emission_.pixels.size(), Rgbd(0.0));
+        emission_even_.assign(emission_.pixels.size(), Rgbd(0.0));
+    } else {
+        emission_ = camera_pass.emission;
+    }
+    BeginEpochPass(std::move(camera_pass));
+    PF_CHECK(settings.alpha > 0 && settings.alpha <= 1);
+    PF_CHECK(settings.initial_radius > 0 && std::isfinite(settings.initial_radius));
+    PF_CHECK(settings.min_radius >= 0 && settings.min_radius <= settings.initial_radius);
+    PF_CHECK(settings.samples_per_pixel > 0);
+    const double radius_sq = settings.initial_radius * settings.initial_radius;
+    points_.assign(hit_points_->size(), PointEstimate{0.0, radius_sq, Rgbd(0.0)});
+    direct_sum_.assign(hit_points_->size(), Rgbd(0.0));
+    flux_even_.assign(hit_points_->size(), Rgbd(0.0));
+    direct_even_.assign(hit_points_->size(), Rgbd(0.0));
+    counts_.assign(hit_points_->size(), GatherCounts{});
+    epoch_photons_.assign(hit_points_->size(), 0);
+    epoch_inner_photons_.assign(hit_points_->size(), 0);
+    epoch_flux_.assign(hit_points_->size(), Rgbd(0.0));
+    epoch_flux_even_.assign(hit_points_->size(), Rgbd(0.0));
+    epoch_direct_.assign(hit_points_->size(), Rgb(0.0f));
+}
+
+void ProgressiveEstimate::BeginEpochPass(CameraPassResult camera_pass) {
+    PF_CHECK(!hit_points_ || camera_pass.hit_points.size() == hit_points_->size());
+    hit_points_ = std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points));
+    if (settings_.stochastic) epoch_emission_ = std::move(camera_pass.emission);
+}
+
+Rgbd ProgressiveEstimate::Emission(size_t p) const {
+    if (!settings_.stochastic) return Rgbd(emission_.pixels[p]);
+    return epoch_ > 0 ? emission_sum_[p] / static_cast<double>(epoch_) : Rgbd(0.0);
+}
+
+std::vector<float> ProgressiveEstimate::SearchRadiusSq() const {
+    std::vector<float> radius_sq(points_.size());
+    for (size_t i = 0; i < points_.size(); ++i)
+        radius_sq[i] = static_cast<float>(points_[i].radius_sq);
+    return radius_sq;
+}
+
+std::vector<BatchSpec> ProgressiveEstimate::EpochBatches() const {
+    std::vector<BatchSpec> specs;
+    for (uint32_t j = 0; j < settings_.layout.batches_per_epoch; ++j)
+        specs.push_back(
+            MakeBatchSpec(settings_.layout, epoch_, j, static_cast<uint32_t>(hit_points_->size())));
+    return specs;
+}
+
+void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
+    const uint32_t j = batches_folded_;
+    PF_CHECK(j < settings_.layout.batches_per_epoch && result.spec.epoch == epoch_ &&
+             result.spec.index == epoch_ * settings_.layout.batches_per_epoch + j);
+    const std::vector<HitPoint>& hit_points = *hit_points_;
+    const Tally& tally = result.tally;
+    PF_CHECK(tally.Size() == 0 || tally.hit_point.back() < hit_points.size());
+    PF_CHECK(tally.photons.size() == tally.Size() && tally.inner_photons.size() == tally.Size() &&
+             tally.flux.size() == tally.Size());
+    const bool even = result.spec.index % 2 == 0;
+    // Entries are sorted by hit point and each names a hit point once, so disjoint ranges of
+    // entries touch disjoint sums: folded in parallel, each sum still gets its batches in
+    // batch-index order, and the result does not depend on the thread count.
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, tally.Size(), 1 << 14),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t e = r.begin(); e < r.end(); ++e) {
+                              const uint32_t i = tally.hit_point[e];
+                              epoch_photons_[i] += tally.photons[e];
+                              epoch_inner_photons_[i] += tally.inner_photons[e];
+                              // Phi_M: the photons' flux times the BSDF weight (a float product,
+                              // exact in double).
+                              const Rgbd flux = Rgbd(tally.flux[e]) * Rgbd(hit_points[i].weight);
+                              epoch_flux_[i] += flux;
+                              if (even) epoch_flux_even_[i] += flux;
+                          }
+                      });
+    PF_CHECK(result.samples.size() == result.spec.sample_end - result.spec.sample_begin &&
+             result.spec.sample_end <= hit_points.size());
+    // The epoch's direct slices are disjoint and cover every hit point once.
+    std::copy(result.samples.begin(), result.samples.end(),
+              epoch_direct_.begin() + result.spec.sample_begin);
+    epoch_photons_emitted_ += result.photons_emitted;
+    epoch_nonfinite_discarded_ += result.nonfinite_discarded;
+    epoch_light_reached_ = epoch_light_reached_ || tally.Size() > 0 ||
+                           std::any_of(result.samples.begin(), result.samples.end(),
+                                       [](const Rgb& d) { return !IsBlack(d); });
+    if (even) epoch_photons_emitted_even_ += result.photons_emitted;
+    ++batches_folded_;
+}
+
+void ProgressiveEstimate::FinishEpoch() {
+    PF_CHECK(batches_folded_ == settings_.layout.batches_per_epoch);
+    const double alpha = settings_.alpha;
+    const double min_radius_sq = settings_.min_radius * settings_.min_radius;
+    const bool even_epoch = epoch_ % 2 == 0;
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, points_.size()), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                const double photons = static_cast<double>(epoch_photons_[i]);
+                const double shrink = ShrinkRatio(points_[i], photons, alpha, min_radius_sq);
+                flux_even_[i] = (flux_even_[i] + epoch_flux_even_[i]) * shrink;
+                GatherCounts& counts = counts_[i];
+                counts.all = (counts.all + photons) * shrink;
+                counts.inner =
+                    (counts.inner + static_cast<double>(epoch_inner_photons_[i])) * shrink;
+                counts.weight_sq = (counts.weight_sq + photons) * shrink * shrink;
+                points_[i] =
+                    UpdateEstimate(points_[i], photons, epoch_flux_[i], alpha, min_radius_sq);
+                direct_sum_[i] += Rgbd(epoch_direct_[i]);
+                if (even_epoch) direct_even_[i] += Rgbd(epoch_direct_[i]);
+                epoch_photons_[i] = 0;
+                epoch_inner_photons_[i] = 0;
+                epoch_flux_[i] = Rgbd(0.0);
+                epoch_flux_even_[i] = Rgbd(0.0);
+            }
+        });
+    photons_emitted_ += epoch_photons_emitted_;
+    nonfinite_discarded_ += epoch_nonfinite_discarded_;
+    epoch_nonfinite_discarded_ = 0;
+    light_reached_ = light_reached_ || epoch_light_reached_;
+    epoch_light_reached_ = false;
+    photons_emitted_even_ += epoch_photons_emitted_even_;
+    epoch_photons_emitted_ = 0;
+    epoch_photons_emitted_even_ = 0;
+    batches_folded_ = 0;
+    if (settings_.stochastic) {
+        for (size_t p = 0; p < emission_sum_.size(); ++p) {
+            emission_sum_[p] += Rgbd(epoch_emission_.pixels[p]);
+            if (even_epoch) emission_even_[p] += Rgbd(epoch_emission_.pixels[p]);
+        }
+        ++epoch_;
+        BeginEpochPass(next_passes_(epoch_));
+        return;
+    }
+    ++epoch_;
+}
+
+Image ProgressiveEstimate::Resolve() const {
+    std::vector<Rgbd> sums(emission_.pixels.size(), Rgbd(0.0));
+    const double direct_samples = static_cast<double>(epoch_);
+    const std::vector<HitPoint>& hit_points = *hit_points_;
+    for (size_t i = 0; i < hit_points.size(); ++i) {
+        Rgbd value = EstimateRadiance(points_[i], static_cast<double>(photons_emitted_));
+        if (direct_samples > 0) value += direct_sum_[i] / direct_samples;
+        sums[hit_points[i].pixel] += value;
+    }
+    Image image(emission_.width, emission_.height);
+    const double inverse_spp = 1.0 / settings_.samples_per_pixel;
+    for (size_t p = 0; p < sums.size(); ++p)
+        image.pixels[p] = Rgb(Emission(p) + sums[p] * inverse_spp);
+    return image;
+}
+
+ErrorEstimate ProgressiveEstimate::EstimateError() const {
+    const double photons = static_cast<double>(photons_emitted_);
+    const double photons_even = static_cast<double>(photons_emitted_even_);
+    const double photons_odd = photons - photons_even;
+    const double epochs_even = static_cast<double>((epoch_ + 1) / 2),
+                 epochs_odd = static_cast<double>(epoch_ / 2);
+    ErrorEstimate error;
+    if (!(photons_even > 0 && photons_odd > 0 && epochs_odd > 0)) return error;
+    // Per pixel, summed over its hit points: the full estimate, the difference of the halves,
+    // the bias estimate 2 (L - L_inner) of the photon part, and that estimate's own variance.
+    const size_t pixels = emission_.pixels.size();
+    std::vector<Rgbd> value(pixels, Rgbd(0.0)), difference(pixels, Rgbd(0.0)),
+        bias(pixels, Rgbd(0.0));
+    std::vector<Rgbd> bias_noise(pixels, Rgbd(0.0));
+    const std::vector<HitPoint>& hit_points = *hit_points_;
+    for (size_t i = 0; i < hit_points.size(); ++i) {
+        const PointEstimate& point = points_[i];
+        const Rgbd even = EstimateRadiance({0, point.radius_sq, flux_even_[i]}, photons_even) +
+                          direct_even_[i] / epochs_even;
+        const Rgbd odd =
+            EstimateRadiance({0, point.radius_sq, point.flux - flux_even_[i]}, photons_odd) +
+            (direct_sum_[i] - direct_even_[i]) / epochs_odd;
+        const uint32_t pixel = hit_points[i].pixel;
+        const Rgbd photon_part = EstimateRadiance(point, photons);
+        value[pixel] += photon_part + direct_sum_[i] / static_cast<double>(epoch_);
+        difference[pixel] += even - odd;
+        const GatherCounts& counts = counts_[i];
+        if (counts.all > 0) {
+            // The inner fraction f = inner / all is 1/2 where the density is flat; L_inner =
+            // 2 f L, so bias = 2 (L - L_inner) = 2 (1 - 2 f) L. Each photon falls inside with
+            // probability f: var(f) = f (1 - f) sum(w^2) / sum(w)^2, with f pulled toward 1/2
+            // by half a photon each way so that a few photons all on one side (f = 0 or 1)
+            // do not claim certainty.
+            const double f = counts.inner / counts.all;
+            bias[pixel] += photon_part * (2 * (1 - 2 * f));
+            const double f_smooth = (counts.inner + 0.5) / (counts.all + 1);
+            const double f_variance =
+                f_smooth * (1 - f_smooth) * counts.weight_sq / (counts.all * counts.all);
+            bias_noise[pixel] += photon_part * photon_part * (16 * f_variance);
+        }
+    }
+    const double inverse_spp = 1.0 / settings_.samples_per_pixel;
+    const double variance_scale = photons_even * photons_odd / (photons * photons);
+    double squared = 0, relative = 0, bias_squared = 0, bias_relative = 0;
+    for (size_t p = 0; p < pixels; ++p)
+        for (int c = 0; c < 3; ++c) {
+            double d = difference[p][c] * inverse_spp;
+            if (settings_.stochastic)  // emission seen differs between epochs too
+                d += emission_even_[p][c] / epochs_even -
+                     (emission_sum_[p][c] - emission_even_[p][c]) / epochs_odd;
+            const double v = Emission(p)[c] + value[p][c] * inverse_spp;
+            AddHalfVariance(v, d, variance_scale, &squared, &relative);
+            // b^2 overestimates the squared bias by b's variance: take it off (the sum over
+            // pixels is clamped at zero below, not each pixel, to stay unbiased).
+            const double b = bias[p][c] * inverse_spp;
+            const double b_squared = b * b - bias_noise[p][c] * inverse_spp * inverse_spp;
+            bias_squared += b_squared;
+            bias_relative += b_squared / (v * v + 0.01);
+        }
+    const double samples = 3.0 * static_cast<double>(pixels);
+    bias_squared = std::max(bias_squared, 0.0) / samples;
+    error.known = true;
+    error.rmse = std::sqrt(squared / samples + bias_squared);
+    error.rel_mse = relative / samples + std::max(bias_relative, 0.0) / samples;
+    error.bias_rmse = std::sqrt(bias_squared);
+    return error;
+}
+
+EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass,
+                             const Scene& scene, const std::string& scene_name) {
+    EstimateSettings estimate{spec.alpha, spec.initial_radius, spec.samples_per_pixel, spec.layout};
+    if (estimate.initial_radius == 0) estimate.initial_radius = scene.hints.initial_radius;
+    if (estimate.initial_radius == 0)
+        estimate.initial_radius = DefaultInitialRadius(camera_pass, scene);
+    if (camera_pass.hit_points.empty() || !(estimate.initial_radius > 0)) {
+        spdlog::warn("{}: the camera sees no diffuse surface; the image holds emission only",
+                     scene_name);
+        estimate.initial_radius = std::max(estimate.initial_radius, 1e-3 * scene.bounds.Diagonal());
+    }
+    // 2^-20 of the scene's largest coordinate is 16 float steps of a position there: radii
+    // below it gather by rounding error, not by distance.
+    estimate.min_radius =
+        std::min(estimate.initial_radius, std::ldexp(double(scene.bounds.Magnitude()), -20));
+    return estimate;
+}
+
+}  // namespace pf

@@ -1,0 +1,161 @@
+// The coordinator-side state of one render: the fixed hit points and, per hit point, the
+// progressive estimate (N, R, tau) and the running direct-light sum. Folds each epoch's batch
+// results in batch-index order, one at a time as they become available, updates the
+// estimate at the epoch's end and resolves the current image. Not thread-safe; its methods
+// use the calling TBB arena for data-parallel loops, deterministically.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "absl/status/statusor.h"
+#include "core/camera/camera_pass.h"
+#include "core/estimate/estimate.h"
+#include "core/estimate/estimator.h"
+#include "core/film/image.h"
+#include "core/job/batch.h"
+#include "core/job/job_spec.h"
+#include "core/scene/scene.h"
+#include "core/util/byte_stream.h"
+
+namespace pf {
+
+// A hit point's photon counts, shrunk with tau so that they count photons within the current
+// radius: all of them, those within R / sqrt(2), and the sum of squared weights that gives
+// the inner fraction's variance (a photon of epoch i weighs prod of later R'^2 / R^2).
+struct GatherCounts {
+    double all = 0, inner = 0, weight_sq = 0;
+};
+
+struct EstimateSettings {
+    double alpha = kDefaultAlpha;  // radius reduction ratio, (0, 1]
+    double initial_radius = 0;     // R0, world units, > 0
+    int samples_per_pixel = 4;     // k: camera paths per pixel (the resolve divides by it)
+    BatchLayout layout;
+    double min_radius = 0;  // radii shrink no further (ShrinkRatio), world units, <= R0
+    // Stochastic progressive photon mapping: hit points traced anew for every epoch (by the
+    // EpochCameraPass given), N, R, tau kept per slot (pixel * k + sample), emission averaged
+    // over epochs. Otherwise one set of hit points for the whole render.
+    bool stochastic = false;
+};
+
+// The estimator's settings, R0 from the scene (pbrt's sppm "radius") or else the camera pass
+// where not given. `scene_name` names the
+// scene in the warning for a camera that sees no diffuse surface.
+EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass,
+                             const Scene& scene, const std::string& scene_name);
+
+// The camera pass of an epoch, for a stochastic estimate (StochasticCameraPass); must give
+// as many hit points, in the same slots, every epoch.
+using EpochCameraPass = std::function<CameraPassResult(uint64_t epoch)>;
+
+class ProgressiveEstimate final : public Estimate {
+public:
+    // `camera_pass`: the hit points (of epoch 0 for a stochastic estimate, which traces each
+    // later epoch's with `next_passes` as the previous one ends).
+    ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings,
+                        EpochCameraPass next_passes = {});
+    // A stochastic estimate restored by Load needs its camera passes again.
+    void SetEpochCameraPass(EpochCameraPass next_passes) { next_passes_ = std::move(next_passes); }
+
+    std::span<const HitPoint> HitPoints() const { return *hit_points_; }
+    // The same hit points, shared with whoever needs them past this object's life.
+    std::shared_ptr<const std::vector<HitPoint>> SharedHitPoints() const override {
+        return hit_points_;
+    }
+    const PointEstimate& Point(size_t hit_point) const { return points_[hit_point]; }
+    const EstimateSettings& Settings() const { return settings_; }
+    Integrator Kind() const override {
+        return settings_.stochastic ? Integrator::kSppm : Integrator::kPpm;
+    }
+    uint64_t ItemCount() const override { return hit_points_->size(); }
+    uint64_t Epoch() const override {
+        return epoch_;
+    }  // the next epoch to merge; also epochs merged
+    uint64_t PhotonsEmitted() const override { return photons_emitted_; }  // over the merged epochs
+    uint64_t CameraSamples() const override {
+        return emission_.pixels.size() * uint64_t(settings_.samples_per_pixel) *
+               (settings_.stochastic ? epoch_ : 1);
+    }
+    double InitialRadius() const override { return settings_.initial_radius; }
+    // Photon paths and direct samples the batches dropped for NaN or Inf, over the merged
+    // epochs (BatchResult::nonfinite_discarded); should be 0.
+    uint64_t NonfiniteDiscarded() const override { return nonfinite_discarded_; }
+    // Whether any photon or direct-light sample has reached any hit point in the merged epochs:
+    // false for a light shut inside a closed object, or a camera that sees only what no light
+    // reaches (the image is then emission only).
+    bool LightReachedAnything() const override { return light_reached_; }
+
+    // This epoch's squared search radii, one per hit point, for the photon pass.
+    std::vector<float> SearchRadiusSq() const override;
+    // The batches of the current epoch, in batch-index order.
+    std::vector<BatchSpec> EpochBatches() const override;
+    // Adds the next batch of the current epoch to the epoch's sums: batches must come in
+    // batch-index order, so the sums are the same whoever ran them and whenever they arrived.
+    void FoldBatch(const BatchResult& result) override;
+    uint32_t BatchesFolded() const override { return batches_folded_; }
+    // Once every batch of the epoch is folded: updates N, R, tau and starts the next epoch.
+    void FinishEpoch() override;
+    // The image as of the last merged epoch: emission + direct + tau / (pi R^2 N_emitted),
+    // averaged over each pixel's k camera paths.
+    Image Resolve() const override;
+    // The error of Resolve()'s image. Variance: from the even and odd half-estimates. Bias:
+    // a disc estimate's bias grows as R^2 (radiance locally quadratic), so the estimate from
+    // the inner disc of half the area has half the bias, and bias = 2 (L - L_inner), with
+    // L_inner / L taken as the photon density ratio 2 inner / all (docs/convergence.md).
+    ErrorEstimate EstimateError() const override;
+
+    // The whole state, hit points included, at an epoch's end or between folds, for a
+    // checkpoint. Load restores it bit for bit, so folding the rest of the epochs gives the
+    // image an uninterrupted render gives; DATA_LOSS naming what is wrong when the bytes
+    // cannot be such a state (estimate_state.cpp).
+    void Save(ByteWriter& out) const override;
+    static absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> Load(ByteReader& in);
+
+private:
+    ProgressiveEstimate() = default;
+
+    // Sets the epoch's hit points and emission (a stochastic estimate's, as an epoch begins).
+    void BeginEpochPass(CameraPassResult camera_pass);
+    // The emission of pixel p: the fixed image, or a stochastic estimate's mean over merged epochs.
+    Rgbd Emission(size_t p) const;
+
+    std::shared_ptr<const std::vector<HitPoint>> hit_points_;
+    // Emission reaching each pixel: fixed, or for a stochastic estimate the sum over merged
+    // epochs (with that of the even epochs, and the current epoch's apart).
+    Image emission_;
+    std::vector<Rgbd> emission_sum_, emission_even_;
+    Image epoch_emission_;
+    EpochCameraPass next_passes_;
+    EstimateSettings settings_;
+    std::vector<PointEstimate> points_;
+    std::vector<Rgbd> direct_sum_;  // sum of one direct-light sample per merged epoch
+    // The even half-estimate: tau of the even-numbered batches' photons (shrunk with the same
+    // ratios as tau) and the direct sum of the even epochs. The odd half is the rest.
+    std::vector<Rgbd> flux_even_;
+    std::vector<Rgbd> direct_even_;
+    std::vector<GatherCounts> counts_;  // for the bias estimate
+    uint64_t epoch_ = 0;
+    uint64_t photons_emitted_ = 0;
+    uint64_t photons_emitted_even_ = 0;
+    uint64_t nonfinite_discarded_ = 0;
+    bool light_reached_ = false, epoch_light_reached_ = false;
+    uint32_t batches_folded_ = 0;  // of the current epoch
+    // The current epoch's sums (M and Phi_M per hit point) and direct samples, apart from the
+    // merged state so that Resolve() between folds shows the last merged epoch exactly.
+    std::vector<uint64_t> epoch_photons_;
+    std::vector<uint64_t> epoch_inner_photons_;
+    std::vector<Rgbd> epoch_flux_;
+    std::vector<Rgbd> epoch_flux_even_;
+    std::vector<Rgb> epoch_direct_;
+    uint64_t epoch_photons_emitted_ = 0;
+    uint64_t epoch_photons_emitted_even_ = 0;
+    uint64_t epoch_nonfinite_discarded_ = 0;
+};
+
+}  // namespace pf

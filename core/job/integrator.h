@@ -1,0 +1,76 @@
+// The light transport algorithms photonfarm runs (`--integrator`), and the settings of the
+// one that stores photons, classic photon mapping. Every integrator runs as epochs of
+// batches through the same coordinator and workers; they differ in what a batch computes and
+// how the coordinator folds it (docs/integrators.md).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace pf {
+
+enum class Integrator : uint32_t {
+    // Progressive photon mapping (Hachisuka et al. 2008): hit points traced once, per-point
+    // N, R, tau; batches shoot photons.
+    kPpm,
+    // Stochastic progressive photon mapping (Hachisuka & Jensen 2009): hit points traced anew
+    // every epoch, N, R, tau per pixel sample.
+    kSppm,
+    // Classic photon mapping (Jensen 1996): global and caustic photon maps stored once,
+    // k-nearest density estimation; batches render pixels.
+    kPm,
+    // Unidirectional path tracing with next-event estimation and multiple importance
+    // sampling: the unbiased reference; batches render pixels.
+    kPath,
+};
+
+std::string_view IntegratorName(Integrator integrator);
+std::optional<Integrator> ParseIntegrator(std::string_view name);
+std::vector<std::string> IntegratorNames();  // "pm", "ppm", "sppm", "path", for --help
+
+// Whether the integrator's batches shoot photons into hit points (ppm, sppm) rather than
+// render pixels (pm, path).
+inline bool GathersAtHitPoints(Integrator integrator) {
+    return integrator == Integrator::kPpm || integrator == Integrator::kSppm;
+}
+
+// The photon backends a worker can run on (`--backend`; worker/backend_factory.h makes them):
+// "cpu" (Embree, the default) and "vulkan" (compute kernels).
+inline std::vector<std::string> BackendNames() { return {"cpu", "vulkan"}; }
+
+// Whether the photon backend named `backend` (worker/backend_factory.h) runs jobs of
+// `integrator`: the cpu backend runs every one, the vulkan backend the progressive photon
+// mappers (ppm and sppm). A coordinator leases a worker only jobs its backend runs.
+inline bool RunsOnBackend(Integrator integrator, std::string_view backend) {
+    return backend != "vulkan" || integrator == Integrator::kPpm || integrator == Integrator::kSppm;
+}
+
+// How classic photon mapping finds a point's nearest photons.
+enum class PhotonIndex : uint32_t { kKdTree, kGrid };
+// How it weights them in the density estimate (Jensen 2001, section 7.1).
+enum class DensityFilter : uint32_t { kBox, kCone, kGaussian };
+
+std::string_view PhotonIndexName(PhotonIndex index);
+std::optional<PhotonIndex> ParsePhotonIndex(std::string_view name);
+std::string_view DensityFilterName(DensityFilter filter);
+std::optional<DensityFilter> ParseDensityFilter(std::string_view name);
+
+// Classic photon mapping's settings. The maps are built once per job (on every worker, from
+// the job's seed, so every worker holds the same maps) and kept in memory: their size grows
+// with the photons emitted, and PhotonMapBytes says how much.
+struct PhotonMapSettings {
+    uint64_t global_photons = 1'000'000;  // emitted for the global map (indirect light)
+    uint64_t caustic_photons =
+        1'000'000;          // emitted for the caustic map (light through specular chains)
+    uint32_t nearest = 64;  // k: photons per density estimate
+    double max_radius = 0;  // of the k-nearest search, world units; 0: 2% of the scene's diagonal
+    DensityFilter filter = DensityFilter::kCone;
+    uint32_t final_gather =
+        0;  // gather rays per camera sample for indirect light; 0: read the global map directly
+    PhotonIndex index = PhotonIndex::kKdTree;
+};
+
+}  // namespace pf

@@ -1,0 +1,121 @@
+// Checks and scene-derived defaults of a render's settings.
+#include "core/job/job_spec.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "core/sampling/rng.h"
+
+namespace pf {
+
+absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
+    const bool flags = names == SettingNames::kFlags;
+    auto invalid = [&](const char* flag, const char* field, const std::string& what) {
+        return absl::InvalidArgumentError(absl::StrCat(flags ? flag : field, " ", what));
+    };
+    if (s.width < 0 || s.height < 0 || s.width > 32768 || s.height > 32768)
+        return invalid("--width/--height", "settings.width/settings.height",
+                       "must lie in [1, 32768]");
+    if (s.samples_per_pixel < 1 || s.samples_per_pixel > 1024)
+        return invalid("--spp", "settings.samples_per_pixel", "must lie in [1, 1024]");
+    if (!(s.alpha > 0 && s.alpha <= 1))
+        return invalid("--alpha", "settings.alpha", "must lie in (0, 1]");
+    if (!(s.initial_radius >= 0 && std::isfinite(s.initial_radius)))
+        return invalid("--radius", "settings.initial_radius", "must be positive and finite");
+    if (s.layout.photons_per_batch < 1 || s.layout.photons_per_batch > kMaxPhotonsPerBatch)
+        return invalid("--photons-per-batch", "settings.photons_per_batch",
+                       absl::StrCat("must lie in [1, ", kMaxPhotonsPerBatch, "]"));
+    if (s.layout.batches_per_epoch < 1 || s.layout.batches_per_epoch > kMaxBatchesPerEpoch)
+        return invalid("--batches-per-epoch", "settings.batches_per_epoch",
+                       absl::StrCat("must lie in [1, ", kMaxBatchesPerEpoch, "]"));
+    if (s.photon_budget > kMaxPhotonBudget)
+        return invalid("--photons", "settings.photon_budget",
+                       absl::StrCat("must lie in [0, ", kMaxPhotonBudget, "], not ",
+                                    s.photon_budget, " (0: none)"));
+    if (s.epoch_budget > kMaxEpochBudget)
+        return invalid("--epochs", "settings.epoch_budget",
+                       absl::StrCat("must lie in [0, ", kMaxEpochBudget, "], not ", s.epoch_budget,
+                                    " (0: none)"));
+    if (!(s.seconds_budget >= 0 && s.seconds_budget <= kMaxSecondsBudget))
+        return invalid("--seconds", "settings.seconds_budget",
+                       absl::StrFormat("must lie in [0, %g], not %g (0: none)", kMaxSecondsBudget,
+                                       s.seconds_budget));
+    if (!(s.target_error >= 0 && s.target_error < 1e3))
+        return invalid("--target-error", "settings.target_error",
+                       "must lie in [0, 1000) (a relative error, 0.01 = 1%)");
+    const bool budgeted =
+        s.photon_budget != 0 || s.epoch_budget != 0 || s.seconds_budget != 0 || s.target_error != 0;
+    if (!budgeted && !s.until_cancelled)
+        return absl::InvalidArgumentError(
+            flags ? "give a budget: --photons N, --epochs N, --seconds S or --target-error E "
+                    "(or --until-cancelled)"
+                  : "settings: give a budget (photon_budget, epoch_budget, seconds_budget or "
+                    "target_error), or until_cancelled for none");
+    if (budgeted && s.until_cancelled)
+        return invalid("--until-cancelled", "settings.until_cancelled",
+                       "asks for no budget: give it without --photons, --epochs, --seconds and "
+                       "--target-error");
+    if (s.photon_budget > 0 && !GathersAtHitPoints(s.integrator))
+        return invalid(
+            "--photons", "settings.photon_budget",
+            absl::StrCat(
+                "is a budget of photons traced progressively, and the ",
+                std::string(IntegratorName(s.integrator)),
+                " integrator traces none as it goes: give --epochs, --seconds or --target-error",
+                s.integrator == Integrator::kPm ? " (its maps' size is --pm-photons)" : ""));
+    if (s.integrator == Integrator::kPm) return CheckPhotonMapSettings(s.photon_map, names);
+    return absl::OkStatus();
+}
+
+absl::Status CheckPhotonMapSettings(const PhotonMapSettings& m, SettingNames names) {
+    const bool flags = names == SettingNames::kFlags;
+    auto invalid = [&](const char* flag, const char* field, const std::string& what) {
+        return absl::InvalidArgumentError(absl::StrCat(flags ? flag : field, " ", what));
+    };
+    if (m.global_photons + m.caustic_photons == 0 || m.global_photons > kMaxMapPhotons ||
+        m.caustic_photons > kMaxMapPhotons)
+        return invalid("--pm-photons/--pm-caustic-photons",
+                       "settings.photon_map.global_photons/caustic_photons",
+                       absl::StrCat("must lie in [0, ", kMaxMapPhotons, "], not both 0"));
+    if (m.nearest < 1 || m.nearest > kMaxNearestPhotons)
+        return invalid("--pm-nearest", "settings.photon_map.nearest",
+                       absl::StrCat("must lie in [1, ", kMaxNearestPhotons, "]"));
+    if (!(m.max_radius >= 0 && std::isfinite(m.max_radius)))
+        return invalid("--pm-max-radius", "settings.photon_map.max_radius",
+                       "must be positive and finite");
+    if (m.final_gather > kMaxFinalGatherRays)
+        return invalid("--final-gather", "settings.photon_map.final_gather",
+                       absl::StrCat("must lie in [0, ", kMaxFinalGatherRays, "]"));
+    if (static_cast<uint32_t>(m.filter) > static_cast<uint32_t>(DensityFilter::kGaussian))
+        return invalid("--pm-filter", "settings.photon_map.filter", "is not a filter");
+    if (static_cast<uint32_t>(m.index) > static_cast<uint32_t>(PhotonIndex::kGrid))
+        return invalid("--photon-index", "settings.photon_map.index", "is not a photon index");
+    return absl::OkStatus();
+}
+
+uint64_t PhotonSeed(const JobSpec& spec) {
+    constexpr uint64_t kPhotonStreams = 0x73747265616d73ull;
+    return spec.photon_stream == 0 ? spec.seed
+                                   : HashSeed(spec.seed, kPhotonStreams, spec.photon_stream);
+}
+
+double BudgetFraction(const JobSpec& spec, uint64_t photons, uint64_t epochs, double seconds,
+                      std::optional<double> estimated_error) {
+    const double by_photons =
+        spec.photon_budget > 0 ? double(photons) / double(spec.photon_budget) : 0.0;
+    const double by_epochs =
+        spec.epoch_budget > 0 ? double(epochs) / double(spec.epoch_budget) : 0.0;
+    const double by_time = spec.seconds_budget > 0 ? seconds / spec.seconds_budget : 0.0;
+    double by_error = 0.0;
+    if (spec.target_error > 0 && estimated_error) {
+        const double ratio = spec.target_error / *estimated_error;
+        by_error = *estimated_error <= spec.target_error ? 1.0 : ratio * ratio;
+    }
+    return std::min(1.0, std::max({by_photons, by_epochs, by_time, by_error}));
+}
+
+}  // namespace pf

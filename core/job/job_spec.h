@@ -1,0 +1,87 @@
+// What a render asks for, the same for `photonfarm render` and a farm job: film size, hit
+// points per pixel, seed, estimator settings, batch layout, budget. With the checks and the
+// defaults derived from the scene, in one place for both.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "core/job/batch.h"
+#include "core/job/integrator.h"
+#include "core/scene/scene.h"
+
+namespace pf {
+
+// The default radius-reduction ratio alpha: the asymptotically optimal 2/3 derived by
+// Kaplanyan & Dachsbacher 2013 ("Adaptive Progressive Photon Mapping", section 5).
+inline constexpr double kDefaultAlpha = 2.0 / 3.0;
+
+struct JobSpec {
+    Integrator integrator = Integrator::kPpm;
+    int width = 0, height = 0;  // 0: 512 wide, or derived from the other and the camera's aspect
+    // k: hit points per pixel (ppm), per pixel and epoch (sppm), camera samples per pixel and
+    // epoch (path, pm).
+    int samples_per_pixel = 4;
+    uint64_t seed = 1;  // the same seed and layout give the same image
+    // Renders with the same seed and another photon stream share their hit points (the camera
+    // pass) but trace independent photons and light samples: how a reference for the error
+    // against run time is made (docs/convergence.md). 0: the stream of `seed` itself.
+    uint64_t photon_stream = 0;
+    double alpha = kDefaultAlpha;
+    double initial_radius = 0;  // R0, world units; 0: one pixel footprint
+    BatchLayout layout;
+    uint64_t photon_budget = 0;  // stop after the epoch that reaches it (0: no limit); ppm, sppm
+    uint64_t epoch_budget = 0;   // stop after this many epochs (0: no limit)
+    double seconds_budget = 0;   // stop after the epoch that reaches it (0: no limit)
+    // Stop after the epoch whose estimated relative error (ErrorEstimate::RelativeError) is
+    // at most this (0: no target).
+    double target_error = 0;
+    // No budget: the job runs until it is cancelled (or the render stopped). A job with no
+    // budget must say so here, so that no budget is never a slip.
+    bool until_cancelled = false;
+    PhotonMapSettings photon_map;  // pm only
+};
+
+// Hit points cost about this much memory each across the estimate (~140 bytes, 72 more for
+// the even half-estimate of the error and 32 for the bias estimate's counts), the grid (8
+// entries of 24 bytes) and one tally accumulator per thread (20 bytes): 2^25 of them (4K at 4
+// hit points per pixel) take ~16 GB.
+inline constexpr uint64_t kMaxHitPoints = uint64_t{1} << 25;
+inline constexpr uint64_t kBytesPerHitPoint = 468;
+
+// Limits on the batch layout: a batch's photon count fits the wire's uint32 with room to
+// spare; an epoch's batches are slots the coordinator tracks one by one.
+inline constexpr uint32_t kMaxPhotonsPerBatch = 1u << 26;
+inline constexpr uint32_t kMaxBatchesPerEpoch = 1u << 16;
+
+// The largest budgets a job may ask for: past them a budget is a mistake (a negative count
+// read as unsigned), not a render; a job that should run on says --until-cancelled.
+inline constexpr uint64_t kMaxPhotonBudget = 1'000'000'000'000'000;  // 1000T: months of a farm
+inline constexpr uint64_t kMaxEpochBudget = uint64_t{1} << 40;
+inline constexpr double kMaxSecondsBudget = 1e8;  // three years
+// A farm job's priority (higher runs first) lies in [-kMaxJobPriority, kMaxJobPriority].
+inline constexpr int kMaxJobPriority = 1'000'000;
+// How errors name a setting: as `photonfarm render`'s flags or as the farm's message fields.
+enum class SettingNames { kFlags, kFields };
+
+// Limits on classic photon mapping's settings (memory is checked apart, PhotonMapBytes).
+inline constexpr uint64_t kMaxMapPhotons = uint64_t{1} << 34;
+inline constexpr uint32_t kMaxNearestPhotons = 4096;
+inline constexpr uint32_t kMaxFinalGatherRays = 4096;
+
+// Every field in range and a budget given (or until_cancelled, and then none); errors name the
+// flag or field and its range.
+absl::Status CheckJobSpec(const JobSpec& spec, SettingNames names = SettingNames::kFlags);
+absl::Status CheckPhotonMapSettings(const PhotonMapSettings& settings, SettingNames names);
+// The seed of the photon pass and direct light: `seed` itself for stream 0.
+uint64_t PhotonSeed(const JobSpec& spec);
+// The share of the budget spent, in [0, 1]; 1 ends the render after the current epoch.
+// `estimated_error`: the current relative error estimate, if known yet. Toward a target error
+// the share is (target / error)^2, since the squared error falls as 1 / photons.
+double BudgetFraction(const JobSpec& spec, uint64_t photons, uint64_t epochs, double seconds,
+                      std::optional<double> estimated_error);
+
+}  // namespace pf

@@ -1,0 +1,359 @@
+// The prepared scene's binary form: a header (magic, version, payload size, the payload's
+// SHA-256), then the payload written with ByteWriter, arrays of plain fields (no struct
+// padding ever reaches the bytes, so equal scenes give equal bytes).
+#include "core/scene/prepared_scene.h"
+
+#include <algorithm>
+#include <bit>
+#include <cstring>
+#include <span>
+#include <type_traits>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "core/scene/texture_filter.h"
+#include "core/util/byte_stream.h"
+#include "core/util/sha256.h"
+
+namespace pf {
+namespace {
+
+constexpr char kMagic[8] = {'P', 'F', 'S', 'C', 'E', 'N', 'E', '\0'};
+constexpr size_t kDigestBytes = 64;  // hex SHA-256
+constexpr size_t kHeaderBytes = sizeof(kMagic) + 4 + 8 + kDigestBytes;
+// Far above any scene the coordinator accepts (SceneLimits), far below what would overflow.
+constexpr uint64_t kMaxCount = uint64_t{1} << 32;
+
+// Types written whole must have no padding: their size is the sum of their fields'.
+static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
+static_assert(sizeof(Material) == 40, "Material gained a field or padding: encode it");
+static_assert(sizeof(Camera) == 4 * 12 + 4 * 4, "Camera gained a field or padding: encode it");
+static_assert(sizeof(Prototype) == 8 + 24 && sizeof(Instance) == 4 + 21 * 4);
+static_assert(sizeof(Bounds) == 24 && sizeof(SceneRenderHints) == 16);
+
+absl::Status Invalid(const std::string& what) {
+    return absl::InvalidArgumentError(absl::StrCat("prepared scene: ", what));
+}
+
+bool Finite(float x) { return std::isfinite(x); }
+bool Finite(const Vec3& v) { return IsFinite(v); }
+bool Finite(const Point2& p) { return std::isfinite(p.x) && std::isfinite(p.y); }
+template <size_t N>
+bool Finite(const std::array<float, N>& values) {
+    return std::all_of(values.begin(), values.end(), [](float x) { return std::isfinite(x); });
+}
+
+template <typename T>
+void Write(ByteWriter& out, const std::vector<T>& values) {
+    out.Array(std::span<const T>(values));
+}
+
+// A texture's texels, as a palette where they take at most 256 values (an 8-bit image decoded
+// to linear floats takes 256 at most): the distinct values' bits in ascending order and a byte
+// per channel, each stored as its difference from the same channel's previous texel (PNG's
+// "Sub" filter: smooth images give small differences, which zstd packs as PNG's deflate does)
+// -- a quarter of the floats, still every bit of them. Otherwise the floats.
+enum class TexelEncoding : uint8_t { kFloats, kPalette };
+
+void WriteTexture(const Texture& texture, ByteWriter& out) {
+    out.Value<int32_t>(texture.width);
+    out.Value<int32_t>(texture.height);
+    std::vector<float> palette;
+    for (const Rgb& texel : texture.texels) {
+        for (int c = 0; c < 3; ++c) palette.push_back(texel[c]);
+        if (palette.size() > 4096) {  // keep the sort small: dedupe as it grows
+            std::sort(palette.begin(), palette.end());
+            palette.erase(std::unique(palette.begin(), palette.end()), palette.end());
+            if (palette.size() > 256) break;
+        }
+    }
+    std::sort(palette.begin(), palette.end());
+    palette.erase(std::unique(palette.begin(), palette.end()), palette.end());
+    const bool finite =
+        std::all_of(palette.begin(), palette.end(), [](float x) { return std::isfinite(x); });
+    // -0 and +0 compare equal: a palette holds one, so images with both stay floats.
+    const bool signed_zeros =
+        std::any_of(texture.texels.begin(), texture.texels.end(), [](const Rgb& t) {
+            return std::signbit(t.x) && t.x == 0 || std::signbit(t.y) && t.y == 0 ||
+                   std::signbit(t.z) && t.z == 0;
+        });
+    if (palette.size() > 256 || !finite || signed_zeros) {
+        out.Value(TexelEncoding::kFloats);
+        Write(out, texture.texels);
+        return;
+    }
+    std::vector<uint8_t> deltas(3 * texture.texels.size());
+    uint8_t previous[3] = {0, 0, 0};
+    for (size_t i = 0; i < texture.texels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            const auto code = static_cast<uint8_t>(
+                std::lower_bound(palette.begin(), palette.end(), texture.texels[i][c]) -
+                palette.begin());
+            deltas[3 * i + c] = static_cast<uint8_t>(code - previous[c]);
+            previous[c] = code;
+        }
+    out.Value(TexelEncoding::kPalette);
+    Write(out, palette);
+    Write(out, deltas);
+}
+
+bool ReadTexture(ByteReader& in, Texture* texture) {
+    TexelEncoding encoding{};
+    if (!in.Value(&texture->width) || !in.Value(&texture->height) || !in.Value(&encoding))
+        return false;
+    if (encoding == TexelEncoding::kFloats) return in.Array(&texture->texels, kMaxCount);
+    std::vector<float> palette;
+    std::vector<uint8_t> deltas;
+    if (encoding != TexelEncoding::kPalette || !in.Array(&palette, 256) ||
+        !in.Array(&deltas, 3 * kMaxCount) || deltas.size() % 3 != 0)
+        return false;
+    texture->texels.resize(deltas.size() / 3);
+    uint8_t code[3] = {0, 0, 0};
+    for (size_t i = 0; i < texture->texels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+            code[c] = static_cast<uint8_t>(code[c] + deltas[3 * i + c]);
+            if (code[c] >= palette.size()) return false;
+            texture->texels[i][c] = palette[code[c]];
+        }
+    return true;
+}
+
+void WritePayload(const Scene& scene, ByteWriter& out) {
+    const bool smooth = std::any_of(scene.triangles.begin(), scene.triangles.end(),
+                                    [](const Triangle& t) { return t.smooth; });
+    const bool textured =
+        std::any_of(scene.materials.begin(), scene.materials.end(),
+                    [](const Material& m) { return m.base_color_texture != kNoTexture; });
+    out.String(scene.source);
+    Write(out, scene.positions);
+    Write(out, smooth ? scene.normals : std::vector<Vec3>());
+    Write(out, textured ? scene.uvs : std::vector<Point2>());
+    std::vector<uint32_t> vertices, materials;
+    std::vector<uint8_t> smooth_flags;
+    std::vector<Vec3> normals;
+    for (const Triangle& t : scene.triangles) {
+        vertices.insert(vertices.end(), t.vertex, t.vertex + 3);
+        materials.push_back(t.material);
+        smooth_flags.push_back(t.smooth ? 1 : 0);
+        normals.push_back(t.normal);
+    }
+    Write(out, vertices), Write(out, materials), Write(out, smooth_flags), Write(out, normals);
+    Write(out, scene.prototypes);
+    Write(out, scene.instances);
+    Write(out, scene.materials);
+    std::vector<bool> read(scene.textures.size(), false);
+    for (const Material& m : scene.materials)  // an index out of range is the decoder's to refuse
+        if (m.base_color_texture >= 0 && size_t(m.base_color_texture) < read.size())
+            read[m.base_color_texture] = true;
+    out.Value<uint64_t>(scene.textures.size());
+    for (size_t t = 0; t < scene.textures.size(); ++t) {
+        const bool keep = read[t] && scene.textures[t] != nullptr;
+        WriteTexture(keep ? *scene.textures[t] : Texture{}, out);
+    }
+    out.Value<uint64_t>(scene.lights.size());
+    for (const PunctualLight& light : scene.lights) {
+        out.Value(light.type), out.Value(light.position), out.Value(light.direction);
+        out.Value(light.intensity), out.Value(light.cos_inner), out.Value(light.cos_outer);
+        out.Value<uint8_t>(light.smooth_falloff ? 1 : 0);
+        out.String(light.name);
+    }
+    out.Value(scene.camera);
+    out.Value(scene.bounds);
+    out.Value(scene.hints);
+}
+
+// Reads every field; checks counts and bounds of what it reads, not the references between
+// parts (CheckScene does).
+absl::Status ReadPayload(ByteReader& in, Scene* scene) {
+    const auto fail = [](const std::string& part) { return Invalid(part + " truncated"); };
+    if (!in.String(&scene->source, 4096)) return fail("source");
+    if (!in.Array(&scene->positions, kMaxCount)) return fail("positions");
+    if (!in.Array(&scene->normals, kMaxCount)) return fail("normals");
+    if (!in.Array(&scene->uvs, kMaxCount)) return fail("texture coordinates");
+    std::vector<uint32_t> vertices, materials;
+    std::vector<uint8_t> smooth;
+    std::vector<Vec3> normals;
+    if (!in.Array(&vertices, kMaxCount * 3) || !in.Array(&materials, kMaxCount) ||
+        !in.Array(&smooth, kMaxCount) || !in.Array(&normals, kMaxCount))
+        return fail("triangles");
+    const size_t count = materials.size();
+    if (vertices.size() != 3 * count || smooth.size() != count || normals.size() != count)
+        return Invalid("triangle arrays of different lengths");
+    scene->triangles.resize(count);
+    for (size_t t = 0; t < count; ++t) {
+        Triangle& triangle = scene->triangles[t];
+        std::copy_n(vertices.begin() + 3 * t, 3, triangle.vertex);
+        triangle.material = materials[t];
+        if (smooth[t] > 1)
+            return Invalid(absl::StrCat("triangle ", t, ": smooth flag ", smooth[t]));
+        triangle.smooth = smooth[t] == 1;
+        triangle.normal = normals[t];
+    }
+    if (!in.Array(&scene->prototypes, kMaxCount)) return fail("prototypes");
+    if (!in.Array(&scene->instances, kMaxCount)) return fail("instances");
+    if (!in.Array(&scene->materials, kMaxCount)) return fail("materials");
+    uint64_t textures = 0;
+    if (!in.Value(&textures) || textures > kMaxCount) return fail("textures");
+    for (uint64_t t = 0; t < textures; ++t) {
+        auto texture = std::make_shared<Texture>();
+        if (!ReadTexture(in, texture.get()))
+            return Invalid(absl::StrCat("texture ", t, " truncated or its palette broken"));
+        if (texture->width < 0 || texture->height < 0 ||
+            uint64_t(texture->width) * uint64_t(texture->height) != texture->texels.size())
+            return Invalid(absl::StrCat("texture ", t, ": ", texture->width, "x", texture->height,
+                                        " with ", texture->texels.size(), " texels"));
+        scene->textures.push_back(std::move(texture));
+    }
+    uint64_t lights = 0;
+    if (!in.Value(&lights) || lights > kMaxCount) return fail("lights");
+    for (uint64_t l = 0; l < lights; ++l) {
+        PunctualLight light;
+        uint8_t smooth_falloff = 0;
+        if (!in.Value(&light.type) || !in.Value(&light.position) || !in.Value(&light.direction) ||
+            !in.Value(&light.intensity) || !in.Value(&light.cos_inner) ||
+            !in.Value(&light.cos_outer) || !in.Value(&smooth_falloff) ||
+            !in.String(&light.name, 4096))
+            return fail(absl::StrCat("light ", l));
+        light.smooth_falloff = smooth_falloff != 0;
+        scene->lights.push_back(std::move(light));
+    }
+    if (!in.Value(&scene->camera) || !in.Value(&scene->bounds) || !in.Value(&scene->hints))
+        return fail("camera");
+    if (!in.AtEnd()) return Invalid("bytes after the end");
+    return absl::OkStatus();
+}
+
+absl::Status CheckMaterials(const Scene& scene) {
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& material = scene.materials[m];
+        const std::string name = absl::StrCat("material ", m);
+        if (static_cast<uint32_t>(material.type) >
+            static_cast<uint32_t>(MaterialType::kRoughDielectric))
+            return Invalid(
+                absl::StrCat(name, ": unknown type ", static_cast<uint32_t>(material.type)));
+        if (!Finite(material.base_color) || !Finite(material.emission) || !Finite(material.ior) ||
+            !Finite(material.roughness) || MinComponent(material.emission) < 0 ||
+            !(material.ior > 0))
+            return Invalid(absl::StrCat(name, ": a value out of range"));
+        const int32_t texture = material.base_color_texture;
+        if (texture == kNoTexture) continue;
+        if (texture < 0 || static_cast<size_t>(texture) >= scene.textures.size() ||
+            scene.textures[texture]->texels.empty())
+            return Invalid(
+                absl::StrCat(name, ": texture ", texture, " of ", scene.textures.size()));
+        if (scene.uvs.size() != scene.positions.size())
+            return Invalid(absl::StrCat(name, " has a texture, the vertices no coordinates"));
+    }
+    return absl::OkStatus();
+}
+
+absl::Status CheckGeometry(const Scene& scene) {
+    const size_t vertices = scene.positions.size();
+    if (!std::all_of(scene.positions.begin(), scene.positions.end(),
+                     [](const Vec3& p) { return Finite(p); }) ||
+        !std::all_of(scene.normals.begin(), scene.normals.end(),
+                     [](const Vec3& n) { return Finite(n); }) ||
+        !std::all_of(scene.uvs.begin(), scene.uvs.end(),
+                     [](const Point2& uv) { return Finite(uv); }))
+        return Invalid("a vertex that is not finite");
+    if (!scene.uvs.empty() && scene.uvs.size() != vertices)
+        return Invalid("texture coordinates not one per vertex");
+    for (size_t t = 0; t < scene.triangles.size(); ++t) {
+        const Triangle& triangle = scene.triangles[t];
+        for (uint32_t v : triangle.vertex)
+            if (v >= vertices)
+                return Invalid(absl::StrCat("triangle ", t, " uses vertex ", v, " of ", vertices));
+        if (triangle.material >= scene.materials.size())
+            return Invalid(absl::StrCat("triangle ", t, " uses material ", triangle.material,
+                                        " of ", scene.materials.size()));
+        if (triangle.smooth && scene.normals.size() != vertices)
+            return Invalid(
+                absl::StrCat("triangle ", t, " is smooth, the vertices have no normals"));
+        if (!Finite(triangle.normal))
+            return Invalid(absl::StrCat("triangle ", t, ": normal not finite"));
+    }
+    uint64_t first_prototype_triangle = scene.triangles.size();
+    for (size_t p = 0; p < scene.prototypes.size(); ++p) {
+        const Prototype& prototype = scene.prototypes[p];
+        if (uint64_t(prototype.first_triangle) + prototype.triangle_count > scene.triangles.size())
+            return Invalid(absl::StrCat("prototype ", p, ": triangles out of range"));
+        first_prototype_triangle =
+            std::min<uint64_t>(first_prototype_triangle, prototype.first_triangle);
+    }
+    if (!scene.prototypes.empty() &&
+        scene.prototypes.front().first_triangle != first_prototype_triangle)
+        return Invalid("prototypes out of order");
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
+        if (instance.prototype >= scene.prototypes.size())
+            return Invalid(absl::StrCat("instance ", i, " of prototype ", instance.prototype,
+                                        " of ", scene.prototypes.size()));
+        if (!Finite(instance.to_world) || !Finite(instance.normal_map))
+            return Invalid(absl::StrCat("instance ", i, ": transform not finite"));
+    }
+    return absl::OkStatus();
+}
+
+absl::Status CheckLightsAndCamera(const Scene& scene) {
+    for (size_t l = 0; l < scene.lights.size(); ++l) {
+        const PunctualLight& light = scene.lights[l];
+        if (static_cast<uint32_t>(light.type) > static_cast<uint32_t>(LightType::kDirectional) ||
+            !Finite(light.position) || !Finite(light.direction) || !Finite(light.intensity) ||
+            !Finite(light.cos_inner) || !Finite(light.cos_outer) ||
+            MinComponent(light.intensity) < 0)
+            return Invalid(absl::StrCat("light ", l, ": a value out of range"));
+    }
+    const Camera& camera = scene.camera;
+    if (!Finite(camera.position) || !Finite(camera.forward) || !Finite(camera.right) ||
+        !Finite(camera.up) || !Finite(camera.y_fov) || !Finite(camera.aspect_ratio) ||
+        !Finite(camera.lens_radius) || !Finite(camera.focal_distance))
+        return Invalid("camera not finite");
+    if (!Finite(scene.bounds.lower) || !Finite(scene.bounds.upper))
+        return Invalid("bounds not finite");
+    if (scene.hints.width < 0 || scene.hints.height < 0 ||
+        !std::isfinite(scene.hints.initial_radius) || scene.hints.initial_radius < 0)
+        return Invalid("render hints out of range");
+    return absl::OkStatus();
+}
+
+}  // namespace
+
+std::string EncodePreparedScene(const Scene& scene) {
+    ByteWriter payload;
+    WritePayload(scene, payload);
+    const std::string digest = Sha256Hex(payload.Bytes());
+    ByteWriter out;
+    out.Bytes().append(kMagic, sizeof(kMagic));
+    out.Value<uint32_t>(kPreparedSceneVersion);
+    out.Value<uint64_t>(payload.Bytes().size());
+    out.Bytes().append(digest);
+    out.Bytes().append(payload.Bytes());
+    return std::move(out.Bytes());
+}
+
+absl::StatusOr<Scene> DecodePreparedScene(std::string_view bytes, bool texture_filter) {
+    if (bytes.size() < kHeaderBytes || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0)
+        return Invalid("not a prepared scene (no header)");
+    ByteReader header(bytes.substr(sizeof(kMagic), 12));
+    uint32_t version = 0;
+    uint64_t size = 0;
+    header.Value(&version), header.Value(&size);
+    if (version != kPreparedSceneVersion)
+        return Invalid(absl::StrCat("version ", version, ", this worker reads version ",
+                                    kPreparedSceneVersion));
+    const std::string_view digest = bytes.substr(sizeof(kMagic) + 12, kDigestBytes);
+    const std::string_view payload = bytes.substr(kHeaderBytes);
+    if (payload.size() != size)
+        return Invalid(absl::StrCat(payload.size(), " bytes where the header says ", size));
+    if (Sha256Hex(payload) != digest) return Invalid("checksum mismatch (corrupted)");
+    Scene scene;
+    ByteReader in(payload);
+    if (absl::Status status = ReadPayload(in, &scene); !status.ok()) return status;
+    for (const auto& check : {CheckGeometry, CheckMaterials, CheckLightsAndCamera})
+        if (absl::Status status = check(scene); !status.ok()) return status;
+    if (texture_filter && !scene.textures.empty())
+        scene.texture_filter = MakeTextureFilter(scene.textures);
+    return scene;
+}
+
+}  // namespace pf

@@ -1,0 +1,96 @@
+// The embedded render: one coordinator, one in-process worker.
+#include "embedded/local_render.h"
+
+#include <sys/resource.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+
+#include "core/scene/scene_bundle.h"
+#include "core/scene/scene_loader.h"
+#include "server/coordinator.h"
+#include "server/in_process_source.h"
+#include "worker/backend_factory.h"
+#include "worker/worker_loop.h"
+
+namespace pf {
+
+absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings,
+                                            const EpochCallback& on_epoch) {
+    const JobSpec& spec = settings.job;
+    if (absl::Status status = CheckJobSpec(spec, SettingNames::kFlags); !status.ok()) return status;
+    // The backend's device first: without one, say so before any work.
+    const absl::StatusOr<BackendDevice> device = OpenBackendDevice(settings.backend);
+    if (!device.ok()) return device.status();
+    absl::StatusOr<SceneBundle> bundle = PackSceneBundle(settings.scene_path);
+    if (!bundle.ok()) return bundle.status();
+
+    CoordinatorOptions options;
+    options.setting_names = SettingNames::kFlags;
+    Coordinator coordinator(options);
+    tbb::task_arena arena(settings.threads > 0 ? settings.threads
+                                               : tbb::this_task_arena::max_concurrency());
+    absl::StatusOr<RenderOutcome> outcome = RenderOutcome{};
+    arena.execute([&] {
+        absl::StatusOr<JobProgress> submitted = coordinator.Submit(
+            {settings.scene_path, "this process", std::move(*bundle), spec, 0, settings.reference});
+        if (!submitted.ok()) {
+            outcome = submitted.status();
+            return;
+        }
+        outcome->camera_pass_seconds = submitted->elapsed_seconds;
+        outcome->hit_points = submitted->hit_points;
+        outcome->initial_radius = submitted->initial_radius;
+        outcome->scene_features = submitted->scene_features;
+        const std::shared_ptr<Job> job = *coordinator.FindJob(submitted->job_id);
+
+        // The worker leases a whole epoch at a time: its batches' chunks run in parallel on
+        // this arena.
+        InProcessSource source(coordinator,
+                               {device->description, static_cast<uint32_t>(arena.max_concurrency()),
+                                std::string(kPhotonfarmVersion), ""},
+                               0.0);
+        const uint64_t epoch_chunks = uint64_t{spec.layout.batches_per_epoch} *
+                                      ChunkCount(MakeBatchSpec(spec.layout, 0, 0, 0));
+        WorkerLoop worker(source, settings.backend,
+                          static_cast<uint32_t>(std::min<uint64_t>(epoch_chunks, UINT32_MAX)));
+        uint64_t version = job->Version();
+        RenderProgress& progress = outcome->progress;
+        while (job->Progress(Clock::now()).state == JobState::kRunning) {
+            if (settings.stop != nullptr && settings.stop->load()) {
+                (void)coordinator.Cancel(job->Id(), "stopped by a signal");
+                break;
+            }
+            if (absl::StatusOr<size_t> ran = worker.Step(); !ran.ok()) {
+                outcome = ran.status();
+                return;
+            }
+            if (job->Version() == version) continue;
+            version = job->Version();
+            const JobProgress state = job->Progress(Clock::now());
+            progress.epochs = state.epochs;
+            progress.photons = state.photons;
+            progress.integrator = state.integrator;
+            progress.camera_samples = state.camera_samples;
+            progress.segments = worker.Stats().segments;
+            progress.seconds = state.elapsed_seconds;
+            progress.estimated_error = state.estimated_error;
+            progress.nonfinite_discarded = state.nonfinite_discarded;
+            if (state.measured_error)
+                progress.measured_error = std::sqrt(state.measured_error->rel_mse);
+            progress.fraction = state.state == JobState::kDone ? 1.0 : state.budget_fraction;
+            if (on_epoch) on_epoch(progress, *job);
+        }
+        outcome->image = *job->CurrentImage();
+        outcome->convergence = job->Convergence();
+        outcome->warnings = job->Progress(Clock::now()).warnings;
+    });
+    if (outcome.ok()) {
+        rusage usage{};
+        if (getrusage(RUSAGE_SELF, &usage) == 0)
+            outcome->peak_memory_bytes = uint64_t(usage.ru_maxrss) * 1024;
+    }
+    return outcome;
+}
+
+}  // namespace pf

@@ -1,0 +1,33 @@
+// The Embree device and its one error callback.
+#include "embree/device.h"
+
+#include <spdlog/spdlog.h>
+
+#include "absl/strings/str_cat.h"
+
+namespace pf::embree {
+namespace {
+
+void OnEmbreeError(void* user, RTCError code, const char* message) {
+    auto* last_error = static_cast<std::string*>(user);
+    *last_error =
+        absl::StrCat("Embree error ", static_cast<int>(code), ": ", message ? message : "");
+    spdlog::error("{}", *last_error);
+}
+
+}  // namespace
+
+Device::State::~State() {
+    if (device) rtcReleaseDevice(device);
+}
+
+absl::StatusOr<Device> Device::Create() {
+    auto state = std::make_unique<State>();
+    state->device = rtcNewDevice(nullptr);
+    if (state->device == nullptr)
+        return absl::UnavailableError("cannot create an Embree device (CPU without SSE2?)");
+    rtcSetDeviceErrorFunction(state->device, OnEmbreeError, &state->last_error);
+    return Device(std::move(state));
+}
+
+}  // namespace pf::embree

@@ -1,0 +1,226 @@
+// Embree 3 device, scenes (the world's triangles and one per prototype, placed by instance
+// geometries) and queries. Errors reach us through one device error callback.
+#include "embree/embree_tracer.h"
+
+#include <embree3/rtcore.h>
+#include <spdlog/spdlog.h>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+#include "embree/device.h"
+
+namespace pf::embree {
+namespace {
+
+RTCRay ToRtcRay(const Ray& ray) {
+    RTCRay r{};
+    r.org_x = ray.origin.x, r.org_y = ray.origin.y, r.org_z = ray.origin.z;
+    r.dir_x = ray.direction.x, r.dir_y = ray.direction.y, r.dir_z = ray.direction.z;
+    r.tnear = 0.0f;
+    r.tfar = ray.t_max;
+    r.mask = std::numeric_limits<unsigned>::max();
+    r.flags = 0;
+    return r;
+}
+
+// Fills an 8-wide packet; inactive lanes are masked off by `valid`.
+void ToRtcRays(const Ray (&rays)[Tracer::kPacketSize], const bool (&active)[Tracer::kPacketSize],
+               int (&valid)[Tracer::kPacketSize], RTCRay8* packet) {
+    static_assert(Tracer::kPacketSize == 8, "packets map onto Embree's 8-wide calls");
+    for (int i = 0; i < Tracer::kPacketSize; ++i) {
+        valid[i] = active[i] ? -1 : 0;
+        const Ray& ray = rays[i];
+        packet->org_x[i] = ray.origin.x, packet->org_y[i] = ray.origin.y,
+        packet->org_z[i] = ray.origin.z;
+        packet->dir_x[i] = ray.direction.x, packet->dir_y[i] = ray.direction.y,
+        packet->dir_z[i] = ray.direction.z;
+        packet->tnear[i] = 0.0f;
+        packet->tfar[i] = active[i] ? ray.t_max : 0.0f;
+        packet->time[i] = 0.0f;
+        packet->mask[i] = std::numeric_limits<unsigned>::max();
+        packet->id[i] = 0;
+        packet->flags[i] = 0;
+    }
+}
+
+}  // namespace
+
+struct EmbreeTracer::Handles {
+    explicit Handles(Device device_in) : device(std::move(device_in)) {}
+    Device device;  // released last: declared first
+    RTCBuffer vertices =
+        nullptr;  // every position, shared by the world's and prototypes' geometries
+    std::vector<RTCScene> prototypes;  // one scene per Scene::prototypes entry
+    RTCScene scene = nullptr;          // geometry 0: the world's triangles; 1 + i: instance i
+    std::vector<uint32_t> instance_first_triangle;  // per instance: its prototype's first triangle
+    ~Handles() {
+        if (scene) rtcReleaseScene(scene);
+        for (RTCScene prototype : prototypes) rtcReleaseScene(prototype);
+        if (vertices) rtcReleaseBuffer(vertices);
+    }
+
+    // Attaches triangles [first, first + count) of `triangles` as geometry `id` of `target`.
+    bool AttachTriangles(RTCScene target, const std::vector<Triangle>& triangles, uint32_t first,
+                         uint32_t count, size_t vertex_count, unsigned id) {
+        RTCGeometry geometry = rtcNewGeometry(device.Handle(), RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices, 0,
+                             sizeof(float) * 3, vertex_count);
+        auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+            geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, sizeof(unsigned) * 3, count));
+        if (indices == nullptr) {
+            rtcReleaseGeometry(geometry);
+            return false;
+        }
+        for (uint32_t t = 0; t < count; ++t)
+            for (int k = 0; k < 3; ++k) indices[3 * t + k] = triangles[first + t].vertex[k];
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometryByID(target, geometry, id);
+        rtcReleaseGeometry(geometry);
+        return true;
+    }
+
+    // Our hit from Embree's: instance geometries are 1 + the instance's index.
+    void ToRayHit(unsigned instance_geometry, unsigned primitive, RayHit* hit) const {
+        if (instance_geometry == RTC_INVALID_GEOMETRY_ID) {
+            hit->triangle = primitive;
+            hit->instance = Instance::kNone;
+        } else {
+            hit->instance = instance_geometry - 1;
+            hit->triangle = instance_first_triangle[hit->instance] + primitive;
+        }
+    }
+};
+
+absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Scene& scene) {
+    absl::StatusOr<Device> device = Device::Create();
+    if (!device.ok()) return device.status();
+    auto handles = std::make_unique<Handles>(std::move(*device));
+    const auto out_of_memory = [&] {
+        return absl::ResourceExhaustedError(
+            absl::StrCat("cannot allocate Embree buffers: ", handles->device.LastError()));
+    };
+    // Embree reads vertices 16 bytes at a time: the last one needs 4 bytes of padding.
+    const size_t vertex_count = scene.positions.size();
+    handles->vertices =
+        rtcNewBuffer(handles->device.Handle(), sizeof(float) * 3 * vertex_count + sizeof(float));
+    auto* vertices =
+        handles->vertices ? static_cast<float*>(rtcGetBufferData(handles->vertices)) : nullptr;
+    if (vertices == nullptr) return out_of_memory();
+    for (size_t v = 0; v < vertex_count; ++v) {
+        vertices[3 * v] = scene.positions[v].x;
+        vertices[3 * v + 1] = scene.positions[v].y;
+        vertices[3 * v + 2] = scene.positions[v].z;
+    }
+    for (const Prototype& prototype : scene.prototypes) {
+        RTCScene prototype_scene = rtcNewScene(handles->device.Handle());
+        handles->prototypes.push_back(prototype_scene);
+        rtcSetSceneBuildQuality(prototype_scene, RTC_BUILD_QUALITY_HIGH);
+        if (!handles->AttachTriangles(prototype_scene, scene.triangles, prototype.first_triangle,
+                                      prototype.triangle_count, vertex_count, 0))
+            return out_of_memory();
+        rtcCommitScene(prototype_scene);
+    }
+    handles->scene = rtcNewScene(handles->device.Handle());
+    rtcSetSceneBuildQuality(handles->scene, RTC_BUILD_QUALITY_HIGH);
+    if (scene.WorldTriangleCount() > 0 &&
+        !handles->AttachTriangles(handles->scene, scene.triangles, 0, scene.WorldTriangleCount(),
+                                  vertex_count, 0))
+        return out_of_memory();
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const Instance& instance = scene.instances[i];
+        RTCGeometry geometry = rtcNewGeometry(handles->device.Handle(), RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(geometry, handles->prototypes[instance.prototype]);
+        rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR,
+                                instance.to_world.data());
+        rtcCommitGeometry(geometry);
+        rtcAttachGeometryByID(handles->scene, geometry, i + 1);
+        rtcReleaseGeometry(geometry);
+        handles->instance_first_triangle.push_back(
+            scene.prototypes[instance.prototype].first_triangle);
+    }
+    rtcCommitScene(handles->scene);
+    if (!handles->device.LastError().empty())
+        return absl::InternalError(handles->device.LastError());
+    return std::unique_ptr<EmbreeTracer>(new EmbreeTracer(std::move(handles)));
+}
+
+EmbreeTracer::EmbreeTracer(std::unique_ptr<Handles> handles) : handles_(std::move(handles)) {}
+EmbreeTracer::~EmbreeTracer() = default;
+
+bool EmbreeTracer::Intersect(const Ray& ray, RayHit* hit) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit ray_hit;
+    ray_hit.ray = ToRtcRay(ray);
+    ray_hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    ray_hit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(handles_->scene, &context, &ray_hit);
+    if (ray_hit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit->t = ray_hit.ray.tfar;
+    hit->b1 = ray_hit.hit.u;
+    hit->b2 = ray_hit.hit.v;
+    handles_->ToRayHit(ray_hit.hit.instID[0], ray_hit.hit.primID, hit);
+    return true;
+}
+
+void EmbreeTracer::IntersectPacket(const Ray (&rays)[kPacketSize],
+                                   const bool (&active)[kPacketSize], RayHit (&hits)[kPacketSize],
+                                   bool (&found)[kPacketSize]) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    alignas(32) int valid[kPacketSize];
+    alignas(32) RTCRayHit8 packet;
+    ToRtcRays(rays, active, valid, &packet.ray);
+    for (int i = 0; i < kPacketSize; ++i) {
+        packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect8(valid, handles_->scene, &context, &packet);
+    for (int i = 0; i < kPacketSize; ++i) {
+        if (!active[i]) continue;
+        found[i] = packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        hits[i].t = packet.ray.tfar[i];
+        hits[i].b1 = packet.hit.u[i];
+        hits[i].b2 = packet.hit.v[i];
+        handles_->ToRayHit(packet.hit.instID[0][i], packet.hit.primID[i], &hits[i]);
+    }
+}
+
+void EmbreeTracer::OccludedPacket(const Ray (&rays)[kPacketSize], const bool (&active)[kPacketSize],
+                                  bool (&occluded)[kPacketSize]) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    alignas(32) int valid[kPacketSize];
+    alignas(32) RTCRay8 packet;
+    ToRtcRays(rays, active, valid, &packet);
+    rtcOccluded8(valid, handles_->scene, &context, &packet);
+    for (int i = 0; i < kPacketSize; ++i)
+        if (active[i]) occluded[i] = packet.tfar[i] < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+uint64_t EmbreeTracer::CountHits(std::span<const Ray> rays) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    uint64_t hits = 0;
+    for (const Ray& ray : rays) {
+        RTCRayHit ray_hit;
+        ray_hit.ray = ToRtcRay(ray);
+        ray_hit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(handles_->scene, &context, &ray_hit);
+        hits += ray_hit.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    }
+    return hits;
+}
+
+bool EmbreeTracer::Occluded(const Ray& ray) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRay r = ToRtcRay(ray);
+    rtcOccluded1(handles_->scene, &context, &r);
+    return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+}  // namespace pf::embree

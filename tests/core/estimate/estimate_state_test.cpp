@@ -1,0 +1,201 @@
+// A progressive estimate saved and loaded between any two folds goes on exactly as one never
+// interrupted: the coordinator's checkpoints depend on it (server/job_checkpoint.cpp).
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include "core/estimate/pixel_estimate.h"
+#include "core/estimate/progressive_estimate.h"
+
+namespace pf {
+namespace {
+
+constexpr uint32_t kHitPoints = 300;
+constexpr int kEpochs = 5;
+
+ProgressiveEstimate MakeEstimate() {
+    CameraPassResult camera_pass;
+    camera_pass.emission = Image(10, 10);
+    camera_pass.emission.At(3, 4) = Rgb(2.0f, 1.0f, 0.5f);
+    std::mt19937 rng(7);
+    for (uint32_t i = 0; i < kHitPoints; ++i)
+        camera_pass.hit_points.push_back({Vec3(float(i), 0, 0), Vec3(0, 0, 1),
+                                          Rgb(0.1f + 0.001f * float(i % 17), 0.2f, 0.3f),
+                                          uint32_t(rng() % 100)});
+    EstimateSettings settings;
+    settings.initial_radius = 0.5;
+    settings.samples_per_pixel = 3;
+    settings.layout = {1000, 4};
+    return ProgressiveEstimate(std::move(camera_pass), settings);
+}
+
+// A made-up result for the next batch: random hit points, counts and flux, from a seed of its own.
+BatchResult RandomBatch(const BatchSpec& spec) {
+    std::mt19937 rng(static_cast<uint32_t>(spec.index * 7919 + 13));
+    BatchResult result;
+    result.spec = spec;
+    for (uint32_t i = 0; i < kHitPoints; ++i) {
+        if (rng() % 3 != 0) continue;
+        const uint32_t photons = 1 + rng() % 5;
+        result.tally.hit_point.push_back(i);
+        result.tally.photons.push_back(photons);
+        result.tally.inner_photons.push_back(rng() % (photons + 1));
+        result.tally.flux.push_back(
+            Rgb(float(rng() % 1000) * 1e-3f, float(rng() % 1000) * 1e-3f, 0.25f));
+    }
+    for (uint32_t i = spec.sample_begin; i < spec.sample_end; ++i)
+        result.samples.push_back(Rgb(float(rng() % 100) * 1e-2f, 0.5f, 0.0f));
+    result.photons_emitted = spec.photons;
+    return result;
+}
+
+void FoldNext(ProgressiveEstimate& estimate) {
+    estimate.FoldBatch(RandomBatch(estimate.EpochBatches()[estimate.BatchesFolded()]));
+    if (estimate.BatchesFolded() == estimate.Settings().layout.batches_per_epoch)
+        estimate.FinishEpoch();
+}
+
+bool SamePixels(const Image& a, const Image& b) {
+    return a.width == b.width && a.pixels.size() == b.pixels.size() &&
+           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(Rgb)) == 0;
+}
+
+TEST(EstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
+    ProgressiveEstimate uninterrupted = MakeEstimate();
+    for (int b = 0; b < kEpochs * 4; ++b) FoldNext(uninterrupted);
+    const Image expected = uninterrupted.Resolve();
+    const ErrorEstimate expected_error = uninterrupted.EstimateError();
+
+    ProgressiveEstimate first = MakeEstimate();
+    std::unique_ptr<ProgressiveEstimate> estimate;
+    for (int b = 0; b < kEpochs * 4; ++b) {
+        ProgressiveEstimate& current = estimate ? *estimate : first;
+        ByteWriter writer;
+        current.Save(writer);
+        ByteReader reader(writer.Bytes());
+        absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> loaded =
+            ProgressiveEstimate::Load(reader);
+        ASSERT_TRUE(loaded.ok()) << loaded.status();
+        EXPECT_TRUE(reader.AtEnd());
+        EXPECT_TRUE(SamePixels((*loaded)->Resolve(), current.Resolve())) << "after fold " << b;
+        estimate = std::move(*loaded);
+        FoldNext(*estimate);
+    }
+    EXPECT_EQ(estimate->Epoch(), uint64_t(kEpochs));
+    ASSERT_EQ(estimate->HitPoints().size(), uninterrupted.HitPoints().size());
+    EXPECT_EQ(std::memcmp(estimate->HitPoints().data(), uninterrupted.HitPoints().data(),
+                          kHitPoints * sizeof(HitPoint)),
+              0)
+        << "hit points, pixels included, come back as they were";
+    EXPECT_EQ(estimate->PhotonsEmitted(), uninterrupted.PhotonsEmitted());
+    EXPECT_TRUE(SamePixels(estimate->Resolve(), expected));
+    const ErrorEstimate error = estimate->EstimateError();
+    EXPECT_EQ(error.rmse, expected_error.rmse);
+    EXPECT_EQ(error.bias_rmse, expected_error.bias_rmse);
+    for (uint32_t i = 0; i < kHitPoints; ++i) {
+        EXPECT_EQ(estimate->Point(i).radius_sq, uninterrupted.Point(i).radius_sq);
+        EXPECT_EQ(estimate->Point(i).photon_count, uninterrupted.Point(i).photon_count);
+    }
+}
+
+// A stochastic estimate's epochs: every slot (pixel * 3 + sample of a 10x10 film) traced
+// anew, a few black, weights and emission changing with the epoch.
+CameraPassResult StochasticPass(uint64_t epoch) {
+    CameraPassResult pass;
+    pass.emission = Image(10, 10);
+    pass.emission.At(int(epoch % 10), 4) = Rgb(2.0f, 1.0f, 0.5f);
+    std::mt19937 rng(static_cast<uint32_t>(epoch + 3));
+    for (uint32_t i = 0; i < kHitPoints; ++i) {
+        const bool empty = rng() % 7 == 0;
+        pass.hit_points.push_back(
+            {Vec3(float(i) + 0.1f * float(epoch), 0, 0), Vec3(0, 0, 1),
+             empty ? Rgb(0.0f) : Rgb(0.1f + 0.01f * float(rng() % 17), 0.2f, 0.3f), i / 3});
+        pass.footprint.push_back(empty ? 0.0f : 0.5f);
+    }
+    return pass;
+}
+
+// Every kind of estimate, fed made-up batches, saved and loaded through LoadEstimate after
+// every fold, ends bit-identical to one never interrupted.
+using EstimateFactory = std::unique_ptr<Estimate> (*)();
+struct EstimateKind {
+    const char* name;
+    EstimateFactory make;
+};
+
+std::unique_ptr<Estimate> MakeStochastic() {
+    EstimateSettings settings;
+    settings.stochastic = true;
+    settings.initial_radius = 0.5;
+    settings.samples_per_pixel = 3;
+    settings.layout = {1000, 4};
+    return std::make_unique<ProgressiveEstimate>(StochasticPass(0), settings, StochasticPass);
+}
+
+std::unique_ptr<Estimate> MakePixels() {
+    return std::make_unique<PixelEstimate>(
+        PixelEstimateSettings{Integrator::kPath, 10, 10, 2, 4, 0});
+}
+
+class AnyEstimateStateTest : public ::testing::TestWithParam<EstimateKind> {};
+
+TEST_P(AnyEstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
+    const auto fold_next = [](Estimate& estimate) {
+        BatchResult result = RandomBatch(estimate.EpochBatches()[estimate.BatchesFolded()]);
+        if (!GathersAtHitPoints(estimate.Kind())) result.tally = {}, result.photons_emitted = 0;
+        estimate.FoldBatch(result);
+        if (estimate.BatchesFolded() == estimate.EpochBatches().size()) estimate.FinishEpoch();
+    };
+    std::unique_ptr<Estimate> uninterrupted = GetParam().make();
+    for (int b = 0; b < kEpochs * 4; ++b) fold_next(*uninterrupted);
+    std::unique_ptr<Estimate> estimate = GetParam().make();
+    for (int b = 0; b < kEpochs * 4; ++b) {
+        ByteWriter writer;
+        estimate->Save(writer);
+        ByteReader reader(writer.Bytes());
+        absl::StatusOr<std::unique_ptr<Estimate>> loaded = LoadEstimate(reader);
+        ASSERT_TRUE(loaded.ok()) << loaded.status();
+        EXPECT_TRUE(reader.AtEnd());
+        EXPECT_EQ((*loaded)->Kind(), estimate->Kind());
+        EXPECT_TRUE(SamePixels((*loaded)->Resolve(), estimate->Resolve())) << "after fold " << b;
+        if ((*loaded)->Kind() == Integrator::kSppm)  // its next epochs' camera passes, as the
+                                                     // coordinator reattaches them
+            static_cast<ProgressiveEstimate&>(**loaded).SetEpochCameraPass(StochasticPass);
+        estimate = std::move(*loaded);
+        fold_next(*estimate);
+    }
+    EXPECT_EQ(estimate->Epoch(), uint64_t(kEpochs));
+    EXPECT_EQ(estimate->CameraSamples(), uninterrupted->CameraSamples());
+    EXPECT_TRUE(SamePixels(estimate->Resolve(), uninterrupted->Resolve()));
+    EXPECT_EQ(estimate->EstimateError().rmse, uninterrupted->EstimateError().rmse);
+}
+
+INSTANTIATE_TEST_SUITE_P(Kinds, AnyEstimateStateTest,
+                         ::testing::Values(EstimateKind{"sppm", MakeStochastic},
+                                           EstimateKind{"path", MakePixels}),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(EstimateStateTest, TruncatedOrAlteredStatesAreRefused) {
+    ProgressiveEstimate estimate = MakeEstimate();
+    FoldNext(estimate);
+    ByteWriter writer;
+    estimate.Save(writer);
+    const std::string bytes = writer.Bytes();
+    for (size_t length : {size_t{0}, size_t{7}, bytes.size() / 2, bytes.size() - 1}) {
+        ByteReader reader(std::string_view(bytes).substr(0, length));
+        const absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> loaded =
+            ProgressiveEstimate::Load(reader);
+        ASSERT_FALSE(loaded.ok()) << length << " bytes";
+        EXPECT_TRUE(absl::IsDataLoss(loaded.status())) << loaded.status();
+    }
+    // A hit point count that does not match the arrays after it.
+    std::string altered = bytes;
+    const uint64_t fewer = estimate.HitPoints().size() - 1;
+    std::memcpy(altered.data() + 8, &fewer, sizeof(fewer));
+    ByteReader reader(altered);
+    EXPECT_TRUE(absl::IsDataLoss(ProgressiveEstimate::Load(reader).status()));
+}
+
+}  // namespace
+}  // namespace pf

@@ -1,0 +1,210 @@
+// The prepared scene a coordinator sends its workers: lossless and deterministic for every
+// shipped scene (glTF and pbrt, instanced and textured ones too), leaving out what no tracing
+// reads, and refusing hostile bytes with an error naming what is wrong.
+#include "core/scene/prepared_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+
+#include "core/scene/scene_loader.h"
+#include "core/util/byte_stream.h"
+#include "core/util/sha256.h"
+#include "tests/support/gltf_builder.h"
+
+namespace pf {
+namespace {
+
+std::string Shipped(const std::string& name) {
+    return std::string(PF_SOURCE_DIR) + "/scenes/" + name;
+}
+
+// Field by field, bit for bit (floats compared by their bytes, so -0 and NaN count).
+template <typename T>
+bool SameBytes(const T& a, const T& b) {
+    return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+template <typename T>
+bool SameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+void ExpectSameScene(const Scene& a, const Scene& b) {
+    EXPECT_EQ(a.source, b.source);
+    EXPECT_TRUE(SameBytes(a.positions, b.positions));
+    ASSERT_EQ(a.triangles.size(), b.triangles.size());
+    for (size_t t = 0; t < a.triangles.size(); ++t) {
+        const Triangle &x = a.triangles[t], &y = b.triangles[t];
+        ASSERT_TRUE(std::equal(x.vertex, x.vertex + 3, y.vertex) && x.material == y.material &&
+                    x.smooth == y.smooth && SameBytes(x.normal, y.normal))
+            << "triangle " << t;
+        // What Surface() reads of the optional arrays is kept.
+        for (uint32_t v : x.vertex) {
+            if (x.smooth) EXPECT_TRUE(SameBytes(a.normals[v], b.normals[v]));
+            if (a.materials[x.material].base_color_texture != kNoTexture)
+                EXPECT_TRUE(SameBytes(a.uvs[v], b.uvs[v]));
+        }
+    }
+    EXPECT_TRUE(SameBytes(a.prototypes, b.prototypes));
+    EXPECT_TRUE(SameBytes(a.instances, b.instances));
+    EXPECT_TRUE(SameBytes(a.materials, b.materials));
+    ASSERT_EQ(a.textures.size(), b.textures.size());
+    for (size_t t = 0; t < a.textures.size(); ++t) {
+        EXPECT_EQ(a.textures[t]->width, b.textures[t]->width);
+        EXPECT_TRUE(SameBytes(a.textures[t]->texels, b.textures[t]->texels));
+    }
+    ASSERT_EQ(a.lights.size(), b.lights.size());
+    for (size_t l = 0; l < a.lights.size(); ++l) {
+        const PunctualLight &x = a.lights[l], &y = b.lights[l];
+        EXPECT_TRUE(x.type == y.type && SameBytes(x.position, y.position) &&
+                    SameBytes(x.direction, y.direction) && SameBytes(x.intensity, y.intensity) &&
+                    x.cos_inner == y.cos_inner && x.cos_outer == y.cos_outer &&
+                    x.smooth_falloff == y.smooth_falloff && x.name == y.name);
+    }
+    EXPECT_TRUE(SameBytes(a.camera, b.camera));
+    EXPECT_TRUE(SameBytes(a.bounds, b.bounds));
+    EXPECT_TRUE(SameBytes(a.hints, b.hints));
+}
+
+class ShippedScenes : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ShippedScenes, RoundTripBitForBitAndEncodeTheSameBytesTwice) {
+    const absl::StatusOr<Scene> loaded = LoadScene(Shipped(GetParam()));
+    ASSERT_TRUE(loaded.ok()) << loaded.status();
+    const std::string bytes = EncodePreparedScene(*loaded);
+    EXPECT_EQ(EncodePreparedScene(*loaded), bytes);
+    const absl::StatusOr<Scene> decoded = DecodePreparedScene(bytes, true);
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    ExpectSameScene(*loaded, *decoded);
+    EXPECT_EQ(EncodePreparedScene(*decoded), bytes);
+}
+
+INSTANTIATE_TEST_SUITE_P(All, ShippedScenes,
+                         ::testing::Values("cornell-box.gltf", "cornell-glass.gltf",
+                                           "cornell-glossy.gltf", "caustic-glass.gltf",
+                                           "furnace.gltf", "pbrt/cornell-room.pbrt",
+                                           "pbrt/caustic-glass.pbrt"),
+                         [](const auto& info) {
+                             std::string name = info.param;
+                             for (char& c : name)
+                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                             return name;
+                         });
+
+// A textured, instanced glTF: texels and instances survive, the texture filter is rebuilt.
+Scene TexturedInstancedScene() {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.materials[0].texture_png_base64 =
+        "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTk"
+        "SuQmCC";
+    scene.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+    scene.extra_nodes = {R"({"mesh":0,"translation":[3,0,0]})",
+                         R"({"mesh":0,"translation":[-3,0,0]})"};
+    absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "prepared-textured.gltf"));
+    EXPECT_TRUE(loaded.ok()) << loaded.status();
+    return loaded.ok() ? std::move(*loaded) : Scene();
+}
+
+TEST(PreparedSceneTest, TexturesAndInstancesSurviveAndTheFilterIsRebuilt) {
+    const Scene loaded = TexturedInstancedScene();
+    ASSERT_FALSE(loaded.textures.empty());
+    const absl::StatusOr<Scene> decoded = DecodePreparedScene(EncodePreparedScene(loaded), true);
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    ExpectSameScene(loaded, *decoded);
+    ASSERT_NE(decoded->texture_filter, nullptr);
+    for (float footprint : {0.0f, 0.3f, 2.0f}) {
+        const Rgb a = loaded.texture_filter->Sample(0, 0.3f, 0.6f, footprint);
+        const Rgb b = decoded->texture_filter->Sample(0, 0.3f, 0.6f, footprint);
+        EXPECT_TRUE(SameBytes(a, b)) << footprint;
+    }
+    const absl::StatusOr<Scene> photons_only =
+        DecodePreparedScene(EncodePreparedScene(loaded), false);
+    ASSERT_TRUE(photons_only.ok());
+    EXPECT_EQ(photons_only->texture_filter, nullptr);
+}
+
+TEST(PreparedSceneTest, WhatNoTracingReadsIsLeftOut) {
+    // cornell-box has no smooth triangle and no texture: no normals, no texture coordinates.
+    Scene scene = *LoadScene(Shipped("cornell-box.gltf"));
+    scene.normals.assign(scene.positions.size(), Vec3(0, 0, 1));
+    scene.uvs.assign(scene.positions.size(), Point2(0.5f, 0.5f));
+    auto unread = std::make_shared<Texture>();
+    unread->width = unread->height = 64;
+    unread->texels.assign(64 * 64, Rgb(0.5f));
+    scene.textures.push_back(unread);
+    const std::string bytes = EncodePreparedScene(scene);
+    const absl::StatusOr<Scene> decoded = DecodePreparedScene(bytes, true);
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    EXPECT_TRUE(decoded->normals.empty());
+    EXPECT_TRUE(decoded->uvs.empty());
+    ASSERT_EQ(decoded->textures.size(), 1u);  // indices hold; its texels stay behind
+    EXPECT_TRUE(decoded->textures[0]->texels.empty());
+    EXPECT_LT(bytes.size(),
+              EncodePreparedScene(*LoadScene(Shipped("cornell-box.gltf"))).size() + 1024);
+}
+
+// The header EncodePreparedScene writes (magic, version, size, SHA-256) around `payload`, so
+// that tests and the fuzzer reach the checks behind the checksum.
+std::string Framed(const std::string& payload, uint32_t version = kPreparedSceneVersion) {
+    ByteWriter out;
+    out.Bytes().append("PFSCENE", 8);
+    out.Value<uint32_t>(version);
+    out.Value<uint64_t>(payload.size());
+    out.Bytes().append(Sha256Hex(payload));
+    out.Bytes().append(payload);
+    return std::move(out.Bytes());
+}
+
+void ExpectRefused(const std::string& bytes, const std::string& naming) {
+    const absl::StatusOr<Scene> decoded = DecodePreparedScene(bytes, true);
+    ASSERT_FALSE(decoded.ok()) << "accepted; expected an error naming '" << naming << "'";
+    EXPECT_TRUE(absl::IsInvalidArgument(decoded.status())) << decoded.status();
+    EXPECT_NE(decoded.status().message().find(naming), std::string::npos) << decoded.status();
+}
+
+TEST(PreparedSceneTest, HostileBytesAreRefusedNamingWhatIsWrong) {
+    const Scene scene = *LoadScene(Shipped("cornell-box.gltf"));
+    const std::string bytes = EncodePreparedScene(scene);
+    const std::string payload = bytes.substr(8 + 4 + 8 + 64);
+    EXPECT_EQ(Framed(payload), bytes);
+    ExpectRefused("", "no header");
+    ExpectRefused(bytes.substr(0, 50), "no header");
+    ExpectRefused(Framed(payload, 99), "version 99");
+    for (size_t cut : {size_t{1}, payload.size() / 3, payload.size() - 1})
+        ExpectRefused(bytes.substr(0, bytes.size() - cut), "bytes where the header says");
+    std::string flipped = bytes;
+    flipped[bytes.size() / 2] ^= 0x40;
+    ExpectRefused(flipped, "checksum");
+    // Past the checksum (as a hostile coordinator could sign anything): every truncation of
+    // the payload is refused, never read past its end.
+    for (size_t cut = 0; cut < payload.size(); cut += 1 + payload.size() / 97)
+        ExpectRefused(Framed(payload.substr(0, cut)), "prepared scene");
+    ExpectRefused(Framed(payload + "x"), "bytes after the end");
+    // Broken references, each signed properly.
+    const auto broken = [&](auto edit, const std::string& naming) {
+        Scene copy = scene;
+        edit(copy);
+        ExpectRefused(EncodePreparedScene(copy), naming);
+    };
+    broken([](Scene& s) { s.triangles[3].vertex[1] = 1u << 30; }, "triangle 3 uses vertex");
+    broken([](Scene& s) { s.triangles[0].material = 77; }, "triangle 0 uses material 77");
+    broken([](Scene& s) { s.positions[2].y = std::nanf(""); }, "not finite");
+    broken([](Scene& s) { s.materials[1].base_color_texture = 5; }, "material 1: texture 5");
+    broken([](Scene& s) { s.materials[0].type = static_cast<MaterialType>(40); },
+           "unknown type 40");
+    broken([](Scene& s) { s.materials[0].emission = Rgb(-1.0f); }, "material 0");
+    broken([](Scene& s) { s.camera.y_fov = std::numeric_limits<float>::infinity(); },
+           "camera not finite");
+    broken([](Scene& s) { s.prototypes.push_back({0, 1000000, {}}); }, "prototype 0");
+    broken([](Scene& s) { s.instances.push_back(Instance{}); }, "instance 0 of prototype 0 of 0");
+    broken(
+        [](Scene& s) {
+            s.triangles[0].smooth = true;
+            s.normals.clear();
+        },
+        "is smooth");
+}
+
+}  // namespace
+}  // namespace pf

@@ -1,0 +1,69 @@
+// Batch results survive the wire bit for bit, and hostile messages are refused.
+#include "wire/proto_convert.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace pf {
+namespace {
+
+BatchResult Sample() {
+    BatchResult result;
+    result.spec = {17, 2, 1000, 4, 7};
+    result.tally.hit_point = {0, 3, 4, 9};
+    result.tally.photons = {1, 5, 2, 7};
+    result.tally.inner_photons = {0, 3, 2, 4};
+    result.tally.flux = {Rgb(0.1f, 0.2f, 0.3f), Rgb(1e-30f, 1e30f, 0.0f), Rgb(3.0f),
+                         Rgb(std::nextafter(1.0f, 2.0f))};
+    result.samples = {Rgb(0.5f), Rgb(1.0f, 2.0f, 3.0f), Rgb(0.0f)};
+    result.photons_emitted = 1000;
+    result.segments_traced = 4321;
+    return result;
+}
+
+TEST(ProtoConvertTest, RoundTripIsBitExact) {
+    const BatchResult original = Sample();
+    const std::string wire = ToProto(original).SerializeAsString();
+    photonfarm::v1::BatchResult parsed;
+    ASSERT_TRUE(parsed.ParseFromString(wire));
+    const absl::StatusOr<BatchResult> decoded = FromProto(parsed, 10, 10);
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    EXPECT_EQ(decoded->spec.index, original.spec.index);
+    EXPECT_EQ(decoded->spec.sample_end, original.spec.sample_end);
+    EXPECT_EQ(decoded->tally.hit_point, original.tally.hit_point);
+    EXPECT_EQ(decoded->tally.photons, original.tally.photons);
+    EXPECT_EQ(decoded->tally.inner_photons, original.tally.inner_photons);
+    EXPECT_EQ(decoded->tally.flux, original.tally.flux);
+    EXPECT_EQ(decoded->samples, original.samples);
+    EXPECT_EQ(decoded->segments_traced, original.segments_traced);
+}
+
+TEST(ProtoConvertTest, HostileResultsAreRefused) {
+    const auto refused = [](auto mutate) {
+        photonfarm::v1::BatchResult message = ToProto(Sample());
+        mutate(message);
+        return !FromProto(message, 10, 10).ok();
+    };
+    EXPECT_TRUE(
+        refused([](auto& m) { m.mutable_tally()->set_hit_point_delta(3, 100); }));  // out of range
+    EXPECT_TRUE(
+        refused([](auto& m) { m.mutable_tally()->set_hit_point_delta(2, 0); }));  // repeated
+    EXPECT_TRUE(refused(
+        [](auto& m) { m.mutable_tally()->set_flux(4, std::numeric_limits<double>::quiet_NaN()); }));
+    EXPECT_TRUE(refused([](auto& m) { m.mutable_tally()->set_flux(0, -1.0); }));
+    EXPECT_TRUE(refused([](auto& m) { m.mutable_tally()->add_photons(1); }));  // sizes disagree
+    EXPECT_TRUE(refused([](auto& m) { m.mutable_tally()->set_photons(0, 0); }));
+    EXPECT_TRUE(
+        refused([](auto& m) { m.mutable_tally()->add_inner_photons(1); }));  // sizes disagree
+    EXPECT_TRUE(
+        refused([](auto& m) { m.mutable_tally()->set_inner_photons(1, 6); }));  // more than photons
+    EXPECT_TRUE(refused([](auto& m) { m.set_samples(2, std::numeric_limits<float>::infinity()); }));
+    EXPECT_TRUE(refused([](auto& m) { m.mutable_spec()->set_sample_end(11); }));  // slice beyond
+    EXPECT_TRUE(refused([](auto& m) { m.set_photons_emitted(999); }));
+    EXPECT_FALSE(refused([](auto&) {}));
+}
+
+}  // namespace
+}  // namespace pf
