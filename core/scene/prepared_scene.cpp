@@ -72,10 +72,10 @@ void WriteTexture(const Texture& texture, ByteWriter& out) {
     const bool finite =
         std::all_of(palette.begin(), palette.end(), [](float x) { return std::isfinite(x); });
     // -0 and +0 compare equal: a palette holds one, so images with both stay floats.
+    const auto negative_zero = [](float x) { return x == 0.0f && std::signbit(x); };
     const bool signed_zeros =
-        std::any_of(texture.texels.begin(), texture.texels.end(), [](const Rgb& t) {
-            return std::signbit(t.x) && t.x == 0 || std::signbit(t.y) && t.y == 0 ||
-                   std::signbit(t.z) && t.z == 0;
+        std::any_of(texture.texels.begin(), texture.texels.end(), [&](const Rgb& t) {
+            return negative_zero(t.x) || negative_zero(t.y) || negative_zero(t.z);
         });
     if (palette.size() > 256 || !finite || signed_zeros) {
         out.Value(TexelEncoding::kFloats);

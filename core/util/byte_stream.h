@@ -56,7 +56,7 @@ public:
         uint64_t count = 0;
         if (!Value(&count) || count > max_count || count > bytes_.size() / sizeof(T)) return false;
         values->resize(count);
-        std::memcpy(values->data(), bytes_.data(), count * sizeof(T));
+        if (count > 0) std::memcpy(values->data(), bytes_.data(), count * sizeof(T));
         bytes_.remove_prefix(count * sizeof(T));
         return true;
     }

@@ -41,9 +41,12 @@ void ExpectSameScene(const Scene& a, const Scene& b) {
             << "triangle " << t;
         // What Surface() reads of the optional arrays is kept.
         for (uint32_t v : x.vertex) {
-            if (x.smooth) EXPECT_TRUE(SameBytes(a.normals[v], b.normals[v]));
-            if (a.materials[x.material].base_color_texture != kNoTexture)
+            if (x.smooth) {
+                EXPECT_TRUE(SameBytes(a.normals[v], b.normals[v]));
+            }
+            if (a.materials[x.material].base_color_texture != kNoTexture) {
                 EXPECT_TRUE(SameBytes(a.uvs[v], b.uvs[v]));
+            }
         }
     }
     EXPECT_TRUE(SameBytes(a.prototypes, b.prototypes));
@@ -85,8 +88,8 @@ INSTANTIATE_TEST_SUITE_P(All, ShippedScenes,
                                            "cornell-glossy.gltf", "caustic-glass.gltf",
                                            "furnace.gltf", "pbrt/cornell-room.pbrt",
                                            "pbrt/caustic-glass.pbrt"),
-                         [](const auto& info) {
-                             std::string name = info.param;
+                         [](const ::testing::TestParamInfo<std::string>& param) {
+                             std::string name = param.param;
                              for (char& c : name)
                                  if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                              return name;
