@@ -24,6 +24,7 @@ bool SameSpec(const BatchSpec& a, const BatchSpec& b) {
 }  // namespace
 
 const Blob& LazyBlob::Get() const {
+    if (const Blob* blob = IfEncoded()) return *blob;
     std::call_once(once_, [this] {
         blob_ = Blob::Of(encode_());
         encoded_.store(true, std::memory_order_release);
@@ -51,14 +52,18 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
       reference_(std::move(prepared.reference)),
       payload_(std::move(prepared.payload)),
       checkpointed_(prepared.checkpointed),
-      estimate_(std::move(prepared.estimate)) {
+      estimate_(std::move(prepared.estimate)),
+      fixed_estimate_(std::move(prepared.checkpointed_estimate)),
+      fixed_estimate_saved_(fixed_estimate_ != nullptr) {
     // Workers get the prepared scene (parsed here once); checkpoints keep the bundle, which a
     // restarted coordinator parses again.
     scene_blob_ = std::make_shared<const LazyBlob>(
         [payload = payload_] { return EncodeSceneBlob(payload->scene); });
     hit_points_blob_ = std::make_shared<const LazyBlob>(
         [payload = payload_] { return EncodeHitPoints(*payload->hit_points); });
-    if (checkpointed_)
+    if (checkpointed_ && prepared.checkpointed_scene)
+        durable_scene_ = std::make_shared<const LazyBlob>(*prepared.checkpointed_scene);
+    else if (checkpointed_)
         durable_scene_ = std::make_shared<const LazyBlob>(
             [bundle = std::make_shared<const SceneBundle>(std::move(prepared.bundle))] {
                 return ToProto(*bundle).SerializeAsString();
@@ -292,18 +297,15 @@ void Job::ReleaseInputs() {
     std::optional<JobCheckpointData> final_state;
     if (checkpointed_) {
         std::lock_guard lock(mutex_);
-        final_state = JobCheckpointData{RecordLocked(ended_), ""};
+        final_state = RecordLocked(ended_);
     }
     {
         std::lock_guard estimate_lock(estimate_mutex_);
         if (!estimate_) return;
-        if (final_state) {
-            ByteWriter writer;
-            estimate_->Save(writer);
-            final_state->estimate = std::move(writer.Bytes());
-        }
+        if (final_state) SaveEstimateLocked(*final_state);
         ResolveLocked();
         estimate_.reset();
+        fixed_estimate_.reset();  // the final state holds it until written
     }
     std::lock_guard lock(mutex_);
     final_checkpoint_ = std::move(final_state);

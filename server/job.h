@@ -36,10 +36,11 @@ namespace pf {
 
 using Clock = std::chrono::steady_clock;
 
-// A blob encoded on first use, once, whichever thread asks first.
+// A blob encoded on first use, once, whichever thread asks first; or one given ready.
 class LazyBlob {
 public:
     explicit LazyBlob(std::function<std::string()> encode) : encode_(std::move(encode)) {}
+    explicit LazyBlob(Blob blob) : blob_(std::move(blob)), encoded_(true) {}
     const Blob& Get() const;
     const Blob* IfEncoded() const {
         return encoded_.load(std::memory_order_acquire) ? &blob_ : nullptr;
@@ -74,6 +75,9 @@ struct PreparedJob {
     // The coordinator keeps checkpoints: the job's final state is kept for one when it ends
     // (TakeFinalCheckpoint).
     bool checkpointed = false;
+    // A job restored from a checkpoint: the fixed parts it named (the scene bundle's bytes, the
+    // estimate's fixed part or null), so that the job's later checkpoints name the same files.
+    std::shared_ptr<const Blob> checkpointed_scene, checkpointed_estimate;
 };
 
 class Job {
@@ -175,8 +179,12 @@ private:
     // Called by the thread that stored a result; one thread folds at a time.
     bool FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point now);
     void EndLocked(JobState state, std::string message, Clock::time_point now);
-    // The checkpoint record as of now (without the estimate); under mutex_.
-    photonfarm::v1::JobCheckpoint RecordLocked(Clock::time_point now);
+    // The checkpoint record as of now, with the scene as a fixed part (not the estimate);
+    // under mutex_.
+    JobCheckpointData RecordLocked(Clock::time_point now);
+    // Adds the estimate's state and its fixed part (saved once per job) to `checkpoint`;
+    // under estimate_mutex_, with the estimate alive.
+    void SaveEstimateLocked(JobCheckpointData& checkpoint);
     void ReleaseInputs();  // after the end: keep the final image, free the rest
     // Under estimate_mutex_, with the estimate alive. Resolves the current epoch's image into
     // image_ unless done already.
@@ -226,8 +234,12 @@ private:
     std::pair<uint64_t, uint32_t> checkpointed_at_{UINT64_MAX, 0};
     std::optional<JobCheckpointData> final_checkpoint_;
 
-    mutable std::mutex estimate_mutex_;   // guards the estimate and the image cache
+    mutable std::mutex estimate_mutex_;   // guards the estimate, its fixed part and the image cache
     std::unique_ptr<Estimate> estimate_;  // null once the job has ended
+    // The estimate's fixed part (Estimate::SaveFixed), saved with the first checkpoint; null
+    // where it has none.
+    std::shared_ptr<const Blob> fixed_estimate_;
+    bool fixed_estimate_saved_ = false;
     mutable std::shared_ptr<const Image> image_;
     mutable uint64_t image_epoch_ = UINT64_MAX;
 };

@@ -14,18 +14,34 @@ namespace {
 
 namespace v1 = photonfarm::v1;
 
+// The kinds of a job's fixed parts (v1::FixedPart).
+constexpr char kSceneKind[] = "scene";
+constexpr char kEstimateKind[] = "estimate";
+
 double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+void AddFixedPart(const std::string& kind, std::shared_ptr<const Blob> blob,
+                  JobCheckpointData& checkpoint) {
+    v1::FixedPart& part = *checkpoint.record.add_fixed_parts();
+    part.set_kind(kind);
+    part.set_sha256(blob->digest);
+    checkpoint.fixed[kind] = std::move(blob);
+}
 
 }  // namespace
 
-v1::JobCheckpoint Job::RecordLocked(Clock::time_point now) {
-    v1::JobCheckpoint record;
+JobCheckpointData Job::RecordLocked(Clock::time_point now) {
+    JobCheckpointData checkpoint;
+    v1::JobCheckpoint& record = checkpoint.record;
     record.set_job_id(id_);
     record.set_name(name_);
     record.set_owner(owner_);
     *record.mutable_settings() = ToProto(spec_);
     record.mutable_settings()->set_priority(priority_);
-    if (durable_scene_) record.set_scene(durable_scene_->Get().bytes);
+    if (durable_scene_)
+        AddFixedPart(kSceneKind,
+                     std::shared_ptr<const Blob>(durable_scene_, &durable_scene_->Get()),
+                     checkpoint);
     if (reference_) *record.mutable_reference() = ToProto(*reference_);
     record.set_state(ToProto(state_));
     record.set_message(message_);
@@ -35,7 +51,20 @@ v1::JobCheckpoint Job::RecordLocked(Clock::time_point now) {
     for (const ConvergencePoint& point : convergence_.Points())
         *record.add_convergence() = ToProto(point);
     record.set_sequence(++checkpoint_sequence_);
-    return record;
+    return checkpoint;
+}
+
+void Job::SaveEstimateLocked(JobCheckpointData& checkpoint) {
+    if (!fixed_estimate_saved_) {  // once per job: it never changes
+        ByteWriter fixed;
+        if (estimate_->SaveFixed(fixed))
+            fixed_estimate_ = std::make_shared<const Blob>(Blob::Of(std::move(fixed.Bytes())));
+        fixed_estimate_saved_ = true;
+    }
+    if (fixed_estimate_) AddFixedPart(kEstimateKind, fixed_estimate_, checkpoint);
+    ByteWriter writer;
+    estimate_->Save(writer, fixed_estimate_ ? FixedPart::kApart : FixedPart::kIncluded);
+    checkpoint.estimate = std::move(writer.Bytes());
 }
 
 absl::StatusOr<JobCheckpointData> Job::Checkpoint(Clock::time_point now) {
@@ -51,15 +80,13 @@ absl::StatusOr<JobCheckpointData> Job::Checkpoint(Clock::time_point now) {
         std::lock_guard lock(mutex_);
         if (state_ != JobState::kRunning)
             return absl::FailedPreconditionError(absl::StrCat("job ", id_, " has ended"));
-        checkpoint.record = RecordLocked(now);
+        checkpoint = RecordLocked(now);
     }
     // The estimate a moment later than the record: between two folds, which is all a resumed
     // job needs (the record's log may lack the latest epoch's point).
     std::lock_guard estimate_lock(estimate_mutex_);
     if (!estimate_) return absl::FailedPreconditionError(absl::StrCat("job ", id_, " has ended"));
-    ByteWriter writer;
-    estimate_->Save(writer);
-    checkpoint.estimate = std::move(writer.Bytes());
+    SaveEstimateLocked(checkpoint);
     checkpointed_at_ = {estimate_->Epoch(), estimate_->BatchesFolded()};
     return checkpoint;
 }
@@ -78,8 +105,18 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     const auto lost = [&](const std::string& what) {
         return absl::DataLossError(absl::StrCat("checkpoint of job ", record.job_id(), ": ", what));
     };
+    for (const v1::FixedPart& part : record.fixed_parts())
+        if (part.kind() != kSceneKind && part.kind() != kEstimateKind)
+            return lost(absl::StrCat("a fixed part of unknown kind '", part.kind(), "'"));
+    const auto fixed_part = [&](const char* kind) -> std::shared_ptr<const Blob> {
+        const auto found = checkpoint.fixed.find(kind);
+        return found == checkpoint.fixed.end() ? nullptr : found->second;
+    };
+    const std::shared_ptr<const Blob> scene_part = fixed_part(kSceneKind);
+    const std::shared_ptr<const Blob> estimate_part = fixed_part(kEstimateKind);
+    if (!scene_part) return lost("no scene");
     v1::SceneBundle bundle_message;
-    if (!bundle_message.ParseFromString(record.scene())) return lost("unreadable scene bundle");
+    if (!bundle_message.ParseFromString(scene_part->bytes)) return lost("unreadable scene bundle");
     absl::StatusOr<SceneBundle> bundle = FromProto(bundle_message);
     if (!bundle.ok()) return lost(std::string(bundle.status().message()));
     absl::StatusOr<JobSpec> spec = FromProto(record.settings());
@@ -89,7 +126,9 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     absl::StatusOr<Scene> scene = LoadScene(*bundle, bundle->main_file, {limits, nullptr});
     if (!scene.ok()) return scene.status();
     ByteReader reader(checkpoint.estimate);
-    absl::StatusOr<std::unique_ptr<Estimate>> estimate = LoadEstimate(reader);
+    ByteReader fixed_reader(estimate_part ? std::string_view(estimate_part->bytes) : "");
+    absl::StatusOr<std::unique_ptr<Estimate>> estimate =
+        LoadEstimate(reader, estimate_part ? &fixed_reader : nullptr);
     if (!estimate.ok()) return lost(std::string(estimate.status().message()));
     if (!reader.AtEnd()) return lost("bytes after the estimate");
     if ((*estimate)->Kind() != spec->integrator)
@@ -127,6 +166,8 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     }
     prepared.scene_features = record.scene_features();
     prepared.checkpointed = true;
+    prepared.checkpointed_scene = scene_part;
+    prepared.checkpointed_estimate = estimate_part;
     const Estimate& restored = *prepared.estimate;
     const uint64_t epochs = restored.Epoch(), photons = restored.PhotonsEmitted(),
                    discarded = restored.NonfiniteDiscarded();

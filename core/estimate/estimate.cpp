@@ -13,12 +13,14 @@ void Estimate::MergeEpoch(std::span<const BatchResult> results) {
     FinishEpoch();
 }
 
-absl::StatusOr<std::unique_ptr<Estimate>> LoadEstimate(ByteReader& in) {
+absl::StatusOr<std::unique_ptr<Estimate>> LoadEstimate(ByteReader& in, ByteReader* fixed) {
     ByteReader peek = in;
     uint32_t magic = 0;
     if (!peek.Value(&magic)) return absl::DataLossError("estimate state: empty");
-    if (magic == kPixelEstimateMagic) return PixelEstimate::Load(in);
-    return ProgressiveEstimate::Load(in);
+    if (magic != kPixelEstimateMagic) return ProgressiveEstimate::Load(in, fixed);
+    if (fixed != nullptr)
+        return absl::DataLossError("estimate state: a fixed part given to a pixel estimate");
+    return PixelEstimate::Load(in);
 }
 
 }  // namespace pf

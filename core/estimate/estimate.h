@@ -32,6 +32,10 @@ struct ErrorEstimate {
     double RelativeError() const { return std::sqrt(rel_mse); }
 };
 
+// Whether a saved state holds the estimate's fixed part (Estimate::SaveFixed) or leaves it to
+// be kept apart, once, and given back to LoadEstimate.
+enum class FixedPart { kIncluded, kApart };
+
 class Estimate {
 public:
     virtual ~Estimate() = default;
@@ -71,16 +75,28 @@ public:
     virtual ErrorEstimate EstimateError() const = 0;
 
     // The whole state, at an epoch's end or between folds, for a checkpoint; LoadEstimate
-    // restores it bit for bit.
-    virtual void Save(ByteWriter& out) const = 0;
+    // restores it bit for bit. Its arrays are packed: byte planes or the values as they are,
+    // whichever is smaller, compressed with zstd (core/util/packed_arrays.h). With
+    // FixedPart::kApart it leaves out what SaveFixed saves.
+    virtual void Save(ByteWriter& out, FixedPart fixed) const = 0;
+    void Save(ByteWriter& out) const { Save(out, FixedPart::kIncluded); }
+    // The part of the state that never changes over the estimate's life, for a checkpoint to
+    // keep once per job rather than with every state: a ppm estimate's hit points (sppm
+    // traces its anew every epoch; path and pm have none). False, and nothing written, where
+    // there is no such part.
+    virtual bool SaveFixed(ByteWriter& out) const {
+        (void)out;
+        return false;
+    }
 
     // FoldBatch for each of results (results[j] the result of EpochBatches()[j]), then FinishEpoch.
     void MergeEpoch(std::span<const BatchResult> results);
 };
 
-// An estimate as Save left it, of whichever kind; DATA_LOSS naming what is wrong when the
-// bytes cannot be one.
-absl::StatusOr<std::unique_ptr<Estimate>> LoadEstimate(ByteReader& in);
+// An estimate as Save left it, of whichever kind; `fixed`: what SaveFixed wrote, for a state
+// saved with FixedPart::kApart, else null. DATA_LOSS naming what is wrong when the bytes
+// cannot be one, or `fixed` is missing, not this state's, or given to a state that holds its own.
+absl::StatusOr<std::unique_ptr<Estimate>> LoadEstimate(ByteReader& in, ByteReader* fixed = nullptr);
 
 // The half-estimate variance of one value per pixel and channel: `value` the full estimate,
 // `difference` L_even - L_odd, scaled by `variance_scale` = N_even N_odd / N^2. Adds to the

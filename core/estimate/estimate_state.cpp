@@ -1,26 +1,49 @@
-// A progressive estimate saved and restored bit for bit, for the coordinator's checkpoints.
+// A progressive estimate saved and restored bit for bit, for the coordinator's checkpoints: its
+// arrays packed (core/util/packed_arrays.h), and a ppm estimate's hit points, which never
+// change, apart on request so that a job's checkpoints keep them once.
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
 #include "core/estimate/progressive_estimate.h"
 #include "core/job/job_spec.h"
+#include "core/util/packed_arrays.h"
 
 namespace pf {
 namespace {
 
-constexpr uint32_t kMagic = 0x53455046;  // "PFES" in a little-endian file
-constexpr uint32_t kVersion = 2;
+constexpr uint32_t kMagic = 0x53455046;       // "PFES" in a little-endian file
+constexpr uint32_t kFixedMagic = 0x50485046;  // "PFHP": the hit points kept apart
+// 3: settings and counters first, then the arrays packed (core/util/packed_arrays.h), the hit
+// points among them or kept apart (SaveFixed).
+constexpr uint32_t kVersion = 3;
 
 absl::Status Corrupt(const std::string& what) {
     return absl::DataLossError(absl::StrCat("estimate state: ", what));
 }
 
+// A ppm estimate's hit points as SaveFixed wrote them: `count` of them, all of `fixed`.
+absl::Status LoadFixedHitPoints(ByteReader& fixed, uint64_t count,
+                                std::vector<HitPoint>* hit_points) {
+    uint32_t magic = 0, version = 0;
+    if (!fixed.Value(&magic) || magic != kFixedMagic)
+        return Corrupt("its hit points kept apart are not hit points");
+    if (!fixed.Value(&version) || version != kVersion)
+        return Corrupt(absl::StrCat("its hit points kept apart are of format version ", version,
+                                    "; this build reads version ", kVersion));
+    if (!ReadPacked(fixed, count, hit_points) || !fixed.AtEnd())
+        return Corrupt(absl::StrCat("its hit points kept apart are not its ", count));
+    return absl::OkStatus();
+}
+
 }  // namespace
 
-void ProgressiveEstimate::Save(ByteWriter& out) const {
+void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
+    // A stochastic estimate's hit points change every epoch: nothing of it is fixed.
+    const bool hit_points_here = settings_.stochastic || fixed == FixedPart::kIncluded;
     out.Value(kMagic);
     out.Value(kVersion);
-    out.Array(std::span<const HitPoint>(*hit_points_));
+    out.Value<uint64_t>(hit_points_->size());
+    out.Value(static_cast<uint8_t>(hit_points_here));
     out.Value(settings_.alpha);
     out.Value(settings_.initial_radius);
     out.Value(settings_.samples_per_pixel);
@@ -30,33 +53,41 @@ void ProgressiveEstimate::Save(ByteWriter& out) const {
     out.Value(static_cast<uint8_t>(settings_.stochastic));
     out.Value(emission_.width);
     out.Value(emission_.height);
-    out.Array(std::span<const Rgb>(emission_.pixels));
-    if (settings_.stochastic) {
-        out.Array(std::span<const Rgbd>(emission_sum_));
-        out.Array(std::span<const Rgbd>(emission_even_));
-        out.Array(std::span<const Rgb>(epoch_emission_.pixels));
-    }
-    out.Array(std::span<const PointEstimate>(points_));
-    out.Array(std::span<const Rgbd>(direct_sum_));
-    out.Array(std::span<const Rgbd>(flux_even_));
-    out.Array(std::span<const Rgbd>(direct_even_));
-    out.Array(std::span<const GatherCounts>(counts_));
     for (uint64_t value : {epoch_, photons_emitted_, photons_emitted_even_, nonfinite_discarded_})
         out.Value(value);
     out.Value(static_cast<uint8_t>(light_reached_));
     out.Value(static_cast<uint8_t>(epoch_light_reached_));
     out.Value(batches_folded_);
-    out.Array(std::span<const uint64_t>(epoch_photons_));
-    out.Array(std::span<const uint64_t>(epoch_inner_photons_));
-    out.Array(std::span<const Rgbd>(epoch_flux_));
-    out.Array(std::span<const Rgbd>(epoch_flux_even_));
-    out.Array(std::span<const Rgb>(epoch_direct_));
     for (uint64_t value :
          {epoch_photons_emitted_, epoch_photons_emitted_even_, epoch_nonfinite_discarded_})
         out.Value(value);
+    std::vector<PackedArray> arrays;
+    if (hit_points_here) arrays.push_back(*hit_points_);
+    arrays.push_back(emission_.pixels);
+    if (settings_.stochastic)
+        for (PackedArray array : {PackedArray(emission_sum_), PackedArray(emission_even_),
+                                  PackedArray(epoch_emission_.pixels)})
+            arrays.push_back(array);
+    for (PackedArray array :
+         {PackedArray(points_), PackedArray(direct_sum_), PackedArray(flux_even_),
+          PackedArray(direct_even_), PackedArray(counts_), PackedArray(epoch_photons_),
+          PackedArray(epoch_inner_photons_), PackedArray(epoch_flux_),
+          PackedArray(epoch_flux_even_), PackedArray(epoch_direct_)})
+        arrays.push_back(array);
+    WritePacked(out, arrays);
 }
 
-absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(ByteReader& in) {
+bool ProgressiveEstimate::SaveFixed(ByteWriter& out) const {
+    if (settings_.stochastic) return false;
+    out.Value(kFixedMagic);
+    out.Value(kVersion);
+    const PackedArray hit_points[] = {*hit_points_};
+    WritePacked(out, hit_points);
+    return true;
+}
+
+absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(ByteReader& in,
+                                                                               ByteReader* fixed) {
     std::unique_ptr<ProgressiveEstimate> estimate(new ProgressiveEstimate());
     ProgressiveEstimate& e = *estimate;
     uint32_t magic = 0, version = 0;
@@ -64,8 +95,10 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
     if (!in.Value(&version) || version != kVersion)
         return Corrupt(
             absl::StrCat("format version ", version, "; this build reads version ", kVersion));
-    auto hit_points = std::make_shared<std::vector<HitPoint>>();
-    if (!in.Array(hit_points.get(), kMaxHitPoints)) return Corrupt("hit points");
+    uint64_t n = 0;  // hit points
+    uint8_t hit_points_here = 0;
+    if (!in.Value(&n) || n > kMaxHitPoints || !in.Value(&hit_points_here))
+        return Corrupt("hit points");
     EstimateSettings& settings = e.settings_;
     uint8_t stochastic = 0;
     if (!(in.Value(&settings.alpha) && in.Value(&settings.initial_radius) &&
@@ -86,47 +119,55 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
         e.emission_.height < 1 || e.emission_.width > 32768 || e.emission_.height > 32768)
         return Corrupt("image size");
     const uint64_t pixels = uint64_t(e.emission_.width) * e.emission_.height;
-    if (!in.Array(&e.emission_.pixels, pixels) || e.emission_.pixels.size() != pixels)
-        return Corrupt("emission");
-    if (settings.stochastic) {
-        e.epoch_emission_ = Image(e.emission_.width, e.emission_.height);
-        if (!in.Array(&e.emission_sum_, pixels) || !in.Array(&e.emission_even_, pixels) ||
-            !in.Array(&e.epoch_emission_.pixels, pixels) || e.emission_sum_.size() != pixels ||
-            e.emission_even_.size() != pixels || e.epoch_emission_.pixels.size() != pixels)
-            return Corrupt("emission sums");
+    if (pixels > kMaxHitPoints) return Corrupt("more pixels than a job may have");
+    uint8_t light_reached = 0, epoch_light_reached = 0;
+    if (!(in.Value(&e.epoch_) && in.Value(&e.photons_emitted_) &&
+          in.Value(&e.photons_emitted_even_) && in.Value(&e.nonfinite_discarded_) &&
+          in.Value(&light_reached) && in.Value(&epoch_light_reached) &&
+          in.Value(&e.batches_folded_) && in.Value(&e.epoch_photons_emitted_) &&
+          in.Value(&e.epoch_photons_emitted_even_) && in.Value(&e.epoch_nonfinite_discarded_)))
+        return Corrupt("truncated counters");
+    e.light_reached_ = light_reached != 0;
+    e.epoch_light_reached_ = epoch_light_reached != 0;
+    if (e.batches_folded_ >= settings.layout.batches_per_epoch)
+        return Corrupt("more batches folded than an epoch has");
+
+    auto hit_points = std::make_shared<std::vector<HitPoint>>();
+    if (hit_points_here == 0 && settings.stochastic)
+        return Corrupt("a stochastic estimate's hit points kept apart");
+    if (hit_points_here != 0 && fixed != nullptr)
+        return Corrupt("hit points given apart to a state that holds its own");
+    if (hit_points_here == 0 && fixed == nullptr)
+        return Corrupt("its hit points are kept apart (SaveFixed) and were not given");
+    if (hit_points_here != 0) {
+        if (!ReadPacked(in, n, hit_points.get())) return Corrupt("hit points");
+    } else if (absl::Status status = LoadFixedHitPoints(*fixed, n, hit_points.get());
+               !status.ok()) {
+        return status;
     }
     for (const HitPoint& hit_point : *hit_points)
         if (hit_point.pixel >= pixels) return Corrupt("a hit point lies outside the image");
-    const uint64_t n = hit_points->size();
+    if (!ReadPacked(in, pixels, &e.emission_.pixels)) return Corrupt("emission");
+    if (settings.stochastic) {
+        e.epoch_emission_ = Image(e.emission_.width, e.emission_.height);
+        if (!(ReadPacked(in, pixels, &e.emission_sum_) &&
+              ReadPacked(in, pixels, &e.emission_even_) &&
+              ReadPacked(in, pixels, &e.epoch_emission_.pixels)))
+            return Corrupt("emission sums");
+    }
     const auto array = [&](auto* values, const char* what) -> absl::Status {
-        if (!in.Array(values, n) || values->size() != n)
+        if (!ReadPacked(in, n, values))
             return Corrupt(absl::StrCat(what, ": not one per hit point"));
         return absl::OkStatus();
     };
     for (absl::Status status :
          {array(&e.points_, "N, R, tau"), array(&e.direct_sum_, "direct sums"),
           array(&e.flux_even_, "even flux"), array(&e.direct_even_, "even direct sums"),
-          array(&e.counts_, "gather counts")})
-        if (!status.ok()) return status;
-    uint8_t light_reached = 0, epoch_light_reached = 0;
-    if (!(in.Value(&e.epoch_) && in.Value(&e.photons_emitted_) &&
-          in.Value(&e.photons_emitted_even_) && in.Value(&e.nonfinite_discarded_) &&
-          in.Value(&light_reached) && in.Value(&epoch_light_reached) &&
-          in.Value(&e.batches_folded_)))
-        return Corrupt("truncated counters");
-    e.light_reached_ = light_reached != 0;
-    e.epoch_light_reached_ = epoch_light_reached != 0;
-    if (e.batches_folded_ >= settings.layout.batches_per_epoch)
-        return Corrupt("more batches folded than an epoch has");
-    for (absl::Status status :
-         {array(&e.epoch_photons_, "epoch photons"),
+          array(&e.counts_, "gather counts"), array(&e.epoch_photons_, "epoch photons"),
           array(&e.epoch_inner_photons_, "epoch inner photons"),
           array(&e.epoch_flux_, "epoch flux"), array(&e.epoch_flux_even_, "epoch even flux"),
           array(&e.epoch_direct_, "epoch direct light")})
         if (!status.ok()) return status;
-    if (!(in.Value(&e.epoch_photons_emitted_) && in.Value(&e.epoch_photons_emitted_even_) &&
-          in.Value(&e.epoch_nonfinite_discarded_)))
-        return Corrupt("truncated epoch counters");
     e.hit_points_ = std::move(hit_points);
     return estimate;
 }

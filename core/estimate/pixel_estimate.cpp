@@ -6,12 +6,14 @@
 #include "absl/strings/str_cat.h"
 #include "core/job/job_spec.h"
 #include "core/util/check.h"
+#include "core/util/packed_arrays.h"
 
 namespace pf {
 namespace {
 
 constexpr uint32_t kMagic = kPixelEstimateMagic;
-constexpr uint32_t kVersion = 1;
+// 2: settings and counters first, then the arrays packed (core/util/packed_arrays.h).
+constexpr uint32_t kVersion = 2;
 
 absl::Status Corrupt(const std::string& what) {
     return absl::DataLossError(absl::StrCat("pixel estimate: ", what));
@@ -99,7 +101,7 @@ ErrorEstimate PixelEstimate::EstimateError() const {
     return error;
 }
 
-void PixelEstimate::Save(ByteWriter& out) const {
+void PixelEstimate::Save(ByteWriter& out, FixedPart /*fixed: it has none*/) const {
     out.Value(kMagic);
     out.Value(kVersion);
     out.Value(settings_.integrator);
@@ -107,13 +109,12 @@ void PixelEstimate::Save(ByteWriter& out) const {
         out.Value(value);
     out.Value(settings_.batches_per_epoch);
     out.Value(settings_.map_photons);
-    out.Array(std::span<const Rgbd>(sum_));
-    out.Array(std::span<const Rgbd>(sum_even_));
-    out.Array(std::span<const Rgb>(epoch_samples_));
     for (uint64_t value : {epoch_, nonfinite_discarded_, epoch_nonfinite_discarded_})
         out.Value(value);
     out.Value(batches_folded_);
     out.Value(static_cast<uint8_t>(light_reached_));
+    const PackedArray arrays[] = {sum_, sum_even_, epoch_samples_};
+    WritePacked(out, arrays);
 }
 
 absl::StatusOr<std::unique_ptr<PixelEstimate>> PixelEstimate::Load(ByteReader& in) {
@@ -135,11 +136,7 @@ absl::StatusOr<std::unique_ptr<PixelEstimate>> PixelEstimate::Load(ByteReader& i
           s.batches_per_epoch <= kMaxBatchesPerEpoch))
         return Corrupt("settings out of range");
     const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
-    for (auto* values : {&e.sum_, &e.sum_even_})
-        if (!in.Array(values, pixels) || values->size() != pixels)
-            return Corrupt("sums: not one per pixel");
-    if (!in.Array(&e.epoch_samples_, pixels) || e.epoch_samples_.size() != pixels)
-        return Corrupt("epoch samples: not one per pixel");
+    if (pixels > kMaxHitPoints) return Corrupt("more pixels than a job may have");
     uint8_t light_reached = 0;
     if (!(in.Value(&e.epoch_) && in.Value(&e.nonfinite_discarded_) &&
           in.Value(&e.epoch_nonfinite_discarded_) && in.Value(&e.batches_folded_) &&
@@ -148,6 +145,10 @@ absl::StatusOr<std::unique_ptr<PixelEstimate>> PixelEstimate::Load(ByteReader& i
     if (e.batches_folded_ >= s.batches_per_epoch)
         return Corrupt("more batches folded than an epoch has");
     e.light_reached_ = light_reached != 0;
+    for (auto* values : {&e.sum_, &e.sum_even_})
+        if (!ReadPacked(in, pixels, values)) return Corrupt("sums: not one per pixel");
+    if (!ReadPacked(in, pixels, &e.epoch_samples_))
+        return Corrupt("epoch samples: not one per pixel");
     return estimate;
 }
 

@@ -49,7 +49,9 @@ public:
     // and classic photon mapping's, fixed by its maps, does not shrink with epochs: it is
     // measured against a reference, not estimated).
     ErrorEstimate EstimateError() const override;
-    void Save(ByteWriter& out) const override;
+    // No fixed part: every state is whole, whatever `fixed` asks.
+    using Estimate::Save;
+    void Save(ByteWriter& out, FixedPart fixed) const override;
     static absl::StatusOr<std::unique_ptr<PixelEstimate>> Load(ByteReader& in);
 
 private:

@@ -110,12 +110,17 @@ public:
     // L_inner / L taken as the photon density ratio 2 inner / all (docs/convergence.md).
     ErrorEstimate EstimateError() const override;
 
-    // The whole state, hit points included, at an epoch's end or between folds, for a
-    // checkpoint. Load restores it bit for bit, so folding the rest of the epochs gives the
-    // image an uninterrupted render gives; DATA_LOSS naming what is wrong when the bytes
-    // cannot be such a state (estimate_state.cpp).
-    void Save(ByteWriter& out) const override;
-    static absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> Load(ByteReader& in);
+    // The whole state, at an epoch's end or between folds, for a checkpoint: with the hit
+    // points, or (FixedPart::kApart, ppm) without them, SaveFixed having saved them once. Load
+    // restores it bit for bit, so folding the rest of the epochs gives the image an
+    // uninterrupted render gives; DATA_LOSS naming what is wrong when the bytes cannot be such
+    // a state, or `fixed` (SaveFixed's bytes, for a state without hit points) is missing or
+    // not its own (estimate_state.cpp).
+    using Estimate::Save;
+    void Save(ByteWriter& out, FixedPart fixed) const override;
+    bool SaveFixed(ByteWriter& out) const override;  // a ppm estimate's hit points
+    static absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> Load(ByteReader& in,
+                                                                     ByteReader* fixed = nullptr);
 
 private:
     ProgressiveEstimate() = default;

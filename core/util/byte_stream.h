@@ -66,6 +66,14 @@ public:
         text->assign(chars.begin(), chars.end());
         return true;
     }
+    // The next `size` bytes, not copied (valid as long as the reader's bytes); false when
+    // fewer remain.
+    bool Bytes(uint64_t size, std::string_view* bytes) {
+        if (size > bytes_.size()) return false;
+        *bytes = bytes_.substr(0, size);
+        bytes_.remove_prefix(size);
+        return true;
+    }
     bool AtEnd() const { return bytes_.empty(); }
 
 private:

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -17,11 +18,14 @@
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <map>
 #include <random>
 
 #include "absl/strings/str_split.h"
 #include "core/scene/scene_loader.h"
+#include "core/util/file_io.h"
 #include "embedded/local_render.h"
+#include "server/checkpoint_store.h"
 #include "server/in_process_source.h"
 #include "server/metrics.h"
 #include "tests/support/test_env.h"
@@ -452,12 +456,14 @@ void RunBatches(Coordinator& coordinator, const std::string& worker, const std::
     }
 }
 
+// A job's checkpoint files (checkpoint-SEQUENCE.pfc), oldest first; not its fixed parts.
 std::vector<std::filesystem::path> CheckpointFiles(const std::string& dir,
                                                    const std::string& job_id) {
     std::vector<std::filesystem::path> files;
     for (const auto& entry :
          std::filesystem::directory_iterator(std::filesystem::path(dir) / job_id))
-        files.push_back(entry.path());
+        if (entry.path().filename().string().starts_with("checkpoint-"))
+            files.push_back(entry.path());
     std::sort(files.begin(), files.end());
     return files;
 }
@@ -551,6 +557,122 @@ TEST(CoordinatorCheckpointTest, CorruptOrTruncatedCheckpointsFallBackToThePrevio
     for (const std::filesystem::path& file : CheckpointFiles(dir.path, job_id))
         std::filesystem::resize_file(file, 100);
     EXPECT_EQ(epochs_resumed(), 0u);
+}
+
+// A job's fixed parts (KIND-SHA256.fixed), sorted.
+std::vector<std::filesystem::path> FixedParts(const std::string& dir, const std::string& job_id) {
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry :
+         std::filesystem::directory_iterator(std::filesystem::path(dir) / job_id))
+        if (entry.path().extension() == ".fixed") files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+// Each file's inode and modification time: a file written again (a new file renamed over it)
+// changes both.
+std::map<std::string, std::pair<ino_t, int64_t>> Identities(
+    const std::vector<std::filesystem::path>& files) {
+    std::map<std::string, std::pair<ino_t, int64_t>> identities;
+    for (const std::filesystem::path& file : files) {
+        struct stat status {};
+        EXPECT_EQ(stat(file.c_str(), &status), 0) << file;
+        identities[file.string()] = {
+            status.st_ino, int64_t(status.st_mtim.tv_sec) * 1'000'000'000 + status.st_mtim.tv_nsec};
+    }
+    return identities;
+}
+
+std::string ReadWholeFile(const std::filesystem::path& path) {
+    std::ifstream file(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(file), {});
+}
+
+TEST(CoordinatorCheckpointTest, FixedPartsAreWrittenOncePerJob) {
+    TempDir dir;
+    FakeClock clock;
+    std::string job_id;
+    std::map<std::string, std::pair<ino_t, int64_t>> written;
+    {
+        Coordinator first(Durable(&clock, dir.path));
+        job_id = first.Submit(SmallJob(1'000'000))->job_id;
+        const std::string worker = *first.RegisterWorker(Cpu());
+        BatchRunner runner;
+        RunBatches(first, worker, job_id, 4, runner);
+        first.WriteCheckpoints();
+        ASSERT_EQ(FixedParts(dir.path, job_id).size(), 2u) << "the scene and the hit points";
+        written = Identities(FixedParts(dir.path, job_id));
+        RunBatches(first, worker, job_id, 2, runner);
+        first.WriteCheckpoints();
+        ASSERT_EQ(CheckpointFiles(dir.path, job_id).size(), 2u);
+        EXPECT_EQ(Identities(FixedParts(dir.path, job_id)), written) << "not written again";
+
+        const absl::StatusOr<JobCheckpointData> latest =
+            CheckpointStore(dir.path).Read(CheckpointFiles(dir.path, job_id).back().string());
+        ASSERT_TRUE(latest.ok()) << latest.status();
+        ASSERT_EQ(latest->record.fixed_parts_size(), 2);
+        ASSERT_TRUE(latest->fixed.contains("scene") && latest->fixed.contains("estimate"));
+        EXPECT_LT(latest->record.ByteSizeLong(), latest->fixed.at("scene")->bytes.size())
+            << "the record names the scene, not carries it";
+        ByteReader state(latest->estimate);
+        const absl::Status without = LoadEstimate(state).status();
+        EXPECT_TRUE(absl::IsDataLoss(without) &&
+                    without.message().find("kept apart") != std::string_view::npos)
+            << "nor does the state hold the hit points: " << without;
+    }  // and once more as it stops
+    Coordinator second(Durable(&clock, dir.path));
+    ASSERT_EQ(second.RestoreCheckpoints(), 1u);
+    const std::string worker = *second.RegisterWorker(Cpu());
+    BatchRunner runner;
+    RunBatches(second, worker, job_id, 2, runner);
+    second.WriteCheckpoints();
+    EXPECT_EQ(CheckpointFiles(dir.path, job_id).size(), 2u);
+    EXPECT_EQ(Identities(FixedParts(dir.path, job_id)), written)
+        << "a resumed job's checkpoints name the same files";
+}
+
+TEST(CoordinatorCheckpointTest, MissingOrAlteredFixedPartsAreRefusedNamingThem) {
+    TempDir dir;
+    FakeClock clock;
+    std::string job_id;
+    {
+        Coordinator coordinator(Durable(&clock, dir.path));
+        job_id = coordinator.Submit(SmallJob(1'000'000))->job_id;
+        const std::string worker = *coordinator.RegisterWorker(Cpu());
+        BatchRunner runner;
+        RunBatches(coordinator, worker, job_id, 4, runner);
+    }  // its checkpoint written as it stops
+    const std::vector<std::filesystem::path> parts = FixedParts(dir.path, job_id);
+    ASSERT_EQ(parts.size(), 2u);
+    const std::string checkpoint = CheckpointFiles(dir.path, job_id).back().string();
+    const CheckpointStore store(dir.path);
+    ASSERT_TRUE(store.Read(checkpoint).ok());
+    const auto resumed = [&] {
+        Coordinator coordinator(Durable(&clock, dir.path));
+        return coordinator.RestoreCheckpoints();
+    };
+    // DATA_LOSS, naming the part's file and saying what is wrong with it.
+    const auto refused = [&](const std::filesystem::path& part, const std::string& what) {
+        const absl::Status status = store.Read(checkpoint).status();
+        EXPECT_TRUE(absl::IsDataLoss(status)) << status;
+        EXPECT_NE(status.message().find(part.string()), std::string_view::npos) << status;
+        EXPECT_NE(status.message().find(what), std::string_view::npos) << status;
+        EXPECT_EQ(resumed(), 0u) << "not resumed without its " << part;
+    };
+    for (const std::filesystem::path& part : parts) {
+        const std::string saved = ReadWholeFile(part);
+        // Another file, whole (its own checksum holds), in its place.
+        ASSERT_TRUE(WriteChecksummedFile(part.string(), {"other contents"}).ok());
+        refused(part, "altered");
+        std::string flipped = saved;
+        flipped[flipped.size() / 2] ^= 1;
+        std::ofstream(part, std::ios::binary | std::ios::trunc) << flipped;
+        refused(part, "corrupt");
+        std::filesystem::remove(part);
+        refused(part, "missing");
+        std::ofstream(part, std::ios::binary | std::ios::trunc) << saved;
+        EXPECT_EQ(resumed(), 1u) << "resumed once " << part << " is back";
+    }
 }
 
 TEST(CoordinatorCheckpointTest, IdleJobsAreNotRewrittenAndForgottenOnesLoseTheirCheckpoints) {

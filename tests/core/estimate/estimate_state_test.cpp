@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <memory>
 #include <random>
+#include <string>
+#include <vector>
 
 #include "core/estimate/pixel_estimate.h"
 #include "core/estimate/progressive_estimate.h"
@@ -176,6 +179,74 @@ INSTANTIATE_TEST_SUITE_P(Kinds, AnyEstimateStateTest,
                                            EstimateKind{"path", MakePixels}),
                          [](const auto& info) { return std::string(info.param.name); });
 
+// A ppm estimate's hit points saved once, apart (SaveFixed), and at every fold only the rest
+// (FixedPart::kApart): loaded from the two, every array comes back bit for bit (saved again,
+// the same bytes as the whole state) and the render ends as one never interrupted. The part
+// apart stays the same over the whole render.
+TEST(EstimateStateTest, HitPointsKeptApartOnceItEndsBitIdentical) {
+    ProgressiveEstimate uninterrupted = MakeEstimate();
+    for (int b = 0; b < kEpochs * 4; ++b) FoldNext(uninterrupted);
+
+    ProgressiveEstimate first = MakeEstimate();
+    ByteWriter fixed;
+    ASSERT_TRUE(first.SaveFixed(fixed));
+    std::unique_ptr<ProgressiveEstimate> estimate;
+    for (int b = 0; b < kEpochs * 4; ++b) {
+        ProgressiveEstimate& current = estimate ? *estimate : first;
+        ByteWriter fixed_now, apart, whole;
+        ASSERT_TRUE(current.SaveFixed(fixed_now));
+        EXPECT_EQ(fixed_now.Bytes(), fixed.Bytes()) << "after fold " << b;
+        current.Save(apart, FixedPart::kApart);
+        current.Save(whole);
+        EXPECT_LT(apart.Bytes().size(), whole.Bytes().size());
+        ByteReader reader(apart.Bytes()), fixed_reader(fixed.Bytes());
+        absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> loaded =
+            ProgressiveEstimate::Load(reader, &fixed_reader);
+        ASSERT_TRUE(loaded.ok()) << loaded.status();
+        EXPECT_TRUE(reader.AtEnd() && fixed_reader.AtEnd());
+        ByteWriter again;
+        (*loaded)->Save(again);
+        EXPECT_TRUE(again.Bytes() == whole.Bytes()) << "after fold " << b;
+        estimate = std::move(*loaded);
+        FoldNext(*estimate);
+    }
+    ASSERT_EQ(estimate->HitPoints().size(), uninterrupted.HitPoints().size());
+    EXPECT_EQ(std::memcmp(estimate->HitPoints().data(), uninterrupted.HitPoints().data(),
+                          kHitPoints * sizeof(HitPoint)),
+              0);
+    EXPECT_TRUE(SamePixels(estimate->Resolve(), uninterrupted.Resolve()));
+    EXPECT_EQ(estimate->EstimateError().rmse, uninterrupted.EstimateError().rmse);
+    for (uint32_t i = 0; i < kHitPoints; ++i) {
+        EXPECT_EQ(estimate->Point(i).radius_sq, uninterrupted.Point(i).radius_sq);
+        EXPECT_EQ(estimate->Point(i).flux.x, uninterrupted.Point(i).flux.x);
+    }
+}
+
+// sppm traces its hit points anew every epoch and path has none: nothing of them is fixed,
+// and a state saved "apart" is the whole state.
+TEST(EstimateStateTest, OnlyPpmKeepsAPartApart) {
+    std::vector<std::unique_ptr<Estimate>> estimates;
+    estimates.push_back(MakeStochastic());
+    estimates.push_back(MakePixels());
+    for (const std::unique_ptr<Estimate>& estimate : estimates) {
+        ByteWriter fixed, apart, whole;
+        EXPECT_FALSE(estimate->SaveFixed(fixed));
+        EXPECT_TRUE(fixed.Bytes().empty());
+        estimate->Save(apart, FixedPart::kApart);
+        estimate->Save(whole);
+        EXPECT_TRUE(apart.Bytes() == whole.Bytes()) << IntegratorName(estimate->Kind());
+    }
+}
+
+// The state's arrays are packed: those of a fresh estimate (N = 0, R = R0, tau = 0 at every
+// hit point; ~210 bytes a hit point unpacked) take almost nothing.
+TEST(EstimateStateTest, AStateIsPacked) {
+    const ProgressiveEstimate estimate = MakeEstimate();
+    ByteWriter apart;
+    estimate.Save(apart, FixedPart::kApart);
+    EXPECT_LT(apart.Bytes().size(), 5 * kHitPoints) << apart.Bytes().size() << " bytes";
+}
+
 TEST(EstimateStateTest, TruncatedOrAlteredStatesAreRefused) {
     ProgressiveEstimate estimate = MakeEstimate();
     FoldNext(estimate);
@@ -195,6 +266,60 @@ TEST(EstimateStateTest, TruncatedOrAlteredStatesAreRefused) {
     std::memcpy(altered.data() + 8, &fewer, sizeof(fewer));
     ByteReader reader(altered);
     EXPECT_TRUE(absl::IsDataLoss(ProgressiveEstimate::Load(reader).status()));
+    // Bytes of its packed arrays (its second half) altered: refused, or where zstd ignores the
+    // change, the same state; never other numbers.
+    size_t refused = 0, tried = 0;
+    for (size_t at = bytes.size() / 2; at < bytes.size(); at += 7, ++tried) {
+        std::string flipped = bytes;
+        flipped[at] = static_cast<char>(flipped[at] ^ 0x10);
+        ByteReader flipped_reader(flipped);
+        absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> loaded =
+            ProgressiveEstimate::Load(flipped_reader);
+        if (!loaded.ok()) {
+            EXPECT_TRUE(absl::IsDataLoss(loaded.status())) << loaded.status();
+            ++refused;
+            continue;
+        }
+        ByteWriter again;
+        (*loaded)->Save(again);
+        EXPECT_TRUE(again.Bytes() == bytes) << "byte " << at << " altered, read as other numbers";
+    }
+    EXPECT_GT(refused, tried * 9 / 10);
+}
+
+// Hit points kept apart: a state without them, or given hit points it does not hold apart,
+// or another count of them, or them cut short, is refused.
+TEST(EstimateStateTest, MissingOrForeignHitPointsAreRefused) {
+    ProgressiveEstimate estimate = MakeEstimate();
+    FoldNext(estimate);
+    ByteWriter fixed, apart, whole;
+    ASSERT_TRUE(estimate.SaveFixed(fixed));
+    estimate.Save(apart, FixedPart::kApart);
+    estimate.Save(whole);
+    const auto load = [](const std::string& state, const std::string* hit_points) {
+        ByteReader reader(state);
+        ByteReader fixed_reader(hit_points ? std::string_view(*hit_points) : "");
+        return LoadEstimate(reader, hit_points ? &fixed_reader : nullptr).status();
+    };
+    ASSERT_TRUE(load(apart.Bytes(), &fixed.Bytes()).ok());
+    const absl::Status missing = load(apart.Bytes(), nullptr);
+    EXPECT_TRUE(absl::IsDataLoss(missing));
+    EXPECT_NE(missing.message().find("kept apart"), std::string_view::npos) << missing;
+    EXPECT_TRUE(absl::IsDataLoss(load(whole.Bytes(), &fixed.Bytes())));
+    std::string other_count = fixed.Bytes();
+    const uint64_t more = kHitPoints + 1;
+    std::memcpy(other_count.data() + 8, &more, sizeof(more));  // after magic and version
+    EXPECT_TRUE(absl::IsDataLoss(load(apart.Bytes(), &other_count)));
+    for (size_t length :
+         {size_t{0}, size_t{4}, fixed.Bytes().size() / 2, fixed.Bytes().size() - 1}) {
+        const std::string cut = fixed.Bytes().substr(0, length);
+        EXPECT_TRUE(absl::IsDataLoss(load(apart.Bytes(), &cut))) << length << " bytes";
+    }
+    const std::string longer = fixed.Bytes() + "x";
+    EXPECT_TRUE(absl::IsDataLoss(load(apart.Bytes(), &longer))) << "bytes after the hit points";
+    ByteWriter pixel_state;
+    MakePixels()->Save(pixel_state);
+    EXPECT_TRUE(absl::IsDataLoss(load(pixel_state.Bytes(), &fixed.Bytes())));
 }
 
 }  // namespace
