@@ -4,6 +4,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/util/command_line.h"
 
@@ -69,6 +70,36 @@ void AddPhotonMapOptions(CLI::App* command, PhotonMapSettings* m) {
         command->add_option("--photon-index", m->index, "pm: how photons are stored and searched")
             ->default_str("kdtree"),
         {"kdtree", "grid"}, ParsePhotonIndex);
+}
+
+void AddEnvironmentOptions(CLI::App* command, EnvironmentSettings* e) {
+    auto* file = command->add_option(
+        "--environment", e->file,
+        "Light the scene from far away with this latitude-longitude image (.exr, .hdr, ...; "
+        "its centre straight ahead along -z, +y up), in place of the scene's own environment");
+    file->check(CLI::ExistingFile);
+    command
+        ->add_option_function<std::vector<double>>(
+            "--environment-color",
+            [e](const std::vector<double>& rgb) {
+                e->color = Rgb(static_cast<float>(rgb[0]), static_cast<float>(rgb[1]),
+                               static_cast<float>(rgb[2]));
+            },
+            "Light the scene from far away with this uniform radiance R,G,B in W/(m^2 sr)")
+        ->delimiter(',')
+        ->expected(3)
+        ->check(FiniteRange(0.0, kMaxEnvironmentScale))
+        ->excludes(file);
+    command
+        ->add_option("--environment-scale", e->scale,
+                     "Multiplies the environment's radiance (--environment or --environment-color)")
+        ->capture_default_str()
+        ->check(FiniteRange(1e-30, kMaxEnvironmentScale));
+    command
+        ->add_option("--environment-rotate", e->rotate_degrees,
+                     "Turns the environment about the up axis (+y) by this many degrees")
+        ->capture_default_str()
+        ->check(FiniteRange(-360.0, 360.0));
 }
 
 }  // namespace
@@ -162,6 +193,7 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
                      "Image height in pixels (default: width / camera aspect)")
         ->check(WholeNumber(1, 32768));
     AddPhotonMapOptions(command, &s->photon_map);
+    AddEnvironmentOptions(command, &s->environment);
 }
 
 void ApplyDefaultBudget(JobSpec* spec) {

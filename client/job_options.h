@@ -10,7 +10,9 @@ namespace pf {
 
 // Adds --integrator, the budgets (--photons, --epochs, --seconds, --target-error), --spp,
 // --width/--height, --alpha, --radius, --seed, the batch layout and classic photon mapping's
-// settings (--pm-*, --final-gather, --photon-index) to `command`, writing into `spec`.
+// settings (--pm-*, --final-gather, --photon-index) and the environment (--environment*) to
+// `command`, writing into `spec` (spec->environment.file: the image's path on this machine,
+// which BundleEnvironment moves into the scene's bundle).
 void AddJobOptions(CLI::App* command, JobSpec* spec);
 // After parsing: the default budget when none was given.
 void ApplyDefaultBudget(JobSpec* spec);

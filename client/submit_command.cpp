@@ -200,6 +200,11 @@ int RunSubmit(SubmitOptions& options) {
         spdlog::error("{}", std::string(bundle.status().message()));
         return 1;
     }
+    if (absl::Status status = BundleEnvironment(&options.spec.environment, &*bundle);
+        !status.ok()) {
+        spdlog::error("{}", std::string(status.message()));
+        return 1;
+    }
     absl::StatusOr<FarmClient> client = FarmClient::Connect(options.watch_options.server);
     if (!client.ok()) {
         spdlog::error("{}", std::string(client.status().message()));

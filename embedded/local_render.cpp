@@ -17,13 +17,15 @@ namespace pf {
 
 absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings,
                                             const EpochCallback& on_epoch) {
-    const JobSpec& spec = settings.job;
+    JobSpec spec = settings.job;
     if (absl::Status status = CheckJobSpec(spec, SettingNames::kFlags); !status.ok()) return status;
     // The backend's device first: without one, say so before any work.
     const absl::StatusOr<BackendDevice> device = OpenBackendDevice(settings.backend);
     if (!device.ok()) return device.status();
     absl::StatusOr<SceneBundle> bundle = PackSceneBundle(settings.scene_path);
     if (!bundle.ok()) return bundle.status();
+    if (absl::Status status = BundleEnvironment(&spec.environment, &*bundle); !status.ok())
+        return status;
 
     CoordinatorOptions options;
     options.setting_names = SettingNames::kFlags;

@@ -66,7 +66,8 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, const CoordinatorOptions
     if (request.name.empty())
         request.name = std::filesystem::path(request.bundle.main_file).filename().string();
     absl::StatusOr<Scene> scene =
-        LoadScene(request.bundle, request.bundle.main_file, {options.scene_limits, nullptr});
+        LoadScene(request.bundle, request.bundle.main_file,
+                  {options.scene_limits, nullptr, true, request.spec.environment});
     if (!scene.ok()) return scene.status();
     absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, *scene);
     if (!film.ok()) return film.status();

@@ -166,6 +166,15 @@ photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
     out.set_integrator(ToProto(spec.integrator));
     out.set_epoch_budget(spec.epoch_budget);
     out.set_until_cancelled(spec.until_cancelled);
+    if (spec.environment.Given()) {
+        const EnvironmentSettings& environment = spec.environment;
+        photonfarm::v1::EnvironmentSettings* out_environment = out.mutable_environment();
+        out_environment->set_file(environment.file);
+        if (environment.color)
+            for (int c = 0; c < 3; ++c) out_environment->add_color((*environment.color)[c]);
+        out_environment->set_scale(environment.scale);
+        out_environment->set_rotate_degrees(environment.rotate_degrees);
+    }
     if (spec.integrator == Integrator::kPm) {
         const PhotonMapSettings& maps = spec.photon_map;
         photonfarm::v1::PhotonMapSettings* out_maps = out.mutable_photon_map();
@@ -207,6 +216,18 @@ absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings) {
     spec.target_error = settings.target_error();
     spec.epoch_budget = settings.epoch_budget();
     spec.until_cancelled = settings.until_cancelled();
+    if (settings.has_environment()) {
+        const photonfarm::v1::EnvironmentSettings& in = settings.environment();
+        if (in.file().size() > 4096) return too_large("environment.file length", in.file().size());
+        spec.environment.file = in.file();
+        if (in.color_size() != 0 && in.color_size() != 3)
+            return absl::InvalidArgumentError(absl::StrCat(
+                "settings.environment.color holds ", in.color_size(), " values, not 3 (R, G, B)"));
+        if (in.color_size() == 3)
+            spec.environment.color = Rgb(in.color(0), in.color(1), in.color(2));
+        if (in.scale() != 0) spec.environment.scale = in.scale();
+        spec.environment.rotate_degrees = in.rotate_degrees();
+    }
     PhotonMapSettings& maps = spec.photon_map;
     const photonfarm::v1::PhotonMapSettings& in_maps = settings.photon_map();
     absl::StatusOr<Integrator> integrator =

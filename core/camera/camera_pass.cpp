@@ -48,7 +48,12 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
         CameraPath path = stack[--pending];
         for (; path.depth < kMaxCameraDepth; ++path.depth) {
             RayHit hit;
-            if (!tracer.Intersect(path.ray, &hit)) break;
+            if (!tracer.Intersect(path.ray, &hit)) {
+                // Escaped: the environment, seen directly or through specular bounces.
+                if (scene.environment)
+                    emission += path.throughput * scene.environment->Radiance(path.ray.direction);
+                break;
+            }
             path.length += hit.t;
             const SurfacePoint surface = scene.Surface(hit);
             const Material& material = scene.materials[surface.material];

@@ -67,7 +67,35 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
                 std::string(IntegratorName(s.integrator)),
                 " integrator traces none as it goes: give --epochs, --seconds or --target-error",
                 s.integrator == Integrator::kPm ? " (its maps' size is --pm-photons)" : ""));
+    if (absl::Status status = CheckEnvironmentSettings(s.environment, names); !status.ok())
+        return status;
     if (s.integrator == Integrator::kPm) return CheckPhotonMapSettings(s.photon_map, names);
+    return absl::OkStatus();
+}
+
+absl::Status CheckEnvironmentSettings(const EnvironmentSettings& e, SettingNames names) {
+    const bool flags = names == SettingNames::kFlags;
+    auto invalid = [&](const char* flag, const char* field, const std::string& what) {
+        return absl::InvalidArgumentError(absl::StrCat(flags ? flag : field, " ", what));
+    };
+    if (!e.file.empty() && e.color)
+        return invalid("--environment-color", "settings.environment.color",
+                       "excludes --environment (a file): give one");
+    if (e.color && (!IsFinite(*e.color) || MinComponent(*e.color) < 0 ||
+                    MaxComponent(*e.color) > kMaxEnvironmentScale))
+        return invalid("--environment-color", "settings.environment.color",
+                       absl::StrFormat("must be R,G,B each in [0, %g]", kMaxEnvironmentScale));
+    if (!(e.scale > 0 && e.scale <= kMaxEnvironmentScale))
+        return invalid(
+            "--environment-scale", "settings.environment.scale",
+            absl::StrFormat("must lie in (0, %g], not %g", kMaxEnvironmentScale, e.scale));
+    if (!(std::abs(e.rotate_degrees) <= 360))
+        return invalid("--environment-rotate", "settings.environment.rotate_degrees",
+                       "must lie in [-360, 360] degrees");
+    if (!e.Given() && (e.scale != 1 || e.rotate_degrees != 0))
+        return invalid("--environment-scale/--environment-rotate",
+                       "settings.environment.scale/rotate_degrees",
+                       "apply to an environment: give --environment FILE or --environment-color");
     return absl::OkStatus();
 }
 

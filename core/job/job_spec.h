@@ -43,6 +43,9 @@ struct JobSpec {
     // budget must say so here, so that no budget is never a slip.
     bool until_cancelled = false;
     PhotonMapSettings photon_map;  // pm only
+    // An environment light in place of the scene's own; `environment.file` names a file of
+    // the scene's bundle (BundleEnvironment puts it there).
+    EnvironmentSettings environment;
 };
 
 // Hit points cost about this much memory each across the estimate (~140 bytes, 72 more for
@@ -76,6 +79,7 @@ inline constexpr uint32_t kMaxFinalGatherRays = 4096;
 // flag or field and its range.
 absl::Status CheckJobSpec(const JobSpec& spec, SettingNames names = SettingNames::kFlags);
 absl::Status CheckPhotonMapSettings(const PhotonMapSettings& settings, SettingNames names);
+absl::Status CheckEnvironmentSettings(const EnvironmentSettings& settings, SettingNames names);
 // The seed of the photon pass and direct light: `seed` itself for stream 0.
 uint64_t PhotonSeed(const JobSpec& spec);
 // The share of the budget spent, in [0, 1]; 1 ends the render after the current epoch.

@@ -88,7 +88,12 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
     float length = 0;
     for (int depth = 0; depth < kMaxCameraDepth; ++depth) {
         RayHit hit;
-        if (!inputs.tracer->Intersect(ray, &hit)) break;
+        if (!inputs.tracer->Intersect(ray, &hit)) {
+            // The environment, seen directly or through specular and rough bounces.
+            if (scene.environment)
+                radiance += throughput * scene.environment->Radiance(ray.direction);
+            break;
+        }
         length += hit.t;
         const SurfacePoint surface = scene.Surface(hit);
         const Material& material = scene.materials[surface.material];

@@ -12,7 +12,7 @@ namespace pf {
 DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const Vec3& n, Rng& rng) {
     DirectLightRays rays;
     rays.light_active = emitters.SampleDirect(p, n, rng, &rays.light);
-    if (!emitters.HasTriangles()) return rays;
+    if (!emitters.FoundByRays()) return rays;
     const float u1 = rng.NextFloat();
     const float u2 = rng.NextFloat();
     const Vec3 direction = Frame::FromNormal(n).ToWorld(SampleCosineHemisphere(u1, u2));
@@ -31,15 +31,17 @@ Rgb FinishDirectLight(const Emitters& emitters, const Vec3& n, const DirectLight
             rays.light.pdf > 0 ? PowerHeuristic(rays.light.pdf, cosine / kPi) : 1.0f;
         irradiance += rays.light.radiance_over_pdf * (cosine * weight);
     }
-    if (bsdf_hit != nullptr && bsdf_hit->instance == Instance::kNone) {
-        const Ray& ray = rays.bsdf_ray;
-        const Emitters::Hit hit = emitters.HitEmitter(bsdf_hit->triangle, ray.origin,
-                                                      ray.origin + ray.direction * bsdf_hit->t);
-        // L cos / (cos / pi): the cosine ray's own weight is pi.
-        if (hit.pdf > 0)
-            irradiance +=
-                hit.radiance * (kPi * PowerHeuristic(Dot(ray.direction, n) / kPi, hit.pdf));
-    }
+    if (!rays.bsdf_active) return irradiance;
+    const Ray& ray = rays.bsdf_ray;
+    Emitters::Hit hit;
+    if (bsdf_hit == nullptr)
+        hit = emitters.Escaped(ray.direction);
+    else if (bsdf_hit->instance == Instance::kNone)
+        hit = emitters.HitEmitter(bsdf_hit->triangle, ray.origin,
+                                  ray.origin + ray.direction * bsdf_hit->t);
+    // L cos / (cos / pi): the cosine ray's own weight is pi.
+    if (hit.pdf > 0)
+        irradiance += hit.radiance * (kPi * PowerHeuristic(Dot(ray.direction, n) / kPi, hit.pdf));
     return irradiance;
 }
 
@@ -82,7 +84,7 @@ uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
             bsdf_rays[lane] = samples[lane].bsdf_ray;
         }
         tracer.OccludedPacket(shadow_rays, shadow_active, occluded);
-        if (emitters.HasTriangles()) tracer.IntersectPacket(bsdf_rays, bsdf_active, hits, found);
+        if (emitters.FoundByRays()) tracer.IntersectPacket(bsdf_rays, bsdf_active, hits, found);
         for (int lane = 0; lane < lanes; ++lane) {
             const HitPoint& hit_point = hit_points[first + begin + lane];
             const Rgb sample =

@@ -1,9 +1,9 @@
 // Direct lighting at diffuse points: one light sample with a shadow ray and, where the scene
-// has emitting triangles, one cosine-distributed ray that may hit one, weighed against each
-// other by the power heuristic (Veach 1997, ch. 9). Light sampling alone leaves fireflies
-// wherever a point sits close to an emitting surface (its 1/d^2); the cosine ray finds that
-// light with a bounded weight. Taken once per hit point per epoch and averaged, so direct
-// light converges like the photons do while the photons carry only indirect light.
+// has emitting triangles or an environment, one cosine-distributed ray that may find one,
+// weighed against each other by the power heuristic (Veach 1997, ch. 9). Light sampling alone
+// leaves fireflies wherever a point sits close to an emitting surface (its 1/d^2); the cosine ray
+// finds that light with a bounded weight. Taken once per hit point per epoch and averaged, so
+// direct light converges like the photons do while the photons carry only indirect light.
 #pragma once
 
 #include <cstdint>
@@ -17,8 +17,9 @@
 namespace pf {
 
 // The rays of one direct-light sample at point p with unit normal n (toward the side lit),
-// drawn from rng: 3 numbers for the light sample, then 2 for the cosine ray where the
-// emitters include triangles. The Vulkan kernel draws the same numbers in the same order.
+// drawn from rng: 3 numbers for the light sample, then 2 for the
+// cosine ray where a ray can find an emitter (a triangle, the environment). The Vulkan kernel
+// draws the same numbers in the same order.
 struct DirectLightRays {
     LightSample light;
     bool light_active = false;

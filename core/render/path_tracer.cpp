@@ -28,7 +28,15 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
     bool diffuse_seen = false;
     for (int depth = 0; depth < kMaxPathDepth; ++depth) {
         RayHit hit;
-        if (!inputs.tracer->Intersect(ray, &hit)) break;
+        if (!inputs.tracer->Intersect(ray, &hit)) {
+            // Escaped to the environment: after a diffuse or rough bounce weighed against
+            // light sampling, which finds it too.
+            const Emitters::Hit escaped = inputs.emitters->Escaped(ray.direction);
+            if (!IsBlack(escaped.radiance))
+                radiance += throughput * escaped.radiance *
+                            (specular_bounce ? 1.0f : PowerHeuristic(bsdf_pdf, escaped.pdf));
+            break;
+        }
         if (!diffuse_seen) length += hit.t;
         const SurfacePoint surface = scene.Surface(hit);
         const Material& material = scene.materials[surface.material];

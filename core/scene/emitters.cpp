@@ -17,15 +17,15 @@ std::vector<Emitters::Record> Emitters::Records() const {
     std::vector<Record> records;
     for (uint32_t i = 0; i < emitters_.size(); ++i) {
         Record record;
-        record.is_triangle = emitters_[i].is_triangle;
+        record.kind = emitters_[i].kind;
         record.power = emitters_[i].power;
         record.probability = distribution_.Probability(i);
-        if (record.is_triangle) {
+        if (record.kind == EmitterKind::kTriangle) {
             const EmissiveTriangle& triangle = triangles_[emitters_[i].index];
             record.p0 = triangle.p0, record.edge1 = triangle.edge1, record.edge2 = triangle.edge2;
             record.normal = triangle.frame.n, record.radiance = triangle.radiance,
             record.area = triangle.area;
-        } else {
+        } else if (record.kind == EmitterKind::kPunctual) {
             record.light = emitters_[i].index;
         }
         records.push_back(record);
@@ -38,9 +38,9 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
     scene_radius_ = std::max(0.5f * scene.bounds.Diagonal(), 1e-30f);
     std::vector<double> weights;
     emitter_of_triangle_.assign(scene.WorldTriangleCount(), -1);
-    auto add = [&](bool is_triangle, uint32_t index, const Rgbd& power) {
+    auto add = [&](EmitterKind kind, uint32_t index, const Rgbd& power) {
         if (!(Average(power) > 0) || !IsFinite(power)) return false;
-        emitters_.push_back({is_triangle, index, Rgb(power)});
+        emitters_.push_back({kind, index, Rgb(power)});
         weights.push_back(Average(power));
         power_rgb_ += power;
         return true;
@@ -55,7 +55,8 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
         const auto index = static_cast<uint32_t>(triangles_.size());
         triangles_.push_back({p0, edge1, edge2, Frame::FromNormal(triangle.normal),
                               material.emission, scene.TriangleArea(t)});
-        if (add(true, index, Rgbd(material.emission) * (kPiD * triangles_.back().area)))
+        if (add(EmitterKind::kTriangle, index,
+                Rgbd(material.emission) * (kPiD * triangles_.back().area)))
             emitter_of_triangle_[t] = static_cast<int32_t>(emitters_.size() - 1);
     }
     for (uint32_t l = 0; l < scene.lights.size(); ++l) {
@@ -63,14 +64,23 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
         const Rgbd intensity(light.intensity);
         switch (light.type) {
             case LightType::kPoint:
-                add(false, l, intensity * (4.0 * kPiD));
+                add(EmitterKind::kPunctual, l, intensity * (4.0 * kPiD));
                 break;
             case LightType::kSpot:
-                add(false, l, intensity * double(SpotSolidAngle(light)));
+                add(EmitterKind::kPunctual, l, intensity * double(SpotSolidAngle(light)));
                 break;
             case LightType::kDirectional:
-                add(false, l, intensity * (kPiD * scene_radius_ * scene_radius_));
+                add(EmitterKind::kPunctual, l, intensity * (kPiD * scene_radius_ * scene_radius_));
                 break;
+        }
+    }
+    if (scene.environment) {
+        // Power through a disk as wide as the scene, facing each direction: pi R^2 x the
+        // radiance's integral over the sphere.
+        const double disk = kPiD * double(scene_radius_) * double(scene_radius_);
+        if (add(EmitterKind::kEnvironment, 0, scene.environment->RadianceIntegral() * disk)) {
+            environment_emitter_ = static_cast<int32_t>(emitters_.size() - 1);
+            environment_sampler_ = EnvironmentSampler(*scene.environment);
         }
     }
     if (weights.empty()) return;
@@ -83,8 +93,18 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
 EmittedPhoton Emitters::Emit(Rng& rng) const {
     const auto pick = distribution_.Draw(rng.NextFloat());
     const Emitter& emitter = emitters_[pick.index];
-    EmittedPhoton photon = emitter.is_triangle ? EmitFromTriangle(triangles_[emitter.index], rng)
-                                               : EmitFromLight(scene_.lights[emitter.index], rng);
+    EmittedPhoton photon;
+    switch (emitter.kind) {
+        case EmitterKind::kTriangle:
+            photon = EmitFromTriangle(triangles_[emitter.index], rng);
+            break;
+        case EmitterKind::kPunctual:
+            photon = EmitFromLight(scene_.lights[emitter.index], rng);
+            break;
+        case EmitterKind::kEnvironment:
+            photon = EmitFromEnvironment(rng);
+            break;
+    }
     photon.flux *= inverse_probability_[pick.index];
     return photon;
 }
@@ -127,6 +147,20 @@ EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, Rng& rng) cons
     return {};
 }
 
+EmittedPhoton Emitters::EmitFromEnvironment(Rng& rng) const {
+    // A direction drawn from the map, then a point on the disk of the scene's bounding sphere
+    // facing it, just outside: flux L / pdf x pi R^2 (pbrt-v4's ImageInfiniteLight::SampleLe).
+    const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
+    const EnvironmentSampler::Sample sample = environment_sampler_.Draw(u1, u2);
+    if (!(sample.pdf > 0)) return {{scene_center_, -sample.toward}, Rgb(0.0f)};
+    const Frame frame = Frame::FromNormal(sample.toward);
+    const Point2 d = SampleUniformDisk(rng.NextFloat(), rng.NextFloat());
+    const Vec3 origin = scene_center_ + sample.toward * (1.01f * scene_radius_) +
+                        (frame.s * d.x + frame.t * d.y) * scene_radius_;
+    return {{origin, -sample.toward},
+            sample.radiance * (kPi * scene_radius_ * scene_radius_ / sample.pdf)};
+}
+
 bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample* sample) const {
     const auto pick = distribution_.Draw(rng.NextFloat());
     const Emitter& emitter = emitters_[pick.index];
@@ -135,7 +169,13 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
     Vec3 to_light;
     float distance = std::numeric_limits<float>::infinity();
     Rgb radiance_over_pdf;
-    if (emitter.is_triangle) {
+    if (emitter.kind == EmitterKind::kEnvironment) {
+        const EnvironmentSampler::Sample drawn = environment_sampler_.Draw(u1, u2);
+        if (!(drawn.pdf > 0)) return false;
+        to_light = drawn.toward;
+        radiance_over_pdf = drawn.radiance / drawn.pdf;
+        sample->pdf = static_cast<float>(distribution_.Probability(pick.index)) * drawn.pdf;
+    } else if (emitter.kind == EmitterKind::kTriangle) {
         const EmissiveTriangle& triangle = triangles_[emitter.index];
         const Vec3 point = triangle.Point(u1, u2);
         to_light = point - origin;
@@ -168,10 +208,19 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
     }
     if (!(Dot(to_light, n) > 0) || IsBlack(radiance_over_pdf)) return false;
     sample->direction = to_light;
-    // Stop short of the light itself by a relative margin, which scales with the scene.
+    // Stop short of the light itself by a relative margin, which scales with the scene (an
+    // environment or a distant light is never reached: the ray runs on to infinity).
     sample->shadow_ray = {origin, to_light, distance * (1.0f - 1e-4f)};
     sample->radiance_over_pdf = radiance_over_pdf * inverse_probability_[pick.index];
     return true;
+}
+
+Emitters::Hit Emitters::Escaped(const Vec3& toward) const {
+    if (environment_emitter_ < 0) return {};
+    const float pdf =
+        static_cast<float>(distribution_.Probability(uint32_t(environment_emitter_))) *
+        environment_sampler_.Pdf(toward);
+    return {scene_.environment->Radiance(toward), pdf};
 }
 
 float Emitters::PdfDirect(uint32_t triangle, const Vec3& p, const Vec3& on_light) const {

@@ -1,5 +1,6 @@
-// Every source of light in a scene (punctual lights and emissive triangles) behind one
-// interface: emitting photons in proportion to power, and sampling direct light at a point.
+// Every source of light in a scene (emissive triangles, punctual lights and the environment)
+// behind one interface: emitting photons in proportion to power, and sampling direct light at
+// a point.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +11,7 @@
 #include "core/sampling/distribution.h"
 #include "core/sampling/frame.h"
 #include "core/sampling/rng.h"
+#include "core/scene/environment.h"
 #include "core/scene/scene.h"
 
 namespace pf {
@@ -33,6 +35,8 @@ struct LightSample {
     // sampling can find).
     float pdf = 0;
 };
+
+enum class EmitterKind : uint32_t { kTriangle, kPunctual, kEnvironment };
 
 class Emitters {
 public:
@@ -60,9 +64,16 @@ public:
         float pdf = 0;
     };
     Hit HitEmitter(uint32_t triangle, const Vec3& p, const Vec3& on_light) const;
+    // What a ray from anywhere that escapes the scene toward unit direction `toward` finds:
+    // the environment's radiance, and the density in solid angle with which SampleDirect
+    // picks that direction. Both 0 without an environment.
+    Hit Escaped(const Vec3& toward) const;
     // Whether any emitter is a triangle, which a ray can hit (punctual lights only light
     // sampling finds).
     bool HasTriangles() const { return !triangles_.empty(); }
+    bool HasEnvironment() const { return environment_emitter_ >= 0; }
+    // Whether a ray can find light: a triangle it hits or an environment it escapes to.
+    bool FoundByRays() const { return HasTriangles() || HasEnvironment(); }
     // The index into Records() of world triangle `triangle`'s emitter, or -1.
     int32_t EmitterOfTriangle(uint32_t triangle) const {
         return triangle < emitter_of_triangle_.size() ? emitter_of_triangle_[triangle] : -1;
@@ -71,7 +82,7 @@ public:
     // Each emitter as another backend needs it to emit and sample the same light (the Vulkan
     // backend uploads these), in selection order.
     struct Record {
-        bool is_triangle = false;
+        EmitterKind kind = EmitterKind::kTriangle;
         uint32_t light = 0;             // punctual: index into Scene::lights
         Vec3 p0, edge1, edge2, normal;  // triangle: corners and unit emitting normal
         Rgb radiance;                   // triangle: Le
@@ -82,6 +93,8 @@ public:
         double probability = 0;  // of being picked by Emit and SampleDirect
     };
     std::vector<Record> Records() const;
+    // The environment's direction sampling (its tables for upload); HasEnvironment() only.
+    const EnvironmentSampler& EnvironmentSampling() const { return environment_sampler_; }
     // The bounding sphere directional lights emit across.
     Vec3 SceneCenter() const { return scene_center_; }
     // The scene's largest coordinate magnitude, which ray origins are offset by (OffsetRayOrigin).
@@ -90,8 +103,8 @@ public:
 
 private:
     struct Emitter {
-        bool is_triangle;
-        uint32_t index;  // into triangles_ or Scene::lights
+        EmitterKind kind;
+        uint32_t index;  // into triangles_ or Scene::lights (0 for the environment)
         Rgb power;       // W per channel
     };
     // An emissive triangle, with what sampling it needs precomputed.
@@ -104,6 +117,7 @@ private:
     };
     EmittedPhoton EmitFromTriangle(const EmissiveTriangle& triangle, Rng& rng) const;
     EmittedPhoton EmitFromLight(const PunctualLight& light, Rng& rng) const;
+    EmittedPhoton EmitFromEnvironment(Rng& rng) const;
 
     const Scene& scene_;
     std::vector<Emitter> emitters_;
@@ -112,6 +126,8 @@ private:
     std::vector<float> inverse_probability_;  // 1 / selection probability, per emitter
     // Per world triangle, its index into emitters_, or -1 where it emits nothing.
     std::vector<int32_t> emitter_of_triangle_;
+    EnvironmentSampler environment_sampler_;
+    int32_t environment_emitter_ = -1;  // its index into emitters_
     Rgbd power_rgb_;
     double total_power_ = 0;
     Vec3 scene_center_;

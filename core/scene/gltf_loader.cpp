@@ -256,12 +256,6 @@ absl::StatusOr<Scene> GltfSceneBuilder::Build() {
     FinishInstancing(&scene_);
     if (!has_camera_) return Error("scene", "has no camera (add a perspective camera node)");
     if (scene_.triangles.empty()) return Error("scene", "has no triangles");
-    bool has_light = !scene_.lights.empty();
-    for (const Triangle& t : scene_.triangles)
-        has_light |= scene_.materials[t.material].IsEmissive();
-    if (!has_light)
-        return Error("scene",
-                     "has no light (no KHR_lights_punctual light and no emissive material)");
     return std::move(scene_);
 }
 

@@ -160,6 +160,14 @@ void WritePayload(const Scene& scene, ByteWriter& out) {
     out.Value(scene.camera);
     out.Value(scene.bounds);
     out.Value(scene.hints);
+    out.Value<uint8_t>(scene.environment ? 1 : 0);
+    if (scene.environment) {
+        const Environment& environment = *scene.environment;
+        out.Value(environment.mapping), out.Value(environment.scale);
+        out.Value(environment.to_map);
+        out.String(environment.name);
+        WriteTexture(environment.image, out);
+    }
 }
 
 // Reads every field; checks counts and bounds of what it reads, not the references between
@@ -219,6 +227,15 @@ absl::Status ReadPayload(ByteReader& in, Scene* scene) {
     }
     if (!in.Value(&scene->camera) || !in.Value(&scene->bounds) || !in.Value(&scene->hints))
         return fail("camera");
+    uint8_t has_environment = 0;
+    if (!in.Value(&has_environment) || has_environment > 1) return fail("environment");
+    if (has_environment == 1) {
+        Environment& environment = scene->environment.emplace();
+        if (!in.Value(&environment.mapping) || !in.Value(&environment.scale) ||
+            !in.Value(&environment.to_map) || !in.String(&environment.name, 4096) ||
+            !ReadTexture(in, &environment.image))
+            return fail("environment");
+    }
     if (!in.AtEnd()) return Invalid("bytes after the end");
     return absl::OkStatus();
 }
@@ -313,6 +330,33 @@ absl::Status CheckLightsAndCamera(const Scene& scene) {
     if (scene.hints.width < 0 || scene.hints.height < 0 ||
         !std::isfinite(scene.hints.initial_radius) || scene.hints.initial_radius < 0)
         return Invalid("render hints out of range");
+    if (scene.environment) {
+        const Environment& environment = *scene.environment;
+        const Texture& image = environment.image;
+        const bool uniform = environment.mapping == EnvironmentMapping::kUniform;
+        if (static_cast<uint32_t>(environment.mapping) >
+                static_cast<uint32_t>(EnvironmentMapping::kLatLong) ||
+            !Finite(environment.scale) || MinComponent(environment.scale) < 0 ||
+            !Finite(environment.to_map))
+            return Invalid("environment: a value out of range");
+        if (uniform != image.texels.empty() || image.width < 0 || image.height < 0 ||
+            uint64_t(image.width) * uint64_t(image.height) != image.texels.size() ||
+            (environment.mapping == EnvironmentMapping::kEqualArea && image.width != image.height))
+            return Invalid(absl::StrCat("environment: a ", image.width, "x", image.height,
+                                        " map with ", image.texels.size(), " texels"));
+        for (const Rgb& texel : image.texels)
+            if (!Finite(texel) || MinComponent(texel) < 0)
+                return Invalid("environment: a texel not finite or negative");
+        // The map's frame must be a rotation: its rows unit length and orthogonal.
+        const auto& m = environment.to_map;
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) {
+                const float dot =
+                    m[3 * a] * m[3 * b] + m[3 * a + 1] * m[3 * b + 1] + m[3 * a + 2] * m[3 * b + 2];
+                if (!(std::abs(dot - (a == b ? 1.0f : 0.0f)) < 1e-4f))
+                    return Invalid("environment: its frame is not a rotation");
+            }
+    }
     return absl::OkStatus();
 }
 

@@ -18,7 +18,8 @@
 
 namespace pf {
 
-inline constexpr uint32_t kPreparedSceneVersion = 1;
+// 2: the environment light.
+inline constexpr uint32_t kPreparedSceneVersion = 2;
 
 // Normals go only where a triangle is smooth, texture coordinates only where a material has a
 // texture, textures only where a material reads them (others stay as empty placeholders, so

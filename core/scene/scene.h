@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "core/math/vec3.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/camera.h"
+#include "core/scene/environment.h"
 #include "core/scene/material.h"
 #include "core/scene/texture.h"
 
@@ -124,6 +126,7 @@ struct Scene {
     std::shared_ptr<const TextureFilter>
         texture_filter;  // set by the loaders where there are textures
     std::vector<PunctualLight> lights;
+    std::optional<Environment> environment;  // light from infinitely far away, if any
     Camera camera;
     Bounds bounds;  // of everything, instances included
     SceneRenderHints hints;

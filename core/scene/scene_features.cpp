@@ -9,10 +9,10 @@ namespace pf {
 
 SceneFeatures SceneFeatures::All() {
     SceneFeatures all;
-    for (bool* flag :
-         {&all.mirror, &all.dielectric, &all.thin_dielectric, &all.rough_conductor,
-          &all.rough_dielectric, &all.textures, &all.smooth_normals, &all.triangle_lights,
-          &all.point_lights, &all.spot_lights, &all.directional_lights, &all.caustics})
+    for (bool* flag : {&all.mirror, &all.dielectric, &all.thin_dielectric, &all.rough_conductor,
+                       &all.rough_dielectric, &all.textures, &all.smooth_normals,
+                       &all.triangle_lights, &all.point_lights, &all.spot_lights,
+                       &all.directional_lights, &all.environment, &all.caustics})
         *flag = true;
     return all;
 }
@@ -30,6 +30,7 @@ std::string SceneFeatures::ToString() const {
     if (point_lights) parts.push_back("point lights");
     if (spot_lights) parts.push_back("spot lights");
     if (directional_lights) parts.push_back("directional lights");
+    if (environment) parts.push_back("environment light");
     if (caustics) parts.push_back("caustics");
     return absl::StrJoin(parts, ", ");
 }
@@ -52,8 +53,12 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
         features.textures |= material.base_color_texture != kNoTexture;
     }
     for (const Emitters::Record& record : emitters.Records()) {
-        if (record.is_triangle) {
+        if (record.kind == EmitterKind::kTriangle) {
             features.triangle_lights = true;
+            continue;
+        }
+        if (record.kind == EmitterKind::kEnvironment) {
+            features.environment = true;
             continue;
         }
         switch (scene.lights[record.light].type) {

@@ -18,7 +18,7 @@ struct SceneFeatures {
     bool smooth_normals = false;  // a triangle interpolates vertex normals
     // Emitters with power.
     bool triangle_lights = false, point_lights = false, spot_lights = false,
-         directional_lights = false;
+         directional_lights = false, environment = false;
     // Light reaches diffuse surfaces through specular chains (caustic paths). Not known from
     // the scene's contents alone: the coordinator probes light paths (core/ppm/caustic_probe.h)
     // for scenes with specular materials; false otherwise.

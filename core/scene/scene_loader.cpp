@@ -4,12 +4,14 @@
 #include <spdlog/spdlog.h>
 #include <tiny_gltf.h>
 
+#include <cmath>
 #include <filesystem>
 #include <set>
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "core/scene/gltf_loader.h"
+#include "core/scene/image_decode.h"
 #include "core/scene/pbrt/pbrt_loader.h"
 #include "core/scene/scene_files.h"
 #include "core/scene/texture_filter.h"
@@ -158,9 +160,82 @@ absl::StatusOr<Scene> LoadScene(const SceneBundle& bundle, const std::string& na
         case SceneFormat::kUnknown:
             break;
     }
-    if (scene.ok() && options.texture_filter && !scene->textures.empty())
+    if (!scene.ok()) return scene;
+    if (options.environment.Given()) {
+        absl::StatusOr<Environment> environment =
+            MakeEnvironment(options.environment, bundle, options.limits);
+        if (!environment.ok()) return environment.status();
+        scene->environment = std::move(*environment);
+    }
+    bool has_light = !scene->lights.empty() || scene->environment.has_value();
+    for (const Triangle& t : scene->triangles)
+        has_light |= scene->materials[t.material].IsEmissive();
+    if (!has_light)
+        return absl::InvalidArgumentError(absl::StrCat(
+            name,
+            ": scene has no light (no light source, emissive surface or environment); light it "
+            "with --environment FILE or --environment-color R,G,B"));
+    if (options.texture_filter && !scene->textures.empty())
         scene->texture_filter = MakeTextureFilter(scene->textures);
     return scene;
+}
+
+absl::StatusOr<Environment> MakeEnvironment(const EnvironmentSettings& settings,
+                                            const SceneBundle& bundle, const SceneLimits& limits) {
+    if (!(settings.scale > 0 && settings.scale <= kMaxEnvironmentScale) ||
+        !std::isfinite(settings.rotate_degrees))
+        return absl::InvalidArgumentError(absl::StrCat("--environment-scale must lie in (0, ",
+                                                       kMaxEnvironmentScale,
+                                                       "] and --environment-rotate be finite"));
+    Environment environment;
+    environment.to_map = RotationAboutUp(settings.rotate_degrees);
+    environment.scale = Rgb(static_cast<float>(settings.scale));
+    if (settings.color) {
+        if (!settings.file.empty())
+            return absl::InvalidArgumentError(
+                "--environment and --environment-color exclude each other");
+        if (!IsFinite(*settings.color) || MinComponent(*settings.color) < 0)
+            return absl::InvalidArgumentError(
+                "--environment-color: each of R,G,B must be finite and non-negative");
+        environment.scale = environment.scale * *settings.color;
+        environment.name = "--environment-color";
+        return environment;
+    }
+    const auto file = bundle.files.find(settings.file);
+    if (file == bundle.files.end())
+        return absl::NotFoundError(
+            absl::StrCat("--environment ", settings.file, ": not in the scene's bundle"));
+    absl::StatusOr<Texture> image = DecodeImage(file->second, settings.file, limits);
+    if (!image.ok()) return image.status();
+    for (const Rgb& texel : image->texels)
+        if (!IsFinite(texel) || MinComponent(texel) < 0)
+            return absl::InvalidArgumentError(
+                absl::StrCat("--environment ", settings.file,
+                             ": the image holds negative, infinite or NaN values; a light cannot"));
+    environment.mapping = EnvironmentMapping::kLatLong;
+    environment.image = std::move(*image);
+    environment.name = settings.file;
+    return environment;
+}
+
+absl::Status BundleEnvironment(EnvironmentSettings* environment, SceneBundle* bundle) {
+    if (environment->file.empty()) return absl::OkStatus();
+    const std::string& path = environment->file;
+    const std::string name =
+        absl::StrCat("photonfarm-environment", std::filesystem::path(path).extension().string());
+    if (absl::Status status = CheckBundlePath(name); !status.ok())
+        return absl::InvalidArgumentError(absl::StrCat(
+            "--environment ", path, ": an unusable file name (", status.message(), ")"));
+    if (bundle->files.contains(name))
+        return absl::InvalidArgumentError(absl::StrCat(
+            "--environment ", path, ": the scene's folder already holds a file named ", name));
+    absl::StatusOr<std::string> contents = ReadWholeFile(path);
+    if (!contents.ok())
+        return absl::Status(contents.status().code(),
+                            absl::StrCat("--environment ", contents.status().message()));
+    bundle->files[name] = std::move(*contents);
+    environment->file = name;
+    return CheckSceneBundle(*bundle);
 }
 
 absl::StatusOr<Scene> LoadScene(const std::string& path, const SceneLoadOptions& options) {

@@ -19,9 +19,12 @@ struct SceneLoadOptions {
     // Give a scene with textures its TextureFilter (what the camera pass reads); workers, which
     // trace photons only, leave it out.
     bool texture_filter = true;
+    // An environment in place of the scene's own; its file is read from the bundle.
+    EnvironmentSettings environment;
 };
 
 // Loads the bundle's main file. `name` names the scene in errors (the path the user gave).
+// A scene with no light at all (after options.environment) is refused, naming the way out.
 absl::StatusOr<Scene> LoadScene(const SceneBundle& bundle, const std::string& name,
                                 const SceneLoadOptions& options = {});
 // Packs the scene at `path` into a bundle and loads that.
@@ -32,6 +35,15 @@ absl::StatusOr<Scene> LoadScene(const std::string& path, const SceneLoadOptions&
 // folder. A reference that leaves the folder (absolute, '..' past the root, a URL) is
 // refused naming the file and the reference.
 absl::StatusOr<SceneBundle> PackSceneBundle(const std::string& scene_path);
+
+// The environment `settings` ask for, its image decoded from `bundle`: a latitude-longitude
+// map (any format DecodeImage reads), or a colour. Errors name the file or the setting.
+absl::StatusOr<Environment> MakeEnvironment(const EnvironmentSettings& settings,
+                                            const SceneBundle& bundle, const SceneLimits& limits);
+
+// Adds the image at path `environment->file` (on this machine) to `bundle`, under a name of
+// its own at the bundle's root, and points `environment->file` at it; nothing without a file.
+absl::Status BundleEnvironment(EnvironmentSettings* environment, SceneBundle* bundle);
 
 // Whether `path` names a format photonfarm reads (by extension): .gltf, .glb, .pbrt.
 bool IsSceneFile(const std::string& path);

@@ -129,6 +129,20 @@ for command in render submit; do
     done
     expect_failure "$command --until-cancelled with a budget" "excludes --until-cancelled" \
         "$command" "$scene" "${target[@]}" --until-cancelled --photons 1M
+    # The environment's flags: three finite non-negative values, a scale and a turn in range,
+    # a file that exists, and not both a file and a colour.
+    for case in "--environment-color 1,2|At least 3 required" "--environment-color 1,1,1,1|At Most 3" \
+        "--environment-color 1,-1,1|--environment-color: must lie in \[0, 1e+12\], not '-1'" \
+        "--environment-color nan,1,1|--environment-color: must be a finite number" \
+        "--environment-scale 0|--environment-scale: must lie in" \
+        "--environment-rotate 400|--environment-rotate: must lie in \[-360, 360\]" \
+        "--environment $work/none.exr|--environment: File does not exist" \
+        "--environment-scale 2|--environment-scale/--environment-rotate apply to an environment" \
+        "--environment-color 1,1,1 --environment $source_dir/Makefile|--environment excludes --environment-color"; do
+        IFS='|' read -r flags pattern <<<"$case"
+        # shellcheck disable=SC2086
+        expect_failure "$command $flags" "$pattern" "$command" "$scene" "${target[@]}" $flags
+    done
 done
 for value in 99999999999 -1000001 1.5; do
     expect_failure "submit --priority $value" "--priority: must be a whole number in \[-1000000, 1000000\]" \
@@ -179,6 +193,18 @@ if "$photonfarm" render "$source_dir/scenes/furnace.gltf" --out "$work/snap.exr"
     echo "ok   snapshots are written while rendering"
 else
     echo "FAIL snapshots"; cat "$work/err"; failures=$((failures + 1))
+fi
+
+# A scene with no light says so and names the way out; --environment-color lights it.
+printf 'LookAt 0 0 5  0 0 0  0 1 0\nCamera "perspective" "float fov" 40\nWorldBegin\nShape "sphere"\n' \
+    >"$work/dark.pbrt"
+expect_failure "a scene with no light" "dark.pbrt: scene has no light .* --environment FILE or --environment-color" \
+    render "$work/dark.pbrt" --out "$work/a.exr" --photons 1000
+if "$photonfarm" render "$work/dark.pbrt" --out "$work/sky.exr" --environment-color 0.5,0.6,0.7 \
+        --integrator path --epochs 1 --width 16 --threads 1 >/dev/null 2>"$work/err" && [ -s "$work/sky.exr" ]; then
+    echo "ok   --environment-color lights a scene that has no light"
+else
+    echo "FAIL --environment-color render"; cat "$work/err"; failures=$((failures + 1))
 fi
 
 # Ctrl-C stops after the current epoch and still writes the image: nothing computed is lost.

@@ -40,6 +40,39 @@ TEST(ProtoConvertTest, RoundTripIsBitExact) {
     EXPECT_EQ(decoded->segments_traced, original.segments_traced);
 }
 
+TEST(ProtoConvertTest, JobSettingsWithAnEnvironmentRoundTrip) {
+    JobSpec spec;
+    spec.epoch_budget = 3;
+    spec.environment.file = "photonfarm-environment.exr";
+    spec.environment.scale = 2.5;
+    spec.environment.rotate_degrees = -45;
+    absl::StatusOr<JobSpec> decoded = FromProto(ToProto(spec));
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    EXPECT_EQ(decoded->environment, spec.environment);
+    spec.environment = {};
+    spec.environment.color = Rgb(0.1f, 0.2f, 0.3f);
+    decoded = FromProto(ToProto(spec));
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    EXPECT_EQ(decoded->environment, spec.environment);
+    JobSpec plain;
+    plain.epoch_budget = 3;
+    EXPECT_FALSE(FromProto(ToProto(plain))->environment.Given());
+    // Hostile values are refused naming the field.
+    const auto refused = [&](auto mutate, const std::string& field) {
+        photonfarm::v1::JobSettings message = ToProto(spec);
+        mutate(*message.mutable_environment());
+        const absl::StatusOr<JobSpec> result = FromProto(message);
+        ASSERT_FALSE(result.ok()) << field;
+        EXPECT_NE(result.status().message().find(field), std::string::npos) << result.status();
+    };
+    refused([](auto& e) { e.add_color(1.0f); }, "settings.environment.color");
+    refused([](auto& e) { e.set_color(1, -1.0f); }, "settings.environment.color");
+    refused([](auto& e) { e.set_color(0, std::nanf("")); }, "settings.environment.color");
+    refused([](auto& e) { e.set_scale(-1); }, "settings.environment.scale");
+    refused([](auto& e) { e.set_rotate_degrees(1e300); }, "settings.environment.rotate_degrees");
+    refused([](auto& e) { e.set_file("sky.exr"); }, "settings.environment.color");
+}
+
 TEST(ProtoConvertTest, HostileResultsAreRefused) {
     const auto refused = [](auto mutate) {
         photonfarm::v1::BatchResult message = ToProto(Sample());

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "core/scene/image_decode.h"
 #include "core/scene/pbrt/pbrt_scene_builder.h"
 #include "core/scene/pbrt/pbrt_shapes.h"
 #include "core/scene/ply_reader.h"
@@ -291,7 +292,9 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
         light.intensity = parameters.Color("L").value_or(Rgb(1.0f)) * scale;
         const double illuminance = parameters.Float("illuminance", 0.0);
         if (illuminance > 0) light.intensity *= static_cast<float>(illuminance);
-    } else if (type == "infinite" || type == "goniometric" || type == "projection") {
+    } else if (type == "infinite") {
+        return InfiniteLight(parameters, where);
+    } else if (type == "goniometric" || type == "projection") {
         parameters.ConsumeAll();
         Warn(where,
              absl::StrCat("LightSource \"", type, "\" is not supported; the light is left out"));
@@ -307,6 +310,128 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
                                            "non-negative, from and to distinct"));
     light.name = where.ToString();
     if (!options_.references_only) scene_.lights.push_back(light);
+    return absl::OkStatus();
+}
+
+// pbrt-v4's "infinite" light (lights.cpp, Light::Create): a uniform L (the colour space's
+// illuminant, white, by default) or an equal-area octahedral image, times "scale"; with
+// "illuminance" E_v, scaled as pbrt-v4 scales it: a uniform L by E_v / pi, a map by E_v over
+// its upper hemisphere's illuminance as pbrt-v4 sums it (below).
+absl::Status PbrtSceneBuilder::InfiniteLight(ParameterList& parameters, const Location& where) {
+    const double scale = parameters.Float("scale", 1.0);
+    const double illuminance = parameters.Float("illuminance", -1.0);
+    const std::optional<Rgb> radiance = parameters.Color("L");
+    const std::string filename = parameters.String("filename", "");
+    const std::vector<Vec3d> portal = parameters.Point3s("portal");
+    if (!parameters.status().ok()) return parameters.status();
+    if (parameters.Has("power"))
+        return ErrorAt(where,
+                       "LightSource \"infinite\": pbrt-v4 takes no \"power\" for an infinite "
+                       "light; give \"scale\" or \"illuminance\"");
+    if (radiance && !filename.empty())
+        return ErrorAt(where,
+                       "LightSource \"infinite\": give either \"L\" or \"filename\", not both");
+    if (!std::isfinite(scale) || scale < 0 || !std::isfinite(illuminance) ||
+        (radiance && (!IsFinite(*radiance) || MinComponent(*radiance) < 0)))
+        return ErrorAt(where,
+                       "LightSource \"infinite\": L, scale and illuminance must be finite and "
+                       "non-negative");
+    Environment environment;
+    environment.name = where.ToString();
+    // World directions into the light's frame: the inverse of the current transform's linear
+    // part, which must be a rotation (a reflection allowed) up to a uniform scale.
+    std::optional<Transform> inverse = state_.ctm.Inverse();
+    double norms[3] = {0, 0, 0};
+    if (inverse)
+        for (int row = 0; row < 3; ++row)
+            norms[row] = std::sqrt(inverse->m[row][0] * inverse->m[row][0] +
+                                   inverse->m[row][1] * inverse->m[row][1] +
+                                   inverse->m[row][2] * inverse->m[row][2]);
+    bool orthogonal = inverse.has_value() && norms[0] > 0;
+    for (int a = 0; orthogonal && a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+            double dot = 0;
+            for (int k = 0; k < 3; ++k) dot += inverse->m[a][k] * inverse->m[b][k];
+            const double expected = a == b ? norms[0] * norms[0] : 0.0;
+            orthogonal &= std::abs(dot - expected) <= 1e-6 * norms[0] * norms[0];
+        }
+    if (!orthogonal)
+        return ErrorAt(where,
+                       "LightSource \"infinite\": its transform must be a rotation (and uniform "
+                       "scale), not a shear, a non-uniform scale or singular");
+    for (int row = 0; row < 3; ++row)
+        for (int column = 0; column < 3; ++column)
+            environment.to_map[3 * row + column] =
+                static_cast<float>(inverse->m[row][column] / norms[0]);
+    double factor = scale;
+    if (filename.empty()) {
+        const Rgb l = radiance.value_or(Rgb(1.0f));
+        if (illuminance > 0) factor *= illuminance / kPiD;
+        environment.scale = l * static_cast<float>(factor);
+    } else {
+        absl::StatusOr<std::string> path = ResolveReference(filename);
+        if (!path.ok())
+            return ErrorAt(where,
+                           absl::StrCat("LightSource \"infinite\": ", path.status().message()));
+        absl::StatusOr<std::string_view> bytes = files_.Read(*path);
+        if (!bytes.ok())
+            return absl::Status(bytes.status().code(),
+                                absl::StrCat(where.ToString(), ": ", bytes.status().message()));
+        if (options_.references_only) return absl::OkStatus();
+        absl::StatusOr<pf::Texture> image =
+            DecodeImage(*bytes, *path, options_.limits, {ImageEncoding::kAuto, 2.2});
+        if (!image.ok())
+            return absl::Status(image.status().code(),
+                                absl::StrCat(where.ToString(), ": ", image.status().message()));
+        if (image->width != image->height)
+            return ErrorAt(where, absl::StrCat("LightSource \"infinite\": ", *path, " is ",
+                                               image->width, "x", image->height,
+                                               "; pbrt-v4 maps are equal-area octahedral squares "
+                                               "(convert with pbrt's imgtool makeequiarea)"));
+        for (const Rgb& texel : image->texels)
+            if (!IsFinite(texel))
+                return ErrorAt(where, absl::StrCat("LightSource \"infinite\": ", *path,
+                                                   " holds infinite or NaN values"));
+        if (illuminance > 0) {
+            // The map's illuminance on a surface facing +z exactly as pbrt-v4 sums it:
+            // luminance x cosine over the texels of the upper hemisphere, times 2 pi / texels
+            // (a texel spans 4 pi / texels: pbrt-v4's maps come out twice as bright as the
+            // plain reading of "illuminance", and its pictures are what authors saw).
+            double sum = 0;
+            for (int y = 0; y < image->height; ++y)
+                for (int x = 0; x < image->width; ++x) {
+                    const Vec3 w = EqualAreaSquareToSphere(
+                        {(x + 0.5f) / image->width, (y + 0.5f) / image->height});
+                    if (w.z <= 0) continue;
+                    const Rgb& t = image->texels[size_t(y) * image->width + x];
+                    sum += (0.2126 * t.x + 0.7152 * t.y + 0.0722 * t.z) * w.z;
+                }
+            sum *= 2 * kPiD / (double(image->width) * image->height);
+            if (sum > 0) factor *= illuminance / sum;
+        }
+        environment.mapping = EnvironmentMapping::kEqualArea;
+        environment.image = std::move(*image);
+        environment.scale = Rgb(static_cast<float>(factor));
+    }
+    if (!portal.empty())
+        Warn(where,
+             "LightSource \"infinite\": \"portal\" is not used yet; the light is sampled over "
+             "the whole sphere (correct, noisier indoors)");
+    if (!IsFinite(environment.scale))
+        return ErrorAt(where, "LightSource \"infinite\": scale x illuminance overflows");
+    if (options_.references_only) return absl::OkStatus();
+    if (scene_.environment) {
+        if (scene_.environment->mapping == EnvironmentMapping::kUniform &&
+            environment.mapping == EnvironmentMapping::kUniform) {
+            scene_.environment->scale += environment.scale;  // two uniform lights are one
+            return absl::OkStatus();
+        }
+        Warn(where,
+             "LightSource \"infinite\": a second infinite light with an image, or beside one, is "
+             "left out (uniform ones add up)");
+        return absl::OkStatus();
+    }
+    scene_.environment = std::move(environment);
     return absl::OkStatus();
 }
 

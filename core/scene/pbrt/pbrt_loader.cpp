@@ -50,13 +50,6 @@ absl::StatusOr<Scene> PbrtSceneBuilder::Load(const std::string& main_file) {
     if (options_.references_only) return std::move(scene_);
     if (scene_.triangles.empty())
         return absl::InvalidArgumentError(absl::StrCat(scene_.source, ": scene has no shapes"));
-    bool has_light = !scene_.lights.empty();
-    for (const Triangle& t : scene_.triangles)
-        has_light |= scene_.materials[t.material].IsEmissive();
-    if (!has_light)
-        return absl::InvalidArgumentError(absl::StrCat(
-            scene_.source,
-            ": scene has no light (no LightSource point, spot or distant, no AreaLightSource)"));
     return std::move(scene_);
 }
 

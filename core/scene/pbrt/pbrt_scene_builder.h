@@ -114,6 +114,7 @@ private:
     absl::StatusOr<int32_t> ImageIndex(const TextureRef& texture);
     absl::Status LightSource(const std::string& type, ParameterList& parameters,
                              const Location& where);
+    absl::Status InfiniteLight(ParameterList& parameters, const Location& where);
     absl::Status ApplyTransform(const Transform& transform);
     absl::Status FinishCamera();
 

@@ -68,6 +68,14 @@ void ExpectSameScene(const Scene& a, const Scene& b) {
     EXPECT_TRUE(SameBytes(a.camera, b.camera));
     EXPECT_TRUE(SameBytes(a.bounds, b.bounds));
     EXPECT_TRUE(SameBytes(a.hints, b.hints));
+    ASSERT_EQ(a.environment.has_value(), b.environment.has_value());
+    if (a.environment) {
+        const Environment &x = *a.environment, &y = *b.environment;
+        EXPECT_TRUE(x.mapping == y.mapping && SameBytes(x.scale, y.scale) &&
+                    SameBytes(x.to_map, y.to_map) && x.name == y.name &&
+                    x.image.width == y.image.width && x.image.height == y.image.height &&
+                    SameBytes(x.image.texels, y.image.texels));
+    }
 }
 
 class ShippedScenes : public ::testing::TestWithParam<std::string> {};
@@ -125,6 +133,26 @@ TEST(PreparedSceneTest, TexturesAndInstancesSurviveAndTheFilterIsRebuilt) {
         DecodePreparedScene(EncodePreparedScene(loaded), false);
     ASSERT_TRUE(photons_only.ok());
     EXPECT_EQ(photons_only->texture_filter, nullptr);
+}
+
+// An environment map (a latitude-longitude image of floats) and a uniform one survive.
+TEST(PreparedSceneTest, EnvironmentsSurvive) {
+    Scene scene = TexturedInstancedScene();
+    Environment& environment = scene.environment.emplace();
+    environment.mapping = EnvironmentMapping::kLatLong;
+    environment.image.width = 8, environment.image.height = 4;
+    for (int i = 0; i < 32; ++i) environment.image.texels.push_back(Rgb(0.1f * i, 3.5f, 1e-3f * i));
+    environment.scale = Rgb(2.0f, 1.0f, 0.5f);
+    environment.to_map = RotationAboutUp(33);
+    environment.name = "sky.exr";
+    for (int uniform = 0; uniform < 2; ++uniform) {
+        if (uniform == 1) environment = Environment{};
+        const std::string bytes = EncodePreparedScene(scene);
+        const absl::StatusOr<Scene> decoded = DecodePreparedScene(bytes, false);
+        ASSERT_TRUE(decoded.ok()) << decoded.status();
+        ExpectSameScene(scene, *decoded);
+        EXPECT_EQ(EncodePreparedScene(*decoded), bytes);
+    }
 }
 
 TEST(PreparedSceneTest, WhatNoTracingReadsIsLeftOut) {
@@ -207,6 +235,21 @@ TEST(PreparedSceneTest, HostileBytesAreRefusedNamingWhatIsWrong) {
             s.normals.clear();
         },
         "is smooth");
+    const auto map = [](Scene& s) {
+        Environment& e = s.environment.emplace();
+        e.mapping = EnvironmentMapping::kEqualArea;
+        e.image.width = e.image.height = 2;
+        e.image.texels.assign(4, Rgb(1.0f));
+        return &e;
+    };
+    broken([&](Scene& s) { map(s)->image.texels[2].y = -1; }, "environment: a texel");
+    broken([&](Scene& s) { map(s)->image.texels[1].x = std::nanf(""); }, "environment: a texel");
+    broken([&](Scene& s) { map(s)->image.width = 4; }, "environment: a 4x2 map with 4 texels");
+    broken([&](Scene& s) { map(s)->mapping = static_cast<EnvironmentMapping>(9); },
+           "environment: a value out of range");
+    broken([&](Scene& s) { map(s)->to_map[0] = 2; }, "environment: its frame is not a rotation");
+    broken([&](Scene& s) { map(s)->mapping = EnvironmentMapping::kUniform; },
+           "environment: a 2x2 map");
 }
 
 }  // namespace

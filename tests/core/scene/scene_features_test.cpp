@@ -42,7 +42,7 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     EXPECT_EQ(SceneFeatures::All().ToString(),
               "diffuse, mirror, glass, thin glass, rough metal, rough glass, textures, smooth "
               "normals, area lights, "
-              "point lights, spot lights, directional lights, caustics");
+              "point lights, spot lights, directional lights, environment light, caustics");
 }
 
 }  // namespace

@@ -53,7 +53,7 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
     for (const Emitters::Record& record : emitters.Records()) {
         gpu::GpuEmitter emitter{};
         const auto inverse_probability = static_cast<float>(1.0 / record.probability);
-        if (record.is_triangle) {
+        if (record.kind == EmitterKind::kTriangle) {
             emitter.position = Vec4(record.p0, gpu::kEmitterTriangle);
             emitter.edge1 = Vec4(record.edge1, record.area);
             emitter.edge2 = Vec4(record.edge2);
@@ -112,6 +112,10 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
 absl::StatusOr<GpuScene> BuildGpuScene(const Scene& job_scene, const Emitters& emitters) {
     GpuScene gpu_scene;
     gpu_scene.features = AnalyseFeatures(job_scene, emitters);
+    if (gpu_scene.features.environment)
+        return absl::UnimplementedError(
+            "the Vulkan backend does not trace environment lights yet: render this scene with "
+            "--backend cpu");
     // The kernels traverse one BVH: instances are expanded into world triangles (the world's
     // own keep their indices, so emitters still name them).
     absl::StatusOr<Scene> flattened;

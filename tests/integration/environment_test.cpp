@@ -1,0 +1,175 @@
+// The environment light through every integrator, against the analytic answer: a convex
+// diffuse body of albedo rho under a uniform environment of radiance L reflects exactly rho L
+// everywhere (it sees only the sky, which gives irradiance pi L, and never itself), and the
+// sky seen past it is L exactly. Each channel differs, so a channel swap shows; each check is
+// also run on the image made 2% brighter, darker and greener, and must fail.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "absl/strings/str_format.h"
+#include "core/job/integrator.h"
+#include "core/scene/scene_loader.h"
+#include "embedded/local_render.h"
+#include "embree/embree_tracer.h"
+#include "tests/support/gltf_builder.h"
+
+namespace pf {
+namespace {
+
+constexpr int kSize = 64;
+constexpr float kAlbedo = 0.6f;
+const Rgb kSky(1.0f, 0.5f, 0.25f);
+
+// A unit cube turned so that the camera on +z sees three of its faces.
+testing::TestScene TurnedCube() {
+    const auto turn = [](Vec3 p) {
+        const float a = 0.6f, b = 0.5f;  // about y, then about x
+        p = {p.x * std::cos(a) + p.z * std::sin(a), p.y, -p.x * std::sin(a) + p.z * std::cos(a)};
+        return Vec3{p.x, p.y * std::cos(b) - p.z * std::sin(b),
+                    p.y * std::sin(b) + p.z * std::cos(b)};
+    };
+    testing::TestScene scene;
+    scene.materials = {testing::TestMaterial{Rgb(kAlbedo)}};
+    scene.camera_position = Vec3(0, 0, 2.6f);
+    testing::TestMesh mesh;
+    // Each face as two triangles wound counter-clockwise seen from outside.
+    for (int axis = 0; axis < 3; ++axis)
+        for (float side : {-0.5f, 0.5f}) {
+            const auto corner = [&](float u, float v) {
+                Vec3 p;
+                p[axis] = side;
+                p[(axis + 1) % 3] = side > 0 ? u : v;
+                p[(axis + 2) % 3] = side > 0 ? v : u;
+                return turn(p);
+            };
+            for (const Vec3& p : {corner(-0.5f, -0.5f), corner(0.5f, -0.5f), corner(0.5f, 0.5f),
+                                  corner(-0.5f, -0.5f), corner(0.5f, 0.5f), corner(-0.5f, 0.5f)})
+                mesh.positions.push_back(p);
+        }
+    scene.meshes = {mesh};
+    return scene;
+}
+
+// Which pixels see only the body (all four corners' rays hit it: the body is convex) and
+// which only the sky (no corner of it or of its eight neighbours hits).
+struct PixelClasses {
+    std::vector<bool> body, sky;
+};
+PixelClasses Classify(const Scene& scene) {
+    const absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer =
+        embree::EmbreeTracer::Create(scene);
+    EXPECT_TRUE(tracer.ok()) << tracer.status();
+    std::vector<bool> corner_hits((kSize + 1) * (kSize + 1));
+    for (int y = 0; y <= kSize; ++y)
+        for (int x = 0; x <= kSize; ++x) {
+            RayHit hit;
+            corner_hits[y * (kSize + 1) + x] = (*tracer)->Intersect(
+                scene.camera.GenerateRay(float(x) / kSize, float(y) / kSize, 1.0f), &hit);
+        }
+    const auto corner = [&](int x, int y) {
+        return x >= 0 && y >= 0 && x <= kSize && y <= kSize && corner_hits[y * (kSize + 1) + x];
+    };
+    PixelClasses classes{std::vector<bool>(kSize * kSize), std::vector<bool>(kSize * kSize)};
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            classes.body[y * kSize + x] =
+                corner(x, y) && corner(x + 1, y) && corner(x, y + 1) && corner(x + 1, y + 1);
+            bool any = false;
+            for (int dy = -1; dy <= 2; ++dy)
+                for (int dx = -1; dx <= 2; ++dx) any |= corner(x + dx, y + dy);
+            classes.sky[y * kSize + x] = !any;
+        }
+    return classes;
+}
+
+// The body's pixels' mean per channel against rho L, by a z-test on their spread (every
+// integrator's body pixels are independent here: no photon is ever stored on a convex body,
+// its light is all direct), and the sky's pixels against L to float rounding.
+struct FurnaceResult {
+    bool passed = true;
+    double worst_z = 0, detectable = 0;  // detectable: 5 standard errors, relative
+    std::string text;
+};
+// `scale` multiplies the body's pixels: a bias the check must catch.
+FurnaceResult Check(const Image& image, const PixelClasses& classes, Rgb scale = Rgb(1.0f)) {
+    FurnaceResult result;
+    Rgbd sum(0.0), sum_sq(0.0);
+    double count = 0;
+    for (int i = 0; i < kSize * kSize; ++i) {
+        const Rgb pixel = classes.body[i] ? image.pixels[i] * scale : image.pixels[i];
+        if (classes.sky[i]) {
+            for (int c = 0; c < 3; ++c)
+                if (!(std::abs(pixel[c] - kSky[c]) <= 1e-5f * kSky[c])) result.passed = false;
+        }
+        if (!classes.body[i]) continue;
+        sum += Rgbd(pixel), sum_sq += Rgbd(pixel) * Rgbd(pixel), count += 1;
+    }
+    for (int c = 0; c < 3; ++c) {
+        const double mean = sum[c] / count;
+        const double error = std::sqrt((sum_sq[c] / count - mean * mean) / (count - 1));
+        const double expected = kAlbedo * kSky[c];
+        const double z = (mean - expected) / error;
+        result.worst_z = std::max(result.worst_z, std::abs(z));
+        result.detectable = std::max(result.detectable, 5 * error / expected);
+        result.passed &= std::abs(z) <= 5;
+        result.text +=
+            absl::StrFormat("%c %.5f (expected %.5f, z %.2f) ", "RGB"[c], mean, expected, z);
+    }
+    result.text += absl::StrFormat("over %d body pixels", int(count));
+    return result;
+}
+
+class EnvironmentFurnace : public ::testing::TestWithParam<Integrator> {};
+
+TEST_P(EnvironmentFurnace, ConvexBodyReflectsAlbedoTimesTheSky) {
+    RenderSettings settings;
+    settings.scene_path = testing::WriteGltf(TurnedCube(), "environment-cube.gltf");
+    settings.threads = 2;
+    JobSpec& job = settings.job;
+    job.integrator = GetParam();
+    job.width = job.height = kSize;
+    job.seed = 3;
+    job.environment.color = kSky;
+    // Photons carry nothing here (all light is direct): small batches, many epochs of camera
+    // and light samples.
+    job.layout = {1u << 12, 2};
+    job.epoch_budget = 64;
+    job.photon_map.global_photons = job.photon_map.caustic_photons = 1u << 16;
+    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+    ASSERT_TRUE(outcome.ok()) << outcome.status();
+    EXPECT_NE(outcome->scene_features.find("environment light"), std::string::npos);
+
+    SceneLoadOptions options;
+    options.environment.color = kSky;
+    const absl::StatusOr<Scene> scene = LoadScene(settings.scene_path, options);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const PixelClasses classes = Classify(*scene);
+    int body = 0, sky = 0;
+    for (int i = 0; i < kSize * kSize; ++i) body += classes.body[i], sky += classes.sky[i];
+    ASSERT_GE(body, 800);
+    ASSERT_GE(sky, 800);
+
+    const FurnaceResult result = Check(outcome->image, classes);
+    std::printf("%s: %s, 2%% off detectable: %.2f%%\n",
+                std::string(IntegratorName(GetParam())).c_str(), result.text.c_str(),
+                100 * result.detectable);
+    EXPECT_TRUE(result.passed) << result.text;
+    // 5 standard errors must be well under 2%, so that a 2% bias fails.
+    EXPECT_LT(result.detectable, 0.01);
+    for (const Rgb& bias : {Rgb(1.02f), Rgb(0.98f), Rgb(1.0f, 1.02f, 1.0f)}) {
+        const FurnaceResult biased = Check(outcome->image, classes, bias);
+        EXPECT_FALSE(biased.passed) << "a biased image passed: " << biased.text;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, EnvironmentFurnace,
+                         ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
+                                           Integrator::kPath),
+                         [](const auto& info) { return std::string(IntegratorName(info.param)); });
+
+}  // namespace
+}  // namespace pf
