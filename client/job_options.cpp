@@ -194,6 +194,10 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
         ->check(WholeNumber(1, 32768));
     AddPhotonMapOptions(command, &s->photon_map);
     AddEnvironmentOptions(command, &s->environment);
+    command->add_option("--camera", s->camera,
+                        "Which of a glTF scene's cameras renders: its number (0 first, in the "
+                        "node hierarchy's order) or its node's or camera's name (default: the "
+                        "first; a scene without one is framed on its bounds)");
 }
 
 void ApplyDefaultBudget(JobSpec* spec) {

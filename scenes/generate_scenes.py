@@ -7,6 +7,12 @@ as a base64 data URI, so a scene is a single file. The pbrt forms use what pbrt 
 an Include for the shared Cornell room, bilinear patches, spheres, a binary PLY mesh, named
 materials and area lights. Units are metres; emission is radiance in W/(m^2 sr) per channel
 (emissiveFactor x KHR_materials_emissive_strength in glTF, "rgb L" in pbrt).
+
+A scene lit by a sky writes it as an image beside each form, both from one function of the
+direction: for pbrt an equal-area octahedral square (pbrt-v4's form, its LightSource "infinite"),
+for glTF, which has no environment of its own, a latitude-longitude map that the glTF form is
+rendered with (`photonfarm render scenes/NAME.gltf --environment scenes/NAME-sky.hdr`). Images
+are Radiance .hdr (RGBE), which both photonfarm and pbrt-v4 read.
 """
 import base64
 import json
@@ -25,6 +31,7 @@ class GltfWriter:
                     "materials": [], "accessors": [], "bufferViews": [], "buffers": []}
         self.blob = bytearray()
         self.extensions = set()
+        self.side_files = {}  # written beside the .gltf: name -> bytes
 
     def _view(self, data, target):
         while len(self.blob) % 4:
@@ -122,6 +129,13 @@ class GltfWriter:
     def end_shared(self):
         pass
 
+    def environment(self, scene_name, sky):
+        """glTF has no environment: a latitude-longitude map beside the file, named in the
+        asset's extras for whoever reads it (photonfarm takes it by --environment)."""
+        name = scene_name + "-sky.hdr"
+        self.side_files[name] = rgbe_image(256, 128, lambda u, v: sky(lat_long_to_sphere(u, v)))
+        self.doc["asset"]["extras"] = {"environment": name, "render with": "--environment " + name}
+
     def write(self, path):
         self.doc["buffers"] = [{"byteLength": len(self.blob), "uri":
                                 "data:application/octet-stream;base64," +
@@ -131,6 +145,9 @@ class GltfWriter:
         with open(path, "w") as out:
             json.dump(self.doc, out, indent=1)
             out.write("\n")
+        for name, data in self.side_files.items():
+            with open(os.path.join(os.path.dirname(path), name), "wb") as out:
+                out.write(data)
 
 
 def normalize(v):
@@ -284,6 +301,39 @@ def furnace(writer, albedo=0.5, emission=1.0):
     writer.camera([0.0, 0.0, 0.5], [0.3, -0.2, -1.0], 70.0)
 
 
+def sky(direction):
+    """A clear sky with a bright glow about the sun, over dark ground, W/(m^2 sr)."""
+    x, y, z = direction
+    sun = normalize([0.45, 0.55, -0.7])
+    glow = 40.0 * max(0.0, x * sun[0] + y * sun[1] + z * sun[2]) ** 300
+    ground, horizon, zenith = (0.08, 0.07, 0.06), (0.9, 0.85, 0.8), (0.25, 0.45, 0.95)
+    t = math.sqrt(max(0.0, y))
+    air = [h + (zz - h) * t for h, zz in zip(horizon, zenith)]
+    # Ground to sky over 6 degrees, so that the map's texels do not show as steps at the horizon.
+    blend = min(1.0, max(0.0, (y + 0.05) / 0.1))
+    return [g + (a - g) * blend + glow for g, a in zip(ground, air)]
+
+
+def sky_courtyard(writer):
+    """An open corner of two walls on the ground, a block and a glass sphere under a sky:
+    lit only by the environment (photons from it, light sampled from its map)."""
+    writer.quads("ground", [[[-3, 0, -3], [-3, 0, 3], [3, 0, 3], [3, 0, -3]]],
+                 writer.material("ground", (0.45, 0.45, 0.42)))
+    warm = writer.material("warm_wall", (0.75, 0.55, 0.4))
+    writer.quads("walls", [[[-1.5, 0, -1.5], [1.5, 0, -1.5], [1.5, 1.5, -1.5], [-1.5, 1.5, -1.5]],
+                           [[-1.5, 0, 1.0], [-1.5, 0, -1.5], [-1.5, 1.5, -1.5], [-1.5, 1.5, 1.0]]], warm)
+    white = writer.material("white", (0.8, 0.8, 0.8))
+    b = [(-0.9, -0.9), (-0.3, -1.1), (-0.1, -0.5), (-0.7, -0.3)]  # a turned block, 0.6 tall
+    faces = [[[x0, 0.6, z0] for x0, z0 in reversed(b)]]
+    for i in range(4):
+        (x0, z0), (x1, z1) = b[i], b[(i + 1) % 4]
+        faces.append([[x0, 0, z0], [x1, 0, z1], [x1, 0.6, z1], [x0, 0.6, z0]])
+    writer.quads("block", faces, white)
+    writer.sphere("glass_sphere", [0.5, 0.35, -0.2], 0.35, writer.material("glass", glass_ior=1.5))
+    writer.environment("sky-courtyard", sky)
+    writer.camera([2.2, 1.6, 2.8], [-0.3, 0.4, -0.6], 45.0, aspect=1.5)
+
+
 def furnace_glass(writer):
     """The furnace with a clear glass sphere in view: lossless scattering leaves the uniform
     radiance field uniform, so every pixel, through the glass or not, is still Le / (1 - rho)."""
@@ -385,6 +435,18 @@ class PbrtWriter:
     def light(self, *args, **kwargs):
         raise NotImplementedError("punctual lights are written to glTF scenes only")
 
+    def environment(self, scene_name, sky):
+        """pbrt-v4's infinite light: an equal-area square with z up, turned to y up."""
+        path = "textures/%s-sky.hdr" % scene_name
+
+        def world(u, v):
+            x, y, z = equal_area_square_to_sphere(u, v)
+            return sky((x, z, -y))  # Rotate -90 1 0 0: the map's +z is the world's +y
+
+        self.files[path] = rgbe_image(256, 256, world)
+        self.world += ["", "# the sky", "AttributeBegin", "    Rotate -90 1 0 0",
+                       '    LightSource "infinite" "string filename" "%s"' % path, "AttributeEnd"]
+
     def begin_shared(self, name):
         self.shared = (name, [])
 
@@ -403,6 +465,48 @@ class PbrtWriter:
                 out.write(data)
         with open(path, "w") as out:
             out.write("\n".join(self.header + ["", "WorldBegin", ""] + self.world) + "\n")
+
+
+def equal_area_square_to_sphere(u, v):
+    """pbrt-v4's equal-area octahedral map (Clarberg 2008) of the unit square to the sphere."""
+    u, v = 2 * u - 1, 2 * v - 1
+    up, vp = abs(u), abs(v)
+    signed_distance = 1 - (up + vp)
+    r = 1 - abs(signed_distance)
+    phi = (1 if r == 0 else (vp - up) / r + 1) * math.pi / 4
+    z = math.copysign(1 - r * r, signed_distance)
+    sin_theta = r * math.sqrt(max(0.0, 2 - r * r))
+    return (math.copysign(math.cos(phi), u) * sin_theta, math.copysign(math.sin(phi), v) * sin_theta, z)
+
+
+def lat_long_to_sphere(u, v):
+    """photonfarm's latitude-longitude map: y up, the image's centre toward -z."""
+    phi, theta = 2 * math.pi * (u - 0.5), math.pi * v
+    return (math.sin(theta) * math.sin(phi), math.cos(theta), -math.sin(theta) * math.cos(phi))
+
+
+def rgbe_image(width, height, radiance):
+    """A Radiance .hdr of radiance(u, v) at each texel's centre, rows top to bottom, flat
+    (uncompressed) scanlines."""
+    rows = []
+    for y in range(height):
+        row = bytearray()
+        for x in range(width):
+            color = radiance((x + 0.5) / width, (y + 0.5) / height)
+            brightest = max(color)
+            if brightest < 1e-32:
+                row += bytes(4)
+                continue
+            mantissa, exponent = math.frexp(brightest)
+            scale = mantissa * 256.0 / brightest
+            texel = bytes([min(255, int(c * scale)) for c in color] + [exponent + 128])
+            # A flat scanline must not begin as a run-length one does (2, 2, then a byte < 128).
+            if x == 0 and texel[0] == 2 and texel[1] == 2 and texel[2] < 128:
+                texel = bytes([3]) + texel[1:]
+            row += texel
+        rows.append(bytes(row))
+    header = "#?RADIANCE\n# written by scenes/generate_scenes.py\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n" % (height, width)
+    return header.encode() + b"".join(rows)
 
 
 def num(x):
@@ -441,7 +545,8 @@ def ply_quads(quad_list):
 
 
 SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass, "cornell-glossy": cornell_glossy,
-          "caustic-glass": caustic_glass, "furnace": furnace, "furnace-glass": furnace_glass}
+          "caustic-glass": caustic_glass, "furnace": furnace, "furnace-glass": furnace_glass,
+          "sky-courtyard": sky_courtyard}
 
 if __name__ == "__main__":
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))

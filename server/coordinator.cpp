@@ -65,9 +65,9 @@ absl::StatusOr<PreparedJob> Prepare(JobRequest request, const CoordinatorOptions
             client_limits.max_photons_per_batch, " (--max-photons-per-batch)"));
     if (request.name.empty())
         request.name = std::filesystem::path(request.bundle.main_file).filename().string();
-    absl::StatusOr<Scene> scene =
-        LoadScene(request.bundle, request.bundle.main_file,
-                  {options.scene_limits, nullptr, true, request.spec.environment});
+    absl::StatusOr<Scene> scene = LoadScene(
+        request.bundle, request.bundle.main_file,
+        {options.scene_limits, nullptr, true, request.spec.environment, request.spec.camera});
     if (!scene.ok()) return scene.status();
     absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, *scene);
     if (!film.ok()) return film.status();

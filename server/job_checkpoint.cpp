@@ -123,8 +123,8 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     if (!spec.ok()) return lost(std::string(spec.status().message()));
     if (!(record.elapsed_seconds() >= 0 && record.elapsed_seconds() < 1e9))
         return lost("elapsed time out of range");
-    absl::StatusOr<Scene> scene =
-        LoadScene(*bundle, bundle->main_file, {limits, nullptr, true, spec->environment});
+    absl::StatusOr<Scene> scene = LoadScene(
+        *bundle, bundle->main_file, {limits, nullptr, true, spec->environment, spec->camera});
     if (!scene.ok()) return scene.status();
     ByteReader reader(checkpoint.estimate);
     ByteReader fixed_reader(estimate_part ? std::string_view(estimate_part->bytes) : "");

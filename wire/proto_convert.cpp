@@ -166,6 +166,7 @@ photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
     out.set_integrator(ToProto(spec.integrator));
     out.set_epoch_budget(spec.epoch_budget);
     out.set_until_cancelled(spec.until_cancelled);
+    out.set_camera(spec.camera);
     if (spec.environment.Given()) {
         const EnvironmentSettings& environment = spec.environment;
         photonfarm::v1::EnvironmentSettings* out_environment = out.mutable_environment();
@@ -216,6 +217,7 @@ absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings) {
     spec.target_error = settings.target_error();
     spec.epoch_budget = settings.epoch_budget();
     spec.until_cancelled = settings.until_cancelled();
+    spec.camera = settings.camera();
     if (settings.has_environment()) {
         const photonfarm::v1::EnvironmentSettings& in = settings.environment();
         if (in.file().size() > 4096) return too_large("environment.file length", in.file().size());

@@ -69,6 +69,8 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
                 s.integrator == Integrator::kPm ? " (its maps' size is --pm-photons)" : ""));
     if (absl::Status status = CheckEnvironmentSettings(s.environment, names); !status.ok())
         return status;
+    if (s.camera.size() > 256)
+        return invalid("--camera", "settings.camera", "must be at most 256 characters");
     if (s.integrator == Integrator::kPm) return CheckPhotonMapSettings(s.photon_map, names);
     return absl::OkStatus();
 }

@@ -46,6 +46,8 @@ struct JobSpec {
     // An environment light in place of the scene's own; `environment.file` names a file of
     // the scene's bundle (BundleEnvironment puts it there).
     EnvironmentSettings environment;
+    // Which of the scene's cameras renders: its number (scene order) or name; empty: the first.
+    std::string camera;
 };
 
 // Hit points cost about this much memory each across the estimate (~140 bytes, 72 more for

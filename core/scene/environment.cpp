@@ -33,44 +33,6 @@ void AppendCdf(const std::vector<double>& weights, double total, std::vector<flo
 
 }  // namespace
 
-Vec3 EqualAreaSquareToSphere(Point2 p) {
-    const float u = 2 * p.x - 1, v = 2 * p.y - 1;
-    const float up = std::abs(u), vp = std::abs(v);
-    const float signed_distance = 1 - (up + vp);
-    const float r = 1 - std::abs(signed_distance);
-    const float phi = (r == 0 ? 1 : (vp - up) / r + 1) * kPi / 4;
-    const float z = std::copysign(1 - r * r, signed_distance);
-    const float sin_theta = r * std::sqrt(std::max(0.0f, 2 - r * r));
-    return {std::copysign(std::cos(phi), u) * sin_theta,
-            std::copysign(std::sin(phi), v) * sin_theta, z};
-}
-
-Point2 EqualAreaSphereToSquare(const Vec3& d) {
-    const float x = std::abs(d.x), y = std::abs(d.y), z = std::abs(d.z);
-    const float r = std::sqrt(std::max(0.0f, 1 - z));
-    const float a = std::max(x, y), b = a == 0 ? 0 : std::min(x, y) / a;
-    float phi = std::atan(b) * (2 / kPi);
-    if (x < y) phi = 1 - phi;
-    float v = phi * r, u = r - v;
-    if (d.z < 0) {  // the lower hemisphere folds out over the square's corners
-        std::swap(u, v);
-        u = 1 - u, v = 1 - v;
-    }
-    u = std::copysign(u, d.x), v = std::copysign(v, d.y);
-    return {0.5f * (u + 1), 0.5f * (v + 1)};
-}
-
-Vec3 LatLongToSphere(Point2 p) {
-    const float phi = 2 * kPi * (p.x - 0.5f), theta = kPi * p.y;
-    const float sin_theta = std::sin(theta);
-    return {sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi)};
-}
-
-Point2 LatLongFromSphere(const Vec3& d) {
-    return {0.5f + std::atan2(d.x, -d.z) / (2 * kPi),
-            std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi};
-}
-
 std::array<float, 9> RotationAboutUp(double degrees) {
     // to_map turns world directions by -degrees, so the map turns by +degrees.
     const double a = -degrees * kPiD / 180;
@@ -93,11 +55,7 @@ Vec3 Environment::ToWorld(const Vec3& d) const {
 }
 
 uint32_t Environment::TexelOf(const Vec3& d) const {
-    const Point2 uv = mapping == EnvironmentMapping::kEqualArea ? EqualAreaSphereToSquare(d)
-                                                                : LatLongFromSphere(d);
-    const int x = std::clamp(static_cast<int>(uv.x * image.width), 0, image.width - 1);
-    const int y = std::clamp(static_cast<int>(uv.y * image.height), 0, image.height - 1);
-    return static_cast<uint32_t>(y) * static_cast<uint32_t>(image.width) + static_cast<uint32_t>(x);
+    return gpu::EnvironmentTexel(static_cast<uint32_t>(mapping), image.width, image.height, d);
 }
 
 Rgb Environment::Radiance(const Vec3& toward) const {
@@ -105,12 +63,10 @@ Rgb Environment::Radiance(const Vec3& toward) const {
     return image.texels[TexelOf(ToMap(toward))] * scale;
 }
 
-double Environment::TexelSolidAngle(int y) const {
-    if (mapping == EnvironmentMapping::kUniform) return 4 * kPiD;
-    if (mapping == EnvironmentMapping::kEqualArea)
-        return 4 * kPiD / (double(image.width) * double(image.height));
-    const double theta0 = kPiD * y / image.height, theta1 = kPiD * (y + 1) / image.height;
-    return 2 * kPiD / image.width * (std::cos(theta0) - std::cos(theta1));
+float Environment::TexelSolidAngle(int y) const {
+    if (mapping == EnvironmentMapping::kUniform) return 4 * kPi;
+    return gpu::EnvironmentTexelSolidAngle(static_cast<uint32_t>(mapping), image.width,
+                                           image.height, y);
 }
 
 Rgbd Environment::RadianceIntegral() const {
@@ -120,7 +76,7 @@ Rgbd Environment::RadianceIntegral() const {
         Rgbd row(0.0);
         for (int x = 0; x < image.width; ++x)
             row += Rgbd(Max(image.texels[size_t(y) * image.width + x], Rgb(0.0f)));
-        sum += row * TexelSolidAngle(y);
+        sum += row * double(TexelSolidAngle(y));
     }
     return sum * Rgbd(scale);
 }
@@ -168,18 +124,9 @@ EnvironmentSampler::Sample EnvironmentSampler::Draw(float u1, float u2) const {
     const uint32_t y = FindInterval(row_cdf_.data(), height, u1, &fy);
     const uint32_t x = FindInterval(texel_cdf_.data() + size_t(y) * (width + 1), width, u2, &fx);
     const uint32_t texel = y * width + x;
-    // Uniform in solid angle within the texel: the equal-area square is so already; in a
-    // latitude-longitude map, uniform in longitude and in the cosine of the polar angle.
-    Vec3 direction;
-    if (environment.mapping == EnvironmentMapping::kEqualArea) {
-        direction = EqualAreaSquareToSphere({(x + fx) / width, (y + fy) / height});
-    } else {
-        const float cos0 = std::cos(kPi * y / height), cos1 = std::cos(kPi * (y + 1) / height);
-        const float cos_theta = cos0 + fy * (cos1 - cos0);
-        const float sin_theta = std::sqrt(std::max(0.0f, 1 - cos_theta * cos_theta));
-        const float phi = 2 * kPi * ((x + fx) / width - 0.5f);
-        direction = {sin_theta * std::sin(phi), cos_theta, -sin_theta * std::cos(phi)};
-    }
+    const Vec3 direction = gpu::EnvironmentDirectionInTexel(
+        static_cast<uint32_t>(environment.mapping), environment.image.width,
+        environment.image.height, x, y, fx, fy);
     sample.toward = environment.ToWorld(direction);
     sample.radiance = environment.image.texels[texel] * environment.scale;
     sample.pdf = static_cast<float>(probability_[texel] / environment.TexelSolidAngle(int(y)));

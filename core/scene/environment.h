@@ -15,13 +15,14 @@
 #include "core/math/point2.h"
 #include "core/math/vec3.h"
 #include "core/scene/texture.h"
+#include "core/shared/environment_map.h"
 
 namespace pf {
 
 enum class EnvironmentMapping : uint32_t {
-    kUniform = 0,    // radiance `scale` from every direction; no image
-    kEqualArea = 1,  // pbrt-v4's equal-area octahedral square (Clarberg 2008), z up
-    kLatLong = 2,    // equirectangular, y up: u = 1/2 + atan2(x, -z) / 2pi, v = acos(y) / pi
+    kUniform = gpu::kMappingUniform,      // radiance `scale` from every direction; no image
+    kEqualArea = gpu::kMappingEqualArea,  // pbrt-v4's equal-area octahedral square, z up
+    kLatLong = gpu::kMappingLatLong,      // y up: u = 1/2 + atan2(x, -z) / 2 pi, v = acos(y) / pi
 };
 
 struct Environment {
@@ -40,8 +41,8 @@ struct Environment {
     Vec3 ToWorld(const Vec3& map) const;
     // The texel a map-frame direction falls in, as y * width + x.
     uint32_t TexelOf(const Vec3& map_direction) const;
-    // The solid angle texel row y spans, per texel of it (sr).
-    double TexelSolidAngle(int y) const;
+    // The solid angle of one texel of row y (sr); 4 pi for a uniform environment.
+    float TexelSolidAngle(int y) const;
     // The integral of the radiance over the sphere, per channel: W/m^2 through any plane,
     // times pi R^2 the power that crosses a disk of radius R.
     Rgbd RadianceIntegral() const;
@@ -62,13 +63,11 @@ struct EnvironmentSettings {
 // The largest --environment-scale, far past any real light yet far from overflowing a sum.
 inline constexpr double kMaxEnvironmentScale = 1e12;
 
-// pbrt-v4's equal-area map between the unit square and the sphere (Clarberg, "Fast
-// equal-area mapping of the (hemi)sphere using SIMD", 2008), as its ImageInfiniteLight uses.
-Vec3 EqualAreaSquareToSphere(Point2 p);
-Point2 EqualAreaSphereToSquare(const Vec3& d);
-// The latitude-longitude map (EnvironmentMapping::kLatLong).
-Vec3 LatLongToSphere(Point2 p);
-Point2 LatLongFromSphere(const Vec3& d);
+// The maps between the unit square and the sphere (core/shared/environment_map.h).
+using gpu::EqualAreaSphereToSquare;
+using gpu::EqualAreaSquareToSphere;
+using gpu::LatLongFromSphere;
+using gpu::LatLongToSphere;
 
 // A rotation by `degrees` about world +y (the up of glTF and of latitude-longitude maps), as
 // an Environment::to_map: `--environment-rotate` turns the map this much.

@@ -12,7 +12,9 @@
 #include <functional>
 
 #include "absl/strings/match.h"
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
 #include "core/math/transform.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/scene_bundle.h"
@@ -200,8 +202,8 @@ bool KeepEncodedImage(tinygltf::Image* image, const int index, std::string*, std
 class GltfSceneBuilder {
 public:
     GltfSceneBuilder(const std::string& path, const tinygltf::Model& model,
-                     const SceneLimits& limits, const GltfImages& images)
-        : path_(path), model_(model), limits_(limits), images_(images) {
+                     const SceneLimits& limits, const GltfImages& images, const std::string& camera)
+        : path_(path), model_(model), wanted_camera_(camera), limits_(limits), images_(images) {
         scene_.source = path;
     }
 
@@ -220,6 +222,10 @@ private:
                               std::optional<uint32_t> prototype);
     absl::Status AddLight(int light_index, const Transform& world);
     absl::Status SetCamera(int camera_index, const Transform& world);
+    // Whether the camera node met now (the cameras_seen_.size()-th, named `names`) is the
+    // one asked for.
+    bool WantedCamera(const std::vector<std::string>& names) const;
+    void FrameBounds();
     absl::StatusOr<uint32_t> MaterialIndex(int gltf_material);
     absl::StatusOr<int32_t> TextureIndex(int gltf_texture, const std::string& element);
 
@@ -227,6 +233,8 @@ private:
     const tinygltf::Model& model_;
     Scene scene_;
     bool has_camera_ = false;
+    const std::string& wanted_camera_;              // LoadGltf's `camera`
+    std::vector<std::string> cameras_seen_;         // "#index 'name'" of each camera node met
     std::map<int, uint32_t> material_indices_;      // glTF material -> Scene::materials
     std::map<int, int32_t> texture_indices_;        // glTF image -> Scene::textures
     std::map<uint32_t, UvTransform> material_uvs_;  // Scene::materials -> its texture's transform
@@ -254,9 +262,37 @@ absl::StatusOr<Scene> GltfSceneBuilder::Build() {
     for (int root : roots)
         if (absl::Status status = VisitNode(root, Transform{}, 0); !status.ok()) return status;
     FinishInstancing(&scene_);
-    if (!has_camera_) return Error("scene", "has no camera (add a perspective camera node)");
     if (scene_.triangles.empty()) return Error("scene", "has no triangles");
+    if (!has_camera_ && !wanted_camera_.empty())
+        return Error("--camera " + wanted_camera_,
+                     cameras_seen_.empty() ? "the scene has no camera"
+                                           : absl::StrCat("no such camera; the scene has ",
+                                                          absl::StrJoin(cameras_seen_, ", ")));
+    if (!has_camera_) FrameBounds();
     return std::move(scene_);
+}
+
+bool GltfSceneBuilder::WantedCamera(const std::vector<std::string>& names) const {
+    if (wanted_camera_.empty()) return cameras_seen_.size() == 1;
+    int index = -1;
+    if (absl::SimpleAtoi(wanted_camera_, &index)) return index == int(cameras_seen_.size()) - 1;
+    return std::find(names.begin(), names.end(), wanted_camera_) != names.end();
+}
+
+void GltfSceneBuilder::FrameBounds() {
+    // As glTF viewers frame a scene that brings no camera (Khronos' sample viewer): look down
+    // -z at the centre of the bounds, from where a 45-degree view holds the bounding sphere.
+    Camera& camera = scene_.camera;
+    camera.y_fov = kPi / 4;
+    camera.aspect_ratio = 0;
+    const Vec3 centre = scene_.bounds.Center();
+    const float radius = std::max(0.5f * scene_.bounds.Diagonal(), 1e-6f);
+    camera.position = centre + Vec3(0, 0, radius / std::sin(camera.y_fov / 2));
+    camera.forward = Vec3(0, 0, -1), camera.right = Vec3(1, 0, 0), camera.up = Vec3(0, 1, 0);
+    spdlog::warn(
+        "{}: the scene has no camera: framed on its bounds as glTF viewers frame it "
+        "(45 degrees, from +z); give it a camera node to choose the view",
+        path_);
 }
 
 absl::Status GltfSceneBuilder::VisitNode(int index, const Transform& parent, int depth) {
@@ -283,8 +319,15 @@ absl::Status GltfSceneBuilder::VisitNode(int index, const Transform& parent, int
     if (!world.IsFinite()) return Error(element, "world transform overflows to NaN or Inf");
     if (node.mesh >= 0)
         if (absl::Status status = AddMesh(node.mesh, world); !status.ok()) return status;
-    if (node.camera >= 0 && !has_camera_)
-        if (absl::Status status = SetCamera(node.camera, world); !status.ok()) return status;
+    if (node.camera >= 0) {
+        const std::string camera_name = node.camera < static_cast<int>(model_.cameras.size())
+                                            ? model_.cameras[node.camera].name
+                                            : "";
+        cameras_seen_.push_back(absl::StrCat(cameras_seen_.size(), " '",
+                                             node.name.empty() ? camera_name : node.name, "'"));
+        if (!has_camera_ && WantedCamera({node.name, camera_name}))
+            if (absl::Status status = SetCamera(node.camera, world); !status.ok()) return status;
+    }
     if (const tinygltf::Value* light = Extension(node.extensions, "KHR_lights_punctual"))
         if (absl::Status status = AddLight(static_cast<int>(NumberOr(*light, "light", -1)), world);
             !status.ok())
@@ -602,7 +645,7 @@ bool BundleWriteWholeFile(std::string*, const std::string&, const std::vector<un
 }  // namespace
 
 absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name,
-                               const SceneLimits& limits) {
+                               const SceneLimits& limits, const std::string& camera) {
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({BundleFileExists, BundleExpandFilePath, BundleReadWholeFile,
                            BundleWriteWholeFile, const_cast<SceneBundle*>(&bundle)});
@@ -637,7 +680,7 @@ absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& nam
         return absl::InvalidArgumentError(absl::StrCat(
             name, ": not a valid glTF file: ", first_line.empty() ? "parse failed" : first_line));
     }
-    return GltfSceneBuilder(name, model, limits, images).Build();
+    return GltfSceneBuilder(name, model, limits, images, camera).Build();
 }
 
 }  // namespace pf

@@ -17,7 +17,12 @@ namespace pf {
 // `bundle` has passed CheckSceneBundle (LoadScene checks it). Meshes used by several nodes
 // are read once; images are decoded (through OpenImageIO) only where a material uses them,
 // within `limits`.
+// `camera` chooses among the scene's camera nodes: empty for the first in the node hierarchy
+// (depth first), a number for that one in the same order, else the node's or the camera's
+// name. A scene without a camera is framed as glTF viewers frame it: a 45-degree view from +z
+// at the bounds' centre, far enough back that the bounding sphere fills the height (a warning
+// says so).
 absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name,
-                               const SceneLimits& limits);
+                               const SceneLimits& limits, const std::string& camera = "");
 
 }  // namespace pf

@@ -149,9 +149,12 @@ absl::StatusOr<Scene> LoadScene(const SceneBundle& bundle, const std::string& na
     switch (FormatOf(bundle.main_file)) {
         case SceneFormat::kGltf:
         case SceneFormat::kGlb:
-            scene = LoadGltf(bundle, name, options.limits);
+            scene = LoadGltf(bundle, name, options.limits, options.camera);
             break;
         case SceneFormat::kPbrt: {
+            if (!options.camera.empty() && options.camera != "0")
+                return absl::InvalidArgumentError(absl::StrCat(
+                    "--camera ", options.camera, ": ", name, " is a pbrt scene, with one camera"));
             BundleFiles files(bundle);
             scene = LoadPbrt(files, bundle.main_file, DisplayRoot(name, bundle.main_file),
                              {options.limits, false, options.warnings});

@@ -21,6 +21,8 @@ struct SceneLoadOptions {
     bool texture_filter = true;
     // An environment in place of the scene's own; its file is read from the bundle.
     EnvironmentSettings environment;
+    // Which of a glTF scene's cameras renders (LoadGltf's `camera`); empty: the first.
+    std::string camera;
 };
 
 // Loads the bundle's main file. `name` names the scene in errors (the path the user gave).

@@ -37,7 +37,12 @@ PF_CONST(uint32_t) kBindingDirect = 17;        // vec4[], a batch's direct-light
 PF_CONST(uint32_t) kBindingCounters = 18;      // GpuCounters
 PF_CONST(uint32_t) kBindingTallyOffsets = 19;  // uint[hit points + 1]: flags, then offsets
 PF_CONST(uint32_t) kBindingTallyEntries = 20;  // GpuTallyEntry[]: the sparse tally, host-visible
-PF_CONST(uint32_t) kBindingCount = 21;
+PF_CONST(uint32_t) kBindingEnvironmentTexels = 21;  // vec4[]: the environment map's texels
+// float[]: the environment's sampling tables (EnvironmentSampler), one after another: the
+// rows' cumulative sums (height + 1), each row's texels' (height x (width + 1)), and each
+// texel's probability (width x height).
+PF_CONST(uint32_t) kBindingEnvironmentTables = 22;
+PF_CONST(uint32_t) kBindingCount = 23;
 
 // What the prefix-sum kernels scan (GpuParams.scan_target).
 PF_CONST(uint32_t) kScanGridBegin = 0;
@@ -56,7 +61,8 @@ PF_CONST(uint32_t) kSpecHasSpotLights = 7;
 PF_CONST(uint32_t) kSpecHasDirectionalLights = 8;
 PF_CONST(uint32_t) kSpecHasRoughConductor = 9;
 PF_CONST(uint32_t) kSpecHasRoughDielectric = 10;
-PF_CONST(uint32_t) kSpecCount = 11;
+PF_CONST(uint32_t) kSpecHasEnvironment = 11;
+PF_CONST(uint32_t) kSpecCount = 12;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -76,6 +82,7 @@ PF_CONST(uint32_t) kEmitterTriangle = 0;
 PF_CONST(uint32_t) kEmitterPoint = 1;
 PF_CONST(uint32_t) kEmitterSpot = 2;
 PF_CONST(uint32_t) kEmitterDirectional = 3;
+PF_CONST(uint32_t) kEmitterEnvironment = 4;
 
 // A two-wide BVH node holding both children's boxes (Embree's builder, flattened). A child
 // is a node index where its count is 0, else `count` triangles from `first`.
@@ -121,19 +128,24 @@ struct GpuTexture {
 };
 PF_GPU_LAYOUT(GpuTexture, 16);
 
-// One light: an emissive triangle or a punctual light, with what emission and light
-// sampling need precomputed (core/scene/emitters.cpp computes the same on the CPU).
+// One light: an emissive triangle, a punctual light or the environment, with what emission
+// and light sampling need precomputed (core/scene/emitters.cpp computes the same on the CPU).
 struct GpuEmitter {
     vec4 position;   // triangle: p0; point, spot: position; w: kind (uint bits)
-    vec4 edge1;      // triangle: p1 - p0; w: area
-    vec4 edge2;      // triangle: p2 - p0
-    vec4 direction;  // triangle: unit emitting normal; spot, directional: direction of travel
+    vec4 edge1;      // triangle: p1 - p0; w: area. Environment: x, y, z the map's width,
+                     // height and mapping (kMapping*, uint bits)
+    vec4 edge2;      // triangle: p2 - p0. Environment: the first row of its world-to-map
+                     // rotation (Environment::to_map)
+    vec4 direction;  // triangle: unit emitting normal; spot, directional: direction of travel.
+                     // Environment: the rotation's second row
     vec4 power;      // a photon's flux before selection and falloff (triangle: Le pi area;
-                     // point: 4 pi I; spot: I x cone solid angle; directional: E pi r^2);
-                     // w: 1 / selection probability
-    vec4 radiance;   // triangle: Le; point, spot: intensity I; directional: irradiance E
+                     // point: 4 pi I; spot: I x cone solid angle; directional: E pi r^2;
+                     // environment: pi r^2 x the radiance's integral); w: 1 / selection
+                     // probability
+    vec4 radiance;   // triangle: Le; point, spot: intensity I; directional: irradiance E;
+                     // environment: its scale (a uniform one's radiance)
     vec4 cone;  // spot: cos_inner, cos_outer, 1 / max(0.001, cos_inner - cos_outer), smoothstep (1)
-                // or quadratic (0)
+                // or quadratic (0). Environment: the rotation's third row
 };
 PF_GPU_LAYOUT(GpuEmitter, 112);
 
@@ -194,9 +206,10 @@ struct GpuParams {
     uint64_t seed_prefix;  // the stream family of the batch's photons or direct samples
     uint32_t scan_count;   // elements the scan covers
     uint32_t max_bounces;
-    uint32_t direct_begin;  // direct: the slice's first hit point (output index 0)
-    uint32_t scan_target;   // kScanGridBegin or kScanTallyOffsets
-    uint32_t pad0, pad1;
+    uint32_t direct_begin;         // direct: the slice's first hit point (output index 0)
+    uint32_t scan_target;          // kScanGridBegin or kScanTallyOffsets
+    uint32_t environment_emitter;  // the environment's index into the emitters, if any
+    uint32_t pad;
 };
 PF_GPU_LAYOUT(GpuParams, 80);
 

@@ -195,6 +195,11 @@ else
     echo "FAIL snapshots"; cat "$work/err"; failures=$((failures + 1))
 fi
 
+expect_failure "a camera the scene does not have" "--camera side: no such camera; the scene has 0 " \
+    render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --photons 1000 --camera side
+expect_failure "another camera of a pbrt scene" "--camera 2: .*cornell-box.pbrt is a pbrt scene, with one camera" \
+    render "$source_dir/scenes/pbrt/cornell-box.pbrt" --out "$work/a.exr" --photons 1000 --camera 2
+
 # A scene with no light says so and names the way out; --environment-color lights it.
 printf 'LookAt 0 0 5  0 0 0  0 1 0\nCamera "perspective" "float fov" 40\nWorldBegin\nShape "sphere"\n' \
     >"$work/dark.pbrt"

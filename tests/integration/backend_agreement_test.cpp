@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <string>
 
@@ -57,11 +58,23 @@ TEST(BackendAgreementTextures, LightOffATexturedWallMatchesTheCpus) {
     ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "textured-wall.gltf"), 2'000'000);
 }
 
+TEST(BackendAgreementEnvironment, SkyLitCourtyardMatchesTheCpus) {
+    // Lit by an environment map alone: photons leave the map, light samples draw from it and
+    // the cosine ray escapes to it, on the device as on the CPU; the sky seen directly is the
+    // same in all three (blocks where the CPU renders agree exactly must match exactly). 8M
+    // photons (32 epochs of direct samples): at 1M only a 4% bias could be caught.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    ExpectVulkanAgreesWithTheCpu(std::string(PF_SOURCE_DIR) + "/scenes/pbrt/sky-courtyard.pbrt",
+                                 8'000'000);
+}
+
 INSTANTIATE_TEST_SUITE_P(Scenes, BackendAgreement,
                          ::testing::Values("cornell-box.gltf", "cornell-glass.gltf"),
                          [](const ::testing::TestParamInfo<std::string>& scene) {
                              std::string name = scene.param.substr(0, scene.param.find('.'));
-                             std::replace(name.begin(), name.end(), '-', '_');
+                             for (char& c : name)
+                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                              return name;
                          });
 

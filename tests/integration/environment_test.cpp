@@ -169,7 +169,9 @@ TEST_P(EnvironmentFurnace, ConvexBodyReflectsAlbedoTimesTheSky) {
 INSTANTIATE_TEST_SUITE_P(Integrators, EnvironmentFurnace,
                          ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
                                            Integrator::kPath),
-                         [](const auto& info) { return std::string(IntegratorName(info.param)); });
+                         [](const auto& param_info) {
+                             return std::string(IntegratorName(param_info.param));
+                         });
 
 }  // namespace
 }  // namespace pf

@@ -35,11 +35,20 @@ struct ChannelAgreement {
     bool deterministic = false;
     double deterministic_error = 0, deterministic_tolerance = 0;  // largest |V - A|, allowed
 
+    // Blocks where A equals B (a sky seen directly, emission alone) are deterministic parts of
+    // a random image: V must equal A there to the same tolerance, and the spread check runs
+    // over the other blocks.
+    int deterministic_blocks = 0;
+    double deterministic_blocks_error = 0;  // largest |V - A| in them
+
     bool MeanPassed() const {
         return deterministic ? deterministic_error <= deterministic_tolerance
                              : std::abs(difference) <= mean_limit;
     }
-    bool BlocksPassed() const { return deterministic || block_ratio <= block_limit; }
+    bool BlocksPassed() const {
+        return deterministic || (block_ratio <= block_limit &&
+                                 deterministic_blocks_error <= deterministic_tolerance);
+    }
     bool SpreadPassed() const { return deterministic || std::abs(spread_t) <= spread_limit; }
     bool Passed() const { return MeanPassed() && BlocksPassed() && SpreadPassed(); }
     // The smallest relative bias of this channel's mean that fails the mean check with

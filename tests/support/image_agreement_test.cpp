@@ -173,6 +173,24 @@ TEST(ImageAgreement, DeterministicChannelsMustMatchAndSizesMustAgree) {
     EXPECT_FALSE(CompareWithEstimator(v, a, Image(16, 8)).Passed());
 }
 
+TEST_F(ImageAgreementTest, BlocksWhereTheReferencesAgreeMustMatchExactly) {
+    // A sky seen directly: the top rows equal in both references (and in V) are deterministic
+    // blocks; the spread check runs over the rest, and V must equal them there.
+    const auto with_sky = [](Image image) {
+        for (int y = 0; y < 8; ++y)
+            for (int x = 0; x < image.width; ++x) image.At(x, y) = Rgb(0.3f, 0.4f, 0.9f);
+        return image;
+    };
+    const Image a = with_sky(a_), b = with_sky(b_), v = with_sky(v_);
+    const ImageAgreement agreement = CompareWithEstimator(v, a, b);
+    EXPECT_TRUE(agreement.Passed()) << agreement.Describe();
+    EXPECT_GT(agreement.channels[0].deterministic_blocks, 0);
+    EXPECT_TRUE(std::isfinite(agreement.channels[0].spread_t)) << agreement.Describe();
+    Image off = v;
+    off.At(3, 2).y *= 1.001f;
+    EXPECT_FALSE(CompareWithEstimator(off, a, b).Passed());
+}
+
 class BlockModel : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(BlockModel, PredictsTheSpreadOfIndependentDraws) {

@@ -269,11 +269,12 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
         if (type == "spot") {
             const Vec3d to = parameters.Point3("to").value_or(Vec3d(0, 0, 1));
             const double cone = parameters.Float("coneangle", 30.0),
-                         delta = parameters.Float("conedelta", 5.0);
+                         delta = parameters.Float("conedeltaangle", 5.0);
             if (!(cone > 0 && cone <= 90 && delta >= 0 && delta <= cone))
-                return ErrorAt(where,
-                               "LightSource \"spot\": needs 0 < coneangle <= 90 and 0 <= conedelta "
-                               "<= coneangle");
+                return ErrorAt(
+                    where,
+                    "LightSource \"spot\": needs 0 < coneangle <= 90 and 0 <= conedeltaangle "
+                    "<= coneangle");
             light.type = LightType::kSpot;
             light.direction = Vec3(Normalize(state_.ctm.ApplyVector(to - from)));
             light.cos_outer = static_cast<float>(std::cos(cone * kPiD / 180));

@@ -177,7 +177,7 @@ TEST_P(AnyEstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
 INSTANTIATE_TEST_SUITE_P(Kinds, AnyEstimateStateTest,
                          ::testing::Values(EstimateKind{"sppm", MakeStochastic},
                                            EstimateKind{"path", MakePixels}),
-                         [](const auto& info) { return std::string(info.param.name); });
+                         [](const auto& param_info) { return std::string(param_info.param.name); });
 
 // A ppm estimate's hit points saved once, apart (SaveFixed), and at every fold only the rest
 // (FixedPart::kApart): loaded from the two, every array comes back bit for bit (saved again,

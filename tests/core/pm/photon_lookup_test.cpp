@@ -103,8 +103,8 @@ TEST_P(FilterTest, EstimatesAUniformDensityWithoutBias) {
 INSTANTIATE_TEST_SUITE_P(Filters, FilterTest,
                          ::testing::Values(DensityFilter::kBox, DensityFilter::kCone,
                                            DensityFilter::kGaussian),
-                         [](const auto& info) {
-                             return std::string(DensityFilterName(info.param));
+                         [](const auto& param_info) {
+                             return std::string(DensityFilterName(param_info.param));
                          });
 
 TEST(PhotonMapMemoryTest, MapsThatWillNotFitAreRefusedNamingTheFlags) {

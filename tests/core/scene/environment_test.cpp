@@ -145,8 +145,8 @@ TEST_P(EnvironmentSampling, EstimatesIntegrateTheMapAndThePdfIntegratesToOne) {
 INSTANTIATE_TEST_SUITE_P(Maps, EnvironmentSampling,
                          ::testing::Values(EnvironmentMapping::kEqualArea,
                                            EnvironmentMapping::kLatLong),
-                         [](const auto& info) {
-                             return info.param == EnvironmentMapping::kEqualArea
+                         [](const auto& param_info) {
+                             return param_info.param == EnvironmentMapping::kEqualArea
                                         ? std::string("EqualArea")
                                         : std::string("LatLong");
                          });

@@ -61,9 +61,10 @@ TEST_P(RoughMetalTest, SamplingAgreesWithEvaluation) {
 INSTANTIATE_TEST_SUITE_P(Lobes, RoughMetalTest,
                          ::testing::Values(Lobe{0.1f, 1.0f}, Lobe{0.1f, 0.5f}, Lobe{0.4f, 0.9f},
                                            Lobe{0.8f, 0.7f}),
-                         [](const auto& info) {
-                             return "alpha" + std::to_string(int(info.param.alpha * 100)) + "_cos" +
-                                    std::to_string(int(info.param.cos_incident * 100));
+                         [](const auto& param_info) {
+                             return "alpha" + std::to_string(int(param_info.param.alpha * 100)) +
+                                    "_cos" +
+                                    std::to_string(int(param_info.param.cos_incident * 100));
                          });
 
 TEST(RoughGlassTest, LosesEnergyOnlyToMaskingAndRefractsMostLight) {

@@ -202,11 +202,54 @@ TEST(GltfLoaderTest, MalformedJsonIsRefused) {
     ExpectError(LoadScene(path), path, "not a valid glTF");
 }
 
-TEST(GltfLoaderTest, SceneWithoutCameraIsRefused) {
-    testing::TestScene scene = testing::LitQuadScene();
-    scene.camera = false;
-    const std::string path = testing::WriteGltf(scene, "no-camera.gltf");
-    ExpectError(LoadScene(path), path, "no camera");
+TEST(GltfLoaderTest, SceneWithoutCameraIsFramedOnItsBounds) {
+    testing::TestScene test_scene = testing::LitQuadScene();
+    test_scene.camera = false;
+    const std::string path = testing::WriteGltf(test_scene, "no-camera.gltf");
+    const absl::StatusOr<Scene> scene = LoadScene(path);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    // 45 degrees from +z at the bounds' centre; every corner of the bounds in view.
+    const Camera& camera = scene->camera;
+    EXPECT_NEAR(camera.y_fov, kPi / 4, 1e-6f);
+    EXPECT_EQ(camera.forward, Vec3(0, 0, -1));
+    const Vec3 centre = scene->bounds.Center();
+    EXPECT_NEAR(camera.position.x, centre.x, 1e-6f);
+    EXPECT_GT(camera.position.z, scene->bounds.upper.z);
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p((corner & 1) ? scene->bounds.upper.x : scene->bounds.lower.x,
+                     (corner & 2) ? scene->bounds.upper.y : scene->bounds.lower.y,
+                     (corner & 4) ? scene->bounds.upper.z : scene->bounds.lower.z);
+        const Vec3 to = Normalize(p - camera.position);
+        EXPECT_GE(Dot(to, camera.forward), std::cos(camera.y_fov / 2) - 1e-5f) << corner;
+    }
+    // A camera asked for that is not there is an error.
+    SceneLoadOptions options;
+    options.camera = "1";
+    ExpectError(LoadScene(path, options), "--camera 1", "the scene has no camera");
+}
+
+TEST(GltfLoaderTest, CameraChosenByNumberOrName) {
+    testing::TestScene test_scene = testing::LitQuadScene();
+    test_scene.extra_nodes = {
+        R"({"name":"top","camera":0,"translation":[0,5,0],"rotation":[-0.7071068,0,0,0.7071068]})"};
+    const std::string path = testing::WriteGltf(test_scene, "two-cameras.gltf");
+    SceneLoadOptions options;
+    for (const char* which : {"", "0"}) {
+        options.camera = which;
+        const absl::StatusOr<Scene> scene = LoadScene(path, options);
+        ASSERT_TRUE(scene.ok()) << scene.status();
+        EXPECT_EQ(scene->camera.position, Vec3(0, 0, 3)) << which;
+    }
+    for (const char* which : {"1", "top"}) {
+        options.camera = which;
+        const absl::StatusOr<Scene> scene = LoadScene(path, options);
+        ASSERT_TRUE(scene.ok()) << scene.status();
+        EXPECT_EQ(scene->camera.position, Vec3(0, 5, 0)) << which;
+        EXPECT_NEAR(scene->camera.forward.y, -1.0f, 1e-5f) << which;
+    }
+    options.camera = "side";
+    ExpectError(LoadScene(path, options), "--camera side", "no such camera; the scene has 0 '");
+    ExpectError(LoadScene(path, options), "--camera side", "1 'top'");
 }
 
 TEST(GltfLoaderTest, SceneWithoutLightIsRefused) {

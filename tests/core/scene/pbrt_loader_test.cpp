@@ -271,7 +271,7 @@ TEST(PbrtLoaderTest, LightsTakePbrtsParameters) {
     SceneBundle bundle = Bundle(kQuad);
     bundle.files["scene.pbrt"] +=
         "LightSource \"spot\" \"point3 from\" [0 0 1] \"point3 to\" [0 0 0] \"float coneangle\" 30 "
-        "\"float conedelta\" 10 "
+        "\"float conedeltaangle\" 10 "
         "\"blackbody I\" 6500\n"
         "AttributeBegin\nRotate 90 1 0 0\nLightSource \"distant\" \"point3 from\" [0 0 0] \"point3 "
         "to\" [0 0 1] \"rgb L\" [3 3 3]\nAttributeEnd\n"
@@ -500,6 +500,13 @@ TEST(PbrtLoaderTest, InfiniteLightsAsPbrtV4DefinesThem) {
                                         "\"absent.exr\"\n") +
                             kQuad)),
                 "absent.exr");
+}
+
+TEST(PbrtLoaderTest, AnotherCameraIsRefused) {
+    SceneLoadOptions options;
+    options.camera = "top";
+    const absl::StatusOr<Scene> scene = LoadScene(Bundle(kQuad), "scenes/scene.pbrt", options);
+    ExpectError(scene, "--camera top: scenes/scene.pbrt is a pbrt scene, with one camera");
 }
 
 TEST(PbrtLoaderTest, LimitsRefuseOversizedScenes) {

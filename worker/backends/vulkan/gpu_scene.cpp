@@ -53,7 +53,27 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
     for (const Emitters::Record& record : emitters.Records()) {
         gpu::GpuEmitter emitter{};
         const auto inverse_probability = static_cast<float>(1.0 / record.probability);
-        if (record.kind == EmitterKind::kTriangle) {
+        if (record.kind == EmitterKind::kEnvironment) {
+            const Environment& environment = *scene.environment;
+            const auto bits = [](uint32_t value) { return std::bit_cast<float>(value); };
+            emitter.position = Vec4(Vec3(0.0f), gpu::kEmitterEnvironment);
+            emitter.edge1 = {bits(uint32_t(environment.image.width)),
+                             bits(uint32_t(environment.image.height)),
+                             bits(static_cast<uint32_t>(environment.mapping)), 0.0f};
+            const auto& m = environment.to_map;
+            emitter.edge2 = {m[0], m[1], m[2], 0.0f};
+            emitter.direction = {m[3], m[4], m[5], 0.0f};
+            emitter.cone = {m[6], m[7], m[8], 0.0f};
+            emitter.radiance = Vec4(environment.scale);
+            for (const Rgb& texel : environment.image.texels)
+                gpu_scene.environment_texels.push_back(Vec4(texel));
+            const EnvironmentSampler& sampler = emitters.EnvironmentSampling();
+            for (const std::vector<float>* table :
+                 {&sampler.RowCdf(), &sampler.TexelCdf(), &sampler.TexelProbability()})
+                gpu_scene.environment_tables.insert(gpu_scene.environment_tables.end(),
+                                                    table->begin(), table->end());
+            gpu_scene.environment_emitter = static_cast<uint32_t>(gpu_scene.emitters.size());
+        } else if (record.kind == EmitterKind::kTriangle) {
             emitter.position = Vec4(record.p0, gpu::kEmitterTriangle);
             emitter.edge1 = Vec4(record.edge1, record.area);
             emitter.edge2 = Vec4(record.edge2);
@@ -81,8 +101,11 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
             emitter.position.w = std::bit_cast<float>(kind);
         }
         emitter.power = Vec4(record.power, inverse_probability);
-        gpu_scene.max_photon_flux =
-            std::max(gpu_scene.max_photon_flux, MaxComponent(record.power) * inverse_probability);
+        // An environment photon carries L / pdf x pi r^2, and the pdf follows the channels'
+        // average: a channel reaches 3x the average power where a texel is one pure colour.
+        const float most = record.kind == EmitterKind::kEnvironment ? 3 * Average(record.power)
+                                                                    : MaxComponent(record.power);
+        gpu_scene.max_photon_flux = std::max(gpu_scene.max_photon_flux, most * inverse_probability);
         gpu_scene.emitters.push_back(emitter);
         cumulative += record.probability;
         gpu_scene.emitter_cdf.push_back(static_cast<float>(cumulative));
@@ -106,16 +129,13 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasDirectionalLights] = features.directional_lights;
     spec[gpu::kSpecHasRoughConductor] = features.rough_conductor;
     spec[gpu::kSpecHasRoughDielectric] = features.rough_dielectric;
+    spec[gpu::kSpecHasEnvironment] = features.environment;
     return spec;
 }
 
 absl::StatusOr<GpuScene> BuildGpuScene(const Scene& job_scene, const Emitters& emitters) {
     GpuScene gpu_scene;
     gpu_scene.features = AnalyseFeatures(job_scene, emitters);
-    if (gpu_scene.features.environment)
-        return absl::UnimplementedError(
-            "the Vulkan backend does not trace environment lights yet: render this scene with "
-            "--backend cpu");
     // The kernels traverse one BVH: instances are expanded into world triangles (the world's
     // own keep their indices, so emitters still name them).
     absl::StatusOr<Scene> flattened;

@@ -84,7 +84,8 @@ private:
     float scene_magnitude_ = 0;
     float flux_to_fixed_ = 0;  // fixed-point tally units per watt
     uint32_t emitter_count_ = 0;
-    uint32_t buckets_ = 0;  // of the hit-point grid, a power of two
+    uint32_t environment_emitter_ = 0;  // GpuScene::environment_emitter
+    uint32_t buckets_ = 0;              // of the hit-point grid, a power of two
     float grid_inverse_cell_ = 0;
 };
 

@@ -19,6 +19,7 @@ layout(constant_id = kSpecHasTriangleLights) const bool kHasTriangleLights = tru
 layout(constant_id = kSpecHasPointLights) const bool kHasPointLights = true;
 layout(constant_id = kSpecHasSpotLights) const bool kHasSpotLights = true;
 layout(constant_id = kSpecHasDirectionalLights) const bool kHasDirectionalLights = true;
+layout(constant_id = kSpecHasEnvironment) const bool kHasEnvironment = true;
 
 layout(push_constant, std430) uniform Push { GpuParams params; };
 

@@ -1,8 +1,8 @@
 #version 460
 // One direct-light sample for each hit point of a batch's slice (core/ppm/direct_light.cpp on
 // the CPU, with the same random numbers): a light sample with its shadow ray and, in a scene
-// with emitting triangles, a cosine-distributed ray that may hit one, weighed by the power
-// heuristic; the result times the hit point's weight.
+// with emitting triangles or an environment, a cosine-distributed ray that may find one,
+// weighed by the power heuristic; the result times the hit point's weight.
 #include "common.glsl"
 #include "trace.glsl"
 #include "lights.glsl"
@@ -28,16 +28,19 @@ void main() {
             const float weight = light.pdf > 0 ? PowerHeuristic(light.pdf, cosine / kPi) : 1.0;
             irradiance += light.radiance_over_pdf * (cosine * weight);
         }
-        if (kHasTriangleLights) {
+        if (kHasTriangleLights || kHasEnvironment) {
             const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
             const vec3 direction = FrameFromNormal(normal) * SampleCosineHemisphere(u1, u2);
             const vec3 origin = OffsetRayOrigin(point.position.xyz, normal);
+            float pdf = 0;
+            vec3 radiance = vec3(0);
             if (TraceRay(origin, direction, kInfinity, false, hit)) {
-                float pdf;
-                const vec3 radiance = HitEmitter(hit, origin, origin + direction * hit.t, pdf);
-                // L cos / (cos / pi): the cosine ray's own weight is pi.
-                if (pdf > 0) irradiance += radiance * (kPi * PowerHeuristic(dot(direction, normal) / kPi, pdf));
+                if (kHasTriangleLights) radiance = HitEmitter(hit, origin, origin + direction * hit.t, pdf);
+            } else if (kHasEnvironment) {
+                radiance = EscapedRay(direction, pdf);
             }
+            // L cos / (cos / pi): the cosine ray's own weight is pi.
+            if (pdf > 0) irradiance += radiance * (kPi * PowerHeuristic(dot(direction, normal) / kPi, pdf));
         }
         vec3 value = point.weight.xyz * irradiance;
         if (!IsFinite(value)) {

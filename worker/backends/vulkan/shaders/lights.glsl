@@ -1,6 +1,7 @@
 // Photon emission and light sampling over the scene's emitters, as core/scene/emitters.cpp
 // does on the CPU, with the shared warps (core/shared/path_sampling.h) and consuming random
 // numbers in the same order; light kinds the scene lacks are compiled out.
+#include "environment.glsl"
 
 // A frame around a unit normal, as core/sampling/frame.h: columns s, t, n.
 mat3 FrameFromNormal(vec3 n) {
@@ -62,6 +63,22 @@ Photon EmitPhoton(inout Pcg32 rng) {
         photon.origin = params.scene_sphere.xyz - emitter.direction.xyz * (1.01 * radius) +
                         (frame[0] * d.x + frame[1] * d.y) * radius;
         photon.direction = emitter.direction.xyz;
+    } else if (kHasEnvironment && kind == kEmitterEnvironment) {
+        // A direction from the map, then a point of the bounding sphere's disk facing it, just
+        // outside: flux L / pdf x pi r^2 (Emitters::EmitFromEnvironment).
+        const EnvironmentSample drawn = EnvironmentDraw(emitter, u1, u2);
+        const float radius = params.scene_sphere.w;
+        photon.direction = -drawn.toward;
+        if (!(drawn.pdf > 0)) {
+            photon.origin = params.scene_sphere.xyz;
+            photon.flux = vec3(0);
+            return photon;
+        }
+        const mat3 frame = FrameFromNormal(drawn.toward);
+        const vec2 d = SampleUniformDisk(Pcg32NextFloat(rng), Pcg32NextFloat(rng));
+        photon.origin = params.scene_sphere.xyz + drawn.toward * (1.01 * radius) +
+                        (frame[0] * d.x + frame[1] * d.y) * radius;
+        photon.flux = drawn.radiance * (kPi * radius * radius / drawn.pdf) * emitter.power.w;
     }
     return photon;
 }
@@ -98,6 +115,12 @@ bool SampleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample sample_out) {
     } else if (kHasDirectionalLights && kind == kEmitterDirectional) {
         to_light = -emitter.direction.xyz;
         radiance_over_pdf = emitter.radiance.xyz;
+    } else if (kHasEnvironment && kind == kEmitterEnvironment) {
+        const EnvironmentSample drawn = EnvironmentDraw(emitter, u1, u2);
+        if (!(drawn.pdf > 0)) return false;
+        to_light = drawn.toward;
+        radiance_over_pdf = drawn.radiance / drawn.pdf;
+        sample_out.pdf = drawn.pdf / emitter.power.w;
     } else if ((kHasPointLights && kind == kEmitterPoint) || (kHasSpotLights && kind == kEmitterSpot)) {
         to_light = emitter.position.xyz - sample_out.origin;
         const float distance_sq = dot(to_light, to_light);
@@ -129,4 +152,12 @@ vec3 HitEmitter(RayHit hit, vec3 p, vec3 on_light, out float pdf) {
     if (!(cos_light > 0) || !(distance_sq > 0)) return vec3(0);
     pdf = distance_sq / (cos_light * emitter.edge1.w * emitter.power.w);
     return emitter.radiance.xyz;
+}
+
+// What a ray that escapes the scene toward unit direction `toward` finds (Emitters::Escaped):
+// the environment's radiance and the density with which SampleLight picks that direction.
+vec3 EscapedRay(vec3 toward, out float pdf) {
+    const GpuEmitter environment = EnvironmentEmitter();
+    pdf = EnvironmentPdf(environment, toward) / environment.power.w;
+    return EnvironmentRadiance(environment, toward);
 }

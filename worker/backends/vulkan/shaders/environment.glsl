@@ -1,0 +1,97 @@
+// The environment light as core/scene/environment.cpp has it on the CPU: radiance from a
+// direction (the map's nearest texel, or a uniform colour), directions drawn from the
+// piecewise-constant sampling tables, and their density for weighing a ray that escapes the
+// scene against light sampling. The maps between image and sphere are the shared ones
+// (core/shared/environment_map.h). Its emitter record (gpu_types.h, GpuEmitter) holds the
+// map's size, mapping, scale and rotation.
+#include "core/shared/environment_map.h"
+
+layout(std430, binding = kBindingEnvironmentTexels) readonly buffer EnvironmentTexels {
+    vec4 environment_texels[];
+};
+layout(std430, binding = kBindingEnvironmentTables) readonly buffer EnvironmentTables {
+    float environment_tables[];
+};
+
+GpuEmitter EnvironmentEmitter() { return emitters[params.environment_emitter]; }
+uint EnvironmentMapping(GpuEmitter e) { return floatBitsToUint(e.edge1.z); }
+int EnvironmentWidth(GpuEmitter e) { return int(floatBitsToUint(e.edge1.x)); }
+int EnvironmentHeight(GpuEmitter e) { return int(floatBitsToUint(e.edge1.y)); }
+
+vec3 EnvironmentToMap(GpuEmitter e, vec3 w) {
+    return normalize(vec3(dot(e.edge2.xyz, w), dot(e.direction.xyz, w), dot(e.cone.xyz, w)));
+}
+vec3 EnvironmentToWorld(GpuEmitter e, vec3 d) {
+    return normalize(e.edge2.xyz * d.x + e.direction.xyz * d.y + e.cone.xyz * d.z);
+}
+
+// The radiance arriving from unit world direction `toward` (Environment::Radiance).
+vec3 EnvironmentRadiance(GpuEmitter e, vec3 toward) {
+    const uint mapping = EnvironmentMapping(e);
+    if (mapping == kMappingUniform) return e.radiance.xyz;
+    const uint texel = EnvironmentTexel(mapping, EnvironmentWidth(e), EnvironmentHeight(e),
+                                        EnvironmentToMap(e, toward));
+    return environment_texels[texel].xyz * e.radiance.xyz;
+}
+
+// Where each table begins in environment_tables.
+uint TexelCdfBegin(GpuEmitter e) { return uint(EnvironmentHeight(e)) + 1u; }
+uint ProbabilityBegin(GpuEmitter e) {
+    return TexelCdfBegin(e) + uint(EnvironmentHeight(e)) * (uint(EnvironmentWidth(e)) + 1u);
+}
+
+// The density in solid angle of EnvironmentDraw's direction `toward`
+// (EnvironmentSampler::Pdf), the emitter's pick excluded.
+float EnvironmentPdf(GpuEmitter e, vec3 toward) {
+    const uint mapping = EnvironmentMapping(e);
+    if (mapping == kMappingUniform) return 1.0 / (4.0 * kPi);
+    const int width = EnvironmentWidth(e), height = EnvironmentHeight(e);
+    const uint texel = EnvironmentTexel(mapping, width, height, EnvironmentToMap(e, toward));
+    return environment_tables[ProbabilityBegin(e) + texel] /
+           EnvironmentTexelSolidAngle(mapping, width, height, int(texel / uint(width)));
+}
+
+// The interval i of the n-entry cumulative table at `begin` (n + 1 values, 0 first and 1
+// last) with table[i] <= u < table[i + 1], and u's place in it (FindInterval on the CPU).
+uint FindEnvironmentInterval(uint begin, uint n, float u, out float fraction) {
+    uint low = 0, high = n;
+    while (low < high) {
+        const uint middle = (low + high) / 2;
+        if (environment_tables[begin + 1 + middle] > u) high = middle; else low = middle + 1;
+    }
+    const uint index = min(low, n - 1);
+    const float start = environment_tables[begin + index];
+    const float width = environment_tables[begin + index + 1] - start;
+    fraction = width > 0 ? clamp((u - start) / width, 0.0, 0.99999994) : 0.0;
+    return index;
+}
+
+struct EnvironmentSample {
+    vec3 toward;    // unit world direction, toward the environment
+    vec3 radiance;  // arriving from it
+    float pdf;      // solid angle, the emitter's pick excluded
+};
+
+// EnvironmentSampler::Draw.
+EnvironmentSample EnvironmentDraw(GpuEmitter e, float u1, float u2) {
+    EnvironmentSample drawn;
+    const uint mapping = EnvironmentMapping(e);
+    if (mapping == kMappingUniform) {
+        drawn.toward = SampleUniformSphere(u1, u2);
+        drawn.radiance = e.radiance.xyz;
+        drawn.pdf = 1.0 / (4.0 * kPi);
+        return drawn;
+    }
+    const int width = EnvironmentWidth(e), height = EnvironmentHeight(e);
+    float fx, fy;
+    const uint y = FindEnvironmentInterval(0, uint(height), u1, fy);
+    const uint x = FindEnvironmentInterval(TexelCdfBegin(e) + y * (uint(width) + 1u),
+                                           uint(width), u2, fx);
+    const uint texel = y * uint(width) + x;
+    drawn.toward = EnvironmentToWorld(
+        e, EnvironmentDirectionInTexel(mapping, width, height, x, y, fx, fy));
+    drawn.radiance = environment_texels[texel].xyz * e.radiance.xyz;
+    drawn.pdf = environment_tables[ProbabilityBegin(e) + texel] /
+                EnvironmentTexelSolidAngle(mapping, width, height, int(y));
+    return drawn;
+}
