@@ -51,6 +51,7 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
       scene_features_(std::move(prepared.scene_features)),
       reference_(std::move(prepared.reference)),
       payload_(std::move(prepared.payload)),
+      film_(payload_ ? payload_->scene.film : FilmResponse{}),
       checkpointed_(prepared.checkpointed),
       estimate_(std::move(prepared.estimate)),
       fixed_estimate_(std::move(prepared.checkpointed_estimate)),
@@ -237,6 +238,9 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
                 discarded = estimate_->NonfiniteDiscarded();
                 reached = estimate_->LightReachedAnything();
                 error = estimate_->EstimateError();
+                // In the image's units, as the film (pbrt's iso, shutter) scales it.
+                error.rmse *= film_.Gain();
+                error.bias_rmse *= film_.Gain();
                 measured = MeasureLocked();
             }
         }
@@ -388,7 +392,9 @@ uint64_t Job::WaitForChange(uint64_t seen, Clock::time_point until) const {
 
 void Job::ResolveLocked() const {
     if (image_epoch_ == estimate_->Epoch()) return;
-    image_ = std::make_shared<const Image>(estimate_->Resolve());
+    Image image = estimate_->Resolve();
+    film_.Apply(&image);  // the scene's film: pbrt's iso, shutter, white balance
+    image_ = std::make_shared<const Image>(std::move(image));
     image_epoch_ = estimate_->Epoch();
 }
 

@@ -23,6 +23,7 @@
 #include "absl/status/statusor.h"
 #include "core/estimate/convergence.h"
 #include "core/estimate/estimate.h"
+#include "core/film/film_response.h"
 #include "core/film/image.h"
 #include "core/job/job_progress.h"
 #include "core/job/job_spec.h"
@@ -218,6 +219,9 @@ private:
     std::optional<ImageDifference> measured_error_;  // the last point's, with a reference
     ConvergenceLog convergence_;
     std::shared_ptr<const JobPayload> payload_;
+    // What the film makes of the estimate (the scene's; kept apart from the payload, which is
+    // released when the job ends, before its last image is resolved).
+    FilmResponse film_;
     std::shared_ptr<const LazyBlob> scene_blob_, hit_points_blob_;
     std::shared_ptr<const EpochInputs> epoch_;
     std::vector<Slot> slots_;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/film/film_response.h"
 #include "core/geometry/ray.h"
 #include "core/math/transform.h"
 #include "core/math/vec3.h"
@@ -128,6 +129,9 @@ struct Scene {
     std::vector<PunctualLight> lights;
     std::optional<Environment> environment;  // light from infinitely far away, if any
     Camera camera;
+    // What the film makes of the radiance (pbrt's Film iso, whitebalance; the camera's
+    // shutter): applied to the job's images. Not in prepared scenes: workers never need it.
+    FilmResponse film;
     Bounds bounds;  // of everything, instances included
     SceneRenderHints hints;
 

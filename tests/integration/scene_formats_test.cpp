@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <string>
 
+#include "tests/support/gltf_builder.h"
 #include "tests/support/image_agreement.h"
 #include "tests/support/small_render.h"
 
@@ -31,6 +32,36 @@ TEST_P(SceneFormats, PbrtFormRendersTheGltfFormsImage) {
     ASSERT_EQ(pbrt.pixels.size(), gltf.pixels.size());
     EXPECT_LE(testing::MeanSquaredDifference(pbrt, gltf),
               1e-9 * testing::MeanSquaredDifference(gltf, gltf_other_stream));
+}
+
+TEST(FilmExposure, ImageIsLinearInIsoTimesExposureTime) {
+    // The same render with pbrt's Film iso 400 and a shutter open for half the time is twice
+    // the plain one, bit for bit (a power of two scales floats exactly), and with iso 100 the
+    // same.
+    const auto scene = [](const std::string& camera, const std::string& film,
+                          const std::string& name) {
+        return testing::WriteTextFile(
+            "LookAt 0 0 4  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 40 " + camera +
+                "\nFilm \"rgb\" \"integer xresolution\" 32 \"integer yresolution\" 32 " + film +
+                "\nWorldBegin\nLightSource \"point\" \"rgb I\" [2 3 4] \"point3 from\" [0 1 2]\n"
+                "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
+                "Shape \"sphere\" \"float radius\" 0.4\n",
+            name);
+    };
+    const Image plain = testing::RenderSmall(scene("", "", "film-plain.pbrt"), "cpu", 1);
+    const Image iso = testing::RenderSmall(
+        scene("\"float shutterclose\" 0.5", "\"float iso\" 400", "film-iso.pbrt"), "cpu", 1);
+    const Image same =
+        testing::RenderSmall(scene("", "\"float iso\" 100", "film-iso100.pbrt"), "cpu", 1);
+    ASSERT_EQ(plain.pixels.size(), iso.pixels.size());
+    ASSERT_EQ(plain.pixels.size(), same.pixels.size());
+    double sum = 0;
+    for (size_t p = 0; p < plain.pixels.size(); ++p) {
+        EXPECT_EQ(iso.pixels[p], plain.pixels[p] * 2.0f) << p;
+        EXPECT_EQ(same.pixels[p], plain.pixels[p]) << p;
+        sum += plain.pixels[p].y;
+    }
+    EXPECT_GT(sum, 0);
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, SceneFormats,

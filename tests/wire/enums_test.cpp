@@ -29,8 +29,9 @@ void ExpectBijection(const std::vector<Core>& values,
     }
     for (int i = 0; i < descriptor->value_count(); ++i) {
         const int number = descriptor->value(i)->number();
-        if (number != 0)
+        if (number != 0) {
             EXPECT_TRUE(seen.count(number)) << descriptor->value(i)->name() << " has no core value";
+        }
     }
     for (int unknown : {-1, descriptor->value_count(), 1000}) {
         const absl::StatusOr<Core> refused = to_core(unknown, "settings.field");

@@ -25,7 +25,11 @@ absl::Status PbrtSceneBuilder::Camera(const std::string& type, ParameterList& pa
     camera.lens_radius = parameters.Float("lensradius", 0.0);
     camera.focal_distance = parameters.Float("focaldistance", 1e6);
     camera.frame_aspect = parameters.Float("frameaspectratio", 0.0);
+    camera.exposure_time =
+        parameters.Float("shutterclose", 1.0) - parameters.Float("shutteropen", 0.0);
     camera.where = where;
+    if (!(camera.exposure_time > 0 && std::isfinite(camera.exposure_time)))
+        return ErrorAt(where, "Camera: \"shutterclose\" must come after \"shutteropen\"");
     if (!(camera.fov_degrees > 0 && camera.fov_degrees < 180))
         return ErrorAt(where, "Camera: \"float fov\" must lie in (0, 180)");
     if (!(camera.lens_radius >= 0 && camera.focal_distance > 0))
@@ -66,6 +70,8 @@ absl::Status PbrtSceneBuilder::FinishCamera() {
     out.focal_distance = static_cast<float>(camera.focal_distance);
     scene_.hints.width = film_width_;
     scene_.hints.height = film_height_;
+    // pbrt-v4's imaging ratio: exposure time x ISO / 100 (1 by default), and its white balance.
+    scene_.film = FilmResponse::Make(camera.exposure_time * film_iso_ / 100, film_white_balance_);
     return absl::OkStatus();
 }
 
@@ -77,8 +83,26 @@ absl::Status PbrtSceneBuilder::Film(ParameterList& parameters, const Location& w
         Warn(parameters.Find("filename")->where,
              "Film: \"filename\" is not used; the image goes where --out says");
     }
+    film_iso_ = parameters.Float("iso", 100.0);
+    film_white_balance_ = parameters.Float("whitebalance", 0.0);
+    const std::string sensor = parameters.String("sensor", "cie1931");
+    if (sensor != "cie1931") {
+        // pbrt-v4 then balances for D65 unless told otherwise; the camera's spectral curves
+        // themselves are not available here.
+        if (film_white_balance_ == 0) film_white_balance_ = 6500;
+        Warn(parameters.Find("sensor")->where,
+             absl::StrCat("Film: sensor \"", sensor,
+                          "\": its spectral response is not modelled; the CIE 1931 observer "
+                          "with the same white balance and imaging ratio stands in"));
+    }
     if (film_width_ < 1 || film_height_ < 1 || film_width_ > 32768 || film_height_ > 32768)
         return ErrorAt(where, "Film: resolution must lie in 1..32768");
+    if (!(film_iso_ > 0 && film_iso_ < 1e7))
+        return ErrorAt(where, "Film: \"iso\" must lie in (0, 1e7)");
+    if (film_white_balance_ != 0 && !(film_white_balance_ >= 4000 && film_white_balance_ <= 25000))
+        return ErrorAt(where,
+                       "Film: \"whitebalance\" must be 0 (none) or a temperature in [4000, "
+                       "25000] K (the CIE daylight locus)");
     return absl::OkStatus();
 }
 

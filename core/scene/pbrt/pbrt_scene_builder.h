@@ -65,6 +65,7 @@ struct ObjectShape {
 struct CameraSettings {
     Transform camera_from_world;
     double fov_degrees = 90, lens_radius = 0, focal_distance = 1e6, frame_aspect = 0;
+    double exposure_time = 1;  // shutterclose - shutteropen, the film's exposure
     Location where;
 };
 
@@ -136,6 +137,7 @@ private:
     std::optional<CameraSettings> camera_;
     bool in_world_ = false, transform_at_start_ = true, camera_finished_ = false;
     int film_width_ = 1280, film_height_ = 720;
+    double film_iso_ = 100, film_white_balance_ = 0;  // pbrt-v4's PixelSensor parameters
 
     std::vector<MaterialRef> materials_;
     std::map<std::string, int> named_materials_;

@@ -502,6 +502,37 @@ TEST(PbrtLoaderTest, InfiniteLightsAsPbrtV4DefinesThem) {
                 "absent.exr");
 }
 
+TEST(PbrtLoaderTest, FilmAndShutterGiveTheImagingRatio) {
+    // pbrt-v4: exposure time (shutterclose - shutteropen) x iso / 100, and the white balance.
+    const auto load = [](const std::string& camera, const std::string& film) {
+        SceneBundle bundle = Bundle(kQuad);
+        std::string& main = bundle.files["scene.pbrt"];
+        main.replace(main.find("Camera \"perspective\" \"float fov\" 40"),
+                     std::strlen("Camera \"perspective\" \"float fov\" 40"),
+                     "Camera \"perspective\" \"float fov\" 40 " + camera);
+        main.replace(main.find("Film \"rgb\""), std::strlen("Film \"rgb\""),
+                     "Film \"rgb\" " + film);
+        std::vector<std::string> warnings;
+        absl::StatusOr<Scene> scene = Load(bundle, &warnings);
+        return std::make_pair(std::move(scene), warnings);
+    };
+    const auto [plain, none] = load("", "");
+    ASSERT_TRUE(plain.ok()) << plain.status();
+    EXPECT_TRUE(plain->film.IsIdentity());
+    const auto [bright, ignored] = load("\"float shutterclose\" 0.5", "\"float iso\" 800");
+    ASSERT_TRUE(bright.ok()) << bright.status();
+    EXPECT_EQ(bright->film.Apply(Rgb(1.0f)), Rgb(4.0f));
+    const auto [balanced, warnings] =
+        load("", "\"float whitebalance\" 5000 \"string sensor\" \"nikon_d850\"");
+    ASSERT_TRUE(balanced.ok()) << balanced.status();
+    EXPECT_FALSE(balanced->film.IsIdentity());
+    EXPECT_TRUE(Contains(warnings, "sensor \"nikon_d850\": its spectral response is not modelled"));
+    ExpectError(load("", "\"float iso\" -5").first, "\"iso\" must lie in (0, 1e7)");
+    ExpectError(load("", "\"float whitebalance\" 1000").first, "[4000, 25000]");
+    ExpectError(load("\"float shutteropen\" 1 \"float shutterclose\" 0.5", "").first,
+                "\"shutterclose\" must come after \"shutteropen\"");
+}
+
 TEST(PbrtLoaderTest, AnotherCameraIsRefused) {
     SceneLoadOptions options;
     options.camera = "top";
