@@ -168,11 +168,17 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
         absl::StatusOr<std::string> path = ResolveReference(filename);
         if (!path.ok())
             return ErrorAt(where, absl::StrCat("Shape \"plymesh\": ", path.status().message()));
-        absl::StatusOr<std::string_view> bytes = files_.Read(*path);
+        if (options_.references_only) {  // packing: the file itself, still compressed
+            absl::StatusOr<std::string_view> bytes = files_.Read(*path);
+            if (!bytes.ok())
+                return absl::Status(bytes.status().code(),
+                                    absl::StrCat(element, ": ", bytes.status().message()));
+            return absl::OkStatus();
+        }
+        absl::StatusOr<std::string_view> bytes = ReadFile(*path);
         if (!bytes.ok())
             return absl::Status(bytes.status().code(),
                                 absl::StrCat(element, ": ", bytes.status().message()));
-        if (options_.references_only) return absl::OkStatus();
         mesh = ReadPly(*bytes, *path, options_.limits);
         if (!mesh.ok())
             return absl::Status(mesh.status().code(),

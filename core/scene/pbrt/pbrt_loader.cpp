@@ -7,9 +7,11 @@
 #include <cmath>
 #include <set>
 
+#include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
+#include "core/scene/decompress.h"
 #include "core/scene/pbrt/pbrt_scene_builder.h"
 
 namespace pf::pbrt {
@@ -60,7 +62,7 @@ absl::Status PbrtSceneBuilder::ParseFile(const std::string& path, const Location
     if (depth > options_.limits.max_include_depth)
         return ErrorAt(*included_from, absl::StrCat("includes nest deeper than ",
                                                     options_.limits.max_include_depth, " files"));
-    absl::StatusOr<std::string_view> contents = files_.Read(path);
+    absl::StatusOr<std::string_view> contents = ReadFile(path);
     if (!contents.ok()) {
         if (included_from == nullptr)
             return absl::Status(contents.status().code(),
@@ -73,6 +75,15 @@ absl::Status PbrtSceneBuilder::ParseFile(const std::string& path, const Location
     for (size_t pos = 0; pos < tokens->size();)
         if (absl::Status status = Directive(*tokens, &pos, depth); !status.ok()) return status;
     return absl::OkStatus();
+}
+
+absl::StatusOr<std::string_view> PbrtSceneBuilder::ReadFile(const std::string& path) {
+    absl::StatusOr<std::string_view> bytes = files_.Read(path);
+    if (!bytes.ok() || !absl::EndsWithIgnoreCase(path, ".gz")) return bytes;
+    // Within what a bundle may hold in all.
+    absl::StatusOr<std::string> contents = Gunzip(*bytes, path, kMaxBundleBytes);
+    if (!contents.ok()) return contents.status();
+    return std::string_view(decompressed_.emplace_back(std::move(*contents)));
 }
 
 absl::StatusOr<std::string> PbrtSceneBuilder::ReadString(const std::vector<Token>& tokens,

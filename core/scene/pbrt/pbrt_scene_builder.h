@@ -115,6 +115,9 @@ private:
     absl::StatusOr<int32_t> ImageIndex(const TextureRef& texture);
     absl::Status LightSource(const std::string& type, ParameterList& parameters,
                              const Location& where);
+    // files_.Read, with a gzip file (name ending in .gz) decompressed: pbrt's .pbrt.gz and
+    // .ply.gz. Packing reads the compressed bytes only.
+    absl::StatusOr<std::string_view> ReadFile(const std::string& path);
     absl::Status InfiniteLight(ParameterList& parameters, const Location& where);
     absl::Status ApplyTransform(const Transform& transform);
     absl::Status FinishCamera();
@@ -125,6 +128,9 @@ private:
     static const MaterialRef& DefaultMaterial();
 
     SceneFiles& files_;
+    // Files read through ReadFile that were gzip-compressed, decompressed (views into them
+    // stay valid while the builder lives).
+    std::deque<std::string> decompressed_;
     std::string display_root_;
     PbrtLoadOptions options_;
     std::deque<std::string> file_names_;  // what tokens' locations point into
