@@ -85,7 +85,7 @@ EnvironmentSampler::EnvironmentSampler(const Environment& environment)
     : environment_(&environment) {
     if (environment.mapping == EnvironmentMapping::kUniform) return;
     const int width = environment.image.width, height = environment.image.height;
-    std::vector<double> rows(height), texels(width);
+    std::vector<double> rows(height);
     std::vector<std::vector<double>> weights(height);
     double total = 0;
     for (int y = 0; y < height; ++y) {

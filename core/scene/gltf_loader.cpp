@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <set>
 
 #include "absl/strings/match.h"
 #include "absl/strings/numbers.h"
@@ -248,6 +249,18 @@ private:
 };
 
 absl::StatusOr<Scene> GltfSceneBuilder::Build() {
+    // A required extension changes what the file means: one not read here is refused, as the
+    // glTF specification asks, rather than rendered wrong.
+    static const std::set<std::string> kSupported = {
+        "KHR_lights_punctual",   "KHR_materials_emissive_strength",
+        "KHR_texture_transform", "KHR_materials_transmission",
+        "KHR_materials_ior",     "KHR_materials_volume"};
+    for (const std::string& extension : model_.extensionsRequired)
+        if (!kSupported.contains(extension))
+            return Error("extensionsRequired",
+                         absl::StrCat("'", extension,
+                                      "' is not supported (a sample model's glTF/ variant "
+                                      "usually does without it)"));
     std::vector<int> roots;
     if (!model_.scenes.empty()) {
         const int scene_index = model_.defaultScene >= 0 ? model_.defaultScene : 0;

@@ -228,6 +228,24 @@ TEST(GltfLoaderTest, SceneWithoutCameraIsFramedOnItsBounds) {
     ExpectError(LoadScene(path, options), "--camera 1", "the scene has no camera");
 }
 
+TEST(GltfLoaderTest, AnUnknownRequiredExtensionIsRefusedNamingIt) {
+    testing::TestScene scene = testing::LitQuadScene();
+    const std::string json = testing::GltfJson(scene);
+    const std::string required = testing::WriteTextFile(
+        json.substr(0, json.rfind('}')) +
+            R"(,"extensionsUsed":["KHR_draco_mesh_compression","KHR_texture_transform"],)"
+            R"("extensionsRequired":["KHR_texture_transform","KHR_draco_mesh_compression"]})",
+        "draco-required.gltf");
+    ExpectError(LoadScene(required), required,
+                "extensionsRequired: 'KHR_draco_mesh_compression' is not supported");
+    // Required extensions that are read load.
+    const std::string supported = testing::WriteTextFile(
+        json.substr(0, json.rfind('}')) +
+            R"(,"extensionsUsed":["KHR_texture_transform"],"extensionsRequired":["KHR_texture_transform"]})",
+        "transform-required.gltf");
+    EXPECT_TRUE(LoadScene(supported).ok());
+}
+
 TEST(GltfLoaderTest, CameraChosenByNumberOrName) {
     testing::TestScene test_scene = testing::LitQuadScene();
     test_scene.extra_nodes = {
