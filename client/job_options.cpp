@@ -192,6 +192,11 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
         ->add_option("--height", s->height,
                      "Image height in pixels (default: width / camera aspect)")
         ->check(WholeNumber(1, 32768));
+    command
+        ->add_option("--max-depth", s->max_depth,
+                     "Most surfaces a path scatters at, as pbrt's maxdepth (default: the scene's "
+                     "Integrator, else no limit but Russian roulette)")
+        ->check(WholeNumber(1, kMaxDepthSetting));
     AddPhotonMapOptions(command, &s->photon_map);
     AddEnvironmentOptions(command, &s->environment);
     command->add_option("--camera", s->camera,
@@ -200,14 +205,10 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
                         "first; a scene without one is framed on its bounds)");
 }
 
-void ApplyDefaultBudget(JobSpec* spec) {
-    if (spec->until_cancelled || spec->photon_budget != 0 || spec->epoch_budget != 0 ||
-        spec->seconds_budget != 0 || spec->target_error != 0)
-        return;
-    if (GathersAtHitPoints(spec->integrator))
-        spec->photon_budget = 20'000'000;
-    else
-        spec->epoch_budget = 16;
+GivenSettings GivenSettingsOf(const CLI::App& command) {
+    return {command.count("--integrator") > 0, command.count("--spp") > 0,
+            command.count("--photons-per-batch") + command.count("--batches-per-epoch") > 0,
+            command.count("--max-depth") > 0};
 }
 
 }  // namespace pf

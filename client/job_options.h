@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/job/job_spec.h"
+#include "core/job/scene_settings.h"
 
 namespace pf {
 
@@ -14,7 +15,7 @@ namespace pf {
 // `command`, writing into `spec` (spec->environment.file: the image's path on this machine,
 // which BundleEnvironment moves into the scene's bundle).
 void AddJobOptions(CLI::App* command, JobSpec* spec);
-// After parsing: the default budget when none was given.
-void ApplyDefaultBudget(JobSpec* spec);
+// After parsing: which of the settings a scene file may choose the user gave as flags.
+GivenSettings GivenSettingsOf(const CLI::App& command);
 
 }  // namespace pf

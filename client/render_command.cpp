@@ -40,6 +40,7 @@ struct RenderOptions {
 
 ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcome) {
     const RenderSettings& s = options.settings;
+    const JobSpec& job = outcome.job;
     return {{"photonfarm:scene", s.scene_path},
             {"photonfarm:photons", absl::StrCat(outcome.progress.photons)},
             {"photonfarm:epochs", absl::StrCat(outcome.progress.epochs)},
@@ -49,28 +50,24 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
                  ? absl::StrFormat("%.4g", *outcome.progress.estimated_error)
                  : "unknown"},
             {"photonfarm:nonfinite_discarded", absl::StrCat(outcome.progress.nonfinite_discarded)},
-            {"photonfarm:seed", absl::StrCat(s.job.seed)},
-            {"photonfarm:photon_stream", absl::StrCat(s.job.photon_stream)},
-            {"photonfarm:alpha", absl::StrFormat("%.17g", s.job.alpha)},
+            {"photonfarm:seed", absl::StrCat(job.seed)},
+            {"photonfarm:photon_stream", absl::StrCat(job.photon_stream)},
+            {"photonfarm:alpha", absl::StrFormat("%.17g", job.alpha)},
             {"photonfarm:initial_radius", absl::StrFormat("%.9g", outcome.initial_radius)},
             {"photonfarm:scene_features", outcome.scene_features},
-            {"photonfarm:integrator", std::string(IntegratorName(s.job.integrator))},
+            {"photonfarm:integrator", std::string(IntegratorName(job.integrator))},
             {"photonfarm:camera_samples", absl::StrCat(outcome.progress.camera_samples)},
             {"photonfarm:peak_memory_bytes", absl::StrCat(outcome.peak_memory_bytes)},
             {"photonfarm:backend", s.backend},
-            {"photonfarm:spp", absl::StrCat(s.job.samples_per_pixel)},
-            {"photonfarm:photons_per_batch", absl::StrCat(s.job.layout.photons_per_batch)},
-            {"photonfarm:batches_per_epoch", absl::StrCat(s.job.layout.batches_per_epoch)}};
+            {"photonfarm:spp", absl::StrCat(job.samples_per_pixel)},
+            {"photonfarm:photons_per_batch", absl::StrCat(job.layout.photons_per_batch)},
+            {"photonfarm:batches_per_epoch", absl::StrCat(job.layout.batches_per_epoch)},
+            {"photonfarm:max_depth", absl::StrCat(job.max_depth)}};
 }
 
 int RunRender(const RenderOptions& options) {
     RenderSettings settings = options.settings;
-    absl::Status prepared =
-        RunsOnBackend(settings.job.integrator, settings.backend)
-            ? PrepareOutputs(options.out, options.png, options.snapshot_dir)
-            : absl::InvalidArgumentError(absl::StrCat(
-                  "--backend ", settings.backend, " runs --integrator ppm or sppm, not ",
-                  std::string(IntegratorName(settings.job.integrator)), ": use --backend cpu"));
+    absl::Status prepared = PrepareOutputs(options.out, options.png, options.snapshot_dir);
     if (prepared.ok() && !options.report_dir.empty())
         prepared = PrepareReportDir(options.report_dir);
     if (prepared.ok() && !options.reference_path.empty()) {
@@ -172,8 +169,8 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
     dir->needs(every);
     AddReferenceOption(render, &options->reference_path);
     AddReportOption(render, &options->report_dir);
-    render->callback([options, exit_code] {
-        ApplyDefaultBudget(&options->settings.job);
+    render->callback([options, render, exit_code] {
+        options->settings.given = GivenSettingsOf(*render);
         *exit_code = RunRender(*options);
     });
 }

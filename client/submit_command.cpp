@@ -184,22 +184,32 @@ struct SubmitOptions {
     std::string reference_path;
     std::string name;
     JobSpec spec;
+    GivenSettings given;  // the settings given as flags, which the scene's do not change
     int priority = 0;
     bool watch = false;
     WatchOptions watch_options;
 };
 
 int RunSubmit(SubmitOptions& options) {
-    ApplyDefaultBudget(&options.spec);
-    if (absl::Status status = CheckJobSpec(options.spec, SettingNames::kFlags); !status.ok()) {
+    JobSpec flags = options.spec;
+    ApplyDefaultBudget(&flags);
+    if (absl::Status status = CheckJobSpec(flags, SettingNames::kFlags); !status.ok()) {
         spdlog::error("{}", std::string(status.message()));
         return 2;
     }
-    absl::StatusOr<SceneBundle> bundle = PackSceneBundle(options.scene_path);
+    SceneRenderSettings scene_settings;
+    absl::StatusOr<SceneBundle> bundle = PackSceneBundle(options.scene_path, &scene_settings);
     if (!bundle.ok()) {
         spdlog::error("{}", std::string(bundle.status().message()));
         return 1;
     }
+    const std::vector<std::string> notes =
+        ApplySceneSettings(scene_settings, options.given, &options.spec);
+    if (absl::Status status = CheckJobSpec(options.spec, SettingNames::kFlags); !status.ok()) {
+        spdlog::error("{}", std::string(status.message()));
+        return 2;
+    }
+    for (const std::string& note : notes) spdlog::info("{}", note);
     if (absl::Status status = BundleEnvironment(&options.spec.environment, &*bundle);
         !status.ok()) {
         spdlog::error("{}", std::string(status.message()));
@@ -269,7 +279,8 @@ void AddSubmitCommand(CLI::App& app, int* exit_code) {
     submit->add_flag("--watch", options->watch,
                      "Follow the job to its end: progress, snapshots, final image");
     AddWatchOptions(submit, &options->watch_options);
-    submit->callback([options, exit_code] {
+    submit->callback([options, submit, exit_code] {
+        options->given = GivenSettingsOf(*submit);
         const WatchOptions& watch = options->watch_options;
         if (!options->watch && (!watch.out.empty() || !watch.png.empty() ||
                                 !watch.snapshot_dir.empty() || !watch.report_dir.empty())) {

@@ -1,11 +1,14 @@
 // The embedded render: one coordinator, one in-process worker.
 #include "embedded/local_render.h"
 
+#include <spdlog/spdlog.h>
 #include <sys/resource.h>
 #include <tbb/task_arena.h>
 
 #include <cmath>
 
+#include "absl/strings/str_cat.h"
+#include "core/job/scene_settings.h"
 #include "core/scene/scene_bundle.h"
 #include "core/scene/scene_loader.h"
 #include "server/coordinator.h"
@@ -18,12 +21,30 @@ namespace pf {
 absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings,
                                             const EpochCallback& on_epoch) {
     JobSpec spec = settings.job;
-    if (absl::Status status = CheckJobSpec(spec, SettingNames::kFlags); !status.ok()) return status;
-    // The backend's device first: without one, say so before any work.
+    auto check = [&](const JobSpec& job) -> absl::Status {
+        if (absl::Status status = CheckJobSpec(job, SettingNames::kFlags); !status.ok())
+            return status;
+        if (!RunsOnBackend(job.integrator, settings.backend))
+            return absl::InvalidArgumentError(
+                absl::StrCat("--backend ", settings.backend, " runs --integrator ppm or sppm, not ",
+                             std::string(IntegratorName(job.integrator)), ": use --backend cpu"));
+        return absl::OkStatus();
+    };
+    {  // the flags alone, before any work
+        JobSpec flags = spec;
+        ApplyDefaultBudget(&flags);
+        if (absl::Status status = check(flags); !status.ok()) return status;
+    }
+    SceneRenderSettings scene_settings;
+    absl::StatusOr<SceneBundle> bundle = PackSceneBundle(settings.scene_path, &scene_settings);
+    if (!bundle.ok()) return bundle.status();
+    const std::vector<std::string> notes =
+        ApplySceneSettings(scene_settings, settings.given, &spec);
+    if (absl::Status status = check(spec); !status.ok()) return status;
+    for (const std::string& note : notes) spdlog::info("{}", note);
+    // The backend's device before any rendering: without one, say so.
     const absl::StatusOr<BackendDevice> device = OpenBackendDevice(settings.backend);
     if (!device.ok()) return device.status();
-    absl::StatusOr<SceneBundle> bundle = PackSceneBundle(settings.scene_path);
-    if (!bundle.ok()) return bundle.status();
     if (absl::Status status = BundleEnvironment(&spec.environment, &*bundle); !status.ok())
         return status;
 
@@ -33,6 +54,7 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings,
     tbb::task_arena arena(settings.threads > 0 ? settings.threads
                                                : tbb::this_task_arena::max_concurrency());
     absl::StatusOr<RenderOutcome> outcome = RenderOutcome{};
+    outcome->job = spec;
     arena.execute([&] {
         absl::StatusOr<JobProgress> submitted = coordinator.Submit(
             {settings.scene_path, "this process", std::move(*bundle), spec, 0, settings.reference});

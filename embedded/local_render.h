@@ -22,6 +22,9 @@ namespace pf {
 struct RenderSettings {
     std::string scene_path;
     JobSpec job;
+    // The settings the user chose (flags): the scene file's own (a pbrt Integrator, Sampler)
+    // fill the rest (ApplySceneSettings).
+    GivenSettings given;
     int threads = 0;                         // 0: all hardware threads
     std::string backend = "cpu";             // the photon backend (worker/backend_factory.h)
     std::shared_ptr<const Image> reference;  // every epoch is measured against it, when set
@@ -44,6 +47,7 @@ struct RenderProgress {
 };
 
 struct RenderOutcome {
+    JobSpec job;  // as rendered: the flags, the scene's own settings and the defaults
     Image image;
     RenderProgress progress;
     uint64_t hit_points = 0;

@@ -167,6 +167,7 @@ photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
     out.set_epoch_budget(spec.epoch_budget);
     out.set_until_cancelled(spec.until_cancelled);
     out.set_camera(spec.camera);
+    out.set_max_depth(static_cast<uint32_t>(spec.max_depth));
     if (spec.environment.Given()) {
         const EnvironmentSettings& environment = spec.environment;
         photonfarm::v1::EnvironmentSettings* out_environment = out.mutable_environment();
@@ -218,6 +219,9 @@ absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings) {
     spec.epoch_budget = settings.epoch_budget();
     spec.until_cancelled = settings.until_cancelled();
     spec.camera = settings.camera();
+    if (settings.max_depth() > static_cast<uint32_t>(kMaxDepthSetting))
+        return too_large("max_depth", settings.max_depth());
+    spec.max_depth = static_cast<int>(settings.max_depth());
     if (settings.has_environment()) {
         const photonfarm::v1::EnvironmentSettings& in = settings.environment();
         if (in.file().size() > 4096) return too_large("environment.file length", in.file().size());

@@ -38,7 +38,7 @@ struct CameraPath {
 // the square root of its samples, as pbrt-v4 scales its ray differentials).
 template <bool kSpecular, bool kTextures>
 Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& primary, uint32_t pixel,
-                      float pixel_angle, float filter_angle, int splits, Rng& rng,
+                      float pixel_angle, float filter_angle, int splits, int max_depth, Rng& rng,
                       std::vector<HitPoint>& hit_points, std::vector<float>& footprints) {
     Rgb emission(0.0f);
     CameraPath stack[kCameraSplits + 1];
@@ -46,7 +46,7 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
     stack[pending++] = {primary, Rgb(1.0f), 0.0f, 0, splits};
     while (pending > 0) {
         CameraPath path = stack[--pending];
-        for (; path.depth < kMaxCameraDepth; ++path.depth) {
+        for (; path.depth < max_depth; ++path.depth) {
             RayHit hit;
             if (!tracer.Intersect(path.ray, &hit)) {
                 // Escaped: the environment, seen directly or through specular bounces.
@@ -135,6 +135,7 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     const float filter_angle =
         pixel_angle / std::sqrt(static_cast<float>(settings.samples_per_pixel));
     const int splits = settings.stochastic ? 0 : kCameraSplits;
+    const int max_depth = DepthLimit(settings.max_depth, kMaxCameraDepth);
 
     std::vector<std::vector<HitPoint>> row_hit_points(height);
     std::vector<std::vector<float>> row_footprints(height);
@@ -157,7 +158,7 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                     const Ray ray = PixelSampleRay(scene.camera, film, x, y, s, rng);
                     const size_t before = row_hit_points[y].size();
                     emission += trace(scene, tracer, ray, pixel, pixel_angle, filter_angle, splits,
-                                      rng, row_hit_points[y], row_footprints[y]);
+                                      max_depth, rng, row_hit_points[y], row_footprints[y]);
                     // A stochastic pass keeps one slot per sample, black where it found nothing.
                     if (settings.stochastic && row_hit_points[y].size() == before) {
                         row_hit_points[y].push_back(
@@ -212,6 +213,7 @@ float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& sce
 
 absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& scene) {
     CameraPassSettings film{spec.width, spec.height, spec.samples_per_pixel, spec.seed};
+    film.max_depth = spec.max_depth;
     const double aspect = scene.camera.aspect_ratio > 0 ? scene.camera.aspect_ratio : 1.0;
     if (film.width == 0 && film.height == 0) {
         film.width = scene.hints.width > 0 ? scene.hints.width : 512;

@@ -28,6 +28,7 @@ struct CameraPassSettings {
     // What the scene uses (AnalyseFeatures): camera paths run code instantiated for it. All
     // by default.
     SceneFeatures features = SceneFeatures::All();
+    int max_depth = 0;  // JobSpec::max_depth: surfaces a path meets at most (0: kMaxCameraDepth)
 };
 
 struct CameraPassResult {

@@ -69,6 +69,9 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
                 s.integrator == Integrator::kPm ? " (its maps' size is --pm-photons)" : ""));
     if (absl::Status status = CheckEnvironmentSettings(s.environment, names); !status.ok())
         return status;
+    if (s.max_depth < 0 || s.max_depth > kMaxDepthSetting)
+        return invalid("--max-depth", "settings.max_depth",
+                       absl::StrCat("must lie in [0, ", kMaxDepthSetting, "] (0: no limit)"));
     if (s.camera.size() > 256)
         return invalid("--camera", "settings.camera", "must be at most 256 characters");
     if (s.integrator == Integrator::kPm) return CheckPhotonMapSettings(s.photon_map, names);

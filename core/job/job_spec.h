@@ -48,7 +48,18 @@ struct JobSpec {
     EnvironmentSettings environment;
     // Which of the scene's cameras renders: its number (scene order) or name; empty: the first.
     std::string camera;
+    // The most surfaces a path may scatter at, as pbrt's maxdepth counts them: a camera path
+    // scatters at most this many times (the light it then meets still counts), a photon
+    // reaches at most this many surfaces. 0: no limit but Russian roulette (unbiased).
+    int max_depth = 0;
 };
+
+// The depth limit `max_depth` puts on a loop whose own limit is `hard_limit`.
+inline int DepthLimit(int max_depth, int hard_limit) {
+    return max_depth > 0 && max_depth < hard_limit ? max_depth : hard_limit;
+}
+// The most a job's max_depth may be.
+inline constexpr int kMaxDepthSetting = 1 << 16;
 
 // Hit points cost about this much memory each across the estimate (~140 bytes, 72 more for
 // the even half-estimate of the error and 32 for the bias estimate's counts), the grid (8

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "absl/strings/str_format.h"
+#include "core/job/job_spec.h"
 #include "core/pm/photon_grid.h"
 #include "core/pm/photon_kdtree.h"
 #include "core/ppm/photon_pass.h"
@@ -38,8 +39,8 @@ enum class MapKind { kGlobal, kCaustic };
 // rough bounces alone.
 template <bool kSpecular, bool kTextures>
 void TraceMapPhotons(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
-                     MapKind kind, bool everything, uint64_t seed, uint64_t begin, uint64_t end,
-                     double inverse_emitted, std::vector<StoredPhoton>& out) {
+                     MapKind kind, bool everything, int max_bounces, uint64_t seed, uint64_t begin,
+                     uint64_t end, double inverse_emitted, std::vector<StoredPhoton>& out) {
     const SeedFamily seeds(seed, kind == MapKind::kGlobal ? kGlobalStream : kCausticStream, 0);
     for (uint64_t p = begin; p < end; ++p) {
         Rng rng(seeds.Seed(p));
@@ -47,7 +48,7 @@ void TraceMapPhotons(const Scene& scene, const Emitters& emitters, const Tracer&
         Ray ray = emitted.ray;
         Rgb flux = emitted.flux;
         int diffuse_bounces = 0, other_bounces = 0;
-        for (int bounce = 0; bounce < kMaxPhotonBounces; ++bounce) {
+        for (int bounce = 0; bounce < max_bounces; ++bounce) {
             RayHit hit;
             if (!IsFinite(flux) || !tracer.Intersect(ray, &hit)) break;
             bool stop = false;
@@ -72,8 +73,8 @@ void TraceMapPhotons(const Scene& scene, const Emitters& emitters, const Tracer&
 // Photons [0, count) of one map, in parallel by tasks, concatenated in task order.
 std::vector<StoredPhoton> TraceMap(const Scene& scene, const Emitters& emitters,
                                    const Tracer& tracer, const SceneFeatures& features,
-                                   MapKind kind, bool everything, uint64_t seed, uint64_t count,
-                                   uint64_t emitted) {
+                                   MapKind kind, bool everything, int max_bounces, uint64_t seed,
+                                   uint64_t count, uint64_t emitted) {
     const auto trace =
         features.Specular()
             ? (features.textures ? TraceMapPhotons<true, true> : TraceMapPhotons<true, false>)
@@ -82,7 +83,7 @@ std::vector<StoredPhoton> TraceMap(const Scene& scene, const Emitters& emitters,
     std::vector<std::vector<StoredPhoton>> parts(tasks);
     const double inverse_emitted = emitted > 0 ? 1.0 / static_cast<double>(emitted) : 0.0;
     tbb::parallel_for(uint64_t{0}, tasks, [&](uint64_t t) {
-        trace(scene, emitters, tracer, kind, everything, seed, t * kPhotonsPerTask,
+        trace(scene, emitters, tracer, kind, everything, max_bounces, seed, t * kPhotonsPerTask,
               std::min(count, (t + 1) * kPhotonsPerTask), inverse_emitted, parts[t]);
     });
     size_t total = 0;
@@ -116,21 +117,23 @@ void NearestPhotons::Offer(float distance_sq, uint32_t photon) {
 
 PhotonMapForecast ForecastPhotonMaps(const Scene& scene, const Emitters& emitters,
                                      const Tracer& tracer, const SceneFeatures& features,
-                                     const PhotonMapSettings& settings, uint64_t seed) {
+                                     const PhotonMapSettings& settings, uint64_t seed,
+                                     int max_depth) {
     PhotonMapForecast forecast;
+    const int max_bounces = DepthLimit(max_depth, kMaxPhotonBounces);
     const bool everything = settings.final_gather > 0;
     // The pilot's own streams: the maps' first photons would do too, but then the pilot and
     // the maps would share their luck.
     const uint64_t pilot_seed = HashSeed(seed, 0x70696c6f74ull);
     forecast.global_stored_per_emitted =
-        double(TraceMap(scene, emitters, tracer, features, MapKind::kGlobal, everything, pilot_seed,
-                        kPilotPhotons, 1)
+        double(TraceMap(scene, emitters, tracer, features, MapKind::kGlobal, everything,
+                        max_bounces, pilot_seed, kPilotPhotons, 1)
                    .size()) /
         kPilotPhotons;
     if (features.Specular())
         forecast.caustic_stored_per_emitted =
-            double(TraceMap(scene, emitters, tracer, features, MapKind::kCaustic, false, pilot_seed,
-                            kPilotPhotons, 1)
+            double(TraceMap(scene, emitters, tracer, features, MapKind::kCaustic, false,
+                            max_bounces, pilot_seed, kPilotPhotons, 1)
                        .size()) /
             kPilotPhotons;
     const double stored = forecast.global_stored_per_emitted * double(settings.global_photons) +
@@ -208,17 +211,18 @@ double SceneSurfaceArea(const Scene& scene) {
 
 PhotonMaps BuildPhotonMaps(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
                            const SceneFeatures& features, const PhotonMapSettings& settings,
-                           uint64_t seed) {
+                           uint64_t seed, int max_depth) {
     PhotonMaps maps;
+    const int max_bounces = DepthLimit(max_depth, kMaxPhotonBounces);
     maps.global_emitted = settings.global_photons;
     maps.caustic_emitted = features.Specular() ? settings.caustic_photons : 0;
     const float max_radius = MaxSearchRadius(settings, scene);
     const double area = SceneSurfaceArea(scene);
     std::vector<StoredPhoton> global =
         TraceMap(scene, emitters, tracer, features, MapKind::kGlobal, settings.final_gather > 0,
-                 seed, maps.global_emitted, maps.global_emitted);
+                 max_bounces, seed, maps.global_emitted, maps.global_emitted);
     std::vector<StoredPhoton> caustic =
-        TraceMap(scene, emitters, tracer, features, MapKind::kCaustic, false, seed,
+        TraceMap(scene, emitters, tracer, features, MapKind::kCaustic, false, max_bounces, seed,
                  maps.caustic_emitted, maps.caustic_emitted);
     const float global_cell = GridCellSize(global.size(), area, settings.nearest, max_radius);
     const float caustic_cell = GridCellSize(caustic.size(), area, settings.nearest, max_radius);

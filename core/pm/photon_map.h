@@ -92,7 +92,8 @@ struct PhotonMapForecast {
 };
 PhotonMapForecast ForecastPhotonMaps(const Scene& scene, const Emitters& emitters,
                                      const Tracer& tracer, const SceneFeatures& features,
-                                     const PhotonMapSettings& settings, uint64_t seed);
+                                     const PhotonMapSettings& settings, uint64_t seed,
+                                     int max_depth = 0);
 
 // Memory this process may use: the physical memory available, or the cgroup's limit where
 // it is lower (a container), bytes.
@@ -105,8 +106,9 @@ absl::Status CheckPhotonMapsFit(const PhotonMapForecast& forecast,
 // Traces and stores the maps (photon p of the global map draws from a stream of (seed, p)
 // alone, so every worker builds the same maps), in parallel on the calling TBB arena.
 // Without specular or rough materials there are no caustics and no caustic photons are traced.
+// Photons reach at most `max_depth` surfaces (JobSpec::max_depth; 0: no limit).
 PhotonMaps BuildPhotonMaps(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
                            const SceneFeatures& features, const PhotonMapSettings& settings,
-                           uint64_t seed);
+                           uint64_t seed, int max_depth = 0);
 
 }  // namespace pf

@@ -86,7 +86,7 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
     const Scene& scene = *inputs.scene;
     Rgb radiance(0.0f), throughput(1.0f);
     float length = 0;
-    for (int depth = 0; depth < kMaxCameraDepth; ++depth) {
+    for (int depth = 0; depth < DepthLimit(inputs.max_depth, kMaxCameraDepth); ++depth) {
         RayHit hit;
         if (!inputs.tracer->Intersect(ray, &hit)) {
             // The environment, seen directly or through specular and rough bounces.

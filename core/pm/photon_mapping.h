@@ -30,6 +30,7 @@ struct PhotonMappingInputs {
     float filter_angle =
         0;  // a camera sample's cone, for textures at its diffuse hit (as PathInputs)
     SceneFeatures features = SceneFeatures::All();
+    int max_depth = 0;  // JobSpec::max_depth: of camera paths (0: no limit)
 };
 
 // One sample of the radiance arriving along a camera ray, W/(m^2 sr). Thread-safe.

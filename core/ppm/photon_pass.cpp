@@ -51,7 +51,7 @@ bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath
         });
     if (event == PhotonEvent::kEnded) return false;
     path.scattered = true;
-    return ++path.bounces < kMaxPhotonBounces;
+    return ++path.bounces < inputs.max_bounces;
 }
 
 // Adds every deposit to the hit points within their radius whose surface faces the photon.

@@ -20,6 +20,10 @@
 
 namespace pf {
 
+// Longest photon path followed; Russian roulette ends paths long before it (with albedo
+// 0.999 the chance of reaching it is about e^-65).
+inline constexpr int kMaxPhotonBounces = 1 << 16;
+
 // Everything a batch reads; fixed for the duration of an epoch and shared by all threads.
 struct PhotonPassInputs {
     const Scene* scene = nullptr;
@@ -31,11 +35,10 @@ struct PhotonPassInputs {
     // What the scene uses (AnalyseFeatures): chunks run the photon loop instantiated for it,
     // so a scene without specular materials or textures runs no code for them. All by default.
     SceneFeatures features = SceneFeatures::All();
+    // Surfaces a photon reaches at most (JobSpec::max_depth, as DepthLimit gives it).
+    int max_bounces = kMaxPhotonBounces;
 };
 
-// Longest photon path followed; Russian roulette ends paths long before it (with albedo
-// 0.999 the chance of reaching it is about e^-65).
-inline constexpr int kMaxPhotonBounces = 1 << 16;
 // A batch gathers its deposits once this many are pending (about 80 MB of deposits and keys
 // per thread), so memory stays bounded however many bounces the photons make.
 inline constexpr size_t kMaxPendingDeposits = size_t{1} << 20;

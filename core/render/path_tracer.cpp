@@ -52,6 +52,7 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
             }
             radiance += throughput * material.emission * weight;
         }
+        if (depth >= inputs.max_depth) break;
         Rgb base_color = material.base_color;
         if constexpr (kTextures)
             base_color = diffuse_seen || inputs.filter_angle <= 0

@@ -29,6 +29,9 @@ struct PathInputs {
     // A camera sample's cone, as a width per unit length: textures at the first diffuse hit
     // are averaged over it, as the camera pass does (0: point lookups).
     float filter_angle = 0;
+    // Surfaces a path scatters at, at most (JobSpec::max_depth; the light met after the last
+    // still counts, as in pbrt).
+    int max_depth = kMaxPathDepth;
 };
 
 // One sample of the radiance arriving at ray.origin along -ray.direction, W/(m^2 sr).

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/film/film_response.h"
+#include "core/job/scene_settings.h"
 #include "core/geometry/ray.h"
 #include "core/math/transform.h"
 #include "core/math/vec3.h"
@@ -134,6 +135,7 @@ struct Scene {
     FilmResponse film;
     Bounds bounds;  // of everything, instances included
     SceneRenderHints hints;
+    SceneRenderSettings render_settings;  // pbrt's Integrator and Sampler; not prepared
 
     // Triangles [0, WorldTriangleCount()) are in world space; the prototypes' follow.
     uint32_t WorldTriangleCount() const {

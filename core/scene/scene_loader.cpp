@@ -247,7 +247,8 @@ absl::StatusOr<Scene> LoadScene(const std::string& path, const SceneLoadOptions&
     return LoadScene(*bundle, path, options);
 }
 
-absl::StatusOr<SceneBundle> PackSceneBundle(const std::string& scene_path) {
+absl::StatusOr<SceneBundle> PackSceneBundle(const std::string& scene_path,
+                                            SceneRenderSettings* render_settings) {
     const SceneFormat format = FormatOf(scene_path);
     if (format == SceneFormat::kUnknown) return UnknownFormat(scene_path);
     const std::filesystem::path path(scene_path);
@@ -258,9 +259,11 @@ absl::StatusOr<SceneBundle> PackSceneBundle(const std::string& scene_path) {
     if (format == SceneFormat::kPbrt) {
         if (!std::filesystem::is_regular_file(path))
             return absl::NotFoundError(absl::StrCat(scene_path, ": cannot open file"));
-        status = LoadPbrt(files, bundle.main_file, path.parent_path().string(),
-                          {SceneLimits{}, true, nullptr})
-                     .status();
+        absl::StatusOr<Scene> references = LoadPbrt(
+            files, bundle.main_file, path.parent_path().string(), {SceneLimits{}, true, nullptr});
+        status = references.status();
+        if (references.ok() && render_settings != nullptr)
+            *render_settings = references->render_settings;
     } else {
         absl::StatusOr<std::string> main = ReadWholeFile(path);
         if (!main.ok()) return main.status();

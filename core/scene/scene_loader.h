@@ -35,8 +35,10 @@ absl::StatusOr<Scene> LoadScene(const std::string& path, const SceneLoadOptions&
 // Reads the scene at `scene_path` and every file it references (glTF buffers and images;
 // pbrt Include/Import files, PLY meshes and image textures), found relative to the scene's
 // folder. A reference that leaves the folder (absolute, '..' past the root, a URL) is
-// refused naming the file and the reference.
-absl::StatusOr<SceneBundle> PackSceneBundle(const std::string& scene_path);
+// refused naming the file and the reference. `render_settings`, when given, receives what the
+// scene asks of its render (a pbrt Integrator and Sampler).
+absl::StatusOr<SceneBundle> PackSceneBundle(const std::string& scene_path,
+                                            SceneRenderSettings* render_settings = nullptr);
 
 // The environment `settings` ask for, its image decoded from `bundle`: a latitude-longitude
 // map (any format DecodeImage reads), or a colour. Errors name the file or the setting.

@@ -47,6 +47,9 @@ expect_failure() { expect_failure_of "$photonfarm" "$@"; }
 
 oiiotool --pattern constant:color=1,1,1 4x4 3 -d float -o "$work/small.exr"
 printf '{"asset": {"version": "2.0"' >"$work/broken.gltf"
+cp -r "$source_dir/scenes/pbrt" "$work/pbrt"
+sed 's/^WorldBegin/Integrator "volpath" "integer maxdepth" 3\nWorldBegin/' "$source_dir/scenes/pbrt/cornell-box.pbrt" \
+    >"$work/pbrt/volpath.pbrt"
 expect_failure "unknown flag" "--frobnicate" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --frobnicate
 expect_failure "missing scene" "nope.gltf" render "$work/nope.gltf" --out "$work/a.exr"
 expect_failure "malformed scene" "broken.gltf" render "$work/broken.gltf" --out "$work/a.exr" --photons 1000
@@ -76,6 +79,9 @@ VK_ICD_FILENAMES=/nonexistent/icd.json expect_failure "vulkan without a driver" 
     render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --backend vulkan
 expect_failure "an integrator the backend does not run" "--backend vulkan runs --integrator ppm or sppm, not pm" \
     render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --backend vulkan --integrator pm
+expect_failure "an integrator the scene chose that the backend does not run" \
+    "--backend vulkan runs --integrator ppm or sppm, not path" \
+    render "$work/pbrt/volpath.pbrt" --out "$work/a.exr" --backend vulkan
 expect_failure "unknown backend" "--backend" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" \
     --backend cuda
 expect_failure "bad alpha" "alpha" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --alpha 2
@@ -115,7 +121,8 @@ for command in render submit; do
         "--seed -1 [0, 18446744073709551615]" "--seed 18446744073709551616 [0, 18446744073709551615]" \
         "--photon-stream -2 [0, 18446744073709551615]" "--photons-per-batch 0 [1, 67108864]" \
         "--photons-per-batch 4294967297 [1, 67108864]" "--batches-per-epoch -1 [1, 65536]" \
-        "--pm-nearest 0 [1, 4096]" "--final-gather -1 [0, 4096]"; do
+        "--pm-nearest 0 [1, 4096]" "--final-gather -1 [0, 4096]" "--max-depth 0 [1, 65536]" \
+        "--max-depth 65537 [1, 65536]"; do
         read -r flag value range <<<"$case"
         expect_failure "$command $flag $value" "$flag: must be a whole number in \\$range" \
             "$command" "$scene" "${target[@]}" "$flag" "$value"

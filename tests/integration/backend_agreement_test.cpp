@@ -10,8 +10,10 @@
 #include <cstdint>
 #include <string>
 
+#include "embedded/local_render.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/image_agreement.h"
+#include "tests/support/numerics_cases.h"
 #include "tests/support/small_render.h"
 #include "tests/support/vulkan_validation.h"
 
@@ -67,6 +69,33 @@ TEST(BackendAgreementEnvironment, SkyLitCourtyardMatchesTheCpus) {
     if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
     ExpectVulkanAgreesWithTheCpu(std::string(PF_SOURCE_DIR) + "/scenes/pbrt/sky-courtyard.pbrt",
                                  8'000'000);
+}
+
+TEST(BackendAgreementDepth, PhotonsOnTheDeviceStopAtTheMaximumDepth) {
+    // The furnace (albedo 0.5, Le = 1) with --max-depth 2: Le (1 + rho + rho^2) = 1.75 where
+    // the unlimited furnace gives 2; photons reaching a third surface would add 0.125.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    RenderSettings settings;
+    settings.scene_path = std::string(PF_SOURCE_DIR) + "/scenes/furnace.gltf";
+    settings.backend = "vulkan";
+    settings.threads = 2;
+    settings.job.width = settings.job.height = 32;
+    settings.job.samples_per_pixel = 16;
+    settings.job.photon_budget = 4'000'000;
+    settings.job.layout = {1u << 18, 8};
+    settings.job.max_depth = 2;
+    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+    ASSERT_TRUE(outcome.ok()) << outcome.status();
+    const testing::BoxInterior interior =
+        testing::BoxInteriorPixels(settings.scene_path, 32, 32, outcome->initial_radius);
+    const double sigma = testing::FurnaceMeanSigma(
+        0.5, static_cast<double>(outcome->progress.photons), interior.area_fraction,
+        static_cast<double>(interior.count) * 16 * static_cast<double>(outcome->progress.epochs));
+    const testing::FurnaceCheck check =
+        testing::CheckFurnace(outcome->image, interior, 1.75, sigma);
+    EXPECT_TRUE(check.Passed()) << check.Describe();
+    EXPECT_FALSE(testing::CheckFurnace(outcome->image, interior, 1.75, sigma, Rgbd(1.03)).Passed());
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, BackendAgreement,

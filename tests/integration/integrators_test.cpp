@@ -135,6 +135,46 @@ INSTANTIATE_TEST_SUITE_P(Integrators, WhiteFurnace,
                                            Integrator::kPath),
                          Name);
 
+// pbrt's maxdepth (JobSpec::max_depth) in the furnace: a path scattering at most d times sees
+// Le (1 + rho + ... + rho^d), 1.75 for d = 2, with the light at its last vertex still counted
+// (the path tracer), the photons reaching at most d surfaces (the progressive mappers: a photon
+// stored at its second surface makes a path of two scatterings with the hit point's).
+class DepthLimitedFurnace : public ::testing::TestWithParam<Integrator> {};
+
+TEST_P(DepthLimitedFurnace, SumsTheFirstBounces) {
+    constexpr double kRho = 0.5;
+    constexpr int kDepth = 2;
+    RenderSettings settings = Small("furnace.gltf", GetParam(), 32);
+    settings.job.max_depth = kDepth;
+    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+    ASSERT_TRUE(outcome.ok()) << outcome.status();
+    const testing::BoxInterior interior =
+        testing::BoxInteriorPixels(settings.scene_path, 32, 32, outcome->initial_radius);
+    ASSERT_GE(interior.count, 512u);
+    const double expected = (1 - std::pow(kRho, kDepth + 1)) / (1 - kRho);
+    // The unlimited furnace's sigma: paths cut short only lower the variance.
+    const double sigma =
+        GetParam() == Integrator::kPath
+            ? -1
+            : testing::FurnaceMeanSigma(
+                  kRho, static_cast<double>(outcome->progress.photons), interior.area_fraction,
+                  static_cast<double>(interior.count) * settings.job.samples_per_pixel *
+                      static_cast<double>(outcome->progress.epochs));
+    const testing::FurnaceCheck check =
+        testing::CheckFurnace(outcome->image, interior, expected, sigma);
+    EXPECT_TRUE(check.Passed()) << check.Describe();
+    std::printf("%s, max depth %d: %s\n", std::string(IntegratorName(GetParam())).c_str(), kDepth,
+                check.Describe().c_str());
+    // One bounce more or less is 7% away (0.125 / 1.75 or 0.25 / 1.75).
+    for (const Rgbd& bias : {Rgbd(1.02), Rgbd(0.98)})
+        EXPECT_FALSE(
+            testing::CheckFurnace(outcome->image, interior, expected, sigma, bias).Passed());
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, DepthLimitedFurnace,
+                         ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPath),
+                         Name);
+
 // Every photon mapper against the path tracer on the Cornell scenes, per channel, on the pixels
 // where a photon mapper's estimate is a flat disc's, within derived bounds.
 //

@@ -73,6 +73,18 @@ TEST(ProtoConvertTest, JobSettingsWithAnEnvironmentRoundTrip) {
     refused([](auto& e) { e.set_file("sky.exr"); }, "settings.environment.color");
 }
 
+TEST(ProtoConvertTest, MaximumDepthRoundTripsAndIsBounded) {
+    JobSpec spec;
+    spec.epoch_budget = 3;
+    spec.max_depth = 5;
+    EXPECT_EQ(FromProto(ToProto(spec))->max_depth, 5);
+    photonfarm::v1::JobSettings message = ToProto(spec);
+    message.set_max_depth(UINT32_MAX);
+    const absl::StatusOr<JobSpec> refused = FromProto(message);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.status().message(), "settings.max_depth 4294967295 is out of range");
+}
+
 TEST(ProtoConvertTest, HostileResultsAreRefused) {
     const auto refused = [](auto mutate) {
         photonfarm::v1::BatchResult message = ToProto(Sample());

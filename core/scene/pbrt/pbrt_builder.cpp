@@ -2,6 +2,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <set>
 
 #include "absl/strings/str_cat.h"
 #include "core/scene/image_decode.h"
@@ -108,32 +109,60 @@ absl::Status PbrtSceneBuilder::Film(ParameterList& parameters, const Location& w
 
 absl::Status PbrtSceneBuilder::Integrator(const std::string& type, ParameterList& parameters,
                                           const Location& where) {
-    if (type != "sppm") {
+    // pbrt-v4's integrators that estimate the same light transport as our path tracer.
+    static const std::set<std::string> kPathLike = {
+        "path", "volpath", "bdpt", "mlt", "lightpath", "simplepath", "simplevolpath", "randomwalk"};
+    SceneRenderSettings& settings = scene_.render_settings;
+    settings.integrator_source = absl::StrCat(where.ToString(), ": Integrator \"", type, "\"");
+    if (type != "sppm" && !kPathLike.contains(type)) {
         parameters.ConsumeAll();
         Warn(where, absl::StrCat("Integrator \"", type,
-                                 "\": photonfarm renders with progressive photon mapping"));
+                                 "\" is not a light transport photonfarm renders; the render's "
+                                 "--integrator (default ppm) is used"));
         return absl::OkStatus();
     }
-    // SPPM's settings, mapped to ours: radius is R0 (where the render gives no --radius); the
-    // photon count is the render's budget, so the scene's is shown as the flags that ask for it.
+    // pbrt-v4's default depth, 5, where the directive gives none.
+    const int max_depth = parameters.Integer("maxdepth", 5);
+    if (max_depth < 1)
+        return ErrorAt(where,
+                       absl::StrCat("Integrator \"", type, "\": \"maxdepth\" must be at least 1"));
+    settings.max_depth = max_depth;
+    if (type != "sppm") {
+        if (type != "path" && type != "volpath")
+            Warn(where, absl::StrCat("Integrator \"", type,
+                                     "\" renders as photonfarm's path tracer (the same light "
+                                     "transport)"));
+        settings.integrator = pf::Integrator::kPath;
+        parameters.Bool("regularize", false);
+        parameters.String("lightsampler", "");
+        return absl::OkStatus();
+    }
+    settings.integrator = pf::Integrator::kSppm;
+    // SPPM's radius is R0 (where the render gives no --radius); pbrt's defaults: 64 iterations,
+    // as many photons an iteration as the film has pixels (photonfarm's layout where absent).
     const double radius = parameters.Float("radius", 0.0);
-    const int iterations = parameters.Integer("iterations", 0);
-    const int photons_per_iteration = parameters.Integer("photonsperiteration", 0);
-    const int max_depth = parameters.Integer("maxdepth", 0);
+    const int iterations = parameters.Integer("iterations", 64);
+    const int photons_per_iteration = parameters.Integer("photonsperiteration", -1);
     parameters.Integer("seed", 0);
-    if (radius < 0 || iterations < 0 || photons_per_iteration < 0 || max_depth < 0)
-        return ErrorAt(where, "Integrator \"sppm\": parameters must not be negative");
+    if (radius < 0 || iterations < 1)
+        return ErrorAt(where,
+                       "Integrator \"sppm\": \"radius\" must not be negative and "
+                       "\"iterations\" must be at least 1");
     scene_.hints.initial_radius = radius;
-    if (iterations > 0 && photons_per_iteration > 0)
-        Warn(where, absl::StrCat("Integrator \"sppm\": ", iterations, " iterations of ",
-                                 photons_per_iteration, " photons: render with --photons ",
-                                 uint64_t(iterations) * uint64_t(photons_per_iteration),
-                                 " for the same photon count (radii shrink once per "
-                                 "--batches-per-epoch x --photons-per-batch)"));
-    if (max_depth > 0)
-        Warn(where,
-             "Integrator \"sppm\": \"maxdepth\" is not used; photonfarm ends paths by Russian "
-             "roulette (unbiased)");
+    settings.iterations = static_cast<uint64_t>(iterations);
+    if (photons_per_iteration > 0)
+        settings.photons_per_iteration = static_cast<uint64_t>(photons_per_iteration);
+    return absl::OkStatus();
+}
+
+absl::Status PbrtSceneBuilder::Sampler(const std::string& type, ParameterList& parameters,
+                                       const Location& where) {
+    const int pixel_samples = parameters.Integer("pixelsamples", 16);  // pbrt-v4's default
+    if (pixel_samples < 1) return ErrorAt(where, "Sampler: \"pixelsamples\" must be at least 1");
+    scene_.render_settings.pixel_samples = pixel_samples;
+    scene_.render_settings.sampler_source =
+        absl::StrCat(where.ToString(), ": Sampler \"", type, "\"");
+    parameters.ConsumeAll();  // the sequence is photonfarm's own
     return absl::OkStatus();
 }
 

@@ -224,14 +224,12 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive,
         status = Camera(*type, *parameters, where);
     } else if (name == "Film") {
         status = Film(*parameters, where);
-    } else if (name == "Sampler" || name == "PixelFilter" || name == "Accelerator") {
+    } else if (name == "Sampler") {
+        status = Sampler(*type, *parameters, where);
+    } else if (name == "PixelFilter" || name == "Accelerator") {
         parameters->ConsumeAll();
         if (name != "Accelerator")
-            Warn(where,
-                 name == "Sampler"
-                     ? "Sampler: hit points per pixel come from photonfarm's --spp, samples from "
-                       "its own sequence"
-                     : "PixelFilter: photonfarm averages each pixel's hit points (a box filter)");
+            Warn(where, "PixelFilter: photonfarm averages each pixel's hit points (a box filter)");
     } else if (name == "Integrator") {
         status = Integrator(*type, *parameters, where);
     } else if (name == "Shape") {

@@ -97,6 +97,8 @@ private:
     absl::Status Film(ParameterList& parameters, const Location& where);
     absl::Status Integrator(const std::string& type, ParameterList& parameters,
                             const Location& where);
+    absl::Status Sampler(const std::string& type, ParameterList& parameters,
+                         const Location& where);
     absl::Status Shape(const std::string& type, ParameterList& parameters, const Location& where);
     // Adds a shape to the world or, given `prototype`, to that prototype.
     absl::Status AddShape(const TriangleMesh& mesh, const Transform& world, FrontFace front,

@@ -117,7 +117,12 @@ TEST(PbrtLoaderTest, FilmAndSppmSettingsBecomeTheRenderDefaults) {
     const absl::StatusOr<Scene> scene = Load(bundle, &warnings);
     ASSERT_TRUE(scene.ok()) << scene.status();
     EXPECT_EQ(scene->hints.initial_radius, 0.25);
-    EXPECT_TRUE(Contains(warnings, "render with --photons 10000 for the same photon count"));
+    const SceneRenderSettings& settings = scene->render_settings;
+    EXPECT_EQ(settings.integrator, Integrator::kSppm);
+    EXPECT_EQ(settings.iterations, 10u);
+    EXPECT_EQ(settings.photons_per_iteration, 1000u);
+    EXPECT_EQ(settings.max_depth, 5);  // pbrt-v4's default
+    EXPECT_EQ(settings.integrator_source, "scenes/scene.pbrt:1:1: Integrator \"sppm\"");
     const absl::StatusOr<CameraPassSettings> film =
         FilmFor(JobSpec{}, *scene);  // no --width, --height
     ASSERT_TRUE(film.ok());
@@ -126,6 +131,45 @@ TEST(PbrtLoaderTest, FilmAndSppmSettingsBecomeTheRenderDefaults) {
     JobSpec asked;
     asked.width = 64;
     EXPECT_EQ(FilmFor(asked, *scene)->height, 32);  // the scene's aspect for the side not given
+}
+
+TEST(PbrtLoaderTest, IntegratorAndSamplerAreReadAsPbrtDefinesThem) {
+    auto settings = [](const std::string& directives) {
+        SceneBundle bundle = Bundle(kQuad);
+        bundle.files["scene.pbrt"] = directives + "\n" + bundle.files["scene.pbrt"];
+        std::vector<std::string> warnings;
+        const absl::StatusOr<Scene> scene = Load(bundle, &warnings);
+        EXPECT_TRUE(scene.ok()) << scene.status();
+        return std::make_pair(scene.ok() ? scene->render_settings : SceneRenderSettings{},
+                              warnings);
+    };
+    const auto [volpath, volpath_notes] = settings(
+        "Integrator \"volpath\" \"integer maxdepth\" 100\nSampler \"zsobol\" "
+        "\"integer pixelsamples\" 1024");
+    EXPECT_EQ(volpath.integrator, Integrator::kPath);
+    EXPECT_EQ(volpath.max_depth, 100);
+    EXPECT_EQ(volpath.pixel_samples, 1024);
+    EXPECT_EQ(volpath.sampler_source, "scenes/scene.pbrt:2:1: Sampler \"zsobol\"");
+    const auto [bdpt, bdpt_notes] = settings("Integrator \"bdpt\"\nSampler \"halton\"");
+    EXPECT_EQ(bdpt.integrator, Integrator::kPath);
+    EXPECT_EQ(bdpt.max_depth, 5);
+    EXPECT_EQ(bdpt.pixel_samples, 16);
+    EXPECT_TRUE(Contains(bdpt_notes, "renders as photonfarm's path tracer"));
+    const auto [ao, ao_notes] = settings("Integrator \"ambientocclusion\"");
+    EXPECT_FALSE(ao.integrator.has_value());
+    EXPECT_TRUE(Contains(ao_notes, "is not a light transport photonfarm renders"));
+    const auto [none, none_notes] = settings("");
+    EXPECT_FALSE(none.integrator.has_value());
+    EXPECT_EQ(none.max_depth, 0);
+    EXPECT_EQ(none.pixel_samples, 0);
+
+    SceneBundle bad = Bundle(kQuad);
+    bad.files["scene.pbrt"] =
+        "Integrator \"path\" \"integer maxdepth\" 0\n" + bad.files["scene.pbrt"];
+    const absl::StatusOr<Scene> refused = Load(bad);
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.status().message(),
+              "scenes/scene.pbrt:1:1: Integrator \"path\": \"maxdepth\" must be at least 1");
 }
 
 TEST(PbrtLoaderTest, TransformsComposeAsPbrtDefines) {
@@ -365,16 +409,16 @@ TEST(PbrtLoaderTest, UnsupportedThingsWarnAtTheirLocation) {
         "Shape \"curve\"\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n";
     SceneBundle bundle = Bundle(world);
     bundle.files["scene.pbrt"] =
-        "Sampler \"zsobol\" \"integer pixelsamples\" 64\n" + bundle.files["scene.pbrt"];
+        "PixelFilter \"gaussian\" \"float sigma\" 0.5\n" + bundle.files["scene.pbrt"];
     const absl::StatusOr<Scene> scene = Load(bundle, &warnings);
     ASSERT_TRUE(scene.ok()) << scene.status();
-    // The parameter's own line and column: line 7 (the Sampler and 5 lines of preamble before it).
+    // The parameter's own line and column: line 7 (the filter and 5 lines of preamble before it).
     EXPECT_TRUE(Contains(
         warnings, "scenes/scene.pbrt:7:33: warning: Shape \"sphere\": parameter \"float bogus\""));
     EXPECT_TRUE(
         Contains(warnings, "scenes/scene.pbrt:8:1: warning: Shape \"curve\" is not supported"));
     EXPECT_TRUE(Contains(warnings, "MakeNamedMedium"));
-    EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:1:1: warning: Sampler"));
+    EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:1:1: warning: PixelFilter"));
 }
 
 TEST(PbrtLoaderTest, BadInputIsAOneLineErrorNamingFileLineAndColumn) {

@@ -39,32 +39,34 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
             break;
         }
         case Integrator::kPath: {
-            radiance_ =
-                [inputs = PathInputs{job.scene, job.emitters, &tracer_, features_, filter_angle}](
-                    const Ray& ray, Rng& rng) { return TracePath(inputs, ray, rng); };
+            PathInputs inputs{job.scene, job.emitters, &tracer_, features_, filter_angle};
+            inputs.max_depth = DepthLimit(job.spec->max_depth, kMaxPathDepth);
+            radiance_ = [inputs](const Ray& ray, Rng& rng) { return TracePath(inputs, ray, rng); };
             break;
         }
         case Integrator::kPm: {
             // Every worker builds the same maps from the job's seed; they must fit here too.
             const PhotonMapSettings& settings = job.spec->photon_map;
-            const PhotonMapForecast forecast = ForecastPhotonMaps(
-                *job.scene, *job.emitters, tracer_, features_, settings, job.seed);
+            const PhotonMapForecast forecast =
+                ForecastPhotonMaps(*job.scene, *job.emitters, tracer_, features_, settings,
+                                   job.seed, job.spec->max_depth);
             if (absl::Status status =
                     CheckPhotonMapsFit(forecast, settings, AvailableMemoryBytes());
                 !status.ok())
                 return status;
             const auto start = std::chrono::steady_clock::now();
             maps_ = std::make_shared<const PhotonMaps>(
-                BuildPhotonMaps(*job.scene, *job.emitters, tracer_, features_, settings, job.seed));
+                BuildPhotonMaps(*job.scene, *job.emitters, tracer_, features_, settings, job.seed,
+                                job.spec->max_depth));
             spdlog::info(
                 "photon maps: {} global and {} caustic photons stored ({:.0f} MB) in {:.2f} s",
                 maps_->global->Photons().size(), maps_->caustic->Photons().size(),
                 maps_->Bytes() / 1e6,
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-            const PhotonMappingInputs inputs{job.scene,    job.emitters,
-                                             &tracer_,     maps_.get(),
-                                             settings,     MaxSearchRadius(settings, *job.scene),
-                                             filter_angle, features_};
+            const PhotonMappingInputs inputs{
+                job.scene,    job.emitters, &tracer_,
+                maps_.get(),  settings,     MaxSearchRadius(settings, *job.scene),
+                filter_angle, features_,    job.spec->max_depth};
             radiance_ = [inputs, maps = maps_](const Ray& ray, Rng& rng) {
                 return PhotonMappingRadiance(inputs, ray, rng);
             };
@@ -93,9 +95,11 @@ absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const 
                                {spec.width, spec.height, spec.samples_per_pixel}, job_.seed, specs,
                                radiance_);
     }
-    return RunPhotonBatches(
-        {job_.scene, job_.emitters, &tracer_, job_.hit_points, &grid_, job_.seed, features_}, specs,
-        scratch_);
+    PhotonPassInputs inputs{job_.scene, job_.emitters, &tracer_, job_.hit_points,
+                            &grid_,     job_.seed,     features_};
+    if (job_.spec != nullptr)
+        inputs.max_bounces = DepthLimit(job_.spec->max_depth, kMaxPhotonBounces);
+    return RunPhotonBatches(inputs, specs, scratch_);
 }
 
 }  // namespace pf::embree

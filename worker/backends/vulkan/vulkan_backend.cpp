@@ -309,7 +309,8 @@ gpu::GpuParams VulkanBackend::BaseParams() const {
     params.flux_to_fixed = flux_to_fixed_;
     params.emitter_count = emitter_count_;
     params.environment_emitter = environment_emitter_;
-    params.max_bounces = kMaxPhotonBounces;
+    params.max_bounces = static_cast<uint32_t>(
+        DepthLimit(job_.spec != nullptr ? job_.spec->max_depth : 0, kMaxPhotonBounces));
     return params;
 }
 
