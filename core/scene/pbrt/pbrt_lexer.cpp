@@ -4,6 +4,7 @@
 #include <cctype>
 
 #include "absl/strings/str_cat.h"
+#include "core/util/check.h"
 
 namespace pf::pbrt {
 namespace {
@@ -108,6 +109,50 @@ absl::StatusOr<std::vector<Token>> Tokenize(std::string_view file, std::string_v
         }
     }
     return tokens;
+}
+
+TokenStream::TokenStream(std::vector<Token> tokens, Opener opener) : opener_(std::move(opener)) {
+    frames_.push_back({std::move(tokens), 0});
+}
+
+const Token* TokenStream::Peek() {
+    while (!frames_.empty()) {
+        Frame& frame = frames_.back();
+        if (frame.next == frame.tokens.size()) {
+            frames_.pop_back();
+            continue;
+        }
+        const Token& token = frame.tokens[frame.next];
+        if (token.kind != TokenKind::kWord || (token.text != "Include" && token.text != "Import"))
+            return &token;
+        // The file is the next token of the same file.
+        if (frame.next + 1 == frame.tokens.size() ||
+            frame.tokens[frame.next + 1].kind != TokenKind::kString) {
+            status_ = absl::InvalidArgumentError(absl::StrCat(
+                token.where.ToString(), ": ", token.text, " needs a quoted file name after it"));
+            frames_.clear();
+            return nullptr;
+        }
+        const Token include = token, file = frame.tokens[frame.next + 1];
+        frame.next += 2;
+        absl::StatusOr<std::vector<Token>> included =
+            opener_(include, file, static_cast<int>(frames_.size()));
+        if (!included.ok()) {
+            status_ = included.status();
+            frames_.clear();
+            return nullptr;
+        }
+        frames_.push_back({std::move(*included), 0});
+    }
+    return nullptr;
+}
+
+Token TokenStream::Next() {
+    const Token* next = Peek();
+    PF_CHECK(next != nullptr);
+    Token token = *next;
+    Skip();
+    return token;
 }
 
 }  // namespace pf::pbrt

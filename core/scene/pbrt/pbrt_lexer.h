@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,5 +41,39 @@ absl::StatusOr<std::vector<Token>> Tokenize(std::string_view file, std::string_v
 
 // The token's text for messages: strings quoted, as the user wrote them.
 std::string Describe(const Token& token);
+
+// The tokens of a file and the files it includes, as one stream: `Include "f"` and `Import
+// "f"` are replaced where they stand by f's tokens, so a parameter list may go on after an
+// include, as pbrt reads it. An error (a file that cannot be read, an include without a file)
+// ends the stream and is kept in status().
+class TokenStream {
+public:
+    // The tokens of the file that `include` (the directive's token) names in `file`, read at
+    // `depth` includes deep (1 for the main file's).
+    using Opener = std::function<absl::StatusOr<std::vector<Token>>(const Token& include,
+                                                                    const Token& file, int depth)>;
+
+    TokenStream(std::vector<Token> tokens, Opener opener);
+
+    // The next token, null at the end (or after an error). Valid until the next call.
+    const Token* Peek();
+    bool NextIs(TokenKind kind) {
+        const Token* next = Peek();
+        return next != nullptr && next->kind == kind;
+    }
+    // The token Peek gives, which must not be null, and past it.
+    Token Next();
+    void Skip() { ++frames_.back().next; }  // past the token Peek gave, which must not be null
+    const absl::Status& status() const { return status_; }
+
+private:
+    struct Frame {
+        std::vector<Token> tokens;
+        size_t next = 0;
+    };
+    std::vector<Frame> frames_;
+    Opener opener_;
+    absl::Status status_;
+};
 
 }  // namespace pf::pbrt

@@ -38,7 +38,7 @@ void PbrtSceneBuilder::WarnUnused(const ParameterList& parameters, const std::st
 
 absl::StatusOr<Scene> PbrtSceneBuilder::Load(const std::string& main_file) {
     scene_.source = display_root_.empty() ? main_file : absl::StrCat(display_root_, "/", main_file);
-    if (absl::Status status = ParseFile(main_file, nullptr, 0); !status.ok()) return status;
+    if (absl::Status status = ParseFile(main_file); !status.ok()) return status;
     const Location end{file_names_.front(), 0, 0};
     if (!attribute_stack_.empty())
         Warn(end, "AttributeBegin without AttributeEnd at the end of the scene");
@@ -55,26 +55,42 @@ absl::StatusOr<Scene> PbrtSceneBuilder::Load(const std::string& main_file) {
     return std::move(scene_);
 }
 
-absl::Status PbrtSceneBuilder::ParseFile(const std::string& path, const Location* included_from,
-                                         int depth) {
+absl::Status PbrtSceneBuilder::ParseFile(const std::string& path) {
     const std::string& display = file_names_.emplace_back(
         display_root_.empty() ? path : absl::StrCat(display_root_, "/", path));
-    if (depth > options_.limits.max_include_depth)
-        return ErrorAt(*included_from, absl::StrCat("includes nest deeper than ",
-                                                    options_.limits.max_include_depth, " files"));
     absl::StatusOr<std::string_view> contents = ReadFile(path);
-    if (!contents.ok()) {
-        if (included_from == nullptr)
-            return absl::Status(contents.status().code(),
-                                absl::StrCat(display, ": ", contents.status().message()));
-        return absl::Status(contents.status().code(), absl::StrCat(included_from->ToString(), ": ",
-                                                                   contents.status().message()));
-    }
+    if (!contents.ok())
+        return absl::Status(contents.status().code(),
+                            absl::StrCat(display, ": ", contents.status().message()));
     absl::StatusOr<std::vector<Token>> tokens = pbrt::Tokenize(display, *contents);
     if (!tokens.ok()) return tokens.status();
-    for (size_t pos = 0; pos < tokens->size();)
-        if (absl::Status status = Directive(*tokens, &pos, depth); !status.ok()) return status;
-    return absl::OkStatus();
+    TokenStream in(std::move(*tokens), [this](const Token& include, const Token& file, int depth) {
+        return IncludedTokens(include, file, depth);
+    });
+    while (in.Peek() != nullptr) {
+        const absl::Status status = Directive(in);
+        // An include that failed ends the stream: its error, not what the directive made of it.
+        if (!in.status().ok()) return in.status();
+        if (!status.ok()) return status;
+    }
+    return in.status();
+}
+
+absl::StatusOr<std::vector<Token>> PbrtSceneBuilder::IncludedTokens(const Token& include,
+                                                                    const Token& file, int depth) {
+    if (depth > options_.limits.max_include_depth)
+        return ErrorAt(include.where, absl::StrCat("includes nest deeper than ",
+                                                   options_.limits.max_include_depth, " files"));
+    absl::StatusOr<std::string> path = ResolveReference(file.text);
+    if (!path.ok())
+        return ErrorAt(include.where, absl::StrCat(include.text, ": ", path.status().message()));
+    const std::string& display = file_names_.emplace_back(
+        display_root_.empty() ? *path : absl::StrCat(display_root_, "/", *path));
+    absl::StatusOr<std::string_view> contents = ReadFile(*path);
+    if (!contents.ok())
+        return absl::Status(contents.status().code(), absl::StrCat(include.where.ToString(), ": ",
+                                                                   contents.status().message()));
+    return pbrt::Tokenize(display, *contents);
 }
 
 absl::StatusOr<std::string_view> PbrtSceneBuilder::ReadFile(const std::string& path) {
@@ -86,43 +102,40 @@ absl::StatusOr<std::string_view> PbrtSceneBuilder::ReadFile(const std::string& p
     return std::string_view(decompressed_.emplace_back(std::move(*contents)));
 }
 
-absl::StatusOr<std::string> PbrtSceneBuilder::ReadString(const std::vector<Token>& tokens,
-                                                         size_t* pos, const Token& directive) {
-    if (*pos >= tokens.size() || tokens[*pos].kind != TokenKind::kString)
+absl::StatusOr<std::string> PbrtSceneBuilder::ReadString(TokenStream& in, const Token& directive) {
+    if (!in.NextIs(TokenKind::kString))
         return ErrorAt(directive.where,
                        absl::StrCat(directive.text, " needs a quoted string after it"));
-    return tokens[(*pos)++].text;
+    return in.Next().text;
 }
 
-absl::StatusOr<std::vector<double>> PbrtSceneBuilder::ReadNumbers(const std::vector<Token>& tokens,
-                                                                  size_t* pos,
+absl::StatusOr<std::vector<double>> PbrtSceneBuilder::ReadNumbers(TokenStream& in,
                                                                   const Token& directive,
                                                                   size_t count) {
-    const bool bracketed = *pos < tokens.size() && tokens[*pos].kind == TokenKind::kOpenBracket;
-    if (bracketed) ++*pos;
+    const bool bracketed = in.NextIs(TokenKind::kOpenBracket);
+    if (bracketed) in.Skip();
     std::vector<double> numbers;
     while (numbers.size() < count) {
-        if (*pos >= tokens.size() || tokens[*pos].kind != TokenKind::kNumber)
+        if (!in.NextIs(TokenKind::kNumber))
             return ErrorAt(directive.where,
                            absl::StrCat(directive.text, " needs ", count, " numbers"));
+        const Token& token = *in.Peek();
         double value;
-        if (!absl::SimpleAtod(tokens[*pos].text, &value) || !std::isfinite(value))
-            return ErrorAt(tokens[*pos].where,
-                           absl::StrCat("'", tokens[*pos].text, "' is not a finite number"));
+        if (!absl::SimpleAtod(token.text, &value) || !std::isfinite(value))
+            return ErrorAt(token.where, absl::StrCat("'", token.text, "' is not a finite number"));
         numbers.push_back(value);
-        ++*pos;
+        in.Skip();
     }
     if (bracketed) {
-        if (*pos >= tokens.size() || tokens[*pos].kind != TokenKind::kCloseBracket)
+        if (!in.NextIs(TokenKind::kCloseBracket))
             return ErrorAt(directive.where, absl::StrCat(directive.text, " needs exactly ", count,
                                                          " numbers in [ ]"));
-        ++*pos;
+        in.Skip();
     }
     return numbers;
 }
 
-absl::StatusOr<ParameterList> PbrtSceneBuilder::ReadParameters(const std::vector<Token>& tokens,
-                                                               size_t* pos) {
+absl::StatusOr<ParameterList> PbrtSceneBuilder::ReadParameters(TokenStream& in) {
     static const std::map<std::string, std::string> kTypes = {
         {"float", "float"},     {"integer", "integer"},     {"bool", "bool"},
         {"string", "string"},   {"texture", "texture"},     {"rgb", "rgb"},
@@ -132,8 +145,8 @@ absl::StatusOr<ParameterList> PbrtSceneBuilder::ReadParameters(const std::vector
         {"normal3", "normal3"}, {"normal", "normal3"},
     };
     std::vector<Parameter> parameters;
-    while (*pos < tokens.size() && tokens[*pos].kind == TokenKind::kString) {
-        const Token& declaration = tokens[(*pos)++];
+    while (in.NextIs(TokenKind::kString)) {
+        const Token declaration = in.Next();
         const std::vector<std::string> words =
             absl::StrSplit(declaration.text, ' ', absl::SkipWhitespace());
         if (words.size() != 2)
@@ -163,19 +176,22 @@ absl::StatusOr<ParameterList> PbrtSceneBuilder::ReadParameters(const std::vector
             }
             return absl::OkStatus();
         };
-        if (*pos >= tokens.size())
+        if (in.Peek() == nullptr)
             return ErrorAt(declaration.where,
                            absl::StrCat("parameter ", Describe(declaration), " has no value"));
-        if (tokens[*pos].kind == TokenKind::kOpenBracket) {
-            for (++*pos; *pos < tokens.size() && tokens[*pos].kind != TokenKind::kCloseBracket;
-                 ++*pos)
-                if (absl::Status status = add_value(tokens[*pos]); !status.ok()) return status;
-            if (*pos >= tokens.size())
+        if (in.NextIs(TokenKind::kOpenBracket)) {
+            in.Skip();
+            for (const Token* value = in.Peek();
+                 value != nullptr && value->kind != TokenKind::kCloseBracket; value = in.Peek()) {
+                if (absl::Status status = add_value(*value); !status.ok()) return status;
+                in.Skip();
+            }
+            if (in.Peek() == nullptr)
                 return ErrorAt(declaration.where, absl::StrCat("parameter ", Describe(declaration),
                                                                ": '[' is never closed"));
-            ++*pos;
+            in.Skip();
         } else {
-            if (absl::Status status = add_value(tokens[(*pos)++]); !status.ok()) return status;
+            if (absl::Status status = add_value(in.Next()); !status.ok()) return status;
         }
         if (parameter.type == "integer")
             for (double number : parameter.numbers)
@@ -210,14 +226,13 @@ absl::Status PbrtSceneBuilder::ApplyTransform(const Transform& transform) {
 }
 
 // Directives with a type (or name) and a parameter list.
-absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive,
-                                              const std::vector<Token>& tokens, size_t* pos) {
+absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, TokenStream& in) {
     const std::string& name = directive.text;
     const Location& where = directive.where;
-    auto string_argument = [&]() { return ReadString(tokens, pos, directive); };
+    auto string_argument = [&]() { return ReadString(in, directive); };
     absl::StatusOr<std::string> type = string_argument();
     if (!type.ok()) return type.status();
-    absl::StatusOr<ParameterList> parameters = ReadParameters(tokens, pos);
+    absl::StatusOr<ParameterList> parameters = ReadParameters(in);
     if (!parameters.ok()) return parameters.status();
     absl::Status status;
     if (name == "Camera") {
@@ -280,12 +295,11 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive,
 
 // Transform directives; nullopt for any other.
 std::optional<absl::Status> PbrtSceneBuilder::TransformDirective(const Token& directive,
-                                                                 const std::vector<Token>& tokens,
-                                                                 size_t* pos) {
+                                                                 TokenStream& in) {
     const std::string& name = directive.text;
     const Location& where = directive.where;
-    auto string_argument = [&]() { return ReadString(tokens, pos, directive); };
-    auto numbers = [&](size_t count) { return ReadNumbers(tokens, pos, directive, count); };
+    auto string_argument = [&]() { return ReadString(in, directive); };
+    auto numbers = [&](size_t count) { return ReadNumbers(in, directive, count); };
     auto transform_error = [&](absl::Status status) {
         return status.ok() ? status : ErrorAt(where, absl::StrCat(name, ": ", status.message()));
     };
@@ -349,9 +363,9 @@ std::optional<absl::Status> PbrtSceneBuilder::TransformDirective(const Token& di
         return absl::OkStatus();
     }
     if (name == "ActiveTransform") {
-        if (*pos >= tokens.size() || tokens[*pos].kind != TokenKind::kWord)
+        if (!in.NextIs(TokenKind::kWord))
             return ErrorAt(where, "ActiveTransform needs StartTime, EndTime or All");
-        const std::string& which = tokens[(*pos)++].text;
+        const std::string which = in.Next().text;
         if (which != "StartTime" && which != "EndTime" && which != "All")
             return ErrorAt(where, absl::StrCat("ActiveTransform: '", which,
                                                "' is not StartTime, EndTime or All"));
@@ -371,11 +385,10 @@ std::optional<absl::Status> PbrtSceneBuilder::TransformDirective(const Token& di
 
 // Directives on the graphics state, the world and objects; nullopt for any other.
 std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& directive,
-                                                             const std::vector<Token>& tokens,
-                                                             size_t* pos) {
+                                                             TokenStream& in) {
     const std::string& name = directive.text;
     const Location& where = directive.where;
-    auto string_argument = [&]() { return ReadString(tokens, pos, directive); };
+    auto string_argument = [&]() { return ReadString(in, directive); };
     if (name == "ReverseOrientation") {
         state_.reverse_orientation = !state_.reverse_orientation;
         return absl::OkStatus();
@@ -455,7 +468,7 @@ std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& direct
     if (name == "MediumInterface") {
         absl::StatusOr<std::string> inside = string_argument();
         if (!inside.ok()) return inside.status();
-        if (*pos < tokens.size() && tokens[*pos].kind == TokenKind::kString) ++*pos;
+        if (in.NextIs(TokenKind::kString)) in.Skip();
         Warn(where, "MediumInterface: participating media are not rendered; ignored");
         return absl::OkStatus();
     }
@@ -468,7 +481,7 @@ std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& direct
         return absl::OkStatus();
     }
     if (name == "Option") {
-        absl::StatusOr<ParameterList> parameters = ReadParameters(tokens, pos);
+        absl::StatusOr<ParameterList> parameters = ReadParameters(in);
         if (!parameters.ok()) return parameters.status();
         for (const Parameter* p : parameters->Unused())
             Warn(p->where, absl::StrCat("Option \"", p->name, "\" is not supported; ignored"));
@@ -477,13 +490,13 @@ std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& direct
     return std::nullopt;
 }
 
-absl::Status PbrtSceneBuilder::Directive(const std::vector<Token>& tokens, size_t* pos, int depth) {
-    const Token& directive = tokens[(*pos)++];
+absl::Status PbrtSceneBuilder::Directive(TokenStream& in) {
+    const Token directive = in.Next();
     const std::string& name = directive.text;
     const Location& where = directive.where;
     if (directive.kind != TokenKind::kWord)
         return ErrorAt(where, absl::StrCat("expected a directive, found ", Describe(directive)));
-    auto string_argument = [&]() { return ReadString(tokens, pos, directive); };
+    auto string_argument = [&]() { return ReadString(in, directive); };
     static const std::set<std::string> kTyped = {"Camera",
                                                  "Film",
                                                  "Sampler",
@@ -497,7 +510,7 @@ absl::Status PbrtSceneBuilder::Directive(const std::vector<Token>& tokens, size_
                                                  "AreaLightSource",
                                                  "MakeNamedMedium",
                                                  "Attribute"};
-    if (kTyped.contains(name)) return TypedDirective(directive, tokens, pos);
+    if (kTyped.contains(name)) return TypedDirective(directive, in);
     if (name == "Texture") {
         absl::StatusOr<std::string> texture_name = string_argument();
         if (!texture_name.ok()) return texture_name.status();
@@ -505,7 +518,7 @@ absl::Status PbrtSceneBuilder::Directive(const std::vector<Token>& tokens, size_
         if (!kind.ok()) return kind.status();
         absl::StatusOr<std::string> type = string_argument();
         if (!type.ok()) return type.status();
-        absl::StatusOr<ParameterList> parameters = ReadParameters(tokens, pos);
+        absl::StatusOr<ParameterList> parameters = ReadParameters(in);
         if (!parameters.ok()) return parameters.status();
         if (absl::Status status = Texture(*texture_name, *kind, *type, *parameters, where);
             !status.ok())
@@ -514,16 +527,8 @@ absl::Status PbrtSceneBuilder::Directive(const std::vector<Token>& tokens, size_
         WarnUnused(*parameters, absl::StrCat("Texture \"", *texture_name, "\""));
         return absl::OkStatus();
     }
-    if (name == "Include" || name == "Import") {
-        absl::StatusOr<std::string> file = string_argument();
-        if (!file.ok()) return file.status();
-        absl::StatusOr<std::string> path = ResolveReference(*file);
-        if (!path.ok()) return ErrorAt(where, absl::StrCat(name, ": ", path.status().message()));
-        return ParseFile(*path, &where, depth + 1);
-    }
-    if (std::optional<absl::Status> status = TransformDirective(directive, tokens, pos))
-        return *status;
-    if (std::optional<absl::Status> status = StateDirective(directive, tokens, pos)) return *status;
+    if (std::optional<absl::Status> status = TransformDirective(directive, in)) return *status;
+    if (std::optional<absl::Status> status = StateDirective(directive, in)) return *status;
     return ErrorAt(where, absl::StrCat("unknown directive '", name, "'"));
 }
 

@@ -78,27 +78,25 @@ public:
 
 private:
     // Parsing.
-    absl::Status ParseFile(const std::string& path, const Location* included_from, int depth);
-    absl::Status Directive(const std::vector<Token>& tokens, size_t* pos, int depth);
-    absl::Status TypedDirective(const Token& directive, const std::vector<Token>& tokens,
-                                size_t* pos);
-    std::optional<absl::Status> TransformDirective(const Token& directive,
-                                                   const std::vector<Token>& tokens, size_t* pos);
-    std::optional<absl::Status> StateDirective(const Token& directive,
-                                               const std::vector<Token>& tokens, size_t* pos);
-    absl::StatusOr<std::string> ReadString(const std::vector<Token>& tokens, size_t* pos,
-                                           const Token& directive);
-    absl::StatusOr<std::vector<double>> ReadNumbers(const std::vector<Token>& tokens, size_t* pos,
-                                                    const Token& directive, size_t count);
-    absl::StatusOr<ParameterList> ReadParameters(const std::vector<Token>& tokens, size_t* pos);
+    absl::Status ParseFile(const std::string& path);
+    // The tokens of the file an Include or Import names (TokenStream's opener).
+    absl::StatusOr<std::vector<Token>> IncludedTokens(const Token& include, const Token& file,
+                                                      int depth);
+    absl::Status Directive(TokenStream& in);
+    absl::Status TypedDirective(const Token& directive, TokenStream& in);
+    std::optional<absl::Status> TransformDirective(const Token& directive, TokenStream& in);
+    std::optional<absl::Status> StateDirective(const Token& directive, TokenStream& in);
+    absl::StatusOr<std::string> ReadString(TokenStream& in, const Token& directive);
+    absl::StatusOr<std::vector<double>> ReadNumbers(TokenStream& in, const Token& directive,
+                                                    size_t count);
+    absl::StatusOr<ParameterList> ReadParameters(TokenStream& in);
 
     // Directives.
     absl::Status Camera(const std::string& type, ParameterList& parameters, const Location& where);
     absl::Status Film(ParameterList& parameters, const Location& where);
     absl::Status Integrator(const std::string& type, ParameterList& parameters,
                             const Location& where);
-    absl::Status Sampler(const std::string& type, ParameterList& parameters,
-                         const Location& where);
+    absl::Status Sampler(const std::string& type, ParameterList& parameters, const Location& where);
     absl::Status Shape(const std::string& type, ParameterList& parameters, const Location& where);
     // Adds a shape to the world or, given `prototype`, to that prototype.
     absl::Status AddShape(const TriangleMesh& mesh, const Transform& world, FrontFace front,

@@ -442,6 +442,11 @@ TEST(PbrtLoaderTest, BadInputIsAOneLineErrorNamingFileLineAndColumn) {
                 "scenes/scene.pbrt:6:1: 'missing.pbrt' is not in the scene bundle");
     ExpectError(Load(Bundle("Include \"loop.pbrt\"\n", {{"loop.pbrt", "Include \"loop.pbrt\"\n"}})),
                 "includes nest deeper than");
+    ExpectError(Load(Bundle("Include\n")),
+                "scenes/scene.pbrt:6:1: Include needs a quoted file name after it");
+    // An include's error stands, not what its directive makes of the stream's end.
+    ExpectError(Load(Bundle("Shape \"trianglemesh\" Include \"missing.pbrt\"\n")),
+                "scenes/scene.pbrt:6:22: 'missing.pbrt' is not in the scene bundle");
     ExpectError(Load(Bundle("Shape \"plymesh\" \"string filename\" \"bad.ply\"\n",
                             {{"bad.ply", "ply\nformat nonsense\n"}})),
                 "bad.ply: not a valid PLY mesh");
@@ -593,6 +598,19 @@ TEST(PbrtLoaderTest, LimitsRefuseOversizedScenes) {
     EXPECT_EQ(scene.status().code(), absl::StatusCode::kResourceExhausted);
     EXPECT_NE(scene.status().message().find("more than 100 triangles"), std::string::npos)
         << scene.status();
+}
+
+TEST(PbrtLoaderTest, AnIncludeIsPartOfItsParentsTokenStream) {
+    // As pbrt reads it: the parameter list of the Shape goes on in the included file and back
+    // in the parent after it (pbrt-v4-scenes' smoke-plume writes its grid's values so).
+    const absl::StatusOr<Scene> scene = Load(
+        Bundle("Shape \"trianglemesh\" Include \"points.pbrt\" \"integer indices\" [0 1 2]\n",
+               {{"points.pbrt", "\"point3 P\" [0 0 0\n 1 0 0\n Include \"last.pbrt\"]"},
+                {"last.pbrt", "0 1 0"}}));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->positions.size(), 3u);
+    EXPECT_EQ(scene->positions[2].y, 1.0f);
+    EXPECT_EQ(scene->triangles.size(), 1u);
 }
 
 TEST(PbrtLoaderTest, PackingGathersIncludedMeshesAndNothingElse) {
