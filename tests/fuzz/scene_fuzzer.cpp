@@ -1,8 +1,9 @@
 // libFuzzer target for a scene parser: the input is a scene's main file, loaded from a bundle
-// that also holds a small valid PLY mesh and PNG image it may reference (mesh.ply, image.png),
-// under limits small enough that a few bytes cannot ask for gigabytes. Any outcome but a crash,
-// a sanitizer report or a leak is fine: bad input must come back as an error. A scene that
-// loads is also expanded as a backend without instancing would.
+// that also holds a small valid PLY mesh, PNG image and spectrum it may reference (mesh.ply,
+// image.png, spectrum.spd), under limits small enough that a few bytes cannot ask for
+// gigabytes. Any outcome but a crash, a sanitizer report or a leak is fine: bad input must
+// come back as an error. A scene that loads is also expanded as a backend without instancing
+// would.
 // PF_FUZZ_MAIN_FILE (scene.pbrt or scene.gltf) picks the parser.
 #include <cstddef>
 #include <cstdint>
@@ -36,6 +37,7 @@ const pf::SceneBundle& Fixtures() {
             0x9c, 0x63, 0xf8, 0xff, 0xff, 0x3f, 0x00, 0x05, 0xfe, 0x02, 0xfe, 0x0d, 0xef, 0x46,
             0xb8, 0x00, 0x00, 0x00, 0x00, 0x49, 0x45, 0x4e, 0x44, 0xae, 0x42, 0x60, 0x82};
         b->files["image.png"] = std::string(reinterpret_cast<const char*>(kPng), sizeof kPng);
+        b->files["spectrum.spd"] = "380 0.2\n580 0.7\n780 0.4\n";
         return b;
     }();
     return *bundle;

@@ -320,7 +320,8 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
     const float scale = static_cast<float>(parameters.Float("scale", 1.0));
     const double power = parameters.Float("power", 0.0);
     if (type == "point" || type == "spot") {
-        const Rgb intensity = parameters.Color("I").value_or(Rgb(1.0f)) * scale;
+        const Rgb intensity =
+            parameters.Color("I", SpectrumUse::kIlluminant).value_or(Rgb(1.0f)) * scale;
         const Vec3d from = parameters.Point3("from").value_or(Vec3d(0.0));
         light.position = Vec3(state_.ctm.ApplyPoint(from));
         light.intensity = intensity;
@@ -349,7 +350,8 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
         const Vec3d to = parameters.Point3("to").value_or(Vec3d(0, 0, 1));
         light.type = LightType::kDirectional;
         light.direction = Vec3(Normalize(state_.ctm.ApplyVector(to - from)));
-        light.intensity = parameters.Color("L").value_or(Rgb(1.0f)) * scale;
+        light.intensity =
+            parameters.Color("L", SpectrumUse::kIlluminant).value_or(Rgb(1.0f)) * scale;
         const double illuminance = parameters.Float("illuminance", 0.0);
         if (illuminance > 0) light.intensity *= static_cast<float>(illuminance);
     } else if (type == "infinite") {
@@ -380,7 +382,7 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
 absl::Status PbrtSceneBuilder::InfiniteLight(ParameterList& parameters, const Location& where) {
     const double scale = parameters.Float("scale", 1.0);
     const double illuminance = parameters.Float("illuminance", -1.0);
-    const std::optional<Rgb> radiance = parameters.Color("L");
+    const std::optional<Rgb> radiance = parameters.Color("L", SpectrumUse::kIlluminant);
     const std::string filename = parameters.String("filename", "");
     const std::vector<Vec3d> portal = parameters.Point3s("portal");
     if (!parameters.status().ok()) return parameters.status();

@@ -135,6 +135,25 @@ absl::StatusOr<std::vector<double>> PbrtSceneBuilder::ReadNumbers(TokenStream& i
     return numbers;
 }
 
+absl::StatusOr<std::vector<double>> PbrtSceneBuilder::SpectrumFile(const std::string& name,
+                                                                   const Token& declaration) {
+    const std::string parameter = Describe(declaration);
+    absl::StatusOr<std::string> path = ResolveReference(name);
+    if (!path.ok())
+        return ErrorAt(declaration.where,
+                       absl::StrCat("parameter ", parameter, ": ", path.status().message()));
+    absl::StatusOr<std::string_view> contents = ReadFile(*path);
+    if (!contents.ok())
+        return ErrorAt(declaration.where,
+                       absl::StrCat("parameter ", parameter, ": '", name,
+                                    "' is neither a spectrum pbrt-v4 names nor a file of the "
+                                    "scene (",
+                                    contents.status().message(), ")"));
+    return ParseSpectrumFile(
+        *contents, file_names_.emplace_back(
+                       display_root_.empty() ? *path : absl::StrCat(display_root_, "/", *path)));
+}
+
 absl::StatusOr<ParameterList> PbrtSceneBuilder::ReadParameters(TokenStream& in) {
     static const std::map<std::string, std::string> kTypes = {
         {"float", "float"},     {"integer", "integer"},     {"bool", "bool"},
@@ -212,6 +231,15 @@ absl::StatusOr<ParameterList> PbrtSceneBuilder::ReadParameters(TokenStream& in) 
         if (!wrong.empty())
             return ErrorAt(declaration.where,
                            absl::StrCat("parameter ", Describe(declaration), " ", wrong));
+        if (parameter.type == "spectrum" && parameter.strings.size() == 1 &&
+            !NamedSpectrum(parameter.strings[0])) {
+            // Not a name pbrt knows: a spectrum file of the bundle.
+            absl::StatusOr<std::vector<double>> values =
+                SpectrumFile(parameter.strings[0], declaration);
+            if (!values.ok()) return values.status();
+            parameter.strings.clear();
+            parameter.numbers = std::move(*values);
+        }
         parameters.push_back(std::move(parameter));
     }
     return ParameterList(std::move(parameters));
@@ -268,7 +296,7 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, TokenStrea
             return ErrorAt(where,
                            absl::StrCat("AreaLightSource \"", *type,
                                         "\" is unknown (\"diffuse\" is pbrt-v4's only one)"));
-        const Rgb radiance = parameters->Color("L").value_or(Rgb(1.0f)) *
+        const Rgb radiance = parameters->Color("L", SpectrumUse::kIlluminant).value_or(Rgb(1.0f)) *
                              static_cast<float>(parameters->Float("scale", 1.0));
         AreaLight light{radiance, parameters->Float("power", 0.0)};
         if (parameters->Bool("twosided", false))

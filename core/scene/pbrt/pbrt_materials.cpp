@@ -90,7 +90,7 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
     auto index_of_refraction = [&](double fallback) {
         const Parameter* eta = parameters.Find("eta");
         if (eta != nullptr && eta->type == "float") return parameters.Float("eta", fallback);
-        const std::optional<Rgb> color = parameters.Color("eta");
+        const std::optional<Rgb> color = parameters.Color("eta", SpectrumUse::kUnbounded);
         return color ? double(color->y) : fallback;
     };
     if (type == "diffuse") {
@@ -129,8 +129,8 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
         } else {
             const Parameter* eta_parameter = parameters.Find("eta");
             const bool named = eta_parameter != nullptr && !eta_parameter->strings.empty();
-            const std::optional<Rgb> eta = parameters.Color("eta");
-            const std::optional<Rgb> k = parameters.Color("k");
+            const std::optional<Rgb> eta = parameters.Color("eta", SpectrumUse::kUnbounded);
+            const std::optional<Rgb> k = parameters.Color("k", SpectrumUse::kUnbounded);
             if (named && eta) {
                 material.material.base_color =
                     *eta;  // a named metal's spectrum gives its reflectance

@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 
+#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 
 namespace pf::pbrt {
@@ -105,7 +107,7 @@ std::vector<double> ParameterList::Point2s(std::string_view name) {
     return p ? p->numbers : std::vector<double>{};
 }
 
-std::optional<Rgb> ParameterList::Color(std::string_view name) {
+std::optional<Rgb> ParameterList::Color(std::string_view name, SpectrumUse use) {
     Parameter* p = Lookup(name, {"rgb", "blackbody", "spectrum", "float"}, 1);
     if (!p) return std::nullopt;
     if (p->type == "rgb") {
@@ -116,40 +118,27 @@ std::optional<Rgb> ParameterList::Color(std::string_view name) {
         return Rgb(Vec3d(p->numbers[0], p->numbers[1], p->numbers[2]));
     }
     if (p->type == "float") return Rgb(static_cast<float>(p->numbers[0]));
-    if (p->type == "blackbody") return BlackbodyColor(p->numbers[0]);
-    // "spectrum": a named spectrum, or (wavelength, value) pairs.
+    if (p->type == "blackbody") {
+        if (!(p->numbers[0] > 0)) {
+            Fail(*p, "needs a temperature above 0 K");
+            return std::nullopt;
+        }
+        return BlackbodyRgb(p->numbers[0]);
+    }
+    // "spectrum": a named spectrum (a file's values are put in its place on reading), or
+    // (wavelength, value) pairs.
     if (!p->strings.empty()) {
-        if (std::optional<Rgb> metal = NamedMetalReflectance(p->strings[0])) return metal;
-        if (std::optional<double> ior = NamedGlassIor(p->strings[0]))
-            return Rgb(static_cast<float>(*ior));
+        if (std::optional<Rgb> named = NamedSpectrum(p->strings[0])) return named;
         Fail(*p,
              absl::StrCat("names spectrum '", p->strings[0], "', which photonfarm does not know"));
         return std::nullopt;
     }
-    if (p->numbers.size() % 2 != 0) {
-        Fail(*p, "needs (wavelength, value) pairs");
+    const absl::StatusOr<SampledSpectrum> spectrum = MakeSampledSpectrum(p->numbers, use);
+    if (!spectrum.ok()) {
+        Fail(*p, std::string(spectrum.status().message()));
         return std::nullopt;
     }
-    // Sampled spectrum: the mean value over each of three bands (blue 400-500 nm, green
-    // 500-600 nm, red 600-700 nm): a coarse match, enough for the smooth spectra scenes use.
-    std::array<double, 3> sum{}, count{};
-    for (size_t i = 0; i < p->numbers.size(); i += 2) {
-        const double lambda = p->numbers[i];
-        const int band = lambda < 400 || lambda >= 700 ? -1
-                         : lambda < 500                ? 2
-                         : lambda < 600                ? 1
-                                                       : 0;
-        if (band >= 0) sum[band] += p->numbers[i + 1], count[band] += 1;
-    }
-    Rgb rgb;
-    for (int c = 0; c < 3; ++c) {
-        if (count[c] == 0) {
-            Fail(*p, "has no samples in one of 400-500, 500-600, 600-700 nm");
-            return std::nullopt;
-        }
-        rgb[c] = static_cast<float>(sum[c] / count[c]);
-    }
-    return rgb;
+    return SpectrumToRgb(*spectrum, use);
 }
 
 std::optional<std::string> ParameterList::TextureName(std::string_view name) {
@@ -216,21 +205,46 @@ std::optional<Rgb> NamedMetalReflectance(std::string_view name) {
     return std::nullopt;
 }
 
-Rgb BlackbodyColor(double kelvin) {
-    // Kim et al. 2002's cubic fit of the Planckian locus in CIE xy, 1667 K to 25000 K.
-    const double t = std::clamp(kelvin, 1667.0, 25000.0);
-    const double x =
-        t <= 4000 ? -0.2661239e9 / (t * t * t) - 0.2343589e6 / (t * t) + 0.8776956e3 / t + 0.179910
-                  : -3.0258469e9 / (t * t * t) + 2.1070379e6 / (t * t) + 0.2226347e3 / t + 0.240390;
-    const double y =
-        t <= 2222   ? -1.1063814 * x * x * x - 1.34811020 * x * x + 2.18555832 * x - 0.20219683
-        : t <= 4000 ? -0.9549476 * x * x * x - 1.37418593 * x * x + 2.09137015 * x - 0.16748867
-                    : 3.0817580 * x * x * x - 5.87338670 * x * x + 3.75112997 * x - 0.37001483;
-    const double X = x / y, Y = 1.0, Z = (1.0 - x - y) / y;
-    const Vec3d rgb(3.2404542 * X - 1.5371385 * Y - 0.4985314 * Z,
-                    -0.9692660 * X + 1.8760108 * Y + 0.0415560 * Z,
-                    0.0556434 * X - 0.2040259 * Y + 1.0572252 * Z);
-    return Rgb(Vec3d(std::max(rgb.x, 0.0), std::max(rgb.y, 0.0), std::max(rgb.z, 0.0)));
+std::optional<Rgb> NamedSpectrum(std::string_view name) {
+    if (std::optional<Rgb> metal = NamedMetalReflectance(name)) return metal;
+    if (std::optional<double> ior = NamedGlassIor(name)) return Rgb(static_cast<float>(*ior));
+    return NamedIlluminantRgb(name);
+}
+
+absl::StatusOr<std::vector<double>> ParseSpectrumFile(std::string_view contents,
+                                                      std::string_view file) {
+    std::vector<double> numbers;
+    int line = 1;
+    for (size_t i = 0; i < contents.size();) {
+        const char c = contents[i];
+        if (c == '\n') ++line;
+        if (c == '#') {
+            while (i < contents.size() && contents[i] != '\n') ++i;
+            continue;
+        }
+        if (std::isspace(static_cast<unsigned char>(c)) || c == ',') {
+            ++i;
+            continue;
+        }
+        size_t end = i;
+        while (end < contents.size() && !std::isspace(static_cast<unsigned char>(contents[end])) &&
+               contents[end] != ',' && contents[end] != '#')
+            ++end;
+        double value;
+        if (!absl::SimpleAtod(std::string(contents.substr(i, end - i)), &value) ||
+            !std::isfinite(value))
+            return absl::InvalidArgumentError(
+                absl::StrCat(std::string(file), ":", line, ": '",
+                             std::string(contents.substr(i, std::min<size_t>(end - i, 32))),
+                             "' is not a finite number"));
+        if (numbers.size() >= kMaxSpectrumSamples * 2)
+            return absl::InvalidArgumentError(absl::StrCat(std::string(file), ": more than ",
+                                                           kMaxSpectrumSamples,
+                                                           " (wavelength, value) pairs"));
+        numbers.push_back(value);
+        i = end;
+    }
+    return numbers;
 }
 
 }  // namespace pf::pbrt

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "core/film/spectrum.h"
 #include "core/math/vec3.h"
 #include "core/scene/pbrt/pbrt_lexer.h"
 
@@ -45,10 +47,10 @@ public:
     std::vector<double> Point2s(std::string_view name);  // point2, flattened (u0 v0 u1 v1 ...)
 
     // A colour parameter (rgb, blackbody, spectrum or float) as linear sRGB: rgb as given;
-    // blackbody T as the colour of a black body at T kelvin with luminance 1 (pbrt-v4
-    // normalises emission spectra to luminance); a named spectrum from the small table pbrt
-    // scenes use (metals' F0, glasses' index); a float as grey. Absent: nullopt.
-    std::optional<Rgb> Color(std::string_view name);
+    // blackbody T as a black body's colour at luminance 1 (pbrt-v4 normalises light spectra so);
+    // a named spectrum (NamedSpectrum); (wavelength, value) pairs as SpectrumToRgb makes them
+    // for `use`; a float as grey. Absent: nullopt.
+    std::optional<Rgb> Color(std::string_view name, SpectrumUse use = SpectrumUse::kReflectance);
     // A parameter of type "texture": the texture's name; absent: nullopt.
     std::optional<std::string> TextureName(std::string_view name);
     // Marks the parameter of this name read, whatever its type, and returns it (null if absent):
@@ -79,7 +81,14 @@ std::optional<double> NamedGlassIor(std::string_view name);
 // Normal-incidence reflectance (linear sRGB) of a named metal ("metal-Cu-eta" or its "-k"
 // twin), or nullopt.
 std::optional<Rgb> NamedMetalReflectance(std::string_view name);
-// Linear sRGB of a black body at `kelvin`, scaled to luminance 1 (CIE Y = 1).
-Rgb BlackbodyColor(double kelvin);
+// A named spectrum pbrt-v4 knows, as linear sRGB: a metal's reflectance ("metal-Cu-eta"),
+// a glass's index (grey), a light's colour ("stdillum-D65"); nullopt for any other name.
+std::optional<Rgb> NamedSpectrum(std::string_view name);
+
+// A spectrum file (.spd): whitespace-separated (wavelength, value) numbers, '#' comments.
+// Errors name file:line.
+inline constexpr size_t kMaxSpectrumSamples = 1 << 16;
+absl::StatusOr<std::vector<double>> ParseSpectrumFile(std::string_view contents,
+                                                      std::string_view file);
 
 }  // namespace pf::pbrt

@@ -90,6 +90,9 @@ private:
     absl::StatusOr<std::vector<double>> ReadNumbers(TokenStream& in, const Token& directive,
                                                     size_t count);
     absl::StatusOr<ParameterList> ReadParameters(TokenStream& in);
+    // The values of spectrum file `name`, named by a parameter's `declaration`.
+    absl::StatusOr<std::vector<double>> SpectrumFile(const std::string& name,
+                                                     const Token& declaration);
 
     // Directives.
     absl::Status Camera(const std::string& type, ParameterList& parameters, const Location& where);

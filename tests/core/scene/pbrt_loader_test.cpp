@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "core/camera/camera_pass.h"
@@ -603,14 +604,66 @@ TEST(PbrtLoaderTest, LimitsRefuseOversizedScenes) {
 TEST(PbrtLoaderTest, AnIncludeIsPartOfItsParentsTokenStream) {
     // As pbrt reads it: the parameter list of the Shape goes on in the included file and back
     // in the parent after it (pbrt-v4-scenes' smoke-plume writes its grid's values so).
-    const absl::StatusOr<Scene> scene = Load(
-        Bundle("Shape \"trianglemesh\" Include \"points.pbrt\" \"integer indices\" [0 1 2]\n",
-               {{"points.pbrt", "\"point3 P\" [0 0 0\n 1 0 0\n Include \"last.pbrt\"]"},
-                {"last.pbrt", "0 1 0"}}));
+    const absl::StatusOr<Scene> scene =
+        Load(Bundle("Shape \"trianglemesh\" Include \"points.pbrt\" \"integer indices\" [0 1 2]\n",
+                    {{"points.pbrt", "\"point3 P\" [0 0 0\n 1 0 0\n Include \"last.pbrt\"]"},
+                     {"last.pbrt", "0 1 0"}}));
     ASSERT_TRUE(scene.ok()) << scene.status();
     ASSERT_EQ(scene->positions.size(), 3u);
     EXPECT_EQ(scene->positions[2].y, 1.0f);
     EXPECT_EQ(scene->triangles.size(), 1u);
+}
+
+TEST(PbrtLoaderTest, SpectraAreNamedSampledOrInFiles) {
+    SceneBundle bundle = Bundle(
+        "AttributeBegin\nAreaLightSource \"diffuse\" \"spectrum L\" \"stdillum-D65\" "
+        "\"float scale\" 2\n" +
+            std::string(kQuad) +
+            "AttributeEnd\n"
+            "Material \"diffuse\" \"spectrum reflectance\" \"spectra/half.spd\"\n" +
+            kQuad + "Material \"diffuse\" \"spectrum reflectance\" [300 0.25 900 0.25]\n" + kQuad,
+        {{"spectra/half.spd", "# a flat 50% reflectance\n380 0.5\n 780 0.5 # the end\n"}});
+    const absl::StatusOr<Scene> scene = Load(bundle);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->materials.size(), 3u);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(scene->materials[0].emission[c], 2.0f, 5e-3f);  // D65 is sRGB's white
+        EXPECT_NEAR(scene->materials[1].base_color[c], 0.5f, 1e-3f);
+        EXPECT_NEAR(scene->materials[2].base_color[c], 0.25f, 1e-3f);
+    }
+
+    auto error = [](const std::string& world, std::map<std::string, std::string> files = {}) {
+        const absl::StatusOr<Scene> scene = Load(Bundle(world, std::move(files)));
+        return scene.ok() ? std::string("loaded") : std::string(scene.status().message());
+    };
+    EXPECT_EQ(
+        error(std::string("Material \"diffuse\" \"spectrum reflectance\" \"nope.spd\"\n") + kQuad),
+        "scenes/scene.pbrt:6:20: parameter \"spectrum reflectance\": 'nope.spd' is neither a "
+        "spectrum pbrt-v4 names nor a file of the scene ('nope.spd' is not in the scene "
+        "bundle)");
+    EXPECT_EQ(
+        error(std::string("Material \"diffuse\" \"spectrum reflectance\" \"bad.spd\"\n") + kQuad,
+              {{"bad.spd", "400 0.5\n500 x\n"}}),
+        "scenes/bad.spd:2: 'x' is not a finite number");
+    EXPECT_EQ(
+        error(std::string("Material \"diffuse\" \"spectrum reflectance\" [700 0.5 400 0.5]\n") +
+              kQuad),
+        "scenes/scene.pbrt:6:20: parameter \"spectrum reflectance\" wavelengths must "
+        "ascend: 400 follows 700");
+}
+
+TEST(PbrtLoaderTest, PackingGathersSpectrumFiles) {
+    const std::filesystem::path folder = testing::ProcessTempDir() / "spd-scene";
+    std::filesystem::create_directories(folder / "spectra");
+    const SceneBundle written =
+        Bundle("Material \"diffuse\" \"spectrum reflectance\" \"spectra/half.spd\"\n" +
+               std::string(kQuad));
+    std::ofstream(folder / "scene.pbrt") << written.files.at("scene.pbrt");
+    std::ofstream(folder / "spectra" / "half.spd") << "380 0.5 780 0.5\n";
+    const absl::StatusOr<SceneBundle> bundle = PackSceneBundle((folder / "scene.pbrt").string());
+    ASSERT_TRUE(bundle.ok()) << bundle.status();
+    EXPECT_TRUE(bundle->files.contains("spectra/half.spd"));
+    EXPECT_TRUE(LoadScene(*bundle, "scene.pbrt").ok());
 }
 
 TEST(PbrtLoaderTest, PackingGathersIncludedMeshesAndNothingElse) {
