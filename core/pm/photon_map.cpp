@@ -47,10 +47,15 @@ void TraceMapPhotons(const Scene& scene, const Emitters& emitters, const Tracer&
         const EmittedPhoton emitted = emitters.Emit(rng);
         Ray ray = emitted.ray;
         Rgb flux = emitted.flux;
+        const PunctualLight* ranged = emitted.ranged;
         int diffuse_bounces = 0, other_bounces = 0;
         for (int bounce = 0; bounce < max_bounces; ++bounce) {
             RayHit hit;
             if (!IsFinite(flux) || !tracer.Intersect(ray, &hit)) break;
+            if (ranged != nullptr) {  // the light's range, over the first segment
+                flux *= ranged->RangeWindow(hit.t);
+                ranged = nullptr;
+            }
             bool stop = false;
             const PhotonEvent event = ScatterPhotonAt<kSpecular, kTextures>(
                 scene, hit, ray, flux, rng,

@@ -26,6 +26,7 @@ struct PhotonPath {
     Rng rng;
     bool scattered = false;  // the first hit of an unscattered photon is direct light
     int bounces = 0;
+    const PunctualLight* ranged = nullptr;  // the light's window is still to apply at the first hit
 };
 
 // Photon `photon` of the batch whose streams `seeds` holds: its random numbers are a function
@@ -36,6 +37,7 @@ PhotonPath StartPhoton(const PhotonPassInputs& inputs, const SeedFamily& seeds, 
     const EmittedPhoton emitted = inputs.emitters->Emit(path.rng);
     path.ray = emitted.ray;
     path.flux = emitted.flux;
+    path.ranged = emitted.ranged;
     return path;
 }
 
@@ -44,6 +46,10 @@ PhotonPath StartPhoton(const PhotonPassInputs& inputs, const SeedFamily& seeds, 
 template <bool kSpecular, bool kTextures>
 bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath& path,
                    std::vector<PhotonDeposit>& deposits) {
+    if (path.ranged != nullptr) {  // the light's range, over the first segment
+        path.flux *= path.ranged->RangeWindow(hit.t);
+        path.ranged = nullptr;
+    }
     const PhotonEvent event = ScatterPhotonAt<kSpecular, kTextures>(
         *inputs.scene, hit, path.ray, path.flux, path.rng,
         [&](const Vec3& position, const Vec3& direction, const Rgb& flux) {

@@ -127,12 +127,15 @@ EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, Rng& rng) cons
     const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
     switch (light.type) {
         case LightType::kPoint:
-            return {{light.position, SampleUniformSphere(u1, u2)}, light.intensity * (4.0f * kPi)};
+            return {{light.position, SampleUniformSphere(u1, u2)},
+                    light.intensity * (4.0f * kPi),
+                    light.range > 0 ? &light : nullptr};
         case LightType::kSpot: {
             const Vec3 local = SampleUniformCone(u1, u2, light.cos_outer);
             const Vec3 direction = Frame::FromNormal(light.direction).ToWorld(local);
             return {{light.position, direction},
-                    light.intensity * (light.SpotFalloff(local.z) * SpotSolidAngle(light))};
+                    light.intensity * (light.SpotFalloff(local.z) * SpotSolidAngle(light)),
+                    light.range > 0 ? &light : nullptr};
         }
         case LightType::kDirectional: {
             // A disk as wide as the scene's bounding sphere, just outside it, facing the light.
@@ -203,7 +206,8 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
             float falloff = 1.0f;
             if (light.type == LightType::kSpot)
                 falloff = light.SpotFalloff(-Dot(to_light, light.direction));
-            radiance_over_pdf = light.intensity * (falloff / distance_sq);
+            radiance_over_pdf =
+                light.intensity * (falloff * light.RangeWindow(distance) / distance_sq);
         }
     }
     if (!(Dot(to_light, n) > 0) || IsBlack(radiance_over_pdf)) return false;

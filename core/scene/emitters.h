@@ -24,6 +24,9 @@ inline constexpr double kMaxLightPower = 0x1p-36 * 3.4028234663852886e38;
 struct EmittedPhoton {
     Ray ray;   // origin already offset from the emitting surface
     Rgb flux;  // W: this photon's share of the scene's power times N_emitted (divide by it)
+    // The light's range (PunctualLight::range): the flux is still to be multiplied by its
+    // window at the photon's first hit. 0: none.
+    const PunctualLight* ranged = nullptr;
 };
 
 struct LightSample {

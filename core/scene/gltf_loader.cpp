@@ -24,6 +24,8 @@
 namespace pf {
 namespace {
 
+// Luminous efficacy of KHR_lights_punctual's photometric intensities (the maximum, at 555 nm).
+constexpr double kLumensPerWatt = 683.0;
 constexpr int kMaxNodeDepth = 256;
 
 std::string Describe(const std::string& kind, int index, const std::string& name) {
@@ -356,19 +358,24 @@ absl::Status GltfSceneBuilder::AddLight(int light_index, const Transform& world)
     const Vec3d color = source.color.size() == 3
                             ? Vec3d(source.color[0], source.color[1], source.color[2])
                             : Vec3d(1.0);
-    light.intensity = Rgb(color * source.intensity);
-    if (!IsFinite(light.intensity) || MaxComponent(light.intensity) < 0)
+    // KHR_lights_punctual's photometric units (candela for point and spot lights, lux for
+    // directional ones) in watts, at 683 lm/W, the factor Blender's exporter multiplies watts by
+    // (so its lights come back as they were made).
+    light.intensity = Rgb(color * (source.intensity / kLumensPerWatt));
+    if (!IsFinite(light.intensity) || MinComponent(light.intensity) < 0)
         return Error(element, "intensity or colour is negative, NaN or Inf");
+    if (!(source.range >= 0 && std::isfinite(source.range)))
+        return Error(element, "range must be finite and not negative");
     light.position = Vec3(world.ApplyPoint(Vec3d(0.0)));
     light.direction = Vec3(Normalize(world.ApplyVector(Vec3d(0, 0, -1))));
     if (!IsFinite(light.direction))
         return Error(element, "node transform collapses the light's direction");
-    if (source.range > 0)
-        spdlog::warn("{}: {}: range is ignored (lights fall off physically)", path_, element);
     if (source.type == "point") {
         light.type = LightType::kPoint;
+        light.range = static_cast<float>(source.range);
     } else if (source.type == "spot") {
         light.type = LightType::kSpot;
+        light.range = static_cast<float>(source.range);
         light.cos_inner = static_cast<float>(std::cos(source.spot.innerConeAngle));
         light.cos_outer = static_cast<float>(std::cos(source.spot.outerConeAngle));
         if (!(source.spot.outerConeAngle > 0 && source.spot.outerConeAngle <= kPiD / 2 &&
@@ -377,6 +384,8 @@ absl::Status GltfSceneBuilder::AddLight(int light_index, const Transform& world)
             return Error(element, "spot cone angles must satisfy 0 <= inner < outer <= pi/2");
     } else if (source.type == "directional") {
         light.type = LightType::kDirectional;
+        if (source.range > 0)
+            spdlog::warn("{}: {}: a directional light has no range; ignored", path_, element);
     } else {
         return Error(element, absl::StrCat("unknown light type '", source.type, "'"));
     }

@@ -155,6 +155,7 @@ void WritePayload(const Scene& scene, ByteWriter& out) {
         out.Value(light.type), out.Value(light.position), out.Value(light.direction);
         out.Value(light.intensity), out.Value(light.cos_inner), out.Value(light.cos_outer);
         out.Value<uint8_t>(light.smooth_falloff ? 1 : 0);
+        out.Value(light.range);
         out.String(light.name);
     }
     out.Value(scene.camera);
@@ -219,7 +220,7 @@ absl::Status ReadPayload(ByteReader& in, Scene* scene) {
         uint8_t smooth_falloff = 0;
         if (!in.Value(&light.type) || !in.Value(&light.position) || !in.Value(&light.direction) ||
             !in.Value(&light.intensity) || !in.Value(&light.cos_inner) ||
-            !in.Value(&light.cos_outer) || !in.Value(&smooth_falloff) ||
+            !in.Value(&light.cos_outer) || !in.Value(&smooth_falloff) || !in.Value(&light.range) ||
             !in.String(&light.name, 4096))
             return fail(absl::StrCat("light ", l));
         light.smooth_falloff = smooth_falloff != 0;
@@ -316,8 +317,8 @@ absl::Status CheckLightsAndCamera(const Scene& scene) {
         const PunctualLight& light = scene.lights[l];
         if (static_cast<uint32_t>(light.type) > static_cast<uint32_t>(LightType::kDirectional) ||
             !Finite(light.position) || !Finite(light.direction) || !Finite(light.intensity) ||
-            !Finite(light.cos_inner) || !Finite(light.cos_outer) ||
-            MinComponent(light.intensity) < 0)
+            !Finite(light.cos_inner) || !Finite(light.cos_outer) || !Finite(light.range) ||
+            light.range < 0 || MinComponent(light.intensity) < 0)
             return Invalid(absl::StrCat("light ", l, ": a value out of range"));
     }
     const Camera& camera = scene.camera;

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "core/film/film_response.h"
-#include "core/job/scene_settings.h"
 #include "core/geometry/ray.h"
+#include "core/job/scene_settings.h"
 #include "core/math/transform.h"
 #include "core/math/vec3.h"
 #include "core/sampling/sampling.h"
@@ -42,11 +42,16 @@ struct PunctualLight {
     Rgb intensity{1.0f};                          // colour x intensity
     float cos_inner = 1.0f, cos_outer = 0.7071f;  // spot cone, cosines of the half angles
     bool smooth_falloff = false;  // pbrt's smoothstep between the cones, not glTF's quadratic
+    // glTF's range (point, spot): beyond it the light gives nothing, and it fades toward it by
+    // the window the glTF specification recommends. 0: no range.
+    float range = 0;
     std::string name;
 
     // The spot's falloff for a direction whose cosine to the axis is cos_axis: glTF's
     // quadratic ramp between the cones, or pbrt's smoothstep.
     float SpotFalloff(float cos_axis) const;
+    // The range's window at `distance` (core/shared/path_sampling.h); 1 without a range.
+    float RangeWindow(float distance) const { return gpu::RangeWindow(distance, range); }
 };
 
 struct Bounds {

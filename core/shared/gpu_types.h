@@ -142,8 +142,9 @@ struct GpuEmitter {
                      // point: 4 pi I; spot: I x cone solid angle; directional: E pi r^2;
                      // environment: pi r^2 x the radiance's integral); w: 1 / selection
                      // probability
-    vec4 radiance;   // triangle: Le; point, spot: intensity I; directional: irradiance E;
-                     // environment: its scale (a uniform one's radiance)
+    vec4 radiance;   // triangle: Le; point, spot: intensity I, w: range (0: none);
+                     // directional: irradiance E; environment: its scale (a uniform one's
+                     // radiance)
     vec4 cone;  // spot: cos_inner, cos_outer, 1 / max(0.001, cos_inner - cos_outer), smoothstep (1)
                 // or quadratic (0). Environment: the rotation's third row
 };

@@ -79,6 +79,14 @@ PF_GPU_FN vec2 SampleUniformTriangle(float u1, float u2) {
 
 // Veach's power heuristic with beta = 2 (Veach 1997, section 9.2.4): the weight of a sample
 // drawn with density `chosen` where another strategy would have drawn it with density `other`.
+// KHR_lights_punctual's recommended window for a light of `range` at `distance`:
+// clamp(1 - (d / range)^4, 0, 1); 1 without a range (0).
+PF_GPU_FN float RangeWindow(float distance, float range) {
+    if (range <= 0.0f) return 1.0f;
+    const float r = distance / range, r2 = r * r;
+    return max(0.0f, 1.0f - r2 * r2);
+}
+
 PF_GPU_FN float PowerHeuristic(float chosen, float other) {
     const float a = chosen * chosen, b = other * other;
     return a + b > 0.0f ? a / (a + b) : 0.0f;

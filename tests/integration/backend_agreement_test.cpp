@@ -60,6 +60,21 @@ TEST(BackendAgreementTextures, LightOffATexturedWallMatchesTheCpus) {
     ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "textured-wall.gltf"), 2'000'000);
 }
 
+TEST(BackendAgreementRange, ARangedLightMatchesTheCpus) {
+    // A glTF point light with a range of 1, near a wall (x = 1): the floor's direct light fades
+    // by the range's window at the light samples' distance, its light off the wall by the
+    // window at the photons' first hit; past the range the floor is lit by the wall alone.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.meshes.resize(1);  // no area light
+    scene.meshes.push_back(
+        {{{1, -1, 0}, {1, 1, 1}, {1, 1, 0}, {1, -1, 0}, {1, -1, 1}, {1, 1, 1}}, 0});
+    scene.lights = {R"({"type":"point","intensity":6830,"range":1.0})"};
+    scene.light_node_fields = {R"(,"translation":[0.6,0,0.4])"};
+    ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "ranged-light.gltf"), 2'000'000);
+}
+
 TEST(BackendAgreementEnvironment, SkyLitCourtyardMatchesTheCpus) {
     // Lit by an environment map alone: photons leave the map, light samples draw from it and
     // the cosine ray escapes to it, on the device as on the CPU; the sky seen directly is the

@@ -183,8 +183,9 @@ double CentreOfQuadLitBy(const std::string& light, const std::string& node_field
 
 // The mean over the centre 4x4 pixels of I h / (h^2 + r^2)^(3/2): the irradiance from a point
 // source of intensity I at height h = 1 above the quad, seen by the test camera (z = 3, y-fov
-// 0.8, 48x48 pixels looking straight down).
-double CentreIrradianceFromPointAbove(double intensity) {
+// 0.8, 48x48 pixels looking straight down); with a range, times glTF's window
+// 1 - (d / range)^4 at the distance d.
+double CentreIrradianceFromPointAbove(double intensity, double range = 0) {
     const double pixel = 2 * 3 * std::tan(0.4) / 48;
     double sum = 0;
     constexpr int kSteps = 64;
@@ -192,29 +193,39 @@ double CentreIrradianceFromPointAbove(double intensity) {
         for (int j = 0; j < kSteps; ++j) {
             const double x = (-2 + 4 * (i + 0.5) / kSteps) * pixel,
                          y = (-2 + 4 * (j + 0.5) / kSteps) * pixel;
-            sum += intensity / std::pow(1 + x * x + y * y, 1.5);
+            const double d2 = 1 + x * x + y * y;
+            const double window = range > 0 ? 1 - d2 * d2 / std::pow(range, 4) : 1;
+            sum += intensity * window / std::pow(d2, 1.5);
         }
     return sum / (kSteps * kSteps);
 }
 
 TEST_P(AnalyticRender, PunctualLightsGiveTheirAnalyticRadiance) {
     // A Lambertian surface of albedo rho under irradiance E has radiance rho E / pi; nothing
-    // else is in the scene, so there is no indirect light. Intensities are W/sr (point, spot)
-    // and W/m^2 (directional); the lights hang 1 above the quad's centre, pointing down.
+    // else is in the scene, so there is no indirect light. Intensities are candela (point,
+    // spot) and lux (directional), 683 to the watt: 2732 cd is 4 W/sr; the lights hang 1 above
+    // the quad's centre, pointing down.
     const double rho_over_pi = 0.5 / kPiD;
     const double point_expected = rho_over_pi * CentreIrradianceFromPointAbove(4.0);
     const std::string& backend = GetParam();
-    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"point","intensity":4})", R"(,"translation":[0,0,1])",
-                                  "point.gltf", backend),
+    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"point","intensity":2732})",
+                                  R"(,"translation":[0,0,1])", "point.gltf", backend),
                 point_expected, 0.005 * point_expected);
+    // A range of 1.2 takes (1 / 1.2)^4 = 48% off at the centre, and the window falls across
+    // the pixels: the light samples (direct light) take it at their distance. Photons take it
+    // at their first hit, which the indirect light of the test below checks.
+    const double ranged_expected = rho_over_pi * CentreIrradianceFromPointAbove(4.0, 1.2);
+    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"point","intensity":2732,"range":1.2})",
+                                  R"(,"translation":[0,0,1])", "ranged.gltf", backend),
+                ranged_expected, 0.005 * ranged_expected);
     // Within the inner cone a spot light is a point light.
     EXPECT_NEAR(
         CentreOfQuadLitBy(
-            R"({"type":"spot","intensity":4,"spot":{"innerConeAngle":0.3,"outerConeAngle":0.6}})",
+            R"({"type":"spot","intensity":2732,"spot":{"innerConeAngle":0.3,"outerConeAngle":0.6}})",
             R"(,"translation":[0,0,1])", "spot.gltf", backend),
         point_expected, 0.005 * point_expected);
-    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"directional","intensity":3})", "", "directional.gltf",
-                                  backend),
+    EXPECT_NEAR(CentreOfQuadLitBy(R"({"type":"directional","intensity":2049})", "",
+                                  "directional.gltf", backend),
                 rho_over_pi * 3.0, 0.01 * rho_over_pi * 3.0);
 }
 

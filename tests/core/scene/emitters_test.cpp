@@ -24,7 +24,9 @@ TEST(EmittersTest, AreaLightPowerIsPiTimesAreaTimesRadiance) {
 
 TEST(EmittersTest, PhotonsLeaveLightsInProportionToPowerAndCarryTheTotal) {
     testing::TestScene test_scene = testing::LitQuadScene();
-    test_scene.lights = {R"({"type":"point","intensity":1})", R"({"type":"point","intensity":3})"};
+    // Intensities in candela, 683 to the watt: 1 and 3 W/sr.
+    test_scene.lights = {R"({"type":"point","intensity":683})",
+                         R"({"type":"point","intensity":2049})"};
     const absl::StatusOr<Scene> scene =
         LoadScene(testing::WriteGltf(test_scene, "emit-mixed.gltf"));
     ASSERT_TRUE(scene.ok()) << scene.status();
@@ -52,7 +54,7 @@ TEST(EmittersTest, PhotonsLeaveLightsInProportionToPowerAndCarryTheTotal) {
 TEST(EmittersTest, DirectSamplesIntegrateToThePointLightIrradiance) {
     testing::TestScene test_scene = testing::LitQuadScene();
     test_scene.materials[1].emission = Rgb(0.0f);
-    test_scene.lights = {R"({"type":"point","intensity":2})"};
+    test_scene.lights = {R"({"type":"point","intensity":1366})"};  // 2 W/sr
     const absl::StatusOr<Scene> scene =
         LoadScene(testing::WriteGltf(test_scene, "emit-point.gltf"));
     ASSERT_TRUE(scene.ok()) << scene.status();

@@ -77,18 +77,26 @@ TEST(GltfLoaderTest, PunctualLightsAreRead) {
     testing::TestScene scene = testing::LitQuadScene();
     scene.materials[1].emission = Rgb(0.0f);
     scene.lights = {
-        R"({"type":"point","intensity":5,"color":[1,0.5,0.25]})",
+        R"({"type":"point","intensity":3415,"color":[1,0.5,0.25],"range":4})",
         R"({"type":"spot","intensity":2,"spot":{"innerConeAngle":0.1,"outerConeAngle":0.5}})",
-        R"({"type":"directional","intensity":3})"};
+        R"({"type":"directional","intensity":683})"};
     const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "lights.gltf"));
     ASSERT_TRUE(loaded.ok()) << loaded.status();
     ASSERT_EQ(loaded->lights.size(), 3u);
     EXPECT_EQ(loaded->lights[0].type, LightType::kPoint);
-    EXPECT_EQ(loaded->lights[0].intensity, Rgb(5.0f, 2.5f, 1.25f));
+    // Candela and lux at 683 lm/W: 3415 cd is 5 W/sr.
+    EXPECT_NEAR(loaded->lights[0].intensity.x, 5.0f, 1e-5f);
+    EXPECT_NEAR(loaded->lights[0].intensity.z, 1.25f, 1e-5f);
+    EXPECT_EQ(loaded->lights[0].range, 4.0f);
+    EXPECT_EQ(loaded->lights[0].RangeWindow(2.0f), 1.0f - 1.0f / 16);
+    EXPECT_EQ(loaded->lights[0].RangeWindow(5.0f), 0.0f);
+    EXPECT_EQ(loaded->lights[1].range, 0.0f);
+    EXPECT_EQ(loaded->lights[1].RangeWindow(1e9f), 1.0f);
     EXPECT_EQ(loaded->lights[1].type, LightType::kSpot);
     EXPECT_NEAR(loaded->lights[1].cos_outer, std::cos(0.5f), 1e-6f);
     EXPECT_EQ(loaded->lights[2].type, LightType::kDirectional);
     EXPECT_EQ(loaded->lights[2].direction, Vec3(0, 0, -1));
+    EXPECT_NEAR(loaded->lights[2].intensity.y, 1.0f, 1e-6f);  // 683 lux: 1 W/m^2
 }
 
 TEST(GltfLoaderTest, BaseColourTextureIsDecodedToLinearAndSampled) {

@@ -83,7 +83,7 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
             const PunctualLight& light = scene.lights[record.light];
             emitter.position = Vec4(light.position);
             emitter.direction = Vec4(light.direction);
-            emitter.radiance = Vec4(light.intensity);
+            emitter.radiance = Vec4(light.intensity, light.range);
             emitter.cone = {light.cos_inner, light.cos_outer,
                             1.0f / std::max(0.001f, light.cos_inner - light.cos_outer),
                             light.smooth_falloff ? 1.0f : 0.0f};

@@ -30,7 +30,8 @@ uint PickEmitter(float u) {
 
 struct Photon {
     vec3 origin, direction;
-    vec3 flux;  // W x photons emitted
+    vec3 flux;    // W x photons emitted
+    float range;  // the light's range, whose window the flux still takes at the first hit
 };
 
 Photon EmitPhoton(inout Pcg32 rng) {
@@ -38,6 +39,7 @@ Photon EmitPhoton(inout Pcg32 rng) {
     const uint kind = EmitterKind(emitter);
     Photon photon;
     photon.flux = emitter.power.xyz * emitter.power.w;
+    photon.range = 0;
     if (kHasTriangleLights && kind == kEmitterTriangle) {
         const vec2 b = SampleUniformTriangle(Pcg32NextFloat(rng), Pcg32NextFloat(rng));
         const vec3 point = emitter.position.xyz + emitter.edge1.xyz * b.x + emitter.edge2.xyz * b.y;
@@ -50,11 +52,13 @@ Photon EmitPhoton(inout Pcg32 rng) {
     if (kHasPointLights && kind == kEmitterPoint) {
         photon.origin = emitter.position.xyz;
         photon.direction = SampleUniformSphere(u1, u2);
+        photon.range = emitter.radiance.w;
     } else if (kHasSpotLights && kind == kEmitterSpot) {
         const vec3 local = SampleUniformCone(u1, u2, emitter.cone.y);
         photon.origin = emitter.position.xyz;
         photon.direction = FrameFromNormal(emitter.direction.xyz) * local;
         photon.flux *= SpotFalloff(emitter, local.z);
+        photon.range = emitter.radiance.w;
     } else if (kHasDirectionalLights && kind == kEmitterDirectional) {
         // A disk as wide as the scene's bounding sphere, just outside it, facing the light.
         const mat3 frame = FrameFromNormal(emitter.direction.xyz);
@@ -129,7 +133,8 @@ bool SampleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample sample_out) {
         if (!(distance_sq > 0)) return false;
         float falloff = 1.0;
         if (kHasSpotLights && kind == kEmitterSpot) falloff = SpotFalloff(emitter, -dot(to_light, emitter.direction.xyz));
-        radiance_over_pdf = emitter.radiance.xyz * (falloff / distance_sq);
+        radiance_over_pdf = emitter.radiance.xyz *
+                            (falloff * RangeWindow(sample_out.distance, emitter.radiance.w) / distance_sq);
     }
     if (!(dot(to_light, n) > 0) || MaxComponent(radiance_over_pdf) <= 0) return false;
     sample_out.direction = to_light;

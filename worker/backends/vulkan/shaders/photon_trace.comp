@@ -66,6 +66,7 @@ uint TracePhoton(uint photon, out bool discarded) {
         }
         RayHit hit;
         if (!TraceRay(origin, direction, kInfinity, false, hit)) break;
+        if (bounce == 0) flux *= RangeWindow(hit.t, emitted.range);  // the light's range
         const Surface surface = SurfaceAt(hit);
         const GpuMaterial material = materials[surface.material];
         const bool front_facing = dot(direction, surface.geometric_normal) < 0;
