@@ -6,18 +6,30 @@
 #include <tiny_gltf.h>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "absl/status/status.h"
+#include "absl/status/statusor.h"
+#include "core/scene/mesh_builder.h"
 
 namespace pf {
 
-// Accessor `index` as `components` floats per element, normalised unsigned byte and short
-// types converted; errors name the accessor (missing, wrong type, sparse, out of its buffer).
+// Accessor `index` as `components` floats per element, as glTF defines them: floats, and the
+// integer types of KHR_mesh_quantization, normalised where the accessor says so; sparse
+// substitutions applied; no buffer view: zeros. Errors name the accessor (missing, wrong
+// type, out of its buffer, bad sparse indices).
 absl::Status ReadFloats(const tinygltf::Model& model, int index, int components,
                         std::vector<float>* out);
 
-// Index accessor `index` (unsigned byte, short or int scalars) as 32-bit indices.
+// Index accessor `index` (unsigned byte, short or int scalars, sparse or not) as 32-bit
+// indices.
 absl::Status ReadIndices(const tinygltf::Model& model, int index, std::vector<uint32_t>* out);
+
+// A triangle primitive's mesh: POSITION, NORMAL if given, the TEXCOORD_n set its material's
+// base colour texture reads (texCoord), and its indices (or 0, 1, 2, ... without), every index
+// checked against the vertices. Errors say what is wrong, for the caller to place.
+absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
+                                           const tinygltf::Primitive& primitive);
 
 }  // namespace pf

@@ -145,7 +145,8 @@ absl::StatusOr<Scene> GltfSceneBuilder::Build() {
     static const std::set<std::string> kSupported = {
         "KHR_lights_punctual",   "KHR_materials_emissive_strength",
         "KHR_texture_transform", "KHR_materials_transmission",
-        "KHR_materials_ior",     "KHR_materials_volume"};
+        "KHR_materials_ior",     "KHR_materials_volume",
+        "KHR_mesh_quantization"};
     for (const std::string& extension : model_.extensionsRequired)
         if (!kSupported.contains(extension))
             return Error("extensionsRequired",
@@ -278,46 +279,8 @@ absl::Status GltfSceneBuilder::AddMesh(int mesh_index, const Transform& world) {
 
 absl::StatusOr<TriangleMesh> GltfSceneBuilder::ReadPrimitive(const tinygltf::Primitive& primitive,
                                                              const std::string& element) const {
-    const auto position_it = primitive.attributes.find("POSITION");
-    if (position_it == primitive.attributes.end())
-        return Error(element, "has no POSITION attribute");
-    std::vector<float> positions, normals, uvs;
-    if (absl::Status s = ReadFloats(model_, position_it->second, 3, &positions); !s.ok())
-        return Error(element, std::string(s.message()));
-    const size_t vertex_count = positions.size() / 3;
-    for (size_t v = 0; v < 3 * vertex_count; ++v)
-        if (!std::isfinite(positions[v]))
-            return Error(element, absl::StrCat("vertex ", v / 3, " position has NaN or Inf"));
-    if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
-        if (absl::Status s = ReadFloats(model_, it->second, 3, &normals); !s.ok())
-            return Error(element, std::string(s.message()));
-        if (normals.size() != positions.size())
-            return Error(element, "NORMAL and POSITION counts differ");
-    }
-    if (auto it = primitive.attributes.find("TEXCOORD_0"); it != primitive.attributes.end()) {
-        if (absl::Status s = ReadFloats(model_, it->second, 2, &uvs); !s.ok())
-            return Error(element, std::string(s.message()));
-        if (uvs.size() / 2 != vertex_count)
-            return Error(element, "TEXCOORD_0 and POSITION counts differ");
-    }
-    TriangleMesh mesh;
-    for (size_t v = 0; v < vertex_count; ++v) {
-        mesh.positions.emplace_back(positions[3 * v], positions[3 * v + 1], positions[3 * v + 2]);
-        if (!normals.empty())
-            mesh.normals.emplace_back(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
-        if (!uvs.empty()) mesh.uvs.push_back({uvs[2 * v], uvs[2 * v + 1]});
-    }
-    if (primitive.indices >= 0) {
-        if (absl::Status s = ReadIndices(model_, primitive.indices, &mesh.indices); !s.ok())
-            return Error(element, std::string(s.message()));
-    } else {
-        for (uint32_t i = 0; i < vertex_count; ++i) mesh.indices.push_back(i);
-    }
-    if (mesh.indices.size() % 3 != 0) return Error(element, "index count is not a multiple of 3");
-    for (size_t i = 0; i < mesh.indices.size(); ++i)
-        if (mesh.indices[i] >= vertex_count)
-            return Error(element, absl::StrCat("triangle ", i / 3, " has an index beyond the ",
-                                               vertex_count, " vertices"));
+    absl::StatusOr<TriangleMesh> mesh = ReadTriangles(model_, primitive);
+    if (!mesh.ok()) return Error(element, std::string(mesh.status().message()));
     return mesh;
 }
 
@@ -451,9 +414,6 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
             if (const tinygltf::Value* transform =
                     Extension(pbr.baseColorTexture.extensions, "KHR_texture_transform"))
                 uv = TextureTransform(*transform);
-            if (pbr.baseColorTexture.texCoord != 0)
-                spdlog::warn("{}: {}: texCoord {} unsupported; using TEXCOORD_0", path_, element,
-                             pbr.baseColorTexture.texCoord);
         }
         double strength = 1.0;
         if (const tinygltf::Value* e =
