@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
+#include "core/scene/gltf_draco.h"
 
 namespace pf {
 namespace {
@@ -201,8 +202,21 @@ absl::Status ReadIndices(const tinygltf::Model& model, int index, std::vector<ui
 }
 
 absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
-                                           const tinygltf::Primitive& primitive) {
+                                           const tinygltf::Primitive& primitive,
+                                           uint64_t max_triangles) {
     auto error = [](const std::string& what) { return absl::InvalidArgumentError(what); };
+    // The texture coordinates the material's texture reads (its texCoord), TEXCOORD_0 where it
+    // has none.
+    int set = 0;
+    if (primitive.material >= 0 && primitive.material < static_cast<int>(model.materials.size())) {
+        const tinygltf::TextureInfo& texture =
+            model.materials[primitive.material].pbrMetallicRoughness.baseColorTexture;
+        if (texture.index >= 0) set = texture.texCoord;
+    }
+    const std::string uv_name = absl::StrCat("TEXCOORD_", set);
+    if (const auto draco = primitive.extensions.find("KHR_draco_mesh_compression");
+        draco != primitive.extensions.end())
+        return DecodeDracoPrimitive(model, draco->second, uv_name, max_triangles);
     const auto position_it = primitive.attributes.find("POSITION");
     if (position_it == primitive.attributes.end()) return error("has no POSITION attribute");
     std::vector<float> positions, normals, uvs;
@@ -215,15 +229,6 @@ absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
         if (absl::Status s = ReadFloats(model, it->second, 3, &normals); !s.ok()) return s;
         if (normals.size() != positions.size()) return error("NORMAL and POSITION counts differ");
     }
-    // The texture coordinates the material's texture reads (its texCoord), TEXCOORD_0 where it
-    // has none.
-    int set = 0;
-    if (primitive.material >= 0 && primitive.material < static_cast<int>(model.materials.size())) {
-        const tinygltf::TextureInfo& texture =
-            model.materials[primitive.material].pbrMetallicRoughness.baseColorTexture;
-        if (texture.index >= 0) set = texture.texCoord;
-    }
-    const std::string uv_name = absl::StrCat("TEXCOORD_", set);
     if (auto it = primitive.attributes.find(uv_name); it != primitive.attributes.end()) {
         if (absl::Status s = ReadFloats(model, it->second, 2, &uvs); !s.ok()) return s;
         if (uvs.size() / 2 != vertex_count)

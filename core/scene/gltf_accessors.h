@@ -28,8 +28,10 @@ absl::Status ReadIndices(const tinygltf::Model& model, int index, std::vector<ui
 
 // A triangle primitive's mesh: POSITION, NORMAL if given, the TEXCOORD_n set its material's
 // base colour texture reads (texCoord), and its indices (or 0, 1, 2, ... without), every index
-// checked against the vertices. Errors say what is wrong, for the caller to place.
+// checked against the vertices; from its Draco stream where it is compressed
+// (KHR_draco_mesh_compression, gltf_draco.h). Errors say what is wrong, for the caller to place.
 absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
-                                           const tinygltf::Primitive& primitive);
+                                           const tinygltf::Primitive& primitive,
+                                           uint64_t max_triangles);
 
 }  // namespace pf

@@ -18,6 +18,7 @@
 #include "absl/strings/str_join.h"
 #include "core/math/transform.h"
 #include "core/scene/gltf_accessors.h"
+#include "core/scene/gltf_draco.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/scene_bundle.h"
 
@@ -146,7 +147,7 @@ absl::StatusOr<Scene> GltfSceneBuilder::Build() {
         "KHR_lights_punctual",   "KHR_materials_emissive_strength",
         "KHR_texture_transform", "KHR_materials_transmission",
         "KHR_materials_ior",     "KHR_materials_volume",
-        "KHR_mesh_quantization"};
+        "KHR_mesh_quantization", "KHR_draco_mesh_compression"};
     for (const std::string& extension : model_.extensionsRequired)
         if (!kSupported.contains(extension))
             return Error("extensionsRequired",
@@ -279,7 +280,7 @@ absl::Status GltfSceneBuilder::AddMesh(int mesh_index, const Transform& world) {
 
 absl::StatusOr<TriangleMesh> GltfSceneBuilder::ReadPrimitive(const tinygltf::Primitive& primitive,
                                                              const std::string& element) const {
-    absl::StatusOr<TriangleMesh> mesh = ReadTriangles(model_, primitive);
+    absl::StatusOr<TriangleMesh> mesh = ReadTriangles(model_, primitive, limits_.max_triangles);
     if (!mesh.ok()) return Error(element, std::string(mesh.status().message()));
     return mesh;
 }
@@ -524,7 +525,8 @@ absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& nam
     loader.SetImageLoader(KeepEncodedImage, &images);
     tinygltf::Model model;
     std::string error, warning;
-    const std::string& main = bundle.files.at(bundle.main_file);
+    const std::string main = WithoutDracoIndices(
+        bundle.files.at(bundle.main_file), absl::EndsWithIgnoreCase(bundle.main_file, ".glb"));
     const std::string::size_type slash = bundle.main_file.rfind('/');
     const std::string base_dir =
         slash == std::string::npos ? "" : bundle.main_file.substr(0, slash);

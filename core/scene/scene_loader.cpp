@@ -10,6 +10,7 @@
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
+#include "core/scene/gltf_draco.h"
 #include "core/scene/gltf_loader.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/pbrt/pbrt_loader.h"
@@ -112,8 +113,9 @@ void LeaveOutUnusedImages(const std::string& scene_path, const tinygltf::Model& 
                      left_out.size() > 1 ? ", ..." : "");
 }
 
-absl::Status PackGltf(const std::string& scene_path, const std::string& main, bool binary,
+absl::Status PackGltf(const std::string& scene_path, const std::string& file, bool binary,
                       PackingFiles* files, SceneBundle* bundle) {
+    const std::string main = WithoutDracoIndices(file, binary);
     PackState state{files, absl::OkStatus()};
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({PackFileExists, PackExpandFilePath, PackReadWholeFile, NoWrite, &state});

@@ -241,11 +241,11 @@ TEST(GltfLoaderTest, AnUnknownRequiredExtensionIsRefusedNamingIt) {
     const std::string json = testing::GltfJson(scene);
     const std::string required = testing::WriteTextFile(
         json.substr(0, json.rfind('}')) +
-            R"(,"extensionsUsed":["KHR_draco_mesh_compression","KHR_texture_transform"],)"
-            R"("extensionsRequired":["KHR_texture_transform","KHR_draco_mesh_compression"]})",
-        "draco-required.gltf");
+            R"(,"extensionsUsed":["EXT_meshopt_compression","KHR_texture_transform"],)"
+            R"("extensionsRequired":["KHR_texture_transform","EXT_meshopt_compression"]})",
+        "meshopt-required.gltf");
     ExpectError(LoadScene(required), required,
-                "extensionsRequired: 'KHR_draco_mesh_compression' is not supported");
+                "extensionsRequired: 'EXT_meshopt_compression' is not supported");
     // Required extensions that are read load.
     const std::string supported = testing::WriteTextFile(
         json.substr(0, json.rfind('}')) +

@@ -1,0 +1,151 @@
+// Draco-compressed glTF primitives.
+#include "core/scene/gltf_draco.h"
+
+#include <draco/compression/decode.h>
+
+#include <cmath>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "absl/strings/str_cat.h"
+
+namespace pf {
+namespace {
+
+// The stream's attribute `name` (its unique id in the extension's attributes) as
+// `components` floats a point; empty where the extension does not name it.
+absl::StatusOr<std::vector<float>> Attribute(const draco::Mesh& mesh,
+                                             const tinygltf::Value& attributes,
+                                             const std::string& name, int components) {
+    if (!attributes.Has(name)) return std::vector<float>{};
+    const tinygltf::Value& id = attributes.Get(name);
+    if (!id.IsInt() || id.GetNumberAsInt() < 0)
+        return absl::InvalidArgumentError(
+            absl::StrCat("KHR_draco_mesh_compression: attribute ", name, " is not an id"));
+    const draco::PointAttribute* attribute =
+        mesh.GetAttributeByUniqueId(static_cast<uint32_t>(id.GetNumberAsInt()));
+    if (attribute == nullptr || attribute->num_components() != components)
+        return absl::InvalidArgumentError(
+            absl::StrCat("KHR_draco_mesh_compression: the stream has no ", name, " of ", components,
+                         " components (id ", id.GetNumberAsInt(), ")"));
+    std::vector<float> values(size_t(mesh.num_points()) * components);
+    for (draco::PointIndex p(0); p < mesh.num_points(); ++p)
+        if (!attribute->ConvertValue<float>(attribute->mapped_index(p), components,
+                                            &values[size_t(p.value()) * components]))
+            return absl::InvalidArgumentError(absl::StrCat(
+                "KHR_draco_mesh_compression: ", name, " of point ", p.value(), " is unreadable"));
+    return values;
+}
+
+}  // namespace
+
+absl::StatusOr<TriangleMesh> DecodeDracoPrimitive(const tinygltf::Model& model,
+                                                  const tinygltf::Value& extension,
+                                                  const std::string& uv_attribute,
+                                                  uint64_t max_triangles) {
+    const auto malformed = [](const std::string& what) {
+        return absl::InvalidArgumentError(absl::StrCat("KHR_draco_mesh_compression: ", what));
+    };
+    if (!extension.IsObject() || !extension.Has("bufferView") ||
+        !extension.Get("bufferView").IsInt() || !extension.Has("attributes") ||
+        !extension.Get("attributes").IsObject())
+        return malformed("needs a bufferView and attributes");
+    const int view_index = extension.Get("bufferView").GetNumberAsInt();
+    if (view_index < 0 || view_index >= static_cast<int>(model.bufferViews.size()))
+        return malformed(absl::StrCat("buffer view #", view_index, " does not exist"));
+    const tinygltf::BufferView& view = model.bufferViews[view_index];
+    if (view.buffer < 0 || view.buffer >= static_cast<int>(model.buffers.size()) ||
+        view.byteOffset > model.buffers[view.buffer].data.size() ||
+        view.byteLength > model.buffers[view.buffer].data.size() - view.byteOffset)
+        return malformed(absl::StrCat("buffer view #", view_index, " lies outside its buffer"));
+    draco::DecoderBuffer stream;
+    stream.Init(
+        reinterpret_cast<const char*>(model.buffers[view.buffer].data.data() + view.byteOffset),
+        view.byteLength);
+    draco::Decoder decoder;
+    draco::StatusOr<std::unique_ptr<draco::Mesh>> decoded = decoder.DecodeMeshFromBuffer(&stream);
+    if (!decoded.ok())
+        return malformed(
+            absl::StrCat("the stream does not decode (", decoded.status().error_msg_string(), ")"));
+    const draco::Mesh& mesh = *decoded.value();
+    if (mesh.num_faces() > max_triangles)
+        return malformed(
+            absl::StrCat(mesh.num_faces(), " triangles exceed the limit of ", max_triangles));
+    const tinygltf::Value& attributes = extension.Get("attributes");
+    absl::StatusOr<std::vector<float>> positions = Attribute(mesh, attributes, "POSITION", 3);
+    if (!positions.ok()) return positions.status();
+    if (positions->empty()) return malformed("the stream has no POSITION");
+    absl::StatusOr<std::vector<float>> normals = Attribute(mesh, attributes, "NORMAL", 3);
+    if (!normals.ok()) return normals.status();
+    absl::StatusOr<std::vector<float>> uvs = Attribute(mesh, attributes, uv_attribute, 2);
+    if (!uvs.ok()) return uvs.status();
+    TriangleMesh out;
+    const size_t points = mesh.num_points();
+    for (size_t p = 0; p < points; ++p) {
+        const Vec3 position((*positions)[3 * p], (*positions)[3 * p + 1], (*positions)[3 * p + 2]);
+        if (!IsFinite(position))
+            return malformed(absl::StrCat("point ", p, " position has NaN or Inf"));
+        out.positions.push_back(position);
+        if (!normals->empty())
+            out.normals.emplace_back((*normals)[3 * p], (*normals)[3 * p + 1],
+                                     (*normals)[3 * p + 2]);
+        if (!uvs->empty()) out.uvs.push_back({(*uvs)[2 * p], (*uvs)[2 * p + 1]});
+    }
+    out.indices.reserve(size_t(mesh.num_faces()) * 3);
+    for (draco::FaceIndex f(0); f < mesh.num_faces(); ++f)
+        for (int corner = 0; corner < 3; ++corner) {
+            const uint32_t index = mesh.face(f)[corner].value();
+            if (index >= points)
+                return malformed(absl::StrCat("triangle ", f.value(), " has an index beyond the ",
+                                              points, " points"));
+            out.indices.push_back(index);
+        }
+    return out;
+}
+
+std::string WithoutDracoIndices(const std::string& contents, bool binary) {
+    constexpr const char* kExtension = "KHR_draco_mesh_compression";
+    if (contents.find(kExtension) == std::string::npos) return contents;
+    // A .glb: a 12-byte header, then the JSON chunk (length, type, text), then the rest.
+    size_t json_begin = 0, json_size = contents.size();
+    if (binary) {
+        uint32_t chunk_size = 0;
+        if (contents.size() < 20) return contents;
+        std::memcpy(&chunk_size, contents.data() + 12, 4);
+        if (chunk_size > contents.size() - 20) return contents;
+        json_begin = 20, json_size = chunk_size;
+    }
+    nlohmann::json document =
+        nlohmann::json::parse(contents.substr(json_begin, json_size), nullptr, false);
+    if (document.is_discarded() || !document.is_object() || !document.contains("meshes") ||
+        !document["meshes"].is_array())
+        return contents;
+    bool changed = false;
+    for (nlohmann::json& mesh : document["meshes"]) {
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
+            continue;
+        for (nlohmann::json& primitive : mesh["primitives"])
+            if (primitive.is_object() && primitive.contains("extensions") &&
+                primitive["extensions"].is_object() &&
+                primitive["extensions"].contains(kExtension) && primitive.contains("indices")) {
+                primitive.erase("indices");
+                changed = true;
+            }
+    }
+    if (!changed) return contents;
+    std::string json = document.dump();
+    if (!binary) return json;
+    json.resize((json.size() + 3) / 4 * 4, ' ');  // chunks are 4-byte aligned
+    std::string out = contents.substr(0, 12);
+    const uint32_t chunk_size = static_cast<uint32_t>(json.size());
+    out.append(reinterpret_cast<const char*>(&chunk_size), 4);
+    out.append(contents, 16, 4);  // the chunk type, "JSON"
+    out += json;
+    out.append(contents, json_begin + json_size, std::string::npos);
+    const uint32_t total = static_cast<uint32_t>(out.size());
+    std::memcpy(out.data() + 8, &total, 4);
+    return out;
+}
+
+}  // namespace pf
