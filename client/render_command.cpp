@@ -142,9 +142,16 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
     auto options = std::make_shared<RenderOptions>();
     RenderSettings& s = options->settings;
     CLI::App* render = app.add_subcommand("render", "Render a scene on this machine (no server)");
-    render->add_option("scene", s.scene_path, "Scene file (.gltf or .glb)")
+    render->add_option("scene", s.scene_path, "Scene file (.gltf, .glb or .pbrt)")
         ->required()
         ->check(CLI::ExistingFile);
+    render
+        ->add_option(
+            "--scene-root", s.scene_root,
+            "The folder that holds the scene and every file it references, where they lie beside "
+            "its own folder (../textures/...): nothing outside it is read (default: the "
+            "scene's folder)")
+        ->check(CLI::ExistingDirectory);
     render->add_option("--out", options->out, "Output image: float RGB OpenEXR with metadata")
         ->required();
     render->add_option("--png", options->png, "Also write a tone-mapped sRGB PNG");

@@ -181,6 +181,7 @@ int Follow(FarmClient& client, const WatchOptions& options) {
 
 struct SubmitOptions {
     std::string scene_path;
+    std::string scene_root;
     std::string reference_path;
     std::string name;
     JobSpec spec;
@@ -198,7 +199,8 @@ int RunSubmit(SubmitOptions& options) {
         return 2;
     }
     SceneRenderSettings scene_settings;
-    absl::StatusOr<SceneBundle> bundle = PackSceneBundle(options.scene_path, &scene_settings);
+    absl::StatusOr<SceneBundle> bundle =
+        PackSceneBundle(options.scene_path, &scene_settings, options.scene_root);
     if (!bundle.ok()) {
         spdlog::error("{}", std::string(bundle.status().message()));
         return 1;
@@ -264,9 +266,16 @@ void AddSubmitCommand(CLI::App& app, int* exit_code) {
         app.add_subcommand("submit", "Submit a scene to a render farm (prints the job id)");
     submit
         ->add_option("scene", options->scene_path,
-                     "Scene file (.gltf or .glb); it and every file it references are sent")
+                     "Scene file (.gltf, .glb or .pbrt); it and every file it references are sent")
         ->required()
         ->check(CLI::ExistingFile);
+    submit
+        ->add_option(
+            "--scene-root", options->scene_root,
+            "The folder that holds the scene and every file it references, where they lie beside "
+            "its own folder (../textures/...): nothing outside it is read (default: the "
+            "scene's folder)")
+        ->check(CLI::ExistingDirectory);
     submit->add_option("--name", options->name,
                        "Name in listings (default: the scene's file name)");
     submit

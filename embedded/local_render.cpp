@@ -36,7 +36,8 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings,
         if (absl::Status status = check(flags); !status.ok()) return status;
     }
     SceneRenderSettings scene_settings;
-    absl::StatusOr<SceneBundle> bundle = PackSceneBundle(settings.scene_path, &scene_settings);
+    absl::StatusOr<SceneBundle> bundle =
+        PackSceneBundle(settings.scene_path, &scene_settings, settings.scene_root);
     if (!bundle.ok()) return bundle.status();
     const std::vector<std::string> notes =
         ApplySceneSettings(scene_settings, settings.given, &spec);

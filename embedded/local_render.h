@@ -21,6 +21,7 @@ namespace pf {
 
 struct RenderSettings {
     std::string scene_path;
+    std::string scene_root;  // the bundle's root where wider than the scene's folder
     JobSpec job;
     // The settings the user chose (flags): the scene file's own (a pbrt Integrator, Sampler)
     // fill the rest (ApplySceneSettings).

@@ -57,10 +57,11 @@ absl::StatusOr<SampledSpectrum> MakeSampledSpectrum(std::span<const double> pair
         if (!spectrum.lambda.empty() && !(nm > spectrum.lambda.back()))
             return absl::InvalidArgumentError(
                 absl::StrCat("wavelengths must ascend: ", nm, " follows ", spectrum.lambda.back()));
-        if (!std::isfinite(value) || (use != SpectrumUse::kUnbounded && value < 0))
-            return absl::InvalidArgumentError(
-                absl::StrCat("value ", value, " at ", nm, " nm must be finite",
-                             use != SpectrumUse::kUnbounded ? " and not negative" : ""));
+        const double lowest = use == SpectrumUse::kUnbounded ? -kMaxSpectrumValue : 0.0;
+        if (!(value >= lowest && value <= kMaxSpectrumValue))
+            return absl::InvalidArgumentError(absl::StrCat("value ", value, " at ", nm,
+                                                           " nm must lie in [", lowest, ", ",
+                                                           kMaxSpectrumValue, "]"));
         spectrum.lambda.push_back(nm);
         spectrum.value.push_back(value);
     }

@@ -38,8 +38,9 @@ struct SampledSpectrum {
 };
 
 // (wavelength, value) pairs as pbrt writes them: at least two pairs, wavelengths strictly
-// ascending within [100, 2000] nm, values finite (and not negative, but for kUnbounded).
-// Errors say which rule broke.
+// ascending within [100, 2000] nm, values within kMaxSpectrumValue (and not negative, but for
+// kUnbounded), so every colour made from them is finite in float. Errors say which rule broke.
+inline constexpr double kMaxSpectrumValue = 1e30;
 absl::StatusOr<SampledSpectrum> MakeSampledSpectrum(std::span<const double> pairs, SpectrumUse use);
 
 // CIE 1931 colour matching functions x-bar, y-bar, z-bar at `nm`.

@@ -21,6 +21,7 @@
 #include "core/scene/gltf_draco.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/scene_bundle.h"
+#include "core/scene/scene_files.h"
 
 namespace pf {
 namespace {
@@ -498,7 +499,9 @@ bool BundleFileExists(const std::string& path, void* user) {
     return CheckBundlePath(path).ok() &&
            static_cast<const SceneBundle*>(user)->files.contains(path);
 }
-std::string BundleExpandFilePath(const std::string& path, void*) { return path; }
+std::string BundleExpandFilePath(const std::string& path, void*) {
+    return ResolveReference(path).value_or(path);  // ".." within the bundle resolved
+}
 bool BundleReadWholeFile(std::vector<unsigned char>* out, std::string* error,
                          const std::string& path, void* user) {
     if (!BundleFileExists(path, user)) {

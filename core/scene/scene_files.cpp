@@ -44,7 +44,12 @@ absl::StatusOr<std::string_view> PackingFiles::Read(const std::string& path) {
     return std::string_view(bundle_->files.emplace(path, std::move(*contents)).first->second);
 }
 
-absl::StatusOr<std::string> ResolveReference(std::string_view reference) {
+std::string BundleFolder(const std::string& path) {
+    const size_t slash = path.rfind('/');
+    return slash == std::string::npos ? std::string() : path.substr(0, slash);
+}
+
+absl::StatusOr<std::string> ResolveReference(std::string_view reference, std::string_view base) {
     auto refuse = [&](const char* why) {
         return absl::InvalidArgumentError(
             absl::StrCat("scene reference '", std::string(reference), "' ", why));
@@ -54,13 +59,19 @@ absl::StatusOr<std::string> ResolveReference(std::string_view reference) {
     if (!reference.empty() && reference.front() == '/')
         return refuse("is absolute; only paths inside the scene's folder are allowed");
     std::vector<std::string> parts;
-    for (size_t begin = 0; begin <= reference.size();) {
-        const size_t end = std::min(reference.find('/', begin), reference.size());
-        const std::string part(reference.substr(begin, end - begin));
+    const std::string joined = base.empty()
+                                   ? std::string(reference)
+                                   : absl::StrCat(std::string(base), "/", std::string(reference));
+    for (size_t begin = 0; begin <= joined.size();) {
+        const size_t end = std::min(joined.find('/', begin), joined.size());
+        const std::string part = joined.substr(begin, end - begin);
         begin = end + 1;
         if (part.empty() || part == ".") continue;
         if (part == "..") {
-            if (parts.empty()) return refuse("leaves the scene's folder");
+            if (parts.empty())
+                return refuse(
+                    "leaves the scene's folder (where the scene's files lie beside it, give "
+                    "--scene-root with the folder that holds them all)");
             parts.pop_back();
         } else {
             parts.push_back(part);

@@ -45,10 +45,13 @@ private:
 // Reads a whole file from disk.
 absl::StatusOr<std::string> ReadWholeFile(const std::filesystem::path& path);
 
-// `reference` as written in file `from` (a bundle path), made a bundle path: relative to the
-// scene's folder (pbrt-v4 resolves every relative name against the main file's folder), with
-// "." components dropped and ".." resolved; refused if it leaves the folder, is absolute or
-// is a URL.
-absl::StatusOr<std::string> ResolveReference(std::string_view reference);
+// `reference` made a bundle path: relative to bundle folder `base` (the main file's folder:
+// pbrt-v4 resolves every relative name against it, glTF against the file's own), with "."
+// components dropped and ".." resolved; refused if it leaves the bundle's root (saying that
+// --scene-root takes a wider one), is absolute or is a URL.
+absl::StatusOr<std::string> ResolveReference(std::string_view reference,
+                                             std::string_view base = {});
+// The folder of bundle path `path` ("" at the root).
+std::string BundleFolder(const std::string& path);
 
 }  // namespace pf

@@ -51,14 +51,18 @@ struct PackState {
 
 bool PackFileExists(const std::string& path, void* user) {
     auto* state = static_cast<PackState*>(user);
-    if (absl::Status status = CheckBundlePath(path); !status.ok()) {
+    if (absl::Status status = ResolveReference(path).status(); !status.ok()) {
         if (state->error.ok()) state->error = status;
         return false;
     }
     return true;
 }
 
-std::string PackExpandFilePath(const std::string& path, void*) { return path; }
+// tinygltf joins a reference to the main file's folder: ".." resolved within the bundle (a
+// path that leaves it stays as it is, and PackFileExists refuses it).
+std::string PackExpandFilePath(const std::string& path, void*) {
+    return ResolveReference(path).value_or(path);
+}
 
 bool PackReadWholeFile(std::vector<unsigned char>* out, std::string* error, const std::string& path,
                        void* user) {
@@ -115,6 +119,7 @@ void LeaveOutUnusedImages(const std::string& scene_path, const tinygltf::Model& 
 
 absl::Status PackGltf(const std::string& scene_path, const std::string& file, bool binary,
                       PackingFiles* files, SceneBundle* bundle) {
+    const std::string base_dir = BundleFolder(bundle->main_file);
     const std::string main = WithoutDracoIndices(file, binary);
     PackState state{files, absl::OkStatus()};
     tinygltf::TinyGLTF loader;
@@ -124,8 +129,9 @@ absl::Status PackGltf(const std::string& scene_path, const std::string& file, bo
     std::string error, warning;
     const auto* bytes = reinterpret_cast<const unsigned char*>(main.data());
     const bool loaded =
-        binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, bytes, main.size(), "")
-               : loader.LoadASCIIFromString(&model, &error, &warning, main.data(), main.size(), "");
+        binary ? loader.LoadBinaryFromMemory(&model, &error, &warning, bytes, main.size(), base_dir)
+               : loader.LoadASCIIFromString(&model, &error, &warning, main.data(), main.size(),
+                                            base_dir);
     if (!state.error.ok())
         return absl::Status(state.error.code(),
                             absl::StrCat(scene_path, ": ", state.error.message()));
@@ -250,19 +256,34 @@ absl::StatusOr<Scene> LoadScene(const std::string& path, const SceneLoadOptions&
 }
 
 absl::StatusOr<SceneBundle> PackSceneBundle(const std::string& scene_path,
-                                            SceneRenderSettings* render_settings) {
+                                            SceneRenderSettings* render_settings,
+                                            const std::string& scene_root) {
     const SceneFormat format = FormatOf(scene_path);
     if (format == SceneFormat::kUnknown) return UnknownFormat(scene_path);
     const std::filesystem::path path(scene_path);
     SceneBundle bundle;
     bundle.main_file = path.filename().string();
-    PackingFiles files(path.parent_path(), &bundle);
+    std::filesystem::path root = path.parent_path();
+    if (!scene_root.empty()) {
+        // The bundle holds the root's files; the main file's path is its place within it.
+        std::error_code error;
+        root = std::filesystem::weakly_canonical(scene_root, error);
+        const std::filesystem::path main = std::filesystem::weakly_canonical(path, error);
+        const std::string relative = main.lexically_relative(root).generic_string();
+        if (error || !std::filesystem::is_directory(root) || relative.empty() ||
+            relative.starts_with("..") || !CheckBundlePath(relative).ok())
+            return absl::InvalidArgumentError(absl::StrCat(
+                "--scene-root ", scene_root, ": must be a folder that holds ", scene_path));
+        bundle.main_file = relative;
+    }
+    PackingFiles files(root, &bundle);
     absl::Status status;
     if (format == SceneFormat::kPbrt) {
         if (!std::filesystem::is_regular_file(path))
             return absl::NotFoundError(absl::StrCat(scene_path, ": cannot open file"));
-        absl::StatusOr<Scene> references = LoadPbrt(
-            files, bundle.main_file, path.parent_path().string(), {SceneLimits{}, true, nullptr});
+        absl::StatusOr<Scene> references =
+            LoadPbrt(files, bundle.main_file, DisplayRoot(scene_path, bundle.main_file),
+                     {SceneLimits{}, true, nullptr});
         status = references.status();
         if (references.ok() && render_settings != nullptr)
             *render_settings = references->render_settings;

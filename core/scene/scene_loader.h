@@ -33,12 +33,15 @@ absl::StatusOr<Scene> LoadScene(const SceneBundle& bundle, const std::string& na
 absl::StatusOr<Scene> LoadScene(const std::string& path, const SceneLoadOptions& options = {});
 
 // Reads the scene at `scene_path` and every file it references (glTF buffers and images;
-// pbrt Include/Import files, PLY meshes and image textures), found relative to the scene's
-// folder. A reference that leaves the folder (absolute, '..' past the root, a URL) is
-// refused naming the file and the reference. `render_settings`, when given, receives what the
-// scene asks of its render (a pbrt Integrator and Sampler).
+// pbrt Include/Import files, PLY meshes, spectra and image textures), found relative to the
+// scene's folder. The bundle's root is that folder, or `scene_root` where given (a folder
+// holding the scene: then references may reach its sibling folders). A reference that leaves
+// the root (absolute, '..' past it, a URL) is refused naming the file and the reference.
+// `render_settings`, when given, receives what the scene asks of its render (a pbrt
+// Integrator and Sampler).
 absl::StatusOr<SceneBundle> PackSceneBundle(const std::string& scene_path,
-                                            SceneRenderSettings* render_settings = nullptr);
+                                            SceneRenderSettings* render_settings = nullptr,
+                                            const std::string& scene_root = "");
 
 // The environment `settings` ask for, its image decoded from `bundle`: a latitude-longitude
 // map (any format DecodeImage reads), or a colour. Errors name the file or the setting.

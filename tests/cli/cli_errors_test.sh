@@ -59,6 +59,8 @@ expect_failure "malformed pbrt scene" "bad.pbrt:4:16: parameter \"float radius\"
 printf 'WorldBegin\nInclude "../secret.pbrt"\n' >"$work/escape.pbrt"
 expect_failure "pbrt include outside the folder" "escape.pbrt:2:1: Include: scene reference '../secret.pbrt' leaves" \
     render "$work/escape.pbrt" --out "$work/a.exr" --photons 1000
+expect_failure "a scene root that does not hold the scene" "--scene-root .*: must be a folder that holds" \
+    render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --photons 1000 --scene-root "$work/pbrt"
 expect_failure "unknown scene format" "unknown scene format" render "$work/small.exr" --out "$work/a.exr" --photons 1000
 # The farm commands, against a port nothing listens on.
 expect_failure "unreachable server" "cannot reach the coordinator at $closed" jobs --server $closed

@@ -194,7 +194,7 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
     } else if (type == "plymesh") {
         const std::string filename = parameters.String("filename", "");
         if (filename.empty()) return ErrorAt(where, "Shape \"plymesh\" needs \"string filename\"");
-        absl::StatusOr<std::string> path = ResolveReference(filename);
+        absl::StatusOr<std::string> path = ResolveReference(filename, base_folder_);
         if (!path.ok())
             return ErrorAt(where, absl::StrCat("Shape \"plymesh\": ", path.status().message()));
         if (options_.references_only) {  // packing: the file itself, still compressed
@@ -431,7 +431,7 @@ absl::Status PbrtSceneBuilder::InfiniteLight(ParameterList& parameters, const Lo
         if (illuminance > 0) factor *= illuminance / kPiD;
         environment.scale = l * static_cast<float>(factor);
     } else {
-        absl::StatusOr<std::string> path = ResolveReference(filename);
+        absl::StatusOr<std::string> path = ResolveReference(filename, base_folder_);
         if (!path.ok())
             return ErrorAt(where,
                            absl::StrCat("LightSource \"infinite\": ", path.status().message()));

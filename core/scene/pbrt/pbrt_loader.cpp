@@ -38,6 +38,7 @@ void PbrtSceneBuilder::WarnUnused(const ParameterList& parameters, const std::st
 
 absl::StatusOr<Scene> PbrtSceneBuilder::Load(const std::string& main_file) {
     scene_.source = display_root_.empty() ? main_file : absl::StrCat(display_root_, "/", main_file);
+    base_folder_ = BundleFolder(main_file);
     if (absl::Status status = ParseFile(main_file); !status.ok()) return status;
     const Location end{file_names_.front(), 0, 0};
     if (!attribute_stack_.empty())
@@ -81,7 +82,7 @@ absl::StatusOr<std::vector<Token>> PbrtSceneBuilder::IncludedTokens(const Token&
     if (depth > options_.limits.max_include_depth)
         return ErrorAt(include.where, absl::StrCat("includes nest deeper than ",
                                                    options_.limits.max_include_depth, " files"));
-    absl::StatusOr<std::string> path = ResolveReference(file.text);
+    absl::StatusOr<std::string> path = ResolveReference(file.text, base_folder_);
     if (!path.ok())
         return ErrorAt(include.where, absl::StrCat(include.text, ": ", path.status().message()));
     const std::string& display = file_names_.emplace_back(
@@ -138,7 +139,7 @@ absl::StatusOr<std::vector<double>> PbrtSceneBuilder::ReadNumbers(TokenStream& i
 absl::StatusOr<std::vector<double>> PbrtSceneBuilder::SpectrumFile(const std::string& name,
                                                                    const Token& declaration) {
     const std::string parameter = Describe(declaration);
-    absl::StatusOr<std::string> path = ResolveReference(name);
+    absl::StatusOr<std::string> path = ResolveReference(name, base_folder_);
     if (!path.ok())
         return ErrorAt(declaration.where,
                        absl::StrCat("parameter ", parameter, ": ", path.status().message()));

@@ -198,7 +198,7 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
         const std::string filename = parameters.String("filename", "");
         if (filename.empty())
             return ErrorAt(where, absl::StrCat("Texture \"", name, "\" needs \"string filename\""));
-        absl::StatusOr<std::string> path = ResolveReference(filename);
+        absl::StatusOr<std::string> path = ResolveReference(filename, base_folder_);
         if (!path.ok())
             return ErrorAt(where,
                            absl::StrCat("Texture \"", name, "\": ", path.status().message()));

@@ -137,6 +137,7 @@ private:
     std::string display_root_;
     PbrtLoadOptions options_;
     std::deque<std::string> file_names_;  // what tokens' locations point into
+    std::string base_folder_;             // the main file's bundle folder: names are relative to it
 
     Scene scene_;
     GraphicsState state_;

@@ -97,10 +97,11 @@ TEST(SpectrumTest, MalformedSpectraSayWhatIsWrong) {
               "needs (wavelength, value) pairs, at least 2 of them; has 2 numbers");
     EXPECT_EQ(error({500, 1, 400, 1}), "wavelengths must ascend: 400 follows 500");
     EXPECT_EQ(error({400, 1, 5000, 1}), "wavelength 5000 nm lies outside [100, 2000] nm");
-    EXPECT_EQ(error({400, -1, 500, 1}), "value -1 at 400 nm must be finite and not negative");
+    EXPECT_EQ(error({400, -1, 500, 1}), "value -1 at 400 nm must lie in [0, 1e+30]");
+    EXPECT_EQ(error({400, 1e39, 500, 1}), "value 1e+39 at 400 nm must lie in [0, 1e+30]");
     EXPECT_EQ(error({400, -1, 500, 1}, SpectrumUse::kUnbounded), "ok");
     EXPECT_EQ(error({400, std::nan(""), 500, 1}, SpectrumUse::kUnbounded),
-              "value nan at 400 nm must be finite");
+              "value nan at 400 nm must lie in [-1e+30, 1e+30]");
 }
 
 }  // namespace
