@@ -38,8 +38,9 @@ struct CameraPath {
 // the square root of its samples, as pbrt-v4 scales its ray differentials).
 template <bool kSpecular, bool kTextures>
 Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& primary, uint32_t pixel,
-                      float pixel_angle, float filter_angle, int splits, int max_depth, Rng& rng,
-                      std::vector<HitPoint>& hit_points, std::vector<float>& footprints) {
+                      PixelFootprint pixel_width, PixelFootprint filter_width, int splits,
+                      int max_depth, Rng& rng, std::vector<HitPoint>& hit_points,
+                      std::vector<float>& footprints) {
     Rgb emission(0.0f);
     CameraPath stack[kCameraSplits + 1];
     int pending = 0;
@@ -60,13 +61,15 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
             const bool front_facing = Dot(path.ray.direction, surface.geometric_normal) < 0;
             if (front_facing && material.IsEmissive())
                 emission += path.throughput * material.emission;
-            const Rgb base_color = kTextures ? scene.BaseColor(surface, path.length * filter_angle)
-                                             : material.base_color;
+            const Rgb base_color =
+                kTextures
+                    ? scene.BaseColor(surface, filter_width.base + path.length * filter_width.angle)
+                    : material.base_color;
             if (!kSpecular || material.type == MaterialType::kDiffuse) {
                 const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
                 hit_points.push_back(
                     {surface.position, normal, path.throughput * base_color / kPi, pixel});
-                footprints.push_back(path.length * pixel_angle);
+                footprints.push_back(pixel_width.base + path.length * pixel_width.angle);
                 break;
             }
             const Vec3& n = surface.shading_normal;
@@ -131,9 +134,10 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                                const CameraPassSettings& settings) {
     const int width = settings.width, height = settings.height, spp = settings.samples_per_pixel;
     const Film film{width, height, spp};
-    const float pixel_angle = scene.camera.PixelAngle(height);
-    const float filter_angle =
-        pixel_angle / std::sqrt(static_cast<float>(settings.samples_per_pixel));
+    // Textures are filtered over a sample's share of the pixel.
+    const PixelFootprint pixel_width = scene.camera.Footprint(height);
+    const float share = 1.0f / std::sqrt(static_cast<float>(settings.samples_per_pixel));
+    const PixelFootprint filter_width{pixel_width.base * share, pixel_width.angle * share};
     const int splits = settings.stochastic ? 0 : kCameraSplits;
     const int max_depth = DepthLimit(settings.max_depth, kMaxCameraDepth);
 
@@ -157,7 +161,7 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                 for (int s = 0; s < spp; ++s) {
                     const Ray ray = PixelSampleRay(scene.camera, film, x, y, s, rng);
                     const size_t before = row_hit_points[y].size();
-                    emission += trace(scene, tracer, ray, pixel, pixel_angle, filter_angle, splits,
+                    emission += trace(scene, tracer, ray, pixel, pixel_width, filter_width, splits,
                                       max_depth, rng, row_hit_points[y], row_footprints[y]);
                     // A stochastic pass keeps one slot per sample, black where it found nothing.
                     if (settings.stochastic && row_hit_points[y].size() == before) {

@@ -27,7 +27,8 @@ constexpr uint64_t kMaxCount = uint64_t{1} << 32;
 // Types written whole must have no padding: their size is the sum of their fields'.
 static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
 static_assert(sizeof(Material) == 40, "Material gained a field or padding: encode it");
-static_assert(sizeof(Camera) == 4 * 12 + 4 * 4, "Camera gained a field or padding: encode it");
+static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4,
+              "Camera gained a field or padding: encode it");
 static_assert(sizeof(Prototype) == 8 + 24 && sizeof(Instance) == 4 + 21 * 4);
 static_assert(sizeof(Bounds) == 24 && sizeof(SceneRenderHints) == 16);
 
@@ -324,6 +325,9 @@ absl::Status CheckLightsAndCamera(const Scene& scene) {
     const Camera& camera = scene.camera;
     if (!Finite(camera.position) || !Finite(camera.forward) || !Finite(camera.right) ||
         !Finite(camera.up) || !Finite(camera.y_fov) || !Finite(camera.aspect_ratio) ||
+        static_cast<uint32_t>(camera.projection) > static_cast<uint32_t>(Projection::kSpherical) ||
+        !Finite(camera.window.x_min) || !Finite(camera.window.x_max) ||
+        !Finite(camera.window.y_min) || !Finite(camera.window.y_max) ||
         !Finite(camera.lens_radius) || !Finite(camera.focal_distance))
         return Invalid("camera not finite");
     if (!Finite(scene.bounds.lower) || !Finite(scene.bounds.upper))

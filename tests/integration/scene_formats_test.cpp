@@ -3,8 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <string>
 
+#include "embedded/local_render.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/image_agreement.h"
 #include "tests/support/small_render.h"
@@ -62,6 +67,39 @@ TEST(FilmExposure, ImageIsLinearInIsoTimesExposureTime) {
         sum += plain.pixels[p].y;
     }
     EXPECT_GT(sum, 0);
+}
+
+TEST(Cameras, EveryCameraInsideTheFurnaceSeesLeOverOneMinusAlbedo) {
+    // The pbrt furnace (albedo 0.5, Le = 1: L = 2 in every direction) seen from inside by a
+    // spherical camera of each mapping (every direction, walls, edges and corners alike) and an
+    // orthographic one, through the path tracer: each image's mean within 4 sigma of 2 (its
+    // pixels are independent), and a 2% error would fail.
+    std::ifstream file(std::string(PF_SOURCE_DIR) + "/scenes/pbrt/furnace.pbrt");
+    std::string furnace((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+    const std::string perspective = "Camera \"perspective\" \"float fov\" 70.0";
+    ASSERT_NE(furnace.find(perspective), std::string::npos);
+    for (const std::string camera :
+         {"Camera \"spherical\"", "Camera \"spherical\" \"string mapping\" \"equirectangular\"",
+          "Camera \"orthographic\" \"float screenwindow\" [-0.5 0.5 -0.5 0.5]"}) {
+        std::string scene = furnace;
+        scene.replace(scene.find(perspective), perspective.size(), camera);
+        RenderSettings settings;
+        settings.scene_path = testing::WriteTextFile(scene, "furnace-camera.pbrt");
+        settings.threads = 2;
+        settings.job.integrator = Integrator::kPath;
+        settings.job.width = settings.job.height = 32;
+        settings.job.samples_per_pixel = 16;
+        settings.job.epoch_budget = 8;
+        const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+        ASSERT_TRUE(outcome.ok()) << outcome.status();
+        double sum = 0, sum_sq = 0;
+        for (const Rgb& pixel : outcome->image.pixels) sum += pixel.y, sum_sq += pixel.y * pixel.y;
+        const double n = static_cast<double>(outcome->image.pixels.size());
+        const double mean = sum / n, sigma = std::sqrt((sum_sq / n - mean * mean) / (n - 1));
+        std::printf("%s: mean %.5f, sigma of the mean %.5f\n", camera.c_str(), mean, sigma);
+        EXPECT_NEAR(mean, 2.0, 4 * sigma) << camera;
+        EXPECT_LT(4 * sigma, 0.02 * 2.0) << camera;
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Shipped, SceneFormats,

@@ -14,18 +14,45 @@ namespace pf::pbrt {
 
 absl::Status PbrtSceneBuilder::Camera(const std::string& type, ParameterList& parameters,
                                       const Location& where) {
-    if (type != "perspective")
-        return ErrorAt(
-            where, absl::StrCat("Camera \"", type, "\" is not supported (only \"perspective\")"));
+    if (type != "perspective" && type != "orthographic" && type != "spherical")
+        return ErrorAt(where, absl::StrCat("Camera \"", type,
+                                           "\" is not supported (\"perspective\", "
+                                           "\"orthographic\" and \"spherical\" are)"));
     if (camera_)
         return ErrorAt(
             where, absl::StrCat("a second Camera; the first is at ", camera_->where.ToString()));
     CameraSettings camera;
     camera.camera_from_world = state_.ctm;
-    camera.fov_degrees = parameters.Float("fov", 90.0);
-    camera.lens_radius = parameters.Float("lensradius", 0.0);
-    camera.focal_distance = parameters.Float("focaldistance", 1e6);
-    camera.frame_aspect = parameters.Float("frameaspectratio", 0.0);
+    camera.projection = type == "orthographic" ? Projection::kOrthographic
+                        : type == "spherical"  ? Projection::kSpherical
+                                               : Projection::kPerspective;
+    if (camera.projection == Projection::kPerspective)
+        camera.fov_degrees = parameters.Float("fov", 90.0);
+    if (camera.projection != Projection::kSpherical) {
+        camera.lens_radius = parameters.Float("lensradius", 0.0);
+        camera.focal_distance = parameters.Float("focaldistance", 1e6);
+        camera.frame_aspect = parameters.Float("frameaspectratio", 0.0);
+        camera.screen_window = parameters.Floats("screenwindow");
+        if (!camera.screen_window.empty() &&
+            (camera.screen_window.size() != 4 ||
+             !(camera.screen_window[0] < camera.screen_window[1]) ||
+             !(camera.screen_window[2] < camera.screen_window[3])))
+            return ErrorAt(where,
+                           "Camera: \"screenwindow\" needs 4 values, x_min < x_max and "
+                           "y_min < y_max");
+    } else {
+        const std::string mapping = parameters.String("mapping", "equalarea");
+        if (mapping != "equalarea" && mapping != "equirectangular")
+            return ErrorAt(where, absl::StrCat("Camera \"spherical\": \"mapping\" \"", mapping,
+                                               "\" is not \"equalarea\" or \"equirectangular\""));
+        camera.equal_area = mapping == "equalarea";
+    }
+    if (camera.projection == Projection::kOrthographic && camera.lens_radius > 0) {
+        Warn(where,
+             "Camera \"orthographic\": \"lensradius\" is not rendered; the camera is "
+             "in focus everywhere");
+        camera.lens_radius = 0;
+    }
     camera.exposure_time =
         parameters.Float("shutterclose", 1.0) - parameters.Float("shutteropen", 0.0);
     camera.where = where;
@@ -67,6 +94,24 @@ absl::Status PbrtSceneBuilder::FinishCamera() {
     const double half = 0.5 * camera.fov_degrees * kPiD / 180.0;
     out.y_fov = static_cast<float>(aspect >= 1 ? 2 * half : 2 * std::atan(std::tan(half) / aspect));
     out.aspect_ratio = static_cast<float>(aspect);
+    out.projection = camera.projection;
+    out.equal_area = camera.equal_area ? 1 : 0;
+    if (camera.projection == Projection::kOrthographic || !camera.screen_window.empty()) {
+        // pbrt's screen window, by default the shorter side from -1 to 1: for a perspective
+        // camera at unit distance times tan(fov / 2), for an orthographic one in camera space
+        // (whose scale the transform may change).
+        std::vector<double> window = camera.screen_window;
+        if (window.empty())
+            window = aspect >= 1 ? std::vector<double>{-aspect, aspect, -1, 1}
+                                 : std::vector<double>{-1, 1, -1 / aspect, 1 / aspect};
+        double sx = std::tan(half), sy = sx;
+        if (camera.projection == Projection::kOrthographic) {
+            sx = Length(world_from_camera.ApplyVector(Vec3d(1, 0, 0)));
+            sy = Length(world_from_camera.ApplyVector(Vec3d(0, 1, 0)));
+        }
+        out.window = {static_cast<float>(window[0] * sx), static_cast<float>(window[1] * sx),
+                      static_cast<float>(window[2] * sy), static_cast<float>(window[3] * sy)};
+    }
     out.lens_radius = static_cast<float>(camera.lens_radius);
     out.focal_distance = static_cast<float>(camera.focal_distance);
     scene_.hints.width = film_width_;

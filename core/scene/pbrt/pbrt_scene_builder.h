@@ -64,8 +64,11 @@ struct ObjectShape {
 
 struct CameraSettings {
     Transform camera_from_world;
+    Projection projection = Projection::kPerspective;
     double fov_degrees = 90, lens_radius = 0, focal_distance = 1e6, frame_aspect = 0;
-    double exposure_time = 1;  // shutterclose - shutteropen, the film's exposure
+    std::vector<double> screen_window;  // pbrt's x_min x_max y_min y_max; empty: the default
+    bool equal_area = true;             // spherical: its mapping
+    double exposure_time = 1;           // shutterclose - shutteropen, the film's exposure
     Location where;
 };
 

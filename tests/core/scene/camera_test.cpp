@@ -1,8 +1,11 @@
-// The thin-lens camera: rays from anywhere on the lens meet on the plane in focus, and the
-// pinhole is the lens of radius zero.
+// The cameras: a thin lens's rays meet on the plane in focus and the pinhole is the lens of
+// radius zero; orthographic rays leave the screen window in parallel; a screen window crops a
+// perspective view; spherical cameras map the film to directions as pbrt-v4 does.
 #include "core/scene/camera.h"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace pf {
 namespace {
@@ -48,6 +51,50 @@ TEST(CameraTest, WithoutALensEveryRayIsThePinholes) {
     const Ray lens = camera.GenerateRay(0.3f, 0.6f, 1.0f, Point2{0.9f, 0.1f});
     EXPECT_EQ(lens.origin, pinhole.origin);
     EXPECT_EQ(lens.direction, pinhole.direction);
+}
+
+Camera LookingDownMinusZ() {
+    Camera camera;  // at the origin, forward -z, right +x, up +y
+    return camera;
+}
+
+TEST(CameraTest, OrthographicRaysAreParallelFromTheScreenWindow) {
+    Camera camera = LookingDownMinusZ();
+    camera.projection = Projection::kOrthographic;
+    camera.window = {-2, 2, -1, 1};
+    const Ray corner = camera.GenerateRay(0, 0, 2.0f);  // the film's top left
+    EXPECT_EQ(corner.origin, Vec3(-2, 1, 0));
+    EXPECT_EQ(corner.direction, Vec3(0, 0, -1));
+    const Ray centre = camera.GenerateRay(0.5f, 0.5f, 2.0f);
+    EXPECT_EQ(centre.origin, Vec3(0, 0, 0));
+    EXPECT_EQ(centre.direction, Vec3(0, 0, -1));
+    EXPECT_FALSE(camera.HasLens());
+    EXPECT_EQ(camera.Footprint(100).base, 0.02f);  // 2 units over 100 rows
+    EXPECT_EQ(camera.Footprint(100).angle, 0.0f);
+}
+
+TEST(CameraTest, AScreenWindowCropsThePerspectiveView) {
+    Camera camera = LookingDownMinusZ();
+    camera.window = {0, 1, 0, 0.5f};  // the upper right part of a 90-degree view, at unit distance
+    const Ray corner = camera.GenerateRay(1, 0, 1.0f);  // the film's top right
+    EXPECT_NEAR(corner.direction.x, 1 / std::sqrt(2.25f), 1e-6f);
+    EXPECT_NEAR(corner.direction.y, 0.5f / std::sqrt(2.25f), 1e-6f);
+    EXPECT_NEAR(camera.Footprint(50).angle, 0.01f, 1e-7f);
+}
+
+TEST(CameraTest, SphericalCamerasSeeEveryDirectionAsPbrtMapsThem) {
+    Camera camera = LookingDownMinusZ();
+    camera.projection = Projection::kSpherical;
+    camera.equal_area = 0;  // equirectangular: theta = pi y from up, phi = 2 pi x from right
+    auto near = [](const Vec3& a, const Vec3& b) { return Length(a - b) < 1e-5f; };
+    EXPECT_TRUE(near(camera.GenerateRay(0.3f, 0.0f, 1).direction, Vec3(0, 1, 0)));    // up
+    EXPECT_TRUE(near(camera.GenerateRay(0.0f, 0.5f, 1).direction, Vec3(1, 0, 0)));    // right
+    EXPECT_TRUE(near(camera.GenerateRay(0.25f, 0.5f, 1).direction, Vec3(0, 0, -1)));  // forward
+    EXPECT_TRUE(near(camera.GenerateRay(0.5f, 1.0f, 1).direction, Vec3(0, -1, 0)));   // down
+    camera.equal_area = 1;  // the octahedral square: its centre is up, its corners down
+    EXPECT_TRUE(near(camera.GenerateRay(0.5f, 0.5f, 1).direction, Vec3(0, 1, 0)));
+    EXPECT_TRUE(near(camera.GenerateRay(0.0f, 0.0f, 1).direction, Vec3(0, -1, 0)));
+    EXPECT_EQ(camera.GenerateRay(0.7f, 0.2f, 1).origin, Vec3(0, 0, 0));
 }
 
 }  // namespace

@@ -173,6 +173,42 @@ TEST(PbrtLoaderTest, IntegratorAndSamplerAreReadAsPbrtDefinesThem) {
               "scenes/scene.pbrt:1:1: Integrator \"path\": \"maxdepth\" must be at least 1");
 }
 
+TEST(PbrtLoaderTest, OrthographicAndSphericalCamerasAndScreenWindows) {
+    auto load = [](const std::string& camera) {
+        SceneBundle bundle = Bundle(kQuad);
+        std::string& main = bundle.files["scene.pbrt"];
+        const std::string perspective = "Camera \"perspective\" \"float fov\" 40";
+        main.replace(main.find(perspective), perspective.size(), camera);
+        return Load(bundle);
+    };
+    // The film is 200 x 100: an orthographic camera's default window is [-2, 2] x [-1, 1].
+    const absl::StatusOr<Scene> orthographic = load("Scale 3 3 1\nCamera \"orthographic\"");
+    ASSERT_TRUE(orthographic.ok()) << orthographic.status();
+    EXPECT_EQ(orthographic->camera.projection, Projection::kOrthographic);
+    // The transform is camera from world: a Scale of 3 before the Camera makes a camera-space
+    // unit a third of the world's.
+    EXPECT_NEAR(orthographic->camera.window.x_max, 2.0f / 3, 1e-5f);
+    EXPECT_NEAR(orthographic->camera.window.y_min, -1.0f / 3, 1e-5f);
+    const absl::StatusOr<Scene> cropped =
+        load("Camera \"perspective\" \"float fov\" 90 \"float screenwindow\" [0 1 0 0.5]");
+    ASSERT_TRUE(cropped.ok()) << cropped.status();
+    EXPECT_NEAR(cropped->camera.window.x_max, 1.0f, 1e-6f);  // times tan(45 degrees)
+    EXPECT_NEAR(cropped->camera.window.y_max, 0.5f, 1e-6f);
+    const absl::StatusOr<Scene> spherical =
+        load("Camera \"spherical\" \"string mapping\" \"equirectangular\"");
+    ASSERT_TRUE(spherical.ok()) << spherical.status();
+    EXPECT_EQ(spherical->camera.projection, Projection::kSpherical);
+    EXPECT_EQ(spherical->camera.equal_area, 0u);
+
+    ExpectError(load("Camera \"realistic\""),
+                "Camera \"realistic\" is not supported (\"perspective\", \"orthographic\" and "
+                "\"spherical\" are)");
+    ExpectError(load("Camera \"orthographic\" \"float screenwindow\" [1 0 0 1]"),
+                "\"screenwindow\" needs 4 values, x_min < x_max and y_min < y_max");
+    ExpectError(load("Camera \"spherical\" \"string mapping\" \"cubemap\""),
+                "\"mapping\" \"cubemap\" is not");
+}
+
 TEST(PbrtLoaderTest, TransformsComposeAsPbrtDefines) {
     // Translate then Rotate then Scale: a point p lands at T(R(S(p))).
     const absl::StatusOr<Scene> scene = Load(Bundle(

@@ -23,10 +23,11 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     radiance_ = nullptr;
     stochastic_film_.reset();
     maps_.reset();
-    // A camera sample's cone, for textures where the integrators that render pixels meet them.
+    // A camera sample's cone, for textures where the integrators that render pixels meet them
+    // (an orthographic camera's samples have none: point lookups).
     const float filter_angle = job.spec == nullptr
                                    ? 0.0f
-                                   : job.scene->camera.PixelAngle(job.spec->height) /
+                                   : job.scene->camera.Footprint(job.spec->height).angle /
                                          std::sqrt(static_cast<float>(job.spec->samples_per_pixel));
     switch (job.spec != nullptr ? job.spec->integrator : Integrator::kPpm) {
         case Integrator::kPpm:
