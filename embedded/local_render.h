@@ -15,6 +15,7 @@
 #include "core/estimate/convergence.h"
 #include "core/film/image.h"
 #include "core/job/job_spec.h"
+#include "core/job/scene_settings.h"
 #include "server/job.h"
 
 namespace pf {

@@ -22,13 +22,14 @@ std::vector<std::string> ApplySceneSettings(const SceneRenderSettings& scene,
                                             const GivenSettings& given, JobSpec* spec) {
     std::vector<std::string> notes;
     const bool budget_given = HasBudget(*spec);
-    if (scene.integrator && !given.integrator && *scene.integrator != spec->integrator) {
-        spec->integrator = *scene.integrator;
+    const std::optional<Integrator> asked = ParseIntegrator(scene.integrator);
+    if (asked && !given.integrator && *asked != spec->integrator) {
+        spec->integrator = *asked;
         notes.push_back(absl::StrCat(scene.integrator_source, ": --integrator ",
                                      std::string(IntegratorName(spec->integrator))));
     }
     // The integrator's own parameters apply only to the integrator they were written for.
-    const bool scene_integrator = scene.integrator && *scene.integrator == spec->integrator;
+    const bool scene_integrator = asked && *asked == spec->integrator;
     if (scene_integrator && scene.max_depth > 0 && !given.max_depth &&
         spec->max_depth != scene.max_depth) {
         spec->max_depth = std::min(scene.max_depth, kMaxDepthSetting);

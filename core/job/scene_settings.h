@@ -1,6 +1,6 @@
-// What a scene file asks of its render, and how it meets the user's flags. pbrt's Integrator
-// and Sampler directives choose the light transport, its samples and its depth; the flags
-// given on the command line win, and what neither gives keeps photonfarm's defaults.
+// How what a scene file asks of its render (SceneRenderSettings: pbrt's Integrator and Sampler
+// directives choose the light transport, its samples and its depth) meets the user's flags:
+// the flags given on the command line win, and what neither gives keeps photonfarm's defaults.
 #pragma once
 
 #include <cstdint>
@@ -9,21 +9,11 @@
 #include <vector>
 
 #include "core/job/integrator.h"
+#include "core/scene/scene.h"
 
 namespace pf {
 
 struct JobSpec;
-
-// Zero or empty where the scene says nothing.
-struct SceneRenderSettings {
-    std::optional<Integrator> integrator;
-    int pixel_samples = 0;               // camera samples per pixel over the whole render
-    uint64_t iterations = 0;             // sppm: epochs
-    uint64_t photons_per_iteration = 0;  // sppm: photons per epoch
-    int max_depth = 0;                   // JobSpec::max_depth
-    // Where each came from ("scene.pbrt:3:1: Integrator \"sppm\""), for the notes.
-    std::string integrator_source, sampler_source;
-};
 
 // Which of a job's choices the user made explicitly (a flag), so the scene's do not apply.
 // The budget needs no entry: a JobSpec with none has none given.

@@ -13,7 +13,6 @@
 
 #include "core/film/film_response.h"
 #include "core/geometry/ray.h"
-#include "core/job/scene_settings.h"
 #include "core/math/transform.h"
 #include "core/math/vec3.h"
 #include "core/sampling/sampling.h"
@@ -118,6 +117,18 @@ struct Instance {
 struct SceneRenderHints {
     int width = 0, height = 0;
     double initial_radius = 0;  // R0, world units
+};
+
+// What a scene file asks of its render (pbrt's Integrator and Sampler directives), for
+// ApplySceneSettings (core/job/scene_settings.h); zero or empty where the scene says nothing.
+struct SceneRenderSettings {
+    std::string integrator;              // an --integrator name (IntegratorNames)
+    int pixel_samples = 0;               // camera samples per pixel over the whole render
+    uint64_t iterations = 0;             // sppm: epochs
+    uint64_t photons_per_iteration = 0;  // sppm: photons per epoch
+    int max_depth = 0;                   // JobSpec::max_depth
+    // Where each came from ("scene.pbrt:3:1: Integrator \"sppm\""), for the notes.
+    std::string integrator_source, sampler_source;
 };
 
 struct Scene {

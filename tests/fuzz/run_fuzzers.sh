@@ -38,7 +38,7 @@ for format in pbrt gltf gzip spectrum draco prepared_scene; do
     fi
     echo "run_fuzzers: $format for ${seconds}s over $(ls "$corpus" | wc -l) seed inputs"
     # -close_fd_mask=3: the loaders' warnings would flood the log.
-    if ! (cd "$build_dir" && "./tests/fuzz/${format}_fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    if ! (cd "$build_dir" && LSAN_OPTIONS="suppressions=$source_dir/tests/fuzz/lsan.supp" "./tests/fuzz/${format}_fuzzer" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
             -max_len=16384 -close_fd_mask=3 -print_final_stats=1 "$corpus" "${seeds[@]}" \
             >"$build_dir/$format.log" 2>&1); then
         echo "run_fuzzers: the $format fuzzer found a problem:" >&2

@@ -177,12 +177,12 @@ absl::Status PbrtSceneBuilder::Integrator(const std::string& type, ParameterList
             Warn(where, absl::StrCat("Integrator \"", type,
                                      "\" renders as photonfarm's path tracer (the same light "
                                      "transport)"));
-        settings.integrator = pf::Integrator::kPath;
+        settings.integrator = "path";
         parameters.Bool("regularize", false);
         parameters.String("lightsampler", "");
         return absl::OkStatus();
     }
-    settings.integrator = pf::Integrator::kSppm;
+    settings.integrator = "sppm";
     // SPPM's radius is R0 (where the render gives no --radius); pbrt's defaults: 64 iterations,
     // as many photons an iteration as the film has pixels (photonfarm's layout where absent).
     const double radius = parameters.Float("radius", 0.0);

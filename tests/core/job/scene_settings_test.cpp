@@ -10,7 +10,7 @@ namespace {
 
 SceneRenderSettings Sppm() {
     SceneRenderSettings scene;
-    scene.integrator = Integrator::kSppm;
+    scene.integrator = "sppm";
     scene.iterations = 64;
     scene.photons_per_iteration = 100'000;
     scene.max_depth = 7;
@@ -64,7 +64,7 @@ TEST(SceneSettingsTest, FlagsWin) {
 
 TEST(SceneSettingsTest, PixelSamplesSpreadOverEpochsForTheIntegratorsThatSamplePixels) {
     SceneRenderSettings scene;
-    scene.integrator = Integrator::kPath;
+    scene.integrator = "path";
     scene.pixel_samples = 1000;
     JobSpec spec;
     ApplySceneSettings(scene, {}, &spec);
