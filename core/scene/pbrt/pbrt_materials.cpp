@@ -142,8 +142,8 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
                     *NamedMetalReflectance("metal-Cu-eta");  // pbrt's default, copper
             }
         }
-    } else if (type == "interface") {
-        material.interface = true;
+    } else if (type == "interface" || type == "none" || type.empty()) {
+        material.interface = true;  // pbrt-v4 reads "" and "none" as no surface too
     } else if (type == "coatedconductor" || type == "measured" || type == "mix" ||
                type == "subsurface" || type == "hair" || type == "diffusetransmission") {
         parameters.ConsumeAll();

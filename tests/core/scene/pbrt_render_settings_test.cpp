@@ -157,5 +157,16 @@ TEST(PbrtRenderSettingsTest, PackingGathersSpectrumFiles) {
     EXPECT_TRUE(LoadScene(*bundle, "scene.pbrt").ok());
 }
 
+TEST(PbrtRenderSettingsTest, InterfacesLeaveTheirShapesOut) {
+    // A medium's boundary is no surface: "interface", and as pbrt-v4 reads them "" and "none".
+    for (const char* type : {"interface", "", "none"}) {
+        const absl::StatusOr<Scene> scene =
+            Load(Bundle(std::string(kQuad) + "Material \"" + type +
+                        "\"\nShape \"sphere\" \"float radius\" 0.5\n"));
+        ASSERT_TRUE(scene.ok()) << scene.status();
+        EXPECT_EQ(scene->triangles.size(), 2u) << "Material \"" << type << "\"";  // the quad alone
+    }
+}
+
 }  // namespace
 }  // namespace pf
