@@ -41,7 +41,7 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
         const SurfacePoint surface = scene.Surface(hit);
         const Material& material = scene.materials[surface.material];
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-        if (front_facing && material.IsEmissive()) {
+        if (material.EmitsToward(front_facing)) {
             float weight = 1.0f;
             if (!specular_bounce) {
                 const float light_pdf =

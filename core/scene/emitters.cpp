@@ -24,7 +24,7 @@ std::vector<Emitters::Record> Emitters::Records() const {
             const EmissiveTriangle& triangle = triangles_[emitters_[i].index];
             record.p0 = triangle.p0, record.edge1 = triangle.edge1, record.edge2 = triangle.edge2;
             record.normal = triangle.frame.n, record.radiance = triangle.radiance,
-            record.area = triangle.area;
+            record.area = triangle.area, record.two_sided = triangle.two_sided;
         } else if (record.kind == EmitterKind::kPunctual) {
             record.light = emitters_[i].index;
         }
@@ -54,9 +54,11 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
                    edge2 = scene.positions[triangle.vertex[2]] - p0;
         const auto index = static_cast<uint32_t>(triangles_.size());
         triangles_.push_back({p0, edge1, edge2, Frame::FromNormal(triangle.normal),
-                              material.emission, scene.TriangleArea(t)});
+                              material.emission, scene.TriangleArea(t), material.two_sided != 0});
+        // pi A Le from each emitting side.
+        const double sides = material.two_sided != 0 ? 2.0 : 1.0;
         if (add(EmitterKind::kTriangle, index,
-                Rgbd(material.emission) * (kPiD * triangles_.back().area)))
+                Rgbd(material.emission) * (sides * kPiD * triangles_.back().area)))
             emitter_of_triangle_[t] = static_cast<int32_t>(emitters_.size() - 1);
     }
     for (uint32_t l = 0; l < scene.lights.size(); ++l) {
@@ -116,11 +118,15 @@ Vec3 Emitters::EmissiveTriangle::Point(float u1, float u2) const {
 
 EmittedPhoton Emitters::EmitFromTriangle(const EmissiveTriangle& triangle, Rng& rng) const {
     const Vec3 point = triangle.Point(rng.NextFloat(), rng.NextFloat());
-    const Vec3 direction =
+    // A two-sided light leaves from either face with equal chance (one more number drawn).
+    const bool back = triangle.two_sided && rng.NextFloat() < 0.5f;
+    Vec3 direction =
         triangle.frame.ToWorld(SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
-    // Cosine-weighted emission of radiance Le from area A carries flux pi * A * Le.
-    return {{OffsetRayOrigin(point, triangle.frame.n, scene_.bounds.Magnitude()), direction},
-            triangle.radiance * (kPi * triangle.area)};
+    if (back) direction = -direction;
+    const Vec3 normal = back ? -triangle.frame.n : triangle.frame.n;
+    // Cosine-weighted emission of radiance Le from area A carries flux pi * A * Le a side.
+    return {{OffsetRayOrigin(point, normal, scene_.bounds.Magnitude()), direction},
+            triangle.radiance * ((triangle.two_sided ? 2.0f : 1.0f) * kPi * triangle.area)};
 }
 
 EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, Rng& rng) const {
@@ -185,7 +191,7 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
         const float distance_sq = LengthSquared(to_light);
         distance = std::sqrt(distance_sq);
         to_light /= distance;
-        const float cos_light = -Dot(triangle.frame.n, to_light);
+        const float cos_light = triangle.CosineToward(to_light);
         if (!(cos_light > 0) || !(distance_sq > 0)) return false;
         // Area pdf 1/A converted to solid angle: d^2 / (cos_light A).
         radiance_over_pdf = triangle.radiance * (cos_light * triangle.area / distance_sq);
@@ -238,7 +244,7 @@ Emitters::Hit Emitters::HitEmitter(uint32_t triangle, const Vec3& p, const Vec3&
     const EmissiveTriangle& emissive = triangles_[emitters_[index].index];
     const Vec3 to_light = on_light - p;
     const float distance_sq = LengthSquared(to_light);
-    const float cos_light = -Dot(emissive.frame.n, to_light) / std::sqrt(distance_sq);
+    const float cos_light = emissive.CosineToward(to_light / std::sqrt(distance_sq));
     if (!(cos_light > 0) || !(distance_sq > 0)) return {};
     return {emissive.radiance, static_cast<float>(distribution_.Probability(index)) * distance_sq /
                                    (cos_light * emissive.area)};

@@ -90,6 +90,7 @@ public:
         Vec3 p0, edge1, edge2, normal;  // triangle: corners and unit emitting normal
         Rgb radiance;                   // triangle: Le
         float area = 0;                 // triangle
+        bool two_sided = false;         // triangle: emits from its back face too
         // W per channel: a photon's flux before the 1 / probability of its pick (and, for a
         // spot light, before the falloff of its direction).
         Rgb power;
@@ -116,7 +117,14 @@ private:
         Frame frame;   // around the unit normal of the emitting side
         Rgb radiance;  // Le
         float area;
+        bool two_sided;  // emits from the back face too
         Vec3 Point(float u1, float u2) const;
+        // The cosine at the light toward `to_light` (unit, from the receiver): of the side that
+        // faces the receiver for a two-sided light.
+        float CosineToward(const Vec3& to_light) const {
+            const float cosine = -Dot(frame.n, to_light);
+            return two_sided ? std::abs(cosine) : cosine;
+        }
     };
     EmittedPhoton EmitFromTriangle(const EmissiveTriangle& triangle, Rng& rng) const;
     EmittedPhoton EmitFromLight(const PunctualLight& light, Rng& rng) const;

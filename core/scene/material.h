@@ -30,7 +30,10 @@ struct Material {
     int32_t base_color_texture = kNoTexture;  // index into Scene::textures
     float ior = 1.5f;                         // index of refraction inside the dielectric
     float roughness = 0.0f;  // GGX alpha of the rough materials, in [kMinRoughness, 1]
-    Rgb emission{0.0f};      // emitted radiance, W/(m^2 sr), from the front face only
+    Rgb emission{0.0f};      // emitted radiance, W/(m^2 sr), from the front face
+    // Emission from both faces (pbrt's "twosided" area lights). Not a bool: materials are
+    // written byte for byte into prepared scenes, and must have no padding.
+    uint32_t two_sided = 0;
 
     // Scatters into one direction (a mirror, smooth glass): a delta distribution.
     bool IsSpecular() const {
@@ -41,6 +44,10 @@ struct Material {
         return type == MaterialType::kRoughConductor || type == MaterialType::kRoughDielectric;
     }
     bool IsEmissive() const { return !IsBlack(emission); }
+    // Whether a surface of this material seen from its front (or back) emits.
+    bool EmitsToward(bool front_facing) const {
+        return (front_facing || two_sided != 0) && IsEmissive();
+    }
 };
 
 }  // namespace pf

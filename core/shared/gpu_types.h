@@ -136,7 +136,8 @@ struct GpuEmitter {
                      // height and mapping (kMapping*, uint bits)
     vec4 edge2;      // triangle: p2 - p0. Environment: the first row of its world-to-map
                      // rotation (Environment::to_map)
-    vec4 direction;  // triangle: unit emitting normal; spot, directional: direction of travel.
+    vec4 direction;  // triangle: unit emitting normal, w: 1 if it emits from both faces; spot,
+                     // directional: direction of travel.
                      // Environment: the rotation's second row
     vec4 power;      // a photon's flux before selection and falloff (triangle: Le pi area;
                      // point: 4 pi I; spot: I x cone solid angle; directional: E pi r^2;

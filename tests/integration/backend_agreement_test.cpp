@@ -75,6 +75,25 @@ TEST(BackendAgreementRange, ARangedLightMatchesTheCpus) {
     ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "ranged-light.gltf"), 2'000'000);
 }
 
+TEST(BackendAgreementTwoSided, ATwoSidedLightMatchesTheCpus) {
+    // A tilted two-sided area light over a floor: photons leave either face with equal chance
+    // and light samples take the cosine of the face they see, on the device as on the CPU.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    ExpectVulkanAgreesWithTheCpu(
+        testing::WriteTextFile(
+            "LookAt 0 0.5 3  0 0 0.4  0 1 0\nCamera \"perspective\" \"float fov\" 50\nWorldBegin\n"
+            "Material \"diffuse\" \"rgb reflectance\" [0.5 0.5 0.5]\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [1 -1 0  1 1 0  1 -1 1  1 1 1]\n"
+            "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4] \"bool twosided\" true\n"
+            "Material \"diffuse\" \"rgb reflectance\" [0 0 0]\nTranslate 0 0 0.6\nRotate 50 1 0 0\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-0.3 -0.3 0  0.3 -0.3 0  -0.3 0.3 0  0.3 0.3 0]\n"
+            "AttributeEnd\n",
+            "two-sided-light.pbrt"),
+        2'000'000);
+}
+
 TEST(BackendAgreementEnvironment, SkyLitCourtyardMatchesTheCpus) {
     // Lit by an environment map alone: photons leave the map, light samples draw from it and
     // the cosine ray escapes to it, on the device as on the CPU; the sky seen directly is the

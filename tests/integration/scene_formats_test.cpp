@@ -9,6 +9,7 @@
 #include <iterator>
 #include <string>
 
+#include "core/job/integrator.h"
 #include "embedded/local_render.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/image_agreement.h"
@@ -99,6 +100,76 @@ TEST(Cameras, EveryCameraInsideTheFurnaceSeesLeOverOneMinusAlbedo) {
         std::printf("%s: mean %.5f, sigma of the mean %.5f\n", camera.c_str(), mean, sigma);
         EXPECT_NEAR(mean, 2.0, 4 * sigma) << camera;
         EXPECT_LT(4 * sigma, 0.02 * 2.0) << camera;
+    }
+}
+
+TEST(TwoSidedLights, ATwoSidedLightIsItsTwoFacesSummed) {
+    // A floor under a small square light (albedo 0 itself), open to the sky: light transport is
+    // linear in the emission, so the image with a two-sided light is the image with the light
+    // emitting from one face plus the image with it emitting from the other
+    // (ReverseOrientation), in the path tracer's light samples and MIS alike and in ppm's
+    // photons. Means over the image within 5.5 sigma of their noise (from four renders of
+    // each with independent seeds); a 2% error would fail.
+    const auto scene = [](const std::string& light, const std::string& name) {
+        return testing::WriteTextFile(
+            "LookAt 0 0.5 3  0 0 0.4  0 1 0\nCamera \"perspective\" \"float fov\" 50\n"
+            "Film \"rgb\" \"integer xresolution\" 48 \"integer yresolution\" 48\nWorldBegin\n"
+            "Material \"diffuse\" \"rgb reflectance\" [0.5 0.5 0.5]\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
+            "AttributeBegin\n" +
+                light +
+                "Material \"diffuse\" \"rgb reflectance\" [0 0 0]\n"
+                "Translate 0 0 0.6\nRotate 50 1 0 0\n"
+                "Shape \"bilinearmesh\" \"point3 P\" [-0.3 -0.3 0  0.3 -0.3 0  -0.3 0.3 0  0.3 0.3 "
+                "0]\n"
+                "AttributeEnd\n",
+            name);
+    };
+    const std::string light = "AreaLightSource \"diffuse\" \"rgb L\" [4 4 4]";
+    const std::string two_sided = scene(light + " \"bool twosided\" true\n", "two-sided.pbrt");
+    const std::string front = scene(light + "\n", "front-face.pbrt");
+    const std::string back = scene("ReverseOrientation\n" + light + "\n", "back-face.pbrt");
+    for (const Integrator integrator : {Integrator::kPath, Integrator::kPpm}) {
+        struct Mean {
+            double mean = 0, variance = 0;  // of the image's mean
+        };
+        const auto render = [&](const std::string& path, uint64_t stream) {
+            RenderSettings settings;
+            settings.scene_path = path;
+            settings.threads = 2;
+            settings.job.integrator = integrator;
+            settings.job.seed = stream;
+            settings.job.samples_per_pixel = 16;
+            if (integrator == Integrator::kPath)
+                settings.job.epoch_budget = 16;
+            else
+                settings.job.photon_budget = 4'000'000;
+            const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+            EXPECT_TRUE(outcome.ok()) << outcome.status();
+            double sum = 0;
+            for (const Rgb& pixel : outcome->image.pixels) sum += pixel.y;
+            return sum / static_cast<double>(outcome->image.pixels.size());
+        };
+        // The noise of an image's mean from 4 renders with independent seeds: their sample
+        // variance over 4 estimates the variance of their average (3 degrees of freedom each,
+        // 9 for the three scenes: 5.5 sigma is then t's 0.04% tail).
+        const auto measure = [&](const std::string& path) {
+            double sum = 0, sum_sq = 0;
+            for (uint64_t seed = 1; seed <= 4; ++seed) {
+                const double m = render(path, seed);
+                sum += m, sum_sq += m * m;
+            }
+            const double mean = sum / 4;
+            return Mean{mean, std::max(0.0, (sum_sq - 4 * mean * mean) / 3) / 4};
+        };
+        const Mean both = measure(two_sided), one = measure(front), other = measure(back);
+        const double sigma = std::sqrt(both.variance + one.variance + other.variance);
+        std::printf("%s: two-sided %.5f, front + back %.5f + %.5f, sigma %.5f\n",
+                    std::string(IntegratorName(integrator)).c_str(), both.mean, one.mean,
+                    other.mean, sigma);
+        EXPECT_GT(std::min(one.mean, other.mean), 0.0);
+        EXPECT_NEAR(both.mean, one.mean + other.mean, 5.5 * sigma);
+        EXPECT_LT(5.5 * sigma, 0.02 * both.mean);
     }
 }
 

@@ -322,7 +322,7 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
     if (state.area_light) {
         emission = state.area_light->radiance;
         if (state.area_light->power > 0) {
-            // "power": the shape emits that many watts, pi x area x L from one side.
+            // "power": the shape emits that many watts, pi x area x L from each emitting side.
             double area = 0;
             for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
                 const Vec3d a = world.ApplyPoint(Vec3d(mesh.positions[mesh.indices[i]]));
@@ -332,20 +332,24 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
             }
             // pbrt-v4 scales by power / (pi x area) whatever L's colour (for rgb L, the spectrum
             // it normalises by is the colour space's illuminant, of luminance 1).
+            if (state.area_light->two_sided) area *= 2;
             if (area > 0) emission *= static_cast<float>(state.area_light->power / (kPiD * area));
         }
     }
-    absl::StatusOr<uint32_t> index = SceneMaterial(state.material, emission);
+    absl::StatusOr<uint32_t> index =
+        SceneMaterial(state.material, emission, state.area_light && state.area_light->two_sided);
     if (!index.ok()) return index.status();
     MeshPlacement placement{world, *index, front, state.reverse_orientation, material.uv};
     return AppendMesh(mesh, placement, options_.limits, element, &scene_, prototype);
 }
 
-absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emission) {
-    const auto key = std::make_tuple(material, emission.x, emission.y, emission.z);
+absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emission,
+                                                         bool two_sided) {
+    const auto key = std::make_tuple(material, emission.x, emission.y, emission.z, two_sided);
     if (const auto it = scene_materials_.find(key); it != scene_materials_.end()) return it->second;
     Material out = material >= 0 ? materials_[material].material : DefaultMaterial().material;
     out.emission = emission;
+    out.two_sided = two_sided && out.IsEmissive() ? 1 : 0;
     const auto index = static_cast<uint32_t>(scene_.materials.size());
     scene_.materials.push_back(out);
     scene_materials_[key] = index;

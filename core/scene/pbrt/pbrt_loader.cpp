@@ -299,11 +299,8 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, TokenStrea
                                         "\" is unknown (\"diffuse\" is pbrt-v4's only one)"));
         const Rgb radiance = parameters->Color("L", SpectrumUse::kIlluminant).value_or(Rgb(1.0f)) *
                              static_cast<float>(parameters->Float("scale", 1.0));
-        AreaLight light{radiance, parameters->Float("power", 0.0)};
-        if (parameters->Bool("twosided", false))
-            Warn(where,
-                 "AreaLightSource: \"twosided\" lights emit from their front side only in "
-                 "photonfarm");
+        AreaLight light{radiance, parameters->Float("power", 0.0),
+                        parameters->Bool("twosided", false)};
         if (!IsFinite(radiance) || MinComponent(radiance) < 0 || light.power < 0)
             return ErrorAt(where,
                            "AreaLightSource: L, scale and power must be finite and non-negative");

@@ -77,7 +77,7 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
             emitter.position = Vec4(record.p0, gpu::kEmitterTriangle);
             emitter.edge1 = Vec4(record.edge1, record.area);
             emitter.edge2 = Vec4(record.edge2);
-            emitter.direction = Vec4(record.normal);
+            emitter.direction = Vec4(record.normal, record.two_sided ? 1.0f : 0.0f);
             emitter.radiance = Vec4(record.radiance);
         } else {
             const PunctualLight& light = scene.lights[record.light];

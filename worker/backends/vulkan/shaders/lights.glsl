@@ -43,9 +43,13 @@ Photon EmitPhoton(inout Pcg32 rng) {
     if (kHasTriangleLights && kind == kEmitterTriangle) {
         const vec2 b = SampleUniformTriangle(Pcg32NextFloat(rng), Pcg32NextFloat(rng));
         const vec3 point = emitter.position.xyz + emitter.edge1.xyz * b.x + emitter.edge2.xyz * b.y;
+        // A two-sided light leaves from either face with equal chance (Emitters::EmitFromTriangle).
+        const bool back = emitter.direction.w != 0.0 && Pcg32NextFloat(rng) < 0.5;
         const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
         photon.direction = FrameFromNormal(emitter.direction.xyz) * SampleCosineHemisphere(u1, u2);
-        photon.origin = OffsetRayOrigin(point, emitter.direction.xyz);
+        const vec3 normal = back ? -emitter.direction.xyz : emitter.direction.xyz;
+        if (back) photon.direction = -photon.direction;
+        photon.origin = OffsetRayOrigin(point, normal);
         return photon;
     }
     const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
@@ -112,7 +116,8 @@ bool SampleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample sample_out) {
         const float distance_sq = dot(to_light, to_light);
         sample_out.distance = sqrt(distance_sq);
         to_light /= sample_out.distance;
-        const float cos_light = -dot(emitter.direction.xyz, to_light);
+        float cos_light = -dot(emitter.direction.xyz, to_light);
+        if (emitter.direction.w != 0.0) cos_light = abs(cos_light);  // two-sided
         if (!(cos_light > 0) || !(distance_sq > 0)) return false;
         radiance_over_pdf = emitter.radiance.xyz * (cos_light * emitter.edge1.w / distance_sq);
         sample_out.pdf = distance_sq / (cos_light * emitter.edge1.w * emitter.power.w);
