@@ -22,7 +22,6 @@
 #include "core/scene/scene_loader.h"
 #include "embedded/local_render.h"
 #include "embree/embree_tracer.h"
-#include "tests/support/gltf_builder.h"
 #include "tests/support/image_agreement.h"
 #include "tests/support/numerics_cases.h"
 
@@ -175,69 +174,6 @@ TEST_P(DepthLimitedFurnace, SumsTheFirstBounces) {
 INSTANTIATE_TEST_SUITE_P(Integrators, DepthLimitedFurnace,
                          ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPath),
                          Name);
-
-// A glTF point light with a range (KHR_lights_punctual's window 1 - (d / range)^4) beside a
-// wall: past the range the floor is lit only by the wall, so there ppm's photons must take the
-// window at their first hit (the wall) as the path tracer's light samples take it at the wall.
-// The region's means agree within 4 sigma of their noise (the path tracer's from its pixels,
-// ppm's from two independent photon streams) and ppm's kernel bias on a smooth density
-// (1%), and a 10% error would fail: without the window the wall's light is 20-60% brighter.
-TEST(RangedLight, PhotonsAndLightSamplesTakeTheWindowAlike) {
-    testing::TestScene scene = testing::LitQuadScene();
-    scene.meshes.resize(1);
-    scene.meshes.push_back(
-        {{{1, -1, 0}, {1, 1, 1}, {1, 1, 0}, {1, -1, 0}, {1, -1, 1}, {1, 1, 1}}, 0});
-    scene.lights = {R"({"type":"point","intensity":6830,"range":1.0})"};
-    scene.light_node_fields = {R"(,"translation":[0.6,0,0.4])"};
-    const std::string path = testing::WriteGltf(scene, "ranged-wall.gltf");
-    auto render = [&](Integrator integrator, uint64_t stream) {
-        RenderSettings settings;
-        settings.scene_path = path;
-        settings.threads = 2;
-        settings.job.integrator = integrator;
-        settings.job.width = settings.job.height = 64;
-        settings.job.photon_stream = stream;
-        settings.job.samples_per_pixel = 16;
-        if (integrator == Integrator::kPpm)
-            settings.job.photon_budget = 8'000'000, settings.job.layout = {1u << 18, 8};
-        else
-            settings.job.epoch_budget = 256;
-        const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
-        EXPECT_TRUE(outcome.ok()) << outcome.status();
-        return outcome.ok() ? outcome->image : Image();
-    };
-    const Image ppm1 = render(Integrator::kPpm, 1), ppm2 = render(Integrator::kPpm, 2);
-    const Image reference = render(Integrator::kPath, 0);
-    ASSERT_FALSE(reference.pixels.empty());
-    // The floor past the light's range (and a margin for ppm's radius): x < -0.45 at y = 0.
-    const double half_width = 3 * std::tan(0.4);  // the test camera, z = 3, y-fov 0.8
-    double sum_path = 0, sum_path_sq = 0, sum1 = 0, sum2 = 0;
-    int count = 0;
-    for (int py = 0; py < 64; ++py)
-        for (int px = 0; px < 64; ++px) {
-            const double x = (2 * (px + 0.5) / 64 - 1) * half_width,
-                         y = (1 - 2 * (py + 0.5) / 64) * half_width;
-            const double distance = std::sqrt((x - 0.6) * (x - 0.6) + y * y + 0.16);
-            if (std::abs(x) > 0.9 || std::abs(y) > 0.9 || distance < 1.1) continue;
-            const double p = reference.At(px, py).y;
-            sum_path += p, sum_path_sq += p * p;
-            sum1 += ppm1.At(px, py).y, sum2 += ppm2.At(px, py).y;
-            ++count;
-        }
-    ASSERT_GE(count, 400);
-    const double path_mean = sum_path / count, ppm_mean = (sum1 + sum2) / (2 * count);
-    const double path_sigma =
-        std::sqrt((sum_path_sq / count - path_mean * path_mean) / (count - 1));
-    const double ppm_sigma = std::abs(sum1 - sum2) / count / 2;  // |a - b| / 2 estimates it
-    const double bound = 4 * std::hypot(path_sigma, ppm_sigma) + 0.01 * path_mean;
-    std::printf(
-        "past the range (%d pixels): ppm %.5f, path %.5f, bound %.5f (%.2f%%; sigma path %.2e, "
-        "ppm %.2e)\n",
-        count, ppm_mean, path_mean, bound, 100 * bound / path_mean, path_sigma, ppm_sigma);
-    EXPECT_GT(path_mean, 0.0);
-    EXPECT_NEAR(ppm_mean, path_mean, bound);
-    EXPECT_LT(bound, 0.1 * path_mean);  // a 10% error cannot pass
-}
 
 // Every photon mapper against the path tracer on the Cornell scenes, per channel, on the pixels
 // where a photon mapper's estimate is a flat disc's, within derived bounds.
