@@ -363,14 +363,25 @@ absl::Status GltfSceneBuilder::SetCamera(int camera_index, const Transform& worl
         return Error(absl::StrCat("camera #", camera_index), "does not exist");
     const tinygltf::Camera& source = model_.cameras[camera_index];
     const std::string element = Describe("camera", camera_index, source.name);
-    if (source.type != "perspective")
-        return Error(element,
-                     absl::StrCat("type '", source.type, "' is unsupported (perspective only)"));
     Camera& camera = scene_.camera;
-    camera.y_fov = static_cast<float>(source.perspective.yfov);
-    camera.aspect_ratio = static_cast<float>(source.perspective.aspectRatio);
-    if (!(camera.y_fov > 0 && camera.y_fov < kPi))
-        return Error(element, "yfov must lie in (0, pi)");
+    if (source.type == "orthographic") {
+        // xmag and ymag: half the view's width and height, world units.
+        const double xmag = source.orthographic.xmag, ymag = source.orthographic.ymag;
+        if (!(xmag > 0 && ymag > 0 && xmag < 1e30 && ymag < 1e30))
+            return Error(element, "orthographic xmag and ymag must be positive and finite");
+        camera.projection = Projection::kOrthographic;
+        camera.window = {static_cast<float>(-xmag), static_cast<float>(xmag),
+                         static_cast<float>(-ymag), static_cast<float>(ymag)};
+        camera.aspect_ratio = static_cast<float>(xmag / ymag);
+    } else if (source.type == "perspective") {
+        camera.y_fov = static_cast<float>(source.perspective.yfov);
+        camera.aspect_ratio = static_cast<float>(source.perspective.aspectRatio);
+        if (!(camera.y_fov > 0 && camera.y_fov < kPi))
+            return Error(element, "yfov must lie in (0, pi)");
+    } else {
+        return Error(element, absl::StrCat("type '", source.type,
+                                           "' is unknown (perspective or orthographic)"));
+    }
     camera.position = Vec3(world.ApplyPoint(Vec3d(0.0)));
     camera.forward = Vec3(Normalize(world.ApplyVector(Vec3d(0, 0, -1))));
     const Vec3 up_hint(Normalize(world.ApplyVector(Vec3d(0, 1, 0))));

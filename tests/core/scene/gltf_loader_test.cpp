@@ -99,6 +99,31 @@ TEST(GltfLoaderTest, PunctualLightsAreRead) {
     EXPECT_NEAR(loaded->lights[2].intensity.y, 1.0f, 1e-6f);  // 683 lux: 1 W/m^2
 }
 
+TEST(GltfLoaderTest, OrthographicCamerasSpanTheirMagnification) {
+    // xmag 2, ymag 1: a view 4 wide and 2 tall along the camera's -z, from z = 3.
+    const std::string path = WriteEdited(
+        testing::LitQuadScene(), R"("type":"perspective","perspective":{"yfov":0.8,"znear":0.01})",
+        R"("type":"orthographic","orthographic":{"xmag":2,"ymag":1,"znear":0.01,"zfar":100})",
+        "orthographic.gltf");
+    const absl::StatusOr<Scene> scene = LoadScene(path);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Camera& camera = scene->camera;
+    EXPECT_EQ(camera.projection, Projection::kOrthographic);
+    EXPECT_EQ(camera.aspect_ratio, 2.0f);
+    const Ray corner = camera.GenerateRay(0, 0, 2.0f);  // top left
+    EXPECT_NEAR(corner.origin.x, -2.0f, 1e-6f);
+    EXPECT_NEAR(corner.origin.y, 1.0f, 1e-6f);
+    EXPECT_NEAR(corner.origin.z, 3.0f, 1e-6f);
+    EXPECT_NEAR(corner.direction.z, -1.0f, 1e-6f);
+    ExpectError(
+        LoadScene(WriteEdited(
+            testing::LitQuadScene(),
+            R"("type":"perspective","perspective":{"yfov":0.8,"znear":0.01})",
+            R"("type":"orthographic","orthographic":{"xmag":0,"ymag":1,"znear":0.01,"zfar":100})",
+            "orthographic-flat.gltf")),
+        "orthographic-flat.gltf", "orthographic xmag and ymag must be positive");
+}
+
 TEST(GltfLoaderTest, BaseColourTextureIsDecodedToLinearAndSampled) {
     // A 2x1 PNG: sRGB (255, 0, 0) on the left, (128, 128, 128) on the right.
     testing::TestScene scene = testing::LitQuadScene();
