@@ -11,6 +11,7 @@
 
 #include "core/scene/mesh_builder.h"
 #include "core/scene/scene_loader.h"
+#include "tests/support/ply_fixture.h"
 
 namespace {
 
@@ -18,18 +19,7 @@ const pf::SceneBundle& Fixtures() {
     static const pf::SceneBundle* bundle = [] {
         auto* b = new pf::SceneBundle;
         // A binary PLY triangle and a 1x1 PNG (white), the smallest of each.
-        std::string ply =
-            "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty "
-            "float y\n"
-            "property float z\nelement face 1\nproperty list uchar int "
-            "vertex_indices\nend_header\n";
-        const float vertices[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-        ply.append(reinterpret_cast<const char*>(vertices), sizeof vertices);
-        const unsigned char count = 3;
-        const int32_t face[3] = {0, 1, 2};
-        ply.append(reinterpret_cast<const char*>(&count), 1);
-        ply.append(reinterpret_cast<const char*>(face), sizeof face);
-        b->files["mesh.ply"] = ply;
+        b->files["mesh.ply"] = pf::testing::TrianglePly();
         static const unsigned char kPng[] = {
             0x89, 0x50, 0x4e, 0x47, 0x0d, 0x0a, 0x1a, 0x0a, 0x00, 0x00, 0x00, 0x0d, 0x49, 0x48,
             0x44, 0x52, 0x00, 0x00, 0x00, 0x01, 0x00, 0x00, 0x00, 0x01, 0x08, 0x02, 0x00, 0x00,

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/scene/scene_loader.h"
+#include "tests/support/ply_fixture.h"
 
 namespace pf {
 namespace {
@@ -60,15 +61,7 @@ TEST(DecompressTest, BadStreamsAreRefusedNamingTheFile) {
 
 TEST(DecompressTest, PbrtReadsCompressedIncludesAndMeshes) {
     // An included .pbrt.gz holding a .ply.gz mesh: a binary PLY triangle.
-    std::string ply =
-        "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float "
-        "y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
-    const float vertices[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-    ply.append(reinterpret_cast<const char*>(vertices), sizeof vertices);
-    const unsigned char count = 3;
-    const int32_t face[3] = {0, 1, 2};
-    ply.append(reinterpret_cast<const char*>(&count), 1);
-    ply.append(reinterpret_cast<const char*>(face), sizeof face);
+    const std::string ply = testing::TrianglePly();
     SceneBundle bundle;
     bundle.main_file = "scene.pbrt";
     bundle.files["scene.pbrt"] =
