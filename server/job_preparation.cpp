@@ -1,0 +1,166 @@
+// Job preparation: the scene loaded, the camera pass run and the estimate set up.
+#include "server/job_preparation.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cinttypes>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <set>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "absl/strings/str_join.h"
+#include "core/camera/camera_pass.h"
+#include "core/estimate/pixel_estimate.h"
+#include "core/estimate/progressive_estimate.h"
+#include "core/film/image_metrics.h"
+#include "core/pm/photon_map.h"
+#include "core/ppm/caustic_probe.h"
+#include "core/scene/scene_features.h"
+#include "core/scene/scene_loader.h"
+#include "embree/embree_tracer.h"
+#include "server/camera_passes.h"
+
+namespace pf {
+namespace {
+
+const char* SettingName(SettingNames names, const char* field, const char* flag) {
+    return names == SettingNames::kFlags ? flag : field;
+}
+
+absl::Status CheckReference(const Image* reference, int width, int height) {
+    if (reference == nullptr) return absl::OkStatus();
+    if (reference->width != width || reference->height != height)
+        return absl::InvalidArgumentError(
+            absl::StrFormat("reference: the image is %dx%d but the job renders %dx%d",
+                            reference->width, reference->height, width, height));
+    if (const uint64_t nonfinite = NonfinitePixels(*reference); nonfinite > 0)
+        return absl::InvalidArgumentError(absl::StrFormat(
+            "reference: %d pixels hold NaN or Inf; a reference must be finite", nonfinite));
+    return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOptions& options) {
+    const SettingNames names = options.setting_names;
+    const ClientLimits& client_limits = options.client_limits;
+    if (absl::Status status = CheckJobSpec(request.spec, names); !status.ok()) return status;
+    if (request.priority < -kMaxJobPriority || request.priority > kMaxJobPriority)
+        return absl::InvalidArgumentError(
+            absl::StrCat(SettingName(names, "settings.priority", "--priority"), " must lie in [",
+                         -kMaxJobPriority, ", ", kMaxJobPriority, "], not ", request.priority));
+    if (absl::Status status = CheckSceneBundle(request.bundle); !status.ok()) return status;
+    if (const uint64_t bytes = request.bundle.TotalBytes(); bytes > client_limits.max_bundle_bytes)
+        return absl::ResourceExhaustedError(absl::StrCat(
+            "scene: the bundle holds ", bytes, " bytes, over this coordinator's limit of ",
+            client_limits.max_bundle_bytes, " (--max-bundle-bytes)"));
+    if (request.spec.layout.photons_per_batch > client_limits.max_photons_per_batch)
+        return absl::ResourceExhaustedError(absl::StrCat(
+            SettingName(names, "settings.photons_per_batch", "--photons-per-batch"), ": ",
+            request.spec.layout.photons_per_batch, " is over this coordinator's limit of ",
+            client_limits.max_photons_per_batch, " (--max-photons-per-batch)"));
+    if (request.name.empty())
+        request.name = std::filesystem::path(request.bundle.main_file).filename().string();
+    absl::StatusOr<Scene> scene = LoadScene(
+        request.bundle, request.bundle.main_file,
+        {options.scene_limits, nullptr, true, request.spec.environment, request.spec.camera});
+    if (!scene.ok()) return scene.status();
+    absl::StatusOr<CameraPassSettings> film = FilmFor(request.spec, *scene);
+    if (!film.ok()) return film.status();
+    if (const uint64_t pixels = uint64_t(film->width) * film->height;
+        pixels > client_limits.max_render_pixels)
+        return absl::ResourceExhaustedError(
+            absl::StrFormat("%s: the image is %dx%d, %d pixels, over this coordinator's limit of "
+                            "%d (--max-render-pixels)",
+                            SettingName(names, "settings.width", "--width"), film->width,
+                            film->height, pixels, client_limits.max_render_pixels));
+    // The film size resolved: workers that render pixels need it.
+    request.spec.width = film->width;
+    request.spec.height = film->height;
+    auto payload = std::make_shared<JobPayload>(std::move(*scene), nullptr, request.spec);
+    if (!payload->emitters.HasPower())
+        return absl::InvalidArgumentError(
+            absl::StrCat(request.bundle.main_file, ": lights emit no power"));
+    if (const double power = MaxComponent(payload->emitters.TotalPower()); power > kMaxLightPower)
+        return absl::InvalidArgumentError(
+            absl::StrFormat("%s: lights emit %.3g W in all, over the %.3g W that single-precision "
+                            "photon sums hold (docs/numerics.md)",
+                            request.bundle.main_file, power, kMaxLightPower));
+    // For the camera pass and the job's record; each backend analyses the scene it is given
+    // the same way (AnalyseFeatures) for its photon loop.
+    film->features = AnalyseFeatures(payload->scene, payload->emitters);
+    if (absl::Status status = CheckReference(request.reference.get(), film->width, film->height);
+        !status.ok())
+        return status;
+    absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer =
+        embree::EmbreeTracer::Create(payload->scene);
+    if (!tracer.ok()) return tracer.status();
+    if (film->features.Specular()) {
+        const CausticProbe probe =
+            ProbeCaustics(payload->scene, payload->emitters, **tracer, request.spec.seed);
+        film->features.caustics = probe.caustic > 0;
+        spdlog::info(
+            "{}: {:.2f}% of light paths reach a diffuse surface through specular bounces "
+            "(caustics)",
+            request.name, 100 * probe.Fraction());
+    }
+    PreparedJob prepared;
+    const Integrator integrator = request.spec.integrator;
+    if (GathersAtHitPoints(integrator)) {
+        const auto start = Clock::now();
+        EpochCameraPass passes;
+        if (integrator == Integrator::kSppm) {
+            absl::StatusOr<EpochCameraPass> stochastic = StochasticCameraPasses(payload, *film);
+            if (!stochastic.ok()) return stochastic.status();
+            passes = std::move(*stochastic);
+        }
+        CameraPassResult camera_pass =
+            passes ? passes(0) : RunCameraPass(payload->scene, **tracer, *film);
+        EstimateSettings settings =
+            EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
+        settings.stochastic = integrator == Integrator::kSppm;
+        spdlog::info("{}: camera pass: {}x{}, {} hit points in {:.2f} s, initial radius {:.4g}",
+                     request.name, film->width, film->height, camera_pass.hit_points.size(),
+                     std::chrono::duration<double>(Clock::now() - start).count(),
+                     settings.initial_radius);
+        prepared.estimate = std::make_unique<ProgressiveEstimate>(std::move(camera_pass), settings,
+                                                                  std::move(passes));
+    } else {
+        const PhotonMapSettings& maps = request.spec.photon_map;
+        if (integrator == Integrator::kPm) {  // refused here rather than by every worker
+            const PhotonMapForecast forecast = ForecastPhotonMaps(
+                payload->scene, payload->emitters, **tracer, film->features, maps, payload->seed);
+            if (absl::Status status = CheckPhotonMapsFit(forecast, maps, AvailableMemoryBytes());
+                !status.ok())
+                return status;
+            spdlog::info("{}: the photon maps will hold about {:.3g} MB", request.name,
+                         forecast.bytes / 1e6);
+        }
+        prepared.estimate = std::make_unique<PixelEstimate>(PixelEstimateSettings{
+            request.spec.integrator, film->width, film->height, film->samples_per_pixel,
+            request.spec.layout.batches_per_epoch,
+            integrator == Integrator::kPm
+                ? maps.global_photons +
+                      (film->features.Specular() ? maps.caustic_photons : 0)  // as BuildPhotonMaps
+                : 0});
+    }
+    // Workers trace a stochastic job's hit points themselves, epoch by epoch.
+    payload->hit_points = integrator == Integrator::kSppm
+                              ? std::make_shared<const std::vector<HitPoint>>()
+                              : prepared.estimate->SharedHitPoints();
+    prepared.payload = std::move(payload);
+    prepared.name = std::move(request.name);
+    prepared.owner = std::move(request.owner);
+    prepared.spec = request.spec;
+    prepared.priority = request.priority;
+    prepared.bundle = std::move(request.bundle);
+    prepared.reference = std::move(request.reference);
+    prepared.scene_features = film->features.ToString();
+    return prepared;
+}
+
+}  // namespace pf
