@@ -20,6 +20,7 @@ import math
 import os
 import struct
 import sys
+import zlib
 
 
 class GltfWriter:
@@ -74,12 +75,15 @@ class GltfWriter:
         self.doc["materials"].append(material)
         return len(self.doc["materials"]) - 1
 
-    def mesh(self, name, positions, indices, material, normals=None):
+    def mesh(self, name, positions, indices, material, normals=None, uvs=None):
         flat = [c for p in positions for c in p]
         attributes = {"POSITION": self._accessor(flat, "VEC3", 5126, len(positions), 34962, True)}
         if normals:
             attributes["NORMAL"] = self._accessor([c for n in normals for c in n], "VEC3", 5126,
                                                   len(normals), 34962)
+        if uvs:
+            attributes["TEXCOORD_0"] = self._accessor([c for uv in uvs for c in uv], "VEC2", 5126,
+                                                      len(uvs), 34962)
         index_accessor = self._accessor(indices, "SCALAR", 5125, len(indices), 34963)
         self.doc["meshes"].append({"name": name, "primitives": [
             {"attributes": attributes, "indices": index_accessor, "material": material}]})
@@ -122,6 +126,20 @@ class GltfWriter:
             positions.extend([[float(c) for c in p] for p in quad])
             indices.extend([base, base + 1, base + 2, base, base + 2, base + 3])
         self.mesh(name, positions, indices, material)
+
+    def image_light(self, name, quad, color, scale, image_name, png):
+        """A quad emitting scale x the PNG image (sRGB), its top left at the quad's corner 3
+        and its bottom left at corner 0: emissiveTexture x emissiveFactor x strength."""
+        self.doc.setdefault("images", []).append(
+            {"name": image_name, "uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")})
+        self.doc.setdefault("textures", []).append({"source": len(self.doc["images"]) - 1})
+        self.doc["materials"].append({
+            "name": name, "pbrMetallicRoughness": {"baseColorFactor": list(color) + [1.0], "metallicFactor": 0.0},
+            "emissiveFactor": [1.0, 1.0, 1.0], "emissiveTexture": {"index": len(self.doc["textures"]) - 1},
+            "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": scale}}})
+        self.extensions.add("KHR_materials_emissive_strength")
+        self.mesh(name, [[float(c) for c in p] for p in quad], [0, 1, 2, 0, 2, 3],
+                  len(self.doc["materials"]) - 1, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])
 
     def begin_shared(self, name):
         """Starts a part other scenes share (the pbrt form puts it in its own file)."""
@@ -231,15 +249,16 @@ WHITE, RED, GREEN = (0.725, 0.71, 0.68), (0.63, 0.065, 0.05), (0.14, 0.45, 0.091
 LIGHT_RADIANCE = (17.0, 12.0, 4.0)
 
 
-def cornell_room(writer):
-    writer.begin_shared("cornell-room")
+def cornell_room(writer, light=True):
+    writer.begin_shared("cornell-room" if light else "cornell-walls")
     white = writer.material("white", WHITE)
     for name in ("floor", "ceiling", "back"):
         writer.quads(name, mm([CORNELL_WALLS[name]]), white)
     writer.quads("left_red", mm([CORNELL_WALLS["left_red"]]), writer.material("red", RED))
     writer.quads("right_green", mm([CORNELL_WALLS["right_green"]]), writer.material("green", GREEN))
-    writer.quads("light", mm([CORNELL_LIGHT]),
-                 writer.material("light", (0.78, 0.78, 0.78), LIGHT_RADIANCE))
+    if light:
+        writer.quads("light", mm([CORNELL_LIGHT]),
+                     writer.material("light", (0.78, 0.78, 0.78), LIGHT_RADIANCE))
     writer.end_shared()
     # The measured camera: 35 mm focal length on a 25 mm film, looking down +z.
     writer.camera([0.278, 0.273, -0.8], [0.278, 0.273, 0.0], math.degrees(2 * math.atan(12.5 / 35)))
@@ -250,6 +269,38 @@ def cornell_box(writer):
     white = cornell_room(writer)
     writer.quads("short_block", mm(SHORT_BLOCK), white)
     writer.quads("tall_block", mm(TALL_BLOCK), white, ply="tall-block")
+
+
+def stained_glass(width=64, tiles=4, lead=2):
+    """An sRGB PNG of coloured tiles between dark lead lines, as a stained-glass window."""
+    colors = [(240, 140, 120), (245, 215, 140), (140, 165, 240), (160, 225, 200), (225, 230, 245),
+              (195, 155, 240)]
+    tile = width // tiles
+    rows = []
+    for y in range(width):
+        row = bytearray([0])  # filter: none
+        for x in range(width):
+            tx, ty = x // tile, y // tile
+            edge = min(x % tile, y % tile, tile - 1 - x % tile, tile - 1 - y % tile) < lead // 2 + lead % 2
+            row += bytes((25, 20, 15)) if edge else bytes(colors[(tx * 5 + ty * 3 + tx * ty) % len(colors)])
+        rows.append(bytes(row))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, width, 8, 2, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(b"".join(rows), 9)) + chunk(b"IEND", b""))
+
+
+def cornell_stained(writer):
+    """The Cornell box lit by a stained-glass panel in place of its light: an area light whose
+    emission is an image (pbrt's "filename", glTF's emissiveTexture), 4 x 4 coloured tiles
+    between lead lines, photons and light samples leaving each texel by its power."""
+    white = cornell_room(writer, light=False)
+    writer.quads("short_block", mm(SHORT_BLOCK), white)
+    writer.quads("tall_block", mm(TALL_BLOCK), white)
+    panel = [[400, 548.7, 180], [400, 548.7, 380], [156, 548.7, 380], [156, 548.7, 180]]
+    writer.image_light("stained_glass", mm([panel])[0], (0.78, 0.78, 0.78), 16.0,
+                       "cornell-stained-glass.png", stained_glass())
 
 
 def cornell_glass(writer):
@@ -435,6 +486,18 @@ class PbrtWriter:
     def light(self, *args, **kwargs):
         raise NotImplementedError("punctual lights are written to glTF scenes only")
 
+    def image_light(self, name, quad, color, scale, image_name, png):
+        """An area light with pbrt-v4's "filename": the image over the bilinear patch's (u, v),
+        v up, so that p00 (corner 0) is its bottom left."""
+        path = "textures/%s" % image_name
+        self.files[path] = png
+        out = self._out()
+        out += ["", "# " + name, "AttributeBegin",
+                '    AreaLightSource "diffuse" "string filename" "%s" "float scale" %s' % (path, num(scale)),
+                '    Material "diffuse" "rgb reflectance" %s' % rgb(color),
+                '    Shape "bilinearmesh" "point3 P" %s' % numbers([c for i in (0, 1, 3, 2) for c in quad[i]]),
+                "AttributeEnd"]
+
     def environment(self, scene_name, sky):
         """pbrt-v4's infinite light: an equal-area square with z up, turned to y up."""
         path = "textures/%s-sky.hdr" % scene_name
@@ -546,7 +609,7 @@ def ply_quads(quad_list):
 
 SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass, "cornell-glossy": cornell_glossy,
           "caustic-glass": caustic_glass, "furnace": furnace, "furnace-glass": furnace_glass,
-          "sky-courtyard": sky_courtyard}
+          "sky-courtyard": sky_courtyard, "cornell-stained": cornell_stained}
 
 if __name__ == "__main__":
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))

@@ -59,7 +59,8 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
             const SurfacePoint surface = scene.Surface(hit);
             const Material& material = scene.materials[surface.material];
             const bool front_facing = Dot(path.ray.direction, surface.geometric_normal) < 0;
-            if (material.EmitsToward(front_facing)) emission += path.throughput * material.emission;
+            if (material.EmitsToward(front_facing))
+                emission += path.throughput * scene.Emission(surface);
             const Rgb base_color =
                 kTextures
                     ? scene.BaseColor(surface, filter_width.base + path.length * filter_width.angle)

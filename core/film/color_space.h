@@ -21,6 +21,11 @@ inline constexpr ColorMatrix kXyzFromSrgb = {{{0.4124564, 0.3575761, 0.1804375},
 inline constexpr ColorMatrix kSrgbFromXyz = {{{3.2404542, -1.5371385, -0.4985314},
                                               {-0.9692660, 1.8760108, 0.0415560},
                                               {0.0556434, -0.2040259, 1.0572252}}};
+// The luminance (CIE Y) of a linear sRGB colour.
+inline double SrgbLuminance(const Vec3d& rgb) {
+    return kXyzFromSrgb[1][0] * rgb.x + kXyzFromSrgb[1][1] * rgb.y + kXyzFromSrgb[1][2] * rgb.z;
+}
+
 // sRGB's white, CIE D65, as a chromaticity (x, y).
 inline constexpr std::array<double, 2> kD65Chromaticity = {0.3127, 0.3290};
 

@@ -99,7 +99,7 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
         const Material& material = scene.materials[surface.material];
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
         // Emission seen directly or through specular and rough bounces (no light map holds it).
-        if (material.EmitsToward(front_facing)) radiance += throughput * material.emission;
+        if (material.EmitsToward(front_facing)) radiance += throughput * scene.Emission(surface);
         if (material.type == MaterialType::kDiffuse) {
             const Rgb albedo = inputs.filter_angle > 0
                                    ? scene.BaseColor(surface, length * inputs.filter_angle)

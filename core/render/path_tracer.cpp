@@ -50,7 +50,7 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
                         : 0.0f;
                 weight = PowerHeuristic(bsdf_pdf, light_pdf);
             }
-            radiance += throughput * material.emission * weight;
+            radiance += throughput * scene.Emission(surface) * weight;
         }
         if (depth >= inputs.max_depth) break;
         Rgb base_color = material.base_color;

@@ -11,6 +11,32 @@ namespace {
 
 float SpotSolidAngle(const PunctualLight& light) { return 2.0f * kPi * (1.0f - light.cos_outer); }
 
+// The mean of a texture's bilinear lookups over the triangle uv0 + b1 edge1 + b2 edge2 of
+// texture space: at the centroids of its subdivision into n^2 equal triangles, n growing with
+// the texels it covers (up to 64, 4096 lookups).
+Rgbd MeanOverTriangle(const Texture& texture, Point2 uv0, Point2 edge1, Point2 edge2) {
+    const double texels = 0.5 * std::abs(double(edge1.x) * edge2.y - double(edge1.y) * edge2.x) *
+                          texture.width * texture.height;
+    const int n = static_cast<int>(std::clamp(std::ceil(std::sqrt(texels)), 1.0, 64.0));
+    Rgbd sum;
+    const auto add = [&](double b1, double b2) {
+        sum += Rgbd(texture.Sample(static_cast<float>(uv0.x + edge1.x * b1 + edge2.x * b2),
+                                   static_cast<float>(uv0.y + edge1.y * b1 + edge2.y * b2)));
+    };
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; i + j < n; ++j) {
+            add((i + 1.0 / 3) / n, (j + 1.0 / 3) / n);  // the corner (i, j) points up
+            if (i + j + 1 < n) add((i + 2.0 / 3) / n, (j + 2.0 / 3) / n);  // and down
+        }
+    return sum * (1.0 / (double(n) * n));
+}
+
+float LargestTexel(const Texture& texture) {
+    float largest = 0;
+    for (const Rgb& texel : texture.texels) largest = std::max(largest, MaxComponent(texel));
+    return largest;
+}
+
 }  // namespace
 
 std::vector<Emitters::Record> Emitters::Records() const {
@@ -25,6 +51,14 @@ std::vector<Emitters::Record> Emitters::Records() const {
             record.p0 = triangle.p0, record.edge1 = triangle.edge1, record.edge2 = triangle.edge2;
             record.normal = triangle.frame.n, record.radiance = triangle.radiance,
             record.area = triangle.area, record.two_sided = triangle.two_sided;
+            if (triangle.texture != nullptr) {
+                record.texture = triangle.texture_index;
+                record.uv0 = triangle.uv0, record.uv_edge1 = triangle.uv_edge1,
+                record.uv_edge2 = triangle.uv_edge2;
+                record.power = triangle.radiance * ((triangle.two_sided ? 2.0f : 1.0f) * kPi *
+                                                    triangle.area);
+                record.peak = LargestTexel(*triangle.texture);
+            }
         } else if (record.kind == EmitterKind::kPunctual) {
             record.light = emitters_[i].index;
         }
@@ -53,12 +87,20 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
         const Vec3 edge1 = scene.positions[triangle.vertex[1]] - p0,
                    edge2 = scene.positions[triangle.vertex[2]] - p0;
         const auto index = static_cast<uint32_t>(triangles_.size());
-        triangles_.push_back({p0, edge1, edge2, Frame::FromNormal(triangle.normal),
-                              material.emission, scene.TriangleArea(t), material.two_sided != 0});
-        // pi A Le from each emitting side.
-        const double sides = material.two_sided != 0 ? 2.0 : 1.0;
-        if (add(EmitterKind::kTriangle, index,
-                Rgbd(material.emission) * (sides * kPiD * triangles_.back().area)))
+        EmissiveTriangle emissive{p0, edge1, edge2, Frame::FromNormal(triangle.normal),
+                                  material.emission, scene.TriangleArea(t),
+                                  material.two_sided != 0};
+        if (material.emission_texture != kNoTexture) {
+            emissive.texture = scene.textures[material.emission_texture].get();
+            emissive.texture_index = material.emission_texture;
+            const Point2& uv0 = scene.uvs[triangle.vertex[0]];
+            const Point2 &uv1 = scene.uvs[triangle.vertex[1]], &uv2 = scene.uvs[triangle.vertex[2]];
+            emissive.uv0 = uv0;
+            emissive.uv_edge1 = {uv1.x - uv0.x, uv1.y - uv0.y};
+            emissive.uv_edge2 = {uv2.x - uv0.x, uv2.y - uv0.y};
+        }
+        triangles_.push_back(emissive);
+        if (add(EmitterKind::kTriangle, index, emissive.Power()))
             emitter_of_triangle_[t] = static_cast<int32_t>(emitters_.size() - 1);
     }
     for (uint32_t l = 0; l < scene.lights.size(); ++l) {
@@ -111,13 +153,16 @@ EmittedPhoton Emitters::Emit(Rng& rng) const {
     return photon;
 }
 
-Vec3 Emitters::EmissiveTriangle::Point(float u1, float u2) const {
-    const Point2 b = SampleUniformTriangle(u1, u2);
-    return p0 + edge1 * b.x + edge2 * b.y;
+Rgbd Emitters::EmissiveTriangle::Power() const {
+    const double sides = two_sided ? 2.0 : 1.0;
+    const Rgbd power = Rgbd(radiance) * (sides * kPiD * area);
+    if (texture == nullptr) return power;
+    return power * MeanOverTriangle(*texture, uv0, uv_edge1, uv_edge2);
 }
 
 EmittedPhoton Emitters::EmitFromTriangle(const EmissiveTriangle& triangle, Rng& rng) const {
-    const Vec3 point = triangle.Point(rng.NextFloat(), rng.NextFloat());
+    const Point2 b = SampleUniformTriangle(rng.NextFloat(), rng.NextFloat());
+    const Vec3 point = triangle.p0 + triangle.edge1 * b.x + triangle.edge2 * b.y;
     // A two-sided light leaves from either face with equal chance (one more number drawn).
     const bool back = triangle.two_sided && rng.NextFloat() < 0.5f;
     Vec3 direction =
@@ -126,7 +171,8 @@ EmittedPhoton Emitters::EmitFromTriangle(const EmissiveTriangle& triangle, Rng& 
     const Vec3 normal = back ? -triangle.frame.n : triangle.frame.n;
     // Cosine-weighted emission of radiance Le from area A carries flux pi * A * Le a side.
     return {{OffsetRayOrigin(point, normal, scene_.bounds.Magnitude()), direction},
-            triangle.radiance * ((triangle.two_sided ? 2.0f : 1.0f) * kPi * triangle.area)};
+            triangle.RadianceAt(b.x, b.y) *
+                ((triangle.two_sided ? 2.0f : 1.0f) * kPi * triangle.area)};
 }
 
 EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, Rng& rng) const {
@@ -186,7 +232,8 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
         sample->pdf = static_cast<float>(distribution_.Probability(pick.index)) * drawn.pdf;
     } else if (emitter.kind == EmitterKind::kTriangle) {
         const EmissiveTriangle& triangle = triangles_[emitter.index];
-        const Vec3 point = triangle.Point(u1, u2);
+        const Point2 b = SampleUniformTriangle(u1, u2);
+        const Vec3 point = triangle.p0 + triangle.edge1 * b.x + triangle.edge2 * b.y;
         to_light = point - origin;
         const float distance_sq = LengthSquared(to_light);
         distance = std::sqrt(distance_sq);
@@ -194,7 +241,7 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
         const float cos_light = triangle.CosineToward(to_light);
         if (!(cos_light > 0) || !(distance_sq > 0)) return false;
         // Area pdf 1/A converted to solid angle: d^2 / (cos_light A).
-        radiance_over_pdf = triangle.radiance * (cos_light * triangle.area / distance_sq);
+        radiance_over_pdf = triangle.RadianceAt(b.x, b.y) * (cos_light * triangle.area / distance_sq);
         sample->pdf = static_cast<float>(distribution_.Probability(pick.index)) * distance_sq /
                       (cos_light * triangle.area);
     } else {
@@ -234,20 +281,23 @@ Emitters::Hit Emitters::Escaped(const Vec3& toward) const {
 }
 
 float Emitters::PdfDirect(uint32_t triangle, const Vec3& p, const Vec3& on_light) const {
-    return HitEmitter(triangle, p, on_light).pdf;
-}
-
-Emitters::Hit Emitters::HitEmitter(uint32_t triangle, const Vec3& p, const Vec3& on_light) const {
     const int32_t emitter = EmitterOfTriangle(triangle);
-    if (emitter < 0) return {};
+    if (emitter < 0) return 0;
     const auto index = static_cast<uint32_t>(emitter);
     const EmissiveTriangle& emissive = triangles_[emitters_[index].index];
     const Vec3 to_light = on_light - p;
     const float distance_sq = LengthSquared(to_light);
     const float cos_light = emissive.CosineToward(to_light / std::sqrt(distance_sq));
-    if (!(cos_light > 0) || !(distance_sq > 0)) return {};
-    return {emissive.radiance, static_cast<float>(distribution_.Probability(index)) * distance_sq /
-                                   (cos_light * emissive.area)};
+    if (!(cos_light > 0) || !(distance_sq > 0)) return 0;
+    return static_cast<float>(distribution_.Probability(index)) * distance_sq /
+           (cos_light * emissive.area);
+}
+
+Emitters::Hit Emitters::HitEmitter(const RayHit& hit, const Vec3& p, const Vec3& on_light) const {
+    const float pdf = PdfDirect(hit.triangle, p, on_light);
+    if (!(pdf > 0)) return {};
+    const EmissiveTriangle& emissive = triangles_[emitters_[EmitterOfTriangle(hit.triangle)].index];
+    return {emissive.RadianceAt(hit.b1, hit.b2), pdf};
 }
 
 }  // namespace pf

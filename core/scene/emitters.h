@@ -59,14 +59,14 @@ public:
     // `on_light` of world triangle `triangle` (0 if the triangle emits nothing): for weighing
     // a path that found the light by scattering against light sampling (Veach 1997, ch. 9).
     float PdfDirect(uint32_t triangle, const Vec3& p, const Vec3& on_light) const;
-    // What a ray from p finds where it hits point `on_light` of world triangle `triangle`: the
-    // radiance emitted toward p, and PdfDirect's density. Both 0 where the triangle emits
-    // nothing, or not toward p.
+    // What a ray from p finds where it hits point `on_light` of a world triangle (`hit`: the
+    // triangle and the point's barycentrics): the radiance emitted toward p, and PdfDirect's
+    // density. Both 0 where the triangle emits nothing, or not toward p.
     struct Hit {
         Rgb radiance;
         float pdf = 0;
     };
-    Hit HitEmitter(uint32_t triangle, const Vec3& p, const Vec3& on_light) const;
+    Hit HitEmitter(const RayHit& hit, const Vec3& p, const Vec3& on_light) const;
     // What a ray from anywhere that escapes the scene toward unit direction `toward` finds:
     // the environment's radiance, and the density in solid angle with which SampleDirect
     // picks that direction. Both 0 without an environment.
@@ -88,12 +88,19 @@ public:
         EmitterKind kind = EmitterKind::kTriangle;
         uint32_t light = 0;             // punctual: index into Scene::lights
         Vec3 p0, edge1, edge2, normal;  // triangle: corners and unit emitting normal
-        Rgb radiance;                   // triangle: Le
+        Rgb radiance;                   // triangle: Le (times the texel, with a texture)
         float area = 0;                 // triangle
         bool two_sided = false;         // triangle: emits from its back face too
-        // W per channel: a photon's flux before the 1 / probability of its pick (and, for a
-        // spot light, before the falloff of its direction).
+        // Triangle: the emission texture (index into Scene::textures) or kNoTexture, and the
+        // texture coordinates at p0 and along the edges.
+        int32_t texture = kNoTexture;
+        Point2 uv0, uv_edge1, uv_edge2;
+        // W per channel: a photon's flux before the 1 / probability of its pick (and before
+        // the texel it leaves from for a textured triangle, and the falloff of its direction
+        // for a spot light).
         Rgb power;
+        // The largest factor of `power` per channel a photon's texel or falloff may bring.
+        float peak = 1;
         double probability = 0;  // of being picked by Emit and SampleDirect
     };
     std::vector<Record> Records() const;
@@ -115,10 +122,21 @@ private:
     struct EmissiveTriangle {
         Vec3 p0, edge1, edge2;
         Frame frame;   // around the unit normal of the emitting side
-        Rgb radiance;  // Le
+        Rgb radiance;  // Le, times the texel where there is a texture
         float area;
-        bool two_sided;  // emits from the back face too
-        Vec3 Point(float u1, float u2) const;
+        bool two_sided;                    // emits from the back face too
+        const Texture* texture = nullptr;  // the emission texture, if any
+        int32_t texture_index = kNoTexture;
+        Point2 uv0, uv_edge1, uv_edge2;  // texture coordinates, where there is one
+        // Le at barycentrics (b1, b2).
+        Rgb RadianceAt(float b1, float b2) const {
+            if (texture == nullptr) return radiance;
+            return radiance * texture->Sample(uv0.x + uv_edge1.x * b1 + uv_edge2.x * b2,
+                                              uv0.y + uv_edge1.y * b1 + uv_edge2.y * b2);
+        }
+        // Emitted power, W per channel: pi A Le from each emitting side, the texture
+        // integrated over the triangle.
+        Rgbd Power() const;
         // The cosine at the light toward `to_light` (unit, from the receiver): of the side that
         // faces the receiver for a two-sided light.
         float CosineToward(const Vec3& to_light) const {

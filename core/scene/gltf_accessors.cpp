@@ -201,6 +201,13 @@ absl::Status ReadIndices(const tinygltf::Model& model, int index, std::vector<ui
                               });
 }
 
+const tinygltf::TextureInfo* CoordinateTexture(const tinygltf::Material& material) {
+    if (material.pbrMetallicRoughness.baseColorTexture.index >= 0)
+        return &material.pbrMetallicRoughness.baseColorTexture;
+    if (material.emissiveTexture.index >= 0) return &material.emissiveTexture;
+    return nullptr;
+}
+
 absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
                                            const tinygltf::Primitive& primitive,
                                            uint64_t max_triangles) {
@@ -208,11 +215,10 @@ absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
     // The texture coordinates the material's texture reads (its texCoord), TEXCOORD_0 where it
     // has none.
     int set = 0;
-    if (primitive.material >= 0 && primitive.material < static_cast<int>(model.materials.size())) {
-        const tinygltf::TextureInfo& texture =
-            model.materials[primitive.material].pbrMetallicRoughness.baseColorTexture;
-        if (texture.index >= 0) set = texture.texCoord;
-    }
+    if (primitive.material >= 0 && primitive.material < static_cast<int>(model.materials.size()))
+        if (const tinygltf::TextureInfo* texture =
+                CoordinateTexture(model.materials[primitive.material]))
+            set = texture->texCoord;
     const std::string uv_name = absl::StrCat("TEXCOORD_", set);
     if (const auto draco = primitive.extensions.find("KHR_draco_mesh_compression");
         draco != primitive.extensions.end())

@@ -26,8 +26,12 @@ absl::Status ReadFloats(const tinygltf::Model& model, int index, int components,
 // indices.
 absl::Status ReadIndices(const tinygltf::Model& model, int index, std::vector<uint32_t>* out);
 
+// The texture whose coordinates a material's surfaces carry (one set per vertex): the base
+// colour's, else the emissive one's; null where it has neither.
+const tinygltf::TextureInfo* CoordinateTexture(const tinygltf::Material& material);
+
 // A triangle primitive's mesh: POSITION, NORMAL if given, the TEXCOORD_n set its material's
-// base colour texture reads (texCoord), and its indices (or 0, 1, 2, ... without), every index
+// CoordinateTexture reads (texCoord), and its indices (or 0, 1, 2, ... without), every index
 // checked against the vertices; from its Draco stream where it is compressed
 // (KHR_draco_mesh_compression, gltf_draco.h). Errors say what is wrong, for the caller to place.
 absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,

@@ -404,7 +404,8 @@ float RoughnessAlpha(double roughness) {
 //  - metallic = 1: a mirror tinted by the base colour, rough metal (GGX, alpha = roughness^2)
 //    where roughness > 0; solid glass with roughness > 0 is rough glass likewise;
 //  - anything else: Lambertian diffuse with the base colour (factor x texture).
-// Emission is emissiveFactor x KHR_materials_emissive_strength, radiance in W/(m^2 sr).
+// Emission is emissiveFactor x emissiveTexture x KHR_materials_emissive_strength, radiance in
+// W/(m^2 sr).
 absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
     if (const auto it = material_indices_.find(gltf_material); it != material_indices_.end())
         return it->second;
@@ -424,9 +425,27 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
                 TextureIndex(pbr.baseColorTexture.index, element);
             if (!texture.ok()) return texture.status();
             material.base_color_texture = *texture;
-            if (const tinygltf::Value* transform =
-                    Extension(pbr.baseColorTexture.extensions, "KHR_texture_transform"))
-                uv = TextureTransform(*transform);
+        }
+        if (source.emissiveTexture.index >= 0) {
+            const absl::StatusOr<int32_t> texture =
+                TextureIndex(source.emissiveTexture.index, element);
+            if (!texture.ok()) return texture.status();
+            material.emission_texture = *texture;
+        }
+        // One set of coordinates per vertex, the base colour texture's where both have one.
+        if (const tinygltf::TextureInfo* coordinates = CoordinateTexture(source)) {
+            const tinygltf::Value* transform =
+                Extension(coordinates->extensions, "KHR_texture_transform");
+            if (transform) uv = TextureTransform(*transform);
+            const tinygltf::TextureInfo& emissive = source.emissiveTexture;
+            if (coordinates != &emissive && emissive.index >= 0 &&
+                (emissive.texCoord != coordinates->texCoord ||
+                 Extension(emissive.extensions, "KHR_texture_transform") != nullptr ||
+                 transform != nullptr))
+                spdlog::warn(
+                    "{}: {}: the emissive texture is read with the base colour texture's "
+                    "coordinates (texCoord {}, its KHR_texture_transform)",
+                    path_, element, coordinates->texCoord);
         }
         double strength = 1.0;
         if (const tinygltf::Value* e =
@@ -436,9 +455,6 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
             material.emission = Rgb(Vec3d(source.emissiveFactor[0], source.emissiveFactor[1],
                                           source.emissiveFactor[2]) *
                                     strength);
-        if (source.emissiveTexture.index >= 0)
-            spdlog::warn("{}: {}: emissive textures are unsupported; using emissiveFactor alone",
-                         path_, element);
         double transmission = 0.0;
         if (const tinygltf::Value* e = Extension(source.extensions, "KHR_materials_transmission"))
             transmission = NumberOr(*e, "transmissionFactor", 0.0);
@@ -471,6 +487,7 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
         if (!IsFinite(material.emission) || material.emission.x < 0 || material.emission.y < 0 ||
             material.emission.z < 0)
             return Error(element, "emission must be finite and non-negative");
+        if (!material.IsEmissive()) material.emission_texture = kNoTexture;
         if (!(material.ior >= 1.0f && std::isfinite(material.ior)))
             return Error(element, "ior must be at least 1");
     }

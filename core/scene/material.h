@@ -31,6 +31,9 @@ struct Material {
     float ior = 1.5f;                         // index of refraction inside the dielectric
     float roughness = 0.0f;  // GGX alpha of the rough materials, in [kMinRoughness, 1]
     Rgb emission{0.0f};      // emitted radiance, W/(m^2 sr), from the front face
+    // Emission is emission x this texture (index into Scene::textures) where it has one: pbrt's
+    // image area lights, glTF's emissiveTexture.
+    int32_t emission_texture = kNoTexture;
     // Emission from both faces (pbrt's "twosided" area lights). Not a bool: materials are
     // written byte for byte into prepared scenes, and must have no padding.
     uint32_t two_sided = 0;
@@ -44,6 +47,10 @@ struct Material {
         return type == MaterialType::kRoughConductor || type == MaterialType::kRoughDielectric;
     }
     bool IsEmissive() const { return !IsBlack(emission); }
+    // Whether shading reads the surface's texture coordinates.
+    bool ReadsUv() const {
+        return base_color_texture != kNoTexture || emission_texture != kNoTexture;
+    }
     // Whether a surface of this material seen from its front (or back) emits.
     bool EmitsToward(bool front_facing) const {
         return (front_facing || two_sided != 0) && IsEmissive();

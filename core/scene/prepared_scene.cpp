@@ -26,7 +26,7 @@ constexpr uint64_t kMaxCount = uint64_t{1} << 32;
 
 // Types written whole must have no padding: their size is the sum of their fields'.
 static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
-static_assert(sizeof(Material) == 44, "Material gained a field or padding: encode it");
+static_assert(sizeof(Material) == 48, "Material gained a field or padding: encode it");
 static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4,
               "Camera gained a field or padding: encode it");
 static_assert(sizeof(Prototype) == 8 + 24 && sizeof(Instance) == 4 + 21 * 4);
@@ -122,9 +122,8 @@ bool ReadTexture(ByteReader& in, Texture* texture) {
 void WritePayload(const Scene& scene, ByteWriter& out) {
     const bool smooth = std::any_of(scene.triangles.begin(), scene.triangles.end(),
                                     [](const Triangle& t) { return t.smooth; });
-    const bool textured =
-        std::any_of(scene.materials.begin(), scene.materials.end(),
-                    [](const Material& m) { return m.base_color_texture != kNoTexture; });
+    const bool textured = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                      [](const Material& m) { return m.ReadsUv(); });
     out.String(scene.source);
     Write(out, scene.positions);
     Write(out, smooth ? scene.normals : std::vector<Vec3>());
@@ -144,8 +143,8 @@ void WritePayload(const Scene& scene, ByteWriter& out) {
     Write(out, scene.materials);
     std::vector<bool> read(scene.textures.size(), false);
     for (const Material& m : scene.materials)  // an index out of range is the decoder's to refuse
-        if (m.base_color_texture >= 0 && size_t(m.base_color_texture) < read.size())
-            read[m.base_color_texture] = true;
+        for (const int32_t texture : {m.base_color_texture, m.emission_texture})
+            if (texture >= 0 && size_t(texture) < read.size()) read[texture] = true;
     out.Value<uint64_t>(scene.textures.size());
     for (size_t t = 0; t < scene.textures.size(); ++t) {
         const bool keep = read[t] && scene.textures[t] != nullptr;
@@ -254,14 +253,15 @@ absl::Status CheckMaterials(const Scene& scene) {
             !Finite(material.roughness) || MinComponent(material.emission) < 0 ||
             !(material.ior > 0))
             return Invalid(absl::StrCat(name, ": a value out of range"));
-        const int32_t texture = material.base_color_texture;
-        if (texture == kNoTexture) continue;
-        if (texture < 0 || static_cast<size_t>(texture) >= scene.textures.size() ||
-            scene.textures[texture]->texels.empty())
-            return Invalid(
-                absl::StrCat(name, ": texture ", texture, " of ", scene.textures.size()));
-        if (scene.uvs.size() != scene.positions.size())
-            return Invalid(absl::StrCat(name, " has a texture, the vertices no coordinates"));
+        for (const int32_t texture : {material.base_color_texture, material.emission_texture}) {
+            if (texture == kNoTexture) continue;
+            if (texture < 0 || static_cast<size_t>(texture) >= scene.textures.size() ||
+                scene.textures[texture]->texels.empty())
+                return Invalid(
+                    absl::StrCat(name, ": texture ", texture, " of ", scene.textures.size()));
+            if (scene.uvs.size() != scene.positions.size())
+                return Invalid(absl::StrCat(name, " has a texture, the vertices no coordinates"));
+        }
     }
     return absl::OkStatus();
 }

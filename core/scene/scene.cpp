@@ -56,7 +56,7 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
             surface.shading_normal = FaceForward(Normalize(n), surface.geometric_normal);
     }
     surface.material = triangle.material;
-    if (materials[triangle.material].base_color_texture != kNoTexture) {  // only textures read uv
+    if (materials[triangle.material].ReadsUv()) {
         const Point2& t0 = uvs[triangle.vertex[0]];
         const Point2& t1 = uvs[triangle.vertex[1]];
         const Point2& t2 = uvs[triangle.vertex[2]];
@@ -85,6 +85,13 @@ Rgb Scene::BaseColor(const SurfacePoint& surface, float width) const {
     return material.base_color * texture_filter->Sample(material.base_color_texture, surface.uv.x,
                                                         surface.uv.y,
                                                         width * surface.uv_per_length);
+}
+
+Rgb Scene::Emission(const SurfacePoint& surface) const {
+    const Material& material = materials[surface.material];
+    if (material.emission_texture == kNoTexture) return material.emission;
+    return material.emission *
+           textures[material.emission_texture]->Sample(surface.uv.x, surface.uv.y);
 }
 
 float Scene::TriangleArea(uint32_t triangle) const {

@@ -71,7 +71,7 @@ struct SurfacePoint {
     Vec3 position;
     Vec3 geometric_normal;  // unit, on the side the triangle's winding makes its front
     Vec3 shading_normal;    // unit, interpolated, on the same side as geometric_normal
-    Point2 uv;              // texture coordinates; set only where the material has a texture
+    Point2 uv;              // texture coordinates; set only where the material reads them
     float uv_per_length =
         0;  // texture-coordinate units per world length on this triangle; likewise
     uint32_t material = 0;
@@ -166,6 +166,9 @@ struct Scene {
     // The same averaged over a footprint `width` world units across (a camera sample's cone
     // where it meets the surface), by texture_filter (the point lookup where there is none).
     Rgb BaseColor(const SurfacePoint& surface, float width) const;
+    // The radiance a surface point emits (from the sides its material emits toward), emission
+    // texture applied (bilinear, at the point: what Emitters samples).
+    Rgb Emission(const SurfacePoint& surface) const;
     // The area of a world triangle.
     float TriangleArea(uint32_t triangle) const;
 };

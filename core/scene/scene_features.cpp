@@ -12,7 +12,8 @@ SceneFeatures SceneFeatures::All() {
     for (bool* flag : {&all.mirror, &all.dielectric, &all.thin_dielectric, &all.rough_conductor,
                        &all.rough_dielectric, &all.textures, &all.smooth_normals,
                        &all.triangle_lights, &all.point_lights, &all.spot_lights,
-                       &all.directional_lights, &all.environment, &all.caustics})
+                       &all.directional_lights, &all.environment, &all.textured_lights,
+                       &all.caustics})
         *flag = true;
     return all;
 }
@@ -31,6 +32,7 @@ std::string SceneFeatures::ToString() const {
     if (spot_lights) parts.push_back("spot lights");
     if (directional_lights) parts.push_back("directional lights");
     if (environment) parts.push_back("environment light");
+    if (textured_lights) parts.push_back("textured lights");
     if (caustics) parts.push_back("caustics");
     return absl::StrJoin(parts, ", ");
 }
@@ -55,6 +57,7 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
     for (const Emitters::Record& record : emitters.Records()) {
         if (record.kind == EmitterKind::kTriangle) {
             features.triangle_lights = true;
+            features.textured_lights |= record.texture != kNoTexture;
             continue;
         }
         if (record.kind == EmitterKind::kEnvironment) {

@@ -62,7 +62,8 @@ PF_CONST(uint32_t) kSpecHasDirectionalLights = 8;
 PF_CONST(uint32_t) kSpecHasRoughConductor = 9;
 PF_CONST(uint32_t) kSpecHasRoughDielectric = 10;
 PF_CONST(uint32_t) kSpecHasEnvironment = 11;
-PF_CONST(uint32_t) kSpecCount = 12;
+PF_CONST(uint32_t) kSpecHasTexturedLights = 12;
+PF_CONST(uint32_t) kSpecCount = 13;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -148,8 +149,11 @@ struct GpuEmitter {
                      // radiance)
     vec4 cone;  // spot: cos_inner, cos_outer, 1 / max(0.001, cos_inner - cos_outer), smoothstep (1)
                 // or quadratic (0). Environment: the rotation's third row
+    vec4 texture;   // triangle: xy the texture coordinates at p0, z the emission texture
+                    // (int bits), -1 for none; radiance and power are then times its texel
+    vec4 uv_edges;  // triangle: xy uv1 - uv0, zw uv2 - uv0
 };
-PF_GPU_LAYOUT(GpuEmitter, 112);
+PF_GPU_LAYOUT(GpuEmitter, 144);
 
 struct GpuHitPoint {
     vec4 position;  // xyz; w unused

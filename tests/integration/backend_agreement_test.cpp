@@ -8,13 +8,17 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
+#include "core/film/exr_io.h"
 #include "embedded/local_render.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/image_agreement.h"
 #include "tests/support/numerics_cases.h"
 #include "tests/support/small_render.h"
+#include "tests/support/test_env.h"
 #include "tests/support/vulkan_validation.h"
 
 namespace pf {
@@ -92,6 +96,31 @@ TEST(BackendAgreementTwoSided, ATwoSidedLightMatchesTheCpus) {
             "AttributeEnd\n",
             "two-sided-light.pbrt"),
         2'000'000);
+}
+
+TEST(BackendAgreementTexturedLight, AnImageLightMatchesTheCpus) {
+    // A tilted two-sided area light whose image is 2 x 2 texels of four colours over a floor
+    // and a wall: photons leave it with the texel where they start, light samples and MIS hits take
+    // the texel where they land, on the device as on the CPU.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    const std::string folder = testing::TempPath("image-light");
+    std::filesystem::create_directories(folder);
+    Image image(2, 2);
+    image.pixels = {Rgb(3, 1, 1), Rgb(1, 3, 1), Rgb(1, 1, 3), Rgb(0.5f)};
+    ASSERT_TRUE(WriteExr(folder + "/glow.exr", image).ok());
+    const std::string path = folder + "/image-light.pbrt";
+    std::ofstream(path)
+        << "LookAt 0 0.5 3  0 0 0.4  0 1 0\nCamera \"perspective\" \"float fov\" 50\nWorldBegin\n"
+           "Material \"diffuse\" \"rgb reflectance\" [0.5 0.5 0.5]\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [1 -1 0  1 1 0  1 -1 1  1 1 1]\n"
+           "AttributeBegin\nAreaLightSource \"diffuse\" \"string filename\" \"glow.exr\" "
+           "\"bool twosided\" true\n"
+           "Material \"diffuse\" \"rgb reflectance\" [0 0 0]\nTranslate 0 0 0.6\nRotate 50 1 0 0\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [-0.3 -0.3 0  0.3 -0.3 0  -0.3 0.3 0  0.3 0.3 0]\n"
+           "AttributeEnd\n";
+    ExpectVulkanAgreesWithTheCpu(path, 8'000'000);
 }
 
 TEST(BackendAgreementEnvironment, SkyLitCourtyardMatchesTheCpus) {

@@ -559,6 +559,9 @@ INSTANTIATE_TEST_SUITE_P(PhotonMappers, AgreesWithThePathTracer,
                                            SceneCase{"cornell-box.gltf", Integrator::kSppm, 0.165},
                                            SceneCase{"cornell-box.gltf", Integrator::kPm, 0.165},
                                            SceneCase{"cornell-glossy.gltf", Integrator::kSppm, 0.1},
+                                           // Lit by an image: a textured area light.
+                                           SceneCase{"cornell-stained.gltf", Integrator::kPpm,
+                                                     0.165},
                                            // Lit by an environment map alone.
                                            SceneCase{"pbrt/sky-courtyard.pbrt", Integrator::kPpm,
                                                      0.6}),

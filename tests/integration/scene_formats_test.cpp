@@ -5,15 +5,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
 
+#include "core/film/exr_io.h"
 #include "core/job/integrator.h"
 #include "embedded/local_render.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/image_agreement.h"
 #include "tests/support/small_render.h"
+#include "tests/support/test_env.h"
 
 namespace pf {
 namespace {
@@ -173,9 +176,65 @@ TEST(TwoSidedLights, ATwoSidedLightIsItsTwoFacesSummed) {
     }
 }
 
+TEST(TexturedLights, ASingleTexelImageLightRendersAsItsColour) {
+    // A card lit by a two-sided area light whose image is one texel (0.5, 0.25, 1) at scale 8,
+    // against the same light with L = (4, 2, 8): the same radiance everywhere, so with the same random
+    // numbers every integrator renders the same image (seen directly, by light samples and
+    // MIS hits, and by photons), to float rounding.
+    const std::string folder = testing::TempPath("single-texel-light");
+    std::filesystem::create_directories(folder);
+    Image texel(1, 1);
+    texel.pixels[0] = Rgb(0.5f, 0.25f, 1.0f);
+    ASSERT_TRUE(WriteExr(folder + "/texel.exr", texel).ok());
+    const auto scene = [&](const std::string& light, const std::string& name) {
+        const std::string path = folder + "/" + name;
+        std::ofstream(path)
+            << "LookAt 0 0.5 3  0 0 0.4  0 1 0\nCamera \"perspective\" \"float fov\" 50\n"
+               "Film \"rgb\" \"integer xresolution\" 32 \"integer yresolution\" 32\nWorldBegin\n"
+               "Material \"diffuse\" \"rgb reflectance\" [0.5 0.5 0.5]\n"
+               "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
+               "AttributeBegin\n"
+            << light
+            << "\nTranslate 0 0 0.6\nRotate 160 1 0 0\n"
+               "Shape \"bilinearmesh\" \"point3 P\" [-0.3 -0.3 0  0.3 -0.3 0  -0.3 0.3 0  0.3 0.3 "
+               "0]\nAttributeEnd\n";
+        return path;
+    };
+    const std::string textured = scene(
+        "AreaLightSource \"diffuse\" \"string filename\" \"texel.exr\" \"float scale\" 8 "
+        "\"bool twosided\" true",
+        "textured.pbrt");
+    const std::string plain =
+        scene("AreaLightSource \"diffuse\" \"rgb L\" [4 2 8] \"bool twosided\" true", "plain.pbrt");
+    for (const Integrator integrator :
+         {Integrator::kPath, Integrator::kPpm, Integrator::kSppm, Integrator::kPm}) {
+        const auto render = [&](const std::string& path, uint64_t seed) {
+            RenderSettings settings;
+            settings.scene_path = path;
+            settings.threads = 2;
+            settings.job.integrator = integrator;
+            settings.job.seed = seed;
+            settings.job.samples_per_pixel = 4;
+            settings.job.epoch_budget = 2;
+            if (integrator == Integrator::kPpm || integrator == Integrator::kSppm)
+                settings.job.photon_budget = 200'000;
+            const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+            EXPECT_TRUE(outcome.ok()) << outcome.status();
+            return outcome.ok() ? outcome->image : Image();
+        };
+        const Image a = render(textured, 1), b = render(plain, 1), other = render(plain, 2);
+        ASSERT_EQ(a.pixels.size(), b.pixels.size());
+        const std::string name(IntegratorName(integrator));
+        EXPECT_GT(testing::MeanSquaredDifference(b, other), 0.0) << name;
+        EXPECT_LE(testing::MeanSquaredDifference(a, b),
+                  1e-9 * testing::MeanSquaredDifference(b, other))
+            << name;
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Shipped, SceneFormats,
                          ::testing::Values("cornell-box", "cornell-glass", "caustic-glass",
-                                           "furnace", "furnace-glass"),
+                                           "furnace", "furnace-glass", "cornell-stained"),
                          [](const ::testing::TestParamInfo<std::string>& scene) {
                              std::string name = scene.param;
                              std::replace(name.begin(), name.end(), '-', '_');

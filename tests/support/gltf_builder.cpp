@@ -20,8 +20,9 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
     for (const TestMaterial& m : scene.materials) {
         std::string texture;
         if (!m.texture_png_base64.empty()) {
-            texture = absl::StrCat(R"(,"baseColorTexture":{"index":)", images.size(),
-                                   m.texture_extra, "}");
+            texture = absl::StrCat(m.texture_emissive ? R"(,"emissiveTexture":{"index":)"
+                                                      : R"(,"baseColorTexture":{"index":)",
+                                   images.size(), m.texture_extra, "}");
             if (scene.images_in_buffer) {
                 std::string png;
                 absl::Base64Unescape(m.texture_png_base64, &png);
@@ -38,7 +39,8 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
         }
         std::string material = absl::StrCat(
             R"({"pbrMetallicRoughness":{"baseColorFactor":[)", m.base_color.x, ",", m.base_color.y,
-            ",", m.base_color.z, R"(,1],"metallicFactor":0)", texture, "}");
+            ",", m.base_color.z, R"(,1],"metallicFactor":0)", m.texture_emissive ? "" : texture,
+            "}", m.texture_emissive ? texture : "");
         if (!IsBlack(m.emission))
             absl::StrAppend(&material, R"(,"emissiveFactor":)", Floats(m.emission));
         materials.push_back(material + "}");

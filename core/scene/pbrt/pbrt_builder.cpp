@@ -1,10 +1,13 @@
 // pbrt-v4 cameras, film, integrator settings, shapes and lights onto the scene.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <set>
 
 #include "absl/strings/str_cat.h"
+#include "core/film/color_space.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/pbrt/pbrt_scene_builder.h"
 #include "core/scene/pbrt/pbrt_shapes.h"
@@ -309,6 +312,12 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
                                         FrontFace front, const GraphicsState& state,
                                         const std::string& element,
                                         std::optional<uint32_t> prototype) {
+    int32_t emission_texture = kNoTexture;
+    if (state.area_light) {  // read (and packed) before anything else
+        absl::StatusOr<int32_t> image = ImageIndex(state.area_light->image);
+        if (!image.ok()) return image.status();
+        emission_texture = *image;
+    }
     if (options_.references_only) return absl::OkStatus();
     const MaterialRef& material =
         state.material >= 0 ? materials_[state.material] : DefaultMaterial();
@@ -319,6 +328,17 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
         return absl::OkStatus();
     }
     Rgb emission(0.0f);
+    UvTransform uv = material.uv;
+    if (emission_texture != kNoTexture) {
+        // The light's image reads the shape's own (u, v); a base colour texture of the
+        // material, which another mapping of them, reads the same.
+        uv = state.area_light->image.uv;
+        if (material.material.base_color_texture != kNoTexture &&
+            !std::equal(std::begin(uv.m), std::end(uv.m), std::begin(material.uv.m)))
+            Warn(Location{}, absl::StrCat(element,
+                                          ": the material's texture is read with the area "
+                                          "light image's (u, v), not its own scale and offset"));
+    }
     if (state.area_light) {
         emission = state.area_light->radiance;
         if (state.area_light->power > 0) {
@@ -333,23 +353,35 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
             // pbrt-v4 scales by power / (pi x area) whatever L's colour (for rgb L, the spectrum
             // it normalises by is the colour space's illuminant, of luminance 1).
             if (state.area_light->two_sided) area *= 2;
+            // With an image, its mean luminance counts too (pbrt-v4 averages it over the
+            // texels, whatever of it the shape's (u, v) cover).
+            if (emission_texture != kNoTexture) {
+                double luminance = 0;
+                const pf::Texture& image = *scene_.textures[emission_texture];
+                for (const Rgb& texel : image.texels) luminance += SrgbLuminance(Vec3d(texel));
+                area *= luminance / static_cast<double>(image.texels.size());
+            }
             if (area > 0) emission *= static_cast<float>(state.area_light->power / (kPiD * area));
         }
     }
     absl::StatusOr<uint32_t> index =
-        SceneMaterial(state.material, emission, state.area_light && state.area_light->two_sided);
+        SceneMaterial(state.material, emission, state.area_light && state.area_light->two_sided,
+                      emission_texture);
     if (!index.ok()) return index.status();
-    MeshPlacement placement{world, *index, front, state.reverse_orientation, material.uv};
+    MeshPlacement placement{world, *index, front, state.reverse_orientation, uv};
     return AppendMesh(mesh, placement, options_.limits, element, &scene_, prototype);
 }
 
 absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emission,
-                                                         bool two_sided) {
-    const auto key = std::make_tuple(material, emission.x, emission.y, emission.z, two_sided);
+                                                         bool two_sided,
+                                                         int32_t emission_texture) {
+    const auto key = std::make_tuple(material, emission.x, emission.y, emission.z, two_sided,
+                                     emission_texture);
     if (const auto it = scene_materials_.find(key); it != scene_materials_.end()) return it->second;
     Material out = material >= 0 ? materials_[material].material : DefaultMaterial().material;
     out.emission = emission;
     out.two_sided = two_sided && out.IsEmissive() ? 1 : 0;
+    out.emission_texture = out.IsEmissive() ? emission_texture : kNoTexture;
     const auto index = static_cast<uint32_t>(scene_.materials.size());
     scene_.materials.push_back(out);
     scene_materials_[key] = index;
@@ -515,7 +547,7 @@ absl::Status PbrtSceneBuilder::InfiniteLight(ParameterList& parameters, const Lo
                         {(x + 0.5f) / image->width, (y + 0.5f) / image->height});
                     if (w.z <= 0) continue;
                     const Rgb& t = image->texels[size_t(y) * image->width + x];
-                    sum += (0.2126 * t.x + 0.7152 * t.y + 0.0722 * t.z) * w.z;
+                    sum += SrgbLuminance(Vec3d(t)) * w.z;
                 }
             sum *= 2 * kPiD / (double(image->width) * image->height);
             if (sum > 0) factor *= illuminance / sum;

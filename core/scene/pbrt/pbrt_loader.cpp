@@ -297,13 +297,26 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, TokenStrea
             return ErrorAt(where,
                            absl::StrCat("AreaLightSource \"", *type,
                                         "\" is unknown (\"diffuse\" is pbrt-v4's only one)"));
-        const Rgb radiance = parameters->Color("L", SpectrumUse::kIlluminant).value_or(Rgb(1.0f)) *
-                             static_cast<float>(parameters->Float("scale", 1.0));
+        const std::optional<Rgb> color = parameters->Color("L", SpectrumUse::kIlluminant);
+        const Rgb radiance =
+            color.value_or(Rgb(1.0f)) * static_cast<float>(parameters->Float("scale", 1.0));
         AreaLight light{radiance, parameters->Float("power", 0.0),
                         parameters->Bool("twosided", false)};
         if (!IsFinite(radiance) || MinComponent(radiance) < 0 || light.power < 0)
             return ErrorAt(where,
                            "AreaLightSource: L, scale and power must be finite and non-negative");
+        // "filename": an image of the radiance over the shape's (u, v), as pbrt-v4 reads it
+        // (v up), in its own encoding (8-bit sRGB, floating point linear).
+        if (const std::string filename = parameters->String("filename", ""); !filename.empty()) {
+            if (color)
+                return ErrorAt(where, "AreaLightSource: give \"L\" or \"filename\", not both");
+            absl::StatusOr<std::string> path = ResolveReference(filename, base_folder_);
+            if (!path.ok())
+                return ErrorAt(where, absl::StrCat("AreaLightSource: ", path.status().message()));
+            light.image.path = *path;
+            light.image.element = absl::StrCat(where.ToString(), ": AreaLightSource");
+            light.image.uv.m[4] = -1, light.image.uv.m[5] = 1;
+        }
         state_.area_light = light;
     } else if (name == "MakeNamedMedium") {
         parameters->ConsumeAll();

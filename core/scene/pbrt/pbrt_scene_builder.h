@@ -45,6 +45,7 @@ struct AreaLight {
     Rgb radiance;      // L x scale, W/(m^2 sr)
     double power = 0;  // "power": total watts wanted from the shape, 0 if not given
     bool two_sided = false;
+    TextureRef image;  // "filename": the radiance is times this image (empty path: none)
 };
 
 struct GraphicsState {
@@ -131,7 +132,8 @@ private:
 
     void Warn(const Location& where, const std::string& what);
     void WarnUnused(const ParameterList& parameters, const std::string& directive);
-    absl::StatusOr<uint32_t> SceneMaterial(int material, Rgb emission, bool two_sided);
+    absl::StatusOr<uint32_t> SceneMaterial(int material, Rgb emission, bool two_sided,
+                                           int32_t emission_texture);
     static const MaterialRef& DefaultMaterial();
 
     SceneFiles& files_;
@@ -159,7 +161,7 @@ private:
     std::map<std::string, std::string> float_textures_;  // name -> class, unused by photonfarm
     std::map<std::tuple<std::string, ImageEncoding, double>, int32_t>
         images_;  // (path, encoding, gamma) -> Scene::textures
-    std::map<std::tuple<int, float, float, float, bool>, uint32_t> scene_materials_;
+    std::map<std::tuple<int, float, float, float, bool, int32_t>, uint32_t> scene_materials_;
 
     std::map<std::string, std::vector<ObjectShape>> objects_;
     std::map<std::string, uint32_t>

@@ -79,6 +79,20 @@ absl::StatusOr<TriangleMesh> BilinearMeshShape(ParameterList& parameters, const 
     std::vector<uint32_t> patches;
     if (absl::Status status = ReadIndices(parameters, where, 4, &mesh, &patches); !status.ok())
         return status;
+    if (mesh.uvs.empty()) {
+        // pbrt-v4 gives each patch without "uv" the unit square, p00 at (0, 0) and p11 at
+        // (1, 1) (what an image area light or texture on a card reads): the patches' corners
+        // are unshared for that.
+        TriangleMesh unshared;
+        const bool normals = !mesh.normals.empty();
+        for (size_t i = 0; i < patches.size(); ++i) {
+            unshared.positions.push_back(mesh.positions[patches[i]]);
+            if (normals) unshared.normals.push_back(mesh.normals[patches[i]]);
+            unshared.uvs.push_back({i % 2 == 0 ? 0.0f : 1.0f, (i / 2) % 2 == 0 ? 0.0f : 1.0f});
+            patches[i] = static_cast<uint32_t>(i);
+        }
+        mesh = std::move(unshared);
+    }
     // Corners p00 p10 p01 p11: around the patch they run p00, p10, p11, p01.
     for (size_t i = 0; i < patches.size(); i += 4) {
         const uint32_t p00 = patches[i], p10 = patches[i + 1], p01 = patches[i + 2],

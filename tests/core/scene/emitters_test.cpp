@@ -94,5 +94,95 @@ TEST(EmittersTest, AreaLightDirectSamplesConvergeToTheAnalyticIrradiance) {
     EXPECT_NEAR(mean, expected, 5 * standard_error + 1e-4 * expected);
 }
 
+// A unit square at z = 1 emitting Le downward, (u, v) = (x, y), with `texture` as its
+// emission texture (none where it has no texels), over nothing.
+Scene SquareLight(Rgb radiance, const Texture& texture) {
+    Scene scene;
+    scene.positions = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}, {1, 1, 1}};
+    scene.uvs = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    scene.normals.assign(4, Vec3(0.0f));
+    scene.triangles = {{{0, 3, 1}, 0, false, {0, 0, -1}}, {{0, 2, 3}, 0, false, {0, 0, -1}}};
+    Material material;
+    material.emission = radiance;
+    if (!texture.texels.empty()) {
+        material.emission_texture = 0;
+        scene.textures.push_back(std::make_shared<const Texture>(texture));
+    }
+    scene.materials = {material};
+    for (const Vec3& p : scene.positions) scene.bounds.Extend(p);
+    scene.bounds.Extend({0, 0, 0});
+    return scene;
+}
+
+TEST(EmittersTest, ASingleTexelTextureEmitsAsItsColourDoesUntextured) {
+    // Emission (2, 4, 1) x a texture of one texel (0.5, 0.25, 1) is emission (1, 1, 1): the
+    // same power, photons, light samples and hits, value for value.
+    const Texture texel{1, 1, {Rgb(0.5f, 0.25f, 1.0f)}};
+    const Scene textured = SquareLight(Rgb(2.0f, 4.0f, 1.0f), texel);
+    const Scene plain = SquareLight(Rgb(1.0f), Texture{});
+    const Emitters a(textured), b(plain);
+    EXPECT_EQ(a.TotalPower().x, b.TotalPower().x);
+    EXPECT_EQ(a.TotalPower().y, b.TotalPower().y);
+    EXPECT_EQ(a.TotalPower().z, b.TotalPower().z);
+    Rng rng_a(7), rng_b(7);
+    for (int i = 0; i < 1000; ++i) {
+        const EmittedPhoton pa = a.Emit(rng_a), pb = b.Emit(rng_b);
+        ASSERT_EQ(pa.flux, pb.flux);
+        ASSERT_EQ(pa.ray.origin, pb.ray.origin);
+        LightSample sa, sb;
+        const Vec3 receiver(0.3f, 0.6f, 0.0f);
+        ASSERT_EQ(a.SampleDirect(receiver, {0, 0, 1}, rng_a, &sa),
+                  b.SampleDirect(receiver, {0, 0, 1}, rng_b, &sb));
+        ASSERT_EQ(sa.radiance_over_pdf, sb.radiance_over_pdf);
+        ASSERT_EQ(sa.pdf, sb.pdf);
+    }
+    RayHit hit;
+    hit.triangle = 1, hit.b1 = 0.2f, hit.b2 = 0.3f;
+    const Emitters::Hit ha = a.HitEmitter(hit, {0.5f, 0.5f, 0}, {0.3f, 0.5f, 1});
+    const Emitters::Hit hb = b.HitEmitter(hit, {0.5f, 0.5f, 0}, {0.3f, 0.5f, 1});
+    EXPECT_EQ(ha.radiance, hb.radiance);
+    EXPECT_EQ(ha.pdf, hb.pdf);
+}
+
+TEST(EmittersTest, ATexturedLightEmitsItsTexturesPowerAndNoneFromItsBlackTexels) {
+    // An 8 x 1 texture, texels 0-3 white and 4-7 black, repeated over u: bilinear lookups
+    // are 1 for u in [1/16, 7/16], 0 for u in [9/16, 15/16], and average 1/2. Photons carry
+    // pi A Le / 2 on average (their flux is the texel where they leave over the pick's
+    // probability), none leaves the black texels with any flux, and light samples of points
+    // there carry nothing.
+    Texture texture{8, 1, {}};
+    for (int x = 0; x < 8; ++x) texture.texels.push_back(Rgb(x < 4 ? 1.0f : 0.0f));
+    const Scene scene = SquareLight(Rgb(3.0f), texture);
+    const Emitters emitters(scene);
+    const double expected = kPiD * 3.0 * 0.5;
+    // The pick's estimate of the power: within the quadrature's error.
+    EXPECT_NEAR(emitters.TotalPower().x, expected, 0.05 * expected);
+    Rng rng(11);
+    constexpr int kPhotons = 400000;
+    double sum = 0, sum_sq = 0;
+    int from_black = 0;
+    for (int i = 0; i < kPhotons; ++i) {
+        const EmittedPhoton photon = emitters.Emit(rng);
+        const double flux = photon.flux.x;
+        sum += flux, sum_sq += flux * flux;
+        const float u = photon.ray.origin.x;
+        if (u > 9.0f / 16 && u < 15.0f / 16) {
+            ++from_black;
+            ASSERT_EQ(photon.flux.x, 0.0f) << "u " << u;
+        }
+    }
+    EXPECT_GT(from_black, 0);
+    const double mean = sum / kPhotons;
+    const double standard_error = std::sqrt((sum_sq / kPhotons - mean * mean) / kPhotons);
+    EXPECT_NEAR(mean, expected, 5 * standard_error);
+    EXPECT_LT(5 * standard_error, 0.01 * expected);
+    LightSample sample;
+    for (int i = 0; i < 1000; ++i)
+        if (emitters.SampleDirect({0.5f, 0.5f, 0}, {0, 0, 1}, rng, &sample)) {
+            const float u = 0.5f + sample.direction.x / sample.direction.z;  // where it aims
+            if (u > 9.0f / 16 && u < 15.0f / 16) ADD_FAILURE() << "a light sample at u " << u;
+        }
+}
+
 }  // namespace
 }  // namespace pf

@@ -170,6 +170,38 @@ TEST(GltfLoaderTest, TextureTransformIsAppliedToTheTextureCoordinates) {
     EXPECT_NEAR(loaded->uvs[2].y, -1.75f, 1e-6f);
 }
 
+TEST(GltfLoaderTest, EmissiveTextureTimesFactorIsTheEmission) {
+    // The lit quad's light (material 1) with the two-texel image as its emissiveTexture: the
+    // emission is emissiveFactor x the sRGB-decoded texel at the surface's TEXCOORD_0; without
+    // an emissiveFactor (glTF's default is black) the texture emits nothing.
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.materials[1].texture_png_base64 = kTwoTexelPng;
+    scene.materials[1].texture_emissive = true;
+    scene.meshes[1].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+    const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "emissive.gltf"));
+    ASSERT_TRUE(loaded.ok()) << loaded.status();
+    const Material* light = nullptr;
+    for (const Triangle& triangle : loaded->triangles)
+        if (loaded->materials[triangle.material].IsEmissive())
+            light = &loaded->materials[triangle.material];
+    ASSERT_NE(light, nullptr);
+    EXPECT_EQ(light->base_color_texture, kNoTexture);
+    ASSERT_NE(light->emission_texture, kNoTexture);
+    SurfacePoint surface;
+    surface.material = static_cast<uint32_t>(light - loaded->materials.data());
+    surface.uv = {0.25f, 0.5f};
+    EXPECT_EQ(loaded->Emission(surface), light->emission * Rgb(1.0f, 0.0f, 0.0f));
+    surface.uv = {0.75f, 0.5f};
+    EXPECT_NEAR(loaded->Emission(surface).y, light->emission.y * 0.2158605f, 1e-4f);
+
+    scene.materials[0].emission = Rgb(0.0f);  // the floor: textured, with no emissiveFactor
+    scene.materials[0].texture_png_base64 = kTwoTexelPng;
+    scene.materials[0].texture_emissive = true;
+    const absl::StatusOr<Scene> dark = LoadScene(testing::WriteGltf(scene, "dark-emissive.gltf"));
+    ASSERT_TRUE(dark.ok()) << dark.status();
+    EXPECT_EQ(dark->materials[dark->triangles[0].material].emission_texture, kNoTexture);
+}
+
 TEST(GltfLoaderTest, GlbWithTheImageInItsBinaryChunk) {
     testing::TestScene scene = testing::LitQuadScene();
     scene.materials[0].texture_png_base64 = kTwoTexelPng;

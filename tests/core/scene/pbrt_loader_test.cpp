@@ -391,19 +391,6 @@ TEST(PbrtLoaderTest, BadInputIsAOneLineErrorNamingFileLineAndColumn) {
     ExpectError(Load(no_light), "scene has no light");
 }
 
-// An EXR of `width` x `height` texels, texel i = (i, 1, 2) x value, as a bundle file's bytes.
-std::string ExrBytes(int width, int height, float value, bool ramp = true) {
-    Image image(width, height);
-    for (int i = 0; i < width * height; ++i)
-        image.pixels[i] = Rgb(ramp ? float(i) : 1.0f, 1.0f, 2.0f) * value;
-    const std::string path = testing::TempPath("pbrt-environment.exr");
-    EXPECT_TRUE(WriteExr(path, image).ok());
-    absl::StatusOr<std::string> bytes = ReadWholeFile(path);
-    EXPECT_TRUE(bytes.ok());
-    std::filesystem::remove(path);
-    return bytes.ok() ? *bytes : std::string();
-}
-
 TEST(PbrtLoaderTest, InfiniteLightsAsPbrtV4DefinesThem) {
     // Uniform: L x scale, and the colour space's illuminant (white) when L is absent;
     // "illuminance" E scales a uniform light to L = E / pi.

@@ -4,11 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
+#include "core/film/exr_io.h"
+#include "core/scene/scene_files.h"
 #include "core/scene/scene_loader.h"
+#include "tests/support/test_env.h"
 
 namespace pf::pbrt_test {
 
@@ -48,5 +52,18 @@ inline bool Contains(const std::vector<std::string>& lines, const std::string& f
 inline constexpr char kQuad[] =
     "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0] \"integer indices\" [0 1 "
     "2 3]\n";
+
+// An EXR of `width` x `height` texels, texel i = (i, 1, 2) x value, as a bundle file's bytes.
+inline std::string ExrBytes(int width, int height, float value, bool ramp = true) {
+    Image image(width, height);
+    for (int i = 0; i < width * height; ++i)
+        image.pixels[i] = Rgb(ramp ? float(i) : 1.0f, 1.0f, 2.0f) * value;
+    const std::string path = testing::TempPath("pbrt-image.exr");
+    EXPECT_TRUE(WriteExr(path, image).ok());
+    absl::StatusOr<std::string> bytes = ReadWholeFile(path);
+    EXPECT_TRUE(bytes.ok());
+    std::filesystem::remove(path);
+    return bytes.ok() ? *bytes : std::string();
+}
 
 }  // namespace pf::pbrt_test

@@ -42,7 +42,8 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     EXPECT_EQ(SceneFeatures::All().ToString(),
               "diffuse, mirror, glass, thin glass, rough metal, rough glass, textures, smooth "
               "normals, area lights, "
-              "point lights, spot lights, directional lights, environment light, caustics");
+              "point lights, spot lights, directional lights, environment light, textured lights, "
+              "caustics");
 }
 
 }  // namespace

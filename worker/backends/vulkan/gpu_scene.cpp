@@ -40,7 +40,7 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
         gpu_scene.materials.push_back({Vec4(material.base_color, material.ior),
                                        static_cast<uint32_t>(material.type),
                                        material.base_color_texture, material.roughness, 0});
-    if (!gpu_scene.features.textures) return;
+    if (!gpu_scene.features.textures && !gpu_scene.features.textured_lights) return;
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {
         gpu_scene.textures.push_back(
             {static_cast<uint32_t>(gpu_scene.texels.size()), texture->width, texture->height, 0});
@@ -79,6 +79,10 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
             emitter.edge2 = Vec4(record.edge2);
             emitter.direction = Vec4(record.normal, record.two_sided ? 1.0f : 0.0f);
             emitter.radiance = Vec4(record.radiance);
+            emitter.texture = {record.uv0.x, record.uv0.y, std::bit_cast<float>(record.texture),
+                               0.0f};
+            emitter.uv_edges = {record.uv_edge1.x, record.uv_edge1.y, record.uv_edge2.x,
+                                record.uv_edge2.y};
         } else {
             const PunctualLight& light = scene.lights[record.light];
             emitter.position = Vec4(light.position);
@@ -103,8 +107,9 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
         emitter.power = Vec4(record.power, inverse_probability);
         // An environment photon carries L / pdf x pi r^2, and the pdf follows the channels'
         // average: a channel reaches 3x the average power where a texel is one pure colour.
-        const float most = record.kind == EmitterKind::kEnvironment ? 3 * Average(record.power)
-                                                                    : MaxComponent(record.power);
+        const float most = record.kind == EmitterKind::kEnvironment
+                               ? 3 * Average(record.power)
+                               : MaxComponent(record.power) * record.peak;
         gpu_scene.max_photon_flux = std::max(gpu_scene.max_photon_flux, most * inverse_probability);
         gpu_scene.emitters.push_back(emitter);
         cumulative += record.probability;
@@ -130,6 +135,7 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasRoughConductor] = features.rough_conductor;
     spec[gpu::kSpecHasRoughDielectric] = features.rough_dielectric;
     spec[gpu::kSpecHasEnvironment] = features.environment;
+    spec[gpu::kSpecHasTexturedLights] = features.textured_lights;
     return spec;
 }
 

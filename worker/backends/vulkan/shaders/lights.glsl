@@ -18,6 +18,22 @@ float SpotFalloff(GpuEmitter light, float cos_axis) {
 
 uint EmitterKind(GpuEmitter emitter) { return floatBitsToUint(emitter.position.w); }
 
+// A triangle light's emission texture at barycentrics b, 1 where it has none
+// (Emitters::EmissiveTriangle::RadianceAt).
+vec3 EmissionTexel(GpuEmitter emitter, vec2 b) {
+    const int texture = floatBitsToInt(emitter.texture.z);
+    if (!kHasTexturedLights || texture < 0) return vec3(1);
+    return TextureSample(textures[texture],
+                         emitter.texture.xy + emitter.uv_edges.xy * b.x + emitter.uv_edges.zw * b.y);
+}
+
+// The cosine at a triangle light toward unit to_light (from the receiver): of the side that
+// faces the receiver for a two-sided light.
+float CosineToward(GpuEmitter emitter, vec3 to_light) {
+    const float cosine = -dot(emitter.direction.xyz, to_light);
+    return emitter.direction.w != 0.0 ? abs(cosine) : cosine;
+}
+
 // Picks an emitter in proportion to its power by inverting the CDF.
 uint PickEmitter(float u) {
     uint low = 0, high = params.emitter_count - 1;
@@ -50,6 +66,7 @@ Photon EmitPhoton(inout Pcg32 rng) {
         const vec3 normal = back ? -emitter.direction.xyz : emitter.direction.xyz;
         if (back) photon.direction = -photon.direction;
         photon.origin = OffsetRayOrigin(point, normal);
+        photon.flux *= EmissionTexel(emitter, b);
         return photon;
     }
     const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
@@ -116,10 +133,10 @@ bool SampleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample sample_out) {
         const float distance_sq = dot(to_light, to_light);
         sample_out.distance = sqrt(distance_sq);
         to_light /= sample_out.distance;
-        float cos_light = -dot(emitter.direction.xyz, to_light);
-        if (emitter.direction.w != 0.0) cos_light = abs(cos_light);  // two-sided
+        const float cos_light = CosineToward(emitter, to_light);
         if (!(cos_light > 0) || !(distance_sq > 0)) return false;
-        radiance_over_pdf = emitter.radiance.xyz * (cos_light * emitter.edge1.w / distance_sq);
+        radiance_over_pdf = emitter.radiance.xyz * EmissionTexel(emitter, b) *
+                            (cos_light * emitter.edge1.w / distance_sq);
         sample_out.pdf = distance_sq / (cos_light * emitter.edge1.w * emitter.power.w);
     } else if (kHasDirectionalLights && kind == kEmitterDirectional) {
         to_light = -emitter.direction.xyz;
@@ -158,10 +175,10 @@ vec3 HitEmitter(RayHit hit, vec3 p, vec3 on_light, out float pdf) {
     const GpuEmitter emitter = emitters[index];
     const vec3 to_light = on_light - p;
     const float distance_sq = dot(to_light, to_light);
-    const float cos_light = -dot(emitter.direction.xyz, to_light) / sqrt(distance_sq);
+    const float cos_light = CosineToward(emitter, to_light / sqrt(distance_sq));
     if (!(cos_light > 0) || !(distance_sq > 0)) return vec3(0);
     pdf = distance_sq / (cos_light * emitter.edge1.w * emitter.power.w);
-    return emitter.radiance.xyz;
+    return emitter.radiance.xyz * EmissionTexel(emitter, vec2(hit.b1, hit.b2));
 }
 
 // What a ray that escapes the scene toward unit direction `toward` finds (Emitters::Escaped):
