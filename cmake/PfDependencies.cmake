@@ -11,6 +11,7 @@ find_package(TinyGLTF CONFIG REQUIRED)
 find_package(assimp CONFIG REQUIRED)  # PLY meshes of pbrt scenes
 find_package(ZLIB REQUIRED)  # pbrt's .pbrt.gz and .ply.gz
 find_package(draco CONFIG REQUIRED)  # glTF KHR_draco_mesh_compression
+find_package(meshoptimizer CONFIG REQUIRED)  # glTF EXT_meshopt_compression
 find_package(CLI11 CONFIG REQUIRED)
 find_package(OpenSSL REQUIRED)  # SHA-256 content addresses
 find_package(zstd CONFIG REQUIRED)  # blobs and images on the wire

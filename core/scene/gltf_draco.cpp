@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "core/scene/gltf_json.h"
 
 namespace pf {
 namespace {
@@ -107,22 +108,11 @@ absl::StatusOr<TriangleMesh> DecodeDracoPrimitive(const tinygltf::Model& model,
 std::string WithoutDracoIndices(const std::string& contents, bool binary) {
     constexpr const char* kExtension = "KHR_draco_mesh_compression";
     if (contents.find(kExtension) == std::string::npos) return contents;
-    // A .glb: a 12-byte header, then the JSON chunk (length, type, text), then the rest.
-    size_t json_begin = 0, json_size = contents.size();
-    if (binary) {
-        uint32_t chunk_size = 0;
-        if (contents.size() < 20) return contents;
-        std::memcpy(&chunk_size, contents.data() + 12, 4);
-        if (chunk_size > contents.size() - 20) return contents;
-        json_begin = 20, json_size = chunk_size;
-    }
-    nlohmann::json document =
-        nlohmann::json::parse(contents.substr(json_begin, json_size), nullptr, false);
-    if (document.is_discarded() || !document.is_object() || !document.contains("meshes") ||
-        !document["meshes"].is_array())
+    std::optional<GltfJson> json = ParseGltfJson(contents, binary);
+    if (!json || !json->document.contains("meshes") || !json->document["meshes"].is_array())
         return contents;
     bool changed = false;
-    for (nlohmann::json& mesh : document["meshes"]) {
+    for (nlohmann::json& mesh : json->document["meshes"]) {
         if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
             continue;
         for (nlohmann::json& primitive : mesh["primitives"])
@@ -133,19 +123,7 @@ std::string WithoutDracoIndices(const std::string& contents, bool binary) {
                 changed = true;
             }
     }
-    if (!changed) return contents;
-    std::string json = document.dump();
-    if (!binary) return json;
-    json.resize((json.size() + 3) / 4 * 4, ' ');  // chunks are 4-byte aligned
-    std::string out = contents.substr(0, 12);
-    const uint32_t chunk_size = static_cast<uint32_t>(json.size());
-    out.append(reinterpret_cast<const char*>(&chunk_size), 4);
-    out.append(contents, 16, 4);  // the chunk type, "JSON"
-    out += json;
-    out.append(contents, json_begin + json_size, std::string::npos);
-    const uint32_t total = static_cast<uint32_t>(out.size());
-    std::memcpy(out.data() + 8, &total, 4);
-    return out;
+    return changed ? SerializeGltfJson(*json, binary) : contents;
 }
 
 }  // namespace pf

@@ -19,6 +19,7 @@
 #include "core/math/transform.h"
 #include "core/scene/gltf_accessors.h"
 #include "core/scene/gltf_draco.h"
+#include "core/scene/gltf_meshopt.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/scene_bundle.h"
 #include "core/scene/scene_files.h"
@@ -148,7 +149,8 @@ absl::StatusOr<Scene> GltfSceneBuilder::Build() {
         "KHR_lights_punctual",   "KHR_materials_emissive_strength",
         "KHR_texture_transform", "KHR_materials_transmission",
         "KHR_materials_ior",     "KHR_materials_volume",
-        "KHR_mesh_quantization", "KHR_draco_mesh_compression"};
+        "KHR_mesh_quantization", "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+        "KHR_meshopt_compression"};
     for (const std::string& extension : model_.extensionsRequired)
         if (!kSupported.contains(extension))
             return Error("extensionsRequired",
@@ -556,14 +558,24 @@ absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& nam
     loader.SetImageLoader(KeepEncodedImage, &images);
     tinygltf::Model model;
     std::string error, warning;
-    const std::string main = WithoutDracoIndices(
-        bundle.files.at(bundle.main_file), absl::EndsWithIgnoreCase(bundle.main_file, ".glb"));
+    const bool binary = absl::EndsWithIgnoreCase(bundle.main_file, ".glb");
+    absl::StatusOr<std::string> decoded = DecodeMeshoptBuffers(
+        bundle.files.at(bundle.main_file), binary, BundleFolder(bundle.main_file),
+        [&bundle](const std::string& path) -> absl::StatusOr<std::string_view> {
+            const auto file = bundle.files.find(path);
+            if (file == bundle.files.end())
+                return absl::NotFoundError(absl::StrCat(path, ": not in the scene bundle"));
+            return file->second;
+        });
+    if (!decoded.ok())
+        return absl::Status(decoded.status().code(),
+                            absl::StrCat(name, ": ", decoded.status().message()));
+    const std::string main = WithoutDracoIndices(*decoded, binary);
     const std::string::size_type slash = bundle.main_file.rfind('/');
     const std::string base_dir =
         slash == std::string::npos ? "" : bundle.main_file.substr(0, slash);
     const bool loaded =
-        absl::EndsWithIgnoreCase(bundle.main_file, ".glb")
-            ? loader.LoadBinaryFromMemory(&model, &error, &warning,
+        binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
                                           reinterpret_cast<const unsigned char*>(main.data()),
                                           static_cast<unsigned int>(main.size()), base_dir)
             : loader.LoadASCIIFromString(&model, &error, &warning, main.data(),

@@ -11,6 +11,7 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "core/scene/gltf_draco.h"
+#include "core/scene/gltf_meshopt.h"
 #include "core/scene/gltf_loader.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/pbrt/pbrt_loader.h"
@@ -120,7 +121,16 @@ void LeaveOutUnusedImages(const std::string& scene_path, const tinygltf::Model& 
 absl::Status PackGltf(const std::string& scene_path, const std::string& file, bool binary,
                       PackingFiles* files, SceneBundle* bundle) {
     const std::string base_dir = BundleFolder(bundle->main_file);
-    const std::string main = WithoutDracoIndices(file, binary);
+    // Meshopt streams are decoded as the load decodes them, which reads (and packs) the files
+    // that hold them.
+    absl::StatusOr<std::string> decoded =
+        DecodeMeshoptBuffers(file, binary, base_dir, [files](const std::string& path) {
+            return files->Read(path);
+        });
+    if (!decoded.ok())
+        return absl::Status(decoded.status().code(),
+                            absl::StrCat(scene_path, ": ", decoded.status().message()));
+    const std::string main = WithoutDracoIndices(*decoded, binary);
     PackState state{files, absl::OkStatus()};
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks({PackFileExists, PackExpandFilePath, PackReadWholeFile, NoWrite, &state});

@@ -298,11 +298,11 @@ TEST(GltfLoaderTest, AnUnknownRequiredExtensionIsRefusedNamingIt) {
     const std::string json = testing::GltfJson(scene);
     const std::string required = testing::WriteTextFile(
         json.substr(0, json.rfind('}')) +
-            R"(,"extensionsUsed":["EXT_meshopt_compression","KHR_texture_transform"],)"
-            R"("extensionsRequired":["KHR_texture_transform","EXT_meshopt_compression"]})",
-        "meshopt-required.gltf");
+            R"(,"extensionsUsed":["EXT_mesh_gpu_instancing","KHR_texture_transform"],)"
+            R"("extensionsRequired":["KHR_texture_transform","EXT_mesh_gpu_instancing"]})",
+        "instancing-required.gltf");
     ExpectError(LoadScene(required), required,
-                "extensionsRequired: 'EXT_meshopt_compression' is not supported");
+                "extensionsRequired: 'EXT_mesh_gpu_instancing' is not supported");
     // Required extensions that are read load.
     const std::string supported = testing::WriteTextFile(
         json.substr(0, json.rfind('}')) +
