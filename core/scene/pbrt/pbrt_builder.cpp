@@ -394,7 +394,7 @@ const MaterialRef& PbrtSceneBuilder::DefaultMaterial() {
 }
 
 absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterList& parameters,
-                                           const Location& where) {
+                                           const Location& where, bool lat_long_map) {
     if (!current_object_.empty())
         return ErrorAt(where, "LightSource inside ObjectBegin is not allowed");
     PunctualLight light;
@@ -436,7 +436,7 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
         const double illuminance = parameters.Float("illuminance", 0.0);
         if (illuminance > 0) light.intensity *= static_cast<float>(illuminance);
     } else if (type == "infinite") {
-        return InfiniteLight(parameters, where);
+        return InfiniteLight(parameters, where, lat_long_map);
     } else if (type == "goniometric" || type == "projection") {
         parameters.ConsumeAll();
         Warn(where,
@@ -460,7 +460,8 @@ absl::Status PbrtSceneBuilder::LightSource(const std::string& type, ParameterLis
 // illuminant, white, by default) or an equal-area octahedral image, times "scale"; with
 // "illuminance" E_v, scaled as pbrt-v4 scales it: a uniform L by E_v / pi, a map by E_v over
 // its upper hemisphere's illuminance as pbrt-v4 sums it (below).
-absl::Status PbrtSceneBuilder::InfiniteLight(ParameterList& parameters, const Location& where) {
+absl::Status PbrtSceneBuilder::InfiniteLight(ParameterList& parameters, const Location& where,
+                                             bool lat_long_map) {
     const double scale = parameters.Float("scale", 1.0);
     const double illuminance = parameters.Float("illuminance", -1.0);
     const std::optional<Rgb> radiance = parameters.Color("L", SpectrumUse::kIlluminant);
@@ -526,16 +527,27 @@ absl::Status PbrtSceneBuilder::InfiniteLight(ParameterList& parameters, const Lo
         if (!image.ok())
             return absl::Status(image.status().code(),
                                 absl::StrCat(where.ToString(), ": ", image.status().message()));
-        if (image->width != image->height)
+        if (lat_long_map) {
+            // pbrt-v3's map: u = phi / 2 pi, v = theta / pi about the light's +z. The lat-long
+            // frame has u = 1/2 + atan2(x, -z) / 2 pi and v = acos(y) / pi: map (x, y, z) =
+            // light (-y, z, x), a reflection, before the light's own transform.
+            const std::array<float, 9> light = environment.to_map;
+            for (int column = 0; column < 3; ++column) {
+                environment.to_map[column] = -light[3 + column];
+                environment.to_map[3 + column] = light[6 + column];
+                environment.to_map[6 + column] = light[column];
+            }
+        } else if (image->width != image->height) {
             return ErrorAt(where, absl::StrCat("LightSource \"infinite\": ", *path, " is ",
                                                image->width, "x", image->height,
                                                "; pbrt-v4 maps are equal-area octahedral squares "
                                                "(convert with pbrt's imgtool makeequiarea)"));
+        }
         for (const Rgb& texel : image->texels)
             if (!IsFinite(texel))
                 return ErrorAt(where, absl::StrCat("LightSource \"infinite\": ", *path,
                                                    " holds infinite or NaN values"));
-        if (illuminance > 0) {
+        if (illuminance > 0 && !lat_long_map) {
             // The map's illuminance on a surface facing +z exactly as pbrt-v4 sums it:
             // luminance x cosine over the texels of the upper hemisphere, times 2 pi / texels
             // (a texel spans 4 pi / texels: pbrt-v4's maps come out twice as bright as the
@@ -552,7 +564,8 @@ absl::Status PbrtSceneBuilder::InfiniteLight(ParameterList& parameters, const Lo
             sum *= 2 * kPiD / (double(image->width) * image->height);
             if (sum > 0) factor *= illuminance / sum;
         }
-        environment.mapping = EnvironmentMapping::kEqualArea;
+        environment.mapping =
+            lat_long_map ? EnvironmentMapping::kLatLong : EnvironmentMapping::kEqualArea;
         environment.image = std::move(*image);
         environment.scale = Rgb(static_cast<float>(factor));
     }

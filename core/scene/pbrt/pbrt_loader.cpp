@@ -13,6 +13,7 @@
 #include "absl/strings/str_split.h"
 #include "core/scene/decompress.h"
 #include "core/scene/pbrt/pbrt_scene_builder.h"
+#include "core/scene/pbrt/pbrt_upgrade.h"
 
 namespace pf::pbrt {
 
@@ -254,6 +255,27 @@ absl::Status PbrtSceneBuilder::ApplyTransform(const Transform& transform) {
     return absl::OkStatus();
 }
 
+absl::StatusOr<UpgradeResult> PbrtSceneBuilder::Upgrade(const std::string& directive,
+                                                        std::string* type,
+                                                        std::string* texture_class,
+                                                        ParameterList* parameters,
+                                                        const Location& where) {
+    UpgradeResult result;
+    const std::string written = *type;
+    if (absl::Status status = UpgradeDirective(directive, type, texture_class, parameters, &result);
+        !status.ok())
+        return ErrorAt(where, absl::StrCat(directive, ": ", status.message()));
+    if (!result.change.empty() && !upgraded_) {
+        upgraded_ = true;
+        Warn(where, absl::StrCat("read as a pbrt-v3 file, rewritten as pbrt-v4's --upgrade "
+                                 "rewrites it (here: ",
+                                 result.change, ")"));
+    }
+    for (const std::string& warning : result.warnings)
+        Warn(where, absl::StrCat(directive, " \"", written, "\": ", warning));
+    return result;
+}
+
 // Directives with a type (or name) and a parameter list.
 absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, TokenStream& in) {
     const std::string& name = directive.text;
@@ -263,6 +285,8 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, TokenStrea
     if (!type.ok()) return type.status();
     absl::StatusOr<ParameterList> parameters = ReadParameters(in);
     if (!parameters.ok()) return parameters.status();
+    absl::StatusOr<UpgradeResult> upgrade = Upgrade(name, &*type, nullptr, &*parameters, where);
+    if (!upgrade.ok()) return upgrade.status();
     absl::Status status;
     if (name == "Camera") {
         status = Camera(*type, *parameters, where);
@@ -291,7 +315,7 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, TokenStrea
         if (!material.ok()) return material.status();
         named_materials_[*type] = *material;
     } else if (name == "LightSource") {
-        status = LightSource(*type, *parameters, where);
+        status = LightSource(*type, *parameters, where, upgrade->lat_long_map);
     } else if (name == "AreaLightSource") {
         if (*type != "diffuse")
             return ErrorAt(where,
@@ -559,6 +583,10 @@ absl::Status PbrtSceneBuilder::Directive(TokenStream& in) {
         if (!type.ok()) return type.status();
         absl::StatusOr<ParameterList> parameters = ReadParameters(in);
         if (!parameters.ok()) return parameters.status();
+        if (absl::StatusOr<UpgradeResult> upgrade =
+                Upgrade(name, &*type, &*kind, &*parameters, where);
+            !upgrade.ok())
+            return upgrade.status();
         if (absl::Status status = Texture(*texture_name, *kind, *type, *parameters, where);
             !status.ok())
             return status;

@@ -170,6 +170,21 @@ const Parameter* ParameterList::Find(std::string_view name) const {
     return nullptr;
 }
 
+Parameter* ParameterList::Find(std::string_view name) {
+    for (Parameter& parameter : parameters_)
+        if (parameter.name == name) return &parameter;
+    return nullptr;
+}
+
+void ParameterList::Remove(std::string_view name) {
+    std::erase_if(parameters_, [&](const Parameter& p) { return p.name == name; });
+}
+
+void ParameterList::Rename(std::string_view name, std::string_view new_name) {
+    for (Parameter& parameter : parameters_)
+        if (parameter.name == name) parameter.name = std::string(new_name);
+}
+
 std::vector<const Parameter*> ParameterList::Unused() const {
     std::vector<const Parameter*> unused;
     for (const Parameter& parameter : parameters_)

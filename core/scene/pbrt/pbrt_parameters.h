@@ -61,6 +61,11 @@ public:
     // Whether a parameter of this name exists (any type); does not mark it used.
     bool Has(std::string_view name) const;
     const Parameter* Find(std::string_view name) const;
+    Parameter* Find(std::string_view name);
+    // Edits, for reading pbrt-v3 files as pbrt-v4's (pbrt_upgrade.h).
+    void Remove(std::string_view name);
+    void Rename(std::string_view name, std::string_view new_name);
+    void Add(Parameter parameter) { parameters_.push_back(std::move(parameter)); }
 
     // The first error a lookup recorded, or OK.
     const absl::Status& status() const { return status_; }

@@ -14,6 +14,7 @@
 #include "core/scene/image_decode.h"
 #include "core/scene/mesh_builder.h"
 #include "core/scene/pbrt/pbrt_lexer.h"
+#include "core/scene/pbrt/pbrt_upgrade.h"
 #include "core/scene/pbrt/pbrt_loader.h"
 #include "core/scene/pbrt/pbrt_parameters.h"
 #include "core/scene/scene.h"
@@ -89,6 +90,10 @@ private:
                                                       int depth);
     absl::Status Directive(TokenStream& in);
     absl::Status TypedDirective(const Token& directive, TokenStream& in);
+    // Rewrites a pbrt-v3 directive as pbrt-v4's (pbrt_upgrade.h), noting the first such.
+    absl::StatusOr<UpgradeResult> Upgrade(const std::string& directive, std::string* type,
+                                          std::string* texture_class, ParameterList* parameters,
+                                          const Location& where);
     std::optional<absl::Status> TransformDirective(const Token& directive, TokenStream& in);
     std::optional<absl::Status> StateDirective(const Token& directive, TokenStream& in);
     absl::StatusOr<std::string> ReadString(TokenStream& in, const Token& directive);
@@ -121,12 +126,14 @@ private:
     // The scene texture of `texture`'s image, read and decoded on first use (kNoTexture while
     // packing, which only reads it).
     absl::StatusOr<int32_t> ImageIndex(const TextureRef& texture);
+    // lat_long_map: an "infinite" light's image is pbrt-v3's latitude-longitude map.
     absl::Status LightSource(const std::string& type, ParameterList& parameters,
-                             const Location& where);
+                             const Location& where, bool lat_long_map = false);
     // files_.Read, with a gzip file (name ending in .gz) decompressed: pbrt's .pbrt.gz and
     // .ply.gz. Packing reads the compressed bytes only.
     absl::StatusOr<std::string_view> ReadFile(const std::string& path);
-    absl::Status InfiniteLight(ParameterList& parameters, const Location& where);
+    absl::Status InfiniteLight(ParameterList& parameters, const Location& where,
+                               bool lat_long_map);
     absl::Status ApplyTransform(const Transform& transform);
     absl::Status FinishCamera();
 
@@ -143,6 +150,7 @@ private:
     std::string display_root_;
     PbrtLoadOptions options_;
     std::deque<std::string> file_names_;  // what tokens' locations point into
+    bool upgraded_ = false;               // a pbrt-v3 directive was rewritten (and noted)
     std::string base_folder_;             // the main file's bundle folder: names are relative to it
 
     Scene scene_;
