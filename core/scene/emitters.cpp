@@ -116,6 +116,12 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
             case LightType::kDirectional:
                 add(EmitterKind::kPunctual, l, intensity * (kPiD * scene_radius_ * scene_radius_));
                 break;
+            case LightType::kGoniometric:
+            case LightType::kProjection:
+                image_samplers_.resize(scene.lights.size());
+                image_samplers_[l] = MakeImageSampler(light);
+                add(EmitterKind::kPunctual, l, image_samplers_[l].power);
+                break;
         }
     }
     if (scene.environment) {
@@ -143,7 +149,7 @@ EmittedPhoton Emitters::Emit(Rng& rng) const {
             photon = EmitFromTriangle(triangles_[emitter.index], rng);
             break;
         case EmitterKind::kPunctual:
-            photon = EmitFromLight(scene_.lights[emitter.index], rng);
+            photon = EmitFromLight(scene_.lights[emitter.index], emitter.index, rng);
             break;
         case EmitterKind::kEnvironment:
             photon = EmitFromEnvironment(rng);
@@ -175,7 +181,77 @@ EmittedPhoton Emitters::EmitFromTriangle(const EmissiveTriangle& triangle, Rng& 
                 ((triangle.two_sided ? 2.0f : 1.0f) * kPi * triangle.area)};
 }
 
-EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, Rng& rng) const {
+Emitters::ImageSampler Emitters::MakeImageSampler(const PunctualLight& light) {
+    ImageSampler sampler;
+    const Texture& image = *light.image;
+    if (light.type == LightType::kGoniometric) {
+        auto environment = std::make_shared<Environment>();
+        environment->mapping = EnvironmentMapping::kEqualArea;
+        environment->scale = light.intensity;
+        environment->image = image;
+        environment->to_map = light.to_light;
+        sampler.environment = environment;
+        sampler.directions = EnvironmentSampler(*environment);
+        sampler.power = environment->RadianceIntegral();
+        return sampler;
+    }
+    // Projection: texel (x, y) spans solid angle ~ its plane area x cos^3 at its centre.
+    const float aspect = static_cast<float>(image.width) / static_cast<float>(image.height);
+    const double half_x = std::max(aspect, 1.0f) * light.tan_half_fov,
+                 half_y = std::max(1.0f / aspect, 1.0f) * light.tan_half_fov;
+    sampler.plane_texel_area =
+        static_cast<float>(4 * half_x * half_y / (double(image.width) * image.height));
+    std::vector<double> weights(image.texels.size());
+    for (int y = 0; y < image.height; ++y)
+        for (int x = 0; x < image.width; ++x) {
+            const double px = ((x + 0.5) / image.width * 2 - 1) * half_x,
+                         py = ((y + 0.5) / image.height * 2 - 1) * half_y;
+            const double cosine = 1 / std::sqrt(px * px + py * py + 1);
+            const Rgbd texel(image.texels[size_t(y) * image.width + x]);
+            const double solid_angle = sampler.plane_texel_area * cosine * cosine * cosine;
+            weights[size_t(y) * image.width + x] = Average(texel) * solid_angle;
+            sampler.power += texel * solid_angle;
+        }
+    sampler.power = sampler.power * Rgbd(light.intensity);
+    if (Average(sampler.power) > 0) sampler.texels = DiscreteDistribution(weights);
+    return sampler;
+}
+
+EmittedPhoton Emitters::EmitFromImageLight(const PunctualLight& light,
+                                           const ImageSampler& sampler, Rng& rng) const {
+    const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
+    if (light.type == LightType::kGoniometric) {
+        const EnvironmentSampler::Sample drawn = sampler.directions.Draw(u1, u2);
+        if (!(drawn.pdf > 0)) return {{light.position, drawn.toward}, Rgb(0.0f)};
+        return {{light.position, drawn.toward}, drawn.radiance / drawn.pdf};
+    }
+    // Projection: a texel by its share of the power, then a point of it on the plane z = 1.
+    const Texture& image = *light.image;
+    const DiscreteDistribution::Sample pick = sampler.texels.Draw(u1);
+    const int x = static_cast<int>(pick.index % uint32_t(image.width));
+    const int y = static_cast<int>(pick.index / uint32_t(image.width));
+    const float aspect = static_cast<float>(image.width) / static_cast<float>(image.height);
+    const float half_x = std::max(aspect, 1.0f) * light.tan_half_fov,
+                half_y = std::max(1.0f / aspect, 1.0f) * light.tan_half_fov;
+    const float px = ((x + u2) / image.width * 2 - 1) * half_x;
+    const float py = ((y + rng.NextFloat()) / image.height * 2 - 1) * half_y;
+    const Vec3 local = Normalize(Vec3(px, py, 1.0f));
+    const float* m = light.to_light.data();  // its transpose takes the light's frame to the world
+    const Vec3 toward = Normalize(Vec3(m[0] * local.x + m[3] * local.y + m[6] * local.z,
+                                       m[1] * local.x + m[4] * local.y + m[7] * local.z,
+                                       m[2] * local.x + m[5] * local.y + m[8] * local.z));
+    // The density in solid angle: the texel's probability over its plane area, times the
+    // plane's dA / d(omega) = 1 / cos^3.
+    const float cosine = local.z;
+    const auto pdf = static_cast<float>(pick.probability / sampler.plane_texel_area) /
+                     (cosine * cosine * cosine);
+    const Rgb texel = image.texels[pick.index];
+    return {{light.position, toward}, light.intensity * texel / pdf};
+}
+
+EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, uint32_t index,
+                                      Rng& rng) const {
+    if (light.HasImage()) return EmitFromImageLight(light, image_samplers_[index], rng);
     const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
     switch (light.type) {
         case LightType::kPoint:
@@ -198,6 +274,9 @@ EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, Rng& rng) cons
             return {{origin, light.direction},
                     light.intensity * (kPi * scene_radius_ * scene_radius_)};
         }
+        case LightType::kGoniometric:
+        case LightType::kProjection:
+            break;  // EmitFromImageLight
     }
     return {};
 }
@@ -261,6 +340,7 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
                 falloff = light.SpotFalloff(-Dot(to_light, light.direction));
             radiance_over_pdf =
                 light.intensity * (falloff * light.RangeWindow(distance) / distance_sq);
+            if (light.HasImage()) radiance_over_pdf *= light.ImageFactor(-to_light);
         }
     }
     if (!(Dot(to_light, n) > 0) || IsBlack(radiance_over_pdf)) return false;

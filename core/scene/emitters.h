@@ -144,8 +144,23 @@ private:
             return two_sided ? std::abs(cosine) : cosine;
         }
     };
+    // The directions of a goniometric or projection light, drawn in proportion to its
+    // intensity: a goniometric light's map as an environment's (its texels span equal solid
+    // angles); a projection's texels by value x the solid angle each spans, then a point
+    // uniform on the image plane within the texel.
+    struct ImageSampler {
+        // Goniometric: the intensity over the sphere (held apart: `directions` points to it).
+        std::shared_ptr<const Environment> environment;
+        EnvironmentSampler directions;
+        DiscreteDistribution texels;    // projection
+        float plane_texel_area = 0;     // projection: a texel's area on the plane z = 1
+        Rgbd power;                     // the light's power, W per channel
+    };
+    static ImageSampler MakeImageSampler(const PunctualLight& light);
     EmittedPhoton EmitFromTriangle(const EmissiveTriangle& triangle, Rng& rng) const;
-    EmittedPhoton EmitFromLight(const PunctualLight& light, Rng& rng) const;
+    EmittedPhoton EmitFromLight(const PunctualLight& light, uint32_t index, Rng& rng) const;
+    EmittedPhoton EmitFromImageLight(const PunctualLight& light, const ImageSampler& sampler,
+                                     Rng& rng) const;
     EmittedPhoton EmitFromEnvironment(Rng& rng) const;
 
     const Scene& scene_;
@@ -156,6 +171,7 @@ private:
     // Per world triangle, its index into emitters_, or -1 where it emits nothing.
     std::vector<int32_t> emitter_of_triangle_;
     EnvironmentSampler environment_sampler_;
+    std::vector<ImageSampler> image_samplers_;  // per Scene::lights entry; empty for most
     int32_t environment_emitter_ = -1;  // its index into emitters_
     Rgbd power_rgb_;
     double total_power_ = 0;

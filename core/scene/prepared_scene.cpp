@@ -156,6 +156,9 @@ void WritePayload(const Scene& scene, ByteWriter& out) {
         out.Value(light.intensity), out.Value(light.cos_inner), out.Value(light.cos_outer);
         out.Value<uint8_t>(light.smooth_falloff ? 1 : 0);
         out.Value(light.range);
+        out.Value(light.to_light), out.Value(light.tan_half_fov);
+        out.Value<uint8_t>(light.image ? 1 : 0);
+        if (light.image) WriteTexture(*light.image, out);
         out.String(light.name);
     }
     out.Value(scene.camera);
@@ -217,13 +220,22 @@ absl::Status ReadPayload(ByteReader& in, Scene* scene) {
     if (!in.Value(&lights) || lights > kMaxCount) return fail("lights");
     for (uint64_t l = 0; l < lights; ++l) {
         PunctualLight light;
-        uint8_t smooth_falloff = 0;
+        uint8_t smooth_falloff = 0, has_image = 0;
+        Texture image;
         if (!in.Value(&light.type) || !in.Value(&light.position) || !in.Value(&light.direction) ||
             !in.Value(&light.intensity) || !in.Value(&light.cos_inner) ||
             !in.Value(&light.cos_outer) || !in.Value(&smooth_falloff) || !in.Value(&light.range) ||
+            !in.Value(&light.to_light) || !in.Value(&light.tan_half_fov) ||
+            !in.Value(&has_image) || (has_image != 0 && !ReadTexture(in, &image)) ||
             !in.String(&light.name, 4096))
             return fail(absl::StrCat("light ", l));
         light.smooth_falloff = smooth_falloff != 0;
+        if (has_image != 0) {
+            if (image.width <= 0 || image.height <= 0 ||
+                uint64_t(image.width) * uint64_t(image.height) != image.texels.size())
+                return Invalid(absl::StrCat("light ", l, ": its image's size is broken"));
+            light.image = std::make_shared<const Texture>(std::move(image));
+        }
         scene->lights.push_back(std::move(light));
     }
     if (!in.Value(&scene->camera) || !in.Value(&scene->bounds) || !in.Value(&scene->hints))
@@ -316,11 +328,17 @@ absl::Status CheckGeometry(const Scene& scene) {
 absl::Status CheckLightsAndCamera(const Scene& scene) {
     for (size_t l = 0; l < scene.lights.size(); ++l) {
         const PunctualLight& light = scene.lights[l];
-        if (static_cast<uint32_t>(light.type) > static_cast<uint32_t>(LightType::kDirectional) ||
+        if (static_cast<uint32_t>(light.type) > static_cast<uint32_t>(LightType::kProjection) ||
             !Finite(light.position) || !Finite(light.direction) || !Finite(light.intensity) ||
             !Finite(light.cos_inner) || !Finite(light.cos_outer) || !Finite(light.range) ||
-            light.range < 0 || MinComponent(light.intensity) < 0)
+            light.range < 0 || MinComponent(light.intensity) < 0 || !Finite(light.to_light) ||
+            !(light.tan_half_fov > 0 && light.tan_half_fov < 1e6f))
             return Invalid(absl::StrCat("light ", l, ": a value out of range"));
+        if (light.HasImage() != (light.image != nullptr) ||
+            (light.image && (light.image->texels.empty() ||
+                             !std::all_of(light.image->texels.begin(), light.image->texels.end(),
+                                          [](const Rgb& t) { return Finite(t) && MinComponent(t) >= 0; }))))
+            return Invalid(absl::StrCat("light ", l, ": its image is missing or out of range"));
     }
     const Camera& camera = scene.camera;
     if (!Finite(camera.position) || !Finite(camera.forward) || !Finite(camera.right) ||

@@ -19,7 +19,7 @@
 namespace pf {
 
 // 2: the environment light.
-inline constexpr uint32_t kPreparedSceneVersion = 6;
+inline constexpr uint32_t kPreparedSceneVersion = 7;
 
 // Normals go only where a triangle is smooth, texture coordinates only where a material has a
 // texture, textures only where a material reads them (others stay as empty placeholders, so

@@ -13,6 +13,42 @@ float PunctualLight::SpotFalloff(float cos_axis) const {
     return smooth_falloff ? t * t * (3.0f - 2.0f * t) : t * t;
 }
 
+Vec3 PunctualLight::ToLight(const Vec3& toward) const {
+    const float* m = to_light.data();
+    return {m[0] * toward.x + m[1] * toward.y + m[2] * toward.z,
+            m[3] * toward.x + m[4] * toward.y + m[5] * toward.z,
+            m[6] * toward.x + m[7] * toward.y + m[8] * toward.z};
+}
+
+std::optional<Point2> PunctualLight::ProjectedTexel(const Vec3& light_direction) const {
+    // pbrt-v4's ProjectionLight::I: nothing behind its near plane (1e-3), then the perspective
+    // divide onto a screen spanning [-aspect, aspect] x [-1, 1] (or its transpose).
+    if (!(light_direction.z >= 1e-3f) || image == nullptr) return std::nullopt;
+    const float aspect = static_cast<float>(image->width) / static_cast<float>(image->height);
+    const float half_x = std::max(aspect, 1.0f), half_y = std::max(1.0f / aspect, 1.0f);
+    const float sx = light_direction.x / (light_direction.z * tan_half_fov);
+    const float sy = light_direction.y / (light_direction.z * tan_half_fov);
+    if (!(std::abs(sx) <= half_x && std::abs(sy) <= half_y)) return std::nullopt;
+    return Point2{(sx + half_x) / (2 * half_x) * static_cast<float>(image->width),
+                  (sy + half_y) / (2 * half_y) * static_cast<float>(image->height)};
+}
+
+Rgb PunctualLight::ImageFactor(const Vec3& toward) const {
+    if (image == nullptr) return Rgb(1.0f);
+    const Vec3 local = ToLight(toward);
+    const auto texel = [&](float x, float y) {
+        const int column = std::clamp(static_cast<int>(x), 0, image->width - 1);
+        const int row = std::clamp(static_cast<int>(y), 0, image->height - 1);
+        return image->texels[static_cast<size_t>(row) * image->width + column];
+    };
+    if (type == LightType::kGoniometric) {
+        const Point2 square = EqualAreaSphereToSquare(Normalize(local));
+        return texel(square.x * image->width, square.y * image->height);
+    }
+    const std::optional<Point2> at = ProjectedTexel(local);
+    return at ? texel(at->x, at->y) : Rgb(0.0f);
+}
+
 Instance Instance::Make(uint32_t prototype, const Transform& from_object) {
     Instance instance;
     instance.prototype = prototype;

@@ -30,10 +30,11 @@ struct Triangle {
     Vec3 normal;  // unit geometric normal, on the side counter-clockwise winding makes front
 };
 
-enum class LightType : uint32_t { kPoint, kSpot, kDirectional };
+enum class LightType : uint32_t { kPoint, kSpot, kDirectional, kGoniometric, kProjection };
 
 // KHR_lights_punctual lights, taken radiometrically: intensity in W/sr for point and spot,
-// irradiance in W/m^2 for directional.
+// irradiance in W/m^2 for directional; and pbrt's lights that shape a point light's intensity
+// by an image (goniometric, projection).
 struct PunctualLight {
     LightType type = LightType::kPoint;
     Vec3 position;                                // point, spot
@@ -44,6 +45,14 @@ struct PunctualLight {
     // glTF's range (point, spot): beyond it the light gives nothing, and it fades toward it by
     // the window the glTF specification recommends. 0: no range.
     float range = 0;
+    // Goniometric and projection: the intensity toward a direction is `intensity` times this
+    // image's nearest texel there. Goniometric: an equal-area octahedral square over the light's
+    // sphere of directions (pbrt-v4's). Projection: a picture projected along the light's +z
+    // through a frustum whose shorter side spans +-tan_half_fov at distance 1, its top row
+    // toward the light's -y (pbrt-v4's ProjectionLight, which flips y).
+    std::shared_ptr<const Texture> image;
+    std::array<float, 9> to_light{1, 0, 0, 0, 1, 0, 0, 0, 1};  // world into the light's frame
+    float tan_half_fov = 1;
     std::string name;
 
     // The spot's falloff for a direction whose cosine to the axis is cos_axis: glTF's
@@ -51,6 +60,15 @@ struct PunctualLight {
     float SpotFalloff(float cos_axis) const;
     // The range's window at `distance` (core/shared/path_sampling.h); 1 without a range.
     float RangeWindow(float distance) const { return gpu::RangeWindow(distance, range); }
+    bool HasImage() const { return type == LightType::kGoniometric || type == LightType::kProjection; }
+    // The light's direction `toward` (unit, world) in its own frame.
+    Vec3 ToLight(const Vec3& toward) const;
+    // Projection: where a light-frame direction falls on the image, as (column, row) in
+    // texels; nullopt outside the frustum (or behind the light).
+    std::optional<Point2> ProjectedTexel(const Vec3& light_direction) const;
+    // Goniometric, projection: the image's factor toward unit world direction `toward` (0
+    // outside a projection's frustum).
+    Rgb ImageFactor(const Vec3& toward) const;
 };
 
 struct Bounds {

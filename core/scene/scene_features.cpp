@@ -13,7 +13,7 @@ SceneFeatures SceneFeatures::All() {
                        &all.rough_dielectric, &all.textures, &all.smooth_normals,
                        &all.triangle_lights, &all.point_lights, &all.spot_lights,
                        &all.directional_lights, &all.environment, &all.textured_lights,
-                       &all.caustics})
+                       &all.image_lights, &all.caustics})
         *flag = true;
     return all;
 }
@@ -33,6 +33,7 @@ std::string SceneFeatures::ToString() const {
     if (directional_lights) parts.push_back("directional lights");
     if (environment) parts.push_back("environment light");
     if (textured_lights) parts.push_back("textured lights");
+    if (image_lights) parts.push_back("goniometric or projection lights");
     if (caustics) parts.push_back("caustics");
     return absl::StrJoin(parts, ", ");
 }
@@ -73,6 +74,10 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
                 break;
             case LightType::kDirectional:
                 features.directional_lights = true;
+                break;
+            case LightType::kGoniometric:
+            case LightType::kProjection:
+                features.image_lights = true;
                 break;
         }
     }

@@ -134,6 +134,8 @@ private:
     absl::StatusOr<std::string_view> ReadFile(const std::string& path);
     absl::Status InfiniteLight(ParameterList& parameters, const Location& where,
                                bool lat_long_map);
+    absl::Status ImageLight(const std::string& type, ParameterList& parameters,
+                            const Location& where);
     absl::Status ApplyTransform(const Transform& transform);
     absl::Status FinishCamera();
 

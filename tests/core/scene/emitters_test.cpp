@@ -184,5 +184,120 @@ TEST(EmittersTest, ATexturedLightEmitsItsTexturesPowerAndNoneFromItsBlackTexels)
         }
 }
 
+// A scene of one floor triangle far below and one light.
+Scene LightOnly(const PunctualLight& light) {
+    Scene scene;
+    scene.positions = {{-10, -10, -5}, {10, -10, -5}, {0, 10, -5}};
+    scene.normals.assign(3, Vec3(0.0f));
+    scene.uvs.assign(3, Point2{});
+    scene.triangles = {{{0, 1, 2}, 0, false, {0, 0, 1}}};
+    scene.materials = {Material{}};
+    scene.lights = {light};
+    for (const Vec3& p : scene.positions) scene.bounds.Extend(p);
+    return scene;
+}
+
+struct FluxMean {
+    double mean = 0, standard_error = 0;
+};
+// The mean and its standard error of the photons' first-channel flux; each photon checked.
+template <typename Check>
+FluxMean MeanFlux(const Emitters& emitters, int photons, Check check) {
+    Rng rng(17);
+    double sum = 0, sum_sq = 0;
+    for (int i = 0; i < photons; ++i) {
+        const EmittedPhoton photon = emitters.Emit(rng);
+        check(photon);
+        sum += photon.flux.x, sum_sq += double(photon.flux.x) * photon.flux.x;
+    }
+    const double mean = sum / photons;
+    return {mean, std::sqrt(std::max(0.0, sum_sq / photons - mean * mean) / photons)};
+}
+
+TEST(EmittersTest, AGoniometricLightOfAConstantImageIsAPointLight) {
+    // I = 2 x a 4 x 4 image of 0.5 everywhere: a point light of intensity 1, power 4 pi.
+    PunctualLight light;
+    light.type = LightType::kGoniometric;
+    light.intensity = Rgb(2.0f);
+    light.image = std::make_shared<const Texture>(Texture{4, 4, std::vector<Rgb>(16, Rgb(0.5f))});
+    const Scene scene = LightOnly(light);
+    const Emitters emitters(scene);
+    EXPECT_NEAR(emitters.TotalPower().x, 4 * kPiD, 1e-4);
+    const FluxMean flux = MeanFlux(emitters, 1000, [](const EmittedPhoton& photon) {
+        EXPECT_NEAR(photon.flux.x, 4 * kPi, 1e-3f);
+    });
+    EXPECT_NEAR(flux.mean, 4 * kPiD, 1e-3);
+    Rng rng(3);
+    LightSample sample;
+    ASSERT_TRUE(emitters.SampleDirect({0, 0, -2}, {0, 0, 1}, rng, &sample));
+    EXPECT_NEAR(sample.radiance_over_pdf.x, 0.25f, 1e-5f);  // I / d^2
+}
+
+TEST(EmittersTest, AGoniometricLightEmitsWhereItsImageIsBright) {
+    // A 32 x 32 map bright (1) where its texels' centres lie in the light frame's upper
+    // hemisphere, dark below: photons carry the bright texels' solid angle on average (4 pi /
+    // 1024 each), none goes where the map is dark, and light samples there carry nothing.
+    Texture map{32, 32, {}};
+    int bright = 0;
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) {
+            const bool up = EqualAreaSquareToSphere({(x + 0.5f) / 32, (y + 0.5f) / 32}).z > 0;
+            map.texels.push_back(Rgb(up ? 1.0f : 0.0f));
+            bright += up;
+        }
+    PunctualLight light;
+    light.type = LightType::kGoniometric;
+    light.image = std::make_shared<const Texture>(map);
+    const Scene scene = LightOnly(light);
+    const Emitters emitters(scene);
+    const FluxMean flux = MeanFlux(emitters, 200000, [&](const EmittedPhoton& photon) {
+        if (photon.flux.x > 0) EXPECT_GT(light.ImageFactor(photon.ray.direction).x, 0.0f);
+    });
+    EXPECT_NEAR(flux.mean, 4 * kPiD * bright / 1024, 5 * flux.standard_error + 1e-3);
+    Rng rng(5);
+    LightSample sample;
+    EXPECT_FALSE(emitters.SampleDirect({0, 0, -2}, {0, 0, 1}, rng, &sample));  // below: dark
+    ASSERT_TRUE(emitters.SampleDirect({0, 0, 2}, {0, 0, -1}, rng, &sample));   // above: bright
+    EXPECT_NEAR(sample.radiance_over_pdf.x, 0.25f, 1e-5f);
+}
+
+TEST(EmittersTest, AProjectionLightFillsItsFrustumWithItsImage) {
+    // A 2 x 1 image of 1s through a 90 degree frustum: x/z in [-2, 2], y/z in [-1, 1], a
+    // pyramid of solid angle 4 asin(ab / sqrt((a^2 + 1)(b^2 + 1))) for half-sides a = 2, b = 1.
+    // Photons carry I times it on average and stay inside; a receiver ahead gets I / d^2, one
+    // outside nothing.
+    PunctualLight light;
+    light.type = LightType::kProjection;
+    light.intensity = Rgb(3.0f);
+    light.tan_half_fov = 1;
+    light.image = std::make_shared<const Texture>(Texture{2, 1, {Rgb(1.0f), Rgb(1.0f)}});
+    const Scene scene = LightOnly(light);
+    const Emitters emitters(scene);
+    const double solid_angle = 4 * std::asin(2.0 / std::sqrt(5.0 * 2.0));
+    const FluxMean flux = MeanFlux(emitters, 200000, [](const EmittedPhoton& photon) {
+        const Vec3& d = photon.ray.direction;
+        EXPECT_GT(d.z, 0.0f);
+        EXPECT_LE(std::abs(d.x / d.z), 2.0f + 1e-4f);
+        EXPECT_LE(std::abs(d.y / d.z), 1.0f + 1e-4f);
+    });
+    EXPECT_NEAR(flux.mean, 3 * solid_angle, 5 * flux.standard_error);
+    EXPECT_LT(5 * flux.standard_error, 0.01 * 3 * solid_angle);
+    Rng rng(7);
+    LightSample sample;
+    ASSERT_TRUE(emitters.SampleDirect({0.5f, 0.2f, 2}, {0, 0, -1}, rng, &sample));
+    EXPECT_NEAR(sample.radiance_over_pdf.x, 3 / (0.25f + 0.04f + 4), 1e-4f);
+    EXPECT_FALSE(emitters.SampleDirect({0, 3, 1}, {0, -1, 0}, rng, &sample));  // y/z = 3
+}
+
+TEST(EmittersTest, AProjectionImagesTopRowLightsTheLightFramesMinusY) {
+    // pbrt-v4 flips the projection's y: its image's top row goes toward the frame's -y.
+    PunctualLight light;
+    light.type = LightType::kProjection;
+    light.image = std::make_shared<const Texture>(Texture{1, 2, {Rgb(5.0f), Rgb(7.0f)}});
+    EXPECT_EQ(light.ImageFactor(Normalize(Vec3(0, -0.5f, 1))), Rgb(5.0f));
+    EXPECT_EQ(light.ImageFactor(Normalize(Vec3(0, 0.5f, 1))), Rgb(7.0f));
+    EXPECT_EQ(light.ImageFactor(Normalize(Vec3(0, 0.5f, -1))), Rgb(0.0f));  // behind
+}
+
 }  // namespace
 }  // namespace pf

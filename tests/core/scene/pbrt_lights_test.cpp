@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/film/color_space.h"
+#include "core/film/exr_io.h"
 #include "core/scene/scene_loader.h"
 #include "tests/core/scene/pbrt_test_support.h"
 #include "tests/support/test_env.h"
@@ -90,6 +91,70 @@ TEST(PbrtLightsTest, PackingGathersAreaLightImages) {
     ASSERT_TRUE(scene.ok()) << scene.status();
     ASSERT_NE(EmittingMaterial(*scene), nullptr);
     EXPECT_NE(EmittingMaterial(*scene)->emission_texture, kNoTexture);
+}
+
+// A w x h EXR whose texel i is (values[i], values[i], values[i]).
+std::string GreyExr(int width, int height, const std::vector<float>& values) {
+    Image image(width, height);
+    for (size_t i = 0; i < values.size(); ++i) image.pixels[i] = Rgb(values[i]);
+    const std::string path = testing::TempPath("pbrt-light-image.exr");
+    EXPECT_TRUE(WriteExr(path, image).ok());
+    absl::StatusOr<std::string> bytes = ReadWholeFile(path);
+    return bytes.ok() ? *bytes : std::string();
+}
+
+TEST(PbrtLightsTest, GoniometricLightsAsPbrtV4DefinesThem) {
+    // A 3 x 3 map, its centre texel 9 and the rest 1, under pbrt-v4's swap of y and z: the
+    // light's +y is the square's centre, its -y the corners. "power" P: I = P / (4 pi mean).
+    const std::string map = GreyExr(3, 3, {1, 1, 1, 1, 9, 1, 1, 1, 1});
+    absl::StatusOr<Scene> scene =
+        Load(Bundle("AttributeBegin\nTranslate 1 2 3\nLightSource \"goniometric\" \"string "
+                    "filename\" \"g.exr\" \"rgb I\" [2 2 2]\nAttributeEnd\n" +
+                        std::string(kQuad),
+                    {{"g.exr", map}}));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->lights.size(), 2u);  // the bundle's point light, then this
+    const PunctualLight& light = scene->lights[1];
+    EXPECT_EQ(light.type, LightType::kGoniometric);
+    EXPECT_EQ(light.position, Vec3(1, 2, 3));
+    EXPECT_NEAR(light.intensity.x, 2.0f, 5e-3f);
+    EXPECT_EQ(light.ImageFactor({0, 1, 0}), Rgb(9.0f));
+    EXPECT_EQ(light.ImageFactor({0, -1, 0}), Rgb(1.0f));
+    absl::StatusOr<Scene> powered = Load(Bundle(
+        "LightSource \"goniometric\" \"string filename\" \"g.exr\" \"float power\" 100\n" +
+            std::string(kQuad),
+        {{"g.exr", map}}));
+    ASSERT_TRUE(powered.ok()) << powered.status();
+    EXPECT_NEAR(powered->lights[1].intensity.x, 100 / (4 * kPiD * 17.0 / 9), 1e-3);
+    ExpectError(Load(Bundle("LightSource \"goniometric\"\n" + std::string(kQuad))),
+                "scenes/scene.pbrt:6:1: LightSource \"goniometric\" needs \"string filename\"");
+    ExpectError(Load(Bundle("LightSource \"goniometric\" \"string filename\" \"g.exr\"\n" +
+                                std::string(kQuad),
+                            {{"g.exr", GreyExr(2, 1, {1, 1})}})),
+                "is 2x1; pbrt-v4's goniometric images are equal-area squares");
+}
+
+TEST(PbrtLightsTest, ProjectionLightsAsPbrtV4DefinesThem) {
+    // A 1 x 2 image (top 5, bottom 7) through a 60 degree frustum along +z: the top row
+    // toward the light's +y (pbrt-v4's flip), nothing outside tan(30 degrees).
+    absl::StatusOr<Scene> scene = Load(Bundle(
+        "LightSource \"projection\" \"string filename\" \"p.exr\" \"float fov\" 60 "
+        "\"float scale\" 2\n" +
+            std::string(kQuad),
+        {{"p.exr", GreyExr(1, 2, {5, 7})}}));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const PunctualLight& light = scene->lights[1];
+    EXPECT_EQ(light.type, LightType::kProjection);
+    EXPECT_EQ(light.intensity, Rgb(2.0f));
+    EXPECT_NEAR(light.tan_half_fov, std::tan(kPiD / 6), 1e-6);
+    EXPECT_EQ(light.ImageFactor(Normalize(Vec3(0, 0.5f, 1))), Rgb(5.0f));
+    EXPECT_EQ(light.ImageFactor(Normalize(Vec3(0, -0.5f, 1))), Rgb(7.0f));
+    EXPECT_EQ(light.ImageFactor(Normalize(Vec3(0.6f, 0, 1))), Rgb(0.0f));  // x / z > tan 30
+    ExpectError(Load(Bundle("LightSource \"projection\" \"string filename\" \"p.exr\" \"float "
+                            "fov\" 180\n" +
+                                std::string(kQuad),
+                            {{"p.exr", GreyExr(1, 2, {5, 7})}})),
+                "fov in (0, 180)");
 }
 
 }  // namespace

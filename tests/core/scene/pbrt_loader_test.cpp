@@ -359,8 +359,8 @@ TEST(PbrtLoaderTest, BadInputIsAOneLineErrorNamingFileLineAndColumn) {
     ExpectError(Load(Bundle("Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer "
                             "indices\" [0 1 7]\n")),
                 "index 2 (7) is outside the 3 points");
-    ExpectError(Load(Bundle("Material \"plastic\"\n")),
-                "scenes/scene.pbrt:6:1: Material \"plastic\" is unknown");
+    ExpectError(Load(Bundle("Material \"velvet\"\n")),
+                "scenes/scene.pbrt:6:1: Material \"velvet\" is unknown");
     ExpectError(Load(Bundle("NamedMaterial \"nothing\"\n")), "no material named \"nothing\"");
     ExpectError(Load(Bundle("AttributeEnd\n")), "AttributeEnd without AttributeBegin");
     ExpectError(Load(Bundle("Translate 1 2\n")), "Translate needs 3 numbers");

@@ -155,6 +155,36 @@ TEST(PreparedSceneTest, EnvironmentsSurvive) {
     }
 }
 
+TEST(PreparedSceneTest, ImageLightsSurvive) {
+    // A goniometric and a projection light: their images, frames and frustum come back, and
+    // the bytes re-encode the same.
+    Scene scene = TexturedInstancedScene();
+    for (const LightType type : {LightType::kGoniometric, LightType::kProjection}) {
+        PunctualLight light;
+        light.type = type;
+        light.position = Vec3(1, 2, 3);
+        light.intensity = Rgb(4.0f, 5.0f, 6.0f);
+        light.image = std::make_shared<const Texture>(
+            Texture{2, 2, {Rgb(1.0f), Rgb(2.0f), Rgb(0.5f), Rgb(0.0f, 1.0f, 2.0f)}});
+        light.to_light = RotationAboutUp(20);
+        light.tan_half_fov = 0.7f;
+        scene.lights.push_back(light);
+    }
+    const std::string bytes = EncodePreparedScene(scene);
+    const absl::StatusOr<Scene> decoded = DecodePreparedScene(bytes, false);
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    ASSERT_EQ(decoded->lights.size(), scene.lights.size());
+    for (size_t l = 0; l < scene.lights.size(); ++l) {
+        const PunctualLight &a = scene.lights[l], &b = decoded->lights[l];
+        EXPECT_EQ(a.type, b.type);
+        EXPECT_EQ(a.to_light, b.to_light);
+        EXPECT_EQ(a.tan_half_fov, b.tan_half_fov);
+        ASSERT_EQ(a.image == nullptr, b.image == nullptr);
+        if (a.image) EXPECT_EQ(a.image->texels, b.image->texels);
+    }
+    EXPECT_EQ(EncodePreparedScene(*decoded), bytes);
+}
+
 TEST(PreparedSceneTest, WhatNoTracingReadsIsLeftOut) {
     // cornell-box has no smooth triangle and no texture: no normals, no texture coordinates.
     Scene scene = *LoadScene(Shipped("cornell-box.gltf"));

@@ -43,7 +43,7 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
               "diffuse, mirror, glass, thin glass, rough metal, rough glass, textures, smooth "
               "normals, area lights, "
               "point lights, spot lights, directional lights, environment light, textured lights, "
-              "caustics");
+              "goniometric or projection lights, caustics");
 }
 
 }  // namespace

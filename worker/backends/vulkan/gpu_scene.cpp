@@ -101,6 +101,9 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
                 case LightType::kDirectional:
                     kind = gpu::kEmitterDirectional;
                     break;
+                case LightType::kGoniometric:
+                case LightType::kProjection:
+                    break;  // refused by BuildGpuScene
             }
             emitter.position.w = std::bit_cast<float>(kind);
         }
@@ -142,6 +145,10 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
 absl::StatusOr<GpuScene> BuildGpuScene(const Scene& job_scene, const Emitters& emitters) {
     GpuScene gpu_scene;
     gpu_scene.features = AnalyseFeatures(job_scene, emitters);
+    if (gpu_scene.features.image_lights)
+        return absl::UnimplementedError(
+            "the Vulkan backend does not emit goniometric or projection lights yet; render "
+            "this scene with --backend cpu");
     // The kernels traverse one BVH: instances are expanded into world triangles (the world's
     // own keep their indices, so emitters still name them).
     absl::StatusOr<Scene> flattened;
