@@ -37,8 +37,7 @@ Rgb FinishDirectLight(const Emitters& emitters, const Vec3& n, const DirectLight
     if (bsdf_hit == nullptr)
         hit = emitters.Escaped(ray.direction);
     else if (bsdf_hit->instance == Instance::kNone)
-        hit = emitters.HitEmitter(*bsdf_hit, ray.origin,
-                                  ray.origin + ray.direction * bsdf_hit->t);
+        hit = emitters.HitEmitter(*bsdf_hit, ray.origin, ray.origin + ray.direction * bsdf_hit->t);
     // L cos / (cos / pi): the cosine ray's own weight is pi.
     if (hit.pdf > 0)
         irradiance += hit.radiance * (kPi * PowerHeuristic(Dot(ray.direction, n) / kPi, hit.pdf));

@@ -55,8 +55,8 @@ std::vector<Emitters::Record> Emitters::Records() const {
                 record.texture = triangle.texture_index;
                 record.uv0 = triangle.uv0, record.uv_edge1 = triangle.uv_edge1,
                 record.uv_edge2 = triangle.uv_edge2;
-                record.power = triangle.radiance * ((triangle.two_sided ? 2.0f : 1.0f) * kPi *
-                                                    triangle.area);
+                record.power =
+                    triangle.radiance * ((triangle.two_sided ? 2.0f : 1.0f) * kPi * triangle.area);
                 record.peak = LargestTexel(*triangle.texture);
             }
         } else if (record.kind == EmitterKind::kPunctual) {
@@ -87,8 +87,12 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
         const Vec3 edge1 = scene.positions[triangle.vertex[1]] - p0,
                    edge2 = scene.positions[triangle.vertex[2]] - p0;
         const auto index = static_cast<uint32_t>(triangles_.size());
-        EmissiveTriangle emissive{p0, edge1, edge2, Frame::FromNormal(triangle.normal),
-                                  material.emission, scene.TriangleArea(t),
+        EmissiveTriangle emissive{p0,
+                                  edge1,
+                                  edge2,
+                                  Frame::FromNormal(triangle.normal),
+                                  material.emission,
+                                  scene.TriangleArea(t),
                                   material.two_sided != 0};
         if (material.emission_texture != kNoTexture) {
             emissive.texture = scene.textures[material.emission_texture].get();
@@ -176,9 +180,9 @@ EmittedPhoton Emitters::EmitFromTriangle(const EmissiveTriangle& triangle, Rng& 
     if (back) direction = -direction;
     const Vec3 normal = back ? -triangle.frame.n : triangle.frame.n;
     // Cosine-weighted emission of radiance Le from area A carries flux pi * A * Le a side.
-    return {{OffsetRayOrigin(point, normal, scene_.bounds.Magnitude()), direction},
-            triangle.RadianceAt(b.x, b.y) *
-                ((triangle.two_sided ? 2.0f : 1.0f) * kPi * triangle.area)};
+    return {
+        {OffsetRayOrigin(point, normal, scene_.bounds.Magnitude()), direction},
+        triangle.RadianceAt(b.x, b.y) * ((triangle.two_sided ? 2.0f : 1.0f) * kPi * triangle.area)};
 }
 
 Emitters::ImageSampler Emitters::MakeImageSampler(const PunctualLight& light) {
@@ -217,8 +221,8 @@ Emitters::ImageSampler Emitters::MakeImageSampler(const PunctualLight& light) {
     return sampler;
 }
 
-EmittedPhoton Emitters::EmitFromImageLight(const PunctualLight& light,
-                                           const ImageSampler& sampler, Rng& rng) const {
+EmittedPhoton Emitters::EmitFromImageLight(const PunctualLight& light, const ImageSampler& sampler,
+                                           Rng& rng) const {
     const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
     if (light.type == LightType::kGoniometric) {
         const EnvironmentSampler::Sample drawn = sampler.directions.Draw(u1, u2);
@@ -249,8 +253,7 @@ EmittedPhoton Emitters::EmitFromImageLight(const PunctualLight& light,
     return {{light.position, toward}, light.intensity * texel / pdf};
 }
 
-EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, uint32_t index,
-                                      Rng& rng) const {
+EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, uint32_t index, Rng& rng) const {
     if (light.HasImage()) return EmitFromImageLight(light, image_samplers_[index], rng);
     const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
     switch (light.type) {
@@ -320,7 +323,8 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
         const float cos_light = triangle.CosineToward(to_light);
         if (!(cos_light > 0) || !(distance_sq > 0)) return false;
         // Area pdf 1/A converted to solid angle: d^2 / (cos_light A).
-        radiance_over_pdf = triangle.RadianceAt(b.x, b.y) * (cos_light * triangle.area / distance_sq);
+        radiance_over_pdf =
+            triangle.RadianceAt(b.x, b.y) * (cos_light * triangle.area / distance_sq);
         sample->pdf = static_cast<float>(distribution_.Probability(pick.index)) * distance_sq /
                       (cos_light * triangle.area);
     } else {

@@ -152,9 +152,9 @@ private:
         // Goniometric: the intensity over the sphere (held apart: `directions` points to it).
         std::shared_ptr<const Environment> environment;
         EnvironmentSampler directions;
-        DiscreteDistribution texels;    // projection
-        float plane_texel_area = 0;     // projection: a texel's area on the plane z = 1
-        Rgbd power;                     // the light's power, W per channel
+        DiscreteDistribution texels;  // projection
+        float plane_texel_area = 0;   // projection: a texel's area on the plane z = 1
+        Rgbd power;                   // the light's power, W per channel
     };
     static ImageSampler MakeImageSampler(const PunctualLight& light);
     EmittedPhoton EmitFromTriangle(const EmissiveTriangle& triangle, Rng& rng) const;
@@ -172,7 +172,7 @@ private:
     std::vector<int32_t> emitter_of_triangle_;
     EnvironmentSampler environment_sampler_;
     std::vector<ImageSampler> image_samplers_;  // per Scene::lights entry; empty for most
-    int32_t environment_emitter_ = -1;  // its index into emitters_
+    int32_t environment_emitter_ = -1;          // its index into emitters_
     Rgbd power_rgb_;
     double total_power_ = 0;
     Vec3 scene_center_;

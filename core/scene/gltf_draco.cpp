@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <string_view>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
@@ -39,6 +40,93 @@ absl::StatusOr<std::vector<float>> Attribute(const draco::Mesh& mesh,
     return values;
 }
 
+// Reads a Draco stream's header fields in order (the bitstream specification's types), so
+// that the counts a hostile stream declares can be refused before libdraco allocates for them.
+class DracoReader {
+public:
+    explicit DracoReader(std::string_view bytes) : bytes_(bytes) {}
+    bool Byte(uint32_t* value) {
+        if (at_ >= bytes_.size()) return false;
+        *value = static_cast<unsigned char>(bytes_[at_++]);
+        return true;
+    }
+    bool Skip(size_t count) {
+        if (count > bytes_.size() - at_) return false;
+        at_ += count;
+        return true;
+    }
+    bool Varint(uint64_t* value) {  // LEB128, at most 10 bytes
+        *value = 0;
+        for (int shift = 0; shift < 70; shift += 7) {
+            uint32_t byte = 0;
+            if (!Byte(&byte)) return false;
+            *value |= uint64_t(byte & 0x7f) << shift;
+            if ((byte & 0x80) == 0) return true;
+        }
+        return false;
+    }
+    // A metadata element and its sub-elements, `depth` deep at most.
+    bool SkipMetadata(int depth) {
+        uint64_t entries = 0, subs = 0;
+        uint32_t size = 0;
+        if (depth == 0 || !Varint(&entries)) return false;
+        for (uint64_t e = 0; e < entries; ++e)
+            for (int part = 0; part < 2; ++part)
+                if (!Byte(&size) || !Skip(size)) return false;
+        if (!Varint(&subs)) return false;
+        for (uint64_t e = 0; e < subs; ++e)
+            if (!Byte(&size) || !Skip(size) || !SkipMetadata(depth - 1)) return false;
+        return true;
+    }
+
+private:
+    std::string_view bytes_;
+    size_t at_ = 0;
+};
+
+// The counts of faces and points (or vertices, symbols and split symbols) a mesh stream of
+// bitstream version 2.2 declares, against the scene's limit and against what its bytes could
+// hold: real streams spend well over a bit a face, so more than 1024 of either a byte is a
+// hostile stream (libdraco would allocate for it first: gigabytes from 43 bytes).
+absl::Status CheckDracoCounts(std::string_view stream, uint64_t max_triangles) {
+    const auto refused = [](const std::string& what) {
+        return absl::InvalidArgumentError(absl::StrCat("KHR_draco_mesh_compression: ", what));
+    };
+    DracoReader in(stream);
+    uint32_t major = 0, minor = 0, type = 0, method = 0, flags_low = 0, flags_high = 0;
+    if (stream.substr(0, 5) != "DRACO" || !in.Skip(5) || !in.Byte(&major) || !in.Byte(&minor) ||
+        !in.Byte(&type) || !in.Byte(&method) || !in.Byte(&flags_low) || !in.Byte(&flags_high))
+        return refused("the stream has no Draco header");
+    if (major != 2 || minor != 2)
+        return refused(absl::StrCat("bitstream version ", major, ".", minor,
+                                    " is not read (glTF's Draco streams are 2.2)"));
+    if (type != 1) return refused("the stream is not a triangle mesh");
+    if ((flags_high & 0x80) != 0) {  // metadata: a count, ids, then elements
+        uint64_t count = 0, id = 0;
+        bool ok = in.Varint(&count) && count <= stream.size();
+        for (uint64_t i = 0; ok && i < count; ++i) ok = in.Varint(&id) && in.SkipMetadata(32);
+        if (!ok || !in.SkipMetadata(32)) return refused("the stream's metadata is malformed");
+    }
+    std::vector<uint64_t> counts(method == 0 ? 2 : 4);
+    uint32_t traversal = 0, attribute_data = 0;
+    bool ok = method == 0 || (method == 1 && in.Byte(&traversal));
+    if (method > 1) return refused(absl::StrCat("encoder method ", method, " is unknown"));
+    for (size_t i = 0; ok && i < counts.size(); ++i) {
+        ok = in.Varint(&counts[i]);
+        if (ok && method == 1 && i == 1) ok = in.Byte(&attribute_data);  // after num_faces
+    }
+    if (!ok) return refused("the stream's connectivity header is truncated");
+    const uint64_t faces = counts[method == 0 ? 0 : 1];
+    const uint64_t plausible = 1024 * uint64_t(stream.size());
+    if (faces > max_triangles)
+        return refused(absl::StrCat(faces, " triangles exceed the limit of ", max_triangles));
+    for (const uint64_t count : counts)
+        if (count > plausible || count > 3 * max_triangles)
+            return refused(absl::StrCat("the stream declares ", count, " elements in ",
+                                        stream.size(), " bytes"));
+    return absl::OkStatus();
+}
+
 }  // namespace
 
 absl::StatusOr<TriangleMesh> DecodeDracoPrimitive(const tinygltf::Model& model,
@@ -60,10 +148,12 @@ absl::StatusOr<TriangleMesh> DecodeDracoPrimitive(const tinygltf::Model& model,
         view.byteOffset > model.buffers[view.buffer].data.size() ||
         view.byteLength > model.buffers[view.buffer].data.size() - view.byteOffset)
         return malformed(absl::StrCat("buffer view #", view_index, " lies outside its buffer"));
-    draco::DecoderBuffer stream;
-    stream.Init(
+    const std::string_view bytes(
         reinterpret_cast<const char*>(model.buffers[view.buffer].data.data() + view.byteOffset),
         view.byteLength);
+    if (absl::Status status = CheckDracoCounts(bytes, max_triangles); !status.ok()) return status;
+    draco::DecoderBuffer stream;
+    stream.Init(bytes.data(), bytes.size());
     draco::Decoder decoder;
     draco::StatusOr<std::unique_ptr<draco::Mesh>> decoded = decoder.DecodeMeshFromBuffer(&stream);
     if (!decoded.ok())

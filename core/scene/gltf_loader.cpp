@@ -146,11 +146,11 @@ absl::StatusOr<Scene> GltfSceneBuilder::Build() {
     // A required extension changes what the file means: one not read here is refused, as the
     // glTF specification asks, rather than rendered wrong.
     static const std::set<std::string> kSupported = {
-        "KHR_lights_punctual",   "KHR_materials_emissive_strength",
-        "KHR_texture_transform", "KHR_materials_transmission",
-        "KHR_materials_ior",     "KHR_materials_volume",
-        "KHR_mesh_quantization", "KHR_draco_mesh_compression", "EXT_meshopt_compression",
-        "KHR_meshopt_compression"};
+        "KHR_lights_punctual",     "KHR_materials_emissive_strength",
+        "KHR_texture_transform",   "KHR_materials_transmission",
+        "KHR_materials_ior",       "KHR_materials_volume",
+        "KHR_mesh_quantization",   "KHR_draco_mesh_compression",
+        "EXT_meshopt_compression", "KHR_meshopt_compression"};
     for (const std::string& extension : model_.extensionsRequired)
         if (!kSupported.contains(extension))
             return Error("extensionsRequired",
@@ -576,10 +576,10 @@ absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& nam
         slash == std::string::npos ? "" : bundle.main_file.substr(0, slash);
     const bool loaded =
         binary ? loader.LoadBinaryFromMemory(&model, &error, &warning,
-                                          reinterpret_cast<const unsigned char*>(main.data()),
-                                          static_cast<unsigned int>(main.size()), base_dir)
-            : loader.LoadASCIIFromString(&model, &error, &warning, main.data(),
-                                         static_cast<unsigned int>(main.size()), base_dir);
+                                             reinterpret_cast<const unsigned char*>(main.data()),
+                                             static_cast<unsigned int>(main.size()), base_dir)
+               : loader.LoadASCIIFromString(&model, &error, &warning, main.data(),
+                                            static_cast<unsigned int>(main.size()), base_dir);
     // Image files a bundle leaves out (no material reads them; PackSceneBundle) are expected
     // missing; a base colour image that is missing is an error below.
     for (size_t begin = 0; begin < warning.size();) {

@@ -55,7 +55,8 @@ absl::StatusOr<std::string> BufferBytes(const nlohmann::json& buffers, uint64_t 
     if (absl::StartsWith(uri, "data:")) {
         const size_t comma = uri.find(',');
         std::string bytes;
-        if (comma == std::string::npos || uri.substr(0, comma).find(";base64") == std::string::npos ||
+        if (comma == std::string::npos ||
+            uri.substr(0, comma).find(";base64") == std::string::npos ||
             !absl::Base64Unescape(uri.substr(comma + 1), &bytes))
             return Invalid(absl::StrCat(where, ": not a base64 data URI"));
         return bytes;
@@ -63,7 +64,9 @@ absl::StatusOr<std::string> BufferBytes(const nlohmann::json& buffers, uint64_t 
     const absl::StatusOr<std::string> path = ResolveReference(uri, folder);
     if (!path.ok()) return Invalid(absl::StrCat(where, ": ", path.status().message()));
     const absl::StatusOr<std::string_view> file = read(*path);
-    if (!file.ok()) return absl::Status(file.status().code(), absl::StrCat(where, ": ", file.status().message()));
+    if (!file.ok())
+        return absl::Status(file.status().code(),
+                            absl::StrCat(where, ": ", file.status().message()));
     return std::string(*file);
 }
 
@@ -103,7 +106,8 @@ absl::StatusOr<std::string> DecodeMeshoptStream(std::string_view compressed,
             "of this system (0.18, Debian 12) does not decode; re-encode it with version 0 "
             "(gltfpack -cc 0 or EXT_meshopt_compression)");
     if (error != 0)
-        return Invalid(absl::StrCat("the ", stream.mode, " stream is malformed (error ", error, ")"));
+        return Invalid(
+            absl::StrCat("the ", stream.mode, " stream is malformed (error ", error, ")"));
     if (stream.filter == "OCTAHEDRAL") {
         if (stride != 4 && stride != 8) return Invalid("OCTAHEDRAL needs byteStride 4 or 8");
         meshopt_decodeFilterOct(out.data(), count, stride);
@@ -146,7 +150,8 @@ absl::StatusOr<std::string> DecodeMeshoptBuffers(const std::string& contents, bo
                                       parent_offset = Unsigned(view, "byteOffset", 0),
                                       parent_length = Unsigned(view, "byteLength");
         if (!parent || !parent_offset || !parent_length)
-            return Invalid(absl::StrCat("bufferViews[", v, "]: buffer, byteOffset or byteLength is malformed"));
+            return Invalid(absl::StrCat("bufferViews[", v,
+                                        "]: buffer, byteOffset or byteLength is malformed"));
         if (!buffers.is_array() || *parent >= buffers.size() || !buffers[*parent].is_object())
             return Invalid(absl::StrCat(where, ": buffers[", *parent, "] does not exist"));
         // A parent buffer with data holds the view uncompressed: tinygltf reads that.
@@ -160,8 +165,9 @@ absl::StatusOr<std::string> DecodeMeshoptBuffers(const std::string& contents, bo
         if (!buffer || !offset || !length || !stride || !count || !extension.contains("mode") ||
             !extension["mode"].is_string() ||
             (extension.contains("filter") && !extension["filter"].is_string()))
-            return Invalid(absl::StrCat(where, ": buffer, byteOffset, byteLength, byteStride, "
-                                               "count or mode is missing or malformed"));
+            return Invalid(absl::StrCat(where,
+                                        ": buffer, byteOffset, byteLength, byteStride, "
+                                        "count or mode is missing or malformed"));
         if (!sources.contains(*buffer)) {
             absl::StatusOr<std::string> bytes = BufferBytes(buffers, *buffer, *json, folder, read);
             if (!bytes.ok())
@@ -172,8 +178,8 @@ absl::StatusOr<std::string> DecodeMeshoptBuffers(const std::string& contents, bo
         const std::string& source = sources[*buffer];
         if (*offset > source.size() || *length > source.size() - *offset)
             return Invalid(absl::StrCat(where, ": bytes ", *offset, " + ", *length,
-                                        " lie outside buffers[", *buffer, "] (",
-                                        source.size(), " bytes)"));
+                                        " lie outside buffers[", *buffer, "] (", source.size(),
+                                        " bytes)"));
         MeshoptStream stream{*count, *stride, extension["mode"].get<std::string>()};
         if (extension.contains("filter")) stream.filter = extension["filter"].get<std::string>();
         absl::StatusOr<std::string> bytes =
@@ -185,8 +191,8 @@ absl::StatusOr<std::string> DecodeMeshoptBuffers(const std::string& contents, bo
                                         *parent_length));
         total += bytes->size();
         if (total > kMaxDecodedBytes)
-            return Invalid(absl::StrCat(where, ": the file decodes to more than ",
-                                        kMaxDecodedBytes, " bytes"));
+            return Invalid(absl::StrCat(where, ": the file decodes to more than ", kMaxDecodedBytes,
+                                        " bytes"));
         std::string& target = decoded[*parent];
         if (target.size() < *parent_offset + *parent_length)
             target.resize(*parent_offset + *parent_length, '\0');

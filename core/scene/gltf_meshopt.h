@@ -1,6 +1,6 @@
 // EXT_meshopt_compression (and its ratified twin KHR_meshopt_compression): glTF buffer views
-// stored as meshoptimizer streams (Debian's libmeshoptimizer), decoded into the fallback buffers they stand for before tinygltf reads
-// the file, so that accessors read them as any other data.
+// stored as meshoptimizer streams (Debian's libmeshoptimizer), decoded into the fallback buffers
+// they stand for before tinygltf reads the file, so that accessors read them as any other data.
 #pragma once
 
 #include <cstdint>
@@ -14,9 +14,9 @@ namespace pf {
 
 // One compressed buffer view, as its extension object describes it.
 struct MeshoptStream {
-    uint64_t count = 0;   // elements
-    uint64_t stride = 0;  // bytes an element
-    std::string mode;     // "ATTRIBUTES", "TRIANGLES" or "INDICES"
+    uint64_t count = 0;           // elements
+    uint64_t stride = 0;          // bytes an element
+    std::string mode;             // "ATTRIBUTES", "TRIANGLES" or "INDICES"
     std::string filter = "NONE";  // "NONE", "OCTAHEDRAL", "QUATERNION" or "EXPONENTIAL"
 };
 

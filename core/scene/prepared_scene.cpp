@@ -225,9 +225,8 @@ absl::Status ReadPayload(ByteReader& in, Scene* scene) {
         if (!in.Value(&light.type) || !in.Value(&light.position) || !in.Value(&light.direction) ||
             !in.Value(&light.intensity) || !in.Value(&light.cos_inner) ||
             !in.Value(&light.cos_outer) || !in.Value(&smooth_falloff) || !in.Value(&light.range) ||
-            !in.Value(&light.to_light) || !in.Value(&light.tan_half_fov) ||
-            !in.Value(&has_image) || (has_image != 0 && !ReadTexture(in, &image)) ||
-            !in.String(&light.name, 4096))
+            !in.Value(&light.to_light) || !in.Value(&light.tan_half_fov) || !in.Value(&has_image) ||
+            (has_image != 0 && !ReadTexture(in, &image)) || !in.String(&light.name, 4096))
             return fail(absl::StrCat("light ", l));
         light.smooth_falloff = smooth_falloff != 0;
         if (has_image != 0) {
@@ -335,9 +334,10 @@ absl::Status CheckLightsAndCamera(const Scene& scene) {
             !(light.tan_half_fov > 0 && light.tan_half_fov < 1e6f))
             return Invalid(absl::StrCat("light ", l, ": a value out of range"));
         if (light.HasImage() != (light.image != nullptr) ||
-            (light.image && (light.image->texels.empty() ||
-                             !std::all_of(light.image->texels.begin(), light.image->texels.end(),
-                                          [](const Rgb& t) { return Finite(t) && MinComponent(t) >= 0; }))))
+            (light.image &&
+             (light.image->texels.empty() ||
+              !std::all_of(light.image->texels.begin(), light.image->texels.end(),
+                           [](const Rgb& t) { return Finite(t) && MinComponent(t) >= 0; }))))
             return Invalid(absl::StrCat("light ", l, ": its image is missing or out of range"));
     }
     const Camera& camera = scene.camera;

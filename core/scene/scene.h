@@ -60,7 +60,9 @@ struct PunctualLight {
     float SpotFalloff(float cos_axis) const;
     // The range's window at `distance` (core/shared/path_sampling.h); 1 without a range.
     float RangeWindow(float distance) const { return gpu::RangeWindow(distance, range); }
-    bool HasImage() const { return type == LightType::kGoniometric || type == LightType::kProjection; }
+    bool HasImage() const {
+        return type == LightType::kGoniometric || type == LightType::kProjection;
+    }
     // The light's direction `toward` (unit, world) in its own frame.
     Vec3 ToLight(const Vec3& toward) const;
     // Projection: where a light-frame direction falls on the image, as (column, row) in

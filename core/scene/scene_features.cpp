@@ -9,11 +9,11 @@ namespace pf {
 
 SceneFeatures SceneFeatures::All() {
     SceneFeatures all;
-    for (bool* flag : {&all.mirror, &all.dielectric, &all.thin_dielectric, &all.rough_conductor,
-                       &all.rough_dielectric, &all.textures, &all.smooth_normals,
-                       &all.triangle_lights, &all.point_lights, &all.spot_lights,
-                       &all.directional_lights, &all.environment, &all.textured_lights,
-                       &all.image_lights, &all.caustics})
+    for (bool* flag :
+         {&all.mirror, &all.dielectric, &all.thin_dielectric, &all.rough_conductor,
+          &all.rough_dielectric, &all.textures, &all.smooth_normals, &all.triangle_lights,
+          &all.point_lights, &all.spot_lights, &all.directional_lights, &all.environment,
+          &all.textured_lights, &all.image_lights, &all.caustics})
         *flag = true;
     return all;
 }

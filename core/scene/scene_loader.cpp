@@ -11,8 +11,8 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "core/scene/gltf_draco.h"
-#include "core/scene/gltf_meshopt.h"
 #include "core/scene/gltf_loader.h"
+#include "core/scene/gltf_meshopt.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/pbrt/pbrt_loader.h"
 #include "core/scene/scene_files.h"
@@ -123,10 +123,8 @@ absl::Status PackGltf(const std::string& scene_path, const std::string& file, bo
     const std::string base_dir = BundleFolder(bundle->main_file);
     // Meshopt streams are decoded as the load decodes them, which reads (and packs) the files
     // that hold them.
-    absl::StatusOr<std::string> decoded =
-        DecodeMeshoptBuffers(file, binary, base_dir, [files](const std::string& path) {
-            return files->Read(path);
-        });
+    absl::StatusOr<std::string> decoded = DecodeMeshoptBuffers(
+        file, binary, base_dir, [files](const std::string& path) { return files->Read(path); });
     if (!decoded.ok())
         return absl::Status(decoded.status().code(),
                             absl::StrCat(scene_path, ": ", decoded.status().message()));

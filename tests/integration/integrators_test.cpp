@@ -554,18 +554,17 @@ std::string CaseName(const ::testing::TestParamInfo<SceneCase>& info) {
     return std::string(IntegratorName(info.param.integrator)) + "_" + scene;
 }
 
-INSTANTIATE_TEST_SUITE_P(PhotonMappers, AgreesWithThePathTracer,
-                         ::testing::Values(SceneCase{"cornell-box.gltf", Integrator::kPpm, 0.165},
-                                           SceneCase{"cornell-box.gltf", Integrator::kSppm, 0.165},
-                                           SceneCase{"cornell-box.gltf", Integrator::kPm, 0.165},
-                                           SceneCase{"cornell-glossy.gltf", Integrator::kSppm, 0.1},
-                                           // Lit by an image: a textured area light.
-                                           SceneCase{"cornell-stained.gltf", Integrator::kPpm,
-                                                     0.165},
-                                           // Lit by an environment map alone.
-                                           SceneCase{"pbrt/sky-courtyard.pbrt", Integrator::kPpm,
-                                                     0.6}),
-                         CaseName);
+INSTANTIATE_TEST_SUITE_P(
+    PhotonMappers, AgreesWithThePathTracer,
+    ::testing::Values(SceneCase{"cornell-box.gltf", Integrator::kPpm, 0.165},
+                      SceneCase{"cornell-box.gltf", Integrator::kSppm, 0.165},
+                      SceneCase{"cornell-box.gltf", Integrator::kPm, 0.165},
+                      SceneCase{"cornell-glossy.gltf", Integrator::kSppm, 0.1},
+                      // Lit by an image: a textured area light.
+                      SceneCase{"cornell-stained.gltf", Integrator::kPpm, 0.165},
+                      // Lit by an environment map alone.
+                      SceneCase{"pbrt/sky-courtyard.pbrt", Integrator::kPpm, 0.6}),
+    CaseName);
 
 }  // namespace
 }  // namespace pf

@@ -178,8 +178,8 @@ TEST(TwoSidedLights, ATwoSidedLightIsItsTwoFacesSummed) {
 
 TEST(TexturedLights, ASingleTexelImageLightRendersAsItsColour) {
     // A card lit by a two-sided area light whose image is one texel (0.5, 0.25, 1) at scale 8,
-    // against the same light with L = (4, 2, 8): the same radiance everywhere, so with the same random
-    // numbers every integrator renders the same image (seen directly, by light samples and
+    // against the same light with L = (4, 2, 8): the same radiance everywhere, so with the same
+    // random numbers every integrator renders the same image (seen directly, by light samples and
     // MIS hits, and by photons), to float rounding.
     const std::string folder = testing::TempPath("single-texel-light");
     std::filesystem::create_directories(folder);

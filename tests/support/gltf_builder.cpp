@@ -37,10 +37,10 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
                     absl::StrCat(R"({"uri":"data:image/png;base64,)", m.texture_png_base64, "\"}"));
             }
         }
-        std::string material = absl::StrCat(
-            R"({"pbrMetallicRoughness":{"baseColorFactor":[)", m.base_color.x, ",", m.base_color.y,
-            ",", m.base_color.z, R"(,1],"metallicFactor":0)", m.texture_emissive ? "" : texture,
-            "}", m.texture_emissive ? texture : "");
+        std::string material =
+            absl::StrCat(R"({"pbrMetallicRoughness":{"baseColorFactor":[)", m.base_color.x, ",",
+                         m.base_color.y, ",", m.base_color.z, R"(,1],"metallicFactor":0)",
+                         m.texture_emissive ? "" : texture, "}", m.texture_emissive ? texture : "");
         if (!IsBlack(m.emission))
             absl::StrAppend(&material, R"(,"emissiveFactor":)", Floats(m.emission));
         materials.push_back(material + "}");

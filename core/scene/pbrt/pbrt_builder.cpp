@@ -372,11 +372,10 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
     return AppendMesh(mesh, placement, options_.limits, element, &scene_, prototype);
 }
 
-absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emission,
-                                                         bool two_sided,
+absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emission, bool two_sided,
                                                          int32_t emission_texture) {
-    const auto key = std::make_tuple(material, emission.x, emission.y, emission.z, two_sided,
-                                     emission_texture);
+    const auto key =
+        std::make_tuple(material, emission.x, emission.y, emission.z, two_sided, emission_texture);
     if (const auto it = scene_materials_.find(key); it != scene_materials_.end()) return it->second;
     Material out = material >= 0 ? materials_[material].material : DefaultMaterial().material;
     out.emission = emission;

@@ -240,12 +240,14 @@ absl::Status PbrtSceneBuilder::ImageLight(const std::string& type, ParameterList
         return ErrorAt(where, absl::StrCat(element, " needs \"string filename\" (its image)"));
     if (!IsFinite(light.intensity) || MinComponent(light.intensity) < 0 || !(power >= 0) ||
         !std::isfinite(power) || !(fov > 0 && fov < 180))
-        return ErrorAt(where, absl::StrCat(element, ": I, scale and power must be finite and "
-                                                    "non-negative, fov in (0, 180)"));
+        return ErrorAt(where, absl::StrCat(element,
+                                           ": I, scale and power must be finite and "
+                                           "non-negative, fov in (0, 180)"));
     std::optional<std::array<float, 9>> frame = LightFrame(state_.ctm);
     if (!frame)
-        return ErrorAt(where, absl::StrCat(element, ": its transform must be a rotation (and "
-                                                    "uniform scale)"));
+        return ErrorAt(where, absl::StrCat(element,
+                                           ": its transform must be a rotation (and "
+                                           "uniform scale)"));
     // pbrt-v4's extra turn of the light's frame: y and z swapped (goniometric), y flipped
     // (projection).
     std::array<float, 9>& m = *frame;
@@ -274,10 +276,10 @@ absl::Status PbrtSceneBuilder::ImageLight(const std::string& type, ParameterList
             return ErrorAt(where, absl::StrCat(element, ": ", *path,
                                                " holds negative, infinite or NaN values"));
     if (goniometric && image->width != image->height)
-        return ErrorAt(where, absl::StrCat(element, ": ", *path, " is ", image->width, "x",
-                                           image->height,
-                                           "; pbrt-v4's goniometric images are equal-area "
-                                           "squares"));
+        return ErrorAt(where,
+                       absl::StrCat(element, ": ", *path, " is ", image->width, "x", image->height,
+                                    "; pbrt-v4's goniometric images are equal-area "
+                                    "squares"));
     if (goniometric)
         for (Rgb& texel : image->texels) texel = Rgb(Average(texel));
     light.image = std::make_shared<const pf::Texture>(std::move(*image));

@@ -14,9 +14,9 @@
 #include "core/scene/image_decode.h"
 #include "core/scene/mesh_builder.h"
 #include "core/scene/pbrt/pbrt_lexer.h"
-#include "core/scene/pbrt/pbrt_upgrade.h"
 #include "core/scene/pbrt/pbrt_loader.h"
 #include "core/scene/pbrt/pbrt_parameters.h"
+#include "core/scene/pbrt/pbrt_upgrade.h"
 #include "core/scene/scene.h"
 
 namespace pf::pbrt {
@@ -132,8 +132,7 @@ private:
     // files_.Read, with a gzip file (name ending in .gz) decompressed: pbrt's .pbrt.gz and
     // .ply.gz. Packing reads the compressed bytes only.
     absl::StatusOr<std::string_view> ReadFile(const std::string& path);
-    absl::Status InfiniteLight(ParameterList& parameters, const Location& where,
-                               bool lat_long_map);
+    absl::Status InfiniteLight(ParameterList& parameters, const Location& where, bool lat_long_map);
     absl::Status ImageLight(const std::string& type, ParameterList& parameters,
                             const Location& where);
     absl::Status ApplyTransform(const Transform& transform);

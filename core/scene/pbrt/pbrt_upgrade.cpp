@@ -19,7 +19,8 @@ void Changed(UpgradeResult* result, const std::string& change) {
 // An rgb (or pbrt-v3 "color") parameter whose three values are equal: that value.
 std::optional<double> Grey(const Parameter& parameter) {
     if (parameter.type != "rgb" || parameter.numbers.size() != 3 ||
-        parameter.numbers[0] != parameter.numbers[1] || parameter.numbers[1] != parameter.numbers[2])
+        parameter.numbers[0] != parameter.numbers[1] ||
+        parameter.numbers[1] != parameter.numbers[2])
         return std::nullopt;
     return parameter.numbers[0];
 }
@@ -47,8 +48,7 @@ void IndexToEta(ParameterList* parameters) {
         parameters->Rename("index", "eta");
 }
 
-absl::Status UpgradeMaterial(std::string* type, ParameterList* parameters,
-                             UpgradeResult* result) {
+absl::Status UpgradeMaterial(std::string* type, ParameterList* parameters, UpgradeResult* result) {
     const std::string v3 = *type;
     parameters->Rename("bumpmap", "displacement");
     if (v3 == "glass" || v3 == "uber") IndexToEta(parameters);
@@ -64,8 +64,9 @@ absl::Status UpgradeMaterial(std::string* type, ParameterList* parameters,
         parameters->Rename("Kd", "reflectance");
         if (const Parameter* opacity = parameters->Find("opacity")) {
             if (Grey(*opacity) != 1.0)
-                return Refused("a non-opaque \"opacity\" of pbrt-v3's \"uber\" has no pbrt-v4 "
-                               "equivalent (as pbrt --upgrade says); edit the material");
+                return Refused(
+                    "a non-opaque \"opacity\" of pbrt-v3's \"uber\" has no pbrt-v4 "
+                    "equivalent (as pbrt --upgrade says); edit the material");
             parameters->Remove("opacity");
         }
     } else if (v3 == "substrate") {
@@ -122,8 +123,8 @@ absl::Status UpgradeMaterial(std::string* type, ParameterList* parameters,
             const double average =
                 (amount->numbers[0] + amount->numbers[1] + amount->numbers[2]) / 3;
             if (!Grey(*amount))
-                result->warnings.push_back(absl::StrCat(
-                    "the rgb \"amount\" is taken as its average, ", average));
+                result->warnings.push_back(
+                    absl::StrCat("the rgb \"amount\" is taken as its average, ", average));
             amount->type = "float";
             amount->numbers = {average};
         }
@@ -133,8 +134,8 @@ absl::Status UpgradeMaterial(std::string* type, ParameterList* parameters,
             second->strings.size() != 1)
             return Refused("pbrt-v3's \"mix\" needs \"namedmaterial1\" and \"namedmaterial2\"");
         // pbrt-v4 lists them the other way round.
-        Parameter materials{"string", "materials", first->where, {},
-                            {second->strings[0], first->strings[0]}};
+        Parameter materials{
+            "string", "materials", first->where, {}, {second->strings[0], first->strings[0]}};
         parameters->Remove("namedmaterial1");
         parameters->Remove("namedmaterial2");
         parameters->Add(std::move(materials));
@@ -185,8 +186,9 @@ absl::Status UpgradeTexture(std::string* texture_class, const std::string& type,
                     ? std::optional<double>(constant->numbers[0])
                     : Grey(*constant);
             if (!grey)
-                return Refused("a \"scale\" texture of two colours has no pbrt-v4 form (as "
-                               "pbrt --upgrade says); edit the texture");
+                return Refused(
+                    "a \"scale\" texture of two colours has no pbrt-v4 form (as "
+                    "pbrt --upgrade says); edit the texture");
             constant->type = "float";
             constant->numbers = {*grey};
             const std::string other = constant->name == "tex1" ? "tex2" : "tex1";
@@ -196,7 +198,8 @@ absl::Status UpgradeTexture(std::string* texture_class, const std::string& type,
             parameters->Rename("tex1", "tex");
             parameters->Rename("tex2", "scale");
         }
-        Changed(result, "a \"scale\" texture's \"tex1\" and \"tex2\" are pbrt-v4's \"tex\" and \"scale\"");
+        Changed(result,
+                "a \"scale\" texture's \"tex1\" and \"tex2\" are pbrt-v4's \"tex\" and \"scale\"");
     }
     return absl::OkStatus();
 }
@@ -221,8 +224,10 @@ absl::Status FoldIntoScale(ParameterList* parameters, const std::vector<const ch
         if (Parameter* p = parameters->Find(name); p != nullptr && p->type == "rgb") {
             const std::optional<double> grey = Grey(*p);
             if (!grey)
-                return Refused(absl::StrCat("a coloured \"", name, "\" with \"mapname\" has no "
-                                            "pbrt-v4 form (as pbrt --upgrade says); edit the light"));
+                return Refused(
+                    absl::StrCat("a coloured \"", name,
+                                 "\" with \"mapname\" has no "
+                                 "pbrt-v4 form (as pbrt --upgrade says); edit the light"));
             scale *= *grey;
             parameters->Remove(name);
             changed = true;
@@ -235,12 +240,13 @@ absl::Status FoldIntoScale(ParameterList* parameters, const std::vector<const ch
             changed = true;
         }
     if (!changed) return absl::OkStatus();
-    if (Parameter* p = parameters->Find("scale"); p != nullptr && p->type == "float" &&
-                                                  p->numbers.size() == 1)
+    if (Parameter* p = parameters->Find("scale");
+        p != nullptr && p->type == "float" && p->numbers.size() == 1)
         p->numbers[0] *= scale;
     else
         parameters->Add({"float", "scale", {}, {scale}});
-    Changed(result, absl::StrCat("the ", light, "'s rgb \"scale\" or two-number black body is "
+    Changed(result, absl::StrCat("the ", light,
+                                 "'s rgb \"scale\" or two-number black body is "
                                  "pbrt-v4's float \"scale\""));
     return absl::OkStatus();
 }
@@ -262,8 +268,7 @@ absl::Status UpgradeLight(const std::string& type, ParameterList* parameters,
     return absl::OkStatus();
 }
 
-absl::Status UpgradeAreaLight(std::string* type, ParameterList* parameters,
-                              UpgradeResult* result) {
+absl::Status UpgradeAreaLight(std::string* type, ParameterList* parameters, UpgradeResult* result) {
     if (absl::Status status = FoldIntoScale(parameters, {}, "area light", result); !status.ok())
         return status;
     if (*type == "area") {
@@ -288,7 +293,8 @@ void UpgradeShape(const std::string& type, ParameterList* parameters, UpgradeRes
             p != nullptr && (p->type == "float" || (p->type == "point2" && p->name == "st"))) {
             p->type = "point2";
             p->name = "uv";
-            Changed(result, absl::StrCat("\"", name, "\" texture coordinates are pbrt-v4's \"point2 uv\""));
+            Changed(result,
+                    absl::StrCat("\"", name, "\" texture coordinates are pbrt-v4's \"point2 uv\""));
             break;
         }
 }
@@ -326,7 +332,8 @@ absl::Status UpgradeDirective(const std::string& directive, std::string* type,
         if (v3 == "lowdiscrepancy" || v3 == "02sequence") *type = "paddedsobol";
         if (v3 == "maxmindist") *type = "pmj02bn";
         if (v3 == "random") *type = "independent";
-        if (*type != v3) Changed(result, absl::StrCat("Sampler \"", v3, "\" is pbrt-v4's \"", *type, "\""));
+        if (*type != v3)
+            Changed(result, absl::StrCat("Sampler \"", v3, "\" is pbrt-v4's \"", *type, "\""));
     }
     if (directive == "Integrator") {
         parameters->Remove("rrthreshold");

@@ -7,10 +7,13 @@
 
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "absl/strings/escaping.h"
 #include "absl/strings/str_cat.h"
+#include "core/scene/gltf_draco.h"
 #include "core/scene/scene_loader.h"
 #include "tests/support/gltf_builder.h"
 
@@ -168,6 +171,42 @@ TEST(GltfAccessorsTest, DracoStreamsDecode) {
         EXPECT_NE(corrupt.status().message().find("KHR_draco_mesh_compression"), std::string::npos)
             << corrupt.status();
     }
+}
+
+TEST(GltfAccessorsTest, DracoStreamsDeclaringMoreThanTheyHoldAreRefusedBeforeDecoding) {
+    // 43 bytes whose edgebreaker header declares 268 million faces: libdraco would spend
+    // a minute and 3 GB on it (found by the draco fuzzer, kept as its seed).
+    std::ifstream file(std::string(PF_SOURCE_DIR) +
+                           "/tests/fuzz/corpus/draco/regression-oom-declared-vertices.drc",
+                       std::ios::binary);
+    const std::string stream((std::istreambuf_iterator<char>(file)),
+                             std::istreambuf_iterator<char>());
+    ASSERT_EQ(stream.size(), 43u);
+    tinygltf::Model model;
+    model.buffers.emplace_back().data.assign(stream.begin(), stream.end());
+    tinygltf::BufferView& view = model.bufferViews.emplace_back();
+    view.buffer = 0;
+    view.byteLength = stream.size();
+    const tinygltf::Value extension(tinygltf::Value::Object{
+        {"bufferView", tinygltf::Value(0)},
+        {"attributes",
+         tinygltf::Value(tinygltf::Value::Object{{"POSITION", tinygltf::Value(0)}})}});
+    const absl::StatusOr<TriangleMesh> mesh =
+        DecodeDracoPrimitive(model, extension, "TEXCOORD_0", uint64_t{1} << 26);
+    ASSERT_FALSE(mesh.ok());
+    EXPECT_NE(mesh.status().message().find("268435414 triangles exceed the limit"),
+              std::string::npos)
+        << mesh.status();
+    // Within the limit, 100000 faces in 42 bytes are still more than a stream could hold.
+    const std::string within = stream.substr(0, 13) + "\xa0\x8d\x06" + stream.substr(17);
+    model.buffers[0].data.assign(within.begin(), within.end());
+    view.byteLength = within.size();
+    const absl::StatusOr<TriangleMesh> dense =
+        DecodeDracoPrimitive(model, extension, "TEXCOORD_0", uint64_t{1} << 26);
+    ASSERT_FALSE(dense.ok());
+    EXPECT_NE(dense.status().message().find("declares 100000 elements in 42 bytes"),
+              std::string::npos)
+        << dense.status();
 }
 
 }  // namespace

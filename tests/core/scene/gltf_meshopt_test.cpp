@@ -58,9 +58,9 @@ MeshoptFile MeshoptLitQuad(bool glb, bool external) {
     std::vector<std::string> modes(doc["bufferViews"].size(), "ATTRIBUTES");
     for (nlohmann::json& mesh : doc["meshes"]) {
         nlohmann::json& primitive = mesh["primitives"][0];
-        const uint32_t count = doc["accessors"][primitive["attributes"]["POSITION"].get<int>()]
-                                  ["count"]
-                                      .get<uint32_t>();
+        const uint32_t count =
+            doc["accessors"][primitive["attributes"]["POSITION"].get<int>()]["count"]
+                .get<uint32_t>();
         std::vector<uint32_t> indices(count);
         for (uint32_t i = 0; i < count; ++i) indices[i] = i;
         doc["bufferViews"].push_back(
@@ -77,8 +77,8 @@ MeshoptFile MeshoptLitQuad(bool glb, bool external) {
     std::string compressed;
     for (size_t v = 0; v < doc["bufferViews"].size(); ++v) {
         nlohmann::json& view = doc["bufferViews"][v];
-        const std::string data = blob.substr(view["byteOffset"].get<size_t>(),
-                                             view["byteLength"].get<size_t>());
+        const std::string data =
+            blob.substr(view["byteOffset"].get<size_t>(), view["byteLength"].get<size_t>());
         const size_t stride = modes[v] == "TRIANGLES" ? 4 : 12;
         std::vector<uint32_t> indices(data.size() / 4);
         std::memcpy(indices.data(), data.data(), data.size());
@@ -86,10 +86,12 @@ MeshoptFile MeshoptLitQuad(bool glb, bool external) {
                                        ? EncodeTriangles(indices, indices.size())
                                        : EncodeAttributes(data, stride);
         view["buffer"] = fallback;
-        view["extensions"]["EXT_meshopt_compression"] = {
-            {"buffer", streams},      {"byteOffset", compressed.size()},
-            {"byteLength", stream.size()}, {"byteStride", stride},
-            {"count", data.size() / stride}, {"mode", modes[v]}};
+        view["extensions"]["EXT_meshopt_compression"] = {{"buffer", streams},
+                                                         {"byteOffset", compressed.size()},
+                                                         {"byteLength", stream.size()},
+                                                         {"byteStride", stride},
+                                                         {"count", data.size() / stride},
+                                                         {"mode", modes[v]}};
         compressed += stream;
         while (compressed.size() % 4) compressed.push_back('\0');
     }
@@ -109,11 +111,11 @@ MeshoptFile MeshoptLitQuad(bool glb, bool external) {
     const auto word = [](uint32_t value) {
         return std::string(reinterpret_cast<const char*>(&value), 4);
     };
-    const std::string file = "glTF" + word(2) +
-                             word(static_cast<uint32_t>(12 + 8 + json.size() + 8 + compressed.size())) +
-                             word(static_cast<uint32_t>(json.size())) + "JSON" + json +
-                             word(static_cast<uint32_t>(compressed.size())) + std::string("BIN\0", 4) +
-                             compressed;
+    const std::string file =
+        "glTF" + word(2) +
+        word(static_cast<uint32_t>(12 + 8 + json.size() + 8 + compressed.size())) +
+        word(static_cast<uint32_t>(json.size())) + "JSON" + json +
+        word(static_cast<uint32_t>(compressed.size())) + std::string("BIN\0", 4) + compressed;
     return {file, ""};
 }
 
@@ -163,8 +165,8 @@ TEST(GltfMeshoptTest, FiltersDecodeWhatTheirEncodersKept) {
     }
     std::vector<int16_t> octahedral(normals.size());
     meshopt_encodeFilterOct(octahedral.data(), 64, 8, 16, normals.data());
-    absl::StatusOr<std::string> decoded =
-        DecodeMeshoptStream(EncodeAttributes(Bytes(octahedral), 8), {64, 8, "ATTRIBUTES", "OCTAHEDRAL"});
+    absl::StatusOr<std::string> decoded = DecodeMeshoptStream(
+        EncodeAttributes(Bytes(octahedral), 8), {64, 8, "ATTRIBUTES", "OCTAHEDRAL"});
     ASSERT_TRUE(decoded.ok()) << decoded.status();
     std::vector<int16_t> unit(4 * 64);
     std::memcpy(unit.data(), decoded->data(), decoded->size());

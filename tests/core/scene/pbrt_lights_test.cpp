@@ -59,8 +59,8 @@ TEST(PbrtLightsTest, AnAreaLightsImageIsItsEmissionTexture) {
 TEST(PbrtLightsTest, AnImageLightsPowerCountsTheImagesMeanLuminance) {
     // "power" 10 W from a 2 x 2 card (area 4, one side): L = 10 / (pi 4 mean luminance), the
     // mean luminance of texels (1, 1, 2) being sRGB's Y of them.
-    absl::StatusOr<Scene> scene = Load(Bundle(ImageLight("\"float power\" 10"),
-                                              {{"glow.exr", ExrBytes(2, 1, 1.0f, false)}}));
+    absl::StatusOr<Scene> scene =
+        Load(Bundle(ImageLight("\"float power\" 10"), {{"glow.exr", ExrBytes(2, 1, 1.0f, false)}}));
     ASSERT_TRUE(scene.ok()) << scene.status();
     const Material* light = EmittingMaterial(*scene);
     ASSERT_NE(light, nullptr);
@@ -79,9 +79,9 @@ TEST(PbrtLightsTest, ImageLightRefusalsNameTheirPlace) {
 TEST(PbrtLightsTest, PackingGathersAreaLightImages) {
     const std::filesystem::path folder = testing::ProcessTempDir() / "image-light-scene";
     std::filesystem::create_directories(folder / "textures");
-    const SceneBundle written = Bundle(
-        "AreaLightSource \"diffuse\" \"string filename\" \"textures/glow.exr\"\n" +
-        std::string(kQuad));
+    const SceneBundle written =
+        Bundle("AreaLightSource \"diffuse\" \"string filename\" \"textures/glow.exr\"\n" +
+               std::string(kQuad));
     std::ofstream(folder / "scene.pbrt") << written.files.at("scene.pbrt");
     std::ofstream(folder / "textures" / "glow.exr", std::ios::binary) << ExrBytes(2, 2, 1.0f);
     const absl::StatusOr<SceneBundle> bundle = PackSceneBundle((folder / "scene.pbrt").string());
@@ -120,10 +120,10 @@ TEST(PbrtLightsTest, GoniometricLightsAsPbrtV4DefinesThem) {
     EXPECT_NEAR(light.intensity.x, 2.0f, 5e-3f);
     EXPECT_EQ(light.ImageFactor({0, 1, 0}), Rgb(9.0f));
     EXPECT_EQ(light.ImageFactor({0, -1, 0}), Rgb(1.0f));
-    absl::StatusOr<Scene> powered = Load(Bundle(
-        "LightSource \"goniometric\" \"string filename\" \"g.exr\" \"float power\" 100\n" +
-            std::string(kQuad),
-        {{"g.exr", map}}));
+    absl::StatusOr<Scene> powered = Load(
+        Bundle("LightSource \"goniometric\" \"string filename\" \"g.exr\" \"float power\" 100\n" +
+                   std::string(kQuad),
+               {{"g.exr", map}}));
     ASSERT_TRUE(powered.ok()) << powered.status();
     EXPECT_NEAR(powered->lights[1].intensity.x, 100 / (4 * kPiD * 17.0 / 9), 1e-3);
     ExpectError(Load(Bundle("LightSource \"goniometric\"\n" + std::string(kQuad))),
@@ -137,11 +137,11 @@ TEST(PbrtLightsTest, GoniometricLightsAsPbrtV4DefinesThem) {
 TEST(PbrtLightsTest, ProjectionLightsAsPbrtV4DefinesThem) {
     // A 1 x 2 image (top 5, bottom 7) through a 60 degree frustum along +z: the top row
     // toward the light's +y (pbrt-v4's flip), nothing outside tan(30 degrees).
-    absl::StatusOr<Scene> scene = Load(Bundle(
-        "LightSource \"projection\" \"string filename\" \"p.exr\" \"float fov\" 60 "
-        "\"float scale\" 2\n" +
-            std::string(kQuad),
-        {{"p.exr", GreyExr(1, 2, {5, 7})}}));
+    absl::StatusOr<Scene> scene =
+        Load(Bundle("LightSource \"projection\" \"string filename\" \"p.exr\" \"float fov\" 60 "
+                    "\"float scale\" 2\n" +
+                        std::string(kQuad),
+                    {{"p.exr", GreyExr(1, 2, {5, 7})}}));
     ASSERT_TRUE(scene.ok()) << scene.status();
     const PunctualLight& light = scene->lights[1];
     EXPECT_EQ(light.type, LightType::kProjection);

@@ -28,8 +28,7 @@ void ExpectSameScene(const Scene& a, const Scene& b, const std::string& what) {
         EXPECT_EQ(ma.emission, mb.emission) << what;
         EXPECT_EQ(ma.ior, mb.ior) << what;
         EXPECT_EQ(ma.roughness, mb.roughness) << what;
-        EXPECT_EQ(ma.base_color_texture == kNoTexture, mb.base_color_texture == kNoTexture)
-            << what;
+        EXPECT_EQ(ma.base_color_texture == kNoTexture, mb.base_color_texture == kNoTexture) << what;
     }
     ASSERT_EQ(a.uvs.size(), b.uvs.size()) << what;
     for (size_t v = 0; v < a.uvs.size(); ++v)
@@ -73,7 +72,8 @@ TEST(PbrtUpgradeTest, PbrtV3FormsLoadAsTheFormsUpgradeWrites) {
              std::string(kQuad) + "AttributeEnd\n",
          "AttributeBegin\nAreaLightSource \"diffuse\" \"blackbody L\" [3000] \"float scale\" 2\n" +
              std::string(kQuad) + "AttributeEnd\n"},
-        {"LightSource \"point\" \"color I\" [1 2 3] \"color scale\" [2 2 2] \"integer samples\" 4\n",
+        {"LightSource \"point\" \"color I\" [1 2 3] \"color scale\" [2 2 2] \"integer samples\" "
+         "4\n",
          "LightSource \"point\" \"rgb I\" [1 2 3] \"float scale\" 2\n"},
         {"Texture \"t\" \"color\" \"constant\" \"color value\" [0.25 0.5 0.75]\n"
          "Material \"matte\" \"texture Kd\" \"t\"\n",
@@ -109,10 +109,12 @@ TEST(PbrtUpgradeTest, DroppedParametersAreWarnedOfAsUpgradeWarns) {
                             std::string(kQuad)),
                      &warnings)
                     .ok());
-    EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:6:1: warning: Material \"plastic\": "
-                                   "\"rgb Ks\" is dropped"));
-    EXPECT_TRUE(Contains(warnings, "Material \"matte\": \"sigma\" (Oren-Nayar roughness) is "
-                                   "dropped"));
+    EXPECT_TRUE(Contains(warnings,
+                         "scenes/scene.pbrt:6:1: warning: Material \"plastic\": "
+                         "\"rgb Ks\" is dropped"));
+    EXPECT_TRUE(Contains(warnings,
+                         "Material \"matte\": \"sigma\" (Oren-Nayar roughness) is "
+                         "dropped"));
 }
 
 TEST(PbrtUpgradeTest, ALatLongMapnameLooksWherePbrtV3Looked) {
@@ -131,14 +133,15 @@ TEST(PbrtUpgradeTest, ALatLongMapnameLooksWherePbrtV3Looked) {
         const absl::StatusOr<Scene> scene = Load(Bundle(
             std::string(turned ? "AttributeBegin\nRotate 90 1 0 0\n" : "AttributeBegin\n") +
                 "LightSource \"infinite\" \"string mapname\" \"sky.exr\" \"color scale\" [2 2 2]\n"
-                "AttributeEnd\n" + kQuad,
+                "AttributeEnd\n" +
+                kQuad,
             {{"sky.exr", *bytes}}));
         ASSERT_TRUE(scene.ok()) << scene.status();
         ASSERT_TRUE(scene->environment.has_value());
         for (const double theta : {0.3, 1.0, 1.9, 2.8})
             for (const double phi : {0.2, 1.7, 3.5, 5.9}) {
-                const Vec3d light(std::sin(theta) * std::cos(phi),
-                                  std::sin(theta) * std::sin(phi), std::cos(theta));
+                const Vec3d light(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                  std::cos(theta));
                 const Vec3d world = turned ? Vec3d(light.x, -light.z, light.y) : light;
                 const Rgb radiance = scene->environment->Radiance(Vec3(world));
                 EXPECT_EQ(radiance.x, 2 * std::floor(phi / (kPiD / 4))) << theta << " " << phi;
@@ -148,16 +151,16 @@ TEST(PbrtUpgradeTest, ALatLongMapnameLooksWherePbrtV3Looked) {
 }
 
 TEST(PbrtUpgradeTest, WhatUpgradeRefusesIsRefusedNamingItsPlace) {
-    ExpectError(Load(Bundle("LightSource \"point\" \"color scale\" [1 2 3]\n" +
-                            std::string(kQuad))),
-                "scenes/scene.pbrt:6:1: LightSource: in pbrt-v4, \"scale\" of a light is one "
-                "float");
-    ExpectError(Load(Bundle("Material \"uber\" \"color opacity\" [0.5 0.5 0.5]\n" +
-                            std::string(kQuad))),
-                "scenes/scene.pbrt:6:1: Material: a non-opaque \"opacity\"");
-    ExpectError(Load(Bundle("Material \"mix\" \"string namedmaterial1\" \"a\"\n" +
-                            std::string(kQuad))),
-                "scenes/scene.pbrt:6:1: Material: pbrt-v3's \"mix\" needs");
+    ExpectError(
+        Load(Bundle("LightSource \"point\" \"color scale\" [1 2 3]\n" + std::string(kQuad))),
+        "scenes/scene.pbrt:6:1: LightSource: in pbrt-v4, \"scale\" of a light is one "
+        "float");
+    ExpectError(
+        Load(Bundle("Material \"uber\" \"color opacity\" [0.5 0.5 0.5]\n" + std::string(kQuad))),
+        "scenes/scene.pbrt:6:1: Material: a non-opaque \"opacity\"");
+    ExpectError(
+        Load(Bundle("Material \"mix\" \"string namedmaterial1\" \"a\"\n" + std::string(kQuad))),
+        "scenes/scene.pbrt:6:1: Material: pbrt-v3's \"mix\" needs");
 }
 
 }  // namespace
