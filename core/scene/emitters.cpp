@@ -200,17 +200,13 @@ Emitters::ImageSampler Emitters::MakeImageSampler(const PunctualLight& light) {
         return sampler;
     }
     // Projection: texel (x, y) spans solid angle ~ its plane area x cos^3 at its centre.
-    const float aspect = static_cast<float>(image.width) / static_cast<float>(image.height);
-    const double half_x = std::max(aspect, 1.0f) * light.tan_half_fov,
-                 half_y = std::max(1.0f / aspect, 1.0f) * light.tan_half_fov;
+    const Point2 extent = light.ProjectionExtent();
     sampler.plane_texel_area =
-        static_cast<float>(4 * half_x * half_y / (double(image.width) * image.height));
+        static_cast<float>(4.0 * extent.x * extent.y / (double(image.width) * image.height));
     std::vector<double> weights(image.texels.size());
     for (int y = 0; y < image.height; ++y)
         for (int x = 0; x < image.width; ++x) {
-            const double px = ((x + 0.5) / image.width * 2 - 1) * half_x,
-                         py = ((y + 0.5) / image.height * 2 - 1) * half_y;
-            const double cosine = 1 / std::sqrt(px * px + py * py + 1);
+            const double cosine = 1 / Length(Vec3d(light.ProjectionPlanePoint(x + 0.5f, y + 0.5f)));
             const Rgbd texel(image.texels[size_t(y) * image.width + x]);
             const double solid_angle = sampler.plane_texel_area * cosine * cosine * cosine;
             weights[size_t(y) * image.width + x] = Average(texel) * solid_angle;
@@ -234,12 +230,7 @@ EmittedPhoton Emitters::EmitFromImageLight(const PunctualLight& light, const Ima
     const DiscreteDistribution::Sample pick = sampler.texels.Draw(u1);
     const int x = static_cast<int>(pick.index % uint32_t(image.width));
     const int y = static_cast<int>(pick.index / uint32_t(image.width));
-    const float aspect = static_cast<float>(image.width) / static_cast<float>(image.height);
-    const float half_x = std::max(aspect, 1.0f) * light.tan_half_fov,
-                half_y = std::max(1.0f / aspect, 1.0f) * light.tan_half_fov;
-    const float px = ((x + u2) / image.width * 2 - 1) * half_x;
-    const float py = ((y + rng.NextFloat()) / image.height * 2 - 1) * half_y;
-    const Vec3 local = Normalize(Vec3(px, py, 1.0f));
+    const Vec3 local = Normalize(light.ProjectionPlanePoint(x + u2, y + rng.NextFloat()));
     const float* m = light.to_light.data();  // its transpose takes the light's frame to the world
     const Vec3 toward = Normalize(Vec3(m[0] * local.x + m[3] * local.y + m[6] * local.z,
                                        m[1] * local.x + m[4] * local.y + m[7] * local.z,

@@ -185,26 +185,26 @@ absl::StatusOr<std::string> DecodeMeshoptBuffers(const std::string& contents, bo
         absl::StatusOr<std::string> bytes =
             DecodeMeshoptStream(std::string_view(source).substr(*offset, *length), stream);
         if (!bytes.ok()) return Invalid(absl::StrCat(where, ": ", bytes.status().message()));
-        if (bytes->size() > *parent_length || *parent_offset > kMaxDecodedBytes)
+        if (bytes->size() > *parent_length)
             return Invalid(absl::StrCat(where, ": ", bytes->size(),
                                         " decoded bytes overflow the view's byteLength ",
                                         *parent_length));
+        // The fallback buffer grows to hold what was decoded into it, no further: an offset
+        // far past what the streams could hold is refused before anything is allocated.
+        const uint64_t end = *parent_offset + bytes->size();
         total += bytes->size();
-        if (total > kMaxDecodedBytes)
-            return Invalid(absl::StrCat(where, ": the file decodes to more than ", kMaxDecodedBytes,
-                                        " bytes"));
+        if (*parent_offset > kMaxDecodedBytes || total > kMaxDecodedBytes ||
+            end > kMaxExpansion * source.size() + 65536)
+            return Invalid(absl::StrCat(where, ": decoding to bytes ", *parent_offset, " to ", end,
+                                        " of buffers[", *parent, "] is more than its streams ",
+                                        "could hold"));
         std::string& target = decoded[*parent];
-        if (target.size() < *parent_offset + *parent_length)
-            target.resize(*parent_offset + *parent_length, '\0');
+        if (target.size() < end) target.resize(end, '\0');
         target.replace(*parent_offset, bytes->size(), *bytes);
     }
     if (decoded.empty()) return contents;
     for (auto& [index, bytes] : decoded) {
         nlohmann::json& buffer = buffers[index];
-        // Its declared length may run past the views decoded into it: zeros, as unused.
-        const std::optional<uint64_t> length = Unsigned(buffer, "byteLength");
-        if (length && *length > bytes.size() && *length - bytes.size() <= kMaxDecodedBytes - total)
-            bytes.resize(*length, '\0');
         buffer["byteLength"] = bytes.size();
         buffer["uri"] = "data:application/octet-stream;base64," + absl::Base64Escape(bytes);
         buffer.erase("extensions");

@@ -20,17 +20,27 @@ Vec3 PunctualLight::ToLight(const Vec3& toward) const {
             m[6] * toward.x + m[7] * toward.y + m[8] * toward.z};
 }
 
+Point2 PunctualLight::ProjectionExtent() const {
+    const float aspect = static_cast<float>(image->width) / static_cast<float>(image->height);
+    return {std::max(aspect, 1.0f) * tan_half_fov, std::max(1.0f / aspect, 1.0f) * tan_half_fov};
+}
+
+Vec3 PunctualLight::ProjectionPlanePoint(float x, float y) const {
+    const Point2 extent = ProjectionExtent();
+    return {(x / static_cast<float>(image->width) * 2 - 1) * extent.x,
+            (y / static_cast<float>(image->height) * 2 - 1) * extent.y, 1.0f};
+}
+
 std::optional<Point2> PunctualLight::ProjectedTexel(const Vec3& light_direction) const {
     // pbrt-v4's ProjectionLight::I: nothing behind its near plane (1e-3), then the perspective
-    // divide onto a screen spanning [-aspect, aspect] x [-1, 1] (or its transpose).
+    // divide onto the image's rectangle of the plane z = 1.
     if (!(light_direction.z >= 1e-3f) || image == nullptr) return std::nullopt;
-    const float aspect = static_cast<float>(image->width) / static_cast<float>(image->height);
-    const float half_x = std::max(aspect, 1.0f), half_y = std::max(1.0f / aspect, 1.0f);
-    const float sx = light_direction.x / (light_direction.z * tan_half_fov);
-    const float sy = light_direction.y / (light_direction.z * tan_half_fov);
-    if (!(std::abs(sx) <= half_x && std::abs(sy) <= half_y)) return std::nullopt;
-    return Point2{(sx + half_x) / (2 * half_x) * static_cast<float>(image->width),
-                  (sy + half_y) / (2 * half_y) * static_cast<float>(image->height)};
+    const Point2 extent = ProjectionExtent();
+    const float px = light_direction.x / light_direction.z;
+    const float py = light_direction.y / light_direction.z;
+    if (!(std::abs(px) <= extent.x && std::abs(py) <= extent.y)) return std::nullopt;
+    return Point2{(px + extent.x) / (2 * extent.x) * static_cast<float>(image->width),
+                  (py + extent.y) / (2 * extent.y) * static_cast<float>(image->height)};
 }
 
 Rgb PunctualLight::ImageFactor(const Vec3& toward) const {

@@ -65,6 +65,11 @@ struct PunctualLight {
     }
     // The light's direction `toward` (unit, world) in its own frame.
     Vec3 ToLight(const Vec3& toward) const;
+    // Projection: the image's half-width and half-height on the plane z = 1 of the light's
+    // frame (its shorter side spans +-tan_half_fov), and the point of that plane at image
+    // position (x, y), in texels from its top left.
+    Point2 ProjectionExtent() const;
+    Vec3 ProjectionPlanePoint(float x, float y) const;
     // Projection: where a light-frame direction falls on the image, as (column, row) in
     // texels; nullopt outside the frustum (or behind the light).
     std::optional<Point2> ProjectedTexel(const Vec3& light_direction) const;

@@ -287,8 +287,6 @@ absl::Status PbrtSceneBuilder::ImageLight(const std::string& type, ParameterList
         // The light's own measure of its power, for I = 1: pbrt-v4's k_e.
         const pf::Texture& texels = *light.image;
         double sum = 0;
-        const float aspect = float(texels.width) / float(texels.height);
-        const double half_x = std::max(aspect, 1.0f), half_y = std::max(1.0f / aspect, 1.0f);
         for (int y = 0; y < texels.height; ++y)
             for (int x = 0; x < texels.width; ++x) {
                 const Vec3d texel(texels.texels[size_t(y) * texels.width + x]);
@@ -296,13 +294,13 @@ absl::Status PbrtSceneBuilder::ImageLight(const std::string& type, ParameterList
                     sum += texel.x;
                     continue;
                 }
-                const double sx = ((x + 0.5) / texels.width * 2 - 1) * half_x * light.tan_half_fov,
-                             sy = ((y + 0.5) / texels.height * 2 - 1) * half_y * light.tan_half_fov;
-                sum += SrgbLuminance(texel) * std::pow(1 / std::sqrt(sx * sx + sy * sy + 1), 3);
+                const double cosine =
+                    1 / Length(Vec3d(light.ProjectionPlanePoint(x + 0.5f, y + 0.5f)));
+                sum += SrgbLuminance(texel) * cosine * cosine * cosine;
             }
-        const double area = 4 * half_x * half_y * light.tan_half_fov * light.tan_half_fov;
-        const double k_e =
-            (goniometric ? 4 * kPiD : area) * sum / (double(texels.width) * texels.height);
+        const Point2 extent = goniometric ? Point2{} : light.ProjectionExtent();
+        const double k_e = (goniometric ? 4 * kPiD : 4.0 * extent.x * extent.y) * sum /
+                           (double(texels.width) * texels.height);
         if (k_e > 0) light.intensity *= static_cast<float>(power / k_e);
     }
     light.name = where.ToString();

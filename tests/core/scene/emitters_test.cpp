@@ -251,7 +251,9 @@ TEST(EmittersTest, AGoniometricLightEmitsWhereItsImageIsBright) {
     const Scene scene = LightOnly(light);
     const Emitters emitters(scene);
     const FluxMean flux = MeanFlux(emitters, 200000, [&](const EmittedPhoton& photon) {
-        if (photon.flux.x > 0) EXPECT_GT(light.ImageFactor(photon.ray.direction).x, 0.0f);
+        if (photon.flux.x > 0) {
+            EXPECT_GT(light.ImageFactor(photon.ray.direction).x, 0.0f);
+        }
     });
     EXPECT_NEAR(flux.mean, 4 * kPiD * bright / 1024, 5 * flux.standard_error + 1e-3);
     Rng rng(5);

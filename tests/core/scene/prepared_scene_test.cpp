@@ -180,7 +180,9 @@ TEST(PreparedSceneTest, ImageLightsSurvive) {
         EXPECT_EQ(a.to_light, b.to_light);
         EXPECT_EQ(a.tan_half_fov, b.tan_half_fov);
         ASSERT_EQ(a.image == nullptr, b.image == nullptr);
-        if (a.image) EXPECT_EQ(a.image->texels, b.image->texels);
+        if (a.image) {
+            EXPECT_EQ(a.image->texels, b.image->texels);
+        }
     }
     EXPECT_EQ(EncodePreparedScene(*decoded), bytes);
 }
