@@ -18,6 +18,7 @@
 #include "absl/strings/str_join.h"
 #include "core/math/transform.h"
 #include "core/scene/gltf_accessors.h"
+#include "core/scene/gltf_bundle_files.h"
 #include "core/scene/gltf_draco.h"
 #include "core/scene/gltf_meshopt.h"
 #include "core/scene/image_decode.h"
@@ -524,36 +525,12 @@ absl::StatusOr<int32_t> GltfSceneBuilder::TextureIndex(int gltf_texture,
     return index;
 }
 
-// tinygltf's file callbacks over a bundle: only the bundle's files exist.
-bool BundleFileExists(const std::string& path, void* user) {
-    return CheckBundlePath(path).ok() &&
-           static_cast<const SceneBundle*>(user)->files.contains(path);
-}
-std::string BundleExpandFilePath(const std::string& path, void*) {
-    return ResolveReference(path).value_or(path);  // ".." within the bundle resolved
-}
-bool BundleReadWholeFile(std::vector<unsigned char>* out, std::string* error,
-                         const std::string& path, void* user) {
-    if (!BundleFileExists(path, user)) {
-        if (error) *error = absl::StrCat(path, ": not in the scene bundle");
-        return false;
-    }
-    const std::string& contents = static_cast<const SceneBundle*>(user)->files.at(path);
-    out->assign(contents.begin(), contents.end());
-    return true;
-}
-bool BundleWriteWholeFile(std::string*, const std::string&, const std::vector<unsigned char>&,
-                          void*) {
-    return false;
-}
-
 }  // namespace
 
 absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& name,
                                const SceneLimits& limits, const std::string& camera) {
     tinygltf::TinyGLTF loader;
-    loader.SetFsCallbacks({BundleFileExists, BundleExpandFilePath, BundleReadWholeFile,
-                           BundleWriteWholeFile, const_cast<SceneBundle*>(&bundle)});
+    loader.SetFsCallbacks(BundleFsCallbacks(bundle));
     GltfImages images;
     loader.SetImageLoader(KeepEncodedImage, &images);
     tinygltf::Model model;
@@ -561,12 +538,7 @@ absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& nam
     const bool binary = absl::EndsWithIgnoreCase(bundle.main_file, ".glb");
     absl::StatusOr<std::string> decoded = DecodeMeshoptBuffers(
         bundle.files.at(bundle.main_file), binary, BundleFolder(bundle.main_file),
-        [&bundle](const std::string& path) -> absl::StatusOr<std::string_view> {
-            const auto file = bundle.files.find(path);
-            if (file == bundle.files.end())
-                return absl::NotFoundError(absl::StrCat(path, ": not in the scene bundle"));
-            return file->second;
-        });
+        [&bundle](const std::string& path) { return ReadBundleFile(bundle, path); });
     if (!decoded.ok())
         return absl::Status(decoded.status().code(),
                             absl::StrCat(name, ": ", decoded.status().message()));

@@ -392,4 +392,26 @@ const MaterialRef& PbrtSceneBuilder::DefaultMaterial() {
     return kDefault;
 }
 
+// pbrt-v3's directives, rewritten by pbrt_upgrade.h before the rest of the builder sees them.
+absl::StatusOr<UpgradeResult> PbrtSceneBuilder::Upgrade(const std::string& directive,
+                                                        std::string* type,
+                                                        std::string* texture_class,
+                                                        ParameterList* parameters,
+                                                        const Location& where) {
+    UpgradeResult result;
+    const std::string written = *type;
+    if (absl::Status status = UpgradeDirective(directive, type, texture_class, parameters, &result);
+        !status.ok())
+        return ErrorAt(where, absl::StrCat(directive, ": ", status.message()));
+    if (!result.change.empty() && !upgraded_) {
+        upgraded_ = true;
+        Warn(where, absl::StrCat("read as a pbrt-v3 file, rewritten as pbrt-v4's --upgrade "
+                                 "rewrites it (here: ",
+                                 result.change, ")"));
+    }
+    for (const std::string& warning : result.warnings)
+        Warn(where, absl::StrCat(directive, " \"", written, "\": ", warning));
+    return result;
+}
+
 }  // namespace pf::pbrt

@@ -13,7 +13,6 @@
 #include "absl/strings/str_split.h"
 #include "core/scene/decompress.h"
 #include "core/scene/pbrt/pbrt_scene_builder.h"
-#include "core/scene/pbrt/pbrt_upgrade.h"
 
 namespace pf::pbrt {
 
@@ -253,27 +252,6 @@ absl::Status PbrtSceneBuilder::ApplyTransform(const Transform& transform) {
     if (!state_.ctm.IsFinite())
         return absl::InvalidArgumentError("transform overflows to NaN or Inf");
     return absl::OkStatus();
-}
-
-absl::StatusOr<UpgradeResult> PbrtSceneBuilder::Upgrade(const std::string& directive,
-                                                        std::string* type,
-                                                        std::string* texture_class,
-                                                        ParameterList* parameters,
-                                                        const Location& where) {
-    UpgradeResult result;
-    const std::string written = *type;
-    if (absl::Status status = UpgradeDirective(directive, type, texture_class, parameters, &result);
-        !status.ok())
-        return ErrorAt(where, absl::StrCat(directive, ": ", status.message()));
-    if (!result.change.empty() && !upgraded_) {
-        upgraded_ = true;
-        Warn(where, absl::StrCat("read as a pbrt-v3 file, rewritten as pbrt-v4's --upgrade "
-                                 "rewrites it (here: ",
-                                 result.change, ")"));
-    }
-    for (const std::string& warning : result.warnings)
-        Warn(where, absl::StrCat(directive, " \"", written, "\": ", warning));
-    return result;
 }
 
 // Directives with a type (or name) and a parameter list.
