@@ -14,6 +14,23 @@
 #include "core/scene/ply_reader.h"
 
 namespace pf::pbrt {
+namespace {
+
+// pbrt-v4 gives each triangle of a mesh without "uv" the coordinates (0, 0), (1, 0), (1, 1)
+// at its corners (Triangle::InteractionFromIntersection): the corners are unshared for them.
+TriangleMesh WithTriangleUvs(const TriangleMesh& mesh) {
+    TriangleMesh out;
+    static constexpr Point2 kCorners[3] = {{0, 0}, {1, 0}, {1, 1}};
+    for (size_t i = 0; i < mesh.indices.size(); ++i) {
+        out.positions.push_back(mesh.positions[mesh.indices[i]]);
+        if (!mesh.normals.empty()) out.normals.push_back(mesh.normals[mesh.indices[i]]);
+        out.uvs.push_back(kCorners[i % 3]);
+        out.indices.push_back(static_cast<uint32_t>(i));
+    }
+    return out;
+}
+
+}  // namespace
 
 absl::Status PbrtSceneBuilder::Camera(const std::string& type, ParameterList& parameters,
                                       const Location& where) {
@@ -369,6 +386,9 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
                       emission_texture);
     if (!index.ok()) return index.status();
     MeshPlacement placement{world, *index, front, state.reverse_orientation, uv};
+    if (mesh.uvs.empty() && scene_.materials[*index].ReadsUv())
+        return AppendMesh(WithTriangleUvs(mesh), placement, options_.limits, element, &scene_,
+                          prototype);
     return AppendMesh(mesh, placement, options_.limits, element, &scene_, prototype);
 }
 

@@ -56,6 +56,32 @@ TEST(PbrtLightsTest, AnAreaLightsImageIsItsEmissionTexture) {
     EXPECT_EQ(scene->Emission(surface), Rgb(2.0f, 2.0f, 4.0f));
 }
 
+TEST(PbrtLightsTest, TrianglesWithoutUvReadImagesAtPbrtsDefaultCoordinates) {
+    // pbrt-v4 gives each triangle of a mesh without "uv" (0, 0), (1, 0), (1, 1) at its corners;
+    // a mesh no texture reads keeps its shared vertices.
+    const std::string mesh =
+        "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 1 1 0 0 1 0] \"integer indices\" "
+        "[0 1 2 0 2 3]\n";
+    absl::StatusOr<Scene> scene = Load(
+        Bundle("AttributeBegin\nAreaLightSource \"diffuse\" \"string filename\" \"glow.exr\"\n" +
+                   mesh + "AttributeEnd\n",
+               {{"glow.exr", ExrBytes(2, 1, 1.0f)}}));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    std::vector<Point2> corners;
+    for (const Triangle& triangle : scene->triangles)
+        if (scene->materials[triangle.material].IsEmissive())
+            for (const uint32_t vertex : triangle.vertex) corners.push_back(scene->uvs[vertex]);
+    ASSERT_EQ(corners.size(), 6u);
+    // (u, v) then v flipped for the image: (0, 1), (1, 1), (1, 0) at each triangle's corners.
+    for (size_t c = 0; c < corners.size(); ++c) {
+        EXPECT_EQ(corners[c].x, c % 3 == 0 ? 0.0f : 1.0f) << c;
+        EXPECT_EQ(corners[c].y, c % 3 == 2 ? 0.0f : 1.0f) << c;
+    }
+    absl::StatusOr<Scene> plain = Load(Bundle(mesh));
+    ASSERT_TRUE(plain.ok()) << plain.status();
+    EXPECT_EQ(plain->positions.size(), 4u);  // shared
+}
+
 TEST(PbrtLightsTest, AnImageLightsPowerCountsTheImagesMeanLuminance) {
     // "power" 10 W from a 2 x 2 card (area 4, one side): L = 10 / (pi 4 mean luminance), the
     // mean luminance of texels (1, 1, 2) being sRGB's Y of them.
