@@ -21,6 +21,25 @@
 namespace pf {
 namespace {
 
+// A render of `path` on 2 threads with `spp` camera samples a pixel, stopping after `epochs`
+// epochs (0: no such budget) or, for ppm and sppm, `photons` photons; an empty image (and a
+// failure) where it does not render.
+Image RenderWith(const std::string& path, Integrator integrator, uint64_t seed, int spp,
+                 uint64_t epochs, uint64_t photons) {
+    RenderSettings settings;
+    settings.scene_path = path;
+    settings.threads = 2;
+    settings.job.integrator = integrator;
+    settings.job.seed = seed;
+    settings.job.samples_per_pixel = spp;
+    settings.job.epoch_budget = epochs;
+    if (integrator == Integrator::kPpm || integrator == Integrator::kSppm)
+        settings.job.photon_budget = photons;
+    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+    EXPECT_TRUE(outcome.ok()) << outcome.status();
+    return outcome.ok() ? outcome->image : Image();
+}
+
 class SceneFormats : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SceneFormats, PbrtFormRendersTheGltfFormsImage) {
@@ -137,21 +156,11 @@ TEST(TwoSidedLights, ATwoSidedLightIsItsTwoFacesSummed) {
             double mean = 0, variance = 0;  // of the image's mean
         };
         const auto render = [&](const std::string& path, uint64_t stream) {
-            RenderSettings settings;
-            settings.scene_path = path;
-            settings.threads = 2;
-            settings.job.integrator = integrator;
-            settings.job.seed = stream;
-            settings.job.samples_per_pixel = 16;
-            if (integrator == Integrator::kPath)
-                settings.job.epoch_budget = 16;
-            else
-                settings.job.photon_budget = 4'000'000;
-            const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
-            EXPECT_TRUE(outcome.ok()) << outcome.status();
+            const Image image = RenderWith(path, integrator, stream, 16,
+                                           integrator == Integrator::kPath ? 16 : 0, 4'000'000);
             double sum = 0;
-            for (const Rgb& pixel : outcome->image.pixels) sum += pixel.y;
-            return sum / static_cast<double>(outcome->image.pixels.size());
+            for (const Rgb& pixel : image.pixels) sum += pixel.y;
+            return sum / static_cast<double>(std::max<size_t>(1, image.pixels.size()));
         };
         // The noise of an image's mean from 4 renders with independent seeds: their sample
         // variance over 4 estimates the variance of their average (3 degrees of freedom each,
@@ -209,18 +218,7 @@ TEST(TexturedLights, ASingleTexelImageLightRendersAsItsColour) {
     for (const Integrator integrator :
          {Integrator::kPath, Integrator::kPpm, Integrator::kSppm, Integrator::kPm}) {
         const auto render = [&](const std::string& path, uint64_t seed) {
-            RenderSettings settings;
-            settings.scene_path = path;
-            settings.threads = 2;
-            settings.job.integrator = integrator;
-            settings.job.seed = seed;
-            settings.job.samples_per_pixel = 4;
-            settings.job.epoch_budget = 2;
-            if (integrator == Integrator::kPpm || integrator == Integrator::kSppm)
-                settings.job.photon_budget = 200'000;
-            const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
-            EXPECT_TRUE(outcome.ok()) << outcome.status();
-            return outcome.ok() ? outcome->image : Image();
+            return RenderWith(path, integrator, seed, 4, 2, 200'000);
         };
         const Image a = render(textured, 1), b = render(plain, 1), other = render(plain, 2);
         ASSERT_EQ(a.pixels.size(), b.pixels.size());

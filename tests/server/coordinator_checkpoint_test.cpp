@@ -72,11 +72,7 @@ std::vector<std::filesystem::path> CheckpointFiles(const std::string& dir,
 }
 
 TEST(CoordinatorCheckpointTest, JobsResumeInANewCoordinatorBitIdentical) {
-    RenderSettings settings;
-    settings.scene_path = ScenePath("cornell-box.gltf");
-    settings.job = SmallSpec(3 * 4 * 4096);
-    settings.threads = 1;
-    const absl::StatusOr<RenderOutcome> reference = RenderLocally(settings);
+    const absl::StatusOr<RenderOutcome> reference = EmbeddedReference(3 * 4 * 4096);
     ASSERT_TRUE(reference.ok()) << reference.status();
 
     TempDir dir;
@@ -85,8 +81,8 @@ TEST(CoordinatorCheckpointTest, JobsResumeInANewCoordinatorBitIdentical) {
     std::shared_ptr<const Image> cancelled_image;
     {
         Coordinator first(Durable(&clock, dir.path));
-        running = first.Submit(SmallJob(settings.job.photon_budget))->job_id;
-        cancelled = first.Submit(SmallJob(settings.job.photon_budget))->job_id;
+        running = first.Submit(SmallJob(3 * 4 * 4096))->job_id;
+        cancelled = first.Submit(SmallJob(3 * 4 * 4096))->job_id;
         ASSERT_TRUE(first.Cancel(cancelled).ok());
         cancelled_image = (*first.FindJob(cancelled))->CurrentImage();
         const std::string worker = *first.RegisterWorker(Cpu());

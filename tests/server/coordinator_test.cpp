@@ -39,17 +39,12 @@ namespace {
 using namespace coordinator_test;
 
 TEST(CoordinatorTest, ResultsInAnyOrderFromAnyWorkerGiveTheEmbeddedImage) {
-    RenderSettings settings;
-    settings.scene_path = ScenePath("cornell-box.gltf");
-    settings.job = SmallSpec(3 * 4 * 4096);
-    settings.threads = 1;
-    const absl::StatusOr<RenderOutcome> reference = RenderLocally(settings);
+    const absl::StatusOr<RenderOutcome> reference = EmbeddedReference(3 * 4 * 4096);
     ASSERT_TRUE(reference.ok()) << reference.status();
 
     FakeClock clock;
     Coordinator coordinator(Options(&clock));
-    const absl::StatusOr<JobProgress> job =
-        coordinator.Submit(SmallJob(settings.job.photon_budget));
+    const absl::StatusOr<JobProgress> job = coordinator.Submit(SmallJob(3 * 4 * 4096));
     ASSERT_TRUE(job.ok()) << job.status();
     const std::string a = *coordinator.RegisterWorker(Cpu()),
                       b = *coordinator.RegisterWorker(Cpu());

@@ -46,6 +46,16 @@ inline JobSpec SmallSpec(uint64_t photons) {
     return spec;
 }
 
+// The embedded render of cornell-box with SmallSpec(photons) on one thread: what the
+// coordinator's merges of the same job must reproduce bit for bit.
+inline absl::StatusOr<RenderOutcome> EmbeddedReference(uint64_t photons) {
+    RenderSettings settings;
+    settings.scene_path = ScenePath("cornell-box.gltf");
+    settings.job = SmallSpec(photons);
+    settings.threads = 1;
+    return RenderLocally(settings);
+}
+
 inline JobRequest SmallJob(uint64_t photons, int priority = 0, std::string owner = "tester") {
     absl::StatusOr<SceneBundle> bundle = PackSceneBundle(ScenePath("cornell-box.gltf"));
     EXPECT_TRUE(bundle.ok()) << bundle.status();
