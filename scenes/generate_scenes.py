@@ -13,6 +13,9 @@ direction: for pbrt an equal-area octahedral square (pbrt-v4's form, its LightSo
 for glTF, which has no environment of its own, a latitude-longitude map that the glTF form is
 rendered with (`photonfarm render scenes/NAME.gltf --environment scenes/NAME-sky.hdr`). Images
 are Radiance .hdr (RGBE), which both photonfarm and pbrt-v4 read.
+
+Scenes with lights glTF cannot express (pbrt's goniometric and projection lights) are
+written as pbrt-v4 alone (PBRT_SCENES).
 """
 import base64
 import json
@@ -303,6 +306,28 @@ def cornell_stained(writer):
                        "cornell-stained-glass.png", stained_glass())
 
 
+def lamp_shade(direction):
+    """A hanging lamp's intensity, relative, over its sphere of directions (y up): most of it
+    downward, through six slots of its shade, and a dim glow up toward the ceiling."""
+    x, y, z = direction
+    phi = math.atan2(z, x)
+    slots = 0.25 + 0.75 * max(0.0, math.cos(3 * phi)) ** 4
+    return [0.15 + 2.0 * max(0.0, -y) ** 2 * slots] * 3
+
+
+def cornell_lamps(writer):
+    """The Cornell box without its ceiling light, lit by a slide projector (pbrt's projection
+    light) casting the stained-glass picture across the back wall and the blocks, and by a
+    hanging goniometric lamp whose shade throws six beams on the floor."""
+    white = cornell_room(writer, light=False)
+    writer.quads("short_block", mm(SHORT_BLOCK), white)
+    writer.quads("tall_block", mm(TALL_BLOCK), white)
+    writer.projection_light("projector", [0.2, 0.36, -0.25], [0.3, 0.26, 0.5592], 28.0, 2.5,
+                            "cornell-stained-glass.png", stained_glass())
+    writer.goniometric_light("lamp", [0.278, 0.42, 0.28], (1.0, 0.85, 0.62), 0.35,
+                             "cornell-lamps-shade.hdr", lamp_shade)
+
+
 def cornell_glass(writer):
     cornell_room(writer)
     writer.sphere("mirror_sphere", [0.385, 0.1, 0.37], 0.1,
@@ -396,8 +421,9 @@ def furnace_glass(writer):
 class PbrtWriter:
     """The same scene calls as GltfWriter, written as a pbrt-v4 scene."""
 
-    def __init__(self, name):
+    def __init__(self, name, gltf_twin=True):
         self.name = name
+        self.gltf_twin = gltf_twin  # whether the glTF form of the same scene is written too
         self.header = []
         self.world = []
         self.shared = None          # (name, lines) while a shared part is being written
@@ -473,7 +499,8 @@ class PbrtWriter:
     def camera(self, eye, target, yfov_degrees, aspect=1.0):
         up = [0, 1, 0] if abs(normalize([t - e for t, e in zip(target, eye)])[1]) < 0.999 else [0, 0, 1]
         self.header = [
-            "# %s, written by scenes/generate_scenes.py; the same scene as ../%s.gltf." % (self.name, self.name),
+            "# %s, written by scenes/generate_scenes.py%s." % (
+                self.name, "; the same scene as ../%s.gltf" % self.name if self.gltf_twin else ""),
             "# pbrt's camera space is left-handed: mirroring x gives glTF's right-handed view.",
             "Scale -1 1 1",
             "LookAt %s  %s  %s" % (" ".join(num(c) for c in eye), " ".join(num(c) for c in target),
@@ -497,6 +524,36 @@ class PbrtWriter:
                 '    Material "diffuse" "rgb reflectance" %s' % rgb(color),
                 '    Shape "bilinearmesh" "point3 P" %s' % numbers([c for i in (0, 1, 3, 2) for c in quad[i]]),
                 "AttributeEnd"]
+
+    def projection_light(self, name, eye, target, fov, scale, image_name, png):
+        """pbrt-v4's projection light at `eye` projecting the image toward `target` through a
+        frustum of `fov` degrees over the image's shorter side, its top toward +y."""
+        path = "textures/%s" % image_name
+        self.files[path] = png
+        z = normalize([t - e for t, e in zip(target, eye)])
+        x = normalize(cross([0.0, 1.0, 0.0], z))
+        y = cross(z, x)
+        self._out().extend(["", "# " + name, "AttributeBegin",
+                            "    ConcatTransform %s" % numbers([*x, 0.0, *y, 0.0, *z, 0.0, *eye, 1.0]),
+                            '    LightSource "projection" "string filename" "%s" "float fov" %s '
+                            '"float scale" %s' % (path, num(fov), num(scale)),
+                            "AttributeEnd"])
+
+    def goniometric_light(self, name, position, color, scale, image_name, intensity):
+        """pbrt-v4's goniometric light at `position`: intensity(direction) (y up) written as its
+        equal-area square, whose z is the light's y (pbrt-v4 swaps them)."""
+        path = "textures/%s" % image_name
+
+        def light(u, v):
+            x, y, z = equal_area_square_to_sphere(u, v)
+            return intensity((x, z, y))
+
+        self.files[path] = rgbe_image(32, 32, light)
+        self._out().extend(["", "# " + name, "AttributeBegin",
+                            "    Translate %s %s %s" % tuple(num(c) for c in position),
+                            '    LightSource "goniometric" "string filename" "%s" "rgb I" %s '
+                            '"float scale" %s' % (path, rgb(color), num(scale)),
+                            "AttributeEnd"])
 
     def environment(self, scene_name, sky):
         """pbrt-v4's infinite light: an equal-area square with z up, turned to y up."""
@@ -610,6 +667,7 @@ def ply_quads(quad_list):
 SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass, "cornell-glossy": cornell_glossy,
           "caustic-glass": caustic_glass, "furnace": furnace, "furnace-glass": furnace_glass,
           "sky-courtyard": sky_courtyard, "cornell-stained": cornell_stained}
+PBRT_SCENES = {"cornell-lamps": cornell_lamps}
 
 if __name__ == "__main__":
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
@@ -620,3 +678,8 @@ if __name__ == "__main__":
             os.makedirs(os.path.dirname(path), exist_ok=True)
             writer.write(path)
             print("wrote", path)
+    for scene_name, build in PBRT_SCENES.items():
+        writer, path = PbrtWriter(scene_name, gltf_twin=False), os.path.join(out_dir, "pbrt", scene_name + ".pbrt")
+        build(writer)
+        writer.write(path)
+        print("wrote", path)

@@ -106,6 +106,21 @@ public:
     std::vector<Record> Records() const;
     // The environment's direction sampling (its tables for upload); HasEnvironment() only.
     const EnvironmentSampler& EnvironmentSampling() const { return environment_sampler_; }
+    // The directions of a goniometric or projection light, drawn in proportion to its
+    // intensity: a goniometric light's map as an environment's (its texels span equal solid
+    // angles); a projection's texels by value x the solid angle each spans, then a point
+    // uniform on the image plane within the texel.
+    struct ImageSampler {
+        // Goniometric: the intensity over the sphere (held apart: `directions` points to it).
+        std::shared_ptr<const Environment> environment;
+        EnvironmentSampler directions;
+        DiscreteDistribution texels;  // projection
+        float plane_texel_area = 0;   // projection: a texel's area on the plane z = 1
+        Rgbd power;                   // the light's power, W per channel
+    };
+    // A goniometric or projection light's sampling (its tables for upload), by its index
+    // into Scene::lights.
+    const ImageSampler& ImageSampling(uint32_t light) const { return image_samplers_[light]; }
     // The bounding sphere directional lights emit across.
     Vec3 SceneCenter() const { return scene_center_; }
     // The scene's largest coordinate magnitude, which ray origins are offset by (OffsetRayOrigin).
@@ -143,18 +158,6 @@ private:
             const float cosine = -Dot(frame.n, to_light);
             return two_sided ? std::abs(cosine) : cosine;
         }
-    };
-    // The directions of a goniometric or projection light, drawn in proportion to its
-    // intensity: a goniometric light's map as an environment's (its texels span equal solid
-    // angles); a projection's texels by value x the solid angle each spans, then a point
-    // uniform on the image plane within the texel.
-    struct ImageSampler {
-        // Goniometric: the intensity over the sphere (held apart: `directions` points to it).
-        std::shared_ptr<const Environment> environment;
-        EnvironmentSampler directions;
-        DiscreteDistribution texels;  // projection
-        float plane_texel_area = 0;   // projection: a texel's area on the plane z = 1
-        Rgbd power;                   // the light's power, W per channel
     };
     static ImageSampler MakeImageSampler(const PunctualLight& light);
     EmittedPhoton EmitFromTriangle(const EmissiveTriangle& triangle, Rng& rng) const;

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/shared/environment_map.h"
+
 namespace pf {
 
 float PunctualLight::SpotFalloff(float cos_axis) const {
@@ -26,37 +28,18 @@ Point2 PunctualLight::ProjectionExtent() const {
 }
 
 Vec3 PunctualLight::ProjectionPlanePoint(float x, float y) const {
-    const Point2 extent = ProjectionExtent();
-    return {(x / static_cast<float>(image->width) * 2 - 1) * extent.x,
-            (y / static_cast<float>(image->height) * 2 - 1) * extent.y, 1.0f};
-}
-
-std::optional<Point2> PunctualLight::ProjectedTexel(const Vec3& light_direction) const {
-    // pbrt-v4's ProjectionLight::I: nothing behind its near plane (1e-3), then the perspective
-    // divide onto the image's rectangle of the plane z = 1.
-    if (!(light_direction.z >= 1e-3f) || image == nullptr) return std::nullopt;
-    const Point2 extent = ProjectionExtent();
-    const float px = light_direction.x / light_direction.z;
-    const float py = light_direction.y / light_direction.z;
-    if (!(std::abs(px) <= extent.x && std::abs(py) <= extent.y)) return std::nullopt;
-    return Point2{(px + extent.x) / (2 * extent.x) * static_cast<float>(image->width),
-                  (py + extent.y) / (2 * extent.y) * static_cast<float>(image->height)};
+    return gpu::ProjectionPlanePoint(ProjectionExtent(), image->width, image->height, x, y);
 }
 
 Rgb PunctualLight::ImageFactor(const Vec3& toward) const {
     if (image == nullptr) return Rgb(1.0f);
-    const Vec3 local = ToLight(toward);
-    const auto texel = [&](float x, float y) {
-        const int column = std::clamp(static_cast<int>(x), 0, image->width - 1);
-        const int row = std::clamp(static_cast<int>(y), 0, image->height - 1);
-        return image->texels[static_cast<size_t>(row) * image->width + column];
-    };
-    if (type == LightType::kGoniometric) {
-        const Point2 square = EqualAreaSphereToSquare(Normalize(local));
-        return texel(square.x * image->width, square.y * image->height);
-    }
-    const std::optional<Point2> at = ProjectedTexel(local);
-    return at ? texel(at->x, at->y) : Rgb(0.0f);
+    const Vec3 local = Normalize(ToLight(toward));
+    if (type == LightType::kGoniometric)
+        return image->texels[gpu::EnvironmentTexel(gpu::kMappingEqualArea, image->width,
+                                                   image->height, local)];
+    const int32_t texel =
+        gpu::ProjectionTexel(ProjectionExtent(), image->width, image->height, local);
+    return texel < 0 ? Rgb(0.0f) : image->texels[static_cast<size_t>(texel)];
 }
 
 Instance Instance::Make(uint32_t prototype, const Transform& from_object) {

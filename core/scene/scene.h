@@ -70,9 +70,6 @@ struct PunctualLight {
     // position (x, y), in texels from its top left.
     Point2 ProjectionExtent() const;
     Vec3 ProjectionPlanePoint(float x, float y) const;
-    // Projection: where a light-frame direction falls on the image, as (column, row) in
-    // texels; nullopt outside the frustum (or behind the light).
-    std::optional<Point2> ProjectedTexel(const Vec3& light_direction) const;
     // Goniometric, projection: the image's factor toward unit world direction `toward` (0
     // outside a projection's frustum).
     Rgb ImageFactor(const Vec3& toward) const;

@@ -20,7 +20,7 @@ struct SceneFeatures {
     bool triangle_lights = false, point_lights = false, spot_lights = false,
          directional_lights = false, environment = false;
     bool textured_lights = false;  // an emitting triangle has an emission texture
-    bool image_lights = false;     // goniometric or projection lights (CPU only, for now)
+    bool image_lights = false;     // goniometric or projection lights
     // Light reaches diffuse surfaces through specular chains (caustic paths). Not known from
     // the scene's contents alone: the coordinator probes light paths (core/ppm/caustic_probe.h)
     // for scenes with specular materials; false otherwise.

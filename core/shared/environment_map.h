@@ -4,7 +4,8 @@
 // SIMD", 2008, as pbrt-v4's ImageInfiniteLight uses it: z up) and the latitude-longitude map
 // (y up, the image's centre toward -z), which texel a direction falls in, each texel row's
 // solid angle, and a direction uniform in solid angle within a texel. Written in the
-// vocabulary of gpu_prelude.h.
+// vocabulary of gpu_prelude.h. Also a projection light's image, which pbrt-v4 maps onto
+// directions by a perspective divide (ProjectionTexel, ProjectionPlanePoint).
 #ifndef PF_CORE_SHARED_ENVIRONMENT_MAP_H
 #define PF_CORE_SHARED_ENVIRONMENT_MAP_H
 
@@ -99,6 +100,27 @@ PF_GPU_FN vec3 EnvironmentDirectionInTexel(uint32_t mapping, int32_t width, int3
     const float sin_theta = sqrt(max(0.0f, 1.0f - cos_theta * cos_theta));
     const float phi = 6.28318530717958647692f * ((float(x) + fx) / float(width) - 0.5f);
     return vec3(sin_theta * sin(phi), cos_theta, -sin_theta * cos(phi));
+}
+
+// A projection light's image spans +-extent on the plane z = 1 of the light's frame, its
+// first row toward -y. The point of that plane at image position (x, y), in texels from the
+// image's first corner.
+PF_GPU_FN vec3 ProjectionPlanePoint(vec2 extent, int32_t width, int32_t height, float x, float y) {
+    return vec3((x / float(width) * 2.0f - 1.0f) * extent.x,
+                (y / float(height) * 2.0f - 1.0f) * extent.y, 1.0f);
+}
+
+// The texel (y * width + x) that light-frame direction d falls in, or -1 outside the image's
+// frustum or before pbrt-v4's near plane z = 1e-3 (ProjectionLight::I).
+PF_GPU_FN int32_t ProjectionTexel(vec2 extent, int32_t width, int32_t height, vec3 d) {
+    if (!(d.z >= 1e-3f)) return -1;
+    const float px = d.x / d.z, py = d.y / d.z;
+    if (!(abs(px) <= extent.x && abs(py) <= extent.y)) return -1;
+    const int32_t x =
+        int32_t(clamp((px + extent.x) / (2.0f * extent.x) * float(width), 0.0f, float(width - 1)));
+    const int32_t y = int32_t(
+        clamp((py + extent.y) / (2.0f * extent.y) * float(height), 0.0f, float(height - 1)));
+    return y * width + x;
 }
 
 PF_GPU_END

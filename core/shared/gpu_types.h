@@ -37,11 +37,15 @@ PF_CONST(uint32_t) kBindingDirect = 17;        // vec4[], a batch's direct-light
 PF_CONST(uint32_t) kBindingCounters = 18;      // GpuCounters
 PF_CONST(uint32_t) kBindingTallyOffsets = 19;  // uint[hit points + 1]: flags, then offsets
 PF_CONST(uint32_t) kBindingTallyEntries = 20;  // GpuTallyEntry[]: the sparse tally, host-visible
-PF_CONST(uint32_t) kBindingEnvironmentTexels = 21;  // vec4[]: the environment map's texels
-// float[]: the environment's sampling tables (EnvironmentSampler), one after another: the
-// rows' cumulative sums (height + 1), each row's texels' (height x (width + 1)), and each
-// texel's probability (width x height).
-PF_CONST(uint32_t) kBindingEnvironmentTables = 22;
+// The images of the lights that have one (the environment, goniometric and projection
+// lights), one after another, each from its emitter's first texel (GpuEmitter::texture.x).
+PF_CONST(uint32_t) kBindingLightImageTexels = 21;  // vec4[]
+// float[]: those lights' sampling tables, one light's after another's, each from its emitter's
+// first entry (GpuEmitter::texture.y). An environment or goniometric light's
+// (EnvironmentSampler): the rows' cumulative sums (height + 1), each row's texels' (height x
+// (width + 1)), and each texel's probability (width x height). A projection light's: its
+// texels' cumulative sums (width x height + 1), then each texel's probability.
+PF_CONST(uint32_t) kBindingLightImageTables = 22;
 PF_CONST(uint32_t) kBindingCount = 23;
 
 // What the prefix-sum kernels scan (GpuParams.scan_target).
@@ -63,7 +67,8 @@ PF_CONST(uint32_t) kSpecHasRoughConductor = 9;
 PF_CONST(uint32_t) kSpecHasRoughDielectric = 10;
 PF_CONST(uint32_t) kSpecHasEnvironment = 11;
 PF_CONST(uint32_t) kSpecHasTexturedLights = 12;
-PF_CONST(uint32_t) kSpecCount = 13;
+PF_CONST(uint32_t) kSpecHasImageLights = 13;  // goniometric or projection lights
+PF_CONST(uint32_t) kSpecCount = 14;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -84,6 +89,8 @@ PF_CONST(uint32_t) kEmitterPoint = 1;
 PF_CONST(uint32_t) kEmitterSpot = 2;
 PF_CONST(uint32_t) kEmitterDirectional = 3;
 PF_CONST(uint32_t) kEmitterEnvironment = 4;
+PF_CONST(uint32_t) kEmitterGoniometric = 5;
+PF_CONST(uint32_t) kEmitterProjection = 6;
 
 // A two-wide BVH node holding both children's boxes (Embree's builder, flattened). A child
 // is a node index where its count is 0, else `count` triangles from `first`.
@@ -131,26 +138,34 @@ PF_GPU_LAYOUT(GpuTexture, 16);
 
 // One light: an emissive triangle, a punctual light or the environment, with what emission
 // and light sampling need precomputed (core/scene/emitters.cpp computes the same on the CPU).
+// The lights with an image (environment, goniometric, projection) keep it and its sampling
+// tables in the light-image bindings.
 struct GpuEmitter {
-    vec4 position;   // triangle: p0; point, spot: position; w: kind (uint bits)
-    vec4 edge1;      // triangle: p1 - p0; w: area. Environment: x, y, z the map's width,
-                     // height and mapping (kMapping*, uint bits)
-    vec4 edge2;      // triangle: p2 - p0. Environment: the first row of its world-to-map
-                     // rotation (Environment::to_map)
+    vec4 position;   // triangle: p0; point, spot, goniometric, projection: position; w: kind
+                     // (uint bits)
+    vec4 edge1;      // triangle: p1 - p0; w: area. Lights with an image: x, y the image's
+                     // width and height (uint bits); environment, goniometric: z its mapping
+                     // (kMapping*, uint bits); projection: w a texel's area on the plane z = 1
+    vec4 edge2;      // triangle: p2 - p0. Lights with an image: the first row of the rotation
+                     // from the world into the image's frame (Environment::to_map,
+                     // PunctualLight::to_light)
     vec4 direction;  // triangle: unit emitting normal, w: 1 if it emits from both faces; spot,
-                     // directional: direction of travel.
-                     // Environment: the rotation's second row
+                     // directional: direction of travel. Lights with an image: the rotation's
+                     // second row
     vec4 power;      // a photon's flux before selection and falloff (triangle: Le pi area;
                      // point: 4 pi I; spot: I x cone solid angle; directional: E pi r^2;
-                     // environment: pi r^2 x the radiance's integral); w: 1 / selection
-                     // probability
+                     // environment: pi r^2 x the radiance's integral; goniometric, projection:
+                     // the intensity integrated over the sphere); w: 1 / selection probability
     vec4 radiance;   // triangle: Le; point, spot: intensity I, w: range (0: none);
                      // directional: irradiance E; environment: its scale (a uniform one's
-                     // radiance)
+                     // radiance); goniometric, projection: the intensity scaling the image
     vec4 cone;  // spot: cos_inner, cos_outer, 1 / max(0.001, cos_inner - cos_outer), smoothstep (1)
-                // or quadratic (0). Environment: the rotation's third row
+                // or quadratic (0). Lights with an image: the rotation's third row
     vec4 texture;   // triangle: xy the texture coordinates at p0, z the emission texture
-                    // (int bits), -1 for none; radiance and power are then times its texel
+                    // (int bits), -1 for none; radiance and power are then times its texel.
+                    // Lights with an image: x its first texel, y its first table entry (uint
+                    // bits); projection: zw the image's half-width and half-height on the
+                    // plane z = 1
     vec4 uv_edges;  // triangle: xy uv1 - uv0, zw uv2 - uv0
 };
 PF_GPU_LAYOUT(GpuEmitter, 144);

@@ -134,6 +134,37 @@ TEST(BackendAgreementEnvironment, SkyLitCourtyardMatchesTheCpus) {
                                  8'000'000);
 }
 
+TEST(BackendAgreementImageLights, AProjectorAndAGoniometricLampMatchTheCpus) {
+    // A floor and a wall, which fills the view, lit by a projection light casting a 2 x 2
+    // picture of four colours across the wall, then by a tilted goniometric lamp of four
+    // intensities: photons leave each in proportion to its image and light samples read the
+    // texel toward the receiver, on the device as on the CPU.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    const std::string folder = testing::TempPath("image-lights");
+    std::filesystem::create_directories(folder);
+    Image slide(2, 2), lamp(2, 2);
+    slide.pixels = {Rgb(3, 1, 1), Rgb(1, 3, 1), Rgb(1, 1, 3), Rgb(0.5f)};
+    lamp.pixels = {Rgb(0.5f), Rgb(2.0f), Rgb(1.0f), Rgb(3.0f)};
+    ASSERT_TRUE(WriteExr(folder + "/slide.exr", slide).ok());
+    ASSERT_TRUE(WriteExr(folder + "/lamp.exr", lamp).ok());
+    const std::string room =
+        "LookAt -1.2 0 0.6  1 0 0.45  0 0 1\nCamera \"perspective\" \"float fov\" 50\n"
+        "WorldBegin\nMaterial \"diffuse\" \"rgb reflectance\" [0.5 0.5 0.5]\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [1 -1 0  1 1 0  1 -1 1  1 1 1]\n";
+    for (const char* light :
+         {"ConcatTransform [0 1 0 0  0 0 1 0  1 0 0 0  -0.5 0 0.5 1]\n"
+          "LightSource \"projection\" \"string filename\" \"slide.exr\" \"float fov\" 60\n",
+          "Translate 0 0 0.8\nRotate 30 1 0 0\n"
+          "LightSource \"goniometric\" \"string filename\" \"lamp.exr\" \"rgb I\" [1 0.8 0.6]\n"}) {
+        SCOPED_TRACE(light);
+        const std::string path = folder + "/image-light.pbrt";
+        std::ofstream(path) << room << "AttributeBegin\n" << light << "AttributeEnd\n";
+        ExpectVulkanAgreesWithTheCpu(path, 4'000'000);
+    }
+}
+
 TEST(BackendAgreementDepth, PhotonsOnTheDeviceStopAtTheMaximumDepth) {
     // The furnace (albedo 0.5, Le = 1) with --max-depth 2: Le (1 + rho + rho^2) = 1.75 where
     // the unlimited furnace gives 2; photons reaching a third surface would add 0.125.

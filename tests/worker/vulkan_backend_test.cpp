@@ -366,7 +366,20 @@ TEST_F(VulkanBackendTest, KernelsAreSpecialisedToTheScenesFeatures) {
         // Data no kernel of the scene reads is not built.
         EXPECT_EQ(gpu_scene->normals.empty(), !gpu_scene->features.smooth_normals) << name;
         EXPECT_TRUE(gpu_scene->uvs.empty() && gpu_scene->texels.empty()) << name;
+        EXPECT_EQ(vk::SpecConstantsFor(gpu_scene->features)[gpu::kSpecHasImageLights], 0u);
+        EXPECT_TRUE(gpu_scene->light_image_texels.empty() && gpu_scene->light_image_tables.empty())
+            << name;
     }
+    // A projector (a 64 x 64 picture) and a goniometric lamp (32 x 32) upload their images, one
+    // after the other, with their sampling tables.
+    const Scene lamps = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/pbrt/cornell-lamps.pbrt");
+    const absl::StatusOr<vk::GpuScene> lit = vk::BuildGpuScene(lamps, Emitters(lamps));
+    ASSERT_TRUE(lit.ok()) << lit.status();
+    EXPECT_EQ(vk::SpecConstantsFor(lit->features)[gpu::kSpecHasImageLights], 1u);
+    EXPECT_EQ(lit->light_image_texels.size(), 64u * 64 + 32 * 32);
+    // The projector's cumulative table and probabilities, the lamp's rows', texels' and
+    // probabilities.
+    EXPECT_EQ(lit->light_image_tables.size(), (64u * 64 + 1 + 64 * 64) + (33 + 32 * 33 + 32 * 32));
 }
 
 TEST_F(VulkanBackendTest, JobTooLargeForTheDeviceIsRefusedNamingTheLimit) {

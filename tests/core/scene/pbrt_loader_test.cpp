@@ -531,7 +531,8 @@ TEST(PbrtLoaderTest, PackingGathersIncludedMeshesAndNothingElse) {
 
 TEST(PbrtLoaderTest, ShippedScenesLoadWithoutWarnings) {
     for (const char* name :
-         {"cornell-box", "cornell-glass", "caustic-glass", "furnace", "furnace-glass"}) {
+         {"cornell-box", "cornell-glass", "cornell-glossy", "caustic-glass", "furnace",
+          "furnace-glass", "sky-courtyard", "cornell-stained", "cornell-lamps"}) {
         std::vector<std::string> warnings;
         SceneLoadOptions options;
         options.warnings = &warnings;

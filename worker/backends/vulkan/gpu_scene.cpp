@@ -48,31 +48,74 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
     }
 }
 
+// Where an image's texels and sampling tables begin in the light-image bindings.
+gpu::vec4 ImageOffsets(const GpuScene& gpu_scene, Point2 extent = {}) {
+    return {std::bit_cast<float>(static_cast<uint32_t>(gpu_scene.light_image_texels.size())),
+            std::bit_cast<float>(static_cast<uint32_t>(gpu_scene.light_image_tables.size())),
+            extent.x, extent.y};
+}
+
+// An environment map, or a goniometric light's, with its sampling tables.
+void AddEnvironmentMap(const Environment& environment, const EnvironmentSampler& sampler,
+                       gpu::GpuEmitter& emitter, GpuScene& gpu_scene) {
+    const auto bits = [](uint32_t value) { return std::bit_cast<float>(value); };
+    emitter.edge1 = {bits(uint32_t(environment.image.width)),
+                     bits(uint32_t(environment.image.height)),
+                     bits(static_cast<uint32_t>(environment.mapping)), 0.0f};
+    const auto& m = environment.to_map;
+    emitter.edge2 = {m[0], m[1], m[2], 0.0f};
+    emitter.direction = {m[3], m[4], m[5], 0.0f};
+    emitter.cone = {m[6], m[7], m[8], 0.0f};
+    emitter.radiance = Vec4(environment.scale);
+    emitter.texture = ImageOffsets(gpu_scene);
+    for (const Rgb& texel : environment.image.texels)
+        gpu_scene.light_image_texels.push_back(Vec4(texel));
+    for (const std::vector<float>* table :
+         {&sampler.RowCdf(), &sampler.TexelCdf(), &sampler.TexelProbability()})
+        gpu_scene.light_image_tables.insert(gpu_scene.light_image_tables.end(), table->begin(),
+                                            table->end());
+}
+
+// A projection light's image, its texels' cumulative table and their probabilities.
+void AddProjection(const PunctualLight& light, const Emitters::ImageSampler& sampler,
+                   gpu::GpuEmitter& emitter, GpuScene& gpu_scene) {
+    const Texture& image = *light.image;
+    const auto bits = [](uint32_t value) { return std::bit_cast<float>(value); };
+    emitter.edge1 = {bits(uint32_t(image.width)), bits(uint32_t(image.height)), 0.0f,
+                     sampler.plane_texel_area};
+    const auto& m = light.to_light;
+    emitter.edge2 = {m[0], m[1], m[2], 0.0f};
+    emitter.direction = {m[3], m[4], m[5], 0.0f};
+    emitter.cone = {m[6], m[7], m[8], 0.0f};
+    emitter.texture = ImageOffsets(gpu_scene, light.ProjectionExtent());
+    for (const Rgb& texel : image.texels) gpu_scene.light_image_texels.push_back(Vec4(texel));
+    std::vector<float>& tables = gpu_scene.light_image_tables;
+    double cumulative = 0;
+    tables.push_back(0.0f);
+    for (uint32_t i = 0; i < image.texels.size(); ++i) {
+        cumulative += sampler.texels.Probability(i);
+        tables.push_back(static_cast<float>(cumulative));
+    }
+    tables.back() = 1.0f;
+    for (uint32_t i = 0; i < image.texels.size(); ++i)
+        tables.push_back(static_cast<float>(sampler.texels.Probability(i)));
+}
+
 void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_scene) {
     double cumulative = 0;
     for (const Emitters::Record& record : emitters.Records()) {
         gpu::GpuEmitter emitter{};
         const auto inverse_probability = static_cast<float>(1.0 / record.probability);
+        // The largest flux a photon of this emitter carries in a channel, before its pick.
+        float most = MaxComponent(record.power) * record.peak;
         if (record.kind == EmitterKind::kEnvironment) {
-            const Environment& environment = *scene.environment;
-            const auto bits = [](uint32_t value) { return std::bit_cast<float>(value); };
             emitter.position = Vec4(Vec3(0.0f), gpu::kEmitterEnvironment);
-            emitter.edge1 = {bits(uint32_t(environment.image.width)),
-                             bits(uint32_t(environment.image.height)),
-                             bits(static_cast<uint32_t>(environment.mapping)), 0.0f};
-            const auto& m = environment.to_map;
-            emitter.edge2 = {m[0], m[1], m[2], 0.0f};
-            emitter.direction = {m[3], m[4], m[5], 0.0f};
-            emitter.cone = {m[6], m[7], m[8], 0.0f};
-            emitter.radiance = Vec4(environment.scale);
-            for (const Rgb& texel : environment.image.texels)
-                gpu_scene.environment_texels.push_back(Vec4(texel));
-            const EnvironmentSampler& sampler = emitters.EnvironmentSampling();
-            for (const std::vector<float>* table :
-                 {&sampler.RowCdf(), &sampler.TexelCdf(), &sampler.TexelProbability()})
-                gpu_scene.environment_tables.insert(gpu_scene.environment_tables.end(),
-                                                    table->begin(), table->end());
+            AddEnvironmentMap(*scene.environment, emitters.EnvironmentSampling(), emitter,
+                              gpu_scene);
             gpu_scene.environment_emitter = static_cast<uint32_t>(gpu_scene.emitters.size());
+            // A photon carries L / pdf x pi r^2, and the pdf follows the channels' average: a
+            // channel reaches 3x the average power where a texel is one pure colour.
+            most = 3 * Average(record.power);
         } else if (record.kind == EmitterKind::kTriangle) {
             emitter.position = Vec4(record.p0, gpu::kEmitterTriangle);
             emitter.edge1 = Vec4(record.edge1, record.area);
@@ -101,18 +144,29 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
                 case LightType::kDirectional:
                     kind = gpu::kEmitterDirectional;
                     break;
-                case LightType::kGoniometric:
-                case LightType::kProjection:
-                    break;  // refused by BuildGpuScene
+                case LightType::kGoniometric: {
+                    kind = gpu::kEmitterGoniometric;
+                    const Emitters::ImageSampler& sampler = emitters.ImageSampling(record.light);
+                    AddEnvironmentMap(*sampler.environment, sampler.directions, emitter, gpu_scene);
+                    most = 3 * Average(record.power);  // as an environment's
+                    break;
+                }
+                case LightType::kProjection: {
+                    kind = gpu::kEmitterProjection;
+                    AddProjection(light, emitters.ImageSampling(record.light), emitter, gpu_scene);
+                    emitter.radiance = Vec4(light.intensity);
+                    // The texels' pdf follows their channels' average and the cosine cubed at
+                    // their centres, which a point of a corner texel may exceed by up to the
+                    // corner's 1 / cos^3.
+                    const Point2 extent = light.ProjectionExtent();
+                    const float corner = 1 + extent.x * extent.x + extent.y * extent.y;
+                    most = 3 * Average(record.power) * corner * std::sqrt(corner);
+                    break;
+                }
             }
             emitter.position.w = std::bit_cast<float>(kind);
         }
         emitter.power = Vec4(record.power, inverse_probability);
-        // An environment photon carries L / pdf x pi r^2, and the pdf follows the channels'
-        // average: a channel reaches 3x the average power where a texel is one pure colour.
-        const float most = record.kind == EmitterKind::kEnvironment
-                               ? 3 * Average(record.power)
-                               : MaxComponent(record.power) * record.peak;
         gpu_scene.max_photon_flux = std::max(gpu_scene.max_photon_flux, most * inverse_probability);
         gpu_scene.emitters.push_back(emitter);
         cumulative += record.probability;
@@ -139,16 +193,13 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasRoughDielectric] = features.rough_dielectric;
     spec[gpu::kSpecHasEnvironment] = features.environment;
     spec[gpu::kSpecHasTexturedLights] = features.textured_lights;
+    spec[gpu::kSpecHasImageLights] = features.image_lights;
     return spec;
 }
 
 absl::StatusOr<GpuScene> BuildGpuScene(const Scene& job_scene, const Emitters& emitters) {
     GpuScene gpu_scene;
     gpu_scene.features = AnalyseFeatures(job_scene, emitters);
-    if (gpu_scene.features.image_lights)
-        return absl::UnimplementedError(
-            "the Vulkan backend does not emit goniometric or projection lights yet; render "
-            "this scene with --backend cpu");
     // The kernels traverse one BVH: instances are expanded into world triangles (the world's
     // own keep their indices, so emitters still name them).
     absl::StatusOr<Scene> flattened;

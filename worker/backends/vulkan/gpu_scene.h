@@ -29,10 +29,11 @@ struct GpuScene {
     std::vector<gpu::vec4> texels;
     std::vector<gpu::GpuEmitter> emitters;
     std::vector<float> emitter_cdf;
-    // The environment's map and sampling tables (kBindingEnvironment*), empty without one, and
-    // its index into `emitters`.
-    std::vector<gpu::vec4> environment_texels;
-    std::vector<float> environment_tables;
+    // The images and sampling tables of the lights that have one (kBindingLightImage*: the
+    // environment, goniometric and projection lights), empty without them, and the
+    // environment's index into `emitters`.
+    std::vector<gpu::vec4> light_image_texels;
+    std::vector<float> light_image_tables;
     uint32_t environment_emitter = 0;
     SceneFeatures features;
     gpu::vec4 sphere{};   // the scene's bounding sphere, centre and radius (directional lights)

@@ -99,7 +99,7 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
         {"BVH nodes", gpu_scene.nodes.size() * sizeof(gpu::GpuBvhNode)},
         {"triangles", gpu_scene.triangles.size() * sizeof(gpu::GpuTriangle)},
         {"texels", gpu_scene.texels.size() * sizeof(gpu::vec4)},
-        {"environment map", gpu_scene.environment_texels.size() * sizeof(gpu::vec4)},
+        {"light images", gpu_scene.light_image_texels.size() * sizeof(gpu::vec4)},
         {"hit points", hit_points * sizeof(gpu::GpuHitPoint)},
         {"grid entries", hit_points * sizeof(gpu::GpuGridEntry)},
         {"tally", hit_points * sizeof(gpu::GpuTallySum)},
@@ -128,7 +128,7 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
 // Every buffer of a job, named by what it holds; Bindings() lists them in binding order.
 struct VulkanBackend::JobBuffers {
     Buffer nodes, triangles, shading, normals, uvs, materials, textures, texels, emitters,
-        emitter_cdf, environment_texels, environment_tables;
+        emitter_cdf, light_image_texels, light_image_tables;
     Buffer hit_points, radius_sq, grid_begin, grid_cursor, grid_entries, scan_blocks, tally, direct,
         counters;
     Buffer tally_offsets, tally_entries;
@@ -168,8 +168,8 @@ struct VulkanBackend::JobBuffers {
         upload(buffers->texels, Bytes(gpu_scene.texels));
         upload(buffers->emitters, Bytes(gpu_scene.emitters));
         upload(buffers->emitter_cdf, Bytes(gpu_scene.emitter_cdf));
-        upload(buffers->environment_texels, Bytes(gpu_scene.environment_texels));
-        upload(buffers->environment_tables, Bytes(gpu_scene.environment_tables));
+        upload(buffers->light_image_texels, Bytes(gpu_scene.light_image_texels));
+        upload(buffers->light_image_tables, Bytes(gpu_scene.light_image_tables));
         upload(buffers->hit_points, std::as_bytes(hit_points));
         make(buffers->radius_sq, n * sizeof(float), MemoryUse::kDevice);
         make(buffers->grid_begin, (buckets + 1) * sizeof(uint32_t), MemoryUse::kDevice);
@@ -211,8 +211,8 @@ struct VulkanBackend::JobBuffers {
         b[gpu::kBindingCounters] = counters.Handle();
         b[gpu::kBindingTallyOffsets] = tally_offsets.Handle(),
         b[gpu::kBindingTallyEntries] = tally_entries.Handle();
-        b[gpu::kBindingEnvironmentTexels] = environment_texels.Handle();
-        b[gpu::kBindingEnvironmentTables] = environment_tables.Handle();
+        b[gpu::kBindingLightImageTexels] = light_image_texels.Handle();
+        b[gpu::kBindingLightImageTables] = light_image_tables.Handle();
         return b;
     }
 };

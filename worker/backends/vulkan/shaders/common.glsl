@@ -21,6 +21,7 @@ layout(constant_id = kSpecHasSpotLights) const bool kHasSpotLights = true;
 layout(constant_id = kSpecHasDirectionalLights) const bool kHasDirectionalLights = true;
 layout(constant_id = kSpecHasEnvironment) const bool kHasEnvironment = true;
 layout(constant_id = kSpecHasTexturedLights) const bool kHasTexturedLights = true;
+layout(constant_id = kSpecHasImageLights) const bool kHasImageLights = true;
 
 layout(push_constant, std430) uniform Push { GpuParams params; };
 

@@ -3,20 +3,23 @@
 // piecewise-constant sampling tables, and their density for weighing a ray that escapes the
 // scene against light sampling. The maps between image and sphere are the shared ones
 // (core/shared/environment_map.h). Its emitter record (gpu_types.h, GpuEmitter) holds the
-// map's size, mapping, scale and rotation.
+// map's size, mapping, scale, rotation and where its texels and tables begin. A goniometric
+// light's intensity over its sphere of directions is such a map too (Emitters::ImageSampler).
 #include "core/shared/environment_map.h"
 
-layout(std430, binding = kBindingEnvironmentTexels) readonly buffer EnvironmentTexels {
-    vec4 environment_texels[];
+layout(std430, binding = kBindingLightImageTexels) readonly buffer LightImageTexels {
+    vec4 light_image_texels[];
 };
-layout(std430, binding = kBindingEnvironmentTables) readonly buffer EnvironmentTables {
-    float environment_tables[];
+layout(std430, binding = kBindingLightImageTables) readonly buffer LightImageTables {
+    float light_image_tables[];
 };
 
 GpuEmitter EnvironmentEmitter() { return emitters[params.environment_emitter]; }
 uint EnvironmentMapping(GpuEmitter e) { return floatBitsToUint(e.edge1.z); }
 int EnvironmentWidth(GpuEmitter e) { return int(floatBitsToUint(e.edge1.x)); }
 int EnvironmentHeight(GpuEmitter e) { return int(floatBitsToUint(e.edge1.y)); }
+uint FirstTexel(GpuEmitter e) { return floatBitsToUint(e.texture.x); }
+uint FirstTableEntry(GpuEmitter e) { return floatBitsToUint(e.texture.y); }
 
 vec3 EnvironmentToMap(GpuEmitter e, vec3 w) {
     return normalize(vec3(dot(e.edge2.xyz, w), dot(e.direction.xyz, w), dot(e.cone.xyz, w)));
@@ -31,11 +34,12 @@ vec3 EnvironmentRadiance(GpuEmitter e, vec3 toward) {
     if (mapping == kMappingUniform) return e.radiance.xyz;
     const uint texel = EnvironmentTexel(mapping, EnvironmentWidth(e), EnvironmentHeight(e),
                                         EnvironmentToMap(e, toward));
-    return environment_texels[texel].xyz * e.radiance.xyz;
+    return light_image_texels[FirstTexel(e) + texel].xyz * e.radiance.xyz;
 }
 
-// Where each table begins in environment_tables.
-uint TexelCdfBegin(GpuEmitter e) { return uint(EnvironmentHeight(e)) + 1u; }
+// Where each table begins in light_image_tables.
+uint RowCdfBegin(GpuEmitter e) { return FirstTableEntry(e); }
+uint TexelCdfBegin(GpuEmitter e) { return RowCdfBegin(e) + uint(EnvironmentHeight(e)) + 1u; }
 uint ProbabilityBegin(GpuEmitter e) {
     return TexelCdfBegin(e) + uint(EnvironmentHeight(e)) * (uint(EnvironmentWidth(e)) + 1u);
 }
@@ -47,7 +51,7 @@ float EnvironmentPdf(GpuEmitter e, vec3 toward) {
     if (mapping == kMappingUniform) return 1.0 / (4.0 * kPi);
     const int width = EnvironmentWidth(e), height = EnvironmentHeight(e);
     const uint texel = EnvironmentTexel(mapping, width, height, EnvironmentToMap(e, toward));
-    return environment_tables[ProbabilityBegin(e) + texel] /
+    return light_image_tables[ProbabilityBegin(e) + texel] /
            EnvironmentTexelSolidAngle(mapping, width, height, int(texel / uint(width)));
 }
 
@@ -57,11 +61,11 @@ uint FindEnvironmentInterval(uint begin, uint n, float u, out float fraction) {
     uint low = 0, high = n;
     while (low < high) {
         const uint middle = (low + high) / 2;
-        if (environment_tables[begin + 1 + middle] > u) high = middle; else low = middle + 1;
+        if (light_image_tables[begin + 1 + middle] > u) high = middle; else low = middle + 1;
     }
     const uint index = min(low, n - 1);
-    const float start = environment_tables[begin + index];
-    const float width = environment_tables[begin + index + 1] - start;
+    const float start = light_image_tables[begin + index];
+    const float width = light_image_tables[begin + index + 1] - start;
     fraction = width > 0 ? clamp((u - start) / width, 0.0, 0.99999994) : 0.0;
     return index;
 }
@@ -84,14 +88,14 @@ EnvironmentSample EnvironmentDraw(GpuEmitter e, float u1, float u2) {
     }
     const int width = EnvironmentWidth(e), height = EnvironmentHeight(e);
     float fx, fy;
-    const uint y = FindEnvironmentInterval(0, uint(height), u1, fy);
+    const uint y = FindEnvironmentInterval(RowCdfBegin(e), uint(height), u1, fy);
     const uint x = FindEnvironmentInterval(TexelCdfBegin(e) + y * (uint(width) + 1u),
                                            uint(width), u2, fx);
     const uint texel = y * uint(width) + x;
     drawn.toward = EnvironmentToWorld(
         e, EnvironmentDirectionInTexel(mapping, width, height, x, y, fx, fy));
-    drawn.radiance = environment_texels[texel].xyz * e.radiance.xyz;
-    drawn.pdf = environment_tables[ProbabilityBegin(e) + texel] /
+    drawn.radiance = light_image_texels[FirstTexel(e) + texel].xyz * e.radiance.xyz;
+    drawn.pdf = light_image_tables[ProbabilityBegin(e) + texel] /
                 EnvironmentTexelSolidAngle(mapping, width, height, int(y));
     return drawn;
 }

@@ -34,6 +34,39 @@ float CosineToward(GpuEmitter emitter, vec3 to_light) {
     return emitter.direction.w != 0.0 ? abs(cosine) : cosine;
 }
 
+// A projection light's image (Emitters::ImageSampler): where its texels' tables begin, the
+// intensity toward unit world direction `toward` (PunctualLight::ImageFactor, the light's
+// intensity included), and a direction drawn by the texels' share of the power, uniform on
+// the image plane within the texel.
+uint ProjectionProbabilityBegin(GpuEmitter e) {
+    return FirstTableEntry(e) + uint(EnvironmentWidth(e) * EnvironmentHeight(e)) + 1u;
+}
+
+vec3 ProjectionIntensity(GpuEmitter e, vec3 toward) {
+    const int texel = ProjectionTexel(e.texture.zw, EnvironmentWidth(e), EnvironmentHeight(e),
+                                      EnvironmentToMap(e, toward));
+    if (texel < 0) return vec3(0);
+    return light_image_texels[FirstTexel(e) + uint(texel)].xyz * e.radiance.xyz;
+}
+
+// Emitters::EmitFromImageLight: the photon's direction and flux (before its pick).
+void ProjectionEmit(GpuEmitter e, float u1, float u2, float u3, out vec3 toward,
+                    out vec3 flux) {
+    const int width = EnvironmentWidth(e), height = EnvironmentHeight(e);
+    float unused;
+    const uint texel = FindEnvironmentInterval(FirstTableEntry(e), uint(width * height), u1, unused);
+    const uint x = texel % uint(width), y = texel / uint(width);
+    const vec3 local = normalize(
+        ProjectionPlanePoint(e.texture.zw, width, height, float(x) + u2, float(y) + u3));
+    toward = EnvironmentToWorld(e, local);
+    // The density in solid angle: the texel's probability over its plane area, times the
+    // plane's dA / d(omega) = 1 / cos^3.
+    const float pdf = light_image_tables[ProjectionProbabilityBegin(e) + texel] / e.edge1.w /
+                      (local.z * local.z * local.z);
+    flux = pdf > 0 ? light_image_texels[FirstTexel(e) + texel].xyz * e.radiance.xyz / pdf
+                   : vec3(0);
+}
+
 // Picks an emitter in proportion to its power by inverting the CDF.
 uint PickEmitter(float u) {
     uint low = 0, high = params.emitter_count - 1;
@@ -104,6 +137,16 @@ Photon EmitPhoton(inout Pcg32 rng) {
         photon.origin = params.scene_sphere.xyz + drawn.toward * (1.01 * radius) +
                         (frame[0] * d.x + frame[1] * d.y) * radius;
         photon.flux = drawn.radiance * (kPi * radius * radius / drawn.pdf) * emitter.power.w;
+    } else if (kHasImageLights && kind == kEmitterGoniometric) {
+        // Intensity over the light's sphere is an environment map (Emitters::ImageSampler).
+        const EnvironmentSample drawn = EnvironmentDraw(emitter, u1, u2);
+        photon.origin = emitter.position.xyz;
+        photon.direction = drawn.toward;
+        photon.flux = drawn.pdf > 0 ? drawn.radiance / drawn.pdf * emitter.power.w : vec3(0);
+    } else if (kHasImageLights && kind == kEmitterProjection) {
+        photon.origin = emitter.position.xyz;
+        ProjectionEmit(emitter, u1, u2, Pcg32NextFloat(rng), photon.direction, photon.flux);
+        photon.flux *= emitter.power.w;
     }
     return photon;
 }
@@ -147,16 +190,21 @@ bool SampleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample sample_out) {
         to_light = drawn.toward;
         radiance_over_pdf = drawn.radiance / drawn.pdf;
         sample_out.pdf = drawn.pdf / emitter.power.w;
-    } else if ((kHasPointLights && kind == kEmitterPoint) || (kHasSpotLights && kind == kEmitterSpot)) {
+    } else if ((kHasPointLights && kind == kEmitterPoint) || (kHasSpotLights && kind == kEmitterSpot) ||
+               (kHasImageLights && (kind == kEmitterGoniometric || kind == kEmitterProjection))) {
         to_light = emitter.position.xyz - sample_out.origin;
         const float distance_sq = dot(to_light, to_light);
         sample_out.distance = sqrt(distance_sq);
         to_light /= sample_out.distance;
         if (!(distance_sq > 0)) return false;
-        float falloff = 1.0;
-        if (kHasSpotLights && kind == kEmitterSpot) falloff = SpotFalloff(emitter, -dot(to_light, emitter.direction.xyz));
-        radiance_over_pdf = emitter.radiance.xyz *
-                            (falloff * RangeWindow(sample_out.distance, emitter.radiance.w) / distance_sq);
+        vec3 intensity = emitter.radiance.xyz;
+        if (kHasSpotLights && kind == kEmitterSpot)
+            intensity *= SpotFalloff(emitter, -dot(to_light, emitter.direction.xyz));
+        if (kHasImageLights && kind == kEmitterGoniometric)
+            intensity = EnvironmentRadiance(emitter, -to_light);
+        if (kHasImageLights && kind == kEmitterProjection)
+            intensity = ProjectionIntensity(emitter, -to_light);
+        radiance_over_pdf = intensity * (RangeWindow(sample_out.distance, emitter.radiance.w) / distance_sq);
     }
     if (!(dot(to_light, n) > 0) || MaxComponent(radiance_over_pdf) <= 0) return false;
     sample_out.direction = to_light;
