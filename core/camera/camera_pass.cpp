@@ -52,7 +52,8 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
             if (!tracer.Intersect(path.ray, &hit)) {
                 // Escaped: the environment, seen directly or through specular bounces.
                 if (scene.environment)
-                    emission += path.throughput * scene.environment->Radiance(path.ray.direction);
+                    emission += path.throughput * scene.environment->RadianceFrom(
+                                                      path.ray.origin, path.ray.direction);
                 break;
             }
             path.length += hit.t;

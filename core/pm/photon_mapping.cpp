@@ -91,7 +91,7 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
         if (!inputs.tracer->Intersect(ray, &hit)) {
             // The environment, seen directly or through specular and rough bounces.
             if (scene.environment)
-                radiance += throughput * scene.environment->Radiance(ray.direction);
+                radiance += throughput * scene.environment->RadianceFrom(ray.origin, ray.direction);
             break;
         }
         length += hit.t;

@@ -35,7 +35,7 @@ Rgb FinishDirectLight(const Emitters& emitters, const Vec3& n, const DirectLight
     const Ray& ray = rays.bsdf_ray;
     Emitters::Hit hit;
     if (bsdf_hit == nullptr)
-        hit = emitters.Escaped(ray.direction);
+        hit = emitters.Escaped(ray.origin, ray.direction);
     else if (bsdf_hit->instance == Instance::kNone)
         hit = emitters.HitEmitter(*bsdf_hit, ray.origin, ray.origin + ray.direction * bsdf_hit->t);
     // L cos / (cos / pi): the cosine ray's own weight is pi.

@@ -31,7 +31,7 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
         if (!inputs.tracer->Intersect(ray, &hit)) {
             // Escaped to the environment: after a diffuse or rough bounce weighed against
             // light sampling, which finds it too.
-            const Emitters::Hit escaped = inputs.emitters->Escaped(ray.direction);
+            const Emitters::Hit escaped = inputs.emitters->Escaped(ray.origin, ray.direction);
             if (!IsBlack(escaped.radiance))
                 radiance += throughput * escaped.radiance *
                             (specular_bounce ? 1.0f : PowerHeuristic(bsdf_pdf, escaped.pdf));

@@ -129,12 +129,19 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
         }
     }
     if (scene.environment) {
+        const Environment& environment = *scene.environment;
         // Power through a disk as wide as the scene, facing each direction: pi R^2 x the
-        // radiance's integral over the sphere.
+        // radiance's integral over the sphere; through a portal: its area x the irradiance on
+        // it from outside.
         const double disk = kPiD * double(scene_radius_) * double(scene_radius_);
-        if (add(EmitterKind::kEnvironment, 0, scene.environment->RadianceIntegral() * disk)) {
+        const Rgbd power = environment.portal ? environment.Irradiance(environment.portal->normal) *
+                                                    double(environment.portal->Area())
+                                              : environment.RadianceIntegral() * disk;
+        if (add(EmitterKind::kEnvironment, 0, power)) {
             environment_emitter_ = static_cast<int32_t>(emitters_.size() - 1);
-            environment_sampler_ = EnvironmentSampler(*scene.environment);
+            environment_sampler_ = EnvironmentSampler(environment);
+            if (environment.portal)
+                portal_sampler_ = EnvironmentSampler(environment, environment.portal->normal);
         }
     }
     if (weights.empty()) return;
@@ -276,9 +283,21 @@ EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, uint32_t index
 }
 
 EmittedPhoton Emitters::EmitFromEnvironment(Rng& rng) const {
+    const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
+    if (const std::optional<EnvironmentPortal>& portal = scene_.environment->portal) {
+        // Through the portal: a direction drawn over the hemisphere outside it, then a point
+        // of it, uniform: flux L cos / pdf x its area (pbrt-v4's SampleLe keeps the disk, but
+        // only what comes through the portal lights the scene).
+        const EnvironmentSampler::Sample sample = portal_sampler_.Draw(u1, u2);
+        const float a = rng.NextFloat(), b = rng.NextFloat();
+        const Vec3 point = portal->corner + portal->edge_u * a + portal->edge_v * b;
+        const Vec3 origin = OffsetRayOrigin(point, portal->normal, SceneScale());
+        const float cosine = Dot(sample.toward, portal->normal);
+        if (!(sample.pdf > 0) || !(cosine > 0)) return {{origin, -sample.toward}, Rgb(0.0f)};
+        return {{origin, -sample.toward}, sample.radiance * (cosine * portal->Area() / sample.pdf)};
+    }
     // A direction drawn from the map, then a point on the disk of the scene's bounding sphere
     // facing it, just outside: flux L / pdf x pi R^2 (pbrt-v4's ImageInfiniteLight::SampleLe).
-    const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
     const EnvironmentSampler::Sample sample = environment_sampler_.Draw(u1, u2);
     if (!(sample.pdf > 0)) return {{scene_center_, -sample.toward}, Rgb(0.0f)};
     const Frame frame = Frame::FromNormal(sample.toward);
@@ -297,7 +316,19 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
     Vec3 to_light;
     float distance = std::numeric_limits<float>::infinity();
     Rgb radiance_over_pdf;
-    if (emitter.kind == EmitterKind::kEnvironment) {
+    if (emitter.kind == EmitterKind::kEnvironment && scene_.environment->portal) {
+        // A point of the portal, uniform: area pdf 1/A, in solid angle d^2 / (cos A).
+        const EnvironmentPortal& portal = *scene_.environment->portal;
+        to_light = portal.corner + portal.edge_u * u1 + portal.edge_v * u2 - origin;
+        const float distance_sq = LengthSquared(to_light);
+        to_light /= std::sqrt(distance_sq);
+        const float cosine = Dot(to_light, portal.normal);
+        if (!(cosine > 0) || !(distance_sq > 0)) return false;
+        radiance_over_pdf =
+            scene_.environment->Radiance(to_light) * (cosine * portal.Area() / distance_sq);
+        sample->pdf = static_cast<float>(distribution_.Probability(pick.index)) * distance_sq /
+                      (cosine * portal.Area());
+    } else if (emitter.kind == EmitterKind::kEnvironment) {
         const EnvironmentSampler::Sample drawn = environment_sampler_.Draw(u1, u2);
         if (!(drawn.pdf > 0)) return false;
         to_light = drawn.toward;
@@ -347,12 +378,17 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
     return true;
 }
 
-Emitters::Hit Emitters::Escaped(const Vec3& toward) const {
+Emitters::Hit Emitters::Escaped(const Vec3& origin, const Vec3& toward) const {
     if (environment_emitter_ < 0) return {};
-    const float pdf =
-        static_cast<float>(distribution_.Probability(uint32_t(environment_emitter_))) *
-        environment_sampler_.Pdf(toward);
-    return {scene_.environment->Radiance(toward), pdf};
+    const auto pick = static_cast<float>(distribution_.Probability(uint32_t(environment_emitter_)));
+    if (const std::optional<EnvironmentPortal>& portal = scene_.environment->portal) {
+        const std::optional<float> exit = portal->Exit(origin, toward);
+        if (!exit) return {};
+        const float cosine = Dot(toward, portal->normal);
+        return {scene_.environment->Radiance(toward),
+                pick * *exit * *exit / (cosine * portal->Area())};
+    }
+    return {scene_.environment->Radiance(toward), pick * environment_sampler_.Pdf(toward)};
 }
 
 float Emitters::PdfDirect(uint32_t triangle, const Vec3& p, const Vec3& on_light) const {

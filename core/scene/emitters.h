@@ -67,10 +67,11 @@ public:
         float pdf = 0;
     };
     Hit HitEmitter(const RayHit& hit, const Vec3& p, const Vec3& on_light) const;
-    // What a ray from anywhere that escapes the scene toward unit direction `toward` finds:
-    // the environment's radiance, and the density in solid angle with which SampleDirect
-    // picks that direction. Both 0 without an environment.
-    Hit Escaped(const Vec3& toward) const;
+    // What a ray from `origin` that escapes the scene toward unit direction `toward` finds:
+    // the environment's radiance, and the density in solid angle with which SampleDirect at
+    // `origin` picks that direction. Both 0 without an environment, or where its portal does
+    // not let the ray out.
+    Hit Escaped(const Vec3& origin, const Vec3& toward) const;
     // Whether any emitter is a triangle, which a ray can hit (punctual lights only light
     // sampling finds).
     bool HasTriangles() const { return !triangles_.empty(); }
@@ -106,6 +107,8 @@ public:
     std::vector<Record> Records() const;
     // The environment's direction sampling (its tables for upload); HasEnvironment() only.
     const EnvironmentSampler& EnvironmentSampling() const { return environment_sampler_; }
+    // With a portal, the photons' directions: over the hemisphere outside it, by the cosine.
+    const EnvironmentSampler& PortalSampling() const { return portal_sampler_; }
     // The directions of a goniometric or projection light, drawn in proportion to its
     // intensity: a goniometric light's map as an environment's (its texels span equal solid
     // angles); a projection's texels by value x the solid angle each spans, then a point
@@ -174,6 +177,7 @@ private:
     // Per world triangle, its index into emitters_, or -1 where it emits nothing.
     std::vector<int32_t> emitter_of_triangle_;
     EnvironmentSampler environment_sampler_;
+    EnvironmentSampler portal_sampler_;         // with a portal only
     std::vector<ImageSampler> image_samplers_;  // per Scene::lights entry; empty for most
     int32_t environment_emitter_ = -1;          // its index into emitters_
     Rgbd power_rgb_;

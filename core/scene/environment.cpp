@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
 
 namespace pf {
@@ -31,7 +32,44 @@ void AppendCdf(const std::vector<double>& weights, double total, std::vector<flo
     cdf->back() = 1.0f;
 }
 
+// The world direction at the centre of texel (x, y).
+Vec3 TexelCentre(const Environment& environment, int x, int y) {
+    return environment.ToWorld(gpu::EnvironmentDirectionInTexel(
+        static_cast<uint32_t>(environment.mapping), environment.image.width,
+        environment.image.height, uint32_t(x), uint32_t(y), 0.5f, 0.5f));
+}
+
+// More than any direction of a texel can turn from its centre's, in radians, so that a cosine
+// to a direction over the texel is at most its centre's plus this.
+float TexelSpread(const Environment& environment) {
+    return 3 * kPi *
+           (1.0f / float(environment.image.width) + 1.0f / float(environment.image.height));
+}
+
 }  // namespace
+
+std::optional<float> EnvironmentPortal::Exit(const Vec3& origin, const Vec3& toward) const {
+    float t = 0;
+    if (!gpu::PortalExit(corner, edge_u, edge_v, normal, origin, toward, t)) return std::nullopt;
+    return t;
+}
+
+absl::StatusOr<EnvironmentPortal> EnvironmentPortal::FromCorners(const std::array<Vec3, 4>& p) {
+    for (const Vec3& corner : p)
+        if (!IsFinite(corner)) return absl::InvalidArgumentError("a corner is not finite");
+    const Vec3 sides[4] = {p[1] - p[0], p[2] - p[1], p[2] - p[3], p[3] - p[0]};
+    for (const Vec3& side : sides)
+        if (!(LengthSquared(side) > 0)) return absl::InvalidArgumentError("two corners coincide");
+    const Vec3 p01 = Normalize(sides[0]), p12 = Normalize(sides[1]), p32 = Normalize(sides[2]),
+               p03 = Normalize(sides[3]);
+    // pbrt-v4's checks: opposite sides parallel, adjacent ones perpendicular.
+    if (std::abs(Dot(p01, p32) - 1) > 1e-3f || std::abs(Dot(p12, p03) - 1) > 1e-3f ||
+        std::abs(Dot(p01, p12)) > 1e-3f || std::abs(Dot(p12, p32)) > 1e-3f ||
+        std::abs(Dot(p32, p03)) > 1e-3f || std::abs(Dot(p03, p01)) > 1e-3f)
+        return absl::InvalidArgumentError(
+            "its corners are not a rectangle, in order around it (pbrt-v4's portal is one)");
+    return EnvironmentPortal{p[0], sides[0], sides[3], Normalize(Cross(p03, p01))};
+}
 
 std::array<float, 9> RotationAboutUp(double degrees) {
     // to_map turns world directions by -degrees, so the map turns by +degrees.
@@ -81,10 +119,29 @@ Rgbd Environment::RadianceIntegral() const {
     return sum * Rgbd(scale);
 }
 
-EnvironmentSampler::EnvironmentSampler(const Environment& environment)
-    : environment_(&environment) {
-    if (environment.mapping == EnvironmentMapping::kUniform) return;
+Rgbd Environment::Irradiance(const Vec3& normal) const {
+    if (mapping == EnvironmentMapping::kUniform) return Rgbd(scale) * kPiD;
+    Rgbd sum(0.0);
+    for (int y = 0; y < image.height; ++y) {
+        Rgbd row(0.0);
+        for (int x = 0; x < image.width; ++x) {
+            const double cosine = Dot(TexelCentre(*this, x, y), normal);
+            if (cosine > 0)
+                row += Rgbd(Max(image.texels[size_t(y) * image.width + x], Rgb(0.0f))) * cosine;
+        }
+        sum += row * double(TexelSolidAngle(y));
+    }
+    return sum * Rgbd(scale);
+}
+
+EnvironmentSampler::EnvironmentSampler(const Environment& environment, std::optional<Vec3> facing)
+    : environment_(&environment), facing_(facing) {
+    if (environment.mapping == EnvironmentMapping::kUniform) {
+        facing_flux_bound_ = kPi * MaxComponent(environment.scale);  // L cos / (cos / pi)
+        return;
+    }
     const int width = environment.image.width, height = environment.image.height;
+    const float spread = TexelSpread(environment);
     std::vector<double> rows(height);
     std::vector<std::vector<double>> weights(height);
     double total = 0;
@@ -95,6 +152,9 @@ EnvironmentSampler::EnvironmentSampler(const Environment& environment)
             const Rgb radiance =
                 environment.image.texels[size_t(y) * width + x] * environment.scale;
             weights[y][x] = std::max(0.0, double(Average(radiance))) * solid_angle;
+            if (facing)
+                weights[y][x] *=
+                    std::max(0.0f, Dot(TexelCentre(environment, x, y), *facing) + spread);
             rows[y] += weights[y][x];
         }
         total += rows[y];
@@ -103,9 +163,19 @@ EnvironmentSampler::EnvironmentSampler(const Environment& environment)
     probability_.reserve(size_t(width) * height);
     for (int y = 0; y < height; ++y) {
         AppendCdf(weights[y], rows[y], &texel_cdf_);
-        for (int x = 0; x < width; ++x)
+        for (int x = 0; x < width; ++x) {
             probability_.push_back(static_cast<float>(total > 0 ? weights[y][x] / total
                                                                 : 1.0 / (double(width) * height)));
+            if (!facing || !(weights[y][x] > 0)) continue;
+            // A direction of the texel: cosine at most its centre's plus the spread.
+            const float cosine =
+                std::min(1.0f, Dot(TexelCentre(environment, x, y), *facing) + spread);
+            const double pdf = probability_.back() / environment.TexelSolidAngle(y);
+            const Rgb radiance =
+                environment.image.texels[size_t(y) * width + x] * environment.scale;
+            facing_flux_bound_ = std::max(
+                facing_flux_bound_, static_cast<float>(MaxComponent(radiance) * cosine / pdf));
+        }
     }
 }
 
@@ -113,8 +183,14 @@ EnvironmentSampler::Sample EnvironmentSampler::Draw(float u1, float u2) const {
     const Environment& environment = *environment_;
     Sample sample;
     if (environment.mapping == EnvironmentMapping::kUniform) {
-        sample.toward = SampleUniformSphere(u1, u2);
         sample.radiance = environment.scale;
+        if (facing_) {
+            const Vec3 local = SampleCosineHemisphere(u1, u2);
+            sample.toward = Frame::FromNormal(*facing_).ToWorld(local);
+            sample.pdf = local.z / kPi;
+            return sample;
+        }
+        sample.toward = SampleUniformSphere(u1, u2);
         sample.pdf = 1 / (4 * kPi);
         return sample;
     }
@@ -135,7 +211,8 @@ EnvironmentSampler::Sample EnvironmentSampler::Draw(float u1, float u2) const {
 
 float EnvironmentSampler::Pdf(const Vec3& toward) const {
     const Environment& environment = *environment_;
-    if (environment.mapping == EnvironmentMapping::kUniform) return 1 / (4 * kPi);
+    if (environment.mapping == EnvironmentMapping::kUniform)
+        return facing_ ? std::max(0.0f, Dot(toward, *facing_)) / kPi : 1 / (4 * kPi);
     const uint32_t texel = environment.TexelOf(environment.ToMap(toward));
     const int y = static_cast<int>(texel / static_cast<uint32_t>(environment.image.width));
     return static_cast<float>(probability_[texel] / environment.TexelSolidAngle(y));

@@ -171,6 +171,13 @@ void WritePayload(const Scene& scene, ByteWriter& out) {
         out.Value(environment.to_map);
         out.String(environment.name);
         WriteTexture(environment.image, out);
+        out.Value<uint8_t>(environment.portal ? 1 : 0);
+        if (environment.portal) {
+            const EnvironmentPortal& portal = *environment.portal;
+            out.Value(std::array<Vec3, 4>{portal.corner, portal.corner + portal.edge_u,
+                                          portal.corner + portal.edge_u + portal.edge_v,
+                                          portal.corner + portal.edge_v});
+        }
     }
 }
 
@@ -247,6 +254,17 @@ absl::Status ReadPayload(ByteReader& in, Scene* scene) {
             !in.Value(&environment.to_map) || !in.String(&environment.name, 4096) ||
             !ReadTexture(in, &environment.image))
             return fail("environment");
+        uint8_t has_portal = 0;
+        if (!in.Value(&has_portal) || has_portal > 1) return fail("environment");
+        if (has_portal == 1) {
+            std::array<Vec3, 4> corners;
+            if (!in.Value(&corners)) return fail("environment");
+            absl::StatusOr<EnvironmentPortal> portal = EnvironmentPortal::FromCorners(corners);
+            if (!portal.ok())
+                return Invalid(
+                    absl::StrCat("environment: its portal: ", portal.status().message()));
+            environment.portal = *portal;
+        }
     }
     if (!in.AtEnd()) return Invalid("bytes after the end");
     return absl::OkStatus();

@@ -18,8 +18,8 @@
 
 namespace pf {
 
-// 2: the environment light.
-inline constexpr uint32_t kPreparedSceneVersion = 7;
+// 2: the environment light; 8: its portal.
+inline constexpr uint32_t kPreparedSceneVersion = 8;
 
 // Normals go only where a triangle is smooth, texture coordinates only where a material has a
 // texture, textures only where a material reads them (others stay as empty placeholders, so

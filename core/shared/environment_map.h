@@ -5,7 +5,8 @@
 // (y up, the image's centre toward -z), which texel a direction falls in, each texel row's
 // solid angle, and a direction uniform in solid angle within a texel. Written in the
 // vocabulary of gpu_prelude.h. Also a projection light's image, which pbrt-v4 maps onto
-// directions by a perspective divide (ProjectionTexel, ProjectionPlanePoint).
+// directions by a perspective divide (ProjectionTexel, ProjectionPlanePoint), and the portal
+// an environment may shine in through (PortalExit).
 #ifndef PF_CORE_SHARED_ENVIRONMENT_MAP_H
 #define PF_CORE_SHARED_ENVIRONMENT_MAP_H
 
@@ -121,6 +122,20 @@ PF_GPU_FN int32_t ProjectionTexel(vec2 extent, int32_t width, int32_t height, ve
     const int32_t y = int32_t(
         clamp((py + extent.y) / (2.0f * extent.y) * float(height), 0.0f, float(height - 1)));
     return y * width + x;
+}
+
+// Where a ray from `origin` toward unit `toward` leaves through a portal (a rectangle from
+// `corner` along perpendicular edges u and v, its unit `normal` toward the environment): true
+// with the distance t where it crosses it toward the outside (EnvironmentPortal::Exit).
+PF_GPU_FN bool PortalExit(vec3 corner, vec3 u, vec3 v, vec3 normal, vec3 origin, vec3 toward,
+                          PF_OUT(float) t) {
+    const float facing = dot(toward, normal);
+    if (!(facing > 0.0f)) return false;
+    t = dot(corner - origin, normal) / facing;
+    if (!(t >= 0.0f && t <= 3.4e38f)) return false;
+    const vec3 q = origin + toward * t - corner;
+    const float a = dot(q, u) / dot(u, u), b = dot(q, v) / dot(v, v);
+    return a >= 0.0f && a <= 1.0f && b >= 0.0f && b <= 1.0f;
 }
 
 PF_GPU_END

@@ -141,8 +141,8 @@ PF_GPU_LAYOUT(GpuTexture, 16);
 // The lights with an image (environment, goniometric, projection) keep it and its sampling
 // tables in the light-image bindings.
 struct GpuEmitter {
-    vec4 position;   // triangle: p0; point, spot, goniometric, projection: position; w: kind
-                     // (uint bits)
+    vec4 position;   // triangle: p0; point, spot, goniometric, projection: position;
+                     // environment: its portal's corner; w: kind (uint bits)
     vec4 edge1;      // triangle: p1 - p0; w: area. Lights with an image: x, y the image's
                      // width and height (uint bits); environment, goniometric: z its mapping
                      // (kMapping*, uint bits); projection: w a texel's area on the plane z = 1
@@ -167,8 +167,13 @@ struct GpuEmitter {
                     // bits); projection: zw the image's half-width and half-height on the
                     // plane z = 1
     vec4 uv_edges;  // triangle: xy uv1 - uv0, zw uv2 - uv0
+    // Environment with a portal (EnvironmentPortal), whose corner is `position`: xyz its edges;
+    // portal_u.w its area (0: no portal); portal_v.w the first table entry (uint bits) of the
+    // photons' sampling over the hemisphere outside it (EnvironmentSampler facing its normal).
+    vec4 portal_u;
+    vec4 portal_v;
 };
-PF_GPU_LAYOUT(GpuEmitter, 144);
+PF_GPU_LAYOUT(GpuEmitter, 176);
 
 struct GpuHitPoint {
     vec4 position;  // xyz; w unused

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <string>
 
+#include "absl/strings/str_format.h"
 #include "core/film/exr_io.h"
 #include "embedded/local_render.h"
 #include "tests/support/gltf_builder.h"
@@ -163,6 +164,34 @@ TEST(BackendAgreementImageLights, AProjectorAndAGoniometricLampMatchTheCpus) {
         std::ofstream(path) << room << "AttributeBegin\n" << light << "AttributeEnd\n";
         ExpectVulkanAgreesWithTheCpu(path, 4'000'000);
     }
+}
+
+TEST(BackendAgreementPortal, ARoomLitThroughAPortalMatchesTheCpus) {
+    // A closed room whose only opening is a window with a portal on it, under a uniform sky:
+    // photons come in through the window and light samples aim at it, on the device as on the
+    // CPU.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    std::string room =
+        "LookAt 1.5 2.6 -1.7  -1 0.3 1  0 1 0\nCamera \"perspective\" \"float fov\" 70\n"
+        "WorldBegin\nMaterial \"diffuse\" \"rgb reflectance\" [0.6 0.6 0.6]\n"
+        "LightSource \"infinite\" \"rgb L\" [1 0.8 0.6] "
+        "\"point3 portal\" [2 1 -0.5  2 1 0.5  2 2 0.5  2 2 -0.5]\n";
+    // x in [-2, 2], y in [0, 3], z in [-2, 2]; the wall x = 2 open for y in [1, 2], z in
+    // [-0.5, 0.5]. Each patch: x0 y0 z0, then its two edges' ends.
+    const float patches[][9] = {{-2, 0, -2, 2, 0, -2, -2, 0, 2},  {-2, 3, -2, -2, 3, 2, 2, 3, -2},
+                                {-2, 0, -2, -2, 0, 2, -2, 3, -2}, {-2, 0, -2, -2, 3, -2, 2, 0, -2},
+                                {-2, 0, 2, 2, 0, 2, -2, 3, 2},    {2, 0, -2, 2, 1, -2, 2, 0, 2},
+                                {2, 2, -2, 2, 3, -2, 2, 2, 2},    {2, 1, -2, 2, 2, -2, 2, 1, -0.5f},
+                                {2, 1, 0.5f, 2, 2, 0.5f, 2, 1, 2}};
+    for (const float* q : patches) {
+        const Vec3 p0(q[0], q[1], q[2]), a(q[3], q[4], q[5]), b(q[6], q[7], q[8]);
+        const Vec3 p11 = a + b - p0;
+        room += absl::StrFormat(
+            "Shape \"bilinearmesh\" \"point3 P\" [%g %g %g  %g %g %g  %g %g %g  %g %g %g]\n", p0.x,
+            p0.y, p0.z, a.x, a.y, a.z, b.x, b.y, b.z, p11.x, p11.y, p11.z);
+    }
+    ExpectVulkanAgreesWithTheCpu(testing::WriteTextFile(room, "portal-room.pbrt"), 4'000'000);
 }
 
 TEST(BackendAgreementDepth, PhotonsOnTheDeviceStopAtTheMaximumDepth) {

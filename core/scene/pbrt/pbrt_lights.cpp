@@ -193,22 +193,33 @@ absl::Status PbrtSceneBuilder::InfiniteLight(ParameterList& parameters, const Lo
         environment.image = std::move(*image);
         environment.scale = Rgb(static_cast<float>(factor));
     }
-    if (!portal.empty())
-        Warn(where,
-             "LightSource \"infinite\": \"portal\" is not used yet; the light is sampled over "
-             "the whole sphere (correct, noisier indoors)");
+    if (!portal.empty()) {
+        // World-space corners, as pbrt-v4 takes them (the light's transform does not move it).
+        if (portal.size() != 4)
+            return ErrorAt(where, absl::StrCat("LightSource \"infinite\": \"portal\" takes the "
+                                               "4 corners of a rectangle, not ",
+                                               portal.size()));
+        std::array<Vec3, 4> corners;
+        for (int i = 0; i < 4; ++i) corners[i] = Vec3(portal[i]);
+        absl::StatusOr<EnvironmentPortal> window = EnvironmentPortal::FromCorners(corners);
+        if (!window.ok())
+            return ErrorAt(where, absl::StrCat("LightSource \"infinite\": \"portal\": ",
+                                               window.status().message()));
+        environment.portal = *window;
+    }
     if (!IsFinite(environment.scale))
         return ErrorAt(where, "LightSource \"infinite\": scale x illuminance overflows");
     if (options_.references_only) return absl::OkStatus();
     if (scene_.environment) {
         if (scene_.environment->mapping == EnvironmentMapping::kUniform &&
-            environment.mapping == EnvironmentMapping::kUniform) {
+            environment.mapping == EnvironmentMapping::kUniform && !scene_.environment->portal &&
+            !environment.portal) {
             scene_.environment->scale += environment.scale;  // two uniform lights are one
             return absl::OkStatus();
         }
         Warn(where,
-             "LightSource \"infinite\": a second infinite light with an image, or beside one, is "
-             "left out (uniform ones add up)");
+             "LightSource \"infinite\": a second infinite light with an image or a portal, or "
+             "beside one, is left out (uniform ones add up)");
         return absl::OkStatus();
     }
     scene_.environment = std::move(environment);

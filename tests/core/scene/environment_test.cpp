@@ -256,13 +256,118 @@ TEST(EnvironmentTest, DirectSamplesAgreeWithWhatAnEscapingRayFinds) {
         if (!emitters.SampleDirect(Vec3(0, 0, 0.1f), Vec3(0, 0, 1), rng, &sample)) continue;
         ++taken;
         EXPECT_TRUE(std::isinf(sample.shadow_ray.t_max));
-        const Emitters::Hit escaped = emitters.Escaped(sample.direction);
+        const Emitters::Hit escaped = emitters.Escaped(sample.shadow_ray.origin, sample.direction);
         mismatched += std::abs(escaped.pdf - sample.pdf) > 1e-4f * sample.pdf ||
                       Length(escaped.radiance - sample.radiance_over_pdf * sample.pdf) >
                           1e-3f * Length(escaped.radiance);
     }
     EXPECT_GT(taken, kSamples / 4);
     EXPECT_LE(mismatched, kSamples / 1000);
+}
+
+// A skylight 1.5 above the quad: a 0.6 x 0.8 portal facing up (pbrt-v4's p03 x p01 is +z).
+EnvironmentPortal Skylight() {
+    return *EnvironmentPortal::FromCorners({Vec3(-0.4f, -0.3f, 1.5f), Vec3(-0.4f, 0.3f, 1.5f),
+                                            Vec3(0.4f, 0.3f, 1.5f), Vec3(0.4f, -0.3f, 1.5f)});
+}
+
+// The irradiance at p (normal +z) from what the environment sends through the portal, by
+// midpoint quadrature over n x n cells of the portal: L cos_p cos_portal / d^2 dA.
+Rgbd IrradianceThroughPortal(const Environment& environment, const Vec3& p, int n) {
+    const EnvironmentPortal& portal = *environment.portal;
+    const double cell = portal.Area() / (double(n) * n);
+    Rgbd sum(0.0);
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const Vec3 q =
+                portal.corner + portal.edge_u * ((i + 0.5f) / n) + portal.edge_v * ((j + 0.5f) / n);
+            const Vec3 d = q - p;
+            const double distance_sq = LengthSquared(d);
+            const Vec3 w = d / std::sqrt(float(distance_sq));
+            sum += Rgbd(environment.Radiance(w)) *
+                   (double(w.z) * Dot(w, portal.normal) / distance_sq * cell);
+        }
+    return sum;
+}
+
+TEST(EnvironmentTest, APortalLetsInItsWindowsLightAndOnlyThat) {
+    Scene base = QuadUnder(Grey(), "environment-portal-quad.gltf");
+    Environment uniform;
+    uniform.scale = Rgb(1.0f, 0.5f, 2.0f);
+    for (Environment environment : {uniform, RandomMap(EnvironmentMapping::kEqualArea, 8, 8, 4)}) {
+        SCOPED_TRACE(environment.mapping == EnvironmentMapping::kUniform ? "uniform" : "map");
+        environment.portal = Skylight();
+        Scene scene = base;
+        scene.environment = environment;
+        const Emitters emitters(scene);
+        ASSERT_TRUE(emitters.HasEnvironment());
+        // Photons: all come in through the portal, and the flux they carry through the unit
+        // quad is the irradiance's integral over it (quadrature over 24 x 24 points of it).
+        Rgbd expected(0.0);
+        constexpr int kPoints = 24;
+        for (int j = 0; j < kPoints; ++j)
+            for (int i = 0; i < kPoints; ++i)
+                expected +=
+                    IrradianceThroughPortal(
+                        *scene.environment,
+                        Vec3((i + 0.5f) / kPoints - 0.5f, (j + 0.5f) / kPoints - 0.5f, 0), 48) *
+                    (1.0 / (kPoints * kPoints));
+        const QuadFlux flux = FluxThroughQuad(emitters, 11, 4000000);
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(flux.mean[c], expected[c], 5 * flux.sigma[c] + 3e-3 * expected[c])
+                << "photons, channel " << c;
+            EXPECT_LT(5 * flux.sigma[c], 0.02 * expected[c]);
+        }
+        Rng rng(13);
+        for (int i = 0; i < 1000; ++i) {
+            const EmittedPhoton photon = emitters.Emit(rng);
+            const Vec3 q = photon.ray.origin - scene.environment->portal->corner;
+            EXPECT_NEAR(q.z, 0, 1e-3f);
+            // Directions drawn from a texel that is partly behind the portal may carry nothing.
+            if (!IsBlack(photon.flux)) EXPECT_LT(photon.ray.direction.z, 0);
+        }
+        // Light samples at a point under it: their mean is the irradiance there, and a ray
+        // that escapes toward a sample's direction finds the same radiance and density.
+        const Vec3 p(0.1f, -0.2f, 0.0f);
+        const Rgbd irradiance = IrradianceThroughPortal(*scene.environment, p, 200);
+        Rgbd sum(0.0);
+        int mismatched = 0;
+        constexpr int kSamples = 200000;
+        for (int i = 0; i < kSamples; ++i) {
+            LightSample sample;
+            if (!emitters.SampleDirect(p, Vec3(0, 0, 1), rng, &sample)) continue;
+            sum += Rgbd(sample.radiance_over_pdf) * double(sample.direction.z);
+            const Emitters::Hit escaped =
+                emitters.Escaped(sample.shadow_ray.origin, sample.direction);
+            mismatched += std::abs(escaped.pdf - sample.pdf) > 1e-3f * sample.pdf ||
+                          Length(escaped.radiance - sample.radiance_over_pdf * sample.pdf) >
+                              1e-3f * Length(escaped.radiance);
+        }
+        EXPECT_LE(mismatched, kSamples / 1000);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(sum[c] / kSamples, irradiance[c], 5e-3 * irradiance[c])
+                << "light samples, channel " << c;
+        // A ray that leaves beside the portal, or from outside it, finds nothing; a camera
+        // ray through it sees the sky.
+        EXPECT_EQ(emitters.Escaped(p, Normalize(Vec3(1, 0, 0.3f))).pdf, 0);
+        EXPECT_TRUE(IsBlack(scene.environment->RadianceFrom(p, Normalize(Vec3(1, 0, 0.3f)))));
+        EXPECT_TRUE(IsBlack(scene.environment->RadianceFrom(Vec3(0, 0, 2), Vec3(0, 0, 1))));
+        EXPECT_FALSE(IsBlack(scene.environment->RadianceFrom(p, Vec3(0, 0, 1))));
+    }
+}
+
+TEST(EnvironmentTest, APortalMustBeARectangle) {
+    EXPECT_FALSE(EnvironmentPortal::FromCorners(
+                     {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0.2f), Vec3(0, 1, 0)})
+                     .ok());
+    EXPECT_FALSE(
+        EnvironmentPortal::FromCorners({Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)})
+            .ok());
+    const absl::StatusOr<EnvironmentPortal> portal = EnvironmentPortal::FromCorners(
+        {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 3, 0), Vec3(0, 3, 0)});
+    ASSERT_TRUE(portal.ok());
+    EXPECT_FLOAT_EQ(portal->Area(), 6);
+    EXPECT_NEAR(portal->normal.z, -1, 1e-6f);  // p03 x p01 = y x x
 }
 
 TEST(EnvironmentTest, ASceneLitOnlyByItsEnvironmentLoadsAndOneWithoutLightNamesTheWayOut) {

@@ -183,5 +183,29 @@ TEST(PbrtLightsTest, ProjectionLightsAsPbrtV4DefinesThem) {
                 "fov in (0, 180)");
 }
 
+TEST(PbrtLightsTest, AnInfiniteLightsPortalIsAWorldSpaceRectangle) {
+    // pbrt-v4 takes the corners in world space (the light's transform turns its map, not its
+    // portal) and faces the portal p03 x p01, toward the environment.
+    const absl::StatusOr<Scene> scene =
+        Load(Bundle("AttributeBegin\nRotate 90 1 0 0\nLightSource \"infinite\" \"rgb L\" [1 1 1] "
+                    "\"point3 portal\" [0 0 2  0 1 2  1 1 2  1 0 2]\nAttributeEnd\n" +
+                    std::string(kQuad)));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_TRUE(scene->environment && scene->environment->portal);
+    const EnvironmentPortal& portal = *scene->environment->portal;
+    EXPECT_EQ(portal.corner, Vec3(0, 0, 2));
+    EXPECT_EQ(portal.edge_u, Vec3(0, 1, 0));
+    EXPECT_EQ(portal.edge_v, Vec3(1, 0, 0));
+    EXPECT_NEAR(portal.normal.z, 1, 1e-6f);  // x cross y
+    ExpectError(Load(Bundle("LightSource \"infinite\" \"point3 portal\" [0 0 2  0 1 2  1 1 2]\n" +
+                            std::string(kQuad))),
+                "scenes/scene.pbrt:6:1: LightSource \"infinite\": \"portal\" takes the 4 corners "
+                "of a rectangle, not 3");
+    ExpectError(
+        Load(Bundle("LightSource \"infinite\" \"point3 portal\" [0 0 2  0 1 2  1 1 3  1 0 2]\n" +
+                    std::string(kQuad))),
+        "\"portal\": its corners are not a rectangle");
+}
+
 }  // namespace
 }  // namespace pf

@@ -75,6 +75,12 @@ void ExpectSameScene(const Scene& a, const Scene& b) {
                     SameBytes(x.to_map, y.to_map) && x.name == y.name &&
                     x.image.width == y.image.width && x.image.height == y.image.height &&
                     SameBytes(x.image.texels, y.image.texels));
+        ASSERT_EQ(x.portal.has_value(), y.portal.has_value());
+        if (x.portal)
+            EXPECT_TRUE(SameBytes(x.portal->corner, y.portal->corner) &&
+                        SameBytes(x.portal->edge_u, y.portal->edge_u) &&
+                        SameBytes(x.portal->edge_v, y.portal->edge_v) &&
+                        Length(x.portal->normal - y.portal->normal) < 1e-6f);
     }
 }
 
@@ -135,7 +141,8 @@ TEST(PreparedSceneTest, TexturesAndInstancesSurviveAndTheFilterIsRebuilt) {
     EXPECT_EQ(photons_only->texture_filter, nullptr);
 }
 
-// An environment map (a latitude-longitude image of floats) and a uniform one survive.
+// An environment map (a latitude-longitude image of floats) and a uniform one, with and
+// without a portal, survive.
 TEST(PreparedSceneTest, EnvironmentsSurvive) {
     Scene scene = TexturedInstancedScene();
     Environment& environment = scene.environment.emplace();
@@ -145,8 +152,11 @@ TEST(PreparedSceneTest, EnvironmentsSurvive) {
     environment.scale = Rgb(2.0f, 1.0f, 0.5f);
     environment.to_map = RotationAboutUp(33);
     environment.name = "sky.exr";
-    for (int uniform = 0; uniform < 2; ++uniform) {
+    for (int uniform = 0; uniform < 3; ++uniform) {
         if (uniform == 1) environment = Environment{};
+        if (uniform == 2)  // with a portal
+            environment.portal = *EnvironmentPortal::FromCorners(
+                {Vec3(1, 0.5f, -2), Vec3(1, 0.5f, 2), Vec3(1, 2.5f, 2), Vec3(1, 2.5f, -2)});
         const std::string bytes = EncodePreparedScene(scene);
         const absl::StatusOr<Scene> decoded = DecodePreparedScene(bytes, false);
         ASSERT_TRUE(decoded.ok()) << decoded.status();
@@ -282,6 +292,11 @@ TEST(PreparedSceneTest, HostileBytesAreRefusedNamingWhatIsWrong) {
     broken([&](Scene& s) { map(s)->to_map[0] = 2; }, "environment: its frame is not a rotation");
     broken([&](Scene& s) { map(s)->mapping = EnvironmentMapping::kUniform; },
            "environment: a 2x2 map");
+    broken(
+        [&](Scene& s) {
+            map(s)->portal = {Vec3(0.0f), Vec3(1, 0, 0), Vec3(1, 1, 0), {}};
+        },
+        "environment: its portal: its corners are not a rectangle");
 }
 
 }  // namespace

@@ -109,13 +109,27 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
         // The largest flux a photon of this emitter carries in a channel, before its pick.
         float most = MaxComponent(record.power) * record.peak;
         if (record.kind == EmitterKind::kEnvironment) {
+            const Environment& environment = *scene.environment;
             emitter.position = Vec4(Vec3(0.0f), gpu::kEmitterEnvironment);
-            AddEnvironmentMap(*scene.environment, emitters.EnvironmentSampling(), emitter,
-                              gpu_scene);
+            AddEnvironmentMap(environment, emitters.EnvironmentSampling(), emitter, gpu_scene);
             gpu_scene.environment_emitter = static_cast<uint32_t>(gpu_scene.emitters.size());
             // A photon carries L / pdf x pi r^2, and the pdf follows the channels' average: a
             // channel reaches 3x the average power where a texel is one pure colour.
             most = 3 * Average(record.power);
+            if (const std::optional<EnvironmentPortal>& portal = environment.portal) {
+                const EnvironmentSampler& through = emitters.PortalSampling();
+                emitter.position = Vec4(portal->corner, gpu::kEmitterEnvironment);
+                emitter.portal_u = Vec4(portal->edge_u, portal->Area());
+                emitter.portal_v = Vec4(portal->edge_v,
+                                        static_cast<uint32_t>(gpu_scene.light_image_tables.size()));
+                for (const std::vector<float>* table :
+                     {&through.RowCdf(), &through.TexelCdf(), &through.TexelProbability()})
+                    gpu_scene.light_image_tables.insert(gpu_scene.light_image_tables.end(),
+                                                        table->begin(), table->end());
+                // A photon carries L cos / pdf x the portal's area (with a margin for the
+                // pdf's rounding in float).
+                most = 1.001f * through.FacingFluxBound() * portal->Area();
+            }
         } else if (record.kind == EmitterKind::kTriangle) {
             emitter.position = Vec4(record.p0, gpu::kEmitterTriangle);
             emitter.edge1 = Vec4(record.edge1, record.area);

@@ -37,7 +37,7 @@ void main() {
             if (TraceRay(origin, direction, kInfinity, false, hit)) {
                 if (kHasTriangleLights) radiance = HitEmitter(hit, origin, origin + direction * hit.t, pdf);
             } else if (kHasEnvironment) {
-                radiance = EscapedRay(direction, pdf);
+                radiance = EscapedRay(origin, direction, pdf);
             }
             // L cos / (cos / pi): the cosine ray's own weight is pi.
             if (pdf > 0) irradiance += radiance * (kPi * PowerHeuristic(dot(direction, normal) / kPi, pdf));

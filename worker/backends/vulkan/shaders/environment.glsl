@@ -76,26 +76,38 @@ struct EnvironmentSample {
     float pdf;      // solid angle, the emitter's pick excluded
 };
 
-// EnvironmentSampler::Draw.
-EnvironmentSample EnvironmentDraw(GpuEmitter e, float u1, float u2) {
+// EnvironmentSampler::Draw, from the tables at `tables` (the map's own, or its portal's).
+EnvironmentSample EnvironmentDrawFrom(GpuEmitter e, uint tables, float u1, float u2) {
     EnvironmentSample drawn;
     const uint mapping = EnvironmentMapping(e);
-    if (mapping == kMappingUniform) {
+    const int width = EnvironmentWidth(e), height = EnvironmentHeight(e);
+    float fx, fy;
+    const uint texel_cdf = tables + uint(height) + 1u;
+    const uint y = FindEnvironmentInterval(tables, uint(height), u1, fy);
+    const uint x = FindEnvironmentInterval(texel_cdf + y * (uint(width) + 1u), uint(width), u2, fx);
+    const uint texel = y * uint(width) + x;
+    drawn.toward = EnvironmentToWorld(
+        e, EnvironmentDirectionInTexel(mapping, width, height, x, y, fx, fy));
+    drawn.radiance = light_image_texels[FirstTexel(e) + texel].xyz * e.radiance.xyz;
+    const uint probability = texel_cdf + uint(height) * (uint(width) + 1u);
+    drawn.pdf = light_image_tables[probability + texel] /
+                EnvironmentTexelSolidAngle(mapping, width, height, int(y));
+    return drawn;
+}
+
+// EnvironmentSampler::Draw over the whole sphere.
+EnvironmentSample EnvironmentDraw(GpuEmitter e, float u1, float u2) {
+    if (EnvironmentMapping(e) == kMappingUniform) {
+        EnvironmentSample drawn;
         drawn.toward = SampleUniformSphere(u1, u2);
         drawn.radiance = e.radiance.xyz;
         drawn.pdf = 1.0 / (4.0 * kPi);
         return drawn;
     }
-    const int width = EnvironmentWidth(e), height = EnvironmentHeight(e);
-    float fx, fy;
-    const uint y = FindEnvironmentInterval(RowCdfBegin(e), uint(height), u1, fy);
-    const uint x = FindEnvironmentInterval(TexelCdfBegin(e) + y * (uint(width) + 1u),
-                                           uint(width), u2, fx);
-    const uint texel = y * uint(width) + x;
-    drawn.toward = EnvironmentToWorld(
-        e, EnvironmentDirectionInTexel(mapping, width, height, x, y, fx, fy));
-    drawn.radiance = light_image_texels[FirstTexel(e) + texel].xyz * e.radiance.xyz;
-    drawn.pdf = light_image_tables[ProbabilityBegin(e) + texel] /
-                EnvironmentTexelSolidAngle(mapping, width, height, int(y));
-    return drawn;
+    return EnvironmentDrawFrom(e, RowCdfBegin(e), u1, u2);
 }
+
+// The environment's portal (EnvironmentPortal), where it has one: its normal toward the
+// environment, pbrt-v4's p03 x p01.
+bool HasPortal(GpuEmitter e) { return e.portal_u.w > 0.0; }
+vec3 PortalNormal(GpuEmitter e) { return normalize(cross(e.portal_v.xyz, e.portal_u.xyz)); }

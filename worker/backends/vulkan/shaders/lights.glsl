@@ -121,6 +121,27 @@ Photon EmitPhoton(inout Pcg32 rng) {
         photon.origin = params.scene_sphere.xyz - emitter.direction.xyz * (1.01 * radius) +
                         (frame[0] * d.x + frame[1] * d.y) * radius;
         photon.direction = emitter.direction.xyz;
+    } else if (kHasEnvironment && kind == kEmitterEnvironment && HasPortal(emitter)) {
+        // Through the portal: a direction over the hemisphere outside it, then a point of it:
+        // flux L cos / pdf x its area (Emitters::EmitFromEnvironment).
+        const vec3 n = PortalNormal(emitter);
+        EnvironmentSample drawn;
+        if (EnvironmentMapping(emitter) == kMappingUniform) {
+            const vec3 local = SampleCosineHemisphere(u1, u2);
+            drawn.toward = FrameFromNormal(n) * local;
+            drawn.radiance = emitter.radiance.xyz;
+            drawn.pdf = local.z / kPi;
+        } else {
+            drawn = EnvironmentDrawFrom(emitter, floatBitsToUint(emitter.portal_v.w), u1, u2);
+        }
+        const float a = Pcg32NextFloat(rng), b = Pcg32NextFloat(rng);
+        photon.origin = OffsetRayOrigin(
+            emitter.position.xyz + emitter.portal_u.xyz * a + emitter.portal_v.xyz * b, n);
+        photon.direction = -drawn.toward;
+        const float cosine = dot(drawn.toward, n);
+        photon.flux = drawn.pdf > 0 && cosine > 0
+                          ? drawn.radiance * (cosine * emitter.portal_u.w / drawn.pdf) * emitter.power.w
+                          : vec3(0);
     } else if (kHasEnvironment && kind == kEmitterEnvironment) {
         // A direction from the map, then a point of the bounding sphere's disk facing it, just
         // outside: flux L / pdf x pi r^2 (Emitters::EmitFromEnvironment).
@@ -184,6 +205,17 @@ bool SampleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample sample_out) {
     } else if (kHasDirectionalLights && kind == kEmitterDirectional) {
         to_light = -emitter.direction.xyz;
         radiance_over_pdf = emitter.radiance.xyz;
+    } else if (kHasEnvironment && kind == kEmitterEnvironment && HasPortal(emitter)) {
+        // A point of the portal, uniform: area pdf 1/A, in solid angle d^2 / (cos A).
+        to_light = emitter.position.xyz + emitter.portal_u.xyz * u1 + emitter.portal_v.xyz * u2 -
+                   sample_out.origin;
+        const float distance_sq = dot(to_light, to_light);
+        to_light /= sqrt(distance_sq);
+        const float cosine = dot(to_light, PortalNormal(emitter));
+        if (!(cosine > 0) || !(distance_sq > 0)) return false;
+        radiance_over_pdf = EnvironmentRadiance(emitter, to_light) *
+                            (cosine * emitter.portal_u.w / distance_sq);
+        sample_out.pdf = distance_sq / (cosine * emitter.portal_u.w * emitter.power.w);
     } else if (kHasEnvironment && kind == kEmitterEnvironment) {
         const EnvironmentSample drawn = EnvironmentDraw(emitter, u1, u2);
         if (!(drawn.pdf > 0)) return false;
@@ -229,10 +261,21 @@ vec3 HitEmitter(RayHit hit, vec3 p, vec3 on_light, out float pdf) {
     return emitter.radiance.xyz * EmissionTexel(emitter, vec2(hit.b1, hit.b2));
 }
 
-// What a ray that escapes the scene toward unit direction `toward` finds (Emitters::Escaped):
-// the environment's radiance and the density with which SampleLight picks that direction.
-vec3 EscapedRay(vec3 toward, out float pdf) {
+// What a ray from `origin` that escapes the scene toward unit direction `toward` finds
+// (Emitters::Escaped): the environment's radiance and the density with which SampleLight
+// picks that direction; both 0 where its portal does not let the ray out.
+vec3 EscapedRay(vec3 origin, vec3 toward, out float pdf) {
     const GpuEmitter environment = EnvironmentEmitter();
+    if (HasPortal(environment)) {
+        pdf = 0;
+        const vec3 n = PortalNormal(environment);
+        float t;
+        if (!PortalExit(environment.position.xyz, environment.portal_u.xyz,
+                        environment.portal_v.xyz, n, origin, toward, t))
+            return vec3(0);
+        pdf = t * t / (dot(toward, n) * environment.portal_u.w * environment.power.w);
+        return EnvironmentRadiance(environment, toward);
+    }
     pdf = EnvironmentPdf(environment, toward) / environment.power.w;
     return EnvironmentRadiance(environment, toward);
 }
