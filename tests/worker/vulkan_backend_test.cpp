@@ -397,6 +397,17 @@ TEST_F(VulkanBackendTest, JobTooLargeForTheDeviceIsRefusedNamingTheLimit) {
     EXPECT_NE(memory.message().find("the device has 64 MiB"), std::string::npos) << memory;
 }
 
+TEST_F(VulkanBackendTest, AProcessMakesContextsJobAfterJob) {
+    // A worker makes a context per job: 40 in a row, each listed and made anew, must all
+    // work. (They share the process's instance: NVIDIA's driver, unloaded with the last
+    // instance and loaded again, failed vkCreateInstance after some 25 rounds on an H200.)
+    for (int job = 0; job < 40; ++job) {
+        ASSERT_TRUE(vk::ListDevices().ok()) << "job " << job;
+        const absl::StatusOr<std::shared_ptr<vk::Context>> context = vk::Context::Create({});
+        ASSERT_TRUE(context.ok()) << "job " << job << ": " << context.status();
+    }
+}
+
 TEST_F(VulkanBackendTest, TheChosenDeviceIsListed) {
     const std::string listing = DescribeDevices(2);
     EXPECT_NE(listing.find(context_->Info().name), std::string::npos) << listing;

@@ -25,7 +25,7 @@ bool ValidationRequested(const ContextOptions& options) {
     return options.validation || (env != nullptr && std::strcmp(env, "1") == 0);
 }
 
-// An instance destroyed with its scope, for ListDevices and for Create until it succeeds.
+// An instance destroyed with its scope unless taken from it (ProcessInstance takes it).
 struct InstanceHolder {
     VkInstance instance = VK_NULL_HANDLE;
     ~InstanceHolder() {
@@ -77,6 +77,24 @@ absl::Status CreateInstance(bool validation, InstanceHolder& holder) {
             "for the CPU implementation lavapipe");
     PF_VK_TRY(result);
     return absl::OkStatus();
+}
+
+// The process's instance (one with the validation layer, one without), made on first use and
+// kept until the process ends. The loader unloads the driver with the last instance, and
+// NVIDIA's (libGLX_nvidia, driver 580) does not come back after enough of that: on an H200,
+// after some 25 instance lifetimes in one process, vkCreateInstance failed with
+// VK_ERROR_INCOMPATIBLE_DRIVER. A worker makes a context per job, tests many. A failure is
+// not kept: the next call tries again.
+absl::StatusOr<VkInstance> ProcessInstance(bool validation) {
+    static std::mutex mutex;
+    static VkInstance instances[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+    std::lock_guard lock(mutex);
+    VkInstance& instance = instances[validation ? 1 : 0];
+    if (instance != VK_NULL_HANDLE) return instance;
+    InstanceHolder holder;
+    if (absl::Status status = CreateInstance(validation, holder); !status.ok()) return status;
+    instance = std::exchange(holder.instance, VK_NULL_HANDLE);
+    return instance;
 }
 
 std::string TypeName(VkPhysicalDeviceType type) {
@@ -158,9 +176,9 @@ absl::StatusOr<std::vector<VkPhysicalDevice>> PhysicalDevices(VkInstance instanc
 }  // namespace
 
 absl::StatusOr<std::vector<DeviceInfo>> ListDevices() {
-    InstanceHolder holder;
-    if (absl::Status status = CreateInstance(false, holder); !status.ok()) return status;
-    absl::StatusOr<std::vector<VkPhysicalDevice>> devices = PhysicalDevices(holder.instance);
+    const absl::StatusOr<VkInstance> instance = ProcessInstance(false);
+    if (!instance.ok()) return instance.status();
+    absl::StatusOr<std::vector<VkPhysicalDevice>> devices = PhysicalDevices(*instance);
     if (!devices.ok()) return devices.status();
     std::vector<DeviceInfo> infos;
     for (uint32_t i = 0; i < devices->size(); ++i) infos.push_back(Describe((*devices)[i], i));
@@ -196,9 +214,10 @@ absl::StatusOr<uint32_t> ChooseDevice(const std::vector<DeviceInfo>& devices) {
 
 absl::StatusOr<std::shared_ptr<Context>> Context::Create(const ContextOptions& options) {
     const bool validation = ValidationRequested(options);
-    InstanceHolder holder;
-    if (absl::Status status = CreateInstance(validation, holder); !status.ok()) return status;
+    const absl::StatusOr<VkInstance> instance = ProcessInstance(validation);
+    if (!instance.ok()) return instance.status();
     std::shared_ptr<Context> context(new Context());
+    context->instance_ = *instance;
     if (validation) {
         const VkDebugUtilsMessengerCreateInfoEXT info{
             .sType = VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT,
@@ -209,15 +228,14 @@ absl::StatusOr<std::shared_ptr<Context>> Context::Create(const ContextOptions& o
                            VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT,
             .pfnUserCallback = &Context::OnMessage};
         const auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(holder.instance, "vkCreateDebugUtilsMessengerEXT"));
+            vkGetInstanceProcAddr(context->instance_, "vkCreateDebugUtilsMessengerEXT"));
         context->destroy_messenger_ = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-            vkGetInstanceProcAddr(holder.instance, "vkDestroyDebugUtilsMessengerEXT"));
+            vkGetInstanceProcAddr(context->instance_, "vkDestroyDebugUtilsMessengerEXT"));
         if (create == nullptr || context->destroy_messenger_ == nullptr)
             return absl::FailedPreconditionError(
                 "the Vulkan loader does not provide VK_EXT_debug_utils for validation");
-        PF_VK_TRY(create(holder.instance, &info, nullptr, &context->messenger_));
+        PF_VK_TRY(create(context->instance_, &info, nullptr, &context->messenger_));
     }
-    context->instance_ = std::exchange(holder.instance, VK_NULL_HANDLE);
 
     absl::StatusOr<std::vector<VkPhysicalDevice>> devices = PhysicalDevices(context->instance_);
     if (!devices.ok()) return devices.status();
@@ -276,7 +294,7 @@ Context::~Context() {
         vkDestroyDevice(device_, nullptr);
     }
     if (messenger_ != VK_NULL_HANDLE) destroy_messenger_(instance_, messenger_, nullptr);
-    if (instance_ != VK_NULL_HANDLE) vkDestroyInstance(instance_, nullptr);
+    // The instance is the process's (ProcessInstance), kept.
 }
 
 uint64_t Context::ValidationErrors() { return validation_errors.load(); }
