@@ -408,7 +408,7 @@ float RoughnessAlpha(double roughness) {
 //    where roughness > 0; solid glass with roughness > 0 is rough glass likewise;
 //  - anything else: Lambertian diffuse with the base colour (factor x texture).
 // Emission is emissiveFactor x emissiveTexture x KHR_materials_emissive_strength, radiance in
-// W/(m^2 sr).
+// W/(m^2 sr), from the front face, and the back one too where the material is doubleSided.
 absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
     if (const auto it = material_indices_.find(gltf_material); it != material_indices_.end())
         return it->second;
@@ -450,6 +450,8 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
                     "coordinates (texCoord {}, its KHR_texture_transform)",
                     path_, element, coordinates->texCoord);
         }
+        // A double-sided material is drawn, so emits, on both faces.
+        material.two_sided = source.doubleSided ? 1 : 0;
         double strength = 1.0;
         if (const tinygltf::Value* e =
                 Extension(source.extensions, "KHR_materials_emissive_strength"))

@@ -43,7 +43,7 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
                          m.texture_emissive ? "" : texture, "}", m.texture_emissive ? texture : "");
         if (!IsBlack(m.emission))
             absl::StrAppend(&material, R"(,"emissiveFactor":)", Floats(m.emission));
-        materials.push_back(material + "}");
+        materials.push_back(material + m.extra + "}");
     }
     for (const TestMesh& mesh : scene.meshes) {
         const size_t offset = blob->size();

@@ -16,6 +16,7 @@ struct TestMaterial {
     std::string texture_png_base64;  // a base colour texture, embedded as a data URI
     std::string texture_extra;       // raw JSON fields of its textureInfo, e.g. an extension
     bool texture_emissive = false;   // the texture is the emissive one, not the base colour's
+    std::string extra;               // raw JSON fields of the material, e.g. ,"doubleSided":true
 };
 
 struct TestMesh {

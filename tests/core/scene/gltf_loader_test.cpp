@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "core/scene/emitters.h"
 #include "core/scene/mesh_builder.h"
 #include "core/scene/scene_loader.h"
 #include "tests/support/gltf_builder.h"
@@ -200,6 +201,23 @@ TEST(GltfLoaderTest, EmissiveTextureTimesFactorIsTheEmission) {
     const absl::StatusOr<Scene> dark = LoadScene(testing::WriteGltf(scene, "dark-emissive.gltf"));
     ASSERT_TRUE(dark.ok()) << dark.status();
     EXPECT_EQ(dark->materials[dark->triangles[0].material].emission_texture, kNoTexture);
+}
+
+TEST(GltfLoaderTest, ADoubleSidedEmissiveMaterialEmitsFromBothFaces) {
+    // glTF draws a doubleSided material's back face too: the lit quad's light then emits
+    // from both, twice the power (pi A Le a face).
+    testing::TestScene scene = testing::LitQuadScene();
+    const absl::StatusOr<Scene> one = LoadScene(testing::WriteGltf(scene, "one-sided.gltf"));
+    scene.materials[1].extra = R"(,"doubleSided":true)";
+    const absl::StatusOr<Scene> two = LoadScene(testing::WriteGltf(scene, "two-sided.gltf"));
+    ASSERT_TRUE(one.ok() && two.ok());
+    const double area = 0.4 * 0.4, face = kPiD * area * 10;
+    EXPECT_NEAR(Emitters(*one).TotalPower().x, face, 1e-4 * face);
+    EXPECT_NEAR(Emitters(*two).TotalPower().x, 2 * face, 1e-4 * face);
+    for (const Triangle& triangle : two->triangles) {
+        const Material& material = two->materials[triangle.material];
+        EXPECT_EQ(material.EmitsToward(false), material.IsEmissive());
+    }
 }
 
 TEST(GltfLoaderTest, GlbWithTheImageInItsBinaryChunk) {
