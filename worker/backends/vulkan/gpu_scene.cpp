@@ -1,6 +1,7 @@
 // Flattening a scene into the shared GPU structs.
 #include "worker/backends/vulkan/gpu_scene.h"
 
+#include <array>
 #include <bit>
 
 #include "core/scene/mesh_builder.h"
@@ -55,6 +56,13 @@ gpu::vec4 ImageOffsets(const GpuScene& gpu_scene, Point2 extent = {}) {
             extent.x, extent.y};
 }
 
+// The rotation from the world into an image's frame, a row each in edge2, direction and cone.
+void SetImageRotation(const std::array<float, 9>& m, gpu::GpuEmitter& emitter) {
+    emitter.edge2 = {m[0], m[1], m[2], 0.0f};
+    emitter.direction = {m[3], m[4], m[5], 0.0f};
+    emitter.cone = {m[6], m[7], m[8], 0.0f};
+}
+
 // An environment map, or a goniometric light's, with its sampling tables.
 void AddEnvironmentMap(const Environment& environment, const EnvironmentSampler& sampler,
                        gpu::GpuEmitter& emitter, GpuScene& gpu_scene) {
@@ -62,10 +70,7 @@ void AddEnvironmentMap(const Environment& environment, const EnvironmentSampler&
     emitter.edge1 = {bits(uint32_t(environment.image.width)),
                      bits(uint32_t(environment.image.height)),
                      bits(static_cast<uint32_t>(environment.mapping)), 0.0f};
-    const auto& m = environment.to_map;
-    emitter.edge2 = {m[0], m[1], m[2], 0.0f};
-    emitter.direction = {m[3], m[4], m[5], 0.0f};
-    emitter.cone = {m[6], m[7], m[8], 0.0f};
+    SetImageRotation(environment.to_map, emitter);
     emitter.radiance = Vec4(environment.scale);
     emitter.texture = ImageOffsets(gpu_scene);
     for (const Rgb& texel : environment.image.texels)
@@ -83,10 +88,7 @@ void AddProjection(const PunctualLight& light, const Emitters::ImageSampler& sam
     const auto bits = [](uint32_t value) { return std::bit_cast<float>(value); };
     emitter.edge1 = {bits(uint32_t(image.width)), bits(uint32_t(image.height)), 0.0f,
                      sampler.plane_texel_area};
-    const auto& m = light.to_light;
-    emitter.edge2 = {m[0], m[1], m[2], 0.0f};
-    emitter.direction = {m[3], m[4], m[5], 0.0f};
-    emitter.cone = {m[6], m[7], m[8], 0.0f};
+    SetImageRotation(light.to_light, emitter);
     emitter.texture = ImageOffsets(gpu_scene, light.ProjectionExtent());
     for (const Rgb& texel : image.texels) gpu_scene.light_image_texels.push_back(Vec4(texel));
     std::vector<float>& tables = gpu_scene.light_image_tables;
