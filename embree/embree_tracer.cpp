@@ -5,11 +5,14 @@
 #include <embree3/rtcore.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "core/shared/alpha.h"
 #include "embree/device.h"
 
 namespace pf::embree {
@@ -46,6 +49,37 @@ void ToRtcRays(const Ray (&rays)[Tracer::kPacketSize], const bool (&active)[Trac
     }
 }
 
+// What the cut-out filter of one triangle geometry reads: the scene's alpha (a copy of what
+// Scene::Alpha reads, owned by the tracer) and where the geometry's triangles begin in it.
+struct CutOutGeometry {
+    const Scene* alpha = nullptr;
+    uint32_t first_triangle = 0;
+};
+
+// Embree's intersection and occlusion filter for geometries with cut-outs: a hit the ray
+// passes through (core/shared/alpha.h) is rejected, and traversal goes on past it.
+void CutOutFilter(const RTCFilterFunctionNArguments* args) {
+    const auto* geometry = static_cast<const CutOutGeometry*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const uint32_t triangle = geometry->first_triangle + RTCHitN_primID(args->hit, args->N, i);
+        const Material& material =
+            geometry->alpha->materials[geometry->alpha->triangles[triangle].material];
+        if (!material.HasCutOuts()) continue;
+        const float alpha = geometry->alpha->Alpha(triangle, RTCHitN_u(args->hit, args->N, i),
+                                                   RTCHitN_v(args->hit, args->N, i));
+        const Vec3 origin(RTCRayN_org_x(args->ray, args->N, i),
+                          RTCRayN_org_y(args->ray, args->N, i),
+                          RTCRayN_org_z(args->ray, args->N, i));
+        const Vec3 direction(RTCRayN_dir_x(args->ray, args->N, i),
+                             RTCRayN_dir_y(args->ray, args->N, i),
+                             RTCRayN_dir_z(args->ray, args->N, i));
+        if (!gpu::AlphaMeets(alpha, material.alpha_cutoff,
+                             gpu::AlphaHash(origin, direction, triangle)))
+            args->valid[i] = 0;
+    }
+}
+
 }  // namespace
 
 struct EmbreeTracer::Handles {
@@ -56,6 +90,10 @@ struct EmbreeTracer::Handles {
     std::vector<RTCScene> prototypes;  // one scene per Scene::prototypes entry
     RTCScene scene = nullptr;          // geometry 0: the world's triangles; 1 + i: instance i
     std::vector<uint32_t> instance_first_triangle;  // per instance: its prototype's first triangle
+    // With cut-outs: what their filter reads, and one entry per triangle geometry (stable
+    // addresses: reserved before any is attached).
+    std::unique_ptr<Scene> alpha;
+    std::vector<CutOutGeometry> cut_out_geometries;
     ~Handles() {
         if (scene) rtcReleaseScene(scene);
         for (RTCScene prototype : prototypes) rtcReleaseScene(prototype);
@@ -76,6 +114,12 @@ struct EmbreeTracer::Handles {
         }
         for (uint32_t t = 0; t < count; ++t)
             for (int k = 0; k < 3; ++k) indices[3 * t + k] = triangles[first + t].vertex[k];
+        if (alpha) {
+            cut_out_geometries.push_back({alpha.get(), first});
+            rtcSetGeometryUserData(geometry, &cut_out_geometries.back());
+            rtcSetGeometryIntersectFilterFunction(geometry, CutOutFilter);
+            rtcSetGeometryOccludedFilterFunction(geometry, CutOutFilter);
+        }
         rtcCommitGeometry(geometry);
         rtcAttachGeometryByID(target, geometry, id);
         rtcReleaseGeometry(geometry);
@@ -113,6 +157,16 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Scene& 
         vertices[3 * v] = scene.positions[v].x;
         vertices[3 * v + 1] = scene.positions[v].y;
         vertices[3 * v + 2] = scene.positions[v].z;
+    }
+    // Cut-outs cost a filter call per candidate hit: only where a triangle's material has them.
+    if (std::any_of(scene.triangles.begin(), scene.triangles.end(),
+                    [&](const Triangle& t) { return scene.materials[t.material].HasCutOuts(); })) {
+        handles->alpha = std::make_unique<Scene>();
+        handles->alpha->triangles = scene.triangles;
+        handles->alpha->uvs = scene.uvs;
+        handles->alpha->materials = scene.materials;
+        handles->alpha->textures = scene.textures;
+        handles->cut_out_geometries.reserve(scene.prototypes.size() + 1);
     }
     for (const Prototype& prototype : scene.prototypes) {
         RTCScene prototype_scene = rtcNewScene(handles->device.Handle());

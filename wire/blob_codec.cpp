@@ -6,6 +6,7 @@
 #include <bit>
 #include <cstddef>
 #include <cstring>
+#include <iterator>
 
 #include "absl/strings/str_cat.h"
 #include "core/scene/prepared_scene.h"
@@ -84,11 +85,13 @@ void ReadField(const uint8_t* planes, size_t offset, std::span<T> items) {
         std::memcpy(reinterpret_cast<uint8_t*>(&items[i]) + offset, &words[i], 4);
 }
 
-// The HitPoint words a worker reads, in wire order: position, normal, weight. The tenth, the
-// pixel, only the coordinator's merge uses; it is not sent.
-constexpr size_t kHitPointWords = 9;
-static_assert(sizeof(HitPoint) == 40 && offsetof(HitPoint, pixel) == 4 * kHitPointWords,
-              "HitPoint is nine 4-byte words of geometry and weight, then the pixel");
+// The HitPoint words a worker reads, by their offset in wire order: position, normal, weight
+// and the coat. The pixel only the coordinator's merge uses; it is not sent.
+constexpr size_t kHitPointWordOffsets[] = {0, 4, 8, 12, 16, 20, 24, 28, 32, 40};
+constexpr size_t kHitPointWords = std::size(kHitPointWordOffsets);
+static_assert(sizeof(HitPoint) == 44 && offsetof(HitPoint, pixel) == 36 &&
+                  offsetof(HitPoint, coat) == 40,
+              "HitPoint is nine 4-byte words of geometry and weight, the pixel, then the coat");
 
 }  // namespace
 
@@ -114,7 +117,7 @@ absl::StatusOr<std::vector<float>> DecodeFloats(std::string_view bytes, uint64_t
 std::string EncodeHitPoints(std::span<const HitPoint> hit_points) {
     std::vector<uint8_t> raw;
     raw.reserve(4 * kHitPointWords * hit_points.size());
-    for (size_t word = 0; word < kHitPointWords; ++word) AppendField(hit_points, 4 * word, &raw);
+    for (const size_t offset : kHitPointWordOffsets) AppendField(hit_points, offset, &raw);
     return Compress(raw);
 }
 
@@ -125,7 +128,7 @@ absl::StatusOr<std::vector<HitPoint>> DecodeHitPoints(std::string_view bytes,
     if (!raw.ok()) return raw.status();
     std::vector<HitPoint> hit_points(expected_count);
     for (size_t word = 0; word < kHitPointWords; ++word)
-        ReadField(raw->data() + 4 * word * expected_count, 4 * word,
+        ReadField(raw->data() + 4 * word * expected_count, kHitPointWordOffsets[word],
                   std::span<HitPoint>(hit_points));
     return hit_points;
 }

@@ -265,6 +265,13 @@ absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(
     const uint64_t sent = spec.integrator == Integrator::kSppm ? 0 : job.hit_point_count();
     absl::StatusOr<std::vector<HitPoint>> hit_points = DecodeHitPoints(*hit_point_bytes, sent);
     if (!hit_points.ok()) return hit_points.status();
+    for (size_t i = 0; i < hit_points->size(); ++i) {
+        const uint32_t coat = (*hit_points)[i].coat;
+        if (coat != kNoCoat &&
+            (coat >= scene->materials.size() || !scene->materials[coat].HasCoat()))
+            return absl::DataLossError(absl::StrCat(address_, ": hit point ", i, " names material ",
+                                                    coat, " as its coat"));
+    }
     auto payload = std::make_shared<const JobPayload>(
         std::move(*scene), std::make_shared<const std::vector<HitPoint>>(std::move(*hit_points)),
         spec);

@@ -66,18 +66,49 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
                 kTextures
                     ? scene.BaseColor(surface, filter_width.base + path.length * filter_width.angle)
                     : material.base_color;
-            if (!kSpecular || material.type == MaterialType::kDiffuse) {
-                const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
-                hit_points.push_back(
-                    {surface.position, normal, path.throughput * base_color / kPi, pixel});
-                footprints.push_back(pixel_width.base + path.length * pixel_width.angle);
-                break;
-            }
             const Vec3& n = surface.shading_normal;
-            const float reflect =
-                ReflectionProbability(material, path.ray.direction, n, front_facing);
             SpecularBounce bounce;
-            if (path.splits_left > 0 && reflect > 0 && reflect < 1) {
+            if (!kSpecular || material.type == MaterialType::kDiffuse) {
+                CoatArrival arrival;
+                if (kSpecular && material.HasCoat() && path.splits_left > 0) {
+                    // A hit point on the base and the coat's reflection both, each weighed by
+                    // its probability, rather than one of them.
+                    const Frame frame = Frame::FromNormal(front_facing ? n : -n);
+                    const float u1 = rng.NextFloat();
+                    const float u2 = rng.NextFloat();
+                    Vec3 wi;
+                    float reflected = 0;
+                    const float entered = gpu::SplitAtCoat(
+                        frame.ToLocal(-path.ray.direction), material.coat_ior,
+                        material.coat_roughness, material.coat_thickness, u1, u2, wi, reflected);
+                    hit_points.push_back(
+                        {surface.position, frame.n,
+                         path.throughput * base_color *
+                             (entered / (material.coat_ior * material.coat_ior * kPi)),
+                         pixel, surface.material});
+                    footprints.push_back(pixel_width.base + path.length * pixel_width.angle);
+                    --path.splits_left;
+                    arrival = {false, 0.0f, {frame.ToWorld(wi), Rgb(reflected), false}};
+                } else if (kSpecular) {
+                    arrival = ArriveAtCoat(material, path.ray.direction, n, front_facing, rng);
+                }
+                if (arrival.at_base) {
+                    // Under a coat, the radiance inside the layer is ior^2 times what leaves it.
+                    const float coat =
+                        material.HasCoat()
+                            ? arrival.weight / (material.coat_ior * material.coat_ior)
+                            : 1.0f;
+                    const Vec3 normal = front_facing ? n : -n;
+                    hit_points.push_back({surface.position, normal,
+                                          path.throughput * base_color * (coat / kPi), pixel,
+                                          material.HasCoat() ? surface.material : kNoCoat});
+                    footprints.push_back(pixel_width.base + path.length * pixel_width.angle);
+                    break;
+                }
+                bounce = arrival.reflected;
+            } else if (const float reflect =
+                           ReflectionProbability(material, path.ray.direction, n, front_facing);
+                       path.splits_left > 0 && reflect > 0 && reflect < 1) {
                 // Continue with the reflection; the transmission waits on the stack.
                 const SpecularBounce transmitted =
                     TransmitSpecular(material, path.ray.direction, n, front_facing, base_color);

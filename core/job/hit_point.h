@@ -8,11 +8,17 @@
 
 namespace pf {
 
+// A hit point on a diffuse surface under no coat.
+inline constexpr uint32_t kNoCoat = 0xffffffffu;
+
 struct HitPoint {
     Vec3 position;   // world space
     Vec3 normal;     // unit shading normal, turned toward the camera path's side
     Rgb weight;      // camera-path throughput x diffuse BSDF (albedo / pi), 1/sr
     uint32_t pixel;  // y * width + x
+    // The material whose coat covers the surface (light reaching the hit point crosses it:
+    // core/shared/coat.h), or kNoCoat.
+    uint32_t coat = kNoCoat;
 };
 
 }  // namespace pf

@@ -59,13 +59,13 @@ void TraceMapPhotons(const Scene& scene, const Emitters& emitters, const Tracer&
             bool stop = false;
             const PhotonEvent event = ScatterPhotonAt<kSpecular, kTextures>(
                 scene, hit, ray, flux, rng,
-                [&](const Vec3& position, const Vec3& direction, const Rgb& power) {
+                [&](const Vec3& position, const Vec3& direction, const Rgb& power, bool returned) {
                     const Rgb stored = power * static_cast<float>(inverse_emitted);
                     if (kind == MapKind::kCaustic) {
-                        if (other_bounces > 0 && diffuse_bounces == 0)
+                        if (other_bounces > 0 && diffuse_bounces == 0 && !returned)
                             out.push_back({position, direction, stored});
                         stop = true;  // a caustic photon ends at its first diffuse surface
-                    } else if (everything || diffuse_bounces > 0) {
+                    } else if (everything || diffuse_bounces > 0 || returned) {
                         out.push_back({position, direction, stored});
                     }
                 });

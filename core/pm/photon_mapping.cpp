@@ -16,6 +16,14 @@ namespace {
 // Gather rays follow specular and rough bounces this far at most before giving up.
 constexpr int kMaxGatherDepth = 16;
 
+// What the radiance at a diffuse base is worth where a path reached it (ArriveAtCoat): 1
+// uncoated; under a coat the weight of the way in over ior^2 (the radiance inside the layer is
+// ior^2 times what leaves it).
+float CoatedRadianceFactor(const Material& material, const CoatArrival& arrival) {
+    if (!material.HasCoat()) return 1.0f;
+    return arrival.weight / (material.coat_ior * material.coat_ior);
+}
+
 // Reflected radiance from the global map where a gather ray from `origin` lands (after any
 // specular or rough bounces, whose emission is left out: light through them is a caustic,
 // the caustic map's), times the bounces' weight.
@@ -29,15 +37,23 @@ Rgb GatherRay(const PhotonMappingInputs& inputs, Ray ray, Rng& rng, NearestPhoto
         const Material& material = scene.materials[surface.material];
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
         const Rgb base_color = scene.BaseColor(surface);
-        if (material.type == MaterialType::kDiffuse) {
+        const CoatArrival arrival =
+            material.type == MaterialType::kDiffuse
+                ? ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng)
+                : CoatArrival{};
+        if (material.type == MaterialType::kDiffuse && arrival.at_base) {
             const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
             const float max_radius_sq = inputs.max_radius * inputs.max_radius;
-            return weight * EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal,
-                                                    base_color, inputs.settings.nearest,
-                                                    max_radius_sq, inputs.settings.filter, scratch);
+            return weight * CoatedRadianceFactor(material, arrival) *
+                   EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal,
+                                           base_color, inputs.settings.nearest, max_radius_sq,
+                                           inputs.settings.filter, scratch);
         }
-        const SpecularBounce bounce = ScatterNonDiffuse(
-            material, ray.direction, surface.shading_normal, front_facing, base_color, rng);
+        const SpecularBounce bounce =
+            material.type == MaterialType::kDiffuse
+                ? arrival.reflected
+                : ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
+                                    base_color, rng);
         weight *= bounce.weight;
         if (IsBlack(weight)) return Rgb(0.0f);
         const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal
@@ -47,20 +63,23 @@ Rgb GatherRay(const PhotonMappingInputs& inputs, Ray ray, Rng& rng, NearestPhoto
     return Rgb(0.0f);
 }
 
-// The light leaving diffuse point `surface` toward the camera path, its albedo `albedo`.
+// The light leaving diffuse point `surface` toward the camera path, its albedo `albedo`, the
+// material `coat` over it if any. Under a coat the global map's estimate stands in for final
+// gathering (gather rays would have to cross the coat; the map holds the photons it turned
+// back).
 Rgb DiffuseRadiance(const PhotonMappingInputs& inputs, const SurfacePoint& surface,
-                    const Vec3& normal, const Vec3& geometric, const Rgb& albedo, Rng& rng,
-                    NearestPhotons& scratch) {
+                    const Vec3& normal, const Vec3& geometric, const Rgb& albedo,
+                    const Material* coat, Rng& rng, NearestPhotons& scratch) {
     const float max_radius_sq = inputs.max_radius * inputs.max_radius;
     const PhotonMapSettings& settings = inputs.settings;
-    Rgb radiance =
-        albedo / kPi *
-        SampleDirectIrradiance(*inputs.emitters, *inputs.tracer, surface.position, normal, rng);
+    Rgb radiance = albedo / kPi *
+                   SampleDirectIrradiance(*inputs.emitters, *inputs.tracer, surface.position,
+                                          normal, coat, rng);
     if (!inputs.maps->caustic->Photons().empty())
         radiance +=
             EstimateDiffuseRadiance(*inputs.maps->caustic, surface.position, normal, albedo,
                                     settings.nearest, max_radius_sq, settings.filter, scratch);
-    if (settings.final_gather == 0)
+    if (settings.final_gather == 0 || coat != nullptr)
         return radiance + EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal,
                                                   albedo, settings.nearest, max_radius_sq,
                                                   settings.filter, scratch);
@@ -100,19 +119,27 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
         // Emission seen directly or through specular and rough bounces (no light map holds it).
         if (material.EmitsToward(front_facing)) radiance += throughput * scene.Emission(surface);
-        if (material.type == MaterialType::kDiffuse) {
+        const CoatArrival arrival =
+            material.type == MaterialType::kDiffuse
+                ? ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng)
+                : CoatArrival{};
+        if (material.type == MaterialType::kDiffuse && arrival.at_base) {
             const Rgb albedo = inputs.filter_angle > 0
                                    ? scene.BaseColor(surface, length * inputs.filter_angle)
                                    : scene.BaseColor(surface);
             const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
             const Vec3 geometric =
                 front_facing ? surface.geometric_normal : -surface.geometric_normal;
-            return radiance + throughput * DiffuseRadiance(inputs, surface, normal, geometric,
-                                                           albedo, rng, scratch);
+            return radiance + throughput * CoatedRadianceFactor(material, arrival) *
+                                  DiffuseRadiance(inputs, surface, normal, geometric, albedo,
+                                                  material.HasCoat() ? &material : nullptr, rng,
+                                                  scratch);
         }
         const SpecularBounce bounce =
-            ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                              scene.BaseColor(surface), rng);
+            material.type == MaterialType::kDiffuse
+                ? arrival.reflected
+                : ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
+                                    scene.BaseColor(surface), rng);
         throughput *= bounce.weight;
         if (depth >= kCameraRouletteDepth) {
             const float survive = std::min(1.0f, MaxComponent(throughput));

@@ -21,14 +21,21 @@ CausticProbe ProbeCaustics(const Scene& scene, const Emitters& emitters, const T
             if (!tracer.Intersect(ray, &hit)) break;
             const SurfacePoint surface = scene.Surface(hit);
             const Material& material = scene.materials[surface.material];
-            if (material.type == MaterialType::kDiffuse) {
+            const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
+            const CoatArrival arrival =
+                material.type == MaterialType::kDiffuse
+                    ? ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing,
+                                   rng)
+                    : CoatArrival{};
+            if (material.type == MaterialType::kDiffuse && arrival.at_base) {
                 probe.caustic += bounce > 0;
                 break;
             }
-            const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
             const SpecularBounce next =
-                ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                                  scene.BaseColor(surface), rng);
+                material.type == MaterialType::kDiffuse
+                    ? arrival.reflected
+                    : ScatterNonDiffuse(material, ray.direction, surface.shading_normal,
+                                        front_facing, scene.BaseColor(surface), rng);
             if (IsBlack(next.weight)) break;
             const Vec3 side = front_facing == next.transmitted ? -surface.geometric_normal
                                                                : surface.geometric_normal;

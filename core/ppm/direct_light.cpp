@@ -5,19 +5,41 @@
 
 #include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
+#include "core/shared/coat.h"
 #include "core/util/check.h"
 
 namespace pf {
 
-DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const Vec3& n, Rng& rng) {
+namespace {
+
+// The fraction of light arriving along `direction` that a coat lets through to the point
+// (1 without one).
+float CoatFactor(const DirectLightRays& rays, const Vec3& n, const Vec3& direction) {
+    if (rays.coat == nullptr) return 1.0f;
+    const Material& coat = *rays.coat;
+    return gpu::CoatTransmittance(Frame::FromNormal(n).ToLocal(direction), coat.coat_ior,
+                                  coat.coat_roughness, coat.coat_thickness, rays.coat_u1,
+                                  rays.coat_u2);
+}
+
+}  // namespace
+
+DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const Vec3& n,
+                                 const Material* coat, Rng& rng) {
     DirectLightRays rays;
     rays.light_active = emitters.SampleDirect(p, n, rng, &rays.light);
-    if (!emitters.FoundByRays()) return rays;
-    const float u1 = rng.NextFloat();
-    const float u2 = rng.NextFloat();
-    const Vec3 direction = Frame::FromNormal(n).ToWorld(SampleCosineHemisphere(u1, u2));
-    rays.bsdf_ray = {OffsetRayOrigin(p, n, emitters.SceneScale()), direction};
-    rays.bsdf_active = true;
+    if (emitters.FoundByRays()) {
+        const float u1 = rng.NextFloat();
+        const float u2 = rng.NextFloat();
+        const Vec3 direction = Frame::FromNormal(n).ToWorld(SampleCosineHemisphere(u1, u2));
+        rays.bsdf_ray = {OffsetRayOrigin(p, n, emitters.SceneScale()), direction};
+        rays.bsdf_active = true;
+    }
+    rays.coat = coat;
+    if (coat != nullptr && coat->coat_roughness > 0) {
+        rays.coat_u1 = rng.NextFloat();
+        rays.coat_u2 = rng.NextFloat();
+    }
     return rays;
 }
 
@@ -29,7 +51,8 @@ Rgb FinishDirectLight(const Emitters& emitters, const Vec3& n, const DirectLight
         // A punctual light (pdf 0) is found by light sampling alone.
         const float weight =
             rays.light.pdf > 0 ? PowerHeuristic(rays.light.pdf, cosine / kPi) : 1.0f;
-        irradiance += rays.light.radiance_over_pdf * (cosine * weight);
+        irradiance += rays.light.radiance_over_pdf *
+                      (cosine * weight * CoatFactor(rays, n, rays.light.direction));
     }
     if (!rays.bsdf_active) return irradiance;
     const Ray& ray = rays.bsdf_ray;
@@ -40,13 +63,14 @@ Rgb FinishDirectLight(const Emitters& emitters, const Vec3& n, const DirectLight
         hit = emitters.HitEmitter(*bsdf_hit, ray.origin, ray.origin + ray.direction * bsdf_hit->t);
     // L cos / (cos / pi): the cosine ray's own weight is pi.
     if (hit.pdf > 0)
-        irradiance += hit.radiance * (kPi * PowerHeuristic(Dot(ray.direction, n) / kPi, hit.pdf));
+        irradiance += hit.radiance * (kPi * PowerHeuristic(Dot(ray.direction, n) / kPi, hit.pdf) *
+                                      CoatFactor(rays, n, ray.direction));
     return irradiance;
 }
 
 Rgb SampleDirectIrradiance(const Emitters& emitters, const Tracer& tracer, const Vec3& p,
-                           const Vec3& n, Rng& rng) {
-    const DirectLightRays rays = StartDirectLight(emitters, p, n, rng);
+                           const Vec3& n, const Material* coat, Rng& rng) {
+    const DirectLightRays rays = StartDirectLight(emitters, p, n, coat, rng);
     const bool occluded = rays.light_active && tracer.Occluded(rays.light.shadow_ray);
     RayHit hit;
     const bool found = rays.bsdf_active && tracer.Intersect(rays.bsdf_ray, &hit);
@@ -59,6 +83,7 @@ SeedFamily DirectLightSeeds(uint64_t seed, uint64_t epoch) {
 }
 
 uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
+                           std::span<const Material> materials,
                            std::span<const HitPoint> hit_points, uint32_t first, uint64_t seed,
                            uint64_t epoch, std::span<Rgb> out) {
     uint64_t discarded = 0;
@@ -76,7 +101,9 @@ uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
             const uint32_t index = first + static_cast<uint32_t>(begin) + lane;
             const HitPoint& hit_point = hit_points[index];
             Rng rng(seeds.Seed(index));
-            samples[lane] = StartDirectLight(emitters, hit_point.position, hit_point.normal, rng);
+            const Material* coat = hit_point.coat == kNoCoat ? nullptr : &materials[hit_point.coat];
+            samples[lane] =
+                StartDirectLight(emitters, hit_point.position, hit_point.normal, coat, rng);
             shadow_active[lane] = samples[lane].light_active;
             shadow_rays[lane] = samples[lane].light.shadow_ray;
             bsdf_active[lane] = samples[lane].bsdf_active;

@@ -13,30 +13,35 @@
 #include "core/job/hit_point.h"
 #include "core/sampling/rng.h"
 #include "core/scene/emitters.h"
+#include "core/scene/material.h"
 
 namespace pf {
 
 // The rays of one direct-light sample at point p with unit normal n (toward the side lit),
-// drawn from rng: 3 numbers for the light sample, then 2 for the
-// cosine ray where a ray can find an emitter (a triangle, the environment). The Vulkan kernel
-// draws the same numbers in the same order.
+// drawn from rng: 3 numbers for the light sample, then 2 for the cosine ray where a ray can
+// find an emitter (a triangle, the environment), then 2 for the microfacet of a rough coat
+// over p (`coat`, or nullptr). The Vulkan kernel draws the same numbers in the same order.
 struct DirectLightRays {
     LightSample light;
     bool light_active = false;
     Ray bsdf_ray;
     bool bsdf_active = false;
+    const Material* coat = nullptr;
+    float coat_u1 = 0, coat_u2 = 0;
 };
-DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const Vec3& n, Rng& rng);
+DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const Vec3& n,
+                                 const Material* coat, Rng& rng);
 
 // The sample's estimate of the irradiance at p, the integral of L_i cos over the hemisphere
-// (a diffuse point reflects it times albedo / pi), from whether the shadow ray was occluded
-// and what the cosine ray hit (nullptr where it hit nothing or was not cast).
+// (a diffuse point reflects it times albedo / pi) -- under a coat, of L_i cos times the
+// fraction of it the coat lets through to p -- from whether the shadow ray was occluded and
+// what the cosine ray hit (nullptr where it hit nothing or was not cast).
 Rgb FinishDirectLight(const Emitters& emitters, const Vec3& n, const DirectLightRays& rays,
                       bool occluded, const RayHit* bsdf_hit);
 
 // Both steps with single rays.
 Rgb SampleDirectIrradiance(const Emitters& emitters, const Tracer& tracer, const Vec3& p,
-                           const Vec3& n, Rng& rng);
+                           const Vec3& n, const Material* coat, Rng& rng);
 
 // The streams of epoch `epoch`'s direct-light samples: hit point h draws from
 // Rng(DirectLightSeeds(seed, epoch).Seed(h)), on every backend.
@@ -46,8 +51,9 @@ SeedFamily DirectLightSeeds(uint64_t seed, uint64_t epoch);
 // already multiplied by the hit point's weight (throughput x BSDF), in W/(m^2 sr), into
 // out[i]. Hit point h's sample in `epoch` draws from a stream seeded by (seed, epoch, h)
 // alone. Rays are cast in packets. A sample that comes out NaN or Inf is set to 0; returns
-// how many were.
+// how many were. `materials` holds the hit points' coats.
 uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
+                           std::span<const Material> materials,
                            std::span<const HitPoint> hit_points, uint32_t first, uint64_t seed,
                            uint64_t epoch, std::span<Rgb> out);
 

@@ -42,7 +42,8 @@ PhotonPath StartPhoton(const PhotonPassInputs& inputs, const SeedFamily& seeds, 
 }
 
 // Continues a path at its hit (ScatterPhotonAt): a deposit at every diffuse hit after the
-// first scattering. Returns false where the path ends.
+// first scattering (a coat turning a photon back to its base is a scattering). Returns false where
+// the path ends.
 template <bool kSpecular, bool kTextures>
 bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath& path,
                    std::vector<PhotonDeposit>& deposits) {
@@ -52,8 +53,8 @@ bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath
     }
     const PhotonEvent event = ScatterPhotonAt<kSpecular, kTextures>(
         *inputs.scene, hit, path.ray, path.flux, path.rng,
-        [&](const Vec3& position, const Vec3& direction, const Rgb& flux) {
-            if (path.scattered) deposits.push_back({position, direction, flux});
+        [&](const Vec3& position, const Vec3& direction, const Rgb& flux, bool returned) {
+            if (path.scattered || returned) deposits.push_back({position, direction, flux});
         });
     if (event == PhotonEvent::kEnded) return false;
     path.scattered = true;
@@ -213,9 +214,9 @@ std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs,
         result.spec = spec;
         result.photons_emitted = spec.photons;
         result.samples.resize(spec.sample_end - spec.sample_begin);
-        result.nonfinite_discarded +=
-            SampleDirectLight(*inputs.emitters, *inputs.tracer, inputs.hit_points,
-                              spec.sample_begin, inputs.seed, spec.epoch, result.samples);
+        result.nonfinite_discarded += SampleDirectLight(
+            *inputs.emitters, *inputs.tracer, inputs.scene->materials, inputs.hit_points,
+            spec.sample_begin, inputs.seed, spec.epoch, result.samples);
     });
     return results;
 }

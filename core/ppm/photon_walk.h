@@ -1,7 +1,8 @@
 // One step of a photon's random walk, shared by the progressive photon pass and classic
 // photon mapping's map building: at a diffuse surface the photon may land (the caller
-// decides whether to keep it), then Russian roulette by albedo and a cosine-weighted bounce;
-// at any other surface ScatterNonDiffuse and roulette by its weight (Jensen 2001, 2.3.3).
+// decides whether to keep it), then Russian roulette by albedo and a cosine-weighted bounce
+// (through the coat over it, if any); at any other surface ScatterNonDiffuse and roulette by
+// its weight (Jensen 2001, 2.3.3).
 #pragma once
 
 #include <algorithm>
@@ -18,11 +19,12 @@ namespace pf {
 
 enum class PhotonEvent { kEnded, kDiffuse, kNonDiffuse };
 
-// Continues the photon (ray, flux) at `hit`: calls land(position, direction, flux) at a
-// diffuse surface before scattering, then moves ray and flux to the next segment. Returns
-// where it scattered, or kEnded where roulette or a bounce below the surface ends it.
-// Instantiated for the scene's features: without specular materials every surface is
-// diffuse, without textures every base colour is the material's.
+// Continues the photon (ray, flux) at `hit`: calls land(position, direction, flux, returned)
+// at a diffuse surface before scattering (again, with `returned` true, each time a coat over
+// it turns the photon back to it), then moves ray and flux to the next segment. Returns where
+// it scattered, or kEnded where roulette or a bounce below the surface ends it. Instantiated
+// for the scene's features: without specular materials or coats every surface is diffuse,
+// without textures every base colour is the material's.
 template <bool kSpecular, bool kTextures, typename Land>
 PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb& flux, Rng& rng,
                             Land&& land) {
@@ -31,23 +33,46 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
     const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
     const Rgb base_color = kTextures ? scene.BaseColor(surface) : material.base_color;
     ray.t_max = std::numeric_limits<float>::infinity();
+    SpecularBounce bounce;
     if (!kSpecular || material.type == MaterialType::kDiffuse) {
-        land(surface.position, ray.direction, flux);
-        // Russian roulette by albedo: survivors carry flux * albedo / p.
-        const float survive = std::min(1.0f, MaxComponent(base_color));
-        if (!(rng.NextFloat() < survive)) return PhotonEvent::kEnded;
-        flux *= base_color / survive;
-        const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
-        const Vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
-        ray.direction = Frame::FromNormal(normal).ToWorld(
-            SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
-        if (!(Dot(ray.direction, geometric) > 0))
-            return PhotonEvent::kEnded;  // shading normal pointed it inside
-        ray.origin = OffsetRayOrigin(surface.position, geometric, scene.bounds.Magnitude());
-        return PhotonEvent::kDiffuse;
+        const bool coated = kSpecular && material.HasCoat();
+        const CoatArrival arrival = coated ? ArriveAtCoat(material, ray.direction,
+                                                          surface.shading_normal, front_facing, rng)
+                                           : CoatArrival{};
+        if (arrival.at_base) {
+            flux *= arrival.weight;
+            land(surface.position, ray.direction, flux, false);
+            const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
+            const Vec3 geometric =
+                front_facing ? surface.geometric_normal : -surface.geometric_normal;
+            const Frame frame = Frame::FromNormal(normal);
+            for (int returns = 0;; ++returns) {
+                // Russian roulette by albedo: survivors carry flux * albedo / p.
+                const float survive = std::min(1.0f, MaxComponent(base_color));
+                if (!(rng.NextFloat() < survive)) return PhotonEvent::kEnded;
+                flux *= base_color / survive;
+                const Vec3 local = SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat());
+                if (!coated) {
+                    ray.direction = frame.ToWorld(local);
+                    break;
+                }
+                const CoatLeaving leaving = LeaveCoatAt(material, frame, local, rng);
+                flux *= leaving.weight;
+                ray.direction = leaving.direction;
+                if (leaving.escaped) break;
+                if (IsBlack(flux) || returns == kMaxCoatReturns) return PhotonEvent::kEnded;
+                land(surface.position, ray.direction, flux, true);
+            }
+            if (!(Dot(ray.direction, geometric) > 0))
+                return PhotonEvent::kEnded;  // shading normal pointed it inside
+            ray.origin = OffsetRayOrigin(surface.position, geometric, scene.bounds.Magnitude());
+            return PhotonEvent::kDiffuse;
+        }
+        bounce = arrival.reflected;
+    } else {
+        bounce = ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
+                                   base_color, rng);
     }
-    const SpecularBounce bounce = ScatterNonDiffuse(material, ray.direction, surface.shading_normal,
-                                                    front_facing, base_color, rng);
     const float survive = std::min(1.0f, MaxComponent(bounce.weight));
     if (!(rng.NextFloat() < survive)) return PhotonEvent::kEnded;
     flux *= bounce.weight / survive;

@@ -11,6 +11,53 @@
 namespace pf {
 namespace {
 
+// The light leaving a coated diffuse base toward a path that entered the coat carrying
+// `entered` (core/shared/coat.h): at each visit to the base, light sampling through the coat
+// (no MIS: the path out of the coat has no density to weigh it by, so emission it finds is
+// left to light sampling), then a cosine bounce inside, which the coat lets out or turns back
+// to the base. Sets `throughput` and `ray` to the path leaving the coat; false where it ends
+// inside.
+bool TraceCoatedBase(const PathInputs& inputs, const SurfacePoint& surface, bool front_facing,
+                     const Material& material, const Rgb& base_color, const Rgb& entered, Rng& rng,
+                     Rgb& radiance, Rgb& throughput, Ray& ray) {
+    const float ior_sq = material.coat_ior * material.coat_ior;
+    Rgb inside = entered / ior_sq;  // the radiance inside the layer is ior^2 times larger
+    const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
+    const Vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
+    const Frame frame = Frame::FromNormal(normal);
+    for (int returns = 0; returns <= kMaxCoatReturns; ++returns) {
+        LightSample light;
+        if (inputs.emitters->SampleDirect(surface.position, normal, rng, &light) &&
+            !inputs.tracer->Occluded(light.shadow_ray)) {
+            const float u1 = rng.NextFloat();
+            const float u2 = rng.NextFloat();
+            const float through =
+                gpu::CoatTransmittance(frame.ToLocal(light.direction), material.coat_ior,
+                                       material.coat_roughness, material.coat_thickness, u1, u2);
+            radiance += inside * base_color / kPi * light.radiance_over_pdf *
+                        (Dot(light.direction, normal) * through);
+        }
+        // Russian roulette by albedo at each visit, as photons do.
+        const float survive = std::min(1.0f, MaxComponent(base_color));
+        if (!(rng.NextFloat() < survive)) return false;
+        inside *= base_color / survive;
+        const float u1 = rng.NextFloat();
+        const float u2 = rng.NextFloat();
+        const CoatLeaving leaving =
+            LeaveCoatAt(material, frame, SampleCosineHemisphere(u1, u2), rng);
+        inside *= leaving.weight;
+        if (IsBlack(inside)) return false;
+        if (leaving.escaped) {
+            if (!(Dot(leaving.direction, geometric) > 0)) return false;
+            throughput = inside * ior_sq;
+            ray = {OffsetRayOrigin(surface.position, geometric, inputs.scene->bounds.Magnitude()),
+                   leaving.direction};
+            return true;
+        }
+    }
+    return false;
+}
+
 // Instantiated for the scene's features, as the camera and photon passes are: without
 // specular materials every surface is diffuse, without textures every base colour is the
 // material's.
@@ -22,9 +69,10 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
     // Emission found by a specular bounce (or seen directly) counts in full: light sampling
     // cannot find it. After a diffuse bounce it is weighed against light sampling.
     bool specular_bounce = true;
-    float bsdf_pdf = 0;  // of the last diffuse bounce, solid angle
-    Vec3 bounced_at;     // where that bounce left from
-    float length = 0;    // travelled before the first diffuse hit, for the texture footprint
+    bool coat_exit = false;  // the last bounce left a coated base: light sampling found its light
+    float bsdf_pdf = 0;      // of the last diffuse bounce, solid angle
+    Vec3 bounced_at;         // where that bounce left from
+    float length = 0;        // travelled before the first diffuse hit, for the texture footprint
     bool diffuse_seen = false;
     for (int depth = 0; depth < kMaxPathDepth; ++depth) {
         RayHit hit;
@@ -32,9 +80,10 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
             // Escaped to the environment: after a diffuse or rough bounce weighed against
             // light sampling, which finds it too.
             const Emitters::Hit escaped = inputs.emitters->Escaped(ray.origin, ray.direction);
-            if (!IsBlack(escaped.radiance))
-                radiance += throughput * escaped.radiance *
-                            (specular_bounce ? 1.0f : PowerHeuristic(bsdf_pdf, escaped.pdf));
+            const float weight = specular_bounce ? 1.0f
+                                 : coat_exit     ? (escaped.pdf > 0 ? 0.0f : 1.0f)
+                                                 : PowerHeuristic(bsdf_pdf, escaped.pdf);
+            if (!IsBlack(escaped.radiance)) radiance += throughput * escaped.radiance * weight;
             break;
         }
         if (!diffuse_seen) length += hit.t;
@@ -48,7 +97,9 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
                     hit.instance == Instance::kNone
                         ? inputs.emitters->PdfDirect(hit.triangle, bounced_at, surface.position)
                         : 0.0f;
-                weight = PowerHeuristic(bsdf_pdf, light_pdf);
+                // Out of a coat, light sampling alone counts what it can find.
+                weight =
+                    coat_exit ? (light_pdf > 0 ? 0.0f : 1.0f) : PowerHeuristic(bsdf_pdf, light_pdf);
             }
             radiance += throughput * scene.Emission(surface) * weight;
         }
@@ -58,7 +109,11 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
             base_color = diffuse_seen || inputs.filter_angle <= 0
                              ? scene.BaseColor(surface)
                              : scene.BaseColor(surface, length * inputs.filter_angle);
-        if (!kSpecular || material.type == MaterialType::kDiffuse) {
+        const CoatArrival arrival =
+            kSpecular && material.type == MaterialType::kDiffuse
+                ? ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng)
+                : CoatArrival{};
+        if ((!kSpecular || material.type == MaterialType::kDiffuse) && !material.HasCoat()) {
             diffuse_seen = true;
             const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
             const Vec3 geometric =
@@ -80,8 +135,25 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
             bsdf_pdf = local.z / kPi;
             bounced_at = surface.position;
             specular_bounce = false;
+            coat_exit = false;
             ray = {OffsetRayOrigin(surface.position, geometric, scale), direction};
-        } else if (material.type == MaterialType::kRoughConductor) {
+        } else if (material.type == MaterialType::kDiffuse && arrival.at_base) {
+            diffuse_seen = true;
+            if (!TraceCoatedBase(inputs, surface, front_facing, material, base_color,
+                                 throughput * arrival.weight, rng, radiance, throughput, ray))
+                break;
+            specular_bounce = false;
+            coat_exit = true;
+        } else if (material.type == MaterialType::kDiffuse) {
+            // The coat's reflection, found by its own sampling alone, as specular bounces are.
+            throughput *= arrival.reflected.weight;
+            specular_bounce = true;
+            coat_exit = false;
+            ray = {OffsetRayOrigin(
+                       surface.position,
+                       front_facing ? surface.geometric_normal : -surface.geometric_normal, scale),
+                   arrival.reflected.direction};
+        } else if (material.type == MaterialType::kRoughConductor && !material.HasCoat()) {
             // Light sampling weighed against the GGX lobe's own sampling, as at diffuse surfaces.
             const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
             const Vec3 wo = -ray.direction;
@@ -100,6 +172,7 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
                 EvaluateRoughConductor(material, base_color, normal, wo, bounce.direction).pdf;
             bounced_at = surface.position;
             specular_bounce = false;
+            coat_exit = false;
             ray = {OffsetRayOrigin(
                        surface.position,
                        front_facing ? surface.geometric_normal : -surface.geometric_normal, scale),
@@ -110,6 +183,7 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
                 material, ray.direction, surface.shading_normal, front_facing, base_color, rng);
             throughput *= bounce.weight;
             specular_bounce = true;
+            coat_exit = false;
             const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal
                                                                  : surface.geometric_normal;
             ray = {OffsetRayOrigin(surface.position, side, scale), bounce.direction};

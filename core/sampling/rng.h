@@ -38,6 +38,8 @@ public:
     constexpr uint32_t NextUint() { return gpu::Pcg32Next(state_); }
     // Uniform in [0, 1): the top 24 bits, so the result is never rounded up to 1.
     constexpr float NextFloat() { return gpu::Pcg32NextFloat(state_); }
+    // The generator itself, for the walks both languages share (core/shared/coat.h).
+    constexpr gpu::Pcg32& State() { return state_; }
 
 private:
     gpu::Pcg32 state_;

@@ -51,6 +51,7 @@ std::vector<Emitters::Record> Emitters::Records() const {
             record.p0 = triangle.p0, record.edge1 = triangle.edge1, record.edge2 = triangle.edge2;
             record.normal = triangle.frame.n, record.radiance = triangle.radiance,
             record.area = triangle.area, record.two_sided = triangle.two_sided;
+            record.invisible = triangle.invisible;
             if (triangle.texture != nullptr) {
                 record.texture = triangle.texture_index;
                 record.uv0 = triangle.uv0, record.uv_edge1 = triangle.uv_edge1,
@@ -103,6 +104,7 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
             emissive.uv_edge1 = {uv1.x - uv0.x, uv1.y - uv0.y};
             emissive.uv_edge2 = {uv2.x - uv0.x, uv2.y - uv0.y};
         }
+        emissive.invisible = material.alpha <= 0 && material.alpha_texture == kNoTexture;
         triangles_.push_back(emissive);
         if (add(EmitterKind::kTriangle, index, emissive.Power()))
             emitter_of_triangle_[t] = static_cast<int32_t>(emitters_.size() - 1);
@@ -347,8 +349,10 @@ bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample*
         // Area pdf 1/A converted to solid angle: d^2 / (cos_light A).
         radiance_over_pdf =
             triangle.RadianceAt(b.x, b.y) * (cos_light * triangle.area / distance_sq);
-        sample->pdf = static_cast<float>(distribution_.Probability(pick.index)) * distance_sq /
-                      (cos_light * triangle.area);
+        sample->pdf = triangle.invisible
+                          ? 0.0f
+                          : static_cast<float>(distribution_.Probability(pick.index)) *
+                                distance_sq / (cos_light * triangle.area);
     } else {
         const PunctualLight& light = scene_.lights[emitter.index];
         sample->pdf = 0;

@@ -92,6 +92,7 @@ public:
         Rgb radiance;                   // triangle: Le (times the texel, with a texture)
         float area = 0;                 // triangle
         bool two_sided = false;         // triangle: emits from its back face too
+        bool invisible = false;         // triangle: cut out everywhere (EmissiveTriangle's)
         // Triangle: the emission texture (index into Scene::textures) or kNoTexture, and the
         // texture coordinates at p0 and along the edges.
         int32_t texture = kNoTexture;
@@ -146,6 +147,9 @@ private:
         const Texture* texture = nullptr;  // the emission texture, if any
         int32_t texture_index = kNoTexture;
         Point2 uv0, uv_edge1, uv_edge2;  // texture coordinates, where there is one
+        // Cut out everywhere (alpha 0): no ray meets it, so light sampling alone finds its
+        // light, unweighed by MIS (pbrt-v4's invisible area lights, taken as delta lights).
+        bool invisible = false;
         // Le at barycentrics (b1, b2).
         Rgb RadianceAt(float b1, float b2) const {
             if (texture == nullptr) return radiance;

@@ -11,6 +11,7 @@
 #include "core/sampling/rng.h"
 #include "core/scene/material.h"
 #include "core/scene/specular.h"
+#include "core/shared/coat.h"
 #include "core/shared/microfacet.h"
 
 namespace pf {
@@ -18,6 +19,7 @@ namespace pf {
 using gpu::GgxDistribution;
 using gpu::GgxMaskingRatio;
 using gpu::GgxReflectionPdf;
+using gpu::kMaxCoatReturns;
 using gpu::SampleGgxVisibleNormal;
 
 // Scatters d at a rough surface; `normal` is the shading normal on the triangle's front
@@ -54,12 +56,66 @@ inline SpecularBounce ScatterRough(const Material& material, const Vec3& d, cons
 // (rough) from rng.
 inline SpecularBounce ScatterNonDiffuse(const Material& material, const Vec3& d, const Vec3& normal,
                                         bool front_facing, const Rgb& tint, Rng& rng) {
+    if (material.HasCoat()) {  // a coated conductor
+        const Frame frame = Frame::FromNormal(front_facing ? normal : -normal);
+        Vec3 wi;
+        const Rgb weight = gpu::ScatterCoatedConductor(
+            frame.ToLocal(-d), material.coat_ior, material.coat_roughness, material.coat_thickness,
+            material.coat_depth, tint,
+            material.IsRough() ? std::max(material.roughness, kMinRoughness) : 0.0f, rng.State(),
+            wi);
+        return {frame.ToWorld(wi), weight, false};
+    }
     const float u_branch = rng.NextFloat();
     if (!material.IsRough())
         return ScatterSpecular(material, d, normal, front_facing, tint, u_branch);
     const float u1 = rng.NextFloat();
     const float u2 = rng.NextFloat();
     return ScatterRough(material, d, normal, front_facing, tint, u_branch, u1, u2);
+}
+
+// Where a ray along d meets a coated diffuse surface: the coat reflects it (a non-diffuse
+// bounce), or it enters and reaches the base, carrying `weight` (the coat's masking and the
+// layer's transmittance; core/shared/coat.h). Radiance carried by camera paths changes by
+// 1 / ior^2 on the way in (the caller's: photons carry flux). An uncoated surface is its base.
+struct CoatArrival {
+    bool at_base = true;
+    float weight = 1.0f;
+    SpecularBounce reflected{};
+};
+inline CoatArrival ArriveAtCoat(const Material& material, const Vec3& d, const Vec3& normal,
+                                bool front_facing, Rng& rng) {
+    if (!material.HasCoat()) return {};
+    const Frame frame = Frame::FromNormal(front_facing ? normal : -normal);
+    const float u_branch = rng.NextFloat();
+    const float u1 = rng.NextFloat();
+    const float u2 = rng.NextFloat();
+    Vec3 wi;
+    const float weight =
+        gpu::EnterCoat(frame.ToLocal(-d), material.coat_ior, material.coat_roughness,
+                       material.coat_thickness, u_branch, u1, u2, wi);
+    if (wi.z < 0) return {true, weight, {}};
+    return {false, 0.0f, {frame.ToWorld(wi), Rgb(weight), false}};
+}
+
+// A path leaving a coated diffuse base upward along `up` (in `frame`, the shading normal on
+// the path's side): out through the coat (`escaped`, along `direction`), or turned back down
+// to the base; `weight` as ArriveAtCoat's (camera paths' radiance changes by ior^2 on the way
+// out).
+struct CoatLeaving {
+    bool escaped = false;
+    Vec3 direction;
+    float weight = 0;
+};
+inline CoatLeaving LeaveCoatAt(const Material& material, const Frame& frame, const Vec3& up,
+                               Rng& rng) {
+    const float u_branch = rng.NextFloat();
+    const float u1 = rng.NextFloat();
+    const float u2 = rng.NextFloat();
+    Vec3 wi;
+    const float weight = gpu::LeaveCoat(up, material.coat_ior, material.coat_roughness,
+                                        material.coat_thickness, u_branch, u1, u2, wi);
+    return {wi.z > 0, frame.ToWorld(wi), weight};
 }
 
 // For light sampling at rough metal (the path tracer's next-event estimation): with wo toward

@@ -123,16 +123,18 @@ private:
     bool WantedCamera(const std::vector<std::string>& names) const;
     void FrameBounds();
     absl::StatusOr<uint32_t> MaterialIndex(int gltf_material);
-    absl::StatusOr<int32_t> TextureIndex(int gltf_texture, const std::string& element);
+    absl::StatusOr<int32_t> TextureIndex(int gltf_texture, const std::string& element,
+                                         ImageChannels channels = ImageChannels::kColour);
 
     const std::string& path_;
     const tinygltf::Model& model_;
     Scene scene_;
     bool has_camera_ = false;
-    const std::string& wanted_camera_;              // LoadGltf's `camera`
-    std::vector<std::string> cameras_seen_;         // "#index 'name'" of each camera node met
-    std::map<int, uint32_t> material_indices_;      // glTF material -> Scene::materials
-    std::map<int, int32_t> texture_indices_;        // glTF image -> Scene::textures
+    const std::string& wanted_camera_;          // LoadGltf's `camera`
+    std::vector<std::string> cameras_seen_;     // "#index 'name'" of each camera node met
+    std::map<int, uint32_t> material_indices_;  // glTF material -> Scene::materials
+    // (glTF image, what of it is read) -> Scene::textures
+    std::map<std::pair<int, ImageChannels>, int32_t> texture_indices_;
     std::map<uint32_t, UvTransform> material_uvs_;  // Scene::materials -> its texture's transform
     std::map<std::pair<int, size_t>, TriangleMesh>
         meshes_;                    // (mesh, primitive) emitting in several nodes
@@ -409,6 +411,7 @@ float RoughnessAlpha(double roughness) {
 //  - anything else: Lambertian diffuse with the base colour (factor x texture).
 // Emission is emissiveFactor x emissiveTexture x KHR_materials_emissive_strength, radiance in
 // W/(m^2 sr), from the front face, and the back one too where the material is doubleSided.
+// alphaMode MASK and BLEND cut the surface out where alpha says (below).
 absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
     if (const auto it = material_indices_.find(gltf_material); it != material_indices_.end())
         return it->second;
@@ -486,6 +489,28 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
             spdlog::warn("{}: {}: rough or partly metallic surfaces are shaded as diffuse", path_,
                          element);
         }
+        // Cut-outs: MASK keeps the surface where alpha (baseColorFactor's fourth value times
+        // the base colour texture's alpha) is at least alphaCutoff; BLEND as coverage, a ray
+        // meeting it with probability alpha (core/shared/alpha.h); OPAQUE ignores alpha.
+        if (source.alphaMode == "MASK" || source.alphaMode == "BLEND") {
+            const double alpha = pbr.baseColorFactor.size() == 4 ? pbr.baseColorFactor[3] : 1.0;
+            if (!(alpha >= 0 && alpha <= 1))
+                return Error(element, "baseColorFactor's alpha must lie in [0, 1]");
+            material.alpha = static_cast<float>(alpha);
+            if (pbr.baseColorTexture.index >= 0) {
+                const absl::StatusOr<int32_t> texture =
+                    TextureIndex(pbr.baseColorTexture.index, element, ImageChannels::kAlpha);
+                if (!texture.ok()) return texture.status();
+                material.alpha_texture = *texture;
+            }
+            if (source.alphaMode == "MASK") {
+                if (!(source.alphaCutoff >= 0 && source.alphaCutoff <= 1))
+                    return Error(element, "alphaCutoff must lie in [0, 1]");
+                material.alpha_cutoff = static_cast<float>(source.alphaCutoff);
+                if (material.alpha_cutoff <= 0)  // every point passes: opaque
+                    material.alpha = 1, material.alpha_texture = kNoTexture;
+            }
+        }
         if (!IsFinite(material.base_color) || MaxComponent(material.base_color) > 1.0f ||
             material.base_color.x < 0 || material.base_color.y < 0 || material.base_color.z < 0)
             return Error(element, "baseColorFactor must lie in [0, 1]");
@@ -503,27 +528,38 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
     return index;
 }
 
-absl::StatusOr<int32_t> GltfSceneBuilder::TextureIndex(int gltf_texture,
-                                                       const std::string& element) {
+absl::StatusOr<int32_t> GltfSceneBuilder::TextureIndex(int gltf_texture, const std::string& element,
+                                                       ImageChannels channels) {
     if (gltf_texture >= static_cast<int>(model_.textures.size()) ||
         model_.textures[gltf_texture].source < 0 ||
         model_.textures[gltf_texture].source >= static_cast<int>(model_.images.size()))
         return Error(element, absl::StrCat("texture #", gltf_texture, " has no image"));
     const int image_index = model_.textures[gltf_texture].source;
-    if (const auto it = texture_indices_.find(image_index); it != texture_indices_.end())
+    if (const auto it = texture_indices_.find({image_index, channels});
+        it != texture_indices_.end())
         return it->second;
     const auto encoded = images_.find(image_index);
     if (encoded == images_.end())
         return Error(element, absl::StrCat("image #", image_index, " has no data"));
-    // glTF base colour textures are sRGB-encoded 8-bit images (PNG or JPEG).
+    // glTF base colour textures are sRGB-encoded 8-bit images (PNG or JPEG); alpha is linear.
+    ImageDecodeOptions options;
+    options.encoding = ImageEncoding::kSrgb;
+    options.channels = channels;
     absl::StatusOr<Texture> texture =
-        DecodeImage(encoded->second.bytes, encoded->second.name, limits_, {ImageEncoding::kSrgb});
+        DecodeImage(encoded->second.bytes, encoded->second.name, limits_, options);
     if (!texture.ok())
         return absl::Status(texture.status().code(),
                             absl::StrCat(path_, ": ", element, ": ", texture.status().message()));
+    // An alpha channel that is all 1 (or none) cuts nothing out: no texture, no cost.
+    if (channels == ImageChannels::kAlpha &&
+        std::all_of(texture->texels.begin(), texture->texels.end(),
+                    [](const Rgb& texel) { return texel.x >= 1.0f; })) {
+        texture_indices_[{image_index, channels}] = kNoTexture;
+        return kNoTexture;
+    }
     const auto index = static_cast<int32_t>(scene_.textures.size());
     scene_.textures.push_back(std::make_shared<const Texture>(std::move(*texture)));
-    texture_indices_[image_index] = index;
+    texture_indices_[{image_index, channels}] = index;
     return index;
 }
 

@@ -37,7 +37,11 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
                                   "' cannot be read from a scene bundle"));
     input->set_ioproxy(&proxy);
     OIIO::ImageSpec spec;
-    if (!input->open(probe_name, spec))
+    // Colour as stored: glTF and pbrt-v4 read an RGBA image's colour without alpha multiplied
+    // in (OpenImageIO would premultiply a PNG's).
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    if (!input->open(probe_name, spec, config))
         return error(absl::StrCat("not a readable image (", FirstLine(input->geterror()), ")"));
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth != 1)
         return error("image has no pixels or is a volume");
@@ -67,10 +71,32 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
     texture.width = spec.width;
     texture.height = spec.height;
     texture.texels.resize(pixels);
-    for (size_t i = 0; i < pixels; ++i)
-        for (int c = 0; c < 3; ++c)
-            texture.texels[i][c] =
-                to_linear(values[i * spec.nchannels + (spec.nchannels < 3 ? 0 : c)]);
+    const int channels = spec.nchannels;
+    const auto alpha = [&](size_t i) {  // alpha is linear in every format
+        if (channels != 2 && channels != 4) return 1.0f;
+        const float value = values[i * channels + channels - 1];
+        return std::isfinite(value) ? std::clamp(value, 0.0f, 1.0f) : 0.0f;
+    };
+    for (size_t i = 0; i < pixels; ++i) {
+        const float* texel = &values[i * channels];
+        switch (options.channels) {
+            case ImageChannels::kColour:
+                for (int c = 0; c < 3; ++c)
+                    texture.texels[i][c] = to_linear(texel[channels < 3 ? 0 : c]);
+                break;
+            case ImageChannels::kFloat:
+                texture.texels[i] =
+                    Rgb(channels == 4 ? alpha(i)
+                        : channels == 3
+                            ? (to_linear(texel[0]) + to_linear(texel[1]) + to_linear(texel[2])) / 3
+                            : to_linear(texel[0]));
+                break;
+            case ImageChannels::kAlpha:
+                texture.texels[i] = Rgb(alpha(i));
+                break;
+        }
+        if (options.invert) texture.texels[i] = Max(Rgb(1.0f) - texture.texels[i], Rgb(0.0f));
+    }
     return texture;
 }
 

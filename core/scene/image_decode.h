@@ -4,6 +4,7 @@
 
 #include <string>
 #include <string_view>
+#include <tuple>
 
 #include "absl/status/statusor.h"
 #include "core/scene/mesh_builder.h"
@@ -19,15 +20,31 @@ enum class ImageEncoding {
     kGamma,  // value^gamma
 };
 
+// What a texture takes of an image's channels.
+enum class ImageChannels {
+    kColour,  // RGB (a grey image grey); alpha ignored
+    // One value, in every channel of the texture: pbrt-v4's float textures' (one channel as it
+    // is, three averaged, four: the alpha channel).
+    kFloat,
+    kAlpha,  // the alpha channel (of grey-alpha or RGBA images; 1 without one), linear
+};
+
 struct ImageDecodeOptions {
     ImageEncoding encoding = ImageEncoding::kAuto;
     double gamma = 2.2;
+    ImageChannels channels = ImageChannels::kColour;
+    bool invert = false;  // each value v read as max(0, 1 - v) (pbrt's "invert")
+    bool operator<(const ImageDecodeOptions& other) const {
+        return std::tie(encoding, gamma, channels, invert) <
+               std::tie(other.encoding, other.gamma, other.channels, other.invert);
+    }
 };
 
 // Decodes `bytes`, the contents of bundle file `name` (whose extension picks the format).
 // Nothing is read from disk: formats OpenImageIO cannot read from memory are refused. An
 // image over `limits.max_image_pixels` is refused before its pixels are decoded
-// (RESOURCE_EXHAUSTED); errors name `name`. Grey images give grey RGB; alpha is ignored.
+// (RESOURCE_EXHAUSTED); errors name `name`. Grey images give grey RGB; `options.channels` says
+// what of alpha is read.
 absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& name,
                                     const SceneLimits& limits,
                                     const ImageDecodeOptions& options = {});

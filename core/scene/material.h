@@ -37,6 +37,23 @@ struct Material {
     // Emission from both faces (pbrt's "twosided" area lights). Not a bool: materials are
     // written byte for byte into prepared scenes, and must have no padding.
     uint32_t two_sided = 0;
+    // A dielectric coat over the surface (pbrt-v4's coateddiffuse and coatedconductor, glTF's
+    // KHR_materials_clearcoat) on a diffuse, mirror or rough conductor base: its index of
+    // refraction (0: no coat), GGX alpha (0: smooth) and the optical thickness of its absorbing
+    // interior (core/shared/coat.h).
+    float coat_ior = 0.0f;
+    float coat_roughness = 0.0f;
+    float coat_thickness = 0.0f;
+    // The most bounces a path takes between a coated conductor and its coat before it is
+    // taken as absorbed (pbrt-v4's maxdepth).
+    uint32_t coat_depth = 10;
+    // Cut-outs (core/shared/alpha.h): the surface is there where alpha x the alpha texture's
+    // first channel (an index into Scene::textures) is at least alpha_cutoff, or, with no
+    // cutoff (0), for that fraction of the rays that meet it.
+    float alpha = 1.0f;
+    float alpha_cutoff = 0.0f;
+    int32_t alpha_texture = kNoTexture;
+    uint32_t pad = 0;
 
     // Scatters into one direction (a mirror, smooth glass): a delta distribution.
     bool IsSpecular() const {
@@ -46,10 +63,14 @@ struct Material {
     bool IsRough() const {
         return type == MaterialType::kRoughConductor || type == MaterialType::kRoughDielectric;
     }
+    bool HasCoat() const { return coat_ior > 0.0f; }
+    // Whether some rays pass through the surface.
+    bool HasCutOuts() const { return alpha_texture != kNoTexture || !(alpha >= 1.0f); }
     bool IsEmissive() const { return !IsBlack(emission); }
     // Whether shading reads the surface's texture coordinates.
     bool ReadsUv() const {
-        return base_color_texture != kNoTexture || emission_texture != kNoTexture;
+        return base_color_texture != kNoTexture || emission_texture != kNoTexture ||
+               alpha_texture != kNoTexture;
     }
     // Whether a surface of this material seen from its front (or back) emits.
     bool EmitsToward(bool front_facing) const {

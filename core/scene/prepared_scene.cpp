@@ -26,7 +26,7 @@ constexpr uint64_t kMaxCount = uint64_t{1} << 32;
 
 // Types written whole must have no padding: their size is the sum of their fields'.
 static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
-static_assert(sizeof(Material) == 48, "Material gained a field or padding: encode it");
+static_assert(sizeof(Material) == 80, "Material gained a field or padding: encode it");
 static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4,
               "Camera gained a field or padding: encode it");
 static_assert(sizeof(Prototype) == 8 + 24 && sizeof(Instance) == 4 + 21 * 4);
@@ -282,7 +282,22 @@ absl::Status CheckMaterials(const Scene& scene) {
             !Finite(material.roughness) || MinComponent(material.emission) < 0 ||
             !(material.ior > 0))
             return Invalid(absl::StrCat(name, ": a value out of range"));
-        for (const int32_t texture : {material.base_color_texture, material.emission_texture}) {
+        // A coat: an index of refraction above 1, roughness and thickness finite and
+        // non-negative, on a base it can cover; or none (index 0).
+        const bool coat_base = material.type == MaterialType::kDiffuse ||
+                               material.type == MaterialType::kMirror ||
+                               material.type == MaterialType::kRoughConductor;
+        if (material.coat_ior != 0.0f &&
+            !(material.coat_ior >= 1.0f && Finite(material.coat_ior) && coat_base &&
+              material.coat_roughness >= 0.0f && material.coat_roughness <= 1.0f &&
+              material.coat_thickness >= 0.0f && Finite(material.coat_thickness) &&
+              material.coat_depth <= 1024))
+            return Invalid(absl::StrCat(name, ": a coat out of range"));
+        if (!(material.alpha >= 0.0f && material.alpha <= 1.0f && material.alpha_cutoff >= 0.0f &&
+              material.alpha_cutoff <= 1.0f))
+            return Invalid(absl::StrCat(name, ": alpha out of range"));
+        for (const int32_t texture :
+             {material.base_color_texture, material.emission_texture, material.alpha_texture}) {
             if (texture == kNoTexture) continue;
             if (texture < 0 || static_cast<size_t>(texture) >= scene.textures.size() ||
                 scene.textures[texture]->texels.empty())

@@ -123,6 +123,16 @@ Rgb Scene::Emission(const SurfacePoint& surface) const {
            textures[material.emission_texture]->Sample(surface.uv.x, surface.uv.y);
 }
 
+float Scene::Alpha(uint32_t triangle, float b1, float b2) const {
+    const Triangle& t = triangles[triangle];
+    const Material& material = materials[t.material];
+    if (material.alpha_texture == kNoTexture) return material.alpha;
+    const float b0 = 1 - b1 - b2;
+    const Point2 uv = {uvs[t.vertex[0]].x * b0 + uvs[t.vertex[1]].x * b1 + uvs[t.vertex[2]].x * b2,
+                       uvs[t.vertex[0]].y * b0 + uvs[t.vertex[1]].y * b1 + uvs[t.vertex[2]].y * b2};
+    return material.alpha * textures[material.alpha_texture]->Sample(uv.x, uv.y).x;
+}
+
 float Scene::TriangleArea(uint32_t triangle) const {
     const Triangle& t = triangles[triangle];
     return 0.5f * Length(Cross(positions[t.vertex[1]] - positions[t.vertex[0]],

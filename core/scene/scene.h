@@ -191,6 +191,10 @@ struct Scene {
     // The radiance a surface point emits (from the sides its material emits toward), emission
     // texture applied (bilinear, at the point: what Emitters samples).
     Rgb Emission(const SurfacePoint& surface) const;
+    // The alpha of `triangle` at barycentrics (b1, b2): its material's, times its alpha
+    // texture's first channel there (bilinear, at the point). Material::HasCutOuts says where
+    // it is not 1.
+    float Alpha(uint32_t triangle, float b1, float b2) const;
     // The area of a world triangle.
     float TriangleArea(uint32_t triangle) const;
 };

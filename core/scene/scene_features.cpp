@@ -11,9 +11,9 @@ SceneFeatures SceneFeatures::All() {
     SceneFeatures all;
     for (bool* flag :
          {&all.mirror, &all.dielectric, &all.thin_dielectric, &all.rough_conductor,
-          &all.rough_dielectric, &all.textures, &all.smooth_normals, &all.triangle_lights,
-          &all.point_lights, &all.spot_lights, &all.directional_lights, &all.environment,
-          &all.textured_lights, &all.image_lights, &all.caustics})
+          &all.rough_dielectric, &all.coats, &all.cut_outs, &all.textures, &all.smooth_normals,
+          &all.triangle_lights, &all.point_lights, &all.spot_lights, &all.directional_lights,
+          &all.environment, &all.textured_lights, &all.image_lights, &all.caustics})
         *flag = true;
     return all;
 }
@@ -25,6 +25,8 @@ std::string SceneFeatures::ToString() const {
     if (thin_dielectric) parts.push_back("thin glass");
     if (rough_conductor) parts.push_back("rough metal");
     if (rough_dielectric) parts.push_back("rough glass");
+    if (coats) parts.push_back("coated");
+    if (cut_outs) parts.push_back("cut-outs");
     if (textures) parts.push_back("textures");
     if (smooth_normals) parts.push_back("smooth normals");
     if (triangle_lights) parts.push_back("area lights");
@@ -53,6 +55,8 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
         features.thin_dielectric |= material.type == MaterialType::kThinDielectric;
         features.rough_conductor |= material.type == MaterialType::kRoughConductor;
         features.rough_dielectric |= material.type == MaterialType::kRoughDielectric;
+        features.coats |= material.HasCoat();
+        features.cut_outs |= material.HasCutOuts();
         features.textures |= material.base_color_texture != kNoTexture;
     }
     for (const Emitters::Record& record : emitters.Records()) {

@@ -14,6 +14,8 @@ struct SceneFeatures {
     // Materials on at least one triangle.
     bool mirror = false, dielectric = false, thin_dielectric = false;
     bool rough_conductor = false, rough_dielectric = false;  // GGX
+    bool coats = false;           // a dielectric coat over a diffuse or conductor base
+    bool cut_outs = false;        // alpha: rays pass through parts of some surface
     bool textures = false;        // a used material has a base colour texture
     bool smooth_normals = false;  // a triangle interpolates vertex normals
     // Emitters with power.
@@ -27,7 +29,7 @@ struct SceneFeatures {
     bool caustics = false;
 
     // Anything but diffuse surfaces: what the passes' variants with non-diffuse scattering handle.
-    bool Specular() const { return mirror || dielectric || thin_dielectric || Rough(); }
+    bool Specular() const { return mirror || dielectric || thin_dielectric || Rough() || coats; }
     bool Rough() const { return rough_conductor || rough_dielectric; }
     // Every feature on: the general code path, for comparison (bench/photon_bench).
     static SceneFeatures All();

@@ -68,7 +68,9 @@ PF_CONST(uint32_t) kSpecHasRoughDielectric = 10;
 PF_CONST(uint32_t) kSpecHasEnvironment = 11;
 PF_CONST(uint32_t) kSpecHasTexturedLights = 12;
 PF_CONST(uint32_t) kSpecHasImageLights = 13;  // goniometric or projection lights
-PF_CONST(uint32_t) kSpecCount = 14;
+PF_CONST(uint32_t) kSpecHasCoats = 14;        // coated diffuse or conductor materials
+PF_CONST(uint32_t) kSpecHasCutOuts = 15;      // alpha cut-outs (core/shared/alpha.h)
+PF_CONST(uint32_t) kSpecCount = 16;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -119,6 +121,7 @@ struct GpuTriangleShading {
 PF_GPU_LAYOUT(GpuTriangleShading, 32);
 PF_CONST(uint32_t) kSmoothBit = 0x80000000u;
 PF_CONST(uint32_t) kNoEmitter = 0xffffffffu;
+PF_CONST(uint32_t) kNoCoat = 0xffffffffu;  // a hit point under no coat (core/job/hit_point.h)
 
 struct GpuMaterial {
     vec4 base_color;  // xyz; w: index of refraction
@@ -126,8 +129,12 @@ struct GpuMaterial {
     int32_t texture;  // base colour texture, or -1
     float roughness;  // GGX alpha of the rough materials
     uint32_t pad;
+    vec4 coat;   // a coat's index of refraction (0: none), GGX alpha, optical thickness;
+                 // w: the most bounces under it (uint bits); core/shared/coat.h
+    vec4 alpha;  // x: alpha (1 without cut-outs), y: its cutoff (0: stochastic); z: the alpha
+                 // texture, or -1 (int bits); core/shared/alpha.h
 };
-PF_GPU_LAYOUT(GpuMaterial, 32);
+PF_GPU_LAYOUT(GpuMaterial, 64);
 
 struct GpuTexture {
     uint32_t first_texel;  // into the texels binding
@@ -146,7 +153,9 @@ struct GpuEmitter {
     vec4 edge1;      // triangle: p1 - p0; w: area. Lights with an image: x, y the image's
                      // width and height (uint bits); environment, goniometric: z its mapping
                      // (kMapping*, uint bits); projection: w a texel's area on the plane z = 1
-    vec4 edge2;      // triangle: p2 - p0. Lights with an image: the first row of the rotation
+    vec4 edge2;      // triangle: p2 - p0, w: 1 if cut out everywhere (found by light sampling
+                     // alone, Emitters::EmissiveTriangle::invisible). Lights with an image: the
+                     // first row of the rotation
                      // from the world into the image's frame (Environment::to_map,
                      // PunctualLight::to_light)
     vec4 direction;  // triangle: unit emitting normal, w: 1 if it emits from both faces; spot,
@@ -176,7 +185,7 @@ struct GpuEmitter {
 PF_GPU_LAYOUT(GpuEmitter, 176);
 
 struct GpuHitPoint {
-    vec4 position;  // xyz; w unused
+    vec4 position;  // xyz; w: the material whose coat covers it, or kNoCoat (uint bits)
     vec4 normal;    // unit, toward the camera path's side
     vec4 weight;    // camera throughput x BSDF, 1/sr
 };

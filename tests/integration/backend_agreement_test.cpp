@@ -99,6 +99,70 @@ TEST(BackendAgreementTwoSided, ATwoSidedLightMatchesTheCpus) {
         2'000'000);
 }
 
+TEST(BackendAgreementCoats, CoatedSurfacesMatchTheCpus) {
+    // A smooth-coated floor, a rough-coated wall and a coated metal panel that throws light
+    // onto both: photons enter, are turned back under the coats and reflected by them, and
+    // direct light crosses them, on the device as on the CPU.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    ExpectVulkanAgreesWithTheCpu(
+        testing::WriteTextFile(
+            "LookAt 0 -2.5 1.8  0 0.3 0.4  0 0 1\nCamera \"perspective\" \"float fov\" 50\n"
+            "WorldBegin\n"
+            "Material \"coateddiffuse\" \"rgb reflectance\" [0.7 0.4 0.2] \"float thickness\" 0.1\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
+            "Material \"coateddiffuse\" \"rgb reflectance\" [0.2 0.5 0.8] \"float roughness\" "
+            "0.05\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-1 1 0  1 1 0  -1 1 1.5  1 1 1.5]\n"
+            "Material \"coatedconductor\" \"float conductor.roughness\" 0.02 "
+            "\"spectrum conductor.eta\" \"metal-Au-eta\" \"spectrum conductor.k\" \"metal-Au-k\"\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [0.9 1 0  0.9 -1 0  0.6 1 1.2  0.6 -1 1.2]\n"
+            "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [6 6 6]\n"
+            "Material \"diffuse\" \"rgb reflectance\" [0 0 0]\nTranslate -0.3 0 1.2\n"
+            "Rotate 180 1 0 0\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-0.3 -0.3 0  0.3 -0.3 0  -0.3 0.3 0  0.3 0.3 0]\n"
+            "AttributeEnd\n",
+            "coated.pbrt"),
+        6'000'000);
+}
+
+TEST(BackendAgreementCutOuts, CutOutsMatchTheCpus) {
+    // A closed room lit from the ceiling, with a checkered alpha-textured card and a card of
+    // alpha 0.5 hanging in it, the camera seeing the floor through both: camera rays, photons
+    // and shadow rays pass the cards where alpha says, on the device as on the CPU.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    const std::string folder = testing::TempPath("cut-outs");
+    std::filesystem::create_directories(folder);
+    Image checks(4, 4);
+    for (int i = 0; i < 16; ++i) checks.pixels[i] = Rgb(float((i + i / 4) % 2));
+    ASSERT_TRUE(WriteExr(folder + "/checks.exr", checks).ok());
+    const std::string path = folder + "/cut-outs.pbrt";
+    std::ofstream(path)
+        << "LookAt 0 -0.95 1.2  0 0 0.5  0 0 1\nCamera \"perspective\" \"float fov\" "
+           "70\nWorldBegin\n"
+           "Texture \"checks\" \"float\" \"imagemap\" \"string filename\" \"checks.exr\"\n"
+           "Material \"diffuse\" \"rgb reflectance\" [0.7 0.6 0.5]\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 2  -1 1 2  1 -1 2  1 1 2]\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [-1 1 0  1 1 0  -1 1 2  1 1 2]\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  -1 -1 2  1 -1 0  1 -1 2]\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  -1 1 0  -1 -1 2  -1 1 2]\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [1 -1 0  1 -1 2  1 1 0  1 1 2]\n"
+           "Material \"diffuse\" \"rgb reflectance\" [0.2 0.7 0.3]\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [-0.8 -0.3 0.6  0 -0.3 0.6  -0.8 0.6 0.9  0 0.6 "
+           "0.9] "
+           "\"texture alpha\" \"checks\"\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [0 -0.3 0.6  0.8 -0.3 0.6  0 0.6 0.9  0.8 0.6 0.9] "
+           "\"float alpha\" 0.5\n"
+           "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [5 5 5]\n"
+           "Material \"diffuse\" \"rgb reflectance\" [0 0 0]\nTranslate 0 0 1.99\nRotate 180 1 0 "
+           "0\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [-0.4 -0.4 0  0.4 -0.4 0  -0.4 0.4 0  0.4 0.4 0]\n"
+           "AttributeEnd\n";
+    ExpectVulkanAgreesWithTheCpu(path, 2'000'000);
+}
+
 TEST(BackendAgreementTexturedLight, AnImageLightMatchesTheCpus) {
     // A tilted two-sided area light whose image is 2 x 2 texels of four colours over a floor
     // and a wall: photons leave it with the texel where they start, light samples and MIS hits take

@@ -36,7 +36,9 @@ TEST(DirectLightTest, SamplesNearEmittingWallsAreBoundedAndUnbiased) {
     std::vector<Rgb> samples(hit_points.size());
     float largest = 0;
     for (int epoch = 0; epoch < kEpochs; ++epoch) {
-        ASSERT_EQ(SampleDirectLight(emitters, **tracer, hit_points, 0, 5, epoch, samples), 0u);
+        ASSERT_EQ(SampleDirectLight(emitters, **tracer, scene->materials, hit_points, 0, 5, epoch,
+                                    samples),
+                  0u);
         for (size_t i = 0; i < samples.size(); ++i) {
             largest = std::max(largest, MaxComponent(samples[i]));
             sum[i] += samples[i].x;

@@ -13,6 +13,7 @@
 #include "absl/strings/str_format.h"
 #include "core/job/integrator.h"
 #include "core/scene/scene_loader.h"
+#include "core/shared/path_sampling.h"
 #include "embedded/local_render.h"
 #include "embree/embree_tracer.h"
 #include "tests/support/gltf_builder.h"
@@ -167,6 +168,136 @@ TEST_P(EnvironmentFurnace, ConvexBodyReflectsAlbedoTimesTheSky) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, EnvironmentFurnace,
+                         ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
+                                           Integrator::kPath),
+                         [](const auto& param_info) {
+                             return std::string(IntegratorName(param_info.param));
+                         });
+
+// The same cube under a smooth coat of index 1.5 and optical thickness 0.05 over the albedo
+// (pbrt-v4's coateddiffuse), written as a pbrt file. A convex body under a uniform sky L
+// reflects L A(mu) toward a viewer at cosine mu, A the surface's directional albedo
+// (reciprocity): for a smooth coat the closed form of the layer, F(mu) + (1 - F(mu)) T(mu_t)
+// rho E / (1 - rho R) (tests/core/scene/coat_test.cpp checks the walk against it). Light under
+// the coat turned back to the base is stored by the photon mappers, so pixels are not
+// independent: the z-test runs on 4x4 blocks of the ratio to the expected value.
+constexpr float kCoatIor = 1.5f, kCoatThickness = 0.05f;
+
+double CoatedAlbedo(double mu) {
+    const auto integrate = [](auto&& f) {
+        constexpr int kSteps = 4000;
+        double sum = 0;
+        for (int i = 0; i < kSteps; ++i) sum += f((i + 0.5) / kSteps);
+        return sum / kSteps;
+    };
+    const double escape = integrate([](double m) {
+        return 2 * m * std::exp(-kCoatThickness / m) * (1 - gpu::FresnelDielectric(m, kCoatIor));
+    });
+    const double turned_back = integrate([](double m) {
+        return 2 * m * std::exp(-2 * kCoatThickness / m) * gpu::FresnelDielectric(m, kCoatIor);
+    });
+    const double fresnel = gpu::FresnelDielectric(mu, 1 / kCoatIor);
+    const double mu_t = std::sqrt(1 - (1 - mu * mu) / (kCoatIor * kCoatIor));
+    return fresnel + (1 - fresnel) * std::exp(-kCoatThickness / mu_t) * kAlbedo * escape /
+                         (1 - kAlbedo * turned_back);
+}
+
+std::string CoatedCubePbrt() {
+    std::string text = absl::StrFormat(
+        "LookAt 0 0 2.6  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
+        "Film \"rgb\" \"integer xresolution\" %d \"integer yresolution\" %d\nWorldBegin\n"
+        "LightSource \"infinite\" \"rgb L\" [%g %g %g]\n"
+        "Material \"coateddiffuse\" \"rgb reflectance\" [%g %g %g] \"float eta\" %g "
+        "\"float thickness\" %g\nShape \"trianglemesh\" \"point3 P\" [",
+        kSize, kSize, kSky.x, kSky.y, kSky.z, kAlbedo, kAlbedo, kAlbedo, kCoatIor, kCoatThickness);
+    const testing::TestScene cube = TurnedCube();
+    const testing::TestMesh& mesh = cube.meshes[0];
+    for (const Vec3& p : mesh.positions) text += absl::StrFormat(" %g %g %g", p.x, p.y, p.z);
+    text += " ] \"integer indices\" [";
+    for (size_t i = 0; i < mesh.positions.size(); ++i) text += absl::StrFormat(" %d", int(i));
+    return text + " ]\n";
+}
+
+class CoatedEnvironmentFurnace : public ::testing::TestWithParam<Integrator> {};
+
+TEST_P(CoatedEnvironmentFurnace, ConvexBodyReflectsItsDirectionalAlbedo) {
+    RenderSettings settings;
+    settings.scene_path = testing::WriteTextFile(CoatedCubePbrt(), "coated-cube.pbrt");
+    settings.threads = 2;
+    JobSpec& job = settings.job;
+    job.integrator = GetParam();
+    job.width = job.height = kSize;
+    job.seed = 3;
+    job.layout = {1u << 15, 2};
+    job.epoch_budget = 48;
+    job.photon_map.global_photons = job.photon_map.caustic_photons = 1u << 19;
+    const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+    ASSERT_TRUE(outcome.ok()) << outcome.status();
+    EXPECT_NE(outcome->scene_features.find("coated"), std::string::npos);
+
+    const absl::StatusOr<Scene> scene = LoadScene(settings.scene_path);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_TRUE(scene->materials[scene->triangles[0].material].HasCoat());
+    const PixelClasses classes = Classify(*scene);
+    const absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer =
+        embree::EmbreeTracer::Create(*scene);
+    ASSERT_TRUE(tracer.ok()) << tracer.status();
+    // Each body pixel's expected value: L A(mu) averaged over 4x4 rays across it.
+    std::vector<double> expected(kSize * kSize, 0.0);
+    for (int i = 0; i < kSize * kSize; ++i) {
+        if (!classes.body[i]) continue;
+        for (int s = 0; s < 16; ++s) {
+            const Ray ray =
+                scene->camera.GenerateRay((i % kSize + (s % 4 + 0.5f) / 4) / kSize,
+                                          (i / kSize + (s / 4 + 0.5f) / 4) / kSize, 1.0f);
+            RayHit hit;
+            ASSERT_TRUE((*tracer)->Intersect(ray, &hit));
+            const Vec3 n = scene->Surface(hit).geometric_normal;
+            expected[i] += CoatedAlbedo(std::abs(Dot(ray.direction, n))) / 16;
+        }
+    }
+    // z-tests of the mean ratio per channel over 4x4 blocks wholly on the body.
+    const auto check = [&](const Rgb& scale, std::string* text) {
+        bool passed = true;
+        double detectable = 0;
+        for (int c = 0; c < 3; ++c) {
+            std::vector<double> blocks;
+            for (int by = 0; by < kSize; by += 4)
+                for (int bx = 0; bx < kSize; bx += 4) {
+                    double sum = 0;
+                    int n = 0;
+                    for (int y = by; y < by + 4; ++y)
+                        for (int x = bx; x < bx + 4; ++x) {
+                            const int i = y * kSize + x;
+                            if (!classes.body[i]) continue;
+                            sum += outcome->image.pixels[i][c] * scale[c] / (kSky[c] * expected[i]);
+                            ++n;
+                        }
+                    if (n == 16) blocks.push_back(sum / n);
+                }
+            double mean = 0, var = 0;
+            for (double b : blocks) mean += b / blocks.size();
+            for (double b : blocks) var += (b - mean) * (b - mean) / (blocks.size() - 1);
+            const double error = std::sqrt(var / blocks.size());
+            const double z = (mean - 1) / error;
+            passed &= std::abs(z) <= 5 && blocks.size() >= 30;
+            detectable = std::max(detectable, 5 * error);
+            *text += absl::StrFormat("%c ratio %.4f (z %.2f, %zu blocks) ", "RGB"[c], mean, z,
+                                     blocks.size());
+        }
+        *text += absl::StrFormat("2%% off detectable: %.2f%%", 100 * detectable);
+        return passed && detectable < 0.015;
+    };
+    std::string text;
+    EXPECT_TRUE(check(Rgb(1.0f), &text)) << text;
+    std::printf("%s: %s\n", std::string(IntegratorName(GetParam())).c_str(), text.c_str());
+    for (const Rgb& bias : {Rgb(1.02f), Rgb(0.98f), Rgb(1.0f, 1.02f, 1.0f)}) {
+        std::string biased;
+        EXPECT_FALSE(check(bias, &biased)) << "a biased image passed: " << biased;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, CoatedEnvironmentFurnace,
                          ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
                                            Integrator::kPath),
                          [](const auto& param_info) {

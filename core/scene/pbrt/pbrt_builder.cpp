@@ -234,9 +234,29 @@ absl::Status PbrtSceneBuilder::Sampler(const std::string& type, ParameterList& p
 absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& parameters,
                                      const Location& where) {
     const std::string element = absl::StrCat(where.ToString(), ": Shape \"", type, "\"");
-    if (const Parameter* alpha = parameters.Consume("alpha");
-        alpha && (alpha->type != "float" || alpha->numbers.empty() || alpha->numbers[0] != 1.0))
-        Warn(where, "Shape: \"alpha\" cut-outs are not supported; the shape is opaque");
+    // "alpha" (a number, or a float texture): where the shape is absent (cut-outs).
+    GraphicsState state = state_;
+    state.alpha = {};
+    if (const std::optional<std::string> name = parameters.TextureName("alpha")) {
+        const auto it = float_textures_.find(*name);
+        if (it == float_textures_.end())
+            return ErrorAt(where,
+                           absl::StrCat("Shape: \"alpha\" names no float texture \"", *name, "\""));
+        if (!it->second.unsupported.empty()) {
+            Warn(where,
+                 absl::StrCat("Shape: \"alpha\" texture \"", *name, "\" (", it->second.unsupported,
+                              ") is not supported; the shape is opaque"));
+        } else {
+            absl::StatusOr<int32_t> image = ImageIndex(it->second);
+            if (!image.ok()) return image.status();
+            state.alpha = {std::clamp(it->second.scale.x, 0.0f, 1.0f), *image, it->second.uv};
+        }
+    } else if (parameters.Has("alpha")) {
+        const double alpha = parameters.Float("alpha", 1.0);
+        if (!(alpha >= 0 && alpha <= 1))
+            return ErrorAt(where, "Shape: \"alpha\" must lie in [0, 1]");
+        state.alpha.value = static_cast<float>(alpha);
+    }
     absl::StatusOr<TriangleMesh> mesh;
     FrontFace front = FrontFace::kObjectWinding;
     if (type == "trianglemesh" || type == "loopsubdiv") {
@@ -289,10 +309,10 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
     if (front == FrontFace::kObjectWinding && !mesh->normals.empty())
         front = FrontFace::kVertexNormals;
     if (!current_object_.empty()) {
-        objects_[current_object_].push_back({std::move(*mesh), state_.ctm, front, state_, element});
+        objects_[current_object_].push_back({std::move(*mesh), state.ctm, front, state, element});
         return absl::OkStatus();
     }
-    return AddShape(*mesh, state_.ctm, front, state_, element);
+    return AddShape(*mesh, state.ctm, front, state, element);
 }
 
 absl::Status PbrtSceneBuilder::ObjectInstance(const std::string& name,
@@ -346,6 +366,16 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
     }
     Rgb emission(0.0f);
     UvTransform uv = material.uv;
+    if (state.alpha.texture != kNoTexture) {
+        // One (u, v) mapping a shape: the alpha texture's, unless the material's texture
+        // reads another.
+        if (material.material.base_color_texture == kNoTexture)
+            uv = state.alpha.uv;
+        else if (!std::equal(std::begin(uv.m), std::end(uv.m), std::begin(state.alpha.uv.m)))
+            Warn(Location{}, absl::StrCat(element,
+                                          ": the alpha texture is read with the material "
+                                          "texture's (u, v), not its own scale and offset"));
+    }
     if (emission_texture != kNoTexture) {
         // The light's image reads the shape's own (u, v); a base colour texture of the
         // material, which another mapping of them, reads the same.
@@ -356,6 +386,11 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
                                           ": the material's texture is read with the area "
                                           "light image's (u, v), not its own scale and offset"));
     }
+    if (state.area_light &&
+        (state.alpha.texture != kNoTexture || (state.alpha.value > 0 && state.alpha.value < 1)))
+        Warn(Location{}, absl::StrCat(element,
+                                      ": an area light's emission is not masked by its alpha "
+                                      "(alpha 0, an invisible light, is as pbrt-v4's)"));
     if (state.area_light) {
         emission = state.area_light->radiance;
         if (state.area_light->power > 0) {
@@ -383,7 +418,7 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
     }
     absl::StatusOr<uint32_t> index =
         SceneMaterial(state.material, emission, state.area_light && state.area_light->two_sided,
-                      emission_texture);
+                      state.alpha, emission_texture);
     if (!index.ok()) return index.status();
     MeshPlacement placement{world, *index, front, state.reverse_orientation, uv};
     if (mesh.uvs.empty() && scene_.materials[*index].ReadsUv())
@@ -393,14 +428,17 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
 }
 
 absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emission, bool two_sided,
+                                                         const ShapeAlpha& alpha,
                                                          int32_t emission_texture) {
-    const auto key =
-        std::make_tuple(material, emission.x, emission.y, emission.z, two_sided, emission_texture);
+    const auto key = std::make_tuple(material, emission.x, emission.y, emission.z, two_sided,
+                                     emission_texture, alpha.value, alpha.texture);
     if (const auto it = scene_materials_.find(key); it != scene_materials_.end()) return it->second;
     Material out = material >= 0 ? materials_[material].material : DefaultMaterial().material;
     out.emission = emission;
     out.two_sided = two_sided && out.IsEmissive() ? 1 : 0;
     out.emission_texture = out.IsEmissive() ? emission_texture : kNoTexture;
+    out.alpha = alpha.value;
+    out.alpha_texture = alpha.texture;
     const auto index = static_cast<uint32_t>(scene_.materials.size());
     scene_.materials.push_back(out);
     scene_materials_[key] = index;

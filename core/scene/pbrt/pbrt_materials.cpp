@@ -1,6 +1,7 @@
-// pbrt-v4 materials and textures onto photonfarm's: diffuse, smooth dielectric and
-// conductor (a mirror with the metal's normal-incidence reflectance), thin dielectric, and
-// coateddiffuse shaded as its diffuse base; image textures through OpenImageIO.
+// pbrt-v4 materials and textures onto photonfarm's: diffuse, smooth and rough dielectric and
+// conductor (its normal-incidence reflectance), thin dielectric, coateddiffuse and
+// coatedconductor (a coat over the base: core/shared/coat.h); image textures through
+// OpenImageIO.
 #include <algorithm>
 #include <cmath>
 
@@ -69,37 +70,105 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
     absl::Status status;
     // GGX alpha from pbrt's roughness parameters (remapped by sqrt, as pbrt-v4's
     // RoughnessToAlpha, unless remaproughness is false); anisotropy is averaged away.
-    auto roughness_alpha = [&]() -> absl::StatusOr<float> {
+    auto roughness_alpha = [&](const std::string& prefix = "") -> absl::StatusOr<float> {
         const bool remap = parameters.Bool("remaproughness", true);
-        double u = parameters.Float("roughness", 0.0), v = u;
-        if (parameters.Has("uroughness") || parameters.Has("vroughness")) {
-            u = parameters.Float("uroughness", u);
-            v = parameters.Float("vroughness", v);
+        double u = parameters.Float(prefix + "roughness", 0.0), v = u;
+        if (parameters.Has(prefix + "uroughness") || parameters.Has(prefix + "vroughness")) {
+            u = parameters.Float(prefix + "uroughness", u);
+            v = parameters.Float(prefix + "vroughness", v);
             if (u != v)
-                Warn(where, absl::StrCat("Material \"", type, "\": anisotropic roughness (", u,
-                                         ", ", v, ") rendered isotropic with their mean"));
+                Warn(where,
+                     absl::StrCat("Material \"", type, "\": anisotropic ", prefix, "roughness (", u,
+                                  ", ", v, ") rendered isotropic with their mean"));
         }
         const double roughness = 0.5 * (u + v);
         if (!(roughness >= 0 && roughness <= 1e3))
-            return ErrorAt(
-                where, absl::StrCat("Material \"", type, "\": roughness must lie in [0, 1000]"));
+            return ErrorAt(where, absl::StrCat("Material \"", type, "\": ", prefix,
+                                               "roughness must lie in [0, 1000]"));
         const double alpha = remap ? std::sqrt(roughness) : roughness;
         return alpha <= 0 ? 0.0f
                           : static_cast<float>(std::clamp(alpha, double(kMinRoughness), 1.0));
     };
-    auto index_of_refraction = [&](double fallback) {
-        const Parameter* eta = parameters.Find("eta");
-        if (eta != nullptr && eta->type == "float") return parameters.Float("eta", fallback);
-        const std::optional<Rgb> color = parameters.Color("eta", SpectrumUse::kUnbounded);
+    auto index_of_refraction = [&](double fallback, const std::string& name = "eta") {
+        const Parameter* eta = parameters.Find(name);
+        if (eta != nullptr && eta->type == "float") return parameters.Float(name, fallback);
+        const std::optional<Rgb> color = parameters.Color(name, SpectrumUse::kUnbounded);
         return color ? double(color->y) : fallback;
+    };
+    // The coat of coateddiffuse and coatedconductor: its index (`eta_name`), roughness (with
+    // `prefix`), thickness and depth, as pbrt-v4's LayeredBxDF takes them; scattering inside
+    // it (albedo above 0) is left out, with a note.
+    auto coat = [&](const std::string& eta_name, const std::string& prefix) -> absl::Status {
+        Material& m = material.material;
+        const double eta = index_of_refraction(1.5, eta_name);
+        m.coat_ior = static_cast<float>(eta == 0 ? 1.0 : eta);  // pbrt-v4 reads 0 as 1
+        const absl::StatusOr<float> alpha = roughness_alpha(prefix);
+        if (!alpha.ok()) return alpha.status();
+        m.coat_roughness = *alpha;
+        const double thickness = parameters.Float("thickness", 0.01);
+        const int depth = parameters.Integer("maxdepth", 10);
+        parameters.Integer("nsamples", 1);  // pbrt's evaluation samples: a walk here needs none
+        parameters.Float("g", 0.0);
+        const std::optional<Rgb> albedo = parameters.Color("albedo");
+        if (albedo && MaxComponent(*albedo) > 0)
+            Warn(where, absl::StrCat("Material \"", type,
+                                     "\": scattering inside the coat (\"albedo\") is left out; "
+                                     "the coat absorbs only"));
+        if (!(m.coat_ior >= 1.0f && std::isfinite(m.coat_ior)))
+            return ErrorAt(where, absl::StrCat("Material \"", type, "\": \"", eta_name,
+                                               "\" must be at least 1"));
+        if (!(thickness >= 0 && thickness <= 1e6))
+            return ErrorAt(
+                where, absl::StrCat("Material \"", type, "\": \"thickness\" must lie in [0, 1e6]"));
+        if (!(depth >= 1 && depth <= 1024))
+            return ErrorAt(
+                where, absl::StrCat("Material \"", type, "\": \"maxdepth\" must lie in [1, 1024]"));
+        m.coat_thickness = static_cast<float>(thickness);
+        m.coat_depth = static_cast<uint32_t>(depth);
+        return absl::OkStatus();
     };
     if (type == "diffuse") {
         status = BaseColor(parameters, "reflectance", Rgb(0.5f), where, &material);
     } else if (type == "coateddiffuse") {
         status = BaseColor(parameters, "reflectance", Rgb(0.5f), where, &material);
-        parameters.ConsumeAll();
-        Warn(where,
-             "Material \"coateddiffuse\": shaded as its diffuse base, without the glossy coating");
+        if (status.ok()) status = coat("eta", "");
+    } else if (type == "coatedconductor") {
+        status = coat("interface.eta", "interface.");
+        if (status.ok()) {
+            const absl::StatusOr<float> alpha = roughness_alpha("conductor.");
+            if (!alpha.ok()) return alpha.status();
+            material.material.type =
+                *alpha > 0 ? MaterialType::kRoughConductor : MaterialType::kMirror;
+            material.material.roughness = *alpha;
+        }
+        // The conductor's index relative to the coat's, as pbrt-v4 divides it. A reflectance r
+        // (given, or a named metal's) stands for the index 1 + i 2 sqrt(r / (1 - r)), as there.
+        Rgb eta(1.0f), k(0.0f);
+        const auto from_reflectance = [&](const Rgb& reflectance) {
+            const Rgb r = Min(reflectance, Rgb(0.9999f));
+            for (int c = 0; c < 3; ++c) k[c] = 2.0f * std::sqrt(r[c] / (1.0f - r[c]));
+        };
+        const Parameter* eta_parameter = parameters.Find("conductor.eta");
+        const bool named = eta_parameter != nullptr && !eta_parameter->strings.empty();
+        if (status.ok() && parameters.Has("reflectance")) {
+            status = BaseColor(parameters, "reflectance", Rgb(1.0f), where, &material);
+            from_reflectance(material.material.base_color);
+        } else if (status.ok()) {
+            const std::optional<Rgb> given_eta =
+                parameters.Color("conductor.eta", SpectrumUse::kUnbounded);
+            const std::optional<Rgb> given_k =
+                parameters.Color("conductor.k", SpectrumUse::kUnbounded);
+            if (named && given_eta) {
+                from_reflectance(*given_eta);  // a named metal's spectrum gives its reflectance
+            } else if (given_eta || given_k) {
+                eta = given_eta.value_or(Rgb(0.2f));
+                k = given_k.value_or(Rgb(3.9f));
+            } else {
+                from_reflectance(*NamedMetalReflectance("metal-Cu-eta"));  // pbrt's default
+            }
+        }
+        const float relative = 1.0f / material.material.coat_ior;
+        material.material.base_color = ConductorReflectance(eta * relative, k * relative);
     } else if (type == "dielectric" || type == "thindielectric") {
         material.material.type =
             type == "dielectric" ? MaterialType::kDielectric : MaterialType::kThinDielectric;
@@ -144,8 +213,8 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
         }
     } else if (type == "interface" || type == "none" || type.empty()) {
         material.interface = true;  // pbrt-v4 reads "" and "none" as no surface too
-    } else if (type == "coatedconductor" || type == "measured" || type == "mix" ||
-               type == "subsurface" || type == "hair" || type == "diffusetransmission") {
+    } else if (type == "measured" || type == "mix" || type == "subsurface" || type == "hair" ||
+               type == "diffusetransmission") {
         parameters.ConsumeAll();
         material.material.base_color = Rgb(0.5f);
         Warn(where, absl::StrCat("Material \"", type,
@@ -169,7 +238,7 @@ absl::StatusOr<int32_t> PbrtSceneBuilder::ImageIndex(const TextureRef& texture) 
         return absl::Status(bytes.status().code(),
                             absl::StrCat(texture.element, ": ", bytes.status().message()));
     if (options_.references_only) return kNoTexture;
-    const auto key = std::make_tuple(texture.path, texture.decode.encoding, texture.decode.gamma);
+    const auto key = std::make_tuple(texture.path, texture.decode);
     if (const auto it = images_.find(key); it != images_.end()) return it->second;
     absl::StatusOr<pf::Texture> image =
         DecodeImage(*bytes, texture.path, options_.limits, texture.decode);
@@ -185,15 +254,14 @@ absl::StatusOr<int32_t> PbrtSceneBuilder::ImageIndex(const TextureRef& texture) 
 absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::string& kind,
                                        const std::string& type, ParameterList& parameters,
                                        const Location& where) {
-    if (kind == "float") {
-        parameters.ConsumeAll();
-        float_textures_[name] = type;
-        return absl::OkStatus();
-    }
-    if (kind != "spectrum")
+    if (kind != "spectrum" && kind != "float")
         return ErrorAt(where, absl::StrCat("Texture \"", name, "\": class '", kind,
                                            "' is not \"spectrum\" or \"float\""));
+    // A float texture is kept as a grey one: its value in every channel.
+    const bool scalar = kind == "float";
+    std::map<std::string, TextureRef>& named = scalar ? float_textures_ : textures_;
     TextureRef texture;
+    if (scalar) texture.decode.channels = ImageChannels::kFloat;
     if (type == "imagemap") {
         const std::string filename = parameters.String("filename", "");
         if (filename.empty())
@@ -221,9 +289,7 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
         // textures put v = 0 at the top.
         texture.uv.m[0] = su, texture.uv.m[2] = du, texture.uv.m[4] = -sv, texture.uv.m[5] = 1 - dv;
         texture.scale = Rgb(static_cast<float>(parameters.Float("scale", 1.0)));
-        if (parameters.Bool("invert", false))
-            Warn(where,
-                 absl::StrCat("Texture \"", name, "\": \"invert\" is not supported; ignored"));
+        decode.invert = parameters.Bool("invert", false);
         const std::string wrap = parameters.String("wrap", "repeat");
         if (wrap != "repeat")
             Warn(where, absl::StrCat("Texture \"", name, "\": wrap \"", wrap,
@@ -233,17 +299,19 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
         texture.path = *path;
         texture.element = absl::StrCat(where.ToString(), ": Texture \"", name, "\"");
     } else if (type == "constant") {
-        texture.scale = parameters.Color("value").value_or(Rgb(1.0f));
+        texture.scale = scalar ? Rgb(static_cast<float>(parameters.Float("value", 1.0)))
+                               : parameters.Color("value").value_or(Rgb(1.0f));
     } else if (type == "scale") {
         const float scale = static_cast<float>(parameters.Float("scale", 1.0));
         if (const std::optional<std::string> inner = parameters.TextureName("tex")) {
-            const auto it = textures_.find(*inner);
-            if (it == textures_.end())
-                return ErrorAt(where, absl::StrCat("Texture \"", name, "\": no texture named \"",
-                                                   *inner, "\""));
+            const auto it = named.find(*inner);
+            if (it == named.end())
+                return ErrorAt(where, absl::StrCat("Texture \"", name, "\": no ", kind,
+                                                   " texture named \"", *inner, "\""));
             texture = it->second;
         } else {
-            texture.scale = parameters.Color("tex").value_or(Rgb(1.0f));
+            texture.scale = scalar ? Rgb(static_cast<float>(parameters.Float("tex", 1.0)))
+                                   : parameters.Color("tex").value_or(Rgb(1.0f));
         }
         texture.scale *= scale;
     } else {
@@ -254,7 +322,7 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
     if (!IsFinite(texture.scale) || MinComponent(texture.scale) < 0)
         return ErrorAt(where, absl::StrCat("Texture \"", name,
                                            "\": its values must be finite and non-negative"));
-    textures_[name] = texture;
+    named[name] = texture;
     return absl::OkStatus();
 }
 

@@ -49,11 +49,19 @@ struct AreaLight {
     TextureRef image;  // "filename": the radiance is times this image (empty path: none)
 };
 
+// A shape's "alpha" (a Shape parameter): a constant, or a float texture times it.
+struct ShapeAlpha {
+    float value = 1.0f;
+    int32_t texture = kNoTexture;  // into Scene::textures
+    UvTransform uv;                // of the texture
+};
+
 struct GraphicsState {
     Transform ctm;
     bool reverse_orientation = false;
     int material = -1;  // into materials_; -1: pbrt's default, diffuse 0.5
     std::optional<AreaLight> area_light;
+    ShapeAlpha alpha;  // not state pbrt keeps: Shape sets it for the one shape it makes
 };
 
 // A shape inside ObjectBegin/ObjectEnd, kept in the object's space until instanced.
@@ -141,7 +149,7 @@ private:
     void Warn(const Location& where, const std::string& what);
     void WarnUnused(const ParameterList& parameters, const std::string& directive);
     absl::StatusOr<uint32_t> SceneMaterial(int material, Rgb emission, bool two_sided,
-                                           int32_t emission_texture);
+                                           const ShapeAlpha& alpha, int32_t emission_texture);
     static const MaterialRef& DefaultMaterial();
 
     SceneFiles& files_;
@@ -167,10 +175,11 @@ private:
     std::vector<MaterialRef> materials_;
     std::map<std::string, int> named_materials_;
     std::map<std::string, TextureRef> textures_;
-    std::map<std::string, std::string> float_textures_;  // name -> class, unused by photonfarm
-    std::map<std::tuple<std::string, ImageEncoding, double>, int32_t>
-        images_;  // (path, encoding, gamma) -> Scene::textures
-    std::map<std::tuple<int, float, float, float, bool, int32_t>, uint32_t> scene_materials_;
+    std::map<std::string, TextureRef> float_textures_;  // their value in every channel
+    std::map<std::tuple<std::string, ImageDecodeOptions>, int32_t>
+        images_;  // (path, how it is decoded) -> Scene::textures
+    std::map<std::tuple<int, float, float, float, bool, int32_t, float, int32_t>, uint32_t>
+        scene_materials_;
 
     std::map<std::string, std::vector<ObjectShape>> objects_;
     std::map<std::string, uint32_t>

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "core/scene/emitters.h"
@@ -151,6 +152,53 @@ TEST(GltfLoaderTest, BaseColourTextureIsDecodedToLinearAndSampled) {
 constexpr char kTwoTexelPng[] =
     "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTkSuQm"
     "CC";
+
+// 2x1 RGBA: white, transparent on the left, opaque on the right.
+constexpr char kHalfTransparentPng[] =
+    "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAYAAAD0In+KAAAAEElEQVR4nGP4//8/AxD/BwAe6gb6OStlagAAAABJRU5E"
+    "rkJggg==";
+
+TEST(GltfLoaderTest, AlphaModesCutOutWhereAlphaSays) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.materials[0].texture_png_base64 = kHalfTransparentPng;
+    scene.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+    const auto floor_of = [&](const std::string& extra) {
+        scene.materials[0].extra = extra;
+        const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "alpha.gltf"));
+        EXPECT_TRUE(loaded.ok()) << loaded.status();
+        return loaded.ok() ? std::optional<Scene>(*loaded) : std::nullopt;
+    };
+    // OPAQUE (the default) reads no alpha.
+    std::optional<Scene> opaque = floor_of("");
+    ASSERT_TRUE(opaque);
+    EXPECT_FALSE(opaque->materials[opaque->triangles[0].material].HasCutOuts());
+    // MASK: the texture's alpha (linear) against the cutoff; the surface is cut on the left.
+    std::optional<Scene> mask = floor_of(R"(,"alphaMode":"MASK","alphaCutoff":0.3)");
+    ASSERT_TRUE(mask);
+    const Material& masked = mask->materials[mask->triangles[0].material];
+    EXPECT_TRUE(masked.HasCutOuts());
+    EXPECT_EQ(masked.alpha_cutoff, 0.3f);
+    ASSERT_NE(masked.alpha_texture, kNoTexture);
+    EXPECT_NE(masked.alpha_texture, masked.base_color_texture) << "a texture of its own";
+    EXPECT_EQ(mask->textures[masked.alpha_texture]->texels[0], Rgb(0.0f));
+    EXPECT_EQ(mask->textures[masked.alpha_texture]->texels[1], Rgb(1.0f));
+    EXPECT_EQ(mask->textures[masked.base_color_texture]->texels[0], Rgb(1.0f)) << "colour kept";
+    // BLEND: coverage, no cutoff.
+    std::optional<Scene> blend = floor_of(R"(,"alphaMode":"BLEND")");
+    ASSERT_TRUE(blend);
+    EXPECT_EQ(blend->materials[blend->triangles[0].material].alpha_cutoff, 0.0f);
+    EXPECT_TRUE(blend->materials[blend->triangles[0].material].HasCutOuts());
+    // An image without alpha cuts nothing out, and costs nothing.
+    scene.materials[0].texture_png_base64 = kTwoTexelPng;
+    std::optional<Scene> rgb = floor_of(R"(,"alphaMode":"MASK")");
+    ASSERT_TRUE(rgb);
+    EXPECT_FALSE(rgb->materials[rgb->triangles[0].material].HasCutOuts());
+    scene.materials[0].extra = R"(,"alphaMode":"MASK","alphaCutoff":-1)";
+    const absl::StatusOr<Scene> bad = LoadScene(testing::WriteGltf(scene, "alpha-bad.gltf"));
+    ASSERT_FALSE(bad.ok());
+    EXPECT_NE(bad.status().message().find("alphaCutoff must lie in [0, 1]"), std::string::npos)
+        << bad.status();
+}
 
 TEST(GltfLoaderTest, TextureTransformIsAppliedToTheTextureCoordinates) {
     // KHR_texture_transform: uv' = offset + rotation(scale uv); a quarter turn maps (1, 0) to

@@ -143,6 +143,18 @@ TEST(PreparedSceneTest, TexturesAndInstancesSurviveAndTheFilterIsRebuilt) {
 
 // An environment map (a latitude-longitude image of floats) and a uniform one, with and
 // without a portal, survive.
+TEST(PreparedSceneTest, CoatsSurvive) {
+    Scene scene = *LoadScene(Shipped("cornell-box.gltf"));
+    scene.materials[0].coat_ior = 1.5f;
+    scene.materials[0].coat_roughness = 0.2f;
+    scene.materials[0].coat_thickness = 0.01f;
+    scene.materials[0].coat_depth = 7;
+    const absl::StatusOr<Scene> decoded = DecodePreparedScene(EncodePreparedScene(scene), true);
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    ExpectSameScene(scene, *decoded);
+    EXPECT_EQ(decoded->materials[0].coat_depth, 7u);
+}
+
 TEST(PreparedSceneTest, EnvironmentsSurvive) {
     Scene scene = TexturedInstancedScene();
     Environment& environment = scene.environment.emplace();
@@ -267,6 +279,19 @@ TEST(PreparedSceneTest, HostileBytesAreRefusedNamingWhatIsWrong) {
     broken([](Scene& s) { s.materials[0].type = static_cast<MaterialType>(40); },
            "unknown type 40");
     broken([](Scene& s) { s.materials[0].emission = Rgb(-1.0f); }, "material 0");
+    broken([](Scene& s) { s.materials[0].coat_ior = 0.5f; }, "material 0: a coat out of range");
+    broken(
+        [](Scene& s) {
+            s.materials[1].coat_ior = 1.5f;
+            s.materials[1].coat_thickness = std::nanf("");
+        },
+        "material 1: a coat out of range");
+    broken(
+        [](Scene& s) {
+            s.materials[0].type = MaterialType::kDielectric;
+            s.materials[0].coat_ior = 1.5f;
+        },
+        "material 0: a coat out of range");
     broken([](Scene& s) { s.camera.y_fov = std::numeric_limits<float>::infinity(); },
            "camera not finite");
     broken([](Scene& s) { s.prototypes.push_back({0, 1000000, {}}); }, "prototype 0");

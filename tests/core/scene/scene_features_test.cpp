@@ -26,6 +26,22 @@ TEST(SceneFeaturesTest, ShippedScenesUseWhatTheyShow) {
     EXPECT_TRUE(glass.mirror && glass.dielectric);
     EXPECT_FALSE(glass.thin_dielectric);
     EXPECT_TRUE(glass.Specular());
+    EXPECT_FALSE(glass.coats);
+}
+
+TEST(SceneFeaturesTest, CoatsAreAFeatureOfTheirOwn) {
+    Scene scene = Shipped("cornell-box.gltf");
+    EXPECT_FALSE(FeaturesOf(scene).coats);
+    // A coat over a material no triangle uses costs nothing; over one in use it is a feature,
+    // and the passes take their non-diffuse variants for it.
+    scene.materials.push_back(scene.materials[0]);
+    scene.materials.back().coat_ior = 1.5f;
+    EXPECT_FALSE(FeaturesOf(scene).coats);
+    scene.materials[scene.triangles[0].material].coat_ior = 1.5f;
+    const SceneFeatures coated = FeaturesOf(scene);
+    EXPECT_TRUE(coated.coats);
+    EXPECT_TRUE(coated.Specular());
+    EXPECT_EQ(coated.ToString(), "diffuse, coated, area lights");
 }
 
 TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
@@ -40,8 +56,8 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     EXPECT_FALSE(features.point_lights) << "a light of no power is no emitter";
     EXPECT_FALSE(features.triangle_lights) << "an emissive material on no triangle emits nothing";
     EXPECT_EQ(SceneFeatures::All().ToString(),
-              "diffuse, mirror, glass, thin glass, rough metal, rough glass, textures, smooth "
-              "normals, area lights, "
+              "diffuse, mirror, glass, thin glass, rough metal, rough glass, coated, cut-outs, "
+              "textures, smooth normals, area lights, "
               "point lights, spot lights, directional lights, environment light, textured lights, "
               "goniometric or projection lights, caustics");
 }

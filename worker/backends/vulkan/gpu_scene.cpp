@@ -35,13 +35,19 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
     // What no kernel of this scene reads is neither built nor uploaded.
     if (gpu_scene.features.smooth_normals)
         for (const Vec3& normal : scene.normals) gpu_scene.normals.push_back(Vec4(normal));
-    if (gpu_scene.features.textures)
+    if (gpu_scene.features.textures || gpu_scene.features.cut_outs)
         for (const Point2& uv : scene.uvs) gpu_scene.uvs.push_back({uv.x, uv.y});
     for (const Material& material : scene.materials)
-        gpu_scene.materials.push_back({Vec4(material.base_color, material.ior),
-                                       static_cast<uint32_t>(material.type),
-                                       material.base_color_texture, material.roughness, 0});
-    if (!gpu_scene.features.textures && !gpu_scene.features.textured_lights) return;
+        gpu_scene.materials.push_back(
+            {Vec4(material.base_color, material.ior), static_cast<uint32_t>(material.type),
+             material.base_color_texture, material.roughness, 0,
+             gpu::vec4{material.coat_ior, material.coat_roughness, material.coat_thickness,
+                       std::bit_cast<float>(material.coat_depth)},
+             gpu::vec4{material.alpha, material.alpha_cutoff,
+                       std::bit_cast<float>(material.alpha_texture), 0}});
+    if (!gpu_scene.features.textures && !gpu_scene.features.textured_lights &&
+        !gpu_scene.features.cut_outs)
+        return;
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {
         gpu_scene.textures.push_back(
             {static_cast<uint32_t>(gpu_scene.texels.size()), texture->width, texture->height, 0});
@@ -135,7 +141,7 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
         } else if (record.kind == EmitterKind::kTriangle) {
             emitter.position = Vec4(record.p0, gpu::kEmitterTriangle);
             emitter.edge1 = Vec4(record.edge1, record.area);
-            emitter.edge2 = Vec4(record.edge2);
+            emitter.edge2 = Vec4(record.edge2, record.invisible ? 1.0f : 0.0f);
             emitter.direction = Vec4(record.normal, record.two_sided ? 1.0f : 0.0f);
             emitter.radiance = Vec4(record.radiance);
             emitter.texture = {record.uv0.x, record.uv0.y, std::bit_cast<float>(record.texture),
@@ -210,6 +216,8 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasEnvironment] = features.environment;
     spec[gpu::kSpecHasTexturedLights] = features.textured_lights;
     spec[gpu::kSpecHasImageLights] = features.image_lights;
+    spec[gpu::kSpecHasCoats] = features.coats;
+    spec[gpu::kSpecHasCutOuts] = features.cut_outs;
     return spec;
 }
 

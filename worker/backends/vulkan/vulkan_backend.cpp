@@ -44,8 +44,9 @@ uint32_t Groups(uint64_t threads, uint32_t per_group) {
     return static_cast<uint32_t>((threads + per_group - 1) / per_group);
 }
 
+static_assert(gpu::kNoCoat == kNoCoat);
 gpu::GpuHitPoint ToGpu(const HitPoint& h) {
-    return {{h.position.x, h.position.y, h.position.z, 0},
+    return {{h.position.x, h.position.y, h.position.z, std::bit_cast<float>(h.coat)},
             {h.normal.x, h.normal.y, h.normal.z, 0},
             {h.weight.x, h.weight.y, h.weight.z, 0}};
 }

@@ -7,6 +7,7 @@
 #include "core/shared/gpu_types.h"
 #include "core/shared/rng.h"
 #include "core/shared/path_sampling.h"
+#include "core/shared/alpha.h"
 
 layout(constant_id = kSpecHasMirror) const bool kHasMirror = true;
 layout(constant_id = kSpecHasDielectric) const bool kHasDielectric = true;
@@ -22,6 +23,8 @@ layout(constant_id = kSpecHasDirectionalLights) const bool kHasDirectionalLights
 layout(constant_id = kSpecHasEnvironment) const bool kHasEnvironment = true;
 layout(constant_id = kSpecHasTexturedLights) const bool kHasTexturedLights = true;
 layout(constant_id = kSpecHasImageLights) const bool kHasImageLights = true;
+layout(constant_id = kSpecHasCoats) const bool kHasCoats = true;
+layout(constant_id = kSpecHasCutOuts) const bool kHasCutOuts = true;
 
 layout(push_constant, std430) uniform Push { GpuParams params; };
 

@@ -2,10 +2,12 @@
 // One direct-light sample for each hit point of a batch's slice (core/ppm/direct_light.cpp on
 // the CPU, with the same random numbers): a light sample with its shadow ray and, in a scene
 // with emitting triangles or an environment, a cosine-distributed ray that may find one,
-// weighed by the power heuristic; the result times the hit point's weight.
+// weighed by the power heuristic, under a coat times what it lets through; the result times the
+// hit point's weight.
 #include "common.glsl"
 #include "trace.glsl"
 #include "lights.glsl"
+#include "core/shared/coat.h"
 
 layout(local_size_x = kWorkgroupSize) in;
 
@@ -20,28 +22,42 @@ void main() {
         Pcg32 rng = Pcg32Seeded(FamilySeed(params.seed_prefix, index));
         const vec3 normal = point.normal.xyz;
         LightSample light;
-        vec3 irradiance = vec3(0);
+        vec3 light_part = vec3(0), ray_part = vec3(0);
+        vec3 ray_direction = normal;
         RayHit hit;
         if (SampleLight(point.position.xyz, normal, rng, light) &&
             !TraceRay(light.origin, light.direction, light.distance, true, hit)) {
             const float cosine = dot(light.direction, normal);
             const float weight = light.pdf > 0 ? PowerHeuristic(light.pdf, cosine / kPi) : 1.0;
-            irradiance += light.radiance_over_pdf * (cosine * weight);
+            light_part = light.radiance_over_pdf * (cosine * weight);
         }
         if (kHasTriangleLights || kHasEnvironment) {
             const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-            const vec3 direction = FrameFromNormal(normal) * SampleCosineHemisphere(u1, u2);
+            ray_direction = FrameFromNormal(normal) * SampleCosineHemisphere(u1, u2);
             const vec3 origin = OffsetRayOrigin(point.position.xyz, normal);
             float pdf = 0;
             vec3 radiance = vec3(0);
-            if (TraceRay(origin, direction, kInfinity, false, hit)) {
-                if (kHasTriangleLights) radiance = HitEmitter(hit, origin, origin + direction * hit.t, pdf);
+            if (TraceRay(origin, ray_direction, kInfinity, false, hit)) {
+                if (kHasTriangleLights) radiance = HitEmitter(hit, origin, origin + ray_direction * hit.t, pdf);
             } else if (kHasEnvironment) {
-                radiance = EscapedRay(origin, direction, pdf);
+                radiance = EscapedRay(origin, ray_direction, pdf);
             }
             // L cos / (cos / pi): the cosine ray's own weight is pi.
-            if (pdf > 0) irradiance += radiance * (kPi * PowerHeuristic(dot(direction, normal) / kPi, pdf));
+            if (pdf > 0) ray_part = radiance * (kPi * PowerHeuristic(dot(ray_direction, normal) / kPi, pdf));
         }
+        // Under a coat, what it lets through of each (core/ppm/direct_light.cpp's CoatFactor).
+        const uint coat = floatBitsToUint(point.position.w);
+        if (kHasCoats && coat != kNoCoat) {
+            const vec4 layer = materials[coat].coat;
+            float u1 = 0, u2 = 0;
+            if (layer.y > 0.0) u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+            const mat3 frame = FrameFromNormal(normal);
+            if (MaxComponent(light_part) > 0.0)
+                light_part *= CoatTransmittance(light.direction * frame, layer.x, layer.y, layer.z, u1, u2);
+            if (MaxComponent(ray_part) > 0.0)
+                ray_part *= CoatTransmittance(ray_direction * frame, layer.x, layer.y, layer.z, u1, u2);
+        }
+        const vec3 irradiance = light_part + ray_part;
         vec3 value = point.weight.xyz * irradiance;
         if (!IsFinite(value)) {
             atomicAdd(group_discarded, 1u);

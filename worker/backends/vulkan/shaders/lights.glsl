@@ -201,7 +201,8 @@ bool SampleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample sample_out) {
         if (!(cos_light > 0) || !(distance_sq > 0)) return false;
         radiance_over_pdf = emitter.radiance.xyz * EmissionTexel(emitter, b) *
                             (cos_light * emitter.edge1.w / distance_sq);
-        sample_out.pdf = distance_sq / (cos_light * emitter.edge1.w * emitter.power.w);
+        // An emitter cut out everywhere is found by light sampling alone: no MIS weight.
+        sample_out.pdf = emitter.edge2.w != 0.0 ? 0.0 : distance_sq / (cos_light * emitter.edge1.w * emitter.power.w);
     } else if (kHasDirectionalLights && kind == kEmitterDirectional) {
         to_light = -emitter.direction.xyz;
         radiance_over_pdf = emitter.radiance.xyz;

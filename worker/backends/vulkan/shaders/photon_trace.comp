@@ -1,7 +1,7 @@
 #version 460
 // The photon pass (core/ppm/photon_pass.cpp on the CPU): one thread a photon path, from a
-// light through specular and diffuse bounces with Russian roulette; at every diffuse hit
-// after the first scattering the photon is gathered at once by the hit points whose sphere
+// light through specular and diffuse bounces (and through coats, as core/ppm/photon_walk.h)
+// with Russian roulette; at every diffuse hit after the first scattering the photon is gathered at once by the hit points whose sphere
 // holds it, into integer sums (GpuTallySum) that do not depend on thread order.
 #include "common.glsl"
 #include "trace.glsl"
@@ -70,38 +70,84 @@ uint TracePhoton(uint photon, out bool discarded) {
         const Surface surface = SurfaceAt(hit);
         const GpuMaterial material = materials[surface.material];
         const bool front_facing = dot(direction, surface.geometric_normal) < 0;
+        SpecularBounce scatter = SpecularBounce(direction, vec3(0.0), false);  // absorbed
         if (material.type == kMaterialDiffuse) {
-            if (scattered) Gather(surface.position, direction, flux);
-            // Russian roulette by albedo (Jensen 2001, 2.3.3).
-            const float survive = min(1.0, MaxComponent(surface.base_color));
-            if (!(Pcg32NextFloat(rng) < survive)) break;
-            flux *= surface.base_color / survive;
             const vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
-            const vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
-            const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-            direction = FrameFromNormal(normal) * SampleCosineHemisphere(u1, u2);
-            if (!(dot(direction, geometric) > 0)) break;  // the shading normal pointed it inside
-            origin = OffsetRayOrigin(surface.position, geometric);
-        } else if (kHasMirror || kHasDielectric || kHasThinDielectric || kHasRoughConductor || kHasRoughDielectric) {
-            // As ScatterNonDiffuse: one number for a specular surface, three for a rough one.
-            const float u_branch = Pcg32NextFloat(rng);
-            SpecularBounce bounce;
-            if ((kHasRoughConductor && material.type == kMaterialRoughConductor) ||
-                (kHasRoughDielectric && material.type == kMaterialRoughDielectric)) {
-                const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-                bounce = ScatterRough(material, direction, surface.shading_normal, front_facing, surface.base_color,
-                                      u_branch, u1, u2);
-            } else {
-                bounce = ScatterSpecular(material, direction, surface.shading_normal, front_facing, surface.base_color,
-                                         u_branch);
+            const mat3 frame = FrameFromNormal(normal);
+            const bool coated = kHasCoats && material.coat.x > 0.0;
+            bool at_base = true;
+            if (coated) {  // as ArriveAtCoat: the coat reflects the photon or lets it in
+                const float u_branch = Pcg32NextFloat(rng), u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+                vec3 wi;
+                const float weight = EnterCoat(-direction * frame, material.coat.x, material.coat.y, material.coat.z,
+                                               u_branch, u1, u2, wi);
+                at_base = wi.z < 0.0;
+                if (at_base) flux *= weight;
+                else scatter = SpecularBounce(frame * wi, vec3(weight), false);
             }
-            const float survive = min(1.0, MaxComponent(bounce.weight));
-            if (!(Pcg32NextFloat(rng) < survive)) break;
-            flux *= bounce.weight / survive;
-            const vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;
-            origin = OffsetRayOrigin(surface.position, side);
-            direction = bounce.direction;
+            if (at_base) {
+                if (scattered) Gather(surface.position, direction, flux);
+                bool escaped = false;
+                for (int returns = 0;; ++returns) {
+                    // Russian roulette by albedo (Jensen 2001, 2.3.3).
+                    const float survive = min(1.0, MaxComponent(surface.base_color));
+                    if (!(Pcg32NextFloat(rng) < survive)) break;
+                    flux *= surface.base_color / survive;
+                    const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+                    const vec3 local = SampleCosineHemisphere(u1, u2);
+                    if (!coated) {
+                        direction = frame * local;
+                        escaped = true;
+                        break;
+                    }
+                    // As LeaveCoatAt: out through the coat, or back down to the base.
+                    const float u_branch = Pcg32NextFloat(rng), v1 = Pcg32NextFloat(rng), v2 = Pcg32NextFloat(rng);
+                    vec3 wi;
+                    flux *= LeaveCoat(local, material.coat.x, material.coat.y, material.coat.z, u_branch, v1, v2, wi);
+                    direction = frame * wi;
+                    if (wi.z > 0.0) {
+                        escaped = true;
+                        break;
+                    }
+                    if (MaxComponent(flux) <= 0.0 || returns == kMaxCoatReturns) break;
+                    Gather(surface.position, direction, flux);
+                }
+                if (!escaped) break;
+                const vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
+                if (!(dot(direction, geometric) > 0)) break;  // the shading normal pointed it inside
+                origin = OffsetRayOrigin(surface.position, geometric);
+                scattered = true;
+                continue;
+            }
+        } else if (kHasMirror || kHasDielectric || kHasThinDielectric || kHasRoughConductor || kHasRoughDielectric) {
+            if (kHasCoats && material.coat.x > 0.0) {  // a coated conductor
+                const mat3 frame = FrameFromNormal(front_facing ? surface.shading_normal : -surface.shading_normal);
+                const float base_alpha = material.type == kMaterialRoughConductor ? max(material.roughness, 1e-3) : 0.0;
+                vec3 wi;
+                const vec3 weight = ScatterCoatedConductor(-direction * frame, material.coat.x, material.coat.y,
+                                                           material.coat.z, floatBitsToUint(material.coat.w),
+                                                           surface.base_color, base_alpha, rng, wi);
+                scatter = SpecularBounce(frame * wi, weight, false);
+            } else {
+                // As ScatterNonDiffuse: one number for a specular surface, three for a rough one.
+                const float u_branch = Pcg32NextFloat(rng);
+                if ((kHasRoughConductor && material.type == kMaterialRoughConductor) ||
+                    (kHasRoughDielectric && material.type == kMaterialRoughDielectric)) {
+                    const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+                    scatter = ScatterRough(material, direction, surface.shading_normal, front_facing, surface.base_color,
+                                          u_branch, u1, u2);
+                } else {
+                    scatter = ScatterSpecular(material, direction, surface.shading_normal, front_facing,
+                                             surface.base_color, u_branch);
+                }
+            }
         }
+        const float survive = min(1.0, MaxComponent(scatter.weight));
+        if (!(Pcg32NextFloat(rng) < survive)) break;
+        flux *= scatter.weight / survive;
+        const vec3 side = front_facing == scatter.transmitted ? -surface.geometric_normal : surface.geometric_normal;
+        origin = OffsetRayOrigin(surface.position, side);
+        direction = scatter.direction;
         scattered = true;
     }
     return segments;

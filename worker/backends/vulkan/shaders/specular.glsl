@@ -1,8 +1,10 @@
 // Specular and rough scattering, as core/scene/specular.h and core/scene/glossy.h (Fresnel
 // and refraction from core/shared/path_sampling.h, the GGX lobes from core/shared/microfacet.h):
 // the branch is chosen with its Fresnel probability, so the carried weight is the tint alone
-// (times the masking ratio G2 / G1 on rough surfaces). Materials the scene lacks are compiled out.
+// (times the masking ratio G2 / G1 on rough surfaces); coats as core/shared/coat.h walks them.
+// Materials the scene lacks are compiled out.
 #include "core/shared/microfacet.h"
+#include "core/shared/coat.h"
 
 struct SpecularBounce {
     vec3 direction;

@@ -1,6 +1,6 @@
 // Ray queries against the scene's BVH (built on the CPU by Embree's builder, flattened to
 // GpuBvhNode): closest hit and any hit, a stack-based traversal visiting the nearer child
-// first, Moeller-Trumbore triangle tests.
+// first, Moeller-Trumbore triangle tests, cut-outs passed through.
 struct RayHit {
     float t;
     uint triangle;  // in leaf order (the triangles binding)
@@ -14,6 +14,36 @@ float EnterBox(vec3 lower, vec3 upper, vec3 origin, vec3 inverse_direction, floa
     const float enter = max(max(near.x, near.y), max(near.z, 0.0));
     const float leave = min(min(far.x, far.y), min(far.z, t_max));
     return enter <= leave ? enter : kInfinity;
+}
+
+vec3 TextureSample(GpuTexture texture, vec2 uv) {
+    // Bilinear with repeat wrapping at glTF coordinates, as core/scene/texture.h.
+    const vec2 xy = uv * vec2(texture.width, texture.height) - 0.5;
+    const vec2 floor_xy = floor(xy);
+    const vec2 w = xy - floor_xy;
+    const ivec2 size = ivec2(texture.width, texture.height);
+    const ivec2 p0 = ((ivec2(floor_xy) % size) + size) % size;
+    const ivec2 p1 = (p0 + 1) % size;
+    const uint row0 = texture.first_texel + uint(p0.y * size.x), row1 = texture.first_texel + uint(p1.y * size.x);
+    const vec3 top = mix(texels[row0 + p0.x].xyz, texels[row0 + p1.x].xyz, w.x);
+    const vec3 bottom = mix(texels[row1 + p0.x].xyz, texels[row1 + p1.x].xyz, w.x);
+    return mix(top, bottom, w.y);
+}
+
+// Whether the ray meets scene triangle `index` at (b1, b2) or passes through a cut-out there, as
+// the CPU tracer's Embree filter decides (core/shared/alpha.h, Scene::Alpha).
+bool MeetsSurface(uint index, float b1, float b2, vec3 origin, vec3 direction) {
+    const GpuTriangleShading shade = shading[index];
+    const GpuMaterial material = materials[shade.vertices.w & ~kSmoothBit];
+    float alpha = material.alpha.x;
+    const int texture = floatBitsToInt(material.alpha.z);
+    if (alpha >= 1.0 && texture < 0) return true;
+    if (texture >= 0) {
+        const vec2 uv = vertex_uvs[shade.vertices.x] * (1.0 - b1 - b2) + vertex_uvs[shade.vertices.y] * b1 +
+                        vertex_uvs[shade.vertices.z] * b2;
+        alpha *= TextureSample(textures[texture], uv).x;
+    }
+    return AlphaMeets(alpha, material.alpha.y, AlphaHash(origin, direction, index));
 }
 
 bool IntersectTriangle(uint index, vec3 origin, vec3 direction, inout float t_max, inout RayHit hit) {
@@ -30,6 +60,7 @@ bool IntersectTriangle(uint index, vec3 origin, vec3 direction, inout float t_ma
     if (b2 < 0 || b1 + b2 > 1) return false;
     const float t = dot(triangle.edge2.xyz, q) * inverse;
     if (!(t > 0 && t < t_max)) return false;
+    if (kHasCutOuts && !MeetsSurface(floatBitsToUint(triangle.p0.w), b1, b2, origin, direction)) return false;
     t_max = t;
     hit = RayHit(t, index, b1, b2);
     return true;
@@ -83,20 +114,6 @@ struct Surface {
     uint material;
     vec3 base_color;        // reflectance or tint, texture applied
 };
-
-vec3 TextureSample(GpuTexture texture, vec2 uv) {
-    // Bilinear with repeat wrapping at glTF coordinates, as core/scene/texture.h.
-    const vec2 xy = uv * vec2(texture.width, texture.height) - 0.5;
-    const vec2 floor_xy = floor(xy);
-    const vec2 w = xy - floor_xy;
-    const ivec2 size = ivec2(texture.width, texture.height);
-    const ivec2 p0 = ((ivec2(floor_xy) % size) + size) % size;
-    const ivec2 p1 = (p0 + 1) % size;
-    const uint row0 = texture.first_texel + uint(p0.y * size.x), row1 = texture.first_texel + uint(p1.y * size.x);
-    const vec3 top = mix(texels[row0 + p0.x].xyz, texels[row0 + p1.x].xyz, w.x);
-    const vec3 bottom = mix(texels[row1 + p0.x].xyz, texels[row1 + p1.x].xyz, w.x);
-    return mix(top, bottom, w.y);
-}
 
 Surface SurfaceAt(RayHit hit) {
     const GpuTriangle triangle = triangles[hit.triangle];

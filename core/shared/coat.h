@@ -1,0 +1,161 @@
+// Coated surfaces, pbrt-v4's coateddiffuse and coatedconductor: a dielectric layer of index
+// `ior` (smooth, or rough with GGX alpha `alpha`) over a diffuse or conductor base, its
+// interior absorbing with optical thickness `thickness` (pbrt-v4's LayeredBxDF with albedo 0:
+// a crossing at cosine mu transmits exp(-thickness / mu)). Light is followed through the layer
+// as pbrt-v4's random walk follows it, choosing each interface's branch with its Fresnel
+// probability, so every pass (camera, photon, direct light, path tracer) sees the same
+// surface. Directions are in the local frame of the shading normal, +z on the side the light
+// arrives from outside. One definition for the CPU and the Vulkan kernels.
+#ifndef PF_CORE_SHARED_COAT_H
+#define PF_CORE_SHARED_COAT_H
+
+#include "core/shared/gpu_prelude.h"
+#include "core/shared/microfacet.h"
+#include "core/shared/path_sampling.h"
+#include "core/shared/rng.h"
+
+PF_GPU_BEGIN
+
+// A coat may turn a path leaving its diffuse base back down to it this often at most.
+PF_CONST(int32_t) kMaxCoatReturns = 64;
+
+// The layer's transmittance along a crossing with direction cosine cos_z.
+PF_GPU_FN float CoatLayerTransmittance(float thickness, float cos_z) {
+    return thickness > 0.0f ? exp(-thickness / max(abs(cos_z), 1e-6f)) : 1.0f;
+}
+
+// Light leaving along wo (wo.z > 0, the incident side +z) meets a dielectric interface with
+// eta = n_incident / n_transmitted: sets wi to where it goes, reflected (wi.z > 0) or
+// transmitted (wi.z < 0), the branch chosen with its Fresnel probability by u_branch and the
+// microfacet by (u1, u2) on a rough interface (alpha > 0). Returns the weight carried: 1 on a
+// smooth interface, the masking ratio G2 / G1 on a rough one, 0 where the sample is lost.
+PF_GPU_FN float CrossCoatInterface(vec3 wo, float eta, float alpha, float u_branch, float u1,
+                                   float u2, PF_OUT(vec3) wi) {
+    if (alpha <= 0.0f) {
+        const vec3 normal = vec3(0.0f, 0.0f, 1.0f);
+        wi = vec3(-wo.x, -wo.y, wo.z);
+        if (u_branch < FresnelDielectric(wo.z, eta)) return 1.0f;
+        vec3 refracted;
+        if (Refract(-wo, normal, eta, refracted)) wi = refracted;
+        return 1.0f;
+    }
+    const vec3 m = SampleGgxVisibleNormal(wo, alpha, u1, u2);
+    const float cos_om = dot(wo, m);
+    wi = m * (2.0f * cos_om) - wo;
+    vec3 refracted;
+    if (u_branch >= FresnelDielectric(cos_om, eta) && Refract(-wo, m, eta, refracted)) {
+        wi = refracted;
+        return wi.z < 0.0f ? GgxMaskingRatio(wo.z, -wi.z, alpha) : 0.0f;
+    }
+    return wi.z > 0.0f ? GgxMaskingRatio(wo.z, wi.z, alpha) : 0.0f;
+}
+
+// The same with the incident side -z (light inside the layer going up meets the coat from
+// below; wo.z < 0): mirrored through the interface's plane and back.
+PF_GPU_FN float CrossCoatFromBelow(vec3 wo, float eta, float alpha, float u_branch, float u1,
+                                   float u2, PF_OUT(vec3) wi) {
+    vec3 mirrored;
+    const float weight =
+        CrossCoatInterface(vec3(wo.x, wo.y, -wo.z), eta, alpha, u_branch, u1, u2, mirrored);
+    wi = vec3(mirrored.x, mirrored.y, -mirrored.z);
+    return weight;
+}
+
+// Light arriving from outside along -wo: reflected by the coat (wi.z > 0), or refracted into
+// it and carried down to the base (wi.z < 0; the weight includes the crossing's
+// transmittance).
+PF_GPU_FN float EnterCoat(vec3 wo, float ior, float alpha, float thickness, float u_branch,
+                          float u1, float u2, PF_OUT(vec3) wi) {
+    const float weight = CrossCoatInterface(wo, 1.0f / ior, alpha, u_branch, u1, u2, wi);
+    return wi.z < 0.0f ? weight * CoatLayerTransmittance(thickness, wi.z) : weight;
+}
+
+// Light leaving the base upward along `up` (up.z > 0) crosses the layer and meets the coat
+// from inside: escapes (wi.z > 0, outside), or is reflected back down to the base (wi.z < 0;
+// the weight includes both crossings' transmittance).
+PF_GPU_FN float LeaveCoat(vec3 up, float ior, float alpha, float thickness, float u_branch,
+                          float u1, float u2, PF_OUT(vec3) wi) {
+    const float weight = CoatLayerTransmittance(thickness, up.z) *
+                         CrossCoatFromBelow(-up, ior, alpha, u_branch, u1, u2, wi);
+    return wi.z < 0.0f ? weight * CoatLayerTransmittance(thickness, wi.z) : weight;
+}
+
+// The fraction of light arriving from outside along -w (w.z > 0) that reaches the base: exact
+// for a smooth coat; for a rough one an unbiased estimate from the microfacet (u1, u2), as
+// EnterCoat would draw it, the Fresnel branch taken by its expectation.
+PF_GPU_FN float CoatTransmittance(vec3 w, float ior, float alpha, float thickness, float u1,
+                                  float u2) {
+    if (!(w.z > 0.0f)) return 0.0f;
+    const float eta = 1.0f / ior;
+    vec3 m = vec3(0.0f, 0.0f, 1.0f);
+    if (alpha > 0.0f) m = SampleGgxVisibleNormal(w, alpha, u1, u2);
+    vec3 refracted;
+    if (!Refract(-w, m, eta, refracted) || !(refracted.z < 0.0f)) return 0.0f;
+    const float transmitted = 1.0f - FresnelDielectric(dot(w, m), eta);
+    const float masking = alpha > 0.0f ? GgxMaskingRatio(w.z, -refracted.z, alpha) : 1.0f;
+    return transmitted * masking * CoatLayerTransmittance(thickness, refracted.z);
+}
+
+// Both of EnterCoat's branches at once, for paths that split rather than choose (the camera
+// pass): from one microfacet (u1, u2) on a rough coat, the reflection (wi, weight
+// `reflected`, 0 where it leaves the hemisphere) and, returned, the weight carried to the
+// base, each times its Fresnel probability: their sum is EnterCoat's expectation.
+PF_GPU_FN float SplitAtCoat(vec3 wo, float ior, float alpha, float thickness, float u1, float u2,
+                            PF_OUT(vec3) wi, PF_OUT(float) reflected) {
+    const float eta = 1.0f / ior;
+    vec3 m = vec3(0.0f, 0.0f, 1.0f);
+    if (alpha > 0.0f) m = SampleGgxVisibleNormal(wo, alpha, u1, u2);
+    const float cos_om = dot(wo, m);
+    const float fresnel = FresnelDielectric(cos_om, eta);
+    wi = m * (2.0f * cos_om) - wo;
+    reflected = 0.0f;
+    if (wi.z > 0.0f)
+        reflected = alpha > 0.0f ? fresnel * GgxMaskingRatio(wo.z, wi.z, alpha) : fresnel;
+    vec3 refracted;
+    if (!Refract(-wo, m, eta, refracted) || !(refracted.z < 0.0f)) return 0.0f;
+    const float masking = alpha > 0.0f ? GgxMaskingRatio(wo.z, -refracted.z, alpha) : 1.0f;
+    return (1.0f - fresnel) * masking * CoatLayerTransmittance(thickness, refracted.z);
+}
+
+// Light arriving from outside along -wo (wo.z > 0) at a coat over a conductor of normal-incidence
+// colour `tint` (GGX alpha `base_alpha`, 0 for a mirror), followed through the layer as
+// pbrt-v4's random walk follows it: reflected by the coat, or in, off the base, and up to the
+// coat again, which lets it out or turns it back, at most `depth` times before it is taken as
+// absorbed. Sets wi (wi.z > 0 where the weight is not black) and returns the weight carried.
+PF_GPU_FN vec3 ScatterCoatedConductor(vec3 wo, float ior, float alpha, float thickness,
+                                      uint32_t depth, vec3 tint, float base_alpha,
+                                      PF_INOUT(Pcg32) rng, PF_OUT(vec3) wi) {
+    float u_branch = Pcg32NextFloat(rng), u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+    float carried = EnterCoat(wo, ior, alpha, thickness, u_branch, u1, u2, wi);
+    vec3 weight = vec3(carried, carried, carried);
+    for (uint32_t bounce = 0; bounce < depth && wi.z < 0.0f; ++bounce) {
+        // Off the base: wi heads down to it; its reflection heads up.
+        const vec3 at_base = vec3(-wi.x, -wi.y, -wi.z);
+        vec3 up = vec3(-at_base.x, -at_base.y, at_base.z);
+        weight = weight * tint;
+        if (base_alpha > 0.0f) {
+            u1 = Pcg32NextFloat(rng);
+            u2 = Pcg32NextFloat(rng);
+            const vec3 m = SampleGgxVisibleNormal(at_base, base_alpha, u1, u2);
+            up = m * (2.0f * dot(at_base, m)) - at_base;
+            if (!(up.z > 0.0f)) return vec3(0.0f, 0.0f, 0.0f);
+            weight = weight * GgxMaskingRatio(at_base.z, up.z, base_alpha);
+        }
+        // Russian roulette once the walk is long and carries little, as pbrt-v4's.
+        const float largest = max(weight.x, max(weight.y, weight.z));
+        if (bounce > 2 && largest < 0.25f) {
+            const float survive = max(largest, 0.05f);
+            if (!(Pcg32NextFloat(rng) < survive)) return vec3(0.0f, 0.0f, 0.0f);
+            weight = weight * (1.0f / survive);
+        }
+        u_branch = Pcg32NextFloat(rng);
+        u1 = Pcg32NextFloat(rng);
+        u2 = Pcg32NextFloat(rng);
+        weight = weight * LeaveCoat(up, ior, alpha, thickness, u_branch, u1, u2, wi);
+    }
+    return wi.z > 0.0f ? weight : vec3(0.0f, 0.0f, 0.0f);
+}
+
+PF_GPU_END
+
+#endif  // PF_CORE_SHARED_COAT_H
