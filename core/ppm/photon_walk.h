@@ -19,6 +19,26 @@ namespace pf {
 
 enum class PhotonEvent { kEnded, kDiffuse, kNonDiffuse };
 
+// Under a coat: the photon leaving the base along `local` (in `frame`) is let out by the coat
+// (ray.direction set, true) or turned back to the base, where it lands again, survives
+// roulette by albedo and leaves again, until it gets out or ends (false).
+template <typename Land>
+bool LeaveCoatedBase(const Material& material, const Vec3& position, const Frame& frame,
+                     const Rgb& base_color, Vec3 local, Ray& ray, Rgb& flux, Rng& rng, Land& land) {
+    for (int returns = 0;; ++returns) {
+        const CoatLeaving leaving = LeaveCoatAt(material, frame, local, rng);
+        flux *= leaving.weight;
+        ray.direction = leaving.direction;
+        if (leaving.escaped) return true;
+        if (IsBlack(flux) || returns == kMaxCoatReturns) return false;
+        land(position, ray.direction, flux, true);
+        const float survive = std::min(1.0f, MaxComponent(base_color));
+        if (!(rng.NextFloat() < survive)) return false;
+        flux *= base_color / survive;
+        local = SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat());
+    }
+}
+
 // Continues the photon (ray, flux) at `hit`: calls land(position, direction, flux, returned)
 // at a diffuse surface before scattering (again, with `returned` true, each time a coat over
 // it turns the photon back to it), then moves ray and flux to the next segment. Returns where
@@ -36,33 +56,28 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
     SpecularBounce bounce;
     if (!kSpecular || material.type == MaterialType::kDiffuse) {
         const bool coated = kSpecular && material.HasCoat();
-        const CoatArrival arrival = coated ? ArriveAtCoat(material, ray.direction,
-                                                          surface.shading_normal, front_facing, rng)
-                                           : CoatArrival{};
+        CoatArrival arrival;  // uncoated: at the base, weight 1
+        if (coated) {
+            arrival =
+                ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng);
+            if (arrival.at_base) flux *= arrival.weight;  // a reflection carries its own
+        }
         if (arrival.at_base) {
-            flux *= arrival.weight;
             land(surface.position, ray.direction, flux, false);
+            // Russian roulette by albedo: survivors carry flux * albedo / p.
+            const float survive = std::min(1.0f, MaxComponent(base_color));
+            if (!(rng.NextFloat() < survive)) return PhotonEvent::kEnded;
+            flux *= base_color / survive;
             const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
             const Vec3 geometric =
                 front_facing ? surface.geometric_normal : -surface.geometric_normal;
             const Frame frame = Frame::FromNormal(normal);
-            for (int returns = 0;; ++returns) {
-                // Russian roulette by albedo: survivors carry flux * albedo / p.
-                const float survive = std::min(1.0f, MaxComponent(base_color));
-                if (!(rng.NextFloat() < survive)) return PhotonEvent::kEnded;
-                flux *= base_color / survive;
-                const Vec3 local = SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat());
-                if (!coated) {
-                    ray.direction = frame.ToWorld(local);
-                    break;
-                }
-                const CoatLeaving leaving = LeaveCoatAt(material, frame, local, rng);
-                flux *= leaving.weight;
-                ray.direction = leaving.direction;
-                if (leaving.escaped) break;
-                if (IsBlack(flux) || returns == kMaxCoatReturns) return PhotonEvent::kEnded;
-                land(surface.position, ray.direction, flux, true);
-            }
+            const Vec3 local = SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat());
+            if (!coated)
+                ray.direction = frame.ToWorld(local);
+            else if (!LeaveCoatedBase(material, surface.position, frame, base_color, local, ray,
+                                      flux, rng, land))
+                return PhotonEvent::kEnded;
             if (!(Dot(ray.direction, geometric) > 0))
                 return PhotonEvent::kEnded;  // shading normal pointed it inside
             ray.origin = OffsetRayOrigin(surface.position, geometric, scene.bounds.Magnitude());

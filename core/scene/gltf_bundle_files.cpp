@@ -1,13 +1,27 @@
-// tinygltf's file access, confined to a scene bundle.
+// tinygltf's file access, confined to a scene bundle, and its images kept encoded.
 #include "core/scene/gltf_bundle_files.h"
 
+#include <cstring>
 #include <vector>
 
+#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "core/scene/scene_files.h"
 
 namespace pf {
 namespace {
+
+// The extension OpenImageIO needs to pick a reader: from the bytes' signature, else the URI's.
+std::string ImageName(int index, const tinygltf::Image& image, const unsigned char* bytes,
+                      int size) {
+    const std::string label = image.uri.empty() || absl::StartsWith(image.uri, "data:")
+                                  ? absl::StrCat("image #", index)
+                                  : image.uri;
+    const char* extension = "";
+    if (size >= 8 && std::memcmp(bytes, "\x89PNG", 4) == 0) extension = ".png";
+    if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) extension = ".jpg";
+    return absl::EndsWithIgnoreCase(label, extension) ? label : absl::StrCat(label, extension);
+}
 
 bool BundleFileExists(const std::string& path, void* user) {
     return CheckBundlePath(path).ok() &&
@@ -44,6 +58,14 @@ absl::StatusOr<std::string_view> ReadBundleFile(const SceneBundle& bundle,
     if (file == bundle.files.end())
         return absl::NotFoundError(absl::StrCat(path, ": not in the scene bundle"));
     return std::string_view(file->second);
+}
+
+bool KeepEncodedImage(tinygltf::Image* image, int index, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void* user) {
+    auto* images = static_cast<GltfImages*>(user);
+    (*images)[index] = {std::string(reinterpret_cast<const char*>(bytes), size),
+                        ImageName(index, *image, bytes, size)};
+    return true;
 }
 
 }  // namespace pf

@@ -47,13 +47,6 @@ const tinygltf::Value* Extension(const tinygltf::ExtensionMap& extensions, const
     return it == extensions.end() ? nullptr : &it->second;
 }
 
-// An image's encoded bytes, kept by tinygltf's image callback and decoded only if a material
-// uses it; `name` carries the extension that tells OpenImageIO the format.
-struct EncodedImage {
-    std::string bytes, name;
-};
-using GltfImages = std::map<int, EncodedImage>;
-
 // KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv.
 UvTransform TextureTransform(const tinygltf::Value& transform) {
     double offset[2] = {0, 0}, scale[2] = {1, 1};
@@ -71,28 +64,6 @@ UvTransform TextureTransform(const tinygltf::Value& transform) {
     uv.m[0] = c * scale[0], uv.m[1] = s * scale[1], uv.m[2] = offset[0];
     uv.m[3] = -s * scale[0], uv.m[4] = c * scale[1], uv.m[5] = offset[1];
     return uv;
-}
-
-// The extension OpenImageIO needs to pick a reader: from the bytes' signature, else the URI's.
-std::string ImageName(int index, const tinygltf::Image& image, const unsigned char* bytes,
-                      int size) {
-    const std::string label = image.uri.empty() || absl::StartsWith(image.uri, "data:")
-                                  ? absl::StrCat("image #", index)
-                                  : image.uri;
-    const char* extension = "";
-    if (size >= 8 && std::memcmp(bytes, "\x89PNG", 4) == 0) extension = ".png";
-    if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) extension = ".jpg";
-    return absl::EndsWithIgnoreCase(label, extension) ? label : absl::StrCat(label, extension);
-}
-
-// tinygltf's image callback: keeps the encoded bytes, decoded later only for images a
-// material uses, through OpenImageIO.
-bool KeepEncodedImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
-                      const unsigned char* bytes, int size, void* user) {
-    auto* images = static_cast<GltfImages*>(user);
-    (*images)[index] = {std::string(reinterpret_cast<const char*>(bytes), size),
-                        ImageName(index, *image, bytes, size)};
-    return true;
 }
 
 class GltfSceneBuilder {

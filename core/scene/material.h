@@ -16,6 +16,8 @@ enum class MaterialType : uint32_t {
     kRoughConductor,   // rough metal: GGX microfacet reflection with roughness alpha, tinted by
                        // base_color
     kRoughDielectric,  // rough solid glass: GGX microfacet reflection and refraction with index ior
+    kMix,  // one of two materials at each point, the second with probability mix_amount (pbrt's
+           // "mix"; Scene::Surface resolves it, core/shared/alpha.h's MixHash)
 };
 
 // Roughness below this is taken as this: a GGX lobe narrower is a mirror to float precision
@@ -53,6 +55,10 @@ struct Material {
     float alpha = 1.0f;
     float alpha_cutoff = 0.0f;
     int32_t alpha_texture = kNoTexture;
+    // kMix: the two materials (indices into Scene::materials, both below this one's) and the
+    // probability of the second.
+    uint32_t mix_first = 0, mix_second = 0;
+    float mix_amount = 0.5f;
     uint32_t pad = 0;
 
     // Scatters into one direction (a mirror, smooth glass): a delta distribution.

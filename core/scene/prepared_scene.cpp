@@ -26,7 +26,7 @@ constexpr uint64_t kMaxCount = uint64_t{1} << 32;
 
 // Types written whole must have no padding: their size is the sum of their fields'.
 static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
-static_assert(sizeof(Material) == 80, "Material gained a field or padding: encode it");
+static_assert(sizeof(Material) == 92, "Material gained a field or padding: encode it");
 static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4,
               "Camera gained a field or padding: encode it");
 static_assert(sizeof(Prototype) == 8 + 24 && sizeof(Instance) == 4 + 21 * 4);
@@ -274,8 +274,7 @@ absl::Status CheckMaterials(const Scene& scene) {
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& material = scene.materials[m];
         const std::string name = absl::StrCat("material ", m);
-        if (static_cast<uint32_t>(material.type) >
-            static_cast<uint32_t>(MaterialType::kRoughDielectric))
+        if (static_cast<uint32_t>(material.type) > static_cast<uint32_t>(MaterialType::kMix))
             return Invalid(
                 absl::StrCat(name, ": unknown type ", static_cast<uint32_t>(material.type)));
         if (!Finite(material.base_color) || !Finite(material.emission) || !Finite(material.ior) ||
@@ -293,6 +292,12 @@ absl::Status CheckMaterials(const Scene& scene) {
               material.coat_thickness >= 0.0f && Finite(material.coat_thickness) &&
               material.coat_depth <= 1024))
             return Invalid(absl::StrCat(name, ": a coat out of range"));
+        // A mix's materials come before it: resolving one always ends.
+        if (material.type == MaterialType::kMix &&
+            !(material.mix_first < m && material.mix_second < m && material.mix_amount >= 0.0f &&
+              material.mix_amount <= 1.0f))
+            return Invalid(absl::StrCat(name, ": a mix of materials ", material.mix_first, " and ",
+                                        material.mix_second, " by ", material.mix_amount));
         if (!(material.alpha >= 0.0f && material.alpha <= 1.0f && material.alpha_cutoff >= 0.0f &&
               material.alpha_cutoff <= 1.0f))
             return Invalid(absl::StrCat(name, ": alpha out of range"));

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/shared/alpha.h"
 #include "core/shared/environment_map.h"
 
 namespace pf {
@@ -84,8 +85,8 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
         if (LengthSquared(n) > 0)
             surface.shading_normal = FaceForward(Normalize(n), surface.geometric_normal);
     }
-    surface.material = triangle.material;
-    if (materials[triangle.material].ReadsUv()) {
+    surface.material = ResolveMaterial(triangle.material, surface.position, hit.triangle);
+    if (materials[surface.material].ReadsUv()) {
         const Point2& t0 = uvs[triangle.vertex[0]];
         const Point2& t1 = uvs[triangle.vertex[1]];
         const Point2& t2 = uvs[triangle.vertex[2]];
@@ -121,6 +122,26 @@ Rgb Scene::Emission(const SurfacePoint& surface) const {
     if (material.emission_texture == kNoTexture) return material.emission;
     return material.emission *
            textures[material.emission_texture]->Sample(surface.uv.x, surface.uv.y);
+}
+
+uint32_t Scene::ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle) const {
+    // A mix's materials come before it (the loaders and the prepared scene's check see to it),
+    // so this ends.
+    while (materials[m].type == MaterialType::kMix) {
+        const Material& mix = materials[m];
+        // Salted by the mix, so that nested mixes choose independently.
+        const float u = gpu::MixHash(position, triangle * 0x9e3779b9u + m);
+        m = u < mix.mix_amount ? mix.mix_second : mix.mix_first;
+    }
+    return m;
+}
+
+bool Scene::MaterialReadsUv(uint32_t m) const {
+    const Material& material = materials[m];
+    if (material.type == MaterialType::kMix)
+        return material.ReadsUv() || MaterialReadsUv(material.mix_first) ||
+               MaterialReadsUv(material.mix_second);
+    return material.ReadsUv();
 }
 
 float Scene::Alpha(uint32_t triangle, float b1, float b2) const {

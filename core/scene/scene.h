@@ -181,7 +181,17 @@ struct Scene {
                                   : prototypes.front().first_triangle;
     }
 
+    // The surface point a ray hit: its material resolved through mixes (Material::kMix).
     SurfacePoint Surface(const RayHit& hit) const;
+    // Material `m`, or where it is a mix, the one it is at `position` on `triangle`.
+    uint32_t ResolveMaterial(uint32_t m, const Vec3& position, uint32_t triangle) const {
+        if (materials[m].type != MaterialType::kMix) [[likely]]
+            return m;
+        return ResolveMix(m, position, triangle);
+    }
+    uint32_t ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle) const;
+    // Whether material `m` (or a material a mix may be) reads texture coordinates.
+    bool MaterialReadsUv(uint32_t m) const;
     // Diffuse reflectance or specular tint at a surface point, texture applied (bilinear, at
     // the point: what a photon meets).
     Rgb BaseColor(const SurfacePoint& surface) const;

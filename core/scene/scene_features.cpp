@@ -9,11 +9,11 @@ namespace pf {
 
 SceneFeatures SceneFeatures::All() {
     SceneFeatures all;
-    for (bool* flag :
-         {&all.mirror, &all.dielectric, &all.thin_dielectric, &all.rough_conductor,
-          &all.rough_dielectric, &all.coats, &all.cut_outs, &all.textures, &all.smooth_normals,
-          &all.triangle_lights, &all.point_lights, &all.spot_lights, &all.directional_lights,
-          &all.environment, &all.textured_lights, &all.image_lights, &all.caustics})
+    for (bool* flag : {&all.mirror, &all.dielectric, &all.thin_dielectric, &all.rough_conductor,
+                       &all.rough_dielectric, &all.coats, &all.cut_outs, &all.mixes, &all.textures,
+                       &all.smooth_normals, &all.triangle_lights, &all.point_lights,
+                       &all.spot_lights, &all.directional_lights, &all.environment,
+                       &all.textured_lights, &all.image_lights, &all.caustics})
         *flag = true;
     return all;
 }
@@ -27,6 +27,7 @@ std::string SceneFeatures::ToString() const {
     if (rough_dielectric) parts.push_back("rough glass");
     if (coats) parts.push_back("coated");
     if (cut_outs) parts.push_back("cut-outs");
+    if (mixes) parts.push_back("mixed materials");
     if (textures) parts.push_back("textures");
     if (smooth_normals) parts.push_back("smooth normals");
     if (triangle_lights) parts.push_back("area lights");
@@ -47,6 +48,10 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
         used[triangle.material] = true;
         features.smooth_normals |= triangle.smooth;
     }
+    // A mix's materials (which come before it) are used where it is.
+    for (size_t m = scene.materials.size(); m-- > 0;)
+        if (used[m] && scene.materials[m].type == MaterialType::kMix)
+            used[scene.materials[m].mix_first] = used[scene.materials[m].mix_second] = true;
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         if (!used[m]) continue;
         const Material& material = scene.materials[m];
@@ -57,6 +62,7 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
         features.rough_dielectric |= material.type == MaterialType::kRoughDielectric;
         features.coats |= material.HasCoat();
         features.cut_outs |= material.HasCutOuts();
+        features.mixes |= material.type == MaterialType::kMix;
         features.textures |= material.base_color_texture != kNoTexture;
     }
     for (const Emitters::Record& record : emitters.Records()) {

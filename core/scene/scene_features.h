@@ -16,6 +16,7 @@ struct SceneFeatures {
     bool rough_conductor = false, rough_dielectric = false;  // GGX
     bool coats = false;           // a dielectric coat over a diffuse or conductor base
     bool cut_outs = false;        // alpha: rays pass through parts of some surface
+    bool mixes = false;           // a material that is one of two at each point
     bool textures = false;        // a used material has a base colour texture
     bool smooth_normals = false;  // a triangle interpolates vertex normals
     // Emitters with power.

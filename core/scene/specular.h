@@ -45,7 +45,8 @@ inline float ReflectionProbability(const Material& material, const Vec3& d, cons
         case MaterialType::kDiffuse:
         case MaterialType::kRoughConductor:
         case MaterialType::kRoughDielectric:
-            break;  // not specular (glossy.h)
+        case MaterialType::kMix:  // resolved by Scene::Surface before any scattering
+            break;                // not specular (glossy.h)
     }
     return 0.0f;
 }

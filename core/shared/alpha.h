@@ -1,4 +1,5 @@
-// Alpha cut-outs: where a surface is absent (pbrt's "alpha", glTF's alphaMode MASK and BLEND).
+// Stochastic choices a surface makes by a hash rather than a path's random numbers. Alpha
+// cut-outs: where a surface is absent (pbrt's "alpha", glTF's alphaMode MASK and BLEND).
 // A ray meets a point of alpha a there or passes through it: with a cutoff c > 0 (glTF's
 // MASK), where a >= c; without one, with probability a, decided by a hash of the ray and the
 // triangle (pbrt-v4's stochastic alpha test, glTF's BLEND as coverage), so the same ray always
@@ -25,6 +26,13 @@ PF_GPU_FN float AlphaHash(vec3 origin, vec3 direction, uint32_t triangle) {
 // `hash` AlphaHash's number for it.
 PF_GPU_FN bool AlphaMeets(float alpha, float cutoff, float hash) {
     return cutoff > 0.0f ? alpha >= cutoff : hash < alpha;
+}
+
+// A mix material's choice at a surface point (pbrt-v4's MixMaterial picks by a hash of the
+// point too): uniform in [0, 1) from the point's bits and its triangle, the same for every
+// ray that meets it there.
+PF_GPU_FN float MixHash(vec3 position, uint32_t triangle) {
+    return AlphaHash(position, vec3(0.0f, 0.0f, 0.0f), triangle ^ 0x6d697875u);
 }
 
 PF_GPU_END

@@ -70,7 +70,8 @@ PF_CONST(uint32_t) kSpecHasTexturedLights = 12;
 PF_CONST(uint32_t) kSpecHasImageLights = 13;  // goniometric or projection lights
 PF_CONST(uint32_t) kSpecHasCoats = 14;        // coated diffuse or conductor materials
 PF_CONST(uint32_t) kSpecHasCutOuts = 15;      // alpha cut-outs (core/shared/alpha.h)
-PF_CONST(uint32_t) kSpecCount = 16;
+PF_CONST(uint32_t) kSpecHasMixes = 16;        // mix materials (Material::kMix)
+PF_CONST(uint32_t) kSpecCount = 17;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -86,6 +87,7 @@ PF_CONST(uint32_t) kMaterialDielectric = 2;
 PF_CONST(uint32_t) kMaterialThinDielectric = 3;
 PF_CONST(uint32_t) kMaterialRoughConductor = 4;
 PF_CONST(uint32_t) kMaterialRoughDielectric = 5;
+PF_CONST(uint32_t) kMaterialMix = 6;
 PF_CONST(uint32_t) kEmitterTriangle = 0;
 PF_CONST(uint32_t) kEmitterPoint = 1;
 PF_CONST(uint32_t) kEmitterSpot = 2;
@@ -133,8 +135,9 @@ struct GpuMaterial {
                  // w: the most bounces under it (uint bits); core/shared/coat.h
     vec4 alpha;  // x: alpha (1 without cut-outs), y: its cutoff (0: stochastic); z: the alpha
                  // texture, or -1 (int bits); core/shared/alpha.h
+    uvec4 mix;   // kMaterialMix: x, y the two materials; z the second's probability (float bits)
 };
-PF_GPU_LAYOUT(GpuMaterial, 64);
+PF_GPU_LAYOUT(GpuMaterial, 80);
 
 struct GpuTexture {
     uint32_t first_texel;  // into the texels binding

@@ -126,10 +126,11 @@ TEST(BackendAgreementCoats, CoatedSurfacesMatchTheCpus) {
         6'000'000);
 }
 
-TEST(BackendAgreementCutOuts, CutOutsMatchTheCpus) {
+TEST(BackendAgreementCutOuts, CutOutsAndMixesMatchTheCpus) {
     // A closed room lit from the ceiling, with a checkered alpha-textured card and a card of
     // alpha 0.5 hanging in it, the camera seeing the floor through both: camera rays, photons
-    // and shadow rays pass the cards where alpha says, on the device as on the CPU.
+    // and shadow rays pass the cards where alpha says, on the device as on the CPU. The floor
+    // is a mix of two materials, each point one of them as on the CPU.
     testing::SkipWithoutVulkan();
     if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
     const std::string folder = testing::TempPath("cut-outs");
@@ -142,8 +143,13 @@ TEST(BackendAgreementCutOuts, CutOutsMatchTheCpus) {
         << "LookAt 0 -0.95 1.2  0 0 0.5  0 0 1\nCamera \"perspective\" \"float fov\" "
            "70\nWorldBegin\n"
            "Texture \"checks\" \"float\" \"imagemap\" \"string filename\" \"checks.exr\"\n"
-           "Material \"diffuse\" \"rgb reflectance\" [0.7 0.6 0.5]\n"
+           "MakeNamedMaterial \"warm\" \"string type\" \"diffuse\" \"rgb reflectance\" [0.8 0.5 "
+           "0.2]\n"
+           "MakeNamedMaterial \"cool\" \"string type\" \"diffuse\" \"rgb reflectance\" [0.2 0.4 "
+           "0.8]\n"
+           "Material \"mix\" \"string materials\" [\"warm\" \"cool\"] \"float amount\" 0.3\n"
            "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
+           "Material \"diffuse\" \"rgb reflectance\" [0.7 0.6 0.5]\n"
            "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 2  -1 1 2  1 -1 2  1 1 2]\n"
            "Shape \"bilinearmesh\" \"point3 P\" [-1 1 0  1 1 0  -1 1 2  1 1 2]\n"
            "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  -1 -1 2  1 -1 0  1 -1 2]\n"

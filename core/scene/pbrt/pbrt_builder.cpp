@@ -421,7 +421,7 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
                       state.alpha, emission_texture);
     if (!index.ok()) return index.status();
     MeshPlacement placement{world, *index, front, state.reverse_orientation, uv};
-    if (mesh.uvs.empty() && scene_.materials[*index].ReadsUv())
+    if (mesh.uvs.empty() && scene_.MaterialReadsUv(*index))
         return AppendMesh(WithTriangleUvs(mesh), placement, options_.limits, element, &scene_,
                           prototype);
     return AppendMesh(mesh, placement, options_.limits, element, &scene_, prototype);
@@ -434,6 +434,18 @@ absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emiss
                                      emission_texture, alpha.value, alpha.texture);
     if (const auto it = scene_materials_.find(key); it != scene_materials_.end()) return it->second;
     Material out = material >= 0 ? materials_[material].material : DefaultMaterial().material;
+    if (material >= 0 && materials_[material].mix[0] >= 0) {
+        // A mix: its two materials first (each emitting as the shape does, so that whichever a
+        // point is, it emits), then the mix, which comes after them.
+        uint32_t parts[2];
+        for (int i = 0; i < 2; ++i) {
+            absl::StatusOr<uint32_t> part = SceneMaterial(
+                materials_[material].mix[i], emission, two_sided, ShapeAlpha{}, emission_texture);
+            if (!part.ok()) return part.status();
+            parts[i] = *part;
+        }
+        out.mix_first = parts[0], out.mix_second = parts[1];
+    }
     out.emission = emission;
     out.two_sided = two_sided && out.IsEmissive() ? 1 : 0;
     out.emission_texture = out.IsEmissive() ? emission_texture : kNoTexture;

@@ -213,7 +213,43 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
         }
     } else if (type == "interface" || type == "none" || type.empty()) {
         material.interface = true;  // pbrt-v4 reads "" and "none" as no surface too
-    } else if (type == "measured" || type == "mix" || type == "subsurface" || type == "hair" ||
+    } else if (type == "mix") {
+        // pbrt-v4's MixMaterial: at each point one of the two, the second with probability
+        // "amount" (picked by a hash of the point, Scene::ResolveMaterial).
+        const Parameter* list = parameters.Consume("materials");
+        const std::vector<std::string> names =
+            list != nullptr && list->type == "string" ? list->strings : std::vector<std::string>{};
+        if (names.size() != 2)
+            return ErrorAt(where,
+                           "Material \"mix\" needs \"string materials\" naming two materials");
+        for (int i = 0; i < 2; ++i) {
+            const auto it = named_materials_.find(names[i]);
+            if (it == named_materials_.end())
+                return ErrorAt(
+                    where, absl::StrCat("Material \"mix\": no material named \"", names[i], "\""));
+            if (materials_[it->second].interface)
+                return ErrorAt(where, absl::StrCat("Material \"mix\": \"", names[i],
+                                                   "\" is an interface, not a surface"));
+            material.mix[i] = it->second;
+        }
+        double amount = 0.5;
+        if (const std::optional<std::string> texture = parameters.TextureName("amount")) {
+            const auto it = float_textures_.find(*texture);
+            if (it != float_textures_.end() && it->second.path.empty() &&
+                it->second.unsupported.empty()) {
+                amount = it->second.scale.x;  // a constant
+            } else {
+                Warn(where, absl::StrCat("Material \"mix\": \"amount\" texture \"", *texture,
+                                         "\" is not a constant; mixed half and half"));
+            }
+        } else {
+            amount = parameters.Float("amount", 0.5);
+        }
+        if (!(amount >= 0 && amount <= 1))
+            return ErrorAt(where, "Material \"mix\": \"amount\" must lie in [0, 1]");
+        material.material.type = MaterialType::kMix;
+        material.material.mix_amount = static_cast<float>(amount);
+    } else if (type == "measured" || type == "subsurface" || type == "hair" ||
                type == "diffusetransmission") {
         parameters.ConsumeAll();
         material.material.base_color = Rgb(0.5f);

@@ -40,6 +40,9 @@ struct MaterialRef {
     Material material;       // emission left zero: it comes from the shape's area light
     UvTransform uv;          // of its base colour texture
     bool interface = false;  // "interface": a medium boundary, not a surface
+    // "mix": the two materials (into materials_) it is one of, the second with probability
+    // material.mix_amount; -1 for any other material.
+    int mix[2] = {-1, -1};
 };
 
 struct AreaLight {

@@ -282,6 +282,13 @@ TEST(PreparedSceneTest, HostileBytesAreRefusedNamingWhatIsWrong) {
     broken([](Scene& s) { s.materials[0].coat_ior = 0.5f; }, "material 0: a coat out of range");
     broken(
         [](Scene& s) {
+            s.materials[1].type = MaterialType::kMix;
+            s.materials[1].mix_first = 0, s.materials[1].mix_second = 1;  // itself: endless
+        },
+        "material 1: a mix of materials 0 and 1");
+    broken([](Scene& s) { s.materials[0].alpha = 2; }, "material 0: alpha out of range");
+    broken(
+        [](Scene& s) {
             s.materials[1].coat_ior = 1.5f;
             s.materials[1].coat_thickness = std::nanf("");
         },

@@ -44,7 +44,9 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
              gpu::vec4{material.coat_ior, material.coat_roughness, material.coat_thickness,
                        std::bit_cast<float>(material.coat_depth)},
              gpu::vec4{material.alpha, material.alpha_cutoff,
-                       std::bit_cast<float>(material.alpha_texture), 0}});
+                       std::bit_cast<float>(material.alpha_texture), 0},
+             gpu::uvec4{material.mix_first, material.mix_second,
+                        std::bit_cast<uint32_t>(material.mix_amount), 0}});
     if (!gpu_scene.features.textures && !gpu_scene.features.textured_lights &&
         !gpu_scene.features.cut_outs)
         return;
@@ -218,6 +220,7 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasImageLights] = features.image_lights;
     spec[gpu::kSpecHasCoats] = features.coats;
     spec[gpu::kSpecHasCutOuts] = features.cut_outs;
+    spec[gpu::kSpecHasMixes] = features.mixes;
     return spec;
 }
 

@@ -25,6 +25,7 @@ layout(constant_id = kSpecHasTexturedLights) const bool kHasTexturedLights = tru
 layout(constant_id = kSpecHasImageLights) const bool kHasImageLights = true;
 layout(constant_id = kSpecHasCoats) const bool kHasCoats = true;
 layout(constant_id = kSpecHasCutOuts) const bool kHasCutOuts = true;
+layout(constant_id = kSpecHasMixes) const bool kHasMixes = true;
 
 layout(push_constant, std430) uniform Push { GpuParams params; };
 

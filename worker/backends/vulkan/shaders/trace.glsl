@@ -123,6 +123,12 @@ Surface SurfaceAt(RayHit hit) {
     surface.geometric_normal = shade.normal.xyz;
     surface.shading_normal = shade.normal.xyz;
     surface.material = shade.vertices.w & ~kSmoothBit;
+    if (kHasMixes) {  // one of a mix's materials at this point, as Scene::ResolveMaterial picks
+        for (uint m = surface.material; materials[m].type == kMaterialMix; m = surface.material) {
+            const float u = MixHash(surface.position, floatBitsToUint(triangle.p0.w) * 0x9e3779b9u + m);
+            surface.material = u < uintBitsToFloat(materials[m].mix.z) ? materials[m].mix.y : materials[m].mix.x;
+        }
+    }
     const float b0 = 1.0 - hit.b1 - hit.b2;
     if (kHasSmoothNormals && (shade.vertices.w & kSmoothBit) != 0) {
         const vec3 n = vertex_normals[shade.vertices.x].xyz * b0 + vertex_normals[shade.vertices.y].xyz * hit.b1 +

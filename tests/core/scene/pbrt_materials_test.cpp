@@ -1,0 +1,212 @@
+// The pbrt-v4 importer's materials and what shapes bring to them: each material's parameters
+// against pbrt-v4's definitions (coats, conductors, glass), shapes' alpha cut-outs and float
+// textures, and the errors bad values get.
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/scene/scene_files.h"
+#include "tests/core/scene/pbrt_test_support.h"
+#include "tests/support/test_env.h"
+
+namespace pf {
+namespace {
+
+using namespace pbrt_test;
+
+TEST(PbrtMaterialsTest, MaterialsMapOntoPhotonfarms) {
+    const std::string world =
+        std::string(
+            "MakeNamedMaterial \"gold\" \"string type\" \"conductor\" \"spectrum eta\" "
+            "\"metal-Au-eta\" \"spectrum k\" \"metal-Au-k\"\n") +
+        "NamedMaterial \"gold\"\n" + kQuad + "Material \"dielectric\" \"float eta\" 1.33\n" +
+        kQuad + "Material \"dielectric\" \"spectrum eta\" \"glass-BK7\"\n" + kQuad +
+        "Material \"coateddiffuse\" \"rgb reflectance\" [0.2 0.4 0.6] \"float roughness\" 0.1\n" +
+        kQuad + "Material \"conductor\" \"rgb reflectance\" [0.9 0.9 0.9]\n" + kQuad +
+        "Material \"thindielectric\"\n" + kQuad;
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->materials.size(), 6u);
+    EXPECT_EQ(scene->materials[0].type, MaterialType::kMirror);
+    EXPECT_NEAR(scene->materials[0].base_color.x, 1.0f, 1e-6f);    // gold's F0: red high,
+    EXPECT_NEAR(scene->materials[0].base_color.z, 0.336f, 1e-6f);  // blue low
+    EXPECT_EQ(scene->materials[1].type, MaterialType::kDielectric);
+    EXPECT_NEAR(scene->materials[1].ior, 1.33f, 1e-6f);
+    EXPECT_NEAR(scene->materials[2].ior, 1.5185f, 1e-4f);
+    EXPECT_EQ(scene->materials[3].type, MaterialType::kDiffuse);
+    EXPECT_NEAR(scene->materials[3].base_color.z, 0.6f, 1e-6f);
+    EXPECT_TRUE(scene->materials[3].HasCoat());
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    EXPECT_NEAR(scene->materials[4].base_color.y, 0.9f, 1e-6f);
+    EXPECT_EQ(scene->materials[5].type, MaterialType::kThinDielectric);
+}
+
+TEST(PbrtMaterialsTest, CoatsTakePbrtsParameters) {
+    const std::string world =
+        std::string("Material \"coateddiffuse\"\n") + kQuad +
+        "Material \"coateddiffuse\" \"rgb reflectance\" [0.1 0.2 0.3] \"float eta\" 1.33 "
+        "\"float roughness\" 0.04 \"float thickness\" 0.2 \"integer maxdepth\" 5 "
+        "\"integer nsamples\" 4 \"rgb albedo\" [0.5 0.5 0.5] \"float g\" 0.3\n" +
+        kQuad +
+        "Material \"coatedconductor\" \"float interface.roughness\" 0.01 \"float "
+        "conductor.roughness\" 0.09 \"rgb reflectance\" [0.9 0.5 0.2]\n" +
+        kQuad + "Material \"coatedconductor\" \"float interface.eta\" 1\n" + kQuad;
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->materials.size(), 4u);
+    // pbrt-v4's defaults: reflectance 0.5, eta 1.5, smooth, thickness 0.01, maxdepth 10.
+    const Material& plain = scene->materials[0];
+    EXPECT_EQ(plain.type, MaterialType::kDiffuse);
+    EXPECT_EQ(plain.base_color, Rgb(0.5f));
+    EXPECT_EQ(plain.coat_ior, 1.5f);
+    EXPECT_EQ(plain.coat_roughness, 0.0f);
+    EXPECT_NEAR(plain.coat_thickness, 0.01f, 1e-7f);
+    EXPECT_EQ(plain.coat_depth, 10u);
+    const Material& given = scene->materials[1];
+    EXPECT_NEAR(given.coat_ior, 1.33f, 1e-6f);
+    EXPECT_NEAR(given.coat_roughness, 0.2f, 1e-6f);  // sqrt(0.04): pbrt remaps roughness
+    EXPECT_NEAR(given.coat_thickness, 0.2f, 1e-6f);
+    EXPECT_EQ(given.coat_depth, 5u);
+    EXPECT_TRUE(Contains(warnings, "scattering inside the coat (\"albedo\") is left out"));
+    // A coated conductor: the metal under the coat, its index over the coat's.
+    const Material& metal = scene->materials[2];
+    EXPECT_EQ(metal.type, MaterialType::kRoughConductor);
+    EXPECT_NEAR(metal.roughness, 0.3f, 1e-6f);
+    EXPECT_NEAR(metal.coat_roughness, 0.1f, 1e-6f);
+    for (int c = 0; c < 3; ++c) {
+        const float r = std::array{0.9f, 0.5f, 0.2f}[c];
+        const float k = 2 * std::sqrt(r / (1 - r)) / 1.5f, eta = 1 / 1.5f;
+        EXPECT_NEAR(metal.base_color[c],
+                    ((eta - 1) * (eta - 1) + k * k) / ((eta + 1) * (eta + 1) + k * k), 1e-5f);
+    }
+    // Index 1: the coat bends nothing, and the copper default shows through unchanged.
+    const Material& copper = scene->materials[3];
+    EXPECT_EQ(copper.type, MaterialType::kMirror);
+    EXPECT_EQ(copper.coat_ior, 1.0f);
+    EXPECT_NEAR(copper.base_color.x, 0.955f, 1e-3f);
+
+    ExpectError(Load(Bundle(std::string("Material \"coateddiffuse\" \"float eta\" 0.5\n") + kQuad)),
+                "scenes/scene.pbrt:6:1: Material \"coateddiffuse\": \"eta\" must be at least 1");
+    ExpectError(
+        Load(Bundle(std::string("Material \"coateddiffuse\" \"float thickness\" -1\n") + kQuad)),
+        "\"thickness\" must lie in [0, 1e6]");
+    ExpectError(
+        Load(Bundle(std::string("Material \"coatedconductor\" \"integer maxdepth\" 0\n") + kQuad)),
+        "\"maxdepth\" must lie in [1, 1024]");
+    ExpectError(
+        Load(Bundle(std::string("Material \"coatedconductor\" \"float conductor.roughness\" -2\n") +
+                    kQuad)),
+        "conductor.roughness must lie in [0, 1000]");
+}
+
+TEST(PbrtMaterialsTest, ShapesTakeAlphaAsANumberOrAFloatTexture) {
+    // A 2x1 RGB PNG: a float texture reads its channels' average (pbrt-v4's float imagemap).
+    const std::filesystem::path png_path =
+        std::filesystem::path(testing::TempPath("photonfarm-pbrt-alpha.png"));
+    {
+        const unsigned char pixels[6] = {0, 0, 0, 255, 255, 255};
+        auto out = OIIO::ImageOutput::create(png_path.string());
+        ASSERT_TRUE(out &&
+                    out->open(png_path.string(), OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8)));
+        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels));
+        out->close();
+    }
+    const absl::StatusOr<std::string> png = ReadWholeFile(png_path);
+    ASSERT_TRUE(png.ok());
+    std::filesystem::remove(png_path);
+    const std::string world =
+        std::string("Texture \"leaf\" \"float\" \"imagemap\" \"string filename\" \"leaf.png\"\n") +
+        "Texture \"back\" \"float\" \"imagemap\" \"string filename\" \"leaf.png\" "
+        "\"bool invert\" true\n"
+        "Texture \"faint\" \"float\" \"scale\" \"texture tex\" \"leaf\" \"float scale\" 0.5\n"
+        "Material \"diffuse\"\nShape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0] "
+        "\"float alpha\" 0.25\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [0 0 1  1 0 1  0 1 1  1 1 1] \"texture alpha\" "
+        "\"leaf\"\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [0 0 2  1 0 2  0 1 2  1 1 2] \"texture alpha\" "
+        "\"back\"\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [0 0 3  1 0 3  0 1 3  1 1 3] \"texture alpha\" "
+        "\"faint\"\n" +
+        kQuad;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world, {{"leaf.png", *png}}));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    // One scene material per (material, alpha): the quad at the end is opaque.
+    const auto material_of = [&](size_t shape) {
+        return scene->materials[scene->triangles[2 * shape].material];
+    };
+    EXPECT_EQ(material_of(0).alpha, 0.25f);
+    EXPECT_EQ(material_of(0).alpha_texture, kNoTexture);
+    EXPECT_EQ(material_of(0).alpha_cutoff, 0.0f) << "pbrt-v4's alpha test is stochastic";
+    ASSERT_NE(material_of(1).alpha_texture, kNoTexture);
+    const Texture& leaf = *scene->textures[material_of(1).alpha_texture];
+    EXPECT_EQ(leaf.texels[0], Rgb(0.0f));
+    EXPECT_EQ(leaf.texels[1], Rgb(1.0f));
+    const Texture& back = *scene->textures[material_of(2).alpha_texture];
+    EXPECT_EQ(back.texels[0], Rgb(1.0f)) << "inverted";
+    EXPECT_EQ(material_of(3).alpha, 0.5f);
+    EXPECT_EQ(material_of(3).alpha_texture, material_of(1).alpha_texture) << "decoded once";
+    EXPECT_FALSE(material_of(4).HasCutOuts());
+    // The alpha texture is read at the shape's (u, v): the bilinear patch spans the unit square.
+    EXPECT_NEAR(scene->Alpha(2, 0.0f, 0.0f) + scene->Alpha(3, 0.0f, 0.0f), 1.0f, 1e-6f);
+
+    ExpectError(Load(Bundle(std::string("Shape \"sphere\" \"float alpha\" 2\n") + kQuad)),
+                "scenes/scene.pbrt:6:1: Shape: \"alpha\" must lie in [0, 1]");
+    ExpectError(Load(Bundle(std::string("Shape \"sphere\" \"texture alpha\" \"none\"\n") + kQuad)),
+                "Shape: \"alpha\" names no float texture \"none\"");
+}
+
+TEST(PbrtMaterialsTest, AMixIsOneOfItsMaterialsAtEachPoint) {
+    const std::string world =
+        std::string(
+            "MakeNamedMaterial \"red\" \"string type\" \"diffuse\" \"rgb reflectance\" [1 0 0]\n") +
+        "MakeNamedMaterial \"glass\" \"string type\" \"dielectric\"\n"
+        "MakeNamedMaterial \"half\" \"string type\" \"mix\" \"string materials\" [\"red\" "
+        "\"glass\"] "
+        "\"float amount\" 0.25\n"
+        "Material \"mix\" \"string materials\" [\"half\" \"red\"]\n" +
+        kQuad;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const uint32_t outer = scene->triangles[0].material;
+    const Material& mix = scene->materials[outer];
+    ASSERT_EQ(mix.type, MaterialType::kMix);
+    EXPECT_EQ(mix.mix_amount, 0.5f) << "pbrt's default amount";
+    ASSERT_LT(mix.mix_first, outer);
+    ASSERT_LT(mix.mix_second, outer);
+    EXPECT_EQ(scene->materials[mix.mix_first].type, MaterialType::kMix);
+    EXPECT_EQ(scene->materials[mix.mix_first].mix_amount, 0.25f);
+    // Over many points: red with probability 1/2 + 1/2 x 3/4, glass 1/2 x 1/4 (nested mixes
+    // choose independently).
+    constexpr int kPoints = 40000;
+    int glass = 0;
+    for (int i = 0; i < kPoints; ++i) {
+        const Vec3 p(0.001f * float(i % 200), 0.001f * float(i / 200), 0.0f);
+        const uint32_t m = scene->ResolveMaterial(outer, p, 0);
+        ASSERT_NE(scene->materials[m].type, MaterialType::kMix);
+        glass += scene->materials[m].type == MaterialType::kDielectric;
+        EXPECT_EQ(scene->ResolveMaterial(outer, p, 0), m) << "the same point, the same material";
+    }
+    EXPECT_NEAR(double(glass) / kPoints, 0.125, 5 * std::sqrt(0.125 * 0.875 / kPoints));
+
+    ExpectError(
+        Load(Bundle(std::string("Material \"mix\" \"string materials\" \"red\"\n") + kQuad)),
+        "Material \"mix\" needs \"string materials\" naming two materials");
+    ExpectError(
+        Load(Bundle(std::string("Material \"mix\" \"string materials\" [\"a\" \"b\"]\n") + kQuad)),
+        "Material \"mix\": no material named \"a\"");
+    ExpectError(
+        Load(Bundle(std::string("MakeNamedMaterial \"a\" \"string type\" \"diffuse\"\n") +
+                    "Material \"mix\" \"string materials\" [\"a\" \"a\"] \"float amount\" 2\n" +
+                    kQuad)),
+        "\"amount\" must lie in [0, 1]");
+}
+
+}  // namespace
+}  // namespace pf
