@@ -6,6 +6,7 @@
 
 #include <cmath>
 
+#include "core/ppm/photon_walk.h"
 #include "core/sampling/frame.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
@@ -199,6 +200,36 @@ TEST(CoatTest, CoatedMirrorKeepsWhatArrives) {
                                             Rgb(0.95f, 0.64f, 0.54f), rng)
                               .weight);
     EXPECT_LT(tinted / kSamples, Average(Rgb(0.95f, 0.64f, 0.54f)));
+}
+
+TEST(CoatTest, PhotonsReflectedByACoatKeepTheirFlux) {
+    // A smooth coat over a black base (albedo 0): a photon that the coat lets in is absorbed
+    // there, so the flux that goes on is what the coat reflects, F(cos) of it, in the mirror
+    // direction (the caustics a varnished floor throws), and every photon that enters lands.
+    Scene scene;
+    scene.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+    scene.triangles = {{{0, 1, 2}, 0, false, {0, 0, 1}}};
+    scene.materials = {CoatedDiffuse(0.0f, 1.5f, 0.0f, 0.0f)};
+    scene.bounds.Extend({-1, -1, 0}), scene.bounds.Extend({1, 1, 0});
+    constexpr float kCos = 0.6f;
+    constexpr int kPhotons = 200000;
+    Rng rng(21);
+    double carried = 0, landed = 0;
+    for (int i = 0; i < kPhotons; ++i) {
+        Ray ray{{0, 0, 1}, Incident(kCos)};
+        Rgb flux(1.0f);
+        const RayHit hit{1.0f, 0, 1.0f / 3, 1.0f / 3};
+        const PhotonEvent event = ScatterPhotonAt<true, false>(
+            scene, hit, ray, flux, rng,
+            [&](const Vec3&, const Vec3&, const Rgb& power, bool) { landed += power.x; });
+        if (event != PhotonEvent::kNonDiffuse) continue;
+        carried += flux.x;
+        EXPECT_NEAR(ray.direction.z, kCos, 1e-5f) << "the mirror direction";
+    }
+    const double fresnel = gpu::FresnelDielectric(kCos, 1 / 1.5f);
+    const double sigma = std::sqrt(fresnel * (1 - fresnel) / kPhotons);
+    EXPECT_NEAR(carried / kPhotons, fresnel, 5 * sigma);
+    EXPECT_NEAR(landed / kPhotons, 1 - fresnel, 5 * sigma) << "flux reaching the base";
 }
 
 }  // namespace
