@@ -262,18 +262,8 @@ TEST(PbrtLoaderTest, IncludesPlyMeshesAndImageTexturesComeFromTheBundle) {
     const int32_t face[4] = {0, 1, 2, 3};
     ply.append(reinterpret_cast<const char*>(&count), 1);
     ply.append(reinterpret_cast<const char*>(face), sizeof face);
-    const std::filesystem::path png_path =
-        std::filesystem::path(testing::TempPath("photonfarm-pbrt-texture.png"));
-    {
-        const unsigned char pixels[6] = {255, 0, 0, 128, 128, 128};
-        auto out = OIIO::ImageOutput::create(png_path.string());
-        ASSERT_TRUE(out &&
-                    out->open(png_path.string(), OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8)));
-        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels));
-        out->close();
-    }
-    const absl::StatusOr<std::string> png = ReadWholeFile(png_path);
-    ASSERT_TRUE(png.ok());
+    const std::string png = TwoTexelPng({255, 0, 0, 128, 128, 128}, "photonfarm-pbrt-texture.png");
+    ASSERT_FALSE(png.empty());
     const std::string world = "Include \"parts/wall.pbrt\"\n";
     // "unused" names a file the bundle lacks: no material uses it, so it is never read.
     const std::string wall =
@@ -283,7 +273,7 @@ TEST(PbrtLoaderTest, IncludesPlyMeshesAndImageTexturesComeFromTheBundle) {
         "Material \"diffuse\" \"texture reflectance\" \"checks\"\n"
         "Shape \"plymesh\" \"string filename\" \"meshes/./quad.ply\"\n";
     const SceneBundle bundle = Bundle(
-        world, {{"parts/wall.pbrt", wall}, {"meshes/quad.ply", ply}, {"textures/two.png", *png}});
+        world, {{"parts/wall.pbrt", wall}, {"meshes/quad.ply", ply}, {"textures/two.png", png}});
     const absl::StatusOr<Scene> scene = Load(bundle);
     ASSERT_TRUE(scene.ok()) << scene.status();
     EXPECT_EQ(scene->triangles.size(), 2u);
@@ -301,7 +291,6 @@ TEST(PbrtLoaderTest, IncludesPlyMeshesAndImageTexturesComeFromTheBundle) {
             found = true;
         }
     EXPECT_TRUE(found);
-    std::filesystem::remove(png_path);
 }
 
 TEST(PbrtLoaderTest, UnsupportedThingsWarnAtTheirLocation) {

@@ -1,7 +1,6 @@
 // The pbrt-v4 importer's materials and what shapes bring to them: each material's parameters
 // against pbrt-v4's definitions (coats, conductors, glass), shapes' alpha cut-outs and float
 // textures, and the errors bad values get.
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -108,19 +107,8 @@ TEST(PbrtMaterialsTest, CoatsTakePbrtsParameters) {
 
 TEST(PbrtMaterialsTest, ShapesTakeAlphaAsANumberOrAFloatTexture) {
     // A 2x1 RGB PNG: a float texture reads its channels' average (pbrt-v4's float imagemap).
-    const std::filesystem::path png_path =
-        std::filesystem::path(testing::TempPath("photonfarm-pbrt-alpha.png"));
-    {
-        const unsigned char pixels[6] = {0, 0, 0, 255, 255, 255};
-        auto out = OIIO::ImageOutput::create(png_path.string());
-        ASSERT_TRUE(out &&
-                    out->open(png_path.string(), OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8)));
-        ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels));
-        out->close();
-    }
-    const absl::StatusOr<std::string> png = ReadWholeFile(png_path);
-    ASSERT_TRUE(png.ok());
-    std::filesystem::remove(png_path);
+    const std::string png = TwoTexelPng({0, 0, 0, 255, 255, 255}, "photonfarm-pbrt-alpha.png");
+    ASSERT_FALSE(png.empty());
     const std::string world =
         std::string("Texture \"leaf\" \"float\" \"imagemap\" \"string filename\" \"leaf.png\"\n") +
         "Texture \"back\" \"float\" \"imagemap\" \"string filename\" \"leaf.png\" "
@@ -135,7 +123,7 @@ TEST(PbrtMaterialsTest, ShapesTakeAlphaAsANumberOrAFloatTexture) {
         "Shape \"bilinearmesh\" \"point3 P\" [0 0 3  1 0 3  0 1 3  1 1 3] \"texture alpha\" "
         "\"faint\"\n" +
         kQuad;
-    const absl::StatusOr<Scene> scene = Load(Bundle(world, {{"leaf.png", *png}}));
+    const absl::StatusOr<Scene> scene = Load(Bundle(world, {{"leaf.png", png}}));
     ASSERT_TRUE(scene.ok()) << scene.status();
     // One scene material per (material, alpha): the quad at the end is opaque.
     const auto material_of = [&](size_t shape) {

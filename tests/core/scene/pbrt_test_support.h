@@ -2,8 +2,10 @@
 // bundle, and checks on its errors and warnings.
 #pragma once
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -15,6 +17,21 @@
 #include "tests/support/test_env.h"
 
 namespace pf::pbrt_test {
+
+// The bytes of a 2x1 8-bit RGB PNG of `pixels` (written through OpenImageIO to a temporary
+// file, read back and removed); empty where that failed.
+inline std::string TwoTexelPng(const std::array<unsigned char, 6>& pixels,
+                               const std::string& name) {
+    const std::filesystem::path path = testing::TempPath(name);
+    auto out = OIIO::ImageOutput::create(path.string());
+    if (!out || !out->open(path.string(), OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8)) ||
+        !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()))
+        return {};
+    out->close();
+    const absl::StatusOr<std::string> bytes = ReadWholeFile(path);
+    std::filesystem::remove(path);
+    return bytes.ok() ? *bytes : std::string();
+}
 
 // A scene.pbrt with a camera and a light around `world`, plus other files.
 inline SceneBundle Bundle(const std::string& world, std::map<std::string, std::string> files = {}) {
