@@ -2,7 +2,6 @@
 // warnings and errors that point at file:line:column, and bundles that cannot reach outside.
 #include "core/scene/pbrt/pbrt_loader.h"
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <array>
