@@ -77,6 +77,10 @@ class GltfWriter:
             extensions["KHR_materials_transmission"] = {"transmissionFactor": 1.0}
             extensions["KHR_materials_ior"] = {"ior": glass_ior}
             extensions["KHR_materials_volume"] = {"thicknessFactor": 1.0}
+        elif not mirror:
+            # Lambertian: glTF's dielectric BRDF without its specular layer, as the pbrt forms'
+            # "diffuse".
+            extensions["KHR_materials_specular"] = {"specularFactor": 0.0}
         if extensions:
             material["extensions"] = extensions
             self.extensions.update(extensions)
@@ -144,8 +148,9 @@ class GltfWriter:
         self.doc["materials"].append({
             "name": name, "pbrMetallicRoughness": {"baseColorFactor": list(color) + [1.0], "metallicFactor": 0.0},
             "emissiveFactor": [1.0, 1.0, 1.0], "emissiveTexture": {"index": len(self.doc["textures"]) - 1},
-            "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": scale}}})
-        self.extensions.add("KHR_materials_emissive_strength")
+            "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": scale},
+                           "KHR_materials_specular": {"specularFactor": 0.0}}})
+        self.extensions.update(["KHR_materials_emissive_strength", "KHR_materials_specular"])
         self.mesh(name, [[float(c) for c in p] for p in quad], [0, 1, 2, 0, 2, 3],
                   len(self.doc["materials"]) - 1, uvs=[[0, 1], [1, 1], [1, 0], [0, 0]])
 

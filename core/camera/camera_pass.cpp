@@ -58,7 +58,8 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
             }
             path.length += hit.t;
             const SurfacePoint surface = scene.Surface(hit);
-            const Material& material = scene.materials[surface.material];
+            Material shading;  // where a texture sets the roughness
+            const Material& material = scene.ShadingMaterial(surface, shading);
             const bool front_facing = Dot(path.ray.direction, surface.geometric_normal) < 0;
             if (material.EmitsToward(front_facing))
                 emission += path.throughput * scene.Emission(surface);
@@ -78,14 +79,13 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
                     const float u2 = rng.NextFloat();
                     Vec3 wi;
                     float reflected = 0;
-                    const float entered = gpu::SplitAtCoat(
-                        frame.ToLocal(-path.ray.direction), material.coat_ior,
-                        material.coat_roughness, material.coat_thickness, u1, u2, wi, reflected);
+                    const gpu::Coat coat = CoatOf(material);
+                    const float entered = gpu::SplitAtCoat(coat, frame.ToLocal(-path.ray.direction),
+                                                           u1, u2, wi, reflected);
                     hit_points.push_back(
                         {surface.position, frame.n,
-                         path.throughput * base_color *
-                             (entered / (material.coat_ior * material.coat_ior * kPi)),
-                         pixel, surface.material});
+                         path.throughput * base_color * (entered * CoatInside(coat) / kPi), pixel,
+                         surface.material});
                     footprints.push_back(pixel_width.base + path.length * pixel_width.angle);
                     --path.splits_left;
                     arrival = {false, 0.0f, {frame.ToWorld(wi), Rgb(reflected), false}};
@@ -93,11 +93,9 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
                     arrival = ArriveAtCoat(material, path.ray.direction, n, front_facing, rng);
                 }
                 if (arrival.at_base) {
-                    // Under a coat, the radiance inside the layer is ior^2 times what leaves it.
+                    // What the radiance at the base is worth under a coat (CoatInside).
                     const float coat =
-                        material.HasCoat()
-                            ? arrival.weight / (material.coat_ior * material.coat_ior)
-                            : 1.0f;
+                        material.HasCoat() ? arrival.weight * CoatInside(CoatOf(material)) : 1.0f;
                     const Vec3 normal = front_facing ? n : -n;
                     hit_points.push_back({surface.position, normal,
                                           path.throughput * base_color * (coat / kPi), pixel,

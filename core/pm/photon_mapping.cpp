@@ -17,11 +17,10 @@ namespace {
 constexpr int kMaxGatherDepth = 16;
 
 // What the radiance at a diffuse base is worth where a path reached it (ArriveAtCoat): 1
-// uncoated; under a coat the weight of the way in over ior^2 (the radiance inside the layer is
-// ior^2 times what leaves it).
+// uncoated; under a coat the weight of the way in times CoatInside.
 float CoatedRadianceFactor(const Material& material, const CoatArrival& arrival) {
     if (!material.HasCoat()) return 1.0f;
-    return arrival.weight / (material.coat_ior * material.coat_ior);
+    return arrival.weight * CoatInside(CoatOf(material));
 }
 
 // Reflected radiance from the global map where a gather ray from `origin` lands (after any
@@ -34,7 +33,8 @@ Rgb GatherRay(const PhotonMappingInputs& inputs, Ray ray, Rng& rng, NearestPhoto
         RayHit hit;
         if (!inputs.tracer->Intersect(ray, &hit)) return Rgb(0.0f);
         const SurfacePoint surface = scene.Surface(hit);
-        const Material& material = scene.materials[surface.material];
+        Material shading;  // where a texture sets the roughness
+        const Material& material = scene.ShadingMaterial(surface, shading);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
         const Rgb base_color = scene.BaseColor(surface);
         const CoatArrival arrival =
@@ -115,7 +115,8 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
         }
         length += hit.t;
         const SurfacePoint surface = scene.Surface(hit);
-        const Material& material = scene.materials[surface.material];
+        Material shading;  // where a texture sets the roughness
+        const Material& material = scene.ShadingMaterial(surface, shading);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
         // Emission seen directly or through specular and rough bounces (no light map holds it).
         if (material.EmitsToward(front_facing)) radiance += throughput * scene.Emission(surface);

@@ -20,7 +20,8 @@ CausticProbe ProbeCaustics(const Scene& scene, const Emitters& emitters, const T
             RayHit hit;
             if (!tracer.Intersect(ray, &hit)) break;
             const SurfacePoint surface = scene.Surface(hit);
-            const Material& material = scene.materials[surface.material];
+            Material shading;  // where a texture sets the roughness
+            const Material& material = scene.ShadingMaterial(surface, shading);
             const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
             const CoatArrival arrival =
                 material.type == MaterialType::kDiffuse

@@ -5,7 +5,7 @@
 
 #include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
-#include "core/shared/coat.h"
+#include "core/scene/glossy.h"
 #include "core/util/check.h"
 
 namespace pf {
@@ -16,10 +16,8 @@ namespace {
 // (1 without one).
 float CoatFactor(const DirectLightRays& rays, const Vec3& n, const Vec3& direction) {
     if (rays.coat == nullptr) return 1.0f;
-    const Material& coat = *rays.coat;
-    return gpu::CoatTransmittance(Frame::FromNormal(n).ToLocal(direction), coat.coat_ior,
-                                  coat.coat_roughness, coat.coat_thickness, rays.coat_u1,
-                                  rays.coat_u2);
+    return gpu::CoatTransmittance(CoatOf(*rays.coat), Frame::FromNormal(n).ToLocal(direction),
+                                  rays.coat_u1, rays.coat_u2);
 }
 
 }  // namespace

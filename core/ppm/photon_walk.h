@@ -49,7 +49,8 @@ template <bool kSpecular, bool kTextures, typename Land>
 PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb& flux, Rng& rng,
                             Land&& land) {
     const SurfacePoint surface = scene.Surface(hit);
-    const Material& material = scene.materials[surface.material];
+    Material shading;  // where a texture sets the roughness
+    const Material& material = scene.ShadingMaterial(surface, shading);
     const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
     const Rgb base_color = kTextures ? scene.BaseColor(surface) : material.base_color;
     ray.t_max = std::numeric_limits<float>::infinity();

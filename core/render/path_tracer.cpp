@@ -20,8 +20,8 @@ namespace {
 bool TraceCoatedBase(const PathInputs& inputs, const SurfacePoint& surface, bool front_facing,
                      const Material& material, const Rgb& base_color, const Rgb& entered, Rng& rng,
                      Rgb& radiance, Rgb& throughput, Ray& ray) {
-    const float ior_sq = material.coat_ior * material.coat_ior;
-    Rgb inside = entered / ior_sq;  // the radiance inside the layer is ior^2 times larger
+    const gpu::Coat coat = CoatOf(material);
+    Rgb inside = entered * CoatInside(coat);  // a layer's radiance inside is ior^2 times larger
     const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
     const Vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
     const Frame frame = Frame::FromNormal(normal);
@@ -32,8 +32,7 @@ bool TraceCoatedBase(const PathInputs& inputs, const SurfacePoint& surface, bool
             const float u1 = rng.NextFloat();
             const float u2 = rng.NextFloat();
             const float through =
-                gpu::CoatTransmittance(frame.ToLocal(light.direction), material.coat_ior,
-                                       material.coat_roughness, material.coat_thickness, u1, u2);
+                gpu::CoatTransmittance(coat, frame.ToLocal(light.direction), u1, u2);
             radiance += inside * base_color / kPi * light.radiance_over_pdf *
                         (Dot(light.direction, normal) * through);
         }
@@ -49,7 +48,7 @@ bool TraceCoatedBase(const PathInputs& inputs, const SurfacePoint& surface, bool
         if (IsBlack(inside)) return false;
         if (leaving.escaped) {
             if (!(Dot(leaving.direction, geometric) > 0)) return false;
-            throughput = inside * ior_sq;
+            throughput = inside / CoatInside(coat);
             ray = {OffsetRayOrigin(surface.position, geometric, inputs.scene->bounds.Magnitude()),
                    leaving.direction};
             return true;
@@ -88,7 +87,8 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
         }
         if (!diffuse_seen) length += hit.t;
         const SurfacePoint surface = scene.Surface(hit);
-        const Material& material = scene.materials[surface.material];
+        Material shading;  // where a texture sets the roughness
+        const Material& material = scene.ShadingMaterial(surface, shading);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
         if (material.EmitsToward(front_facing)) {
             float weight = 1.0f;

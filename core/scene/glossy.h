@@ -16,11 +16,18 @@
 
 namespace pf {
 
+using gpu::CoatInside;
 using gpu::GgxDistribution;
 using gpu::GgxMaskingRatio;
 using gpu::GgxReflectionPdf;
 using gpu::kMaxCoatReturns;
 using gpu::SampleGgxVisibleNormal;
+
+// The material's coat, as core/shared/coat.h takes it.
+inline gpu::Coat CoatOf(const Material& material) {
+    return {material.coat_kind,      material.coat_ior,    material.coat_roughness,
+            material.coat_thickness, material.coat_weight, material.coat_depth};
+}
 
 // Scatters d at a rough surface; `normal` is the shading normal on the triangle's front
 // side, u_branch chooses reflection or refraction (rough glass), (u1, u2) the microfacet. A
@@ -60,8 +67,7 @@ inline SpecularBounce ScatterNonDiffuse(const Material& material, const Vec3& d,
         const Frame frame = Frame::FromNormal(front_facing ? normal : -normal);
         Vec3 wi;
         const Rgb weight = gpu::ScatterCoatedConductor(
-            frame.ToLocal(-d), material.coat_ior, material.coat_roughness, material.coat_thickness,
-            material.coat_depth, tint,
+            CoatOf(material), frame.ToLocal(-d), tint,
             material.IsRough() ? std::max(material.roughness, kMinRoughness) : 0.0f, rng.State(),
             wi);
         return {frame.ToWorld(wi), weight, false};
@@ -77,7 +83,7 @@ inline SpecularBounce ScatterNonDiffuse(const Material& material, const Vec3& d,
 // Where a ray along d meets a coated diffuse surface: the coat reflects it (a non-diffuse
 // bounce), or it enters and reaches the base, carrying `weight` (the coat's masking and the
 // layer's transmittance; core/shared/coat.h). Radiance carried by camera paths changes by
-// 1 / ior^2 on the way in (the caller's: photons carry flux). An uncoated surface is its base.
+// CoatInside on the way in (the caller's: photons carry flux). An uncoated surface is its base.
 struct CoatArrival {
     bool at_base = true;
     float weight = 1.0f;
@@ -91,17 +97,15 @@ inline CoatArrival ArriveAtCoat(const Material& material, const Vec3& d, const V
     const float u1 = rng.NextFloat();
     const float u2 = rng.NextFloat();
     Vec3 wi;
-    const float weight =
-        gpu::EnterCoat(frame.ToLocal(-d), material.coat_ior, material.coat_roughness,
-                       material.coat_thickness, u_branch, u1, u2, wi);
+    const float weight = gpu::EnterCoat(CoatOf(material), frame.ToLocal(-d), u_branch, u1, u2, wi);
     if (wi.z < 0) return {true, weight, {}};
     return {false, 0.0f, {frame.ToWorld(wi), Rgb(weight), false}};
 }
 
 // A path leaving a coated diffuse base upward along `up` (in `frame`, the shading normal on
 // the path's side): out through the coat (`escaped`, along `direction`), or turned back down
-// to the base; `weight` as ArriveAtCoat's (camera paths' radiance changes by ior^2 on the way
-// out).
+// to the base; `weight` as ArriveAtCoat's (camera paths' radiance changes by 1 / CoatInside
+// on the way out).
 struct CoatLeaving {
     bool escaped = false;
     Vec3 direction;
@@ -113,8 +117,7 @@ inline CoatLeaving LeaveCoatAt(const Material& material, const Frame& frame, con
     const float u1 = rng.NextFloat();
     const float u2 = rng.NextFloat();
     Vec3 wi;
-    const float weight = gpu::LeaveCoat(up, material.coat_ior, material.coat_roughness,
-                                        material.coat_thickness, u_branch, u1, u2, wi);
+    const float weight = gpu::LeaveCoat(CoatOf(material), up, u_branch, u1, u2, wi);
     return {wi.z > 0, frame.ToWorld(wi), weight};
 }
 

@@ -205,6 +205,8 @@ const tinygltf::TextureInfo* CoordinateTexture(const tinygltf::Material& materia
     if (material.pbrMetallicRoughness.baseColorTexture.index >= 0)
         return &material.pbrMetallicRoughness.baseColorTexture;
     if (material.emissiveTexture.index >= 0) return &material.emissiveTexture;
+    if (material.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
+        return &material.pbrMetallicRoughness.metallicRoughnessTexture;
     return nullptr;
 }
 

@@ -27,7 +27,7 @@ absl::Status ReadFloats(const tinygltf::Model& model, int index, int components,
 absl::Status ReadIndices(const tinygltf::Model& model, int index, std::vector<uint32_t>* out);
 
 // The texture whose coordinates a material's surfaces carry (one set per vertex): the base
-// colour's, else the emissive one's; null where it has neither.
+// colour's, else the emissive one's, else the metallic-roughness one's; null where it has none.
 const tinygltf::TextureInfo* CoordinateTexture(const tinygltf::Material& material);
 
 // A triangle primitive's mesh: POSITION, NORMAL if given, the TEXCOORD_n set its material's

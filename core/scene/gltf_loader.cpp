@@ -1,5 +1,5 @@
 // glTF 2.0 loading: node hierarchy, triangle meshes, the camera, KHR_lights_punctual and the
-// materials photon mapping distinguishes (see MaterialFromGltf).
+// materials (gltf_materials.h).
 #include "core/scene/gltf_loader.h"
 
 #include <spdlog/spdlog.h>
@@ -20,6 +20,7 @@
 #include "core/scene/gltf_accessors.h"
 #include "core/scene/gltf_bundle_files.h"
 #include "core/scene/gltf_draco.h"
+#include "core/scene/gltf_materials.h"
 #include "core/scene/gltf_meshopt.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/scene_bundle.h"
@@ -35,16 +36,6 @@ constexpr int kMaxNodeDepth = 256;
 std::string Describe(const std::string& kind, int index, const std::string& name) {
     return name.empty() ? absl::StrCat(kind, " #", index)
                         : absl::StrCat(kind, " '", name, "' (#", index, ")");
-}
-
-double NumberOr(const tinygltf::Value& object, const char* key, double fallback) {
-    if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsNumber()) return fallback;
-    return object.Get(key).GetNumberAsDouble();
-}
-
-const tinygltf::Value* Extension(const tinygltf::ExtensionMap& extensions, const char* name) {
-    const auto it = extensions.find(name);
-    return it == extensions.end() ? nullptr : &it->second;
 }
 
 // KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv.
@@ -94,8 +85,24 @@ private:
     bool WantedCamera(const std::vector<std::string>& names) const;
     void FrameBounds();
     absl::StatusOr<uint32_t> MaterialIndex(int gltf_material);
+    // The metallic-roughness materials of a glTF material without transmission, whose
+    // common parts (base colour, emission, alpha) `material` holds: returns the one its
+    // surfaces use (a mix where metallic or clearcoat lies between 0 and 1).
+    absl::StatusOr<uint32_t> MetallicRoughness(const tinygltf::Material& source,
+                                               const std::string& element, Material material);
+    // Scene::textures' index of glTF texture `gltf_texture` decoded with `options` (by
+    // default, glTF's colour: sRGB, alpha ignored).
     absl::StatusOr<int32_t> TextureIndex(int gltf_texture, const std::string& element,
-                                         ImageChannels channels = ImageChannels::kColour);
+                                         ImageDecodeOptions options = SrgbColour());
+    static ImageDecodeOptions SrgbColour() {
+        ImageDecodeOptions options;
+        options.encoding = ImageEncoding::kSrgb;
+        return options;
+    }
+    uint32_t AddMaterial(const Material& material) {
+        scene_.materials.push_back(material);
+        return static_cast<uint32_t>(scene_.materials.size() - 1);
+    }
 
     const std::string& path_;
     const tinygltf::Model& model_;
@@ -104,8 +111,8 @@ private:
     const std::string& wanted_camera_;          // LoadGltf's `camera`
     std::vector<std::string> cameras_seen_;     // "#index 'name'" of each camera node met
     std::map<int, uint32_t> material_indices_;  // glTF material -> Scene::materials
-    // (glTF image, what of it is read) -> Scene::textures
-    std::map<std::pair<int, ImageChannels>, int32_t> texture_indices_;
+    // (glTF image, how it is decoded) -> Scene::textures
+    std::map<std::pair<int, ImageDecodeOptions>, int32_t> texture_indices_;
     std::map<uint32_t, UvTransform> material_uvs_;  // Scene::materials -> its texture's transform
     std::map<std::pair<int, size_t>, TriangleMesh>
         meshes_;                    // (mesh, primitive) emitting in several nodes
@@ -123,6 +130,7 @@ absl::StatusOr<Scene> GltfSceneBuilder::Build() {
         "KHR_lights_punctual",     "KHR_materials_emissive_strength",
         "KHR_texture_transform",   "KHR_materials_transmission",
         "KHR_materials_ior",       "KHR_materials_volume",
+        "KHR_materials_specular",  "KHR_materials_clearcoat",
         "KHR_mesh_quantization",   "KHR_draco_mesh_compression",
         "EXT_meshopt_compression", "KHR_meshopt_compression"};
     for (const std::string& extension : model_.extensionsRequired)
@@ -369,168 +377,81 @@ absl::Status GltfSceneBuilder::SetCamera(int camera_index, const Transform& worl
     return absl::OkStatus();
 }
 
-// GGX alpha from glTF's perceptual roughness in (0, 1]: its square, as glTF's BRDF defines.
-float RoughnessAlpha(double roughness) {
-    return static_cast<float>(std::clamp(roughness * roughness, double(kMinRoughness), 1.0));
-}
-
-// Maps a glTF material to the kinds photon mapping distinguishes:
-//  - transmission > 0 with KHR_materials_volume: solid glass (refracts, index from
-//    KHR_materials_ior, default 1.5); transmission alone: a thin sheet that does not refract;
-//  - metallic = 1: a mirror tinted by the base colour, rough metal (GGX, alpha = roughness^2)
-//    where roughness > 0; solid glass with roughness > 0 is rough glass likewise;
-//  - anything else: Lambertian diffuse with the base colour (factor x texture).
-// Emission is emissiveFactor x emissiveTexture x KHR_materials_emissive_strength, radiance in
-// W/(m^2 sr), from the front face, and the back one too where the material is doubleSided.
-// alphaMode MASK and BLEND cut the surface out where alpha says (below).
+// The materials of glTF material `gltf_material` (gltf_materials.h; -1: the default, white
+// Lambertian), and the transform of the texture coordinates its surfaces carry.
 absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
     if (const auto it = material_indices_.find(gltf_material); it != material_indices_.end())
         return it->second;
-    Material material;
+    uint32_t index = 0;
     UvTransform uv;
-    if (gltf_material >= 0) {
+    if (gltf_material < 0) {
+        index = static_cast<uint32_t>(scene_.materials.size());
+        scene_.materials.push_back(Material{});
+    } else {
         if (gltf_material >= static_cast<int>(model_.materials.size()))
             return Error(absl::StrCat("material #", gltf_material), "does not exist");
         const tinygltf::Material& source = model_.materials[gltf_material];
         const std::string element = Describe("material", gltf_material, source.name);
-        const auto& pbr = source.pbrMetallicRoughness;
-        if (pbr.baseColorFactor.size() == 4)
-            material.base_color =
-                Rgb(Vec3d(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]));
-        if (pbr.baseColorTexture.index >= 0) {
-            const absl::StatusOr<int32_t> texture =
-                TextureIndex(pbr.baseColorTexture.index, element);
-            if (!texture.ok()) return texture.status();
-            material.base_color_texture = *texture;
-        }
-        if (source.emissiveTexture.index >= 0) {
-            const absl::StatusOr<int32_t> texture =
-                TextureIndex(source.emissiveTexture.index, element);
-            if (!texture.ok()) return texture.status();
-            material.emission_texture = *texture;
-        }
-        // One set of coordinates per vertex, the base colour texture's where both have one.
+        // One set of coordinates per vertex, the base colour texture's where it has one: the
+        // other textures are read with them.
         if (const tinygltf::TextureInfo* coordinates = CoordinateTexture(source)) {
             const tinygltf::Value* transform =
                 Extension(coordinates->extensions, "KHR_texture_transform");
             if (transform) uv = TextureTransform(*transform);
-            const tinygltf::TextureInfo& emissive = source.emissiveTexture;
-            if (coordinates != &emissive && emissive.index >= 0 &&
-                (emissive.texCoord != coordinates->texCoord ||
-                 Extension(emissive.extensions, "KHR_texture_transform") != nullptr ||
-                 transform != nullptr))
-                spdlog::warn(
-                    "{}: {}: the emissive texture is read with the base colour texture's "
-                    "coordinates (texCoord {}, its KHR_texture_transform)",
-                    path_, element, coordinates->texCoord);
+            for (const auto& [other, name] :
+                 {std::pair{&source.emissiveTexture, "emissive texture"},
+                  std::pair{&source.pbrMetallicRoughness.metallicRoughnessTexture,
+                            "metallic-roughness texture"}})
+                if (coordinates != other && other->index >= 0 &&
+                    (other->texCoord != coordinates->texCoord ||
+                     Extension(other->extensions, "KHR_texture_transform") != nullptr ||
+                     transform != nullptr))
+                    spdlog::warn(
+                        "{}: {}: the {} is read with the coordinates of the material's first "
+                        "texture (texCoord {}, its KHR_texture_transform)",
+                        path_, element, name, coordinates->texCoord);
         }
-        // A double-sided material is drawn, so emits, on both faces.
-        material.two_sided = source.doubleSided ? 1 : 0;
-        double strength = 1.0;
-        if (const tinygltf::Value* e =
-                Extension(source.extensions, "KHR_materials_emissive_strength"))
-            strength = NumberOr(*e, "emissiveStrength", 1.0);
-        if (source.emissiveFactor.size() == 3)
-            material.emission = Rgb(Vec3d(source.emissiveFactor[0], source.emissiveFactor[1],
-                                          source.emissiveFactor[2]) *
-                                    strength);
-        double transmission = 0.0;
-        if (const tinygltf::Value* e = Extension(source.extensions, "KHR_materials_transmission"))
-            transmission = NumberOr(*e, "transmissionFactor", 0.0);
-        if (const tinygltf::Value* e = Extension(source.extensions, "KHR_materials_ior"))
-            material.ior = static_cast<float>(NumberOr(*e, "ior", 1.5));
-        const tinygltf::Value* volume = Extension(source.extensions, "KHR_materials_volume");
-        if (transmission > 0) {
-            material.type = volume != nullptr && NumberOr(*volume, "thicknessFactor", 0.0) > 0
-                                ? MaterialType::kDielectric
-                                : MaterialType::kThinDielectric;
-            if (transmission < 1)
-                spdlog::warn(
-                    "{}: {}: transmissionFactor {} taken as 1 (no diffuse-transmission mix)", path_,
-                    element, transmission);
-            if (material.type == MaterialType::kDielectric && pbr.roughnessFactor > 0.0) {
-                material.type = MaterialType::kRoughDielectric;
-                material.roughness = RoughnessAlpha(pbr.roughnessFactor);
-            }
-        } else if (pbr.metallicFactor >= 1.0) {
-            material.type =
-                pbr.roughnessFactor > 0.0 ? MaterialType::kRoughConductor : MaterialType::kMirror;
-            if (pbr.roughnessFactor > 0.0) material.roughness = RoughnessAlpha(pbr.roughnessFactor);
-        } else if (pbr.metallicFactor > 0.0) {
-            spdlog::warn("{}: {}: rough or partly metallic surfaces are shaded as diffuse", path_,
-                         element);
-        }
-        // Cut-outs: MASK keeps the surface where alpha (baseColorFactor's fourth value times
-        // the base colour texture's alpha) is at least alphaCutoff; BLEND as coverage, a ray
-        // meeting it with probability alpha (core/shared/alpha.h); OPAQUE ignores alpha.
-        if (source.alphaMode == "MASK" || source.alphaMode == "BLEND") {
-            const double alpha = pbr.baseColorFactor.size() == 4 ? pbr.baseColorFactor[3] : 1.0;
-            if (!(alpha >= 0 && alpha <= 1))
-                return Error(element, "baseColorFactor's alpha must lie in [0, 1]");
-            material.alpha = static_cast<float>(alpha);
-            if (pbr.baseColorTexture.index >= 0) {
-                const absl::StatusOr<int32_t> texture =
-                    TextureIndex(pbr.baseColorTexture.index, element, ImageChannels::kAlpha);
-                if (!texture.ok()) return texture.status();
-                material.alpha_texture = *texture;
-            }
-            if (source.alphaMode == "MASK") {
-                if (!(source.alphaCutoff >= 0 && source.alphaCutoff <= 1))
-                    return Error(element, "alphaCutoff must lie in [0, 1]");
-                material.alpha_cutoff = static_cast<float>(source.alphaCutoff);
-                if (material.alpha_cutoff <= 0)  // every point passes: opaque
-                    material.alpha = 1, material.alpha_texture = kNoTexture;
-            }
-        }
-        if (!IsFinite(material.base_color) || MaxComponent(material.base_color) > 1.0f ||
-            material.base_color.x < 0 || material.base_color.y < 0 || material.base_color.z < 0)
-            return Error(element, "baseColorFactor must lie in [0, 1]");
-        if (!IsFinite(material.emission) || material.emission.x < 0 || material.emission.y < 0 ||
-            material.emission.z < 0)
-            return Error(element, "emission must be finite and non-negative");
-        if (!material.IsEmissive()) material.emission_texture = kNoTexture;
-        if (!(material.ior >= 1.0f && std::isfinite(material.ior)))
-            return Error(element, "ior must be at least 1");
+        const absl::StatusOr<uint32_t> added = AddGltfMaterial(
+            source, absl::StrCat(path_, ": ", element),
+            [&](int texture, const ImageDecodeOptions& options) {
+                return TextureIndex(texture, element, options);
+            },
+            scene_.materials);
+        if (!added.ok()) return added.status();
+        index = *added;
     }
-    const auto index = static_cast<uint32_t>(scene_.materials.size());
-    scene_.materials.push_back(material);
     material_indices_[gltf_material] = index;
     material_uvs_[index] = uv;
     return index;
 }
 
 absl::StatusOr<int32_t> GltfSceneBuilder::TextureIndex(int gltf_texture, const std::string& element,
-                                                       ImageChannels channels) {
+                                                       ImageDecodeOptions options) {
     if (gltf_texture >= static_cast<int>(model_.textures.size()) ||
         model_.textures[gltf_texture].source < 0 ||
         model_.textures[gltf_texture].source >= static_cast<int>(model_.images.size()))
         return Error(element, absl::StrCat("texture #", gltf_texture, " has no image"));
     const int image_index = model_.textures[gltf_texture].source;
-    if (const auto it = texture_indices_.find({image_index, channels});
-        it != texture_indices_.end())
+    if (const auto it = texture_indices_.find({image_index, options}); it != texture_indices_.end())
         return it->second;
     const auto encoded = images_.find(image_index);
     if (encoded == images_.end())
         return Error(element, absl::StrCat("image #", image_index, " has no data"));
-    // glTF base colour textures are sRGB-encoded 8-bit images (PNG or JPEG); alpha is linear.
-    ImageDecodeOptions options;
-    options.encoding = ImageEncoding::kSrgb;
-    options.channels = channels;
     absl::StatusOr<Texture> texture =
         DecodeImage(encoded->second.bytes, encoded->second.name, limits_, options);
     if (!texture.ok())
         return absl::Status(texture.status().code(),
                             absl::StrCat(path_, ": ", element, ": ", texture.status().message()));
     // An alpha channel that is all 1 (or none) cuts nothing out: no texture, no cost.
-    if (channels == ImageChannels::kAlpha &&
+    if (options.channels == ImageChannels::kAlpha &&
         std::all_of(texture->texels.begin(), texture->texels.end(),
                     [](const Rgb& texel) { return texel.x >= 1.0f; })) {
-        texture_indices_[{image_index, channels}] = kNoTexture;
+        texture_indices_[{image_index, options}] = kNoTexture;
         return kNoTexture;
     }
     const auto index = static_cast<int32_t>(scene_.textures.size());
     scene_.textures.push_back(std::make_shared<const Texture>(std::move(*texture)));
-    texture_indices_[{image_index, channels}] = index;
+    texture_indices_[{image_index, options}] = index;
     return index;
 }
 

@@ -94,8 +94,18 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
             case ImageChannels::kAlpha:
                 texture.texels[i] = Rgb(alpha(i));
                 break;
+            case ImageChannels::kGreen:
+            case ImageChannels::kBlue: {
+                const int c = options.channels == ImageChannels::kGreen ? 1 : 2;
+                texture.texels[i] = Rgb(to_linear(texel[channels < 3 ? 0 : c]));
+                break;
+            }
         }
         if (options.invert) texture.texels[i] = Max(Rgb(1.0f) - texture.texels[i], Rgb(0.0f));
+        if (options.exponent != 1)
+            for (int c = 0; c < 3; ++c)
+                texture.texels[i][c] = static_cast<float>(
+                    std::pow(std::max(0.0, double(texture.texels[i][c])), options.exponent));
     }
     return texture;
 }

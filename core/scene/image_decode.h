@@ -27,6 +27,10 @@ enum class ImageChannels {
     // is, three averaged, four: the alpha channel).
     kFloat,
     kAlpha,  // the alpha channel (of grey-alpha or RGBA images; 1 without one), linear
+    // One channel in every channel of the texture (a grey image's grey): glTF's
+    // metallicRoughnessTexture keeps roughness in green, metallic in blue.
+    kGreen,
+    kBlue,
 };
 
 struct ImageDecodeOptions {
@@ -34,9 +38,10 @@ struct ImageDecodeOptions {
     double gamma = 2.2;
     ImageChannels channels = ImageChannels::kColour;
     bool invert = false;  // each value v read as max(0, 1 - v) (pbrt's "invert")
+    double exponent = 1;  // then as v^exponent (a roughness texture mapped to GGX alpha)
     bool operator<(const ImageDecodeOptions& other) const {
-        return std::tie(encoding, gamma, channels, invert) <
-               std::tie(other.encoding, other.gamma, other.channels, other.invert);
+        return std::tie(encoding, gamma, channels, invert, exponent) <
+               std::tie(other.encoding, other.gamma, other.channels, other.invert, other.exponent);
     }
 };
 

@@ -2,6 +2,8 @@
 // and photons; the others scatter specularly or glossily and are followed by every pass.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 
 #include "core/math/vec3.h"
@@ -32,20 +34,28 @@ struct Material {
     int32_t base_color_texture = kNoTexture;  // index into Scene::textures
     float ior = 1.5f;                         // index of refraction inside the dielectric
     float roughness = 0.0f;  // GGX alpha of the rough materials, in [kMinRoughness, 1]
-    Rgb emission{0.0f};      // emitted radiance, W/(m^2 sr), from the front face
+    // Where set, the GGX alphas (roughness and coat_roughness) are theirs times this texture's
+    // first channel at the point (glTF's metallicRoughnessTexture, pbrt's roughness textures:
+    // the loaders map its values to alpha; Scene::ShadingMaterial).
+    int32_t roughness_texture = kNoTexture;
+    Rgb emission{0.0f};  // emitted radiance, W/(m^2 sr), from the front face
     // Emission is emission x this texture (index into Scene::textures) where it has one: pbrt's
     // image area lights, glTF's emissiveTexture.
     int32_t emission_texture = kNoTexture;
     // Emission from both faces (pbrt's "twosided" area lights). Not a bool: materials are
     // written byte for byte into prepared scenes, and must have no padding.
     uint32_t two_sided = 0;
-    // A dielectric coat over the surface (pbrt-v4's coateddiffuse and coatedconductor, glTF's
-    // KHR_materials_clearcoat) on a diffuse, mirror or rough conductor base: its index of
-    // refraction (0: no coat), GGX alpha (0: smooth) and the optical thickness of its absorbing
-    // interior (core/shared/coat.h).
+    // A dielectric coat over the surface (core/shared/coat.h) on a diffuse, mirror or rough
+    // conductor base: its kind (gpu::kCoatLayered: pbrt-v4's coateddiffuse and
+    // coatedconductor, glTF's KHR_materials_clearcoat; gpu::kCoatFresnelMix, over a diffuse
+    // base only: glTF's dielectric BRDF), index of refraction (0: no coat), GGX alpha (0:
+    // smooth), the optical thickness of a layered coat's absorbing interior, and a Fresnel
+    // mix's weight (glTF's specularFactor).
+    uint32_t coat_kind = 0;
     float coat_ior = 0.0f;
     float coat_roughness = 0.0f;
     float coat_thickness = 0.0f;
+    float coat_weight = 1.0f;
     // The most bounces a path takes between a coated conductor and its coat before it is
     // taken as absorbed (pbrt-v4's maxdepth).
     uint32_t coat_depth = 10;
@@ -56,10 +66,11 @@ struct Material {
     float alpha_cutoff = 0.0f;
     int32_t alpha_texture = kNoTexture;
     // kMix: the two materials (indices into Scene::materials, both below this one's) and the
-    // probability of the second.
+    // probability of the second, times the first channel of mix_texture at the point where it
+    // has one (glTF's metallic, pbrt's amount textures).
     uint32_t mix_first = 0, mix_second = 0;
     float mix_amount = 0.5f;
-    uint32_t pad = 0;
+    int32_t mix_texture = kNoTexture;
 
     // Scatters into one direction (a mirror, smooth glass): a delta distribution.
     bool IsSpecular() const {
@@ -73,10 +84,16 @@ struct Material {
     // Whether some rays pass through the surface.
     bool HasCutOuts() const { return alpha_texture != kNoTexture || !(alpha >= 1.0f); }
     bool IsEmissive() const { return !IsBlack(emission); }
+    // Every texture it reads: indices into Scene::textures, kNoTexture where it has none.
+    std::array<int32_t, 5> Textures() const {
+        return {base_color_texture, emission_texture, alpha_texture, roughness_texture,
+                mix_texture};
+    }
     // Whether shading reads the surface's texture coordinates.
     bool ReadsUv() const {
-        return base_color_texture != kNoTexture || emission_texture != kNoTexture ||
-               alpha_texture != kNoTexture;
+        const std::array<int32_t, 5> textures = Textures();
+        return std::any_of(textures.begin(), textures.end(),
+                           [](int32_t texture) { return texture != kNoTexture; });
     }
     // Whether a surface of this material seen from its front (or back) emits.
     bool EmitsToward(bool front_facing) const {

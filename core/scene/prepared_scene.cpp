@@ -12,6 +12,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/scene/texture_filter.h"
+#include "core/shared/coat.h"
 #include "core/util/byte_stream.h"
 #include "core/util/sha256.h"
 
@@ -26,7 +27,7 @@ constexpr uint64_t kMaxCount = uint64_t{1} << 32;
 
 // Types written whole must have no padding: their size is the sum of their fields'.
 static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
-static_assert(sizeof(Material) == 92, "Material gained a field or padding: encode it");
+static_assert(sizeof(Material) == 104, "Material gained a field or padding: encode it");
 static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4,
               "Camera gained a field or padding: encode it");
 static_assert(sizeof(Prototype) == 8 + 24 && sizeof(Instance) == 4 + 21 * 4);
@@ -143,7 +144,7 @@ void WritePayload(const Scene& scene, ByteWriter& out) {
     Write(out, scene.materials);
     std::vector<bool> read(scene.textures.size(), false);
     for (const Material& m : scene.materials)  // an index out of range is the decoder's to refuse
-        for (const int32_t texture : {m.base_color_texture, m.emission_texture})
+        for (const int32_t texture : m.Textures())
             if (texture >= 0 && size_t(texture) < read.size()) read[texture] = true;
     out.Value<uint64_t>(scene.textures.size());
     for (size_t t = 0; t < scene.textures.size(); ++t) {
@@ -286,10 +287,16 @@ absl::Status CheckMaterials(const Scene& scene) {
         const bool coat_base = material.type == MaterialType::kDiffuse ||
                                material.type == MaterialType::kMirror ||
                                material.type == MaterialType::kRoughConductor;
+        // A Fresnel mix covers a diffuse base only, with an F0 below 1 (an index below 1e3).
+        const bool coat_kind =
+            material.coat_kind == gpu::kCoatLayered ||
+            (material.coat_kind == gpu::kCoatFresnelMix &&
+             material.type == MaterialType::kDiffuse && material.coat_ior < 1e3f);
         if (material.coat_ior != 0.0f &&
-            !(material.coat_ior >= 1.0f && Finite(material.coat_ior) && coat_base &&
+            !(material.coat_ior >= 1.0f && Finite(material.coat_ior) && coat_base && coat_kind &&
               material.coat_roughness >= 0.0f && material.coat_roughness <= 1.0f &&
               material.coat_thickness >= 0.0f && Finite(material.coat_thickness) &&
+              material.coat_weight >= 0.0f && material.coat_weight <= 1.0f &&
               material.coat_depth <= 1024))
             return Invalid(absl::StrCat(name, ": a coat out of range"));
         // A mix's materials come before it: resolving one always ends.
@@ -301,8 +308,7 @@ absl::Status CheckMaterials(const Scene& scene) {
         if (!(material.alpha >= 0.0f && material.alpha <= 1.0f && material.alpha_cutoff >= 0.0f &&
               material.alpha_cutoff <= 1.0f))
             return Invalid(absl::StrCat(name, ": alpha out of range"));
-        for (const int32_t texture :
-             {material.base_color_texture, material.emission_texture, material.alpha_texture}) {
+        for (const int32_t texture : material.Textures()) {
             if (texture == kNoTexture) continue;
             if (texture < 0 || static_cast<size_t>(texture) >= scene.textures.size() ||
                 scene.textures[texture]->texels.empty())

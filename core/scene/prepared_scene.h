@@ -18,8 +18,9 @@
 
 namespace pf {
 
-// 2: the environment light; 8: its portal; 9: coated materials and cut-outs.
-inline constexpr uint32_t kPreparedSceneVersion = 9;
+// 2: the environment light; 8: its portal; 9: coated materials and cut-outs; 10: Fresnel-mix
+// coats, roughness and mix textures.
+inline constexpr uint32_t kPreparedSceneVersion = 10;
 
 // Normals go only where a triangle is smooth, texture coordinates only where a material has a
 // texture, textures only where a material reads them (others stay as empty placeholders, so

@@ -85,8 +85,7 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
         if (LengthSquared(n) > 0)
             surface.shading_normal = FaceForward(Normalize(n), surface.geometric_normal);
     }
-    surface.material = ResolveMaterial(triangle.material, surface.position, hit.triangle);
-    if (materials[surface.material].ReadsUv()) {
+    if (MaterialReadsUv(triangle.material)) {
         const Point2& t0 = uvs[triangle.vertex[0]];
         const Point2& t1 = uvs[triangle.vertex[1]];
         const Point2& t2 = uvs[triangle.vertex[2]];
@@ -98,6 +97,8 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
         const float area = Length(Cross(p1 - p0, p2 - p0));
         surface.uv_per_length = area > 0 ? std::sqrt(uv_area / area) : 0.0f;
     }
+    surface.material =
+        ResolveMaterial(triangle.material, surface.position, hit.triangle, surface.uv);
     return surface;
 }
 
@@ -124,16 +125,30 @@ Rgb Scene::Emission(const SurfacePoint& surface) const {
            textures[material.emission_texture]->Sample(surface.uv.x, surface.uv.y);
 }
 
-uint32_t Scene::ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle) const {
+uint32_t Scene::ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle,
+                           const Point2& uv) const {
     // A mix's materials come before it (the loaders and the prepared scene's check see to it),
     // so this ends.
     while (materials[m].type == MaterialType::kMix) {
         const Material& mix = materials[m];
+        float amount = mix.mix_amount;
+        if (mix.mix_texture != kNoTexture)
+            amount *= textures[mix.mix_texture]->Sample(uv.x, uv.y).x;
         // Salted by the mix, so that nested mixes choose independently.
         const float u = gpu::MixHash(position, triangle * 0x9e3779b9u + m);
-        m = u < mix.mix_amount ? mix.mix_second : mix.mix_first;
+        m = u < amount ? mix.mix_second : mix.mix_first;
     }
     return m;
+}
+
+const Material& Scene::TexturedRoughness(const SurfacePoint& surface, Material& scratch) const {
+    scratch = materials[surface.material];
+    const float t = textures[scratch.roughness_texture]->Sample(surface.uv.x, surface.uv.y).x;
+    scratch.roughness = std::clamp(scratch.roughness * t, kMinRoughness, 1.0f);
+    // A rough coat stays rough: alpha 0 would make it smooth.
+    if (scratch.coat_roughness > 0)
+        scratch.coat_roughness = std::clamp(scratch.coat_roughness * t, kMinRoughness, 1.0f);
+    return scratch;
 }
 
 bool Scene::MaterialReadsUv(uint32_t m) const {

@@ -183,13 +183,25 @@ struct Scene {
 
     // The surface point a ray hit: its material resolved through mixes (Material::kMix).
     SurfacePoint Surface(const RayHit& hit) const;
-    // Material `m`, or where it is a mix, the one it is at `position` on `triangle`.
-    uint32_t ResolveMaterial(uint32_t m, const Vec3& position, uint32_t triangle) const {
+    // Material `m`, or where it is a mix, the one it is at `position` on `triangle` (texture
+    // coordinates `uv`, read where a mix's amount has a texture).
+    uint32_t ResolveMaterial(uint32_t m, const Vec3& position, uint32_t triangle,
+                             const Point2& uv = {}) const {
         if (materials[m].type != MaterialType::kMix) [[likely]]
             return m;
-        return ResolveMix(m, position, triangle);
+        return ResolveMix(m, position, triangle, uv);
     }
-    uint32_t ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle) const;
+    uint32_t ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle,
+                        const Point2& uv) const;
+    // The material shading `surface`: its material, or where that has a roughness texture, a
+    // copy in `scratch` with the texture applied to its GGX alphas (Material::roughness_texture).
+    const Material& ShadingMaterial(const SurfacePoint& surface, Material& scratch) const {
+        const Material& material = materials[surface.material];
+        if (material.roughness_texture == kNoTexture) [[likely]]
+            return material;
+        return TexturedRoughness(surface, scratch);
+    }
+    const Material& TexturedRoughness(const SurfacePoint& surface, Material& scratch) const;
     // Whether material `m` (or a material a mix may be) reads texture coordinates.
     bool MaterialReadsUv(uint32_t m) const;
     // Diffuse reflectance or specular tint at a surface point, texture applied (bilinear, at

@@ -4,16 +4,33 @@
 #include <vector>
 
 #include "absl/strings/str_join.h"
+#include "core/shared/coat.h"
 
 namespace pf {
 
 SceneFeatures SceneFeatures::All() {
     SceneFeatures all;
-    for (bool* flag : {&all.mirror, &all.dielectric, &all.thin_dielectric, &all.rough_conductor,
-                       &all.rough_dielectric, &all.coats, &all.cut_outs, &all.mixes, &all.textures,
-                       &all.smooth_normals, &all.triangle_lights, &all.point_lights,
-                       &all.spot_lights, &all.directional_lights, &all.environment,
-                       &all.textured_lights, &all.image_lights, &all.caustics})
+    for (bool* flag : {&all.mirror,
+                       &all.dielectric,
+                       &all.thin_dielectric,
+                       &all.rough_conductor,
+                       &all.rough_dielectric,
+                       &all.coats,
+                       &all.cut_outs,
+                       &all.mixes,
+                       &all.textures,
+                       &all.roughness_textures,
+                       &all.mix_textures,
+                       &all.fresnel_mixes,
+                       &all.smooth_normals,
+                       &all.triangle_lights,
+                       &all.point_lights,
+                       &all.spot_lights,
+                       &all.directional_lights,
+                       &all.environment,
+                       &all.textured_lights,
+                       &all.image_lights,
+                       &all.caustics})
         *flag = true;
     return all;
 }
@@ -26,9 +43,12 @@ std::string SceneFeatures::ToString() const {
     if (rough_conductor) parts.push_back("rough metal");
     if (rough_dielectric) parts.push_back("rough glass");
     if (coats) parts.push_back("coated");
+    if (fresnel_mixes) parts.push_back("specular over diffuse");
     if (cut_outs) parts.push_back("cut-outs");
     if (mixes) parts.push_back("mixed materials");
     if (textures) parts.push_back("textures");
+    if (roughness_textures) parts.push_back("roughness textures");
+    if (mix_textures) parts.push_back("textured mixes");
     if (smooth_normals) parts.push_back("smooth normals");
     if (triangle_lights) parts.push_back("area lights");
     if (point_lights) parts.push_back("point lights");
@@ -64,6 +84,9 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
         features.cut_outs |= material.HasCutOuts();
         features.mixes |= material.type == MaterialType::kMix;
         features.textures |= material.base_color_texture != kNoTexture;
+        features.roughness_textures |= material.roughness_texture != kNoTexture;
+        features.mix_textures |= material.mix_texture != kNoTexture;
+        features.fresnel_mixes |= material.HasCoat() && material.coat_kind == gpu::kCoatFresnelMix;
     }
     for (const Emitters::Record& record : emitters.Records()) {
         if (record.kind == EmitterKind::kTriangle) {

@@ -14,11 +14,14 @@ struct SceneFeatures {
     // Materials on at least one triangle.
     bool mirror = false, dielectric = false, thin_dielectric = false;
     bool rough_conductor = false, rough_dielectric = false;  // GGX
-    bool coats = false;           // a dielectric coat over a diffuse or conductor base
-    bool cut_outs = false;        // alpha: rays pass through parts of some surface
-    bool mixes = false;           // a material that is one of two at each point
-    bool textures = false;        // a used material has a base colour texture
-    bool smooth_normals = false;  // a triangle interpolates vertex normals
+    bool coats = false;               // a dielectric coat over a diffuse or conductor base
+    bool cut_outs = false;            // alpha: rays pass through parts of some surface
+    bool mixes = false;               // a material that is one of two at each point
+    bool textures = false;            // a used material has a base colour texture
+    bool roughness_textures = false;  // a used material's roughness has a texture
+    bool mix_textures = false;        // a used mix's amount has a texture
+    bool fresnel_mixes = false;       // glTF's dielectric: specular over diffuse (kCoatFresnelMix)
+    bool smooth_normals = false;      // a triangle interpolates vertex normals
     // Emitters with power.
     bool triangle_lights = false, point_lights = false, spot_lights = false,
          directional_lights = false, environment = false;
@@ -32,6 +35,8 @@ struct SceneFeatures {
     // Anything but diffuse surfaces: what the passes' variants with non-diffuse scattering handle.
     bool Specular() const { return mirror || dielectric || thin_dielectric || Rough() || coats; }
     bool Rough() const { return rough_conductor || rough_dielectric; }
+    // Whether shading reads texture coordinates (light emission aside).
+    bool ReadsUv() const { return textures || cut_outs || roughness_textures || mix_textures; }
     // Every feature on: the general code path, for comparison (bench/photon_bench).
     static SceneFeatures All();
     // "diffuse, glass, area lights, caustics": for logs, job metadata and EXR headers.

@@ -1,11 +1,19 @@
-// Coated surfaces, pbrt-v4's coateddiffuse and coatedconductor: a dielectric layer of index
-// `ior` (smooth, or rough with GGX alpha `alpha`) over a diffuse or conductor base, its
-// interior absorbing with optical thickness `thickness` (pbrt-v4's LayeredBxDF with albedo 0:
-// a crossing at cosine mu transmits exp(-thickness / mu)). Light is followed through the layer
-// as pbrt-v4's random walk follows it, choosing each interface's branch with its Fresnel
-// probability, so every pass (camera, photon, direct light, path tracer) sees the same
-// surface. Directions are in the local frame of the shading normal, +z on the side the light
-// arrives from outside. One definition for the CPU and the Vulkan kernels.
+// Coated surfaces: a dielectric interface over a diffuse or conductor base, in one of two kinds.
+//  - Layered (pbrt-v4's coateddiffuse and coatedconductor): a layer of index `ior` (smooth, or
+//    rough with GGX alpha `alpha`), its interior absorbing with optical thickness `thickness`
+//    (pbrt-v4's LayeredBxDF with albedo 0: a crossing at cosine mu transmits
+//    exp(-thickness / mu)). Light is followed through the layer as pbrt-v4's random walk
+//    follows it, choosing each interface's branch with its Fresnel probability.
+//  - Fresnel mix (glTF's dielectric BRDF, fresnel_mix(diffuse, specular)): a GGX specular lobe
+//    weighted by Schlick's Fresnel term F(v.h) of F0 from `ior`, scaled by `weight` (glTF's
+//    specularFactor), over a diffuse base weighted by (1 - F(wo.n)) (1 - F(wi.n)) / (1 - F_avg):
+//    glTF's (1 - F) made separable, so that photons and camera paths each carry their half,
+//    and normalised by the cosine-weighted mean F_avg, so that a white base under a smooth
+//    layer reflects all the light (Kelemen and Szirmay-Kalos 2001 couple the two likewise).
+//    Nothing refracts and nothing is turned back to the base.
+// Every pass (camera, photon, direct light, path tracer) sees the same surface through the
+// functions below. Directions are in the local frame of the shading normal, +z on the side the
+// light arrives from outside. One definition for the CPU and the Vulkan kernels.
 #ifndef PF_CORE_SHARED_COAT_H
 #define PF_CORE_SHARED_COAT_H
 
@@ -15,6 +23,20 @@
 #include "core/shared/rng.h"
 
 PF_GPU_BEGIN
+
+// Coat kinds (Material::coat_kind).
+PF_CONST(uint32_t) kCoatLayered = 0;
+PF_CONST(uint32_t) kCoatFresnelMix = 1;
+
+// A coat, as the functions below take it (CoatOf builds one from a material on either side).
+struct Coat {
+    uint32_t kind;    // kCoat*
+    float ior;        // the interface's index of refraction (Fresnel mix: its F0's)
+    float alpha;      // its GGX alpha; 0: smooth
+    float thickness;  // layered: the interior's optical thickness
+    float weight;     // Fresnel mix: the specular lobe's scale, Fresnel's value at grazing
+    uint32_t depth;   // layered conductor: the most bounces under the coat
+};
 
 // A coat may turn a path leaving its diffuse base back down to it this often at most.
 PF_CONST(int32_t) kMaxCoatReturns = 64;
@@ -61,74 +83,130 @@ PF_GPU_FN float CrossCoatFromBelow(vec3 wo, float eta, float alpha, float u_bran
     return weight;
 }
 
-// Light arriving from outside along -wo: reflected by the coat (wi.z > 0), or refracted into
-// it and carried down to the base (wi.z < 0; the weight includes the crossing's
-// transmittance).
-PF_GPU_FN float EnterCoat(vec3 wo, float ior, float alpha, float thickness, float u_branch,
-                          float u1, float u2, PF_OUT(vec3) wi) {
-    const float weight = CrossCoatInterface(wo, 1.0f / ior, alpha, u_branch, u1, u2, wi);
-    return wi.z < 0.0f ? weight * CoatLayerTransmittance(thickness, wi.z) : weight;
+// The Fresnel mix's weight at cosine cos_theta: weight x Schlick's F of F0 from the index.
+PF_GPU_FN float MixFresnel(Coat coat, float cos_theta) {
+    const float r = (coat.ior - 1.0f) / (coat.ior + 1.0f);
+    const float f0 = r * r;
+    const float m = 1.0f - clamp(cos_theta, 0.0f, 1.0f);
+    const float m2 = m * m;
+    return coat.weight * (f0 + (1.0f - f0) * (m2 * m2 * m));
 }
 
-// Light leaving the base upward along `up` (up.z > 0) crosses the layer and meets the coat
-// from inside: escapes (wi.z > 0, outside), or is reflected back down to the base (wi.z < 0;
-// the weight includes both crossings' transmittance).
-PF_GPU_FN float LeaveCoat(vec3 up, float ior, float alpha, float thickness, float u_branch,
-                          float u1, float u2, PF_OUT(vec3) wi) {
-    const float weight = CoatLayerTransmittance(thickness, up.z) *
-                         CrossCoatFromBelow(-up, ior, alpha, u_branch, u1, u2, wi);
-    return wi.z < 0.0f ? weight * CoatLayerTransmittance(thickness, wi.z) : weight;
+// Its cosine-weighted mean over the hemisphere: weight (F0 + (1 - F0) / 21), since
+// the integral of (1 - mu)^5 2 mu over [0, 1] is 1/21.
+PF_GPU_FN float MixFresnelAverage(Coat coat) {
+    const float r = (coat.ior - 1.0f) / (coat.ior + 1.0f);
+    const float f0 = r * r;
+    return coat.weight * (f0 + (1.0f - f0) / 21.0f);
+}
+
+// What the radiance at the base is worth, times what reaches it: 1 / ior^2 under a layered
+// coat (radiance inside is ior^2 times larger), the Fresnel mix's normalisation 1 / (1 -
+// F_avg) under a Fresnel mix. Camera paths entering a coat carry this factor; a path leaving
+// it divides it out again (the Fresnel mix's LeaveCoat applies its normalisation itself).
+PF_GPU_FN float CoatInside(Coat coat) {
+    if (coat.kind == kCoatFresnelMix) return 1.0f / (1.0f - MixFresnelAverage(coat));
+    return 1.0f / (coat.ior * coat.ior);
+}
+
+// The Fresnel mix's specular lobe reflecting wo: off a visible microfacet (u1, u2) of a rough
+// interface, or the normal of a smooth one. Sets wi and returns the lobe's F(wo.m) times the
+// masking ratio, over `chosen` (the probability the lobe was chosen with); 0 where wi leaves
+// the hemisphere.
+PF_GPU_FN float ReflectMixLobe(Coat coat, vec3 wo, float chosen, float u1, float u2,
+                               PF_OUT(vec3) wi) {
+    vec3 m = vec3(0.0f, 0.0f, 1.0f);
+    if (coat.alpha > 0.0f) m = SampleGgxVisibleNormal(wo, coat.alpha, u1, u2);
+    const float cos_om = dot(wo, m);
+    wi = m * (2.0f * cos_om) - wo;
+    if (!(wi.z > 0.0f)) return 0.0f;
+    const float masking = coat.alpha > 0.0f ? GgxMaskingRatio(wo.z, wi.z, coat.alpha) : 1.0f;
+    return MixFresnel(coat, cos_om) * masking / chosen;
+}
+
+// Light arriving from outside along -wo: reflected by the coat (wi.z > 0), or into it and down
+// to the base (wi.z < 0; the weight includes a layered coat's transmittance). u_branch chooses
+// the branch, (u1, u2) the microfacet of a rough interface.
+PF_GPU_FN float EnterCoat(Coat coat, vec3 wo, float u_branch, float u1, float u2, PF_OUT(vec3) wi) {
+    if (coat.kind == kCoatFresnelMix) {
+        // The lobe is chosen by F at the normal, which the base's weight is the complement of.
+        const float chosen = MixFresnel(coat, wo.z);
+        if (u_branch < chosen) return ReflectMixLobe(coat, wo, chosen, u1, u2, wi);
+        wi = vec3(wo.x, wo.y, -wo.z);
+        return 1.0f;
+    }
+    const float weight = CrossCoatInterface(wo, 1.0f / coat.ior, coat.alpha, u_branch, u1, u2, wi);
+    return wi.z < 0.0f ? weight * CoatLayerTransmittance(coat.thickness, wi.z) : weight;
+}
+
+// Light leaving the base upward along `up` (up.z > 0) meets the coat from inside: escapes (wi.z
+// > 0, outside), or a layered coat reflects it back down to the base (wi.z < 0; the weight
+// includes both crossings' transmittance). A Fresnel mix lets it out along `up`, weighted by
+// (1 - F(up.n)) / (1 - F_avg).
+PF_GPU_FN float LeaveCoat(Coat coat, vec3 up, float u_branch, float u1, float u2, PF_OUT(vec3) wi) {
+    if (coat.kind == kCoatFresnelMix) {
+        wi = up;
+        return (1.0f - MixFresnel(coat, up.z)) * CoatInside(coat);
+    }
+    const float weight = CoatLayerTransmittance(coat.thickness, up.z) *
+                         CrossCoatFromBelow(-up, coat.ior, coat.alpha, u_branch, u1, u2, wi);
+    return wi.z < 0.0f ? weight * CoatLayerTransmittance(coat.thickness, wi.z) : weight;
 }
 
 // The fraction of light arriving from outside along -w (w.z > 0) that reaches the base: exact
-// for a smooth coat; for a rough one an unbiased estimate from the microfacet (u1, u2), as
-// EnterCoat would draw it, the Fresnel branch taken by its expectation.
-PF_GPU_FN float CoatTransmittance(vec3 w, float ior, float alpha, float thickness, float u1,
-                                  float u2) {
+// for a smooth layered coat and for the Fresnel mix; for a rough layered one an unbiased
+// estimate from the microfacet (u1, u2), as EnterCoat would draw it, the Fresnel branch taken
+// by its expectation.
+PF_GPU_FN float CoatTransmittance(Coat coat, vec3 w, float u1, float u2) {
     if (!(w.z > 0.0f)) return 0.0f;
-    const float eta = 1.0f / ior;
+    if (coat.kind == kCoatFresnelMix) return 1.0f - MixFresnel(coat, w.z);
+    const float eta = 1.0f / coat.ior;
     vec3 m = vec3(0.0f, 0.0f, 1.0f);
-    if (alpha > 0.0f) m = SampleGgxVisibleNormal(w, alpha, u1, u2);
+    if (coat.alpha > 0.0f) m = SampleGgxVisibleNormal(w, coat.alpha, u1, u2);
     vec3 refracted;
     if (!Refract(-w, m, eta, refracted) || !(refracted.z < 0.0f)) return 0.0f;
     const float transmitted = 1.0f - FresnelDielectric(dot(w, m), eta);
-    const float masking = alpha > 0.0f ? GgxMaskingRatio(w.z, -refracted.z, alpha) : 1.0f;
-    return transmitted * masking * CoatLayerTransmittance(thickness, refracted.z);
+    const float masking = coat.alpha > 0.0f ? GgxMaskingRatio(w.z, -refracted.z, coat.alpha) : 1.0f;
+    return transmitted * masking * CoatLayerTransmittance(coat.thickness, refracted.z);
 }
 
 // Both of EnterCoat's branches at once, for paths that split rather than choose (the camera
 // pass): from one microfacet (u1, u2) on a rough coat, the reflection (wi, weight
 // `reflected`, 0 where it leaves the hemisphere) and, returned, the weight carried to the
-// base, each times its Fresnel probability: their sum is EnterCoat's expectation.
-PF_GPU_FN float SplitAtCoat(vec3 wo, float ior, float alpha, float thickness, float u1, float u2,
-                            PF_OUT(vec3) wi, PF_OUT(float) reflected) {
-    const float eta = 1.0f / ior;
+// base, each times its probability: their sum is EnterCoat's expectation.
+PF_GPU_FN float SplitAtCoat(Coat coat, vec3 wo, float u1, float u2, PF_OUT(vec3) wi,
+                            PF_OUT(float) reflected) {
+    if (coat.kind == kCoatFresnelMix) {
+        reflected = ReflectMixLobe(coat, wo, 1.0f, u1, u2, wi);
+        return 1.0f - MixFresnel(coat, wo.z);
+    }
+    const float eta = 1.0f / coat.ior;
     vec3 m = vec3(0.0f, 0.0f, 1.0f);
-    if (alpha > 0.0f) m = SampleGgxVisibleNormal(wo, alpha, u1, u2);
+    if (coat.alpha > 0.0f) m = SampleGgxVisibleNormal(wo, coat.alpha, u1, u2);
     const float cos_om = dot(wo, m);
     const float fresnel = FresnelDielectric(cos_om, eta);
     wi = m * (2.0f * cos_om) - wo;
     reflected = 0.0f;
     if (wi.z > 0.0f)
-        reflected = alpha > 0.0f ? fresnel * GgxMaskingRatio(wo.z, wi.z, alpha) : fresnel;
+        reflected = coat.alpha > 0.0f ? fresnel * GgxMaskingRatio(wo.z, wi.z, coat.alpha) : fresnel;
     vec3 refracted;
     if (!Refract(-wo, m, eta, refracted) || !(refracted.z < 0.0f)) return 0.0f;
-    const float masking = alpha > 0.0f ? GgxMaskingRatio(wo.z, -refracted.z, alpha) : 1.0f;
-    return (1.0f - fresnel) * masking * CoatLayerTransmittance(thickness, refracted.z);
+    const float masking =
+        coat.alpha > 0.0f ? GgxMaskingRatio(wo.z, -refracted.z, coat.alpha) : 1.0f;
+    return (1.0f - fresnel) * masking * CoatLayerTransmittance(coat.thickness, refracted.z);
 }
 
-// Light arriving from outside along -wo (wo.z > 0) at a coat over a conductor of normal-incidence
-// colour `tint` (GGX alpha `base_alpha`, 0 for a mirror), followed through the layer as
-// pbrt-v4's random walk follows it: reflected by the coat, or in, off the base, and up to the
-// coat again, which lets it out or turns it back, at most `depth` times before it is taken as
-// absorbed. Sets wi (wi.z > 0 where the weight is not black) and returns the weight carried.
-PF_GPU_FN vec3 ScatterCoatedConductor(vec3 wo, float ior, float alpha, float thickness,
-                                      uint32_t depth, vec3 tint, float base_alpha,
+// Light arriving from outside along -wo (wo.z > 0) at a layered coat over a conductor of
+// normal-incidence colour `tint` (GGX alpha `base_alpha`, 0 for a mirror), followed through the
+// layer as pbrt-v4's random walk follows it: reflected by the coat, or in, off the base, and up to
+// the coat again, which lets it out or turns it back, at most coat.depth times before it is taken
+// as absorbed. Sets wi (wi.z > 0 where the weight is not black) and returns the weight carried.
+PF_GPU_FN vec3 ScatterCoatedConductor(Coat coat, vec3 wo, vec3 tint, float base_alpha,
                                       PF_INOUT(Pcg32) rng, PF_OUT(vec3) wi) {
     float u_branch = Pcg32NextFloat(rng), u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-    float carried = EnterCoat(wo, ior, alpha, thickness, u_branch, u1, u2, wi);
+    float carried = EnterCoat(coat, wo, u_branch, u1, u2, wi);
     vec3 weight = vec3(carried, carried, carried);
-    for (uint32_t bounce = 0; bounce < depth && wi.z < 0.0f; ++bounce) {
+    for (uint32_t bounce = 0; bounce < coat.depth && wi.z < 0.0f; ++bounce) {
         // Off the base: wi heads down to it; its reflection heads up.
         const vec3 at_base = vec3(-wi.x, -wi.y, -wi.z);
         vec3 up = vec3(-at_base.x, -at_base.y, at_base.z);
@@ -151,7 +229,7 @@ PF_GPU_FN vec3 ScatterCoatedConductor(vec3 wo, float ior, float alpha, float thi
         u_branch = Pcg32NextFloat(rng);
         u1 = Pcg32NextFloat(rng);
         u2 = Pcg32NextFloat(rng);
-        weight = weight * LeaveCoat(up, ior, alpha, thickness, u_branch, u1, u2, wi);
+        weight = weight * LeaveCoat(coat, up, u_branch, u1, u2, wi);
     }
     return wi.z > 0.0f ? weight : vec3(0.0f, 0.0f, 0.0f);
 }

@@ -67,11 +67,13 @@ PF_CONST(uint32_t) kSpecHasRoughConductor = 9;
 PF_CONST(uint32_t) kSpecHasRoughDielectric = 10;
 PF_CONST(uint32_t) kSpecHasEnvironment = 11;
 PF_CONST(uint32_t) kSpecHasTexturedLights = 12;
-PF_CONST(uint32_t) kSpecHasImageLights = 13;  // goniometric or projection lights
-PF_CONST(uint32_t) kSpecHasCoats = 14;        // coated diffuse or conductor materials
-PF_CONST(uint32_t) kSpecHasCutOuts = 15;      // alpha cut-outs (core/shared/alpha.h)
-PF_CONST(uint32_t) kSpecHasMixes = 16;        // mix materials (Material::kMix)
-PF_CONST(uint32_t) kSpecCount = 17;
+PF_CONST(uint32_t) kSpecHasImageLights = 13;        // goniometric or projection lights
+PF_CONST(uint32_t) kSpecHasCoats = 14;              // coated diffuse or conductor materials
+PF_CONST(uint32_t) kSpecHasCutOuts = 15;            // alpha cut-outs (core/shared/alpha.h)
+PF_CONST(uint32_t) kSpecHasMixes = 16;              // mix materials (Material::kMix)
+PF_CONST(uint32_t) kSpecHasRoughnessTextures = 17;  // Material::roughness_texture
+PF_CONST(uint32_t) kSpecHasMixTextures = 18;        // Material::mix_texture
+PF_CONST(uint32_t) kSpecCount = 19;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -126,18 +128,20 @@ PF_CONST(uint32_t) kNoEmitter = 0xffffffffu;
 PF_CONST(uint32_t) kNoCoat = 0xffffffffu;  // a hit point under no coat (core/job/hit_point.h)
 
 struct GpuMaterial {
-    vec4 base_color;  // xyz; w: index of refraction
-    uint32_t type;    // kMaterial*
-    int32_t texture;  // base colour texture, or -1
-    float roughness;  // GGX alpha of the rough materials
-    uint32_t pad;
+    vec4 base_color;            // xyz; w: index of refraction
+    uint32_t type;              // kMaterial*
+    int32_t texture;            // base colour texture, or -1
+    float roughness;            // GGX alpha of the rough materials
+    int32_t roughness_texture;  // scales roughness and coat.y where set, or -1
     vec4 coat;   // a coat's index of refraction (0: none), GGX alpha, optical thickness;
                  // w: the most bounces under it (uint bits); core/shared/coat.h
+    vec4 layer;  // the coat's kind (kCoat*, uint bits), y: a Fresnel mix's weight
     vec4 alpha;  // x: alpha (1 without cut-outs), y: its cutoff (0: stochastic); z: the alpha
                  // texture, or -1 (int bits); core/shared/alpha.h
-    uvec4 mix;   // kMaterialMix: x, y the two materials; z the second's probability (float bits)
+    uvec4 mix;   // kMaterialMix: x, y the two materials; z the second's probability (float
+                 // bits), w: a texture scaling it, or -1 (int bits)
 };
-PF_GPU_LAYOUT(GpuMaterial, 80);
+PF_GPU_LAYOUT(GpuMaterial, 96);
 
 struct GpuTexture {
     uint32_t first_texel;  // into the texels binding

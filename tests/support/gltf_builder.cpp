@@ -43,6 +43,7 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
                          m.texture_emissive ? "" : texture, "}", m.texture_emissive ? texture : "");
         if (!IsBlack(m.emission))
             absl::StrAppend(&material, R"(,"emissiveFactor":)", Floats(m.emission));
+        if (!m.extensions.empty()) absl::StrAppend(&material, R"(,"extensions":{)", m.extensions, "}");
         materials.push_back(material + m.extra + "}");
     }
     for (const TestMesh& mesh : scene.meshes) {

@@ -17,6 +17,9 @@ struct TestMaterial {
     std::string texture_extra;       // raw JSON fields of its textureInfo, e.g. an extension
     bool texture_emissive = false;   // the texture is the emissive one, not the base colour's
     std::string extra;               // raw JSON fields of the material, e.g. ,"doubleSided":true
+    // Raw JSON members of its "extensions" object: by default a specular layer of weight 0,
+    // which makes glTF's dielectric BRDF Lambertian (gltf_materials.h).
+    std::string extensions = R"("KHR_materials_specular":{"specularFactor":0})";
 };
 
 struct TestMesh {

@@ -127,9 +127,10 @@ TEST(CoatTest, LightSamplingTransmittanceIsTheWalks) {
                 const float u[5] = {rng.NextFloat(), rng.NextFloat(), rng.NextFloat(),
                                     rng.NextFloat(), rng.NextFloat()};
                 Vec3 wi;
-                const float entered = gpu::EnterCoat(w, 1.5f, alpha, 0.1f, u[0], u[1], u[2], wi);
+                const gpu::Coat coat{gpu::kCoatLayered, 1.5f, alpha, 0.1f, 1.0f, 10};
+                const float entered = gpu::EnterCoat(coat, w, u[0], u[1], u[2], wi);
                 const double a = wi.z < 0 ? entered : 0.0;
-                const double b = gpu::CoatTransmittance(w, 1.5f, alpha, 0.1f, u[3], u[4]);
+                const double b = gpu::CoatTransmittance(coat, w, u[3], u[4]);
                 walked += a, walked_sq += a * a, sampled += b, sampled_sq += b * b;
             }
             walked /= kSamples, sampled /= kSamples;

@@ -35,21 +35,21 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
     // What no kernel of this scene reads is neither built nor uploaded.
     if (gpu_scene.features.smooth_normals)
         for (const Vec3& normal : scene.normals) gpu_scene.normals.push_back(Vec4(normal));
-    if (gpu_scene.features.textures || gpu_scene.features.cut_outs)
+    if (gpu_scene.features.ReadsUv())
         for (const Point2& uv : scene.uvs) gpu_scene.uvs.push_back({uv.x, uv.y});
     for (const Material& material : scene.materials)
         gpu_scene.materials.push_back(
             {Vec4(material.base_color, material.ior), static_cast<uint32_t>(material.type),
-             material.base_color_texture, material.roughness, 0,
+             material.base_color_texture, material.roughness, material.roughness_texture,
              gpu::vec4{material.coat_ior, material.coat_roughness, material.coat_thickness,
                        std::bit_cast<float>(material.coat_depth)},
+             gpu::vec4{std::bit_cast<float>(material.coat_kind), material.coat_weight, 0, 0},
              gpu::vec4{material.alpha, material.alpha_cutoff,
                        std::bit_cast<float>(material.alpha_texture), 0},
              gpu::uvec4{material.mix_first, material.mix_second,
-                        std::bit_cast<uint32_t>(material.mix_amount), 0}});
-    if (!gpu_scene.features.textures && !gpu_scene.features.textured_lights &&
-        !gpu_scene.features.cut_outs)
-        return;
+                        std::bit_cast<uint32_t>(material.mix_amount),
+                        std::bit_cast<uint32_t>(material.mix_texture)}});
+    if (!gpu_scene.features.ReadsUv() && !gpu_scene.features.textured_lights) return;
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {
         gpu_scene.textures.push_back(
             {static_cast<uint32_t>(gpu_scene.texels.size()), texture->width, texture->height, 0});
@@ -221,6 +221,8 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasCoats] = features.coats;
     spec[gpu::kSpecHasCutOuts] = features.cut_outs;
     spec[gpu::kSpecHasMixes] = features.mixes;
+    spec[gpu::kSpecHasRoughnessTextures] = features.roughness_textures;
+    spec[gpu::kSpecHasMixTextures] = features.mix_textures;
     return spec;
 }
 

@@ -26,6 +26,8 @@ layout(constant_id = kSpecHasImageLights) const bool kHasImageLights = true;
 layout(constant_id = kSpecHasCoats) const bool kHasCoats = true;
 layout(constant_id = kSpecHasCutOuts) const bool kHasCutOuts = true;
 layout(constant_id = kSpecHasMixes) const bool kHasMixes = true;
+layout(constant_id = kSpecHasRoughnessTextures) const bool kHasRoughnessTextures = true;
+layout(constant_id = kSpecHasMixTextures) const bool kHasMixTextures = true;
 
 layout(push_constant, std430) uniform Push { GpuParams params; };
 

@@ -7,7 +7,7 @@
 #include "common.glsl"
 #include "trace.glsl"
 #include "lights.glsl"
-#include "core/shared/coat.h"
+#include "specular.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;
 
@@ -48,14 +48,12 @@ void main() {
         // Under a coat, what it lets through of each (core/ppm/direct_light.cpp's CoatFactor).
         const uint coat = floatBitsToUint(point.position.w);
         if (kHasCoats && coat != kNoCoat) {
-            const vec4 layer = materials[coat].coat;
+            const Coat layer = CoatOf(materials[coat]);
             float u1 = 0, u2 = 0;
-            if (layer.y > 0.0) u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+            if (layer.alpha > 0.0) u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
             const mat3 frame = FrameFromNormal(normal);
-            if (MaxComponent(light_part) > 0.0)
-                light_part *= CoatTransmittance(light.direction * frame, layer.x, layer.y, layer.z, u1, u2);
-            if (MaxComponent(ray_part) > 0.0)
-                ray_part *= CoatTransmittance(ray_direction * frame, layer.x, layer.y, layer.z, u1, u2);
+            if (MaxComponent(light_part) > 0.0) light_part *= CoatTransmittance(layer, light.direction * frame, u1, u2);
+            if (MaxComponent(ray_part) > 0.0) ray_part *= CoatTransmittance(layer, ray_direction * frame, u1, u2);
         }
         const vec3 irradiance = light_part + ray_part;
         vec3 value = point.weight.xyz * irradiance;

@@ -68,7 +68,7 @@ uint TracePhoton(uint photon, out bool discarded) {
         if (!TraceRay(origin, direction, kInfinity, false, hit)) break;
         if (bounce == 0) flux *= RangeWindow(hit.t, emitted.range);  // the light's range
         const Surface surface = SurfaceAt(hit);
-        const GpuMaterial material = materials[surface.material];
+        const GpuMaterial material = ShadingMaterial(surface);
         const bool front_facing = dot(direction, surface.geometric_normal) < 0;
         SpecularBounce scatter = SpecularBounce(direction, vec3(0.0), false);  // absorbed
         if (material.type == kMaterialDiffuse) {
@@ -79,8 +79,7 @@ uint TracePhoton(uint photon, out bool discarded) {
             if (coated) {  // as ArriveAtCoat: the coat reflects the photon or lets it in
                 const float u_branch = Pcg32NextFloat(rng), u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
                 vec3 wi;
-                const float weight = EnterCoat(-direction * frame, material.coat.x, material.coat.y, material.coat.z,
-                                               u_branch, u1, u2, wi);
+                const float weight = EnterCoat(CoatOf(material), -direction * frame, u_branch, u1, u2, wi);
                 at_base = wi.z < 0.0;
                 if (at_base) flux *= weight;
                 else scatter = SpecularBounce(frame * wi, vec3(weight), false);
@@ -103,7 +102,7 @@ uint TracePhoton(uint photon, out bool discarded) {
                     // As LeaveCoatAt: out through the coat, or back down to the base.
                     const float u_branch = Pcg32NextFloat(rng), v1 = Pcg32NextFloat(rng), v2 = Pcg32NextFloat(rng);
                     vec3 wi;
-                    flux *= LeaveCoat(local, material.coat.x, material.coat.y, material.coat.z, u_branch, v1, v2, wi);
+                    flux *= LeaveCoat(CoatOf(material), local, u_branch, v1, v2, wi);
                     direction = frame * wi;
                     if (wi.z > 0.0) {
                         escaped = true;
@@ -124,9 +123,8 @@ uint TracePhoton(uint photon, out bool discarded) {
                 const mat3 frame = FrameFromNormal(front_facing ? surface.shading_normal : -surface.shading_normal);
                 const float base_alpha = material.type == kMaterialRoughConductor ? max(material.roughness, 1e-3) : 0.0;
                 vec3 wi;
-                const vec3 weight = ScatterCoatedConductor(-direction * frame, material.coat.x, material.coat.y,
-                                                           material.coat.z, floatBitsToUint(material.coat.w),
-                                                           surface.base_color, base_alpha, rng, wi);
+                const vec3 weight =
+                    ScatterCoatedConductor(CoatOf(material), -direction * frame, surface.base_color, base_alpha, rng, wi);
                 scatter = SpecularBounce(frame * wi, weight, false);
             } else {
                 // As ScatterNonDiffuse: one number for a specular surface, three for a rough one.

@@ -6,6 +6,12 @@
 #include "core/shared/microfacet.h"
 #include "core/shared/coat.h"
 
+// The material's coat, as core/shared/coat.h takes it (glossy.h's CoatOf).
+Coat CoatOf(GpuMaterial material) {
+    return Coat(floatBitsToUint(material.layer.x), material.coat.x, material.coat.y, material.coat.z, material.layer.y,
+                floatBitsToUint(material.coat.w));
+}
+
 struct SpecularBounce {
     vec3 direction;
     vec3 weight;

@@ -113,6 +113,7 @@ struct Surface {
     vec3 shading_normal;    // on the same side
     uint material;
     vec3 base_color;        // reflectance or tint, texture applied
+    vec2 uv;                // texture coordinates, where the scene has textures that need them
 };
 
 Surface SurfaceAt(RayHit hit) {
@@ -123,13 +124,20 @@ Surface SurfaceAt(RayHit hit) {
     surface.geometric_normal = shade.normal.xyz;
     surface.shading_normal = shade.normal.xyz;
     surface.material = shade.vertices.w & ~kSmoothBit;
+    const float b0 = 1.0 - hit.b1 - hit.b2;
+    surface.uv = vec2(0);
+    if (kHasTextures || kHasRoughnessTextures || kHasMixTextures)
+        surface.uv = vertex_uvs[shade.vertices.x] * b0 + vertex_uvs[shade.vertices.y] * hit.b1 +
+                     vertex_uvs[shade.vertices.z] * hit.b2;
     if (kHasMixes) {  // one of a mix's materials at this point, as Scene::ResolveMaterial picks
         for (uint m = surface.material; materials[m].type == kMaterialMix; m = surface.material) {
+            float amount = uintBitsToFloat(materials[m].mix.z);
+            const int texture = int(materials[m].mix.w);
+            if (kHasMixTextures && texture >= 0) amount *= TextureSample(textures[texture], surface.uv).x;
             const float u = MixHash(surface.position, floatBitsToUint(triangle.p0.w) * 0x9e3779b9u + m);
-            surface.material = u < uintBitsToFloat(materials[m].mix.z) ? materials[m].mix.y : materials[m].mix.x;
+            surface.material = u < amount ? materials[m].mix.y : materials[m].mix.x;
         }
     }
-    const float b0 = 1.0 - hit.b1 - hit.b2;
     if (kHasSmoothNormals && (shade.vertices.w & kSmoothBit) != 0) {
         const vec3 n = vertex_normals[shade.vertices.x].xyz * b0 + vertex_normals[shade.vertices.y].xyz * hit.b1 +
                        vertex_normals[shade.vertices.z].xyz * hit.b2;
@@ -137,12 +145,19 @@ Surface SurfaceAt(RayHit hit) {
     }
     const GpuMaterial material = materials[surface.material];
     surface.base_color = material.base_color.xyz;
-    if (kHasTextures && material.texture >= 0) {
-        const vec2 uv = vertex_uvs[shade.vertices.x] * b0 + vertex_uvs[shade.vertices.y] * hit.b1 +
-                        vertex_uvs[shade.vertices.z] * hit.b2;
-        surface.base_color *= TextureSample(textures[material.texture], uv);
-    }
+    if (kHasTextures && material.texture >= 0) surface.base_color *= TextureSample(textures[material.texture], surface.uv);
     return surface;
+}
+
+// The material shading a surface point, its roughness texture applied (Scene::ShadingMaterial).
+GpuMaterial ShadingMaterial(Surface surface) {
+    GpuMaterial material = materials[surface.material];
+    if (kHasRoughnessTextures && material.roughness_texture >= 0) {
+        const float t = TextureSample(textures[material.roughness_texture], surface.uv).x;
+        material.roughness = clamp(material.roughness * t, 1e-3, 1.0);
+        if (material.coat.y > 0.0) material.coat.y = clamp(material.coat.y * t, 1e-3, 1.0);
+    }
+    return material;
 }
 
 // Moves p off the surface along n (OffsetRayOrigin in core/geometry/ray.h).

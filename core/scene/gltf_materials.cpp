@@ -1,0 +1,319 @@
+// glTF materials (the core specification's metallic-roughness model and the KHR_materials_*
+// extensions read here) mapped to the materials photon mapping distinguishes:
+//  - transmission > 0 with KHR_materials_volume: solid glass (refracts, index from
+//    KHR_materials_ior, default 1.5), rough glass where roughness > 0; transmission alone: a
+//    thin sheet that does not refract;
+//  - otherwise glTF's BRDF, mix(dielectric, metal, metallic):
+//    the dielectric a Lambertian base under a Fresnel mix (core/shared/coat.h: GGX specular of
+//    F0 from the index, KHR_materials_specular's factor and colour applied), the metal a mirror
+//    or GGX conductor tinted by the base colour; metallic between 0 and 1, or from the
+//    metallicRoughnessTexture's blue channel, is a mix choosing the metal with that probability
+//    at each point (Material::kMix); roughness squared is the GGX alpha of both, times the
+//    texture's green channel squared where it has one (Material::roughness_texture);
+//  - KHR_materials_clearcoat: a layered coat of index 1.5 over either (the dielectric's own
+//    specular layer, under a coat of about its index, is dropped), mixed with the uncoated
+//    surface where clearcoatFactor is below 1.
+// Emission is emissiveFactor x emissiveTexture x KHR_materials_emissive_strength, radiance in
+// W/(m^2 sr), from the front face, and the back one too where the material is doubleSided.
+// alphaMode MASK and BLEND cut the surface out where alpha says.
+#include "core/scene/gltf_materials.h"
+
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "core/shared/coat.h"
+
+namespace pf {
+
+double NumberOr(const tinygltf::Value& object, const char* key, double fallback) {
+    if (!object.IsObject() || !object.Has(key) || !object.Get(key).IsNumber()) return fallback;
+    return object.Get(key).GetNumberAsDouble();
+}
+
+const tinygltf::Value* Extension(const tinygltf::ExtensionMap& extensions, const char* name) {
+    const auto it = extensions.find(name);
+    return it == extensions.end() ? nullptr : &it->second;
+}
+
+namespace {
+
+// The index of a texture named by `key` ({"index": n}) in an extension's object; -1 without.
+int ExtensionTexture(const tinygltf::Value& extension, const char* key) {
+    if (!extension.Has(key) || !extension.Get(key).IsObject()) return -1;
+    return static_cast<int>(NumberOr(extension.Get(key), "index", -1));
+}
+
+// The index with Schlick normal-incidence reflectance f0 (in [0, 1)).
+float IorOfF0(double f0) {
+    const double r = std::sqrt(std::clamp(f0, 0.0, 0.99));
+    return static_cast<float>((1 + r) / (1 - r));
+}
+
+class GltfMaterialBuilder {
+public:
+    GltfMaterialBuilder(const tinygltf::Material& source, const std::string& where,
+                        const GltfTextureLookup& texture, std::vector<Material>& materials)
+        : source_(source), where_(where), texture_(texture), materials_(materials) {}
+
+    absl::StatusOr<uint32_t> Build();
+
+private:
+    absl::Status Error(const std::string& what) const {
+        return absl::InvalidArgumentError(absl::StrCat(where_, ": ", what));
+    }
+    // The base colour, its texture, emission and the faces it is drawn on.
+    absl::Status ReadCommon(Material& material);
+    // The cut-outs of alphaMode, set on the material its surfaces use.
+    absl::Status ReadAlpha(Material& material);
+    // The metallic-roughness model's materials; returns the one surfaces use.
+    absl::StatusOr<uint32_t> MetallicRoughness(const Material& common);
+    // The index of a new material; of a new mix of `first` and `second`, emitting as `common`.
+    uint32_t Add(const Material& material) {
+        materials_.push_back(material);
+        return static_cast<uint32_t>(materials_.size() - 1);
+    }
+    uint32_t Mix(const Material& common, uint32_t first, uint32_t second, float amount,
+                 int32_t texture) {
+        Material mix = common;
+        mix.type = MaterialType::kMix;
+        mix.mix_first = first, mix.mix_second = second;
+        mix.mix_amount = amount, mix.mix_texture = texture;
+        return Add(mix);
+    }
+    void NoteTextureLeftOut(const tinygltf::Value& extension, const char* name,
+                            std::initializer_list<const char*> keys) const {
+        for (const char* key : keys)
+            if (ExtensionTexture(extension, key) >= 0)
+                spdlog::warn("{}: {}'s {} is left out (its factor alone is used)", where_, name,
+                             key);
+    }
+
+    const tinygltf::Material& source_;
+    const std::string& where_;
+    const GltfTextureLookup& texture_;
+    std::vector<Material>& materials_;
+};
+
+absl::Status GltfMaterialBuilder::ReadCommon(Material& material) {
+    const auto& pbr = source_.pbrMetallicRoughness;
+    if (pbr.baseColorFactor.size() == 4)
+        material.base_color =
+            Rgb(Vec3d(pbr.baseColorFactor[0], pbr.baseColorFactor[1], pbr.baseColorFactor[2]));
+    if (!IsFinite(material.base_color) || MaxComponent(material.base_color) > 1.0f ||
+        MinComponent(material.base_color) < 0)
+        return Error("baseColorFactor must lie in [0, 1]");
+    ImageDecodeOptions colour;  // glTF's colour textures are sRGB-encoded
+    colour.encoding = ImageEncoding::kSrgb;
+    if (pbr.baseColorTexture.index >= 0) {
+        const absl::StatusOr<int32_t> texture = texture_(pbr.baseColorTexture.index, colour);
+        if (!texture.ok()) return texture.status();
+        material.base_color_texture = *texture;
+    }
+    double strength = 1.0;
+    if (const tinygltf::Value* e = Extension(source_.extensions, "KHR_materials_emissive_strength"))
+        strength = NumberOr(*e, "emissiveStrength", 1.0);
+    if (source_.emissiveFactor.size() == 3)
+        material.emission = Rgb(
+            Vec3d(source_.emissiveFactor[0], source_.emissiveFactor[1], source_.emissiveFactor[2]) *
+            strength);
+    if (!IsFinite(material.emission) || MinComponent(material.emission) < 0)
+        return Error("emission must be finite and non-negative");
+    if (material.IsEmissive() && source_.emissiveTexture.index >= 0) {
+        const absl::StatusOr<int32_t> texture = texture_(source_.emissiveTexture.index, colour);
+        if (!texture.ok()) return texture.status();
+        material.emission_texture = *texture;
+    }
+    // A double-sided material is drawn, so emits, on both faces.
+    material.two_sided = source_.doubleSided ? 1 : 0;
+    return absl::OkStatus();
+}
+
+absl::Status GltfMaterialBuilder::ReadAlpha(Material& material) {
+    // MASK keeps the surface where alpha (baseColorFactor's fourth value times the base colour
+    // texture's alpha) is at least alphaCutoff; BLEND as coverage, a ray meeting it with
+    // probability alpha (core/shared/alpha.h); OPAQUE ignores alpha.
+    if (source_.alphaMode != "MASK" && source_.alphaMode != "BLEND") return absl::OkStatus();
+    const auto& pbr = source_.pbrMetallicRoughness;
+    const double alpha = pbr.baseColorFactor.size() == 4 ? pbr.baseColorFactor[3] : 1.0;
+    if (!(alpha >= 0 && alpha <= 1)) return Error("baseColorFactor's alpha must lie in [0, 1]");
+    material.alpha = static_cast<float>(alpha);
+    if (pbr.baseColorTexture.index >= 0) {
+        ImageDecodeOptions options;
+        options.channels = ImageChannels::kAlpha;  // alpha is linear
+        const absl::StatusOr<int32_t> texture = texture_(pbr.baseColorTexture.index, options);
+        if (!texture.ok()) return texture.status();
+        material.alpha_texture = *texture;
+    }
+    if (source_.alphaMode == "MASK") {
+        if (!(source_.alphaCutoff >= 0 && source_.alphaCutoff <= 1))
+            return Error("alphaCutoff must lie in [0, 1]");
+        material.alpha_cutoff = static_cast<float>(source_.alphaCutoff);
+        if (material.alpha_cutoff <= 0)  // every point passes: opaque
+            material.alpha = 1, material.alpha_texture = kNoTexture;
+    }
+    return absl::OkStatus();
+}
+
+absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& common) {
+    const auto& pbr = source_.pbrMetallicRoughness;
+    if (!(pbr.metallicFactor >= 0 && pbr.metallicFactor <= 1 && pbr.roughnessFactor >= 0 &&
+          pbr.roughnessFactor <= 1))
+        return Error("metallicFactor and roughnessFactor must lie in [0, 1]");
+    // GGX alpha: glTF's roughness squared, the texture's green channel read squared to match.
+    const float alpha = static_cast<float>(pbr.roughnessFactor * pbr.roughnessFactor);
+    const bool smooth = alpha < kMinRoughness;
+    const int maps = pbr.metallicRoughnessTexture.index;
+    int32_t roughness_texture = kNoTexture, metallic_texture = kNoTexture;
+    if (maps >= 0) {
+        ImageDecodeOptions options;
+        options.encoding = ImageEncoding::kLinear;
+        options.channels = ImageChannels::kGreen;
+        options.exponent = 2;
+        if (!smooth) {
+            const absl::StatusOr<int32_t> texture = texture_(maps, options);
+            if (!texture.ok()) return texture.status();
+            roughness_texture = *texture;
+        }
+        options.channels = ImageChannels::kBlue;
+        options.exponent = 1;
+        if (pbr.metallicFactor > 0) {
+            const absl::StatusOr<int32_t> texture = texture_(maps, options);
+            if (!texture.ok()) return texture.status();
+            metallic_texture = *texture;
+        }
+    }
+    const bool dielectric = pbr.metallicFactor < 1 || metallic_texture != kNoTexture;
+    const bool metal = pbr.metallicFactor > 0;
+
+    Material base = common;  // each part emits as the surface does
+    base.roughness_texture = roughness_texture;
+    Material plastic = base;  // glTF's dielectric BRDF
+    plastic.coat_kind = gpu::kCoatFresnelMix;
+    plastic.coat_roughness = smooth ? 0.0f : std::max(alpha, kMinRoughness);
+    double f0_scale = 1.0;
+    if (const tinygltf::Value* e = Extension(source_.extensions, "KHR_materials_ior"))
+        plastic.coat_ior = static_cast<float>(NumberOr(*e, "ior", 1.5));
+    else
+        plastic.coat_ior = 1.5f;
+    if (!(plastic.coat_ior >= 1.0f && std::isfinite(plastic.coat_ior)))
+        return Error("KHR_materials_ior's ior must be at least 1");
+    if (const tinygltf::Value* e = Extension(source_.extensions, "KHR_materials_specular")) {
+        plastic.coat_weight = static_cast<float>(NumberOr(*e, "specularFactor", 1.0));
+        if (e->Has("specularColorFactor") && e->Get("specularColorFactor").IsArray() &&
+            e->Get("specularColorFactor").ArrayLen() == 3) {
+            const tinygltf::Value& colour = e->Get("specularColorFactor");
+            f0_scale = (colour.Get(0).GetNumberAsDouble() + colour.Get(1).GetNumberAsDouble() +
+                        colour.Get(2).GetNumberAsDouble()) /
+                       3;
+        }
+        if (!(plastic.coat_weight >= 0 && plastic.coat_weight <= 1 && f0_scale >= 0 &&
+              std::isfinite(f0_scale)))
+            return Error(
+                "KHR_materials_specular: specularFactor must lie in [0, 1], "
+                "specularColorFactor be finite and non-negative");
+        NoteTextureLeftOut(*e, "KHR_materials_specular",
+                           {"specularTexture", "specularColorTexture"});
+    }
+    if (f0_scale != 1.0) {  // F0 = min(F0(ior) x the colour's mean, 1), as an index
+        const double r = (plastic.coat_ior - 1.0) / (plastic.coat_ior + 1.0);
+        plastic.coat_ior = IorOfF0(std::min(r * r * f0_scale, 1.0));
+    }
+    plastic.coat_ior = std::min(plastic.coat_ior, IorOfF0(0.99));  // F0 below 1
+    if (plastic.coat_weight <= 0) plastic = base;  // no specular layer: Lambertian
+    Material conductor = base;
+    conductor.type = smooth ? MaterialType::kMirror : MaterialType::kRoughConductor;
+    conductor.roughness = smooth ? 0.0f : std::max(alpha, kMinRoughness);
+    if (smooth) conductor.roughness_texture = kNoTexture;
+
+    // KHR_materials_clearcoat: the same surfaces under a layered coat of index 1.5.
+    float clearcoat = 0;
+    Material clear_plastic = base, clear_conductor = conductor;
+    if (const tinygltf::Value* e = Extension(source_.extensions, "KHR_materials_clearcoat")) {
+        clearcoat = static_cast<float>(NumberOr(*e, "clearcoatFactor", 0.0));
+        const double roughness = NumberOr(*e, "clearcoatRoughnessFactor", 0.0);
+        if (!(clearcoat >= 0 && clearcoat <= 1 && roughness >= 0 && roughness <= 1))
+            return Error(
+                "KHR_materials_clearcoat: clearcoatFactor and clearcoatRoughnessFactor must lie "
+                "in [0, 1]");
+        for (Material* coated : {&clear_plastic, &clear_conductor}) {
+            coated->coat_kind = gpu::kCoatLayered;
+            coated->coat_ior = 1.5f;
+            coated->coat_roughness =
+                roughness * roughness < kMinRoughness ? 0.0f : float(roughness * roughness);
+        }
+        NoteTextureLeftOut(
+            *e, "KHR_materials_clearcoat",
+            {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"});
+    }
+    // A surface and its clearcoated self, mixed by clearcoatFactor.
+    const auto with_clearcoat = [&](const Material& plain, const Material& coated) {
+        if (clearcoat <= 0) return Add(plain);
+        if (clearcoat >= 1) return Add(coated);
+        const uint32_t first = Add(plain);
+        return Mix(base, first, Add(coated), clearcoat, kNoTexture);
+    };
+    uint32_t dielectric_index = 0, metal_index = 0;
+    if (dielectric) dielectric_index = with_clearcoat(plastic, clear_plastic);
+    if (metal) metal_index = with_clearcoat(conductor, clear_conductor);
+    if (!metal) return dielectric_index;
+    if (!dielectric) return metal_index;
+    return Mix(base, dielectric_index, metal_index, static_cast<float>(pbr.metallicFactor),
+               metallic_texture);
+}
+
+absl::StatusOr<uint32_t> GltfMaterialBuilder::Build() {
+    Material common;
+    if (absl::Status status = ReadCommon(common); !status.ok()) return status;
+    double transmission = 0.0;
+    if (const tinygltf::Value* e = Extension(source_.extensions, "KHR_materials_transmission"))
+        transmission = NumberOr(*e, "transmissionFactor", 0.0);
+    if (transmission > 0) {
+        Material glass = common;
+        if (const tinygltf::Value* e = Extension(source_.extensions, "KHR_materials_ior"))
+            glass.ior = static_cast<float>(NumberOr(*e, "ior", 1.5));
+        if (!(glass.ior >= 1.0f && std::isfinite(glass.ior)))
+            return Error("KHR_materials_ior's ior must be at least 1");
+        const tinygltf::Value* volume = Extension(source_.extensions, "KHR_materials_volume");
+        glass.type = volume != nullptr && NumberOr(*volume, "thicknessFactor", 0.0) > 0
+                         ? MaterialType::kDielectric
+                         : MaterialType::kThinDielectric;
+        if (transmission < 1)
+            spdlog::warn("{}: transmissionFactor {} taken as 1 (no diffuse-transmission mix)",
+                         where_, transmission);
+        const double roughness = source_.pbrMetallicRoughness.roughnessFactor;
+        if (glass.type == MaterialType::kDielectric && roughness > 0.0) {
+            glass.type = MaterialType::kRoughDielectric;
+            glass.roughness =
+                static_cast<float>(std::clamp(roughness * roughness, double(kMinRoughness), 1.0));
+        }
+        if (absl::Status status = ReadAlpha(glass); !status.ok()) return status;
+        return Add(glass);
+    }
+    std::vector<std::string> left_out;
+    for (const auto& [name, value] : source_.extensions)
+        if (name.starts_with("KHR_materials_") && name != "KHR_materials_emissive_strength" &&
+            name != "KHR_materials_ior" && name != "KHR_materials_specular" &&
+            name != "KHR_materials_clearcoat" && name != "KHR_materials_transmission" &&
+            name != "KHR_materials_volume")
+            left_out.push_back(name);
+    if (!left_out.empty()) spdlog::warn("{}: {} left out", where_, absl::StrJoin(left_out, ", "));
+    const absl::StatusOr<uint32_t> index = MetallicRoughness(common);
+    if (!index.ok()) return index.status();
+    // Cut-outs belong to the material the triangles name (Scene::Alpha).
+    if (absl::Status status = ReadAlpha(materials_[*index]); !status.ok()) return status;
+    return *index;
+}
+
+}  // namespace
+
+absl::StatusOr<uint32_t> AddGltfMaterial(const tinygltf::Material& source, const std::string& where,
+                                         const GltfTextureLookup& texture,
+                                         std::vector<Material>& materials) {
+    return GltfMaterialBuilder(source, where, texture, materials).Build();
+}
+
+}  // namespace pf
