@@ -5,12 +5,13 @@
 //    exp(-thickness / mu)). Light is followed through the layer as pbrt-v4's random walk
 //    follows it, choosing each interface's branch with its Fresnel probability.
 //  - Fresnel mix (glTF's dielectric BRDF, fresnel_mix(diffuse, specular)): a GGX specular lobe
-//    weighted by Schlick's Fresnel term F(v.h) of F0 from `ior`, scaled by `weight` (glTF's
-//    specularFactor), over a diffuse base weighted by (1 - F(wo.n)) (1 - F(wi.n)) / (1 - F_avg):
-//    glTF's (1 - F) made separable, so that photons and camera paths each carry their half,
-//    and normalised by the cosine-weighted mean F_avg, so that a white base under a smooth
-//    layer reflects all the light (Kelemen and Szirmay-Kalos 2001 couple the two likewise).
-//    Nothing refracts and nothing is turned back to the base.
+//    weighted at each microfacet m by Schlick's Fresnel term F(w.m) of F0 from `ior`, scaled
+//    by `weight` (glTF's specularFactor), over a diffuse base weighted by T(wo) T(wi) / (1 -
+//    F_avg), T(w) = 1 - E_m[F(w.m)] what the layer does not reflect: glTF's (1 - F(v.h)) made
+//    separable, so that photons and camera paths each carry their half, and normalised by the
+//    cosine-weighted mean F_avg, so that a white base reflects all the light but what GGX's
+//    masking loses (Kelemen and Szirmay-Kalos 2001 couple the two likewise). Nothing refracts
+//    and nothing is turned back to the base.
 // Every pass (camera, photon, direct light, path tracer) sees the same surface through the
 // functions below. Directions are in the local frame of the shading normal, +z on the side the
 // light arrives from outside. One definition for the CPU and the Vulkan kernels.
@@ -92,12 +93,16 @@ PF_GPU_FN float MixFresnel(Coat coat, float cos_theta) {
     return coat.weight * (f0 + (1.0f - f0) * (m2 * m2 * m));
 }
 
-// Its cosine-weighted mean over the hemisphere: weight (F0 + (1 - F0) / 21), since
-// the integral of (1 - mu)^5 2 mu over [0, 1] is 1/21.
+// The cosine-weighted mean over directions w of what the layer reflects, E_m[F(w.m)] over w's
+// visible microfacets: weight (F0 + (1 - F0) b(alpha)), where b is the mean of (1 - w.m)^5 --
+// 1/21 on a smooth layer (the integral of (1 - mu)^5 2 mu over [0, 1]), a cubic fit within
+// 1e-3 of it on rough ones (tests/core/scene/fresnel_mix_test.cpp integrates it).
 PF_GPU_FN float MixFresnelAverage(Coat coat) {
     const float r = (coat.ior - 1.0f) / (coat.ior + 1.0f);
     const float f0 = r * r;
-    return coat.weight * (f0 + (1.0f - f0) / 21.0f);
+    const float a = coat.alpha;
+    const float b = 1.0f / 21.0f + a * (-0.080443f + a * (0.122424f - 0.054434f * a));
+    return coat.weight * (f0 + (1.0f - f0) * b);
 }
 
 // What the radiance at the base is worth, times what reaches it: 1 / ior^2 under a layered
@@ -109,19 +114,19 @@ PF_GPU_FN float CoatInside(Coat coat) {
     return 1.0f / (coat.ior * coat.ior);
 }
 
-// The Fresnel mix's specular lobe reflecting wo: off a visible microfacet (u1, u2) of a rough
-// interface, or the normal of a smooth one. Sets wi and returns the lobe's F(wo.m) times the
-// masking ratio, over `chosen` (the probability the lobe was chosen with); 0 where wi leaves
-// the hemisphere.
-PF_GPU_FN float ReflectMixLobe(Coat coat, vec3 wo, float chosen, float u1, float u2,
-                               PF_OUT(vec3) wi) {
-    vec3 m = vec3(0.0f, 0.0f, 1.0f);
-    if (coat.alpha > 0.0f) m = SampleGgxVisibleNormal(wo, coat.alpha, u1, u2);
-    const float cos_om = dot(wo, m);
-    wi = m * (2.0f * cos_om) - wo;
+// A microfacet of the coat's interface seen from w: one of w's visible normals, drawn by
+// (u1, u2), on a rough interface; the normal on a smooth one.
+PF_GPU_FN vec3 CoatMicrofacet(Coat coat, vec3 w, float u1, float u2) {
+    if (coat.alpha > 0.0f) return SampleGgxVisibleNormal(w, coat.alpha, u1, u2);
+    return vec3(0.0f, 0.0f, 1.0f);
+}
+
+// The Fresnel mix's specular lobe reflecting wo off microfacet m: sets wi and returns the
+// masking ratio (1 on a smooth layer), 0 where wi leaves the hemisphere.
+PF_GPU_FN float ReflectOffMix(Coat coat, vec3 wo, vec3 m, PF_OUT(vec3) wi) {
+    wi = m * (2.0f * dot(wo, m)) - wo;
     if (!(wi.z > 0.0f)) return 0.0f;
-    const float masking = coat.alpha > 0.0f ? GgxMaskingRatio(wo.z, wi.z, coat.alpha) : 1.0f;
-    return MixFresnel(coat, cos_om) * masking / chosen;
+    return coat.alpha > 0.0f ? GgxMaskingRatio(wo.z, wi.z, coat.alpha) : 1.0f;
 }
 
 // Light arriving from outside along -wo: reflected by the coat (wi.z > 0), or into it and down
@@ -129,9 +134,9 @@ PF_GPU_FN float ReflectMixLobe(Coat coat, vec3 wo, float chosen, float u1, float
 // the branch, (u1, u2) the microfacet of a rough interface.
 PF_GPU_FN float EnterCoat(Coat coat, vec3 wo, float u_branch, float u1, float u2, PF_OUT(vec3) wi) {
     if (coat.kind == kCoatFresnelMix) {
-        // The lobe is chosen by F at the normal, which the base's weight is the complement of.
-        const float chosen = MixFresnel(coat, wo.z);
-        if (u_branch < chosen) return ReflectMixLobe(coat, wo, chosen, u1, u2, wi);
+        // Reflected by a visible microfacet with its Fresnel probability, else to the base.
+        const vec3 m = CoatMicrofacet(coat, wo, u1, u2);
+        if (u_branch < MixFresnel(coat, dot(wo, m))) return ReflectOffMix(coat, wo, m, wi);
         wi = vec3(wo.x, wo.y, -wo.z);
         return 1.0f;
     }
@@ -142,11 +147,12 @@ PF_GPU_FN float EnterCoat(Coat coat, vec3 wo, float u_branch, float u1, float u2
 // Light leaving the base upward along `up` (up.z > 0) meets the coat from inside: escapes (wi.z
 // > 0, outside), or a layered coat reflects it back down to the base (wi.z < 0; the weight
 // includes both crossings' transmittance). A Fresnel mix lets it out along `up`, weighted by
-// (1 - F(up.n)) / (1 - F_avg).
+// (1 - F(up.m)) / (1 - F_avg), m one of up's visible microfacets.
 PF_GPU_FN float LeaveCoat(Coat coat, vec3 up, float u_branch, float u1, float u2, PF_OUT(vec3) wi) {
     if (coat.kind == kCoatFresnelMix) {
         wi = up;
-        return (1.0f - MixFresnel(coat, up.z)) * CoatInside(coat);
+        return (1.0f - MixFresnel(coat, dot(up, CoatMicrofacet(coat, up, u1, u2)))) *
+               CoatInside(coat);
     }
     const float weight = CoatLayerTransmittance(coat.thickness, up.z) *
                          CrossCoatFromBelow(-up, coat.ior, coat.alpha, u_branch, u1, u2, wi);
@@ -154,12 +160,12 @@ PF_GPU_FN float LeaveCoat(Coat coat, vec3 up, float u_branch, float u1, float u2
 }
 
 // The fraction of light arriving from outside along -w (w.z > 0) that reaches the base: exact
-// for a smooth layered coat and for the Fresnel mix; for a rough layered one an unbiased
-// estimate from the microfacet (u1, u2), as EnterCoat would draw it, the Fresnel branch taken
-// by its expectation.
+// for a smooth coat; for a rough one an unbiased estimate from the microfacet (u1, u2), as
+// EnterCoat would draw it, the Fresnel branch taken by its expectation.
 PF_GPU_FN float CoatTransmittance(Coat coat, vec3 w, float u1, float u2) {
     if (!(w.z > 0.0f)) return 0.0f;
-    if (coat.kind == kCoatFresnelMix) return 1.0f - MixFresnel(coat, w.z);
+    if (coat.kind == kCoatFresnelMix)
+        return 1.0f - MixFresnel(coat, dot(w, CoatMicrofacet(coat, w, u1, u2)));
     const float eta = 1.0f / coat.ior;
     vec3 m = vec3(0.0f, 0.0f, 1.0f);
     if (coat.alpha > 0.0f) m = SampleGgxVisibleNormal(w, coat.alpha, u1, u2);
@@ -177,8 +183,10 @@ PF_GPU_FN float CoatTransmittance(Coat coat, vec3 w, float u1, float u2) {
 PF_GPU_FN float SplitAtCoat(Coat coat, vec3 wo, float u1, float u2, PF_OUT(vec3) wi,
                             PF_OUT(float) reflected) {
     if (coat.kind == kCoatFresnelMix) {
-        reflected = ReflectMixLobe(coat, wo, 1.0f, u1, u2, wi);
-        return 1.0f - MixFresnel(coat, wo.z);
+        const vec3 m = CoatMicrofacet(coat, wo, u1, u2);
+        const float fresnel = MixFresnel(coat, dot(wo, m));
+        reflected = fresnel * ReflectOffMix(coat, wo, m, wi);
+        return 1.0f - fresnel;
     }
     const float eta = 1.0f / coat.ior;
     vec3 m = vec3(0.0f, 0.0f, 1.0f);

@@ -14,6 +14,7 @@
 #include "absl/strings/str_format.h"
 #include "core/job/integrator.h"
 #include "core/scene/scene_loader.h"
+#include "core/shared/coat.h"
 #include "core/shared/path_sampling.h"
 #include "embedded/local_render.h"
 #include "embree/embree_tracer.h"
@@ -256,15 +257,18 @@ bool BlockRatioCheck(const Image& image, const PixelClasses& classes,
     return passed && detectable < 0.015;
 }
 
-// Renders the cube of `material` by `integrator` and checks its pixels against sky x
-// expected(mu) (mu the cosine at which the camera sees the face, averaged over 4x4 rays across
-// each pixel), as BlockRatioCheck, and that the check fails 2% off.
-void ExpectCubeReflects(const std::string& material, Integrator integrator,
+// Renders the cube of scene file `scene_path` (under its own sky; or glTF, which has none,
+// under the job's) by `integrator` and checks its pixels against sky x expected(mu) (mu the
+// cosine at which the camera sees the face, averaged over 4x4 rays across each pixel), as
+// BlockRatioCheck, and that the check fails 2% off.
+void ExpectCubeReflects(const std::string& scene_path, Integrator integrator,
                         const std::string& feature, const std::function<double(double)>& reflects) {
     RenderSettings settings;
-    settings.scene_path = testing::WriteTextFile(CubePbrt(material), "cube.pbrt");
+    settings.scene_path = scene_path;
     settings.threads = 2;
     JobSpec& job = settings.job;
+    SceneLoadOptions options;
+    if (scene_path.ends_with(".gltf")) job.environment.color = options.environment.color = kSky;
     job.integrator = integrator;
     job.width = job.height = kSize;
     job.seed = 3;
@@ -277,7 +281,7 @@ void ExpectCubeReflects(const std::string& material, Integrator integrator,
     const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
     ASSERT_TRUE(outcome.ok()) << outcome.status();
     EXPECT_NE(outcome->scene_features.find(feature), std::string::npos);
-    const absl::StatusOr<Scene> scene = LoadScene(settings.scene_path);
+    const absl::StatusOr<Scene> scene = LoadScene(settings.scene_path, options);
     ASSERT_TRUE(scene.ok()) << scene.status();
     const PixelClasses classes = Classify(*scene);
     const absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer =
@@ -309,10 +313,32 @@ void ExpectCubeReflects(const std::string& material, Integrator integrator,
 class CoatedEnvironmentFurnace : public ::testing::TestWithParam<Integrator> {};
 
 TEST_P(CoatedEnvironmentFurnace, ConvexBodyReflectsItsDirectionalAlbedo) {
-    ExpectCubeReflects(absl::StrFormat("Material \"coateddiffuse\" \"rgb reflectance\" [%g %g %g] "
-                                       "\"float eta\" %g \"float thickness\" %g\n",
-                                       kAlbedo, kAlbedo, kAlbedo, kCoatIor, kCoatThickness),
-                       GetParam(), "coated", CoatedAlbedo);
+    ExpectCubeReflects(
+        testing::WriteTextFile(
+            CubePbrt(absl::StrFormat("Material \"coateddiffuse\" \"rgb reflectance\" [%g %g %g] "
+                                     "\"float eta\" %g \"float thickness\" %g\n",
+                                     kAlbedo, kAlbedo, kAlbedo, kCoatIor, kCoatThickness)),
+            "cube.pbrt"),
+        GetParam(), "coated", CoatedAlbedo);
+}
+
+// glTF's dielectric, a smooth specular layer of index 1.5 and weight 0.8 over the albedo
+// (core/shared/coat.h's Fresnel mix): the body reflects F(mu) + (1 - F(mu)) rho, F Schlick's
+// times the weight, since the base's lobe is normalised.
+class GltfDielectricEnvironmentFurnace : public ::testing::TestWithParam<Integrator> {};
+
+TEST_P(GltfDielectricEnvironmentFurnace, ConvexBodyReflectsFresnelPlusTheRestOfTheBase) {
+    constexpr float kWeight = 0.8f;
+    testing::TestScene cube = TurnedCube();
+    cube.materials[0].roughness = 0;
+    cube.materials[0].extensions =
+        absl::StrFormat(R"("KHR_materials_specular":{"specularFactor":%g})", kWeight);
+    const gpu::Coat coat{gpu::kCoatFresnelMix, 1.5f, 0, 0, kWeight, 0};
+    ExpectCubeReflects(testing::WriteGltf(cube, "plastic-cube.gltf"), GetParam(),
+                       "specular over diffuse", [&](double mu) {
+                           const double fresnel = gpu::MixFresnel(coat, float(mu));
+                           return fresnel + (1 - fresnel) * kAlbedo;
+                       });
 }
 
 // A mix (pbrt's "mix", amount a) of two diffuse materials of albedo rho1 and rho2: each point
@@ -322,16 +348,26 @@ class MixedEnvironmentFurnace : public ::testing::TestWithParam<Integrator> {};
 TEST_P(MixedEnvironmentFurnace, ConvexBodyReflectsTheMixedAlbedo) {
     constexpr double kFirst = 0.9, kSecond = 0.2, kAmount = 0.3;
     ExpectCubeReflects(
-        absl::StrFormat("MakeNamedMaterial \"a\" \"string type\" \"diffuse\" \"rgb reflectance\" "
-                        "[%g %g %g]\nMakeNamedMaterial \"b\" \"string type\" \"diffuse\" \"rgb "
-                        "reflectance\" [%g %g %g]\nMaterial \"mix\" \"string materials\" [\"a\" "
-                        "\"b\"] \"float amount\" %g\n",
-                        kFirst, kFirst, kFirst, kSecond, kSecond, kSecond, kAmount),
+        testing::WriteTextFile(
+            CubePbrt(absl::StrFormat(
+                "MakeNamedMaterial \"a\" \"string type\" \"diffuse\" \"rgb reflectance\" "
+                "[%g %g %g]\nMakeNamedMaterial \"b\" \"string type\" \"diffuse\" \"rgb "
+                "reflectance\" [%g %g %g]\nMaterial \"mix\" \"string materials\" [\"a\" "
+                "\"b\"] \"float amount\" %g\n",
+                kFirst, kFirst, kFirst, kSecond, kSecond, kSecond, kAmount)),
+            "cube.pbrt"),
         GetParam(), "mixed materials",
         [](double) { return (1 - kAmount) * kFirst + kAmount * kSecond; });
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, MixedEnvironmentFurnace,
+                         ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
+                                           Integrator::kPath),
+                         [](const auto& param_info) {
+                             return std::string(IntegratorName(param_info.param));
+                         });
+
+INSTANTIATE_TEST_SUITE_P(Integrators, GltfDielectricEnvironmentFurnace,
                          ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
                                            Integrator::kPath),
                          [](const auto& param_info) {

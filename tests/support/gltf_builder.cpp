@@ -21,7 +21,9 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
         std::string texture;
         if (!m.texture_png_base64.empty()) {
             texture = absl::StrCat(m.texture_emissive ? R"(,"emissiveTexture":{"index":)"
-                                                      : R"(,"baseColorTexture":{"index":)",
+                                   : m.texture_metallic_roughness
+                                       ? R"(,"metallicRoughnessTexture":{"index":)"
+                                       : R"(,"baseColorTexture":{"index":)",
                                    images.size(), m.texture_extra, "}");
             if (scene.images_in_buffer) {
                 std::string png;
@@ -37,13 +39,14 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
                     absl::StrCat(R"({"uri":"data:image/png;base64,)", m.texture_png_base64, "\"}"));
             }
         }
-        std::string material =
-            absl::StrCat(R"({"pbrMetallicRoughness":{"baseColorFactor":[)", m.base_color.x, ",",
-                         m.base_color.y, ",", m.base_color.z, R"(,1],"metallicFactor":0)",
-                         m.texture_emissive ? "" : texture, "}", m.texture_emissive ? texture : "");
+        std::string material = absl::StrCat(
+            R"({"pbrMetallicRoughness":{"baseColorFactor":[)", m.base_color.x, ",", m.base_color.y,
+            ",", m.base_color.z, R"(,1],"metallicFactor":)", m.metallic, R"(,"roughnessFactor":)",
+            m.roughness, m.texture_emissive ? "" : texture, "}", m.texture_emissive ? texture : "");
         if (!IsBlack(m.emission))
             absl::StrAppend(&material, R"(,"emissiveFactor":)", Floats(m.emission));
-        if (!m.extensions.empty()) absl::StrAppend(&material, R"(,"extensions":{)", m.extensions, "}");
+        if (!m.extensions.empty())
+            absl::StrAppend(&material, R"(,"extensions":{)", m.extensions, "}");
         materials.push_back(material + m.extra + "}");
     }
     for (const TestMesh& mesh : scene.meshes) {

@@ -16,7 +16,9 @@ struct TestMaterial {
     std::string texture_png_base64;  // a base colour texture, embedded as a data URI
     std::string texture_extra;       // raw JSON fields of its textureInfo, e.g. an extension
     bool texture_emissive = false;   // the texture is the emissive one, not the base colour's
-    std::string extra;               // raw JSON fields of the material, e.g. ,"doubleSided":true
+    bool texture_metallic_roughness = false;  // it is the metallicRoughnessTexture
+    float metallic = 0, roughness = 1;        // metallicFactor, roughnessFactor
+    std::string extra;  // raw JSON fields of the material, e.g. ,"doubleSided":true
     // Raw JSON members of its "extensions" object: by default a specular layer of weight 0,
     // which makes glTF's dielectric BRDF Lambertian (gltf_materials.h).
     std::string extensions = R"("KHR_materials_specular":{"specularFactor":0})";

@@ -11,6 +11,7 @@
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/glossy.h"
+#include "tests/core/scene/coat_walk.h"
 
 namespace pf {
 namespace {
@@ -22,44 +23,6 @@ Material CoatedDiffuse(float albedo, float ior, float alpha, float thickness) {
     material.coat_roughness = alpha;
     material.coat_thickness = thickness;
     return material;
-}
-
-// Light arriving at the coated diffuse surface (normal +z) along d, followed as a photon is
-// (core/ppm/photon_walk.h) until it leaves: sets `out` and returns the flux it carries out
-// (0 where absorbed).
-float Walk(const Material& material, const Vec3& d, Rng& rng, Vec3& out) {
-    const Vec3 n(0, 0, 1);
-    const CoatArrival arrival = ArriveAtCoat(material, d, n, true, rng);
-    if (!arrival.at_base) {
-        out = arrival.reflected.direction;
-        return Average(arrival.reflected.weight);
-    }
-    float flux = arrival.weight;
-    const Frame frame = Frame::FromNormal(n);
-    for (int returns = 0; returns <= kMaxCoatReturns; ++returns) {
-        flux *= material.base_color.x;  // albedo as a weight: no roulette, less noise
-        const CoatLeaving leaving = LeaveCoatAt(
-            material, frame, SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()), rng);
-        flux *= leaving.weight;
-        if (leaving.escaped) {
-            out = leaving.direction;
-            return flux;
-        }
-    }
-    return 0;
-}
-
-Vec3 Incident(float cos_theta) {  // arriving at the surface, in the xz plane
-    return {std::sqrt(1 - cos_theta * cos_theta), 0, -cos_theta};
-}
-
-// Integral over [0, 1] of f(mu) by the midpoint rule.
-template <typename F>
-double Integrate(F&& f) {
-    constexpr int kSteps = 20000;
-    double sum = 0;
-    for (int i = 0; i < kSteps; ++i) sum += f((i + 0.5) / kSteps);
-    return sum / kSteps;
 }
 
 TEST(CoatTest, SmoothCoatReflectsTheLayersClosedForm) {

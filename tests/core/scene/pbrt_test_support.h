@@ -2,7 +2,6 @@
 // bundle, and checks on its errors and warnings.
 #pragma once
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <array>
@@ -14,24 +13,12 @@
 #include "core/film/exr_io.h"
 #include "core/scene/scene_files.h"
 #include "core/scene/scene_loader.h"
+#include "tests/support/png_fixture.h"
 #include "tests/support/test_env.h"
 
 namespace pf::pbrt_test {
 
-// The bytes of a 2x1 8-bit RGB PNG of `pixels` (written through OpenImageIO to a temporary
-// file, read back and removed); empty where that failed.
-inline std::string TwoTexelPng(const std::array<unsigned char, 6>& pixels,
-                               const std::string& name) {
-    const std::filesystem::path path = testing::TempPath(name);
-    auto out = OIIO::ImageOutput::create(path.string());
-    if (!out || !out->open(path.string(), OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8)) ||
-        !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()))
-        return {};
-    out->close();
-    const absl::StatusOr<std::string> bytes = ReadWholeFile(path);
-    std::filesystem::remove(path);
-    return bytes.ok() ? *bytes : std::string();
-}
+using testing::TwoTexelPng;
 
 // A scene.pbrt with a camera and a light around `world`, plus other files.
 inline SceneBundle Bundle(const std::string& world, std::map<std::string, std::string> files = {}) {

@@ -1,0 +1,162 @@
+// glTF's metallic-roughness materials (core/scene/gltf_materials.h): the dielectric as
+// specular over diffuse, metallic as a mix by factor or texture, roughness squared (and its
+// texture's green channel squared) as GGX alpha, KHR_materials_specular, _ior and _clearcoat,
+// and a clear error for values out of range.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "absl/strings/escaping.h"
+#include "core/scene/scene_loader.h"
+#include "core/shared/coat.h"
+#include "tests/support/gltf_builder.h"
+#include "tests/support/png_fixture.h"
+
+namespace pf {
+namespace {
+
+// The quad's material (the lit quad scene's first) as glTF material `material` makes it.
+absl::StatusOr<Scene> QuadWith(const testing::TestMaterial& material, const std::string& name) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.materials[0] = material;
+    scene.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+    return LoadScene(testing::WriteGltf(scene, name));
+}
+
+const Material& QuadMaterial(const Scene& scene) {
+    return scene.materials[scene.triangles[0].material];
+}
+
+testing::TestMaterial Gltf(float metallic, float roughness, const std::string& extensions = "") {
+    testing::TestMaterial material{Rgb(0.7f), Rgb(0.0f)};
+    material.metallic = metallic, material.roughness = roughness;
+    material.extensions = extensions;
+    return material;
+}
+
+TEST(GltfMaterialsTest, TheDielectricIsSpecularOverDiffuse) {
+    const absl::StatusOr<Scene> scene = QuadWith(Gltf(0, 0.5f), "plastic.gltf");
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Material& plastic = QuadMaterial(*scene);
+    EXPECT_EQ(plastic.type, MaterialType::kDiffuse);
+    EXPECT_EQ(plastic.coat_kind, gpu::kCoatFresnelMix);
+    EXPECT_FLOAT_EQ(plastic.coat_ior, 1.5f) << "glTF's default index";
+    EXPECT_FLOAT_EQ(plastic.coat_roughness, 0.25f) << "roughness squared";
+    EXPECT_FLOAT_EQ(plastic.coat_weight, 1.0f);
+    EXPECT_EQ(plastic.base_color, Rgb(0.7f));
+    // Without its specular layer it is Lambertian, and pays for no coat.
+    const absl::StatusOr<Scene> lambertian = QuadWith(
+        Gltf(0, 0.5f, R"("KHR_materials_specular":{"specularFactor":0})"), "lambertian.gltf");
+    ASSERT_TRUE(lambertian.ok()) << lambertian.status();
+    EXPECT_EQ(QuadMaterial(*lambertian).type, MaterialType::kDiffuse);
+    EXPECT_FALSE(QuadMaterial(*lambertian).HasCoat());
+    // KHR_materials_ior and KHR_materials_specular set the layer: its weight, and F0 scaled by
+    // the specular colour's mean, as an index.
+    const absl::StatusOr<Scene> specular =
+        QuadWith(Gltf(0, 0,
+                      R"("KHR_materials_ior":{"ior":2},"KHR_materials_specular":)"
+                      R"({"specularFactor":0.5,"specularColorFactor":[0.5,0.5,0.5]})"),
+                 "specular.gltf");
+    ASSERT_TRUE(specular.ok()) << specular.status();
+    const Material& layer = QuadMaterial(*specular);
+    EXPECT_FLOAT_EQ(layer.coat_weight, 0.5f);
+    EXPECT_EQ(layer.coat_roughness, 0.0f) << "roughness 0: a smooth layer";
+    const double f0 = (1.0 / 9.0) * 0.5, r = std::sqrt(f0);
+    EXPECT_NEAR(layer.coat_ior, (1 + r) / (1 - r), 1e-5);
+}
+
+TEST(GltfMaterialsTest, MetallicChoosesTheMetalWithItsProbability) {
+    const absl::StatusOr<Scene> mirror = QuadWith(Gltf(1, 0), "mirror.gltf");
+    ASSERT_TRUE(mirror.ok()) << mirror.status();
+    EXPECT_EQ(QuadMaterial(*mirror).type, MaterialType::kMirror);
+    const absl::StatusOr<Scene> metal = QuadWith(Gltf(1, 1), "metal.gltf");
+    ASSERT_TRUE(metal.ok()) << metal.status();
+    EXPECT_EQ(QuadMaterial(*metal).type, MaterialType::kRoughConductor)
+        << "glTF's defaults: rough metal";
+    EXPECT_FLOAT_EQ(QuadMaterial(*metal).roughness, 1.0f);
+    const absl::StatusOr<Scene> half = QuadWith(Gltf(0.3f, 0.6f), "half.gltf");
+    ASSERT_TRUE(half.ok()) << half.status();
+    const Material& mix = QuadMaterial(*half);
+    ASSERT_EQ(mix.type, MaterialType::kMix);
+    EXPECT_FLOAT_EQ(mix.mix_amount, 0.3f);
+    EXPECT_EQ(mix.mix_texture, kNoTexture);
+    const Material& dielectric = half->materials[mix.mix_first];
+    const Material& conductor = half->materials[mix.mix_second];
+    EXPECT_EQ(dielectric.coat_kind, gpu::kCoatFresnelMix);
+    EXPECT_EQ(conductor.type, MaterialType::kRoughConductor);
+    EXPECT_NEAR(conductor.roughness, 0.36f, 1e-6);
+    EXPECT_NEAR(dielectric.coat_roughness, 0.36f, 1e-6);
+}
+
+TEST(GltfMaterialsTest, TheMetallicRoughnessTextureSetsBothPerTexel) {
+    // Two texels: green 0.5 (roughness), blue 1 (metal); green 1, blue 0.
+    testing::TestMaterial material = Gltf(1, 1);
+    material.texture_png_base64 =
+        absl::Base64Escape(testing::TwoTexelPng({0, 128, 255, 0, 255, 0}, "mr.png"));
+    material.texture_metallic_roughness = true;
+    const absl::StatusOr<Scene> scene = QuadWith(material, "textured-metal.gltf");
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Material& mix = QuadMaterial(*scene);
+    ASSERT_EQ(mix.type, MaterialType::kMix) << "a metallic texture: a mix per texel";
+    ASSERT_NE(mix.mix_texture, kNoTexture);
+    const Texture& metallic = *scene->textures[mix.mix_texture];
+    EXPECT_FLOAT_EQ(metallic.texels[0].x, 1.0f) << "blue, linear";
+    EXPECT_FLOAT_EQ(metallic.texels[1].x, 0.0f);
+    const Material& conductor = scene->materials[mix.mix_second];
+    ASSERT_NE(conductor.roughness_texture, kNoTexture);
+    EXPECT_EQ(scene->materials[mix.mix_first].roughness_texture, conductor.roughness_texture);
+    const Texture& roughness = *scene->textures[conductor.roughness_texture];
+    EXPECT_NEAR(roughness.texels[0].x, (128 / 255.0) * (128 / 255.0), 1e-6)
+        << "green, linear, squared";
+    EXPECT_FLOAT_EQ(roughness.texels[1].x, 1.0f);
+    // A surface point's material carries its texel's alpha: roughness 0.5 is alpha 0.25.
+    SurfacePoint point;
+    point.material = mix.mix_second;
+    point.uv = {0.25f, 0.5f};  // the first texel's centre
+    Material scratch;
+    EXPECT_NEAR(scene->ShadingMaterial(point, scratch).roughness, 0.25f, 0.01f);
+    point.uv = {0.75f, 0.5f};
+    EXPECT_NEAR(scene->ShadingMaterial(point, scratch).roughness, 1.0f, 1e-6f);
+}
+
+TEST(GltfMaterialsTest, ClearcoatIsALayeredCoatMixedByItsFactor) {
+    const absl::StatusOr<Scene> full = QuadWith(
+        Gltf(1, 0.5f,
+             R"("KHR_materials_clearcoat":{"clearcoatFactor":1,"clearcoatRoughnessFactor":0.2})"),
+        "clearcoat.gltf");
+    ASSERT_TRUE(full.ok()) << full.status();
+    const Material& coated = QuadMaterial(*full);
+    EXPECT_EQ(coated.type, MaterialType::kRoughConductor);
+    EXPECT_EQ(coated.coat_kind, gpu::kCoatLayered);
+    EXPECT_FLOAT_EQ(coated.coat_ior, 1.5f);
+    EXPECT_NEAR(coated.coat_roughness, 0.04f, 1e-6);
+    const absl::StatusOr<Scene> half = QuadWith(
+        Gltf(0, 0.5f, R"("KHR_materials_clearcoat":{"clearcoatFactor":0.25})"), "half-coat.gltf");
+    ASSERT_TRUE(half.ok()) << half.status();
+    const Material& mix = QuadMaterial(*half);
+    ASSERT_EQ(mix.type, MaterialType::kMix);
+    EXPECT_FLOAT_EQ(mix.mix_amount, 0.25f);
+    EXPECT_EQ(half->materials[mix.mix_first].coat_kind, gpu::kCoatFresnelMix);
+    EXPECT_EQ(half->materials[mix.mix_second].coat_kind, gpu::kCoatLayered);
+    EXPECT_EQ(half->materials[mix.mix_second].coat_roughness, 0.0f);
+}
+
+TEST(GltfMaterialsTest, ValuesOutOfRangeAreRefusedNamingTheMaterial) {
+    for (const auto& [material, what] :
+         {std::pair{Gltf(2, 0.5f), "metallicFactor"}, std::pair{Gltf(0, -1), "roughnessFactor"},
+          std::pair{Gltf(0, 0.5f, R"("KHR_materials_specular":{"specularFactor":-1})"),
+                    "specularFactor"},
+          std::pair{Gltf(0, 0.5f, R"("KHR_materials_ior":{"ior":0.5})"), "ior"},
+          std::pair{Gltf(0, 0.5f, R"("KHR_materials_clearcoat":{"clearcoatFactor":3})"),
+                    "clearcoatFactor"}}) {
+        const absl::StatusOr<Scene> scene = QuadWith(material, "bad.gltf");
+        ASSERT_FALSE(scene.ok()) << what;
+        EXPECT_NE(scene.status().message().find("material #0"), std::string::npos)
+            << scene.status();
+        EXPECT_NE(scene.status().message().find(what), std::string::npos) << scene.status();
+    }
+}
+
+}  // namespace
+}  // namespace pf
