@@ -236,27 +236,12 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
     const std::string element = absl::StrCat(where.ToString(), ": Shape \"", type, "\"");
     // "alpha" (a number, or a float texture): where the shape is absent (cut-outs).
     GraphicsState state = state_;
-    state.alpha = {};
-    if (const std::optional<std::string> name = parameters.TextureName("alpha")) {
-        const auto it = float_textures_.find(*name);
-        if (it == float_textures_.end())
-            return ErrorAt(where,
-                           absl::StrCat("Shape: \"alpha\" names no float texture \"", *name, "\""));
-        if (!it->second.unsupported.empty()) {
-            Warn(where,
-                 absl::StrCat("Shape: \"alpha\" texture \"", *name, "\" (", it->second.unsupported,
-                              ") is not supported; the shape is opaque"));
-        } else {
-            absl::StatusOr<int32_t> image = ImageIndex(it->second);
-            if (!image.ok()) return image.status();
-            state.alpha = {std::clamp(it->second.scale.x, 0.0f, 1.0f), *image, it->second.uv};
-        }
-    } else if (parameters.Has("alpha")) {
-        const double alpha = parameters.Float("alpha", 1.0);
-        if (!(alpha >= 0 && alpha <= 1))
-            return ErrorAt(where, "Shape: \"alpha\" must lie in [0, 1]");
-        state.alpha.value = static_cast<float>(alpha);
-    }
+    const absl::StatusOr<FloatInput> alpha =
+        FloatParameter(parameters, "alpha", 1.0, "Shape: \"alpha\"", where);
+    if (!alpha.ok()) return alpha.status();
+    if (!(alpha->value >= 0 && alpha->value <= 1))
+        return ErrorAt(where, "Shape: \"alpha\" must lie in [0, 1]");
+    state.alpha = *alpha;
     absl::StatusOr<TriangleMesh> mesh;
     FrontFace front = FrontFace::kObjectWinding;
     if (type == "trianglemesh" || type == "loopsubdiv") {
@@ -428,7 +413,7 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
 }
 
 absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emission, bool two_sided,
-                                                         const ShapeAlpha& alpha,
+                                                         const FloatInput& alpha,
                                                          int32_t emission_texture) {
     const auto key = std::make_tuple(material, emission.x, emission.y, emission.z, two_sided,
                                      emission_texture, alpha.value, alpha.texture);
@@ -440,7 +425,7 @@ absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emiss
         uint32_t parts[2];
         for (int i = 0; i < 2; ++i) {
             absl::StatusOr<uint32_t> part = SceneMaterial(
-                materials_[material].mix[i], emission, two_sided, ShapeAlpha{}, emission_texture);
+                materials_[material].mix[i], emission, two_sided, FloatInput{}, emission_texture);
             if (!part.ok()) return part.status();
             parts[i] = *part;
         }

@@ -63,29 +63,82 @@ absl::Status PbrtSceneBuilder::BaseColor(ParameterList& parameters, const std::s
     return absl::OkStatus();
 }
 
+absl::StatusOr<FloatInput> PbrtSceneBuilder::FloatParameter(
+    ParameterList& parameters, const std::string& name, double fallback, const std::string& what,
+    const Location& where, double exponent) {
+    FloatInput input;
+    input.value = static_cast<float>(fallback);
+    const std::optional<std::string> texture_name = parameters.TextureName(name);
+    if (!texture_name) {
+        input.value = static_cast<float>(parameters.Float(name, fallback));
+        return input;
+    }
+    const auto it = float_textures_.find(*texture_name);
+    if (it == float_textures_.end())
+        return ErrorAt(where,
+                       absl::StrCat(what, " names no float texture \"", *texture_name, "\""));
+    if (!it->second.unsupported.empty()) {
+        Warn(where, absl::StrCat(what, " texture \"", *texture_name, "\" (", it->second.unsupported,
+                                 ") is not supported; ", name, " ", fallback, " is used"));
+        return input;
+    }
+    TextureRef texture = it->second;
+    texture.decode.exponent = exponent;
+    const absl::StatusOr<int32_t> image = ImageIndex(texture);
+    if (!image.ok()) return image.status();
+    input = {texture.scale.x, *image, texture.uv};
+    return input;
+}
+
 absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
                                                    ParameterList& parameters,
                                                    const Location& where) {
     MaterialRef material;
     absl::Status status;
-    // GGX alpha from pbrt's roughness parameters (remapped by sqrt, as pbrt-v4's
-    // RoughnessToAlpha, unless remaproughness is false); anisotropy is averaged away.
+    // GGX alpha from pbrt's roughness parameters, numbers or float textures (remapped by
+    // sqrt, as pbrt-v4's RoughnessToAlpha, unless remaproughness is false; a texture's values
+    // likewise, on decoding); anisotropy is averaged away, or where a texture gives it, the
+    // first texture is taken. Sets the material's roughness texture where one is given.
+    const bool remap = parameters.Bool("remaproughness", true);
     auto roughness_alpha = [&](const std::string& prefix = "") -> absl::StatusOr<float> {
-        const bool remap = parameters.Bool("remaproughness", true);
-        double u = parameters.Float(prefix + "roughness", 0.0), v = u;
+        const std::string what = absl::StrCat("Material \"", type, "\": \"", prefix);
+        const double exponent = remap ? 0.5 : 1.0;
+        absl::StatusOr<FloatInput> u = FloatParameter(parameters, prefix + "roughness", 0.0,
+                                                      what + "roughness\"", where, exponent);
+        if (!u.ok()) return u.status();
+        absl::StatusOr<FloatInput> v = u;
         if (parameters.Has(prefix + "uroughness") || parameters.Has(prefix + "vroughness")) {
-            u = parameters.Float(prefix + "uroughness", u);
-            v = parameters.Float(prefix + "vroughness", v);
-            if (u != v)
+            u = FloatParameter(parameters, prefix + "uroughness", u->value, what + "uroughness\"",
+                               where, exponent);
+            if (!u.ok()) return u.status();
+            v = FloatParameter(parameters, prefix + "vroughness", u->value, what + "vroughness\"",
+                               where, exponent);
+            if (!v.ok()) return v.status();
+            if (u->value != v->value || u->texture != v->texture)
                 Warn(where,
-                     absl::StrCat("Material \"", type, "\": anisotropic ", prefix, "roughness (", u,
-                                  ", ", v, ") rendered isotropic with their mean"));
+                     absl::StrCat("Material \"", type, "\": anisotropic ", prefix, "roughness (",
+                                  u->value, ", ", v->value, ") rendered isotropic with ",
+                                  u->texture != kNoTexture || v->texture != kNoTexture
+                                      ? "the first texture"
+                                      : "their mean"));
         }
-        const double roughness = 0.5 * (u + v);
+        const FloatInput textured = u->texture != kNoTexture ? *u : *v;
+        const double roughness =
+            textured.texture != kNoTexture ? textured.value : 0.5 * (u->value + v->value);
         if (!(roughness >= 0 && roughness <= 1e3))
             return ErrorAt(where, absl::StrCat("Material \"", type, "\": ", prefix,
                                                "roughness must lie in [0, 1000]"));
         const double alpha = remap ? std::sqrt(roughness) : roughness;
+        if (textured.texture != kNoTexture && alpha > 0) {
+            Material& m = material.material;
+            if (m.roughness_texture != kNoTexture && m.roughness_texture != textured.texture)
+                Warn(where, absl::StrCat("Material \"", type,
+                                         "\": one roughness texture scales both roughnesses; \"",
+                                         prefix, "roughness\"'s is left out"));
+            else
+                m.roughness_texture = textured.texture;
+            if (m.base_color_texture == kNoTexture) material.uv = textured.uv;
+        }
         return alpha <= 0 ? 0.0f
                           : static_cast<float>(std::clamp(alpha, double(kMinRoughness), 1.0));
     };
@@ -232,23 +285,15 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
                                                    "\" is an interface, not a surface"));
             material.mix[i] = it->second;
         }
-        double amount = 0.5;
-        if (const std::optional<std::string> texture = parameters.TextureName("amount")) {
-            const auto it = float_textures_.find(*texture);
-            if (it != float_textures_.end() && it->second.path.empty() &&
-                it->second.unsupported.empty()) {
-                amount = it->second.scale.x;  // a constant
-            } else {
-                Warn(where, absl::StrCat("Material \"mix\": \"amount\" texture \"", *texture,
-                                         "\" is not a constant; mixed half and half"));
-            }
-        } else {
-            amount = parameters.Float("amount", 0.5);
-        }
-        if (!(amount >= 0 && amount <= 1))
+        const absl::StatusOr<FloatInput> amount =
+            FloatParameter(parameters, "amount", 0.5, "Material \"mix\": \"amount\"", where);
+        if (!amount.ok()) return amount.status();
+        if (!(amount->value >= 0 && amount->value <= 1))
             return ErrorAt(where, "Material \"mix\": \"amount\" must lie in [0, 1]");
         material.material.type = MaterialType::kMix;
-        material.material.mix_amount = static_cast<float>(amount);
+        material.material.mix_amount = amount->value;
+        material.material.mix_texture = amount->texture;
+        material.uv = amount->uv;
     } else if (type == "measured" || type == "subsurface" || type == "hair" ||
                type == "diffusetransmission") {
         parameters.ConsumeAll();

@@ -53,7 +53,9 @@ struct AreaLight {
 };
 
 // A shape's "alpha" (a Shape parameter): a constant, or a float texture times it.
-struct ShapeAlpha {
+// A float parameter given as a number or as a float texture: its value (a constant
+// texture's; an image texture's scale), times the image where there is one.
+struct FloatInput {
     float value = 1.0f;
     int32_t texture = kNoTexture;  // into Scene::textures
     UvTransform uv;                // of the texture
@@ -64,7 +66,7 @@ struct GraphicsState {
     bool reverse_orientation = false;
     int material = -1;  // into materials_; -1: pbrt's default, diffuse 0.5
     std::optional<AreaLight> area_light;
-    ShapeAlpha alpha;  // not state pbrt keeps: Shape sets it for the one shape it makes
+    FloatInput alpha;  // not state pbrt keeps: Shape sets it for the one shape it makes
 };
 
 // A shape inside ObjectBegin/ObjectEnd, kept in the object's space until instanced.
@@ -132,6 +134,12 @@ private:
                                      const Location& where);
     absl::Status BaseColor(ParameterList& parameters, const std::string& name, Rgb fallback,
                            const Location& where, MaterialRef* material);
+    // Float parameter `name` (`fallback` where absent), a number or a float texture, its image
+    // decoded with each value raised to `exponent`; `what` ("Shape: \"alpha\"") names it in
+    // messages. A texture class photonfarm cannot evaluate gives `fallback`, with a note.
+    absl::StatusOr<FloatInput> FloatParameter(ParameterList& parameters, const std::string& name,
+                                              double fallback, const std::string& what,
+                                              const Location& where, double exponent = 1);
     absl::Status Texture(const std::string& name, const std::string& kind, const std::string& type,
                          ParameterList& parameters, const Location& where);
     // The scene texture of `texture`'s image, read and decoded on first use (kNoTexture while
@@ -152,7 +160,7 @@ private:
     void Warn(const Location& where, const std::string& what);
     void WarnUnused(const ParameterList& parameters, const std::string& directive);
     absl::StatusOr<uint32_t> SceneMaterial(int material, Rgb emission, bool two_sided,
-                                           const ShapeAlpha& alpha, int32_t emission_texture);
+                                           const FloatInput& alpha, int32_t emission_texture);
     static const MaterialRef& DefaultMaterial();
 
     SceneFiles& files_;

@@ -196,5 +196,57 @@ TEST(PbrtMaterialsTest, AMixIsOneOfItsMaterialsAtEachPoint) {
         "\"amount\" must lie in [0, 1]");
 }
 
+TEST(PbrtMaterialsTest, RoughnessAndMixAmountTakeFloatTextures) {
+    // Grey texels 0 and 1 (8-bit sRGB: decoded to linear 0 and 1) and grey 128.
+    const std::string png = TwoTexelPng({128, 128, 128, 255, 255, 255}, "photonfarm-rough.png");
+    ASSERT_FALSE(png.empty());
+    const std::string world =
+        std::string("Texture \"r\" \"float\" \"imagemap\" \"string filename\" \"r.png\"\n") +
+        "Material \"conductor\" \"texture roughness\" \"r\"\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [0 0 0  1 0 0  0 1 0  1 1 0]\n"
+        "Material \"conductor\" \"texture roughness\" \"r\" \"bool remaproughness\" false\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [0 0 1  1 0 1  0 1 1  1 1 1]\n"
+        "Material \"coateddiffuse\" \"texture roughness\" \"r\"\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [0 0 2  1 0 2  0 1 2  1 1 2]\n"
+        "MakeNamedMaterial \"a\" \"string type\" \"diffuse\"\n"
+        "MakeNamedMaterial \"b\" \"string type\" \"conductor\"\n"
+        "Material \"mix\" \"string materials\" [\"a\" \"b\"] \"texture amount\" \"r\"\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [0 0 3  1 0 3  0 1 3  1 1 3]\n" +
+        kQuad;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world, {{"r.png", png}}));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const auto material_of = [&](size_t shape) {
+        return scene->materials[scene->triangles[2 * shape].material];
+    };
+    const float grey = SrgbToLinear(128 / 255.0f);
+    // Remapped as pbrt-v4's RoughnessToAlpha: alpha = sqrt(roughness), texel by texel.
+    const Material& remapped = material_of(0);
+    EXPECT_EQ(remapped.type, MaterialType::kRoughConductor);
+    EXPECT_FLOAT_EQ(remapped.roughness, 1.0f);
+    ASSERT_NE(remapped.roughness_texture, kNoTexture);
+    EXPECT_NEAR(scene->textures[remapped.roughness_texture]->texels[0].x, std::sqrt(grey), 1e-6);
+    const Material& raw = material_of(1);
+    ASSERT_NE(raw.roughness_texture, kNoTexture);
+    EXPECT_NEAR(scene->textures[raw.roughness_texture]->texels[0].x, grey, 1e-6);
+    // A coat's roughness texture scales the coat's alpha.
+    const Material& coated = material_of(2);
+    EXPECT_FLOAT_EQ(coated.coat_roughness, 1.0f);
+    EXPECT_EQ(coated.roughness_texture, remapped.roughness_texture) << "decoded once";
+    SurfacePoint point;
+    point.material = scene->triangles[4].material;
+    point.uv = {0.25f, 0.5f};
+    Material scratch;
+    EXPECT_NEAR(scene->ShadingMaterial(point, scratch).coat_roughness, std::sqrt(grey), 1e-3);
+    // A mix's amount, texel by texel.
+    const Material& mix = material_of(3);
+    ASSERT_EQ(mix.type, MaterialType::kMix);
+    EXPECT_FLOAT_EQ(mix.mix_amount, 1.0f);
+    ASSERT_NE(mix.mix_texture, kNoTexture);
+    EXPECT_NEAR(scene->textures[mix.mix_texture]->texels[0].x, grey, 1e-6);
+    ExpectError(Load(Bundle(std::string("Material \"conductor\" \"texture roughness\" \"none\"\n") +
+                            kQuad)),
+                "Material \"conductor\": \"roughness\" names no float texture \"none\"");
+}
+
 }  // namespace
 }  // namespace pf

@@ -141,8 +141,35 @@ TEST(PreparedSceneTest, TexturesAndInstancesSurviveAndTheFilterIsRebuilt) {
     EXPECT_EQ(photons_only->texture_filter, nullptr);
 }
 
-// An environment map (a latitude-longitude image of floats) and a uniform one, with and
-// without a portal, survive.
+// Every texture a material reads, not only colour and emission, reaches the worker: cut-outs',
+// roughness's and a mix's amount's.
+TEST(PreparedSceneTest, EveryTextureAMaterialReadsSurvives) {
+    Scene scene = TexturedInstancedScene();
+    ASSERT_EQ(scene.textures.size(), 1u);
+    for (const float scale : {0.5f, 0.25f, 0.125f}) {
+        Texture texture = *scene.textures[0];
+        for (Rgb& texel : texture.texels) texel = texel * scale;
+        scene.textures.push_back(std::make_shared<const Texture>(std::move(texture)));
+    }
+    Material& floor = scene.materials[scene.triangles[0].material];
+    floor.base_color_texture = kNoTexture;
+    floor.alpha_texture = 1;
+    floor.type = MaterialType::kRoughConductor;
+    floor.roughness = 0.5f;
+    floor.roughness_texture = 2;
+    Material mix;
+    mix.type = MaterialType::kMix;
+    mix.mix_first = scene.triangles[0].material;
+    mix.mix_second = scene.triangles.back().material;
+    mix.mix_texture = 3;
+    scene.materials.push_back(mix);
+    scene.triangles[1].material = static_cast<uint32_t>(scene.materials.size() - 1);
+    const absl::StatusOr<Scene> decoded = DecodePreparedScene(EncodePreparedScene(scene), true);
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    ExpectSameScene(scene, *decoded);
+    for (size_t t = 1; t < 4; ++t) EXPECT_FALSE(decoded->textures[t]->texels.empty()) << t;
+}
+
 TEST(PreparedSceneTest, CoatsSurvive) {
     Scene scene = *LoadScene(Shipped("cornell-box.gltf"));
     scene.materials[0].coat_ior = 1.5f;
@@ -155,6 +182,8 @@ TEST(PreparedSceneTest, CoatsSurvive) {
     EXPECT_EQ(decoded->materials[0].coat_depth, 7u);
 }
 
+// An environment map (a latitude-longitude image of floats) and a uniform one, with and
+// without a portal, survive.
 TEST(PreparedSceneTest, EnvironmentsSurvive) {
     Scene scene = TexturedInstancedScene();
     Environment& environment = scene.environment.emplace();
