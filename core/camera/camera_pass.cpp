@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "absl/strings/str_format.h"
 #include "core/camera/pixel_sample.h"
@@ -58,7 +59,7 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
             }
             path.length += hit.t;
             const SurfacePoint surface = scene.Surface(hit);
-            Material shading;  // where a texture sets the roughness
+            std::optional<Material> shading;  // where a texture sets the roughness
             const Material& material = scene.ShadingMaterial(surface, shading);
             const bool front_facing = Dot(path.ray.direction, surface.geometric_normal) < 0;
             if (material.EmitsToward(front_facing))

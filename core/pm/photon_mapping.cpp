@@ -2,6 +2,7 @@
 #include "core/pm/photon_mapping.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "core/camera/camera_pass.h"
 #include "core/pm/density_estimate.h"
@@ -33,7 +34,7 @@ Rgb GatherRay(const PhotonMappingInputs& inputs, Ray ray, Rng& rng, NearestPhoto
         RayHit hit;
         if (!inputs.tracer->Intersect(ray, &hit)) return Rgb(0.0f);
         const SurfacePoint surface = scene.Surface(hit);
-        Material shading;  // where a texture sets the roughness
+        std::optional<Material> shading;  // where a texture sets the roughness
         const Material& material = scene.ShadingMaterial(surface, shading);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
         const Rgb base_color = scene.BaseColor(surface);
@@ -115,7 +116,7 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
         }
         length += hit.t;
         const SurfacePoint surface = scene.Surface(hit);
-        Material shading;  // where a texture sets the roughness
+        std::optional<Material> shading;  // where a texture sets the roughness
         const Material& material = scene.ShadingMaterial(surface, shading);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
         // Emission seen directly or through specular and rough bounces (no light map holds it).

@@ -1,6 +1,8 @@
 // The caustic probe: light paths followed through specular bounces to their first diffuse hit.
 #include "core/ppm/caustic_probe.h"
 
+#include <optional>
+
 #include "core/camera/camera_pass.h"
 #include "core/sampling/rng.h"
 #include "core/scene/glossy.h"
@@ -20,7 +22,7 @@ CausticProbe ProbeCaustics(const Scene& scene, const Emitters& emitters, const T
             RayHit hit;
             if (!tracer.Intersect(ray, &hit)) break;
             const SurfacePoint surface = scene.Surface(hit);
-            Material shading;  // where a texture sets the roughness
+            std::optional<Material> shading;  // where a texture sets the roughness
             const Material& material = scene.ShadingMaterial(surface, shading);
             const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
             const CoatArrival arrival =

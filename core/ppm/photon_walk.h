@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <optional>
 
 #include "core/geometry/ray.h"
 #include "core/sampling/frame.h"
@@ -49,7 +50,7 @@ template <bool kSpecular, bool kTextures, typename Land>
 PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb& flux, Rng& rng,
                             Land&& land) {
     const SurfacePoint surface = scene.Surface(hit);
-    Material shading;  // where a texture sets the roughness
+    std::optional<Material> shading;  // where a texture sets the roughness
     const Material& material = scene.ShadingMaterial(surface, shading);
     const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
     const Rgb base_color = kTextures ? scene.BaseColor(surface) : material.base_color;

@@ -3,6 +3,7 @@
 #include "core/render/path_tracer.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
@@ -87,7 +88,7 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
         }
         if (!diffuse_seen) length += hit.t;
         const SurfacePoint surface = scene.Surface(hit);
-        Material shading;  // where a texture sets the roughness
+        std::optional<Material> shading;  // where a texture sets the roughness
         const Material& material = scene.ShadingMaterial(surface, shading);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
         if (material.EmitsToward(front_facing)) {

@@ -223,7 +223,7 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
         plastic.coat_ior = IorOfF0(std::min(r * r * f0_scale, 1.0));
     }
     plastic.coat_ior = std::min(plastic.coat_ior, IorOfF0(0.99));  // F0 below 1
-    if (plastic.coat_weight <= 0) plastic = base;  // no specular layer: Lambertian
+    if (plastic.coat_weight <= 0) plastic = base;                  // no specular layer: Lambertian
     Material conductor = base;
     conductor.type = smooth ? MaterialType::kMirror : MaterialType::kRoughConductor;
     conductor.roughness = smooth ? 0.0f : std::max(alpha, kMinRoughness);
@@ -309,6 +309,15 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::Build() {
 }
 
 }  // namespace
+
+std::vector<int> GltfTexturesRead(const tinygltf::Material& material) {
+    std::vector<int> read;
+    for (const int texture :
+         {material.pbrMetallicRoughness.baseColorTexture.index, material.emissiveTexture.index,
+          material.pbrMetallicRoughness.metallicRoughnessTexture.index})
+        if (texture >= 0) read.push_back(texture);
+    return read;
+}
 
 absl::StatusOr<uint32_t> AddGltfMaterial(const tinygltf::Material& source, const std::string& where,
                                          const GltfTextureLookup& texture,

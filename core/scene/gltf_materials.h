@@ -24,6 +24,10 @@ const tinygltf::Value* Extension(const tinygltf::ExtensionMap& extensions, const
 using GltfTextureLookup =
     std::function<absl::StatusOr<int32_t>(int gltf_texture, const ImageDecodeOptions& options)>;
 
+// The glTF textures AddGltfMaterial may read of `material` (base colour, emissive and
+// metallic-roughness: what a bundle must carry); others (normal, occlusion, ...) are not read.
+std::vector<int> GltfTexturesRead(const tinygltf::Material& material);
+
 // Appends the materials glTF material `source` becomes to `materials` and returns the index of
 // the one its surfaces use; `where` ("scene.gltf: material 'wood' (#2)") begins every error
 // and note. See gltf_materials.cpp for the mapping.

@@ -141,8 +141,9 @@ uint32_t Scene::ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle,
     return m;
 }
 
-const Material& Scene::TexturedRoughness(const SurfacePoint& surface, Material& scratch) const {
-    scratch = materials[surface.material];
+const Material& Scene::TexturedRoughness(const SurfacePoint& surface,
+                                         std::optional<Material>& shading) const {
+    Material& scratch = shading.emplace(materials[surface.material]);
     const float t = textures[scratch.roughness_texture]->Sample(surface.uv.x, surface.uv.y).x;
     scratch.roughness = std::clamp(scratch.roughness * t, kMinRoughness, 1.0f);
     // A rough coat stays rough: alpha 0 would make it smooth.
@@ -151,12 +152,9 @@ const Material& Scene::TexturedRoughness(const SurfacePoint& surface, Material& 
     return scratch;
 }
 
-bool Scene::MaterialReadsUv(uint32_t m) const {
-    const Material& material = materials[m];
-    if (material.type == MaterialType::kMix)
-        return material.ReadsUv() || MaterialReadsUv(material.mix_first) ||
-               MaterialReadsUv(material.mix_second);
-    return material.ReadsUv();
+bool Scene::MixReadsUv(uint32_t m) const {
+    const Material& mix = materials[m];
+    return mix.ReadsUv() || MaterialReadsUv(mix.mix_first) || MaterialReadsUv(mix.mix_second);
 }
 
 float Scene::Alpha(uint32_t triangle, float b1, float b2) const {

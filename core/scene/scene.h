@@ -194,16 +194,24 @@ struct Scene {
     uint32_t ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle,
                         const Point2& uv) const;
     // The material shading `surface`: its material, or where that has a roughness texture, a
-    // copy in `scratch` with the texture applied to its GGX alphas (Material::roughness_texture).
-    const Material& ShadingMaterial(const SurfacePoint& surface, Material& scratch) const {
+    // copy made in `scratch` with the texture applied to its GGX alphas
+    // (Material::roughness_texture).
+    const Material& ShadingMaterial(const SurfacePoint& surface,
+                                    std::optional<Material>& scratch) const {
         const Material& material = materials[surface.material];
         if (material.roughness_texture == kNoTexture) [[likely]]
             return material;
         return TexturedRoughness(surface, scratch);
     }
-    const Material& TexturedRoughness(const SurfacePoint& surface, Material& scratch) const;
+    const Material& TexturedRoughness(const SurfacePoint& surface,
+                                      std::optional<Material>& scratch) const;
     // Whether material `m` (or a material a mix may be) reads texture coordinates.
-    bool MaterialReadsUv(uint32_t m) const;
+    bool MaterialReadsUv(uint32_t m) const {
+        if (materials[m].type != MaterialType::kMix) [[likely]]
+            return materials[m].ReadsUv();
+        return MixReadsUv(m);
+    }
+    bool MixReadsUv(uint32_t m) const;
     // Diffuse reflectance or specular tint at a surface point, texture applied (bilinear, at
     // the point: what a photon meets).
     Rgb BaseColor(const SurfacePoint& surface) const;

@@ -12,6 +12,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/scene/gltf_draco.h"
 #include "core/scene/gltf_loader.h"
+#include "core/scene/gltf_materials.h"
 #include "core/scene/gltf_meshopt.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/pbrt/pbrt_loader.h"
@@ -90,17 +91,16 @@ bool SkipImageDecoding(tinygltf::Image*, const int, std::string*, std::string*, 
     return true;
 }
 
-// Image files no material reads as its base colour (normal, roughness, occlusion maps...):
-// left out of the bundle, so they are neither uploaded nor sent to workers. Files that also
-// hold a buffer or a used image stay.
+// Image files no material reads (normal, occlusion maps...: GltfTexturesRead): left out of the
+// bundle, so they are neither uploaded nor sent to workers. Files that also hold a buffer or a
+// used image stay.
 void LeaveOutUnusedImages(const std::string& scene_path, const tinygltf::Model& model,
                           SceneBundle* bundle) {
     std::set<int> used;
-    for (const tinygltf::Material& material : model.materials) {
-        const int texture = material.pbrMetallicRoughness.baseColorTexture.index;
-        if (texture >= 0 && texture < static_cast<int>(model.textures.size()))
-            used.insert(model.textures[texture].source);
-    }
+    for (const tinygltf::Material& material : model.materials)
+        for (const int texture : GltfTexturesRead(material))
+            if (texture < static_cast<int>(model.textures.size()))
+                used.insert(model.textures[texture].source);
     std::set<std::string> kept;
     for (const tinygltf::Buffer& buffer : model.buffers) kept.insert(buffer.uri);
     for (int i : used)
@@ -113,9 +113,8 @@ void LeaveOutUnusedImages(const std::string& scene_path, const tinygltf::Model& 
         left_out.push_back(uri);
     }
     if (!left_out.empty())
-        spdlog::info("{}: left out {} image file(s) no material reads as its base colour ({}{})",
-                     scene_path, left_out.size(), left_out.front(),
-                     left_out.size() > 1 ? ", ..." : "");
+        spdlog::info("{}: left out {} image file(s) no material reads ({}{})", scene_path,
+                     left_out.size(), left_out.front(), left_out.size() > 1 ? ", ..." : "");
 }
 
 absl::Status PackGltf(const std::string& scene_path, const std::string& file, bool binary,

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "absl/strings/escaping.h"
@@ -114,7 +115,7 @@ TEST(GltfMaterialsTest, TheMetallicRoughnessTextureSetsBothPerTexel) {
     SurfacePoint point;
     point.material = mix.mix_second;
     point.uv = {0.25f, 0.5f};  // the first texel's centre
-    Material scratch;
+    std::optional<Material> scratch;
     EXPECT_NEAR(scene->ShadingMaterial(point, scratch).roughness, 0.25f, 0.01f);
     point.uv = {0.75f, 0.5f};
     EXPECT_NEAR(scene->ShadingMaterial(point, scratch).roughness, 1.0f, 1e-6f);

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -235,7 +236,7 @@ TEST(PbrtMaterialsTest, RoughnessAndMixAmountTakeFloatTextures) {
     SurfacePoint point;
     point.material = scene->triangles[4].material;
     point.uv = {0.25f, 0.5f};
-    Material scratch;
+    std::optional<Material> scratch;
     EXPECT_NEAR(scene->ShadingMaterial(point, scratch).coat_roughness, std::sqrt(grey), 1e-3);
     // A mix's amount, texel by texel.
     const Material& mix = material_of(3);
