@@ -248,6 +248,15 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
         NoteTextureLeftOut(
             *e, "KHR_materials_clearcoat",
             {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"});
+        // A roughness texture scales a material's every alpha (Scene::ShadingMaterial): the
+        // coated diffuse base needs none, the coated metal shares it with its coat.
+        clear_plastic.roughness_texture = kNoTexture;
+        if (clear_conductor.roughness_texture != kNoTexture && clear_conductor.coat_roughness > 0 &&
+            clearcoat > 0)
+            spdlog::warn(
+                "{}: the metallic-roughness texture scales the clearcoat's roughness over the "
+                "metal too",
+                where_);
     }
     // A surface and its clearcoated self, mixed by clearcoatFactor.
     const auto with_clearcoat = [&](const Material& plain, const Material& coated) {

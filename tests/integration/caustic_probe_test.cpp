@@ -32,19 +32,11 @@ TEST(CausticProbeTest, AMirrorTheLightCannotSeeCastsNone) {
     // The lit quad (the light above it faces down onto its top), and a mirror below it facing
     // away from the light: no light path meets the mirror before a diffuse surface.
     testing::TestScene scene = testing::LitQuadScene();
-    scene.materials.push_back({Rgb(0.9f), Rgb(0.0f)});
+    testing::TestMaterial mirror{Rgb(0.9f), Rgb(0.0f)};
+    mirror.metallic = 1, mirror.roughness = 0;  // glTF's perfect mirror
+    scene.materials.push_back(mirror);
     scene.meshes.push_back({{{-0.5f, -0.5f, -1}, {0.5f, 0.5f, -1}, {0.5f, -0.5f, -1}}, 2});
-    std::string json = testing::GltfJson(scene);
-    // Make material 2 a mirror: metallic 1, roughness 0.
-    const std::string last =
-        R"({"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":0})";
-    const size_t at = json.rfind(last);
-    ASSERT_NE(at, std::string::npos);
-    json.replace(
-        at, last.size(),
-        R"({"pbrMetallicRoughness":{"baseColorFactor":[0.9,0.9,0.9,1],"metallicFactor":1,"roughnessFactor":0})");
-    const absl::StatusOr<Scene> loaded =
-        LoadScene(testing::WriteTextFile(json, "hidden-mirror.gltf"));
+    const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "hidden-mirror.gltf"));
     ASSERT_TRUE(loaded.ok()) << loaded.status();
     EXPECT_EQ(loaded->materials[2].type, MaterialType::kMirror);
     EXPECT_EQ(Probe(*loaded).caustic, 0u);
