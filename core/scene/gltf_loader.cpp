@@ -377,16 +377,21 @@ absl::Status GltfSceneBuilder::SetCamera(int camera_index, const Transform& worl
     return absl::OkStatus();
 }
 
-// The materials of glTF material `gltf_material` (gltf_materials.h; -1: the default, white
-// Lambertian), and the transform of the texture coordinates its surfaces carry.
+// The materials of glTF material `gltf_material` (gltf_materials.h; -1: glTF's default
+// material), and the transform of the texture coordinates its surfaces carry.
 absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
     if (const auto it = material_indices_.find(gltf_material); it != material_indices_.end())
         return it->second;
     uint32_t index = 0;
     UvTransform uv;
     if (gltf_material < 0) {
-        index = static_cast<uint32_t>(scene_.materials.size());
-        scene_.materials.push_back(Material{});
+        // glTF's default material: every property at its default (white rough metal).
+        const absl::StatusOr<uint32_t> added = AddGltfMaterial(
+            tinygltf::Material(), absl::StrCat(path_, ": the default material"),
+            [](int, const ImageDecodeOptions&) -> absl::StatusOr<int32_t> { return kNoTexture; },
+            scene_.materials);
+        if (!added.ok()) return added.status();
+        index = *added;
     } else {
         if (gltf_material >= static_cast<int>(model_.materials.size()))
             return Error(absl::StrCat("material #", gltf_material), "does not exist");

@@ -143,6 +143,23 @@ TEST(GltfMaterialsTest, ClearcoatIsALayeredCoatMixedByItsFactor) {
     EXPECT_EQ(half->materials[mix.mix_second].coat_roughness, 0.0f);
 }
 
+TEST(GltfMaterialsTest, APrimitiveWithoutMaterialTakesGltfsDefault) {
+    // The default material is every property at its default: white, metallic 1, roughness 1.
+    testing::TestScene scene = testing::LitQuadScene();
+    std::string json = testing::GltfJson(scene);
+    const std::string quad = R"(,"material":0})";
+    const size_t at = json.find(quad);
+    ASSERT_NE(at, std::string::npos);
+    json.replace(at, quad.size(), "}");
+    const absl::StatusOr<Scene> loaded =
+        LoadScene(testing::WriteTextFile(json, "default-material.gltf"));
+    ASSERT_TRUE(loaded.ok()) << loaded.status();
+    const Material& material = QuadMaterial(*loaded);
+    EXPECT_EQ(material.type, MaterialType::kRoughConductor);
+    EXPECT_FLOAT_EQ(material.roughness, 1.0f);
+    EXPECT_EQ(material.base_color, Rgb(1.0f));
+}
+
 TEST(GltfMaterialsTest, ValuesOutOfRangeAreRefusedNamingTheMaterial) {
     for (const auto& [material, what] :
          {std::pair{Gltf(2, 0.5f), "metallicFactor"}, std::pair{Gltf(0, -1), "roughnessFactor"},
