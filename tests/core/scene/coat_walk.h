@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <utility>
 
 #include "core/sampling/frame.h"
 #include "core/sampling/rng.h"
@@ -34,6 +35,23 @@ inline float Walk(const Material& material, const Vec3& d, Rng& rng, Vec3& out) 
         }
     }
     return 0;
+}
+
+// The flux a walk arriving from `from` carries out into a small cone about `to`, over cos(to),
+// with its standard error: an estimate of f(from, to), for reciprocity checks.
+inline std::pair<double, double> IntoCone(const Material& material, const Vec3& from,
+                                          const Vec3& to) {
+    constexpr int kSamples = 2000000;
+    constexpr float kCone = 0.985f;  // cos of the cone's half angle
+    Rng rng(17);
+    double sum = 0, sum_sq = 0;
+    Vec3 out;
+    for (int i = 0; i < kSamples; ++i) {
+        const float w = Walk(material, -from, rng, out);
+        if (Dot(out, to) >= kCone) sum += w, sum_sq += double(w) * w;
+    }
+    const double mean = sum / kSamples;
+    return {mean / to.z, std::sqrt((sum_sq / kSamples - mean * mean) / kSamples) / to.z};
 }
 
 inline Vec3 Incident(float cos_theta) {  // arriving at the surface, in the xz plane

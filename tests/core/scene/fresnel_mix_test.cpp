@@ -89,22 +89,8 @@ TEST(FresnelMixTest, IsReciprocal) {
         const Material material = Plastic(0.8f, 1.5f, alpha);
         const Vec3 a = Normalize(Vec3(0.3f, 0.1f, 0.95f));
         const Vec3 b = Normalize(Vec3(-0.8f, 0.4f, 0.45f));
-        constexpr float kCone = 0.985f;  // cos of the cones' half angle
-        const auto into_cone = [&](const Vec3& from, const Vec3& to) {
-            constexpr int kSamples = 2000000;
-            Rng rng(17);
-            double sum = 0, sum_sq = 0;
-            Vec3 out;
-            for (int i = 0; i < kSamples; ++i) {
-                const float w = Walk(material, -from, rng, out);
-                if (Dot(out, to) >= kCone) sum += w, sum_sq += double(w) * w;
-            }
-            const double mean = sum / kSamples;
-            return std::pair{mean / to.z,
-                             std::sqrt((sum_sq / kSamples - mean * mean) / kSamples) / to.z};
-        };
-        const auto [ab, sigma_ab] = into_cone(a, b);
-        const auto [ba, sigma_ba] = into_cone(b, a);
+        const auto [ab, sigma_ab] = IntoCone(material, a, b);
+        const auto [ba, sigma_ba] = IntoCone(material, b, a);
         EXPECT_GT(ab, 0);
         EXPECT_NEAR(ab, ba, 5 * std::hypot(sigma_ab, sigma_ba)) << "alpha " << alpha;
     }
