@@ -31,6 +31,20 @@ absl::StatusOr<std::vector<float>> Attribute(const draco::Mesh& mesh,
         return absl::InvalidArgumentError(
             absl::StrCat("KHR_draco_mesh_compression: the stream has no ", name, " of ", components,
                          " components (id ", id.GetNumberAsInt(), ")"));
+    switch (attribute->data_type()) {  // glTF's component types; a bool or a double is hostile
+        case draco::DT_INT8:
+        case draco::DT_UINT8:
+        case draco::DT_INT16:
+        case draco::DT_UINT16:
+        case draco::DT_INT32:
+        case draco::DT_UINT32:
+        case draco::DT_FLOAT32:
+            break;
+        default:
+            return absl::InvalidArgumentError(
+                absl::StrCat("KHR_draco_mesh_compression: ", name, " has data type ",
+                             int(attribute->data_type()), ", not one of glTF's component types"));
+    }
     std::vector<float> values(size_t(mesh.num_points()) * components);
     for (draco::PointIndex p(0); p < mesh.num_points(); ++p)
         if (!attribute->ConvertValue<float>(attribute->mapped_index(p), components,
