@@ -49,7 +49,8 @@ inline SpecularBounce ScatterRough(const Material& material, const Vec3& d, cons
         return SpecularBounce{frame.ToWorld(wi), weight * GgxMaskingRatio(wo.z, wi.z, alpha),
                               false};
     };
-    if (material.type == MaterialType::kRoughConductor) return reflect(tint);
+    if (material.type == MaterialType::kRoughConductor)
+        return reflect(gpu::ConductorFresnel(ConductorOf(material), cos_om, tint, 1.0f));
     // Rough glass: front faces lead into the glass, as for smooth glass.
     const float eta = front_facing ? 1.0f / material.ior : material.ior;
     if (u_branch < FresnelDielectric(cos_om, eta)) return reflect(Rgb(1.0f));
@@ -67,7 +68,7 @@ inline SpecularBounce ScatterNonDiffuse(const Material& material, const Vec3& d,
         const Frame frame = Frame::FromNormal(front_facing ? normal : -normal);
         Vec3 wi;
         const Rgb weight = gpu::ScatterCoatedConductor(
-            CoatOf(material), frame.ToLocal(-d), tint,
+            CoatOf(material), ConductorOf(material), frame.ToLocal(-d), tint,
             material.IsRough() ? std::max(material.roughness, kMinRoughness) : 0.0f, rng.State(),
             wi);
         return {frame.ToWorld(wi), weight, false};
@@ -138,8 +139,9 @@ inline RoughReflection EvaluateRoughConductor(const Material& material, const Rg
     const float alpha = std::max(material.roughness, kMinRoughness);
     const float lambda_o = gpu::GgxLambda(cos_o, alpha), lambda_i = gpu::GgxLambda(cos_i, alpha);
     const float d = GgxDistribution(cos_h, alpha);
-    // f cos_i = F D G2 / (4 cos_o), the tint standing for F.
-    return {tint * (d / ((1.0f + lambda_o + lambda_i) * 4.0f * cos_o)),
+    // f cos_i = F D G2 / (4 cos_o).
+    const Rgb fresnel = gpu::ConductorFresnel(ConductorOf(material), Dot(wo, h), tint, 1.0f);
+    return {fresnel * (d / ((1.0f + lambda_o + lambda_i) * 4.0f * cos_o)),
             GgxReflectionPdf(cos_o, cos_h, alpha)};
 }
 

@@ -6,10 +6,10 @@
 //  - otherwise glTF's BRDF, mix(dielectric, metal, metallic):
 //    the dielectric a Lambertian base under a Fresnel mix (core/shared/coat.h: GGX specular of
 //    F0 from the index, KHR_materials_specular's factor and colour applied), the metal a mirror
-//    or GGX conductor tinted by the base colour; metallic between 0 and 1, or from the
-//    metallicRoughnessTexture's blue channel, is a mix choosing the metal with that probability
-//    at each point (Material::kMix); roughness squared is the GGX alpha of both, times the
-//    texture's green channel squared where it has one (Material::roughness_texture);
+//    or GGX conductor of Schlick's Fresnel with F0 the base colour; metallic between 0 and 1, or
+//    from the metallicRoughnessTexture's blue channel, is a mix choosing the metal with that
+//    probability at each point (Material::kMix); roughness squared is the GGX alpha of both, times
+//    the texture's green channel squared where it has one (Material::roughness_texture);
 //  - KHR_materials_clearcoat: a layered coat of index 1.5 over either (the dielectric's own
 //    specular layer, under a coat of about its index, is dropped), mixed with the uncoated
 //    surface where clearcoatFactor is below 1.
@@ -26,6 +26,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "core/shared/coat.h"
+#include "core/shared/conductor.h"
 
 namespace pf {
 
@@ -227,6 +228,7 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
     Material conductor = base;
     conductor.type = smooth ? MaterialType::kMirror : MaterialType::kRoughConductor;
     conductor.roughness = smooth ? 0.0f : std::max(alpha, kMinRoughness);
+    conductor.conductor = gpu::kConductorSchlick;  // glTF's conductor_fresnel, F0 the base colour
     if (smooth) conductor.roughness_texture = kNoTexture;
 
     // KHR_materials_clearcoat: the same surfaces under a layered coat of index 1.5.

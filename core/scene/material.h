@@ -59,6 +59,12 @@ struct Material {
     // The most bounces a path takes between a coated conductor and its coat before it is
     // taken as absorbed (pbrt-v4's maxdepth).
     uint32_t coat_depth = 10;
+    // How a mirror's or rough conductor's reflectance varies with the angle of incidence
+    // (core/shared/conductor.h): its kind (gpu::kConductor*; 0: the tint at every angle) and,
+    // for gpu::kConductorComplex, the complex index eta + i k per channel, in vacuum.
+    uint32_t conductor = 0;
+    Rgb conductor_eta{1.0f};
+    Rgb conductor_k{0.0f};
     // Cut-outs (core/shared/alpha.h): the surface is there where alpha x the alpha texture's
     // first channel (an index into Scene::textures) is at least alpha_cutoff, or, with no
     // cutoff (0), for that fraction of the rays that meet it.

@@ -5,6 +5,7 @@
 
 #include "absl/strings/str_join.h"
 #include "core/shared/coat.h"
+#include "core/shared/conductor.h"
 
 namespace pf {
 
@@ -22,6 +23,7 @@ SceneFeatures SceneFeatures::All() {
                        &all.roughness_textures,
                        &all.mix_textures,
                        &all.fresnel_mixes,
+                       &all.conductor_fresnel,
                        &all.smooth_normals,
                        &all.triangle_lights,
                        &all.point_lights,
@@ -44,6 +46,7 @@ std::string SceneFeatures::ToString() const {
     if (rough_dielectric) parts.push_back("rough glass");
     if (coats) parts.push_back("coated");
     if (fresnel_mixes) parts.push_back("specular over diffuse");
+    if (conductor_fresnel) parts.push_back("metal Fresnel");
     if (cut_outs) parts.push_back("cut-outs");
     if (mixes) parts.push_back("mixed materials");
     if (textures) parts.push_back("textures");
@@ -87,6 +90,9 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
         features.roughness_textures |= material.roughness_texture != kNoTexture;
         features.mix_textures |= material.mix_texture != kNoTexture;
         features.fresnel_mixes |= material.HasCoat() && material.coat_kind == gpu::kCoatFresnelMix;
+        features.conductor_fresnel |= (material.type == MaterialType::kMirror ||
+                                       material.type == MaterialType::kRoughConductor) &&
+                                      material.conductor != gpu::kConductorTint;
     }
     for (const Emitters::Record& record : emitters.Records()) {
         if (record.kind == EmitterKind::kTriangle) {

@@ -8,6 +8,7 @@
 
 #include "core/math/vec3.h"
 #include "core/scene/material.h"
+#include "core/shared/conductor.h"
 #include "core/shared/path_sampling.h"
 
 namespace pf {
@@ -15,6 +16,11 @@ namespace pf {
 // Fresnel reflectance and refraction, defined once for the CPU and the Vulkan kernels.
 using gpu::FresnelDielectric;  // (cos_incident, eta = n_incident / n_transmitted)
 using gpu::Refract;            // (d, n facing d's side, eta, out refracted); false under TIR
+
+// The material's conductor Fresnel term, as core/shared/conductor.h takes it.
+inline gpu::Conductor ConductorOf(const Material& material) {
+    return {material.conductor, material.conductor_eta, material.conductor_k};
+}
 
 // Mirror direction of d about n.
 inline Vec3 Reflect(const Vec3& d, const Vec3& n) { return d - n * (2.0f * Dot(d, n)); }
@@ -51,11 +57,14 @@ inline float ReflectionProbability(const Material& material, const Vec3& d, cons
     return 0.0f;
 }
 
-// The reflected branch: a mirror is tinted by its base colour, glass reflects untinted.
+// The reflected branch: a mirror reflects its tint's Fresnel term (core/shared/conductor.h),
+// glass reflects untinted.
 inline SpecularBounce ReflectSpecular(const Material& material, const Vec3& d, const Vec3& normal,
                                       bool front_facing, const Rgb& tint) {
     const Vec3 n = front_facing ? normal : -normal;
-    return {Reflect(d, n), material.type == MaterialType::kMirror ? tint : Rgb(1.0f), false};
+    if (material.type != MaterialType::kMirror) return {Reflect(d, n), Rgb(1.0f), false};
+    return {Reflect(d, n), gpu::ConductorFresnel(ConductorOf(material), -Dot(d, n), tint, 1.0f),
+            false};
 }
 
 // The transmitted branch, tinted by the base colour: refracted through solid glass (reflected

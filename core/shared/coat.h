@@ -18,6 +18,7 @@
 #ifndef PF_CORE_SHARED_COAT_H
 #define PF_CORE_SHARED_COAT_H
 
+#include "core/shared/conductor.h"
 #include "core/shared/gpu_prelude.h"
 #include "core/shared/microfacet.h"
 #include "core/shared/path_sampling.h"
@@ -205,12 +206,13 @@ PF_GPU_FN float SplitAtCoat(Coat coat, vec3 wo, float u1, float u2, PF_OUT(vec3)
 }
 
 // Light arriving from outside along -wo (wo.z > 0) at a layered coat over a conductor of
-// normal-incidence colour `tint` (GGX alpha `base_alpha`, 0 for a mirror), followed through the
+// Fresnel term `conductor` and tint `tint` (GGX alpha `base_alpha`, 0 for a mirror; its complex
+// index taken relative to the coat's, as pbrt-v4 takes it), followed through the
 // layer as pbrt-v4's random walk follows it: reflected by the coat, or in, off the base, and up to
 // the coat again, which lets it out or turns it back, at most coat.depth times before it is taken
 // as absorbed. Sets wi (wi.z > 0 where the weight is not black) and returns the weight carried.
-PF_GPU_FN vec3 ScatterCoatedConductor(Coat coat, vec3 wo, vec3 tint, float base_alpha,
-                                      PF_INOUT(Pcg32) rng, PF_OUT(vec3) wi) {
+PF_GPU_FN vec3 ScatterCoatedConductor(Coat coat, Conductor conductor, vec3 wo, vec3 tint,
+                                      float base_alpha, PF_INOUT(Pcg32) rng, PF_OUT(vec3) wi) {
     float u_branch = Pcg32NextFloat(rng), u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
     float carried = EnterCoat(coat, wo, u_branch, u1, u2, wi);
     vec3 weight = vec3(carried, carried, carried);
@@ -218,15 +220,17 @@ PF_GPU_FN vec3 ScatterCoatedConductor(Coat coat, vec3 wo, vec3 tint, float base_
         // Off the base: wi heads down to it; its reflection heads up.
         const vec3 at_base = vec3(-wi.x, -wi.y, -wi.z);
         vec3 up = vec3(-at_base.x, -at_base.y, at_base.z);
-        weight = weight * tint;
+        float cos_base = at_base.z;  // to the facet the base reflects it by
         if (base_alpha > 0.0f) {
             u1 = Pcg32NextFloat(rng);
             u2 = Pcg32NextFloat(rng);
             const vec3 m = SampleGgxVisibleNormal(at_base, base_alpha, u1, u2);
-            up = m * (2.0f * dot(at_base, m)) - at_base;
+            cos_base = dot(at_base, m);
+            up = m * (2.0f * cos_base) - at_base;
             if (!(up.z > 0.0f)) return vec3(0.0f, 0.0f, 0.0f);
             weight = weight * GgxMaskingRatio(at_base.z, up.z, base_alpha);
         }
+        weight = weight * ConductorFresnel(conductor, cos_base, tint, coat.ior);
         // Russian roulette once the walk is long and carries little, as pbrt-v4's.
         const float largest = max(weight.x, max(weight.y, weight.z));
         if (bounce > 2 && largest < 0.25f) {

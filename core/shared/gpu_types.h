@@ -73,7 +73,8 @@ PF_CONST(uint32_t) kSpecHasCutOuts = 15;            // alpha cut-outs (core/shar
 PF_CONST(uint32_t) kSpecHasMixes = 16;              // mix materials (Material::kMix)
 PF_CONST(uint32_t) kSpecHasRoughnessTextures = 17;  // Material::roughness_texture
 PF_CONST(uint32_t) kSpecHasMixTextures = 18;        // Material::mix_texture
-PF_CONST(uint32_t) kSpecCount = 19;
+PF_CONST(uint32_t) kSpecHasConductorFresnel = 19;   // Material::conductor other than the tint
+PF_CONST(uint32_t) kSpecCount = 20;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -140,8 +141,11 @@ struct GpuMaterial {
                  // texture, or -1 (int bits); core/shared/alpha.h
     uvec4 mix;   // kMaterialMix: x, y the two materials; z the second's probability (float
                  // bits), w: a texture scaling it, or -1 (int bits)
+    vec4 conductor_eta;  // a conductor's complex index, xyz: eta; w: its Fresnel kind
+                         // (kConductor*, uint bits); core/shared/conductor.h
+    vec4 conductor_k;    // xyz: k
 };
-PF_GPU_LAYOUT(GpuMaterial, 96);
+PF_GPU_LAYOUT(GpuMaterial, 128);
 
 struct GpuTexture {
     uint32_t first_texel;  // into the texels binding

@@ -165,6 +165,39 @@ TEST(BackendAgreementCoats, CoatedSurfacesMatchTheCpus) {
         6'000'000);
 }
 
+TEST(BackendAgreementConductors, MetalsFresnelTermsMatchTheCpus) {
+    // pbrt-v4's conductors, each reflecting the Fresnel term of its complex index
+    // (core/shared/conductor.h) onto a grey floor: a rough gold panel lit at grazing, a
+    // smooth copper one, and a rough one whose "reflectance" is a texture (the index of each
+    // texel's reflectance, per hit); photons take each term at their facet on the device as on
+    // the CPU.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    std::ofstream(testing::TempPath("stripes.png"), std::ios::binary)
+        << testing::TwoTexelPng({250, 200, 40, 60, 120, 250}, "stripes-source.png");
+    ExpectVulkanAgreesWithTheCpu(
+        testing::WriteTextFile(
+            "LookAt 0 -2.5 1.8  0 0.3 0.4  0 0 1\nCamera \"perspective\" \"float fov\" 50\n"
+            "WorldBegin\n"
+            "Texture \"stripes\" \"spectrum\" \"imagemap\" \"string filename\" \"stripes.png\"\n"
+            "Material \"diffuse\" \"rgb reflectance\" [0.6 0.6 0.6]\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
+            "Material \"conductor\" \"float roughness\" 0.1 \"spectrum eta\" \"metal-Au-eta\" "
+            "\"spectrum k\" \"metal-Au-k\"\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [0.9 1 0  0.9 -1 0  0.4 1 1.2  0.4 -1 1.2]\n"
+            "Material \"conductor\"\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-0.4 1 1.2  -0.4 -1 1.2  -0.9 1 0  -0.9 -1 0]\n"
+            "Material \"conductor\" \"float roughness\" 0.2 \"texture reflectance\" \"stripes\"\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-1 1 0  1 1 0  -1 1 1.5  1 1 1.5]\n"
+            "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [6 6 6]\n"
+            "Material \"diffuse\" \"rgb reflectance\" [0 0 0]\nTranslate 0 -0.6 1.4\n"
+            "Rotate 180 1 0 0\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-0.3 -0.3 0  0.3 -0.3 0  -0.3 0.3 0  0.3 0.3 0]\n"
+            "AttributeEnd\n",
+            "conductors.pbrt"),
+        6'000'000);
+}
+
 TEST(BackendAgreementCutOuts, CutOutsAndMixesMatchTheCpus) {
     // A closed room lit from the ceiling, with a checkered alpha-textured card and a card of
     // alpha 0.5 hanging in it, the camera seeing the floor through both: camera rays, photons

@@ -1,5 +1,6 @@
 // pbrt-v4 materials and textures onto photonfarm's: diffuse, smooth and rough dielectric and
-// conductor (its normal-incidence reflectance), thin dielectric, coateddiffuse and
+// conductor (the Fresnel term of its complex index: core/shared/conductor.h), thin dielectric,
+// coateddiffuse and
 // coatedconductor (a coat over the base: core/shared/coat.h); image textures through
 // OpenImageIO.
 #include <algorithm>
@@ -10,20 +11,9 @@
 #include "absl/strings/str_cat.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/pbrt/pbrt_scene_builder.h"
+#include "core/shared/conductor.h"
 
 namespace pf::pbrt {
-namespace {
-
-// Normal-incidence Fresnel reflectance of a conductor with index eta + i k, per channel.
-Rgb ConductorReflectance(const Rgb& eta, const Rgb& k) {
-    Rgb f0;
-    for (int c = 0; c < 3; ++c)
-        f0[c] = ((eta[c] - 1) * (eta[c] - 1) + k[c] * k[c]) /
-                ((eta[c] + 1) * (eta[c] + 1) + k[c] * k[c]);
-    return f0;
-}
-
-}  // namespace
 
 absl::Status PbrtSceneBuilder::BaseColor(ParameterList& parameters, const std::string& name,
                                          Rgb fallback, const Location& where,
@@ -180,6 +170,54 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
         m.coat_depth = static_cast<uint32_t>(depth);
         return absl::OkStatus();
     };
+    // A conductor's Fresnel term as pbrt-v4's (`prefix` "" or coatedconductor's "conductor."):
+    // a "reflectance" r (colour or texture) stands for the index 1 + i 2 sqrt(r / (1 - r));
+    // else the complex index eta + i k, each a named metal's, a spectrum's or a colour, copper's
+    // where not given. Kept in vacuum: under a coat, core/shared/coat.h divides by its index.
+    auto conductor = [&](const std::string& prefix) -> absl::Status {
+        Material& m = material.material;
+        if (parameters.Has("reflectance")) {
+            if (parameters.Has(prefix + "eta") || parameters.Has(prefix + "k"))
+                return ErrorAt(where,
+                               absl::StrCat("Material \"", type,
+                                            "\": give \"reflectance\" "
+                                            "or \"",
+                                            prefix, "eta\" and \"", prefix, "k\", not both"));
+            m.conductor = gpu::kConductorReflectance;
+            const absl::Status read =
+                BaseColor(parameters, "reflectance", Rgb(1.0f), where, &material);
+            if (read.ok() && m.base_color_texture == kNoTexture) {  // the index once, not per hit
+                m.conductor = gpu::kConductorComplex;
+                for (int c = 0; c < 3; ++c) {
+                    const float r = std::clamp(m.base_color[c], 0.0f, 0.9999f);
+                    m.conductor_k[c] = 2.0f * std::sqrt(r / (1.0f - r));
+                }
+                m.base_color = Rgb(1.0f);
+            }
+            return read;
+        }
+        m.conductor = gpu::kConductorComplex;
+        m.base_color = Rgb(1.0f);
+        const auto part = [&](const std::string& name, bool imaginary) {
+            const Parameter* given = parameters.Find(name);
+            const std::string named = given == nullptr ? (imaginary ? "metal-Cu-k" : "metal-Cu-eta")
+                                      : given->strings.empty() ? ""
+                                                               : given->strings[0];
+            const std::optional<Rgb> color = parameters.Color(name, SpectrumUse::kUnbounded);
+            if (const std::optional<ComplexIndex> metal = NamedMetalIndex(named))
+                return imaginary ? metal->k : metal->eta;
+            return color.value_or(Rgb(imaginary ? 0.0f : 1.0f));
+        };
+        m.conductor_eta = part(prefix + "eta", false);
+        m.conductor_k = part(prefix + "k", true);
+        for (int c = 0; c < 3; ++c)
+            if (!(m.conductor_eta[c] > 0 && m.conductor_eta[c] < 1e4f && m.conductor_k[c] >= 0 &&
+                  m.conductor_k[c] < 1e4f))
+                return ErrorAt(where, absl::StrCat("Material \"", type, "\": \"", prefix,
+                                                   "eta\" must lie in (0, 1e4) and \"", prefix,
+                                                   "k\" in [0, 1e4)"));
+        return absl::OkStatus();
+    };
     if (type == "diffuse") {
         status = BaseColor(parameters, "reflectance", Rgb(0.5f), where, &material);
     } else if (type == "coateddiffuse") {
@@ -194,34 +232,7 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
                 *alpha > 0 ? MaterialType::kRoughConductor : MaterialType::kMirror;
             material.material.roughness = *alpha;
         }
-        // The conductor's index relative to the coat's, as pbrt-v4 divides it. A reflectance r
-        // (given, or a named metal's) stands for the index 1 + i 2 sqrt(r / (1 - r)), as there.
-        Rgb eta(1.0f), k(0.0f);
-        const auto from_reflectance = [&](const Rgb& reflectance) {
-            const Rgb r = Min(reflectance, Rgb(0.9999f));
-            for (int c = 0; c < 3; ++c) k[c] = 2.0f * std::sqrt(r[c] / (1.0f - r[c]));
-        };
-        const Parameter* eta_parameter = parameters.Find("conductor.eta");
-        const bool named = eta_parameter != nullptr && !eta_parameter->strings.empty();
-        if (status.ok() && parameters.Has("reflectance")) {
-            status = BaseColor(parameters, "reflectance", Rgb(1.0f), where, &material);
-            from_reflectance(material.material.base_color);
-        } else if (status.ok()) {
-            const std::optional<Rgb> given_eta =
-                parameters.Color("conductor.eta", SpectrumUse::kUnbounded);
-            const std::optional<Rgb> given_k =
-                parameters.Color("conductor.k", SpectrumUse::kUnbounded);
-            if (named && given_eta) {
-                from_reflectance(*given_eta);  // a named metal's spectrum gives its reflectance
-            } else if (given_eta || given_k) {
-                eta = given_eta.value_or(Rgb(0.2f));
-                k = given_k.value_or(Rgb(3.9f));
-            } else {
-                from_reflectance(*NamedMetalReflectance("metal-Cu-eta"));  // pbrt's default
-            }
-        }
-        const float relative = 1.0f / material.material.coat_ior;
-        material.material.base_color = ConductorReflectance(eta * relative, k * relative);
+        if (status.ok()) status = conductor("conductor.");
     } else if (type == "dielectric" || type == "thindielectric") {
         material.material.type =
             type == "dielectric" ? MaterialType::kDielectric : MaterialType::kThinDielectric;
@@ -246,24 +257,7 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
             material.material.type = MaterialType::kRoughConductor;
             material.material.roughness = *alpha;
         }
-        if (parameters.Has("reflectance")) {
-            status = BaseColor(parameters, "reflectance", Rgb(1.0f), where, &material);
-        } else {
-            const Parameter* eta_parameter = parameters.Find("eta");
-            const bool named = eta_parameter != nullptr && !eta_parameter->strings.empty();
-            const std::optional<Rgb> eta = parameters.Color("eta", SpectrumUse::kUnbounded);
-            const std::optional<Rgb> k = parameters.Color("k", SpectrumUse::kUnbounded);
-            if (named && eta) {
-                material.material.base_color =
-                    *eta;  // a named metal's spectrum gives its reflectance
-            } else if (eta || k) {
-                material.material.base_color =
-                    ConductorReflectance(eta.value_or(Rgb(0.2f)), k.value_or(Rgb(3.9f)));
-            } else {
-                material.material.base_color =
-                    *NamedMetalReflectance("metal-Cu-eta");  // pbrt's default, copper
-            }
-        }
+        status = conductor("");
     } else if (type == "interface" || type == "none" || type.empty()) {
         material.interface = true;  // pbrt-v4 reads "" and "none" as no surface too
     } else if (type == "mix") {

@@ -220,6 +220,37 @@ std::optional<Rgb> NamedMetalReflectance(std::string_view name) {
     return std::nullopt;
 }
 
+std::optional<ComplexIndex> NamedMetalIndex(std::string_view name) {
+    // pbrt-v4's measured eta at the sRGB primaries' dominant wavelengths (611, 549, 464 nm, as
+    // SpectrumUse::kUnbounded samples any spectrum).
+    static constexpr std::pair<std::string_view, std::array<float, 3>> kEta[] = {
+        {"Ag", {0.1278f, 0.1252f, 0.1403f}},   {"Al", {1.2528f, 0.9543f, 0.6576f}},
+        {"Au", {0.2048f, 0.3551f, 1.3816f}},   {"Cu", {0.3188f, 0.9656f, 1.1574f}},
+        {"CuZn", {0.4517f, 0.5292f, 0.9564f}}, {"MgO", {1.7360f, 1.7405f, 1.7503f}},
+        {"TiO2", {2.8890f, 2.9565f, 3.1201f}},
+    };
+    const std::optional<Rgb> reflectance = NamedMetalReflectance(name);
+    if (!reflectance) return std::nullopt;
+    const std::string_view metal = name.substr(6, name.rfind('-') - 6);  // "metal-X-eta"
+    ComplexIndex index;
+    for (const auto& [known, eta] : kEta)
+        if (known == metal) index.eta = Rgb(eta[0], eta[1], eta[2]);
+    // k such that the normal-incidence reflectance ((n-1)^2 + k^2) / ((n+1)^2 + k^2) is the
+    // spectrum's (integrated, not sampled: the colour pbrt-v4 shows); where no k reaches it,
+    // k = 0 and the dielectric index that does.
+    for (int c = 0; c < 3; ++c) {
+        const float r = std::min((*reflectance)[c], 0.999f), n = index.eta[c];
+        const float k2 = (r * (n + 1) * (n + 1) - (n - 1) * (n - 1)) / (1 - r);
+        if (k2 >= 0) {
+            index.k[c] = std::sqrt(k2);
+        } else {
+            index.eta[c] = (1 + std::sqrt(r)) / (1 - std::sqrt(r));
+            index.k[c] = 0;
+        }
+    }
+    return index;
+}
+
 std::optional<Rgb> NamedSpectrum(std::string_view name) {
     if (std::optional<Rgb> metal = NamedMetalReflectance(name)) return metal;
     if (std::optional<double> ior = NamedGlassIor(name)) return Rgb(static_cast<float>(*ior));

@@ -86,6 +86,12 @@ std::optional<double> NamedGlassIor(std::string_view name);
 // Normal-incidence reflectance (linear sRGB) of a named metal ("metal-Cu-eta" or its "-k"
 // twin), or nullopt.
 std::optional<Rgb> NamedMetalReflectance(std::string_view name);
+// A named metal's complex index eta + i k per channel (from "metal-Cu-eta" or "metal-Cu-k"),
+// with the normal-incidence reflectance of NamedMetalReflectance; nullopt for other names.
+struct ComplexIndex {
+    Rgb eta{1.0f}, k{0.0f};
+};
+std::optional<ComplexIndex> NamedMetalIndex(std::string_view name);
 // A named spectrum pbrt-v4 knows, as linear sRGB: a metal's reflectance ("metal-Cu-eta"),
 // a glass's index (grey), a light's colour ("stdillum-D65"); nullopt for any other name.
 std::optional<Rgb> NamedSpectrum(std::string_view name);

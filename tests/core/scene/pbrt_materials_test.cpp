@@ -10,7 +10,9 @@
 #include <string>
 #include <vector>
 
+#include "core/scene/pbrt/pbrt_parameters.h"
 #include "core/scene/scene_files.h"
+#include "core/scene/specular.h"
 #include "tests/core/scene/pbrt_test_support.h"
 #include "tests/support/test_env.h"
 
@@ -33,9 +35,15 @@ TEST(PbrtMaterialsTest, MaterialsMapOntoPhotonfarms) {
     const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
     ASSERT_TRUE(scene.ok()) << scene.status();
     ASSERT_EQ(scene->materials.size(), 6u);
-    EXPECT_EQ(scene->materials[0].type, MaterialType::kMirror);
-    EXPECT_NEAR(scene->materials[0].base_color.x, 1.0f, 1e-6f);    // gold's F0: red high,
-    EXPECT_NEAR(scene->materials[0].base_color.z, 0.336f, 1e-6f);  // blue low
+    // Gold: its complex index, whose normal-incidence reflectance is the spectrum's (red high,
+    // blue low), reflected as the Fresnel term of that index (core/shared/conductor.h).
+    const Material& gold = scene->materials[0];
+    EXPECT_EQ(gold.type, MaterialType::kMirror);
+    EXPECT_EQ(gold.conductor, gpu::kConductorComplex);
+    EXPECT_EQ(gold.base_color, Rgb(1.0f));
+    EXPECT_NEAR(gpu::FresnelComplex(1, gold.conductor_eta.x, gold.conductor_k.x), 0.999f, 1e-4f);
+    EXPECT_NEAR(gpu::FresnelComplex(1, gold.conductor_eta.z, gold.conductor_k.z), 0.336f, 1e-4f);
+    EXPECT_NEAR(gold.conductor_eta.z, 1.3816f, 1e-4f);  // pbrt-v4's eta at 464 nm
     EXPECT_EQ(scene->materials[1].type, MaterialType::kDielectric);
     EXPECT_NEAR(scene->materials[1].ior, 1.33f, 1e-6f);
     EXPECT_NEAR(scene->materials[2].ior, 1.5185f, 1e-4f);
@@ -43,8 +51,42 @@ TEST(PbrtMaterialsTest, MaterialsMapOntoPhotonfarms) {
     EXPECT_NEAR(scene->materials[3].base_color.z, 0.6f, 1e-6f);
     EXPECT_TRUE(scene->materials[3].HasCoat());
     EXPECT_TRUE(warnings.empty()) << warnings.front();
-    EXPECT_NEAR(scene->materials[4].base_color.y, 0.9f, 1e-6f);
+    // A reflectance r is the index 1 + i 2 sqrt(r / (1 - r)), reflecting r at normal incidence.
+    const Material& reflector = scene->materials[4];
+    EXPECT_EQ(reflector.conductor, gpu::kConductorComplex);
+    EXPECT_EQ(reflector.conductor_eta, Rgb(1.0f));
+    EXPECT_NEAR(reflector.conductor_k.y, 2 * std::sqrt(0.9f / 0.1f), 1e-4f);
+    EXPECT_NEAR(gpu::FresnelComplex(1, 1, reflector.conductor_k.y), 0.9f, 1e-5f);
     EXPECT_EQ(scene->materials[5].type, MaterialType::kThinDielectric);
+}
+
+TEST(PbrtMaterialsTest, ConductorsTakeAReflectanceOrAComplexIndex) {
+    const std::string world =
+        std::string(
+            "Texture \"tint\" \"spectrum\" \"imagemap\" \"string filename\" \"tint.png\"\n"
+            "Material \"conductor\" \"texture reflectance\" \"tint\"\n") +
+        kQuad + "Material \"conductor\" \"rgb eta\" [0.2 0.9 1.1] \"float k\" 3\n" + kQuad +
+        "Material \"conductor\" \"spectrum k\" \"metal-Ag-k\"\n" + kQuad;
+    const std::string png = TwoTexelPng({250, 200, 40, 60, 120, 250}, "photonfarm-pbrt-tint.png");
+    ASSERT_FALSE(png.empty());
+    const absl::StatusOr<Scene> scene = Load(Bundle(world, {{"tint.png", png}}));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->materials.size(), 3u);
+    // A textured reflectance: each texel's index, found where light meets it.
+    EXPECT_EQ(scene->materials[0].conductor, gpu::kConductorReflectance);
+    EXPECT_NE(scene->materials[0].base_color_texture, kNoTexture);
+    EXPECT_EQ(scene->materials[1].conductor_eta, Rgb(0.2f, 0.9f, 1.1f));
+    EXPECT_EQ(scene->materials[1].conductor_k, Rgb(3.0f));
+    // eta not given is copper's, as pbrt-v4's default; k silver's, as named.
+    EXPECT_EQ(scene->materials[2].conductor_eta, pbrt::NamedMetalIndex("metal-Cu-eta")->eta);
+    EXPECT_EQ(scene->materials[2].conductor_k, pbrt::NamedMetalIndex("metal-Ag-k")->k);
+
+    ExpectError(Load(Bundle(std::string("Material \"conductor\" \"rgb reflectance\" [0.5 0.5 "
+                                        "0.5] \"float k\" 3\n") +
+                            kQuad)),
+                "Material \"conductor\": give \"reflectance\" or \"eta\" and \"k\", not both");
+    ExpectError(Load(Bundle(std::string("Material \"conductor\" \"rgb eta\" [0 1 1]\n") + kQuad)),
+                "\"eta\" must lie in (0, 1e4) and \"k\" in [0, 1e4)");
 }
 
 TEST(PbrtMaterialsTest, CoatsTakePbrtsParameters) {
@@ -75,22 +117,25 @@ TEST(PbrtMaterialsTest, CoatsTakePbrtsParameters) {
     EXPECT_NEAR(given.coat_thickness, 0.2f, 1e-6f);
     EXPECT_EQ(given.coat_depth, 5u);
     EXPECT_TRUE(Contains(warnings, "scattering inside the coat (\"albedo\") is left out"));
-    // A coated conductor: the metal under the coat, its index over the coat's.
+    // A coated conductor: the metal under the coat, its index kept in vacuum (the coat divides
+    // it by its own where light meets the base), reflecting r at normal incidence in air.
     const Material& metal = scene->materials[2];
     EXPECT_EQ(metal.type, MaterialType::kRoughConductor);
     EXPECT_NEAR(metal.roughness, 0.3f, 1e-6f);
     EXPECT_NEAR(metal.coat_roughness, 0.1f, 1e-6f);
+    EXPECT_EQ(metal.conductor, gpu::kConductorComplex);
     for (int c = 0; c < 3; ++c) {
         const float r = std::array{0.9f, 0.5f, 0.2f}[c];
-        const float k = 2 * std::sqrt(r / (1 - r)) / 1.5f, eta = 1 / 1.5f;
-        EXPECT_NEAR(metal.base_color[c],
-                    ((eta - 1) * (eta - 1) + k * k) / ((eta + 1) * (eta + 1) + k * k), 1e-5f);
+        EXPECT_NEAR(metal.conductor_k[c], 2 * std::sqrt(r / (1 - r)), 1e-4f);
+        EXPECT_NEAR(metal.conductor_eta[c], 1.0f, 1e-6f);
     }
     // Index 1: the coat bends nothing, and the copper default shows through unchanged.
     const Material& copper = scene->materials[3];
     EXPECT_EQ(copper.type, MaterialType::kMirror);
     EXPECT_EQ(copper.coat_ior, 1.0f);
-    EXPECT_NEAR(copper.base_color.x, 0.955f, 1e-3f);
+    EXPECT_NEAR(
+        gpu::ConductorFresnel(ConductorOf(copper), 1.0f, copper.base_color, copper.coat_ior).x,
+        0.955f, 1e-3f);
 
     ExpectError(Load(Bundle(std::string("Material \"coateddiffuse\" \"float eta\" 0.5\n") + kQuad)),
                 "scenes/scene.pbrt:6:1: Material \"coateddiffuse\": \"eta\" must be at least 1");

@@ -48,7 +48,9 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
                        std::bit_cast<float>(material.alpha_texture), 0},
              gpu::uvec4{material.mix_first, material.mix_second,
                         std::bit_cast<uint32_t>(material.mix_amount),
-                        std::bit_cast<uint32_t>(material.mix_texture)}});
+                        std::bit_cast<uint32_t>(material.mix_texture)},
+             Vec4(material.conductor_eta, std::bit_cast<float>(material.conductor)),
+             Vec4(material.conductor_k, 0.0f)});
     if (!gpu_scene.features.ReadsUv() && !gpu_scene.features.textured_lights) return;
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {
         gpu_scene.textures.push_back(
@@ -223,6 +225,7 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasMixes] = features.mixes;
     spec[gpu::kSpecHasRoughnessTextures] = features.roughness_textures;
     spec[gpu::kSpecHasMixTextures] = features.mix_textures;
+    spec[gpu::kSpecHasConductorFresnel] = features.conductor_fresnel;
     return spec;
 }
 

@@ -124,7 +124,8 @@ uint TracePhoton(uint photon, out bool discarded) {
                 const float base_alpha = material.type == kMaterialRoughConductor ? max(material.roughness, 1e-3) : 0.0;
                 vec3 wi;
                 const vec3 weight =
-                    ScatterCoatedConductor(CoatOf(material), -direction * frame, surface.base_color, base_alpha, rng, wi);
+                    ScatterCoatedConductor(CoatOf(material), ConductorOf(material), -direction * frame, surface.base_color,
+                                           base_alpha, rng, wi);
                 scatter = SpecularBounce(frame * wi, weight, false);
             } else {
                 // As ScatterNonDiffuse: one number for a specular surface, three for a rough one.

@@ -12,6 +12,13 @@ Coat CoatOf(GpuMaterial material) {
                 floatBitsToUint(material.coat.w));
 }
 
+// The material's conductor Fresnel term, as core/shared/conductor.h takes it (specular.h's
+// ConductorOf); the tint alone in a scene whose metals all reflect it at every angle.
+Conductor ConductorOf(GpuMaterial material) {
+    return Conductor(kHasConductorFresnel ? floatBitsToUint(material.conductor_eta.w) : kConductorTint,
+                     material.conductor_eta.xyz, material.conductor_k.xyz);
+}
+
 struct SpecularBounce {
     vec3 direction;
     vec3 weight;
@@ -31,8 +38,9 @@ SpecularBounce ScatterSpecular(GpuMaterial material, vec3 d, vec3 normal, bool f
         const float r = FresnelDielectric(cos_i, 1.0 / ior);
         reflect_probability = 2.0 * r / (1.0 + r);
     }
-    const SpecularBounce reflected =
-        SpecularBounce(d + n * (2.0 * cos_i), material.type == kMaterialMirror ? tint : vec3(1.0), false);
+    const SpecularBounce reflected = SpecularBounce(
+        d + n * (2.0 * cos_i),
+        material.type == kMaterialMirror ? ConductorFresnel(ConductorOf(material), cos_i, tint, 1.0) : vec3(1.0), false);
     if (u < reflect_probability) return reflected;
     if (kHasThinDielectric && material.type == kMaterialThinDielectric) return SpecularBounce(d, tint, true);
     // Refraction through solid glass; reflected instead should rounding disagree with the
@@ -62,8 +70,8 @@ SpecularBounce ScatterRough(GpuMaterial material, vec3 d, vec3 normal, bool fron
     const bool refracts = !conductor && u_branch >= FresnelDielectric(cos_om, eta) && Refract(-wo, m, eta, wi);
     if (!refracts) {
         if (!(reflected.z > 0.0)) return absorbed;
-        return SpecularBounce(frame * reflected, (conductor ? tint : vec3(1.0)) * GgxMaskingRatio(wo.z, reflected.z, alpha),
-                              false);
+        const vec3 weight = conductor ? ConductorFresnel(ConductorOf(material), cos_om, tint, 1.0) : vec3(1.0);
+        return SpecularBounce(frame * reflected, weight * GgxMaskingRatio(wo.z, reflected.z, alpha), false);
     }
     if (!(wi.z < 0.0)) return absorbed;
     return SpecularBounce(frame * wi, tint * GgxMaskingRatio(wo.z, -wi.z, alpha), true);
