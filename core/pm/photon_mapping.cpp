@@ -37,6 +37,7 @@ Rgb GatherRay(const PhotonMappingInputs& inputs, Ray ray, Rng& rng, NearestPhoto
         std::optional<Material> shading;  // where a texture sets the roughness
         const Material& material = scene.ShadingMaterial(surface, shading);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
+        weight *= InsideTransmittance(material, front_facing, hit.t);
         const Rgb base_color = scene.BaseColor(surface);
         const CoatArrival arrival =
             material.type == MaterialType::kDiffuse
@@ -119,6 +120,7 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
         std::optional<Material> shading;  // where a texture sets the roughness
         const Material& material = scene.ShadingMaterial(surface, shading);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
+        throughput *= InsideTransmittance(material, front_facing, hit.t);
         // Emission seen directly or through specular and rough bounces (no light map holds it).
         if (material.EmitsToward(front_facing)) radiance += throughput * scene.Emission(surface);
         const CoatArrival arrival =

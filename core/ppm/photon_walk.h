@@ -53,6 +53,7 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
     std::optional<Material> shading;  // where a texture sets the roughness
     const Material& material = scene.ShadingMaterial(surface, shading);
     const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
+    if (kSpecular) flux *= InsideTransmittance(material, front_facing, hit.t);
     const Rgb base_color = kTextures ? scene.BaseColor(surface) : material.base_color;
     ray.t_max = std::numeric_limits<float>::infinity();
     SpecularBounce bounce;

@@ -29,6 +29,15 @@ inline gpu::Coat CoatOf(const Material& material) {
             material.coat_thickness, material.coat_weight, material.coat_depth};
 }
 
+// What survives of a path's weight along the segment of length `distance` that ends where it
+// meets `material` from behind (front_facing false): the segment crossed the absorbing volume
+// inside a solid dielectric (closed surfaces, one volume at a time; gpu::BeerLambert). 1
+// elsewhere. Every pass multiplies by it at every hit, the Vulkan kernels too.
+inline Rgb InsideTransmittance(const Material& material, bool front_facing, float distance) {
+    if (front_facing || !material.HasVolume()) return Rgb(1.0f);
+    return gpu::BeerLambert(material.absorption, distance);
+}
+
 // Scatters d at a rough surface; `normal` is the shading normal on the triangle's front
 // side, u_branch chooses reflection or refraction (rough glass), (u1, u2) the microfacet. A
 // black weight ends the path (the sample left the hemisphere it must stay in).

@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
@@ -292,6 +293,29 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::Build() {
         glass.type = volume != nullptr && NumberOr(*volume, "thicknessFactor", 0.0) > 0
                          ? MaterialType::kDielectric
                          : MaterialType::kThinDielectric;
+        if (glass.type == MaterialType::kDielectric) {
+            // KHR_materials_volume's attenuation: light crossing a length d inside keeps
+            // attenuationColor^(d / attenuationDistance), Beer-Lambert with absorption
+            // -ln(attenuationColor) / attenuationDistance (world units, as the extension's).
+            const double distance =
+                NumberOr(*volume, "attenuationDistance", std::numeric_limits<double>::infinity());
+            Vec3d colour(1.0);
+            if (volume->Has("attenuationColor")) {
+                const tinygltf::Value& given = volume->Get("attenuationColor");
+                colour = Vec3d(-1.0);  // refused unless three numbers
+                if (given.IsArray() && given.ArrayLen() == 3)
+                    for (int c = 0; c < 3; ++c)
+                        if (given.Get(c).IsNumber()) colour[c] = given.Get(c).GetNumberAsDouble();
+            }
+            if (!(distance > 0) || !(MinComponent(colour) >= 0 && MaxComponent(colour) <= 1))
+                return Error(
+                    "KHR_materials_volume: attenuationDistance must be above 0 and "
+                    "attenuationColor three numbers in [0, 1]");
+            if (std::isfinite(distance))
+                for (int c = 0; c < 3; ++c)
+                    glass.absorption[c] = static_cast<float>(
+                        std::min(-std::log(std::max(colour[c], 1e-6)) / distance, 1e30));
+        }
         if (transmission < 1)
             spdlog::warn("{}: transmissionFactor {} taken as 1 (no diffuse-transmission mix)",
                          where_, transmission);

@@ -65,6 +65,11 @@ struct Material {
     uint32_t conductor = 0;
     Rgb conductor_eta{1.0f};
     Rgb conductor_k{0.0f};
+    // The absorption coefficient, per unit of world length and channel, of the volume inside a
+    // solid dielectric (glTF's KHR_materials_volume attenuation, a pbrt homogeneous medium's
+    // sigma_a): light crossing a length d of it keeps exp(-absorption d) (Beer-Lambert;
+    // InsideTransmittance in core/scene/glossy.h).
+    Rgb absorption{0.0f};
     // Cut-outs (core/shared/alpha.h): the surface is there where alpha x the alpha texture's
     // first channel (an index into Scene::textures) is at least alpha_cutoff, or, with no
     // cutoff (0), for that fraction of the rays that meet it.
@@ -87,6 +92,8 @@ struct Material {
         return type == MaterialType::kRoughConductor || type == MaterialType::kRoughDielectric;
     }
     bool HasCoat() const { return coat_ior > 0.0f; }
+    // Whether the volume inside absorbs.
+    bool HasVolume() const { return !IsBlack(absorption); }
     // Whether some rays pass through the surface.
     bool HasCutOuts() const { return alpha_texture != kNoTexture || !(alpha >= 1.0f); }
     bool IsEmissive() const { return !IsBlack(emission); }

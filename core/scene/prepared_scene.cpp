@@ -27,7 +27,7 @@ constexpr uint64_t kMaxCount = uint64_t{1} << 32;
 
 // Types written whole must have no padding: their size is the sum of their fields'.
 static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
-static_assert(sizeof(Material) == 132, "Material gained a field or padding: encode it");
+static_assert(sizeof(Material) == 144, "Material gained a field or padding: encode it");
 static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4,
               "Camera gained a field or padding: encode it");
 static_assert(sizeof(Prototype) == 8 + 24 && sizeof(Instance) == 4 + 21 * 4);
@@ -306,6 +306,8 @@ absl::Status CheckMaterials(const Scene& scene) {
         if (!(material.conductor <= gpu::kConductorReflectance &&
               in_range(material.conductor_eta, 1e-30f) && in_range(material.conductor_k, 0.0f)))
             return Invalid(absl::StrCat(name, ": a conductor's Fresnel term out of range"));
+        if (!(Finite(material.absorption) && MinComponent(material.absorption) >= 0))
+            return Invalid(absl::StrCat(name, ": absorption out of range"));
         // A mix's materials come before it: resolving one always ends.
         if (material.type == MaterialType::kMix &&
             !(material.mix_first < m && material.mix_second < m && material.mix_amount >= 0.0f &&

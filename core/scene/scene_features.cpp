@@ -24,6 +24,7 @@ SceneFeatures SceneFeatures::All() {
                        &all.mix_textures,
                        &all.fresnel_mixes,
                        &all.conductor_fresnel,
+                       &all.absorption,
                        &all.smooth_normals,
                        &all.triangle_lights,
                        &all.point_lights,
@@ -47,6 +48,7 @@ std::string SceneFeatures::ToString() const {
     if (coats) parts.push_back("coated");
     if (fresnel_mixes) parts.push_back("specular over diffuse");
     if (conductor_fresnel) parts.push_back("metal Fresnel");
+    if (absorption) parts.push_back("absorbing glass");
     if (cut_outs) parts.push_back("cut-outs");
     if (mixes) parts.push_back("mixed materials");
     if (textures) parts.push_back("textures");
@@ -93,6 +95,7 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
         features.conductor_fresnel |= (material.type == MaterialType::kMirror ||
                                        material.type == MaterialType::kRoughConductor) &&
                                       material.conductor != gpu::kConductorTint;
+        features.absorption |= material.HasVolume();
     }
     for (const Emitters::Record& record : emitters.Records()) {
         if (record.kind == EmitterKind::kTriangle) {

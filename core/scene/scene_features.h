@@ -22,6 +22,7 @@ struct SceneFeatures {
     bool mix_textures = false;        // a used mix's amount has a texture
     bool fresnel_mixes = false;       // glTF's dielectric: specular over diffuse (kCoatFresnelMix)
     bool conductor_fresnel = false;   // a metal's reflectance varies with angle (conductor.h)
+    bool absorption = false;          // glass whose inside absorbs (Material::absorption)
     bool smooth_normals = false;      // a triangle interpolates vertex normals
     // Emitters with power.
     bool triangle_lights = false, point_lights = false, spot_lights = false,

@@ -74,7 +74,8 @@ PF_CONST(uint32_t) kSpecHasMixes = 16;              // mix materials (Material::
 PF_CONST(uint32_t) kSpecHasRoughnessTextures = 17;  // Material::roughness_texture
 PF_CONST(uint32_t) kSpecHasMixTextures = 18;        // Material::mix_texture
 PF_CONST(uint32_t) kSpecHasConductorFresnel = 19;   // Material::conductor other than the tint
-PF_CONST(uint32_t) kSpecCount = 20;
+PF_CONST(uint32_t) kSpecHasAbsorption = 20;         // Material::absorption inside glass
+PF_CONST(uint32_t) kSpecCount = 21;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -144,8 +145,9 @@ struct GpuMaterial {
     vec4 conductor_eta;  // a conductor's complex index, xyz: eta; w: its Fresnel kind
                          // (kConductor*, uint bits); core/shared/conductor.h
     vec4 conductor_k;    // xyz: k
+    vec4 absorption;     // xyz: a solid dielectric's absorption coefficient (BeerLambert)
 };
-PF_GPU_LAYOUT(GpuMaterial, 128);
+PF_GPU_LAYOUT(GpuMaterial, 144);
 
 struct GpuTexture {
     uint32_t first_texel;  // into the texels binding

@@ -115,6 +115,12 @@ PF_GPU_FN float FresnelDielectric(float cos_incident, float eta) {
     return 0.5f * (r_parallel * r_parallel + r_perpendicular * r_perpendicular);
 }
 
+// Beer-Lambert: the fraction of light that crosses `distance` of a volume whose absorption
+// coefficient is sigma_a in each channel.
+PF_GPU_FN vec3 BeerLambert(vec3 sigma_a, float distance) {
+    return vec3(exp(-sigma_a.x * distance), exp(-sigma_a.y * distance), exp(-sigma_a.z * distance));
+}
+
 // Refracts direction d through the interface with normal n facing the incident side
 // (dot(d, n) < 0); eta = n_incident / n_transmitted. False under total internal reflection.
 PF_GPU_FN bool Refract(vec3 d, vec3 n, float eta, PF_OUT(vec3) refracted) {

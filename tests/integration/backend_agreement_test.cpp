@@ -14,6 +14,7 @@
 
 #include "absl/strings/escaping.h"
 #include "absl/strings/str_format.h"
+#include "absl/strings/str_replace.h"
 #include "core/film/exr_io.h"
 #include "embedded/local_render.h"
 #include "tests/support/gltf_builder.h"
@@ -196,6 +197,22 @@ TEST(BackendAgreementConductors, MetalsFresnelTermsMatchTheCpus) {
             "AttributeEnd\n",
             "conductors.pbrt"),
         6'000'000);
+}
+
+TEST(BackendAgreementAbsorption, AbsorbingGlassMatchesTheCpus) {
+    // The glass Cornell box with its ball tinted by KHR_materials_volume's attenuation (light
+    // crossing 0.1 of it keeps (0.8, 0.5, 0.2)): its caustic is the light that crossed the
+    // ball, attenuated by Beer-Lambert along each photon's chords, on the device as on the CPU.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    const absl::StatusOr<std::string> glass =
+        ReadWholeFile(std::string(PF_SOURCE_DIR) + "/scenes/cornell-glass.gltf");
+    ASSERT_TRUE(glass.ok()) << glass.status();
+    const std::string tinted = absl::StrReplaceAll(
+        *glass, {{R"("thicknessFactor": 1.0)", R"("thicknessFactor": 1.0, "attenuationDistance": )"
+                                               R"(0.1, "attenuationColor": [0.8, 0.5, 0.2])"}});
+    ASSERT_NE(tinted, *glass);
+    ExpectVulkanAgreesWithTheCpu(testing::WriteTextFile(tinted, "tinted-glass.gltf"), 2'000'000);
 }
 
 TEST(BackendAgreementCutOuts, CutOutsAndMixesMatchTheCpus) {

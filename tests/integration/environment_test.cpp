@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "absl/strings/str_format.h"
+#include "core/geometry/tracer.h"
 #include "core/job/integrator.h"
 #include "core/scene/pbrt/pbrt_parameters.h"
 #include "core/scene/scene_loader.h"
@@ -261,11 +262,12 @@ bool BlockRatioCheck(const Image& image, const PixelClasses& classes,
 
 // Renders the cube of scene file `scene_path` (under its own sky; or glTF, which has none,
 // under the job's) by `integrator` and checks its pixels against sky x expected(mu) (mu the
-// cosine at which the camera sees the face, averaged over 4x4 rays across each pixel), as
+// cosine at which the camera sees the face, averaged over 8x8 rays across each pixel), as
 // BlockRatioCheck, and that the check fails 2% off. Per channel: expected(mu) is a colour.
-void ExpectCubeReflectsRgb(const std::string& scene_path, Integrator integrator,
-                           const std::string& feature,
-                           const std::function<Rgbd(double)>& reflects) {
+// What the camera should see along a ray that meets the cube at `hit`, over the sky's radiance.
+using Expectation = std::function<Rgbd(const Scene&, const Tracer&, const Ray&, const RayHit&)>;
+void ExpectCubeShows(const std::string& scene_path, Integrator integrator,
+                     const std::string& feature, const Expectation& shows) {
     RenderSettings settings;
     settings.scene_path = scene_path;
     settings.threads = 2;
@@ -293,14 +295,13 @@ void ExpectCubeReflectsRgb(const std::string& scene_path, Integrator integrator,
     std::vector<Rgbd> expected(kSize * kSize, Rgbd(0.0));
     for (int i = 0; i < kSize * kSize; ++i) {
         if (!classes.body[i]) continue;
-        for (int s = 0; s < 16; ++s) {
+        for (int s = 0; s < 64; ++s) {
             const Ray ray =
-                scene->camera.GenerateRay((i % kSize + (s % 4 + 0.5f) / 4) / kSize,
-                                          (i / kSize + (s / 4 + 0.5f) / 4) / kSize, 1.0f);
+                scene->camera.GenerateRay((i % kSize + (s % 8 + 0.5f) / 8) / kSize,
+                                          (i / kSize + (s / 8 + 0.5f) / 8) / kSize, 1.0f);
             RayHit hit;
             ASSERT_TRUE((*tracer)->Intersect(ray, &hit));
-            const Vec3 n = scene->Surface(hit).geometric_normal;
-            expected[i] += reflects(std::abs(Dot(ray.direction, n))) / 16.0;
+            expected[i] += shows(*scene, **tracer, ray, hit) / 64.0;
         }
     }
     std::string text;
@@ -311,6 +312,16 @@ void ExpectCubeReflectsRgb(const std::string& scene_path, Integrator integrator,
         EXPECT_FALSE(BlockRatioCheck(outcome->image, classes, expected, bias, &biased))
             << "a biased image passed: " << biased;
     }
+}
+
+void ExpectCubeReflectsRgb(const std::string& scene_path, Integrator integrator,
+                           const std::string& feature,
+                           const std::function<Rgbd(double)>& reflects) {
+    ExpectCubeShows(scene_path, integrator, feature,
+                    [&](const Scene& scene, const Tracer&, const Ray& ray, const RayHit& hit) {
+                        const Vec3 n = scene.Surface(hit).geometric_normal;
+                        return reflects(std::abs(Dot(ray.direction, n)));
+                    });
 }
 
 // The same where expected(mu) is grey.
@@ -388,6 +399,59 @@ TEST_P(ConductorEnvironmentFurnace, ConvexMirrorReflectsItsFresnelTerm) {
             return fresnel;
         });
 }
+
+// Absorbing glass of index 1 (nothing reflects or bends): the camera sees the sky through the
+// cube attenuated by Beer-Lambert along the chord, exp(-sigma_a d), d from where the ray enters
+// to where it leaves. pbrt-v4's homogeneous medium inside a dielectric (sigma_a x scale, its
+// scattering noted and left out), and glTF's KHR_materials_volume (sigma_a = -ln(colour) /
+// distance).
+const Rgb kSigmaA(0.3f, 1.1f, 2.4f);
+
+Rgbd ThroughTheChord(const Scene&, const Tracer& tracer, const Ray& ray, const RayHit& entry) {
+    constexpr float kInside = 1e-5f;
+    const Ray onward{ray.origin + ray.direction * (entry.t + kInside), ray.direction};
+    RayHit exit;
+    if (!tracer.Intersect(onward, &exit)) return Rgbd(1.0);
+    const double chord = exit.t + kInside;
+    return Rgbd(std::exp(-kSigmaA.x * chord), std::exp(-kSigmaA.y * chord),
+                std::exp(-kSigmaA.z * chord));
+}
+
+class AbsorbingGlassEnvironment : public ::testing::TestWithParam<Integrator> {};
+
+TEST_P(AbsorbingGlassEnvironment, PbrtMediumInsideGlassAttenuatesAlongTheChord) {
+    ExpectCubeShows(
+        testing::WriteTextFile(
+            CubePbrt(absl::StrFormat(
+                "MakeNamedMedium \"ink\" \"string type\" \"homogeneous\" \"rgb sigma_a\" "
+                "[%g %g %g] \"rgb sigma_s\" [0 0 0] \"float scale\" 2\n"
+                "MediumInterface \"ink\" \"\"\nMaterial \"dielectric\" \"float eta\" 1\n",
+                kSigmaA.x / 2, kSigmaA.y / 2, kSigmaA.z / 2)),
+            "ink-cube.pbrt"),
+        GetParam(), "absorbing glass", ThroughTheChord);
+}
+
+TEST_P(AbsorbingGlassEnvironment, GltfVolumeAttenuatesAlongTheChord) {
+    constexpr double kDistance = 0.8;
+    testing::TestScene cube = TurnedCube();
+    cube.materials[0].base_color = Rgb(1.0f);  // glass is tinted by it
+    cube.materials[0].roughness = 0;
+    cube.materials[0].extensions = absl::StrFormat(
+        R"("KHR_materials_transmission":{"transmissionFactor":1},"KHR_materials_ior":{"ior":1},)"
+        R"("KHR_materials_volume":{"thicknessFactor":1,"attenuationDistance":%g,)"
+        R"("attenuationColor":[%.9g,%.9g,%.9g]})",
+        kDistance, std::exp(-kSigmaA.x * kDistance), std::exp(-kSigmaA.y * kDistance),
+        std::exp(-kSigmaA.z * kDistance));
+    ExpectCubeShows(testing::WriteGltf(cube, "ink-cube.gltf"), GetParam(), "absorbing glass",
+                    ThroughTheChord);
+}
+
+INSTANTIATE_TEST_SUITE_P(Integrators, AbsorbingGlassEnvironment,
+                         ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
+                                           Integrator::kPath),
+                         [](const auto& param_info) {
+                             return std::string(IntegratorName(param_info.param));
+                         });
 
 INSTANTIATE_TEST_SUITE_P(Integrators, ConductorEnvironmentFurnace,
                          ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,

@@ -403,7 +403,7 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
     }
     absl::StatusOr<uint32_t> index =
         SceneMaterial(state.material, emission, state.area_light && state.area_light->two_sided,
-                      state.alpha, emission_texture);
+                      state.alpha, emission_texture, InsideAbsorption(state, element));
     if (!index.ok()) return index.status();
     MeshPlacement placement{world, *index, front, state.reverse_orientation, uv};
     if (mesh.uvs.empty() && scene_.MaterialReadsUv(*index))
@@ -414,9 +414,10 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
 
 absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emission, bool two_sided,
                                                          const FloatInput& alpha,
-                                                         int32_t emission_texture) {
-    const auto key = std::make_tuple(material, emission.x, emission.y, emission.z, two_sided,
-                                     emission_texture, alpha.value, alpha.texture);
+                                                         int32_t emission_texture, Rgb absorption) {
+    const auto key =
+        std::make_tuple(material, emission.x, emission.y, emission.z, two_sided, emission_texture,
+                        alpha.value, alpha.texture, absorption.x, absorption.y, absorption.z);
     if (const auto it = scene_materials_.find(key); it != scene_materials_.end()) return it->second;
     Material out = material >= 0 ? materials_[material].material : DefaultMaterial().material;
     if (material >= 0 && materials_[material].mix[0] >= 0) {
@@ -436,6 +437,7 @@ absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emiss
     out.emission_texture = out.IsEmissive() ? emission_texture : kNoTexture;
     out.alpha = alpha.value;
     out.alpha_texture = alpha.texture;
+    out.absorption = absorption;
     const auto index = static_cast<uint32_t>(scene_.materials.size());
     scene_.materials.push_back(out);
     scene_materials_[key] = index;

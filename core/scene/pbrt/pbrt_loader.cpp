@@ -321,8 +321,7 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, TokenStrea
         }
         state_.area_light = light;
     } else if (name == "MakeNamedMedium") {
-        parameters->ConsumeAll();
-        Warn(where, "MakeNamedMedium: participating media are not rendered; the medium is ignored");
+        status = MakeNamedMedium(*type, *parameters, where);
     } else if (name == "Attribute") {
         parameters->ConsumeAll();
         Warn(where,
@@ -509,9 +508,8 @@ std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& direct
     if (name == "MediumInterface") {
         absl::StatusOr<std::string> inside = string_argument();
         if (!inside.ok()) return inside.status();
-        if (in.NextIs(TokenKind::kString)) in.Skip();
-        Warn(where, "MediumInterface: participating media are not rendered; ignored");
-        return absl::OkStatus();
+        if (in.NextIs(TokenKind::kString)) in.Skip();  // outside: air, as far as rendered
+        return SetMediumInterface(*inside, where);
     }
     if (name == "ColorSpace") {
         absl::StatusOr<std::string> space = string_argument();

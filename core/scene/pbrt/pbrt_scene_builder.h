@@ -66,7 +66,13 @@ struct GraphicsState {
     bool reverse_orientation = false;
     int material = -1;  // into materials_; -1: pbrt's default, diffuse 0.5
     std::optional<AreaLight> area_light;
-    FloatInput alpha;  // not state pbrt keeps: Shape sets it for the one shape it makes
+    FloatInput alpha;           // not state pbrt keeps: Shape sets it for the one shape it makes
+    std::string inside_medium;  // MediumInterface's inside medium; empty: none
+};
+
+// A named medium, as far as it is rendered (pbrt_media.cpp): its absorption coefficient.
+struct Medium {
+    Rgb absorption{0.0f};
 };
 
 // A shape inside ObjectBegin/ObjectEnd, kept in the object's space until instanced.
@@ -160,7 +166,14 @@ private:
     void Warn(const Location& where, const std::string& what);
     void WarnUnused(const ParameterList& parameters, const std::string& directive);
     absl::StatusOr<uint32_t> SceneMaterial(int material, Rgb emission, bool two_sided,
-                                           const FloatInput& alpha, int32_t emission_texture);
+                                           const FloatInput& alpha, int32_t emission_texture,
+                                           Rgb absorption = Rgb(0.0f));
+    // Media (pbrt_media.cpp): MakeNamedMedium, MediumInterface's inside medium, and the
+    // absorption a shape of `state` takes from it (glass only; noted elsewhere).
+    absl::Status MakeNamedMedium(const std::string& name, ParameterList& parameters,
+                                 const Location& where);
+    absl::Status SetMediumInterface(const std::string& inside, const Location& where);
+    Rgb InsideAbsorption(const GraphicsState& state, const std::string& element);
     static const MaterialRef& DefaultMaterial();
 
     SceneFiles& files_;
@@ -189,7 +202,10 @@ private:
     std::map<std::string, TextureRef> float_textures_;  // their value in every channel
     std::map<std::tuple<std::string, ImageDecodeOptions>, int32_t>
         images_;  // (path, how it is decoded) -> Scene::textures
-    std::map<std::tuple<int, float, float, float, bool, int32_t, float, int32_t>, uint32_t>
+    std::map<std::string, Medium> media_;
+    std::map<
+        std::tuple<int, float, float, float, bool, int32_t, float, int32_t, float, float, float>,
+        uint32_t>
         scene_materials_;
 
     std::map<std::string, std::vector<ObjectShape>> objects_;

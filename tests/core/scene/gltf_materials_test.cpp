@@ -160,6 +160,29 @@ TEST(GltfMaterialsTest, APrimitiveWithoutMaterialTakesGltfsDefault) {
     EXPECT_EQ(material.base_color, Rgb(1.0f));
 }
 
+// Solid glass, its KHR_materials_volume's members to follow.
+constexpr const char* kVolume =
+    R"("KHR_materials_transmission":{"transmissionFactor":1},"KHR_materials_volume":{)"
+    R"("thicknessFactor":1,)";
+
+TEST(GltfMaterialsTest, VolumeAttenuationIsAbsorptionInsideTheGlass) {
+    const absl::StatusOr<Scene> scene = QuadWith(
+        Gltf(0, 0,
+             std::string(kVolume) + R"("attenuationDistance":2,"attenuationColor":[1,0.5,0.25]})"),
+        "volume.gltf");
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Material& glass = QuadMaterial(*scene);
+    EXPECT_EQ(glass.type, MaterialType::kDielectric);
+    // sigma_a = -ln(colour) / distance: the colour is what crossing the distance leaves.
+    EXPECT_EQ(glass.absorption.x, 0.0f);
+    EXPECT_NEAR(glass.absorption.y, std::log(2.0f) / 2, 1e-6f);
+    EXPECT_NEAR(glass.absorption.z, std::log(4.0f) / 2, 1e-6f);
+    const absl::StatusOr<Scene> clear =
+        QuadWith(Gltf(0, 0, std::string(kVolume) + R"("attenuationColor":[1,1,1]})"), "clear.gltf");
+    ASSERT_TRUE(clear.ok()) << clear.status();
+    EXPECT_FALSE(QuadMaterial(*clear).HasVolume()) << "no attenuationDistance: no absorption";
+}
+
 TEST(GltfMaterialsTest, ValuesOutOfRangeAreRefusedNamingTheMaterial) {
     for (const auto& [material, what] :
          {std::pair{Gltf(2, 0.5f), "metallicFactor"}, std::pair{Gltf(0, -1), "roughnessFactor"},
@@ -167,7 +190,11 @@ TEST(GltfMaterialsTest, ValuesOutOfRangeAreRefusedNamingTheMaterial) {
                     "specularFactor"},
           std::pair{Gltf(0, 0.5f, R"("KHR_materials_ior":{"ior":0.5})"), "ior"},
           std::pair{Gltf(0, 0.5f, R"("KHR_materials_clearcoat":{"clearcoatFactor":3})"),
-                    "clearcoatFactor"}}) {
+                    "clearcoatFactor"},
+          std::pair{Gltf(0, 0, std::string(kVolume) + R"("attenuationDistance":0})"),
+                    "attenuationDistance"},
+          std::pair{Gltf(0, 0, std::string(kVolume) + R"("attenuationColor":[1,2,0]})"),
+                    "attenuationColor"}}) {
         const absl::StatusOr<Scene> scene = QuadWith(material, "bad.gltf");
         ASSERT_FALSE(scene.ok()) << what;
         EXPECT_NE(scene.status().message().find("material #0"), std::string::npos)

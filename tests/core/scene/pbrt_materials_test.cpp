@@ -89,6 +89,38 @@ TEST(PbrtMaterialsTest, ConductorsTakeAReflectanceOrAComplexIndex) {
                 "\"eta\" must lie in (0, 1e4) and \"k\" in [0, 1e4)");
 }
 
+TEST(PbrtMaterialsTest, AMediumInsideGlassAbsorbs) {
+    const std::string world =
+        std::string(
+            "MakeNamedMedium \"ink\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [0.1 0.2 "
+            "0.3] \"float scale\" 10\n"
+            "MakeNamedMedium \"smoke\" \"string type\" \"uniformgrid\"\n"
+            "AttributeBegin\nMediumInterface \"ink\" \"\"\nMaterial \"dielectric\"\n") +
+        kQuad + "Material \"diffuse\"\n" + kQuad + "AttributeEnd\n" + "Material \"dielectric\"\n" +
+        kQuad + "MediumInterface \"smoke\"\n" + kQuad;
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const auto material_of = [&](size_t quad) {
+        return scene->materials[scene->triangles[2 * quad].material];
+    };
+    // sigma_a x scale inside the glass; pbrt-v4's default sigma_s (1) is scattering, noted.
+    EXPECT_EQ(material_of(0).absorption, Rgb(1.0f, 2.0f, 3.0f));
+    EXPECT_FALSE(material_of(1).HasVolume()) << "a diffuse surface holds no medium";
+    EXPECT_FALSE(material_of(2).HasVolume()) << "AttributeEnd restores no medium";
+    EXPECT_FALSE(material_of(3).HasVolume()) << "a grid medium is left out";
+    EXPECT_TRUE(Contains(warnings, "scattering (sigma_s) is left out; the medium absorbs only"));
+    EXPECT_TRUE(Contains(warnings, "is inside a surface that is not solid glass"));
+    EXPECT_TRUE(Contains(warnings, "\"uniformgrid\" media are not rendered"));
+
+    ExpectError(Load(Bundle(std::string("MediumInterface \"fog\" \"\"\n") + kQuad)),
+                "MediumInterface: no medium named \"fog\"");
+    ExpectError(Load(Bundle(std::string("MakeNamedMedium \"ink\" \"string type\" "
+                                        "\"homogeneous\" \"rgb sigma_a\" [-1 0 0]\n") +
+                            kQuad)),
+                "sigma_a, sigma_s and scale must be finite and not negative");
+}
+
 TEST(PbrtMaterialsTest, CoatsTakePbrtsParameters) {
     const std::string world =
         std::string("Material \"coateddiffuse\"\n") + kQuad +

@@ -57,7 +57,8 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     EXPECT_FALSE(features.triangle_lights) << "an emissive material on no triangle emits nothing";
     EXPECT_EQ(SceneFeatures::All().ToString(),
               "diffuse, mirror, glass, thin glass, rough metal, rough glass, coated, "
-              "specular over diffuse, metal Fresnel, cut-outs, mixed materials, textures, roughness textures, "
+              "specular over diffuse, metal Fresnel, absorbing glass, cut-outs, mixed materials, "
+              "textures, roughness textures, "
               "textured mixes, smooth normals, area lights, "
               "point lights, spot lights, directional lights, environment light, textured lights, "
               "goniometric or projection lights, caustics");

@@ -50,7 +50,7 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
                         std::bit_cast<uint32_t>(material.mix_amount),
                         std::bit_cast<uint32_t>(material.mix_texture)},
              Vec4(material.conductor_eta, std::bit_cast<float>(material.conductor)),
-             Vec4(material.conductor_k, 0.0f)});
+             Vec4(material.conductor_k, 0.0f), Vec4(material.absorption, 0.0f)});
     if (!gpu_scene.features.ReadsUv() && !gpu_scene.features.textured_lights) return;
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {
         gpu_scene.textures.push_back(
@@ -226,6 +226,7 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasRoughnessTextures] = features.roughness_textures;
     spec[gpu::kSpecHasMixTextures] = features.mix_textures;
     spec[gpu::kSpecHasConductorFresnel] = features.conductor_fresnel;
+    spec[gpu::kSpecHasAbsorption] = features.absorption;
     return spec;
 }
 

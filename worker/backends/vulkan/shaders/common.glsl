@@ -29,6 +29,7 @@ layout(constant_id = kSpecHasMixes) const bool kHasMixes = true;
 layout(constant_id = kSpecHasRoughnessTextures) const bool kHasRoughnessTextures = true;
 layout(constant_id = kSpecHasMixTextures) const bool kHasMixTextures = true;
 layout(constant_id = kSpecHasConductorFresnel) const bool kHasConductorFresnel = true;
+layout(constant_id = kSpecHasAbsorption) const bool kHasAbsorption = true;
 
 layout(push_constant, std430) uniform Push { GpuParams params; };
 

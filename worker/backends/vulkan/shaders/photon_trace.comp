@@ -70,6 +70,8 @@ uint TracePhoton(uint photon, out bool discarded) {
         const Surface surface = SurfaceAt(hit);
         const GpuMaterial material = ShadingMaterial(surface);
         const bool front_facing = dot(direction, surface.geometric_normal) < 0;
+        // Out of an absorbing glass's inside (InsideTransmittance).
+        if (kHasAbsorption && !front_facing) flux *= BeerLambert(material.absorption.xyz, hit.t);
         SpecularBounce scatter = SpecularBounce(direction, vec3(0.0), false);  // absorbed
         if (material.type == kMaterialDiffuse) {
             const vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
