@@ -437,6 +437,17 @@ absl::StatusOr<int32_t> GltfSceneBuilder::TextureIndex(int gltf_texture, const s
         model_.textures[gltf_texture].source >= static_cast<int>(model_.images.size()))
         return Error(element, absl::StrCat("texture #", gltf_texture, " has no image"));
     const int image_index = model_.textures[gltf_texture].source;
+    // The sampler's wrap modes (its filters are the renderer's: bilinear, MIP levels).
+    if (const int sampler = model_.textures[gltf_texture].sampler;
+        sampler >= 0 && sampler < static_cast<int>(model_.samplers.size())) {
+        const auto wrap = [](int mode) {
+            return mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? gpu::kWrapClamp
+                   : mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? gpu::kWrapMirror
+                                                                   : gpu::kWrapRepeat;
+        };
+        options.wrap_u = wrap(model_.samplers[sampler].wrapS);
+        options.wrap_v = wrap(model_.samplers[sampler].wrapT);
+    }
     if (const auto it = texture_indices_.find({image_index, options}); it != texture_indices_.end())
         return it->second;
     const auto encoded = images_.find(image_index);

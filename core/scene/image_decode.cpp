@@ -68,6 +68,7 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
         }
     };
     Texture texture;
+    texture.wrap_u = options.wrap_u, texture.wrap_v = options.wrap_v;
     texture.width = spec.width;
     texture.height = spec.height;
     texture.texels.resize(pixels);

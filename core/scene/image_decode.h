@@ -39,9 +39,12 @@ struct ImageDecodeOptions {
     ImageChannels channels = ImageChannels::kColour;
     bool invert = false;  // each value v read as max(0, 1 - v) (pbrt's "invert")
     double exponent = 1;  // then as v^exponent (a roughness texture mapped to GGX alpha)
+    // How the texture is addressed beyond the image (Texture::wrap_u, wrap_v).
+    uint32_t wrap_u = gpu::kWrapRepeat, wrap_v = gpu::kWrapRepeat;
     bool operator<(const ImageDecodeOptions& other) const {
-        return std::tie(encoding, gamma, channels, invert, exponent) <
-               std::tie(other.encoding, other.gamma, other.channels, other.invert, other.exponent);
+        return std::tie(encoding, gamma, channels, invert, exponent, wrap_u, wrap_v) <
+               std::tie(other.encoding, other.gamma, other.channels, other.invert, other.exponent,
+                        other.wrap_u, other.wrap_v);
     }
 };
 

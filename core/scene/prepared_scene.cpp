@@ -60,6 +60,8 @@ enum class TexelEncoding : uint8_t { kFloats, kPalette };
 void WriteTexture(const Texture& texture, ByteWriter& out) {
     out.Value<int32_t>(texture.width);
     out.Value<int32_t>(texture.height);
+    out.Value<uint32_t>(texture.wrap_u);
+    out.Value<uint32_t>(texture.wrap_v);
     std::vector<float> palette;
     for (const Rgb& texel : texture.texels) {
         for (int c = 0; c < 3; ++c) palette.push_back(texel[c]);
@@ -101,7 +103,9 @@ void WriteTexture(const Texture& texture, ByteWriter& out) {
 
 bool ReadTexture(ByteReader& in, Texture* texture) {
     TexelEncoding encoding{};
-    if (!in.Value(&texture->width) || !in.Value(&texture->height) || !in.Value(&encoding))
+    if (!in.Value(&texture->width) || !in.Value(&texture->height) || !in.Value(&texture->wrap_u) ||
+        !in.Value(&texture->wrap_v) || !in.Value(&encoding) || texture->wrap_u > gpu::kWrapBlack ||
+        texture->wrap_v > gpu::kWrapBlack)
         return false;
     if (encoding == TexelEncoding::kFloats) return in.Array(&texture->texels, kMaxCount);
     std::vector<float> palette;

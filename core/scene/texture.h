@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/math/vec3.h"
+#include "core/shared/texture_wrap.h"
 
 namespace pf {
 
@@ -16,13 +17,16 @@ namespace pf {
 struct Texture {
     int width = 0, height = 0;
     std::vector<Rgb> texels;
+    // How each axis is addressed beyond the image (gpu::kWrap*, core/shared/texture_wrap.h).
+    uint32_t wrap_u = gpu::kWrapRepeat, wrap_v = gpu::kWrapRepeat;
 
     Rgb Texel(int x, int y) const {
-        x = ((x % width) + width) % width;
-        y = ((y % height) + height) % height;
+        x = gpu::WrapTexel(x, width, wrap_u);
+        y = gpu::WrapTexel(y, height, wrap_v);
+        if (x < 0 || y < 0) return Rgb(0.0f);
         return texels[static_cast<size_t>(y) * width + x];
     }
-    // Bilinear lookup at glTF texture coordinates (u right, v down), repeat wrapping.
+    // Bilinear lookup at glTF texture coordinates (u right, v down), wrapped as it says.
     Rgb Sample(float u, float v) const {
         const float x = u * width - 0.5f, y = v * height - 0.5f;
         const float fx = std::floor(x), fy = std::floor(y);

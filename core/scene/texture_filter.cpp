@@ -11,6 +11,7 @@ namespace {
 // width or height wraps its last texel with its first, as the periodic lookups do).
 Texture Downsample(const Texture& fine) {
     Texture coarse;
+    coarse.wrap_u = fine.wrap_u, coarse.wrap_v = fine.wrap_v;
     coarse.width = std::max(1, fine.width / 2);
     coarse.height = std::max(1, fine.height / 2);
     coarse.texels.resize(static_cast<size_t>(coarse.width) * coarse.height);

@@ -152,7 +152,7 @@ PF_GPU_LAYOUT(GpuMaterial, 144);
 struct GpuTexture {
     uint32_t first_texel;  // into the texels binding
     int32_t width, height;
-    uint32_t pad;
+    uint32_t wrap;  // kWrap* of u, and of v shifted left by 16 (core/shared/texture_wrap.h)
 };
 PF_GPU_LAYOUT(GpuTexture, 16);
 

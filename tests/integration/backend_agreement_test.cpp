@@ -68,6 +68,25 @@ TEST(BackendAgreementTextures, LightOffATexturedWallMatchesTheCpus) {
     ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "textured-wall.gltf"), 2'000'000);
 }
 
+TEST(BackendAgreementTextures, WrapModesMatchTheCpus) {
+    // The textured wall again, its coordinates running from -1 to 2 so that most of it lies
+    // beyond the image: clamped in u, mirrored in v (a glTF sampler), photons reading the
+    // texels the wrap modes pick on the device as on the CPU.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    testing::TestScene scene = testing::LitQuadScene();
+    testing::TestMaterial wall;
+    wall.base_color = Rgb(1.0f, 1.0f, 0.5f);
+    wall.texture_png_base64 =
+        absl::Base64Escape(testing::TwoTexelPng({250, 30, 30, 30, 30, 250}, "wrap.png"));
+    wall.texture_sampler = R"({"wrapS":33071,"wrapT":33648})";
+    scene.materials.push_back(wall);
+    scene.meshes.push_back({{{1, -1, 0}, {1, 1, 1}, {1, 1, 0}, {1, -1, 0}, {1, -1, 1}, {1, 1, 1}},
+                            2,
+                            {-1, -1, 2, 2, 2, -1, -1, -1, -1, 2, 2, 2}});
+    ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "wrapped-wall.gltf"), 2'000'000);
+}
+
 TEST(BackendAgreementGltfMaterials, MetallicRoughnessMatchesTheCpus) {
     // glTF's BRDF, seen on a wall beside the light, metal or plastic per texel of its
     // metallic-roughness texture (stripes: metal of roughness 0.55, rough plastic), over a floor

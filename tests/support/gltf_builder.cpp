@@ -17,6 +17,7 @@ std::string Floats(const Vec3& v) { return absl::StrCat("[", v.x, ",", v.y, ",",
 // Builds the JSON with the buffer either as a data URI or (for .glb) as the binary chunk.
 std::string Json(const TestScene& scene, bool embed, std::string* blob) {
     std::vector<std::string> meshes, nodes, accessors, views, materials, images;
+    std::vector<std::string> image_samplers;  // each image's texture's sampler, or empty
     for (const TestMaterial& m : scene.materials) {
         std::string texture;
         if (!m.texture_png_base64.empty()) {
@@ -25,6 +26,7 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
                                        ? R"(,"metallicRoughnessTexture":{"index":)"
                                        : R"(,"baseColorTexture":{"index":)",
                                    images.size(), m.texture_extra, "}");
+            image_samplers.push_back(m.texture_sampler);
             if (scene.images_in_buffer) {
                 std::string png;
                 absl::Base64Unescape(m.texture_png_base64, &png);
@@ -85,11 +87,19 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
     }
     std::string extensions;
     if (!images.empty()) {
-        std::vector<std::string> textures;
-        for (size_t i = 0; i < images.size(); ++i)
-            textures.push_back(absl::StrCat(R"({"source":)", i, "}"));
+        std::vector<std::string> textures, samplers;
+        for (size_t i = 0; i < images.size(); ++i) {
+            std::string sampler;
+            if (!image_samplers[i].empty()) {
+                sampler = absl::StrCat(R"(,"sampler":)", samplers.size());
+                samplers.push_back(image_samplers[i]);
+            }
+            textures.push_back(absl::StrCat(R"({"source":)", i, sampler, "}"));
+        }
         extensions = absl::StrCat(R"(,"images":[)", absl::StrJoin(images, ","), R"(],"textures":[)",
                                   absl::StrJoin(textures, ","), "]");
+        if (!samplers.empty())
+            absl::StrAppend(&extensions, R"(,"samplers":[)", absl::StrJoin(samplers, ","), "]");
     }
     for (const std::string& node : scene.extra_nodes) nodes.push_back(node);
     for (size_t i = 0; i < scene.lights.size(); ++i)

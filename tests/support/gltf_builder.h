@@ -15,6 +15,7 @@ struct TestMaterial {
     Rgb emission{0.0f};
     std::string texture_png_base64;  // a base colour texture, embedded as a data URI
     std::string texture_extra;       // raw JSON fields of its textureInfo, e.g. an extension
+    std::string texture_sampler;     // raw JSON of its texture's sampler, e.g. {"wrapS":33071}
     bool texture_emissive = false;   // the texture is the emissive one, not the base colour's
     bool texture_metallic_roughness = false;  // it is the metallicRoughnessTexture
     float metallic = 0, roughness = 1;        // metallicFactor, roughnessFactor

@@ -306,7 +306,34 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
     return static_cast<int>(materials_.size() - 1);
 }
 
+namespace {
+
+// A baked texture read as DecodeImage would have read an image file: invert, then the exponent.
+pf::Texture Decoded(const pf::Texture& baked, const ImageDecodeOptions& decode) {
+    pf::Texture out = baked;
+    out.wrap_u = decode.wrap_u, out.wrap_v = decode.wrap_v;
+    for (Rgb& texel : out.texels)
+        for (int c = 0; c < 3; ++c) {
+            float v = decode.invert ? std::max(0.0f, 1.0f - texel[c]) : texel[c];
+            if (decode.exponent != 1) v = static_cast<float>(std::pow(v, decode.exponent));
+            texel[c] = v;
+        }
+    return out;
+}
+
+}  // namespace
+
 absl::StatusOr<int32_t> PbrtSceneBuilder::ImageIndex(const TextureRef& texture) {
+    if (texture.baked != nullptr) {
+        if (options_.references_only) return kNoTexture;
+        const auto key = std::make_tuple(absl::StrCat("baked:", texture.element), texture.decode);
+        if (const auto it = images_.find(key); it != images_.end()) return it->second;
+        const auto index = static_cast<int32_t>(scene_.textures.size());
+        scene_.textures.push_back(
+            std::make_shared<const pf::Texture>(Decoded(*texture.baked, texture.decode)));
+        images_[key] = index;
+        return index;
+    }
     if (texture.path.empty()) return kNoTexture;
     absl::StatusOr<std::string_view> bytes = files_.Read(texture.path);
     if (!bytes.ok())
@@ -324,6 +351,68 @@ absl::StatusOr<int32_t> PbrtSceneBuilder::ImageIndex(const TextureRef& texture) 
     scene_.textures.push_back(std::make_shared<const pf::Texture>(std::move(*image)));
     images_[key] = index;
     return index;
+}
+
+absl::Status PbrtSceneBuilder::BakeProcedural(const std::string& type, bool scalar,
+                                              ParameterList& parameters, const Location& where,
+                                              TextureRef* texture) {
+    const auto value = [&](const std::string& name, float fallback) -> std::optional<Rgb> {
+        if (parameters.TextureName(name)) return std::nullopt;  // a texture operand
+        return scalar ? Rgb(static_cast<float>(parameters.Float(name, fallback)))
+                      : parameters.Color(name).value_or(Rgb(fallback));
+    };
+    const auto left_out = [&](const std::string& what) {  // noted where the texture is used
+        texture->unsupported = what;
+        parameters.ConsumeAll();
+        return absl::OkStatus();
+    };
+    // pbrt-v4's (s, t) = (uscale u + udelta, vscale v + vdelta), t up; photonfarm's v is down.
+    // The image covers `period` of s and t (a checkerboard's two checks, bilerp's unit square).
+    const double su = parameters.Float("uscale", 1), sv = parameters.Float("vscale", 1);
+    const double du = parameters.Float("udelta", 0), dv = parameters.Float("vdelta", 0);
+    if (parameters.String("mapping", "uv") != "uv")
+        return left_out(absl::StrCat(type, " with a mapping other than uv"));
+    const int size = type == "checkerboard" ? 128 : 64;
+    const double period = type == "checkerboard" ? 2 : 1;
+    texture->uv.m[0] = su / period, texture->uv.m[2] = du / period;
+    texture->uv.m[4] = -sv / period, texture->uv.m[5] = (1 - dv) / period;
+    auto baked = std::make_shared<pf::Texture>();
+    baked->width = baked->height = size;
+    baked->texels.resize(size_t(size) * size);
+    const auto at = [&](int x, int y) {  // (s, t) at the texel's centre
+        return std::pair{period * (x + 0.5) / size, 1 - period * (y + 0.5) / size};
+    };
+    if (type == "checkerboard") {
+        // pbrt-v4's: tex1 where floor(s) + floor(t) is even, tex2 where odd.
+        if (parameters.Integer("dimension", 2) != 2) return left_out("checkerboard of dimension 3");
+        const std::optional<Rgb> one = value("tex1", 1), two = value("tex2", 0);
+        if (!one || !two) return left_out("checkerboard of textures");
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const auto [s, t] = at(x, y);
+                const bool even = (int(std::floor(s)) + int(std::floor(t))) % 2 == 0;
+                baked->texels[size_t(y) * size + x] = even ? *one : *two;
+            }
+    } else {
+        // pbrt-v4's bilerp: v00 (1 - s)(1 - t) + v01 (1 - s) t + v10 s (1 - t) + v11 s t.
+        const std::optional<Rgb> v00 = value("v00", 0), v01 = value("v01", 1),
+                                 v10 = value("v10", 0), v11 = value("v11", 1);
+        if (!v00 || !v01 || !v10 || !v11) return left_out("bilerp of textures");
+        for (int y = 0; y < size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const auto [s, t] = at(x, y);
+                const float fs = float(s), ft = float(t);
+                baked->texels[size_t(y) * size + x] = *v00 * ((1 - fs) * (1 - ft)) +
+                                                      *v01 * ((1 - fs) * ft) +
+                                                      *v10 * (fs * (1 - ft)) + *v11 * (fs * ft);
+            }
+    }
+    for (const Rgb& texel : baked->texels)
+        if (!IsFinite(texel) || MinComponent(texel) < 0)
+            return ErrorAt(where, absl::StrCat("Texture (", type,
+                                               "): its values must be finite and non-negative"));
+    texture->baked = std::move(baked);
+    return absl::OkStatus();
 }
 
 absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::string& kind,
@@ -366,12 +455,20 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
         texture.scale = Rgb(static_cast<float>(parameters.Float("scale", 1.0)));
         decode.invert = parameters.Bool("invert", false);
         const std::string wrap = parameters.String("wrap", "repeat");
-        if (wrap != "repeat")
+        if (wrap == "clamp" || wrap == "black") {
+            decode.wrap_u = decode.wrap_v = wrap == "clamp" ? gpu::kWrapClamp : gpu::kWrapBlack;
+        } else if (wrap != "repeat") {
             Warn(where, absl::StrCat("Texture \"", name, "\": wrap \"", wrap,
                                      "\" is rendered as \"repeat\""));
+        }
         parameters.String("filter", "");
         parameters.Float("maxanisotropy", 8);
         texture.path = *path;
+        texture.element = absl::StrCat(where.ToString(), ": Texture \"", name, "\"");
+    } else if (type == "checkerboard" || type == "bilerp") {
+        if (absl::Status status = BakeProcedural(type, scalar, parameters, where, &texture);
+            !status.ok())
+            return status;
         texture.element = absl::StrCat(where.ToString(), ": Texture \"", name, "\"");
     } else if (type == "constant") {
         texture.scale = scalar ? Rgb(static_cast<float>(parameters.Float("value", 1.0)))

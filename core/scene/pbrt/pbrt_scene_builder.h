@@ -34,6 +34,8 @@ struct TextureRef {
     Rgb scale{1.0f};
     UvTransform uv;
     std::string unsupported;  // non-empty: the texture class photonfarm cannot evaluate
+    // A procedural texture baked into linear texels (checkerboard, bilerp), in place of a file.
+    std::shared_ptr<const pf::Texture> baked;
 };
 
 struct MaterialRef {
@@ -148,6 +150,10 @@ private:
                                               const Location& where, double exponent = 1);
     absl::Status Texture(const std::string& name, const std::string& kind, const std::string& type,
                          ParameterList& parameters, const Location& where);
+    // pbrt-v4's checkerboard (2D) and bilerp textures of constant operands, baked into an image
+    // over one period of their (s, t) mapping; of texture operands, texture->unsupported.
+    absl::Status BakeProcedural(const std::string& type, bool scalar, ParameterList& parameters,
+                                const Location& where, TextureRef* texture);
     // The scene texture of `texture`'s image, read and decoded on first use (kNoTexture while
     // packing, which only reads it).
     absl::StatusOr<int32_t> ImageIndex(const TextureRef& texture);

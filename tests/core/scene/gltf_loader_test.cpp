@@ -149,6 +149,20 @@ TEST(GltfLoaderTest, BaseColourTextureIsDecodedToLinearAndSampled) {
     EXPECT_NEAR(loaded->BaseColor(surface).z, 0.5f * 0.2158605f, 1e-5f);
 }
 
+TEST(GltfLoaderTest, SamplersWrapModesAddressTheTexture) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.materials[0].texture_png_base64 =
+        "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTk"
+        "SuQmCC";
+    scene.materials[0].texture_sampler = R"({"wrapS":33071,"wrapT":33648,"magFilter":9728})";
+    scene.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+    const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "wrapped.gltf"));
+    ASSERT_TRUE(loaded.ok()) << loaded.status();
+    ASSERT_EQ(loaded->textures.size(), 1u);
+    EXPECT_EQ(loaded->textures[0]->wrap_u, gpu::kWrapClamp);   // CLAMP_TO_EDGE
+    EXPECT_EQ(loaded->textures[0]->wrap_v, gpu::kWrapMirror);  // MIRRORED_REPEAT
+}
+
 constexpr char kTwoTexelPng[] =
     "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTkSuQm"
     "CC";

@@ -63,7 +63,8 @@ TEST(PbrtMaterialsTest, MaterialsMapOntoPhotonfarms) {
 TEST(PbrtMaterialsTest, ConductorsTakeAReflectanceOrAComplexIndex) {
     const std::string world =
         std::string(
-            "Texture \"tint\" \"spectrum\" \"imagemap\" \"string filename\" \"tint.png\"\n"
+            "Texture \"tint\" \"spectrum\" \"imagemap\" \"string filename\" \"tint.png\" "
+            "\"string wrap\" \"clamp\"\n"
             "Material \"conductor\" \"texture reflectance\" \"tint\"\n") +
         kQuad + "Material \"conductor\" \"rgb eta\" [0.2 0.9 1.1] \"float k\" 3\n" + kQuad +
         "Material \"conductor\" \"spectrum k\" \"metal-Ag-k\"\n" + kQuad;
@@ -74,7 +75,8 @@ TEST(PbrtMaterialsTest, ConductorsTakeAReflectanceOrAComplexIndex) {
     ASSERT_EQ(scene->materials.size(), 3u);
     // A textured reflectance: each texel's index, found where light meets it.
     EXPECT_EQ(scene->materials[0].conductor, gpu::kConductorReflectance);
-    EXPECT_NE(scene->materials[0].base_color_texture, kNoTexture);
+    ASSERT_NE(scene->materials[0].base_color_texture, kNoTexture);
+    EXPECT_EQ(scene->textures[scene->materials[0].base_color_texture]->wrap_v, gpu::kWrapClamp);
     EXPECT_EQ(scene->materials[1].conductor_eta, Rgb(0.2f, 0.9f, 1.1f));
     EXPECT_EQ(scene->materials[1].conductor_k, Rgb(3.0f));
     // eta not given is copper's, as pbrt-v4's default; k silver's, as named.
@@ -87,6 +89,55 @@ TEST(PbrtMaterialsTest, ConductorsTakeAReflectanceOrAComplexIndex) {
                 "Material \"conductor\": give \"reflectance\" or \"eta\" and \"k\", not both");
     ExpectError(Load(Bundle(std::string("Material \"conductor\" \"rgb eta\" [0 1 1]\n") + kQuad)),
                 "\"eta\" must lie in (0, 1e4) and \"k\" in [0, 1e4)");
+}
+
+// pbrt-v4's checkerboard and bilerp textures at (s, t) = (uscale u + udelta, vscale v + vdelta).
+TEST(PbrtMaterialsTest, CheckerboardAndBilerpAreBakedAsPbrtEvaluatesThem) {
+    const std::string world =
+        std::string(
+            "Texture \"checks\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [0.9 0.1 0.1] "
+            "\"rgb tex2\" [0.1 0.1 0.9] \"float uscale\" 4 \"float vscale\" 4\n"
+            "Texture \"ramp\" \"float\" \"bilerp\" \"float v00\" 0.1 \"float v01\" 0.3 "
+            "\"float v10\" 0.5 \"float v11\" 0.9\n"
+            "Material \"diffuse\" \"texture reflectance\" \"checks\"\n") +
+        "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 1 1 0] \"integer indices\" [0 1 2] "
+        "\"point2 uv\" [0 0 1 0 1 1]\n"
+        "Material \"conductor\" \"texture roughness\" \"ramp\" \"bool remaproughness\" false\n"
+        "Shape \"trianglemesh\" \"point3 P\" [0 0 1 1 0 1 1 1 1] \"integer indices\" [0 1 2] "
+        "\"point2 uv\" [0 0 1 0 1 1]\n";
+    const absl::StatusOr<Scene> scene = Load(Bundle(world));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    // Each surface point's texture value, at the barycentre of a small triangle around (u, v).
+    const auto value_at = [&](uint32_t triangle, int32_t texture, float u, float v) {
+        const uint32_t* corner = scene->triangles[triangle].vertex;
+        // The triangle's uvs are (0,0), (1,0), (1,1), mapped by the texture's transform:
+        // barycentrics b1 = u - v, b2 = v reach (u, v).
+        const Point2 a = scene->uvs[corner[0]], b = scene->uvs[corner[1]],
+                     c = scene->uvs[corner[2]];
+        const float b1 = u - v, b2 = v;
+        const Point2 at{a.x + b1 * (b.x - a.x) + b2 * (c.x - a.x),
+                        a.y + b1 * (b.y - a.y) + b2 * (c.y - a.y)};
+        return scene->textures[texture]->Sample(at.x, at.y);
+    };
+    const Material& checked = scene->materials[scene->triangles[0].material];
+    ASSERT_NE(checked.base_color_texture, kNoTexture);
+    for (const auto& [u, v] : {std::pair{0.1f, 0.05f}, std::pair{0.3f, 0.05f},
+                               std::pair{0.9f, 0.6f}, std::pair{0.6f, 0.35f}}) {
+        const bool even = (int(std::floor(4 * u)) + int(std::floor(4 * v))) % 2 == 0;
+        const Rgb expected = even ? Rgb(0.9f, 0.1f, 0.1f) : Rgb(0.1f, 0.1f, 0.9f);
+        const Rgb got = value_at(0, checked.base_color_texture, u, v) * checked.base_color;
+        EXPECT_NEAR(got.x, expected.x, 1e-5f) << u << ", " << v;
+        EXPECT_NEAR(got.z, expected.z, 1e-5f) << u << ", " << v;
+    }
+    EXPECT_EQ(scene->textures[checked.base_color_texture]->wrap_u, gpu::kWrapRepeat);
+    const Material& ramped = scene->materials[scene->triangles[1].material];
+    ASSERT_NE(ramped.roughness_texture, kNoTexture);
+    for (const auto& [u, v] : {std::pair{0.5f, 0.25f}, std::pair{0.8f, 0.3f}}) {
+        const float bilerp =
+            0.1f * (1 - u) * (1 - v) + 0.3f * (1 - u) * v + 0.5f * u * (1 - v) + 0.9f * u * v;
+        EXPECT_NEAR(value_at(1, ramped.roughness_texture, u, v).x * ramped.roughness, bilerp,
+                    1e-5f);
+    }
 }
 
 TEST(PbrtMaterialsTest, AMediumInsideGlassAbsorbs) {

@@ -64,6 +64,31 @@ TEST(TextureTest, PointLookupsAgreeWithTheFiltersFinestLevelAndWrap) {
     }
 }
 
+TEST(TextureTest, WrapModesAddressBeyondTheImageAsGltfAndPbrtSay) {
+    // Texels 0..3 along an axis of 4: repeat, the edge (clamp), mirrored, or black.
+    const int32_t repeat[] = {2, 3, 0, 1, 2, 3, 0, 1}, clamp[] = {0, 0, 0, 1, 2, 3, 3, 3},
+                  mirror[] = {1, 0, 0, 1, 2, 3, 3, 2}, black[] = {-1, -1, 0, 1, 2, 3, -1, -1};
+    for (int i = -2; i < 6; ++i) {
+        EXPECT_EQ(gpu::WrapTexel(i, 4, gpu::kWrapRepeat), repeat[i + 2]) << i;
+        EXPECT_EQ(gpu::WrapTexel(i, 4, gpu::kWrapClamp), clamp[i + 2]) << i;
+        EXPECT_EQ(gpu::WrapTexel(i, 4, gpu::kWrapMirror), mirror[i + 2]) << i;
+        EXPECT_EQ(gpu::WrapTexel(i, 4, gpu::kWrapBlack), black[i + 2]) << i;
+    }
+    EXPECT_EQ(gpu::WrapTexel(-9, 4, gpu::kWrapMirror), 0) << "mirrored: i reads as i + 8 does";
+    // A 2x1 image, white then grey: past its right edge, clamp stays grey, repeat goes back to
+    // white, black fades to black; u and v are wrapped each as their own mode says.
+    Texture texture;
+    texture.width = 2, texture.height = 1;
+    texture.texels = {Rgb(1.0f), Rgb(0.5f)};
+    texture.wrap_u = gpu::kWrapClamp;
+    EXPECT_NEAR(texture.Sample(1.5f, 0.5f).x, 0.5f, 1e-6f);
+    texture.wrap_u = gpu::kWrapRepeat;
+    EXPECT_NEAR(texture.Sample(1.0f, 0.5f).x, 0.75f, 1e-6f);
+    texture.wrap_u = gpu::kWrapBlack;
+    EXPECT_NEAR(texture.Sample(1.0f, 0.5f).x, 0.25f, 1e-6f);
+    EXPECT_NEAR(texture.Sample(0.5f, 7.3f).x, 0.75f, 1e-6f) << "v repeats";
+}
+
 TEST(TextureTest, FiltersKeepTheirOwnTextures) {
     // Scenes come and go in a coordinator: each filter's textures are its own, and a filter
     // outlived by another leaves that one's lookups intact.

@@ -53,8 +53,9 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
              Vec4(material.conductor_k, 0.0f), Vec4(material.absorption, 0.0f)});
     if (!gpu_scene.features.ReadsUv() && !gpu_scene.features.textured_lights) return;
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {
-        gpu_scene.textures.push_back(
-            {static_cast<uint32_t>(gpu_scene.texels.size()), texture->width, texture->height, 0});
+        gpu_scene.textures.push_back({static_cast<uint32_t>(gpu_scene.texels.size()),
+                                      texture->width, texture->height,
+                                      texture->wrap_u | (texture->wrap_v << 16)});
         for (const Rgb& texel : texture->texels) gpu_scene.texels.push_back(Vec4(texel));
     }
 }

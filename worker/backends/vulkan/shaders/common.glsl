@@ -8,6 +8,7 @@
 #include "core/shared/rng.h"
 #include "core/shared/path_sampling.h"
 #include "core/shared/alpha.h"
+#include "core/shared/texture_wrap.h"
 
 layout(constant_id = kSpecHasMirror) const bool kHasMirror = true;
 layout(constant_id = kSpecHasDielectric) const bool kHasDielectric = true;

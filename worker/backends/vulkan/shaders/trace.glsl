@@ -16,17 +16,22 @@ float EnterBox(vec3 lower, vec3 upper, vec3 origin, vec3 inverse_direction, floa
     return enter <= leave ? enter : kInfinity;
 }
 
+// Texel (x, y) of `texture`, wrapped as it says; black where it says so beyond the image.
+vec3 TextureTexel(GpuTexture texture, int x, int y) {
+    x = WrapTexel(x, texture.width, texture.wrap & 0xffffu);
+    y = WrapTexel(y, texture.height, texture.wrap >> 16);
+    if (x < 0 || y < 0) return vec3(0.0);
+    return texels[texture.first_texel + uint(y * texture.width + x)].xyz;
+}
+
 vec3 TextureSample(GpuTexture texture, vec2 uv) {
-    // Bilinear with repeat wrapping at glTF coordinates, as core/scene/texture.h.
+    // Bilinear at glTF coordinates, as core/scene/texture.h.
     const vec2 xy = uv * vec2(texture.width, texture.height) - 0.5;
     const vec2 floor_xy = floor(xy);
     const vec2 w = xy - floor_xy;
-    const ivec2 size = ivec2(texture.width, texture.height);
-    const ivec2 p0 = ((ivec2(floor_xy) % size) + size) % size;
-    const ivec2 p1 = (p0 + 1) % size;
-    const uint row0 = texture.first_texel + uint(p0.y * size.x), row1 = texture.first_texel + uint(p1.y * size.x);
-    const vec3 top = mix(texels[row0 + p0.x].xyz, texels[row0 + p1.x].xyz, w.x);
-    const vec3 bottom = mix(texels[row1 + p0.x].xyz, texels[row1 + p1.x].xyz, w.x);
+    const ivec2 p0 = ivec2(floor_xy);
+    const vec3 top = mix(TextureTexel(texture, p0.x, p0.y), TextureTexel(texture, p0.x + 1, p0.y), w.x);
+    const vec3 bottom = mix(TextureTexel(texture, p0.x, p0.y + 1), TextureTexel(texture, p0.x + 1, p0.y + 1), w.x);
     return mix(top, bottom, w.y);
 }
 
