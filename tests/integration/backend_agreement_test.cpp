@@ -46,6 +46,17 @@ TEST_P(BackendAgreement, VulkanImageMatchesTheCpuImagesWithinTheirNoise) {
     ExpectVulkanAgreesWithTheCpu(std::string(PF_SOURCE_DIR) + "/scenes/" + GetParam());
 }
 
+// The lit quad with a wall of `wall` beside it: at x = 1, from z = 0 to 1, facing -x (toward
+// the floor and the light), its corners at texture coordinates `low` and `high`.
+testing::TestScene LitQuadWithWall(const testing::TestMaterial& wall, float low, float high) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.materials.push_back(wall);
+    scene.meshes.push_back({{{1, -1, 0}, {1, 1, 1}, {1, 1, 0}, {1, -1, 0}, {1, -1, 1}, {1, 1, 1}},
+                            static_cast<int>(scene.materials.size()) - 1,
+                            {low, low, high, high, high, low, low, low, low, high, high, high}});
+    return scene;
+}
+
 TEST(BackendAgreementTextures, LightOffATexturedWallMatchesTheCpus) {
     // The lit quad with a textured wall beside it (2x1 texels: sRGB red, sRGB grey 128; factor
     // (1, 1, 0.5)): the floor's indirect light comes off the wall, so photons must take the
@@ -54,18 +65,13 @@ TEST(BackendAgreementTextures, LightOffATexturedWallMatchesTheCpus) {
     // photons, since at 1M the mean checks would catch only a 2.2% bias in green and blue.
     testing::SkipWithoutVulkan();
     if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
-    testing::TestScene scene = testing::LitQuadScene();
     testing::TestMaterial wall;
     wall.base_color = Rgb(1.0f, 1.0f, 0.5f);
     wall.texture_png_base64 =
         "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTk"
         "SuQmCC";
-    scene.materials.push_back(wall);
-    // At x = 1, from z = 0 to 1, facing -x (toward the floor and the light).
-    scene.meshes.push_back({{{1, -1, 0}, {1, 1, 1}, {1, 1, 0}, {1, -1, 0}, {1, -1, 1}, {1, 1, 1}},
-                            2,
-                            {0, 0, 1, 1, 1, 0, 0, 0, 0, 1, 1, 1}});
-    ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "textured-wall.gltf"), 2'000'000);
+    ExpectVulkanAgreesWithTheCpu(
+        testing::WriteGltf(LitQuadWithWall(wall, 0, 1), "textured-wall.gltf"), 2'000'000);
 }
 
 TEST(BackendAgreementTextures, WrapModesMatchTheCpus) {
@@ -74,17 +80,13 @@ TEST(BackendAgreementTextures, WrapModesMatchTheCpus) {
     // texels the wrap modes pick on the device as on the CPU.
     testing::SkipWithoutVulkan();
     if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
-    testing::TestScene scene = testing::LitQuadScene();
     testing::TestMaterial wall;
     wall.base_color = Rgb(1.0f, 1.0f, 0.5f);
     wall.texture_png_base64 =
         absl::Base64Escape(testing::TwoTexelPng({250, 30, 30, 30, 30, 250}, "wrap.png"));
     wall.texture_sampler = R"({"wrapS":33071,"wrapT":33648})";
-    scene.materials.push_back(wall);
-    scene.meshes.push_back({{{1, -1, 0}, {1, 1, 1}, {1, 1, 0}, {1, -1, 0}, {1, -1, 1}, {1, 1, 1}},
-                            2,
-                            {-1, -1, 2, 2, 2, -1, -1, -1, -1, 2, 2, 2}});
-    ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "wrapped-wall.gltf"), 2'000'000);
+    ExpectVulkanAgreesWithTheCpu(
+        testing::WriteGltf(LitQuadWithWall(wall, -1, 2), "wrapped-wall.gltf"), 2'000'000);
 }
 
 TEST(BackendAgreementGltfMaterials, MetallicRoughnessMatchesTheCpus) {
