@@ -9,6 +9,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/film/color_space.h"
 #include "core/scene/image_decode.h"
+#include "core/scene/loop_subdivision.h"
 #include "core/scene/pbrt/pbrt_scene_builder.h"
 #include "core/scene/pbrt/pbrt_shapes.h"
 #include "core/scene/ply_reader.h"
@@ -244,12 +245,13 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
     state.alpha = *alpha;
     absl::StatusOr<TriangleMesh> mesh;
     FrontFace front = FrontFace::kObjectWinding;
-    if (type == "trianglemesh" || type == "loopsubdiv") {
-        if (type == "loopsubdiv") {
-            parameters.Integer("levels", 3);
-            Warn(where, "Shape \"loopsubdiv\": rendered as its control mesh, not subdivided");
-        }
+    if (type == "trianglemesh") {
         mesh = TriangleMeshShape(parameters, where);
+    } else if (type == "loopsubdiv") {
+        const int levels = parameters.Integer("levels", 3);  // pbrt-v4's default
+        mesh = TriangleMeshShape(parameters, where);
+        if (mesh.ok()) mesh = LoopSubdivide(*mesh, levels, options_.limits.max_triangles);
+        if (!mesh.ok()) return ErrorAt(where, std::string(mesh.status().message()));
     } else if (type == "bilinearmesh") {
         mesh = BilinearMeshShape(parameters, where);
     } else if (type == "sphere") {
