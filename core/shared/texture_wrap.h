@@ -15,15 +15,20 @@ PF_CONST(uint32_t) kWrapBlack = 3;   // black beyond (pbrt's "black")
 
 // The texel that coordinate i of an axis `size` texels long reads under `mode`; -1 where it
 // reads black.
+// i modulo a positive `period`, in [0, period), with % taken of non-negative operands only
+// (GLSL leaves % of a negative operand undefined).
+PF_GPU_FN int32_t FloorMod(int32_t i, int32_t period) {
+    return i >= 0 ? i % period : period - 1 - (-(i + 1)) % period;
+}
+
 PF_GPU_FN int32_t WrapTexel(int32_t i, int32_t size, uint32_t mode) {
     if (mode == kWrapClamp) return i < 0 ? 0 : (i >= size ? size - 1 : i);
     if (mode == kWrapBlack) return i < 0 || i >= size ? -1 : i;
     if (mode == kWrapMirror) {
-        const int32_t period = 2 * size;
-        const int32_t m = ((i % period) + period) % period;
-        return m < size ? m : period - 1 - m;
+        const int32_t m = FloorMod(i, 2 * size);
+        return m < size ? m : 2 * size - 1 - m;
     }
-    return ((i % size) + size) % size;
+    return FloorMod(i, size);
 }
 
 PF_GPU_END
