@@ -68,7 +68,6 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
         }
     };
     Texture texture;
-    texture.wrap_u = options.wrap_u, texture.wrap_v = options.wrap_v;
     texture.width = spec.width;
     texture.height = spec.height;
     texture.texels.resize(pixels);
@@ -102,13 +101,20 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
                 break;
             }
         }
-        if (options.invert) texture.texels[i] = Max(Rgb(1.0f) - texture.texels[i], Rgb(0.0f));
+    }
+    ApplyValueOptions(options, &texture);
+    return texture;
+}
+
+void ApplyValueOptions(const ImageDecodeOptions& options, Texture* texture) {
+    texture->wrap_u = options.wrap_u, texture->wrap_v = options.wrap_v;
+    for (Rgb& texel : texture->texels) {
+        if (options.invert) texel = Max(Rgb(1.0f) - texel, Rgb(0.0f));
         if (options.exponent != 1)
             for (int c = 0; c < 3; ++c)
-                texture.texels[i][c] = static_cast<float>(
-                    std::pow(std::max(0.0, double(texture.texels[i][c])), options.exponent));
+                texel[c] =
+                    static_cast<float>(std::pow(std::max(0.0, double(texel[c])), options.exponent));
     }
-    return texture;
 }
 
 }  // namespace pf

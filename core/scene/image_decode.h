@@ -56,5 +56,8 @@ struct ImageDecodeOptions {
 absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& name,
                                     const SceneLimits& limits,
                                     const ImageDecodeOptions& options = {});
+// What of `options` applies to linear texels already decoded (invert, exponent, wrap modes):
+// DecodeImage's last step, and all of it for images made in memory (pbrt's baked textures).
+void ApplyValueOptions(const ImageDecodeOptions& options, Texture* texture);
 
 }  // namespace pf

@@ -129,6 +129,15 @@ FurnaceResult Check(const Image& image, const PixelClasses& classes, Rgb scale =
     return result;
 }
 
+// Every integrator, each test named after it.
+auto EveryIntegrator() {
+    return ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
+                             Integrator::kPath);
+}
+std::string IntegratorParamName(const ::testing::TestParamInfo<Integrator>& info) {
+    return std::string(IntegratorName(info.param));
+}
+
 class EnvironmentFurnace : public ::testing::TestWithParam<Integrator> {};
 
 TEST_P(EnvironmentFurnace, ConvexBodyReflectsAlbedoTimesTheSky) {
@@ -172,12 +181,7 @@ TEST_P(EnvironmentFurnace, ConvexBodyReflectsAlbedoTimesTheSky) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Integrators, EnvironmentFurnace,
-                         ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
-                                           Integrator::kPath),
-                         [](const auto& param_info) {
-                             return std::string(IntegratorName(param_info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(Integrators, EnvironmentFurnace, EveryIntegrator(), IntegratorParamName);
 
 // The same cube under a smooth coat of index 1.5 and optical thickness 0.05 over the albedo
 // (pbrt-v4's coateddiffuse), written as a pbrt file. A convex body under a uniform sky L
@@ -446,40 +450,20 @@ TEST_P(AbsorbingGlassEnvironment, GltfVolumeAttenuatesAlongTheChord) {
                     ThroughTheChord);
 }
 
-INSTANTIATE_TEST_SUITE_P(Integrators, AbsorbingGlassEnvironment,
-                         ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
-                                           Integrator::kPath),
-                         [](const auto& param_info) {
-                             return std::string(IntegratorName(param_info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(Integrators, AbsorbingGlassEnvironment, EveryIntegrator(),
+                         IntegratorParamName);
 
-INSTANTIATE_TEST_SUITE_P(Integrators, ConductorEnvironmentFurnace,
-                         ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
-                                           Integrator::kPath),
-                         [](const auto& param_info) {
-                             return std::string(IntegratorName(param_info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(Integrators, ConductorEnvironmentFurnace, EveryIntegrator(),
+                         IntegratorParamName);
 
-INSTANTIATE_TEST_SUITE_P(Integrators, MixedEnvironmentFurnace,
-                         ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
-                                           Integrator::kPath),
-                         [](const auto& param_info) {
-                             return std::string(IntegratorName(param_info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(Integrators, MixedEnvironmentFurnace, EveryIntegrator(),
+                         IntegratorParamName);
 
-INSTANTIATE_TEST_SUITE_P(Integrators, GltfDielectricEnvironmentFurnace,
-                         ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
-                                           Integrator::kPath),
-                         [](const auto& param_info) {
-                             return std::string(IntegratorName(param_info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(Integrators, GltfDielectricEnvironmentFurnace, EveryIntegrator(),
+                         IntegratorParamName);
 
-INSTANTIATE_TEST_SUITE_P(Integrators, CoatedEnvironmentFurnace,
-                         ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
-                                           Integrator::kPath),
-                         [](const auto& param_info) {
-                             return std::string(IntegratorName(param_info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(Integrators, CoatedEnvironmentFurnace, EveryIntegrator(),
+                         IntegratorParamName);
 
 }  // namespace
 }  // namespace pf

@@ -306,31 +306,15 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
     return static_cast<int>(materials_.size() - 1);
 }
 
-namespace {
-
-// A baked texture read as DecodeImage would have read an image file: invert, then the exponent.
-pf::Texture Decoded(const pf::Texture& baked, const ImageDecodeOptions& decode) {
-    pf::Texture out = baked;
-    out.wrap_u = decode.wrap_u, out.wrap_v = decode.wrap_v;
-    for (Rgb& texel : out.texels)
-        for (int c = 0; c < 3; ++c) {
-            float v = decode.invert ? std::max(0.0f, 1.0f - texel[c]) : texel[c];
-            if (decode.exponent != 1) v = static_cast<float>(std::pow(v, decode.exponent));
-            texel[c] = v;
-        }
-    return out;
-}
-
-}  // namespace
-
 absl::StatusOr<int32_t> PbrtSceneBuilder::ImageIndex(const TextureRef& texture) {
     if (texture.baked != nullptr) {
         if (options_.references_only) return kNoTexture;
         const auto key = std::make_tuple(absl::StrCat("baked:", texture.element), texture.decode);
         if (const auto it = images_.find(key); it != images_.end()) return it->second;
         const auto index = static_cast<int32_t>(scene_.textures.size());
-        scene_.textures.push_back(
-            std::make_shared<const pf::Texture>(Decoded(*texture.baked, texture.decode)));
+        auto decoded = std::make_shared<pf::Texture>(*texture.baked);
+        ApplyValueOptions(texture.decode, decoded.get());
+        scene_.textures.push_back(std::move(decoded));
         images_[key] = index;
         return index;
     }
