@@ -10,6 +10,9 @@ struct alignas(8) Point2 {  // aligned as std430 vec2 (gpu_prelude.h)
     // parenthesised aggregate initialisation.
     constexpr Point2() = default;
     constexpr Point2(float x_in, float y_in) : x(x_in), y(y_in) {}
+    friend constexpr Point2 operator-(const Point2& a, const Point2& b) {
+        return {a.x - b.x, a.y - b.y};
+    }
 };
 
 }  // namespace pf

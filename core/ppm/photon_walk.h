@@ -2,7 +2,8 @@
 // photon mapping's map building: at a diffuse surface the photon may land (the caller
 // decides whether to keep it), then Russian roulette by albedo and a cosine-weighted bounce
 // (through the coat over it, if any); at any other surface ScatterNonDiffuse and roulette by
-// its weight (Jensen 2001, 2.3.3).
+// its weight (Jensen 2001, 2.3.3). Where the shading normal is not the surface's, the photon
+// carries Veach's adjoint factors (core/shared/shading_normal.h).
 #pragma once
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "core/sampling/sampling.h"
 #include "core/scene/glossy.h"
 #include "core/scene/scene.h"
+#include "core/shared/shading_normal.h"
 
 namespace pf {
 
@@ -54,6 +56,17 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
     const Material& material = scene.ShadingMaterial(surface, shading);
     const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
     if (kSpecular) flux *= InsideTransmittance(material, front_facing, hit.t);
+    // Veach's adjoint for shading normals: one factor where the photon arrives (and lands),
+    // one where it leaves.
+    const bool shaded = !(surface.shading_normal == surface.geometric_normal);
+    if (shaded)
+        flux *=
+            gpu::ShadingArrival(ray.direction, surface.shading_normal, surface.geometric_normal);
+    const auto leave = [&](const Vec3& direction) {
+        if (shaded)
+            flux *=
+                gpu::ShadingDeparture(direction, surface.shading_normal, surface.geometric_normal);
+    };
     const Rgb base_color = kTextures ? scene.BaseColor(surface) : material.base_color;
     ray.t_max = std::numeric_limits<float>::infinity();
     SpecularBounce bounce;
@@ -83,6 +96,7 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
                 return PhotonEvent::kEnded;
             if (!(Dot(ray.direction, geometric) > 0))
                 return PhotonEvent::kEnded;  // shading normal pointed it inside
+            leave(ray.direction);
             ray.origin = OffsetRayOrigin(surface.position, geometric, scene.bounds.Magnitude());
             return PhotonEvent::kDiffuse;
         }
@@ -94,6 +108,7 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
     const float survive = std::min(1.0f, MaxComponent(bounce.weight));
     if (!(rng.NextFloat() < survive)) return PhotonEvent::kEnded;
     flux *= bounce.weight / survive;
+    leave(bounce.direction);
     const Vec3 side =
         front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;
     ray.origin = OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude());

@@ -210,6 +210,12 @@ const tinygltf::TextureInfo* CoordinateTexture(const tinygltf::Material& materia
     return nullptr;
 }
 
+int CoordinateSet(const tinygltf::Material& material) {
+    if (const tinygltf::TextureInfo* texture = CoordinateTexture(material))
+        return texture->texCoord;
+    return material.normalTexture.index >= 0 ? material.normalTexture.texCoord : 0;
+}
+
 absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
                                            const tinygltf::Primitive& primitive,
                                            uint64_t max_triangles) {
@@ -218,16 +224,14 @@ absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
     // has none.
     int set = 0;
     if (primitive.material >= 0 && primitive.material < static_cast<int>(model.materials.size()))
-        if (const tinygltf::TextureInfo* texture =
-                CoordinateTexture(model.materials[primitive.material]))
-            set = texture->texCoord;
+        set = CoordinateSet(model.materials[primitive.material]);
     const std::string uv_name = absl::StrCat("TEXCOORD_", set);
     if (const auto draco = primitive.extensions.find("KHR_draco_mesh_compression");
         draco != primitive.extensions.end())
         return DecodeDracoPrimitive(model, draco->second, uv_name, max_triangles);
     const auto position_it = primitive.attributes.find("POSITION");
     if (position_it == primitive.attributes.end()) return error("has no POSITION attribute");
-    std::vector<float> positions, normals, uvs;
+    std::vector<float> positions, normals, uvs, tangents;
     if (absl::Status s = ReadFloats(model, position_it->second, 3, &positions); !s.ok()) return s;
     const size_t vertex_count = positions.size() / 3;
     for (size_t v = 0; v < 3 * vertex_count; ++v)
@@ -236,6 +240,10 @@ absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
     if (auto it = primitive.attributes.find("NORMAL"); it != primitive.attributes.end()) {
         if (absl::Status s = ReadFloats(model, it->second, 3, &normals); !s.ok()) return s;
         if (normals.size() != positions.size()) return error("NORMAL and POSITION counts differ");
+    }
+    if (auto it = primitive.attributes.find("TANGENT"); it != primitive.attributes.end()) {
+        if (absl::Status s = ReadFloats(model, it->second, 4, &tangents); !s.ok()) return s;
+        if (tangents.size() / 4 != vertex_count) return error("TANGENT and POSITION counts differ");
     }
     if (auto it = primitive.attributes.find(uv_name); it != primitive.attributes.end()) {
         if (absl::Status s = ReadFloats(model, it->second, 2, &uvs); !s.ok()) return s;
@@ -251,6 +259,9 @@ absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
         if (!normals.empty())
             mesh.normals.emplace_back(normals[3 * v], normals[3 * v + 1], normals[3 * v + 2]);
         if (!uvs.empty()) mesh.uvs.push_back({uvs[2 * v], uvs[2 * v + 1]});
+        // xyz; w, the bitangent's side, is each triangle's own (core/scene/tangents.h).
+        if (!tangents.empty())
+            mesh.tangents.emplace_back(tangents[4 * v], tangents[4 * v + 1], tangents[4 * v + 2]);
     }
     if (primitive.indices >= 0) {
         if (absl::Status s = ReadIndices(model, primitive.indices, &mesh.indices); !s.ok())

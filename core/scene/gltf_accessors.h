@@ -27,11 +27,14 @@ absl::Status ReadFloats(const tinygltf::Model& model, int index, int components,
 absl::Status ReadIndices(const tinygltf::Model& model, int index, std::vector<uint32_t>* out);
 
 // The texture whose coordinates a material's surfaces carry (one set per vertex): the base
-// colour's, else the emissive one's, else the metallic-roughness one's; null where it has none.
+// colour's, else the emissive one's, else the metallic-roughness one's; null where it has none
+// (its normal texture's are carried then, CoordinateSet).
 const tinygltf::TextureInfo* CoordinateTexture(const tinygltf::Material& material);
+// The TEXCOORD_n set those are: CoordinateTexture's, else the normal texture's, else 0.
+int CoordinateSet(const tinygltf::Material& material);
 
-// A triangle primitive's mesh: POSITION, NORMAL if given, the TEXCOORD_n set its material's
-// CoordinateTexture reads (texCoord), and its indices (or 0, 1, 2, ... without), every index
+// A triangle primitive's mesh: POSITION, NORMAL and TANGENT if given, the TEXCOORD_n set its
+// material's CoordinateSet names, and its indices (or 0, 1, 2, ... without), every index
 // checked against the vertices; from its Draco stream where it is compressed
 // (KHR_draco_mesh_compression, gltf_draco.h). Errors say what is wrong, for the caller to place.
 absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,

@@ -416,6 +416,18 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
                         "texture (texCoord {}, its KHR_texture_transform)",
                         path_, element, name, coordinates->texCoord);
         }
+        const tinygltf::NormalTextureInfo& normal = source.normalTexture;
+        const tinygltf::Value* normal_transform =
+            Extension(normal.extensions, "KHR_texture_transform");
+        if (normal.index >= 0 && CoordinateTexture(source) == nullptr) {
+            if (normal_transform) uv = TextureTransform(*normal_transform);
+        } else if (normal.index >= 0 &&
+                   (normal.texCoord != CoordinateSet(source) || normal_transform != nullptr)) {
+            spdlog::warn(
+                "{}: {}: the normal texture is read with the coordinates of the material's "
+                "first texture (texCoord {}, its KHR_texture_transform)",
+                path_, element, CoordinateSet(source));
+        }
         const absl::StatusOr<uint32_t> added = AddGltfMaterial(
             source, absl::StrCat(path_, ": ", element),
             [&](int texture, const ImageDecodeOptions& options) {

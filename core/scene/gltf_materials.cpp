@@ -15,7 +15,8 @@
 //    surface where clearcoatFactor is below 1.
 // Emission is emissiveFactor x emissiveTexture x KHR_materials_emissive_strength, radiance in
 // W/(m^2 sr), from the front face, and the back one too where the material is doubleSided.
-// alphaMode MASK and BLEND cut the surface out where alpha says.
+// alphaMode MASK and BLEND cut the surface out where alpha says; normalTexture tilts the
+// shading normal (Material::normal_texture).
 #include "core/scene/gltf_materials.h"
 
 #include <spdlog/spdlog.h>
@@ -128,6 +129,17 @@ absl::Status GltfMaterialBuilder::ReadCommon(Material& material) {
         const absl::StatusOr<int32_t> texture = texture_(source_.emissiveTexture.index, colour);
         if (!texture.ok()) return texture.status();
         material.emission_texture = *texture;
+    }
+    // The normal texture: linear, each channel 0..1 for -1..1, x and y times its scale.
+    if (source_.normalTexture.index >= 0) {
+        ImageDecodeOptions linear;
+        linear.encoding = ImageEncoding::kLinear;
+        const absl::StatusOr<int32_t> texture = texture_(source_.normalTexture.index, linear);
+        if (!texture.ok()) return texture.status();
+        material.normal_texture = *texture;
+        material.normal_scale = static_cast<float>(source_.normalTexture.scale);
+        if (!std::isfinite(material.normal_scale))
+            return Error("normalTexture's scale must be finite");
     }
     // A double-sided material is drawn, so emits, on both faces.
     material.two_sided = source_.doubleSided ? 1 : 0;
@@ -349,7 +361,8 @@ std::vector<int> GltfTexturesRead(const tinygltf::Material& material) {
     std::vector<int> read;
     for (const int texture :
          {material.pbrMetallicRoughness.baseColorTexture.index, material.emissiveTexture.index,
-          material.pbrMetallicRoughness.metallicRoughnessTexture.index})
+          material.pbrMetallicRoughness.metallicRoughnessTexture.index,
+          material.normalTexture.index})
         if (texture >= 0) read.push_back(texture);
     return read;
 }

@@ -82,6 +82,14 @@ struct Material {
     uint32_t mix_first = 0, mix_second = 0;
     float mix_amount = 0.5f;
     int32_t mix_texture = kNoTexture;
+    // The shading normal's detail (core/shared/shading_normal.h): a tangent-space normal map
+    // (glTF's normalTexture, its x and y times normal_scale; pbrt's normalmap), read through the
+    // vertex tangents (Scene::tangents), and a bump map (pbrt's displacement): the surface moved
+    // along its normal by bump_scale x the texture's first channel, in world units.
+    int32_t normal_texture = kNoTexture;
+    float normal_scale = 1.0f;
+    int32_t bump_texture = kNoTexture;
+    float bump_scale = 1.0f;
 
     // Scatters into one direction (a mirror, smooth glass): a delta distribution.
     bool IsSpecular() const {
@@ -97,14 +105,18 @@ struct Material {
     // Whether some rays pass through the surface.
     bool HasCutOuts() const { return alpha_texture != kNoTexture || !(alpha >= 1.0f); }
     bool IsEmissive() const { return !IsBlack(emission); }
+    // Whether a texture changes its shading normal; a normal map needs vertex tangents.
+    bool HasShadingDetail() const {
+        return normal_texture != kNoTexture || bump_texture != kNoTexture;
+    }
     // Every texture it reads: indices into Scene::textures, kNoTexture where it has none.
-    std::array<int32_t, 5> Textures() const {
+    std::array<int32_t, 7> Textures() const {
         return {base_color_texture, emission_texture, alpha_texture, roughness_texture,
-                mix_texture};
+                mix_texture,        normal_texture,   bump_texture};
     }
     // Whether shading reads the surface's texture coordinates.
     bool ReadsUv() const {
-        const std::array<int32_t, 5> textures = Textures();
+        const std::array<int32_t, 7> textures = Textures();
         return std::any_of(textures.begin(), textures.end(),
                            [](int32_t texture) { return texture != kNoTexture; });
     }

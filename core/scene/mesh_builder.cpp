@@ -2,8 +2,10 @@
 #include "core/scene/mesh_builder.h"
 
 #include <algorithm>
+#include <span>
 
 #include "absl/strings/str_cat.h"
+#include "core/scene/tangents.h"
 #include "core/util/check.h"
 
 namespace pf {
@@ -19,6 +21,38 @@ UvTransform UvTransform::Then(const UvTransform& next) const {
     out.m[5] = a[3] * m[2] + a[4] * m[5] + a[5];
     return out;
 }
+
+namespace {
+
+// The tangents of the vertices from `base` on, which AppendMesh has just added with the
+// triangles from `first_triangle` on: kept or made where the material has a normal map, zero
+// where it has none but another mesh's has; nothing while no material has one.
+void AppendTangents(const TriangleMesh& mesh, const MeshPlacement& placement, uint32_t base,
+                    uint32_t first_triangle, Scene* scene) {
+    const bool needed = scene->NeedsTangents(placement.material);
+    if (!needed && scene->tangents.empty()) return;
+    scene->tangents.resize(base, Vec3(0.0f));
+    const size_t end = scene->positions.size();
+    if (!needed) {
+        scene->tangents.resize(end, Vec3(0.0f));
+    } else if (!mesh.tangents.empty()) {
+        for (const Vec3& tangent : mesh.tangents) {
+            const Vec3d t = placement.world.ApplyVector(Vec3d(tangent));
+            scene->tangents.push_back(LengthSquared(t) > 0 && IsFinite(t) ? Vec3(Normalize(t))
+                                                                          : Vec3(0.0f));
+        }
+    } else {
+        std::vector<uint32_t> indices;
+        for (size_t t = first_triangle; t < scene->triangles.size(); ++t)
+            for (const uint32_t v : scene->triangles[t].vertex) indices.push_back(v - base);
+        const auto span = [&](const auto& all) { return std::span(all).subspan(base, end - base); };
+        const std::vector<Vec3> made = GenerateTangents(
+            span(scene->positions), span(scene->normals), span(scene->uvs), indices);
+        scene->tangents.insert(scene->tangents.end(), made.begin(), made.end());
+    }
+}
+
+}  // namespace
 
 absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement,
                         const SceneLimits& limits, const std::string& element, Scene* scene,
@@ -36,6 +70,8 @@ absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement
         return error("normal and position counts differ");
     if (!mesh.uvs.empty() && mesh.uvs.size() != vertex_count)
         return error("uv and position counts differ");
+    if (!mesh.tangents.empty() && mesh.tangents.size() != vertex_count)
+        return error("tangent and position counts differ");
     if (mesh.indices.size() % 3 != 0) return error("index count is not a multiple of 3");
     if (scene->triangles.size() + mesh.indices.size() / 3 > limits.max_triangles)
         return absl::ResourceExhaustedError(
@@ -47,6 +83,7 @@ absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement
                                       " vertices"));
     const Transform& world = placement.world;
     const auto base = static_cast<uint32_t>(scene->positions.size());
+    const auto first_triangle = static_cast<uint32_t>(scene->triangles.size());
     for (size_t v = 0; v < vertex_count; ++v) {
         const Vec3 p(world.ApplyPoint(Vec3d(mesh.positions[v])));
         if (!IsFinite(p))
@@ -96,6 +133,7 @@ absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement
         scene->triangles.push_back({{a, b, c}, placement.material, smooth, normal});
         if (prototype) ++scene->prototypes[*prototype].triangle_count;
     }
+    AppendTangents(mesh, placement, base, first_triangle, scene);
     return absl::OkStatus();
 }
 
@@ -195,6 +233,10 @@ absl::StatusOr<Scene> FlattenInstances(const Scene& scene, uint64_t max_triangle
             const Vec3 n = instance.ApplyNormal(scene.normals[v]);
             flat.normals.push_back(LengthSquared(n) > 0 ? Normalize(n) : n);
             flat.uvs.push_back(scene.uvs[v]);
+            if (!scene.tangents.empty()) {
+                const Vec3 t = instance.ApplyVector(scene.tangents[v]);
+                flat.tangents.push_back(LengthSquared(t) > 0 ? Normalize(t) : t);
+            }
         }
         for (Triangle triangle : local.triangles) {
             for (uint32_t& v : triangle.vertex) v += base;

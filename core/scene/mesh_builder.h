@@ -20,6 +20,7 @@ struct TriangleMesh {
     std::vector<Vec3> normals;      // empty, or one per position
     std::vector<Point2> uvs;        // empty, or one per position
     std::vector<uint32_t> indices;  // 3 per triangle, each below positions.size()
+    std::vector<Vec3> tangents;     // empty, or one per position (glTF's TANGENT): along +u
 };
 
 // Which side of a triangle is its front (where emission leaves and what "outside" is for glass).
@@ -62,7 +63,9 @@ struct MeshPlacement {
 
 // Appends `mesh` placed by `placement` to the world or, given `prototype`, to that prototype,
 // which must be the last begun (placement.world then maps into the prototype's space).
-// Triangles with no area are dropped. Errors name `element`: a vertex not finite after the
+// Triangles with no area are dropped. Where its material has a normal map
+// (Scene::NeedsTangents), its tangents are kept, or made where it has none (tangents.h).
+// Errors name `element`: a vertex not finite after the
 // transform, an index out of range, the triangle limit exceeded (RESOURCE_EXHAUSTED).
 absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement,
                         const SceneLimits& limits, const std::string& element, Scene* scene,

@@ -27,7 +27,7 @@ constexpr uint64_t kMaxCount = uint64_t{1} << 32;
 
 // Types written whole must have no padding: their size is the sum of their fields'.
 static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
-static_assert(sizeof(Material) == 144, "Material gained a field or padding: encode it");
+static_assert(sizeof(Material) == 160, "Material gained a field or padding: encode it");
 static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4,
               "Camera gained a field or padding: encode it");
 static_assert(sizeof(Prototype) == 8 + 24 && sizeof(Instance) == 4 + 21 * 4);
@@ -133,6 +133,7 @@ void WritePayload(const Scene& scene, ByteWriter& out) {
     Write(out, scene.positions);
     Write(out, smooth ? scene.normals : std::vector<Vec3>());
     Write(out, textured ? scene.uvs : std::vector<Point2>());
+    Write(out, scene.tangents);
     std::vector<uint32_t> vertices, materials;
     std::vector<uint8_t> smooth_flags;
     std::vector<Vec3> normals;
@@ -194,6 +195,7 @@ absl::Status ReadPayload(ByteReader& in, Scene* scene) {
     if (!in.Array(&scene->positions, kMaxCount)) return fail("positions");
     if (!in.Array(&scene->normals, kMaxCount)) return fail("normals");
     if (!in.Array(&scene->uvs, kMaxCount)) return fail("texture coordinates");
+    if (!in.Array(&scene->tangents, kMaxCount)) return fail("tangents");
     std::vector<uint32_t> vertices, materials;
     std::vector<uint8_t> smooth;
     std::vector<Vec3> normals;
@@ -312,6 +314,11 @@ absl::Status CheckMaterials(const Scene& scene) {
             return Invalid(absl::StrCat(name, ": a conductor's Fresnel term out of range"));
         if (!(Finite(material.absorption) && MinComponent(material.absorption) >= 0))
             return Invalid(absl::StrCat(name, ": absorption out of range"));
+        if (!(Finite(material.normal_scale) && Finite(material.bump_scale)))
+            return Invalid(absl::StrCat(name, ": a normal or bump map's scale not finite"));
+        if (material.normal_texture != kNoTexture &&
+            scene.tangents.size() != scene.positions.size())
+            return Invalid(absl::StrCat(name, " has a normal map, the vertices no tangents"));
         // A mix's materials come before it: resolving one always ends.
         if (material.type == MaterialType::kMix &&
             !(material.mix_first < m && material.mix_second < m && material.mix_amount >= 0.0f &&
@@ -341,10 +348,14 @@ absl::Status CheckGeometry(const Scene& scene) {
         !std::all_of(scene.normals.begin(), scene.normals.end(),
                      [](const Vec3& n) { return Finite(n); }) ||
         !std::all_of(scene.uvs.begin(), scene.uvs.end(),
-                     [](const Point2& uv) { return Finite(uv); }))
+                     [](const Point2& uv) { return Finite(uv); }) ||
+        !std::all_of(scene.tangents.begin(), scene.tangents.end(),
+                     [](const Vec3& t) { return Finite(t); }))
         return Invalid("a vertex that is not finite");
     if (!scene.uvs.empty() && scene.uvs.size() != vertices)
         return Invalid("texture coordinates not one per vertex");
+    if (!scene.tangents.empty() && scene.tangents.size() != vertices)
+        return Invalid("tangents not one per vertex");
     for (size_t t = 0; t < scene.triangles.size(); ++t) {
         const Triangle& triangle = scene.triangles[t];
         for (uint32_t v : triangle.vertex)

@@ -6,6 +6,7 @@
 
 #include "core/shared/alpha.h"
 #include "core/shared/environment_map.h"
+#include "core/shared/shading_normal.h"
 
 namespace pf {
 
@@ -99,7 +100,42 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
     }
     surface.material =
         ResolveMaterial(triangle.material, surface.position, hit.triangle, surface.uv);
+    // Only a material that reads texture coordinates has a normal or bump map.
+    if (surface.uv_per_length > 0 && materials[surface.material].HasShadingDetail())
+        AddShadingDetail(triangle, instance, {p0, p1, p2}, hit.b1, hit.b2, surface);
     return surface;
+}
+
+void Scene::AddShadingDetail(const Triangle& triangle, const Instance* instance,
+                             const std::array<Vec3, 3>& corners, float b1, float b2,
+                             SurfacePoint& surface) const {
+    const Material& material = materials[surface.material];
+    const Point2& t0 = uvs[triangle.vertex[0]];
+    const Point2 duv1 = uvs[triangle.vertex[1]] - t0, duv2 = uvs[triangle.vertex[2]] - t0;
+    const Vec3 e1 = corners[1] - corners[0], e2 = corners[2] - corners[0];
+    const float u = surface.uv.x, v = surface.uv.y;
+    Vec3 n = surface.shading_normal;
+    if (material.bump_texture != kNoTexture) {
+        // pbrt-v4's forward differences, a texel apart.
+        const Texture& bump = *textures[material.bump_texture];
+        const float du = 1.0f / static_cast<float>(bump.width);
+        const float dv = 1.0f / static_cast<float>(bump.height);
+        const float d = bump.Sample(u, v).x;
+        const float d_u = (bump.Sample(u + du, v).x - d) / du * material.bump_scale;
+        const float d_v = (bump.Sample(u, v + dv).x - d) / dv * material.bump_scale;
+        n = gpu::NormalFromBump(n, gpu::TriangleDpDu(e1, e2, duv1, duv2), d_u, d_v);
+    }
+    if (material.normal_texture != kNoTexture && !tangents.empty()) {
+        const float b0 = 1.0f - b1 - b2;
+        Vec3 tangent = tangents[triangle.vertex[0]] * b0 + tangents[triangle.vertex[1]] * b1 +
+                       tangents[triangle.vertex[2]] * b2;
+        if (instance) tangent = instance->ApplyVector(tangent);
+        const float sign = gpu::BitangentSign(surface.geometric_normal, e1, e2, duv1, duv2);
+        n = gpu::NormalFromMap(n, tangent, sign, textures[material.normal_texture]->Sample(u, v),
+                               material.normal_scale);
+    }
+    // The shading normal stays on the front: a map tilting it past the surface is not followed.
+    if (Dot(n, surface.geometric_normal) > 0) surface.shading_normal = n;
 }
 
 Rgb Scene::BaseColor(const SurfacePoint& surface) const {
@@ -150,6 +186,13 @@ const Material& Scene::TexturedRoughness(const SurfacePoint& surface,
     if (scratch.coat_roughness > 0)
         scratch.coat_roughness = std::clamp(scratch.coat_roughness * t, kMinRoughness, 1.0f);
     return scratch;
+}
+
+bool Scene::NeedsTangents(uint32_t m) const {
+    const Material& material = materials[m];
+    if (material.normal_texture != kNoTexture) return true;
+    return material.type == MaterialType::kMix &&
+           (NeedsTangents(material.mix_first) || NeedsTangents(material.mix_second));
 }
 
 bool Scene::MixReadsUv(uint32_t m) const {

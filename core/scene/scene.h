@@ -125,6 +125,12 @@ struct Instance {
                 m[4] * p.x + m[5] * p.y + m[6] * p.z + m[7],
                 m[8] * p.x + m[9] * p.y + m[10] * p.z + m[11]};
     }
+    // The linear part alone (a tangent's map).
+    Vec3 ApplyVector(const Vec3& v) const {
+        const float* m = to_world.data();
+        return {m[0] * v.x + m[1] * v.y + m[2] * v.z, m[4] * v.x + m[5] * v.y + m[6] * v.z,
+                m[8] * v.x + m[9] * v.y + m[10] * v.z};
+    }
     // Not normalised.
     Vec3 ApplyNormal(const Vec3& n) const {
         const float* m = normal_map.data();
@@ -156,8 +162,12 @@ struct SceneRenderSettings {
 struct Scene {
     std::string source;  // the file it was loaded from, for messages
     std::vector<Vec3> positions;
-    std::vector<Vec3> normals;        // one per position (zero where the mesh had none)
-    std::vector<Point2> uvs;          // one per position
+    std::vector<Vec3> normals;  // one per position (zero where the mesh had none)
+    std::vector<Point2> uvs;    // one per position
+    // One per position where a material has a normal map (Scene::NeedsTangents), else empty:
+    // unit, along increasing u (zero where the mesh needs none); the bitangent's side is each
+    // triangle's own (core/scene/tangents.h).
+    std::vector<Vec3> tangents;
     std::vector<Triangle> triangles;  // the world's own, then each prototype's (in its space)
     std::vector<Prototype> prototypes;
     std::vector<Instance> instances;
@@ -212,6 +222,8 @@ struct Scene {
         return MixReadsUv(m);
     }
     bool MixReadsUv(uint32_t m) const;
+    // Whether material `m` (or a material a mix may be) reads vertex tangents: a normal map.
+    bool NeedsTangents(uint32_t m) const;
     // Diffuse reflectance or specular tint at a surface point, texture applied (bilinear, at
     // the point: what a photon meets).
     Rgb BaseColor(const SurfacePoint& surface) const;
@@ -227,6 +239,13 @@ struct Scene {
     float Alpha(uint32_t triangle, float b1, float b2) const;
     // The area of a world triangle.
     float TriangleArea(uint32_t triangle) const;
+
+private:
+    // Surface's last step where the material has a normal or bump map: `corners` are the
+    // triangle's in world space.
+    void AddShadingDetail(const Triangle& triangle, const Instance* instance,
+                          const std::array<Vec3, 3>& corners, float b1, float b2,
+                          SurfacePoint& surface) const;
 };
 
 }  // namespace pf

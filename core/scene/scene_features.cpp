@@ -26,6 +26,7 @@ SceneFeatures SceneFeatures::All() {
                        &all.conductor_fresnel,
                        &all.absorption,
                        &all.smooth_normals,
+                       &all.shading_detail,
                        &all.triangle_lights,
                        &all.point_lights,
                        &all.spot_lights,
@@ -55,6 +56,7 @@ std::string SceneFeatures::ToString() const {
     if (roughness_textures) parts.push_back("roughness textures");
     if (mix_textures) parts.push_back("textured mixes");
     if (smooth_normals) parts.push_back("smooth normals");
+    if (shading_detail) parts.push_back("normal or bump maps");
     if (triangle_lights) parts.push_back("area lights");
     if (point_lights) parts.push_back("point lights");
     if (spot_lights) parts.push_back("spot lights");
@@ -96,6 +98,7 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
                                        material.type == MaterialType::kRoughConductor) &&
                                       material.conductor != gpu::kConductorTint;
         features.absorption |= material.HasVolume();
+        features.shading_detail |= material.HasShadingDetail();
     }
     for (const Emitters::Record& record : emitters.Records()) {
         if (record.kind == EmitterKind::kTriangle) {

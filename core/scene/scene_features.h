@@ -24,6 +24,7 @@ struct SceneFeatures {
     bool conductor_fresnel = false;   // a metal's reflectance varies with angle (conductor.h)
     bool absorption = false;          // glass whose inside absorbs (Material::absorption)
     bool smooth_normals = false;      // a triangle interpolates vertex normals
+    bool shading_detail = false;      // a used material has a normal or bump map
     // Emitters with power.
     bool triangle_lights = false, point_lights = false, spot_lights = false,
          directional_lights = false, environment = false;
@@ -38,7 +39,9 @@ struct SceneFeatures {
     bool Specular() const { return mirror || dielectric || thin_dielectric || Rough() || coats; }
     bool Rough() const { return rough_conductor || rough_dielectric; }
     // Whether shading reads texture coordinates (light emission aside).
-    bool ReadsUv() const { return textures || cut_outs || roughness_textures || mix_textures; }
+    bool ReadsUv() const {
+        return textures || cut_outs || roughness_textures || mix_textures || shading_detail;
+    }
     // Every feature on: the general code path, for comparison (bench/photon_bench).
     static SceneFeatures All();
     // "diffuse, glass, area lights, caustics": for logs, job metadata and EXR headers.

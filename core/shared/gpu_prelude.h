@@ -1,10 +1,10 @@
 // The one prelude of the headers in core/shared/, which both C++ and GLSL compile: in C++,
 // namespace pf::gpu gets the GLSL vocabulary they are written in (vec2 and vec3 are Point2 and
-// Vec3; vec4 and uvec4 std430-aligned storage; sqrt, abs, min, max, clamp, dot, normalize,
-// exp, sin, cos, acos, atan and the bit casts are GLSL's functions) and the macros spell C++; in
-// GLSL the same macros mean GLSL. Shared structs use only vec2, vec4, uvec4 and 32/64-bit scalars,
-// whose std430 layout C++ reproduces exactly; each struct's size is asserted in C++
-// (PF_GPU_LAYOUT), so the two cannot drift apart.
+// Vec3; vec4 and uvec4 std430-aligned storage; sqrt, abs, min, max, clamp, dot, cross,
+// normalize, exp, sin, cos, acos, atan and the bit casts are GLSL's functions) and the macros
+// spell C++; in GLSL the same macros mean GLSL. Shared structs use only vec2, vec4, uvec4 and
+// 32/64-bit scalars, whose std430 layout C++ reproduces exactly; each struct's size is asserted
+// in C++ (PF_GPU_LAYOUT), so the two cannot drift apart.
 #ifndef PF_CORE_SHARED_GPU_PRELUDE_H
 #define PF_CORE_SHARED_GPU_PRELUDE_H
 
@@ -41,6 +41,7 @@ inline float acos(float x) { return std::acos(x); }
 inline float atan(float x) { return std::atan(x); }
 inline float atan(float y, float x) { return std::atan2(y, x); }  // GLSL's two-argument atan
 inline float dot(const vec3& a, const vec3& b) { return Dot(a, b); }
+inline vec3 cross(const vec3& a, const vec3& b) { return Cross(a, b); }
 inline vec3 normalize(const vec3& v) { return Normalize(v); }
 inline uint32_t floatBitsToUint(float x) { return std::bit_cast<uint32_t>(x); }
 inline int32_t floatBitsToInt(float x) { return std::bit_cast<int32_t>(x); }

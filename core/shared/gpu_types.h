@@ -46,7 +46,8 @@ PF_CONST(uint32_t) kBindingLightImageTexels = 21;  // vec4[]
 // (width + 1)), and each texel's probability (width x height). A projection light's: its
 // texels' cumulative sums (width x height + 1), then each texel's probability.
 PF_CONST(uint32_t) kBindingLightImageTables = 22;
-PF_CONST(uint32_t) kBindingCount = 23;
+PF_CONST(uint32_t) kBindingTangents = 23;  // vec4[], per vertex: xyz Scene::tangents
+PF_CONST(uint32_t) kBindingCount = 24;
 
 // What the prefix-sum kernels scan (GpuParams.scan_target).
 PF_CONST(uint32_t) kScanGridBegin = 0;
@@ -75,7 +76,8 @@ PF_CONST(uint32_t) kSpecHasRoughnessTextures = 17;  // Material::roughness_textu
 PF_CONST(uint32_t) kSpecHasMixTextures = 18;        // Material::mix_texture
 PF_CONST(uint32_t) kSpecHasConductorFresnel = 19;   // Material::conductor other than the tint
 PF_CONST(uint32_t) kSpecHasAbsorption = 20;         // Material::absorption inside glass
-PF_CONST(uint32_t) kSpecCount = 21;
+PF_CONST(uint32_t) kSpecHasShadingDetail = 21;      // normal or bump maps
+PF_CONST(uint32_t) kSpecCount = 22;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -146,8 +148,10 @@ struct GpuMaterial {
                          // (kConductor*, uint bits); core/shared/conductor.h
     vec4 conductor_k;    // xyz: k
     vec4 absorption;     // xyz: a solid dielectric's absorption coefficient (BeerLambert)
+    vec4 detail;         // x: the normal map's texture, or -1 (int bits), y: its scale; z: the bump
+                  // map's texture, or -1 (int bits), w: its scale (core/shared/shading_normal.h)
 };
-PF_GPU_LAYOUT(GpuMaterial, 144);
+PF_GPU_LAYOUT(GpuMaterial, 160);
 
 struct GpuTexture {
     uint32_t first_texel;  // into the texels binding

@@ -18,33 +18,41 @@ std::string Floats(const Vec3& v) { return absl::StrCat("[", v.x, ",", v.y, ",",
 std::string Json(const TestScene& scene, bool embed, std::string* blob) {
     std::vector<std::string> meshes, nodes, accessors, views, materials, images;
     std::vector<std::string> image_samplers;  // each image's texture's sampler, or empty
+    // Adds an image (and a texture of it, with `sampler`); returns its index.
+    const auto add_image = [&](const std::string& png_base64, const std::string& sampler) {
+        image_samplers.push_back(sampler);
+        if (scene.images_in_buffer) {
+            std::string png;
+            absl::Base64Unescape(png_base64, &png);
+            views.push_back(absl::StrCat(R"({"buffer":0,"byteOffset":)", blob->size(),
+                                         R"(,"byteLength":)", png.size(), "}"));
+            blob->append(png);
+            while (blob->size() % 4) blob->push_back('\0');
+            images.push_back(
+                absl::StrCat(R"({"bufferView":)", views.size() - 1, R"(,"mimeType":"image/png"})"));
+        } else {
+            images.push_back(absl::StrCat(R"({"uri":"data:image/png;base64,)", png_base64, "\"}"));
+        }
+        return images.size() - 1;
+    };
     for (const TestMaterial& m : scene.materials) {
         std::string texture;
-        if (!m.texture_png_base64.empty()) {
-            texture = absl::StrCat(m.texture_emissive ? R"(,"emissiveTexture":{"index":)"
-                                   : m.texture_metallic_roughness
-                                       ? R"(,"metallicRoughnessTexture":{"index":)"
-                                       : R"(,"baseColorTexture":{"index":)",
-                                   images.size(), m.texture_extra, "}");
-            image_samplers.push_back(m.texture_sampler);
-            if (scene.images_in_buffer) {
-                std::string png;
-                absl::Base64Unescape(m.texture_png_base64, &png);
-                views.push_back(absl::StrCat(R"({"buffer":0,"byteOffset":)", blob->size(),
-                                             R"(,"byteLength":)", png.size(), "}"));
-                blob->append(png);
-                while (blob->size() % 4) blob->push_back('\0');
-                images.push_back(absl::StrCat(R"({"bufferView":)", views.size() - 1,
-                                              R"(,"mimeType":"image/png"})"));
-            } else {
-                images.push_back(
-                    absl::StrCat(R"({"uri":"data:image/png;base64,)", m.texture_png_base64, "\"}"));
-            }
-        }
+        if (!m.texture_png_base64.empty())
+            texture = absl::StrCat(
+                m.texture_emissive             ? R"(,"emissiveTexture":{"index":)"
+                : m.texture_metallic_roughness ? R"(,"metallicRoughnessTexture":{"index":)"
+                                               : R"(,"baseColorTexture":{"index":)",
+                add_image(m.texture_png_base64, m.texture_sampler), m.texture_extra, "}");
+        std::string normal;
+        if (!m.normal_png_base64.empty())
+            normal =
+                absl::StrCat(R"(,"normalTexture":{"index":)", add_image(m.normal_png_base64, ""),
+                             R"(,"scale":)", m.normal_scale, "}");
         std::string material = absl::StrCat(
             R"({"pbrMetallicRoughness":{"baseColorFactor":[)", m.base_color.x, ",", m.base_color.y,
             ",", m.base_color.z, R"(,1],"metallicFactor":)", m.metallic, R"(,"roughnessFactor":)",
-            m.roughness, m.texture_emissive ? "" : texture, "}", m.texture_emissive ? texture : "");
+            m.roughness, m.texture_emissive ? "" : texture, "}", m.texture_emissive ? texture : "",
+            normal);
         if (!IsBlack(m.emission))
             absl::StrAppend(&material, R"(,"emissiveFactor":)", Floats(m.emission));
         if (!m.extensions.empty())

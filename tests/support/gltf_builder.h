@@ -19,6 +19,8 @@ struct TestMaterial {
     bool texture_emissive = false;   // the texture is the emissive one, not the base colour's
     bool texture_metallic_roughness = false;  // it is the metallicRoughnessTexture
     float metallic = 0, roughness = 1;        // metallicFactor, roughnessFactor
+    std::string normal_png_base64;            // a normalTexture, embedded as a data URI
+    float normal_scale = 1;                   // its scale
     std::string extra;  // raw JSON fields of the material, e.g. ,"doubleSided":true
     // Raw JSON members of its "extensions" object: by default a specular layer of weight 0,
     // which makes glTF's dielectric BRDF Lambertian (gltf_materials.h).

@@ -2,7 +2,7 @@
 // conductor (the Fresnel term of its complex index: core/shared/conductor.h), thin dielectric,
 // coateddiffuse and
 // coatedconductor (a coat over the base: core/shared/coat.h); image textures through
-// OpenImageIO.
+// OpenImageIO; normal and bump maps on any of them (Material::normal_texture, bump_texture).
 #include <algorithm>
 #include <cmath>
 
@@ -299,11 +299,44 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
     }
     if (!status.ok()) return status;
     parameters.String("type", "");  // MakeNamedMaterial's
-    for (const char* name : {"displacement", "normalmap"})
-        if (parameters.Consume(name))
-            Warn(where, absl::StrCat("Material: \"", name, "\" is not supported; ignored"));
+    if (absl::Status detail = ShadingDetail(parameters, where, &material); !detail.ok())
+        return detail;
     materials_.push_back(material);
     return static_cast<int>(materials_.size() - 1);
+}
+
+absl::Status PbrtSceneBuilder::ShadingDetail(ParameterList& parameters, const Location& where,
+                                             MaterialRef* material) {
+    Material& m = material->material;
+    const bool textured = m.ReadsUv();  // its coordinates are set: the detail reads the same
+    // pbrt-v4's normalmap: an image file, linear, read at (u, 1 - v) without a mapping.
+    if (const std::string file = parameters.String("normalmap", ""); !file.empty()) {
+        absl::StatusOr<std::string> path = ResolveReference(file, base_folder_);
+        if (!path.ok())
+            return ErrorAt(where,
+                           absl::StrCat("Material: \"normalmap\": ", path.status().message()));
+        TextureRef normal_map;
+        normal_map.path = *path;
+        normal_map.decode.encoding = ImageEncoding::kLinear;
+        normal_map.element = absl::StrCat(where.ToString(), ": Material \"normalmap\"");
+        normal_map.uv.m[4] = -1, normal_map.uv.m[5] = 1;
+        const absl::StatusOr<int32_t> index = ImageIndex(normal_map);
+        if (!index.ok()) return index.status();
+        m.normal_texture = *index;
+        if (!textured) material->uv = normal_map.uv;
+    }
+    // The bump map: a float texture of displacement along the normal, in world units.
+    const absl::StatusOr<FloatInput> displacement =
+        FloatParameter(parameters, "displacement", 0.0, "Material: \"displacement\"", where);
+    if (!displacement.ok()) return displacement.status();
+    if (displacement->texture != kNoTexture) {
+        if (!std::isfinite(displacement->value))
+            return ErrorAt(where, "Material: \"displacement\"'s scale must be finite");
+        m.bump_texture = displacement->texture;
+        m.bump_scale = displacement->value;
+        if (!textured && m.normal_texture == kNoTexture) material->uv = displacement->uv;
+    }
+    return absl::OkStatus();
 }
 
 absl::StatusOr<int32_t> PbrtSceneBuilder::ImageIndex(const TextureRef& texture) {

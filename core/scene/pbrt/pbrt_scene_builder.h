@@ -154,6 +154,9 @@ private:
     // over one period of their (s, t) mapping; of texture operands, texture->unsupported.
     absl::Status BakeProcedural(const std::string& type, bool scalar, ParameterList& parameters,
                                 const Location& where, TextureRef* texture);
+    // A material's "normalmap" image and "displacement" texture (pbrt-v3's "bumpmap").
+    absl::Status ShadingDetail(ParameterList& parameters, const Location& where,
+                               MaterialRef* material);
     // The scene texture of `texture`'s image, read and decoded on first use (kNoTexture while
     // packing, which only reads it).
     absl::StatusOr<int32_t> ImageIndex(const TextureRef& texture);

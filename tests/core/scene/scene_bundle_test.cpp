@@ -62,19 +62,19 @@ TEST(SceneBundleTest, PacksReferencedFilesAndLoadsFromTheBundleAlone) {
 }
 
 TEST(SceneBundleTest, LeavesOutImagesNoMaterialReads) {
-    // The fuzz corpus's textured quad reads image.png as its base colour; give it a normal map,
-    // which photonfarm does not read, and a metallic-roughness map, which it does.
+    // The fuzz corpus's textured quad reads image.png as its base colour; give it an occlusion
+    // map, which photonfarm does not read, and a metallic-roughness map, which it does.
     const std::filesystem::path root = testing::FreshTempDir("unused-images");
     std::ifstream in(std::string(PF_SOURCE_DIR) + "/tests/fuzz/corpus/gltf/textured-quad.gltf");
     std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     json.replace(json.find(R"("images":[{"uri":"image.png"}])"),
                  std::strlen(R"("images":[{"uri":"image.png"}])"),
-                 R"("images":[{"uri":"image.png"},{"uri":"normal.png"},{"uri":"maps.png"}])");
+                 R"("images":[{"uri":"image.png"},{"uri":"occlusion.png"},{"uri":"maps.png"}])");
     json.replace(json.find(R"("textures":[{"source":0}])"),
                  std::strlen(R"("textures":[{"source":0}])"),
                  R"("textures":[{"source":0},{"source":1},{"source":2}])");
     json.replace(json.find(R"("emissiveFactor")"), std::strlen(R"("emissiveFactor")"),
-                 R"("normalTexture":{"index":1},"emissiveFactor")");
+                 R"("occlusionTexture":{"index":1},"emissiveFactor")");
     json.replace(json.find(R"("pbrMetallicRoughness":{)"),
                  std::strlen(R"("pbrMetallicRoughness":{)"),
                  R"("pbrMetallicRoughness":{"metallicRoughnessTexture":{"index":2},)");
@@ -86,12 +86,12 @@ TEST(SceneBundleTest, LeavesOutImagesNoMaterialReads) {
         "SuQmCC",
         &png);
     std::ofstream(root / "image.png", std::ios::binary) << png;
-    std::ofstream(root / "normal.png", std::ios::binary) << png;
+    std::ofstream(root / "occlusion.png", std::ios::binary) << png;
     std::ofstream(root / "maps.png", std::ios::binary) << png;
     const absl::StatusOr<SceneBundle> bundle = PackSceneBundle((root / "quad.gltf").string());
     ASSERT_TRUE(bundle.ok()) << bundle.status();
     EXPECT_TRUE(bundle->files.contains("image.png"));
-    EXPECT_FALSE(bundle->files.contains("normal.png"));
+    EXPECT_FALSE(bundle->files.contains("occlusion.png"));
     EXPECT_TRUE(bundle->files.contains("maps.png"));
     const absl::StatusOr<Scene> scene = LoadScene(*bundle, "quad.gltf");
     ASSERT_TRUE(scene.ok()) << scene.status();

@@ -59,7 +59,7 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
               "diffuse, mirror, glass, thin glass, rough metal, rough glass, coated, "
               "specular over diffuse, metal Fresnel, absorbing glass, cut-outs, mixed materials, "
               "textures, roughness textures, "
-              "textured mixes, smooth normals, area lights, "
+              "textured mixes, smooth normals, normal or bump maps, area lights, "
               "point lights, spot lights, directional lights, environment light, textured lights, "
               "goniometric or projection lights, caustics");
 }

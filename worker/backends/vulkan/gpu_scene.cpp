@@ -37,6 +37,8 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
         for (const Vec3& normal : scene.normals) gpu_scene.normals.push_back(Vec4(normal));
     if (gpu_scene.features.ReadsUv())
         for (const Point2& uv : scene.uvs) gpu_scene.uvs.push_back({uv.x, uv.y});
+    if (gpu_scene.features.shading_detail)
+        for (const Vec3& tangent : scene.tangents) gpu_scene.tangents.push_back(Vec4(tangent));
     for (const Material& material : scene.materials)
         gpu_scene.materials.push_back(
             {Vec4(material.base_color, material.ior), static_cast<uint32_t>(material.type),
@@ -50,7 +52,9 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
                         std::bit_cast<uint32_t>(material.mix_amount),
                         std::bit_cast<uint32_t>(material.mix_texture)},
              Vec4(material.conductor_eta, std::bit_cast<float>(material.conductor)),
-             Vec4(material.conductor_k, 0.0f), Vec4(material.absorption, 0.0f)});
+             Vec4(material.conductor_k, 0.0f), Vec4(material.absorption, 0.0f),
+             gpu::vec4{std::bit_cast<float>(material.normal_texture), material.normal_scale,
+                       std::bit_cast<float>(material.bump_texture), material.bump_scale}});
     if (!gpu_scene.features.ReadsUv() && !gpu_scene.features.textured_lights) return;
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {
         gpu_scene.textures.push_back({static_cast<uint32_t>(gpu_scene.texels.size()),
@@ -228,6 +232,7 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasMixTextures] = features.mix_textures;
     spec[gpu::kSpecHasConductorFresnel] = features.conductor_fresnel;
     spec[gpu::kSpecHasAbsorption] = features.absorption;
+    spec[gpu::kSpecHasShadingDetail] = features.shading_detail;
     return spec;
 }
 

@@ -128,7 +128,7 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
 
 // Every buffer of a job, named by what it holds; Bindings() lists them in binding order.
 struct VulkanBackend::JobBuffers {
-    Buffer nodes, triangles, shading, normals, uvs, materials, textures, texels, emitters,
+    Buffer nodes, triangles, shading, normals, uvs, tangents, materials, textures, texels, emitters,
         emitter_cdf, light_image_texels, light_image_tables;
     Buffer hit_points, radius_sq, grid_begin, grid_cursor, grid_entries, scan_blocks, tally, direct,
         counters;
@@ -164,6 +164,7 @@ struct VulkanBackend::JobBuffers {
         upload(buffers->shading, Bytes(gpu_scene.shading));
         upload(buffers->normals, Bytes(gpu_scene.normals));
         upload(buffers->uvs, Bytes(gpu_scene.uvs));
+        upload(buffers->tangents, Bytes(gpu_scene.tangents));
         upload(buffers->materials, Bytes(gpu_scene.materials));
         upload(buffers->textures, Bytes(gpu_scene.textures));
         upload(buffers->texels, Bytes(gpu_scene.texels));
@@ -214,6 +215,7 @@ struct VulkanBackend::JobBuffers {
         b[gpu::kBindingTallyEntries] = tally_entries.Handle();
         b[gpu::kBindingLightImageTexels] = light_image_texels.Handle();
         b[gpu::kBindingLightImageTables] = light_image_tables.Handle();
+        b[gpu::kBindingTangents] = tangents.Handle();
         return b;
     }
 };

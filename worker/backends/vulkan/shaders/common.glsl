@@ -9,6 +9,7 @@
 #include "core/shared/path_sampling.h"
 #include "core/shared/alpha.h"
 #include "core/shared/texture_wrap.h"
+#include "core/shared/shading_normal.h"
 
 layout(constant_id = kSpecHasMirror) const bool kHasMirror = true;
 layout(constant_id = kSpecHasDielectric) const bool kHasDielectric = true;
@@ -31,6 +32,7 @@ layout(constant_id = kSpecHasRoughnessTextures) const bool kHasRoughnessTextures
 layout(constant_id = kSpecHasMixTextures) const bool kHasMixTextures = true;
 layout(constant_id = kSpecHasConductorFresnel) const bool kHasConductorFresnel = true;
 layout(constant_id = kSpecHasAbsorption) const bool kHasAbsorption = true;
+layout(constant_id = kSpecHasShadingDetail) const bool kHasShadingDetail = true;
 
 layout(push_constant, std430) uniform Push { GpuParams params; };
 
@@ -39,6 +41,7 @@ layout(std430, binding = kBindingTriangles) readonly buffer Triangles { GpuTrian
 layout(std430, binding = kBindingShading) readonly buffer Shading { GpuTriangleShading shading[]; };
 layout(std430, binding = kBindingNormals) readonly buffer Normals { vec4 vertex_normals[]; };
 layout(std430, binding = kBindingUvs) readonly buffer Uvs { vec2 vertex_uvs[]; };
+layout(std430, binding = kBindingTangents) readonly buffer Tangents { vec4 vertex_tangents[]; };
 layout(std430, binding = kBindingMaterials) readonly buffer Materials { GpuMaterial materials[]; };
 layout(std430, binding = kBindingTextures) readonly buffer Textures { GpuTexture textures[]; };
 layout(std430, binding = kBindingTexels) readonly buffer Texels { vec4 texels[]; };

@@ -72,6 +72,10 @@ uint TracePhoton(uint photon, out bool discarded) {
         const bool front_facing = dot(direction, surface.geometric_normal) < 0;
         // Out of an absorbing glass's inside (InsideTransmittance).
         if (kHasAbsorption && !front_facing) flux *= BeerLambert(material.absorption.xyz, hit.t);
+        // Veach's adjoint for shading normals, as ScatterPhotonAt: arriving here, and leaving.
+        const bool shaded =
+            (kHasSmoothNormals || kHasShadingDetail) && surface.shading_normal != surface.geometric_normal;
+        if (shaded) flux *= ShadingArrival(direction, surface.shading_normal, surface.geometric_normal);
         SpecularBounce scatter = SpecularBounce(direction, vec3(0.0), false);  // absorbed
         if (material.type == kMaterialDiffuse) {
             const vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
@@ -116,6 +120,7 @@ uint TracePhoton(uint photon, out bool discarded) {
                 if (!escaped) break;
                 const vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
                 if (!(dot(direction, geometric) > 0)) break;  // the shading normal pointed it inside
+                if (shaded) flux *= ShadingDeparture(direction, surface.shading_normal, surface.geometric_normal);
                 origin = OffsetRayOrigin(surface.position, geometric);
                 scattered = true;
                 continue;
@@ -146,6 +151,7 @@ uint TracePhoton(uint photon, out bool discarded) {
         const float survive = min(1.0, MaxComponent(scatter.weight));
         if (!(Pcg32NextFloat(rng) < survive)) break;
         flux *= scatter.weight / survive;
+        if (shaded) flux *= ShadingDeparture(scatter.direction, surface.shading_normal, surface.geometric_normal);
         const vec3 side = front_facing == scatter.transmitted ? -surface.geometric_normal : surface.geometric_normal;
         origin = OffsetRayOrigin(surface.position, side);
         direction = scatter.direction;

@@ -121,6 +121,33 @@ struct Surface {
     vec2 uv;                // texture coordinates, where the scene has textures that need them
 };
 
+// The normal and bump maps' change to the shading normal, as Scene::AddShadingDetail makes it.
+void AddShadingDetail(GpuMaterial material, GpuTriangle triangle, GpuTriangleShading shade, RayHit hit,
+                      inout Surface surface) {
+    const int normal_texture = floatBitsToInt(material.detail.x), bump_texture = floatBitsToInt(material.detail.z);
+    if (normal_texture < 0 && bump_texture < 0) return;
+    const vec2 t0 = vertex_uvs[shade.vertices.x];
+    const vec2 duv1 = vertex_uvs[shade.vertices.y] - t0, duv2 = vertex_uvs[shade.vertices.z] - t0;
+    vec3 n = surface.shading_normal;
+    if (bump_texture >= 0) {
+        const GpuTexture bump = textures[bump_texture];
+        const float du = 1.0 / float(bump.width), dv = 1.0 / float(bump.height);
+        const float d = TextureSample(bump, surface.uv).x;
+        const float d_u = (TextureSample(bump, surface.uv + vec2(du, 0.0)).x - d) / du * material.detail.w;
+        const float d_v = (TextureSample(bump, surface.uv + vec2(0.0, dv)).x - d) / dv * material.detail.w;
+        n = NormalFromBump(n, TriangleDpDu(triangle.edge1.xyz, triangle.edge2.xyz, duv1, duv2), d_u, d_v);
+    }
+    if (normal_texture >= 0) {
+        const float b0 = 1.0 - hit.b1 - hit.b2;
+        const vec3 tangent = vertex_tangents[shade.vertices.x].xyz * b0 + vertex_tangents[shade.vertices.y].xyz * hit.b1 +
+                             vertex_tangents[shade.vertices.z].xyz * hit.b2;
+        const float sign =
+            BitangentSign(surface.geometric_normal, triangle.edge1.xyz, triangle.edge2.xyz, duv1, duv2);
+        n = NormalFromMap(n, tangent, sign, TextureSample(textures[normal_texture], surface.uv), material.detail.y);
+    }
+    if (dot(n, surface.geometric_normal) > 0.0) surface.shading_normal = n;
+}
+
 Surface SurfaceAt(RayHit hit) {
     const GpuTriangle triangle = triangles[hit.triangle];
     const GpuTriangleShading shade = shading[floatBitsToUint(triangle.p0.w)];
@@ -131,7 +158,7 @@ Surface SurfaceAt(RayHit hit) {
     surface.material = shade.vertices.w & ~kSmoothBit;
     const float b0 = 1.0 - hit.b1 - hit.b2;
     surface.uv = vec2(0);
-    if (kHasTextures || kHasRoughnessTextures || kHasMixTextures)
+    if (kHasTextures || kHasRoughnessTextures || kHasMixTextures || kHasShadingDetail)
         surface.uv = vertex_uvs[shade.vertices.x] * b0 + vertex_uvs[shade.vertices.y] * hit.b1 +
                      vertex_uvs[shade.vertices.z] * hit.b2;
     if (kHasMixes) {  // one of a mix's materials at this point, as Scene::ResolveMaterial picks
@@ -149,6 +176,7 @@ Surface SurfaceAt(RayHit hit) {
         if (dot(n, n) > 0) surface.shading_normal = dot(n, surface.geometric_normal) < 0 ? -normalize(n) : normalize(n);
     }
     const GpuMaterial material = materials[surface.material];
+    if (kHasShadingDetail) AddShadingDetail(material, triangle, shade, hit, surface);
     surface.base_color = material.base_color.xyz;
     if (kHasTextures && material.texture >= 0) surface.base_color *= TextureSample(textures[material.texture], surface.uv);
     return surface;
