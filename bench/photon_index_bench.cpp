@@ -96,7 +96,7 @@ void BM_Frame(benchmark::State& state, PhotonIndex index) {
         for (const StoredPhoton& query : f.queries)
             sum += EstimateDiffuseRadiance(*lookup, query.position, -query.direction, Rgb(0.7f),
                                            kNearest, max_radius * max_radius, DensityFilter::kCone,
-                                           scratch);
+                                           false, scratch);
         benchmark::DoNotOptimize(sum);
     }
     state.counters["stored"] = double(photons.size());

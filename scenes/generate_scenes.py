@@ -87,6 +87,15 @@ class GltfWriter:
         self.doc["materials"].append(material)
         return len(self.doc["materials"]) - 1
 
+    def normal_mapped(self, name, color, image_name, png):
+        """A Lambertian material whose shading normal a normal map (the PNG, linear) tilts."""
+        material = self.material(name, color)
+        self.doc.setdefault("images", []).append(
+            {"name": image_name, "uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")})
+        self.doc.setdefault("textures", []).append({"source": len(self.doc["images"]) - 1})
+        self.doc["materials"][material]["normalTexture"] = {"index": len(self.doc["textures"]) - 1}
+        return material
+
     def mesh(self, name, positions, indices, material, normals=None, uvs=None):
         flat = [c for p in positions for c in p]
         attributes = {"POSITION": self._accessor(flat, "VEC3", 5126, len(positions), 34962, True)}
@@ -130,14 +139,16 @@ class GltfWriter:
         positions, indices, normals = uv_sphere(center, radius)
         self.mesh(name, positions, indices, material, normals)
 
-    def quads(self, name, quad_list, material, ply=None):
-        """Planar quads (4 corners each, counter-clockwise seen from the lit side)."""
+    def quads(self, name, quad_list, material, ply=None, uvs=None):
+        """Planar quads (4 corners each, counter-clockwise seen from the lit side); uvs: each
+        corner's texture coordinates (u, v), v up the image as pbrt's (glTF's is 1 - v)."""
         positions, indices = [], []
         for quad in quad_list:
             base = len(positions)
             positions.extend([[float(c) for c in p] for p in quad])
             indices.extend([base, base + 1, base + 2, base, base + 2, base + 3])
-        self.mesh(name, positions, indices, material)
+        self.mesh(name, positions, indices, material,
+                  uvs=[[u, 1 - v] for u, v in uvs] if uvs else None)
 
     def image_light(self, name, quad, color, scale, image_name, png):
         """A quad emitting scale x the PNG image (sRGB), its top left at the quad's corner 3
@@ -269,10 +280,38 @@ def stained_glass(width=64, tiles=4, lead=2):
             row += bytes((25, 20, 15)) if edge else bytes(colors[(tx * 5 + ty * 3 + tx * ty) % len(colors)])
         rows.append(bytes(row))
 
+    return png_rgb(width, width, rows)
+
+
+def png_rgb(width, height, rows):
+    """An 8-bit RGB PNG of `rows` (each a filter byte 0, then width RGB triples)."""
     def chunk(kind, data):
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, width, 8, 2, 0, 0, 0)) +
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
             chunk(b"IDAT", zlib.compress(b"".join(rows), 9)) + chunk(b"IEND", b""))
+
+
+def bevelled_tiles(width=64, tiles=2, bevel=6, slope=1.0):
+    """A tangent-space normal map (linear RGB, x right and y up the image, as glTF and pbrt read
+    it) of square tiles whose edges are bevelled down into the grout: flat on each tile's top,
+    tilted away from its centre within `bevel` texels of its edge by `slope`."""
+    tile = width // tiles
+    rows = []
+    for row in range(width):
+        line = bytearray([0])
+        for column in range(width):
+            x, y = column % tile + 0.5, tile - row % tile - 0.5  # y up the image
+            to_x, to_y = min(x, tile - x), min(y, tile - y)  # to the nearest edges
+            dx = dy = 0.0
+            if min(to_x, to_y) < bevel:  # on a bevel: tilted toward its edge
+                if to_x < to_y:
+                    dx = -slope if x < tile / 2 else slope
+                else:
+                    dy = -slope if y < tile / 2 else slope
+            n = normalize([dx, dy, 1.0])
+            line += bytes(round((c + 1) / 2 * 255) for c in n)
+        rows.append(bytes(line))
+    return png_rgb(width, width, rows)
 
 
 def cornell_stained(writer):
@@ -285,6 +324,24 @@ def cornell_stained(writer):
     panel = [[400, 548.7, 180], [400, 548.7, 380], [156, 548.7, 380], [156, 548.7, 180]]
     writer.image_light("stained_glass", mm([panel])[0], (0.78, 0.78, 0.78), 16.0,
                        "cornell-stained-glass.png", stained_glass())
+
+
+def cornell_bumpy(writer):
+    """The Cornell box with a tiled floor and back wall: a normal map bevels each tile's edges,
+    so the light catches the bevels facing it and photons leave them by the tilted normals."""
+    tiles = writer.normal_mapped("tiles", WHITE, "cornell-bumpy-tiles.png", bevelled_tiles())
+    white = writer.material("white", WHITE)
+    repeat = [[0, 0], [3, 0], [3, 3], [0, 3]]  # 3 x 3 copies of the map's 2 x 2 tiles
+    for name in ("floor", "back"):
+        writer.quads(name, mm([CORNELL_WALLS[name]]), tiles, uvs=repeat)
+    writer.quads("ceiling", mm([CORNELL_WALLS["ceiling"]]), white)
+    writer.quads("left_red", mm([CORNELL_WALLS["left_red"]]), writer.material("red", RED))
+    writer.quads("right_green", mm([CORNELL_WALLS["right_green"]]), writer.material("green", GREEN))
+    writer.quads("light", mm([CORNELL_LIGHT]),
+                 writer.material("light", (0.78, 0.78, 0.78), LIGHT_RADIANCE))
+    writer.quads("short_block", mm(SHORT_BLOCK), white)
+    writer.quads("tall_block", mm(TALL_BLOCK), white)
+    writer.camera([0.278, 0.273, -0.8], [0.278, 0.273, 0.0], math.degrees(2 * math.atan(12.5 / 35)))
 
 
 def lamp_shade(direction):
@@ -401,7 +458,8 @@ def furnace_glass(writer):
 
 SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass, "cornell-glossy": cornell_glossy,
           "caustic-glass": caustic_glass, "furnace": furnace, "furnace-glass": furnace_glass,
-          "sky-courtyard": sky_courtyard, "cornell-stained": cornell_stained}
+          "sky-courtyard": sky_courtyard, "cornell-stained": cornell_stained,
+          "cornell-bumpy": cornell_bumpy}
 PBRT_SCENES = {"cornell-lamps": cornell_lamps}
 
 if __name__ == "__main__":

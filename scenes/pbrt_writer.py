@@ -62,6 +62,15 @@ class PbrtWriter:
         self.materials[name] = emission
         return name
 
+    def normal_mapped(self, name, color, image_name, png):
+        """A diffuse material with pbrt-v4's "normalmap" (the PNG, read linear)."""
+        path = "textures/%s" % image_name
+        self.files[path] = png
+        self._out().append('MakeNamedMaterial "%s" "string type" "diffuse" "rgb reflectance" %s '
+                           '"string normalmap" "%s"' % (name, rgb(color), path))
+        self.materials[name] = None
+        return name
+
     def _begin(self, name, material):
         out = self._out()
         out.append("")
@@ -72,7 +81,8 @@ class PbrtWriter:
         out.append('    NamedMaterial "%s"' % material)
         return out
 
-    def quads(self, name, quad_list, material, ply=None):
+    def quads(self, name, quad_list, material, ply=None, uvs=None):
+        """uvs: each corner's (u, v) of a single quad, v up the image (pbrt's own)."""
         out = self._begin(name, material)
         points = [c for quad in quad_list for p in quad for c in p]
         if ply:
@@ -84,8 +94,11 @@ class PbrtWriter:
             indices = []
             for q in range(len(quad_list)):
                 indices.extend([4 * q, 4 * q + 1, 4 * q + 3, 4 * q + 2])
-            out.append('    Shape "bilinearmesh" "point3 P" %s "integer indices" %s' % (
-                numbers(points), numbers(indices)))
+            line = '    Shape "bilinearmesh" "point3 P" %s "integer indices" %s' % (
+                numbers(points), numbers(indices))
+            if uvs:
+                line += ' "point2 uv" %s' % numbers([c for uv in uvs for c in uv])
+            out.append(line)
         out.append("AttributeEnd")
 
     def sphere(self, name, center, radius, material, as_mesh=False):

@@ -21,11 +21,13 @@ inline constexpr float kGaussianBeta = 1.953f;
 float FilterWeight(DensityFilter filter, float distance_sq, float radius_sq);
 float FilterNormalisation(DensityFilter filter);
 
-// Reflected radiance at point p of a diffuse surface with unit normal n (on the side light is
-// gathered from) and albedo rho, from `lookup`'s k nearest photons within max_radius_sq.
+// Reflected radiance at point p of a diffuse surface with unit (shading) normal n (on the side
+// light is gathered from) and albedo rho, from `lookup`'s k nearest photons within
+// max_radius_sq. `per_cosine`: the photons' power is per unit of their cosine at the surface
+// (a scene with shading normals, ScatterPhotonAt), each weighed by its cosine to n here.
 // `scratch` is the caller's, one per thread.
 Rgb EstimateDiffuseRadiance(const PhotonLookup& lookup, const Vec3& p, const Vec3& n,
                             const Rgb& albedo, uint32_t k, float max_radius_sq,
-                            DensityFilter filter, NearestPhotons& scratch);
+                            DensityFilter filter, bool per_cosine, NearestPhotons& scratch);
 
 }  // namespace pf

@@ -36,11 +36,12 @@ enum class MapKind { kGlobal, kCaustic };
 // Traces photons [begin, end) of one map and appends what it stores. Global map: photons that
 // bounced diffusely at least once, or every landing with final gathering (whose gather rays
 // read the whole reflected light there). Caustic map: the first landing after specular or
-// rough bounces alone.
+// rough bounces alone. `per_cosine`: powers per unit of their cosine (ScatterPhotonAt).
 template <bool kSpecular, bool kTextures>
 void TraceMapPhotons(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
-                     MapKind kind, bool everything, int max_bounces, uint64_t seed, uint64_t begin,
-                     uint64_t end, double inverse_emitted, std::vector<StoredPhoton>& out) {
+                     MapKind kind, bool everything, bool per_cosine, int max_bounces, uint64_t seed,
+                     uint64_t begin, uint64_t end, double inverse_emitted,
+                     std::vector<StoredPhoton>& out) {
     const SeedFamily seeds(seed, kind == MapKind::kGlobal ? kGlobalStream : kCausticStream, 0);
     for (uint64_t p = begin; p < end; ++p) {
         Rng rng(seeds.Seed(p));
@@ -59,8 +60,12 @@ void TraceMapPhotons(const Scene& scene, const Emitters& emitters, const Tracer&
             bool stop = false;
             const PhotonEvent event = ScatterPhotonAt<kSpecular, kTextures>(
                 scene, hit, ray, flux, rng,
-                [&](const Vec3& position, const Vec3& direction, const Rgb& power, bool returned) {
-                    const Rgb stored = power * static_cast<float>(inverse_emitted);
+                [&](const Vec3& position, const Vec3& direction, const Rgb& power, bool returned,
+                    float cosine) {
+                    // With shading normals, per unit of its cosine (EstimateDiffuseRadiance).
+                    if (per_cosine && !(cosine > 0)) return;
+                    const Rgb stored =
+                        power * static_cast<float>(inverse_emitted) / (per_cosine ? cosine : 1.0f);
                     if (kind == MapKind::kCaustic) {
                         if (other_bounces > 0 && diffuse_bounces == 0 && !returned)
                             out.push_back({position, direction, stored});
@@ -88,8 +93,9 @@ std::vector<StoredPhoton> TraceMap(const Scene& scene, const Emitters& emitters,
     std::vector<std::vector<StoredPhoton>> parts(tasks);
     const double inverse_emitted = emitted > 0 ? 1.0 / static_cast<double>(emitted) : 0.0;
     tbb::parallel_for(uint64_t{0}, tasks, [&](uint64_t t) {
-        trace(scene, emitters, tracer, kind, everything, max_bounces, seed, t * kPhotonsPerTask,
-              std::min(count, (t + 1) * kPhotonsPerTask), inverse_emitted, parts[t]);
+        trace(scene, emitters, tracer, kind, everything, features.ShadingNormals(), max_bounces,
+              seed, t * kPhotonsPerTask, std::min(count, (t + 1) * kPhotonsPerTask),
+              inverse_emitted, parts[t]);
     });
     size_t total = 0;
     for (const auto& part : parts) total += part.size();

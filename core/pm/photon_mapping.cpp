@@ -49,7 +49,8 @@ Rgb GatherRay(const PhotonMappingInputs& inputs, Ray ray, Rng& rng, NearestPhoto
             return weight * CoatedRadianceFactor(material, arrival) *
                    EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal,
                                            base_color, inputs.settings.nearest, max_radius_sq,
-                                           inputs.settings.filter, scratch);
+                                           inputs.settings.filter, inputs.features.ShadingNormals(),
+                                           scratch);
         }
         const SpecularBounce bounce =
             material.type == MaterialType::kDiffuse
@@ -78,13 +79,14 @@ Rgb DiffuseRadiance(const PhotonMappingInputs& inputs, const SurfacePoint& surfa
                    SampleDirectIrradiance(*inputs.emitters, *inputs.tracer, surface.position,
                                           normal, coat, rng);
     if (!inputs.maps->caustic->Photons().empty())
-        radiance +=
-            EstimateDiffuseRadiance(*inputs.maps->caustic, surface.position, normal, albedo,
-                                    settings.nearest, max_radius_sq, settings.filter, scratch);
+        radiance += EstimateDiffuseRadiance(*inputs.maps->caustic, surface.position, normal, albedo,
+                                            settings.nearest, max_radius_sq, settings.filter,
+                                            inputs.features.ShadingNormals(), scratch);
     if (settings.final_gather == 0 || coat != nullptr)
         return radiance + EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal,
                                                   albedo, settings.nearest, max_radius_sq,
-                                                  settings.filter, scratch);
+                                                  settings.filter, inputs.features.ShadingNormals(),
+                                                  scratch);
     // Final gathering: cosine-weighted rays, each carrying albedo (f cos / pdf = rho).
     const Frame frame = Frame::FromNormal(normal);
     const Vec3 origin =

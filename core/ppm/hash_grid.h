@@ -35,10 +35,11 @@ public:
     // zero radius or a black weight are left out, since no photon can change their estimate.
     void Build(std::span<const HitPoint> hit_points, std::span<const float> radius_sq);
 
-    // Calls visit(index, inner) for every hit point whose search sphere contains p and whose
-    // surface faces a photon arriving along `direction` (photons from behind are rejected), in
-    // a fixed order. `inner`: p also lies within R / sqrt(2), the disc of half the area (for
-    // the estimate of the bias, ProgressiveEstimate::EstimateError).
+    // Calls visit(index, inner, normal) for every hit point whose search sphere contains p and
+    // whose surface faces a photon arriving along `direction` (photons from behind are
+    // rejected), in a fixed order. `inner`: p also lies within R / sqrt(2), the disc of half the
+    // area (for the estimate of the bias, ProgressiveEstimate::EstimateError); `normal`: the
+    // hit point's, as stored (DecodeOctahedral: not normalised).
     template <typename Visit>
     void ForEachGathering(const Vec3& p, const Vec3& direction, Visit&& visit) const {
         if (entry_index_.empty()) return;
@@ -54,9 +55,11 @@ public:
             if (count < kChunk) inside &= (uint64_t{1} << count) - 1;
             for (; inside != 0; inside &= inside - 1) {
                 const uint32_t e = begin + static_cast<uint32_t>(std::countr_zero(inside));
-                if (Dot(DecodeOctahedral(entry_normal_[e]), direction) >= 0) continue;
+                const Vec3 normal = DecodeOctahedral(entry_normal_[e]);
+                if (Dot(normal, direction) >= 0) continue;
                 const float dx = entry_x_[e] - p.x, dy = entry_y_[e] - p.y, dz = entry_z_[e] - p.z;
-                visit(entry_index_[e], 2 * (dx * dx + dy * dy + dz * dz) <= entry_radius_sq_[e]);
+                visit(entry_index_[e], 2 * (dx * dx + dy * dy + dz * dz) <= entry_radius_sq_[e],
+                      normal);
             }
             begin += count;
         }

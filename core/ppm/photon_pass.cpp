@@ -53,8 +53,15 @@ bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath
     }
     const PhotonEvent event = ScatterPhotonAt<kSpecular, kTextures>(
         *inputs.scene, hit, path.ray, path.flux, path.rng,
-        [&](const Vec3& position, const Vec3& direction, const Rgb& flux, bool returned) {
-            if (path.scattered || returned) deposits.push_back({position, direction, flux});
+        [&](const Vec3& position, const Vec3& direction, const Rgb& flux, bool returned,
+            float cosine) {
+            if (!path.scattered && !returned) return;
+            // With shading normals, the flux per unit of its cosine: hit points weigh it by
+            // theirs (GatherDeposits).
+            if (!inputs.features.ShadingNormals())
+                deposits.push_back({position, direction, flux});
+            else if (cosine > 0)
+                deposits.push_back({position, direction, flux / cosine});
         });
     if (event == PhotonEvent::kEnded) return false;
     path.scattered = true;
@@ -78,10 +85,20 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     std::vector<PhotonDeposit>& sorted = scratch.sorted_deposits;
     sorted.resize(deposits.size());
     for (size_t i = 0; i < keys.size(); ++i) sorted[i] = deposits[static_cast<uint32_t>(keys[i])];
-    for (const PhotonDeposit& deposit : sorted) {
-        inputs.grid->ForEachGathering(
-            deposit.position, deposit.direction,
-            [&](uint32_t index, bool inner) { scratch.tally.Add(index, deposit.flux, inner); });
+    if (!inputs.features.ShadingNormals()) {
+        for (const PhotonDeposit& deposit : sorted)
+            inputs.grid->ForEachGathering(deposit.position, deposit.direction,
+                                          [&](uint32_t index, bool inner, const Vec3&) {
+                                              scratch.tally.Add(index, deposit.flux, inner);
+                                          });
+    } else {  // Veach's arrival factor at each hit point, by its own shading normal
+        for (const PhotonDeposit& deposit : sorted)
+            inputs.grid->ForEachGathering(
+                deposit.position, deposit.direction,
+                [&](uint32_t index, bool inner, const Vec3& normal) {
+                    const float facing = -Dot(Normalize(normal), deposit.direction);
+                    scratch.tally.Add(index, deposit.flux * facing, inner);
+                });
     }
     scratch.deposits.clear();
 }

@@ -34,7 +34,7 @@ bool LeaveCoatedBase(const Material& material, const Vec3& position, const Frame
         ray.direction = leaving.direction;
         if (leaving.escaped) return true;
         if (IsBlack(flux) || returns == kMaxCoatReturns) return false;
-        land(position, ray.direction, flux, true);
+        land(position, ray.direction, flux, true, std::abs(Dot(ray.direction, frame.n)));
         const float survive = std::min(1.0f, MaxComponent(base_color));
         if (!(rng.NextFloat() < survive)) return false;
         flux *= base_color / survive;
@@ -42,9 +42,13 @@ bool LeaveCoatedBase(const Material& material, const Vec3& position, const Frame
     }
 }
 
-// Continues the photon (ray, flux) at `hit`: calls land(position, direction, flux, returned)
-// at a diffuse surface before scattering (again, with `returned` true, each time a coat over
-// it turns the photon back to it), then moves ray and flux to the next segment. Returns where
+// Continues the photon (ray, flux) at `hit`: calls land(position, direction, flux, returned,
+// cosine) at a diffuse surface before scattering (again, with `returned` true, each time a coat
+// over it turns the photon back to it), then moves ray and flux to the next segment. `cosine`
+// is |direction . the normal the flux crossed| (the surface's; the shading normal's under a
+// coat): where shading normals differ from the surface's, a point gathering the photon weighs
+// its flux by |direction . its own shading normal| / cosine (Veach's arrival factor, taken at
+// the gathering point, whose normal may differ from the photon's). Returns where
 // it scattered, or kEnded where roulette or a bounce below the surface ends it. Instantiated
 // for the scene's features: without specular materials or coats every surface is diffuse,
 // without textures every base colour is the material's.
@@ -56,12 +60,12 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
     const Material& material = scene.ShadingMaterial(surface, shading);
     const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
     if (kSpecular) flux *= InsideTransmittance(material, front_facing, hit.t);
-    // Veach's adjoint for shading normals: one factor where the photon arrives (and lands),
-    // one where it leaves.
+    // Veach's adjoint for shading normals: one factor where the photon arrives (after it lands:
+    // the points gathering it weigh it by their own normals), one where it leaves.
     const bool shaded = !(surface.shading_normal == surface.geometric_normal);
-    if (shaded)
-        flux *=
-            gpu::ShadingArrival(ray.direction, surface.shading_normal, surface.geometric_normal);
+    const float arrival = shaded ? gpu::ShadingArrival(ray.direction, surface.shading_normal,
+                                                       surface.geometric_normal)
+                                 : 1.0f;
     const auto leave = [&](const Vec3& direction) {
         if (shaded)
             flux *=
@@ -72,14 +76,16 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
     SpecularBounce bounce;
     if (!kSpecular || material.type == MaterialType::kDiffuse) {
         const bool coated = kSpecular && material.HasCoat();
-        CoatArrival arrival;  // uncoated: at the base, weight 1
+        CoatArrival coat;  // uncoated: at the base, weight 1
         if (coated) {
-            arrival =
-                ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng);
-            if (arrival.at_base) flux *= arrival.weight;  // a reflection carries its own
+            coat = ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng);
+            if (coat.at_base) flux *= coat.weight;  // a reflection carries its own
         }
-        if (arrival.at_base) {
-            land(surface.position, ray.direction, flux, false);
+        if (coat.at_base) {
+            land(surface.position, ray.direction, flux, false,
+                 std::abs(Dot(ray.direction, surface.geometric_normal)));
+            if (!(arrival > 0)) return PhotonEvent::kEnded;  // from below the shading normal
+            flux *= arrival;
             // Russian roulette by albedo: survivors carry flux * albedo / p.
             const float survive = std::min(1.0f, MaxComponent(base_color));
             if (!(rng.NextFloat() < survive)) return PhotonEvent::kEnded;
@@ -87,27 +93,31 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
             const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
             const Vec3 geometric =
                 front_facing ? surface.geometric_normal : -surface.geometric_normal;
-            const Frame frame = Frame::FromNormal(normal);
             const Vec3 local = SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat());
-            if (!coated)
-                ray.direction = frame.ToWorld(local);
-            else if (!LeaveCoatedBase(material, surface.position, frame, base_color, local, ray,
-                                      flux, rng, land))
-                return PhotonEvent::kEnded;
-            if (!(Dot(ray.direction, geometric) > 0))
-                return PhotonEvent::kEnded;  // shading normal pointed it inside
-            leave(ray.direction);
+            if (!coated) {
+                // Lambertian reflection is the same toward every direction above the surface,
+                // whatever the shading normal (as the path tracer sees it): the photon leaves
+                // by the surface's own cosine, where Veach's departure factor is 1.
+                ray.direction = Frame::FromNormal(geometric).ToWorld(local);
+            } else {
+                if (!LeaveCoatedBase(material, surface.position, Frame::FromNormal(normal),
+                                     base_color, local, ray, flux, rng, land))
+                    return PhotonEvent::kEnded;
+                if (!(Dot(ray.direction, geometric) > 0))
+                    return PhotonEvent::kEnded;  // shading normal pointed it inside
+                leave(ray.direction);
+            }
             ray.origin = OffsetRayOrigin(surface.position, geometric, scene.bounds.Magnitude());
             return PhotonEvent::kDiffuse;
         }
-        bounce = arrival.reflected;
+        bounce = coat.reflected;
     } else {
         bounce = ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
                                    base_color, rng);
     }
     const float survive = std::min(1.0f, MaxComponent(bounce.weight));
-    if (!(rng.NextFloat() < survive)) return PhotonEvent::kEnded;
-    flux *= bounce.weight / survive;
+    if (!(rng.NextFloat() < survive) || !(arrival > 0)) return PhotonEvent::kEnded;
+    flux *= bounce.weight * (arrival / survive);
     leave(bounce.direction);
     const Vec3 side =
         front_facing == bounce.transmitted ? -surface.geometric_normal : surface.geometric_normal;

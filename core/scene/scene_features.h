@@ -42,6 +42,8 @@ struct SceneFeatures {
     bool ReadsUv() const {
         return textures || cut_outs || roughness_textures || mix_textures || shading_detail;
     }
+    // Whether some shading normal differs from its surface's (Veach's adjoint factors apply).
+    bool ShadingNormals() const { return smooth_normals || shading_detail; }
     // Every feature on: the general code path, for comparison (bench/photon_bench).
     static SceneFeatures All();
     // "diffuse, glass, area lights, caustics": for logs, job metadata and EXR headers.

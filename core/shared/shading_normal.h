@@ -67,13 +67,15 @@ PF_GPU_FN float BitangentSign(vec3 n, vec3 e1, vec3 e2, vec2 duv1, vec2 duv2) {
 
 // Veach's adjoint BSDF for shading normals: a photon meeting a surface of shading normal
 // `shading` and geometric normal `geometric` along `arriving` (its direction of travel) and
-// leaving along `leaving` carries the BSDF's weight times
+// leaving along `leaving`, sampled by the shading normal, carries the BSDF's weight times
 //     |arriving . shading| / |arriving . geometric|  (ShadingArrival: where it lands, too)
 //   x |leaving . geometric| / |leaving . shading|    (ShadingDeparture),
-// both 1 where the two normals are one. Zero where a denominator is.
+// both 1 where the two normals are one. Light from below the shading normal's plane is none
+// to what the surface reflects (the path tracer samples it above): arriving from there, 0; as
+// where a denominator is 0.
 PF_GPU_FN float ShadingArrival(vec3 arriving, vec3 shading, vec3 geometric) {
-    const float across = abs(dot(arriving, geometric));
-    return across > 0.0f ? abs(dot(arriving, shading)) / across : 0.0f;
+    const float along = dot(arriving, shading), across = dot(arriving, geometric);
+    return along * across > 0.0f ? along / across : 0.0f;
 }
 PF_GPU_FN float ShadingDeparture(vec3 leaving, vec3 shading, vec3 geometric) {
     const float along = abs(dot(leaving, shading));

@@ -187,6 +187,35 @@ TEST(BackendAgreementCoats, CoatedSurfacesMatchTheCpus) {
         6'000'000);
 }
 
+TEST(BackendAgreementShadingDetail, BumpMapsMatchTheCpus) {
+    // A floor bump-mapped by a ramp of displacement (pbrt's bilerp, baked) and a coated wall
+    // bump-mapped the other way: hit points and photons shaded by the bumped normals, photons
+    // leaving the coat by them with Veach's factors, on the device as on the CPU.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    ExpectVulkanAgreesWithTheCpu(
+        testing::WriteTextFile(
+            "LookAt 0 -2.5 1.8  0 0.3 0.4  0 0 1\nCamera \"perspective\" \"float fov\" 50\n"
+            "WorldBegin\n"
+            "Texture \"ramp\" \"float\" \"bilerp\" \"float v00\" 0 \"float v01\" 0 "
+            "\"float v10\" 0.6 \"float v11\" 0.6\n"
+            "Texture \"slope\" \"float\" \"bilerp\" \"float v00\" 0 \"float v01\" 0.5 "
+            "\"float v10\" 0 \"float v11\" 0.5\n"
+            "Material \"diffuse\" \"rgb reflectance\" [0.7 0.6 0.5] \"texture displacement\" "
+            "\"ramp\"\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
+            "Material \"coateddiffuse\" \"rgb reflectance\" [0.2 0.5 0.8] \"float roughness\" "
+            "0.05 \"texture displacement\" \"slope\"\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-1 1 0  1 1 0  -1 1 1.5  1 1 1.5]\n"
+            "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [6 6 6]\n"
+            "Material \"diffuse\" \"rgb reflectance\" [0 0 0]\nTranslate -0.3 0 1.2\n"
+            "Rotate 180 1 0 0\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-0.3 -0.3 0  0.3 -0.3 0  -0.3 0.3 0  0.3 0.3 0]\n"
+            "AttributeEnd\n",
+            "bumped.pbrt"),
+        4'000'000);
+}
+
 TEST(BackendAgreementConductors, MetalsFresnelTermsMatchTheCpus) {
     // pbrt-v4's conductors, each reflecting the Fresnel term of its complex index
     // (core/shared/conductor.h) onto a grey floor: a rough gold panel lit at grazing, a
@@ -402,7 +431,9 @@ TEST(BackendAgreementDepth, PhotonsOnTheDeviceStopAtTheMaximumDepth) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, BackendAgreement,
-                         ::testing::Values("cornell-box.gltf", "cornell-glass.gltf"),
+                         // cornell-bumpy: normal-mapped tiles, Veach's adjoint factors.
+                         ::testing::Values("cornell-box.gltf", "cornell-glass.gltf",
+                                           "cornell-bumpy.gltf"),
                          [](const ::testing::TestParamInfo<std::string>& scene) {
                              std::string name = scene.param.substr(0, scene.param.find('.'));
                              for (char& c : name)

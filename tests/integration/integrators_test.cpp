@@ -560,6 +560,9 @@ INSTANTIATE_TEST_SUITE_P(
                       SceneCase{"cornell-box.gltf", Integrator::kSppm, 0.165},
                       SceneCase{"cornell-box.gltf", Integrator::kPm, 0.165},
                       SceneCase{"cornell-glossy.gltf", Integrator::kSppm, 0.1},
+                      // Normal-mapped tiles: photons leave and land by the tilted normals,
+                      // carrying Veach's adjoint factors (core/shared/shading_normal.h).
+                      SceneCase{"cornell-bumpy.gltf", Integrator::kSppm, 0.165},
                       // Lit by an image: a textured area light.
                       SceneCase{"cornell-stained.gltf", Integrator::kPpm, 0.165},
                       // Lit by an environment map alone.

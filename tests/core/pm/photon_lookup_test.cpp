@@ -92,8 +92,8 @@ TEST_P(FilterTest, EstimatesAUniformDensityWithoutBias) {
     constexpr int kQueries = 2000;
     for (int q = 0; q < kQueries; ++q) {
         const Vec3 p(u(random), u(random), 0.0f);
-        sum += Average(
-            EstimateDiffuseRadiance(tree, p, {0, 0, 1}, Rgb(0.6f), 64, 0.01f, GetParam(), scratch));
+        sum += Average(EstimateDiffuseRadiance(tree, p, {0, 0, 1}, Rgb(0.6f), 64, 0.01f, GetParam(),
+                                               false, scratch));
     }
     // k = 64 photons give each estimate about 1/8 relative noise; 2000 of them, partly
     // sharing photons, average it to well under 1%.

@@ -30,8 +30,9 @@ TEST(HashGridTest, MatchesBruteForceForMixedRadii) {
         const Vec3 direction = SampleUniformSphere(rng.NextFloat(), rng.NextFloat());
         // Each found hit point with whether p lies in its inner disc (R / sqrt(2)).
         std::vector<std::pair<uint32_t, bool>> found, expected;
-        grid.ForEachGathering(p, direction,
-                              [&](uint32_t i, bool inner) { found.emplace_back(i, inner); });
+        grid.ForEachGathering(p, direction, [&](uint32_t i, bool inner, const Vec3&) {
+            found.emplace_back(i, inner);
+        });
         for (uint32_t i = 0; i < hit_points.size(); ++i) {
             const float distance_sq = LengthSquared(hit_points[i].position - p);
             if (radius_sq[i] > 0 && distance_sq <= radius_sq[i] &&
@@ -54,7 +55,7 @@ TEST(HashGridTest, RadiiFarBelowTheCoordinatesStillFindTheirPhotons) {
     grid.Build(hit_points, radius_sq);
     std::vector<uint32_t> found;
     grid.ForEachGathering(hit_points[0].position, Vec3(0, 0, -1),
-                          [&](uint32_t i, bool) { found.push_back(i); });
+                          [&](uint32_t i, bool, const Vec3&) { found.push_back(i); });
     EXPECT_EQ(found, std::vector<uint32_t>{0});
 }
 
@@ -62,11 +63,13 @@ TEST(HashGridTest, EmptyAndBlackHitPointsAreLeftOut) {
     HashGrid grid;
     grid.Build({}, {});
     int visits = 0;
-    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1), [&](uint32_t, bool) { ++visits; });
+    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1),
+                          [&](uint32_t, bool, const Vec3&) { ++visits; });
     const std::vector<HitPoint> black = {{Vec3(0.0f), Vec3(0, 0, 1), Rgb(0.0f), 0}};
     const std::vector<float> radius_sq = {1.0f};
     grid.Build(black, radius_sq);
-    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1), [&](uint32_t, bool) { ++visits; });
+    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1),
+                          [&](uint32_t, bool, const Vec3&) { ++visits; });
     EXPECT_EQ(visits, 0);
 }
 

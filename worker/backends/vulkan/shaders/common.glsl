@@ -33,6 +33,8 @@ layout(constant_id = kSpecHasMixTextures) const bool kHasMixTextures = true;
 layout(constant_id = kSpecHasConductorFresnel) const bool kHasConductorFresnel = true;
 layout(constant_id = kSpecHasAbsorption) const bool kHasAbsorption = true;
 layout(constant_id = kSpecHasShadingDetail) const bool kHasShadingDetail = true;
+// Some shading normal differs from its surface's (SceneFeatures::ShadingNormals).
+const bool kShadingNormals = kHasSmoothNormals || kHasShadingDetail;
 
 layout(push_constant, std430) uniform Push { GpuParams params; };
 

@@ -18,6 +18,9 @@ shared uint group_discarded;
 // of the at most 2^32 - 1 photons a tally counts stays below 2^63.
 uint64_t ToFixed(float flux) { return uint64_t(min(flux * params.flux_to_fixed + 0.5, 2147483648.0)); }
 
+// Adds a deposit to the hit points whose sphere holds it. `flux` is per unit of its cosine
+// where some shading normal differs from its surface's (kShadingNormals): each hit point then
+// weighs it by its own (Veach's arrival factor, as GatherDeposits on the CPU).
 void Gather(vec3 p, vec3 direction, vec3 flux) {
     const ivec3 cell = GridCell(p);
     // The neighbour on the nearer side in each axis: cells are two radii wide.
@@ -38,13 +41,20 @@ void Gather(vec3 p, vec3 direction, vec3 flux) {
             const GpuGridEntry entry = grid_entries[e];
             const vec3 offset_to = entry.position.xyz - p;
             const float distance_sq = dot(offset_to, offset_to);
-            if (distance_sq > entry.position.w || dot(entry.normal.xyz, direction) >= 0) continue;
+            const float facing = -dot(entry.normal.xyz, direction);
+            if (distance_sq > entry.position.w || !(facing > 0)) continue;
             const uint index = floatBitsToUint(entry.normal.w);
             atomicAdd(tally[index].photons, 1u);
             if (2.0 * distance_sq <= entry.position.w) atomicAdd(tally[index].inner_photons, 1u);
-            atomicAdd(tally[index].flux[0], fixed_r);
-            atomicAdd(tally[index].flux[1], fixed_g);
-            atomicAdd(tally[index].flux[2], fixed_b);
+            if (kShadingNormals) {
+                atomicAdd(tally[index].flux[0], ToFixed(flux.r * facing));
+                atomicAdd(tally[index].flux[1], ToFixed(flux.g * facing));
+                atomicAdd(tally[index].flux[2], ToFixed(flux.b * facing));
+            } else {
+                atomicAdd(tally[index].flux[0], fixed_r);
+                atomicAdd(tally[index].flux[1], fixed_g);
+                atomicAdd(tally[index].flux[2], fixed_b);
+            }
         }
     }
 }
@@ -72,10 +82,12 @@ uint TracePhoton(uint photon, out bool discarded) {
         const bool front_facing = dot(direction, surface.geometric_normal) < 0;
         // Out of an absorbing glass's inside (InsideTransmittance).
         if (kHasAbsorption && !front_facing) flux *= BeerLambert(material.absorption.xyz, hit.t);
-        // Veach's adjoint for shading normals, as ScatterPhotonAt: arriving here, and leaving.
-        const bool shaded =
-            (kHasSmoothNormals || kHasShadingDetail) && surface.shading_normal != surface.geometric_normal;
-        if (shaded) flux *= ShadingArrival(direction, surface.shading_normal, surface.geometric_normal);
+        // Veach's adjoint for shading normals, as ScatterPhotonAt: arriving here (after landing),
+        // and leaving.
+        const bool shaded = kShadingNormals && surface.shading_normal != surface.geometric_normal;
+        const float arrival = shaded ? ShadingArrival(direction, surface.shading_normal, surface.geometric_normal) : 1.0;
+        // What lands: per unit of its cosine, with shading normals (Gather).
+        const float across = kShadingNormals ? abs(dot(direction, surface.geometric_normal)) : 1.0;
         SpecularBounce scatter = SpecularBounce(direction, vec3(0.0), false);  // absorbed
         if (material.type == kMaterialDiffuse) {
             const vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
@@ -91,7 +103,9 @@ uint TracePhoton(uint photon, out bool discarded) {
                 else scatter = SpecularBounce(frame * wi, vec3(weight), false);
             }
             if (at_base) {
-                if (scattered) Gather(surface.position, direction, flux);
+                if (scattered && across > 0.0) Gather(surface.position, direction, flux / across);
+                if (!(arrival > 0.0)) break;  // from below the shading normal
+                flux *= arrival;
                 bool escaped = false;
                 for (int returns = 0;; ++returns) {
                     // Russian roulette by albedo (Jensen 2001, 2.3.3).
@@ -101,7 +115,12 @@ uint TracePhoton(uint photon, out bool discarded) {
                     const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
                     const vec3 local = SampleCosineHemisphere(u1, u2);
                     if (!coated) {
-                        direction = frame * local;
+                        // By the surface's own cosine, as ScatterPhotonAt: Lambertian reflection
+                        // is the same toward every direction above it.
+                        direction = (shaded ? FrameFromNormal(front_facing ? surface.geometric_normal
+                                                                           : -surface.geometric_normal)
+                                            : frame) *
+                                    local;
                         escaped = true;
                         break;
                     }
@@ -115,12 +134,13 @@ uint TracePhoton(uint photon, out bool discarded) {
                         break;
                     }
                     if (MaxComponent(flux) <= 0.0 || returns == kMaxCoatReturns) break;
-                    Gather(surface.position, direction, flux);
+                    const float inside = kShadingNormals ? abs(wi.z) : 1.0;
+                    if (inside > 0.0) Gather(surface.position, direction, flux / inside);
                 }
                 if (!escaped) break;
                 const vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
                 if (!(dot(direction, geometric) > 0)) break;  // the shading normal pointed it inside
-                if (shaded) flux *= ShadingDeparture(direction, surface.shading_normal, surface.geometric_normal);
+                if (shaded && coated) flux *= ShadingDeparture(direction, surface.shading_normal, surface.geometric_normal);
                 origin = OffsetRayOrigin(surface.position, geometric);
                 scattered = true;
                 continue;
@@ -149,8 +169,8 @@ uint TracePhoton(uint photon, out bool discarded) {
             }
         }
         const float survive = min(1.0, MaxComponent(scatter.weight));
-        if (!(Pcg32NextFloat(rng) < survive)) break;
-        flux *= scatter.weight / survive;
+        if (!(Pcg32NextFloat(rng) < survive) || !(arrival > 0.0)) break;
+        flux *= scatter.weight * (arrival / survive);
         if (shaded) flux *= ShadingDeparture(scatter.direction, surface.shading_normal, surface.geometric_normal);
         const vec3 side = front_facing == scatter.transmitted ? -surface.geometric_normal : surface.geometric_normal;
         origin = OffsetRayOrigin(surface.position, side);
