@@ -232,7 +232,8 @@ TEST(TexturedLights, ASingleTexelImageLightRendersAsItsColour) {
 
 INSTANTIATE_TEST_SUITE_P(Shipped, SceneFormats,
                          ::testing::Values("cornell-box", "cornell-glass", "caustic-glass",
-                                           "furnace", "furnace-glass", "cornell-stained"),
+                                           "furnace", "furnace-glass", "cornell-stained",
+                                           "cornell-bumpy"),
                          [](const ::testing::TestParamInfo<std::string>& scene) {
                              std::string name = scene.param;
                              std::replace(name.begin(), name.end(), '-', '_');

@@ -44,8 +44,8 @@ void ExpectError(const absl::StatusOr<Scene>& scene, const std::string& file,
 }
 
 TEST(GltfLoaderTest, LoadsTheShippedScenes) {
-    for (const char* name :
-         {"cornell-box.gltf", "cornell-glass.gltf", "caustic-glass.gltf", "furnace.gltf"}) {
+    for (const char* name : {"cornell-box.gltf", "cornell-glass.gltf", "caustic-glass.gltf",
+                             "furnace.gltf", "cornell-bumpy.gltf"}) {
         const absl::StatusOr<Scene> scene = LoadScene(ScenePath(name));
         ASSERT_TRUE(scene.ok()) << scene.status();
         EXPECT_GT(scene->triangles.size(), 0u);

@@ -494,7 +494,7 @@ TEST(PbrtLoaderTest, PackingGathersIncludedMeshesAndNothingElse) {
 TEST(PbrtLoaderTest, ShippedScenesLoadWithoutWarnings) {
     for (const char* name :
          {"cornell-box", "cornell-glass", "cornell-glossy", "caustic-glass", "furnace",
-          "furnace-glass", "sky-courtyard", "cornell-stained", "cornell-lamps"}) {
+          "furnace-glass", "sky-courtyard", "cornell-stained", "cornell-lamps", "cornell-bumpy"}) {
         std::vector<std::string> warnings;
         SceneLoadOptions options;
         options.warnings = &warnings;

@@ -27,6 +27,13 @@ TEST(SceneFeaturesTest, ShippedScenesUseWhatTheyShow) {
     EXPECT_FALSE(glass.thin_dielectric);
     EXPECT_TRUE(glass.Specular());
     EXPECT_FALSE(glass.coats);
+    EXPECT_TRUE(glass.smooth_normals && glass.ShadingNormals());
+    // Normal maps, a feature of their own: diffuse tiles, no specular variant needed.
+    const SceneFeatures bumpy = FeaturesOf(Shipped("cornell-bumpy.gltf"));
+    EXPECT_TRUE(bumpy.shading_detail && bumpy.ShadingNormals() && bumpy.ReadsUv());
+    EXPECT_FALSE(bumpy.Specular() || bumpy.smooth_normals);
+    EXPECT_EQ(bumpy.ToString(), "diffuse, normal or bump maps, area lights");
+    EXPECT_FALSE(box.ShadingNormals());
 }
 
 TEST(SceneFeaturesTest, CoatsAreAFeatureOfTheirOwn) {
