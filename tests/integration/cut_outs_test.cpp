@@ -192,25 +192,30 @@ TEST_P(CutOutIntegrators, APlaneOfAlphaAShowsTheSkyThroughItsHoles) {
     }
 }
 
-TEST_P(CutOutIntegrators, AnInvisibleLightLightsAsAVisibleOne) {
-    // pbrt-v4's light cards: an area light of alpha 0 is seen by no ray but lights the scene
-    // in full (light sampling alone finds it). A floor and a wall under such a card, out of
-    // the camera's view, against the same card visible: the same image, within the noise.
-    const auto scene = [](const std::string& alpha, const std::string& name) {
-        return WriteScene(
-            "LookAt 0 -3 1.2  0 0 0.3  0 0 1\nCamera \"perspective\" \"float fov\" 40\n"
-            "WorldBegin\nMaterial \"diffuse\" \"rgb reflectance\" [0.7 0.6 0.5]\n"
-            "Shape \"bilinearmesh\" \"point3 P\" [-2 -2 0  2 -2 0  -2 2 0  2 2 0]\n"
-            "Shape \"bilinearmesh\" \"point3 P\" [-2 1 0  2 1 0  -2 1 2  2 1 2]\n"
-            "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [4 4 4]\n"
+// A floor and a wall under an area light card out of the camera's view, the card emitting L
+// `radiance` with shape parameters `alpha` (a float texture "half" of 0.5 is defined).
+std::string LightCardScene(const std::string& radiance, const std::string& alpha,
+                           const std::string& name) {
+    return WriteScene(
+        "LookAt 0 -3 1.2  0 0 0.3  0 0 1\nCamera \"perspective\" \"float fov\" 40\n"
+        "WorldBegin\nMaterial \"diffuse\" \"rgb reflectance\" [0.7 0.6 0.5]\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [-2 -2 0  2 -2 0  -2 2 0  2 2 0]\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [-2 1 0  2 1 0  -2 1 2  2 1 2]\n"
+        "Texture \"half\" \"float\" \"bilerp\" \"float v00\" 0.5 \"float v01\" 0.5 "
+        "\"float v10\" 0.5 \"float v11\" 0.5\n"
+        "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [" +
+            radiance +
+            "]\n"
             "Material \"diffuse\" \"rgb reflectance\" [0 0 0]\nTranslate 0 0.3 2.2\n"
             "Rotate 180 1 0 0\nShape \"bilinearmesh\" \"point3 P\" "
             "[-0.4 -0.4 0  0.4 -0.4 0  -0.4 0.4 0  0.4 0.4 0] " +
-                alpha + "\nAttributeEnd\n",
-            name);
-    };
-    const Image visible = Render(scene("", "light-visible"), GetParam());
-    const Image invisible = Render(scene("\"float alpha\" 0", "light-invisible"), GetParam());
+            alpha + "\nAttributeEnd\n",
+        name);
+}
+
+// Two renders of one expected image: their 8x8 blocks' differences average to zero within
+// 5 standard errors, which are small enough to catch a 3% difference.
+void ExpectSameImage(const Image& a_image, const Image& b_image) {
     for (int c = 0; c < 3; ++c) {
         std::vector<double> differences;
         double total = 0;
@@ -219,7 +224,7 @@ TEST_P(CutOutIntegrators, AnInvisibleLightLightsAsAVisibleOne) {
                 double a = 0, b = 0;
                 for (int y = by; y < by + 8; ++y)
                     for (int x = bx; x < bx + 8; ++x)
-                        a += visible.pixels[y * 48 + x][c], b += invisible.pixels[y * 48 + x][c];
+                        a += a_image.pixels[y * 48 + x][c], b += b_image.pixels[y * 48 + x][c];
                 differences.push_back((b - a) / 64);
                 total += a / 64;
             }
@@ -231,6 +236,27 @@ TEST_P(CutOutIntegrators, AnInvisibleLightLightsAsAVisibleOne) {
         EXPECT_NEAR(mean, 0.0, 5 * error) << "RGB"[c] << ": relative " << mean / level;
         EXPECT_LT(5 * error / level, 0.03) << "too noisy to catch a 3% difference";
     }
+}
+
+TEST_P(CutOutIntegrators, AnInvisibleLightLightsAsAVisibleOne) {
+    // pbrt-v4's light cards: an area light of alpha 0 is seen by no ray but lights the scene
+    // in full (light sampling alone finds it): the same image as the card visible.
+    ExpectSameImage(
+        Render(LightCardScene("4 4 4", "", "light-visible"), GetParam()),
+        Render(LightCardScene("4 4 4", "\"float alpha\" 0", "light-invisible"), GetParam()));
+}
+
+TEST_P(CutOutIntegrators, AHalfMaskedLightLightsAsOneOfHalfItsRadiance) {
+    // pbrt-v4 masks an area light's radiance where its alpha test fails: a card of alpha 0.5
+    // emits half, as a constant and as a texture of 0.5 (an emission texture of the alpha, so
+    // photons and light samples both see it). The card is black: light passing through it
+    // where it is cut out leaves the scene, as light it absorbs does.
+    const Image half = Render(LightCardScene("2 2 2", "", "light-half"), GetParam());
+    ExpectSameImage(
+        half, Render(LightCardScene("4 4 4", "\"float alpha\" 0.5", "light-alpha"), GetParam()));
+    ExpectSameImage(
+        half, Render(LightCardScene("4 4 4", "\"texture alpha\" \"half\"", "light-alpha-texture"),
+                     GetParam()));
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, CutOutIntegrators,

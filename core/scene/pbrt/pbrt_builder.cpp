@@ -373,11 +373,6 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
                                           ": the material's texture is read with the area "
                                           "light image's (u, v), not its own scale and offset"));
     }
-    if (state.area_light &&
-        (state.alpha.texture != kNoTexture || (state.alpha.value > 0 && state.alpha.value < 1)))
-        Warn(Location{}, absl::StrCat(element,
-                                      ": an area light's emission is not masked by its alpha "
-                                      "(alpha 0, an invisible light, is as pbrt-v4's)"));
     if (state.area_light) {
         emission = state.area_light->radiance;
         if (state.area_light->power > 0) {
@@ -401,6 +396,19 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
                 area *= luminance / static_cast<double>(image.texels.size());
             }
             if (area > 0) emission *= static_cast<float>(state.area_light->power / (kPiD * area));
+        }
+        // pbrt-v4 masks an area light's radiance where its alpha test fails (AlphaMasked, by a
+        // hash of the point): alpha x L in expectation, which an emission texture of the alpha
+        // gives texel by texel, photons and light samples included. Alpha 0 is pbrt-v4's
+        // invisible light, which emits in full.
+        if (state.alpha.texture != kNoTexture || state.alpha.value > 0) {
+            emission *= state.alpha.value;  // the alpha, or its texture's scale
+            if (state.alpha.texture != kNoTexture && emission_texture == kNoTexture)
+                emission_texture = state.alpha.texture;
+            else if (state.alpha.texture != kNoTexture)
+                Warn(Location{}, absl::StrCat(element,
+                                              ": an area light's image is not masked by its "
+                                              "alpha texture (the alpha's scale is applied)"));
         }
     }
     absl::StatusOr<uint32_t> index =
