@@ -12,7 +12,8 @@
 //    the texture's green channel squared where it has one (Material::roughness_texture);
 //  - KHR_materials_clearcoat: a layered coat of index 1.5 over either (the dielectric's own
 //    specular layer, under a coat of about its index, is dropped), mixed with the uncoated
-//    surface where clearcoatFactor is below 1.
+//    surface where clearcoatFactor (times clearcoatTexture's red channel) is below 1; its
+//    roughness times clearcoatRoughnessTexture's green channel over the dielectric.
 // Emission is emissiveFactor x emissiveTexture x KHR_materials_emissive_strength, radiance in
 // W/(m^2 sr), from the front face, and the back one too where the material is doubleSided.
 // alphaMode MASK and BLEND cut the surface out where alpha says; normalTexture tilts the
@@ -246,6 +247,7 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
 
     // KHR_materials_clearcoat: the same surfaces under a layered coat of index 1.5.
     float clearcoat = 0;
+    int32_t clearcoat_texture = kNoTexture;
     Material clear_plastic = base, clear_conductor = conductor;
     if (const tinygltf::Value* e = Extension(source_.extensions, "KHR_materials_clearcoat")) {
         clearcoat = static_cast<float>(NumberOr(*e, "clearcoatFactor", 0.0));
@@ -260,12 +262,36 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
             coated->coat_roughness =
                 roughness * roughness < kMinRoughness ? 0.0f : float(roughness * roughness);
         }
-        NoteTextureLeftOut(
-            *e, "KHR_materials_clearcoat",
-            {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"});
+        NoteTextureLeftOut(*e, "KHR_materials_clearcoat", {"clearcoatNormalTexture"});
+        // clearcoatTexture's red channel scales the factor texel by texel (the mix's amount).
+        if (const int index = ExtensionTexture(*e, "clearcoatTexture");
+            index >= 0 && clearcoat > 0) {
+            ImageDecodeOptions options;
+            options.encoding = ImageEncoding::kLinear;
+            options.channels = ImageChannels::kRed;
+            const absl::StatusOr<int32_t> texture = texture_(index, options);
+            if (!texture.ok()) return texture.status();
+            clearcoat_texture = *texture;
+        }
         // A roughness texture scales a material's every alpha (Scene::ShadingMaterial): the
-        // coated diffuse base needs none, the coated metal shares it with its coat.
+        // coated diffuse base needs none of its own, so it takes clearcoatRoughnessTexture's
+        // (green, squared as the factor is); the coated metal shares the metal's with its coat.
         clear_plastic.roughness_texture = kNoTexture;
+        const int rough = ExtensionTexture(*e, "clearcoatRoughnessTexture");
+        if (rough >= 0 && clear_plastic.coat_roughness > 0 && clearcoat > 0) {
+            ImageDecodeOptions options;
+            options.encoding = ImageEncoding::kLinear;
+            options.channels = ImageChannels::kGreen;
+            options.exponent = 2;
+            const absl::StatusOr<int32_t> texture = texture_(rough, options);
+            if (!texture.ok()) return texture.status();
+            clear_plastic.roughness_texture = *texture;
+            if (metal)
+                spdlog::warn(
+                    "{}: clearcoatRoughnessTexture is left out over the metal (a material has one "
+                    "roughness texture: the metal's)",
+                    where_);
+        }
         if (clear_conductor.roughness_texture != kNoTexture && clear_conductor.coat_roughness > 0 &&
             clearcoat > 0)
             spdlog::warn(
@@ -276,9 +302,9 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
     // A surface and its clearcoated self, mixed by clearcoatFactor.
     const auto with_clearcoat = [&](const Material& plain, const Material& coated) {
         if (clearcoat <= 0) return Add(plain);
-        if (clearcoat >= 1) return Add(coated);
+        if (clearcoat >= 1 && clearcoat_texture == kNoTexture) return Add(coated);
         const uint32_t first = Add(plain);
-        return Mix(base, first, Add(coated), clearcoat, kNoTexture);
+        return Mix(base, first, Add(coated), clearcoat, clearcoat_texture);
     };
     uint32_t dielectric_index = 0, metal_index = 0;
     if (dielectric) dielectric_index = with_clearcoat(plastic, clear_plastic);
@@ -364,6 +390,10 @@ std::vector<int> GltfTexturesRead(const tinygltf::Material& material) {
           material.pbrMetallicRoughness.metallicRoughnessTexture.index,
           material.normalTexture.index})
         if (texture >= 0) read.push_back(texture);
+    if (const tinygltf::Value* e = Extension(material.extensions, "KHR_materials_clearcoat"))
+        for (const char* key : {"clearcoatTexture", "clearcoatRoughnessTexture"})
+            if (const int texture = ExtensionTexture(*e, key); texture >= 0)
+                read.push_back(texture);
     return read;
 }
 

@@ -94,9 +94,12 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
             case ImageChannels::kAlpha:
                 texture.texels[i] = Rgb(alpha(i));
                 break;
+            case ImageChannels::kRed:
             case ImageChannels::kGreen:
             case ImageChannels::kBlue: {
-                const int c = options.channels == ImageChannels::kGreen ? 1 : 2;
+                const int c = options.channels == ImageChannels::kRed     ? 0
+                              : options.channels == ImageChannels::kGreen ? 1
+                                                                          : 2;
                 texture.texels[i] = Rgb(to_linear(texel[channels < 3 ? 0 : c]));
                 break;
             }

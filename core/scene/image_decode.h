@@ -28,7 +28,9 @@ enum class ImageChannels {
     kFloat,
     kAlpha,  // the alpha channel (of grey-alpha or RGBA images; 1 without one), linear
     // One channel in every channel of the texture (a grey image's grey): glTF's
-    // metallicRoughnessTexture keeps roughness in green, metallic in blue.
+    // metallicRoughnessTexture keeps roughness in green, metallic in blue, its clearcoat
+    // textures the factor in red and roughness in green.
+    kRed,
     kGreen,
     kBlue,
 };

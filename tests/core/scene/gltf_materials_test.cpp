@@ -143,6 +143,41 @@ TEST(GltfMaterialsTest, ClearcoatIsALayeredCoatMixedByItsFactor) {
     EXPECT_EQ(half->materials[mix.mix_second].coat_roughness, 0.0f);
 }
 
+TEST(GltfMaterialsTest, ClearcoatTexturesScaleItsFactorAndRoughnessTexelByTexel) {
+    // One 2x1 image as the base colour, clearcoatTexture (its red channel, linear, scaling the
+    // factor: the mix's amount) and clearcoatRoughnessTexture (green, linear, squared as the
+    // factor is: the coated plastic's roughness texture, which scales its coat's alpha).
+    testing::TestMaterial material =
+        Gltf(0, 0.5f,
+             R"("KHR_materials_clearcoat":{"clearcoatFactor":0.8,"clearcoatRoughnessFactor":0.5,)"
+             R"("clearcoatTexture":{"index":0},"clearcoatRoughnessTexture":{"index":0}})");
+    material.texture_png_base64 =
+        absl::Base64Escape(testing::TwoTexelPng({200, 100, 50, 20, 240, 60}, "coat.png"));
+    const absl::StatusOr<Scene> scene = QuadWith(material, "clearcoat-textures.gltf");
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Material& mix = QuadMaterial(*scene);
+    ASSERT_EQ(mix.type, MaterialType::kMix) << "a textured factor: a mix per texel";
+    EXPECT_FLOAT_EQ(mix.mix_amount, 0.8f);
+    ASSERT_NE(mix.mix_texture, kNoTexture);
+    const Texture& factor = *scene->textures[mix.mix_texture];
+    EXPECT_NEAR(factor.texels[0].x, 200 / 255.0, 1e-6) << "red, linear";
+    EXPECT_NEAR(factor.texels[1].x, 20 / 255.0, 1e-6);
+    const Material& coated = scene->materials[mix.mix_second];
+    EXPECT_EQ(coated.coat_kind, gpu::kCoatLayered);
+    EXPECT_FLOAT_EQ(coated.coat_roughness, 0.25f);
+    ASSERT_NE(coated.roughness_texture, kNoTexture);
+    const Texture& roughness = *scene->textures[coated.roughness_texture];
+    EXPECT_NEAR(roughness.texels[1].x, (240 / 255.0) * (240 / 255.0), 1e-6) << "green, squared";
+    SurfacePoint point;
+    point.material = mix.mix_second;
+    point.uv = {0.25f, 0.5f};  // the first texel's centre: roughness 0.5 x 100/255
+    std::optional<Material> scratch;
+    EXPECT_NEAR(scene->ShadingMaterial(point, scratch).coat_roughness,
+                0.25 * (100 / 255.0) * (100 / 255.0), 1e-4);
+    EXPECT_EQ(scene->materials[mix.mix_first].roughness_texture, kNoTexture)
+        << "the uncoated plastic keeps its own (none)";
+}
+
 TEST(GltfMaterialsTest, APrimitiveWithoutMaterialTakesGltfsDefault) {
     // The default material is every property at its default: white, metallic 1, roughness 1.
     testing::TestScene scene = testing::LitQuadScene();
