@@ -89,11 +89,10 @@ private:
         return Add(mix);
     }
     void NoteTextureLeftOut(const tinygltf::Value& extension, const char* name,
-                            std::initializer_list<const char*> keys) const {
+                            std::initializer_list<const char*> keys, const char* instead) const {
         for (const char* key : keys)
             if (ExtensionTexture(extension, key) >= 0)
-                spdlog::warn("{}: {}'s {} is left out (its factor alone is used)", where_, name,
-                             key);
+                spdlog::warn("{}: {}'s {} is left out ({})", where_, name, key, instead);
     }
 
     const tinygltf::Material& source_;
@@ -231,7 +230,7 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
                 "KHR_materials_specular: specularFactor must lie in [0, 1], "
                 "specularColorFactor be finite and non-negative");
         NoteTextureLeftOut(*e, "KHR_materials_specular",
-                           {"specularTexture", "specularColorTexture"});
+                           {"specularTexture", "specularColorTexture"}, "its factor alone is used");
     }
     if (f0_scale != 1.0) {  // F0 = min(F0(ior) x the colour's mean, 1), as an index
         const double r = (plastic.coat_ior - 1.0) / (plastic.coat_ior + 1.0);
@@ -262,7 +261,8 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
             coated->coat_roughness =
                 roughness * roughness < kMinRoughness ? 0.0f : float(roughness * roughness);
         }
-        NoteTextureLeftOut(*e, "KHR_materials_clearcoat", {"clearcoatNormalTexture"});
+        NoteTextureLeftOut(*e, "KHR_materials_clearcoat", {"clearcoatNormalTexture"},
+                           "the coat takes the surface's shading normal");
         // clearcoatTexture's red channel scales the factor texel by texel (the mix's amount).
         if (const int index = ExtensionTexture(*e, "clearcoatTexture");
             index >= 0 && clearcoat > 0) {
