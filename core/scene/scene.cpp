@@ -100,8 +100,8 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
     }
     surface.material =
         ResolveMaterial(triangle.material, surface.position, hit.triangle, surface.uv);
-    // Only a material that reads texture coordinates has a normal or bump map.
-    if (surface.uv_per_length > 0 && materials[surface.material].HasShadingDetail())
+    // Its texture coordinates are set: a normal or bump map reads them.
+    if (materials[surface.material].HasShadingDetail())
         AddShadingDetail(triangle, instance, {p0, p1, p2}, hit.b1, hit.b2, surface);
     return surface;
 }
