@@ -86,7 +86,8 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
         if (LengthSquared(n) > 0)
             surface.shading_normal = FaceForward(Normalize(n), surface.geometric_normal);
     }
-    if (MaterialReadsUv(triangle.material)) {
+    const bool reads_uv = MaterialReadsUv(triangle.material);
+    if (reads_uv) {
         const Point2& t0 = uvs[triangle.vertex[0]];
         const Point2& t1 = uvs[triangle.vertex[1]];
         const Point2& t2 = uvs[triangle.vertex[2]];
@@ -100,8 +101,8 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
     }
     surface.material =
         ResolveMaterial(triangle.material, surface.position, hit.triangle, surface.uv);
-    // Its texture coordinates are set: a normal or bump map reads them.
-    if (materials[surface.material].HasShadingDetail())
+    // A normal or bump map reads the texture coordinates, which are set then.
+    if (reads_uv && materials[surface.material].HasShadingDetail())
         AddShadingDetail(triangle, instance, {p0, p1, p2}, hit.b1, hit.b2, surface);
     return surface;
 }
