@@ -41,8 +41,7 @@ PF_GPU_FN vec3 NormalFromMap(vec3 n, vec3 tangent, float sign, vec3 texel, float
 // with its shading frame ss = dpdu made perpendicular to n, ts = cross(n, ss) (pbrt's v points
 // up the image: its dP/dv), and the displacement's own curvature term (d dn/du) left out.
 PF_GPU_FN vec3 NormalFromBump(vec3 n, vec3 dpdu, float d_u, float d_v) {
-    const float length_u = sqrt(max(dot(dpdu, dpdu) - dot(n, dpdu) * dot(n, dpdu), 0.0f));
-    const vec3 ss = PerpendicularTo(n, dpdu) * max(length_u, 1e-30f);
+    const vec3 ss = dpdu - n * dot(n, dpdu);  // none where dpdu is: the normal is kept
     const vec3 ts = cross(n, ss);
     const vec3 bumped = cross(ss + n * d_u, ts - n * d_v);
     return dot(bumped, bumped) > 0.0f ? normalize(bumped) : n;

@@ -57,6 +57,14 @@ testing::TestScene LitQuadWithWall(const testing::TestMaterial& wall, float low,
     return scene;
 }
 
+// A wall of factor (1, 1, 0.5) times a base colour texture (a PNG, base64).
+testing::TestMaterial TexturedWall(const std::string& png_base64) {
+    testing::TestMaterial wall;
+    wall.base_color = Rgb(1.0f, 1.0f, 0.5f);
+    wall.texture_png_base64 = png_base64;
+    return wall;
+}
+
 TEST(BackendAgreementTextures, LightOffATexturedWallMatchesTheCpus) {
     // The lit quad with a textured wall beside it (2x1 texels: sRGB red, sRGB grey 128; factor
     // (1, 1, 0.5)): the floor's indirect light comes off the wall, so photons must take the
@@ -65,11 +73,9 @@ TEST(BackendAgreementTextures, LightOffATexturedWallMatchesTheCpus) {
     // photons, since at 1M the mean checks would catch only a 2.2% bias in green and blue.
     testing::SkipWithoutVulkan();
     if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
-    testing::TestMaterial wall;
-    wall.base_color = Rgb(1.0f, 1.0f, 0.5f);
-    wall.texture_png_base64 =
+    const testing::TestMaterial wall = TexturedWall(
         "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTk"
-        "SuQmCC";
+        "SuQmCC");
     ExpectVulkanAgreesWithTheCpu(
         testing::WriteGltf(LitQuadWithWall(wall, 0, 1), "textured-wall.gltf"), 2'000'000);
 }
@@ -80,10 +86,8 @@ TEST(BackendAgreementTextures, WrapModesMatchTheCpus) {
     // texels the wrap modes pick on the device as on the CPU.
     testing::SkipWithoutVulkan();
     if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
-    testing::TestMaterial wall;
-    wall.base_color = Rgb(1.0f, 1.0f, 0.5f);
-    wall.texture_png_base64 =
-        absl::Base64Escape(testing::TwoTexelPng({250, 30, 30, 30, 30, 250}, "wrap.png"));
+    testing::TestMaterial wall = TexturedWall(
+        absl::Base64Escape(testing::TwoTexelPng({250, 30, 30, 30, 30, 250}, "wrap.png")));
     wall.texture_sampler = R"({"wrapS":33071,"wrapT":33648})";
     ExpectVulkanAgreesWithTheCpu(
         testing::WriteGltf(LitQuadWithWall(wall, -1, 2), "wrapped-wall.gltf"), 2'000'000);
