@@ -34,7 +34,9 @@ struct CameraPath {
 // transmission, each weighted by its probability, instead of choosing one at random: the few
 // percent of reflection on glass would otherwise show as speckle, since hit points are kept.
 // Instantiated for the scene's features: without specular materials every path ends at its
-// first hit, without textures every base colour is the material's.
+// first hit, without textures every base colour is the material's. A translucent surface
+// gives a hit point on each side (the one facing away gathers the light let through), both
+// where the path still splits, else one chosen (ChooseDiffuseSide).
 // Textures are filtered over the sample's share of the pixel's cone (the pixel's angle over
 // the square root of its samples, as pbrt-v4 scales its ray differentials).
 template <bool kSpecular, bool kTextures>
@@ -99,10 +101,22 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
                     const float coat =
                         material.HasCoat() ? arrival.weight * CoatInside(CoatOf(material)) : 1.0f;
                     const Vec3 normal = front_facing ? n : -n;
-                    hit_points.push_back({surface.position, normal,
-                                          path.throughput * base_color * (coat / kPi), pixel,
-                                          material.HasCoat() ? surface.material : kNoCoat});
-                    footprints.push_back(pixel_width.base + path.length * pixel_width.angle);
+                    const auto add = [&](const Vec3& facing, const Rgb& albedo) {
+                        hit_points.push_back({surface.position, facing,
+                                              path.throughput * albedo * (coat / kPi), pixel,
+                                              material.HasCoat() ? surface.material : kNoCoat});
+                        footprints.push_back(pixel_width.base + path.length * pixel_width.angle);
+                    };
+                    if (!kSpecular || !material.IsTranslucent()) {
+                        add(normal, base_color);
+                    } else if (path.splits_left > 0) {
+                        // Both sides of a translucent surface, rather than one of them.
+                        add(normal, base_color);
+                        add(-normal, material.transmittance);
+                    } else {
+                        const DiffuseSide side = ChooseDiffuseSide(material, base_color, rng);
+                        add(side.through ? -normal : normal, side.albedo);
+                    }
                     break;
                 }
                 bounce = arrival.reflected;
@@ -180,7 +194,7 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     // The camera path for the scene's features, chosen once.
     const SceneFeatures& features = settings.features;
     const auto trace =
-        features.Specular()
+        features.GeneralSurfaces()
             ? (features.textures ? TraceCameraSample<true, true> : TraceCameraSample<true, false>)
             : (features.textures ? TraceCameraSample<false, true>
                                  : TraceCameraSample<false, false>);

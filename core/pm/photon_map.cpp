@@ -86,7 +86,7 @@ std::vector<StoredPhoton> TraceMap(const Scene& scene, const Emitters& emitters,
                                    MapKind kind, bool everything, int max_bounces, uint64_t seed,
                                    uint64_t count, uint64_t emitted) {
     const auto trace =
-        features.Specular()
+        features.GeneralSurfaces()
             ? (features.textures ? TraceMapPhotons<true, true> : TraceMapPhotons<true, false>)
             : (features.textures ? TraceMapPhotons<false, true> : TraceMapPhotons<false, false>);
     const uint64_t tasks = (count + kPhotonsPerTask - 1) / kPhotonsPerTask;

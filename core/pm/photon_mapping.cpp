@@ -44,11 +44,13 @@ Rgb GatherRay(const PhotonMappingInputs& inputs, Ray ray, Rng& rng, NearestPhoto
                 ? ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng)
                 : CoatArrival{};
         if (material.type == MaterialType::kDiffuse && arrival.at_base) {
-            const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
+            const DiffuseSide side = ChooseDiffuseSide(material, base_color, rng);
+            const Vec3 normal =
+                front_facing != side.through ? surface.shading_normal : -surface.shading_normal;
             const float max_radius_sq = inputs.max_radius * inputs.max_radius;
             return weight * CoatedRadianceFactor(material, arrival) *
                    EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal,
-                                           base_color, inputs.settings.nearest, max_radius_sq,
+                                           side.albedo, inputs.settings.nearest, max_radius_sq,
                                            inputs.settings.filter, inputs.features.ShadingNormals(),
                                            scratch);
         }
@@ -130,16 +132,21 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
                 ? ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng)
                 : CoatArrival{};
         if (material.type == MaterialType::kDiffuse && arrival.at_base) {
-            const Rgb albedo = inputs.filter_angle > 0
-                                   ? scene.BaseColor(surface, length * inputs.filter_angle)
-                                   : scene.BaseColor(surface);
-            const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
-            const Vec3 geometric =
-                front_facing ? surface.geometric_normal : -surface.geometric_normal;
-            return radiance + throughput * CoatedRadianceFactor(material, arrival) *
-                                  DiffuseRadiance(inputs, surface, normal, geometric, albedo,
-                                                  material.HasCoat() ? &material : nullptr, rng,
-                                                  scratch);
+            const Rgb base_color = inputs.filter_angle > 0
+                                       ? scene.BaseColor(surface, length * inputs.filter_angle)
+                                       : scene.BaseColor(surface);
+            // The light reflected on the path's side and, through a translucent surface, the
+            // light let through from the other.
+            const auto side = [&](bool toward, const Rgb& albedo) {
+                const Vec3 normal = toward ? surface.shading_normal : -surface.shading_normal;
+                const Vec3 geometric =
+                    toward ? surface.geometric_normal : -surface.geometric_normal;
+                return DiffuseRadiance(inputs, surface, normal, geometric, albedo,
+                                       material.HasCoat() ? &material : nullptr, rng, scratch);
+            };
+            Rgb diffuse = side(front_facing, base_color);
+            if (material.IsTranslucent()) diffuse += side(!front_facing, material.transmittance);
+            return radiance + throughput * CoatedRadianceFactor(material, arrival) * diffuse;
         }
         const SpecularBounce bounce =
             material.type == MaterialType::kDiffuse

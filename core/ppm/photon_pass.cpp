@@ -172,7 +172,7 @@ ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec
     // The photon loop for the scene's features, chosen once per chunk.
     const SceneFeatures& features = inputs.features;
     const auto trace =
-        features.Specular()
+        features.GeneralSurfaces()
             ? (features.textures ? TracePhotons<true, true> : TracePhotons<true, false>)
             : (features.textures ? TracePhotons<false, true> : TracePhotons<false, false>);
     result.segments_traced = trace(inputs, spec, begin, end, scratch);

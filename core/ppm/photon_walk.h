@@ -1,9 +1,10 @@
 // One step of a photon's random walk, shared by the progressive photon pass and classic
 // photon mapping's map building: at a diffuse surface the photon may land (the caller
 // decides whether to keep it), then Russian roulette by albedo and a cosine-weighted bounce
-// (through the coat over it, if any); at any other surface ScatterNonDiffuse and roulette by
-// its weight (Jensen 2001, 2.3.3). Where the shading normal is not the surface's, the photon
-// carries Veach's adjoint factors (core/shared/shading_normal.h).
+// (through the coat over it, if any; through to the other side of a translucent surface); at any
+// other surface ScatterNonDiffuse and roulette by its weight (Jensen 2001, 2.3.3). Where the
+// shading normal is not the surface's, the photon carries Veach's adjoint factors
+// (core/shared/shading_normal.h).
 #pragma once
 
 #include <algorithm>
@@ -86,18 +87,22 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
                  std::abs(Dot(ray.direction, surface.geometric_normal)));
             if (!(arrival > 0)) return PhotonEvent::kEnded;  // from below the shading normal
             flux *= arrival;
+            // Back to its side or, through a translucent surface, on to the other.
+            const DiffuseSide side = kSpecular ? ChooseDiffuseSide(material, base_color, rng)
+                                               : DiffuseSide{false, base_color};
             // Russian roulette by albedo: survivors carry flux * albedo / p.
-            const float survive = std::min(1.0f, MaxComponent(base_color));
+            const float survive = std::min(1.0f, MaxComponent(side.albedo));
             if (!(rng.NextFloat() < survive)) return PhotonEvent::kEnded;
-            flux *= base_color / survive;
+            flux *= side.albedo / survive;
             const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
             const Vec3 geometric =
-                front_facing ? surface.geometric_normal : -surface.geometric_normal;
+                front_facing != side.through ? surface.geometric_normal : -surface.geometric_normal;
             const Vec3 local = SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat());
             if (!coated) {
-                // Lambertian reflection is the same toward every direction above the surface,
-                // whatever the shading normal (as the path tracer sees it): the photon leaves
-                // by the surface's own cosine, where Veach's departure factor is 1.
+                // Lambertian reflection (and transmission) is the same toward every direction
+                // on its side of the surface, whatever the shading normal (as the path tracer
+                // sees it): the photon leaves by the surface's own cosine, where Veach's
+                // departure factor is 1.
                 ray.direction = Frame::FromNormal(geometric).ToWorld(local);
             } else {
                 if (!LeaveCoatedBase(material, surface.position, Frame::FromNormal(normal),

@@ -117,10 +117,15 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
                 : CoatArrival{};
         if ((!kSpecular || material.type == MaterialType::kDiffuse) && !material.HasCoat()) {
             diffuse_seen = true;
-            const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
-            const Vec3 geometric =
-                front_facing ? surface.geometric_normal : -surface.geometric_normal;
-            const Rgb bsdf = base_color / kPi;
+            // Light sampling and the bounce on one side: the path's own or, through a
+            // translucent surface, the other. Both strategies then sample that side alone, so
+            // their densities there, and the power heuristic, are as for an opaque surface.
+            const DiffuseSide side = kSpecular ? ChooseDiffuseSide(material, base_color, rng)
+                                               : DiffuseSide{false, base_color};
+            const bool toward = front_facing != side.through;
+            const Vec3 normal = toward ? surface.shading_normal : -surface.shading_normal;
+            const Vec3 geometric = toward ? surface.geometric_normal : -surface.geometric_normal;
+            const Rgb bsdf = side.albedo / kPi;
             LightSample light;
             if (inputs.emitters->SampleDirect(surface.position, normal, rng, &light) &&
                 !inputs.tracer->Occluded(light.shadow_ray)) {
@@ -133,7 +138,7 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
             const Vec3 local = SampleCosineHemisphere(u1, u2);
             const Vec3 direction = Frame::FromNormal(normal).ToWorld(local);
             if (!(Dot(direction, geometric) > 0)) break;  // the shading normal pointed it inside
-            throughput *= base_color;  // f cos / pdf = (rho / pi) cos / (cos / pi)
+            throughput *= side.albedo;  // f cos / pdf = (rho / pi) cos / (cos / pi)
             bsdf_pdf = local.z / kPi;
             bounced_at = surface.position;
             specular_bounce = false;
@@ -204,7 +209,7 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
 
 Rgb TracePath(const PathInputs& inputs, Ray ray, Rng& rng) {
     const SceneFeatures& features = inputs.features;
-    if (features.Specular())
+    if (features.GeneralSurfaces())
         return features.textures ? TracePathFor<true, true>(inputs, ray, rng)
                                  : TracePathFor<true, false>(inputs, ray, rng);
     return features.textures ? TracePathFor<false, true>(inputs, ray, rng)

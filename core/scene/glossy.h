@@ -13,6 +13,7 @@
 #include "core/scene/specular.h"
 #include "core/shared/coat.h"
 #include "core/shared/microfacet.h"
+#include "core/shared/translucent.h"
 
 namespace pf {
 
@@ -36,6 +37,21 @@ inline gpu::Coat CoatOf(const Material& material) {
 inline Rgb InsideTransmittance(const Material& material, bool front_facing, float distance) {
     if (front_facing || !material.HasVolume()) return Rgb(1.0f);
     return gpu::BeerLambert(material.absorption, distance);
+}
+
+// The side of a diffuse surface a path reads or leaves by (core/shared/translucent.h): its
+// own (`through` false) or, through a translucent surface, the other; `albedo` is what the
+// side passes (base_color or the transmittance) over the probability of choosing it. Draws a
+// number from rng only where the material is translucent.
+struct DiffuseSide {
+    bool through = false;
+    Rgb albedo;
+};
+inline DiffuseSide ChooseDiffuseSide(const Material& material, const Rgb& base_color, Rng& rng) {
+    if (!material.IsTranslucent()) return {false, base_color};
+    const float through = gpu::TransmitProbability(base_color, material.transmittance);
+    if (rng.NextFloat() < through) return {true, material.transmittance / through};
+    return {false, base_color / (1.0f - through)};
 }
 
 // Scatters d at a rough surface; `normal` is the shading normal on the triangle's front

@@ -70,6 +70,10 @@ struct Material {
     // sigma_a): light crossing a length d of it keeps exp(-absorption d) (Beer-Lambert;
     // InsideTransmittance in core/scene/glossy.h).
     Rgb absorption{0.0f};
+    // Diffuse transmission (pbrt-v4's diffusetransmission; core/shared/translucent.h): a
+    // diffuse surface reflecting base_color and letting this through to its other side, both
+    // Lambertian. Black: an opaque surface. Never under a coat.
+    Rgb transmittance{0.0f};
     // Cut-outs (core/shared/alpha.h): the surface is there where alpha x the alpha texture's
     // first channel (an index into Scene::textures) is at least alpha_cutoff, or, with no
     // cutoff (0), for that fraction of the rays that meet it.
@@ -105,6 +109,8 @@ struct Material {
     // Whether some rays pass through the surface.
     bool HasCutOuts() const { return alpha_texture != kNoTexture || !(alpha >= 1.0f); }
     bool IsEmissive() const { return !IsBlack(emission); }
+    // Whether light crosses the diffuse surface to its other side.
+    bool IsTranslucent() const { return !IsBlack(transmittance); }
     // Whether a texture changes its shading normal; a normal map needs vertex tangents.
     bool HasShadingDetail() const {
         return normal_texture != kNoTexture || bump_texture != kNoTexture;

@@ -27,7 +27,7 @@ constexpr uint64_t kMaxCount = uint64_t{1} << 32;
 
 // Types written whole must have no padding: their size is the sum of their fields'.
 static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
-static_assert(sizeof(Material) == 160, "Material gained a field or padding: encode it");
+static_assert(sizeof(Material) == 172, "Material gained a field or padding: encode it");
 static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4,
               "Camera gained a field or padding: encode it");
 static_assert(sizeof(Prototype) == 8 + 24 && sizeof(Instance) == 4 + 21 * 4);
@@ -314,6 +314,10 @@ absl::Status CheckMaterials(const Scene& scene) {
             return Invalid(absl::StrCat(name, ": a conductor's Fresnel term out of range"));
         if (!(Finite(material.absorption) && MinComponent(material.absorption) >= 0))
             return Invalid(absl::StrCat(name, ": absorption out of range"));
+        if (!(Finite(material.transmittance) && MinComponent(material.transmittance) >= 0 &&
+              (!material.IsTranslucent() ||
+               (material.type == MaterialType::kDiffuse && !material.HasCoat()))))
+            return Invalid(absl::StrCat(name, ": transmittance out of range"));
         if (!(Finite(material.normal_scale) && Finite(material.bump_scale)))
             return Invalid(absl::StrCat(name, ": a normal or bump map's scale not finite"));
         if (material.normal_texture != kNoTexture &&

@@ -20,7 +20,7 @@ namespace pf {
 
 // 2: the environment light; 8: its portal; 9: coated materials and cut-outs; 10: Fresnel-mix
 // coats, roughness and mix textures.
-inline constexpr uint32_t kPreparedSceneVersion = 14;
+inline constexpr uint32_t kPreparedSceneVersion = 15;
 
 // Normals go only where a triangle is smooth, texture coordinates only where a material has a
 // texture, textures only where a material reads them (others stay as empty placeholders, so

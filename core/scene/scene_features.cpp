@@ -25,6 +25,7 @@ SceneFeatures SceneFeatures::All() {
                        &all.fresnel_mixes,
                        &all.conductor_fresnel,
                        &all.absorption,
+                       &all.translucent,
                        &all.smooth_normals,
                        &all.shading_detail,
                        &all.triangle_lights,
@@ -50,6 +51,7 @@ std::string SceneFeatures::ToString() const {
     if (fresnel_mixes) parts.push_back("specular over diffuse");
     if (conductor_fresnel) parts.push_back("metal Fresnel");
     if (absorption) parts.push_back("absorbing glass");
+    if (translucent) parts.push_back("diffuse transmission");
     if (cut_outs) parts.push_back("cut-outs");
     if (mixes) parts.push_back("mixed materials");
     if (textures) parts.push_back("textures");
@@ -98,6 +100,7 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
                                        material.type == MaterialType::kRoughConductor) &&
                                       material.conductor != gpu::kConductorTint;
         features.absorption |= material.HasVolume();
+        features.translucent |= material.IsTranslucent();
         features.shading_detail |= material.HasShadingDetail();
     }
     for (const Emitters::Record& record : emitters.Records()) {

@@ -23,6 +23,7 @@ struct SceneFeatures {
     bool fresnel_mixes = false;       // glTF's dielectric: specular over diffuse (kCoatFresnelMix)
     bool conductor_fresnel = false;   // a metal's reflectance varies with angle (conductor.h)
     bool absorption = false;          // glass whose inside absorbs (Material::absorption)
+    bool translucent = false;         // diffuse transmission (Material::transmittance)
     bool smooth_normals = false;      // a triangle interpolates vertex normals
     bool shading_detail = false;      // a used material has a normal or bump map
     // Emitters with power.
@@ -35,8 +36,10 @@ struct SceneFeatures {
     // for scenes with specular materials; false otherwise.
     bool caustics = false;
 
-    // Anything but diffuse surfaces: what the passes' variants with non-diffuse scattering handle.
+    // Surfaces that bend light into caustics: mirrors, glass, rough ones and coats.
     bool Specular() const { return mirror || dielectric || thin_dielectric || Rough() || coats; }
+    // Anything but opaque diffuse surfaces: what the passes' general variants handle.
+    bool GeneralSurfaces() const { return Specular() || translucent; }
     bool Rough() const { return rough_conductor || rough_dielectric; }
     // Whether shading reads texture coordinates (light emission aside).
     bool ReadsUv() const {

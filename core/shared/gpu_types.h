@@ -77,7 +77,8 @@ PF_CONST(uint32_t) kSpecHasMixTextures = 18;        // Material::mix_texture
 PF_CONST(uint32_t) kSpecHasConductorFresnel = 19;   // Material::conductor other than the tint
 PF_CONST(uint32_t) kSpecHasAbsorption = 20;         // Material::absorption inside glass
 PF_CONST(uint32_t) kSpecHasShadingDetail = 21;      // normal or bump maps
-PF_CONST(uint32_t) kSpecCount = 22;
+PF_CONST(uint32_t) kSpecHasTranslucency = 22;       // Material::transmittance
+PF_CONST(uint32_t) kSpecCount = 23;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -150,8 +151,9 @@ struct GpuMaterial {
     vec4 absorption;     // xyz: a solid dielectric's absorption coefficient (BeerLambert)
     vec4 detail;         // x: the normal map's texture, or -1 (int bits), y: its scale; z: the bump
                   // map's texture, or -1 (int bits), w: its scale (core/shared/shading_normal.h)
+    vec4 transmittance;  // xyz: a diffuse surface's diffuse transmission (translucent.h)
 };
-PF_GPU_LAYOUT(GpuMaterial, 160);
+PF_GPU_LAYOUT(GpuMaterial, 176);
 
 struct GpuTexture {
     uint32_t first_texel;  // into the texels binding

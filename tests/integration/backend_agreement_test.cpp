@@ -269,6 +269,38 @@ TEST(BackendAgreementAbsorption, AbsorbingGlassMatchesTheCpus) {
     ExpectVulkanAgreesWithTheCpu(testing::WriteTextFile(tinted, "tinted-glass.gltf"), 2'000'000);
 }
 
+TEST(BackendAgreementTranslucency, LightThroughAPaperShadeMatchesTheCpus) {
+    // A closed room lit from the ceiling, half through a paper shade (pbrt-v4's
+    // diffusetransmission, tinted, under half the light and over part of the floor), the camera
+    // seeing the floor and the shade from below: the floor under it is lit by the photons it
+    // lets through, on the device as on the CPU.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    ExpectVulkanAgreesWithTheCpu(
+        testing::WriteTextFile(
+            "LookAt 0 -0.95 1.2  0 0 0.5  0 0 1\nCamera \"perspective\" \"float fov\" 70\n"
+            "WorldBegin\n"
+            "Material \"diffuse\" \"rgb reflectance\" [0.7 0.6 0.5]\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 2  -1 1 2  1 -1 2  1 1 2]\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-1 1 0  1 1 0  -1 1 2  1 1 2]\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  -1 -1 2  1 -1 0  1 -1 2]\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  -1 1 0  -1 -1 2  -1 1 2]\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [1 -1 0  1 -1 2  1 1 0  1 1 2]\n"
+            "Material \"diffusetransmission\" \"rgb reflectance\" [0.4 0.3 0.2] "
+            "\"rgb transmittance\" [0.5 0.6 0.7]\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-0.9 -0.2 1.4  0.1 -0.2 1.4  -0.9 0.9 1.6  0.1 "
+            "0.9 "
+            "1.6]\n"
+            "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [5 5 5]\n"
+            "Material \"diffuse\" \"rgb reflectance\" [0 0 0]\nTranslate -0.2 0.3 1.99\n"
+            "Rotate 180 1 0 0\n"
+            "Shape \"bilinearmesh\" \"point3 P\" [-0.4 -0.4 0  0.4 -0.4 0  -0.4 0.4 0  0.4 0.4 0]\n"
+            "AttributeEnd\n",
+            "paper-shade.pbrt"),
+        6'000'000);
+}
+
 TEST(BackendAgreementCutOuts, CutOutsAndMixesMatchTheCpus) {
     // A closed room lit from the ceiling, with a checkered alpha-textured card and a card of
     // alpha 0.5 hanging in it, the camera seeing the floor through both: camera rays, photons

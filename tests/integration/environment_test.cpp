@@ -269,9 +269,11 @@ bool BlockRatioCheck(const Image& image, const PixelClasses& classes,
 // cosine at which the camera sees the face, averaged over 8x8 rays across each pixel), as
 // BlockRatioCheck, and that the check fails 2% off. Per channel: expected(mu) is a colour.
 // What the camera should see along a ray that meets the cube at `hit`, over the sky's radiance.
+// `map_photons`: pm's photons a map, more where its maps' noise shows.
 using Expectation = std::function<Rgbd(const Scene&, const Tracer&, const Ray&, const RayHit&)>;
 void ExpectCubeShows(const std::string& scene_path, Integrator integrator,
-                     const std::string& feature, const Expectation& shows) {
+                     const std::string& feature, const Expectation& shows,
+                     uint64_t map_photons = 1u << 19) {
     RenderSettings settings;
     settings.scene_path = scene_path;
     settings.threads = 2;
@@ -283,7 +285,7 @@ void ExpectCubeShows(const std::string& scene_path, Integrator integrator,
     job.seed = 3;
     job.layout = {1u << 15, 2};
     job.epoch_budget = 48;
-    job.photon_map.global_photons = job.photon_map.caustic_photons = 1u << 19;
+    job.photon_map.global_photons = job.photon_map.caustic_photons = map_photons;
     // ppm's hit points are fixed: where a point is one of two materials, each keeps its choice
     // for the whole render, so only more of them average it.
     if (integrator == Integrator::kPpm) job.samples_per_pixel = 32;
@@ -319,13 +321,15 @@ void ExpectCubeShows(const std::string& scene_path, Integrator integrator,
 }
 
 void ExpectCubeReflectsRgb(const std::string& scene_path, Integrator integrator,
-                           const std::string& feature,
-                           const std::function<Rgbd(double)>& reflects) {
-    ExpectCubeShows(scene_path, integrator, feature,
-                    [&](const Scene& scene, const Tracer&, const Ray& ray, const RayHit& hit) {
-                        const Vec3 n = scene.Surface(hit).geometric_normal;
-                        return reflects(std::abs(Dot(ray.direction, n)));
-                    });
+                           const std::string& feature, const std::function<Rgbd(double)>& reflects,
+                           uint64_t map_photons = 1u << 19) {
+    ExpectCubeShows(
+        scene_path, integrator, feature,
+        [&](const Scene& scene, const Tracer&, const Ray& ray, const RayHit& hit) {
+            const Vec3 n = scene.Surface(hit).geometric_normal;
+            return reflects(std::abs(Dot(ray.direction, n)));
+        },
+        map_photons);
 }
 
 // The same where expected(mu) is grey.
@@ -383,6 +387,29 @@ TEST_P(MixedEnvironmentFurnace, ConvexBodyReflectsTheMixedAlbedo) {
             "cube.pbrt"),
         GetParam(), "mixed materials",
         [](double) { return (1 - kAmount) * kFirst + kAmount * kSecond; });
+}
+
+// pbrt-v4's diffusetransmission, reflectance R and transmittance T per channel: light enters
+// the closed cube through its faces, so its inside holds a uniform radiance L_i (each inner
+// point sees only the inside: L_i = R L_i + T L), L_i = T L / (1 - R), and each face shows
+// L (R + T^2 / (1 - R)) whatever the angle: L itself, the cube vanishing into the sky, where
+// R + T = 1. Photons let in land inside, and the points on the far side of each face gather
+// them.
+class TranslucentEnvironmentFurnace : public ::testing::TestWithParam<Integrator> {};
+
+TEST_P(TranslucentEnvironmentFurnace, ClosedBodyShowsReflectionPlusWhatItsInsideLetsOut) {
+    const Rgbd r(0.5, 0.3, 0.2), t(0.3, 0.6, 0.4);
+    ExpectCubeReflectsRgb(
+        testing::WriteTextFile(
+            CubePbrt(absl::StrFormat("Material \"diffusetransmission\" \"rgb reflectance\" "
+                                     "[%g %g %g] \"rgb transmittance\" [%g %g %g] \"float "
+                                     "scale\" 2\n",
+                                     r.x / 2, r.y / 2, r.z / 2, t.x / 2, t.y / 2, t.z / 2)),
+            "paper-cube.pbrt"),
+        GetParam(), "diffuse transmission", [&](double) { return r + t * t / (Rgbd(1.0) - r); },
+        // pm's final gathers through the faces read the inside's photons, from one map for
+        // the whole render: four times the photons.
+        1u << 21);
 }
 
 // pbrt-v4's conductor, smooth gold: a convex mirror under a uniform sky L reflects L F(mu)
@@ -451,6 +478,9 @@ TEST_P(AbsorbingGlassEnvironment, GltfVolumeAttenuatesAlongTheChord) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, AbsorbingGlassEnvironment, EveryIntegrator(),
+                         IntegratorParamName);
+
+INSTANTIATE_TEST_SUITE_P(Integrators, TranslucentEnvironmentFurnace, EveryIntegrator(),
                          IntegratorParamName);
 
 INSTANTIATE_TEST_SUITE_P(Integrators, ConductorEnvironmentFurnace, EveryIntegrator(),

@@ -352,26 +352,25 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
         return absl::OkStatus();
     }
     Rgb emission(0.0f);
-    UvTransform uv = material.uv;
+    TextureMapping mapping = material.mapping;
     if (state.alpha.texture != kNoTexture) {
-        // One (u, v) mapping a shape: the alpha texture's, unless the material's texture
+        // One texture mapping a shape: the alpha texture's, unless the material's texture
         // reads another.
         if (material.material.base_color_texture == kNoTexture)
-            uv = state.alpha.uv;
-        else if (!std::equal(std::begin(uv.m), std::end(uv.m), std::begin(state.alpha.uv.m)))
+            mapping = state.alpha.mapping;
+        else if (!(mapping == state.alpha.mapping))
             Warn(Location{}, absl::StrCat(element,
                                           ": the alpha texture is read with the material "
-                                          "texture's (u, v), not its own scale and offset"));
+                                          "texture's mapping, not its own"));
     }
     if (emission_texture != kNoTexture) {
         // The light's image reads the shape's own (u, v); a base colour texture of the
         // material, which another mapping of them, reads the same.
-        uv = state.area_light->image.uv;
-        if (material.material.base_color_texture != kNoTexture &&
-            !std::equal(std::begin(uv.m), std::end(uv.m), std::begin(material.uv.m)))
+        mapping = state.area_light->image.mapping;
+        if (material.material.base_color_texture != kNoTexture && !(mapping == material.mapping))
             Warn(Location{}, absl::StrCat(element,
                                           ": the material's texture is read with the area "
-                                          "light image's (u, v), not its own scale and offset"));
+                                          "light image's (u, v), not its own mapping"));
     }
     if (state.area_light) {
         emission = state.area_light->radiance;
@@ -415,8 +414,15 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
         SceneMaterial(state.material, emission, state.area_light && state.area_light->two_sided,
                       state.alpha, emission_texture, InsideAbsorption(state, element));
     if (!index.ok()) return index.status();
-    MeshPlacement placement{world, *index, front, state.reverse_orientation, uv};
-    if (mesh.uvs.empty() && scene_.MaterialReadsUv(*index))
+    MeshPlacement placement{world, *index, front, state.reverse_orientation, mapping.uv};
+    if (!scene_.MaterialReadsUv(*index))
+        return AppendMesh(mesh, placement, options_.limits, element, &scene_, prototype);
+    // Planar, spherical and cylindrical mappings: (s, t) from where the vertices are in the
+    // world (an object's shapes: where the object was defined, for all its instances).
+    if (!mapping.FromMesh())
+        return AppendMesh(MapTextureCoordinates(mesh, world, mapping), placement, options_.limits,
+                          element, &scene_, prototype);
+    if (mesh.uvs.empty())
         return AppendMesh(WithTriangleUvs(mesh), placement, options_.limits, element, &scene_,
                           prototype);
     return AppendMesh(mesh, placement, options_.limits, element, &scene_, prototype);

@@ -317,7 +317,7 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, TokenStrea
                 return ErrorAt(where, absl::StrCat("AreaLightSource: ", path.status().message()));
             light.image.path = *path;
             light.image.element = absl::StrCat(where.ToString(), ": AreaLightSource");
-            light.image.uv.m[4] = -1, light.image.uv.m[5] = 1;
+            light.image.mapping.uv.m[4] = -1, light.image.mapping.uv.m[5] = 1;
         }
         state_.area_light = light;
     } else if (name == "MakeNamedMedium") {

@@ -1,14 +1,13 @@
 // pbrt-v4 materials and textures onto photonfarm's: diffuse, smooth and rough dielectric and
 // conductor (the Fresnel term of its complex index: core/shared/conductor.h), thin dielectric,
-// coateddiffuse and
-// coatedconductor (a coat over the base: core/shared/coat.h); image textures through
-// OpenImageIO; normal and bump maps on any of them (Material::normal_texture, bump_texture).
+// coateddiffuse and coatedconductor (a coat over the base: core/shared/coat.h), mix,
+// diffusetransmission (core/shared/translucent.h); image textures through OpenImageIO; normal
+// and bump maps on any of them (Material::normal_texture, bump_texture).
 #include <algorithm>
 #include <cmath>
 
-#include "absl/strings/match.h"
-#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/pbrt/pbrt_scene_builder.h"
 #include "core/shared/conductor.h"
@@ -39,7 +38,7 @@ absl::Status PbrtSceneBuilder::BaseColor(ParameterList& parameters, const std::s
         if (!index.ok()) return index.status();
         material->material.base_color = texture.scale;
         material->material.base_color_texture = *index;
-        material->uv = texture.uv;
+        material->mapping = texture.mapping;
     } else if (const std::optional<Rgb> color = parameters.Color(name)) {
         material->material.base_color = *color;
     }
@@ -76,7 +75,7 @@ absl::StatusOr<FloatInput> PbrtSceneBuilder::FloatParameter(
     texture.decode.exponent = exponent;
     const absl::StatusOr<int32_t> image = ImageIndex(texture);
     if (!image.ok()) return image.status();
-    input = {texture.scale.x, *image, texture.uv};
+    input = {texture.scale.x, *image, texture.mapping};
     return input;
 }
 
@@ -127,7 +126,7 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
                                          prefix, "roughness\"'s is left out"));
             else
                 m.roughness_texture = textured.texture;
-            if (m.base_color_texture == kNoTexture) material.uv = textured.uv;
+            if (m.base_color_texture == kNoTexture) material.mapping = textured.mapping;
         }
         return alpha <= 0 ? 0.0f
                           : static_cast<float>(std::clamp(alpha, double(kMinRoughness), 1.0));
@@ -287,9 +286,10 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
         material.material.type = MaterialType::kMix;
         material.material.mix_amount = amount->value;
         material.material.mix_texture = amount->texture;
-        material.uv = amount->uv;
-    } else if (type == "measured" || type == "subsurface" || type == "hair" ||
-               type == "diffusetransmission") {
+        material.mapping = amount->mapping;
+    } else if (type == "diffusetransmission") {
+        status = DiffuseTransmission(parameters, where, &material);
+    } else if (type == "measured" || type == "subsurface" || type == "hair") {
         parameters.ConsumeAll();
         material.material.base_color = Rgb(0.5f);
         Warn(where, absl::StrCat("Material \"", type,
@@ -303,6 +303,45 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
         return detail;
     materials_.push_back(material);
     return static_cast<int>(materials_.size() - 1);
+}
+
+absl::Status PbrtSceneBuilder::DiffuseTransmission(ParameterList& parameters, const Location& where,
+                                                   MaterialRef* material) {
+    // pbrt-v4's defaults: 0.25 each, both times "scale" (core/shared/translucent.h).
+    if (absl::Status status = BaseColor(parameters, "reflectance", Rgb(0.25f), where, material);
+        !status.ok())
+        return status;
+    MaterialRef through;
+    if (absl::Status status = BaseColor(parameters, "transmittance", Rgb(0.25f), where, &through);
+        !status.ok())
+        return status;
+    Rgb& transmittance = material->material.transmittance;
+    transmittance = through.material.base_color;
+    if (const int32_t texture = through.material.base_color_texture; texture != kNoTexture) {
+        const std::vector<Rgb>& texels = scene_.textures[texture]->texels;
+        Rgbd sum(0.0);
+        for (const Rgb& texel : texels) sum += Rgbd(texel);
+        transmittance = transmittance * Rgb(sum / static_cast<double>(texels.size()));
+        Warn(where, absl::StrCat("Material \"diffusetransmission\": the \"transmittance\" texture "
+                                 "is taken as its mean colour (",
+                                 absl::StrFormat("%.3g %.3g %.3g", transmittance.x, transmittance.y,
+                                                 transmittance.z),
+                                 ")"));
+    }
+    const double scale = parameters.Float("scale", 1.0);
+    if (!(std::isfinite(scale) && scale >= 0))
+        return ErrorAt(where,
+                       "Material \"diffusetransmission\": \"scale\" must be finite and "
+                       "non-negative");
+    // pbrt-v4 clamps each of scale x R and scale x T to 1.
+    Rgb& reflectance = material->material.base_color;
+    reflectance = Min(reflectance * static_cast<float>(scale), Rgb(1.0f));
+    transmittance = Min(transmittance * static_cast<float>(scale), Rgb(1.0f));
+    if (MaxComponent(reflectance + transmittance) > 1)
+        Warn(where,
+             "Material \"diffusetransmission\": reflectance + transmittance above 1 "
+             "creates energy (as in pbrt-v4)");
+    return absl::OkStatus();
 }
 
 absl::Status PbrtSceneBuilder::ShadingDetail(ParameterList& parameters, const Location& where,
@@ -319,11 +358,11 @@ absl::Status PbrtSceneBuilder::ShadingDetail(ParameterList& parameters, const Lo
         normal_map.path = *path;
         normal_map.decode.encoding = ImageEncoding::kLinear;
         normal_map.element = absl::StrCat(where.ToString(), ": Material \"normalmap\"");
-        normal_map.uv.m[4] = -1, normal_map.uv.m[5] = 1;
+        normal_map.mapping.uv.m[4] = -1, normal_map.mapping.uv.m[5] = 1;
         const absl::StatusOr<int32_t> index = ImageIndex(normal_map);
         if (!index.ok()) return index.status();
         m.normal_texture = *index;
-        if (!textured) material->uv = normal_map.uv;
+        if (!textured) material->mapping = normal_map.mapping;
     }
     // The bump map: a float texture of displacement along the normal, in world units.
     const absl::StatusOr<FloatInput> displacement =
@@ -334,184 +373,8 @@ absl::Status PbrtSceneBuilder::ShadingDetail(ParameterList& parameters, const Lo
             return ErrorAt(where, "Material: \"displacement\"'s scale must be finite");
         m.bump_texture = displacement->texture;
         m.bump_scale = displacement->value;
-        if (!textured && m.normal_texture == kNoTexture) material->uv = displacement->uv;
+        if (!textured && m.normal_texture == kNoTexture) material->mapping = displacement->mapping;
     }
-    return absl::OkStatus();
-}
-
-absl::StatusOr<int32_t> PbrtSceneBuilder::ImageIndex(const TextureRef& texture) {
-    if (texture.baked != nullptr) {
-        if (options_.references_only) return kNoTexture;
-        const auto key = std::make_tuple(absl::StrCat("baked:", texture.element), texture.decode);
-        if (const auto it = images_.find(key); it != images_.end()) return it->second;
-        const auto index = static_cast<int32_t>(scene_.textures.size());
-        auto decoded = std::make_shared<pf::Texture>(*texture.baked);
-        ApplyValueOptions(texture.decode, decoded.get());
-        scene_.textures.push_back(std::move(decoded));
-        images_[key] = index;
-        return index;
-    }
-    if (texture.path.empty()) return kNoTexture;
-    absl::StatusOr<std::string_view> bytes = files_.Read(texture.path);
-    if (!bytes.ok())
-        return absl::Status(bytes.status().code(),
-                            absl::StrCat(texture.element, ": ", bytes.status().message()));
-    if (options_.references_only) return kNoTexture;
-    const auto key = std::make_tuple(texture.path, texture.decode);
-    if (const auto it = images_.find(key); it != images_.end()) return it->second;
-    absl::StatusOr<pf::Texture> image =
-        DecodeImage(*bytes, texture.path, options_.limits, texture.decode);
-    if (!image.ok())
-        return absl::Status(image.status().code(),
-                            absl::StrCat(texture.element, ": ", image.status().message()));
-    const auto index = static_cast<int32_t>(scene_.textures.size());
-    scene_.textures.push_back(std::make_shared<const pf::Texture>(std::move(*image)));
-    images_[key] = index;
-    return index;
-}
-
-absl::Status PbrtSceneBuilder::BakeProcedural(const std::string& type, bool scalar,
-                                              ParameterList& parameters, const Location& where,
-                                              TextureRef* texture) {
-    const auto value = [&](const std::string& name, float fallback) -> std::optional<Rgb> {
-        if (parameters.TextureName(name)) return std::nullopt;  // a texture operand
-        return scalar ? Rgb(static_cast<float>(parameters.Float(name, fallback)))
-                      : parameters.Color(name).value_or(Rgb(fallback));
-    };
-    const auto left_out = [&](const std::string& what) {  // noted where the texture is used
-        texture->unsupported = what;
-        parameters.ConsumeAll();
-        return absl::OkStatus();
-    };
-    // pbrt-v4's (s, t) = (uscale u + udelta, vscale v + vdelta), t up; photonfarm's v is down.
-    // The image covers `period` of s and t (a checkerboard's two checks, bilerp's unit square).
-    const double su = parameters.Float("uscale", 1), sv = parameters.Float("vscale", 1);
-    const double du = parameters.Float("udelta", 0), dv = parameters.Float("vdelta", 0);
-    if (parameters.String("mapping", "uv") != "uv")
-        return left_out(absl::StrCat(type, " with a mapping other than uv"));
-    const int size = type == "checkerboard" ? 128 : 64;
-    const double period = type == "checkerboard" ? 2 : 1;
-    texture->uv.m[0] = su / period, texture->uv.m[2] = du / period;
-    texture->uv.m[4] = -sv / period, texture->uv.m[5] = (1 - dv) / period;
-    auto baked = std::make_shared<pf::Texture>();
-    baked->width = baked->height = size;
-    baked->texels.resize(size_t(size) * size);
-    const auto at = [&](int x, int y) {  // (s, t) at the texel's centre
-        return std::pair{period * (x + 0.5) / size, 1 - period * (y + 0.5) / size};
-    };
-    if (type == "checkerboard") {
-        // pbrt-v4's: tex1 where floor(s) + floor(t) is even, tex2 where odd.
-        if (parameters.Integer("dimension", 2) != 2) return left_out("checkerboard of dimension 3");
-        const std::optional<Rgb> one = value("tex1", 1), two = value("tex2", 0);
-        if (!one || !two) return left_out("checkerboard of textures");
-        for (int y = 0; y < size; ++y)
-            for (int x = 0; x < size; ++x) {
-                const auto [s, t] = at(x, y);
-                const bool even = (int(std::floor(s)) + int(std::floor(t))) % 2 == 0;
-                baked->texels[size_t(y) * size + x] = even ? *one : *two;
-            }
-    } else {
-        // pbrt-v4's bilerp: v00 (1 - s)(1 - t) + v01 (1 - s) t + v10 s (1 - t) + v11 s t.
-        const std::optional<Rgb> v00 = value("v00", 0), v01 = value("v01", 1),
-                                 v10 = value("v10", 0), v11 = value("v11", 1);
-        if (!v00 || !v01 || !v10 || !v11) return left_out("bilerp of textures");
-        for (int y = 0; y < size; ++y)
-            for (int x = 0; x < size; ++x) {
-                const auto [s, t] = at(x, y);
-                const float fs = float(s), ft = float(t);
-                baked->texels[size_t(y) * size + x] = *v00 * ((1 - fs) * (1 - ft)) +
-                                                      *v01 * ((1 - fs) * ft) +
-                                                      *v10 * (fs * (1 - ft)) + *v11 * (fs * ft);
-            }
-    }
-    for (const Rgb& texel : baked->texels)
-        if (!IsFinite(texel) || MinComponent(texel) < 0)
-            return ErrorAt(where, absl::StrCat("Texture (", type,
-                                               "): its values must be finite and non-negative"));
-    texture->baked = std::move(baked);
-    return absl::OkStatus();
-}
-
-absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::string& kind,
-                                       const std::string& type, ParameterList& parameters,
-                                       const Location& where) {
-    if (kind != "spectrum" && kind != "float")
-        return ErrorAt(where, absl::StrCat("Texture \"", name, "\": class '", kind,
-                                           "' is not \"spectrum\" or \"float\""));
-    // A float texture is kept as a grey one: its value in every channel.
-    const bool scalar = kind == "float";
-    std::map<std::string, TextureRef>& named = scalar ? float_textures_ : textures_;
-    TextureRef texture;
-    if (scalar) texture.decode.channels = ImageChannels::kFloat;
-    if (type == "imagemap") {
-        const std::string filename = parameters.String("filename", "");
-        if (filename.empty())
-            return ErrorAt(where, absl::StrCat("Texture \"", name, "\" needs \"string filename\""));
-        absl::StatusOr<std::string> path = ResolveReference(filename, base_folder_);
-        if (!path.ok())
-            return ErrorAt(where,
-                           absl::StrCat("Texture \"", name, "\": ", path.status().message()));
-        ImageDecodeOptions& decode = texture.decode;
-        const std::string encoding = parameters.String("encoding", "");
-        if (encoding == "sRGB") {
-            decode.encoding = ImageEncoding::kSrgb;
-        } else if (encoding == "linear") {
-            decode.encoding = ImageEncoding::kLinear;
-        } else if (absl::StartsWith(encoding, "gamma ") &&
-                   absl::SimpleAtod(encoding.substr(6), &decode.gamma) && decode.gamma > 0) {
-            decode.encoding = ImageEncoding::kGamma;
-        } else if (!encoding.empty()) {
-            return ErrorAt(where, absl::StrCat("Texture \"", name, "\": encoding '", encoding,
-                                               "' is not sRGB, linear or \"gamma g\""));
-        }
-        const double su = parameters.Float("uscale", 1), sv = parameters.Float("vscale", 1);
-        const double du = parameters.Float("udelta", 0), dv = parameters.Float("vdelta", 0);
-        // pbrt's (s, t) = (su u + du, sv v + dv) with t = 0 at the image's bottom row; photonfarm's
-        // textures put v = 0 at the top.
-        texture.uv.m[0] = su, texture.uv.m[2] = du, texture.uv.m[4] = -sv, texture.uv.m[5] = 1 - dv;
-        texture.scale = Rgb(static_cast<float>(parameters.Float("scale", 1.0)));
-        decode.invert = parameters.Bool("invert", false);
-        const std::string wrap = parameters.String("wrap", "repeat");
-        if (wrap == "clamp" || wrap == "black") {
-            decode.wrap_u = decode.wrap_v = wrap == "clamp" ? gpu::kWrapClamp : gpu::kWrapBlack;
-        } else if (wrap != "repeat") {
-            Warn(where, absl::StrCat("Texture \"", name, "\": wrap \"", wrap,
-                                     "\" is rendered as \"repeat\""));
-        }
-        parameters.String("filter", "");
-        parameters.Float("maxanisotropy", 8);
-        texture.path = *path;
-        texture.element = absl::StrCat(where.ToString(), ": Texture \"", name, "\"");
-    } else if (type == "checkerboard" || type == "bilerp") {
-        if (absl::Status status = BakeProcedural(type, scalar, parameters, where, &texture);
-            !status.ok())
-            return status;
-        texture.element = absl::StrCat(where.ToString(), ": Texture \"", name, "\"");
-    } else if (type == "constant") {
-        texture.scale = scalar ? Rgb(static_cast<float>(parameters.Float("value", 1.0)))
-                               : parameters.Color("value").value_or(Rgb(1.0f));
-    } else if (type == "scale") {
-        const float scale = static_cast<float>(parameters.Float("scale", 1.0));
-        if (const std::optional<std::string> inner = parameters.TextureName("tex")) {
-            const auto it = named.find(*inner);
-            if (it == named.end())
-                return ErrorAt(where, absl::StrCat("Texture \"", name, "\": no ", kind,
-                                                   " texture named \"", *inner, "\""));
-            texture = it->second;
-        } else {
-            texture.scale = scalar ? Rgb(static_cast<float>(parameters.Float("tex", 1.0)))
-                                   : parameters.Color("tex").value_or(Rgb(1.0f));
-        }
-        texture.scale *= scale;
-    } else {
-        parameters.ConsumeAll();
-        texture.unsupported = type;
-    }
-    if (!parameters.status().ok()) return parameters.status();
-    if (!IsFinite(texture.scale) || MinComponent(texture.scale) < 0)
-        return ErrorAt(where, absl::StrCat("Texture \"", name,
-                                           "\": its values must be finite and non-negative"));
-    named[name] = texture;
     return absl::OkStatus();
 }
 

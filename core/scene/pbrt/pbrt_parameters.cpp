@@ -66,6 +66,12 @@ std::optional<Vec3d> ParameterList::Point3(std::string_view name) {
     return Vec3d(p->numbers[0], p->numbers[1], p->numbers[2]);
 }
 
+std::optional<Vec3d> ParameterList::Vector3(std::string_view name) {
+    const Parameter* p = Lookup(name, {"vector3"}, 3);
+    if (!p) return std::nullopt;
+    return Vec3d(p->numbers[0], p->numbers[1], p->numbers[2]);
+}
+
 std::vector<double> ParameterList::Floats(std::string_view name) {
     const Parameter* p = Lookup(name, {"float"}, 0);
     return p ? p->numbers : std::vector<double>{};

@@ -39,6 +39,7 @@ public:
     bool Bool(std::string_view name, bool fallback);
     std::string String(std::string_view name, std::string_view fallback);
     std::optional<Vec3d> Point3(std::string_view name);
+    std::optional<Vec3d> Vector3(std::string_view name);
     // Arrays, empty when absent.
     std::vector<double> Floats(std::string_view name);
     std::vector<int> Integers(std::string_view name);

@@ -15,6 +15,7 @@
 #include "core/scene/mesh_builder.h"
 #include "core/scene/pbrt/pbrt_lexer.h"
 #include "core/scene/pbrt/pbrt_loader.h"
+#include "core/scene/pbrt/pbrt_mapping.h"
 #include "core/scene/pbrt/pbrt_parameters.h"
 #include "core/scene/pbrt/pbrt_upgrade.h"
 #include "core/scene/scene.h"
@@ -32,7 +33,7 @@ struct TextureRef {
     ImageDecodeOptions decode;
     std::string element;  // "file:line:column: Texture "name"", for errors
     Rgb scale{1.0f};
-    UvTransform uv;
+    TextureMapping mapping;
     std::string unsupported;  // non-empty: the texture class photonfarm cannot evaluate
     // A procedural texture baked into linear texels (checkerboard, bilerp), in place of a file.
     std::shared_ptr<const pf::Texture> baked;
@@ -40,7 +41,7 @@ struct TextureRef {
 
 struct MaterialRef {
     Material material;       // emission left zero: it comes from the shape's area light
-    UvTransform uv;          // of its base colour texture
+    TextureMapping mapping;  // of its base colour texture
     bool interface = false;  // "interface": a medium boundary, not a surface
     // "mix": the two materials (into materials_) it is one of, the second with probability
     // material.mix_amount; -1 for any other material.
@@ -60,7 +61,7 @@ struct AreaLight {
 struct FloatInput {
     float value = 1.0f;
     int32_t texture = kNoTexture;  // into Scene::textures
-    UvTransform uv;                // of the texture
+    TextureMapping mapping;        // of the texture
 };
 
 struct GraphicsState {
@@ -150,10 +151,31 @@ private:
                                               const Location& where, double exponent = 1);
     absl::Status Texture(const std::string& name, const std::string& kind, const std::string& type,
                          ParameterList& parameters, const Location& where);
+    // An operand of pbrt-v4's scale and mix textures: a named texture of the kind asked for
+    // (null for a constant one, whose value is `value`), or a value.
+    struct Operand {
+        Rgb value{1.0f};
+        const TextureRef* texture = nullptr;
+    };
+    absl::StatusOr<Operand> TextureOperand(ParameterList& parameters, const std::string& name,
+                                           bool scalar, Rgb fallback, const std::string& what,
+                                           const Location& where);
+    // The texels of an operand's image (null while packing, which only reads the file).
+    absl::StatusOr<std::shared_ptr<const pf::Texture>> OperandImage(const TextureRef& texture);
+    // pbrt-v4's scale, mix and directionmix textures: of constants, a constant; a texture
+    // times constants, that texture scaled; of images under one mapping, baked into one image.
+    absl::Status Combine(const std::string& name, const std::string& type, bool scalar,
+                         ParameterList& parameters, const Location& where, TextureRef* texture);
+    // The texture mapping of a Texture directive's parameters (pbrt_mapping.h).
+    absl::StatusOr<TextureMapping> Mapping(ParameterList& parameters, const Location& where);
     // pbrt-v4's checkerboard (2D) and bilerp textures of constant operands, baked into an image
     // over one period of their (s, t) mapping; of texture operands, texture->unsupported.
     absl::Status BakeProcedural(const std::string& type, bool scalar, ParameterList& parameters,
                                 const Location& where, TextureRef* texture);
+    // pbrt-v4's diffusetransmission: "reflectance" (colour or texture), "transmittance" (a
+    // colour; a texture's mean colour, with a note) and "scale".
+    absl::Status DiffuseTransmission(ParameterList& parameters, const Location& where,
+                                     MaterialRef* material);
     // A material's "normalmap" image and "displacement" texture (pbrt-v3's "bumpmap").
     absl::Status ShadingDetail(ParameterList& parameters, const Location& where,
                                MaterialRef* material);

@@ -377,5 +377,49 @@ TEST(PbrtMaterialsTest, RoughnessAndMixAmountTakeFloatTextures) {
                 "Material \"conductor\": \"roughness\" names no float texture \"none\"");
 }
 
+TEST(PbrtMaterialsTest, DiffuseTransmissionTakesPbrtsParameters) {
+    // Texels sRGB 128 and 255 grey: linear 0.216 and 1, mean 0.608.
+    const std::string png = TwoTexelPng({128, 128, 128, 255, 255, 255}, "photonfarm-paper.png");
+    ASSERT_FALSE(png.empty());
+    const std::string world =
+        std::string("Material \"diffusetransmission\"\n") + kQuad +
+        "Material \"diffusetransmission\" \"rgb reflectance\" [0.2 0.4 0.6] \"rgb "
+        "transmittance\" [0.1 0.2 0.3] \"float scale\" 2\n" +
+        kQuad +
+        "Texture \"paper\" \"spectrum\" \"imagemap\" \"string filename\" \"paper.png\"\n"
+        "Material \"diffusetransmission\" \"texture reflectance\" \"paper\" "
+        "\"texture transmittance\" \"paper\" \"float scale\" 0.5\n" +
+        kQuad;
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world, {{"paper.png", png}}), &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->materials.size(), 3u);
+    // pbrt-v4's defaults: 0.25 each.
+    const Material& plain = scene->materials[0];
+    EXPECT_EQ(plain.type, MaterialType::kDiffuse);
+    EXPECT_EQ(plain.base_color, Rgb(0.25f));
+    EXPECT_EQ(plain.transmittance, Rgb(0.25f));
+    EXPECT_TRUE(plain.IsTranslucent());
+    // Both times the scale.
+    const Material& scaled = scene->materials[1];
+    EXPECT_FLOAT_EQ(scaled.base_color.z, 1.0f) << "1.2 clamped to 1, as pbrt-v4";
+    EXPECT_FLOAT_EQ(scaled.base_color.x, 0.4f);
+    EXPECT_FLOAT_EQ(scaled.transmittance.y, 0.4f);
+    // A reflectance texture as any base colour's; a transmittance texture by its mean, noted.
+    const Material& textured = scene->materials[2];
+    ASSERT_NE(textured.base_color_texture, kNoTexture);
+    EXPECT_FLOAT_EQ(textured.base_color.x, 0.5f);
+    const float mean = (SrgbToLinear(128 / 255.0f) + 1.0f) / 2;
+    EXPECT_NEAR(textured.transmittance.y, 0.5f * mean, 1e-5f);
+    bool noted = false;
+    for (const std::string& warning : warnings)
+        noted |= warning.find("\"transmittance\" texture is taken as its mean colour") !=
+                 std::string::npos;
+    EXPECT_TRUE(noted);
+    ExpectError(
+        Load(Bundle(std::string("Material \"diffusetransmission\" \"float scale\" -1\n") + kQuad)),
+        "Material \"diffusetransmission\": \"scale\" must be finite and non-negative");
+}
+
 }  // namespace
 }  // namespace pf

@@ -328,6 +328,14 @@ TEST(PreparedSceneTest, HostileBytesAreRefusedNamingWhatIsWrong) {
             s.materials[0].coat_ior = 1.5f;
         },
         "material 0: a coat out of range");
+    broken([](Scene& s) { s.materials[0].transmittance = Rgb(-0.5f); },
+           "material 0: transmittance out of range");
+    broken(
+        [](Scene& s) {
+            s.materials[0].type = MaterialType::kDielectric;
+            s.materials[0].transmittance = Rgb(0.5f);
+        },
+        "material 0: transmittance out of range");
     broken([](Scene& s) { s.camera.y_fov = std::numeric_limits<float>::infinity(); },
            "camera not finite");
     broken([](Scene& s) { s.prototypes.push_back({0, 1000000, {}}); }, "prototype 0");

@@ -54,7 +54,8 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
              Vec4(material.conductor_eta, std::bit_cast<float>(material.conductor)),
              Vec4(material.conductor_k, 0.0f), Vec4(material.absorption, 0.0f),
              gpu::vec4{std::bit_cast<float>(material.normal_texture), material.normal_scale,
-                       std::bit_cast<float>(material.bump_texture), material.bump_scale}});
+                       std::bit_cast<float>(material.bump_texture), material.bump_scale},
+             Vec4(material.transmittance, 0.0f)});
     if (!gpu_scene.features.ReadsUv() && !gpu_scene.features.textured_lights) return;
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {
         gpu_scene.textures.push_back({static_cast<uint32_t>(gpu_scene.texels.size()),
@@ -233,6 +234,7 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasConductorFresnel] = features.conductor_fresnel;
     spec[gpu::kSpecHasAbsorption] = features.absorption;
     spec[gpu::kSpecHasShadingDetail] = features.shading_detail;
+    spec[gpu::kSpecHasTranslucency] = features.translucent;
     return spec;
 }
 

@@ -9,11 +9,12 @@
 // and x1e9 in docs/numerics.md are the same integers). Precision: each addend is rounded to
 // the nearest unit, an absolute error of 2^-32 of the largest photon flux, below float's
 // own rounding for every deposit above 2^-8 of it; the sum is then exact, where the CPU's
-// float sum loses up to 2^-24 per addition. Shading normals break the bound: Veach's factors
-// (core/shared/shading_normal.h) and a deposit's weight at a hit point of its own normal may
-// exceed 1, so the unit is then kShadingHeadroom times larger, and only a deposit above that
-// many times the largest flux (a photon grazing a surface its shading normal faces) is
-// clamped.
+// float sum loses up to 2^-24 per addition. Shading normals and diffuse transmission break the
+// bound: Veach's factors (core/shared/shading_normal.h) and a deposit's weight at a hit point
+// of its own normal may exceed 1, and so may a translucent surface's R / p or T / p in some
+// channel (core/shared/translucent.h: up to 2 a bounce), so the unit is then kHeadroom times
+// larger, and only a deposit above that many times the largest flux (a photon grazing a surface
+// its shading normal faces, or gaining at many translucent bounces in a row) is clamped.
 #include "worker/backends/vulkan/vulkan_backend.h"
 
 #include <spdlog/spdlog.h>
@@ -34,7 +35,7 @@ namespace pf::vk {
 namespace {
 
 constexpr float kFixedUnitsPerMaxFlux = 2147483648.0f;  // 2^31
-constexpr float kShadingHeadroom = 256.0f;
+constexpr float kHeadroom = 256.0f;
 // The grid's buckets: about two per hit point, at most 2^21 (8 MiB of offsets).
 constexpr uint32_t kMaxBuckets = 1u << 21;
 
@@ -281,7 +282,7 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     scene_sphere_ = gpu_scene->sphere;
     scene_magnitude_ = gpu_scene->magnitude;
     flux_to_fixed_ = kFixedUnitsPerMaxFlux / gpu_scene->max_photon_flux /
-                     (features_.ShadingNormals() ? kShadingHeadroom : 1.0f);
+                     (features_.ShadingNormals() || features_.translucent ? kHeadroom : 1.0f);
     emitter_count_ = static_cast<uint32_t>(gpu_scene->emitters.size());
     environment_emitter_ = gpu_scene->environment_emitter;
     if (!(gpu_scene->max_photon_flux > 0) || !std::isfinite(flux_to_fixed_))

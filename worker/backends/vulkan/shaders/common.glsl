@@ -10,6 +10,7 @@
 #include "core/shared/alpha.h"
 #include "core/shared/texture_wrap.h"
 #include "core/shared/shading_normal.h"
+#include "core/shared/translucent.h"
 
 layout(constant_id = kSpecHasMirror) const bool kHasMirror = true;
 layout(constant_id = kSpecHasDielectric) const bool kHasDielectric = true;
@@ -33,6 +34,7 @@ layout(constant_id = kSpecHasMixTextures) const bool kHasMixTextures = true;
 layout(constant_id = kSpecHasConductorFresnel) const bool kHasConductorFresnel = true;
 layout(constant_id = kSpecHasAbsorption) const bool kHasAbsorption = true;
 layout(constant_id = kSpecHasShadingDetail) const bool kHasShadingDetail = true;
+layout(constant_id = kSpecHasTranslucency) const bool kHasTranslucency = true;
 // Some shading normal differs from its surface's (SceneFeatures::ShadingNormals).
 const bool kShadingNormals = kHasSmoothNormals || kHasShadingDetail;
 

@@ -106,20 +106,30 @@ uint TracePhoton(uint photon, out bool discarded) {
                 if (scattered && across > 0.0) Gather(surface.position, direction, flux / across);
                 if (!(arrival > 0.0)) break;  // from below the shading normal
                 flux *= arrival;
+                // Back to its side or, through a translucent surface, on to the other
+                // (ChooseDiffuseSide).
+                vec3 albedo = surface.base_color;
+                bool through = false;
+                if (kHasTranslucency && MaxComponent(material.transmittance.xyz) > 0.0) {
+                    const float p = TransmitProbability(albedo, material.transmittance.xyz);
+                    through = Pcg32NextFloat(rng) < p;
+                    albedo = through ? material.transmittance.xyz / p : albedo / (1.0 - p);
+                }
+                const bool toward = front_facing != through;
                 bool escaped = false;
                 for (int returns = 0;; ++returns) {
                     // Russian roulette by albedo (Jensen 2001, 2.3.3).
-                    const float survive = min(1.0, MaxComponent(surface.base_color));
+                    const float survive = min(1.0, MaxComponent(albedo));
                     if (!(Pcg32NextFloat(rng) < survive)) break;
-                    flux *= surface.base_color / survive;
+                    flux *= albedo / survive;
                     const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
                     const vec3 local = SampleCosineHemisphere(u1, u2);
                     if (!coated) {
                         // By the surface's own cosine, as ScatterPhotonAt: Lambertian reflection
-                        // is the same toward every direction above it.
-                        direction = (shaded ? FrameFromNormal(front_facing ? surface.geometric_normal
-                                                                           : -surface.geometric_normal)
-                                            : frame) *
+                        // (and transmission) is the same toward every direction on its side.
+                        direction = (shaded || through ? FrameFromNormal(toward ? surface.geometric_normal
+                                                                                : -surface.geometric_normal)
+                                                       : frame) *
                                     local;
                         escaped = true;
                         break;
@@ -138,7 +148,7 @@ uint TracePhoton(uint photon, out bool discarded) {
                     if (inside > 0.0) Gather(surface.position, direction, flux / inside);
                 }
                 if (!escaped) break;
-                const vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
+                const vec3 geometric = toward ? surface.geometric_normal : -surface.geometric_normal;
                 if (!(dot(direction, geometric) > 0)) break;  // the shading normal pointed it inside
                 if (shaded && coated) flux *= ShadingDeparture(direction, surface.shading_normal, surface.geometric_normal);
                 origin = OffsetRayOrigin(surface.position, geometric);
