@@ -209,6 +209,7 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
     plastic.coat_kind = gpu::kCoatFresnelMix;
     plastic.coat_roughness = smooth ? 0.0f : std::max(alpha, kMinRoughness);
     double f0_scale = 1.0;
+    int32_t specular_texture = kNoTexture;
     if (const tinygltf::Value* e = Extension(source_.extensions, "KHR_materials_ior"))
         plastic.coat_ior = static_cast<float>(NumberOr(*e, "ior", 1.5));
     else
@@ -229,8 +230,19 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
             return Error(
                 "KHR_materials_specular: specularFactor must lie in [0, 1], "
                 "specularColorFactor be finite and non-negative");
-        NoteTextureLeftOut(*e, "KHR_materials_specular",
-                           {"specularTexture", "specularColorTexture"}, "its factor alone is used");
+        NoteTextureLeftOut(*e, "KHR_materials_specular", {"specularColorTexture"},
+                           "its factor alone is used");
+        // specularTexture's alpha scales the layer's weight texel by texel: a mix of the
+        // surface with its layer and without, the texel the amount.
+        if (const int index = ExtensionTexture(*e, "specularTexture");
+            index >= 0 && plastic.coat_weight > 0) {
+            ImageDecodeOptions options;
+            options.encoding = ImageEncoding::kLinear;
+            options.channels = ImageChannels::kAlpha;
+            const absl::StatusOr<int32_t> texture = texture_(index, options);
+            if (!texture.ok()) return texture.status();
+            specular_texture = *texture;
+        }
     }
     if (f0_scale != 1.0) {  // F0 = min(F0(ior) x the colour's mean, 1), as an index
         const double r = (plastic.coat_ior - 1.0) / (plastic.coat_ior + 1.0);
@@ -299,11 +311,18 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
                 "metal too",
                 where_);
     }
+    // The surface, its specular layer weighed texel by texel where specularTexture says.
+    const auto add_plain = [&](const Material& plain) {
+        if (&plain != &plastic || specular_texture == kNoTexture || !plastic.HasCoat())
+            return Add(plain);
+        const uint32_t lambertian = Add(base);
+        return Mix(base, lambertian, Add(plastic), 1.0f, specular_texture);
+    };
     // A surface and its clearcoated self, mixed by clearcoatFactor.
     const auto with_clearcoat = [&](const Material& plain, const Material& coated) {
-        if (clearcoat <= 0) return Add(plain);
+        if (clearcoat <= 0) return add_plain(plain);
         if (clearcoat >= 1 && clearcoat_texture == kNoTexture) return Add(coated);
-        const uint32_t first = Add(plain);
+        const uint32_t first = add_plain(plain);
         return Mix(base, first, Add(coated), clearcoat, clearcoat_texture);
     };
     uint32_t dielectric_index = 0, metal_index = 0;
@@ -394,6 +413,9 @@ std::vector<int> GltfTexturesRead(const tinygltf::Material& material) {
         for (const char* key : {"clearcoatTexture", "clearcoatRoughnessTexture"})
             if (const int texture = ExtensionTexture(*e, key); texture >= 0)
                 read.push_back(texture);
+    if (const tinygltf::Value* e = Extension(material.extensions, "KHR_materials_specular"))
+        if (const int texture = ExtensionTexture(*e, "specularTexture"); texture >= 0)
+            read.push_back(texture);
     return read;
 }
 

@@ -12,19 +12,31 @@
 
 namespace pf::testing {
 
-// The bytes of a 2x1 8-bit RGB PNG of `pixels` (written through OpenImageIO to a temporary
-// file, read back and removed); empty where that failed.
-inline std::string TwoTexelPng(const std::array<unsigned char, 6>& pixels,
-                               const std::string& name) {
+// The bytes of a 2x1 8-bit PNG of `pixels`, `channels` a texel (written through OpenImageIO
+// to a temporary file, read back and removed); empty where that failed.
+inline std::string TwoTexelPngOf(const unsigned char* pixels, int channels,
+                                 const std::string& name) {
     const std::filesystem::path path = TempPath(name);
     auto out = OIIO::ImageOutput::create(path.string());
-    if (!out || !out->open(path.string(), OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8)) ||
-        !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()))
+    if (!out || !out->open(path.string(), OIIO::ImageSpec(2, 1, channels, OIIO::TypeDesc::UINT8)) ||
+        !out->write_image(OIIO::TypeDesc::UINT8, pixels))
         return {};
     out->close();
     const absl::StatusOr<std::string> bytes = ReadWholeFile(path);
     std::filesystem::remove(path);
     return bytes.ok() ? *bytes : std::string();
+}
+
+// RGB texels.
+inline std::string TwoTexelPng(const std::array<unsigned char, 6>& pixels,
+                               const std::string& name) {
+    return TwoTexelPngOf(pixels.data(), 3, name);
+}
+
+// RGBA texels.
+inline std::string TwoTexelRgbaPng(const std::array<unsigned char, 8>& pixels,
+                                   const std::string& name) {
+    return TwoTexelPngOf(pixels.data(), 4, name);
 }
 
 }  // namespace pf::testing

@@ -178,6 +178,38 @@ TEST(GltfMaterialsTest, ClearcoatTexturesScaleItsFactorAndRoughnessTexelByTexel)
         << "the uncoated plastic keeps its own (none)";
 }
 
+TEST(GltfMaterialsTest, SpecularTextureWeighsTheLayerTexelByTexel) {
+    // specularTexture's alpha (linear) scales specularFactor: a mix of the Lambertian base and
+    // the surface with its specular layer, the texel the amount.
+    testing::TestMaterial material =
+        Gltf(0, 0.5f,
+             R"("KHR_materials_specular":{"specularFactor":0.7,"specularTexture":{"index":0}})");
+    material.texture_png_base64 = absl::Base64Escape(
+        testing::TwoTexelRgbaPng({200, 100, 50, 255, 20, 240, 60, 51}, "specular.png"));
+    const absl::StatusOr<Scene> scene = QuadWith(material, "specular-texture.gltf");
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Material& mix = QuadMaterial(*scene);
+    ASSERT_EQ(mix.type, MaterialType::kMix);
+    EXPECT_FLOAT_EQ(mix.mix_amount, 1.0f);
+    ASSERT_NE(mix.mix_texture, kNoTexture);
+    const Texture& weight = *scene->textures[mix.mix_texture];
+    EXPECT_FLOAT_EQ(weight.texels[0].x, 1.0f) << "alpha, linear";
+    EXPECT_NEAR(weight.texels[1].x, 0.2f, 1e-6f);
+    EXPECT_FALSE(scene->materials[mix.mix_first].HasCoat()) << "Lambertian";
+    const Material& layered = scene->materials[mix.mix_second];
+    EXPECT_EQ(layered.coat_kind, gpu::kCoatFresnelMix);
+    EXPECT_FLOAT_EQ(layered.coat_weight, 0.7f);
+    // A factor of 0 keeps no layer, whatever the texture.
+    testing::TestMaterial none =
+        Gltf(0, 0.5f,
+             R"("KHR_materials_specular":{"specularFactor":0,"specularTexture":{"index":0}})");
+    none.texture_png_base64 = material.texture_png_base64;
+    const absl::StatusOr<Scene> plain = QuadWith(none, "no-specular.gltf");
+    ASSERT_TRUE(plain.ok()) << plain.status();
+    EXPECT_EQ(QuadMaterial(*plain).type, MaterialType::kDiffuse);
+    EXPECT_FALSE(QuadMaterial(*plain).HasCoat());
+}
+
 TEST(GltfMaterialsTest, APrimitiveWithoutMaterialTakesGltfsDefault) {
     // The default material is every property at its default: white, metallic 1, roughness 1.
     testing::TestScene scene = testing::LitQuadScene();
