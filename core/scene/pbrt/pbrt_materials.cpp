@@ -289,11 +289,29 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
         material.mapping = amount->mapping;
     } else if (type == "diffusetransmission") {
         status = DiffuseTransmission(parameters, where, &material);
-    } else if (type == "measured" || type == "subsurface" || type == "hair") {
+    } else if (type == "subsurface") {
+        // Its nearest surface: the interface (pbrt-v4's default index 1.33, its roughness)
+        // over a diffuse base of its multiple-scattering albedo; light does not travel under
+        // the surface.
+        const bool eta_given = parameters.Has("eta");
+        status = SubsurfaceAlbedo(parameters, where, &material);
+        if (status.ok()) status = coat("eta", "");
+        if (!eta_given) material.material.coat_ior = 1.33f;
+        material.material.coat_thickness = 0;
+        parameters.ConsumeAll();  // mfp, g, scale: what light under the surface would need
+        Warn(where, "Material \"subsurface\" is shaded as its nearest surface, a coated diffuse "
+                    "of its albedo: light does not travel under the surface");
+    } else if (type == "hair") {
+        status = HairColour(parameters, where, &material);
+        parameters.ConsumeAll();
+        const Rgb& c = material.material.base_color;
+        Warn(where, absl::StrCat("Material \"hair\" is shaded as a diffuse surface of its colour (",
+                                 absl::StrFormat("%.3g %.3g %.3g", c.x, c.y, c.z), ")"));
+    } else if (type == "measured") {
         parameters.ConsumeAll();
         material.material.base_color = Rgb(0.5f);
-        Warn(where, absl::StrCat("Material \"", type,
-                                 "\" is not supported; shaded as grey diffuse (0.5)"));
+        Warn(where, "Material \"measured\" (a measured BSDF file) is not read; shaded as grey "
+                    "diffuse (0.5)");
     } else {
         return ErrorAt(where, absl::StrCat("Material \"", type, "\" is unknown"));
     }
@@ -341,6 +359,66 @@ absl::Status PbrtSceneBuilder::DiffuseTransmission(ParameterList& parameters, co
         Warn(where,
              "Material \"diffusetransmission\": reflectance + transmittance above 1 "
              "creates energy (as in pbrt-v4)");
+    return absl::OkStatus();
+}
+
+absl::Status PbrtSceneBuilder::SubsurfaceAlbedo(ParameterList& parameters, const Location& where,
+                                                MaterialRef* material) {
+    if (parameters.Has("reflectance"))  // pbrt-v4's multiple-scattering albedo, as given
+        return BaseColor(parameters, "reflectance", Rgb(1.0f), where, material);
+    if (parameters.Has("name")) {
+        material->material.base_color = Rgb(0.5f);
+        Warn(where, absl::StrCat("Material \"subsurface\": the named medium \"",
+                                 parameters.String("name", ""),
+                                 "\" is not known here; its albedo is taken as 0.5"));
+        return absl::OkStatus();
+    }
+    // The albedo of a semi-infinite medium of single-scattering albedo a under an index-matched
+    // boundary, in the diffusion approximation (Jensen et al. 2001, A = 1): a/2 (1 +
+    // exp(-4/3 s)) exp(-s), s = sqrt(3 (1 - a)); pbrt-v4's default coefficients, per mm.
+    const Rgb sigma_a =
+        parameters.Color("sigma_a", SpectrumUse::kUnbounded).value_or(Rgb(.0011f, .0024f, .014f));
+    const Rgb sigma_s =
+        parameters.Color("sigma_s", SpectrumUse::kUnbounded).value_or(Rgb(2.55f, 3.21f, 3.77f));
+    Rgb& albedo = material->material.base_color;
+    for (int c = 0; c < 3; ++c) {
+        const double extinction = double(sigma_a[c]) + sigma_s[c];
+        if (!(sigma_a[c] >= 0 && sigma_s[c] >= 0 && std::isfinite(extinction)))
+            return ErrorAt(where, "Material \"subsurface\": \"sigma_a\" and \"sigma_s\" must "
+                                  "be finite and non-negative");
+        const double a = extinction > 0 ? sigma_s[c] / extinction : 0.0;
+        const double root = std::sqrt(3 * (1 - a));
+        albedo[c] = static_cast<float>(a / 2 * (1 + std::exp(-4.0 / 3.0 * root)) * std::exp(-root));
+    }
+    return absl::OkStatus();
+}
+
+absl::Status PbrtSceneBuilder::HairColour(ParameterList& parameters, const Location& where,
+                                          MaterialRef* material) {
+    Rgb& colour = material->material.base_color;
+    if (const std::optional<Rgb> given = parameters.Color("color")) {  // pbrt-v4's "reflectance"
+        colour = Min(Max(*given, Rgb(0.0f)), Rgb(1.0f));
+        return absl::OkStatus();
+    }
+    // pbrt-v4's absorption: given, or of the melanin concentrations (eumelanin 1.3 where
+    // nothing is given); the colour its SigmaAFromReflectance inverts,
+    // exp(-sqrt(sigma_a) s(beta_n)).
+    Rgb sigma_a(0.0f);
+    if (const std::optional<Rgb> given = parameters.Color("sigma_a", SpectrumUse::kUnbounded)) {
+        sigma_a = *given;
+    } else {
+        const bool melanin = parameters.Has("eumelanin") || parameters.Has("pheomelanin");
+        const double eumelanin = parameters.Float("eumelanin", melanin ? 0.0 : 1.3);
+        const double pheomelanin = parameters.Float("pheomelanin", 0.0);
+        sigma_a = Rgb(Vec3d(0.419, 0.697, 1.37) * eumelanin + Vec3d(0.187, 0.4, 1.05) * pheomelanin);
+    }
+    const double b = parameters.Float("beta_n", 0.3);
+    const double s = 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * b * b * b +
+                     5.574 * b * b * b * b + 0.245 * b * b * b * b * b;
+    if (!(IsFinite(sigma_a) && MinComponent(sigma_a) >= 0 && std::isfinite(s)))
+        return ErrorAt(where, "Material \"hair\": its absorption must be finite and non-negative");
+    for (int c = 0; c < 3; ++c)
+        colour[c] = static_cast<float>(std::exp(-std::sqrt(double(sigma_a[c])) * s));
     return absl::OkStatus();
 }
 

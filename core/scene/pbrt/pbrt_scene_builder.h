@@ -176,6 +176,13 @@ private:
     // colour; a texture's mean colour, with a note) and "scale".
     absl::Status DiffuseTransmission(ParameterList& parameters, const Location& where,
                                      MaterialRef* material);
+    // The nearest surfaces of what photonfarm does not model: a subsurface material's albedo
+    // ("reflectance", or the diffusion albedo of its coefficients) and a hair's colour
+    // ("color", or the colour pbrt-v4 relates to its absorption or melanin).
+    absl::Status SubsurfaceAlbedo(ParameterList& parameters, const Location& where,
+                                  MaterialRef* material);
+    absl::Status HairColour(ParameterList& parameters, const Location& where,
+                            MaterialRef* material);
     // A material's "normalmap" image and "displacement" texture (pbrt-v3's "bumpmap").
     absl::Status ShadingDetail(ParameterList& parameters, const Location& where,
                                MaterialRef* material);

@@ -421,5 +421,58 @@ TEST(PbrtMaterialsTest, DiffuseTransmissionTakesPbrtsParameters) {
         "Material \"diffusetransmission\": \"scale\" must be finite and non-negative");
 }
 
+TEST(PbrtMaterialsTest, SubsurfaceAndHairTakeTheirNearestSurfaces) {
+    const std::string world =
+        std::string("Material \"subsurface\" \"rgb reflectance\" [0.8 0.5 0.3] \"float "
+                    "roughness\" 0.04 \"rgb mfp\" [1 1 1]\n") +
+        kQuad + "Material \"subsurface\"\n" + kQuad +
+        "Material \"subsurface\" \"rgb sigma_a\" [0 1 1] \"rgb sigma_s\" [1 0 1] \"float eta\" "
+        "1.5\n" +
+        kQuad + "Material \"hair\" \"rgb color\" [0.6 0.4 0.2]\n" + kQuad +
+        "Material \"hair\" \"float eumelanin\" 0\n" + kQuad +
+        "Material \"hair\" \"rgb sigma_a\" [0.1 0.2 0.3] \"float beta_n\" 0.5\n" + kQuad +
+        "Material \"hair\"\n" + kQuad + "Material \"measured\" \"string filename\" \"x.bsdf\"\n" +
+        kQuad;
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const auto material = [&](int shape) {
+        return scene->materials[scene->triangles[2 * shape].material];
+    };
+    // A coated diffuse: pbrt-v4's interface (index 1.33 by default) over its albedo.
+    const Material& given = material(0);
+    EXPECT_EQ(given.type, MaterialType::kDiffuse);
+    EXPECT_EQ(given.base_color, Rgb(0.8f, 0.5f, 0.3f));
+    EXPECT_FLOAT_EQ(given.coat_ior, 1.33f);
+    EXPECT_NEAR(given.coat_roughness, 0.2f, 1e-6f);
+    EXPECT_EQ(given.coat_thickness, 0.0f);
+    // pbrt-v4's default coefficients: nearly white, red the palest (blue absorbs most).
+    const Rgb skin = material(1).base_color;
+    EXPECT_GT(skin.z, 0.6f);
+    EXPECT_GT(skin.x, skin.y);
+    EXPECT_GT(skin.y, skin.z);
+    EXPECT_LT(skin.x, 1.0f);
+    // A medium that absorbs nothing reflects all (albedo 1), one that scatters nothing none.
+    const Material& limits = material(2);
+    EXPECT_NEAR(limits.base_color.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(limits.base_color.y, 0.0f, 1e-6f);
+    EXPECT_FLOAT_EQ(limits.coat_ior, 1.5f);
+    // Hair: its colour, or the colour pbrt-v4 relates to its absorption:
+    // sigma_a = (ln c / s(beta_n))^2, c = exp(-sqrt(sigma_a) s).
+    EXPECT_EQ(material(3).base_color, Rgb(0.6f, 0.4f, 0.2f));
+    EXPECT_EQ(material(4).base_color, Rgb(1.0f)) << "no melanin absorbs nothing";
+    const double b = 0.5;
+    const double s = 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * std::pow(b, 3) +
+                     5.574 * std::pow(b, 4) + 0.245 * std::pow(b, 5);
+    EXPECT_NEAR(std::pow(std::log(material(5).base_color.z) / s, 2), 0.3, 1e-5);
+    const Rgb dark = material(6).base_color;  // eumelanin 1.3: brown, red the lightest
+    EXPECT_GT(dark.x, dark.z);
+    EXPECT_LT(dark.x, 0.5f);
+    EXPECT_EQ(material(7).base_color, Rgb(0.5f));
+    EXPECT_TRUE(Contains(warnings, "nearest surface, a coated diffuse"));
+    EXPECT_TRUE(Contains(warnings, "shaded as a diffuse surface of its colour"));
+    EXPECT_TRUE(Contains(warnings, "Material \"measured\" (a measured BSDF file) is not read"));
+}
+
 }  // namespace
 }  // namespace pf
