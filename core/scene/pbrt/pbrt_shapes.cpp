@@ -1,6 +1,7 @@
 // pbrt-v4 shape parameters to triangle meshes.
 #include "core/scene/pbrt/pbrt_shapes.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
@@ -8,6 +9,12 @@
 
 namespace pf::pbrt {
 namespace {
+
+// A bilinear patch is drawn as a grid of cells fine enough that its triangles lie within this
+// fraction of its size from its surface (a cell twisted by t out of its plane lies within t/4
+// of it), and at most kMaxPatchGrid cells a side.
+constexpr double kPatchTolerance = 1e-3;
+constexpr int kMaxPatchGrid = 32;
 
 absl::Status Invalid(const Location& where, const std::string& what) {
     return absl::InvalidArgumentError(absl::StrCat(where.ToString(), ": ", what));
@@ -93,11 +100,70 @@ absl::StatusOr<TriangleMesh> BilinearMeshShape(ParameterList& parameters, const 
         }
         mesh = std::move(unshared);
     }
-    // Corners p00 p10 p01 p11: around the patch they run p00, p10, p11, p01.
+    // Corners p00 p10 p01 p11: around the patch they run p00, p10, p11, p01. A planar patch (or
+    // one nearly so) is two triangles; a curved one a grid of cells on its bilinear surface,
+    // with its normals, cross(dP/du, dP/dv) (or "N" interpolated).
+    const auto cells = [&](size_t i) {
+        const Vec3d p00(mesh.positions[patches[i]]), p10(mesh.positions[patches[i + 1]]),
+            p01(mesh.positions[patches[i + 2]]), p11(mesh.positions[patches[i + 3]]);
+        const Vec3d n = Cross(p10 - p00, p01 - p00);
+        const double size = std::max({Length(p10 - p00), Length(p01 - p00), Length(p11 - p00)});
+        const double twist = std::abs(Dot(p11 - p00, n)) / std::max(Length(n), 1e-300);
+        const double grid = std::ceil(std::sqrt(twist / (4 * kPatchTolerance * size)));
+        return std::isfinite(grid) ? std::clamp(static_cast<int>(grid), 1, kMaxPatchGrid) : 1;
+    };
+    bool curved = false;
+    for (size_t i = 0; i < patches.size(); i += 4) curved |= cells(i) > 1;
+    const bool normals = !mesh.normals.empty();
+    if (curved && !normals) {  // every vertex gets one: each planar patch its own plane's
+        TriangleMesh unshared;
+        for (size_t i = 0; i < patches.size(); ++i) {
+            const size_t first = i - i % 4;
+            const Vec3 p00 = mesh.positions[patches[first]];
+            unshared.positions.push_back(mesh.positions[patches[i]]);
+            unshared.uvs.push_back(mesh.uvs[patches[i]]);
+            unshared.normals.push_back(Normalize(Cross(mesh.positions[patches[first + 1]] - p00,
+                                                       mesh.positions[patches[first + 2]] - p00)));
+        }
+        for (size_t i = 0; i < patches.size(); ++i) patches[i] = static_cast<uint32_t>(i);
+        mesh = std::move(unshared);
+    }
     for (size_t i = 0; i < patches.size(); i += 4) {
         const uint32_t p00 = patches[i], p10 = patches[i + 1], p01 = patches[i + 2],
                        p11 = patches[i + 3];
-        mesh.indices.insert(mesh.indices.end(), {p00, p10, p11, p00, p11, p01});
+        const int grid = curved ? cells(i) : 1;
+        if (grid == 1) {
+            mesh.indices.insert(mesh.indices.end(), {p00, p10, p11, p00, p11, p01});
+            continue;
+        }
+        const auto first = static_cast<uint32_t>(mesh.positions.size());
+        const auto lerp = [&](const auto& a, const auto& b, const auto& c, const auto& d, float u,
+                              float v) {
+            return (a * (1 - u) + b * u) * (1 - v) + (c * (1 - u) + d * u) * v;
+        };
+        const Vec3 q00 = mesh.positions[p00], q10 = mesh.positions[p10], q01 = mesh.positions[p01],
+                   q11 = mesh.positions[p11];
+        for (int y = 0; y <= grid; ++y)
+            for (int x = 0; x <= grid; ++x) {
+                const float u = float(x) / grid, v = float(y) / grid;
+                mesh.positions.push_back(lerp(q00, q10, q01, q11, u, v));
+                const auto uv = [&](uint32_t corner) {
+                    return Vec3(mesh.uvs[corner].x, mesh.uvs[corner].y, 0.0f);
+                };
+                const Vec3 st = lerp(uv(p00), uv(p10), uv(p01), uv(p11), u, v);
+                mesh.uvs.push_back({st.x, st.y});
+                const Vec3 dpdu = lerp(q10 - q00, q10 - q00, q11 - q01, q11 - q01, u, v);
+                const Vec3 dpdv = lerp(q01 - q00, q11 - q10, q01 - q00, q11 - q10, u, v);
+                mesh.normals.push_back(
+                    normals ? Normalize(lerp(mesh.normals[p00], mesh.normals[p10],
+                                             mesh.normals[p01], mesh.normals[p11], u, v))
+                            : Normalize(Cross(dpdu, dpdv)));
+            }
+        const auto at = [&](int x, int y) { return first + uint32_t(y * (grid + 1) + x); };
+        for (int y = 0; y < grid; ++y)
+            for (int x = 0; x < grid; ++x)
+                mesh.indices.insert(mesh.indices.end(), {at(x, y), at(x + 1, y), at(x + 1, y + 1),
+                                                         at(x, y), at(x + 1, y + 1), at(x, y + 1)});
     }
     return mesh;
 }

@@ -51,6 +51,16 @@ TEST(SceneFeaturesTest, CoatsAreAFeatureOfTheirOwn) {
     EXPECT_EQ(coated.ToString(), "diffuse, coated, area lights");
 }
 
+TEST(SceneFeaturesTest, DiffuseTransmissionTakesTheGeneralPathsButMakesNoCaustics) {
+    Scene scene = Shipped("cornell-box.gltf");
+    EXPECT_FALSE(FeaturesOf(scene).GeneralSurfaces());
+    scene.materials[scene.triangles[0].material].transmittance = Rgb(0.3f);
+    const SceneFeatures translucent = FeaturesOf(scene);
+    EXPECT_TRUE(translucent.translucent && translucent.GeneralSurfaces());
+    EXPECT_FALSE(translucent.Specular()) << "no caustic map or probe for it";
+    EXPECT_EQ(translucent.ToString(), "diffuse, diffuse transmission, area lights");
+}
+
 TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     testing::TestScene scene = testing::LitQuadScene();
     scene.meshes.resize(1);  // the emissive quad's material stays, unused
@@ -62,13 +72,15 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     EXPECT_TRUE(features.spot_lights);
     EXPECT_FALSE(features.point_lights) << "a light of no power is no emitter";
     EXPECT_FALSE(features.triangle_lights) << "an emissive material on no triangle emits nothing";
-    EXPECT_EQ(SceneFeatures::All().ToString(),
-              "diffuse, mirror, glass, thin glass, rough metal, rough glass, coated, "
-              "specular over diffuse, metal Fresnel, absorbing glass, cut-outs, mixed materials, "
-              "textures, roughness textures, "
-              "textured mixes, smooth normals, normal or bump maps, area lights, "
-              "point lights, spot lights, directional lights, environment light, textured lights, "
-              "goniometric or projection lights, caustics");
+    EXPECT_EQ(
+        SceneFeatures::All().ToString(),
+        "diffuse, mirror, glass, thin glass, rough metal, rough glass, coated, "
+        "specular over diffuse, metal Fresnel, absorbing glass, diffuse transmission, cut-outs, "
+        "mixed materials, "
+        "textures, roughness textures, "
+        "textured mixes, smooth normals, normal or bump maps, area lights, "
+        "point lights, spot lights, directional lights, environment light, textured lights, "
+        "goniometric or projection lights, caustics");
 }
 
 }  // namespace
