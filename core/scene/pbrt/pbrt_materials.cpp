@@ -299,8 +299,9 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
         if (!eta_given) material.material.coat_ior = 1.33f;
         material.material.coat_thickness = 0;
         parameters.ConsumeAll();  // mfp, g, scale: what light under the surface would need
-        Warn(where, "Material \"subsurface\" is shaded as its nearest surface, a coated diffuse "
-                    "of its albedo: light does not travel under the surface");
+        Warn(where,
+             "Material \"subsurface\" is shaded as its nearest surface, a coated diffuse "
+             "of its albedo: light does not travel under the surface");
     } else if (type == "hair") {
         status = HairColour(parameters, where, &material);
         parameters.ConsumeAll();
@@ -310,8 +311,9 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
     } else if (type == "measured") {
         parameters.ConsumeAll();
         material.material.base_color = Rgb(0.5f);
-        Warn(where, "Material \"measured\" (a measured BSDF file) is not read; shaded as grey "
-                    "diffuse (0.5)");
+        Warn(where,
+             "Material \"measured\" (a measured BSDF file) is not read; shaded as grey "
+             "diffuse (0.5)");
     } else {
         return ErrorAt(where, absl::StrCat("Material \"", type, "\" is unknown"));
     }
@@ -384,8 +386,9 @@ absl::Status PbrtSceneBuilder::SubsurfaceAlbedo(ParameterList& parameters, const
     for (int c = 0; c < 3; ++c) {
         const double extinction = double(sigma_a[c]) + sigma_s[c];
         if (!(sigma_a[c] >= 0 && sigma_s[c] >= 0 && std::isfinite(extinction)))
-            return ErrorAt(where, "Material \"subsurface\": \"sigma_a\" and \"sigma_s\" must "
-                                  "be finite and non-negative");
+            return ErrorAt(where,
+                           "Material \"subsurface\": \"sigma_a\" and \"sigma_s\" must "
+                           "be finite and non-negative");
         const double a = extinction > 0 ? sigma_s[c] / extinction : 0.0;
         const double root = std::sqrt(3 * (1 - a));
         albedo[c] = static_cast<float>(a / 2 * (1 + std::exp(-4.0 / 3.0 * root)) * std::exp(-root));
@@ -410,11 +413,12 @@ absl::Status PbrtSceneBuilder::HairColour(ParameterList& parameters, const Locat
         const bool melanin = parameters.Has("eumelanin") || parameters.Has("pheomelanin");
         const double eumelanin = parameters.Float("eumelanin", melanin ? 0.0 : 1.3);
         const double pheomelanin = parameters.Float("pheomelanin", 0.0);
-        sigma_a = Rgb(Vec3d(0.419, 0.697, 1.37) * eumelanin + Vec3d(0.187, 0.4, 1.05) * pheomelanin);
+        sigma_a =
+            Rgb(Vec3d(0.419, 0.697, 1.37) * eumelanin + Vec3d(0.187, 0.4, 1.05) * pheomelanin);
     }
     const double b = parameters.Float("beta_n", 0.3);
-    const double s = 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * b * b * b +
-                     5.574 * b * b * b * b + 0.245 * b * b * b * b * b;
+    const double s = 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * b * b * b + 5.574 * b * b * b * b +
+                     0.245 * b * b * b * b * b;
     if (!(IsFinite(sigma_a) && MinComponent(sigma_a) >= 0 && std::isfinite(s)))
         return ErrorAt(where, "Material \"hair\": its absorption must be finite and non-negative");
     for (int c = 0; c < 3; ++c)

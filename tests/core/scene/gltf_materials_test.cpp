@@ -200,9 +200,8 @@ TEST(GltfMaterialsTest, SpecularTextureWeighsTheLayerTexelByTexel) {
     EXPECT_EQ(layered.coat_kind, gpu::kCoatFresnelMix);
     EXPECT_FLOAT_EQ(layered.coat_weight, 0.7f);
     // A factor of 0 keeps no layer, whatever the texture.
-    testing::TestMaterial none =
-        Gltf(0, 0.5f,
-             R"("KHR_materials_specular":{"specularFactor":0,"specularTexture":{"index":0}})");
+    testing::TestMaterial none = Gltf(
+        0, 0.5f, R"("KHR_materials_specular":{"specularFactor":0,"specularTexture":{"index":0}})");
     none.texture_png_base64 = material.texture_png_base64;
     const absl::StatusOr<Scene> plain = QuadWith(none, "no-specular.gltf");
     ASSERT_TRUE(plain.ok()) << plain.status();

@@ -423,8 +423,9 @@ TEST(PbrtMaterialsTest, DiffuseTransmissionTakesPbrtsParameters) {
 
 TEST(PbrtMaterialsTest, SubsurfaceAndHairTakeTheirNearestSurfaces) {
     const std::string world =
-        std::string("Material \"subsurface\" \"rgb reflectance\" [0.8 0.5 0.3] \"float "
-                    "roughness\" 0.04 \"rgb mfp\" [1 1 1]\n") +
+        std::string(
+            "Material \"subsurface\" \"rgb reflectance\" [0.8 0.5 0.3] \"float "
+            "roughness\" 0.04 \"rgb mfp\" [1 1 1]\n") +
         kQuad + "Material \"subsurface\"\n" + kQuad +
         "Material \"subsurface\" \"rgb sigma_a\" [0 1 1] \"rgb sigma_s\" [1 0 1] \"float eta\" "
         "1.5\n" +
