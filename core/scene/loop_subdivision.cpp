@@ -19,9 +19,12 @@ uint64_t EdgeKey(uint32_t a, uint32_t b) {
     return a < b ? (uint64_t{a} << 32) | b : (uint64_t{b} << 32) | a;
 }
 
-TriangleMesh Round(const TriangleMesh& mesh) {
-    const size_t vertices = mesh.positions.size(), triangles = mesh.indices.size() / 3;
-    std::unordered_map<uint64_t, EdgeInfo> edges;
+using EdgeMap = std::unordered_map<uint64_t, EdgeInfo>;
+
+// Every edge of the mesh, with its faces and opposite vertices.
+EdgeMap Edges(const TriangleMesh& mesh) {
+    const size_t triangles = mesh.indices.size() / 3;
+    EdgeMap edges;
     edges.reserve(3 * triangles);
     for (size_t t = 0; t < triangles; ++t)
         for (int e = 0; e < 3; ++e) {
@@ -30,16 +33,42 @@ TriangleMesh Round(const TriangleMesh& mesh) {
             if (edge.faces < 2) edge.opposite[edge.faces] = mesh.indices[3 * t + (e + 2) % 3];
             ++edge.faces;
         }
-    // Each vertex's neighbours, and those along boundary edges.
-    std::vector<Vec3> ring_sum(vertices, Vec3(0.0f)), boundary_sum(vertices, Vec3(0.0f));
-    std::vector<uint32_t> valence(vertices, 0), boundary(vertices, 0);
+    return edges;
+}
+
+// Each vertex's neighbours (their sum and count), and those along boundary edges.
+struct Rings {
+    std::vector<Vec3> ring_sum, boundary_sum;
+    std::vector<uint32_t> valence, boundary;
+};
+Rings RingsOf(const TriangleMesh& mesh, const EdgeMap& edges) {
+    const size_t vertices = mesh.positions.size();
+    Rings rings{std::vector<Vec3>(vertices, Vec3(0.0f)), std::vector<Vec3>(vertices, Vec3(0.0f)),
+                std::vector<uint32_t>(vertices, 0), std::vector<uint32_t>(vertices, 0)};
+    for (const auto& [key, edge] : edges) {
+        const auto a = static_cast<uint32_t>(key >> 32), b = static_cast<uint32_t>(key);
+        const Vec3 &pa = mesh.positions[a], &pb = mesh.positions[b];
+        rings.ring_sum[a] += pb, rings.ring_sum[b] += pa, ++rings.valence[a], ++rings.valence[b];
+        if (edge.faces != 2)
+            rings.boundary_sum[a] += pb, rings.boundary_sum[b] += pa, ++rings.boundary[a],
+                ++rings.boundary[b];
+    }
+    return rings;
+}
+
+// Loop's weight of each neighbour of an interior vertex of valence n.
+float Beta(uint32_t n) { return n == 3 ? 3.0f / 16.0f : 3.0f / (8.0f * static_cast<float>(n)); }
+
+TriangleMesh Round(const TriangleMesh& mesh) {
+    const size_t vertices = mesh.positions.size(), triangles = mesh.indices.size() / 3;
+    EdgeMap edges = Edges(mesh);
+    const Rings rings = RingsOf(mesh, edges);
     TriangleMesh out;
     out.positions.resize(vertices + edges.size());
     uint32_t next = static_cast<uint32_t>(vertices);
     for (auto& [key, edge] : edges) {
         const auto a = static_cast<uint32_t>(key >> 32), b = static_cast<uint32_t>(key);
         const Vec3 &pa = mesh.positions[a], &pb = mesh.positions[b];
-        ring_sum[a] += pb, ring_sum[b] += pa, ++valence[a], ++valence[b];
         edge.odd = next++;
         if (edge.faces == 2) {
             out.positions[edge.odd] =
@@ -47,16 +76,16 @@ TriangleMesh Round(const TriangleMesh& mesh) {
                 (mesh.positions[edge.opposite[0]] + mesh.positions[edge.opposite[1]]) * 0.125f;
         } else {  // a boundary (or an edge of more than two faces): the midpoint
             out.positions[edge.odd] = (pa + pb) * 0.5f;
-            boundary_sum[a] += pb, boundary_sum[b] += pa, ++boundary[a], ++boundary[b];
         }
     }
+    const std::vector<Vec3>&ring_sum = rings.ring_sum, &boundary_sum = rings.boundary_sum;
+    const std::vector<uint32_t>&valence = rings.valence, &boundary = rings.boundary;
     for (size_t v = 0; v < vertices; ++v) {
         const Vec3& p = mesh.positions[v];
         if (boundary[v] == 2) {
             out.positions[v] = p * 0.75f + boundary_sum[v] * 0.125f;
         } else if (boundary[v] == 0 && valence[v] > 0) {
-            const float n = static_cast<float>(valence[v]);
-            const float beta = valence[v] == 3 ? 3.0f / 16.0f : 3.0f / (8.0f * n);
+            const float n = static_cast<float>(valence[v]), beta = Beta(valence[v]);
             out.positions[v] = p * (1.0f - n * beta) + ring_sum[v] * beta;
         } else {
             out.positions[v] = p;  // a corner or a non-manifold vertex stays
@@ -73,6 +102,26 @@ TriangleMesh Round(const TriangleMesh& mesh) {
     return out;
 }
 
+// Every vertex moved to where infinitely many rounds would take it, as pbrt-v4 moves them
+// (Loop's limit masks): an interior vertex of valence n to (1 - n gamma) p + gamma sum of its
+// neighbours, gamma = 1 / (n + 3 / (8 beta)); a boundary vertex to 3/5 p + 1/5 of each
+// boundary neighbour; corners and non-manifold vertices stay.
+void ProjectToLimit(TriangleMesh& mesh) {
+    const Rings rings = RingsOf(mesh, Edges(mesh));
+    std::vector<Vec3> limit = mesh.positions;
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+        const Vec3& p = mesh.positions[v];
+        if (rings.boundary[v] == 2) {
+            limit[v] = p * 0.6f + rings.boundary_sum[v] * 0.2f;
+        } else if (rings.boundary[v] == 0 && rings.valence[v] > 0) {
+            const float n = static_cast<float>(rings.valence[v]);
+            const float gamma = 1.0f / (n + 3.0f / (8.0f * Beta(rings.valence[v])));
+            limit[v] = p * (1.0f - n * gamma) + rings.ring_sum[v] * gamma;
+        }
+    }
+    mesh.positions = std::move(limit);
+}
+
 }  // namespace
 
 absl::StatusOr<TriangleMesh> LoopSubdivide(const TriangleMesh& control, int levels,
@@ -87,6 +136,7 @@ absl::StatusOr<TriangleMesh> LoopSubdivide(const TriangleMesh& control, int leve
                          " times would exceed the limit of ", max_triangles));
     TriangleMesh mesh{control.positions, {}, {}, control.indices};
     for (int level = 0; level < levels; ++level) mesh = Round(mesh);
+    ProjectToLimit(mesh);
     mesh.normals.assign(mesh.positions.size(), Vec3(0.0f));
     for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
         const uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
