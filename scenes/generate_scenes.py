@@ -366,6 +366,26 @@ def cornell_lamps(writer):
                              "cornell-lamps-shade.hdr", lamp_shade)
 
 
+def cornell_materials(writer):
+    """The Cornell box in pbrt-v4's materials beyond the diffuse and the glass: a coated short
+    block (coateddiffuse), a tall block that is a mix of red paint and rough gold at each point
+    (mix, conductor), and a sheet of paper (diffusetransmission) hung under the light, which
+    lights the room below it through the sheet."""
+    cornell_room(writer)
+    coated = writer.named_material("coated_blue", "coateddiffuse",
+                                   '"rgb reflectance" [ 0.3 0.5 0.7 ] "float roughness" 0.3')
+    writer.named_material("red_paint", "diffuse", '"rgb reflectance" [ 0.7 0.15 0.1 ]')
+    writer.named_material("gold", "conductor", '"spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k" '
+                                               '"float roughness" 0.5')
+    mixed = writer.named_material("paint_and_gold", "mix",
+                                  '"string materials" [ "red_paint" "gold" ] "float amount" 0.4')
+    paper = writer.named_material("paper", "diffusetransmission",
+                                  '"rgb reflectance" [ 0.5 0.45 0.4 ] "rgb transmittance" [ 0.4 0.4 0.35 ]')
+    writer.quads("short_block", mm(SHORT_BLOCK), coated)
+    writer.quads("tall_block", mm(TALL_BLOCK), mixed)
+    writer.quads("paper", mm([[[180, 470, 190], [280, 470, 190], [280, 470, 370], [180, 470, 370]]]), paper)
+
+
 def cornell_glass(writer):
     cornell_room(writer)
     writer.sphere("mirror_sphere", [0.385, 0.1, 0.37], 0.1,
@@ -460,7 +480,7 @@ SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass, "cornell-g
           "caustic-glass": caustic_glass, "furnace": furnace, "furnace-glass": furnace_glass,
           "sky-courtyard": sky_courtyard, "cornell-stained": cornell_stained,
           "cornell-bumpy": cornell_bumpy}
-PBRT_SCENES = {"cornell-lamps": cornell_lamps}
+PBRT_SCENES = {"cornell-lamps": cornell_lamps, "cornell-materials": cornell_materials}
 
 if __name__ == "__main__":
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))

@@ -62,6 +62,12 @@ class PbrtWriter:
         self.materials[name] = emission
         return name
 
+    def named_material(self, name, material_type, parameters):
+        """Any pbrt-v4 material, its parameters as pbrt-v4 writes them (pbrt-only scenes)."""
+        self._out().append('MakeNamedMaterial "%s" "string type" "%s" %s' % (name, material_type, parameters))
+        self.materials[name] = None
+        return name
+
     def normal_mapped(self, name, color, image_name, png):
         """A diffuse material with pbrt-v4's "normalmap" (the PNG, read linear)."""
         path = "textures/%s" % image_name

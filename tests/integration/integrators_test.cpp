@@ -563,6 +563,12 @@ INSTANTIATE_TEST_SUITE_P(
                       // Normal-mapped tiles: photons leave and land by the tilted normals,
                       // carrying Veach's adjoint factors (core/shared/shading_normal.h).
                       SceneCase{"cornell-bumpy.gltf", Integrator::kSppm, 0.165},
+                      // pbrt-v4's coated, mixed (paint and gold) and translucent materials:
+                      // photons through the coat, the mix and the paper under the light. ppm,
+                      // whose camera paths keep a hit point on each side of the paper (sppm's
+                      // choose one a sample: the paper's bright and dark sides make its noise
+                      // six times cornell-box's at this budget).
+                      SceneCase{"pbrt/cornell-materials.pbrt", Integrator::kPpm, 0.16},
                       // Lit by an image: a textured area light.
                       SceneCase{"cornell-stained.gltf", Integrator::kPpm, 0.165},
                       // Lit by an environment map alone.

@@ -533,9 +533,9 @@ TEST(PbrtLoaderTest, PackingGathersIncludedMeshesAndNothingElse) {
 }
 
 TEST(PbrtLoaderTest, ShippedScenesLoadWithoutWarnings) {
-    for (const char* name :
-         {"cornell-box", "cornell-glass", "cornell-glossy", "caustic-glass", "furnace",
-          "furnace-glass", "sky-courtyard", "cornell-stained", "cornell-lamps", "cornell-bumpy"}) {
+    for (const char* name : {"cornell-box", "cornell-glass", "cornell-glossy", "caustic-glass",
+                             "furnace", "furnace-glass", "sky-courtyard", "cornell-stained",
+                             "cornell-lamps", "cornell-bumpy", "cornell-materials"}) {
         std::vector<std::string> warnings;
         SceneLoadOptions options;
         options.warnings = &warnings;
