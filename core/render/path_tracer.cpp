@@ -117,29 +117,41 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
                 : CoatArrival{};
         if ((!kSpecular || material.type == MaterialType::kDiffuse) && !material.HasCoat()) {
             diffuse_seen = true;
-            // Light sampling and the bounce on one side: the path's own or, through a
-            // translucent surface, the other. Both strategies then sample that side alone, so
-            // their densities there, and the power heuristic, are as for an opaque surface.
+            // Light sampled on the path's side and, through a translucent surface, on the other
+            // too; the bounce on one of them, chosen with its probability p (ChooseDiffuseSide),
+            // so the bounce's density there is p cos / pi, against which each side's light
+            // sample is weighed.
+            const float through = kSpecular && material.IsTranslucent()
+                                      ? gpu::TransmitProbability(base_color, material.transmittance)
+                                      : 0.0f;
+            for (const bool other : {false, true}) {
+                if (other && !(through > 0)) break;
+                const Vec3 facing =
+                    front_facing != other ? surface.shading_normal : -surface.shading_normal;
+                const Rgb& albedo = other ? material.transmittance : base_color;
+                const float chosen = other ? through : 1.0f - through;
+                LightSample light;
+                if (inputs.emitters->SampleDirect(surface.position, facing, rng, &light) &&
+                    !inputs.tracer->Occluded(light.shadow_ray)) {
+                    const float cosine = Dot(light.direction, facing);
+                    const float weight =
+                        light.pdf > 0 ? PowerHeuristic(light.pdf, chosen * cosine / kPi) : 1.0f;
+                    radiance +=
+                        throughput * (albedo / kPi) * light.radiance_over_pdf * (cosine * weight);
+                }
+            }
             const DiffuseSide side = kSpecular ? ChooseDiffuseSide(material, base_color, rng)
                                                : DiffuseSide{false, base_color};
             const bool toward = front_facing != side.through;
             const Vec3 normal = toward ? surface.shading_normal : -surface.shading_normal;
             const Vec3 geometric = toward ? surface.geometric_normal : -surface.geometric_normal;
-            const Rgb bsdf = side.albedo / kPi;
-            LightSample light;
-            if (inputs.emitters->SampleDirect(surface.position, normal, rng, &light) &&
-                !inputs.tracer->Occluded(light.shadow_ray)) {
-                const float cosine = Dot(light.direction, normal);
-                const float weight = light.pdf > 0 ? PowerHeuristic(light.pdf, cosine / kPi) : 1.0f;
-                radiance += throughput * bsdf * light.radiance_over_pdf * (cosine * weight);
-            }
             const float u1 = rng.NextFloat();
             const float u2 = rng.NextFloat();
             const Vec3 local = SampleCosineHemisphere(u1, u2);
             const Vec3 direction = Frame::FromNormal(normal).ToWorld(local);
             if (!(Dot(direction, geometric) > 0)) break;  // the shading normal pointed it inside
-            throughput *= side.albedo;  // f cos / pdf = (rho / pi) cos / (cos / pi)
-            bsdf_pdf = local.z / kPi;
+            throughput *= side.albedo;  // f cos / pdf = (rho / pi) cos / (p cos / pi), / p in it
+            bsdf_pdf = (side.through ? through : 1.0f - through) * local.z / kPi;
             bounced_at = surface.position;
             specular_bounce = false;
             coat_exit = false;
