@@ -21,8 +21,7 @@ struct Texture {
     uint32_t wrap_u = gpu::kWrapRepeat, wrap_v = gpu::kWrapRepeat;
 
     Rgb Texel(int x, int y) const {
-        x = gpu::WrapTexel(x, width, wrap_u);
-        y = gpu::WrapTexel(y, height, wrap_v);
+        gpu::WrapTexels(x, y, width, height, wrap_u, wrap_v);
         if (x < 0 || y < 0) return Rgb(0.0f);
         return texels[static_cast<size_t>(y) * width + x];
     }

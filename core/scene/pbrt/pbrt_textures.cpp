@@ -304,6 +304,8 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
         const std::string wrap = parameters.String("wrap", "repeat");
         if (wrap == "clamp" || wrap == "black") {
             decode.wrap_u = decode.wrap_v = wrap == "clamp" ? gpu::kWrapClamp : gpu::kWrapBlack;
+        } else if (wrap == "octahedralsphere") {
+            decode.wrap_u = decode.wrap_v = gpu::kWrapOctahedral;
         } else if (wrap != "repeat") {
             Warn(where, absl::StrCat("Texture \"", name, "\": wrap \"", wrap,
                                      "\" is rendered as \"repeat\""));

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <utility>
 
 #include "core/scene/image_decode.h"
 #include "core/scene/scene_files.h"
@@ -87,6 +88,31 @@ TEST(TextureTest, WrapModesAddressBeyondTheImageAsGltfAndPbrtSay) {
     texture.wrap_u = gpu::kWrapBlack;
     EXPECT_NEAR(texture.Sample(1.0f, 0.5f).x, 0.25f, 1e-6f);
     EXPECT_NEAR(texture.Sample(0.5f, 7.3f).x, 0.75f, 1e-6f) << "v repeats";
+}
+
+TEST(TextureTest, OctahedralWrapCrossesToWhereTheSphereContinues) {
+    // pbrt-v4's octahedralsphere on a 4x4 image: across the left or right edge, x mirrors
+    // there and y flips; across the top or bottom, y mirrors and x flips; both, at a corner.
+    const auto wrapped = [](int32_t x, int32_t y) {
+        gpu::WrapTexels(x, y, 4, 4, gpu::kWrapOctahedral, gpu::kWrapOctahedral);
+        return std::pair{x, y};
+    };
+    EXPECT_EQ(wrapped(2, 1), (std::pair{2, 1})) << "inside: itself";
+    EXPECT_EQ(wrapped(-1, 1), (std::pair{0, 2}));
+    EXPECT_EQ(wrapped(4, 0), (std::pair{3, 3}));
+    EXPECT_EQ(wrapped(1, -1), (std::pair{2, 0}));
+    EXPECT_EQ(wrapped(3, 4), (std::pair{0, 3}));
+    EXPECT_EQ(wrapped(-1, -1), (std::pair{3, 3})) << "a corner: the opposite one";
+    // The lookup: a 2x2 image of four colours read half a texel past its left edge at the top
+    // row's centre blends the top-left texel with the bottom-left one (where the sphere goes on).
+    Texture texture;
+    texture.width = texture.height = 2;
+    texture.texels = {Rgb(1, 0, 0), Rgb(0, 1, 0), Rgb(0, 0, 1), Rgb(1, 1, 1)};
+    texture.wrap_u = texture.wrap_v = gpu::kWrapOctahedral;
+    const Rgb left = texture.Sample(0.0f, 0.25f);
+    EXPECT_NEAR(left.x, 0.5f, 1e-6f);
+    EXPECT_NEAR(left.z, 0.5f, 1e-6f);
+    EXPECT_NEAR(left.y, 0.0f, 1e-6f);
 }
 
 TEST(TextureTest, FiltersKeepTheirOwnTextures) {

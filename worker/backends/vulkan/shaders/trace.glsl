@@ -18,8 +18,7 @@ float EnterBox(vec3 lower, vec3 upper, vec3 origin, vec3 inverse_direction, floa
 
 // Texel (x, y) of `texture`, wrapped as it says; black where it says so beyond the image.
 vec3 TextureTexel(GpuTexture texture, int x, int y) {
-    x = WrapTexel(x, texture.width, texture.wrap & 0xffffu);
-    y = WrapTexel(y, texture.height, texture.wrap >> 16);
+    WrapTexels(x, y, texture.width, texture.height, texture.wrap & 0xffffu, texture.wrap >> 16);
     if (x < 0 || y < 0) return vec3(0.0);
     return texels[texture.first_texel + uint(y * texture.width + x)].xyz;
 }
