@@ -104,8 +104,8 @@ void WriteTexture(const Texture& texture, ByteWriter& out) {
 bool ReadTexture(ByteReader& in, Texture* texture) {
     TexelEncoding encoding{};
     if (!in.Value(&texture->width) || !in.Value(&texture->height) || !in.Value(&texture->wrap_u) ||
-        !in.Value(&texture->wrap_v) || !in.Value(&encoding) || texture->wrap_u > gpu::kWrapOctahedral ||
-        texture->wrap_v > gpu::kWrapOctahedral)
+        !in.Value(&texture->wrap_v) || !in.Value(&encoding) ||
+        texture->wrap_u > gpu::kWrapOctahedral || texture->wrap_v > gpu::kWrapOctahedral)
         return false;
     if (encoding == TexelEncoding::kFloats) return in.Array(&texture->texels, kMaxCount);
     std::vector<float> palette;
