@@ -88,6 +88,15 @@ private:
         mix.mix_amount = amount, mix.mix_texture = texture;
         return Add(mix);
     }
+    // glTF texture `index` as one linear channel of it in every channel (to `exponent`).
+    absl::StatusOr<int32_t> ChannelTexture(int index, ImageChannels channel,
+                                           double exponent = 1) const {
+        ImageDecodeOptions options;
+        options.encoding = ImageEncoding::kLinear;
+        options.channels = channel;
+        options.exponent = exponent;
+        return texture_(index, options);
+    }
     void NoteTextureLeftOut(const tinygltf::Value& extension, const char* name,
                             std::initializer_list<const char*> keys, const char* instead) const {
         for (const char* key : keys)
@@ -182,23 +191,15 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
     const bool smooth = alpha < kMinRoughness;
     const int maps = pbr.metallicRoughnessTexture.index;
     int32_t roughness_texture = kNoTexture, metallic_texture = kNoTexture;
-    if (maps >= 0) {
-        ImageDecodeOptions options;
-        options.encoding = ImageEncoding::kLinear;
-        options.channels = ImageChannels::kGreen;
-        options.exponent = 2;
-        if (!smooth) {
-            const absl::StatusOr<int32_t> texture = texture_(maps, options);
-            if (!texture.ok()) return texture.status();
-            roughness_texture = *texture;
-        }
-        options.channels = ImageChannels::kBlue;
-        options.exponent = 1;
-        if (pbr.metallicFactor > 0) {
-            const absl::StatusOr<int32_t> texture = texture_(maps, options);
-            if (!texture.ok()) return texture.status();
-            metallic_texture = *texture;
-        }
+    if (maps >= 0 && !smooth) {
+        const absl::StatusOr<int32_t> texture = ChannelTexture(maps, ImageChannels::kGreen, 2);
+        if (!texture.ok()) return texture.status();
+        roughness_texture = *texture;
+    }
+    if (maps >= 0 && pbr.metallicFactor > 0) {
+        const absl::StatusOr<int32_t> texture = ChannelTexture(maps, ImageChannels::kBlue);
+        if (!texture.ok()) return texture.status();
+        metallic_texture = *texture;
     }
     const bool dielectric = pbr.metallicFactor < 1 || metallic_texture != kNoTexture;
     const bool metal = pbr.metallicFactor > 0;
@@ -236,10 +237,7 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
         // surface with its layer and without, the texel the amount.
         if (const int index = ExtensionTexture(*e, "specularTexture");
             index >= 0 && plastic.coat_weight > 0) {
-            ImageDecodeOptions options;
-            options.encoding = ImageEncoding::kLinear;
-            options.channels = ImageChannels::kAlpha;
-            const absl::StatusOr<int32_t> texture = texture_(index, options);
+            const absl::StatusOr<int32_t> texture = ChannelTexture(index, ImageChannels::kAlpha);
             if (!texture.ok()) return texture.status();
             specular_texture = *texture;
         }
@@ -278,10 +276,7 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
         // clearcoatTexture's red channel scales the factor texel by texel (the mix's amount).
         if (const int index = ExtensionTexture(*e, "clearcoatTexture");
             index >= 0 && clearcoat > 0) {
-            ImageDecodeOptions options;
-            options.encoding = ImageEncoding::kLinear;
-            options.channels = ImageChannels::kRed;
-            const absl::StatusOr<int32_t> texture = texture_(index, options);
+            const absl::StatusOr<int32_t> texture = ChannelTexture(index, ImageChannels::kRed);
             if (!texture.ok()) return texture.status();
             clearcoat_texture = *texture;
         }
@@ -291,11 +286,7 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
         clear_plastic.roughness_texture = kNoTexture;
         const int rough = ExtensionTexture(*e, "clearcoatRoughnessTexture");
         if (rough >= 0 && clear_plastic.coat_roughness > 0 && clearcoat > 0) {
-            ImageDecodeOptions options;
-            options.encoding = ImageEncoding::kLinear;
-            options.channels = ImageChannels::kGreen;
-            options.exponent = 2;
-            const absl::StatusOr<int32_t> texture = texture_(rough, options);
+            const absl::StatusOr<int32_t> texture = ChannelTexture(rough, ImageChannels::kGreen, 2);
             if (!texture.ok()) return texture.status();
             clear_plastic.roughness_texture = *texture;
             if (metal)

@@ -9,32 +9,18 @@
 namespace pf::pbrt {
 namespace {
 
-// (s, t) of world point p.
-Point2 Map(const TextureMapping& mapping, const Vec3d& p) {
-    switch (mapping.kind) {
-        case TextureMapping::Kind::kPlanar: {
-            const Vec3d d = p - mapping.origin;
-            return {static_cast<float>(mapping.ds + Dot(d, mapping.vs)),
-                    static_cast<float>(mapping.dt + Dot(d, mapping.vt))};
-        }
-        case TextureMapping::Kind::kSpherical:
-        case TextureMapping::Kind::kCylindrical: {
-            const Vec3d q = mapping.texture_from_world.ApplyPoint(p);
-            const double length = Length(q);
-            if (!(length > 0)) return {0.5f, 0.5f};  // the mapping's centre: no direction
-            const Vec3d v = q / length;
-            const double phi = std::atan2(v.y, v.x);  // in (-pi, pi]
-            if (mapping.kind == TextureMapping::Kind::kCylindrical)
-                return {static_cast<float>((kPiD + phi) / (2 * kPiD)), static_cast<float>(v.z)};
-            // pbrt's SphericalTheta / pi and SphericalPhi / 2 pi (phi in [0, 2 pi)).
-            const double theta = std::acos(std::clamp(v.z, -1.0, 1.0));
-            return {static_cast<float>(theta / kPiD),
-                    static_cast<float>((phi < 0 ? phi + 2 * kPiD : phi) / (2 * kPiD))};
-        }
-        case TextureMapping::Kind::kUv:
-            break;
-    }
-    return {0.0f, 0.0f};
+// Spherical and cylindrical: (s, t) of point q in the texture's frame.
+Point2 AboutTheAxis(TextureMapping::Kind kind, const Vec3d& q) {
+    const double length = Length(q);
+    if (!(length > 0)) return {0.5f, 0.5f};  // the mapping's centre: no direction
+    const Vec3d v = q / length;
+    const double phi = std::atan2(v.y, v.x);  // in (-pi, pi]
+    if (kind == TextureMapping::Kind::kCylindrical)
+        return {static_cast<float>((kPiD + phi) / (2 * kPiD)), static_cast<float>(v.z)};
+    // pbrt's SphericalTheta / pi and SphericalPhi / 2 pi (phi in [0, 2 pi)).
+    const double theta = std::acos(std::clamp(v.z, -1.0, 1.0));
+    return {static_cast<float>(theta / kPiD),
+            static_cast<float>((phi < 0 ? phi + 2 * kPiD : phi) / (2 * kPiD))};
 }
 
 }  // namespace
@@ -78,13 +64,14 @@ absl::StatusOr<TextureMapping> ParseMapping(ParameterList& parameters,
 
 TriangleMesh MapTextureCoordinates(const TriangleMesh& mesh, const Transform& world,
                                    const TextureMapping& mapping) {
-    const auto st_of = [&](uint32_t vertex) {
-        return Map(mapping, world.ApplyPoint(Vec3d(mesh.positions[vertex])));
-    };
     TriangleMesh out = mesh;
     out.uvs.clear();
     if (mapping.kind == TextureMapping::Kind::kPlanar) {
-        for (uint32_t v = 0; v < mesh.positions.size(); ++v) out.uvs.push_back(st_of(v));
+        for (const Vec3& position : mesh.positions) {
+            const Vec3d d = world.ApplyPoint(Vec3d(position)) - mapping.origin;
+            out.uvs.push_back({static_cast<float>(mapping.ds + Dot(d, mapping.vs)),
+                               static_cast<float>(mapping.dt + Dot(d, mapping.vt))});
+        }
         return out;
     }
     // Spherical and cylindrical: each triangle's corners of its own.
@@ -100,9 +87,9 @@ TriangleMesh MapTextureCoordinates(const TriangleMesh& mesh, const Transform& wo
             if (!mesh.normals.empty()) out.normals.push_back(mesh.normals[v]);
             if (!mesh.tangents.empty()) out.tangents.push_back(mesh.tangents[v]);
             out.indices.push_back(static_cast<uint32_t>(first + c));
-            const Vec3d p = world.ApplyPoint(Vec3d(mesh.positions[v]));
-            st[c] = Map(mapping, p);
-            const Vec3d q = mapping.texture_from_world.ApplyPoint(p);
+            const Vec3d q =
+                mapping.texture_from_world.ApplyPoint(world.ApplyPoint(Vec3d(mesh.positions[v])));
+            st[c] = AboutTheAxis(mapping.kind, q);
             on_axis[c] = q.x * q.x + q.y * q.y <= 1e-12 * Dot(q, q);
             if (!on_axis[c] && reference < 0) reference = c;
         }

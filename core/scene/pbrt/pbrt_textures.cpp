@@ -225,6 +225,7 @@ absl::Status PbrtSceneBuilder::Combine(const std::string& name, const std::strin
         }
     std::vector<std::shared_ptr<const pf::Texture>> decoded(operands.size());
     int width = 1, height = 1;
+    const pf::Texture* first = nullptr;  // whose wrap modes the baked image keeps
     for (size_t i = 0; i < operands.size(); ++i) {
         if (operands[i].texture == nullptr) continue;
         absl::StatusOr<std::shared_ptr<const pf::Texture>> image =
@@ -232,6 +233,7 @@ absl::Status PbrtSceneBuilder::Combine(const std::string& name, const std::strin
         if (!image.ok()) return image.status();
         if (*image == nullptr) return absl::OkStatus();  // packing: the files are what counts
         decoded[i] = *image;
+        if (first == nullptr) first = decoded[i].get();
         width = std::max(width, decoded[i]->width), height = std::max(height, decoded[i]->height);
     }
     if (uint64_t(width) * uint64_t(height) > options_.limits.max_image_pixels)
@@ -239,11 +241,7 @@ absl::Status PbrtSceneBuilder::Combine(const std::string& name, const std::strin
                                            " texels exceed the image limit"));
     auto baked = std::make_shared<pf::Texture>();
     baked->width = width, baked->height = height;
-    baked->wrap_u = decoded[std::distance(operands.begin(),
-                                          std::find_if(operands.begin(), operands.end(),
-                                                       [](const Operand& o) { return o.texture; }))]
-                        ->wrap_u;
-    baked->wrap_v = baked->wrap_u;
+    baked->wrap_u = first->wrap_u, baked->wrap_v = first->wrap_v;
     baked->texels.resize(size_t(width) * height);
     std::vector<Rgb> values(operands.size());
     for (int y = 0; y < height; ++y)
