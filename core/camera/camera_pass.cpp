@@ -81,18 +81,20 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& prima
                     const Frame frame = Frame::FromNormal(front_facing ? n : -n);
                     const float u1 = rng.NextFloat();
                     const float u2 = rng.NextFloat();
+                    // Which reflection, the sheen's or the coat's: drawn only under a sheen.
+                    const float u_branch = material.HasSheen() ? rng.NextFloat() : 1.0f;
                     Vec3 wi;
-                    float reflected = 0;
+                    Rgb reflected;
                     const gpu::Coat coat = CoatOf(material);
                     const float entered = gpu::SplitAtCoat(coat, frame.ToLocal(-path.ray.direction),
-                                                           u1, u2, wi, reflected);
+                                                           u_branch, u1, u2, wi, reflected);
                     hit_points.push_back(
                         {surface.position, frame.n,
                          path.throughput * base_color * (entered * CoatInside(coat) / kPi), pixel,
                          surface.material});
                     footprints.push_back(pixel_width.base + path.length * pixel_width.angle);
                     --path.splits_left;
-                    arrival = {false, 0.0f, {frame.ToWorld(wi), Rgb(reflected), false}};
+                    arrival = {false, 0.0f, {frame.ToWorld(wi), reflected, false}};
                 } else if (kSpecular) {
                     arrival = ArriveAtCoat(material, path.ray.direction, n, front_facing, rng);
                 }

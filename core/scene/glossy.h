@@ -26,8 +26,9 @@ using gpu::SampleGgxVisibleNormal;
 
 // The material's coat, as core/shared/coat.h takes it.
 inline gpu::Coat CoatOf(const Material& material) {
-    return {material.coat_kind,      material.coat_ior,    material.coat_roughness,
-            material.coat_thickness, material.coat_weight, material.coat_depth};
+    return {material.coat_kind,      material.coat_ior,       material.coat_roughness,
+            material.coat_thickness, material.coat_weight,    material.coat_depth,
+            material.sheen_color,    material.sheen_roughness};
 }
 
 // What survives of a path's weight along the segment of length `distance` that ends where it
@@ -123,9 +124,9 @@ inline CoatArrival ArriveAtCoat(const Material& material, const Vec3& d, const V
     const float u1 = rng.NextFloat();
     const float u2 = rng.NextFloat();
     Vec3 wi;
-    const float weight = gpu::EnterCoat(CoatOf(material), frame.ToLocal(-d), u_branch, u1, u2, wi);
-    if (wi.z < 0) return {true, weight, {}};
-    return {false, 0.0f, {frame.ToWorld(wi), Rgb(weight), false}};
+    const Rgb weight = gpu::EnterCoat(CoatOf(material), frame.ToLocal(-d), u_branch, u1, u2, wi);
+    if (wi.z < 0) return {true, weight.x, {}};  // grey on the way in
+    return {false, 0.0f, {frame.ToWorld(wi), weight, false}};
 }
 
 // A path leaving a coated diffuse base upward along `up` (in `frame`, the shading normal on

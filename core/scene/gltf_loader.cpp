@@ -127,12 +127,13 @@ absl::StatusOr<Scene> GltfSceneBuilder::Build() {
     // A required extension changes what the file means: one not read here is refused, as the
     // glTF specification asks, rather than rendered wrong.
     static const std::set<std::string> kSupported = {
-        "KHR_lights_punctual",     "KHR_materials_emissive_strength",
-        "KHR_texture_transform",   "KHR_materials_transmission",
-        "KHR_materials_ior",       "KHR_materials_volume",
-        "KHR_materials_specular",  "KHR_materials_clearcoat",
-        "KHR_mesh_quantization",   "KHR_draco_mesh_compression",
-        "EXT_meshopt_compression", "KHR_meshopt_compression"};
+        "KHR_lights_punctual",        "KHR_materials_emissive_strength",
+        "KHR_texture_transform",      "KHR_materials_transmission",
+        "KHR_materials_ior",          "KHR_materials_volume",
+        "KHR_materials_specular",     "KHR_materials_clearcoat",
+        "KHR_materials_sheen",        "KHR_mesh_quantization",
+        "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+        "KHR_meshopt_compression"};
     for (const std::string& extension : model_.extensionsRequired)
         if (!kSupported.contains(extension))
             return Error("extensionsRequired",

@@ -75,6 +75,23 @@ private:
     absl::Status ReadAlpha(Material& material);
     // The metallic-roughness model's materials; returns the one surfaces use.
     absl::StatusOr<uint32_t> MetallicRoughness(const Material& common);
+    // KHR_materials_sheen, kept in sheen_ until Sheened puts it over each surface.
+    absl::Status ReadSheen();
+    // `material` with the sheen over it: over its coat, or, uncoated, over no coat at all
+    // (gpu::kCoatNone, index 1).
+    Material Sheened(Material material) const {
+        if (IsBlack(sheen_.sheen_color)) return material;
+        if (!material.HasCoat()) {
+            material.coat_kind = gpu::kCoatNone;
+            material.coat_ior = 1.0f;
+            material.coat_roughness = material.coat_thickness = 0.0f;
+        }
+        material.sheen_color = sheen_.sheen_color;
+        material.sheen_roughness = sheen_.sheen_roughness;
+        material.sheen_texture = sheen_.sheen_texture;
+        material.sheen_roughness_texture = sheen_.sheen_roughness_texture;
+        return material;
+    }
     // The index of a new material; of a new mix of `first` and `second`, emitting as `common`.
     uint32_t Add(const Material& material) {
         materials_.push_back(material);
@@ -108,6 +125,7 @@ private:
     const std::string& where_;
     const GltfTextureLookup& texture_;
     std::vector<Material>& materials_;
+    Material sheen_;  // its sheen fields only
 };
 
 absl::Status GltfMaterialBuilder::ReadCommon(Material& material) {
@@ -177,6 +195,42 @@ absl::Status GltfMaterialBuilder::ReadAlpha(Material& material) {
         material.alpha_cutoff = static_cast<float>(source_.alphaCutoff);
         if (material.alpha_cutoff <= 0)  // every point passes: opaque
             material.alpha = 1, material.alpha_texture = kNoTexture;
+    }
+    return absl::OkStatus();
+}
+
+absl::Status GltfMaterialBuilder::ReadSheen() {
+    const tinygltf::Value* e = Extension(source_.extensions, "KHR_materials_sheen");
+    if (e == nullptr) return absl::OkStatus();
+    Vec3d colour(0.0);
+    if (e->Has("sheenColorFactor")) {
+        const tinygltf::Value& given = e->Get("sheenColorFactor");
+        colour = Vec3d(-1.0);  // refused unless three numbers
+        if (given.IsArray() && given.ArrayLen() == 3)
+            for (int c = 0; c < 3; ++c)
+                if (given.Get(c).IsNumber()) colour[c] = given.Get(c).GetNumberAsDouble();
+    }
+    const double roughness = NumberOr(*e, "sheenRoughnessFactor", 0.0);
+    if (!(MinComponent(colour) >= 0 && MaxComponent(colour) <= 1 && roughness >= 0 &&
+          roughness <= 1))
+        return Error(
+            "KHR_materials_sheen: sheenColorFactor must be three numbers in [0, 1] and "
+            "sheenRoughnessFactor lie in [0, 1]");
+    sheen_.sheen_color = Rgb(colour);
+    sheen_.sheen_roughness = static_cast<float>(roughness);
+    if (IsBlack(sheen_.sheen_color)) return absl::OkStatus();  // the layer is off
+    if (const int index = ExtensionTexture(*e, "sheenColorTexture"); index >= 0) {
+        ImageDecodeOptions colour_texture;  // sRGB-encoded, as the base colour's
+        colour_texture.encoding = ImageEncoding::kSrgb;
+        const absl::StatusOr<int32_t> texture = texture_(index, colour_texture);
+        if (!texture.ok()) return texture.status();
+        sheen_.sheen_texture = *texture;
+    }
+    if (const int index = ExtensionTexture(*e, "sheenRoughnessTexture");
+        index >= 0 && roughness > 0) {
+        const absl::StatusOr<int32_t> texture = ChannelTexture(index, ImageChannels::kAlpha);
+        if (!texture.ok()) return texture.status();
+        sheen_.sheen_roughness_texture = *texture;
     }
     return absl::OkStatus();
 }
@@ -302,19 +356,22 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
                 "metal too",
                 where_);
     }
-    // The surface, its specular layer weighed texel by texel where specularTexture says.
+    if (clearcoat > 0 && !IsBlack(sheen_.sheen_color))
+        spdlog::warn("{}: the sheen lies over the clearcoat (glTF puts it under)", where_);
+    // The surface (under its sheen, if any), its specular layer weighed texel by texel where
+    // specularTexture says.
     const auto add_plain = [&](const Material& plain) {
         if (&plain != &plastic || specular_texture == kNoTexture || !plastic.HasCoat())
-            return Add(plain);
-        const uint32_t lambertian = Add(base);
-        return Mix(base, lambertian, Add(plastic), 1.0f, specular_texture);
+            return Add(Sheened(plain));
+        const uint32_t lambertian = Add(Sheened(base));
+        return Mix(base, lambertian, Add(Sheened(plastic)), 1.0f, specular_texture);
     };
     // A surface and its clearcoated self, mixed by clearcoatFactor.
     const auto with_clearcoat = [&](const Material& plain, const Material& coated) {
         if (clearcoat <= 0) return add_plain(plain);
-        if (clearcoat >= 1 && clearcoat_texture == kNoTexture) return Add(coated);
+        if (clearcoat >= 1 && clearcoat_texture == kNoTexture) return Add(Sheened(coated));
         const uint32_t first = add_plain(plain);
-        return Mix(base, first, Add(coated), clearcoat, clearcoat_texture);
+        return Mix(base, first, Add(Sheened(coated)), clearcoat, clearcoat_texture);
     };
     uint32_t dielectric_index = 0, metal_index = 0;
     if (dielectric) dielectric_index = with_clearcoat(plastic, clear_plastic);
@@ -374,6 +431,8 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::Build() {
                 static_cast<float>(std::clamp(roughness * roughness, double(kMinRoughness), 1.0));
         }
         if (absl::Status status = ReadAlpha(glass); !status.ok()) return status;
+        if (Extension(source_.extensions, "KHR_materials_sheen") != nullptr)
+            spdlog::warn("{}: KHR_materials_sheen is left out over a transmissive surface", where_);
         return Add(glass);
     }
     std::vector<std::string> left_out;
@@ -381,9 +440,10 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::Build() {
         if (name.starts_with("KHR_materials_") && name != "KHR_materials_emissive_strength" &&
             name != "KHR_materials_ior" && name != "KHR_materials_specular" &&
             name != "KHR_materials_clearcoat" && name != "KHR_materials_transmission" &&
-            name != "KHR_materials_volume")
+            name != "KHR_materials_volume" && name != "KHR_materials_sheen")
             left_out.push_back(name);
     if (!left_out.empty()) spdlog::warn("{}: {} left out", where_, absl::StrJoin(left_out, ", "));
+    if (absl::Status status = ReadSheen(); !status.ok()) return status;
     const absl::StatusOr<uint32_t> index = MetallicRoughness(common);
     if (!index.ok()) return index.status();
     // Cut-outs belong to the material the triangles name (Scene::Alpha).
@@ -407,6 +467,10 @@ std::vector<int> GltfTexturesRead(const tinygltf::Material& material) {
     if (const tinygltf::Value* e = Extension(material.extensions, "KHR_materials_specular"))
         if (const int texture = ExtensionTexture(*e, "specularTexture"); texture >= 0)
             read.push_back(texture);
+    if (const tinygltf::Value* e = Extension(material.extensions, "KHR_materials_sheen"))
+        for (const char* key : {"sheenColorTexture", "sheenRoughnessTexture"})
+            if (const int texture = ExtensionTexture(*e, key); texture >= 0)
+                read.push_back(texture);
     return read;
 }
 

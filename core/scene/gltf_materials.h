@@ -24,8 +24,9 @@ const tinygltf::Value* Extension(const tinygltf::ExtensionMap& extensions, const
 using GltfTextureLookup =
     std::function<absl::StatusOr<int32_t>(int gltf_texture, const ImageDecodeOptions& options)>;
 
-// The glTF textures AddGltfMaterial may read of `material` (base colour, emissive and
-// metallic-roughness: what a bundle must carry); others (normal, occlusion, ...) are not read.
+// The glTF textures AddGltfMaterial may read of `material` (base colour, emissive,
+// metallic-roughness, normal and its extensions': what a bundle must carry); others (occlusion,
+// ...) are not read.
 std::vector<int> GltfTexturesRead(const tinygltf::Material& material);
 
 // Appends the materials glTF material `source` becomes to `materials` and returns the index of

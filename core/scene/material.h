@@ -48,9 +48,9 @@ struct Material {
     // A dielectric coat over the surface (core/shared/coat.h) on a diffuse, mirror or rough
     // conductor base: its kind (gpu::kCoatLayered: pbrt-v4's coateddiffuse and
     // coatedconductor, glTF's KHR_materials_clearcoat; gpu::kCoatFresnelMix, over a diffuse
-    // base only: glTF's dielectric BRDF), index of refraction (0: no coat), GGX alpha (0:
-    // smooth), the optical thickness of a layered coat's absorbing interior, and a Fresnel
-    // mix's weight (glTF's specularFactor).
+    // base only: glTF's dielectric BRDF; gpu::kCoatNone, index 1: nothing but a sheen), index
+    // of refraction (0: no coat), GGX alpha (0: smooth), the optical thickness of a layered
+    // coat's absorbing interior, and a Fresnel mix's weight (glTF's specularFactor).
     uint32_t coat_kind = 0;
     float coat_ior = 0.0f;
     float coat_roughness = 0.0f;
@@ -59,6 +59,13 @@ struct Material {
     // The most bounces a path takes between a coated conductor and its coat before it is
     // taken as absorbed (pbrt-v4's maxdepth).
     uint32_t coat_depth = 10;
+    // A sheen over the coat (core/shared/sheen.h, glTF's KHR_materials_sheen): its colour
+    // (black: none) and roughness, times the sheen texture's colour and the sheen roughness
+    // texture's first channel at the point where they are set (Scene::ShadingMaterial).
+    Rgb sheen_color{0.0f};
+    float sheen_roughness = 0.0f;
+    int32_t sheen_texture = kNoTexture;
+    int32_t sheen_roughness_texture = kNoTexture;
     // How a mirror's or rough conductor's reflectance varies with the angle of incidence
     // (core/shared/conductor.h): its kind (gpu::kConductor*; 0: the tint at every angle) and,
     // for gpu::kConductorComplex, the complex index eta + i k per channel, in vacuum.
@@ -104,6 +111,13 @@ struct Material {
         return type == MaterialType::kRoughConductor || type == MaterialType::kRoughDielectric;
     }
     bool HasCoat() const { return coat_ior > 0.0f; }
+    bool HasSheen() const { return HasCoat() && !IsBlack(sheen_color); }
+    // Whether a texture changes how a point shades beyond its base colour: its GGX alphas, its
+    // sheen (Scene::ShadingMaterial).
+    bool HasShadingTextures() const {
+        return roughness_texture != kNoTexture || sheen_texture != kNoTexture ||
+               sheen_roughness_texture != kNoTexture;
+    }
     // Whether the volume inside absorbs.
     bool HasVolume() const { return !IsBlack(absorption); }
     // Whether some rays pass through the surface.
@@ -116,13 +130,14 @@ struct Material {
         return normal_texture != kNoTexture || bump_texture != kNoTexture;
     }
     // Every texture it reads: indices into Scene::textures, kNoTexture where it has none.
-    std::array<int32_t, 7> Textures() const {
-        return {base_color_texture, emission_texture, alpha_texture, roughness_texture,
-                mix_texture,        normal_texture,   bump_texture};
+    std::array<int32_t, 9> Textures() const {
+        return {base_color_texture, emission_texture, alpha_texture,
+                roughness_texture,  mix_texture,      normal_texture,
+                bump_texture,       sheen_texture,    sheen_roughness_texture};
     }
     // Whether shading reads the surface's texture coordinates.
     bool ReadsUv() const {
-        const std::array<int32_t, 7> textures = Textures();
+        const std::array<int32_t, 9> textures = Textures();
         return std::any_of(textures.begin(), textures.end(),
                            [](int32_t texture) { return texture != kNoTexture; });
     }

@@ -27,7 +27,7 @@ constexpr uint64_t kMaxCount = uint64_t{1} << 32;
 
 // Types written whole must have no padding: their size is the sum of their fields'.
 static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
-static_assert(sizeof(Material) == 172, "Material gained a field or padding: encode it");
+static_assert(sizeof(Material) == 196, "Material gained a field or padding: encode it");
 static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4,
               "Camera gained a field or padding: encode it");
 static_assert(sizeof(Prototype) == 8 + 24 && sizeof(Instance) == 4 + 21 * 4);
@@ -293,11 +293,13 @@ absl::Status CheckMaterials(const Scene& scene) {
         const bool coat_base = material.type == MaterialType::kDiffuse ||
                                material.type == MaterialType::kMirror ||
                                material.type == MaterialType::kRoughConductor;
-        // A Fresnel mix covers a diffuse base only, with an F0 below 1 (an index below 1e3).
+        // A Fresnel mix covers a diffuse base only, with an F0 below 1 (an index below 1e3); no
+        // coat but a sheen has index 1, so that a conductor's Fresnel term is its own.
         const bool coat_kind =
             material.coat_kind == gpu::kCoatLayered ||
             (material.coat_kind == gpu::kCoatFresnelMix &&
-             material.type == MaterialType::kDiffuse && material.coat_ior < 1e3f);
+             material.type == MaterialType::kDiffuse && material.coat_ior < 1e3f) ||
+            (material.coat_kind == gpu::kCoatNone && material.coat_ior == 1.0f);
         if (material.coat_ior != 0.0f &&
             !(material.coat_ior >= 1.0f && Finite(material.coat_ior) && coat_base && coat_kind &&
               material.coat_roughness >= 0.0f && material.coat_roughness <= 1.0f &&
@@ -305,6 +307,12 @@ absl::Status CheckMaterials(const Scene& scene) {
               material.coat_weight >= 0.0f && material.coat_weight <= 1.0f &&
               material.coat_depth <= 1024))
             return Invalid(absl::StrCat(name, ": a coat out of range"));
+        // A sheen: a colour in [0, 1], over a coat (its layers' kinds carry it).
+        if (!(Finite(material.sheen_color) && MinComponent(material.sheen_color) >= 0.0f &&
+              MaxComponent(material.sheen_color) <= 1.0f && material.sheen_roughness >= 0.0f &&
+              material.sheen_roughness <= 1.0f &&
+              (material.HasCoat() || IsBlack(material.sheen_color))))
+            return Invalid(absl::StrCat(name, ": a sheen out of range"));
         // A conductor Fresnel term of a known kind; a complex index as the loaders bound it.
         const auto in_range = [](const Rgb& v, float low) {
             return MinComponent(v) >= low && MaxComponent(v) < 1e4f;

@@ -178,14 +178,24 @@ uint32_t Scene::ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle,
     return m;
 }
 
-const Material& Scene::TexturedRoughness(const SurfacePoint& surface,
-                                         std::optional<Material>& shading) const {
+const Material& Scene::TexturedMaterial(const SurfacePoint& surface,
+                                        std::optional<Material>& shading) const {
     Material& scratch = shading.emplace(materials[surface.material]);
-    const float t = textures[scratch.roughness_texture]->Sample(surface.uv.x, surface.uv.y).x;
-    scratch.roughness = std::clamp(scratch.roughness * t, kMinRoughness, 1.0f);
-    // A rough coat stays rough: alpha 0 would make it smooth.
-    if (scratch.coat_roughness > 0)
-        scratch.coat_roughness = std::clamp(scratch.coat_roughness * t, kMinRoughness, 1.0f);
+    const auto sample = [&](int32_t texture) {
+        return textures[texture]->Sample(surface.uv.x, surface.uv.y);
+    };
+    if (scratch.roughness_texture != kNoTexture) {
+        const float t = sample(scratch.roughness_texture).x;
+        scratch.roughness = std::clamp(scratch.roughness * t, kMinRoughness, 1.0f);
+        // A rough coat stays rough: alpha 0 would make it smooth.
+        if (scratch.coat_roughness > 0)
+            scratch.coat_roughness = std::clamp(scratch.coat_roughness * t, kMinRoughness, 1.0f);
+    }
+    if (scratch.sheen_texture != kNoTexture)
+        scratch.sheen_color = Min(scratch.sheen_color * sample(scratch.sheen_texture), Rgb(1.0f));
+    if (scratch.sheen_roughness_texture != kNoTexture)
+        scratch.sheen_roughness = std::clamp(
+            scratch.sheen_roughness * sample(scratch.sheen_roughness_texture).x, 0.0f, 1.0f);
     return scratch;
 }
 

@@ -203,18 +203,19 @@ struct Scene {
     }
     uint32_t ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle,
                         const Point2& uv) const;
-    // The material shading `surface`: its material, or where that has a roughness texture, a
-    // copy made in `scratch` with the texture applied to its GGX alphas
-    // (Material::roughness_texture).
+    // The material shading `surface`: its material, or where that has textures for more than
+    // its base colour, a copy made in `scratch` with them applied: to its GGX alphas
+    // (Material::roughness_texture), to its sheen (Material::sheen_texture, the sheen roughness
+    // texture).
     const Material& ShadingMaterial(const SurfacePoint& surface,
                                     std::optional<Material>& scratch) const {
         const Material& material = materials[surface.material];
-        if (material.roughness_texture == kNoTexture) [[likely]]
+        if (!material.HasShadingTextures()) [[likely]]
             return material;
-        return TexturedRoughness(surface, scratch);
+        return TexturedMaterial(surface, scratch);
     }
-    const Material& TexturedRoughness(const SurfacePoint& surface,
-                                      std::optional<Material>& scratch) const;
+    const Material& TexturedMaterial(const SurfacePoint& surface,
+                                     std::optional<Material>& scratch) const;
     // Whether material `m` (or a material a mix may be) reads texture coordinates.
     bool MaterialReadsUv(uint32_t m) const {
         if (materials[m].type != MaterialType::kMix) [[likely]]

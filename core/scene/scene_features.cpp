@@ -26,6 +26,8 @@ SceneFeatures SceneFeatures::All() {
                        &all.conductor_fresnel,
                        &all.absorption,
                        &all.translucent,
+                       &all.sheen,
+                       &all.sheen_textures,
                        &all.smooth_normals,
                        &all.shading_detail,
                        &all.triangle_lights,
@@ -52,6 +54,8 @@ std::string SceneFeatures::ToString() const {
     if (conductor_fresnel) parts.push_back("metal Fresnel");
     if (absorption) parts.push_back("absorbing glass");
     if (translucent) parts.push_back("diffuse transmission");
+    if (sheen) parts.push_back("sheen");
+    if (sheen_textures) parts.push_back("sheen textures");
     if (cut_outs) parts.push_back("cut-outs");
     if (mixes) parts.push_back("mixed materials");
     if (textures) parts.push_back("textures");
@@ -101,6 +105,10 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
                                       material.conductor != gpu::kConductorTint;
         features.absorption |= material.HasVolume();
         features.translucent |= material.IsTranslucent();
+        features.sheen |= material.HasSheen();
+        features.sheen_textures |=
+            material.HasSheen() && (material.sheen_texture != kNoTexture ||
+                                    material.sheen_roughness_texture != kNoTexture);
         features.shading_detail |= material.HasShadingDetail();
     }
     for (const Emitters::Record& record : emitters.Records()) {

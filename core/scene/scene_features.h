@@ -24,6 +24,8 @@ struct SceneFeatures {
     bool conductor_fresnel = false;   // a metal's reflectance varies with angle (conductor.h)
     bool absorption = false;          // glass whose inside absorbs (Material::absorption)
     bool translucent = false;         // diffuse transmission (Material::transmittance)
+    bool sheen = false;               // a sheen over a coat (Material::sheen_color)
+    bool sheen_textures = false;      // a used material's sheen has a texture
     bool smooth_normals = false;      // a triangle interpolates vertex normals
     bool shading_detail = false;      // a used material has a normal or bump map
     // Emitters with power.
@@ -43,7 +45,8 @@ struct SceneFeatures {
     bool Rough() const { return rough_conductor || rough_dielectric; }
     // Whether shading reads texture coordinates (light emission aside).
     bool ReadsUv() const {
-        return textures || cut_outs || roughness_textures || mix_textures || shading_detail;
+        return textures || cut_outs || roughness_textures || mix_textures || shading_detail ||
+               sheen_textures;
     }
     // Whether some shading normal differs from its surface's (Veach's adjoint factors apply).
     bool ShadingNormals() const { return smooth_normals || shading_detail; }

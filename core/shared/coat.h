@@ -12,6 +12,11 @@
 //    cosine-weighted mean F_avg, so that a white base reflects all the light but what GGX's
 //    masking loses (Kelemen and Szirmay-Kalos 2001 couple the two likewise). Nothing refracts
 //    and nothing is turned back to the base.
+//  - None (the layer below a sheen alone; index 1): light passes straight through to the base.
+// Any of them may wear a sheen (core/shared/sheen.h, glTF's KHR_materials_sheen) over it: light
+// arriving along w is reflected by the sheen with probability P(w), else meets the layer below;
+// what leaves the base is weighed by (1 - P) / (1 - P_avg) on its way out, as the Fresnel mix's
+// base is.
 // Every pass (camera, photon, direct light, path tracer) sees the same surface through the
 // functions below. Directions are in the local frame of the shading normal, +z on the side the
 // light arrives from outside. One definition for the CPU and the Vulkan kernels.
@@ -23,12 +28,14 @@
 #include "core/shared/microfacet.h"
 #include "core/shared/path_sampling.h"
 #include "core/shared/rng.h"
+#include "core/shared/sheen.h"
 
 PF_GPU_BEGIN
 
 // Coat kinds (Material::coat_kind).
 PF_CONST(uint32_t) kCoatLayered = 0;
 PF_CONST(uint32_t) kCoatFresnelMix = 1;
+PF_CONST(uint32_t) kCoatNone = 2;
 
 // A coat, as the functions below take it (CoatOf builds one from a material on either side).
 struct Coat {
@@ -38,7 +45,39 @@ struct Coat {
     float thickness;  // layered: the interior's optical thickness
     float weight;     // Fresnel mix: the specular lobe's scale, Fresnel's value at grazing
     uint32_t depth;   // layered conductor: the most bounces under the coat
+    vec3 sheen;       // the sheen's colour over it (black: none)
+    float sheen_roughness;
 };
+
+// Whether sheen is compiled in: always in C++; in GLSL the kernel's specialisation constant
+// kHasSheen, declared before this header is included, so a scene without sheen pays nothing.
+#ifdef __cplusplus
+PF_CONST(bool) kSheenCompiled = true;
+#else
+#define kSheenCompiled kHasSheen
+#endif
+
+// The probability P(w) that the sheen reflects light arriving at cosine cos_z (0 without one).
+PF_GPU_FN float SheenProbability(Coat coat, float cos_z) {
+    const float largest = max(coat.sheen.x, max(coat.sheen.y, coat.sheen.z));
+    if (!kSheenCompiled || !(largest > 0.0f)) return 0.0f;
+    return min(1.0f, largest * SheenAlbedo(abs(cos_z), coat.sheen_roughness));
+}
+
+// The base's normalisation under the sheen, 1 / (1 - P_avg).
+PF_GPU_FN float SheenInside(Coat coat) {
+    const float largest = max(coat.sheen.x, max(coat.sheen.y, coat.sheen.z));
+    if (!kSheenCompiled || !(largest > 0.0f)) return 1.0f;
+    return 1.0f / (1.0f - min(largest * SheenAverageAlbedo(coat.sheen_roughness), 0.99f));
+}
+
+// Light arriving from outside along -wo, reflected by the sheen, chosen with probability p:
+// wi cosine-distributed by (u1, u2), the weight colour pi f_sheen / p.
+PF_GPU_FN vec3 ReflectOffSheen(Coat coat, vec3 wo, float p, float u1, float u2, PF_OUT(vec3) wi) {
+    wi = SampleCosineHemisphere(u1, u2);
+    return coat.sheen *
+           (3.14159265358979323846f * SheenBrdf(wo, wi, SheenAlpha(coat.sheen_roughness)) / p);
+}
 
 // A coat may turn a path leaving its diffuse base back down to it this often at most.
 PF_CONST(int32_t) kMaxCoatReturns = 64;
@@ -111,8 +150,9 @@ PF_GPU_FN float MixFresnelAverage(Coat coat) {
 // F_avg) under a Fresnel mix. Camera paths entering a coat carry this factor; a path leaving
 // it divides it out again (the Fresnel mix's LeaveCoat applies its normalisation itself).
 PF_GPU_FN float CoatInside(Coat coat) {
-    if (coat.kind == kCoatFresnelMix) return 1.0f / (1.0f - MixFresnelAverage(coat));
-    return 1.0f / (coat.ior * coat.ior);
+    if (coat.kind == kCoatFresnelMix) return SheenInside(coat) / (1.0f - MixFresnelAverage(coat));
+    if (coat.kind == kCoatNone) return SheenInside(coat);
+    return SheenInside(coat) / (coat.ior * coat.ior);
 }
 
 // A microfacet of the coat's interface seen from w: one of w's visible normals, drawn by
@@ -130,10 +170,13 @@ PF_GPU_FN float ReflectOffMix(Coat coat, vec3 wo, vec3 m, PF_OUT(vec3) wi) {
     return coat.alpha > 0.0f ? GgxMaskingRatio(wo.z, wi.z, coat.alpha) : 1.0f;
 }
 
-// Light arriving from outside along -wo: reflected by the coat (wi.z > 0), or into it and down
-// to the base (wi.z < 0; the weight includes a layered coat's transmittance). u_branch chooses
-// the branch, (u1, u2) the microfacet of a rough interface.
-PF_GPU_FN float EnterCoat(Coat coat, vec3 wo, float u_branch, float u1, float u2, PF_OUT(vec3) wi) {
+// EnterCoat below the sheen.
+PF_GPU_FN float EnterLayer(Coat coat, vec3 wo, float u_branch, float u1, float u2,
+                           PF_OUT(vec3) wi) {
+    if (coat.kind == kCoatNone) {
+        wi = vec3(wo.x, wo.y, -wo.z);
+        return 1.0f;
+    }
     if (coat.kind == kCoatFresnelMix) {
         // Reflected by a visible microfacet with its Fresnel probability, else to the base.
         const vec3 m = CoatMicrofacet(coat, wo, u1, u2);
@@ -145,26 +188,61 @@ PF_GPU_FN float EnterCoat(Coat coat, vec3 wo, float u_branch, float u1, float u2
     return wi.z < 0.0f ? weight * CoatLayerTransmittance(coat.thickness, wi.z) : weight;
 }
 
+// What the coat's own reflection from wo to wi keeps under a sheen, past the 1 - P(wo) chosen
+// on the way in: sqrt((1 - P(wi)) / (1 - P(wo))), so that the reflection is scaled by the
+// geometric mean of 1 - P at both ends, reciprocal (glTF scales it by the smaller; on a smooth
+// coat the two agree).
+PF_GPU_FN float SheenOverReflection(Coat coat, float cos_o, float cos_i) {
+    const float p_o = SheenProbability(coat, cos_o);
+    if (!(p_o > 0.0f)) return 1.0f;
+    return sqrt((1.0f - SheenProbability(coat, cos_i)) / (1.0f - p_o));
+}
+
+// Light arriving from outside along -wo: reflected by the sheen or the coat (wi.z > 0; a
+// sheen's weight is coloured), or into it and down to the base (wi.z < 0; grey, including a
+// layered coat's transmittance). u_branch chooses the branch, (u1, u2) the microfacet of a rough
+// interface or the sheen's direction.
+PF_GPU_FN vec3 EnterCoat(Coat coat, vec3 wo, float u_branch, float u1, float u2, PF_OUT(vec3) wi) {
+    const float p = SheenProbability(coat, wo.z);
+    if (u_branch < p) return ReflectOffSheen(coat, wo, p, u1, u2, wi);
+    float weight = EnterLayer(coat, wo, (u_branch - p) / (1.0f - p), u1, u2, wi);
+    if (wi.z > 0.0f) weight *= SheenOverReflection(coat, wo.z, wi.z);
+    return vec3(weight, weight, weight);
+}
+
 // Light leaving the base upward along `up` (up.z > 0) meets the coat from inside: escapes (wi.z
 // > 0, outside), or a layered coat reflects it back down to the base (wi.z < 0; the weight
 // includes both crossings' transmittance). A Fresnel mix lets it out along `up`, weighted by
-// (1 - F(up.m)) / (1 - F_avg), m one of up's visible microfacets.
-PF_GPU_FN float LeaveCoat(Coat coat, vec3 up, float u_branch, float u1, float u2, PF_OUT(vec3) wi) {
+// (1 - F(up.m)) / (1 - F_avg), m one of up's visible microfacets. A sheen weighs what escapes
+// by (1 - P(wi)) / (1 - P_avg).
+PF_GPU_FN float LeaveLayer(Coat coat, vec3 up, float u_branch, float u1, float u2,
+                           PF_OUT(vec3) wi) {
+    if (coat.kind == kCoatNone) {
+        wi = up;
+        return 1.0f;
+    }
     if (coat.kind == kCoatFresnelMix) {
         wi = up;
-        return (1.0f - MixFresnel(coat, dot(up, CoatMicrofacet(coat, up, u1, u2)))) *
-               CoatInside(coat);
+        return (1.0f - MixFresnel(coat, dot(up, CoatMicrofacet(coat, up, u1, u2)))) /
+               (1.0f - MixFresnelAverage(coat));
     }
     const float weight = CoatLayerTransmittance(coat.thickness, up.z) *
                          CrossCoatFromBelow(-up, coat.ior, coat.alpha, u_branch, u1, u2, wi);
     return wi.z < 0.0f ? weight * CoatLayerTransmittance(coat.thickness, wi.z) : weight;
 }
 
-// The fraction of light arriving from outside along -w (w.z > 0) that reaches the base: exact
-// for a smooth coat; for a rough one an unbiased estimate from the microfacet (u1, u2), as
-// EnterCoat would draw it, the Fresnel branch taken by its expectation.
-PF_GPU_FN float CoatTransmittance(Coat coat, vec3 w, float u1, float u2) {
-    if (!(w.z > 0.0f)) return 0.0f;
+// ... and what escapes passes the sheen, weighed by (1 - P(wi)) / (1 - P_avg).
+PF_GPU_FN float LeaveCoat(Coat coat, vec3 up, float u_branch, float u1, float u2, PF_OUT(vec3) wi) {
+    const float weight = LeaveLayer(coat, up, u_branch, u1, u2, wi);
+    if (!(wi.z > 0.0f)) return weight;
+    return weight * (1.0f - SheenProbability(coat, wi.z)) * SheenInside(coat);
+}
+
+// The fraction of light arriving from outside along -w (w.z > 0) that passes the layer below
+// the sheen: exact for a smooth coat; for a rough one an unbiased estimate from the microfacet
+// (u1, u2), as EnterLayer would draw it, the Fresnel branch taken by its expectation.
+PF_GPU_FN float LayerTransmittance(Coat coat, vec3 w, float u1, float u2) {
+    if (coat.kind == kCoatNone) return 1.0f;
     if (coat.kind == kCoatFresnelMix)
         return 1.0f - MixFresnel(coat, dot(w, CoatMicrofacet(coat, w, u1, u2)));
     const float eta = 1.0f / coat.ior;
@@ -177,12 +255,17 @@ PF_GPU_FN float CoatTransmittance(Coat coat, vec3 w, float u1, float u2) {
     return transmitted * masking * CoatLayerTransmittance(coat.thickness, refracted.z);
 }
 
-// Both of EnterCoat's branches at once, for paths that split rather than choose (the camera
-// pass): from one microfacet (u1, u2) on a rough coat, the reflection (wi, weight
-// `reflected`, 0 where it leaves the hemisphere) and, returned, the weight carried to the
-// base, each times its probability: their sum is EnterCoat's expectation.
-PF_GPU_FN float SplitAtCoat(Coat coat, vec3 wo, float u1, float u2, PF_OUT(vec3) wi,
-                            PF_OUT(float) reflected) {
+// ... and the fraction that reaches the base, what the sheen lets through too.
+PF_GPU_FN float CoatTransmittance(Coat coat, vec3 w, float u1, float u2) {
+    if (!(w.z > 0.0f)) return 0.0f;
+    return (1.0f - SheenProbability(coat, w.z)) * LayerTransmittance(coat, w, u1, u2);
+}
+
+// SplitAtCoat below the sheen.
+PF_GPU_FN float SplitAtLayer(Coat coat, vec3 wo, float u1, float u2, PF_OUT(vec3) wi,
+                             PF_OUT(float) reflected) {
+    reflected = 0.0f;
+    if (coat.kind == kCoatNone) return 1.0f;
     if (coat.kind == kCoatFresnelMix) {
         const vec3 m = CoatMicrofacet(coat, wo, u1, u2);
         const float fresnel = MixFresnel(coat, dot(wo, m));
@@ -195,7 +278,6 @@ PF_GPU_FN float SplitAtCoat(Coat coat, vec3 wo, float u1, float u2, PF_OUT(vec3)
     const float cos_om = dot(wo, m);
     const float fresnel = FresnelDielectric(cos_om, eta);
     wi = m * (2.0f * cos_om) - wo;
-    reflected = 0.0f;
     if (wi.z > 0.0f)
         reflected = coat.alpha > 0.0f ? fresnel * GgxMaskingRatio(wo.z, wi.z, coat.alpha) : fresnel;
     vec3 refracted;
@@ -203,6 +285,22 @@ PF_GPU_FN float SplitAtCoat(Coat coat, vec3 wo, float u1, float u2, PF_OUT(vec3)
     const float masking =
         coat.alpha > 0.0f ? GgxMaskingRatio(wo.z, -refracted.z, coat.alpha) : 1.0f;
     return (1.0f - fresnel) * masking * CoatLayerTransmittance(coat.thickness, refracted.z);
+}
+
+// Both of EnterCoat's branches at once, for paths that split rather than choose (the camera
+// pass): from one microfacet (u1, u2) on a rough coat, a reflection (wi, weight `reflected`,
+// black where it leaves the hemisphere) and, returned, the weight carried to the base, each
+// times its probability: their sum is EnterCoat's expectation. Under a sheen, u_branch chooses
+// which of the two reflections, the sheen's or the coat's, with the sheen's probability.
+PF_GPU_FN float SplitAtCoat(Coat coat, vec3 wo, float u_branch, float u1, float u2, PF_OUT(vec3) wi,
+                            PF_OUT(vec3) reflected) {
+    float layer_reflected;
+    const float entered = SplitAtLayer(coat, wo, u1, u2, wi, layer_reflected);
+    const float p = SheenProbability(coat, wo.z);
+    if (layer_reflected > 0.0f) layer_reflected *= SheenOverReflection(coat, wo.z, wi.z);
+    reflected = vec3(layer_reflected, layer_reflected, layer_reflected);
+    if (u_branch < p) reflected = ReflectOffSheen(coat, wo, p, u1, u2, wi);
+    return (1.0f - p) * entered;
 }
 
 // Light arriving from outside along -wo (wo.z > 0) at a layered coat over a conductor of
@@ -214,8 +312,7 @@ PF_GPU_FN float SplitAtCoat(Coat coat, vec3 wo, float u1, float u2, PF_OUT(vec3)
 PF_GPU_FN vec3 ScatterCoatedConductor(Coat coat, Conductor conductor, vec3 wo, vec3 tint,
                                       float base_alpha, PF_INOUT(Pcg32) rng, PF_OUT(vec3) wi) {
     float u_branch = Pcg32NextFloat(rng), u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-    float carried = EnterCoat(coat, wo, u_branch, u1, u2, wi);
-    vec3 weight = vec3(carried, carried, carried);
+    vec3 weight = EnterCoat(coat, wo, u_branch, u1, u2, wi);
     for (uint32_t bounce = 0; bounce < coat.depth && wi.z < 0.0f; ++bounce) {
         // Off the base: wi heads down to it; its reflection heads up.
         const vec3 at_base = vec3(-wi.x, -wi.y, -wi.z);

@@ -46,8 +46,9 @@ PF_CONST(uint32_t) kBindingLightImageTexels = 21;  // vec4[]
 // (width + 1)), and each texel's probability (width x height). A projection light's: its
 // texels' cumulative sums (width x height + 1), then each texel's probability.
 PF_CONST(uint32_t) kBindingLightImageTables = 22;
-PF_CONST(uint32_t) kBindingTangents = 23;  // vec4[], per vertex: xyz Scene::tangents
-PF_CONST(uint32_t) kBindingCount = 24;
+PF_CONST(uint32_t) kBindingTangents = 23;     // vec4[], per vertex: xyz Scene::tangents
+PF_CONST(uint32_t) kBindingSheenTables = 24;  // float[kSheenTableSize]: kSheenTables (sheen.h)
+PF_CONST(uint32_t) kBindingCount = 25;
 
 // What the prefix-sum kernels scan (GpuParams.scan_target).
 PF_CONST(uint32_t) kScanGridBegin = 0;
@@ -78,7 +79,8 @@ PF_CONST(uint32_t) kSpecHasConductorFresnel = 19;   // Material::conductor other
 PF_CONST(uint32_t) kSpecHasAbsorption = 20;         // Material::absorption inside glass
 PF_CONST(uint32_t) kSpecHasShadingDetail = 21;      // normal or bump maps
 PF_CONST(uint32_t) kSpecHasTranslucency = 22;       // Material::transmittance
-PF_CONST(uint32_t) kSpecCount = 23;
+PF_CONST(uint32_t) kSpecHasSheen = 23;              // Material::sheen_color, its textures
+PF_CONST(uint32_t) kSpecCount = 24;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -140,7 +142,8 @@ struct GpuMaterial {
     int32_t roughness_texture;  // scales roughness and coat.y where set, or -1
     vec4 coat;   // a coat's index of refraction (0: none), GGX alpha, optical thickness;
                  // w: the most bounces under it (uint bits); core/shared/coat.h
-    vec4 layer;  // the coat's kind (kCoat*, uint bits), y: a Fresnel mix's weight
+    vec4 layer;  // the coat's kind (kCoat*, uint bits), y: a Fresnel mix's weight; z, w: the
+                 // sheen's colour and roughness textures, or -1 (int bits)
     vec4 alpha;  // x: alpha (1 without cut-outs), y: its cutoff (0: stochastic); z: the alpha
                  // texture, or -1 (int bits); core/shared/alpha.h
     uvec4 mix;   // kMaterialMix: x, y the two materials; z the second's probability (float
@@ -152,8 +155,9 @@ struct GpuMaterial {
     vec4 detail;         // x: the normal map's texture, or -1 (int bits), y: its scale; z: the bump
                   // map's texture, or -1 (int bits), w: its scale (core/shared/shading_normal.h)
     vec4 transmittance;  // xyz: a diffuse surface's diffuse transmission (translucent.h)
+    vec4 sheen;          // xyz: the sheen's colour (black: none), w: its roughness (sheen.h)
 };
-PF_GPU_LAYOUT(GpuMaterial, 176);
+PF_GPU_LAYOUT(GpuMaterial, 192);
 
 struct GpuTexture {
     uint32_t first_texel;  // into the texels binding

@@ -91,7 +91,7 @@ TEST(CoatTest, LightSamplingTransmittanceIsTheWalks) {
                                     rng.NextFloat(), rng.NextFloat()};
                 Vec3 wi;
                 const gpu::Coat coat{gpu::kCoatLayered, 1.5f, alpha, 0.1f, 1.0f, 10};
-                const float entered = gpu::EnterCoat(coat, w, u[0], u[1], u[2], wi);
+                const float entered = gpu::EnterCoat(coat, w, u[0], u[1], u[2], wi).x;
                 const double a = wi.z < 0 ? entered : 0.0;
                 const double b = gpu::CoatTransmittance(coat, w, u[3], u[4]);
                 walked += a, walked_sq += a * a, sampled += b, sampled_sq += b * b;

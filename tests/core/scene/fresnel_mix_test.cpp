@@ -112,12 +112,13 @@ TEST(FresnelMixTest, LightSamplingAndTheCameraSplitSeeWhatPhotonsSee) {
                 float u[7];
                 for (float& x : u) x = rng.NextFloat();
                 Vec3 wi;
-                const float weight = gpu::EnterCoat(coat, w, u[0], u[1], u[2], wi);
-                float split_reflected = 0;
+                const float weight = gpu::EnterCoat(coat, w, u[0], u[1], u[2], wi).x;
+                Rgb split_reflected;
                 const double values[5] = {
                     wi.z < 0 ? weight : 0.0, wi.z > 0 ? weight : 0.0,
                     gpu::CoatTransmittance(coat, w, u[3], u[4]),
-                    gpu::SplitAtCoat(coat, w, u[5], u[6], wi, split_reflected), split_reflected};
+                    gpu::SplitAtCoat(coat, w, 1.0f, u[5], u[6], wi, split_reflected),
+                    split_reflected.x};
                 for (int k = 0; k < 5; ++k)
                     sums[k] += values[k], squares[k] += values[k] * values[k];
             }

@@ -1,7 +1,7 @@
 // glTF's metallic-roughness materials (core/scene/gltf_materials.h): the dielectric as
 // specular over diffuse, metallic as a mix by factor or texture, roughness squared (and its
-// texture's green channel squared) as GGX alpha, KHR_materials_specular, _ior and _clearcoat,
-// and a clear error for values out of range.
+// texture's green channel squared) as GGX alpha, KHR_materials_specular, _ior, _clearcoat and
+// _sheen, and a clear error for values out of range.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -209,6 +209,58 @@ TEST(GltfMaterialsTest, SpecularTextureWeighsTheLayerTexelByTexel) {
     EXPECT_FALSE(QuadMaterial(*plain).HasCoat());
 }
 
+TEST(GltfMaterialsTest, SheenLiesOverEveryPartOfTheSurface) {
+    // KHR_materials_sheen over glTF's dielectric (its Fresnel mix) and over the metal (no coat
+    // but the sheen), each part carrying the sheen's colour, roughness and textures: the colour
+    // texture sRGB, the roughness texture's alpha linear.
+    testing::TestMaterial material =
+        Gltf(0.5f, 0.6f,
+             R"("KHR_materials_sheen":{"sheenColorFactor":[1,0.5,0.25],)"
+             R"("sheenRoughnessFactor":0.4,"sheenColorTexture":{"index":0},)"
+             R"("sheenRoughnessTexture":{"index":0}})");
+    material.texture_png_base64 = absl::Base64Escape(
+        testing::TwoTexelRgbaPng({200, 100, 50, 255, 20, 240, 60, 51}, "sheen.png"));
+    const absl::StatusOr<Scene> scene = QuadWith(material, "sheen.gltf");
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Material& mix = QuadMaterial(*scene);
+    ASSERT_EQ(mix.type, MaterialType::kMix);
+    EXPECT_FALSE(mix.HasSheen()) << "a mix is not shaded";
+    const Material& plastic = scene->materials[mix.mix_first];
+    const Material& metal = scene->materials[mix.mix_second];
+    EXPECT_EQ(plastic.coat_kind, gpu::kCoatFresnelMix);
+    EXPECT_EQ(metal.type, MaterialType::kRoughConductor);
+    EXPECT_EQ(metal.coat_kind, gpu::kCoatNone);
+    EXPECT_FLOAT_EQ(metal.coat_ior, 1.0f) << "the metal's own Fresnel term";
+    for (const Material* part : {&plastic, &metal}) {
+        EXPECT_TRUE(part->HasSheen());
+        EXPECT_EQ(part->sheen_color, Rgb(1.0f, 0.5f, 0.25f));
+        EXPECT_FLOAT_EQ(part->sheen_roughness, 0.4f);
+        ASSERT_NE(part->sheen_texture, kNoTexture);
+        ASSERT_NE(part->sheen_roughness_texture, kNoTexture);
+        const Texture& colour = *scene->textures[part->sheen_texture];
+        EXPECT_NEAR(colour.texels[0].x, std::pow((200 / 255.0 + 0.055) / 1.055, 2.4), 1e-3)
+            << "sRGB";
+        EXPECT_NEAR(scene->textures[part->sheen_roughness_texture]->texels[1].x, 0.2f, 1e-6f)
+            << "alpha, linear";
+    }
+    // The textures apply at the point, as the roughness texture does: the first texel (alpha 1)
+    // shows the colour, the second (alpha 0.2) the roughness.
+    SurfacePoint surface;
+    surface.material = mix.mix_second;
+    std::optional<Material> scratch;
+    surface.uv = {0.25f, 0.5f};
+    EXPECT_NEAR(scene->ShadingMaterial(surface, scratch).sheen_color.y,
+                0.5f * std::pow((100 / 255.0 + 0.055) / 1.055, 2.4), 1e-3f);
+    surface.uv = {0.75f, 0.5f};
+    EXPECT_NEAR(scene->ShadingMaterial(surface, scratch).sheen_roughness, 0.4f * 0.2f, 1e-3f);
+    // Black turns the layer off.
+    const absl::StatusOr<Scene> off = QuadWith(
+        Gltf(0, 0.5f, R"("KHR_materials_sheen":{"sheenColorFactor":[0,0,0]})"), "no-sheen.gltf");
+    ASSERT_TRUE(off.ok()) << off.status();
+    EXPECT_FALSE(QuadMaterial(*off).HasSheen());
+    EXPECT_EQ(QuadMaterial(*off).coat_kind, gpu::kCoatFresnelMix);
+}
+
 TEST(GltfMaterialsTest, APrimitiveWithoutMaterialTakesGltfsDefault) {
     // The default material is every property at its default: white, metallic 1, roughness 1.
     testing::TestScene scene = testing::LitQuadScene();
@@ -260,7 +312,13 @@ TEST(GltfMaterialsTest, ValuesOutOfRangeAreRefusedNamingTheMaterial) {
           std::pair{Gltf(0, 0, std::string(kVolume) + R"("attenuationDistance":0})"),
                     "attenuationDistance"},
           std::pair{Gltf(0, 0, std::string(kVolume) + R"("attenuationColor":[1,2,0]})"),
-                    "attenuationColor"}}) {
+                    "attenuationColor"},
+          std::pair{Gltf(0, 0.5f, R"("KHR_materials_sheen":{"sheenColorFactor":[1,2,0]})"),
+                    "sheenColorFactor"},
+          std::pair{Gltf(0, 0.5f,
+                         R"("KHR_materials_sheen":{"sheenColorFactor":[1,1,1],)"
+                         R"("sheenRoughnessFactor":-0.5})"),
+                    "sheenRoughnessFactor"}}) {
         const absl::StatusOr<Scene> scene = QuadWith(material, "bad.gltf");
         ASSERT_FALSE(scene.ok()) << what;
         EXPECT_NE(scene.status().message().find("material #0"), std::string::npos)

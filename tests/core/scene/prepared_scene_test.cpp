@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/scene/scene_loader.h"
+#include "core/shared/coat.h"
 #include "core/util/byte_stream.h"
 #include "core/util/sha256.h"
 #include "tests/support/gltf_builder.h"
@@ -330,6 +331,21 @@ TEST(PreparedSceneTest, HostileBytesAreRefusedNamingWhatIsWrong) {
         "material 0: a coat out of range");
     broken([](Scene& s) { s.materials[0].transmittance = Rgb(-0.5f); },
            "material 0: transmittance out of range");
+    broken([](Scene& s) { s.materials[0].sheen_color = Rgb(0.5f); },
+           "material 0: a sheen out of range");  // on no coat
+    broken(
+        [](Scene& s) {
+            s.materials[0].coat_kind = gpu::kCoatNone;
+            s.materials[0].coat_ior = 1.0f;
+            s.materials[0].sheen_color = Rgb(1.5f, 0.5f, 0.5f);
+        },
+        "material 0: a sheen out of range");
+    broken(
+        [](Scene& s) {
+            s.materials[0].coat_kind = gpu::kCoatNone;
+            s.materials[0].coat_ior = 1.5f;  // no coat has index 1
+        },
+        "material 0: a coat out of range");
     broken(
         [](Scene& s) {
             s.materials[0].type = MaterialType::kDielectric;

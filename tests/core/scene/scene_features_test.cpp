@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/scene/scene_loader.h"
+#include "core/shared/coat.h"
 #include "tests/support/gltf_builder.h"
 
 namespace pf {
@@ -61,6 +62,19 @@ TEST(SceneFeaturesTest, DiffuseTransmissionTakesTheGeneralPathsButMakesNoCaustic
     EXPECT_EQ(translucent.ToString(), "diffuse, diffuse transmission, area lights");
 }
 
+TEST(SceneFeaturesTest, SheenIsAFeatureWhereASurfaceWearsOne) {
+    Scene scene = Shipped("cornell-box.gltf");
+    EXPECT_FALSE(FeaturesOf(scene).sheen);
+    Material& material = scene.materials[scene.triangles[0].material];
+    material.coat_kind = gpu::kCoatNone;
+    material.coat_ior = 1.0f;
+    material.sheen_color = Rgb(0.5f);
+    const SceneFeatures features = FeaturesOf(scene);
+    EXPECT_TRUE(features.sheen && features.coats);
+    EXPECT_FALSE(features.sheen_textures);
+    EXPECT_EQ(features.ToString(), "diffuse, coated, sheen, area lights");
+}
+
 TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     testing::TestScene scene = testing::LitQuadScene();
     scene.meshes.resize(1);  // the emissive quad's material stays, unused
@@ -72,15 +86,15 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     EXPECT_TRUE(features.spot_lights);
     EXPECT_FALSE(features.point_lights) << "a light of no power is no emitter";
     EXPECT_FALSE(features.triangle_lights) << "an emissive material on no triangle emits nothing";
-    EXPECT_EQ(
-        SceneFeatures::All().ToString(),
-        "diffuse, mirror, glass, thin glass, rough metal, rough glass, coated, "
-        "specular over diffuse, metal Fresnel, absorbing glass, diffuse transmission, cut-outs, "
-        "mixed materials, "
-        "textures, roughness textures, "
-        "textured mixes, smooth normals, normal or bump maps, area lights, "
-        "point lights, spot lights, directional lights, environment light, textured lights, "
-        "goniometric or projection lights, caustics");
+    EXPECT_EQ(SceneFeatures::All().ToString(),
+              "diffuse, mirror, glass, thin glass, rough metal, rough glass, coated, "
+              "specular over diffuse, metal Fresnel, absorbing glass, diffuse transmission, sheen, "
+              "sheen textures, cut-outs, "
+              "mixed materials, "
+              "textures, roughness textures, "
+              "textured mixes, smooth normals, normal or bump maps, area lights, "
+              "point lights, spot lights, directional lights, environment light, textured lights, "
+              "goniometric or projection lights, caustics");
 }
 
 }  // namespace

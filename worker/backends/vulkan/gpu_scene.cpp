@@ -5,6 +5,7 @@
 #include <bit>
 
 #include "core/scene/mesh_builder.h"
+#include "core/shared/sheen.h"
 #include "embree/bvh_builder.h"
 
 namespace pf::vk {
@@ -39,13 +40,17 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
         for (const Point2& uv : scene.uvs) gpu_scene.uvs.push_back({uv.x, uv.y});
     if (gpu_scene.features.shading_detail)
         for (const Vec3& tangent : scene.tangents) gpu_scene.tangents.push_back(Vec4(tangent));
+    if (gpu_scene.features.sheen)
+        gpu_scene.sheen_tables.assign(std::begin(gpu::kSheenTables), std::end(gpu::kSheenTables));
     for (const Material& material : scene.materials)
         gpu_scene.materials.push_back(
             {Vec4(material.base_color, material.ior), static_cast<uint32_t>(material.type),
              material.base_color_texture, material.roughness, material.roughness_texture,
              gpu::vec4{material.coat_ior, material.coat_roughness, material.coat_thickness,
                        std::bit_cast<float>(material.coat_depth)},
-             gpu::vec4{std::bit_cast<float>(material.coat_kind), material.coat_weight, 0, 0},
+             gpu::vec4{std::bit_cast<float>(material.coat_kind), material.coat_weight,
+                       std::bit_cast<float>(material.sheen_texture),
+                       std::bit_cast<float>(material.sheen_roughness_texture)},
              gpu::vec4{material.alpha, material.alpha_cutoff,
                        std::bit_cast<float>(material.alpha_texture), 0},
              gpu::uvec4{material.mix_first, material.mix_second,
@@ -55,7 +60,8 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
              Vec4(material.conductor_k, 0.0f), Vec4(material.absorption, 0.0f),
              gpu::vec4{std::bit_cast<float>(material.normal_texture), material.normal_scale,
                        std::bit_cast<float>(material.bump_texture), material.bump_scale},
-             Vec4(material.transmittance, 0.0f)});
+             Vec4(material.transmittance, 0.0f),
+             Vec4(material.sheen_color, material.sheen_roughness)});
     if (!gpu_scene.features.ReadsUv() && !gpu_scene.features.textured_lights) return;
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {
         gpu_scene.textures.push_back({static_cast<uint32_t>(gpu_scene.texels.size()),
@@ -235,6 +241,7 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasAbsorption] = features.absorption;
     spec[gpu::kSpecHasShadingDetail] = features.shading_detail;
     spec[gpu::kSpecHasTranslucency] = features.translucent;
+    spec[gpu::kSpecHasSheen] = features.sheen;
     return spec;
 }
 

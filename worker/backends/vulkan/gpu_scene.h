@@ -25,6 +25,7 @@ struct GpuScene {
     std::vector<gpu::vec4> normals;
     std::vector<gpu::vec2> uvs;
     std::vector<gpu::vec4> tangents;  // where the scene has normal maps
+    std::vector<float> sheen_tables;  // gpu::kSheenTables, where the scene has sheen
     std::vector<gpu::GpuMaterial> materials;
     std::vector<gpu::GpuTexture> textures;
     std::vector<gpu::vec4> texels;

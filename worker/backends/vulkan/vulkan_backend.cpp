@@ -134,8 +134,8 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
 
 // Every buffer of a job, named by what it holds; Bindings() lists them in binding order.
 struct VulkanBackend::JobBuffers {
-    Buffer nodes, triangles, shading, normals, uvs, tangents, materials, textures, texels, emitters,
-        emitter_cdf, light_image_texels, light_image_tables;
+    Buffer nodes, triangles, shading, normals, uvs, tangents, sheen_tables, materials, textures,
+        texels, emitters, emitter_cdf, light_image_texels, light_image_tables;
     Buffer hit_points, radius_sq, grid_begin, grid_cursor, grid_entries, scan_blocks, tally, direct,
         counters;
     Buffer tally_offsets, tally_entries;
@@ -171,6 +171,7 @@ struct VulkanBackend::JobBuffers {
         upload(buffers->normals, Bytes(gpu_scene.normals));
         upload(buffers->uvs, Bytes(gpu_scene.uvs));
         upload(buffers->tangents, Bytes(gpu_scene.tangents));
+        upload(buffers->sheen_tables, Bytes(gpu_scene.sheen_tables));
         upload(buffers->materials, Bytes(gpu_scene.materials));
         upload(buffers->textures, Bytes(gpu_scene.textures));
         upload(buffers->texels, Bytes(gpu_scene.texels));
@@ -222,6 +223,7 @@ struct VulkanBackend::JobBuffers {
         b[gpu::kBindingLightImageTexels] = light_image_texels.Handle();
         b[gpu::kBindingLightImageTables] = light_image_tables.Handle();
         b[gpu::kBindingTangents] = tangents.Handle();
+        b[gpu::kBindingSheenTables] = sheen_tables.Handle();
         return b;
     }
 };

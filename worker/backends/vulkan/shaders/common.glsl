@@ -35,6 +35,7 @@ layout(constant_id = kSpecHasConductorFresnel) const bool kHasConductorFresnel =
 layout(constant_id = kSpecHasAbsorption) const bool kHasAbsorption = true;
 layout(constant_id = kSpecHasShadingDetail) const bool kHasShadingDetail = true;
 layout(constant_id = kSpecHasTranslucency) const bool kHasTranslucency = true;
+layout(constant_id = kSpecHasSheen) const bool kHasSheen = true;
 // Some shading normal differs from its surface's (SceneFeatures::ShadingNormals).
 const bool kShadingNormals = kHasSmoothNormals || kHasShadingDetail;
 
@@ -62,6 +63,7 @@ layout(std430, binding = kBindingDirect) writeonly buffer Direct { vec4 direct[]
 layout(std430, binding = kBindingCounters) buffer Counters { GpuCounters counters; };
 layout(std430, binding = kBindingTallyOffsets) buffer TallyOffsets { uint tally_offsets[]; };
 layout(std430, binding = kBindingTallyEntries) writeonly buffer TallyEntries { GpuTallyEntry tally_entries[]; };
+layout(std430, binding = kBindingSheenTables) readonly buffer SheenTables { float sheen_tables[]; };
 
 const float kPi = 3.14159265358979323846;
 const float kInfinity = 1.0 / 0.0;

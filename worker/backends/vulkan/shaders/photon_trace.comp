@@ -97,10 +97,10 @@ uint TracePhoton(uint photon, out bool discarded) {
             if (coated) {  // as ArriveAtCoat: the coat reflects the photon or lets it in
                 const float u_branch = Pcg32NextFloat(rng), u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
                 vec3 wi;
-                const float weight = EnterCoat(CoatOf(material), -direction * frame, u_branch, u1, u2, wi);
+                const vec3 weight = EnterCoat(CoatOf(material), -direction * frame, u_branch, u1, u2, wi);
                 at_base = wi.z < 0.0;
-                if (at_base) flux *= weight;
-                else scatter = SpecularBounce(frame * wi, vec3(weight), false);
+                if (at_base) flux *= weight.x;  // grey on the way in
+                else scatter = SpecularBounce(frame * wi, weight, false);
             }
             if (at_base) {
                 if (scattered && across > 0.0) Gather(surface.position, direction, flux / across);

@@ -9,7 +9,7 @@
 // The material's coat, as core/shared/coat.h takes it (glossy.h's CoatOf).
 Coat CoatOf(GpuMaterial material) {
     return Coat(floatBitsToUint(material.layer.x), material.coat.x, material.coat.y, material.coat.z, material.layer.y,
-                floatBitsToUint(material.coat.w));
+                floatBitsToUint(material.coat.w), material.sheen.xyz, material.sheen.w);
 }
 
 // The material's conductor Fresnel term, as core/shared/conductor.h takes it (specular.h's

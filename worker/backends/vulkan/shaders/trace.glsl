@@ -181,13 +181,20 @@ Surface SurfaceAt(RayHit hit) {
     return surface;
 }
 
-// The material shading a surface point, its roughness texture applied (Scene::ShadingMaterial).
+// The material shading a surface point, its roughness and sheen textures applied
+// (Scene::ShadingMaterial).
 GpuMaterial ShadingMaterial(Surface surface) {
     GpuMaterial material = materials[surface.material];
     if (kHasRoughnessTextures && material.roughness_texture >= 0) {
         const float t = TextureSample(textures[material.roughness_texture], surface.uv).x;
         material.roughness = clamp(material.roughness * t, 1e-3, 1.0);
         if (material.coat.y > 0.0) material.coat.y = clamp(material.coat.y * t, 1e-3, 1.0);
+    }
+    if (kHasSheen) {
+        const int colour = floatBitsToInt(material.layer.z), roughness = floatBitsToInt(material.layer.w);
+        if (colour >= 0) material.sheen.xyz = min(material.sheen.xyz * TextureSample(textures[colour], surface.uv), vec3(1.0));
+        if (roughness >= 0)
+            material.sheen.w = clamp(material.sheen.w * TextureSample(textures[roughness], surface.uv).x, 0.0, 1.0);
     }
     return material;
 }
