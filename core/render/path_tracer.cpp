@@ -161,6 +161,9 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
             if (!TraceCoatedBase(inputs, surface, front_facing, material, base_color,
                                  throughput * arrival.weight, rng, radiance, throughput, ray))
                 break;
+            // Where light sampling looked from: an emitter the path meets next is the one it
+            // could have found, its density from here (PdfDirect) says so.
+            bounced_at = surface.position;
             specular_bounce = false;
             coat_exit = true;
         } else if (material.type == MaterialType::kDiffuse) {
