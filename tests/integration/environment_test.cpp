@@ -269,11 +269,12 @@ bool BlockRatioCheck(const Image& image, const PixelClasses& classes,
 // cosine at which the camera sees the face, averaged over 8x8 rays across each pixel), as
 // BlockRatioCheck, and that the check fails 2% off. Per channel: expected(mu) is a colour.
 // What the camera should see along a ray that meets the cube at `hit`, over the sky's radiance.
-// `map_photons`: pm's photons a map, more where its maps' noise shows.
+// `map_photons`: pm's photons a map, more where its maps' noise shows; `ppm_samples`: ppm's hit
+// points a pixel, more where what its fixed camera paths choose shows.
 using Expectation = std::function<Rgbd(const Scene&, const Tracer&, const Ray&, const RayHit&)>;
 void ExpectCubeShows(const std::string& scene_path, Integrator integrator,
                      const std::string& feature, const Expectation& shows,
-                     uint64_t map_photons = 1u << 19) {
+                     uint64_t map_photons = 1u << 19, uint32_t ppm_samples = 32) {
     RenderSettings settings;
     settings.scene_path = scene_path;
     settings.threads = 2;
@@ -288,7 +289,7 @@ void ExpectCubeShows(const std::string& scene_path, Integrator integrator,
     job.photon_map.global_photons = job.photon_map.caustic_photons = map_photons;
     // ppm's hit points are fixed: where a point is one of two materials, each keeps its choice
     // for the whole render, so only more of them average it.
-    if (integrator == Integrator::kPpm) job.samples_per_pixel = 32;
+    if (integrator == Integrator::kPpm) job.samples_per_pixel = ppm_samples;
     const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
     ASSERT_TRUE(outcome.ok()) << outcome.status();
     EXPECT_NE(outcome->scene_features.find(feature), std::string::npos);
@@ -322,14 +323,14 @@ void ExpectCubeShows(const std::string& scene_path, Integrator integrator,
 
 void ExpectCubeReflectsRgb(const std::string& scene_path, Integrator integrator,
                            const std::string& feature, const std::function<Rgbd(double)>& reflects,
-                           uint64_t map_photons = 1u << 19) {
+                           uint64_t map_photons = 1u << 19, uint32_t ppm_samples = 32) {
     ExpectCubeShows(
         scene_path, integrator, feature,
         [&](const Scene& scene, const Tracer&, const Ray& ray, const RayHit& hit) {
             const Vec3 n = scene.Surface(hit).geometric_normal;
             return reflects(std::abs(Dot(ray.direction, n)));
         },
-        map_photons);
+        map_photons, ppm_samples);
 }
 
 // The same where expected(mu) is grey.
@@ -368,6 +369,30 @@ TEST_P(GltfDielectricEnvironmentFurnace, ConvexBodyReflectsFresnelPlusTheRestOfT
                            const double fresnel = gpu::MixFresnel(coat, float(mu));
                            return fresnel + (1 - fresnel) * kAlbedo;
                        });
+}
+
+// glTF's KHR_materials_sheen, colour c and roughness 0.5, over a Lambertian base (no specular
+// layer): the sheen reflects c E(mu) (core/shared/sheen.h's table, within 1.5%), the base the
+// rest, 1 - max(c) E(mu), times its albedo, its lobe normalised by 1 - max(c) E_avg.
+class SheenEnvironmentFurnace : public ::testing::TestWithParam<Integrator> {};
+
+TEST_P(SheenEnvironmentFurnace, ConvexBodyReflectsTheSheenPlusTheRestOfTheBase) {
+    const Rgbd colour(1.0, 0.7, 0.4);
+    constexpr float kRoughness = 0.5f;
+    testing::TestScene cube = TurnedCube();
+    cube.materials[0].extensions = absl::StrFormat(
+        R"("KHR_materials_specular":{"specularFactor":0},)"
+        R"("KHR_materials_sheen":{"sheenColorFactor":[%g,%g,%g],"sheenRoughnessFactor":%g})",
+        colour.x, colour.y, colour.z, kRoughness);
+    ExpectCubeReflectsRgb(
+        testing::WriteGltf(cube, "velvet-cube.gltf"), GetParam(), "sheen",
+        [&](double mu) {
+            const double e = gpu::SheenAlbedo(float(mu), kRoughness);
+            return colour * e + Rgbd((1 - e) * kAlbedo);
+        },
+        1u << 19,
+        // ppm's hit points keep the direction their sheen reflection drew: more of them.
+        128);
 }
 
 // A mix (pbrt's "mix", amount a) of two diffuse materials of albedo rho1 and rho2: each point
@@ -481,6 +506,9 @@ INSTANTIATE_TEST_SUITE_P(Integrators, AbsorbingGlassEnvironment, EveryIntegrator
                          IntegratorParamName);
 
 INSTANTIATE_TEST_SUITE_P(Integrators, TranslucentEnvironmentFurnace, EveryIntegrator(),
+                         IntegratorParamName);
+
+INSTANTIATE_TEST_SUITE_P(Integrators, SheenEnvironmentFurnace, EveryIntegrator(),
                          IntegratorParamName);
 
 INSTANTIATE_TEST_SUITE_P(Integrators, ConductorEnvironmentFurnace, EveryIntegrator(),
