@@ -87,6 +87,13 @@ class GltfWriter:
         self.doc["materials"].append(material)
         return len(self.doc["materials"]) - 1
 
+    def gltf_material(self, name, pbr, extensions):
+        """A material as glTF writes it: pbrMetallicRoughness's fields and extensions as given
+        (glTF-only scenes, for what pbrt has no word for)."""
+        self.doc["materials"].append({"name": name, "pbrMetallicRoughness": pbr, "extensions": extensions})
+        self.extensions.update(extensions)
+        return len(self.doc["materials"]) - 1
+
     def normal_mapped(self, name, color, image_name, png):
         """A Lambertian material whose shading normal a normal map (the PNG, linear) tilts."""
         material = self.material(name, color)
@@ -405,6 +412,22 @@ def cornell_glossy(writer):
                   writer.material("rough_glass", (1.0, 1.0, 1.0), glass_ior=1.5, alpha=0.05))
 
 
+def cornell_velvet(writer):
+    """The Cornell box with glTF's layered materials on its blocks (KHR_materials_sheen, which
+    pbrt has no word for): the short block velvet, a sheen over rough purple metal as in the
+    Khronos SheenChair's fabric; the tall block plastic, glTF's dielectric with a rough specular
+    layer, under a faint white sheen."""
+    cornell_room(writer)
+    velvet = writer.gltf_material(
+        "velvet", {"baseColorFactor": [0.35, 0.12, 0.4, 1.0], "metallicFactor": 1.0, "roughnessFactor": 0.6},
+        {"KHR_materials_sheen": {"sheenColorFactor": [1.0, 0.2, 0.75], "sheenRoughnessFactor": 0.5}})
+    plastic = writer.gltf_material(
+        "plastic", {"baseColorFactor": [0.7, 0.7, 0.65, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.45},
+        {"KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.5, 0.5], "sheenRoughnessFactor": 0.3}})
+    writer.quads("short_block", mm(SHORT_BLOCK), velvet)
+    writer.quads("tall_block", mm(TALL_BLOCK), plastic)
+
+
 def caustic_glass(writer):
     writer.quads("plane", [[[-2, 0, -2], [-2, 0, 2], [2, 0, 2], [2, 0, -2]]],
                  writer.material("plane", (0.75, 0.75, 0.75)))
@@ -481,6 +504,7 @@ SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass, "cornell-g
           "sky-courtyard": sky_courtyard, "cornell-stained": cornell_stained,
           "cornell-bumpy": cornell_bumpy}
 PBRT_SCENES = {"cornell-lamps": cornell_lamps, "cornell-materials": cornell_materials}
+GLTF_SCENES = {"cornell-velvet": cornell_velvet}
 
 if __name__ == "__main__":
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.abspath(__file__))
@@ -491,6 +515,11 @@ if __name__ == "__main__":
             os.makedirs(os.path.dirname(path), exist_ok=True)
             writer.write(path)
             print("wrote", path)
+    for scene_name, build in GLTF_SCENES.items():
+        writer, path = GltfWriter(), os.path.join(out_dir, scene_name + ".gltf")
+        build(writer)
+        writer.write(path)
+        print("wrote", path)
     for scene_name, build in PBRT_SCENES.items():
         writer, path = PbrtWriter(scene_name, gltf_twin=False), os.path.join(out_dir, "pbrt", scene_name + ".pbrt")
         build(writer)

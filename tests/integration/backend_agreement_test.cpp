@@ -269,6 +269,35 @@ TEST(BackendAgreementAbsorption, AbsorbingGlassMatchesTheCpus) {
     ExpectVulkanAgreesWithTheCpu(testing::WriteTextFile(tinted, "tinted-glass.gltf"), 2'000'000);
 }
 
+TEST(BackendAgreementSheen, TexturedSheenMatchesTheCpus) {
+    // KHR_materials_sheen over a rough metal wall beside the light (the Khronos SheenChair's
+    // fabric), its colour and roughness textured (two texels: a bright, rough sheen and a red,
+    // smooth one), seen at a grazing angle, where the sheen shows: photons reflected by the
+    // fibres or let through to the metal, on the device as on the CPU.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    testing::TestScene scene = testing::LitQuadScene();
+    testing::TestMaterial wall{Rgb(0.5f, 0.2f, 0.55f)};
+    wall.metallic = 1, wall.roughness = 0.6f;
+    wall.texture_png_base64 = absl::Base64Escape(
+        testing::TwoTexelRgbaPng({230, 230, 230, 255, 250, 40, 90, 60}, "sheen-stripes.png"));
+    wall.extensions =
+        R"("KHR_materials_sheen":{"sheenColorFactor":[1,0.8,1],"sheenRoughnessFactor":1,)"
+        R"("sheenColorTexture":{"index":0},"sheenRoughnessTexture":{"index":0}})";
+    scene.materials.push_back(wall);
+    scene.meshes.push_back({{{0.4f, -1, 0},
+                             {0.4f, 1, 1.2f},
+                             {0.4f, 1, 0},
+                             {0.4f, -1, 0},
+                             {0.4f, -1, 1.2f},
+                             {0.4f, 1, 1.2f}},
+                            2,
+                            {0, 0, 3, 1, 3, 0, 0, 0, 0, 1, 3, 1}});
+    scene.camera_position = Vec3(-0.9f, -0.6f, 0.6f);
+    scene.camera_extra = R"(,"rotation":[0,-0.6427876,0,0.7660444])";
+    ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "sheen-wall.gltf"), 4'000'000);
+}
+
 TEST(BackendAgreementTranslucency, LightThroughAPaperShadeMatchesTheCpus) {
     // A closed room lit from the ceiling, half through a paper shade (pbrt-v4's
     // diffusetransmission, tinted, under half the light and over part of the floor), the camera
@@ -468,8 +497,9 @@ TEST(BackendAgreementDepth, PhotonsOnTheDeviceStopAtTheMaximumDepth) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, BackendAgreement,
                          // cornell-bumpy: normal-mapped tiles, Veach's adjoint factors.
+                         // cornell-velvet: sheen over rough metal and over rough plastic.
                          ::testing::Values("cornell-box.gltf", "cornell-glass.gltf",
-                                           "cornell-bumpy.gltf"),
+                                           "cornell-bumpy.gltf", "cornell-velvet.gltf"),
                          [](const ::testing::TestParamInfo<std::string>& scene) {
                              std::string name = scene.param.substr(0, scene.param.find('.'));
                              for (char& c : name)

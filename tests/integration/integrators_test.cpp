@@ -569,6 +569,9 @@ INSTANTIATE_TEST_SUITE_P(
                       // choose one a sample: the paper's bright and dark sides make its noise
                       // six times cornell-box's at this budget).
                       SceneCase{"pbrt/cornell-materials.pbrt", Integrator::kPpm, 0.16},
+                      // glTF's layered materials: velvet (a sheen over rough metal) and a
+                      // rough plastic under a faint sheen.
+                      SceneCase{"cornell-velvet.gltf", Integrator::kSppm, 0.165},
                       // Lit by an image: a textured area light.
                       SceneCase{"cornell-stained.gltf", Integrator::kPpm, 0.165},
                       // Lit by an environment map alone.

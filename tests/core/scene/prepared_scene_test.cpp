@@ -102,7 +102,8 @@ INSTANTIATE_TEST_SUITE_P(All, ShippedScenes,
                          ::testing::Values("cornell-box.gltf", "cornell-glass.gltf",
                                            "cornell-glossy.gltf", "caustic-glass.gltf",
                                            "furnace.gltf", "pbrt/cornell-room.pbrt",
-                                           "pbrt/caustic-glass.pbrt", "cornell-bumpy.gltf"),
+                                           "pbrt/caustic-glass.pbrt", "cornell-bumpy.gltf",
+                                           "cornell-velvet.gltf"),
                          [](const ::testing::TestParamInfo<std::string>& param) {
                              std::string name = param.param;
                              for (char& c : name)

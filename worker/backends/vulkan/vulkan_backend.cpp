@@ -12,9 +12,11 @@
 // float sum loses up to 2^-24 per addition. Shading normals and diffuse transmission break the
 // bound: Veach's factors (core/shared/shading_normal.h) and a deposit's weight at a hit point
 // of its own normal may exceed 1, and so may a translucent surface's R / p or T / p in some
-// channel (core/shared/translucent.h: up to 2 a bounce), so the unit is then kHeadroom times
-// larger, and only a deposit above that many times the largest flux (a photon grazing a surface
-// its shading normal faces, or gaining at many translucent bounces in a row) is clamped.
+// channel (core/shared/translucent.h: up to 2 a bounce), and a sheen's reflection weight pi f /
+// P (core/shared/coat.h: the lobe's value over its mean, tens for a narrow lobe), so the unit
+// is then kHeadroom times larger, and only a deposit above that many times the largest flux (a
+// photon grazing a surface its shading normal faces, or gaining at many translucent bounces in
+// a row) is clamped.
 #include "worker/backends/vulkan/vulkan_backend.h"
 
 #include <spdlog/spdlog.h>
@@ -283,8 +285,9 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     features_ = gpu_scene->features;
     scene_sphere_ = gpu_scene->sphere;
     scene_magnitude_ = gpu_scene->magnitude;
-    flux_to_fixed_ = kFixedUnitsPerMaxFlux / gpu_scene->max_photon_flux /
-                     (features_.ShadingNormals() || features_.translucent ? kHeadroom : 1.0f);
+    flux_to_fixed_ =
+        kFixedUnitsPerMaxFlux / gpu_scene->max_photon_flux /
+        (features_.ShadingNormals() || features_.translucent || features_.sheen ? kHeadroom : 1.0f);
     emitter_count_ = static_cast<uint32_t>(gpu_scene->emitters.size());
     environment_emitter_ = gpu_scene->environment_emitter;
     if (!(gpu_scene->max_photon_flux > 0) || !std::isfinite(flux_to_fixed_))
