@@ -79,8 +79,10 @@ struct Material {
     Rgb absorption{0.0f};
     // Diffuse transmission (pbrt-v4's diffusetransmission; core/shared/translucent.h): a
     // diffuse surface reflecting base_color and letting this through to its other side, both
-    // Lambertian. Black: an opaque surface. Never under a coat.
+    // Lambertian, times transmittance_texture's colour at the point where it has one (clamped
+    // to 1 there, as pbrt-v4 clamps). Black: an opaque surface. Never under a coat.
     Rgb transmittance{0.0f};
+    int32_t transmittance_texture = kNoTexture;
     // Cut-outs (core/shared/alpha.h): the surface is there where alpha x the alpha texture's
     // first channel (an index into Scene::textures) is at least alpha_cutoff, or, with no
     // cutoff (0), for that fraction of the rays that meet it.
@@ -113,10 +115,10 @@ struct Material {
     bool HasCoat() const { return coat_ior > 0.0f; }
     bool HasSheen() const { return HasCoat() && !IsBlack(sheen_color); }
     // Whether a texture changes how a point shades beyond its base colour: its GGX alphas, its
-    // sheen (Scene::ShadingMaterial).
+    // sheen, its transmittance (Scene::ShadingMaterial).
     bool HasShadingTextures() const {
         return roughness_texture != kNoTexture || sheen_texture != kNoTexture ||
-               sheen_roughness_texture != kNoTexture;
+               sheen_roughness_texture != kNoTexture || transmittance_texture != kNoTexture;
     }
     // Whether the volume inside absorbs.
     bool HasVolume() const { return !IsBlack(absorption); }
@@ -130,14 +132,15 @@ struct Material {
         return normal_texture != kNoTexture || bump_texture != kNoTexture;
     }
     // Every texture it reads: indices into Scene::textures, kNoTexture where it has none.
-    std::array<int32_t, 9> Textures() const {
-        return {base_color_texture, emission_texture, alpha_texture,
-                roughness_texture,  mix_texture,      normal_texture,
-                bump_texture,       sheen_texture,    sheen_roughness_texture};
+    std::array<int32_t, 10> Textures() const {
+        return {base_color_texture,   emission_texture, alpha_texture,
+                roughness_texture,    mix_texture,      normal_texture,
+                bump_texture,         sheen_texture,    sheen_roughness_texture,
+                transmittance_texture};
     }
     // Whether shading reads the surface's texture coordinates.
     bool ReadsUv() const {
-        const std::array<int32_t, 9> textures = Textures();
+        const std::array<int32_t, 10> textures = Textures();
         return std::any_of(textures.begin(), textures.end(),
                            [](int32_t texture) { return texture != kNoTexture; });
     }

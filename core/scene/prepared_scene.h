@@ -19,7 +19,7 @@
 namespace pf {
 
 // 2: the environment light; 8: its portal; 9: coated materials and cut-outs; 10: Fresnel-mix
-// coats, roughness and mix textures; 16: sheen.
+// coats, roughness and mix textures; 16: sheen, transmittance textures.
 inline constexpr uint32_t kPreparedSceneVersion = 16;
 
 // Normals go only where a triangle is smooth, texture coordinates only where a material has a

@@ -193,6 +193,9 @@ const Material& Scene::TexturedMaterial(const SurfacePoint& surface,
     }
     if (scratch.sheen_texture != kNoTexture)
         scratch.sheen_color = Min(scratch.sheen_color * sample(scratch.sheen_texture), Rgb(1.0f));
+    if (scratch.transmittance_texture != kNoTexture)
+        scratch.transmittance =
+            Min(scratch.transmittance * sample(scratch.transmittance_texture), Rgb(1.0f));
     if (scratch.sheen_roughness_texture != kNoTexture)
         scratch.sheen_roughness = std::clamp(
             scratch.sheen_roughness * sample(scratch.sheen_roughness_texture).x, 0.0f, 1.0f);

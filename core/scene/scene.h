@@ -206,7 +206,7 @@ struct Scene {
     // The material shading `surface`: its material, or where that has textures for more than
     // its base colour, a copy made in `scratch` with them applied: to its GGX alphas
     // (Material::roughness_texture), to its sheen (Material::sheen_texture, the sheen roughness
-    // texture).
+    // texture), to its transmittance (Material::transmittance_texture).
     const Material& ShadingMaterial(const SurfacePoint& surface,
                                     std::optional<Material>& scratch) const {
         const Material& material = materials[surface.material];

@@ -96,7 +96,9 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
         features.coats |= material.HasCoat();
         features.cut_outs |= material.HasCutOuts();
         features.mixes |= material.type == MaterialType::kMix;
-        features.textures |= material.base_color_texture != kNoTexture;
+        features.textures |=
+            material.base_color_texture != kNoTexture ||
+            (material.IsTranslucent() && material.transmittance_texture != kNoTexture);
         features.roughness_textures |= material.roughness_texture != kNoTexture;
         features.mix_textures |= material.mix_texture != kNoTexture;
         features.fresnel_mixes |= material.HasCoat() && material.coat_kind == gpu::kCoatFresnelMix;

@@ -14,10 +14,10 @@ struct SceneFeatures {
     // Materials on at least one triangle.
     bool mirror = false, dielectric = false, thin_dielectric = false;
     bool rough_conductor = false, rough_dielectric = false;  // GGX
-    bool coats = false;               // a dielectric coat over a diffuse or conductor base
-    bool cut_outs = false;            // alpha: rays pass through parts of some surface
-    bool mixes = false;               // a material that is one of two at each point
-    bool textures = false;            // a used material has a base colour texture
+    bool coats = false;     // a dielectric coat over a diffuse or conductor base
+    bool cut_outs = false;  // alpha: rays pass through parts of some surface
+    bool mixes = false;     // a material that is one of two at each point
+    bool textures = false;  // a used material has a base colour (or transmittance) texture
     bool roughness_textures = false;  // a used material's roughness has a texture
     bool mix_textures = false;        // a used mix's amount has a texture
     bool fresnel_mixes = false;       // glTF's dielectric: specular over diffuse (kCoatFresnelMix)

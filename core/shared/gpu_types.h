@@ -154,7 +154,8 @@ struct GpuMaterial {
     vec4 absorption;     // xyz: a solid dielectric's absorption coefficient (BeerLambert)
     vec4 detail;         // x: the normal map's texture, or -1 (int bits), y: its scale; z: the bump
                   // map's texture, or -1 (int bits), w: its scale (core/shared/shading_normal.h)
-    vec4 transmittance;  // xyz: a diffuse surface's diffuse transmission (translucent.h)
+    vec4 transmittance;  // xyz: a diffuse surface's diffuse transmission (translucent.h); w: its
+                         // texture, or -1 (int bits)
     vec4 sheen;          // xyz: the sheen's colour (black: none), w: its roughness (sheen.h)
 };
 PF_GPU_LAYOUT(GpuMaterial, 192);

@@ -300,11 +300,13 @@ TEST(BackendAgreementSheen, TexturedSheenMatchesTheCpus) {
 
 TEST(BackendAgreementTranslucency, LightThroughAPaperShadeMatchesTheCpus) {
     // A closed room lit from the ceiling, half through a paper shade (pbrt-v4's
-    // diffusetransmission, tinted, under half the light and over part of the floor), the camera
-    // seeing the floor and the shade from below: the floor under it is lit by the photons it
-    // lets through, on the device as on the CPU.
+    // diffusetransmission, tinted, its transmittance a texture of two stripes, under half the
+    // light and over part of the floor), the camera seeing the floor and the shade from below:
+    // the floor under it is lit by the photons it lets through, on the device as on the CPU.
     testing::SkipWithoutVulkan();
     if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    testing::WriteTextFile(testing::TwoTexelPng({200, 160, 120, 80, 140, 230}, "stripes.png"),
+                           "shade-stripes.png");
     ExpectVulkanAgreesWithTheCpu(
         testing::WriteTextFile(
             "LookAt 0 -0.95 1.2  0 0 0.5  0 0 1\nCamera \"perspective\" \"float fov\" 70\n"
@@ -316,8 +318,10 @@ TEST(BackendAgreementTranslucency, LightThroughAPaperShadeMatchesTheCpus) {
             "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  -1 -1 2  1 -1 0  1 -1 2]\n"
             "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  -1 1 0  -1 -1 2  -1 1 2]\n"
             "Shape \"bilinearmesh\" \"point3 P\" [1 -1 0  1 -1 2  1 1 0  1 1 2]\n"
+            "Texture \"stripes\" \"spectrum\" \"imagemap\" \"string filename\" "
+            "\"shade-stripes.png\"\n"
             "Material \"diffusetransmission\" \"rgb reflectance\" [0.4 0.3 0.2] "
-            "\"rgb transmittance\" [0.5 0.6 0.7]\n"
+            "\"texture transmittance\" \"stripes\"\n"
             "Shape \"bilinearmesh\" \"point3 P\" [-0.9 -0.2 1.4  0.1 -0.2 1.4  -0.9 0.9 1.6  0.1 "
             "0.9 "
             "1.6]\n"

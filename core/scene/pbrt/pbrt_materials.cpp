@@ -337,13 +337,22 @@ absl::Status PbrtSceneBuilder::DiffuseTransmission(ParameterList& parameters, co
         return status;
     Rgb& transmittance = material->material.transmittance;
     transmittance = through.material.base_color;
-    if (const int32_t texture = through.material.base_color_texture; texture != kNoTexture) {
+    const int32_t texture = through.material.base_color_texture;
+    // A texture read at the point (the surface's one set of coordinates: its mapping, or the
+    // reflectance texture's where that has one and it is the same).
+    const bool same_mapping =
+        material->material.base_color_texture == kNoTexture || material->mapping == through.mapping;
+    if (texture != kNoTexture && same_mapping) {
+        material->material.transmittance_texture = texture;
+        material->mapping = through.mapping;
+    } else if (texture != kNoTexture) {
         const std::vector<Rgb>& texels = scene_.textures[texture]->texels;
         Rgbd sum(0.0);
         for (const Rgb& texel : texels) sum += Rgbd(texel);
         transmittance = transmittance * Rgb(sum / static_cast<double>(texels.size()));
         Warn(where, absl::StrCat("Material \"diffusetransmission\": the \"transmittance\" texture "
-                                 "is taken as its mean colour (",
+                                 "under another mapping than the reflectance's is taken as its "
+                                 "mean colour (",
                                  absl::StrFormat("%.3g %.3g %.3g", transmittance.x, transmittance.y,
                                                  transmittance.z),
                                  ")"));
@@ -356,7 +365,10 @@ absl::Status PbrtSceneBuilder::DiffuseTransmission(ParameterList& parameters, co
     // pbrt-v4 clamps each of scale x R and scale x T to 1.
     Rgb& reflectance = material->material.base_color;
     reflectance = Min(reflectance * static_cast<float>(scale), Rgb(1.0f));
-    transmittance = Min(transmittance * static_cast<float>(scale), Rgb(1.0f));
+    // A textured transmittance is clamped at the point (Scene::ShadingMaterial).
+    transmittance = transmittance * static_cast<float>(scale);
+    if (material->material.transmittance_texture == kNoTexture)
+        transmittance = Min(transmittance, Rgb(1.0f));
     if (MaxComponent(reflectance + transmittance) > 1)
         Warn(where,
              "Material \"diffusetransmission\": reflectance + transmittance above 1 "

@@ -405,16 +405,36 @@ TEST(PbrtMaterialsTest, DiffuseTransmissionTakesPbrtsParameters) {
     EXPECT_FLOAT_EQ(scaled.base_color.z, 1.0f) << "1.2 clamped to 1, as pbrt-v4";
     EXPECT_FLOAT_EQ(scaled.base_color.x, 0.4f);
     EXPECT_FLOAT_EQ(scaled.transmittance.y, 0.4f);
-    // A reflectance texture as any base colour's; a transmittance texture by its mean, noted.
+    // A reflectance texture as any base colour's; a transmittance texture read at the point too.
     const Material& textured = scene->materials[2];
     ASSERT_NE(textured.base_color_texture, kNoTexture);
     EXPECT_FLOAT_EQ(textured.base_color.x, 0.5f);
+    ASSERT_NE(textured.transmittance_texture, kNoTexture);
+    EXPECT_FLOAT_EQ(textured.transmittance.y, 0.5f);
+    for (const std::string& warning : warnings)
+        EXPECT_EQ(warning.find("mean colour"), std::string::npos) << warning;
+    SurfacePoint surface;
+    surface.material = 2;
+    surface.uv = {0.25f, 0.5f};  // the first texel
+    std::optional<Material> scratch;
+    EXPECT_NEAR(scene->ShadingMaterial(surface, scratch).transmittance.y,
+                0.5f * SrgbToLinear(128 / 255.0f), 1e-4f);
+    // Under another mapping than the reflectance's: its mean colour, noted.
+    const absl::StatusOr<Scene> planar = Load(
+        Bundle(std::string("Texture \"paper\" \"spectrum\" \"imagemap\" \"string filename\" "
+                           "\"paper.png\"\nTexture \"flat\" \"spectrum\" \"imagemap\" \"string "
+                           "filename\" \"paper.png\" \"string mapping\" \"planar\"\n"
+                           "Material \"diffusetransmission\" \"texture reflectance\" \"paper\" "
+                           "\"texture transmittance\" \"flat\"\n") +
+                   kQuad,
+               {{"paper.png", png}}),
+        &warnings);
+    ASSERT_TRUE(planar.ok()) << planar.status();
     const float mean = (SrgbToLinear(128 / 255.0f) + 1.0f) / 2;
-    EXPECT_NEAR(textured.transmittance.y, 0.5f * mean, 1e-5f);
+    EXPECT_NEAR(planar->materials[0].transmittance.y, mean, 1e-5f);
     bool noted = false;
     for (const std::string& warning : warnings)
-        noted |= warning.find("\"transmittance\" texture is taken as its mean colour") !=
-                 std::string::npos;
+        noted |= warning.find("is taken as its mean colour") != std::string::npos;
     EXPECT_TRUE(noted);
     ExpectError(
         Load(Bundle(std::string("Material \"diffusetransmission\" \"float scale\" -1\n") + kQuad)),

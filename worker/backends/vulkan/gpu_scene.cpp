@@ -60,7 +60,7 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
              Vec4(material.conductor_k, 0.0f), Vec4(material.absorption, 0.0f),
              gpu::vec4{std::bit_cast<float>(material.normal_texture), material.normal_scale,
                        std::bit_cast<float>(material.bump_texture), material.bump_scale},
-             Vec4(material.transmittance, 0.0f),
+             Vec4(material.transmittance, std::bit_cast<float>(material.transmittance_texture)),
              Vec4(material.sheen_color, material.sheen_roughness)});
     if (!gpu_scene.features.ReadsUv() && !gpu_scene.features.textured_lights) return;
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {

@@ -181,7 +181,7 @@ Surface SurfaceAt(RayHit hit) {
     return surface;
 }
 
-// The material shading a surface point, its roughness and sheen textures applied
+// The material shading a surface point, its roughness, sheen and transmittance textures applied
 // (Scene::ShadingMaterial).
 GpuMaterial ShadingMaterial(Surface surface) {
     GpuMaterial material = materials[surface.material];
@@ -189,6 +189,11 @@ GpuMaterial ShadingMaterial(Surface surface) {
         const float t = TextureSample(textures[material.roughness_texture], surface.uv).x;
         material.roughness = clamp(material.roughness * t, 1e-3, 1.0);
         if (material.coat.y > 0.0) material.coat.y = clamp(material.coat.y * t, 1e-3, 1.0);
+    }
+    if (kHasTranslucency && kHasTextures) {
+        const int through = floatBitsToInt(material.transmittance.w);
+        if (through >= 0)
+            material.transmittance.xyz = min(material.transmittance.xyz * TextureSample(textures[through], surface.uv), vec3(1.0));
     }
     if (kHasSheen) {
         const int colour = floatBitsToInt(material.layer.z), roughness = floatBitsToInt(material.layer.w);
