@@ -194,7 +194,7 @@ PF_GPU_FN float EnterLayer(Coat coat, vec3 wo, float u_branch, float u1, float u
 // coat the two agree).
 PF_GPU_FN float SheenOverReflection(Coat coat, float cos_o, float cos_i) {
     const float p_o = SheenProbability(coat, cos_o);
-    if (!(p_o > 0.0f)) return 1.0f;
+    if (!(p_o > 0.0f && p_o < 1.0f)) return 1.0f;  // no sheen; or one that reflects everything
     return sqrt((1.0f - SheenProbability(coat, cos_i)) / (1.0f - p_o));
 }
 
