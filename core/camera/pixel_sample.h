@@ -36,9 +36,11 @@ inline Point2 PixelSampleOffset(int k, int s, float jitter_x, float jitter_y) {
         row = wide_rows + (s - in_wide) / narrow, column = (s - in_wide) % narrow, cells = narrow;
         cells_above = in_wide + (row - wide_rows) * narrow;
     }
+    // The row's top over its height, plus the jitter, over the rows of that height the pixel
+    // holds: (row + jitter_y) / rows exactly, in floats too, where k is a square.
     return {(static_cast<float>(column) + jitter_x) / static_cast<float>(cells),
-            (static_cast<float>(cells_above) + jitter_y * static_cast<float>(cells)) /
-                static_cast<float>(k)};
+            (static_cast<float>(cells_above) / static_cast<float>(cells) + jitter_y) /
+                (static_cast<float>(k) / static_cast<float>(cells))};
 }
 
 // The camera ray of sample s of pixel (x, y): two numbers from rng for the jitter, and two

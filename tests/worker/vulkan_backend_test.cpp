@@ -321,8 +321,9 @@ TEST_F(VulkanBackendTest, BatchLargerThanOneDispatchTracesEveryPhoton) {
     // A batch of more photons than one dispatch takes runs as several. 8 independent batches of
     // 1 + 1/12 dispatches each, against the CPU's on the same streams by the paired t-tests
     // above (7 degrees of freedom): a lost or skipped second dispatch (1/13 of the photons,
-    // 7.7%) must lie beyond what the check can miss, so its detectable bias is held under 4%.
-    std::unique_ptr<Rendering> setup = BeginBoth("cornell-box.gltf", 16);
+    // 7.7%) must lie beyond what the check can miss, so its detectable bias is held under 4%
+    // (with hit points enough that the batches' sums spread little: 24 x 24 pixels).
+    std::unique_ptr<Rendering> setup = BeginBoth("cornell-box.gltf", 24);
     ASSERT_NE(setup, nullptr);
     std::vector<BatchSpec> specs;
     for (uint32_t b = 0; b < 8; ++b) {
