@@ -93,6 +93,20 @@ TEST(BackendAgreementTextures, WrapModesMatchTheCpus) {
         testing::WriteGltf(LitQuadWithWall(wall, -1, 2), "wrapped-wall.gltf"), 2'000'000);
 }
 
+// A wall of `wall` in the lit quad scene at x = 0.4, from z = 0 to 1.2, facing -x (toward the
+// floor), beside the light, its texture coordinates across it.
+void AddWallBesideTheLight(testing::TestScene& scene, const testing::TestMaterial& wall) {
+    scene.materials.push_back(wall);
+    scene.meshes.push_back({{{0.4f, -1, 0},
+                             {0.4f, 1, 1.2f},
+                             {0.4f, 1, 0},
+                             {0.4f, -1, 0},
+                             {0.4f, -1, 1.2f},
+                             {0.4f, 1, 1.2f}},
+                            static_cast<int>(scene.materials.size()) - 1,
+                            {0, 0, 3, 1, 3, 0, 0, 0, 0, 1, 3, 1}});
+}
+
 TEST(BackendAgreementGltfMaterials, MetallicRoughnessMatchesTheCpus) {
     // glTF's BRDF, seen on a wall beside the light, metal or plastic per texel of its
     // metallic-roughness texture (stripes: metal of roughness 0.55, rough plastic), over a floor
@@ -110,17 +124,7 @@ TEST(BackendAgreementGltfMaterials, MetallicRoughnessMatchesTheCpus) {
     wall.texture_png_base64 =
         absl::Base64Escape(testing::TwoTexelPng({0, 140, 255, 0, 255, 0}, "stripes.png"));
     wall.texture_metallic_roughness = true;
-    scene.materials.push_back(wall);
-    // At x = 0.4, from z = 0 to 1.2, facing -x (toward the floor), beside the light; the
-    // camera looks at it along +x.
-    scene.meshes.push_back({{{0.4f, -1, 0},
-                             {0.4f, 1, 1.2f},
-                             {0.4f, 1, 0},
-                             {0.4f, -1, 0},
-                             {0.4f, -1, 1.2f},
-                             {0.4f, 1, 1.2f}},
-                            2,
-                            {0, 0, 3, 1, 3, 0, 0, 0, 0, 1, 3, 1}});
+    AddWallBesideTheLight(scene, wall);
     // The light, behind the camera, faces the wall: the floor is lit mostly by what the wall
     // reflects.
     scene.meshes[1].positions = {{-1, -0.3f, 0.4f}, {-1, 0.3f, 0.4f}, {-1, 0.3f, 1},
@@ -284,15 +288,7 @@ TEST(BackendAgreementSheen, TexturedSheenMatchesTheCpus) {
     wall.extensions =
         R"("KHR_materials_sheen":{"sheenColorFactor":[1,0.8,1],"sheenRoughnessFactor":1,)"
         R"("sheenColorTexture":{"index":0},"sheenRoughnessTexture":{"index":0}})";
-    scene.materials.push_back(wall);
-    scene.meshes.push_back({{{0.4f, -1, 0},
-                             {0.4f, 1, 1.2f},
-                             {0.4f, 1, 0},
-                             {0.4f, -1, 0},
-                             {0.4f, -1, 1.2f},
-                             {0.4f, 1, 1.2f}},
-                            2,
-                            {0, 0, 3, 1, 3, 0, 0, 0, 0, 1, 3, 1}});
+    AddWallBesideTheLight(scene, wall);
     scene.camera_position = Vec3(-0.9f, -0.6f, 0.6f);
     scene.camera_extra = R"(,"rotation":[0,-0.6427876,0,0.7660444])";
     ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "sheen-wall.gltf"), 4'000'000);
