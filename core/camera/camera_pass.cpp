@@ -18,7 +18,11 @@
 namespace pf {
 namespace {
 
+// The random numbers of camera paths past their first pair or two (PixelSampler), and the
+// pixel samples of the fixed and the stochastic passes.
 constexpr uint64_t kCameraStream = 0x63616d657261ull;
+constexpr uint64_t kFixedSampleStream = 0x6669786564ull;
+constexpr uint64_t kStochasticSampleStream = 0x73707070ull;
 
 // A camera path in flight: where it goes and what it carries.
 struct CameraPath {
@@ -188,6 +192,8 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     const PixelFootprint filter_width{pixel_width.base * share, pixel_width.angle * share};
     const int splits = settings.stochastic ? 0 : kCameraSplits;
     const int max_depth = DepthLimit(settings.max_depth, kMaxCameraDepth);
+    const uint64_t sample_stream =
+        settings.stochastic ? kStochasticSampleStream : kFixedSampleStream;
 
     std::vector<std::vector<HitPoint>> row_hit_points(height);
     std::vector<std::vector<float>> row_footprints(height);
@@ -204,10 +210,12 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
         for (int y = rows.begin(); y < rows.end(); ++y) {
             for (int x = 0; x < width; ++x) {
                 const auto pixel = static_cast<uint32_t>(y * width + x);
-                Rng rng(HashSeed(settings.seed, kCameraStream, pixel));
+                Rng rng(HashSeed(settings.seed, kCameraStream, settings.epoch, pixel));
                 Rgb emission(0.0f);
                 for (int s = 0; s < spp; ++s) {
-                    const Ray ray = PixelSampleRay(scene.camera, film, x, y, s, rng);
+                    PixelSampler sampler(settings.seed, sample_stream, pixel,
+                                         settings.epoch * uint64_t(spp) + uint64_t(s));
+                    const Ray ray = PixelSampleRay(scene.camera, film, x, y, sampler);
                     const size_t before = row_hit_points[y].size();
                     emission += trace(scene, tracer, ray, pixel, pixel_width, filter_width, splits,
                                       max_depth, rng, row_hit_points[y], row_footprints[y]);
@@ -246,9 +254,8 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
 }
 
 CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, uint64_t epoch) {
-    constexpr uint64_t kStochasticStream = 0x73707070ull;
     CameraPassSettings settings = film;
-    settings.seed = HashSeed(film.seed, kStochasticStream, epoch);
+    settings.epoch = epoch;
     settings.stochastic = true;
     return settings;
 }

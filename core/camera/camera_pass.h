@@ -20,6 +20,9 @@ struct CameraPassSettings {
     int width = 512, height = 512;
     int samples_per_pixel = 4;  // k: hit points traced per pixel
     uint64_t seed = 0;
+    // The pass's place in the run: sample s of a pixel is the pixel's camera sample
+    // epoch k + s (PixelSampler), so the passes of successive epochs stay stratified together.
+    uint64_t epoch = 0;
     // Stochastic progressive photon mapping's pass (Hachisuka & Jensen 2009), traced anew
     // every epoch: each sample follows one branch at glass rather than splitting, and leaves
     // exactly one hit point, in slot order (pixel * k + sample), black where the path found no
@@ -51,8 +54,8 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                                const CameraPassSettings& settings);
 
 // Stochastic progressive photon mapping's pass of `epoch` for a job: the film and seed of
-// `spec` (its size resolved), a seed of its own per epoch. The coordinator and every worker
-// trace the same hit points from it.
+// `spec` (its size resolved), its camera samples the pixel's next k. The coordinator and every
+// worker trace the same hit points from it.
 CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, uint64_t epoch);
 
 // The initial search radius R0: the median pixel footprint over the hit points, capped at 1%

@@ -1,15 +1,21 @@
-// Where a pixel's camera samples go, the same for every integrator: sample s of a pixel's k
-// falls in cell s of k cells of equal area that tile the pixel, jittered, and through a random
-// point of the lens where the camera has one.
+// Where a pixel's camera samples go, the same for every integrator: sample i of pixel p, its
+// index counting over the whole run (epoch e's k samples are indices e k ... e k + k - 1),
+// takes its point in the pixel, its point on the lens and any further stratified numbers from
+// a scrambled (0,2)-sequence of that pixel (core/shared/sobol.h), keyed by (seed, pixel,
+// index) alone. Every aligned run of 2^m of a pixel's samples is then stratified over the
+// pixel and over the lens, so a pixel's integral of a sharp edge converges at the rate of
+// stratified sampling across epochs, and an image is the same whoever traced which sample.
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 
 #include "core/geometry/ray.h"
 #include "core/math/point2.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/camera.h"
+#include "core/shared/sobol.h"
 
 namespace pf {
 
@@ -20,41 +26,38 @@ struct Film {
     uint64_t Pixels() const { return uint64_t(width) * uint64_t(height); }
 };
 
-// Where in its pixel ([0, 1)^2) sample s of k falls, for jitter (jitter_x, jitter_y) in [0,
-// 1)^2: the pixel is cut into floor(sqrt(k)) rows, the first k mod rows of them holding one
-// cell more than the others, each row as tall as its share of the k cells, so that every cell
-// has area 1/k and together they cover the pixel, whatever k (a perfect square k gives the
-// square grid).
-inline Point2 PixelSampleOffset(int k, int s, float jitter_x, float jitter_y) {
-    const int rows = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(k))));
-    const int narrow = k / rows, wide_rows = k % rows, in_wide = wide_rows * (narrow + 1);
-    int row, column, cells, cells_above;  // cells_above: in the rows above this one
-    if (s < in_wide) {
-        row = s / (narrow + 1), column = s % (narrow + 1), cells = narrow + 1;
-        cells_above = row * (narrow + 1);
-    } else {
-        row = wide_rows + (s - in_wide) / narrow, column = (s - in_wide) % narrow, cells = narrow;
-        cells_above = in_wide + (row - wide_rows) * narrow;
-    }
-    // The row's top over its height, plus the jitter, over the rows of that height the pixel
-    // holds: (row + jitter_y) / rows exactly, in floats too, where k is a square.
-    return {(static_cast<float>(column) + jitter_x) / static_cast<float>(cells),
-            (static_cast<float>(cells_above) / static_cast<float>(cells) + jitter_y) /
-                (static_cast<float>(k) / static_cast<float>(cells))};
-}
+// The stratified numbers of one camera sample, pair by pair: the first pair places it in the
+// pixel, the second on the lens, later ones whatever the integrator stratifies next. Pair d
+// of every sample of a pixel comes from one (0,2)-sequence, scrambled and shuffled by a hash
+// of (seed, stream, pixel, d); pairs are independent of each other. Indices wrap at 2^32.
+class PixelSampler {
+public:
+    PixelSampler(uint64_t seed, uint64_t stream, uint64_t pixel, uint64_t index)
+        : seeds_(seed, stream, pixel), index_(static_cast<uint32_t>(index)) {}
 
-// The camera ray of sample s of pixel (x, y): two numbers from rng for the jitter, and two
-// more only where the camera has a lens.
-inline Ray PixelSampleRay(const Camera& camera, const Film& film, int x, int y, int s, Rng& rng) {
-    const float jitter_x = rng.NextFloat();
-    const float jitter_y = rng.NextFloat();
-    const Point2 offset = PixelSampleOffset(film.samples_per_pixel, s, jitter_x, jitter_y);
+    Point2 Next2D() {
+        const uint64_t hash = seeds_.Seed(pair_++);
+        return gpu::ScrambledSobol2D(index_, static_cast<uint32_t>(hash),
+                                     static_cast<uint32_t>(hash >> 32),
+                                     static_cast<uint32_t>(Mix64(hash)));
+    }
+
+private:
+    SeedFamily seeds_;
+    uint32_t index_;
+    uint64_t pair_ = 0;
+};
+
+// The camera ray of pixel (x, y) through the sampler's first pair (the point in the pixel)
+// and, only where the camera has a lens, its second (the point on the lens).
+inline Ray PixelSampleRay(const Camera& camera, const Film& film, int x, int y,
+                          PixelSampler& sampler) {
+    const Point2 offset = sampler.Next2D();
     const float fx = (static_cast<float>(x) + offset.x) / static_cast<float>(film.width);
     const float fy = (static_cast<float>(y) + offset.y) / static_cast<float>(film.height);
     if (!camera.HasLens()) return camera.GenerateRay(fx, fy, film.Aspect());
-    const float u1 = rng.NextFloat();
-    const float u2 = rng.NextFloat();
-    return camera.GenerateRay(fx, fy, film.Aspect(), SampleUniformDisk(u1, u2));
+    const Point2 lens = sampler.Next2D();
+    return camera.GenerateRay(fx, fy, film.Aspect(), SampleUniformDisk(lens.x, lens.y));
 }
 
 }  // namespace pf

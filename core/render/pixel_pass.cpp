@@ -9,6 +9,12 @@
 
 namespace pf {
 
+namespace {
+
+constexpr uint64_t kPixelSampleStream = 0x736f626f6cull;
+
+}  // namespace
+
 SeedFamily PixelSeeds(uint64_t seed, uint64_t epoch) {
     constexpr uint64_t kPixelStream = 0x706978656c73ull;
     return SeedFamily(seed, kPixelStream, epoch);
@@ -26,6 +32,7 @@ std::vector<BatchResult> RunPixelBatches(const Camera& camera, const Film& film,
         result.spec = spec;
         result.samples.resize(spec.sample_end - spec.sample_begin);
         const SeedFamily seeds = PixelSeeds(seed, spec.epoch);
+        const uint64_t first_sample = spec.epoch * uint64_t(film.samples_per_pixel);
         tbb::combinable<uint64_t> discarded([] { return uint64_t{0}; });
         tbb::parallel_for(tbb::blocked_range<uint32_t>(spec.sample_begin, spec.sample_end, 16),
                           [&](const tbb::blocked_range<uint32_t>& pixels) {
@@ -35,8 +42,10 @@ std::vector<BatchResult> RunPixelBatches(const Camera& camera, const Film& film,
                                   const int y = static_cast<int>(pixel / film.width);
                                   Rgb sum(0.0f);
                                   for (int s = 0; s < film.samples_per_pixel; ++s) {
-                                      const Rgb sample =
-                                          radiance(PixelSampleRay(camera, film, x, y, s, rng), rng);
+                                      PixelSampler sampler(seed, kPixelSampleStream, pixel,
+                                                           first_sample + uint64_t(s));
+                                      const Rgb sample = radiance(
+                                          PixelSampleRay(camera, film, x, y, sampler), rng);
                                       if (IsFinite(sample))
                                           sum += sample;
                                       else

@@ -1,45 +1,74 @@
-// Where a pixel's camera samples fall (core/camera/pixel_sample.h): for every count k, k cells
-// of equal area that tile the pixel, so that no part of a pixel goes unsampled (with a
-// ceil(sqrt(k))^2 grid and k not a square, the bottom cells were never used).
+// Where a pixel's camera samples fall (core/camera/pixel_sample.h): for every count k a pixel
+// takes an epoch, its samples over the epochs tile the pixel evenly (with a ceil(sqrt(k))^2
+// grid and k not a square, the bottom of every pixel was once never sampled), its lens pair
+// independent of its pixel pair, and the same numbers for the same (seed, pixel, index).
 #include "core/camera/pixel_sample.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 namespace pf {
 namespace {
 
-TEST(PixelSampleTest, EveryCountTilesThePixelWithCellsOfEqualArea) {
-    for (const int k : {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 12, 15, 16, 17, 31, 64}) {
-        // Each cell: the rectangle from jitter (0, 0) to jitter (1, 1).
-        double area = 0;
-        std::vector<Point2> low(k), high(k);
-        for (int s = 0; s < k; ++s) {
-            low[s] = PixelSampleOffset(k, s, 0, 0), high[s] = PixelSampleOffset(k, s, 1, 1);
-            const double cell = double(high[s].x - low[s].x) * double(high[s].y - low[s].y);
-            EXPECT_NEAR(cell, 1.0 / k, 1e-6) << "k " << k << ", sample " << s;
-            area += cell;
-        }
-        EXPECT_NEAR(area, 1.0, 1e-5) << "k " << k;
-        // Every point of a fine grid over the pixel lies in exactly one cell.
-        constexpr int kGrid = 97;
-        for (int i = 0; i < kGrid; ++i) {
-            for (int j = 0; j < kGrid; ++j) {
-                const float x = (i + 0.5f) / kGrid, y = (j + 0.5f) / kGrid;
-                int inside = 0;
-                for (int s = 0; s < k; ++s)
-                    inside += x >= low[s].x && x < high[s].x && y >= low[s].y && y < high[s].y;
-                ASSERT_EQ(inside, 1) << "k " << k << " at " << x << ", " << y;
+TEST(PixelSampleTest, EveryCountTilesThePixelOverTheEpochs) {
+    constexpr int kEpochs = 64, kCells = 8;  // 64 k samples: k in each of 8 x 8 cells
+    for (const int k : {1, 2, 3, 4, 5, 6, 7, 8, 9, 12, 17}) {
+        std::vector<int> count(kCells * kCells, 0);
+        for (uint64_t epoch = 0; epoch < kEpochs; ++epoch)
+            for (int s = 0; s < k; ++s) {
+                PixelSampler sampler(42, 7, 1234, epoch * k + s);
+                const Point2 p = sampler.Next2D();
+                ASSERT_TRUE(p.x >= 0 && p.x < 1 && p.y >= 0 && p.y < 1);
+                ++count[static_cast<int>(p.y * kCells) * kCells + static_cast<int>(p.x * kCells)];
             }
-        }
+        for (int cell = 0; cell < kCells * kCells; ++cell)
+            EXPECT_EQ(count[cell], k) << "k " << k << ", cell " << cell;
     }
 }
 
-TEST(PixelSampleTest, ASquareCountIsTheSquareGrid) {
-    const Point2 p = PixelSampleOffset(9, 5, 0.25f, 0.5f);  // column 2, row 1 of 3 x 3
-    EXPECT_NEAR(p.x, (2 + 0.25f) / 3, 1e-6f);
-    EXPECT_NEAR(p.y, (1 + 0.5f) / 3, 1e-6f);
+TEST(PixelSampleTest, OneEpochsSamplesSpreadOverThePixel) {
+    // Two samples an epoch: one in each half of the pixel, both ways; four: one per quadrant.
+    for (uint64_t pixel = 0; pixel < 100; ++pixel)
+        for (uint64_t epoch = 0; epoch < 10; ++epoch) {
+            PixelSampler first(3, 7, pixel, 2 * epoch), second(3, 7, pixel, 2 * epoch + 1);
+            const Point2 a = first.Next2D(), b = second.Next2D();
+            EXPECT_NE(a.x < 0.5f, b.x < 0.5f);
+            EXPECT_NE(a.y < 0.5f, b.y < 0.5f);
+            int quadrants = 0;
+            for (uint64_t s = 0; s < 4; ++s) {
+                const Point2 p = PixelSampler(3, 7, pixel, 4 * epoch + s).Next2D();
+                quadrants |= 1 << ((p.x >= 0.5f) + 2 * (p.y >= 0.5f));
+            }
+            EXPECT_EQ(quadrants, 15) << "pixel " << pixel << ", epoch " << epoch;
+        }
+}
+
+TEST(PixelSampleTest, PairsAndPixelsAreIndependent) {
+    // Over many pixels' sample 0: the lens pair uncorrelated with the pixel pair, and the
+    // pixel pair uniform (each pixel has scrambles of its own).
+    constexpr int kPixels = 1 << 16;
+    double mean_x = 0, cross = 0;
+    for (uint64_t pixel = 0; pixel < kPixels; ++pixel) {
+        PixelSampler sampler(9, 7, pixel, 0);
+        const Point2 position = sampler.Next2D(), lens = sampler.Next2D();
+        mean_x += position.x;
+        cross += (position.x - 0.5) * (lens.x - 0.5) + (position.y - 0.5) * (lens.y - 0.5);
+    }
+    EXPECT_NEAR(mean_x / kPixels, 0.5, 5 * std::sqrt(1.0 / 12 / kPixels));
+    EXPECT_NEAR(cross / kPixels, 0.0, 5 * std::sqrt(2.0) / 12 / std::sqrt(double(kPixels)));
+}
+
+TEST(PixelSampleTest, TheSameKeyGivesTheSameSample) {
+    PixelSampler a(5, 7, 99, 1000), b(5, 7, 99, 1000), other_seed(6, 7, 99, 1000),
+        other_stream(5, 8, 99, 1000);
+    const Point2 pa = a.Next2D(), pb = b.Next2D();
+    EXPECT_EQ(pa.x, pb.x);
+    EXPECT_EQ(pa.y, pb.y);
+    const Point2 po = other_seed.Next2D(), ps = other_stream.Next2D();
+    EXPECT_TRUE(po.x != pa.x || po.y != pa.y);
+    EXPECT_TRUE(ps.x != pa.x || ps.y != pa.y);
 }
 
 }  // namespace
