@@ -36,17 +36,23 @@ absl::StatusOr<Rate> Measure(const std::string& backend_name, const std::string&
     absl::StatusOr<Scene> scene =
         LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + scene_name + ".gltf");
     if (!scene.ok()) return scene.status();
-    auto tracer = std::move(*embree::EmbreeTracer::Create(*scene));
-    const CameraPassResult camera_pass = RunCameraPass(*scene, *tracer, {512, 512, 4, 1});
+    std::shared_ptr<const Tracer> tracer = std::move(*embree::EmbreeTracer::Create(*scene));
     JobSpec spec;
+    spec.width = spec.height = 512;
+    spec.samples_per_pixel = 4;
+    spec.seed = 1;
     spec.photon_budget = 1;
     spec.layout = {photons, 8};
+    const CameraPassSettings film = *FilmFor(spec, *scene);
+    const CameraPassResult camera_pass = RunCameraPass(*scene, *tracer, film);
     const ProgressiveEstimate estimate(camera_pass,
-                                       EstimateFor(spec, camera_pass, *scene, scene_name));
+                                       EstimateFor(spec, camera_pass, *scene, scene_name),
+                                       TracedCameraPasses(*scene, tracer, film, Integrator::kPpm));
     const Emitters emitters(*scene);
     absl::StatusOr<std::unique_ptr<Backend>> backend = CreateBackend(backend_name, *scene);
     if (!backend.ok()) return backend.status();
-    if (absl::Status status = (*backend)->BeginJob({&*scene, &emitters, estimate.HitPoints(), 1});
+    if (absl::Status status =
+            (*backend)->BeginJob({&*scene, &emitters, estimate.HitPoints(), 1, &spec});
         !status.ok())
         return status;
     if (absl::Status status = (*backend)->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq());

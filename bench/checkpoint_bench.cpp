@@ -66,14 +66,19 @@ bool Report(const char* what, const ProgressiveEstimate& estimate, FixedPart par
 
 int Run() {
     const Scene scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
-    auto tracer = std::move(*embree::EmbreeTracer::Create(scene));
-    CameraPassResult camera_pass = RunCameraPass(scene, *tracer, {512, 512, 4, 1});
+    std::shared_ptr<const Tracer> tracer = std::move(*embree::EmbreeTracer::Create(scene));
     JobSpec spec;
+    spec.width = spec.height = 512;
+    spec.samples_per_pixel = 4;
+    spec.seed = 1;
     spec.photon_budget = 1;
-    ProgressiveEstimate estimate(camera_pass, EstimateFor(spec, camera_pass, scene, "cornell"));
+    const CameraPassSettings film = *FilmFor(spec, scene);
+    CameraPassResult camera_pass = RunCameraPass(scene, *tracer, film);
+    ProgressiveEstimate estimate(camera_pass, EstimateFor(spec, camera_pass, scene, "cornell"),
+                                 TracedCameraPasses(scene, tracer, film, Integrator::kPpm));
     const Emitters emitters(scene);
     std::unique_ptr<Backend> backend = std::move(*CreateBackend("cpu", scene));
-    (void)backend->BeginJob({&scene, &emitters, estimate.HitPoints(), 1});
+    (void)backend->BeginJob({&scene, &emitters, estimate.HitPoints(), 1, &spec});
     const size_t batches = estimate.Settings().layout.batches_per_epoch;
     for (int epoch = 0; epoch < 3; ++epoch) RunBatches(*backend, estimate, batches);
     RunBatches(*backend, estimate, batches / 2);

@@ -5,16 +5,17 @@
 
 namespace pf {
 
-absl::StatusOr<EpochCameraPass> StochasticCameraPasses(std::shared_ptr<const JobPayload> payload,
-                                                       const CameraPassSettings& film) {
+absl::StatusOr<EpochCameraPass> EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
+                                                  const CameraPassSettings& film) {
     absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer =
         embree::EmbreeTracer::Create(payload->scene);
     if (!tracer.ok()) return tracer.status();
+    // The passes keep the payload, and so its scene, alive.
+    EpochCameraPass passes =
+        TracedCameraPasses(payload->scene, std::shared_ptr<const Tracer>(std::move(*tracer)), film,
+                           payload->spec.integrator);
     return EpochCameraPass([payload = std::move(payload),
-                            tracer = std::shared_ptr<const Tracer>(std::move(*tracer)),
-                            film](uint64_t epoch) {
-        return RunCameraPass(payload->scene, *tracer, StochasticCameraPass(film, epoch));
-    });
+                            passes = std::move(passes)](uint64_t epoch) { return passes(epoch); });
 }
 
 }  // namespace pf

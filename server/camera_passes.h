@@ -1,5 +1,5 @@
-// The coordinator's camera passes for a stochastic progressive photon mapping job: each
-// epoch's hit points traced anew (StochasticCameraPass), as its workers trace them.
+// The coordinator's camera passes for a ppm or sppm job, one an epoch (TracedCameraPasses):
+// sppm's hit points traced anew, as its workers trace them, or ppm's emission.
 #pragma once
 
 #include <memory>
@@ -13,7 +13,7 @@ namespace pf {
 
 // Passes over the payload's scene, kept alive by the result (with an Embree scene of its
 // own); `film` the job's film, its features analysed. The scene's load errors, or Embree's.
-absl::StatusOr<EpochCameraPass> StochasticCameraPasses(std::shared_ptr<const JobPayload> payload,
-                                                       const CameraPassSettings& film);
+absl::StatusOr<EpochCameraPass> EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
+                                                  const CameraPassSettings& film);
 
 }  // namespace pf

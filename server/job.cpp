@@ -44,8 +44,9 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
       spec_(prepared.spec),
       priority_(prepared.priority),
       started_(submitted),
-      hit_point_count_(
-          GathersAtHitPoints(prepared.estimate->Kind()) ? prepared.estimate->ItemCount() : 0),
+      hit_point_count_(GathersAtHitPoints(prepared.estimate->Kind())
+                           ? prepared.estimate->SharedHitPoints()->size()
+                           : 0),
       item_count_(prepared.estimate->ItemCount()),
       initial_radius_(prepared.estimate->InitialRadius()),
       scene_features_(std::move(prepared.scene_features)),

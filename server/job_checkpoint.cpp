@@ -148,11 +148,11 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
                                      stochastic ? std::make_shared<const std::vector<HitPoint>>()
                                                 : (*estimate)->SharedHitPoints(),
                                      *spec);
-    if (stochastic) {  // its next epochs' hit points are traced here again
+    if (GathersAtHitPoints(spec->integrator)) {  // its next epochs' passes are traced here again
         absl::StatusOr<CameraPassSettings> film = FilmFor(*spec, payload->scene);
         if (!film.ok()) return lost(std::string(film.status().message()));
         film->features = AnalyseFeatures(payload->scene, payload->emitters);
-        absl::StatusOr<EpochCameraPass> passes = StochasticCameraPasses(payload, *film);
+        absl::StatusOr<EpochCameraPass> passes = EpochCameraPasses(payload, *film);
         if (!passes.ok()) return passes.status();
         static_cast<ProgressiveEstimate&>(**estimate).SetEpochCameraPass(std::move(*passes));
     }

@@ -112,14 +112,14 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
     const Integrator integrator = request.spec.integrator;
     if (GathersAtHitPoints(integrator)) {
         const auto start = Clock::now();
-        EpochCameraPass passes;
-        if (integrator == Integrator::kSppm) {
-            absl::StatusOr<EpochCameraPass> stochastic = StochasticCameraPasses(payload, *film);
-            if (!stochastic.ok()) return stochastic.status();
-            passes = std::move(*stochastic);
-        }
-        CameraPassResult camera_pass =
-            passes ? passes(0) : RunCameraPass(payload->scene, **tracer, *film);
+        // Every epoch's camera pass: sppm's photons gather and its direct light is sampled there;
+        // ppm's gives the epoch's emission (its photons gather at hit points traced once, its
+        // direct light is sampled at the workers' stochastic passes).
+        absl::StatusOr<EpochCameraPass> passes = EpochCameraPasses(payload, *film);
+        if (!passes.ok()) return passes.status();
+        CameraPassResult camera_pass = integrator == Integrator::kSppm
+                                           ? (*passes)(0)
+                                           : RunCameraPass(payload->scene, **tracer, *film);
         EstimateSettings settings =
             EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
         settings.stochastic = integrator == Integrator::kSppm;
@@ -128,7 +128,7 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
                      std::chrono::duration<double>(Clock::now() - start).count(),
                      settings.initial_radius);
         prepared.estimate = std::make_unique<ProgressiveEstimate>(std::move(camera_pass), settings,
-                                                                  std::move(passes));
+                                                                  std::move(*passes));
     } else {
         const PhotonMapSettings& maps = request.spec.photon_map;
         if (integrator == Integrator::kPm) {  // refused here rather than by every worker

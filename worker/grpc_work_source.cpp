@@ -4,6 +4,7 @@
 #include <grpcpp/client_context.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -149,8 +150,10 @@ absl::StatusOr<WorkGrant> GrpcWorkSource::Lease(uint32_t chunks) {
             absl::StrCat(address_, ": a ", std::string(IntegratorName(settings->integrator)),
                          " job of ", job.hit_point_count(), " hit points and a ", settings->width,
                          "x", settings->height, " film"));
-    const uint64_t items =
-        gathers ? job.hit_point_count() : uint64_t(settings->width) * uint64_t(settings->height);
+    // What a batch's sample slice indexes: the slots of the epoch's camera pass (pixels x k),
+    // where the photon mappers sample direct light, or the pixels.
+    const uint64_t items = uint64_t(settings->width) * uint64_t(settings->height) *
+                           uint64_t(gathers ? std::max(settings->samples_per_pixel, 1) : 1);
     absl::StatusOr<std::shared_ptr<const JobPayload>> payload = PayloadFor(job, *settings);
     if (!payload.ok()) return payload.status();
     absl::StatusOr<std::shared_ptr<const std::vector<float>>> radii =
@@ -166,7 +169,7 @@ absl::StatusOr<WorkGrant> GrpcWorkSource::Lease(uint32_t chunks) {
         if (grant.batches.back().sample_end > items)
             return absl::InternalError(
                 absl::StrCat(address_, ": a batch's sample slice lies outside the job's ", items,
-                             gathers ? " hit points" : " pixels"));
+                             gathers ? " camera samples" : " pixels"));
     }
     grant.epoch = grant.batches.front().epoch;
     return grant;

@@ -23,6 +23,7 @@ namespace {
 constexpr uint64_t kCameraStream = 0x63616d657261ull;
 constexpr uint64_t kFixedSampleStream = 0x6669786564ull;
 constexpr uint64_t kStochasticSampleStream = 0x73707070ull;
+constexpr uint64_t kEmissionSampleStream = 0x656d6974ull;
 
 // A camera path in flight: where it goes and what it carries.
 struct CameraPath {
@@ -192,8 +193,9 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     const PixelFootprint filter_width{pixel_width.base * share, pixel_width.angle * share};
     const int splits = settings.stochastic ? 0 : kCameraSplits;
     const int max_depth = DepthLimit(settings.max_depth, kMaxCameraDepth);
-    const uint64_t sample_stream =
-        settings.stochastic ? kStochasticSampleStream : kFixedSampleStream;
+    const uint64_t sample_stream = settings.stochastic      ? kStochasticSampleStream
+                                   : settings.emission_only ? kEmissionSampleStream
+                                                            : kFixedSampleStream;
 
     std::vector<std::vector<HitPoint>> row_hit_points(height);
     std::vector<std::vector<float>> row_footprints(height);
@@ -210,11 +212,12 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
         for (int y = rows.begin(); y < rows.end(); ++y) {
             for (int x = 0; x < width; ++x) {
                 const auto pixel = static_cast<uint32_t>(y * width + x);
-                Rng rng(HashSeed(settings.seed, kCameraStream, settings.epoch, pixel));
+                Rng rng(
+                    HashSeed(settings.seed, kCameraStream ^ sample_stream, settings.epoch, pixel));
                 Rgb emission(0.0f);
                 for (int s = 0; s < spp; ++s) {
-                    PixelSampler sampler(settings.seed, sample_stream, pixel,
-                                         settings.epoch * uint64_t(spp) + uint64_t(s));
+                    PixelSampler sampler = PixelSampler::InEpoch(settings.seed, sample_stream,
+                                                                 pixel, settings.epoch, spp, s);
                     const Ray ray = PixelSampleRay(scene.camera, film, x, y, sampler);
                     const size_t before = row_hit_points[y].size();
                     emission += trace(scene, tracer, ray, pixel, pixel_width, filter_width, splits,
@@ -230,6 +233,7 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
             }
         }
     });
+    if (settings.emission_only) return result;
     std::vector<HitPoint> hit_points;
     std::vector<float> footprints;
     for (int y = 0; y < height; ++y) {
@@ -255,9 +259,28 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
 
 CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, uint64_t epoch) {
     CameraPassSettings settings = film;
+    settings.seed = film.epoch_seed;
     settings.epoch = epoch;
     settings.stochastic = true;
     return settings;
+}
+
+CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, uint64_t epoch) {
+    CameraPassSettings settings = film;
+    settings.seed = film.epoch_seed;
+    settings.epoch = epoch;
+    settings.emission_only = true;
+    return settings;
+}
+
+EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,
+                                   const CameraPassSettings& film, Integrator integrator) {
+    const bool sppm = integrator == Integrator::kSppm;
+    return [&scene, tracer = std::move(tracer), film, sppm](uint64_t epoch) {
+        return RunCameraPass(
+            scene, *tracer,
+            sppm ? StochasticCameraPass(film, epoch) : EmissionCameraPass(film, epoch));
+    };
 }
 
 float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& scene) {
@@ -271,7 +294,8 @@ float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& sce
 }
 
 absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& scene) {
-    CameraPassSettings film{spec.width, spec.height, spec.samples_per_pixel, spec.seed};
+    CameraPassSettings film{spec.width, spec.height, spec.samples_per_pixel, spec.seed,
+                            PhotonSeed(spec)};
     film.max_depth = spec.max_depth;
     const double aspect = scene.camera.aspect_ratio > 0 ? scene.camera.aspect_ratio : 1.0;
     if (film.width == 0 && film.height == 0) {

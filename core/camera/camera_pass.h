@@ -5,6 +5,8 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <vector>
 
 #include "core/film/image.h"
@@ -20,14 +22,21 @@ struct CameraPassSettings {
     int width = 512, height = 512;
     int samples_per_pixel = 4;  // k: hit points traced per pixel
     uint64_t seed = 0;
-    // The pass's place in the run: sample s of a pixel is the pixel's camera sample
-    // epoch k + s (PixelSampler), so the passes of successive epochs stay stratified together.
+    // The seed of every epoch's pass (StochasticCameraPass, EmissionCameraPass), which they
+    // take as their `seed`: the job's PhotonSeed, so that a render of another photon stream
+    // shares the fixed hit points and nothing else.
+    uint64_t epoch_seed = 0;
+    // The pass's place in the run (PixelSampler::InEpoch), so that the passes of successive
+    // epochs stay stratified together.
     uint64_t epoch = 0;
     // Stochastic progressive photon mapping's pass (Hachisuka & Jensen 2009), traced anew
     // every epoch: each sample follows one branch at glass rather than splitting, and leaves
     // exactly one hit point, in slot order (pixel * k + sample), black where the path found no
     // diffuse surface, so that slot i carries N, R, tau across epochs.
     bool stochastic = false;
+    // ppm's emission, sampled afresh every epoch (EmissionCameraPass): the fixed pass's paths,
+    // split at glass as they are, from samples of their own, keeping no hit points.
+    bool emission_only = false;
     // What the scene uses (AnalyseFeatures): camera paths run code instantiated for it. All
     // by default.
     SceneFeatures features = SceneFeatures::All();
@@ -57,6 +66,23 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
 // `spec` (its size resolved), its camera samples the pixel's next k. The coordinator and every
 // worker trace the same hit points from it.
 CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, uint64_t epoch);
+
+// Progressive photon mapping's emission pass of `epoch`: the emission the camera sees, directly
+// or through specular chains, from the epoch's own camera samples, with no hit points (photons
+// gather at the fixed ones, direct light is sampled at the workers' StochasticCameraPass).
+// Glass splits as in the fixed pass: one random branch would leave a light seen through glass
+// much noisier.
+CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, uint64_t epoch);
+
+// The coordinator's camera pass of an epoch: for sppm the StochasticCameraPass (its emission,
+// and its slots, pixel * k + sample, where photons gather and direct light is sampled), for
+// ppm the EmissionCameraPass.
+using EpochCameraPass = std::function<CameraPassResult(uint64_t epoch)>;
+
+// Each epoch's pass of `film` for `integrator` (ppm or sppm) over `scene` through `tracer`,
+// which the function keeps alive; `scene` must outlive it.
+EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,
+                                   const CameraPassSettings& film, Integrator integrator);
 
 // The initial search radius R0: the median pixel footprint over the hit points, capped at 1%
 // of the scene's diagonal. A disk of that radius covers about pi pixels, so with k = 4 hit

@@ -1,10 +1,10 @@
-// Where a pixel's camera samples go, the same for every integrator: sample i of pixel p, its
-// index counting over the whole run (epoch e's k samples are indices e k ... e k + k - 1),
-// takes its point in the pixel, its point on the lens and any further stratified numbers from
-// a scrambled (0,2)-sequence of that pixel (core/shared/sobol.h), keyed by (seed, pixel,
-// index) alone. Every aligned run of 2^m of a pixel's samples is then stratified over the
-// pixel and over the lens, so a pixel's integral of a sharp edge converges at the rate of
-// stratified sampling across epochs, and an image is the same whoever traced which sample.
+// Where a pixel's camera samples go, the same for every integrator: a pixel's samples, their
+// index counting over the whole run (in the even epochs, and apart in the odd: InEpoch), take
+// their point in the pixel, their point on the lens and any further stratified numbers from a
+// scrambled (0,2)-sequence of that pixel (core/shared/sobol.h), keyed by (seed, pixel, index)
+// alone. Every aligned run of 2^m of them is then stratified over the pixel and over the
+// lens, so a pixel's integral of a sharp edge converges at the rate of stratified sampling
+// across epochs, and an image is the same whoever traced which sample.
 #pragma once
 
 #include <cmath>
@@ -28,12 +28,24 @@ struct Film {
 
 // The stratified numbers of one camera sample, pair by pair: the first pair places it in the
 // pixel, the second on the lens, later ones whatever the integrator stratifies next. Pair d
-// of every sample of a pixel comes from one (0,2)-sequence, scrambled and shuffled by a hash
-// of (seed, stream, pixel, d); pairs are independent of each other. Indices wrap at 2^32.
+// of every sample of a sequence comes from one (0,2)-sequence, scrambled and shuffled by a
+// hash of (seed, stream, sequence, d); pairs are independent of each other. Indices wrap at
+// 2^32.
 class PixelSampler {
 public:
-    PixelSampler(uint64_t seed, uint64_t stream, uint64_t pixel, uint64_t index)
-        : seeds_(seed, stream, pixel), index_(static_cast<uint32_t>(index)) {}
+    PixelSampler(uint64_t seed, uint64_t stream, uint64_t sequence, uint64_t index)
+        : seeds_(seed, stream, sequence), index_(static_cast<uint32_t>(index)) {}
+
+    // Sample s of pixel p's k in epoch e. The even epochs' samples and the odd epochs' come
+    // from two independent sequences of the pixel, each counting over its own epochs: each
+    // half-image the error estimate compares (EstimateError) is then stratified in itself and
+    // independent of the other, as the estimate assumes. Over one sequence the halves' errors
+    // cancel each other, and their difference would claim twice the image's error.
+    static PixelSampler InEpoch(uint64_t seed, uint64_t stream, uint64_t pixel, uint64_t epoch,
+                                int k, int s) {
+        return PixelSampler(seed, stream, 2 * pixel + (epoch & 1),
+                            (epoch >> 1) * uint64_t(k) + uint64_t(s));
+    }
 
     Point2 Next2D() {
         const uint64_t hash = seeds_.Seed(pair_++);

@@ -13,9 +13,10 @@ namespace {
 
 constexpr uint32_t kMagic = 0x53455046;       // "PFES" in a little-endian file
 constexpr uint32_t kFixedMagic = 0x50485046;  // "PFHP": the hit points kept apart
-// 3: settings and counters first, then the arrays packed (core/util/packed_arrays.h), the hit
-// points among them or kept apart (SaveFixed).
-constexpr uint32_t kVersion = 3;
+// 4: settings and counters first, then the arrays packed (core/util/packed_arrays.h), the hit
+// points among them or kept apart (SaveFixed); emission and direct light summed per pixel over
+// each epoch's camera pass, for ppm too.
+constexpr uint32_t kVersion = 4;
 
 absl::Status Corrupt(const std::string& what) {
     return absl::DataLossError(absl::StrCat("estimate state: ", what));
@@ -51,8 +52,8 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
     out.Value(settings_.layout.batches_per_epoch);
     out.Value(settings_.min_radius);
     out.Value(static_cast<uint8_t>(settings_.stochastic));
-    out.Value(emission_.width);
-    out.Value(emission_.height);
+    out.Value(epoch_emission_.width);
+    out.Value(epoch_emission_.height);
     for (uint64_t value : {epoch_, photons_emitted_, photons_emitted_even_, nonfinite_discarded_})
         out.Value(value);
     out.Value(static_cast<uint8_t>(light_reached_));
@@ -63,16 +64,12 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
         out.Value(value);
     std::vector<PackedArray> arrays;
     if (hit_points_here) arrays.push_back(*hit_points_);
-    arrays.push_back(emission_.pixels);
-    if (settings_.stochastic)
-        for (PackedArray array : {PackedArray(emission_sum_), PackedArray(emission_even_),
-                                  PackedArray(epoch_emission_.pixels)})
-            arrays.push_back(array);
     for (PackedArray array :
-         {PackedArray(points_), PackedArray(direct_sum_), PackedArray(flux_even_),
-          PackedArray(direct_even_), PackedArray(counts_), PackedArray(epoch_photons_),
-          PackedArray(epoch_inner_photons_), PackedArray(epoch_flux_),
-          PackedArray(epoch_flux_even_), PackedArray(epoch_direct_)})
+         {PackedArray(emission_sum_), PackedArray(emission_even_), PackedArray(direct_sum_),
+          PackedArray(direct_even_), PackedArray(epoch_emission_.pixels),
+          PackedArray(epoch_direct_), PackedArray(points_), PackedArray(flux_even_),
+          PackedArray(counts_), PackedArray(epoch_photons_), PackedArray(epoch_inner_photons_),
+          PackedArray(epoch_flux_), PackedArray(epoch_flux_even_)})
         arrays.push_back(array);
     WritePacked(out, arrays);
 }
@@ -115,11 +112,13 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
           settings.layout.batches_per_epoch >= 1 &&
           settings.layout.batches_per_epoch <= kMaxBatchesPerEpoch))
         return Corrupt("settings out of range");
-    if (!(in.Value(&e.emission_.width) && in.Value(&e.emission_.height)) || e.emission_.width < 1 ||
-        e.emission_.height < 1 || e.emission_.width > 32768 || e.emission_.height > 32768)
+    int width = 0, height = 0;
+    if (!(in.Value(&width) && in.Value(&height)) || width < 1 || height < 1 || width > 32768 ||
+        height > 32768)
         return Corrupt("image size");
-    const uint64_t pixels = uint64_t(e.emission_.width) * e.emission_.height;
-    if (pixels > kMaxHitPoints) return Corrupt("more pixels than a job may have");
+    const uint64_t pixels = uint64_t(width) * uint64_t(height);
+    const uint64_t slots = pixels * uint64_t(settings.samples_per_pixel);
+    if (slots > kMaxHitPoints) return Corrupt("more camera samples than a job may have");
     uint8_t light_reached = 0, epoch_light_reached = 0;
     if (!(in.Value(&e.epoch_) && in.Value(&e.photons_emitted_) &&
           in.Value(&e.photons_emitted_even_) && in.Value(&e.nonfinite_discarded_) &&
@@ -147,26 +146,29 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
     }
     for (const HitPoint& hit_point : *hit_points)
         if (hit_point.pixel >= pixels) return Corrupt("a hit point lies outside the image");
-    if (!ReadPacked(in, pixels, &e.emission_.pixels)) return Corrupt("emission");
-    if (settings.stochastic) {
-        e.epoch_emission_ = Image(e.emission_.width, e.emission_.height);
-        if (!(ReadPacked(in, pixels, &e.emission_sum_) &&
-              ReadPacked(in, pixels, &e.emission_even_) &&
-              ReadPacked(in, pixels, &e.epoch_emission_.pixels)))
-            return Corrupt("emission sums");
-    }
-    const auto array = [&](auto* values, const char* what) -> absl::Status {
-        if (!ReadPacked(in, n, values))
-            return Corrupt(absl::StrCat(what, ": not one per hit point"));
+    if (settings.stochastic && n != slots)
+        return Corrupt("a stochastic estimate's hit points are not one per camera sample");
+    e.epoch_emission_ = Image(width, height);
+    const auto array = [&](uint64_t count, const char* per, auto* values,
+                           const char* what) -> absl::Status {
+        if (!ReadPacked(in, count, values))
+            return Corrupt(absl::StrCat(what, ": not one per ", per));
         return absl::OkStatus();
     };
     for (absl::Status status :
-         {array(&e.points_, "N, R, tau"), array(&e.direct_sum_, "direct sums"),
-          array(&e.flux_even_, "even flux"), array(&e.direct_even_, "even direct sums"),
-          array(&e.counts_, "gather counts"), array(&e.epoch_photons_, "epoch photons"),
-          array(&e.epoch_inner_photons_, "epoch inner photons"),
-          array(&e.epoch_flux_, "epoch flux"), array(&e.epoch_flux_even_, "epoch even flux"),
-          array(&e.epoch_direct_, "epoch direct light")})
+         {array(pixels, "pixel", &e.emission_sum_, "emission sums"),
+          array(pixels, "pixel", &e.emission_even_, "even emission sums"),
+          array(pixels, "pixel", &e.direct_sum_, "direct sums"),
+          array(pixels, "pixel", &e.direct_even_, "even direct sums"),
+          array(pixels, "pixel", &e.epoch_emission_.pixels, "epoch emission"),
+          array(slots, "camera sample", &e.epoch_direct_, "epoch direct light"),
+          array(n, "hit point", &e.points_, "N, R, tau"),
+          array(n, "hit point", &e.flux_even_, "even flux"),
+          array(n, "hit point", &e.counts_, "gather counts"),
+          array(n, "hit point", &e.epoch_photons_, "epoch photons"),
+          array(n, "hit point", &e.epoch_inner_photons_, "epoch inner photons"),
+          array(n, "hit point", &e.epoch_flux_, "epoch flux"),
+          array(n, "hit point", &e.epoch_flux_even_, "epoch even flux")})
         if (!status.ok()) return status;
     e.hit_points_ = std::move(hit_points);
     return estimate;

@@ -16,41 +16,47 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
                                          const EstimateSettings& settings,
                                          EpochCameraPass next_passes)
     : next_passes_(std::move(next_passes)), settings_(settings) {
-    PF_CHECK(!settings.stochastic || next_passes_);
-    emission_ = Image(camera_pass.emission.width, camera_pass.emission.height);
-    if (settings.stochastic) {
-        emission_sum_.assign(emission_.pixels.size(), Rgbd(0.0));
-        emission_even_.assign(emission_.pixels.size(), Rgbd(0.0));
-    } else {
-        emission_ = camera_pass.emission;
-    }
-    BeginEpochPass(std::move(camera_pass));
+    PF_CHECK(next_passes_);
     PF_CHECK(settings.alpha > 0 && settings.alpha <= 1);
     PF_CHECK(settings.initial_radius > 0 && std::isfinite(settings.initial_radius));
     PF_CHECK(settings.min_radius >= 0 && settings.min_radius <= settings.initial_radius);
     PF_CHECK(settings.samples_per_pixel > 0);
+    const size_t pixels = camera_pass.emission.pixels.size();
+    emission_sum_.assign(pixels, Rgbd(0.0));
+    emission_even_.assign(pixels, Rgbd(0.0));
+    direct_sum_.assign(pixels, Rgbd(0.0));
+    direct_even_.assign(pixels, Rgbd(0.0));
+    epoch_direct_.assign(pixels * size_t(settings.samples_per_pixel), Rgb(0.0f));
+    if (settings.stochastic) {
+        BeginEpochPass(std::move(camera_pass));
+    } else {
+        hit_points_ =
+            std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points));
+        BeginEpochPass(next_passes_(0));
+    }
     const double radius_sq = settings.initial_radius * settings.initial_radius;
     points_.assign(hit_points_->size(), PointEstimate{0.0, radius_sq, Rgbd(0.0)});
-    direct_sum_.assign(hit_points_->size(), Rgbd(0.0));
     flux_even_.assign(hit_points_->size(), Rgbd(0.0));
-    direct_even_.assign(hit_points_->size(), Rgbd(0.0));
     counts_.assign(hit_points_->size(), GatherCounts{});
     epoch_photons_.assign(hit_points_->size(), 0);
     epoch_inner_photons_.assign(hit_points_->size(), 0);
     epoch_flux_.assign(hit_points_->size(), Rgbd(0.0));
     epoch_flux_even_.assign(hit_points_->size(), Rgbd(0.0));
-    epoch_direct_.assign(hit_points_->size(), Rgb(0.0f));
 }
 
 void ProgressiveEstimate::BeginEpochPass(CameraPassResult camera_pass) {
-    PF_CHECK(!hit_points_ || camera_pass.hit_points.size() == hit_points_->size());
-    hit_points_ = std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points));
-    if (settings_.stochastic) epoch_emission_ = std::move(camera_pass.emission);
+    PF_CHECK(camera_pass.emission.pixels.size() == direct_sum_.size());
+    if (settings_.stochastic) {
+        PF_CHECK(camera_pass.hit_points.size() == epoch_direct_.size());
+        hit_points_ =
+            std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points));
+    }
+    epoch_emission_ = std::move(camera_pass.emission);
 }
 
-Rgbd ProgressiveEstimate::Emission(size_t p) const {
-    if (!settings_.stochastic) return Rgbd(emission_.pixels[p]);
-    return epoch_ > 0 ? emission_sum_[p] / static_cast<double>(epoch_) : Rgbd(0.0);
+Rgbd ProgressiveEstimate::EmissionAndDirect(size_t p) const {
+    if (epoch_ == 0) return Rgbd(0.0);
+    return (emission_sum_[p] + direct_sum_[p]) / static_cast<double>(epoch_);
 }
 
 std::vector<float> ProgressiveEstimate::SearchRadiusSq() const {
@@ -63,8 +69,8 @@ std::vector<float> ProgressiveEstimate::SearchRadiusSq() const {
 std::vector<BatchSpec> ProgressiveEstimate::EpochBatches() const {
     std::vector<BatchSpec> specs;
     for (uint32_t j = 0; j < settings_.layout.batches_per_epoch; ++j)
-        specs.push_back(
-            MakeBatchSpec(settings_.layout, epoch_, j, static_cast<uint32_t>(hit_points_->size())));
+        specs.push_back(MakeBatchSpec(settings_.layout, epoch_, j,
+                                      static_cast<uint32_t>(epoch_direct_.size())));
     return specs;
 }
 
@@ -95,8 +101,8 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
                           }
                       });
     PF_CHECK(result.samples.size() == result.spec.sample_end - result.spec.sample_begin &&
-             result.spec.sample_end <= hit_points.size());
-    // The epoch's direct slices are disjoint and cover every hit point once.
+             result.spec.sample_end <= epoch_direct_.size());
+    // The epoch's direct slices are disjoint and cover every slot of its pass once.
     std::copy(result.samples.begin(), result.samples.end(),
               epoch_direct_.begin() + result.spec.sample_begin);
     epoch_photons_emitted_ += result.photons_emitted;
@@ -126,8 +132,6 @@ void ProgressiveEstimate::FinishEpoch() {
                 counts.weight_sq = (counts.weight_sq + photons) * shrink * shrink;
                 points_[i] =
                     UpdateEstimate(points_[i], photons, epoch_flux_[i], alpha, min_radius_sq);
-                direct_sum_[i] += Rgbd(epoch_direct_[i]);
-                if (even_epoch) direct_even_[i] += Rgbd(epoch_direct_[i]);
                 epoch_photons_[i] = 0;
                 epoch_inner_photons_[i] = 0;
                 epoch_flux_[i] = Rgbd(0.0);
@@ -143,31 +147,33 @@ void ProgressiveEstimate::FinishEpoch() {
     epoch_photons_emitted_ = 0;
     epoch_photons_emitted_even_ = 0;
     batches_folded_ = 0;
-    if (settings_.stochastic) {
-        for (size_t p = 0; p < emission_sum_.size(); ++p) {
-            emission_sum_[p] += Rgbd(epoch_emission_.pixels[p]);
-            if (even_epoch) emission_even_[p] += Rgbd(epoch_emission_.pixels[p]);
-        }
-        ++epoch_;
-        BeginEpochPass(next_passes_(epoch_));
-        return;
+    // Each pixel's emission and its k slots' direct samples: the epoch's estimate of what
+    // photons do not carry.
+    const size_t k = static_cast<size_t>(settings_.samples_per_pixel);
+    for (size_t p = 0; p < emission_sum_.size(); ++p) {
+        Rgbd direct(0.0);
+        for (size_t s = p * k; s < (p + 1) * k; ++s) direct += Rgbd(epoch_direct_[s]);
+        direct = direct / static_cast<double>(k);
+        const Rgbd emission(epoch_emission_.pixels[p]);
+        emission_sum_[p] += emission;
+        direct_sum_[p] += direct;
+        if (even_epoch) emission_even_[p] += emission, direct_even_[p] += direct;
     }
+    std::fill(epoch_direct_.begin(), epoch_direct_.end(), Rgb(0.0f));
     ++epoch_;
+    BeginEpochPass(next_passes_(epoch_));
 }
 
 Image ProgressiveEstimate::Resolve() const {
-    std::vector<Rgbd> sums(emission_.pixels.size(), Rgbd(0.0));
-    const double direct_samples = static_cast<double>(epoch_);
+    std::vector<Rgbd> sums(direct_sum_.size(), Rgbd(0.0));
     const std::vector<HitPoint>& hit_points = *hit_points_;
-    for (size_t i = 0; i < hit_points.size(); ++i) {
-        Rgbd value = EstimateRadiance(points_[i], static_cast<double>(photons_emitted_));
-        if (direct_samples > 0) value += direct_sum_[i] / direct_samples;
-        sums[hit_points[i].pixel] += value;
-    }
-    Image image(emission_.width, emission_.height);
+    for (size_t i = 0; i < hit_points.size(); ++i)
+        sums[hit_points[i].pixel] +=
+            EstimateRadiance(points_[i], static_cast<double>(photons_emitted_));
+    Image image(epoch_emission_.width, epoch_emission_.height);
     const double inverse_spp = 1.0 / settings_.samples_per_pixel;
     for (size_t p = 0; p < sums.size(); ++p)
-        image.pixels[p] = Rgb(Emission(p) + sums[p] * inverse_spp);
+        image.pixels[p] = Rgb(EmissionAndDirect(p) + sums[p] * inverse_spp);
     return image;
 }
 
@@ -179,23 +185,21 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
                  epochs_odd = static_cast<double>(epoch_ / 2);
     ErrorEstimate error;
     if (!(photons_even > 0 && photons_odd > 0 && epochs_odd > 0)) return error;
-    // Per pixel, summed over its hit points: the full estimate, the difference of the halves,
-    // the bias estimate 2 (L - L_inner) of the photon part, and that estimate's own variance.
-    const size_t pixels = emission_.pixels.size();
+    // Per pixel, summed over its hit points: the photon estimate, the difference of its
+    // halves, the bias estimate 2 (L - L_inner) of it, and that estimate's own variance.
+    const size_t pixels = direct_sum_.size();
     std::vector<Rgbd> value(pixels, Rgbd(0.0)), difference(pixels, Rgbd(0.0)),
         bias(pixels, Rgbd(0.0));
     std::vector<Rgbd> bias_noise(pixels, Rgbd(0.0));
     const std::vector<HitPoint>& hit_points = *hit_points_;
     for (size_t i = 0; i < hit_points.size(); ++i) {
         const PointEstimate& point = points_[i];
-        const Rgbd even = EstimateRadiance({0, point.radius_sq, flux_even_[i]}, photons_even) +
-                          direct_even_[i] / epochs_even;
+        const Rgbd even = EstimateRadiance({0, point.radius_sq, flux_even_[i]}, photons_even);
         const Rgbd odd =
-            EstimateRadiance({0, point.radius_sq, point.flux - flux_even_[i]}, photons_odd) +
-            (direct_sum_[i] - direct_even_[i]) / epochs_odd;
+            EstimateRadiance({0, point.radius_sq, point.flux - flux_even_[i]}, photons_odd);
         const uint32_t pixel = hit_points[i].pixel;
         const Rgbd photon_part = EstimateRadiance(point, photons);
-        value[pixel] += photon_part + direct_sum_[i] / static_cast<double>(epoch_);
+        value[pixel] += photon_part;
         difference[pixel] += even - odd;
         const GatherCounts& counts = counts_[i];
         if (counts.all > 0) {
@@ -217,11 +221,13 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
     double squared = 0, relative = 0, bias_squared = 0, bias_relative = 0;
     for (size_t p = 0; p < pixels; ++p)
         for (int c = 0; c < 3; ++c) {
-            double d = difference[p][c] * inverse_spp;
-            if (settings_.stochastic)  // emission seen differs between epochs too
-                d += emission_even_[p][c] / epochs_even -
-                     (emission_sum_[p][c] - emission_even_[p][c]) / epochs_odd;
-            const double v = Emission(p)[c] + value[p][c] * inverse_spp;
+            // Emission and direct light differ between even and odd epochs as photons do
+            // between even and odd batches.
+            const double seen_even = emission_even_[p][c] + direct_even_[p][c],
+                         seen_all = emission_sum_[p][c] + direct_sum_[p][c];
+            const double d = difference[p][c] * inverse_spp + seen_even / epochs_even -
+                             (seen_all - seen_even) / epochs_odd;
+            const double v = EmissionAndDirect(p)[c] + value[p][c] * inverse_spp;
             AddHalfVariance(v, d, variance_scale, &squared, &relative);
             // b^2 overestimates the squared bias by b's variance: take it off (the sum over
             // pixels is clamped at zero below, not each pixel, to stay unbiased).

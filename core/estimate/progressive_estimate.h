@@ -1,8 +1,12 @@
-// The coordinator-side state of one render: the fixed hit points and, per hit point, the
-// progressive estimate (N, R, tau) and the running direct-light sum. Folds each epoch's batch
-// results in batch-index order, one at a time as they become available, updates the
-// estimate at the epoch's end and resolves the current image. Not thread-safe; its methods
-// use the calling TBB arena for data-parallel loops, deterministically.
+// The coordinator-side state of one render: the hit points photons gather at and, per hit
+// point, the progressive estimate (N, R, tau); per pixel, the running sums of emission and
+// direct light, which every epoch samples afresh at the camera samples of its own camera pass
+// (stratified across epochs: PixelSampler), so that what photons do not carry -- the emission
+// the camera sees and direct light, with their sharp edges -- converges to the pixel's
+// integral. Folds each epoch's batch results in batch-index order, one at a time as they
+// become available, updates the estimate at the epoch's end and resolves the current image.
+// Not thread-safe; its methods use the calling TBB arena for data-parallel loops,
+// deterministically.
 #pragma once
 
 #include <cmath>
@@ -38,9 +42,9 @@ struct EstimateSettings {
     int samples_per_pixel = 4;     // k: camera paths per pixel (the resolve divides by it)
     BatchLayout layout;
     double min_radius = 0;  // radii shrink no further (ShrinkRatio), world units, <= R0
-    // Stochastic progressive photon mapping: hit points traced anew for every epoch (by the
-    // EpochCameraPass given), N, R, tau kept per slot (pixel * k + sample), emission averaged
-    // over epochs. Otherwise one set of hit points for the whole render.
+    // Stochastic progressive photon mapping: photons gather at each epoch's camera pass (N, R,
+    // tau kept per slot, pixel * k + sample). Otherwise (ppm) at one set of hit points for the
+    // whole render, traced once, splitting at glass.
     bool stochastic = false;
 };
 
@@ -50,17 +54,13 @@ struct EstimateSettings {
 EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass,
                              const Scene& scene, const std::string& scene_name);
 
-// The camera pass of an epoch, for a stochastic estimate (StochasticCameraPass); must give
-// as many hit points, in the same slots, every epoch.
-using EpochCameraPass = std::function<CameraPassResult(uint64_t epoch)>;
-
 class ProgressiveEstimate final : public Estimate {
 public:
-    // `camera_pass`: the hit points (of epoch 0 for a stochastic estimate, which traces each
-    // later epoch's with `next_passes` as the previous one ends).
+    // `camera_pass`: the hit points photons gather at (for sppm, epoch 0's pass); each epoch's
+    // pass comes from `next_passes` (for ppm epoch 0's too, here).
     ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings,
-                        EpochCameraPass next_passes = {});
-    // A stochastic estimate restored by Load needs its camera passes again.
+                        EpochCameraPass next_passes);
+    // An estimate restored by Load needs its camera passes again.
     void SetEpochCameraPass(EpochCameraPass next_passes) { next_passes_ = std::move(next_passes); }
 
     std::span<const HitPoint> HitPoints() const { return *hit_points_; }
@@ -73,14 +73,15 @@ public:
     Integrator Kind() const override {
         return settings_.stochastic ? Integrator::kSppm : Integrator::kPpm;
     }
-    uint64_t ItemCount() const override { return hit_points_->size(); }
+    // The slots of an epoch's camera pass, which the batches' direct-light slices index.
+    uint64_t ItemCount() const override { return epoch_direct_.size(); }
     uint64_t Epoch() const override {
         return epoch_;
     }  // the next epoch to merge; also epochs merged
     uint64_t PhotonsEmitted() const override { return photons_emitted_; }  // over the merged epochs
+    // Each epoch's pass, and ppm's fixed hit points' paths once.
     uint64_t CameraSamples() const override {
-        return emission_.pixels.size() * uint64_t(settings_.samples_per_pixel) *
-               (settings_.stochastic ? epoch_ : 1);
+        return epoch_direct_.size() * (settings_.stochastic ? epoch_ : epoch_ + 1);
     }
     double InitialRadius() const override { return settings_.initial_radius; }
     // Photon paths and direct samples the batches dropped for NaN or Inf, over the merged
@@ -101,8 +102,9 @@ public:
     uint32_t BatchesFolded() const override { return batches_folded_; }
     // Once every batch of the epoch is folded: updates N, R, tau and starts the next epoch.
     void FinishEpoch() override;
-    // The image as of the last merged epoch: emission + direct + tau / (pi R^2 N_emitted),
-    // averaged over each pixel's k camera paths.
+    // The image as of the last merged epoch: per pixel, the mean emission and direct light
+    // over the merged epochs' camera samples, and tau / (pi R^2 N_emitted) averaged over its
+    // hit points (k camera paths).
     Image Resolve() const override;
     // The error of Resolve()'s image. Variance: from the even and odd half-estimates. Bias:
     // a disc estimate's bias grows as R^2 (radiance locally quadratic), so the estimate from
@@ -125,25 +127,24 @@ public:
 private:
     ProgressiveEstimate() = default;
 
-    // Sets the epoch's hit points and emission (a stochastic estimate's, as an epoch begins).
+    // Takes the epoch's pass as it begins: its emission, and for sppm its hit points.
     void BeginEpochPass(CameraPassResult camera_pass);
-    // The emission of pixel p: the fixed image, or a stochastic estimate's mean over merged epochs.
-    Rgbd Emission(size_t p) const;
+    // Pixel p's mean emission and direct light over the merged epochs.
+    Rgbd EmissionAndDirect(size_t p) const;
 
     std::shared_ptr<const std::vector<HitPoint>> hit_points_;
-    // Emission reaching each pixel: fixed, or for a stochastic estimate the sum over merged
-    // epochs (with that of the even epochs, and the current epoch's apart).
-    Image emission_;
+    // Per pixel, sums over the merged epochs of the emission seen and of the direct light
+    // (each epoch's mean over the pixel's k slots), with those of the even epochs apart; the
+    // current epoch's emission and direct samples (per slot) apart.
     std::vector<Rgbd> emission_sum_, emission_even_;
+    std::vector<Rgbd> direct_sum_, direct_even_;
     Image epoch_emission_;
     EpochCameraPass next_passes_;
     EstimateSettings settings_;
     std::vector<PointEstimate> points_;
-    std::vector<Rgbd> direct_sum_;  // sum of one direct-light sample per merged epoch
     // The even half-estimate: tau of the even-numbered batches' photons (shrunk with the same
-    // ratios as tau) and the direct sum of the even epochs. The odd half is the rest.
+    // ratios as tau); the odd half is the rest.
     std::vector<Rgbd> flux_even_;
-    std::vector<Rgbd> direct_even_;
     std::vector<GatherCounts> counts_;  // for the bias estimate
     uint64_t epoch_ = 0;
     uint64_t photons_emitted_ = 0;
@@ -157,7 +158,7 @@ private:
     std::vector<uint64_t> epoch_inner_photons_;
     std::vector<Rgbd> epoch_flux_;
     std::vector<Rgbd> epoch_flux_even_;
-    std::vector<Rgb> epoch_direct_;
+    std::vector<Rgb> epoch_direct_;  // per slot of the epoch's pass
     uint64_t epoch_photons_emitted_ = 0;
     uint64_t epoch_photons_emitted_even_ = 0;
     uint64_t epoch_nonfinite_discarded_ = 0;

@@ -232,7 +232,7 @@ std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs,
         result.photons_emitted = spec.photons;
         result.samples.resize(spec.sample_end - spec.sample_begin);
         result.nonfinite_discarded += SampleDirectLight(
-            *inputs.emitters, *inputs.tracer, inputs.scene->materials, inputs.hit_points,
+            *inputs.emitters, *inputs.tracer, inputs.scene->materials, inputs.DirectPoints(),
             spec.sample_begin, inputs.seed, spec.epoch, result.samples);
     });
     return results;

@@ -1,5 +1,6 @@
 // The photon pass: runs one batch (photon paths from the lights, gathered at the hit points
-// within their current radius, plus the batch's slice of direct-light samples).
+// within their current radius, plus the batch's slice of direct-light samples at the epoch's
+// camera samples).
 #pragma once
 
 #include <tbb/enumerable_thread_specific.h>
@@ -29,14 +30,20 @@ struct PhotonPassInputs {
     const Scene* scene = nullptr;
     const Emitters* emitters = nullptr;
     const Tracer* tracer = nullptr;
-    std::span<const HitPoint> hit_points;
-    const HashGrid* grid = nullptr;  // built over hit_points with this epoch's radii
+    std::span<const HitPoint> hit_points;  // where photons gather
+    const HashGrid* grid = nullptr;        // built over hit_points with this epoch's radii
     uint64_t seed = 0;
     // What the scene uses (AnalyseFeatures): chunks run the photon loop instantiated for it,
     // so a scene without specular materials or textures runs no code for them. All by default.
     SceneFeatures features = SceneFeatures::All();
     // Surfaces a photon reaches at most (JobSpec::max_depth, as DepthLimit gives it).
     int max_bounces = kMaxPhotonBounces;
+    // Where the batches' direct-light slices sample: the epoch's camera pass (for sppm the
+    // hit points themselves); empty: the hit points.
+    std::span<const HitPoint> direct_points;
+    std::span<const HitPoint> DirectPoints() const {
+        return direct_points.empty() ? hit_points : direct_points;
+    }
 };
 
 // A batch gathers its deposits once this many are pending (about 80 MB of deposits and keys

@@ -32,28 +32,28 @@ std::vector<BatchResult> RunPixelBatches(const Camera& camera, const Film& film,
         result.spec = spec;
         result.samples.resize(spec.sample_end - spec.sample_begin);
         const SeedFamily seeds = PixelSeeds(seed, spec.epoch);
-        const uint64_t first_sample = spec.epoch * uint64_t(film.samples_per_pixel);
         tbb::combinable<uint64_t> discarded([] { return uint64_t{0}; });
-        tbb::parallel_for(tbb::blocked_range<uint32_t>(spec.sample_begin, spec.sample_end, 16),
-                          [&](const tbb::blocked_range<uint32_t>& pixels) {
-                              for (uint32_t pixel = pixels.begin(); pixel < pixels.end(); ++pixel) {
-                                  Rng rng(seeds.Seed(pixel));
-                                  const int x = static_cast<int>(pixel % film.width);
-                                  const int y = static_cast<int>(pixel / film.width);
-                                  Rgb sum(0.0f);
-                                  for (int s = 0; s < film.samples_per_pixel; ++s) {
-                                      PixelSampler sampler(seed, kPixelSampleStream, pixel,
-                                                           first_sample + uint64_t(s));
-                                      const Rgb sample = radiance(
-                                          PixelSampleRay(camera, film, x, y, sampler), rng);
-                                      if (IsFinite(sample))
-                                          sum += sample;
-                                      else
-                                          ++discarded.local();
-                                  }
-                                  result.samples[pixel - spec.sample_begin] = sum * inverse_spp;
-                              }
-                          });
+        tbb::parallel_for(
+            tbb::blocked_range<uint32_t>(spec.sample_begin, spec.sample_end, 16),
+            [&](const tbb::blocked_range<uint32_t>& pixels) {
+                for (uint32_t pixel = pixels.begin(); pixel < pixels.end(); ++pixel) {
+                    Rng rng(seeds.Seed(pixel));
+                    const int x = static_cast<int>(pixel % film.width);
+                    const int y = static_cast<int>(pixel / film.width);
+                    Rgb sum(0.0f);
+                    for (int s = 0; s < film.samples_per_pixel; ++s) {
+                        PixelSampler sampler = PixelSampler::InEpoch(
+                            seed, kPixelSampleStream, pixel, spec.epoch, film.samples_per_pixel, s);
+                        const Rgb sample =
+                            radiance(PixelSampleRay(camera, film, x, y, sampler), rng);
+                        if (IsFinite(sample))
+                            sum += sample;
+                        else
+                            ++discarded.local();
+                    }
+                    result.samples[pixel - spec.sample_begin] = sum * inverse_spp;
+                }
+            });
         result.nonfinite_discarded = discarded.combine(std::plus<>());
     }
     return results;

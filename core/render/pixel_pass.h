@@ -1,6 +1,6 @@
 // Batches of the integrators that render pixels (path, pm): each takes every pixel of its
-// slice `samples_per_pixel` times and returns the mean per pixel. A pixel's samples in epoch e
-// are its camera samples e k ... e k + k - 1 (PixelSampler: stratified across epochs), their
+// slice `samples_per_pixel` times and returns the mean per pixel. A pixel's samples in an epoch
+// continue its earlier epochs' (PixelSampler::InEpoch: stratified across epochs), their
 // paths drawing from a stream seeded by (seed, epoch, pixel) alone, so a batch is a pure
 // function of its spec, whoever runs it.
 #pragma once

@@ -48,7 +48,10 @@ PF_CONST(uint32_t) kBindingLightImageTexels = 21;  // vec4[]
 PF_CONST(uint32_t) kBindingLightImageTables = 22;
 PF_CONST(uint32_t) kBindingTangents = 23;     // vec4[], per vertex: xyz Scene::tangents
 PF_CONST(uint32_t) kBindingSheenTables = 24;  // float[kSheenTableSize]: kSheenTables (sheen.h)
-PF_CONST(uint32_t) kBindingCount = 25;
+// GpuHitPoint[]: where the batches' direct light is sampled, the epoch's camera pass (ppm); the
+// hit points' own buffer where they are the same (sppm) or no pass is traced.
+PF_CONST(uint32_t) kBindingDirectPoints = 25;
+PF_CONST(uint32_t) kBindingCount = 26;
 
 // What the prefix-sum kernels scan (GpuParams.scan_target).
 PF_CONST(uint32_t) kScanGridBegin = 0;

@@ -370,7 +370,7 @@ TEST(BackendAgreementCutOuts, CutOutsAndMixesMatchTheCpus) {
            "0\n"
            "Shape \"bilinearmesh\" \"point3 P\" [-0.4 -0.4 0  0.4 -0.4 0  -0.4 0.4 0  0.4 0.4 0]\n"
            "AttributeEnd\n";
-    ExpectVulkanAgreesWithTheCpu(path, 2'000'000);
+    ExpectVulkanAgreesWithTheCpu(path, 3'000'000);
 }
 
 TEST(BackendAgreementTexturedLight, AnImageLightMatchesTheCpus) {

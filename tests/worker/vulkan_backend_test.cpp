@@ -30,9 +30,11 @@
 namespace pf {
 namespace {
 
-// One scene's hit points and first epoch, with both backends begun on it.
+// One scene's ppm job: its hit points and first epoch, with both backends begun on it (each
+// tracing the epoch's camera pass for direct light itself, as the estimate does).
 struct Rendering {
     Scene scene;
+    JobSpec spec;
     std::unique_ptr<Emitters> emitters;
     std::unique_ptr<ProgressiveEstimate> estimate;
     std::unique_ptr<Backend> cpu, vulkan;
@@ -42,13 +44,18 @@ std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size,
                                      BatchLayout layout = {1u << 16, 4}) {
     auto setup = std::make_unique<Rendering>();
     setup->scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + name);
-    auto tracer = std::move(*embree::EmbreeTracer::Create(setup->scene));
-    const CameraPassResult camera_pass = RunCameraPass(setup->scene, *tracer, {size, size, 2, 1});
-    JobSpec spec;
+    std::shared_ptr<const Tracer> tracer = std::move(*embree::EmbreeTracer::Create(setup->scene));
+    JobSpec& spec = setup->spec;
+    spec.width = spec.height = size;
+    spec.samples_per_pixel = 2;
+    spec.seed = 1;
     spec.photon_budget = 1;
     spec.layout = layout;
+    const CameraPassSettings film = *FilmFor(spec, setup->scene);
+    const CameraPassResult camera_pass = RunCameraPass(setup->scene, *tracer, film);
     setup->estimate = std::make_unique<ProgressiveEstimate>(
-        camera_pass, EstimateFor(spec, camera_pass, setup->scene, name));
+        camera_pass, EstimateFor(spec, camera_pass, setup->scene, name),
+        TracedCameraPasses(setup->scene, tracer, film, Integrator::kPpm));
     setup->emitters = std::make_unique<Emitters>(setup->scene);
     setup->cpu = std::move(*CreateBackend("cpu", setup->scene));
     absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", setup->scene);
@@ -56,10 +63,10 @@ std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size,
     if (!vulkan.ok()) return nullptr;
     setup->vulkan = std::move(*vulkan);
     for (Backend* backend : {setup->cpu.get(), setup->vulkan.get()}) {
-        EXPECT_TRUE(
-            backend
-                ->BeginJob({&setup->scene, setup->emitters.get(), setup->estimate->HitPoints(), 7})
-                .ok());
+        EXPECT_TRUE(backend
+                        ->BeginJob({&setup->scene, setup->emitters.get(),
+                                    setup->estimate->HitPoints(), 7, &setup->spec})
+                        .ok());
         EXPECT_TRUE(
             backend->BeginEpoch(setup->estimate->Epoch(), setup->estimate->SearchRadiusSq()).ok());
     }

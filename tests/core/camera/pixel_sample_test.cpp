@@ -13,32 +13,50 @@ namespace pf {
 namespace {
 
 TEST(PixelSampleTest, EveryCountTilesThePixelOverTheEpochs) {
-    constexpr int kEpochs = 64, kCells = 8;  // 64 k samples: k in each of 8 x 8 cells
+    // 64 even and 64 odd epochs of k samples: k of each half in each of 8 x 8 cells.
+    constexpr int kEpochs = 128, kCells = 8;
     for (const int k : {1, 2, 3, 4, 5, 6, 7, 8, 9, 12, 17}) {
-        std::vector<int> count(kCells * kCells, 0);
+        std::vector<int> even(kCells * kCells, 0), odd(kCells * kCells, 0);
         for (uint64_t epoch = 0; epoch < kEpochs; ++epoch)
             for (int s = 0; s < k; ++s) {
-                PixelSampler sampler(42, 7, 1234, epoch * k + s);
+                PixelSampler sampler = PixelSampler::InEpoch(42, 7, 1234, epoch, k, s);
                 const Point2 p = sampler.Next2D();
                 ASSERT_TRUE(p.x >= 0 && p.x < 1 && p.y >= 0 && p.y < 1);
-                ++count[static_cast<int>(p.y * kCells) * kCells + static_cast<int>(p.x * kCells)];
+                ++(epoch % 2 == 0 ? even : odd)[static_cast<int>(p.y * kCells) * kCells +
+                                                static_cast<int>(p.x * kCells)];
             }
-        for (int cell = 0; cell < kCells * kCells; ++cell)
-            EXPECT_EQ(count[cell], k) << "k " << k << ", cell " << cell;
+        for (int cell = 0; cell < kCells * kCells; ++cell) {
+            EXPECT_EQ(even[cell], k) << "k " << k << ", cell " << cell;
+            EXPECT_EQ(odd[cell], k) << "k " << k << ", cell " << cell;
+        }
     }
+}
+
+TEST(PixelSampleTest, EvenAndOddEpochsAreIndependentSequences) {
+    // The first sample of epochs 0 and 1 over many pixels: uncorrelated (one sequence would put
+    // them in opposite halves of the pixel, a correlation of -3/4 in each coordinate... here
+    // none).
+    constexpr int kPixels = 1 << 16;
+    double cross = 0;
+    for (uint64_t pixel = 0; pixel < kPixels; ++pixel) {
+        const Point2 a = PixelSampler::InEpoch(9, 7, pixel, 0, 1, 0).Next2D();
+        const Point2 b = PixelSampler::InEpoch(9, 7, pixel, 1, 1, 0).Next2D();
+        cross += (a.x - 0.5) * (b.x - 0.5);
+    }
+    EXPECT_NEAR(cross / kPixels, 0.0, 5.0 / 12 / std::sqrt(double(kPixels)));
 }
 
 TEST(PixelSampleTest, OneEpochsSamplesSpreadOverThePixel) {
     // Two samples an epoch: one in each half of the pixel, both ways; four: one per quadrant.
     for (uint64_t pixel = 0; pixel < 100; ++pixel)
         for (uint64_t epoch = 0; epoch < 10; ++epoch) {
-            PixelSampler first(3, 7, pixel, 2 * epoch), second(3, 7, pixel, 2 * epoch + 1);
-            const Point2 a = first.Next2D(), b = second.Next2D();
+            const Point2 a = PixelSampler::InEpoch(3, 7, pixel, epoch, 2, 0).Next2D(),
+                         b = PixelSampler::InEpoch(3, 7, pixel, epoch, 2, 1).Next2D();
             EXPECT_NE(a.x < 0.5f, b.x < 0.5f);
             EXPECT_NE(a.y < 0.5f, b.y < 0.5f);
             int quadrants = 0;
-            for (uint64_t s = 0; s < 4; ++s) {
-                const Point2 p = PixelSampler(3, 7, pixel, 4 * epoch + s).Next2D();
+            for (int s = 0; s < 4; ++s) {
+                const Point2 p = PixelSampler::InEpoch(3, 7, pixel, epoch, 4, s).Next2D();
                 quadrants |= 1 << ((p.x >= 0.5f) + 2 * (p.y >= 0.5f));
             }
             EXPECT_EQ(quadrants, 15) << "pixel " << pixel << ", epoch " << epoch;

@@ -25,7 +25,11 @@ ProgressiveEstimate OnePointEstimate() {
     settings.initial_radius = kRadius;
     settings.samples_per_pixel = 1;
     settings.layout = {kPhotons, 2};
-    return ProgressiveEstimate(std::move(camera_pass), settings);
+    return ProgressiveEstimate(std::move(camera_pass), settings, [](uint64_t) {
+        CameraPassResult pass;  // the epochs' passes: no emission, one slot
+        pass.emission = Image(1, 1);
+        return pass;
+    });
 }
 
 // Batch `index % 2` of the epoch, whose one tally entry carries `flux` (W x N_emitted) in

@@ -17,6 +17,24 @@ namespace {
 constexpr uint32_t kHitPoints = 300;
 constexpr int kEpochs = 5;
 
+// Each epoch's camera pass (a ppm estimate takes its emission, a stochastic one its hit points
+// too): every slot (pixel * 3 + sample of a 10x10 film) traced
+// anew, a few black, weights and emission changing with the epoch.
+CameraPassResult StochasticPass(uint64_t epoch) {
+    CameraPassResult pass;
+    pass.emission = Image(10, 10);
+    pass.emission.At(int(epoch % 10), 4) = Rgb(2.0f, 1.0f, 0.5f);
+    std::mt19937 rng(static_cast<uint32_t>(epoch + 3));
+    for (uint32_t i = 0; i < kHitPoints; ++i) {
+        const bool empty = rng() % 7 == 0;
+        pass.hit_points.push_back(
+            {Vec3(float(i) + 0.1f * float(epoch), 0, 0), Vec3(0, 0, 1),
+             empty ? Rgb(0.0f) : Rgb(0.1f + 0.01f * float(rng() % 17), 0.2f, 0.3f), i / 3});
+        pass.footprint.push_back(empty ? 0.0f : 0.5f);
+    }
+    return pass;
+}
+
 ProgressiveEstimate MakeEstimate() {
     CameraPassResult camera_pass;
     camera_pass.emission = Image(10, 10);
@@ -30,7 +48,7 @@ ProgressiveEstimate MakeEstimate() {
     settings.initial_radius = 0.5;
     settings.samples_per_pixel = 3;
     settings.layout = {1000, 4};
-    return ProgressiveEstimate(std::move(camera_pass), settings);
+    return ProgressiveEstimate(std::move(camera_pass), settings, StochasticPass);
 }
 
 // A made-up result for the next batch: random hit points, counts and flux, from a seed of its own.
@@ -82,6 +100,7 @@ TEST(EstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
         ASSERT_TRUE(loaded.ok()) << loaded.status();
         EXPECT_TRUE(reader.AtEnd());
         EXPECT_TRUE(SamePixels((*loaded)->Resolve(), current.Resolve())) << "after fold " << b;
+        (*loaded)->SetEpochCameraPass(StochasticPass);  // as the coordinator reattaches them
         estimate = std::move(*loaded);
         FoldNext(*estimate);
     }
@@ -102,23 +121,6 @@ TEST(EstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
     }
 }
 
-// A stochastic estimate's epochs: every slot (pixel * 3 + sample of a 10x10 film) traced
-// anew, a few black, weights and emission changing with the epoch.
-CameraPassResult StochasticPass(uint64_t epoch) {
-    CameraPassResult pass;
-    pass.emission = Image(10, 10);
-    pass.emission.At(int(epoch % 10), 4) = Rgb(2.0f, 1.0f, 0.5f);
-    std::mt19937 rng(static_cast<uint32_t>(epoch + 3));
-    for (uint32_t i = 0; i < kHitPoints; ++i) {
-        const bool empty = rng() % 7 == 0;
-        pass.hit_points.push_back(
-            {Vec3(float(i) + 0.1f * float(epoch), 0, 0), Vec3(0, 0, 1),
-             empty ? Rgb(0.0f) : Rgb(0.1f + 0.01f * float(rng() % 17), 0.2f, 0.3f), i / 3});
-        pass.footprint.push_back(empty ? 0.0f : 0.5f);
-    }
-    return pass;
-}
-
 // Every kind of estimate, fed made-up batches, saved and loaded through LoadEstimate after
 // every fold, ends bit-identical to one never interrupted.
 using EstimateFactory = std::unique_ptr<Estimate> (*)();
@@ -134,6 +136,10 @@ std::unique_ptr<Estimate> MakeStochastic() {
     settings.samples_per_pixel = 3;
     settings.layout = {1000, 4};
     return std::make_unique<ProgressiveEstimate>(StochasticPass(0), settings, StochasticPass);
+}
+
+std::unique_ptr<Estimate> MakePpm() {
+    return std::make_unique<ProgressiveEstimate>(MakeEstimate());
 }
 
 std::unique_ptr<Estimate> MakePixels() {
@@ -162,8 +168,8 @@ TEST_P(AnyEstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
         EXPECT_TRUE(reader.AtEnd());
         EXPECT_EQ((*loaded)->Kind(), estimate->Kind());
         EXPECT_TRUE(SamePixels((*loaded)->Resolve(), estimate->Resolve())) << "after fold " << b;
-        if ((*loaded)->Kind() == Integrator::kSppm)  // its next epochs' camera passes, as the
-                                                     // coordinator reattaches them
+        if (GathersAtHitPoints((*loaded)->Kind()))  // its next epochs' camera passes, as the
+                                                    // coordinator reattaches them
             static_cast<ProgressiveEstimate&>(**loaded).SetEpochCameraPass(StochasticPass);
         estimate = std::move(*loaded);
         fold_next(*estimate);
@@ -175,7 +181,8 @@ TEST_P(AnyEstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Kinds, AnyEstimateStateTest,
-                         ::testing::Values(EstimateKind{"sppm", MakeStochastic},
+                         ::testing::Values(EstimateKind{"ppm", MakePpm},
+                                           EstimateKind{"sppm", MakeStochastic},
                                            EstimateKind{"path", MakePixels}),
                          [](const auto& param_info) { return std::string(param_info.param.name); });
 
@@ -207,6 +214,7 @@ TEST(EstimateStateTest, HitPointsKeptApartOnceItEndsBitIdentical) {
         ByteWriter again;
         (*loaded)->Save(again);
         EXPECT_TRUE(again.Bytes() == whole.Bytes()) << "after fold " << b;
+        (*loaded)->SetEpochCameraPass(StochasticPass);
         estimate = std::move(*loaded);
         FoldNext(*estimate);
     }

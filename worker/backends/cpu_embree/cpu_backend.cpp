@@ -21,7 +21,8 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     features_ = AnalyseFeatures(*job.scene, *job.emitters);
     grid_ = HashGrid();
     radiance_ = nullptr;
-    stochastic_film_.reset();
+    epoch_film_.reset();
+    epoch_hit_points_.clear();
     maps_.reset();
     // A camera sample's cone, for textures where the integrators that render pixels meet them
     // (an orthographic camera's samples have none: point lookups).
@@ -29,14 +30,16 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
                                    ? 0.0f
                                    : job.scene->camera.Footprint(job.spec->height).angle /
                                          std::sqrt(static_cast<float>(job.spec->samples_per_pixel));
+    // Without a spec (ppm's batches alone: tests, benchmarks) direct light is sampled at the
+    // hit points given.
     switch (job.spec != nullptr ? job.spec->integrator : Integrator::kPpm) {
         case Integrator::kPpm:
-            break;
         case Integrator::kSppm: {
+            if (job.spec == nullptr) break;
             absl::StatusOr<CameraPassSettings> film = FilmFor(*job.spec, *job.scene);
             if (!film.ok()) return film.status();
             film->features = features_;
-            stochastic_film_ = *film;
+            epoch_film_ = *film;
             break;
         }
         case Integrator::kPath: {
@@ -78,11 +81,11 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
 }
 
 absl::Status CpuBackend::BeginEpoch(uint64_t epoch, std::span<const float> radius_sq) {
-    if (stochastic_film_) {
+    if (epoch_film_) {
         epoch_hit_points_ =
-            RunCameraPass(*job_.scene, tracer_, StochasticCameraPass(*stochastic_film_, epoch))
+            RunCameraPass(*job_.scene, tracer_, StochasticCameraPass(*epoch_film_, epoch))
                 .hit_points;
-        job_.hit_points = epoch_hit_points_;
+        if (job_.spec->integrator == Integrator::kSppm) job_.hit_points = epoch_hit_points_;
     }
     PF_CHECK(radius_sq.size() == job_.hit_points.size());
     if (!radius_sq.empty()) grid_.Build(job_.hit_points, radius_sq);
@@ -98,6 +101,7 @@ absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const 
     }
     PhotonPassInputs inputs{job_.scene, job_.emitters, &tracer_, job_.hit_points,
                             &grid_,     job_.seed,     features_};
+    inputs.direct_points = epoch_hit_points_;
     if (job_.spec != nullptr)
         inputs.max_bounces = DepthLimit(job_.spec->max_depth, kMaxPhotonBounces);
     return RunPhotonBatches(inputs, specs, scratch_);

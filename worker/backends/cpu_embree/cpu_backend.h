@@ -35,8 +35,9 @@ private:
     PhotonPassScratch scratch_;
     RadianceFunction radiance_;               // path, pm: a camera sample's radiance
     std::shared_ptr<const PhotonMaps> maps_;  // pm: the job's photon maps
-    // sppm: the film its camera passes trace, and the current epoch's hit points.
-    std::optional<CameraPassSettings> stochastic_film_;
+    // ppm, sppm: the film each epoch's camera pass traces, and that pass's hit points, where
+    // the epoch's direct light is sampled (and sppm's photons gather).
+    std::optional<CameraPassSettings> epoch_film_;
     std::vector<HitPoint> epoch_hit_points_;
 };
 

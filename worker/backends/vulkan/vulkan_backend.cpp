@@ -139,15 +139,19 @@ struct VulkanBackend::JobBuffers {
     Buffer nodes, triangles, shading, normals, uvs, tangents, sheen_tables, materials, textures,
         texels, emitters, emitter_cdf, light_image_texels, light_image_tables;
     Buffer hit_points, radius_sq, grid_begin, grid_cursor, grid_entries, scan_blocks, tally, direct,
-        counters;
+        counters, direct_points;
     Buffer tally_offsets, tally_entries;
-    Buffer radius_upload, hit_point_upload, direct_readback, counters_readback;
+    Buffer radius_upload, hit_point_upload, direct_point_upload, direct_readback, counters_readback;
 
     // Uploads what kernels read and makes the rest; RESOURCE_EXHAUSTED where the device runs out.
+    // `direct_points`: how many points of an epoch's camera pass direct light is sampled at,
+    // uploaded every epoch (0: at the hit points).
     static absl::StatusOr<std::unique_ptr<JobBuffers>> Create(
         const Context& context, CommandStream& stream, const GpuScene& gpu_scene,
-        std::span<const gpu::GpuHitPoint> hit_points, uint32_t buckets, bool hit_points_per_epoch) {
+        std::span<const gpu::GpuHitPoint> hit_points, uint32_t buckets, bool hit_points_per_epoch,
+        size_t direct_points) {
         const size_t n = hit_points.size();
+        const size_t direct_count = direct_points > 0 ? direct_points : n;
         auto buffers = std::make_unique<JobBuffers>();
         Uploader uploader(context, stream);
         absl::Status status;
@@ -192,12 +196,18 @@ struct VulkanBackend::JobBuffers {
         make(buffers->tally, n * sizeof(gpu::GpuTallySum), MemoryUse::kDevice);
         make(buffers->tally_offsets, (n + 1) * sizeof(uint32_t), MemoryUse::kDevice);
         make(buffers->tally_entries, n * sizeof(gpu::GpuTallyEntry), MemoryUse::kKernelToHost);
-        make(buffers->direct, n * sizeof(gpu::vec4), MemoryUse::kDevice);
+        make(buffers->direct, direct_count * sizeof(gpu::vec4), MemoryUse::kDevice);
+        if (direct_points > 0) {
+            make(buffers->direct_points, direct_points * sizeof(gpu::GpuHitPoint),
+                 MemoryUse::kDevice);
+            make(buffers->direct_point_upload, direct_points * sizeof(gpu::GpuHitPoint),
+                 MemoryUse::kUpload);
+        }
         make(buffers->counters, sizeof(gpu::GpuCounters), MemoryUse::kDevice);
         make(buffers->radius_upload, n * sizeof(float), MemoryUse::kUpload);
         if (hit_points_per_epoch)
             make(buffers->hit_point_upload, n * sizeof(gpu::GpuHitPoint), MemoryUse::kUpload);
-        make(buffers->direct_readback, n * sizeof(gpu::vec4), MemoryUse::kReadback);
+        make(buffers->direct_readback, direct_count * sizeof(gpu::vec4), MemoryUse::kReadback);
         make(buffers->counters_readback, sizeof(gpu::GpuCounters), MemoryUse::kReadback);
         if (absl::Status finished = uploader.Finish(); status.ok()) status = finished;
         if (!status.ok()) return status;
@@ -226,6 +236,8 @@ struct VulkanBackend::JobBuffers {
         b[gpu::kBindingLightImageTables] = light_image_tables.Handle();
         b[gpu::kBindingTangents] = tangents.Handle();
         b[gpu::kBindingSheenTables] = sheen_tables.Handle();
+        b[gpu::kBindingDirectPoints] =
+            direct_points.Handle() != VK_NULL_HANDLE ? direct_points.Handle() : hit_points.Handle();
         return b;
     }
 };
@@ -254,11 +266,13 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
                          std::string(IntegratorName(job.spec->integrator)), " integrator"));
     buffers_.reset();
     kernels_.reset();
-    stochastic_film_.reset();
+    epoch_film_.reset();
     job_ = job;
-    if (job.spec != nullptr && job.spec->integrator == Integrator::kSppm) {
-        // sppm's hit points are traced on this machine's CPU every epoch, as the CPU backend
-        // does; the device holds one slot per pixel sample, black until the first epoch.
+    size_t direct_points = 0;
+    if (job.spec != nullptr && GathersAtHitPoints(job.spec->integrator)) {
+        // Each epoch's camera pass is traced on this machine's CPU, as the CPU backend does;
+        // the device holds one slot per pixel sample, black until the first epoch: sppm's hit
+        // points, or ppm's points of direct light.
         absl::StatusOr<CameraPassSettings> film = FilmFor(*job.spec, scene_);
         if (!film.ok()) return film.status();
         film->features = AnalyseFeatures(scene_, *job.emitters);
@@ -268,10 +282,13 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
             if (!tracer.ok()) return tracer.status();
             camera_tracer_ = std::move(*tracer);
         }
-        stochastic_film_ = *film;
+        epoch_film_ = *film;
         epoch_hit_points_.assign(
             size_t(film->width) * size_t(film->height) * size_t(film->samples_per_pixel), {});
-        job_.hit_points = epoch_hit_points_;
+        if (job.spec->integrator == Integrator::kSppm)
+            job_.hit_points = epoch_hit_points_;
+        else
+            direct_points = epoch_hit_points_.size();
     }
     if (job_.hit_points.size() >= (size_t{1} << 31))
         return absl::ResourceExhaustedError("over 2^31 hit points");
@@ -279,7 +296,9 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     if (!gpu_scene.ok()) return gpu_scene.status();
     const DeviceCapacity capacity{context_->Info().name, context_->Limits().maxStorageBufferRange,
                                   context_->Info().device_local_bytes};
-    if (absl::Status status = CheckJobFits(capacity, *gpu_scene, job_.hit_points.size());
+    // ppm's points of direct light take what a hit point takes, or less.
+    if (absl::Status status =
+            CheckJobFits(capacity, *gpu_scene, job_.hit_points.size() + direct_points);
         !status.ok())
         return status;
     features_ = gpu_scene->features;
@@ -305,7 +324,7 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
                                     gpu::kScanBlock, kMaxBuckets);
 
     absl::StatusOr<std::unique_ptr<JobBuffers>> buffers = JobBuffers::Create(
-        *context_, stream_, *gpu_scene, hit_points, buckets_, stochastic_film_.has_value());
+        *context_, stream_, *gpu_scene, hit_points, buckets_, SppmJob(), direct_points);
     if (!buffers.ok()) return buffers.status();
     kernels_->BindBuffers((*buffers)->Bindings());
     buffers_ = std::move(*buffers);
@@ -334,15 +353,16 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, std::span<const float> ra
     const size_t n = job_.hit_points.size();
     if (radius_sq.size() != n)
         return absl::InvalidArgumentError("one radius per hit point expected");
-    if (stochastic_film_) {
+    if (epoch_film_) {
         std::vector<HitPoint> traced =
-            RunCameraPass(scene_, *camera_tracer_, StochasticCameraPass(*stochastic_film_, epoch))
+            RunCameraPass(scene_, *camera_tracer_, StochasticCameraPass(*epoch_film_, epoch))
                 .hit_points;
-        PF_CHECK(traced.size() == n);
+        PF_CHECK(traced.size() == epoch_hit_points_.size());
         epoch_hit_points_ = std::move(traced);
-        job_.hit_points = epoch_hit_points_;
-        auto* mapped = static_cast<gpu::GpuHitPoint*>(buffers_->hit_point_upload.Mapped());
-        std::ranges::transform(epoch_hit_points_, mapped, ToGpu);
+        if (SppmJob()) job_.hit_points = epoch_hit_points_;
+        Buffer& upload = SppmJob() ? buffers_->hit_point_upload : buffers_->direct_point_upload;
+        std::ranges::transform(epoch_hit_points_, static_cast<gpu::GpuHitPoint*>(upload.Mapped()),
+                               ToGpu);
     }
     // Cells two of the largest radius wide, as the CPU grid: the largest over the hit points
     // the grid holds (a radius and a weight).
@@ -359,10 +379,15 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, std::span<const float> ra
     if (n > 0)
         vkCmdCopyBuffer(*commands, buffers_->radius_upload.Handle(), buffers_->radius_sq.Handle(),
                         1, &radii);
-    const VkBufferCopy points{.size = n * sizeof(gpu::GpuHitPoint)};
-    if (stochastic_film_ && n > 0)
-        vkCmdCopyBuffer(*commands, buffers_->hit_point_upload.Handle(),
-                        buffers_->hit_points.Handle(), 1, &points);
+    const VkBufferCopy points{.size = epoch_hit_points_.size() * sizeof(gpu::GpuHitPoint)};
+    if (epoch_film_ && !epoch_hit_points_.empty()) {
+        if (SppmJob())
+            vkCmdCopyBuffer(*commands, buffers_->hit_point_upload.Handle(),
+                            buffers_->hit_points.Handle(), 1, &points);
+        else
+            vkCmdCopyBuffer(*commands, buffers_->direct_point_upload.Handle(),
+                            buffers_->direct_points.Handle(), 1, &points);
+    }
     vkCmdFillBuffer(*commands, buffers_->grid_begin.Handle(), 0, VK_WHOLE_SIZE, 0);
     stream_.Barrier();
     gpu::GpuParams params = BaseParams();

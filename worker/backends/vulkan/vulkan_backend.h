@@ -75,9 +75,15 @@ private:
     SceneFeatures features_;
     std::unique_ptr<Kernels> kernels_;
     std::unique_ptr<JobBuffers> buffers_;
-    // sppm: the film each epoch's camera pass traces, on the CPU through camera_tracer_ (made
-    // for the first sppm job), and the epoch's hit points, which job_.hit_points views.
-    std::optional<CameraPassSettings> stochastic_film_;
+    // Whether the job is sppm's, whose hit points change every epoch.
+    bool SppmJob() const {
+        return job_.spec != nullptr && job_.spec->integrator == Integrator::kSppm;
+    }
+
+    // ppm, sppm: the film each epoch's camera pass traces, on the CPU through camera_tracer_
+    // (made for the first such job), and the pass's points: sppm's hit points, which
+    // job_.hit_points views, or ppm's points of direct light.
+    std::optional<CameraPassSettings> epoch_film_;
     std::unique_ptr<Tracer> camera_tracer_;
     std::vector<HitPoint> epoch_hit_points_;
     gpu::vec4 scene_sphere_{};

@@ -53,6 +53,7 @@ layout(std430, binding = kBindingTexels) readonly buffer Texels { vec4 texels[];
 layout(std430, binding = kBindingEmitters) readonly buffer Emitters { GpuEmitter emitters[]; };
 layout(std430, binding = kBindingEmitterCdf) readonly buffer EmitterCdf { float emitter_cdf[]; };
 layout(std430, binding = kBindingHitPoints) readonly buffer HitPoints { GpuHitPoint hit_points[]; };
+layout(std430, binding = kBindingDirectPoints) readonly buffer DirectPoints { GpuHitPoint direct_points[]; };
 layout(std430, binding = kBindingRadiusSq) readonly buffer RadiusSq { float radius_sq[]; };
 layout(std430, binding = kBindingGridBegin) buffer GridBegin { uint grid_begin[]; };
 layout(std430, binding = kBindingGridCursor) buffer GridCursor { uint grid_cursor[]; };

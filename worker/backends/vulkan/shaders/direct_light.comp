@@ -1,5 +1,6 @@
 #version 460
-// One direct-light sample for each hit point of a batch's slice (core/ppm/direct_light.cpp on
+// One direct-light sample for each point of a batch's slice of the epoch's camera samples
+// (direct_points: core/ppm/direct_light.cpp on
 // the CPU, with the same random numbers): a light sample with its shadow ray and, in a scene
 // with emitting triangles or an environment, a cosine-distributed ray that may find one,
 // weighed by the power heuristic, under a coat times what it lets through; the result times the
@@ -18,7 +19,7 @@ void main() {
     barrier();
     const uint index = params.first + gl_GlobalInvocationID.x;
     if (index < params.end) {
-        const GpuHitPoint point = hit_points[index];
+        const GpuHitPoint point = direct_points[index];
         Pcg32 rng = Pcg32Seeded(FamilySeed(params.seed_prefix, index));
         const vec3 normal = point.normal.xyz;
         LightSample light;
