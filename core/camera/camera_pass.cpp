@@ -259,7 +259,6 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
 
 CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, uint64_t epoch) {
     CameraPassSettings settings = film;
-    settings.seed = film.epoch_seed;
     settings.epoch = epoch;
     settings.stochastic = true;
     return settings;
@@ -267,7 +266,6 @@ CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, uint64_t
 
 CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, uint64_t epoch) {
     CameraPassSettings settings = film;
-    settings.seed = film.epoch_seed;
     settings.epoch = epoch;
     settings.emission_only = true;
     return settings;
@@ -294,8 +292,7 @@ float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& sce
 }
 
 absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& scene) {
-    CameraPassSettings film{spec.width, spec.height, spec.samples_per_pixel, spec.seed,
-                            PhotonSeed(spec)};
+    CameraPassSettings film{spec.width, spec.height, spec.samples_per_pixel, spec.seed};
     film.max_depth = spec.max_depth;
     const double aspect = scene.camera.aspect_ratio > 0 ? scene.camera.aspect_ratio : 1.0;
     if (film.width == 0 && film.height == 0) {

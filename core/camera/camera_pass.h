@@ -22,10 +22,6 @@ struct CameraPassSettings {
     int width = 512, height = 512;
     int samples_per_pixel = 4;  // k: hit points traced per pixel
     uint64_t seed = 0;
-    // The seed of every epoch's pass (StochasticCameraPass, EmissionCameraPass), which they
-    // take as their `seed`: the job's PhotonSeed, so that a render of another photon stream
-    // shares the fixed hit points and nothing else.
-    uint64_t epoch_seed = 0;
     // The pass's place in the run (PixelSampler::InEpoch), so that the passes of successive
     // epochs stay stratified together.
     uint64_t epoch = 0;

@@ -32,7 +32,8 @@ struct SceneCase {
     // for caustic-glass (issue 25): its tiny light (4000 W/m^2/sr) seen through the glass
     // sphere is found by an epoch's camera sample now and then with a value thousands of times
     // the pixel's, and the even/odd difference of such rare samples says anything from 0.3 to
-    // 2.2 times the error over the first hundred epochs. Its error must still fall.
+    // 2.2 times the error over the first hundred epochs, by the seed. Its error must still
+    // fall.
     bool estimate_tracks = true;
 };
 
