@@ -87,9 +87,10 @@ public:
         if (!backend_ || job_ != lease.grant.job) {
             backend_ = *CreateBackend("cpu", lease.grant.job->scene);
             job_ = lease.grant.job;
-            EXPECT_TRUE(
-                backend_->BeginJob({&job_->scene, &job_->emitters, *job_->hit_points, job_->seed})
-                    .ok());
+            EXPECT_TRUE(backend_
+                            ->BeginJob({&job_->scene, &job_->emitters, *job_->hit_points,
+                                        job_->seed, &job_->spec})
+                            .ok());
             epoch_ = UINT64_MAX;
         }
         if (epoch_ != lease.grant.epoch) {
