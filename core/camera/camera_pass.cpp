@@ -19,7 +19,7 @@ namespace pf {
 namespace {
 
 // The random numbers of camera paths past their first pair or two (PixelSampler), and the
-// pixel samples of the fixed and the stochastic passes.
+// camera samples of the fixed, the stochastic and the emission passes.
 constexpr uint64_t kCameraStream = 0x63616d657261ull;
 constexpr uint64_t kFixedSampleStream = 0x6669786564ull;
 constexpr uint64_t kStochasticSampleStream = 0x73707070ull;
