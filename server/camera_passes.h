@@ -15,5 +15,10 @@ namespace pf {
 // own); `film` the job's film, its features analysed. The scene's load errors, or Embree's.
 absl::StatusOr<EpochCameraPass> EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
                                                   const CameraPassSettings& film);
+// The same through `tracer`, an Embree scene of the payload's scene already built (a job's
+// preparation has one).
+EpochCameraPass EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
+                                  const CameraPassSettings& film,
+                                  std::shared_ptr<const Tracer> tracer);
 
 }  // namespace pf

@@ -96,12 +96,14 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
     if (absl::Status status = CheckReference(request.reference.get(), film->width, film->height);
         !status.ok())
         return status;
-    absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer =
+    absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> made =
         embree::EmbreeTracer::Create(payload->scene);
-    if (!tracer.ok()) return tracer.status();
+    if (!made.ok()) return made.status();
+    // One Embree scene for the probe, the camera passes and the forecast.
+    const std::shared_ptr<const Tracer> tracer = std::move(*made);
     if (film->features.Specular()) {
         const CausticProbe probe =
-            ProbeCaustics(payload->scene, payload->emitters, **tracer, request.spec.seed);
+            ProbeCaustics(payload->scene, payload->emitters, *tracer, request.spec.seed);
         film->features.caustics = probe.caustic > 0;
         spdlog::info(
             "{}: {:.2f}% of light paths reach a diffuse surface through specular bounces "
@@ -115,11 +117,10 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
         // Every epoch's camera pass: sppm's photons gather and its direct light is sampled there;
         // ppm's gives the epoch's emission (its photons gather at hit points traced once, its
         // direct light is sampled at the workers' stochastic passes).
-        absl::StatusOr<EpochCameraPass> passes = EpochCameraPasses(payload, *film);
-        if (!passes.ok()) return passes.status();
+        EpochCameraPass passes = EpochCameraPasses(payload, *film, tracer);
         CameraPassResult camera_pass = integrator == Integrator::kSppm
-                                           ? (*passes)(0)
-                                           : RunCameraPass(payload->scene, **tracer, *film);
+                                           ? passes(0)
+                                           : RunCameraPass(payload->scene, *tracer, *film);
         EstimateSettings settings =
             EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
         settings.stochastic = integrator == Integrator::kSppm;
@@ -128,12 +129,12 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
                      std::chrono::duration<double>(Clock::now() - start).count(),
                      settings.initial_radius);
         prepared.estimate = std::make_unique<ProgressiveEstimate>(std::move(camera_pass), settings,
-                                                                  std::move(*passes));
+                                                                  std::move(passes));
     } else {
         const PhotonMapSettings& maps = request.spec.photon_map;
         if (integrator == Integrator::kPm) {  // refused here rather than by every worker
             const PhotonMapForecast forecast = ForecastPhotonMaps(
-                payload->scene, payload->emitters, **tracer, film->features, maps, payload->seed);
+                payload->scene, payload->emitters, *tracer, film->features, maps, payload->seed);
             if (absl::Status status = CheckPhotonMapsFit(forecast, maps, AvailableMemoryBytes());
                 !status.ok())
                 return status;
