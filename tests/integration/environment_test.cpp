@@ -199,10 +199,11 @@ double CoatedAlbedo(double mu) {
         for (int i = 0; i < kSteps; ++i) sum += f((i + 0.5) / kSteps);
         return sum / kSteps;
     };
-    const double escape = integrate([](double m) {
+    // Both hemisphere integrals are constants: computed once, not at each of the cube's rays.
+    static const double escape = integrate([](double m) {
         return 2 * m * std::exp(-kCoatThickness / m) * (1 - gpu::FresnelDielectric(m, kCoatIor));
     });
-    const double turned_back = integrate([](double m) {
+    static const double turned_back = integrate([](double m) {
         return 2 * m * std::exp(-2 * kCoatThickness / m) * gpu::FresnelDielectric(m, kCoatIor);
     });
     const double fresnel = gpu::FresnelDielectric(mu, 1 / kCoatIor);
