@@ -47,7 +47,7 @@ absl::StatusOr<Rate> Measure(const std::string& backend_name, const std::string&
     const CameraPassResult camera_pass = RunCameraPass(*scene, *tracer, film);
     const ProgressiveEstimate estimate(camera_pass,
                                        EstimateFor(spec, camera_pass, *scene, scene_name),
-                                       TracedCameraPasses(*scene, tracer, film, Integrator::kPpm));
+                                       TracedCameraPasses(*scene, tracer, film, spec));
     const Emitters emitters(*scene);
     absl::StatusOr<std::unique_ptr<Backend>> backend = CreateBackend(backend_name, *scene);
     if (!backend.ok()) return backend.status();
@@ -55,7 +55,8 @@ absl::StatusOr<Rate> Measure(const std::string& backend_name, const std::string&
             (*backend)->BeginJob({&*scene, &emitters, estimate.HitPoints(), 1, &spec});
         !status.ok())
         return status;
-    if (absl::Status status = (*backend)->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq());
+    if (absl::Status status =
+            (*backend)->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq(), nullptr);
         !status.ok())
         return status;
     const std::vector<BatchSpec> batches = estimate.EpochBatches();

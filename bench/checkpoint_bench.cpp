@@ -28,7 +28,7 @@ double Seconds(std::chrono::steady_clock::time_point start) {
 // Folds `batches` of the current epoch's batches, run by `backend`.
 void RunBatches(Backend& backend, ProgressiveEstimate& estimate, size_t batches) {
     if (estimate.BatchesFolded() == 0)
-        (void)backend.BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq());
+        (void)backend.BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq(), nullptr);
     const std::vector<BatchSpec> specs = estimate.EpochBatches();
     absl::StatusOr<std::vector<BatchResult>> results =
         backend.RunBatches(std::span(specs).subspan(estimate.BatchesFolded(), batches));
@@ -75,7 +75,7 @@ int Run() {
     const CameraPassSettings film = *FilmFor(spec, scene);
     CameraPassResult camera_pass = RunCameraPass(scene, *tracer, film);
     ProgressiveEstimate estimate(camera_pass, EstimateFor(spec, camera_pass, scene, "cornell"),
-                                 TracedCameraPasses(scene, tracer, film, Integrator::kPpm));
+                                 TracedCameraPasses(scene, tracer, film, spec));
     const Emitters emitters(scene);
     std::unique_ptr<Backend> backend = std::move(*CreateBackend("cpu", scene));
     (void)backend->BeginJob({&scene, &emitters, estimate.HitPoints(), 1, &spec});

@@ -58,11 +58,11 @@ Recorded& Record() {
     r.camera_pass = RunCameraPass(r.scene, *tracer, film);
     r.settings = EstimateFor(spec, r.camera_pass, r.scene, "cornell-box");
     ProgressiveEstimate estimate(r.camera_pass, r.settings,
-                                 TracedCameraPasses(r.scene, tracer, film, Integrator::kPpm));
+                                 TracedCameraPasses(r.scene, tracer, film, spec));
     const Emitters emitters(r.scene);
     std::unique_ptr<Backend> backend = std::move(*CreateBackend("cpu", r.scene));
     (void)backend->BeginJob({&r.scene, &emitters, estimate.HitPoints(), 1, &spec});
-    (void)backend->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq());
+    (void)backend->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq(), nullptr);
     const std::vector<BatchSpec> specs = estimate.EpochBatches();
     {
         tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
@@ -77,7 +77,7 @@ Recorded& Record() {
     // real epochs later they have spread out as in any long run.
     estimate.MergeEpoch(r.results);
     for (int epoch = 1; epoch < 4; ++epoch) {
-        (void)backend->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq());
+        (void)backend->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq(), nullptr);
         estimate.MergeEpoch(*backend->RunBatches(estimate.EpochBatches()));
     }
     {

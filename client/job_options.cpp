@@ -147,14 +147,13 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
         ->excludes(target_error);
     command
         ->add_option("--photons-per-batch", s->layout.photons_per_batch,
-                     "Photon paths per batch, the unit of work")
-        ->default_val(s->layout.photons_per_batch)
+                     "Photon paths per batch, the unit of work (default: ppm 524288; sppm one "
+                     "photon per camera sample of an epoch, in batches of 32768)")
         ->check(WholeNumber(1, kMaxPhotonsPerBatch));
     command
         ->add_option("--batches-per-epoch", s->layout.batches_per_epoch,
                      "Batches per epoch; radii shrink once per epoch, and a farm runs at most this "
-                     "many batches at once")
-        ->default_val(s->layout.batches_per_epoch)
+                     "many batches at once (default: 8; sppm as many as its photons need)")
         ->check(WholeNumber(1, kMaxBatchesPerEpoch));
     // capture_default_str, not default_val: default_val would re-parse "0.666667" into alpha,
     // and the render would no longer match a farm job left at the default 2/3.
@@ -163,7 +162,8 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
         ->check(FiniteRange(1e-9, 1.0));
     command
         ->add_option("--radius", s->initial_radius,
-                     "Initial search radius R0, world units (default: one pixel footprint)")
+                     "Initial search radius R0, world units, for every hit point (default: each "
+                     "its own, from a pilot photon map's density)")
         ->check(FinitePositive());
     command
         ->add_option("--spp", s->samples_per_pixel,

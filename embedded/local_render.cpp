@@ -68,6 +68,7 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings,
         outcome->initial_radius = submitted->initial_radius;
         outcome->scene_features = submitted->scene_features;
         const std::shared_ptr<Job> job = *coordinator.FindJob(submitted->job_id);
+        outcome->job = job->Spec();  // the film size and layout resolved
 
         // The worker leases a whole epoch at a time: its batches' chunks run in parallel on
         // this arena.
@@ -75,8 +76,9 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings,
                                {device->description, static_cast<uint32_t>(arena.max_concurrency()),
                                 std::string(kPhotonfarmVersion), ""},
                                0.0);
-        const uint64_t epoch_chunks = uint64_t{spec.layout.batches_per_epoch} *
-                                      ChunkCount(MakeBatchSpec(spec.layout, 0, 0, 0));
+        const BatchLayout& layout = job->Spec().layout;  // resolved
+        const uint64_t epoch_chunks =
+            uint64_t{layout.batches_per_epoch} * ChunkCount(MakeBatchSpec(layout, 0, 0, 0));
         WorkerLoop worker(source, settings.backend,
                           static_cast<uint32_t>(std::min<uint64_t>(epoch_chunks, UINT32_MAX)));
         uint64_t version = job->Version();

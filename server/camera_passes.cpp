@@ -18,7 +18,7 @@ EpochCameraPass EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
                                   std::shared_ptr<const Tracer> tracer) {
     // The passes keep the payload, and so its scene, alive.
     EpochCameraPass passes =
-        TracedCameraPasses(payload->scene, std::move(tracer), film, payload->spec.integrator);
+        TracedCameraPasses(payload->scene, std::move(tracer), film, payload->spec);
     return [payload = std::move(payload), passes = std::move(passes)](uint64_t epoch) {
         return passes(epoch);
     };

@@ -346,8 +346,12 @@ absl::StatusOr<CoordinatorLease> Coordinator::Lease(const std::string& worker_id
             Job::Lease granted =
                 job->LeaseBatches(worker_id, chunks, now, now + Duration(options_.lease_seconds));
             if (!granted.batches.empty()) {
-                lease.grant = {job->Id(), std::move(granted.payload), granted.epoch->epoch,
-                               granted.epoch->radius_sq, std::move(granted.batches)};
+                lease.grant = {job->Id(),
+                               std::move(granted.payload),
+                               granted.epoch->epoch,
+                               granted.epoch->radius_sq,
+                               std::move(granted.batches),
+                               granted.epoch->hit_points};
                 lease.epoch = std::move(granted.epoch);
                 lease.job = std::move(job);
                 return lease;

@@ -102,7 +102,9 @@ std::shared_ptr<const Blob> Job::FindBlob(const std::string& digest) const {
 
 void Job::StartEpochLocked(std::vector<float> radius_sq) {
     const uint64_t epoch = estimate_->Epoch();
-    epoch_ = std::make_shared<const EpochInputs>(epoch, std::move(radius_sq));
+    auto inputs = std::make_shared<EpochInputs>(epoch, std::move(radius_sq));
+    if (estimate_->Kind() == Integrator::kSppm) inputs->hit_points = estimate_->SharedHitPoints();
+    epoch_ = std::move(inputs);
     slots_.clear();
     for (const BatchSpec& spec : estimate_->EpochBatches()) slots_.push_back({spec});
     // A job restored from a checkpoint may have folded some of the epoch's batches already.

@@ -60,6 +60,9 @@ struct EpochInputs {
     uint64_t epoch;
     std::shared_ptr<const std::vector<float>> radius_sq;
     LazyBlob blob;  // EncodeFloats(radius_sq)
+    // sppm: the epoch's camera pass's hit points (WorkGrant::epoch_hit_points); null for the
+    // others.
+    std::shared_ptr<const std::vector<HitPoint>> hit_points;
 };
 
 // What a job's constructor needs: prepared by Coordinator::Submit (scene loaded, camera pass run).
@@ -90,6 +93,8 @@ public:
     const std::string& Owner() const { return owner_; }
     int Priority() const { return priority_; }
     Integrator Kind() const { return spec_.integrator; }
+    // Its settings, the film size and layout resolved (PrepareJob).
+    const JobSpec& Spec() const { return spec_; }
     // The hit points batches gather at (0 for the integrators that render pixels).
     uint64_t HitPointCount() const { return hit_point_count_; }
     // What a batch's sample slice indexes: hit points, or pixels (Estimate::ItemCount).

@@ -17,6 +17,7 @@
 #include "core/estimate/pixel_estimate.h"
 #include "core/estimate/progressive_estimate.h"
 #include "core/film/image_metrics.h"
+#include "core/pm/density_radii.h"
 #include "core/pm/photon_map.h"
 #include "core/ppm/caustic_probe.h"
 #include "core/scene/scene_features.h"
@@ -58,11 +59,6 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
         return absl::ResourceExhaustedError(absl::StrCat(
             "scene: the bundle holds ", bytes, " bytes, over this coordinator's limit of ",
             client_limits.max_bundle_bytes, " (--max-bundle-bytes)"));
-    if (request.spec.layout.photons_per_batch > client_limits.max_photons_per_batch)
-        return absl::ResourceExhaustedError(absl::StrCat(
-            SettingName(names, "settings.photons_per_batch", "--photons-per-batch"), ": ",
-            request.spec.layout.photons_per_batch, " is over this coordinator's limit of ",
-            client_limits.max_photons_per_batch, " (--max-photons-per-batch)"));
     if (request.name.empty())
         request.name = std::filesystem::path(request.bundle.main_file).filename().string();
     absl::StatusOr<Scene> scene = LoadScene(
@@ -78,9 +74,15 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
                             "%d (--max-render-pixels)",
                             SettingName(names, "settings.width", "--width"), film->width,
                             film->height, pixels, client_limits.max_render_pixels));
-    // The film size resolved: workers that render pixels need it.
+    // The film size resolved (workers that render pixels need it), and with it the layout.
     request.spec.width = film->width;
     request.spec.height = film->height;
+    request.spec.layout = ResolvedLayout(request.spec, uint64_t(film->width) * film->height);
+    if (request.spec.layout.photons_per_batch > client_limits.max_photons_per_batch)
+        return absl::ResourceExhaustedError(absl::StrCat(
+            SettingName(names, "settings.photons_per_batch", "--photons-per-batch"), ": ",
+            request.spec.layout.photons_per_batch, " is over this coordinator's limit of ",
+            client_limits.max_photons_per_batch, " (--max-photons-per-batch)"));
     auto payload = std::make_shared<JobPayload>(std::move(*scene), nullptr, request.spec);
     if (!payload->emitters.HasPower())
         return absl::InvalidArgumentError(
@@ -124,12 +126,36 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
         EstimateSettings settings =
             EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
         settings.stochastic = integrator == Integrator::kSppm;
+        const double camera_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+        // R0 left open (no --radius, no pbrt "radius"): each hit point's from the photons.
+        std::vector<float> radii;
+        if (request.spec.initial_radius == 0 && payload->scene.hints.initial_radius == 0 &&
+            !camera_pass.hit_points.empty()) {
+            const auto pilot_start = Clock::now();
+            DensityRadiiSettings density;
+            density.first_epoch_photons = settings.layout.PhotonsPerEpoch();
+            density.seed = request.spec.seed;
+            density.max_depth = request.spec.max_depth;
+            const double footprint_radius = settings.initial_radius;
+            radii = DensityInitialRadii(payload->scene, payload->emitters, *tracer, film->features,
+                                        camera_pass.hit_points, camera_pass.footprint,
+                                        float(settings.initial_radius), density);
+            if (const double median = MedianRadius(radii, camera_pass.footprint); median > 0)
+                settings.initial_radius = median;
+            settings.min_radius = std::min(settings.min_radius, settings.initial_radius);
+            for (float& radius : radii)
+                radius = std::max(radius, static_cast<float>(settings.min_radius));
+            spdlog::info(
+                "{}: initial radii from a pilot photon map in {:.2f} s (median pixel "
+                "footprint {:.4g})",
+                request.name, std::chrono::duration<double>(Clock::now() - pilot_start).count(),
+                footprint_radius);
+        }
         spdlog::info("{}: camera pass: {}x{}, {} hit points in {:.2f} s, initial radius {:.4g}",
                      request.name, film->width, film->height, camera_pass.hit_points.size(),
-                     std::chrono::duration<double>(Clock::now() - start).count(),
-                     settings.initial_radius);
+                     camera_seconds, settings.initial_radius);
         prepared.estimate = std::make_unique<ProgressiveEstimate>(std::move(camera_pass), settings,
-                                                                  std::move(passes));
+                                                                  std::move(passes), radii);
     } else {
         const PhotonMapSettings& maps = request.spec.photon_map;
         if (integrator == Integrator::kPm) {  // refused here rather than by every worker

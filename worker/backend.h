@@ -38,8 +38,10 @@ public:
     // Begins epoch `epoch`: sets its squared search radii, one per hit point (copied); none
     // for the integrators that render pixels. For stochastic progressive photon mapping the
     // backend first traces the epoch's hit points itself (StochasticCameraPass), as the
-    // coordinator does, rather than receiving them.
-    virtual absl::Status BeginEpoch(uint64_t epoch, std::span<const float> radius_sq) = 0;
+    // coordinator does, unless `traced` gives them (copied): the coordinator's own pass, where
+    // it runs in this process (WorkGrant::epoch_hit_points). Null otherwise.
+    virtual absl::Status BeginEpoch(uint64_t epoch, std::span<const float> radius_sq,
+                                    const std::vector<HitPoint>* traced) = 0;
     // Runs the batches, in parallel where the backend can; results in the order of `specs`.
     // Errors are the device's (a lost GPU), never the batches'.
     virtual absl::StatusOr<std::vector<BatchResult>> RunBatches(

@@ -257,6 +257,14 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     return result;
 }
 
+CameraPassSettings EpochFilm(const CameraPassSettings& film, const JobSpec& spec) {
+    const uint64_t pixels = uint64_t(film.width) * uint64_t(film.height);
+    CameraPassSettings epoch_film = film;
+    epoch_film.samples_per_pixel = EpochSamplesPerPixel(spec.integrator, film.samples_per_pixel,
+                                                        ResolvedLayout(spec, pixels), pixels);
+    return epoch_film;
+}
+
 CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, uint64_t epoch) {
     CameraPassSettings settings = film;
     settings.epoch = epoch;
@@ -272,13 +280,14 @@ CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, uint64_t e
 }
 
 EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,
-                                   const CameraPassSettings& film, Integrator integrator) {
-    const bool sppm = integrator == Integrator::kSppm;
-    return [&scene, tracer = std::move(tracer), film, sppm](uint64_t epoch) {
-        return RunCameraPass(
-            scene, *tracer,
-            sppm ? StochasticCameraPass(film, epoch) : EmissionCameraPass(film, epoch));
-    };
+                                   const CameraPassSettings& film, const JobSpec& spec) {
+    const bool sppm = spec.integrator == Integrator::kSppm;
+    return
+        [&scene, tracer = std::move(tracer), film = EpochFilm(film, spec), sppm](uint64_t epoch) {
+            return RunCameraPass(
+                scene, *tracer,
+                sppm ? StochasticCameraPass(film, epoch) : EmissionCameraPass(film, epoch));
+        };
 }
 
 float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& scene) {

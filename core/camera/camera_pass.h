@@ -58,6 +58,11 @@ inline constexpr int kCameraSplits = 2;
 CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                                const CameraPassSettings& settings);
 
+// The film of the epoch passes of job `spec`: `film` (FilmFor) with the camera samples a pixel
+// an epoch of its integrator and layout (EpochSamplesPerPixel). The coordinator and every
+// worker start from it.
+CameraPassSettings EpochFilm(const CameraPassSettings& film, const JobSpec& spec);
+
 // Stochastic progressive photon mapping's pass of `epoch` for a job: the film and seed of
 // `spec` (its size resolved), its camera samples the pixel's next k. The coordinator and every
 // worker trace the same hit points from it.
@@ -75,10 +80,10 @@ CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, uint64_t e
 // ppm the EmissionCameraPass.
 using EpochCameraPass = std::function<CameraPassResult(uint64_t epoch)>;
 
-// Each epoch's pass of `film` for `integrator` (ppm or sppm) over `scene` through `tracer`,
-// which the function keeps alive; `scene` must outlive it.
+// Each epoch's pass of `film` (its EpochFilm taken here) for job `spec` (ppm or sppm) over
+// `scene` through `tracer`, which the function keeps alive; `scene` must outlive it.
 EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,
-                                   const CameraPassSettings& film, Integrator integrator);
+                                   const CameraPassSettings& film, const JobSpec& spec);
 
 // The initial search radius R0: the median pixel footprint over the hit points, capped at 1%
 // of the scene's diagonal. A disk of that radius covers about pi pixels, so with k = 4 hit

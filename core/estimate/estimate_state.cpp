@@ -15,8 +15,9 @@ constexpr uint32_t kMagic = 0x53455046;       // "PFES" in a little-endian file
 constexpr uint32_t kFixedMagic = 0x50485046;  // "PFHP": the hit points kept apart
 // 4: settings and counters first, then the arrays packed (core/util/packed_arrays.h), the hit
 // points among them or kept apart (SaveFixed); emission and direct light summed per pixel over
-// each epoch's camera pass, for ppm too.
-constexpr uint32_t kVersion = 4;
+// each epoch's camera pass, for ppm too. 5: ppm's epoch passes take their own camera samples a
+// pixel (EpochSamplesPerPixel), not its k.
+constexpr uint32_t kVersion = 5;
 
 absl::Status Corrupt(const std::string& what) {
     return absl::DataLossError(absl::StrCat("estimate state: ", what));
@@ -117,7 +118,9 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
         height > 32768)
         return Corrupt("image size");
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
-    const uint64_t slots = pixels * uint64_t(settings.samples_per_pixel);
+    const uint64_t slots = pixels * uint64_t(EpochSamplesPerPixel(
+                                        settings.stochastic ? Integrator::kSppm : Integrator::kPpm,
+                                        settings.samples_per_pixel, settings.layout, pixels));
     if (slots > kMaxHitPoints) return Corrupt("more camera samples than a job may have");
     uint8_t light_reached = 0, epoch_light_reached = 0;
     if (!(in.Value(&e.epoch_) && in.Value(&e.photons_emitted_) &&

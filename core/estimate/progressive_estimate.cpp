@@ -14,7 +14,8 @@ namespace pf {
 
 ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
                                          const EstimateSettings& settings,
-                                         EpochCameraPass next_passes)
+                                         EpochCameraPass next_passes,
+                                         std::span<const float> initial_radii)
     : next_passes_(std::move(next_passes)), settings_(settings) {
     PF_CHECK(next_passes_);
     PF_CHECK(settings.alpha > 0 && settings.alpha <= 1);
@@ -26,7 +27,9 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
     emission_even_.assign(pixels, Rgbd(0.0));
     direct_sum_.assign(pixels, Rgbd(0.0));
     direct_even_.assign(pixels, Rgbd(0.0));
-    epoch_direct_.assign(pixels * size_t(settings.samples_per_pixel), Rgb(0.0f));
+    epoch_direct_.assign(pixels * size_t(EpochSamplesPerPixel(Kind(), settings.samples_per_pixel,
+                                                              settings.layout, pixels)),
+                         Rgb(0.0f));
     if (settings.stochastic) {
         BeginEpochPass(std::move(camera_pass));
     } else {
@@ -36,6 +39,14 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
     }
     const double radius_sq = settings.initial_radius * settings.initial_radius;
     points_.assign(hit_points_->size(), PointEstimate{0.0, radius_sq, Rgbd(0.0)});
+    if (!initial_radii.empty()) {
+        PF_CHECK(initial_radii.size() == points_.size());
+        for (size_t i = 0; i < points_.size(); ++i) {
+            const double radius = initial_radii[i];
+            PF_CHECK(radius >= settings.min_radius && std::isfinite(radius));
+            points_[i].radius_sq = radius * radius;
+        }
+    }
     flux_even_.assign(hit_points_->size(), Rgbd(0.0));
     counts_.assign(hit_points_->size(), GatherCounts{});
     epoch_photons_.assign(hit_points_->size(), 0);
@@ -147,9 +158,9 @@ void ProgressiveEstimate::FinishEpoch() {
     epoch_photons_emitted_ = 0;
     epoch_photons_emitted_even_ = 0;
     batches_folded_ = 0;
-    // Each pixel's emission and its k slots' direct samples: the epoch's estimate of what
-    // photons do not carry.
-    const size_t k = static_cast<size_t>(settings_.samples_per_pixel);
+    // Each pixel's emission and its slots' direct samples: the epoch's estimate of what photons
+    // do not carry.
+    const size_t k = epoch_direct_.size() / emission_sum_.size();
     for (size_t p = 0; p < emission_sum_.size(); ++p) {
         Rgbd direct(0.0);
         for (size_t s = p * k; s < (p + 1) * k; ++s) direct += Rgbd(epoch_direct_[s]);
@@ -247,7 +258,8 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
 
 EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass,
                              const Scene& scene, const std::string& scene_name) {
-    EstimateSettings estimate{spec.alpha, spec.initial_radius, spec.samples_per_pixel, spec.layout};
+    EstimateSettings estimate{spec.alpha, spec.initial_radius, spec.samples_per_pixel,
+                              ResolvedLayout(spec, camera_pass.emission.pixels.size())};
     if (estimate.initial_radius == 0) estimate.initial_radius = scene.hints.initial_radius;
     if (estimate.initial_radius == 0)
         estimate.initial_radius = DefaultInitialRadius(camera_pass, scene);

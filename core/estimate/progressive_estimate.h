@@ -38,7 +38,7 @@ struct GatherCounts {
 
 struct EstimateSettings {
     double alpha = kDefaultAlpha;  // radius reduction ratio, (0, 1]
-    double initial_radius = 0;     // R0, world units, > 0
+    double initial_radius = 0;     // R0, world units, > 0 (the median where each point has its own)
     int samples_per_pixel = 4;     // k: camera paths per pixel (the resolve divides by it)
     BatchLayout layout;
     double min_radius = 0;  // radii shrink no further (ShrinkRatio), world units, <= R0
@@ -57,9 +57,11 @@ EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera
 class ProgressiveEstimate final : public Estimate {
 public:
     // `camera_pass`: the hit points photons gather at (for sppm, epoch 0's pass); each epoch's
-    // pass comes from `next_passes` (for ppm epoch 0's too, here).
+    // pass comes from `next_passes` (for ppm epoch 0's too, here). `initial_radii`: R0 of each
+    // hit point (sppm: of each slot), world units (DensityInitialRadii), none below the
+    // settings' min_radius; empty: the settings' initial_radius for all.
     ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings,
-                        EpochCameraPass next_passes);
+                        EpochCameraPass next_passes, std::span<const float> initial_radii = {});
     // An estimate restored by Load needs its camera passes again.
     void SetEpochCameraPass(EpochCameraPass next_passes) { next_passes_ = std::move(next_passes); }
 
@@ -73,7 +75,8 @@ public:
     Integrator Kind() const override {
         return settings_.stochastic ? Integrator::kSppm : Integrator::kPpm;
     }
-    // The slots of an epoch's camera pass, which the batches' direct-light slices index.
+    // The slots of an epoch's camera pass (pixels x EpochSamplesPerPixel), which the batches'
+    // direct-light slices index.
     uint64_t ItemCount() const override { return epoch_direct_.size(); }
     uint64_t Epoch() const override {
         return epoch_;
@@ -81,7 +84,9 @@ public:
     uint64_t PhotonsEmitted() const override { return photons_emitted_; }  // over the merged epochs
     // Each epoch's pass, and ppm's fixed hit points' paths once.
     uint64_t CameraSamples() const override {
-        return epoch_direct_.size() * (settings_.stochastic ? epoch_ : epoch_ + 1);
+        const uint64_t fixed =
+            settings_.stochastic ? 0 : direct_sum_.size() * uint64_t(settings_.samples_per_pixel);
+        return fixed + epoch_direct_.size() * epoch_;
     }
     double InitialRadius() const override { return settings_.initial_radius; }
     // Photon paths and direct samples the batches dropped for NaN or Inf, over the merged

@@ -11,17 +11,25 @@
 
 namespace pf {
 
-// Defaults: batches large enough that sorting a batch's deposits gives the gather cache
-// locality (2^18 -> 2^19 photons: +14% end to end at 512x512), and epochs of 2^22 photons, a
-// second or two on two cores, so radii shrink and progress shows often while the per-epoch
-// grid rebuild stays a small share of the time. The layout, not the thread count, fixes the
-// image for a seed.
+// An epoch's batches and their photons. 0 leaves a count to the job (ResolvedLayout,
+// core/job/job_spec.h: it depends on the integrator and the film). The layout, not the thread
+// count, fixes the image for a seed.
 struct BatchLayout {
-    uint32_t photons_per_batch = 1u << 19;
-    uint32_t batches_per_epoch = 8;
+    uint32_t photons_per_batch = 0;
+    uint32_t batches_per_epoch = 0;
 
     uint64_t PhotonsPerEpoch() const { return uint64_t{photons_per_batch} * batches_per_epoch; }
+    bool Resolved() const { return photons_per_batch > 0 && batches_per_epoch > 0; }
 };
+
+// ppm's defaults (and path's and pm's batch count): batches large enough that sorting a
+// batch's deposits gives the gather cache locality (2^18 -> 2^19 photons: +14% end to end at
+// 512x512), and epochs of 2^22 photons, a second or two on two cores, so radii shrink and
+// progress shows often while the per-epoch grid rebuild stays a small share of the time.
+inline constexpr uint32_t kDefaultPhotonsPerBatch = 1u << 19;
+inline constexpr uint32_t kDefaultBatchesPerEpoch = 8;
+// sppm's batches when left open: small, since its epochs are (one photon per camera sample).
+inline constexpr uint32_t kSppmPhotonsPerBatch = 1u << 15;
 
 // A batch runs as chunks of this many photons (the last may be shorter): a worker spreads a
 // big batch over its threads, chunk by chunk, and sums the chunks' tallies in chunk order, so

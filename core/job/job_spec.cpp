@@ -26,10 +26,11 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
         return invalid("--alpha", "settings.alpha", "must lie in (0, 1]");
     if (!(s.initial_radius >= 0 && std::isfinite(s.initial_radius)))
         return invalid("--radius", "settings.initial_radius", "must be positive and finite");
-    if (s.layout.photons_per_batch < 1 || s.layout.photons_per_batch > kMaxPhotonsPerBatch)
+    // 0: left to the job (ResolvedLayout).
+    if (s.layout.photons_per_batch > kMaxPhotonsPerBatch)
         return invalid("--photons-per-batch", "settings.photons_per_batch",
                        absl::StrCat("must lie in [1, ", kMaxPhotonsPerBatch, "]"));
-    if (s.layout.batches_per_epoch < 1 || s.layout.batches_per_epoch > kMaxBatchesPerEpoch)
+    if (s.layout.batches_per_epoch > kMaxBatchesPerEpoch)
         return invalid("--batches-per-epoch", "settings.batches_per_epoch",
                        absl::StrCat("must lie in [1, ", kMaxBatchesPerEpoch, "]"));
     if (s.photon_budget > kMaxPhotonBudget)
@@ -128,6 +129,43 @@ absl::Status CheckPhotonMapSettings(const PhotonMapSettings& m, SettingNames nam
     if (static_cast<uint32_t>(m.index) > static_cast<uint32_t>(PhotonIndex::kGrid))
         return invalid("--photon-index", "settings.photon_map.index", "is not a photon index");
     return absl::OkStatus();
+}
+
+BatchLayout ResolvedLayout(const JobSpec& spec, uint64_t pixels) {
+    BatchLayout layout = spec.layout;
+    if (spec.integrator != Integrator::kSppm) {
+        if (layout.photons_per_batch == 0) layout.photons_per_batch = kDefaultPhotonsPerBatch;
+        if (layout.batches_per_epoch == 0) layout.batches_per_epoch = kDefaultBatchesPerEpoch;
+        return layout;
+    }
+    const uint64_t samples = std::max<uint64_t>(pixels, 1) * uint64_t(spec.samples_per_pixel);
+    if (layout.batches_per_epoch == 0) {
+        const uint64_t per_batch =
+            layout.photons_per_batch > 0 ? layout.photons_per_batch : kSppmPhotonsPerBatch;
+        layout.batches_per_epoch = static_cast<uint32_t>(std::clamp<uint64_t>(
+            (samples + per_batch - 1) / per_batch,
+            layout.photons_per_batch > 0 ? 1 : kDefaultBatchesPerEpoch, kMaxBatchesPerEpoch));
+    }
+    if (layout.photons_per_batch == 0)
+        layout.photons_per_batch = static_cast<uint32_t>(std::clamp<uint64_t>(
+            (samples + layout.batches_per_epoch - 1) / layout.batches_per_epoch, 1,
+            kMaxPhotonsPerBatch));
+    return layout;
+}
+
+int EpochSamplesPerPixel(Integrator integrator, int samples_per_pixel, const BatchLayout& layout,
+                         uint64_t pixels) {
+    if (integrator == Integrator::kSppm) return samples_per_pixel;
+    const uint64_t per_pixel = layout.PhotonsPerEpoch() / (2 * std::max<uint64_t>(pixels, 1));
+    int samples = 1;
+    while (samples < 64 && uint64_t(samples) * 2 <= per_pixel) samples *= 2;
+    return samples;
+}
+
+int EpochSamplesPerPixel(const JobSpec& spec) {
+    const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
+    return EpochSamplesPerPixel(spec.integrator, spec.samples_per_pixel,
+                                ResolvedLayout(spec, pixels), pixels);
 }
 
 uint64_t PhotonSeed(const JobSpec& spec) {

@@ -44,8 +44,10 @@ std::vector<std::string> ApplySceneSettings(const SceneRenderSettings& scene,
         if (scene.photons_per_iteration > 0 && !given.layout) {
             // The layout's batches, fewer where the epoch has fewer photons; photons rounded up
             // to a whole number per batch.
-            const uint64_t batches =
-                std::min<uint64_t>(spec->layout.batches_per_epoch, scene.photons_per_iteration);
+            const uint64_t batches = std::min<uint64_t>(spec->layout.batches_per_epoch > 0
+                                                            ? spec->layout.batches_per_epoch
+                                                            : kDefaultBatchesPerEpoch,
+                                                        scene.photons_per_iteration);
             const uint64_t per_batch = std::min<uint64_t>(
                 (scene.photons_per_iteration + batches - 1) / batches, kMaxPhotonsPerBatch);
             spec->layout.batches_per_epoch = static_cast<uint32_t>(batches);

@@ -47,6 +47,10 @@ struct WorkGrant {
     uint64_t epoch = 0;
     std::shared_ptr<const std::vector<float>> radius_sq;  // the epoch's, one per hit point
     std::vector<BatchSpec> batches;                       // empty: no work now
+    // sppm: the epoch's hit points as the coordinator traced them, where it runs in this
+    // process (the embedded render), so the worker need not trace the same pass again; null
+    // across the network (workers trace their own: the wire carries radii only).
+    std::shared_ptr<const std::vector<HitPoint>> epoch_hit_points;
 };
 
 // photonfarm's version: a coordinator accepts only workers of its own version, since every

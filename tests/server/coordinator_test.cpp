@@ -288,8 +288,11 @@ TEST(CoordinatorTest, SubmittedSettingsOutOfRangeAreRefusedNamingTheField) {
          [](JobRequest& r) { r.spec.target_error = std::numeric_limits<double>::infinity(); }},
         {"settings.alpha", [](JobRequest& r) { r.spec.alpha = 0; }},
         {"settings.initial_radius", [](JobRequest& r) { r.spec.initial_radius = -1; }},
-        {"settings.photons_per_batch", [](JobRequest& r) { r.spec.layout.photons_per_batch = 0; }},
-        {"settings.batches_per_epoch", [](JobRequest& r) { r.spec.layout.batches_per_epoch = 0; }},
+        // (0 leaves a count to the coordinator: ResolvedLayout.)
+        {"settings.photons_per_batch",
+         [](JobRequest& r) { r.spec.layout.photons_per_batch = kMaxPhotonsPerBatch + 1; }},
+        {"settings.batches_per_epoch",
+         [](JobRequest& r) { r.spec.layout.batches_per_epoch = kMaxBatchesPerEpoch + 1; }},
         {"settings.samples_per_pixel", [](JobRequest& r) { r.spec.samples_per_pixel = 0; }},
         {"settings.width", [](JobRequest& r) { r.spec.width = -3; }},
         {"settings.priority", [](JobRequest& r) { r.priority = 1 << 30; }},

@@ -94,7 +94,8 @@ public:
             epoch_ = UINT64_MAX;
         }
         if (epoch_ != lease.grant.epoch) {
-            EXPECT_TRUE(backend_->BeginEpoch(lease.grant.epoch, *lease.grant.radius_sq).ok());
+            EXPECT_TRUE(
+                backend_->BeginEpoch(lease.grant.epoch, *lease.grant.radius_sq, nullptr).ok());
         }
         epoch_ = lease.grant.epoch;
         return *backend_->RunBatches(lease.grant.batches);

@@ -55,7 +55,7 @@ std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size,
     const CameraPassResult camera_pass = RunCameraPass(setup->scene, *tracer, film);
     setup->estimate = std::make_unique<ProgressiveEstimate>(
         camera_pass, EstimateFor(spec, camera_pass, setup->scene, name),
-        TracedCameraPasses(setup->scene, tracer, film, Integrator::kPpm));
+        TracedCameraPasses(setup->scene, tracer, film, spec));
     setup->emitters = std::make_unique<Emitters>(setup->scene);
     setup->cpu = std::move(*CreateBackend("cpu", setup->scene));
     absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", setup->scene);
@@ -68,7 +68,9 @@ std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size,
                                     setup->estimate->HitPoints(), 7, &setup->spec})
                         .ok());
         EXPECT_TRUE(
-            backend->BeginEpoch(setup->estimate->Epoch(), setup->estimate->SearchRadiusSq()).ok());
+            backend
+                ->BeginEpoch(setup->estimate->Epoch(), setup->estimate->SearchRadiusSq(), nullptr)
+                .ok());
     }
     return setup;
 }
@@ -109,7 +111,8 @@ TEST_F(VulkanBackendTest, BatchIsAPureFunctionOfItsSpec) {
     // The second batch alone, after the grid was rebuilt: the same integers summed in
     // whatever order the device's threads arrived.
     ASSERT_TRUE(
-        setup->vulkan->BeginEpoch(setup->estimate->Epoch(), setup->estimate->SearchRadiusSq())
+        setup->vulkan
+            ->BeginEpoch(setup->estimate->Epoch(), setup->estimate->SearchRadiusSq(), nullptr)
             .ok());
     const absl::StatusOr<std::vector<BatchResult>> one =
         setup->vulkan->RunBatches(std::span(specs).subspan(1, 1));
@@ -315,7 +318,7 @@ TEST_F(VulkanBackendTest, SppmEpochsTraceTheirOwnHitPointsAndMatchTheCpuBackend)
     for (uint64_t epoch : {0u, 5u}) {
         SCOPED_TRACE(epoch);
         for (Backend* backend : {cpu.get(), vulkan->get()})
-            ASSERT_TRUE(backend->BeginEpoch(epoch, radius_sq).ok());
+            ASSERT_TRUE(backend->BeginEpoch(epoch, radius_sq, nullptr).ok());
         std::vector<BatchSpec> specs;
         for (uint32_t b = 0; b < spec.layout.batches_per_epoch; ++b)
             specs.push_back(

@@ -39,7 +39,7 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
             absl::StatusOr<CameraPassSettings> film = FilmFor(*job.spec, *job.scene);
             if (!film.ok()) return film.status();
             film->features = features_;
-            epoch_film_ = *film;
+            epoch_film_ = EpochFilm(*film, *job.spec);
             break;
         }
         case Integrator::kPath: {
@@ -80,12 +80,17 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     return absl::OkStatus();
 }
 
-absl::Status CpuBackend::BeginEpoch(uint64_t epoch, std::span<const float> radius_sq) {
+absl::Status CpuBackend::BeginEpoch(uint64_t epoch, std::span<const float> radius_sq,
+                                    const std::vector<HitPoint>* traced) {
     if (epoch_film_) {
-        epoch_hit_points_ =
-            RunCameraPass(*job_.scene, tracer_, StochasticCameraPass(*epoch_film_, epoch))
-                .hit_points;
-        if (job_.spec->integrator == Integrator::kSppm) job_.hit_points = epoch_hit_points_;
+        const bool sppm = job_.spec->integrator == Integrator::kSppm;
+        if (sppm && traced != nullptr)
+            epoch_hit_points_ = *traced;
+        else
+            epoch_hit_points_ =
+                RunCameraPass(*job_.scene, tracer_, StochasticCameraPass(*epoch_film_, epoch))
+                    .hit_points;
+        if (sppm) job_.hit_points = epoch_hit_points_;
     }
     PF_CHECK(radius_sq.size() == job_.hit_points.size());
     if (!radius_sq.empty()) grid_.Build(job_.hit_points, radius_sq);

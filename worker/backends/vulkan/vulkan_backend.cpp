@@ -282,9 +282,10 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
             if (!tracer.ok()) return tracer.status();
             camera_tracer_ = std::move(*tracer);
         }
-        epoch_film_ = *film;
-        epoch_hit_points_.assign(
-            size_t(film->width) * size_t(film->height) * size_t(film->samples_per_pixel), {});
+        epoch_film_ = EpochFilm(*film, *job.spec);
+        epoch_hit_points_.assign(size_t(epoch_film_->width) * size_t(epoch_film_->height) *
+                                     size_t(epoch_film_->samples_per_pixel),
+                                 {});
         if (job.spec->integrator == Integrator::kSppm)
             job_.hit_points = epoch_hit_points_;
         else
@@ -348,17 +349,20 @@ gpu::GpuParams VulkanBackend::BaseParams() const {
     return params;
 }
 
-absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, std::span<const float> radius_sq) {
+absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, std::span<const float> radius_sq,
+                                       const std::vector<HitPoint>* traced) {
     if (buffers_ == nullptr) return absl::FailedPreconditionError("BeginEpoch before a job");
     const size_t n = job_.hit_points.size();
     if (radius_sq.size() != n)
         return absl::InvalidArgumentError("one radius per hit point expected");
     if (epoch_film_) {
-        std::vector<HitPoint> traced =
-            RunCameraPass(scene_, *camera_tracer_, StochasticCameraPass(*epoch_film_, epoch))
-                .hit_points;
-        PF_CHECK(traced.size() == epoch_hit_points_.size());
-        epoch_hit_points_ = std::move(traced);
+        std::vector<HitPoint> points =
+            SppmJob() && traced != nullptr
+                ? *traced
+                : RunCameraPass(scene_, *camera_tracer_, StochasticCameraPass(*epoch_film_, epoch))
+                      .hit_points;
+        PF_CHECK(points.size() == epoch_hit_points_.size());
+        epoch_hit_points_ = std::move(points);
         if (SppmJob()) job_.hit_points = epoch_hit_points_;
         Buffer& upload = SppmJob() ? buffers_->hit_point_upload : buffers_->direct_point_upload;
         std::ranges::transform(epoch_hit_points_, static_cast<gpu::GpuHitPoint*>(upload.Mapped()),
