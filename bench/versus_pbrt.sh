@@ -37,7 +37,7 @@ photonfarm="$build/client/photonfarm"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$out"
-cp "$source_dir"/scenes/pbrt/*.pbrt "$work"/
+cp -r "$source_dir"/scenes/pbrt/. "$work"/
 cp "$source_dir"/scenes/*.hdr "$work"/ 2>/dev/null || true
 
 now() { date +%s.%N; }
@@ -57,14 +57,23 @@ table="$out/versus-pbrt.md"
 for scene in $scenes; do
     [[ -f $work/$scene.pbrt ]] || { echo "versus_pbrt.sh: no scenes/pbrt/$scene.pbrt" >&2; exit 1; }
     file="$work/$scene.pbrt"
-    common=(--width "$size" --height "$size" --threads "$threads" --log-level warn)
-    "$photonfarm" render "$file" "${common[@]}" --integrator path --seed 977 --seconds "$ref_seconds" \
+    common=(--width "$size" --height "$size" --threads "$threads")
+    "$photonfarm" render "$file" "${common[@]}" --log-level warn --integrator path --seed 977 --seconds "$ref_seconds" \
         --out "$work/$scene-ours-ref.exr" >/dev/null 2>"$work/log" || { cat "$work/log" >&2; exit 1; }
+    start=$(now)
     "$photonfarm" render "$file" "${common[@]}" --seconds "$seconds" --reference "$work/$scene-ours-ref.exr" \
         --report "$work/$scene-ours" --out "$work/$scene-ours.exr" --log-level info >"$work/$scene-ours.log" 2>&1 ||
         { cat "$work/$scene-ours.log" >&2; exit 1; }
+    # The log's seconds count from the job's start: shift them by what came before it (the
+    # process, the scene, the camera pass, the pilot photons), as pbrt-v4's times are whole runs.
+    awk -F, -v wall="$(awk -v a="$start" -v b="$(now)" 'BEGIN { print b - a }')" '
+        NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; print; next }
+        { line[NR] = $0; last = $col["seconds"] }
+        END { for (n = 2; n <= NR; ++n) { split(line[n], f, ","); f[col["seconds"]] += wall - last
+              s = f[1]; for (i = 2; i in f; ++i) s = s "," f[i]; print s } }' \
+        "$work/$scene-ours/convergence.csv" >"$work/$scene-ours.csv"
     radius=$(sed -n 's/.*initial radius \([0-9.e+-]*\).*/\1/p' "$work/$scene-ours.log" | head -1)
-    variant "$scene" "$scene-ref" ""
+    variant "$scene" "$scene-ref" "# pbrt-v4's default integrator, volpath"
     "$pbrt" --quiet --nthreads "$threads" --spp "$ref_spp" --seed 977 --outfile "$work/$scene-pbrt-ref.exr" \
         "$work/$scene-ref.pbrt" >/dev/null
     variant "$scene" "$scene-sppm" "Integrator \"sppm\" \"float radius\" $radius"
@@ -76,7 +85,7 @@ for scene in $scenes; do
             "$work/$scene-sppm.pbrt" >/dev/null
         t=$(awk -v a="$start" -v b="$(now)" 'BEGIN { printf "%.3f", b - a }')
         e=$(rmse "$work/$scene-sppm-$n.exr" "$work/$scene-pbrt-ref.exr")
-        ours=$(awk -F, -v target="$e" -f "$source_dir/bench/time_to_error.awk" "$work/$scene-ours/convergence.csv")
+        ours=$(awk -F, -v target="$e" -f "$source_dir/bench/time_to_error.awk" "$work/$scene-ours.csv")
         if [[ $ours == never ]]; then  # not within SECONDS: the ratio is over SECONDS / t
             ratio=$(awk -v a="$seconds" -v b="$t" 'BEGIN { printf "> %.3f", a / b }')
         else
@@ -94,7 +103,7 @@ set xlabel "seconds ($threads threads)"
 set ylabel "RMSE against its own renderer's long reference"
 set title "$scene, ${size}x${size}: photonfarm's default against pbrt-v4 sppm"
 set grid
-plot "$work/$scene-ours/convergence.csv" using (column("seconds")):(column("reference_rmse")) with lines lw 2 title "photonfarm (ppm)", \\
+plot "$work/$scene-ours.csv" using (column("seconds")):(column("reference_rmse")) with lines lw 2 title "photonfarm (ppm)", \\
      "$points" using 1:2 with linespoints pt 7 lw 2 title "pbrt-v4 sppm (one run per iteration count)"
 EOF
 done

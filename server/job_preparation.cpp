@@ -143,8 +143,6 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
             if (const double median = MedianRadius(radii, camera_pass.footprint); median > 0)
                 settings.initial_radius = median;
             settings.min_radius = std::min(settings.min_radius, settings.initial_radius);
-            for (float& radius : radii)
-                radius = std::max(radius, static_cast<float>(settings.min_radius));
             spdlog::info(
                 "{}: initial radii from a pilot photon map in {:.2f} s (median pixel "
                 "footprint {:.4g})",

@@ -42,8 +42,8 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
     if (!initial_radii.empty()) {
         PF_CHECK(initial_radii.size() == points_.size());
         for (size_t i = 0; i < points_.size(); ++i) {
-            const double radius = initial_radii[i];
-            PF_CHECK(radius >= settings.min_radius && std::isfinite(radius));
+            const double radius = std::max(double(initial_radii[i]), settings.min_radius);
+            PF_CHECK(std::isfinite(radius));
             points_[i].radius_sq = radius * radius;
         }
     }

@@ -58,7 +58,7 @@ class ProgressiveEstimate final : public Estimate {
 public:
     // `camera_pass`: the hit points photons gather at (for sppm, epoch 0's pass); each epoch's
     // pass comes from `next_passes` (for ppm epoch 0's too, here). `initial_radii`: R0 of each
-    // hit point (sppm: of each slot), world units (DensityInitialRadii), none below the
+    // hit point (sppm: of each slot), world units (DensityInitialRadii), raised to the
     // settings' min_radius; empty: the settings' initial_radius for all.
     ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings,
                         EpochCameraPass next_passes, std::span<const float> initial_radii = {});
