@@ -8,7 +8,7 @@
 namespace pf::testing {
 
 Image RenderSmall(const std::string& scene_path, const std::string& backend, uint64_t stream,
-                  uint64_t photons) {
+                  uint64_t photons, double initial_radius) {
     RenderSettings settings;
     settings.scene_path = scene_path;
     settings.backend = backend;
@@ -18,6 +18,7 @@ Image RenderSmall(const std::string& scene_path, const std::string& backend, uin
     settings.job.photon_budget = photons;
     settings.job.layout = {1u << 16, 4};
     settings.job.photon_stream = stream;
+    settings.job.initial_radius = initial_radius;
     absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
     EXPECT_TRUE(outcome.ok()) << outcome.status();
     return outcome.ok() ? outcome->image : Image();
