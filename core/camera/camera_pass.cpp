@@ -14,6 +14,7 @@
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/glossy.h"
+#include "core/util/check.h"
 
 namespace pf {
 namespace {
@@ -291,13 +292,19 @@ EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tra
 }
 
 float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& scene) {
-    std::vector<float> footprints;  // of the slots that hold a hit point
-    for (float footprint : camera_pass.footprint)
-        if (footprint > 0) footprints.push_back(footprint);
-    if (footprints.empty()) return 0.0f;
-    auto middle = footprints.begin() + static_cast<std::ptrdiff_t>(footprints.size() / 2);
-    std::nth_element(footprints.begin(), middle, footprints.end());
-    return std::min(*middle, 0.01f * scene.bounds.Diagonal());
+    return std::min(MedianRadius(camera_pass.footprint, camera_pass.footprint),
+                    0.01f * scene.bounds.Diagonal());
+}
+
+float MedianRadius(std::span<const float> radii, std::span<const float> footprint) {
+    PF_CHECK(radii.size() == footprint.size());
+    std::vector<float> kept;  // of the slots that hold a hit point
+    for (size_t i = 0; i < radii.size(); ++i)
+        if (footprint[i] > 0) kept.push_back(radii[i]);
+    if (kept.empty()) return 0.0f;
+    const auto middle = kept.begin() + static_cast<std::ptrdiff_t>(kept.size() / 2);
+    std::nth_element(kept.begin(), middle, kept.end());
+    return *middle;
 }
 
 absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& scene) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/film/image.h"
@@ -95,5 +96,9 @@ EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tra
 absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& scene);
 
 float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& scene);
+
+// The median of `radii` over the hit points with a footprint (a slot of a stochastic pass may
+// have none); 0 where none has one. DefaultInitialRadius's median and a job's reported R0.
+float MedianRadius(std::span<const float> radii, std::span<const float> footprint);
 
 }  // namespace pf

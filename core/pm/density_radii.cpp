@@ -66,15 +66,4 @@ std::vector<float> DensityInitialRadii(const Scene& scene, const Emitters& emitt
     return radii;
 }
 
-double MedianRadius(std::span<const float> radii, std::span<const float> footprint) {
-    PF_CHECK(radii.size() == footprint.size());
-    std::vector<float> kept;
-    for (size_t i = 0; i < radii.size(); ++i)
-        if (footprint[i] > 0) kept.push_back(radii[i]);
-    if (kept.empty()) return 0;
-    const auto middle = kept.begin() + static_cast<std::ptrdiff_t>(kept.size() / 2);
-    std::nth_element(kept.begin(), middle, kept.end());
-    return *middle;
-}
-
 }  // namespace pf

@@ -46,8 +46,4 @@ std::vector<float> DensityInitialRadii(const Scene& scene, const Emitters& emitt
                                        std::span<const float> footprint, float fallback,
                                        const DensityRadiiSettings& settings);
 
-// The median of `radii` over the hit points with a footprint (the job's reported R0); 0 where
-// none has one.
-double MedianRadius(std::span<const float> radii, std::span<const float> footprint);
-
 }  // namespace pf

@@ -11,6 +11,7 @@
 #include <numbers>
 #include <vector>
 
+#include "core/camera/camera_pass.h"
 #include "core/pm/photon_map.h"
 #include "core/scene/scene_loader.h"
 #include "embree/embree_tracer.h"
