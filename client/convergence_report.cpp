@@ -109,6 +109,16 @@ absl::Status WriteConvergenceReport(const std::string& dir, const std::string& t
         !status.ok())
         return status;
     spdlog::info("wrote {} ({} points)", csv, points.size());
+    // Before a second epoch a render without a reference has no error yet, and log axes with
+    // no point make gnuplot fail.
+    if (std::none_of(points.begin(), points.end(),
+                     [](const ConvergencePoint& p) { return p.estimated || p.measured; })) {
+        spdlog::info(
+            "no plot in {}: no error known yet (the estimate needs two epochs; "
+            "--reference measures from the first)",
+            dir);
+        return absl::OkStatus();
+    }
     if (absl::Status status = RunGnuplot(dir, script); !status.ok()) return status;
     spdlog::info("wrote {0}/convergence.png and {0}/convergence.svg", dir);
     return absl::OkStatus();

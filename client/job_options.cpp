@@ -155,6 +155,12 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
                      "Batches per epoch; radii shrink once per epoch, and a farm runs at most this "
                      "many batches at once (default: 8; sppm as many as its photons need)")
         ->check(WholeNumber(1, kMaxBatchesPerEpoch));
+    command
+        ->add_option("--first-epoch-photons", s->layout.first_epoch_photons,
+                     "Small epochs first: the first epoch's photons, each later one twice the one "
+                     "before until a full epoch, e.g. 256K (default: ppm 256K with the layout "
+                     "left open; otherwise every epoch full)")
+        ->transform(CountWithUnit(1, uint64_t{kMaxPhotonsPerBatch} * kMaxBatchesPerEpoch));
     // capture_default_str, not default_val: default_val would re-parse "0.666667" into alpha,
     // and the render would no longer match a farm job left at the default 2/3.
     command->add_option("--alpha", s->alpha, "Radius reduction ratio alpha in (0, 1]")

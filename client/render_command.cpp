@@ -62,6 +62,7 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
             {"photonfarm:spp", absl::StrCat(job.samples_per_pixel)},
             {"photonfarm:photons_per_batch", absl::StrCat(job.layout.photons_per_batch)},
             {"photonfarm:batches_per_epoch", absl::StrCat(job.layout.batches_per_epoch)},
+            {"photonfarm:first_epoch_photons", absl::StrCat(job.layout.first_epoch_photons)},
             {"photonfarm:max_depth", absl::StrCat(job.max_depth)}};
 }
 

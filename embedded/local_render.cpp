@@ -78,7 +78,8 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings,
                                0.0);
         const BatchLayout& layout = job->Spec().layout;  // resolved
         const uint64_t epoch_chunks =
-            uint64_t{layout.batches_per_epoch} * ChunkCount(MakeBatchSpec(layout, 0, 0, 0));
+            uint64_t{layout.batches_per_epoch} *
+            ChunkCount(MakeBatchSpec(layout, layout.GrowingEpochs(), 0, 0));
         WorkerLoop worker(source, settings.backend,
                           static_cast<uint32_t>(std::min<uint64_t>(epoch_chunks, UINT32_MAX)));
         uint64_t version = job->Version();

@@ -178,8 +178,8 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
                 " integrator (connected: ", absl::StrJoin(other_backends, ", "),
                 "): the job waits for one that does (cpu workers run every integrator)"));
         const BatchLayout& layout = prepared->spec.layout;
-        const uint64_t chunks =
-            uint64_t{layout.batches_per_epoch} * ChunkCount(MakeBatchSpec(layout, 0, 0, 0));
+        const uint64_t chunks = uint64_t{layout.batches_per_epoch} *
+                                ChunkCount(MakeBatchSpec(layout, layout.GrowingEpochs(), 0, 0));
         if (GathersAtHitPoints(prepared->spec.integrator) && chunks < threads)
             prepared->warnings.push_back(
                 absl::StrFormat("an epoch runs as %d chunks of photons but the workers have %d "

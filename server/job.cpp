@@ -47,7 +47,10 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
       hit_point_count_(GathersAtHitPoints(prepared.estimate->Kind())
                            ? prepared.estimate->SharedHitPoints()->size()
                            : 0),
-      item_count_(prepared.estimate->ItemCount()),
+      item_count_(GathersAtHitPoints(prepared.estimate->Kind())
+                      ? uint64_t(prepared.spec.width) * uint64_t(prepared.spec.height) *
+                            uint64_t(MaxEpochSamplesPerPixel(prepared.spec))
+                      : prepared.estimate->ItemCount()),
       initial_radius_(prepared.estimate->InitialRadius()),
       scene_features_(std::move(prepared.scene_features)),
       reference_(std::move(prepared.reference)),

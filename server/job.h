@@ -97,7 +97,9 @@ public:
     const JobSpec& Spec() const { return spec_; }
     // The hit points batches gather at (0 for the integrators that render pixels).
     uint64_t HitPointCount() const { return hit_point_count_; }
-    // What a batch's sample slice indexes: hit points, or pixels (Estimate::ItemCount).
+    // What a batch's sample slice indexes, in the job's largest epoch: the slots of its camera
+    // pass, or pixels (Estimate::ItemCount). A slice of a given epoch is checked against the
+    // epoch's own batches when its result is folded.
     uint64_t ItemCount() const { return item_count_; }
     bool Running() const;
 
@@ -205,7 +207,7 @@ private:
     const int priority_;
     const Clock::time_point started_;
     const uint64_t hit_point_count_;  // 0 for the integrators that render pixels
-    const uint64_t item_count_;       // what a batch's sample slice indexes (Estimate::ItemCount)
+    const uint64_t item_count_;       // the most a batch's sample slice indexes (ItemCount)
     const double initial_radius_;
     const std::string scene_features_;
     const std::shared_ptr<const Image> reference_;

@@ -133,6 +133,7 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
             !camera_pass.hit_points.empty()) {
             const auto pilot_start = Clock::now();
             DensityRadiiSettings density;
+            // The first pass: a full epoch (the growing epochs are one pass together).
             density.first_epoch_photons = settings.layout.PhotonsPerEpoch();
             density.seed = request.spec.seed;
             density.max_depth = request.spec.max_depth;

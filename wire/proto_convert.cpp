@@ -163,6 +163,7 @@ photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
     out.set_photon_stream(spec.photon_stream);
     out.set_photons_per_batch(spec.layout.photons_per_batch);
     out.set_batches_per_epoch(spec.layout.batches_per_epoch);
+    out.set_first_epoch_photons(spec.layout.first_epoch_photons);
     out.set_integrator(ToProto(spec.integrator));
     out.set_epoch_budget(spec.epoch_budget);
     out.set_until_cancelled(spec.until_cancelled);
@@ -215,6 +216,7 @@ absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings) {
         spec.layout.photons_per_batch = settings.photons_per_batch();
     if (settings.batches_per_epoch() != 0)
         spec.layout.batches_per_epoch = settings.batches_per_epoch();
+    spec.layout.first_epoch_photons = settings.first_epoch_photons();
     spec.target_error = settings.target_error();
     spec.epoch_budget = settings.epoch_budget();
     spec.until_cancelled = settings.until_cancelled();

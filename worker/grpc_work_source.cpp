@@ -150,10 +150,6 @@ absl::StatusOr<WorkGrant> GrpcWorkSource::Lease(uint32_t chunks) {
             absl::StrCat(address_, ": a ", std::string(IntegratorName(settings->integrator)),
                          " job of ", job.hit_point_count(), " hit points and a ", settings->width,
                          "x", settings->height, " film"));
-    // What a batch's sample slice indexes: the slots of the epoch's camera pass (pixels x its
-    // samples a pixel), where the photon mappers sample direct light, or the pixels.
-    const uint64_t items = uint64_t(settings->width) * uint64_t(settings->height) *
-                           uint64_t(gathers ? EpochSamplesPerPixel(*settings) : 1);
     absl::StatusOr<std::shared_ptr<const JobPayload>> payload = PayloadFor(job, *settings);
     if (!payload.ok()) return payload.status();
     absl::StatusOr<std::shared_ptr<const std::vector<float>>> radii =
@@ -162,6 +158,12 @@ absl::StatusOr<WorkGrant> GrpcWorkSource::Lease(uint32_t chunks) {
     grant.job_id = job.job_id();
     grant.job = *payload;
     grant.radius_sq = *radii;
+    // What a batch's sample slice indexes: the slots of the epoch's camera pass (pixels x its
+    // samples a pixel), where the photon mappers sample direct light, or the pixels.
+    const uint64_t items =
+        uint64_t(settings->width) * uint64_t(settings->height) *
+        uint64_t(gathers ? EpochCameraSamples(*settings, response.batches(0).epoch()).per_pixel
+                         : 1);
     for (const v1::BatchSpec& spec : response.batches()) {
         grant.batches.push_back(FromProto(spec));
         if (grant.batches.back().epoch != grant.batches.front().epoch)

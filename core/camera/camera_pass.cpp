@@ -217,8 +217,9 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                     HashSeed(settings.seed, kCameraStream ^ sample_stream, settings.epoch, pixel));
                 Rgb emission(0.0f);
                 for (int s = 0; s < spp; ++s) {
-                    PixelSampler sampler = PixelSampler::InEpoch(settings.seed, sample_stream,
-                                                                 pixel, settings.epoch, spp, s);
+                    PixelSampler sampler = PixelSampler::InEpochSequence(
+                        settings.seed, sample_stream, pixel, settings.epoch,
+                        settings.first_sample + uint64_t(s));
                     const Ray ray = PixelSampleRay(scene.camera, film, x, y, sampler);
                     const size_t before = row_hit_points[y].size();
                     emission += trace(scene, tracer, ray, pixel, pixel_width, filter_width, splits,
@@ -258,37 +259,44 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     return result;
 }
 
-CameraPassSettings EpochFilm(const CameraPassSettings& film, const JobSpec& spec) {
+namespace {
+
+// `film` with the camera samples of epoch `epoch` of job `spec`.
+CameraPassSettings EpochPass(const CameraPassSettings& film, const JobSpec& spec, uint64_t epoch) {
     const uint64_t pixels = uint64_t(film.width) * uint64_t(film.height);
-    CameraPassSettings epoch_film = film;
-    epoch_film.samples_per_pixel = EpochSamplesPerPixel(spec.integrator, film.samples_per_pixel,
-                                                        ResolvedLayout(spec, pixels), pixels);
-    return epoch_film;
+    const EpochSamples samples = EpochCameraSamples(spec.integrator, film.samples_per_pixel,
+                                                    ResolvedLayout(spec, pixels), pixels, epoch);
+    CameraPassSettings settings = film;
+    settings.samples_per_pixel = samples.per_pixel;
+    settings.epoch = epoch;
+    settings.first_sample = samples.first;
+    return settings;
 }
 
-CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, uint64_t epoch) {
-    CameraPassSettings settings = film;
-    settings.epoch = epoch;
+}  // namespace
+
+CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, const JobSpec& spec,
+                                        uint64_t epoch) {
+    CameraPassSettings settings = EpochPass(film, spec, epoch);
     settings.stochastic = true;
     return settings;
 }
 
-CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, uint64_t epoch) {
-    CameraPassSettings settings = film;
-    settings.epoch = epoch;
+CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobSpec& spec,
+                                      uint64_t epoch) {
+    CameraPassSettings settings = EpochPass(film, spec, epoch);
     settings.emission_only = true;
     return settings;
 }
 
 EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,
                                    const CameraPassSettings& film, const JobSpec& spec) {
-    const bool sppm = spec.integrator == Integrator::kSppm;
-    return
-        [&scene, tracer = std::move(tracer), film = EpochFilm(film, spec), sppm](uint64_t epoch) {
-            return RunCameraPass(
-                scene, *tracer,
-                sppm ? StochasticCameraPass(film, epoch) : EmissionCameraPass(film, epoch));
-        };
+    return [&scene, tracer = std::move(tracer), film, spec](uint64_t epoch) {
+        return RunCameraPass(scene, *tracer,
+                             spec.integrator == Integrator::kSppm
+                                 ? StochasticCameraPass(film, spec, epoch)
+                                 : EmissionCameraPass(film, spec, epoch));
+    };
 }
 
 float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& scene) {

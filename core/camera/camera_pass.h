@@ -23,9 +23,11 @@ struct CameraPassSettings {
     int width = 512, height = 512;
     int samples_per_pixel = 4;  // k: hit points traced per pixel
     uint64_t seed = 0;
-    // The pass's place in the run (PixelSampler::InEpoch), so that the passes of successive
-    // epochs stay stratified together.
+    // The pass's place in the run: its epoch, and its first sample's index in each pixel's
+    // sequence for the epoch's parity (EpochCameraSamples, PixelSampler::InEpochSequence), so
+    // that the passes of successive epochs stay stratified together.
     uint64_t epoch = 0;
+    uint64_t first_sample = 0;
     // Stochastic progressive photon mapping's pass (Hachisuka & Jensen 2009), traced anew
     // every epoch: each sample follows one branch at glass rather than splitting, and leaves
     // exactly one hit point, in slot order (pixel * k + sample), black where the path found no
@@ -59,29 +61,27 @@ inline constexpr int kCameraSplits = 2;
 CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                                const CameraPassSettings& settings);
 
-// The film of the epoch passes of job `spec`: `film` (FilmFor) with the camera samples a pixel
-// an epoch of its integrator and layout (EpochSamplesPerPixel). The coordinator and every
-// worker start from it.
-CameraPassSettings EpochFilm(const CameraPassSettings& film, const JobSpec& spec);
-
-// Stochastic progressive photon mapping's pass of `epoch` for a job: the film and seed of
-// `spec` (its size resolved), its camera samples the pixel's next k. The coordinator and every
-// worker trace the same hit points from it.
-CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, uint64_t epoch);
+// Stochastic progressive photon mapping's pass of `epoch` for job `spec`: `film` (FilmFor)
+// with the epoch's camera samples (EpochCameraSamples: the pixel's next k). The coordinator
+// and every worker trace the same hit points from it; ppm's workers sample direct light at its
+// slots.
+CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, const JobSpec& spec,
+                                        uint64_t epoch);
 
 // Progressive photon mapping's emission pass of `epoch`: the emission the camera sees, directly
 // or through specular chains, from the epoch's own camera samples, with no hit points (photons
 // gather at the fixed ones, direct light is sampled at the workers' StochasticCameraPass).
 // Glass splits as in the fixed pass: one random branch would leave a light seen through glass
 // much noisier.
-CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, uint64_t epoch);
+CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobSpec& spec,
+                                      uint64_t epoch);
 
 // The coordinator's camera pass of an epoch: for sppm the StochasticCameraPass (its emission,
 // and its slots, pixel * k + sample, where photons gather and direct light is sampled), for
 // ppm the EmissionCameraPass.
 using EpochCameraPass = std::function<CameraPassResult(uint64_t epoch)>;
 
-// Each epoch's pass of `film` (its EpochFilm taken here) for job `spec` (ppm or sppm) over
+// Each epoch's pass of `film` for job `spec` (ppm or sppm) over
 // `scene` through `tracer`, which the function keeps alive; `scene` must outlive it.
 EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,
                                    const CameraPassSettings& film, const JobSpec& spec);

@@ -43,8 +43,14 @@ public:
     // cancel each other, and their difference would claim twice the image's error.
     static PixelSampler InEpoch(uint64_t seed, uint64_t stream, uint64_t pixel, uint64_t epoch,
                                 int k, int s) {
-        return PixelSampler(seed, stream, 2 * pixel + (epoch & 1),
-                            (epoch >> 1) * uint64_t(k) + uint64_t(s));
+        return InEpochSequence(seed, stream, pixel, epoch,
+                               (epoch >> 1) * uint64_t(k) + uint64_t(s));
+    }
+    // Sample `index` of the sequence of pixel p that epoch e's parity takes, for passes whose
+    // samples a pixel change from epoch to epoch (EpochCameraSamples).
+    static PixelSampler InEpochSequence(uint64_t seed, uint64_t stream, uint64_t pixel,
+                                        uint64_t epoch, uint64_t index) {
+        return PixelSampler(seed, stream, 2 * pixel + (epoch & 1), index);
     }
 
     Point2 Next2D() {

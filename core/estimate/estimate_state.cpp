@@ -16,8 +16,9 @@ constexpr uint32_t kFixedMagic = 0x50485046;  // "PFHP": the hit points kept apa
 // 4: settings and counters first, then the arrays packed (core/util/packed_arrays.h), the hit
 // points among them or kept apart (SaveFixed); emission and direct light summed per pixel over
 // each epoch's camera pass, for ppm too. 5: ppm's epoch passes take their own camera samples a
-// pixel (EpochSamplesPerPixel), not its k.
-constexpr uint32_t kVersion = 5;
+// pixel (EpochSamplesPerPixel), not its k. 6: small epochs first (the layout's
+// first_epoch_photons), emission and direct light summed over camera samples, not epochs.
+constexpr uint32_t kVersion = 6;
 
 absl::Status Corrupt(const std::string& what) {
     return absl::DataLossError(absl::StrCat("estimate state: ", what));
@@ -51,6 +52,7 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
     out.Value(settings_.samples_per_pixel);
     out.Value(settings_.layout.photons_per_batch);
     out.Value(settings_.layout.batches_per_epoch);
+    out.Value(settings_.layout.first_epoch_photons);
     out.Value(settings_.min_radius);
     out.Value(static_cast<uint8_t>(settings_.stochastic));
     out.Value(epoch_emission_.width);
@@ -101,7 +103,8 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
     uint8_t stochastic = 0;
     if (!(in.Value(&settings.alpha) && in.Value(&settings.initial_radius) &&
           in.Value(&settings.samples_per_pixel) && in.Value(&settings.layout.photons_per_batch) &&
-          in.Value(&settings.layout.batches_per_epoch) && in.Value(&settings.min_radius) &&
+          in.Value(&settings.layout.batches_per_epoch) &&
+          in.Value(&settings.layout.first_epoch_photons) && in.Value(&settings.min_radius) &&
           in.Value(&stochastic)))
         return Corrupt("truncated settings");
     settings.stochastic = stochastic != 0;
@@ -111,17 +114,14 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
           settings.layout.photons_per_batch >= 1 &&
           settings.layout.photons_per_batch <= kMaxPhotonsPerBatch &&
           settings.layout.batches_per_epoch >= 1 &&
-          settings.layout.batches_per_epoch <= kMaxBatchesPerEpoch))
+          settings.layout.batches_per_epoch <= kMaxBatchesPerEpoch &&
+          settings.layout.first_epoch_photons <= settings.layout.PhotonsPerEpoch()))
         return Corrupt("settings out of range");
     int width = 0, height = 0;
     if (!(in.Value(&width) && in.Value(&height)) || width < 1 || height < 1 || width > 32768 ||
         height > 32768)
         return Corrupt("image size");
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
-    const uint64_t slots = pixels * uint64_t(EpochSamplesPerPixel(
-                                        settings.stochastic ? Integrator::kSppm : Integrator::kPpm,
-                                        settings.samples_per_pixel, settings.layout, pixels));
-    if (slots > kMaxHitPoints) return Corrupt("more camera samples than a job may have");
     uint8_t light_reached = 0, epoch_light_reached = 0;
     if (!(in.Value(&e.epoch_) && in.Value(&e.photons_emitted_) &&
           in.Value(&e.photons_emitted_even_) && in.Value(&e.nonfinite_discarded_) &&
@@ -133,6 +133,12 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
     e.epoch_light_reached_ = epoch_light_reached != 0;
     if (e.batches_folded_ >= settings.layout.batches_per_epoch)
         return Corrupt("more batches folded than an epoch has");
+    // The current epoch's camera samples (sppm: its hit points; ppm: its direct-light slots).
+    const uint64_t slots =
+        pixels * uint64_t(EpochCameraSamples(e.Kind(), settings.samples_per_pixel, settings.layout,
+                                             pixels, e.epoch_)
+                              .per_pixel);
+    if (slots > kMaxHitPoints) return Corrupt("more camera samples than a job may have");
 
     auto hit_points = std::make_shared<std::vector<HitPoint>>();
     if (hit_points_here == 0 && settings.stochastic)

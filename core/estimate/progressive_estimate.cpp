@@ -27,9 +27,7 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
     emission_even_.assign(pixels, Rgbd(0.0));
     direct_sum_.assign(pixels, Rgbd(0.0));
     direct_even_.assign(pixels, Rgbd(0.0));
-    epoch_direct_.assign(pixels * size_t(EpochSamplesPerPixel(Kind(), settings.samples_per_pixel,
-                                                              settings.layout, pixels)),
-                         Rgb(0.0f));
+    epoch_direct_.assign(pixels * size_t(EpochPass(0).per_pixel), Rgb(0.0f));
     if (settings.stochastic) {
         BeginEpochPass(std::move(camera_pass));
     } else {
@@ -65,9 +63,20 @@ void ProgressiveEstimate::BeginEpochPass(CameraPassResult camera_pass) {
     epoch_emission_ = std::move(camera_pass.emission);
 }
 
+EpochSamples ProgressiveEstimate::EpochPass(uint64_t epoch) const {
+    return EpochCameraSamples(Kind(), settings_.samples_per_pixel, settings_.layout,
+                              direct_sum_.size(), epoch);
+}
+
+uint64_t ProgressiveEstimate::MergedSamples(uint64_t parity) const {
+    // Those of the epochs before the first one of that parity not merged yet.
+    return EpochPass(epoch_ + ((epoch_ ^ parity) & 1)).first;
+}
+
 Rgbd ProgressiveEstimate::EmissionAndDirect(size_t p) const {
     if (epoch_ == 0) return Rgbd(0.0);
-    return (emission_sum_[p] + direct_sum_[p]) / static_cast<double>(epoch_);
+    return (emission_sum_[p] + direct_sum_[p]) /
+           static_cast<double>(MergedSamples(0) + MergedSamples(1));
 }
 
 std::vector<float> ProgressiveEstimate::SearchRadiusSq() const {
@@ -127,14 +136,28 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
 
 void ProgressiveEstimate::FinishEpoch() {
     PF_CHECK(batches_folded_ == settings_.layout.batches_per_epoch);
-    const double alpha = settings_.alpha;
+    // The growing epochs (BatchLayout::GrowingEpochs) together are the first pass: radii hold
+    // through them (alpha 1: every photon kept at R0), and the last of them shrinks them as a
+    // first pass does, by alpha over all their photons. Shrunk once an epoch, the small epochs
+    // would shrink radii as much as so many full passes (R^2 to a quarter by the first full
+    // epoch rather than alpha): too little blur for the photons there are.
+    const uint64_t growing = settings_.layout.GrowingEpochs();
+    const bool holding = epoch_ + 1 < growing;
+    const bool closing = growing > 1 && epoch_ + 1 == growing;
+    const double alpha = holding ? 1.0 : settings_.alpha;
     const double min_radius_sq = settings_.min_radius * settings_.min_radius;
     const bool even_epoch = epoch_ % 2 == 0;
     tbb::parallel_for(
         tbb::blocked_range<size_t>(0, points_.size()), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i < r.end(); ++i) {
                 const double photons = static_cast<double>(epoch_photons_[i]);
-                const double shrink = ShrinkRatio(points_[i], photons, alpha, min_radius_sq);
+                PointEstimate point = points_[i];
+                double pass_photons = photons;
+                if (closing) {  // the pass's photons so far, as if they all came now
+                    pass_photons += point.photon_count;
+                    point.photon_count = 0;
+                }
+                const double shrink = ShrinkRatio(point, pass_photons, alpha, min_radius_sq);
                 flux_even_[i] = (flux_even_[i] + epoch_flux_even_[i]) * shrink;
                 GatherCounts& counts = counts_[i];
                 counts.all = (counts.all + photons) * shrink;
@@ -142,7 +165,7 @@ void ProgressiveEstimate::FinishEpoch() {
                     (counts.inner + static_cast<double>(epoch_inner_photons_[i])) * shrink;
                 counts.weight_sq = (counts.weight_sq + photons) * shrink * shrink;
                 points_[i] =
-                    UpdateEstimate(points_[i], photons, epoch_flux_[i], alpha, min_radius_sq);
+                    UpdateEstimate(point, pass_photons, epoch_flux_[i], alpha, min_radius_sq);
                 epoch_photons_[i] = 0;
                 epoch_inner_photons_[i] = 0;
                 epoch_flux_[i] = Rgbd(0.0);
@@ -159,19 +182,18 @@ void ProgressiveEstimate::FinishEpoch() {
     epoch_photons_emitted_even_ = 0;
     batches_folded_ = 0;
     // Each pixel's emission and its slots' direct samples: the epoch's estimate of what photons
-    // do not carry.
+    // do not carry, summed over its camera samples (a growing epoch has fewer than later ones).
     const size_t k = epoch_direct_.size() / emission_sum_.size();
     for (size_t p = 0; p < emission_sum_.size(); ++p) {
         Rgbd direct(0.0);
         for (size_t s = p * k; s < (p + 1) * k; ++s) direct += Rgbd(epoch_direct_[s]);
-        direct = direct / static_cast<double>(k);
-        const Rgbd emission(epoch_emission_.pixels[p]);
+        const Rgbd emission = Rgbd(epoch_emission_.pixels[p]) * static_cast<double>(k);
         emission_sum_[p] += emission;
         direct_sum_[p] += direct;
         if (even_epoch) emission_even_[p] += emission, direct_even_[p] += direct;
     }
-    std::fill(epoch_direct_.begin(), epoch_direct_.end(), Rgb(0.0f));
     ++epoch_;
+    epoch_direct_.assign(emission_sum_.size() * size_t(EpochPass(epoch_).per_pixel), Rgb(0.0f));
     BeginEpochPass(next_passes_(epoch_));
 }
 
@@ -192,10 +214,11 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
     const double photons = static_cast<double>(photons_emitted_);
     const double photons_even = static_cast<double>(photons_emitted_even_);
     const double photons_odd = photons - photons_even;
-    const double epochs_even = static_cast<double>((epoch_ + 1) / 2),
-                 epochs_odd = static_cast<double>(epoch_ / 2);
+    // Camera samples a pixel over the even epochs and the odd.
+    const double samples_even = static_cast<double>(MergedSamples(0)),
+                 samples_odd = static_cast<double>(MergedSamples(1));
     ErrorEstimate error;
-    if (!(photons_even > 0 && photons_odd > 0 && epochs_odd > 0)) return error;
+    if (!(photons_even > 0 && photons_odd > 0 && samples_odd > 0)) return error;
     // Per pixel, summed over its hit points: the photon estimate, the difference of its
     // halves, the bias estimate 2 (L - L_inner) of it, and that estimate's own variance.
     const size_t pixels = direct_sum_.size();
@@ -236,8 +259,8 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
             // between even and odd batches.
             const double seen_even = emission_even_[p][c] + direct_even_[p][c],
                          seen_all = emission_sum_[p][c] + direct_sum_[p][c];
-            const double d = difference[p][c] * inverse_spp + seen_even / epochs_even -
-                             (seen_all - seen_even) / epochs_odd;
+            const double d = difference[p][c] * inverse_spp + seen_even / samples_even -
+                             (seen_all - seen_even) / samples_odd;
             const double v = EmissionAndDirect(p)[c] + value[p][c] * inverse_spp;
             AddHalfVariance(v, d, variance_scale, &squared, &relative);
             // b^2 overestimates the squared bias by b's variance: take it off (the sum over

@@ -75,8 +75,8 @@ public:
     Integrator Kind() const override {
         return settings_.stochastic ? Integrator::kSppm : Integrator::kPpm;
     }
-    // The slots of an epoch's camera pass (pixels x EpochSamplesPerPixel), which the batches'
-    // direct-light slices index.
+    // The slots of the current epoch's camera pass (pixels x EpochCameraSamples), which the
+    // batches' direct-light slices index.
     uint64_t ItemCount() const override { return epoch_direct_.size(); }
     uint64_t Epoch() const override {
         return epoch_;
@@ -84,9 +84,8 @@ public:
     uint64_t PhotonsEmitted() const override { return photons_emitted_; }  // over the merged epochs
     // Each epoch's pass, and ppm's fixed hit points' paths once.
     uint64_t CameraSamples() const override {
-        const uint64_t fixed =
-            settings_.stochastic ? 0 : direct_sum_.size() * uint64_t(settings_.samples_per_pixel);
-        return fixed + epoch_direct_.size() * epoch_;
+        const uint64_t fixed = settings_.stochastic ? 0 : uint64_t(settings_.samples_per_pixel);
+        return direct_sum_.size() * (fixed + MergedSamples(0) + MergedSamples(1));
     }
     double InitialRadius() const override { return settings_.initial_radius; }
     // Photon paths and direct samples the batches dropped for NaN or Inf, over the merged
@@ -134,13 +133,17 @@ private:
 
     // Takes the epoch's pass as it begins: its emission, and for sppm its hit points.
     void BeginEpochPass(CameraPassResult camera_pass);
-    // Pixel p's mean emission and direct light over the merged epochs.
+    // Epoch `epoch`'s camera samples a pixel (EpochCameraSamples).
+    EpochSamples EpochPass(uint64_t epoch) const;
+    // Camera samples a pixel over the merged epochs of one parity (0: the even, 1: the odd).
+    uint64_t MergedSamples(uint64_t parity) const;
+    // Pixel p's mean emission and direct light over the merged epochs' camera samples.
     Rgbd EmissionAndDirect(size_t p) const;
 
     std::shared_ptr<const std::vector<HitPoint>> hit_points_;
-    // Per pixel, sums over the merged epochs of the emission seen and of the direct light
-    // (each epoch's mean over the pixel's k slots), with those of the even epochs apart; the
-    // current epoch's emission and direct samples (per slot) apart.
+    // Per pixel, sums over the merged epochs' camera samples of the emission seen and of the
+    // direct light, with those of the even epochs apart; the current epoch's emission and
+    // direct samples (per slot) apart.
     std::vector<Rgbd> emission_sum_, emission_even_;
     std::vector<Rgbd> direct_sum_, direct_even_;
     Image epoch_emission_;

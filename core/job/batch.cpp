@@ -5,6 +5,15 @@
 
 namespace pf {
 
+uint32_t BatchLayout::GrowingEpochs() const {
+    // Halvings of a full epoch that keep at least first_epoch_photons; a batch keeps a photon.
+    uint32_t growing = 0;
+    while (first_epoch_photons > 0 && (photons_per_batch >> (growing + 1)) > 0 &&
+           uint64_t{photons_per_batch >> (growing + 1)} * batches_per_epoch >= first_epoch_photons)
+        ++growing;
+    return growing;
+}
+
 BatchSpec MakeBatchSpec(const BatchLayout& layout, uint64_t epoch, uint32_t batch_in_epoch,
                         uint32_t hit_point_count) {
     PF_CHECK(batch_in_epoch < layout.batches_per_epoch);
@@ -12,7 +21,7 @@ BatchSpec MakeBatchSpec(const BatchLayout& layout, uint64_t epoch, uint32_t batc
         uint64_t{hit_point_count} * batch_in_epoch / layout.batches_per_epoch;
     const uint64_t slice_end =
         uint64_t{hit_point_count} * (batch_in_epoch + 1) / layout.batches_per_epoch;
-    return {epoch * layout.batches_per_epoch + batch_in_epoch, epoch, layout.photons_per_batch,
+    return {epoch * layout.batches_per_epoch + batch_in_epoch, epoch, layout.PhotonsPerBatch(epoch),
             static_cast<uint32_t>(slice_begin), static_cast<uint32_t>(slice_end)};
 }
 

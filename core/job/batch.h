@@ -15,11 +15,28 @@ namespace pf {
 // core/job/job_spec.h: it depends on the integrator and the film). The layout, not the thread
 // count, fixes the image for a seed.
 struct BatchLayout {
-    uint32_t photons_per_batch = 0;
+    uint32_t photons_per_batch = 0;  // in a full epoch
     uint32_t batches_per_epoch = 0;
+    // Small epochs first, for an image soon: the first GrowingEpochs() epochs have fewer
+    // photons a batch, each epoch twice the one before, the first at least this many photons
+    // (and under twice as many); later epochs are full. 0, or PhotonsPerEpoch() or more: every
+    // epoch is full. Left open (0) on a job, ResolvedLayout chooses.
+    uint64_t first_epoch_photons = 0;
 
+    // A full epoch's photons.
     uint64_t PhotonsPerEpoch() const { return uint64_t{photons_per_batch} * batches_per_epoch; }
     bool Resolved() const { return photons_per_batch > 0 && batches_per_epoch > 0; }
+    // How many epochs grow before the first full one.
+    uint32_t GrowingEpochs() const;
+    // Epoch `epoch`'s photons a batch and in all.
+    uint32_t PhotonsPerBatch(uint64_t epoch) const {
+        const uint32_t growing = GrowingEpochs();
+        return epoch >= growing ? photons_per_batch
+                                : photons_per_batch >> (growing - static_cast<uint32_t>(epoch));
+    }
+    uint64_t PhotonsInEpoch(uint64_t epoch) const {
+        return uint64_t{PhotonsPerBatch(epoch)} * batches_per_epoch;
+    }
 };
 
 // ppm's defaults (and path's and pm's batch count): batches large enough that sorting a

@@ -33,6 +33,10 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
     if (s.layout.batches_per_epoch > kMaxBatchesPerEpoch)
         return invalid("--batches-per-epoch", "settings.batches_per_epoch",
                        absl::StrCat("must lie in [1, ", kMaxBatchesPerEpoch, "]"));
+    if (s.layout.first_epoch_photons > uint64_t{kMaxPhotonsPerBatch} * kMaxBatchesPerEpoch)
+        return invalid("--first-epoch-photons", "settings.first_epoch_photons",
+                       absl::StrCat("must lie in [1, ",
+                                    uint64_t{kMaxPhotonsPerBatch} * kMaxBatchesPerEpoch, "]"));
     if (s.photon_budget > kMaxPhotonBudget)
         return invalid("--photons", "settings.photon_budget",
                        absl::StrCat("must lie in [0, ", kMaxPhotonBudget, "], not ",
@@ -133,39 +137,72 @@ absl::Status CheckPhotonMapSettings(const PhotonMapSettings& m, SettingNames nam
 
 BatchLayout ResolvedLayout(const JobSpec& spec, uint64_t pixels) {
     BatchLayout layout = spec.layout;
+    const bool open = layout.photons_per_batch == 0 && layout.batches_per_epoch == 0;
     if (spec.integrator != Integrator::kSppm) {
         if (layout.photons_per_batch == 0) layout.photons_per_batch = kDefaultPhotonsPerBatch;
         if (layout.batches_per_epoch == 0) layout.batches_per_epoch = kDefaultBatchesPerEpoch;
-        return layout;
+    } else {
+        const uint64_t samples = std::max<uint64_t>(pixels, 1) * uint64_t(spec.samples_per_pixel);
+        if (layout.batches_per_epoch == 0) {
+            const uint64_t per_batch =
+                layout.photons_per_batch > 0 ? layout.photons_per_batch : kSppmPhotonsPerBatch;
+            layout.batches_per_epoch = static_cast<uint32_t>(std::clamp<uint64_t>(
+                (samples + per_batch - 1) / per_batch,
+                layout.photons_per_batch > 0 ? 1 : kDefaultBatchesPerEpoch, kMaxBatchesPerEpoch));
+        }
+        if (layout.photons_per_batch == 0)
+            layout.photons_per_batch = static_cast<uint32_t>(std::clamp<uint64_t>(
+                (samples + layout.batches_per_epoch - 1) / layout.batches_per_epoch, 1,
+                kMaxPhotonsPerBatch));
     }
-    const uint64_t samples = std::max<uint64_t>(pixels, 1) * uint64_t(spec.samples_per_pixel);
-    if (layout.batches_per_epoch == 0) {
-        const uint64_t per_batch =
-            layout.photons_per_batch > 0 ? layout.photons_per_batch : kSppmPhotonsPerBatch;
-        layout.batches_per_epoch = static_cast<uint32_t>(std::clamp<uint64_t>(
-            (samples + per_batch - 1) / per_batch,
-            layout.photons_per_batch > 0 ? 1 : kDefaultBatchesPerEpoch, kMaxBatchesPerEpoch));
-    }
-    if (layout.photons_per_batch == 0)
-        layout.photons_per_batch = static_cast<uint32_t>(std::clamp<uint64_t>(
-            (samples + layout.batches_per_epoch - 1) / layout.batches_per_epoch, 1,
-            kMaxPhotonsPerBatch));
+    if (layout.first_epoch_photons == 0)
+        layout.first_epoch_photons = open && spec.integrator == Integrator::kPpm
+                                         ? kFirstEpochPhotons
+                                         : layout.PhotonsPerEpoch();
+    layout.first_epoch_photons = std::min(layout.first_epoch_photons, layout.PhotonsPerEpoch());
     return layout;
 }
 
-int EpochSamplesPerPixel(Integrator integrator, int samples_per_pixel, const BatchLayout& layout,
-                         uint64_t pixels) {
-    if (integrator == Integrator::kSppm) return samples_per_pixel;
-    const uint64_t per_pixel = layout.PhotonsPerEpoch() / (2 * std::max<uint64_t>(pixels, 1));
+namespace {
+
+// ppm's camera samples a pixel for an epoch of `photons`.
+int PpmSamplesPerPixel(uint64_t photons, uint64_t pixels) {
+    const uint64_t per_pixel = photons / (2 * std::max<uint64_t>(pixels, 1));
     int samples = 1;
     while (samples < 64 && uint64_t(samples) * 2 <= per_pixel) samples *= 2;
     return samples;
 }
 
-int EpochSamplesPerPixel(const JobSpec& spec) {
+}  // namespace
+
+EpochSamples EpochCameraSamples(Integrator integrator, int samples_per_pixel,
+                                const BatchLayout& layout, uint64_t pixels, uint64_t epoch) {
+    if (integrator == Integrator::kSppm)
+        return {samples_per_pixel, (epoch >> 1) * uint64_t(samples_per_pixel)};
+    const auto in = [&](uint64_t e) {
+        return PpmSamplesPerPixel(layout.PhotonsInEpoch(e), pixels);
+    };
+    const uint64_t growing = layout.GrowingEpochs();
+    EpochSamples samples{in(epoch), 0};
+    // The earlier epochs of the same parity: the growing ones one by one, the full ones at once.
+    for (uint64_t e = epoch & 1; e < std::min(epoch, growing); e += 2)
+        samples.first += uint64_t(in(e));
+    if (epoch > growing) samples.first += (epoch - growing) / 2 * uint64_t(in(growing));
+    return samples;
+}
+
+EpochSamples EpochCameraSamples(const JobSpec& spec, uint64_t epoch) {
     const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
-    return EpochSamplesPerPixel(spec.integrator, spec.samples_per_pixel,
-                                ResolvedLayout(spec, pixels), pixels);
+    return EpochCameraSamples(spec.integrator, spec.samples_per_pixel, ResolvedLayout(spec, pixels),
+                              pixels, epoch);
+}
+
+int MaxEpochSamplesPerPixel(const JobSpec& spec) {
+    const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
+    const BatchLayout layout = ResolvedLayout(spec, pixels);
+    return EpochCameraSamples(spec.integrator, spec.samples_per_pixel, layout, pixels,
+                              layout.GrowingEpochs())
+        .per_pixel;
 }
 
 uint64_t PhotonSeed(const JobSpec& spec) {

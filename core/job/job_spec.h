@@ -93,26 +93,41 @@ inline constexpr uint32_t kMaxFinalGatherRays = 4096;
 absl::Status CheckJobSpec(const JobSpec& spec, SettingNames names = SettingNames::kFlags);
 absl::Status CheckPhotonMapSettings(const PhotonMapSettings& settings, SettingNames names);
 absl::Status CheckEnvironmentSettings(const EnvironmentSettings& settings, SettingNames names);
+// ppm's first epoch where its layout is left open: 2^18 photons, a sixteenth of a full epoch
+// (a tenth of a second on two cores), so that the first image comes soon; epochs then double
+// up to the full 2^22.
+inline constexpr uint64_t kFirstEpochPhotons = uint64_t{1} << 18;
+
 // The layout of `spec`'s epochs on a film of `pixels`, where its counts are left open (0):
 //   sppm: one photon per camera sample of the epoch (pixels x k), in batches of 2^15 photons
 //         (at least the default 8 of them); pbrt-v4's sppm also shoots about one photon a
 //         pixel an iteration. On cornell-box at 256x256, 20 s on two cores: RMSE 0.0033 at k = 4,
 //         0.0028 at k = 16, where 2^22 photons an epoch (the ppm default) gave 0.0060.
-//   the others: 2^19 photons a batch, 8 batches an epoch.
-// A count given stays; the result has both counts in range.
+//   the others: 2^19 photons a batch, 8 batches an epoch; ppm's first epochs grow from
+//         kFirstEpochPhotons where both counts are left open.
+// first_epoch_photons left open is otherwise a full epoch (no growing epochs), and is at most
+// one. A count given stays; the result has every count in range.
 BatchLayout ResolvedLayout(const JobSpec& spec, uint64_t pixels);
 
-// Camera samples a pixel in each epoch's camera pass of a photon mapper: sppm's pass traces
-// the epoch's k hit points a pixel; ppm's passes (its emission, and the slots where workers
-// sample direct light) take the power of two nearest below one per two photons of the epoch,
-// in [1, 64], since ppm's k are the fixed hit points photons gather at. Sampled once a pixel
-// an epoch, emission and direct light dominated ppm's error (cornell-box at 256x256, 20 s on
-// two cores: RMSE 0.021, the light's edges 0.25 of it; 16 samples an epoch 0.0028, 64 0.0022).
-// `layout` resolved (ResolvedLayout).
-int EpochSamplesPerPixel(Integrator integrator, int samples_per_pixel, const BatchLayout& layout,
-                         uint64_t pixels);
+// The camera samples of an epoch's pass in a photon mapper: per pixel, and the index of the
+// first in each pixel's sequence of the epoch's parity (PixelSampler::InEpoch: the even
+// epochs' samples and the odd epochs' are two sequences, each counting on over its epochs).
+// sppm's pass traces the epoch's k hit points a pixel; ppm's passes (its emission, and the
+// slots where workers sample direct light) take the power of two nearest below one per two
+// photons of the epoch, in [1, 64], since ppm's k are the fixed hit points photons gather at:
+// a growing epoch takes fewer. Sampled once a pixel an epoch, emission and direct light
+// dominated ppm's error (cornell-box at 256x256, 20 s on two cores: RMSE 0.021, the light's
+// edges 0.25 of it; 16 samples an epoch 0.0028, 64 0.0022). `layout` resolved.
+struct EpochSamples {
+    int per_pixel = 1;
+    uint64_t first = 0;
+};
+EpochSamples EpochCameraSamples(Integrator integrator, int samples_per_pixel,
+                                const BatchLayout& layout, uint64_t pixels, uint64_t epoch);
 // The same for a job whose film size is resolved.
-int EpochSamplesPerPixel(const JobSpec& spec);
+EpochSamples EpochCameraSamples(const JobSpec& spec, uint64_t epoch);
+// The most camera samples a pixel any epoch of the job takes (a full epoch's).
+int MaxEpochSamplesPerPixel(const JobSpec& spec);
 
 // The seed of the photon pass and direct light: `seed` itself for stream 0.
 uint64_t PhotonSeed(const JobSpec& spec);

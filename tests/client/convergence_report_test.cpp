@@ -70,6 +70,23 @@ TEST(ConvergenceReportTest, WritesCsvScriptAndPlotsThroughGnuplot) {
     std::filesystem::remove_all(dir);
 }
 
+TEST(ConvergenceReportTest, ALogWithNoErrorYetWritesTheCsvAndNoPlot) {
+    // One epoch and no reference: no error is known, which is no failure (gnuplot's log axes
+    // would have nothing to span).
+    const std::filesystem::path dir = testing::FreshTempDir("convergence-report-early");
+    ASSERT_TRUE(PrepareReportDir(dir.string()).ok());
+    ConvergencePoint first;
+    first.seconds = 0.3;
+    first.epochs = 1;
+    first.photons = 1 << 18;
+    const std::vector<ConvergencePoint> points = {first};
+    const absl::Status status = WriteConvergenceReport(dir.string(), "cornell-box.gltf", points);
+    ASSERT_TRUE(status.ok()) << status;
+    EXPECT_TRUE(std::filesystem::exists(dir / "convergence.csv"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "convergence.png"));
+    std::filesystem::remove_all(dir);
+}
+
 TEST(ConvergenceReportTest, UnwritableFolderIsNamed) {
     const absl::Status status = PrepareReportDir("/proc/pf-no-such-report");
     ASSERT_FALSE(status.ok());

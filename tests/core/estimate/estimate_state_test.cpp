@@ -47,7 +47,9 @@ ProgressiveEstimate MakeEstimate() {
     EstimateSettings settings;
     settings.initial_radius = 0.5;
     settings.samples_per_pixel = 3;
-    settings.layout = {1000, 4};
+    // Epochs of 500, 1000, 2000, then 4000 photons (and 2, 4, 8, then 16 camera samples a
+    // pixel): saved within the growing epochs and after them.
+    settings.layout = {1000, 4, 500};
     return ProgressiveEstimate(std::move(camera_pass), settings, StochasticPass);
 }
 

@@ -21,7 +21,7 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     features_ = AnalyseFeatures(*job.scene, *job.emitters);
     grid_ = HashGrid();
     radiance_ = nullptr;
-    epoch_film_.reset();
+    film_.reset();
     epoch_hit_points_.clear();
     maps_.reset();
     // A camera sample's cone, for textures where the integrators that render pixels meet them
@@ -39,7 +39,7 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
             absl::StatusOr<CameraPassSettings> film = FilmFor(*job.spec, *job.scene);
             if (!film.ok()) return film.status();
             film->features = features_;
-            epoch_film_ = EpochFilm(*film, *job.spec);
+            film_ = *film;
             break;
         }
         case Integrator::kPath: {
@@ -82,13 +82,13 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
 
 absl::Status CpuBackend::BeginEpoch(uint64_t epoch, std::span<const float> radius_sq,
                                     const std::vector<HitPoint>* traced) {
-    if (epoch_film_) {
+    if (film_) {
         const bool sppm = job_.spec->integrator == Integrator::kSppm;
         if (sppm && traced != nullptr)
             epoch_hit_points_ = *traced;
         else
             epoch_hit_points_ =
-                RunCameraPass(*job_.scene, tracer_, StochasticCameraPass(*epoch_film_, epoch))
+                RunCameraPass(*job_.scene, tracer_, StochasticCameraPass(*film_, *job_.spec, epoch))
                     .hit_points;
         if (sppm) job_.hit_points = epoch_hit_points_;
     }

@@ -36,9 +36,10 @@ private:
     PhotonPassScratch scratch_;
     RadianceFunction radiance_;               // path, pm: a camera sample's radiance
     std::shared_ptr<const PhotonMaps> maps_;  // pm: the job's photon maps
-    // ppm, sppm: the film each epoch's camera pass traces, and that pass's hit points, where
+    // ppm, sppm: the film whose epoch passes are traced (StochasticCameraPass), and the current
+    // epoch's pass's hit points, where
     // the epoch's direct light is sampled (and sppm's photons gather).
-    std::optional<CameraPassSettings> epoch_film_;
+    std::optional<CameraPassSettings> film_;
     std::vector<HitPoint> epoch_hit_points_;
 };
 

@@ -266,7 +266,7 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
                          std::string(IntegratorName(job.spec->integrator)), " integrator"));
     buffers_.reset();
     kernels_.reset();
-    epoch_film_.reset();
+    film_.reset();
     job_ = job;
     size_t direct_points = 0;
     if (job.spec != nullptr && GathersAtHitPoints(job.spec->integrator)) {
@@ -282,10 +282,12 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
             if (!tracer.ok()) return tracer.status();
             camera_tracer_ = std::move(*tracer);
         }
-        epoch_film_ = EpochFilm(*film, *job.spec);
-        epoch_hit_points_.assign(size_t(epoch_film_->width) * size_t(epoch_film_->height) *
-                                     size_t(epoch_film_->samples_per_pixel),
+        film_ = *film;
+        // Room for the largest epoch's pass (a growing epoch takes fewer samples).
+        epoch_hit_points_.assign(size_t(film_->width) * size_t(film_->height) *
+                                     size_t(MaxEpochSamplesPerPixel(*job.spec)),
                                  {});
+        max_epoch_points_ = epoch_hit_points_.size();
         if (job.spec->integrator == Integrator::kSppm)
             job_.hit_points = epoch_hit_points_;
         else
@@ -355,13 +357,14 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, std::span<const float> ra
     const size_t n = job_.hit_points.size();
     if (radius_sq.size() != n)
         return absl::InvalidArgumentError("one radius per hit point expected");
-    if (epoch_film_) {
+    if (film_) {
         std::vector<HitPoint> points =
             SppmJob() && traced != nullptr
                 ? *traced
-                : RunCameraPass(scene_, *camera_tracer_, StochasticCameraPass(*epoch_film_, epoch))
+                : RunCameraPass(scene_, *camera_tracer_,
+                                StochasticCameraPass(*film_, *job_.spec, epoch))
                       .hit_points;
-        PF_CHECK(points.size() == epoch_hit_points_.size());
+        PF_CHECK(SppmJob() ? points.size() == n : points.size() <= max_epoch_points_);
         epoch_hit_points_ = std::move(points);
         if (SppmJob()) job_.hit_points = epoch_hit_points_;
         Buffer& upload = SppmJob() ? buffers_->hit_point_upload : buffers_->direct_point_upload;
@@ -384,7 +387,7 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, std::span<const float> ra
         vkCmdCopyBuffer(*commands, buffers_->radius_upload.Handle(), buffers_->radius_sq.Handle(),
                         1, &radii);
     const VkBufferCopy points{.size = epoch_hit_points_.size() * sizeof(gpu::GpuHitPoint)};
-    if (epoch_film_ && !epoch_hit_points_.empty()) {
+    if (film_ && !epoch_hit_points_.empty()) {
         if (SppmJob())
             vkCmdCopyBuffer(*commands, buffers_->hit_point_upload.Handle(),
                             buffers_->hit_points.Handle(), 1, &points);

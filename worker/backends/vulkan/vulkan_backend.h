@@ -81,12 +81,13 @@ private:
         return job_.spec != nullptr && job_.spec->integrator == Integrator::kSppm;
     }
 
-    // ppm, sppm: the film each epoch's camera pass traces, on the CPU through camera_tracer_
+    // ppm, sppm: the film whose epoch passes are traced, on the CPU through camera_tracer_
     // (made for the first such job), and the pass's points: sppm's hit points, which
     // job_.hit_points views, or ppm's points of direct light.
-    std::optional<CameraPassSettings> epoch_film_;
+    std::optional<CameraPassSettings> film_;
     std::unique_ptr<Tracer> camera_tracer_;
     std::vector<HitPoint> epoch_hit_points_;
+    size_t max_epoch_points_ = 0;  // the buffers' room for them
     gpu::vec4 scene_sphere_{};
     float scene_magnitude_ = 0;
     float flux_to_fixed_ = 0;  // fixed-point tally units per watt
