@@ -10,8 +10,10 @@
 #  - pm: its error is fixed by its maps, so it runs once per map size (PM_SIZES photons per
 #    map, PM_EPOCHS epochs each); each run is one point.
 # Writes OUT/<scene>.png (log-log relative error against seconds, one curve per integrator),
-# OUT/<scene>.csv (integrator,photons,seconds,relative_error,peak_memory_mb per run) and
-# OUT/table.md (the last point of every run), and prints the table.
+# OUT/<scene>.csv (integrator,photons,seconds,relative_error,peak_memory_mb per run),
+# OUT/table.md (the last point of every run) and OUT/ratios.md (for ppm and sppm, the time to
+# the path tracer's error at a quarter of its run and at its end, over the path tracer's time:
+# below 1, faster than the path tracer; bench/time_to_error.awk), and prints both tables.
 # SCENES="a b" renders those scenes alone and keeps the other scenes' rows of OUT/table.md.
 # Usage: bench/compare_integrators.sh BUILD_DIR [OUT_DIR] [SIZE] [SECONDS] [REF_SECONDS]
 set -euo pipefail
@@ -42,17 +44,29 @@ render() {
 }
 
 table="$out/table.md"
-kept="$work/kept.md"  # the rows of the scenes not rendered this time
-: >"$kept"
-if [[ -n ${SCENES:-} && -f $table ]]; then
-    tail -n +3 "$table" | awk -v scenes=" $SCENES " -F' [|] ' 'index(scenes, " " substr($1, 3) " ") == 0' >"$kept"
-fi
+ratios="$out/ratios.md"
+# keep TABLE: the rows of the scenes not rendered this time, into $work/kept-<table's name>.
+keep() {
+    : >"$work/kept-$(basename "$1")"
+    if [[ -n ${SCENES:-} && -f $1 ]]; then
+        tail -n +3 "$1" | awk -v scenes=" $SCENES " -F' [|] ' 'index(scenes, " " substr($1, 3) " ") == 0' \
+            >"$work/kept-$(basename "$1")"
+    fi
+}
+keep "$table"
+keep "$ratios"
 {
     echo "| scene | integrator | settings | photons | seconds | relative error | peak memory (MB) |"
     echo "|---|---|---|---:|---:|---:|---:|"
 } >"$table"
+{
+    echo "| scene | integrator | path's error | path's seconds to it | seconds to it | ratio |"
+    echo "|---|---|---:|---:|---:|---:|"
+} >"$ratios"
 rows="$work/rows.md"
+ratio_rows="$work/ratio-rows.md"
 : >"$rows"
+: >"$ratio_rows"
 for gltf in scenes/*.gltf; do
     scene=$(basename "$gltf" .gltf)
     [[ -n ${SCENES:-} && " $SCENES " != *" $scene "* ]] && continue
@@ -76,6 +90,27 @@ for gltf in scenes/*.gltf; do
             "$(awk -v e="$e" 'BEGIN { print 100 * e }')" "$m" >>"$rows"
         cp "$work/$scene-$integrator/convergence.csv" "$work/$scene-$integrator.curve.csv"
         plots+=("'$work/$scene-$integrator.curve.csv' using (column(\"seconds\")):(column(\"reference_rel_error\")) with lines lw 2 title '$integrator'")
+    done
+    # The path tracer's error at a quarter of its run and at its end; each photon mapper's
+    # time to it.
+    path_curve="$work/$scene-path.curve.csv"
+    for at in 0.25 1; do
+        read -r path_s path_e < <(awk -F, -v at="$at" -v seconds="$seconds" '
+            NR == 1 { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+            { s = $col["seconds"]; e = $col["reference_rel_error"] }
+            !done && s >= at * seconds { print s, e; done = 1 }
+            END { if (!done) print s, e }' "$path_curve")
+        for integrator in ppm sppm; do
+            t=$(awk -F, -v target="$path_e" -v column=reference_rel_error \
+                -f "$(dirname "$0")/time_to_error.awk" "$work/$scene-$integrator.curve.csv")
+            if [[ $t == never ]]; then
+                ratio=$(awk -v a="$seconds" -v b="$path_s" 'BEGIN { printf "> %.2f", a / b }')
+            else
+                ratio=$(awk -v a="$t" -v b="$path_s" 'BEGIN { printf "%.2f", a / b }')
+            fi
+            printf '| %s | %s | %.2f%% | %.1f | %s | %s |\n' "$scene" "$integrator" \
+                "$(awk -v e="$path_e" 'BEGIN { print 100 * e }')" "$path_s" "$t" "$ratio" >>"$ratio_rows"
+        done
     done
     pm_points="$work/$scene-pm.points"
     : >"$pm_points"
@@ -102,5 +137,8 @@ plot ${plots[0]}, ${plots[1]}, ${plots[2]}, \\
      "$pm_points" using 1:2:3 with labels offset 0,1 notitle
 EOF
 done
-cat "$kept" "$rows" | sort -s -t'|' -k2,2 >>"$table"
+cat "$work/kept-table.md" "$rows" | sort -s -t'|' -k2,2 >>"$table"
+cat "$work/kept-ratios.md" "$ratio_rows" | sort -s -t'|' -k2,2 >>"$ratios"
 cat "$table"
+echo
+cat "$ratios"

@@ -50,14 +50,15 @@ public:
     // samples a pixel change from epoch to epoch (EpochCameraSamples).
     static PixelSampler InEpochSequence(uint64_t seed, uint64_t stream, uint64_t pixel,
                                         uint64_t epoch, uint64_t index) {
-        return PixelSampler(seed, stream, 2 * pixel + (epoch & 1), index);
+        return PixelSampler(seed, stream, SequenceOf(pixel, epoch), index);
+    }
+    // Which of the sequences of (seed, stream) pixel p's samples in epoch e take.
+    static constexpr uint64_t SequenceOf(uint64_t pixel, uint64_t epoch) {
+        return 2 * pixel + (epoch & 1);
     }
 
     Point2 Next2D() {
-        const uint64_t hash = seeds_.Seed(pair_++);
-        return gpu::ScrambledSobol2D(index_, static_cast<uint32_t>(hash),
-                                     static_cast<uint32_t>(hash >> 32),
-                                     static_cast<uint32_t>(Mix64(hash)));
+        return gpu::SequenceSample2D(seeds_.Prefix(), index_, static_cast<uint32_t>(pair_++));
     }
 
 private:

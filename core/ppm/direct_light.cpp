@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "core/camera/pixel_sample.h"
 #include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/glossy.h"
@@ -24,19 +25,37 @@ float CoatFactor(const DirectLightRays& rays, const Vec3& n, const Vec3& directi
 
 DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const Vec3& n,
                                  const Material* coat, Rng& rng) {
-    DirectLightRays rays;
-    rays.light_active = emitters.SampleDirect(p, n, rng, &rays.light);
+    // In the order the Vulkan kernel draws them.
+    DirectLightNumbers numbers;
+    numbers.pick = rng.NextFloat();
+    numbers.light.x = rng.NextFloat();
+    numbers.light.y = rng.NextFloat();
     if (emitters.FoundByRays()) {
-        const float u1 = rng.NextFloat();
-        const float u2 = rng.NextFloat();
-        const Vec3 direction = Frame::FromNormal(n).ToWorld(SampleCosineHemisphere(u1, u2));
+        numbers.cosine.x = rng.NextFloat();
+        numbers.cosine.y = rng.NextFloat();
+    }
+    if (coat != nullptr && coat->coat_roughness > 0) {
+        numbers.coat.x = rng.NextFloat();
+        numbers.coat.y = rng.NextFloat();
+    }
+    return StartDirectLight(emitters, p, n, coat, numbers);
+}
+
+DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const Vec3& n,
+                                 const Material* coat, const DirectLightNumbers& numbers) {
+    DirectLightRays rays;
+    rays.light_active = emitters.SampleDirect(p, n, numbers.pick, numbers.light, &rays.light,
+                                              numbers.pick_from_light);
+    if (emitters.FoundByRays()) {
+        const Vec3 direction = Frame::FromNormal(n).ToWorld(
+            SampleCosineHemisphere(numbers.cosine.x, numbers.cosine.y));
         rays.bsdf_ray = {OffsetRayOrigin(p, n, emitters.SceneScale()), direction};
         rays.bsdf_active = true;
     }
     rays.coat = coat;
     if (coat != nullptr && coat->coat_roughness > 0) {
-        rays.coat_u1 = rng.NextFloat();
-        rays.coat_u2 = rng.NextFloat();
+        rays.coat_u1 = numbers.coat.x;
+        rays.coat_u2 = numbers.coat.y;
     }
     return rays;
 }
@@ -75,19 +94,26 @@ Rgb SampleDirectIrradiance(const Emitters& emitters, const Tracer& tracer, const
     return FinishDirectLight(emitters, n, rays, occluded, found ? &hit : nullptr);
 }
 
+namespace {
+constexpr uint64_t kDirectStream = 0x646972656374ull;
+}  // namespace
+
 SeedFamily DirectLightSeeds(uint64_t seed, uint64_t epoch) {
-    constexpr uint64_t kDirectStream = 0x646972656374ull;
     return SeedFamily(seed, kDirectStream, epoch);
 }
+
+uint64_t DirectLightSequences(uint64_t seed) { return gpu::FamilyPartial(seed, kDirectStream); }
 
 uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
                            std::span<const Material> materials,
                            std::span<const HitPoint> hit_points, uint32_t first, uint64_t seed,
-                           uint64_t epoch, std::span<Rgb> out) {
+                           uint64_t epoch, const DirectLightSequence* sequence,
+                           std::span<Rgb> out) {
     uint64_t discarded = 0;
     PF_CHECK(first + out.size() <= hit_points.size());
     constexpr int kLanes = Tracer::kPacketSize;
     const SeedFamily seeds = DirectLightSeeds(seed, epoch);
+    const uint64_t sequences = DirectLightSequences(seed);
     for (size_t begin = 0; begin < out.size(); begin += kLanes) {
         const int lanes = static_cast<int>(std::min<size_t>(kLanes, out.size() - begin));
         DirectLightRays samples[kLanes];
@@ -98,10 +124,33 @@ uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
         for (int lane = 0; lane < lanes; ++lane) {
             const uint32_t index = first + static_cast<uint32_t>(begin) + lane;
             const HitPoint& hit_point = hit_points[index];
-            Rng rng(seeds.Seed(index));
             const Material* coat = hit_point.coat == kNoCoat ? nullptr : &materials[hit_point.coat];
-            samples[lane] =
-                StartDirectLight(emitters, hit_point.position, hit_point.normal, coat, rng);
+            if (sequence != nullptr) {
+                // The emitter's pick with the point on it, and the cosine ray, from the pixel's
+                // sequences (PixelSampler's, drawn as the Vulkan kernel draws them); the coat's
+                // microfacet from the point's stream.
+                const uint64_t prefix = gpu::FamilyPrefixOf(
+                    sequences, PixelSampler::SequenceOf(hit_point.pixel, epoch));
+                const auto sample = static_cast<uint32_t>(
+                    sequence->first +
+                    (index - uint64_t{hit_point.pixel} * uint64_t(sequence->samples_per_pixel)));
+                DirectLightNumbers numbers;
+                numbers.light = gpu::SequenceSample2D(prefix, sample, 0);
+                numbers.pick_from_light = true;
+                if (emitters.FoundByRays())
+                    numbers.cosine = gpu::SequenceSample2D(prefix, sample, 1);
+                if (coat != nullptr && coat->coat_roughness > 0) {
+                    Rng rng(seeds.Seed(index));
+                    numbers.coat.x = rng.NextFloat();
+                    numbers.coat.y = rng.NextFloat();
+                }
+                samples[lane] =
+                    StartDirectLight(emitters, hit_point.position, hit_point.normal, coat, numbers);
+            } else {
+                Rng rng(seeds.Seed(index));
+                samples[lane] =
+                    StartDirectLight(emitters, hit_point.position, hit_point.normal, coat, rng);
+            }
             shadow_active[lane] = samples[lane].light_active;
             shadow_rays[lane] = samples[lane].light.shadow_ray;
             bsdf_active[lane] = samples[lane].bsdf_active;

@@ -31,6 +31,15 @@ struct DirectLightRays {
 };
 DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const Vec3& n,
                                  const Material* coat, Rng& rng);
+// The numbers of one sample drawn elsewhere: the emitter's pick, the point on it, the cosine
+// ray's direction and the coat's microfacet.
+struct DirectLightNumbers {
+    float pick = 0;
+    Point2 light, cosine, coat;
+    bool pick_from_light = false;  // light.x picks the emitter too (Emitters::SampleDirect)
+};
+DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const Vec3& n,
+                                 const Material* coat, const DirectLightNumbers& numbers);
 
 // The sample's estimate of the irradiance at p, the integral of L_i cos over the hemisphere
 // (a diffuse point reflects it times albedo / pi) -- under a coat, of L_i cos times the
@@ -47,14 +56,27 @@ Rgb SampleDirectIrradiance(const Emitters& emitters, const Tracer& tracer, const
 // Rng(DirectLightSeeds(seed, epoch).Seed(h)), on every backend.
 SeedFamily DirectLightSeeds(uint64_t seed, uint64_t epoch);
 
+// Where the direct-light samples of an epoch's camera pass in slot order (pixel * k + sample:
+// a StochasticCameraPass) take their numbers: slot s of pixel p takes the index first + s of
+// p's sequences for the epoch's parity (EpochCameraSamples), as its camera sample does, so
+// that a pixel's light samples are stratified across epochs as its camera samples are.
+struct DirectLightSequence {
+    int samples_per_pixel = 0;  // the pass's k
+    uint64_t first = 0;
+};
+// The part of seed's pixel sequences of direct light that all pixels share
+// (gpu::FamilyPartial), for the Vulkan kernel to derive each pixel's.
+uint64_t DirectLightSequences(uint64_t seed);
+
 // One sample each of the light reflected at hit_points[first + i] toward its camera path,
 // already multiplied by the hit point's weight (throughput x BSDF), in W/(m^2 sr), into
 // out[i]. Hit point h's sample in `epoch` draws from a stream seeded by (seed, epoch, h)
-// alone. Rays are cast in packets. A sample that comes out NaN or Inf is set to 0; returns
-// how many were. `materials` holds the hit points' coats.
+// alone, or, given `sequence`, from its pixel's scrambled (0,2)-sequences keyed by (seed,
+// pixel, epoch's parity, index). Rays are cast in packets. A sample that comes out NaN or Inf
+// is set to 0; returns how many were. `materials` holds the hit points' coats.
 uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
                            std::span<const Material> materials,
                            std::span<const HitPoint> hit_points, uint32_t first, uint64_t seed,
-                           uint64_t epoch, std::span<Rgb> out);
+                           uint64_t epoch, const DirectLightSequence* sequence, std::span<Rgb> out);
 
 }  // namespace pf

@@ -233,7 +233,8 @@ std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs,
         result.samples.resize(spec.sample_end - spec.sample_begin);
         result.nonfinite_discarded += SampleDirectLight(
             *inputs.emitters, *inputs.tracer, inputs.scene->materials, inputs.DirectPoints(),
-            spec.sample_begin, inputs.seed, spec.epoch, result.samples);
+            spec.sample_begin, inputs.seed, spec.epoch,
+            inputs.direct_sequence ? &*inputs.direct_sequence : nullptr, result.samples);
     });
     return results;
 }

@@ -6,12 +6,14 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
 #include "core/geometry/tracer.h"
 #include "core/job/batch.h"
 #include "core/job/hit_point.h"
+#include "core/ppm/direct_light.h"
 #include "core/ppm/hash_grid.h"
 #include "core/ppm/tally_accumulator.h"
 #include "core/sampling/rng.h"
@@ -44,6 +46,9 @@ struct PhotonPassInputs {
     std::span<const HitPoint> DirectPoints() const {
         return direct_points.empty() ? hit_points : direct_points;
     }
+    // Given, the direct points are that pass's slots and take its camera samples' numbers
+    // (DirectLightSequence); otherwise a stream per point.
+    std::optional<DirectLightSequence> direct_sequence;
 };
 
 // A batch gathers its deposits once this many are pending (about 80 MB of deposits and keys

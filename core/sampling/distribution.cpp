@@ -42,6 +42,12 @@ DiscreteDistribution::Sample DiscreteDistribution::Draw(float u) const {
     return {static_cast<uint32_t>(index), probabilities_[index]};
 }
 
+float DiscreteDistribution::Remap(float u, uint32_t index) const {
+    const double below = index == 0 ? 0.0 : cdf_[index - 1];
+    const double remapped = (double(u) - below) / probabilities_[index];
+    return std::clamp(static_cast<float>(remapped), 0.0f, 0x1.fffffep-1f);
+}
+
 double DiscreteDistribution::Probability(uint32_t index) const { return probabilities_[index]; }
 
 }  // namespace pf

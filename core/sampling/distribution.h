@@ -21,6 +21,9 @@ public:
     // Maps u in [0, 1) to an item with probability weight / total; never returns an item
     // of zero weight.
     Sample Draw(float u) const;
+    // Where u lies within item `index`'s share of [0, 1) (the one Draw(u) chose), rescaled to
+    // [0, 1): a number as uniform as u and independent of the choice, for a second use.
+    float Remap(float u, uint32_t index) const;
     double Probability(uint32_t index) const;
     double Total() const { return total_; }
     size_t Size() const { return probabilities_.size(); }

@@ -311,9 +311,17 @@ EmittedPhoton Emitters::EmitFromEnvironment(Rng& rng) const {
 }
 
 bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample* sample) const {
-    const auto pick = distribution_.Draw(rng.NextFloat());
+    const float pick = rng.NextFloat();
+    const float u1 = rng.NextFloat();
+    const float u2 = rng.NextFloat();
+    return SampleDirect(p, n, pick, Point2{u1, u2}, sample);
+}
+
+bool Emitters::SampleDirect(const Vec3& p, const Vec3& n, float pick_u, Point2 u,
+                            LightSample* sample, bool pick_from_u) const {
+    const auto pick = distribution_.Draw(pick_from_u ? u.x : pick_u);
     const Emitter& emitter = emitters_[pick.index];
-    const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
+    const float u1 = pick_from_u ? distribution_.Remap(u.x, pick.index) : u.x, u2 = u.y;
     const Vec3 origin = OffsetRayOrigin(p, n, SceneScale());
     Vec3 to_light;
     float distance = std::numeric_limits<float>::infinity();

@@ -55,6 +55,11 @@ public:
     // One light sample for direct lighting at receiver point p with facing normal n.
     // Returns false when the sample carries no light (behind the light, outside a spot cone).
     bool SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample* sample) const;
+    // The same from given numbers: `pick` chooses the emitter, `u` the point on it; with
+    // `pick_from_u`, u.x chooses the emitter and is then rescaled within the emitter's share
+    // (DiscreteDistribution::Remap), so that stratified u spread over all emitters together.
+    bool SampleDirect(const Vec3& p, const Vec3& n, float pick, Point2 u, LightSample* sample,
+                      bool pick_from_u = false) const;
     // The density in solid angle with which SampleDirect, at receiver point p, picks the point
     // `on_light` of world triangle `triangle` (0 if the triangle emits nothing): for weighing
     // a path that found the light by scattering against light sampling (Veach 1997, ch. 9).

@@ -213,7 +213,7 @@ PF_GPU_LAYOUT(GpuEmitter, 176);
 
 struct GpuHitPoint {
     vec4 position;  // xyz; w: the material whose coat covers it, or kNoCoat (uint bits)
-    vec4 normal;    // unit, toward the camera path's side
+    vec4 normal;    // xyz unit, toward the camera path's side; w: its pixel (uint bits)
     vec4 weight;    // camera throughput x BSDF, 1/sr
 };
 PF_GPU_LAYOUT(GpuHitPoint, 48);
@@ -271,9 +271,15 @@ struct GpuParams {
     uint32_t direct_begin;         // direct: the slice's first hit point (output index 0)
     uint32_t scan_target;          // kScanGridBegin or kScanTallyOffsets
     uint32_t environment_emitter;  // the environment's index into the emitters, if any
-    uint32_t pad;
+    // direct: the points are the epoch's camera pass in slot order, this many a pixel, and take
+    // its samples' numbers (core/ppm/direct_light.h, DirectLightSequence); 0: a stream each.
+    uint32_t direct_samples_per_pixel;
+    uint64_t direct_sequences;     // direct: FamilyPartial of the pixels' direct-light sequences
+    uint64_t direct_first_sample;  // direct: the pass's first index in each sequence
+    uint32_t epoch_parity;         // direct: epoch & 1, which of a pixel's two sequences
+    uint32_t pad0, pad1, pad2;     // to the vec4's alignment; 112 of the 128 bytes Vulkan assures
 };
-PF_GPU_LAYOUT(GpuParams, 80);
+PF_GPU_LAYOUT(GpuParams, 112);
 
 PF_GPU_END
 

@@ -19,8 +19,14 @@ PF_GPU_CONSTEXPR_FN uint64_t Mix64(uint64_t x) {
 
 // The seed of member d of the family whose (a, b, c) mixed once gave `prefix`
 // (FamilyPrefix): a batch mixes its shared part once, each photon once more.
+// FamilyPrefix in two steps, for families that differ in c alone (a pixel's sequences, one
+// per pixel): the part of (a, b), then each c's prefix from it.
+PF_GPU_CONSTEXPR_FN uint64_t FamilyPartial(uint64_t a, uint64_t b) { return Mix64(Mix64(a) ^ b); }
+PF_GPU_CONSTEXPR_FN uint64_t FamilyPrefixOf(uint64_t partial, uint64_t c) {
+    return Mix64(partial ^ c);
+}
 PF_GPU_CONSTEXPR_FN uint64_t FamilyPrefix(uint64_t a, uint64_t b, uint64_t c) {
-    return Mix64(Mix64(Mix64(a) ^ b) ^ c);
+    return FamilyPrefixOf(FamilyPartial(a, b), c);
 }
 PF_GPU_CONSTEXPR_FN uint64_t FamilySeed(uint64_t prefix, uint64_t d) { return Mix64(prefix ^ d); }
 

@@ -23,6 +23,7 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     radiance_ = nullptr;
     film_.reset();
     epoch_hit_points_.clear();
+    direct_sequence_.reset();
     maps_.reset();
     // A camera sample's cone, for textures where the integrators that render pixels meet them
     // (an orthographic camera's samples have none: point lookups).
@@ -84,13 +85,13 @@ absl::Status CpuBackend::BeginEpoch(uint64_t epoch, std::span<const float> radiu
                                     const std::vector<HitPoint>* traced) {
     if (film_) {
         const bool sppm = job_.spec->integrator == Integrator::kSppm;
+        const CameraPassSettings pass = StochasticCameraPass(*film_, *job_.spec, epoch);
         if (sppm && traced != nullptr)
             epoch_hit_points_ = *traced;
         else
-            epoch_hit_points_ =
-                RunCameraPass(*job_.scene, tracer_, StochasticCameraPass(*film_, *job_.spec, epoch))
-                    .hit_points;
+            epoch_hit_points_ = RunCameraPass(*job_.scene, tracer_, pass).hit_points;
         if (sppm) job_.hit_points = epoch_hit_points_;
+        direct_sequence_ = DirectLightSequence{pass.samples_per_pixel, pass.first_sample};
     }
     PF_CHECK(radius_sq.size() == job_.hit_points.size());
     if (!radius_sq.empty()) grid_.Build(job_.hit_points, radius_sq);
@@ -107,6 +108,7 @@ absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const 
     PhotonPassInputs inputs{job_.scene, job_.emitters, &tracer_, job_.hit_points,
                             &grid_,     job_.seed,     features_};
     inputs.direct_points = epoch_hit_points_;
+    inputs.direct_sequence = direct_sequence_;
     if (job_.spec != nullptr)
         inputs.max_bounces = DepthLimit(job_.spec->max_depth, kMaxPhotonBounces);
     return RunPhotonBatches(inputs, specs, scratch_);

@@ -10,6 +10,7 @@
 #include "core/camera/camera_pass.h"
 #include "core/geometry/tracer.h"
 #include "core/pm/photon_map.h"
+#include "core/ppm/direct_light.h"
 #include "core/ppm/hash_grid.h"
 #include "core/ppm/photon_pass.h"
 #include "core/render/pixel_pass.h"
@@ -41,6 +42,7 @@ private:
     // the epoch's direct light is sampled (and sppm's photons gather).
     std::optional<CameraPassSettings> film_;
     std::vector<HitPoint> epoch_hit_points_;
+    std::optional<DirectLightSequence> direct_sequence_;  // the pass's camera samples
 };
 
 }  // namespace pf::embree

@@ -55,7 +55,7 @@ uint32_t Groups(uint64_t threads, uint32_t per_group) {
 static_assert(gpu::kNoCoat == kNoCoat);
 gpu::GpuHitPoint ToGpu(const HitPoint& h) {
     return {{h.position.x, h.position.y, h.position.z, std::bit_cast<float>(h.coat)},
-            {h.normal.x, h.normal.y, h.normal.z, 0},
+            {h.normal.x, h.normal.y, h.normal.z, std::bit_cast<float>(h.pixel)},
             {h.weight.x, h.weight.y, h.weight.z, 0}};
 }
 
@@ -267,6 +267,7 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     buffers_.reset();
     kernels_.reset();
     film_.reset();
+    direct_sequence_.reset();
     job_ = job;
     size_t direct_points = 0;
     if (job.spec != nullptr && GathersAtHitPoints(job.spec->integrator)) {
@@ -358,12 +359,12 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, std::span<const float> ra
     if (radius_sq.size() != n)
         return absl::InvalidArgumentError("one radius per hit point expected");
     if (film_) {
+        const CameraPassSettings pass = StochasticCameraPass(*film_, *job_.spec, epoch);
         std::vector<HitPoint> points =
             SppmJob() && traced != nullptr
                 ? *traced
-                : RunCameraPass(scene_, *camera_tracer_,
-                                StochasticCameraPass(*film_, *job_.spec, epoch))
-                      .hit_points;
+                : RunCameraPass(scene_, *camera_tracer_, pass).hit_points;
+        direct_sequence_ = DirectLightSequence{pass.samples_per_pixel, pass.first_sample};
         PF_CHECK(SppmJob() ? points.size() == n : points.size() <= max_epoch_points_);
         epoch_hit_points_ = std::move(points);
         if (SppmJob()) job_.hit_points = epoch_hit_points_;
@@ -451,6 +452,13 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
     direct.seed_prefix = DirectLightSeeds(job_.seed, spec.epoch).Prefix();
     direct.end = spec.sample_end;
     direct.direct_begin = spec.sample_begin;
+    if (direct_sequence_) {
+        direct.direct_samples_per_pixel =
+            static_cast<uint32_t>(direct_sequence_->samples_per_pixel);
+        direct.direct_sequences = DirectLightSequences(job_.seed);
+        direct.direct_first_sample = direct_sequence_->first;
+        direct.epoch_parity = static_cast<uint32_t>(spec.epoch & 1);
+    }
     for (uint64_t first = 0; first < direct_count; first += per_dispatch) {
         direct.first = static_cast<uint32_t>(spec.sample_begin + first);
         kernels_->Dispatch(

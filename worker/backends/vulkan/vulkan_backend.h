@@ -13,6 +13,7 @@
 
 #include "core/camera/camera_pass.h"
 #include "core/geometry/tracer.h"
+#include "core/ppm/direct_light.h"
 #include "worker/backend.h"
 #include "worker/backends/vulkan/buffer.h"
 #include "worker/backends/vulkan/command_stream.h"
@@ -87,7 +88,8 @@ private:
     std::optional<CameraPassSettings> film_;
     std::unique_ptr<Tracer> camera_tracer_;
     std::vector<HitPoint> epoch_hit_points_;
-    size_t max_epoch_points_ = 0;  // the buffers' room for them
+    size_t max_epoch_points_ = 0;                         // the buffers' room for them
+    std::optional<DirectLightSequence> direct_sequence_;  // the pass's camera samples
     gpu::vec4 scene_sphere_{};
     float scene_magnitude_ = 0;
     float flux_to_fixed_ = 0;  // fixed-point tally units per watt

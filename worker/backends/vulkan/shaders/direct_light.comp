@@ -9,6 +9,7 @@
 #include "trace.glsl"
 #include "lights.glsl"
 #include "specular.glsl"
+#include "core/shared/sobol.h"
 
 layout(local_size_x = kWorkgroupSize) in;
 
@@ -22,19 +23,47 @@ void main() {
         const GpuHitPoint point = direct_points[index];
         Pcg32 rng = Pcg32Seeded(FamilySeed(params.seed_prefix, index));
         const vec3 normal = point.normal.xyz;
+        // The numbers as the CPU draws them (core/ppm/direct_light.cpp): with the pass's
+        // sequences, the emitter's pick with the point on it and the cosine ray from the slot's
+        // camera sample's index in its pixel's sequences, the coat's microfacet from the
+        // point's stream; without, all from the stream, in the order used.
+        const bool sequenced = params.direct_samples_per_pixel > 0;
+        uint64_t sequence = 0;
+        uint sample_index = 0;
+        float pick = 0;
+        vec2 light_u = vec2(0);
+        if (sequenced) {
+            const uint pixel = floatBitsToUint(point.normal.w);
+            // PixelSampler::SequenceOf: 2 pixel + the epoch's parity.
+            sequence = FamilyPrefixOf(params.direct_sequences,
+                                      2ul * uint64_t(pixel) + uint64_t(params.epoch_parity));
+            sample_index = uint(params.direct_first_sample +
+                                uint64_t(index - pixel * params.direct_samples_per_pixel));
+            light_u = SequenceSample2D(sequence, sample_index, 0u);
+        } else {
+            pick = Pcg32NextFloat(rng);
+            light_u.x = Pcg32NextFloat(rng);
+            light_u.y = Pcg32NextFloat(rng);
+        }
         LightSample light;
         vec3 light_part = vec3(0), ray_part = vec3(0);
         vec3 ray_direction = normal;
         RayHit hit;
-        if (SampleLight(point.position.xyz, normal, rng, light) &&
+        if (SampleLightFrom(point.position.xyz, normal, pick, light_u, sequenced, light) &&
             !TraceRay(light.origin, light.direction, light.distance, true, hit)) {
             const float cosine = dot(light.direction, normal);
             const float weight = light.pdf > 0 ? PowerHeuristic(light.pdf, cosine / kPi) : 1.0;
             light_part = light.radiance_over_pdf * (cosine * weight);
         }
         if (kHasTriangleLights || kHasEnvironment) {
-            const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-            ray_direction = FrameFromNormal(normal) * SampleCosineHemisphere(u1, u2);
+            vec2 u;
+            if (sequenced) {
+                u = SequenceSample2D(sequence, sample_index, 1u);
+            } else {
+                u.x = Pcg32NextFloat(rng);
+                u.y = Pcg32NextFloat(rng);
+            }
+            ray_direction = FrameFromNormal(normal) * SampleCosineHemisphere(u.x, u.y);
             const vec3 origin = OffsetRayOrigin(point.position.xyz, normal);
             float pdf = 0;
             vec3 radiance = vec3(0);

@@ -180,11 +180,31 @@ struct LightSample {
 };
 
 // One light sample at receiver p with facing normal n; false where it carries no light.
+bool SampleLightFrom(vec3 p, vec3 n, float pick, vec2 u, bool pick_from_u,
+                     out LightSample sample_out);
+
 bool SampleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample sample_out) {
-    const uint index = PickEmitter(Pcg32NextFloat(rng));
+    const float pick = Pcg32NextFloat(rng);
+    const float u1 = Pcg32NextFloat(rng);
+    const float u2 = Pcg32NextFloat(rng);
+    return SampleLightFrom(p, n, pick, vec2(u1, u2), false, sample_out);
+}
+
+// Where u lies within emitter `index`'s share of [0, 1), rescaled to [0, 1)
+// (DiscreteDistribution::Remap, in float here).
+float RemapPick(float u, uint index) {
+    const float below = index == 0 ? 0.0 : emitter_cdf[index - 1];
+    return clamp((u - below) * emitters[index].power.w, 0.0, 0.99999994);
+}
+
+// The same from given numbers: `pick` chooses the emitter, `u` the point on it; with
+// `pick_from_u`, u.x chooses it and is rescaled within its share (Emitters::SampleDirect).
+bool SampleLightFrom(vec3 p, vec3 n, float pick, vec2 u, bool pick_from_u,
+                     out LightSample sample_out) {
+    const uint index = PickEmitter(pick_from_u ? u.x : pick);
     const GpuEmitter emitter = emitters[index];
     const uint kind = EmitterKind(emitter);
-    const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+    const float u1 = pick_from_u ? RemapPick(u.x, index) : u.x, u2 = u.y;
     sample_out.origin = OffsetRayOrigin(p, n);
     sample_out.distance = kInfinity;
     sample_out.pdf = 0;
