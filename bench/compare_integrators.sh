@@ -14,7 +14,9 @@
 # OUT/table.md (the last point of every run) and OUT/ratios.md (for ppm and sppm, the time to
 # the path tracer's error at a quarter of its run and at its end, over the path tracer's time:
 # below 1, faster than the path tracer; bench/time_to_error.awk), and prints both tables.
-# SCENES="a b" renders those scenes alone and keeps the other scenes' rows of OUT/table.md.
+# SCENES="a b" renders those scenes alone and keeps the other scenes' rows of OUT/table.md. A
+# scene lit by a sky alone (scenes/<scene>-sky.hdr beside it) renders with that as its
+# --environment.
 # Usage: bench/compare_integrators.sh BUILD_DIR [OUT_DIR] [SIZE] [SECONDS] [REF_SECONDS]
 set -euo pipefail
 build=${1:?usage: compare_integrators.sh BUILD_DIR [OUT_DIR] [SIZE] [SECONDS] [REF_SECONDS]}
@@ -34,7 +36,7 @@ common=(--width "$size" --height "$size" --log-level warn)
 render() {
     local name=$1
     shift
-    "$photonfarm" render "$@" "${common[@]}" --out "$work/$name.exr" --report "$work/$name" >"$work/$name.log" 2>&1 ||
+    "$photonfarm" render "$@" "${sky[@]}" "${common[@]}" --out "$work/$name.exr" --report "$work/$name" >"$work/$name.log" 2>&1 ||
         { cat "$work/$name.log" >&2; exit 1; }
     local memory
     memory=$(sed -n 's/.*peak memory \([0-9]*\) MB.*/\1/p' "$work/$name.log" | tail -1)
@@ -70,13 +72,15 @@ ratio_rows="$work/ratio-rows.md"
 for gltf in scenes/*.gltf; do
     scene=$(basename "$gltf" .gltf)
     [[ -n ${SCENES:-} && " $SCENES " != *" $scene "* ]] && continue
+    sky=()
+    [[ -f scenes/$scene-sky.hdr ]] && sky=(--environment "scenes/$scene-sky.hdr")
     reference="$work/$scene-reference.exr"
     if [[ $scene == furnace* ]]; then
         oiiotool --pattern constant:color=2,2,2 "${size}x${size}" 3 -d float -o "$reference"
     else
         ref_integrator=path
         [[ $scene == caustic-glass ]] && ref_integrator=sppm
-        "$photonfarm" render "$gltf" "${common[@]}" --integrator "$ref_integrator" --seed 977 \
+        "$photonfarm" render "$gltf" "${sky[@]}" "${common[@]}" --integrator "$ref_integrator" --seed 977 \
             --seconds "$ref_seconds" --out "$reference" 2>"$work/log" >/dev/null || { cat "$work/log" >&2; exit 1; }
     fi
     csv="$out/$scene.csv"

@@ -5,7 +5,9 @@
 # EPOCHS small epochs measured against it with --report. Copies each convergence.png to
 # OUT/<scene>.png and prints a table: final photons and seconds, measured and estimated
 # relative error, the estimate's ratio to the measured RMSE (range from epoch 8 on), and the
-# fitted slopes of the measured RMSE against photons and seconds.
+# fitted slopes of the measured RMSE against photons and seconds. A scene lit by a sky alone
+# (scenes/<scene>-sky.hdr beside it) renders with that as its --environment. SCENES="a b"
+# renders those scenes alone.
 # Usage: bench/convergence_plots.sh BUILD_DIR [OUT_DIR] [SIZE] [EPOCH_PHOTONS] [EPOCHS] [REF_FACTOR]
 set -euo pipefail
 build=${1:?usage: convergence_plots.sh BUILD_DIR [OUT_DIR] [SIZE] [EPOCH_PHOTONS] [EPOCHS] [REF_FACTOR]}
@@ -24,15 +26,18 @@ common=(--width "$size" --height "$size" --log-level warn)
 printf '%-16s %10s %8s %10s %10s %15s %10s %10s\n' scene photons seconds measured estimated "estimate/meas." slope/N slope/t
 for gltf in scenes/*.gltf; do
     scene=$(basename "$gltf" .gltf)
+    [[ -n ${SCENES:-} && " $SCENES " != *" $scene "* ]] && continue
+    sky=()
+    [[ -f scenes/$scene-sky.hdr ]] && sky=(--environment "scenes/$scene-sky.hdr")
     reference="$work/$scene-reference.exr"
     if [[ $scene == furnace* ]]; then
         oiiotool --pattern constant:color=2,2,2 "${size}x${size}" 3 -d float -o "$reference"
     else
-        "$photonfarm" render "$gltf" "${common[@]}" --photon-stream 1 --photons $((photons * ref_factor)) \
+        "$photonfarm" render "$gltf" "${sky[@]}" "${common[@]}" --photon-stream 1 --photons $((photons * ref_factor)) \
             --photons-per-batch $((epoch_photons * 2)) --batches-per-epoch 2 --out "$reference" 2>"$work/log" ||
             { cat "$work/log" >&2; exit 1; }
     fi
-    "$photonfarm" render "$gltf" "${common[@]}" --photons "$photons" --photons-per-batch "$epoch_photons" \
+    "$photonfarm" render "$gltf" "${sky[@]}" "${common[@]}" --photons "$photons" --photons-per-batch "$epoch_photons" \
         --batches-per-epoch 1 --out "$work/$scene.exr" --reference "$reference" --report "$work/$scene" 2>"$work/log" ||
         { cat "$work/log" >&2; exit 1; }
     cp "$work/$scene/convergence.png" "$out/$scene.png"
