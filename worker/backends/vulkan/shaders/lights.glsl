@@ -179,17 +179,6 @@ struct LightSample {
     float pdf;               // that pdf, the pick included; 0 for a punctual light
 };
 
-// One light sample at receiver p with facing normal n; false where it carries no light.
-bool SampleLightFrom(vec3 p, vec3 n, float pick, vec2 u, bool pick_from_u,
-                     out LightSample sample_out);
-
-bool SampleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample sample_out) {
-    const float pick = Pcg32NextFloat(rng);
-    const float u1 = Pcg32NextFloat(rng);
-    const float u2 = Pcg32NextFloat(rng);
-    return SampleLightFrom(p, n, pick, vec2(u1, u2), false, sample_out);
-}
-
 // Where u lies within emitter `index`'s share of [0, 1), rescaled to [0, 1)
 // (DiscreteDistribution::Remap, in float here).
 float RemapPick(float u, uint index) {
@@ -197,8 +186,9 @@ float RemapPick(float u, uint index) {
     return clamp((u - below) * emitters[index].power.w, 0.0, 0.99999994);
 }
 
-// The same from given numbers: `pick` chooses the emitter, `u` the point on it; with
-// `pick_from_u`, u.x chooses it and is rescaled within its share (Emitters::SampleDirect).
+// One light sample at receiver p with facing normal n (Emitters::SampleDirect); false where it
+// carries no light. `pick` chooses the emitter, `u` the point on it; with `pick_from_u`, u.x
+// chooses it and is rescaled within its share.
 bool SampleLightFrom(vec3 p, vec3 n, float pick, vec2 u, bool pick_from_u,
                      out LightSample sample_out) {
     const uint index = PickEmitter(pick_from_u ? u.x : pick);
