@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "core/scene/scene_loader.h"
@@ -16,15 +18,35 @@
 namespace pf {
 namespace {
 
+// A shipped scene with its lights and an Embree scene over it (the emitters keep a reference
+// to the scene, so all three stay together); null, with a test failure, where it fails to load.
+struct LitScene {
+    Scene scene;
+    std::unique_ptr<Emitters> emitters;
+    std::unique_ptr<embree::EmbreeTracer> tracer;
+};
+std::unique_ptr<const LitScene> LoadLitScene(const std::string& name) {
+    absl::StatusOr<Scene> scene = LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + name);
+    EXPECT_TRUE(scene.ok()) << scene.status();
+    if (!scene.ok()) return nullptr;
+    auto lit = std::make_unique<LitScene>();
+    lit->scene = std::move(*scene);
+    lit->emitters = std::make_unique<Emitters>(lit->scene);
+    auto tracer = embree::EmbreeTracer::Create(lit->scene);
+    EXPECT_TRUE(tracer.ok()) << tracer.status();
+    if (!tracer.ok()) return nullptr;
+    lit->tracer = std::move(*tracer);
+    return lit;
+}
+
 TEST(DirectLightTest, SamplesNearEmittingWallsAreBoundedAndUnbiased) {
     // The white furnace: a closed cube, every wall of albedo 0.5 emitting Le = 1 inward, so
     // the irradiance at any point inside is pi Le and the reflected direct light rho Le = 0.5.
-    const absl::StatusOr<Scene> scene =
-        LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/furnace.gltf");
-    ASSERT_TRUE(scene.ok()) << scene.status();
-    const Emitters emitters(*scene);
-    auto tracer = embree::EmbreeTracer::Create(*scene);
-    ASSERT_TRUE(tracer.ok()) << tracer.status();
+    const std::unique_ptr<const LitScene> lit = LoadLitScene("furnace.gltf");
+    ASSERT_NE(lit, nullptr);
+    const Scene& scene = lit->scene;
+    const Emitters& emitters = *lit->emitters;
+    const embree::EmbreeTracer& tracer = *lit->tracer;
     constexpr float kAlbedo = 0.5f;
     // Points on the floor (y = -1), from its centre to 1e-4 from a corner and from an edge,
     // each a pixel of its own (one slot a pixel, as a pass of one sample a pixel lays them).
@@ -42,8 +64,8 @@ TEST(DirectLightTest, SamplesNearEmittingWallsAreBoundedAndUnbiased) {
         float largest = 0;
         for (int epoch = 0; epoch < kEpochs; ++epoch) {
             const DirectLightSequence sequence{1, uint64_t(epoch) >> 1};
-            ASSERT_EQ(SampleDirectLight(emitters, **tracer, scene->materials, hit_points, 0, 5,
-                                        epoch, sequenced ? &sequence : nullptr, samples),
+            ASSERT_EQ(SampleDirectLight(emitters, tracer, scene.materials, hit_points, 0, 5, epoch,
+                                        sequenced ? &sequence : nullptr, samples),
                       0u);
             for (size_t i = 0; i < samples.size(); ++i) {
                 largest = std::max(largest, MaxComponent(samples[i]));
@@ -70,19 +92,18 @@ TEST(DirectLightTest, APixelsSequencesStratifyItsLightSamplesAcrossEpochs) {
     // converged value, over independent seeds. Stratified over the light (its two triangles
     // picked by the same number, rescaled), the mean's squared error falls far below that of
     // independent samples: 1.1e-6 against 3.0e-4 when written.
-    const absl::StatusOr<Scene> scene =
-        LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
-    ASSERT_TRUE(scene.ok()) << scene.status();
-    const Emitters emitters(*scene);
-    auto tracer = embree::EmbreeTracer::Create(*scene);
-    ASSERT_TRUE(tracer.ok()) << tracer.status();
+    const std::unique_ptr<const LitScene> lit = LoadLitScene("cornell-box.gltf");
+    ASSERT_NE(lit, nullptr);
+    const Scene& scene = lit->scene;
+    const Emitters& emitters = *lit->emitters;
+    const embree::EmbreeTracer& tracer = *lit->tracer;
     const std::vector<HitPoint> point = {{Vec3(0.21f, 0.166f, 0.15f), Vec3(0, 1, 0), Rgb(1.0f), 0}};
     std::vector<Rgb> sample(1);
     const auto mean = [&](uint64_t seed, int epochs, bool sequenced) {
         double sum = 0;
         for (int epoch = 0; epoch < epochs; ++epoch) {
             const DirectLightSequence sequence{1, uint64_t(epoch) >> 1};
-            SampleDirectLight(emitters, **tracer, scene->materials, point, 0, seed, epoch,
+            SampleDirectLight(emitters, tracer, scene.materials, point, 0, seed, epoch,
                               sequenced ? &sequence : nullptr, sample);
             sum += sample[0].x;
         }
