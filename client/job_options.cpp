@@ -161,6 +161,14 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
                      "before until a full epoch, e.g. 256K (default: ppm 256K with the layout "
                      "left open; otherwise every epoch full)")
         ->transform(CountWithUnit(1, uint64_t{kMaxPhotonsPerBatch} * kMaxBatchesPerEpoch));
+    EnumChoices(command
+                    ->add_option("--photon-tracing", s->photon_tracing,
+                                 "ppm, sppm: independent photons, or Markov chains toward the "
+                                 "photons that reach what the camera sees (adaptive: for light "
+                                 "through a gap, a caustic in an open scene); auto chooses "
+                                 "adaptive where a pilot finds under 5% reach it")
+                    ->default_str("auto"),
+                {"auto", "uniform", "adaptive"}, ParsePhotonTracing);
     // capture_default_str, not default_val: default_val would re-parse "0.666667" into alpha,
     // and the render would no longer match a farm job left at the default 2/3.
     command->add_option("--alpha", s->alpha, "Radius reduction ratio alpha in (0, 1]")

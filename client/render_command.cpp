@@ -56,6 +56,7 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
             {"photonfarm:initial_radius", absl::StrFormat("%.9g", outcome.initial_radius)},
             {"photonfarm:scene_features", outcome.scene_features},
             {"photonfarm:integrator", std::string(IntegratorName(job.integrator))},
+            {"photonfarm:photon_tracing", std::string(PhotonTracingName(job.photon_tracing))},
             {"photonfarm:camera_samples", absl::StrCat(outcome.progress.camera_samples)},
             {"photonfarm:peak_memory_bytes", absl::StrCat(outcome.peak_memory_bytes)},
             {"photonfarm:backend", s.backend},

@@ -499,10 +499,61 @@ def furnace_glass(writer):
                   writer.material("glass", (1.0, 1.0, 1.0), glass_ior=1.5))
 
 
+def light_gap(writer):
+    """A room lit only through a slit: a small lamp outside, facing a narrow opening in one wall,
+    over ground that runs on outside. The camera looks at the far wall and the ceiling, where no
+    direct light falls: everything it sees is light that came in through the slit and bounced,
+    which only the few photons that get in (about one in twenty) carry. The scene adaptive photon
+    tracing is for (docs/integrators.md)."""
+    white = writer.material("white", (0.7, 0.7, 0.7))
+    w, h, d = 4.0, 2.5, 4.0  # the room: x in [0, w], y in [0, h], z in [0, d]
+    writer.quads("floor", [[[0, 0, 0], [0, 0, d], [w, 0, d], [w, 0, 0]]], white)
+    writer.quads("ceiling", [[[0, h, 0], [w, h, 0], [w, h, d], [0, h, d]]], white)
+    writer.quads("walls", [[[0, 0, 0], [w, 0, 0], [w, h, 0], [0, h, 0]],
+                           [[0, 0, d], [0, h, d], [w, h, d], [w, 0, d]],
+                           [[0, 0, 0], [0, h, 0], [0, h, d], [0, 0, d]]], white)
+    # The wall at x = w, with a slit 0.12 wide and 1.2 high, 0.5 above the floor, at z = 2.
+    s0, s1, y0, y1 = 1.94, 2.06, 0.5, 1.7
+    writer.quads("slit_wall", [[[w, 0, 0], [w, 0, s0], [w, h, s0], [w, h, 0]],
+                               [[w, 0, s1], [w, 0, d], [w, h, d], [w, h, s1]],
+                               [[w, 0, s0], [w, 0, s1], [w, y0, s1], [w, y0, s0]],
+                               [[w, y1, s0], [w, y1, s1], [w, h, s1], [w, h, s0]]], white)
+    writer.quads("ground", [[[-6, -0.01, -6], [-6, -0.01, 10], [10, -0.01, 10], [10, -0.01, -6]]],
+                 writer.material("ground", (0.5, 0.5, 0.5)))
+    # The lamp: 0.2 m square, 1 m outside the slit and above its top, facing it (-x): its light
+    # comes in downward, onto the floor, out of the camera's view.
+    x, c, r = w + 1.0, 2.0, 0.1
+    writer.quads("lamp", [[[x, 2.0 - r, c - r], [x, 2.0 - r, c + r], [x, 2.0 + r, c + r], [x, 2.0 + r, c - r]]],
+                 writer.material("lamp", (0.0, 0.0, 0.0), (2400.0, 2240.0, 1920.0)))
+    writer.camera([2.0, 1.2, 0.3], [2.0, 2.2, 4.0], 60.0)
+
+
+def caustic_room(writer):
+    """A small glass sphere on the floor of a large room (12 x 4 x 12 m) under a ceiling lamp,
+    seen close up with its caustic: the camera sees about a square metre of floor, and the
+    whole room mirrored in the sphere. The caustic's photons are few of those emitted, but most
+    photons reach something the camera sees (through the mirror): adaptive photon tracing's
+    counter-case (docs/integrators.md)."""
+    white = writer.material("white", (0.6, 0.6, 0.6))
+    a, h = 6.0, 4.0
+    writer.quads("floor", [[[-a, 0, -a], [-a, 0, a], [a, 0, a], [a, 0, -a]]], white)
+    writer.quads("ceiling", [[[-a, h, -a], [a, h, -a], [a, h, a], [-a, h, a]]], white)
+    writer.quads("walls", [[[-a, 0, -a], [a, 0, -a], [a, h, -a], [-a, h, -a]],
+                           [[-a, 0, a], [-a, h, a], [a, h, a], [a, 0, a]],
+                           [[-a, 0, -a], [-a, h, -a], [-a, h, a], [-a, 0, a]],
+                           [[a, 0, -a], [a, 0, a], [a, h, a], [a, h, -a]]], white)
+    r = 0.25
+    writer.quads("lamp", [[[-r, h - 0.01, -r], [r, h - 0.01, -r], [r, h - 0.01, r], [-r, h - 0.01, r]]],
+                 writer.material("lamp", (0.0, 0.0, 0.0), (80.0, 80.0, 80.0)))
+    writer.sphere("small_glass_sphere", [1.2, 0.15, 0.0], 0.15,
+                  writer.material("glass", (1.0, 1.0, 1.0), glass_ior=1.5), as_mesh=True)
+    writer.camera([0.7, 0.8, 0.9], [1.3, 0.0, 0.0], 50.0)
+
+
 SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass, "cornell-glossy": cornell_glossy,
           "caustic-glass": caustic_glass, "furnace": furnace, "furnace-glass": furnace_glass,
           "sky-courtyard": sky_courtyard, "cornell-stained": cornell_stained,
-          "cornell-bumpy": cornell_bumpy}
+          "cornell-bumpy": cornell_bumpy, "light-gap": light_gap, "caustic-room": caustic_room}
 PBRT_SCENES = {"cornell-lamps": cornell_lamps, "cornell-materials": cornell_materials}
 GLTF_SCENES = {"cornell-velvet": cornell_velvet}
 

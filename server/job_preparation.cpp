@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <random>
@@ -20,6 +21,8 @@
 #include "core/pm/density_radii.h"
 #include "core/pm/photon_map.h"
 #include "core/ppm/caustic_probe.h"
+#include "core/ppm/hash_grid.h"
+#include "core/ppm/photon_pass.h"
 #include "core/scene/scene_features.h"
 #include "core/scene/scene_loader.h"
 #include "embree/embree_tracer.h"
@@ -30,6 +33,21 @@ namespace {
 
 const char* SettingName(SettingNames names, const char* field, const char* flag) {
     return names == SettingNames::kFlags ? flag : field;
+}
+
+// The share of photons that reach the first pass's hit points within their radii (`radii` per
+// hit point, or `radius` for all), from a pilot.
+double VisibleShare(const JobPayload& payload, const Tracer& tracer, const SceneFeatures& features,
+                    std::span<const HitPoint> hit_points, std::span<const float> radii,
+                    double radius) {
+    std::vector<float> radius_sq(hit_points.size(), float(radius * radius));
+    for (size_t i = 0; i < radii.size(); ++i) radius_sq[i] = radii[i] * radii[i];
+    HashGrid grid;
+    grid.Build(hit_points, radius_sq);
+    PhotonPassInputs inputs{&payload.scene, &payload.emitters, &tracer, hit_points,
+                            &grid,          payload.seed,      features};
+    inputs.max_bounces = DepthLimit(payload.spec.max_depth, kMaxPhotonBounces);
+    return VisiblePhotonShare(inputs, kVisibilityPilotPhotons);
 }
 
 absl::Status CheckReference(const Image* reference, int width, int height) {
@@ -149,6 +167,30 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
                 "footprint {:.4g})",
                 request.name, std::chrono::duration<double>(Clock::now() - pilot_start).count(),
                 footprint_radius);
+        }
+        PhotonTracing& tracing = request.spec.photon_tracing;
+        if (tracing != PhotonTracing::kUniform) {
+            const double share =
+                VisibleShare(*payload, *tracer, film->features, camera_pass.hit_points, radii,
+                             settings.initial_radius);
+            if (tracing == PhotonTracing::kAuto)
+                tracing = share < kAdaptiveBelowVisibleShare ? PhotonTracing::kAdaptive
+                                                             : PhotonTracing::kUniform;
+            payload->spec.photon_tracing = tracing;
+            spdlog::info("{}: {:.2f}% of photons reach what the camera sees: {} photon tracing",
+                         request.name, 100 * share, PhotonTracingName(tracing));
+            // The chains bring about 1 / share as many photons near the hit points as the
+            // pilot found, and a radius balancing bias (~R^2) against noise (~1 / (density
+            // R^2)) goes as density^-1/4: radii from the pilot's density shrink by share^1/4.
+            if (tracing == PhotonTracing::kAdaptive && !radii.empty() && share > 0) {
+                const double least = DensityRadiiSettings{}.least_footprints;
+                for (size_t i = 0; i < radii.size(); ++i)
+                    radii[i] = std::max(radii[i] * float(std::pow(share, 0.125)),
+                                        float(least * camera_pass.footprint[i]));
+                if (const double median = MedianRadius(radii, camera_pass.footprint); median > 0)
+                    settings.initial_radius = median;
+                settings.min_radius = std::min(settings.min_radius, settings.initial_radius);
+            }
         }
         spdlog::info("{}: camera pass: {}x{}, {} hit points in {:.2f} s, initial radius {:.4g}",
                      request.name, film->width, film->height, camera_pass.hit_points.size(),

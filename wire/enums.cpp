@@ -27,6 +27,18 @@ v1::Integrator ToProto(Integrator integrator) {
     return v1::INTEGRATOR_UNSPECIFIED;
 }
 
+v1::PhotonTracing ToProto(PhotonTracing tracing) {
+    switch (tracing) {
+        case PhotonTracing::kAuto:
+            return v1::PHOTON_TRACING_UNSPECIFIED;
+        case PhotonTracing::kUniform:
+            return v1::PHOTON_TRACING_UNIFORM;
+        case PhotonTracing::kAdaptive:
+            return v1::PHOTON_TRACING_ADAPTIVE;
+    }
+    return v1::PHOTON_TRACING_UNSPECIFIED;
+}
+
 v1::PhotonIndex ToProto(PhotonIndex index) {
     switch (index) {
         case PhotonIndex::kKdTree:
@@ -93,6 +105,19 @@ absl::StatusOr<Integrator> IntegratorFromProto(int integrator, const char* field
             return Integrator::kPath;
         default:
             return Unknown(field, integrator);
+    }
+}
+
+absl::StatusOr<PhotonTracing> PhotonTracingFromProto(int tracing, const char* field) {
+    switch (tracing) {
+        case v1::PHOTON_TRACING_UNSPECIFIED:
+            return PhotonTracing::kAuto;
+        case v1::PHOTON_TRACING_UNIFORM:
+            return PhotonTracing::kUniform;
+        case v1::PHOTON_TRACING_ADAPTIVE:
+            return PhotonTracing::kAdaptive;
+        default:
+            return Unknown(field, tracing);
     }
 }
 

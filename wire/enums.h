@@ -17,6 +17,7 @@
 namespace pf {
 
 photonfarm::v1::Integrator ToProto(Integrator integrator);
+photonfarm::v1::PhotonTracing ToProto(PhotonTracing tracing);
 photonfarm::v1::PhotonIndex ToProto(PhotonIndex index);
 photonfarm::v1::DensityFilter ToProto(DensityFilter filter);
 photonfarm::v1::JobState ToProto(JobState state);
@@ -25,6 +26,7 @@ photonfarm::v1::TallyVerdict ToProto(TallyVerdict verdict);
 // INVALID_ARGUMENT naming `field` for a value the wire does not define (a newer peer's, or a
 // hostile one's). UNSPECIFIED gives the setting's default (JobSpec's, PhotonMapSettings').
 absl::StatusOr<Integrator> IntegratorFromProto(int integrator, const char* field);
+absl::StatusOr<PhotonTracing> PhotonTracingFromProto(int tracing, const char* field);
 absl::StatusOr<PhotonIndex> PhotonIndexFromProto(int index, const char* field);
 absl::StatusOr<DensityFilter> DensityFilterFromProto(int filter, const char* field);
 // UNSPECIFIED is an error too: every status and verdict says what it is.

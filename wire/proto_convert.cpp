@@ -164,6 +164,7 @@ photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
     out.set_photons_per_batch(spec.layout.photons_per_batch);
     out.set_batches_per_epoch(spec.layout.batches_per_epoch);
     out.set_first_epoch_photons(spec.layout.first_epoch_photons);
+    out.set_photon_tracing(ToProto(spec.photon_tracing));
     out.set_integrator(ToProto(spec.integrator));
     out.set_epoch_budget(spec.epoch_budget);
     out.set_until_cancelled(spec.until_cancelled);
@@ -244,10 +245,14 @@ absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings) {
         DensityFilterFromProto(in_maps.filter(), "settings.photon_map.filter");
     absl::StatusOr<PhotonIndex> index =
         PhotonIndexFromProto(in_maps.index(), "settings.photon_map.index");
+    absl::StatusOr<PhotonTracing> tracing =
+        PhotonTracingFromProto(settings.photon_tracing(), "settings.photon_tracing");
     if (!integrator.ok()) return integrator.status();
+    if (!tracing.ok()) return tracing.status();
     if (!filter.ok()) return filter.status();
     if (!index.ok()) return index.status();
     spec.integrator = *integrator;
+    spec.photon_tracing = *tracing;
     maps.filter = *filter;
     maps.index = *index;
     if (in_maps.global_photons() != 0 || in_maps.caustic_photons() != 0) {

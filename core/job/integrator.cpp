@@ -28,6 +28,10 @@ constexpr std::array<std::pair<Integrator, std::string_view>, 4> kIntegrators{
      {Integrator::kPpm, "ppm"},
      {Integrator::kSppm, "sppm"},
      {Integrator::kPath, "path"}}};
+constexpr std::array<std::pair<PhotonTracing, std::string_view>, 3> kTracings{
+    {{PhotonTracing::kAuto, "auto"},
+     {PhotonTracing::kUniform, "uniform"},
+     {PhotonTracing::kAdaptive, "adaptive"}}};
 constexpr std::array<std::pair<PhotonIndex, std::string_view>, 2> kIndices{
     {{PhotonIndex::kKdTree, "kdtree"}, {PhotonIndex::kGrid, "grid"}}};
 constexpr std::array<std::pair<DensityFilter, std::string_view>, 3> kFilters{
@@ -47,6 +51,10 @@ std::vector<std::string> IntegratorNames() {
     return names;
 }
 
+std::string_view PhotonTracingName(PhotonTracing tracing) { return Name(kTracings, tracing); }
+std::optional<PhotonTracing> ParsePhotonTracing(std::string_view name) {
+    return Parse(kTracings, name);
+}
 std::string_view PhotonIndexName(PhotonIndex index) { return Name(kIndices, index); }
 std::optional<PhotonIndex> ParsePhotonIndex(std::string_view name) { return Parse(kIndices, name); }
 std::string_view DensityFilterName(DensityFilter filter) { return Name(kFilters, filter); }

@@ -48,6 +48,15 @@ inline bool RunsOnBackend(Integrator integrator, std::string_view backend) {
     return backend != "vulkan" || integrator == Integrator::kPpm || integrator == Integrator::kSppm;
 }
 
+// How ppm and sppm trace photons (`--photon-tracing`): independent photons, or Markov chains
+// toward the photons that reach a hit point (adaptive photon tracing, Hachisuka & Jensen 2011;
+// core/shared/photon_chain.h). Auto: the coordinator chooses adaptive where a pilot finds few
+// photons reaching a hit point (kAdaptiveBelowVisibleShare) and tells the workers which.
+enum class PhotonTracing : uint32_t { kAuto, kUniform, kAdaptive };
+
+std::string_view PhotonTracingName(PhotonTracing tracing);
+std::optional<PhotonTracing> ParsePhotonTracing(std::string_view name);
+
 // How classic photon mapping finds a point's nearest photons.
 enum class PhotonIndex : uint32_t { kKdTree, kGrid };
 // How it weights them in the density estimate (Jensen 2001, section 7.1).

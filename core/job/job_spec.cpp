@@ -72,6 +72,11 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
                 std::string(IntegratorName(s.integrator)),
                 " integrator traces none as it goes: give --epochs, --seconds or --target-error",
                 s.integrator == Integrator::kPm ? " (its maps' size is --pm-photons)" : ""));
+    if (s.photon_tracing != PhotonTracing::kAuto && !GathersAtHitPoints(s.integrator))
+        return invalid("--photon-tracing", "settings.photon_tracing",
+                       absl::StrCat("applies to ppm and sppm, whose photons gather at hit points, "
+                                    "not to the ",
+                                    std::string(IntegratorName(s.integrator)), " integrator"));
     if (absl::Status status = CheckEnvironmentSettings(s.environment, names); !status.ok())
         return status;
     if (s.max_depth < 0 || s.max_depth > kMaxDepthSetting)

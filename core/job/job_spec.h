@@ -31,6 +31,8 @@ struct JobSpec {
     // against run time is made (docs/convergence.md). 0: the stream of `seed` itself.
     uint64_t photon_stream = 0;
     double alpha = kDefaultAlpha;
+    // ppm, sppm: auto is resolved by the coordinator before any worker sees the job.
+    PhotonTracing photon_tracing = PhotonTracing::kAuto;
     double initial_radius = 0;  // R0, world units, for all; 0: each its own (DensityInitialRadii)
     BatchLayout layout;
     uint64_t photon_budget = 0;  // stop after the epoch that reaches it (0: no limit); ppm, sppm

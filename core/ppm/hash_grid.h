@@ -64,6 +64,24 @@ public:
             begin += count;
         }
     }
+    // Whether some hit point would gather a photon at p arriving along `direction`
+    // (ForEachGathering visits one): stops at the first.
+    bool Gathers(const Vec3& p, const Vec3& direction) const {
+        if (entry_index_.empty()) return false;
+        const uint32_t bucket = Bucket(CellOf(p.x), CellOf(p.y), CellOf(p.z));
+        constexpr uint32_t kChunk = 64;
+        for (uint32_t begin = bucket_begin_[bucket], end = bucket_begin_[bucket + 1]; begin < end;
+             begin += kChunk) {
+            const uint32_t count = std::min(end - begin, kChunk);
+            uint64_t inside = InsideMask(begin, count, p);
+            if (count < kChunk) inside &= (uint64_t{1} << count) - 1;
+            for (; inside != 0; inside &= inside - 1) {
+                const uint32_t e = begin + static_cast<uint32_t>(std::countr_zero(inside));
+                if (Dot(DecodeOctahedral(entry_normal_[e]), direction) < 0) return true;
+            }
+        }
+        return false;
+    }
     // The bucket a photon at p looks in; photons sorted by it share memory traffic.
     uint32_t BucketOf(const Vec3& p) const {
         return entry_index_.empty() ? 0 : Bucket(CellOf(p.x), CellOf(p.y), CellOf(p.z));

@@ -25,6 +25,14 @@ public:
         sum.inner_photons += inner;
         sum.flux += flux;
     }
+    // `count` photons at once, `flux` their sum (a chain's state held for `count` steps).
+    void Add(uint32_t hit_point, const Rgb& flux, bool inner, uint32_t count) {
+        Sum& sum = sums_[hit_point];
+        if (sum.photons == 0) touched_.push_back(hit_point);
+        sum.photons += count;
+        sum.inner_photons += inner ? count : 0;
+        sum.flux += flux;
+    }
     // Adds a chunk's tally entry by entry: chunks added in chunk order give the same sums
     // whoever ran them.
     void Add(const Tally& tally) {

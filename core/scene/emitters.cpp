@@ -153,19 +153,20 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
         inverse_probability_.push_back(static_cast<float>(1.0 / distribution_.Probability(i)));
 }
 
-EmittedPhoton Emitters::Emit(Rng& rng) const {
-    const auto pick = distribution_.Draw(rng.NextFloat());
+EmittedPhoton Emitters::Emit(const EmissionNumbers& numbers) const {
+    const auto pick = distribution_.Draw(numbers.u[0]);
     const Emitter& emitter = emitters_[pick.index];
+    const float* u = numbers.u.data() + 1;
     EmittedPhoton photon;
     switch (emitter.kind) {
         case EmitterKind::kTriangle:
-            photon = EmitFromTriangle(triangles_[emitter.index], rng);
+            photon = EmitFromTriangle(triangles_[emitter.index], u);
             break;
         case EmitterKind::kPunctual:
-            photon = EmitFromLight(scene_.lights[emitter.index], emitter.index, rng);
+            photon = EmitFromLight(scene_.lights[emitter.index], emitter.index, u);
             break;
         case EmitterKind::kEnvironment:
-            photon = EmitFromEnvironment(rng);
+            photon = EmitFromEnvironment(u);
             break;
     }
     photon.flux *= inverse_probability_[pick.index];
@@ -179,13 +180,12 @@ Rgbd Emitters::EmissiveTriangle::Power() const {
     return power * MeanOverTriangle(*texture, uv0, uv_edge1, uv_edge2);
 }
 
-EmittedPhoton Emitters::EmitFromTriangle(const EmissiveTriangle& triangle, Rng& rng) const {
-    const Point2 b = SampleUniformTriangle(rng.NextFloat(), rng.NextFloat());
+EmittedPhoton Emitters::EmitFromTriangle(const EmissiveTriangle& triangle, const float* u) const {
+    const Point2 b = SampleUniformTriangle(u[0], u[1]);
     const Vec3 point = triangle.p0 + triangle.edge1 * b.x + triangle.edge2 * b.y;
-    // A two-sided light leaves from either face with equal chance (one more number drawn).
-    const bool back = triangle.two_sided && rng.NextFloat() < 0.5f;
-    Vec3 direction =
-        triangle.frame.ToWorld(SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()));
+    // A two-sided light leaves from either face with equal chance.
+    const bool back = triangle.two_sided && u[2] < 0.5f;
+    Vec3 direction = triangle.frame.ToWorld(SampleCosineHemisphere(u[3], u[4]));
     if (back) direction = -direction;
     const Vec3 normal = back ? -triangle.frame.n : triangle.frame.n;
     // Cosine-weighted emission of radiance Le from area A carries flux pi * A * Le a side.
@@ -227,8 +227,8 @@ Emitters::ImageSampler Emitters::MakeImageSampler(const PunctualLight& light) {
 }
 
 EmittedPhoton Emitters::EmitFromImageLight(const PunctualLight& light, const ImageSampler& sampler,
-                                           Rng& rng) const {
-    const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
+                                           const float* u) const {
+    const float u1 = u[0], u2 = u[1];
     if (light.type == LightType::kGoniometric) {
         const EnvironmentSampler::Sample drawn = sampler.directions.Draw(u1, u2);
         if (!(drawn.pdf > 0)) return {{light.position, drawn.toward}, Rgb(0.0f)};
@@ -239,7 +239,7 @@ EmittedPhoton Emitters::EmitFromImageLight(const PunctualLight& light, const Ima
     const DiscreteDistribution::Sample pick = sampler.texels.Draw(u1);
     const int x = static_cast<int>(pick.index % uint32_t(image.width));
     const int y = static_cast<int>(pick.index / uint32_t(image.width));
-    const Vec3 local = Normalize(light.ProjectionPlanePoint(x + u2, y + rng.NextFloat()));
+    const Vec3 local = Normalize(light.ProjectionPlanePoint(x + u2, y + u[2]));
     const float* m = light.to_light.data();  // its transpose takes the light's frame to the world
     const Vec3 toward = Normalize(Vec3(m[0] * local.x + m[3] * local.y + m[6] * local.z,
                                        m[1] * local.x + m[4] * local.y + m[7] * local.z,
@@ -253,9 +253,10 @@ EmittedPhoton Emitters::EmitFromImageLight(const PunctualLight& light, const Ima
     return {{light.position, toward}, light.intensity * texel / pdf};
 }
 
-EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, uint32_t index, Rng& rng) const {
-    if (light.HasImage()) return EmitFromImageLight(light, image_samplers_[index], rng);
-    const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
+EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, uint32_t index,
+                                      const float* u) const {
+    if (light.HasImage()) return EmitFromImageLight(light, image_samplers_[index], u);
+    const float u1 = u[0], u2 = u[1];
     switch (light.type) {
         case LightType::kPoint:
             return {{light.position, SampleUniformSphere(u1, u2)},
@@ -284,14 +285,14 @@ EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, uint32_t index
     return {};
 }
 
-EmittedPhoton Emitters::EmitFromEnvironment(Rng& rng) const {
-    const float u1 = rng.NextFloat(), u2 = rng.NextFloat();
+EmittedPhoton Emitters::EmitFromEnvironment(const float* u) const {
+    const float u1 = u[0], u2 = u[1];
     if (const std::optional<EnvironmentPortal>& portal = scene_.environment->portal) {
         // Through the portal: a direction drawn over the hemisphere outside it, then a point
         // of it, uniform: flux L cos / pdf x its area (pbrt-v4's SampleLe keeps the disk, but
         // only what comes through the portal lights the scene).
         const EnvironmentSampler::Sample sample = portal_sampler_.Draw(u1, u2);
-        const float a = rng.NextFloat(), b = rng.NextFloat();
+        const float a = u[2], b = u[3];
         const Vec3 point = portal->corner + portal->edge_u * a + portal->edge_v * b;
         const Vec3 origin = OffsetRayOrigin(point, portal->normal, SceneScale());
         const float cosine = Dot(sample.toward, portal->normal);
@@ -303,7 +304,7 @@ EmittedPhoton Emitters::EmitFromEnvironment(Rng& rng) const {
     const EnvironmentSampler::Sample sample = environment_sampler_.Draw(u1, u2);
     if (!(sample.pdf > 0)) return {{scene_center_, -sample.toward}, Rgb(0.0f)};
     const Frame frame = Frame::FromNormal(sample.toward);
-    const Point2 d = SampleUniformDisk(rng.NextFloat(), rng.NextFloat());
+    const Point2 d = SampleUniformDisk(u[2], u[3]);
     const Vec3 origin = scene_center_ + sample.toward * (1.01f * scene_radius_) +
                         (frame.s * d.x + frame.t * d.y) * scene_radius_;
     return {{origin, -sample.toward},

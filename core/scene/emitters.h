@@ -3,6 +3,7 @@
 // a point.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "core/sampling/rng.h"
 #include "core/scene/environment.h"
 #include "core/scene/scene.h"
+#include "core/shared/photon_chain.h"
 
 namespace pf {
 
@@ -41,6 +43,19 @@ struct LightSample {
 
 enum class EmitterKind : uint32_t { kTriangle, kPunctual, kEnvironment };
 
+// The numbers a photon's emission takes, all drawn before its walk: the emitter's pick, then
+// the point and direction (a triangle takes all six; lights.glsl the same). The chains of
+// adaptive photon tracing mutate them (core/shared/photon_chain.h).
+struct EmissionNumbers {
+    std::array<float, gpu::kEmissionNumbers> u{};
+
+    static EmissionNumbers Draw(Rng& rng) {
+        EmissionNumbers numbers;
+        for (float& u : numbers.u) u = rng.NextFloat();
+        return numbers;
+    }
+};
+
 class Emitters {
 public:
     // The scene must outlive this object. Throws nothing; a scene without light has no
@@ -51,7 +66,8 @@ public:
     // Total emitted power, W per RGB channel.
     Rgbd TotalPower() const { return power_rgb_; }
 
-    EmittedPhoton Emit(Rng& rng) const;
+    EmittedPhoton Emit(const EmissionNumbers& numbers) const;
+    EmittedPhoton Emit(Rng& rng) const { return Emit(EmissionNumbers::Draw(rng)); }
     // One light sample for direct lighting at receiver point p with facing normal n.
     // Returns false when the sample carries no light (behind the light, outside a spot cone).
     bool SampleDirect(const Vec3& p, const Vec3& n, Rng& rng, LightSample* sample) const;
@@ -172,11 +188,13 @@ private:
         }
     };
     static ImageSampler MakeImageSampler(const PunctualLight& light);
-    EmittedPhoton EmitFromTriangle(const EmissiveTriangle& triangle, Rng& rng) const;
-    EmittedPhoton EmitFromLight(const PunctualLight& light, uint32_t index, Rng& rng) const;
+    // Each from the numbers after the pick (EmissionNumbers::u + 1): a triangle takes five,
+    // the others at most four.
+    EmittedPhoton EmitFromTriangle(const EmissiveTriangle& triangle, const float* u) const;
+    EmittedPhoton EmitFromLight(const PunctualLight& light, uint32_t index, const float* u) const;
     EmittedPhoton EmitFromImageLight(const PunctualLight& light, const ImageSampler& sampler,
-                                     Rng& rng) const;
-    EmittedPhoton EmitFromEnvironment(Rng& rng) const;
+                                     const float* u) const;
+    EmittedPhoton EmitFromEnvironment(const float* u) const;
 
     const Scene& scene_;
     std::vector<Emitter> emitters_;

@@ -250,9 +250,12 @@ struct GpuCounters {
     uint64_t segments;             // photon rays traced
     uint64_t nonfinite_discarded;  // photon paths and direct samples dropped as NaN or Inf
     uint64_t tally_entries;        // hit points the batch's photons reached
+    // Adaptive tracing: fresh photons found visible, and chain steps that traced a state.
+    uint64_t visible_photons;
+    uint64_t chain_steps;
     uint64_t pad;
 };
-PF_GPU_LAYOUT(GpuCounters, 32);
+PF_GPU_LAYOUT(GpuCounters, 48);
 
 // Push constants, the same block for every pipeline.
 struct GpuParams {
@@ -277,7 +280,10 @@ struct GpuParams {
     uint64_t direct_sequences;     // direct: FamilyPartial of the pixels' direct-light sequences
     uint64_t direct_first_sample;  // direct: the pass's first index in each sequence
     uint32_t epoch_parity;         // direct: epoch & 1, which of a pixel's two sequences
-    uint32_t pad0, pad1, pad2;     // to the vec4's alignment; 112 of the 128 bytes Vulkan assures
+    // photons: adaptive tracing's steps a chain (one chain a thread); 0: uniform tracing
+    uint32_t chain_steps;
+    uint64_t proposal_prefix;  // photons, adaptive: the stream family of the chains' mutations
+    // 112 of the 128 bytes Vulkan assures
 };
 PF_GPU_LAYOUT(GpuParams, 112);
 

@@ -63,6 +63,30 @@ TEST_F(FarmTest, EveryIntegratorGivesRendersImageOnTwoWorkers) {
     }
 }
 
+TEST_F(FarmTest, AdaptivePhotonTracingChosenByTheCoordinatorGivesRendersImage) {
+    // light-gap, lit through a slit: the coordinator's pilot chooses adaptive tracing (auto)
+    // and its workers must trace it too, chain for chain, or the image would differ.
+    StartWorker();
+    StartWorker();
+    const std::string scene = std::string(PF_SOURCE_DIR) + "/scenes/light-gap.gltf";
+    const std::vector<std::string> flags =
+        Concat(kJobFlags, {"--epochs", "3", "--log-level", "warn"});
+    const std::string farm = TempPath("farm-adaptive.exr");
+    ASSERT_EQ(RunClient(Concat({"submit", scene, "--server", address_, "--watch", "--interval", "0",
+                                "--out", farm},
+                               Concat(flags, Credentials().ClientFlags()))),
+              0);
+    const std::string local = TempPath("render-adaptive.exr");
+    ASSERT_EQ(RunClient(Concat({"render", scene, "--threads", "2", "--out", local}, flags)), 0);
+    const std::string uniform = TempPath("render-uniform.exr");
+    ASSERT_EQ(RunClient(Concat({"render", scene, "--threads", "2", "--out", uniform,
+                                "--photon-tracing", "uniform"},
+                               flags)),
+              0);
+    EXPECT_TRUE(Identical(Pixels(farm), Pixels(local))) << "the farm's image differs from render's";
+    EXPECT_FALSE(Identical(Pixels(local), Pixels(uniform))) << "auto did not trace adaptively";
+}
+
 TEST_F(FarmTest, CpuAndVulkanWorkersShareAJob) {
     testing::SkipWithoutVulkan();
     if (IsSkipped() || HasFatalFailure()) return;

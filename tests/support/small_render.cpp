@@ -8,7 +8,7 @@
 namespace pf::testing {
 
 Image RenderSmall(const std::string& scene_path, const std::string& backend, uint64_t stream,
-                  uint64_t photons, double initial_radius) {
+                  uint64_t photons, double initial_radius, PhotonTracing tracing) {
     RenderSettings settings;
     settings.scene_path = scene_path;
     settings.backend = backend;
@@ -19,6 +19,7 @@ Image RenderSmall(const std::string& scene_path, const std::string& backend, uin
     settings.job.layout = {1u << 16, 4};
     settings.job.photon_stream = stream;
     settings.job.initial_radius = initial_radius;
+    settings.job.photon_tracing = tracing;
     absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
     EXPECT_TRUE(outcome.ok()) << outcome.status();
     return outcome.ok() ? outcome->image : Image();

@@ -6,12 +6,14 @@
 #include <string>
 
 #include "core/film/image.h"
+#include "core/job/integrator.h"
 
 namespace pf::testing {
 
 // Renders `scene_path` on `backend` with photon stream `stream` (and R0 `initial_radius` for
 // every hit point, if not 0); a failed render adds a test failure and gives an empty image.
 Image RenderSmall(const std::string& scene_path, const std::string& backend, uint64_t stream,
-                  uint64_t photons = 1'000'000, double initial_radius = 0);
+                  uint64_t photons = 1'000'000, double initial_radius = 0,
+                  PhotonTracing tracing = PhotonTracing::kAuto);
 
 }  // namespace pf::testing

@@ -59,6 +59,15 @@ TEST(WireEnumsTest, PhotonMapEnumsMapOneToOneAndUnspecifiedIsTheDefault) {
               PhotonMapSettings{}.filter);
 }
 
+TEST(WireEnumsTest, PhotonTracingMapsOneToOneAndUnspecifiedIsAuto) {
+    ExpectBijection<PhotonTracing>({PhotonTracing::kUniform, PhotonTracing::kAdaptive},
+                                   v1::PhotonTracing_descriptor(), PhotonTracingFromProto);
+    EXPECT_EQ(ToProto(PhotonTracing::kAuto), v1::PHOTON_TRACING_UNSPECIFIED);
+    EXPECT_EQ(*PhotonTracingFromProto(v1::PHOTON_TRACING_UNSPECIFIED, "f"),
+              JobSpec{}.photon_tracing);
+    EXPECT_EQ(JobSpec{}.photon_tracing, PhotonTracing::kAuto);
+}
+
 TEST(WireEnumsTest, StatesAndVerdictsMapOneToOneAndMustBeSpecified) {
     ExpectBijection<JobState>(
         {JobState::kRunning, JobState::kDone, JobState::kCancelled, JobState::kFailed},

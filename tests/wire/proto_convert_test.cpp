@@ -85,6 +85,19 @@ TEST(ProtoConvertTest, MaximumDepthRoundTripsAndIsBounded) {
     EXPECT_EQ(refused.status().message(), "settings.max_depth 4294967295 is out of range");
 }
 
+TEST(ProtoConvertTest, PhotonTracingRoundTripsAndAppliesToThePhotonMappersOnly) {
+    JobSpec spec;
+    spec.epoch_budget = 3;
+    spec.photon_tracing = PhotonTracing::kAdaptive;
+    EXPECT_EQ(FromProto(ToProto(spec))->photon_tracing, PhotonTracing::kAdaptive);
+    spec.integrator = Integrator::kPath;
+    const absl::StatusOr<JobSpec> refused = FromProto(ToProto(spec));
+    ASSERT_FALSE(refused.ok());
+    EXPECT_EQ(refused.status().message(),
+              "settings.photon_tracing applies to ppm and sppm, whose photons gather at hit "
+              "points, not to the path integrator");
+}
+
 TEST(ProtoConvertTest, HostileResultsAreRefused) {
     const auto refused = [](auto mutate) {
         photonfarm::v1::BatchResult message = ToProto(Sample());

@@ -109,8 +109,10 @@ absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const 
                             &grid_,     job_.seed,     features_};
     inputs.direct_points = epoch_hit_points_;
     inputs.direct_sequence = direct_sequence_;
-    if (job_.spec != nullptr)
+    if (job_.spec != nullptr) {
         inputs.max_bounces = DepthLimit(job_.spec->max_depth, kMaxPhotonBounces);
+        inputs.adaptive = job_.spec->photon_tracing == PhotonTracing::kAdaptive;
+    }
     return RunPhotonBatches(inputs, specs, scratch_);
 }
 

@@ -435,17 +435,24 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
     stream_.Barrier();
     // Photons in dispatches of at most kMaxThreadsPerDispatch, within the device's workgroup
     // count limit.
+    // Adaptive tracing: a thread a chain instead of a photon.
     gpu::GpuParams params = BaseParams();
     params.seed_prefix = PhotonSeeds(job_.seed, spec.index).Prefix();
     params.end = spec.photons;
+    if (Adaptive()) {
+        params.chain_steps = kChainSteps;
+        params.proposal_prefix = ProposalSeeds(job_.seed, spec.index).Prefix();
+    }
+    const uint64_t threads =
+        Adaptive() ? (uint64_t{spec.photons} + kChainSteps - 1) / kChainSteps : spec.photons;
     const uint64_t per_dispatch = std::min<uint64_t>(
         kMaxThreadsPerDispatch,
         uint64_t{context_->Limits().maxComputeWorkGroupCount[0]} * gpu::kWorkgroupSize);
-    for (uint64_t first = 0; first < spec.photons; first += per_dispatch) {
+    for (uint64_t first = 0; first < threads; first += per_dispatch) {
         params.first = static_cast<uint32_t>(first);
         kernels_->Dispatch(
             *commands, Kernel::kPhotonTrace, params,
-            Groups(std::min<uint64_t>(per_dispatch, spec.photons - first), gpu::kWorkgroupSize));
+            Groups(std::min<uint64_t>(per_dispatch, threads - first), gpu::kWorkgroupSize));
     }
     const uint32_t direct_count = spec.sample_end - spec.sample_begin;
     gpu::GpuParams direct = BaseParams();
@@ -510,11 +517,16 @@ BatchResult VulkanBackend::ReadResult(const BatchSpec& spec) const {
     out.photons.resize(entries.size());
     out.inner_photons.resize(entries.size());
     out.flux.resize(entries.size());
+    // Adaptive: each state counts V_c x photons / steps, as on the CPU (RunPhotonChunk).
+    const float scale =
+        Adaptive() && counted->chain_steps > 0
+            ? static_cast<float>(double(counted->visible_photons) / double(counted->chain_steps))
+            : 1.0f;
     for (size_t e = 0; e < entries.size(); ++e) {
         out.hit_point[e] = entries[e].hit_point;
         out.photons[e] = entries[e].photons;
         out.inner_photons[e] = entries[e].inner_photons;
-        out.flux[e] = {entries[e].flux[0], entries[e].flux[1], entries[e].flux[2]};
+        out.flux[e] = Rgb(entries[e].flux[0], entries[e].flux[1], entries[e].flux[2]) * scale;
     }
     const auto* direct_samples = static_cast<const gpu::vec4*>(buffers_->direct_readback.Mapped());
     result.samples.resize(direct_count);

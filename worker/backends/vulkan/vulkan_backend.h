@@ -39,6 +39,11 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
 // (an H100 holds 270k resident threads), short enough to keep each dispatch brief; bigger
 // batches run as several dispatches.
 inline constexpr uint32_t kMaxThreadsPerDispatch = 1u << 20;
+// Adaptive photon tracing's steps a chain, one chain a thread: 8192 threads for a batch of 2^19
+// photons. Longer chains start more often where few photons count, but on lavapipe a thread's
+// loop stopped after about 300 photon paths (256 steps of three paths ended near step 100, with
+// the state and its stream defined throughout), so chains stay within it.
+inline constexpr uint32_t kChainSteps = 64;
 
 class VulkanBackend final : public Backend {
 public:
@@ -80,6 +85,10 @@ private:
     // Whether the job is sppm's, whose hit points change every epoch.
     bool SppmJob() const {
         return job_.spec != nullptr && job_.spec->integrator == Integrator::kSppm;
+    }
+    // Whether the job traces its photons adaptively (JobSpec::photon_tracing).
+    bool Adaptive() const {
+        return job_.spec != nullptr && job_.spec->photon_tracing == PhotonTracing::kAdaptive;
     }
 
     // ppm, sppm: the film whose epoch passes are traced, on the CPU through camera_tracer_

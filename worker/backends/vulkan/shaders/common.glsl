@@ -11,6 +11,7 @@
 #include "core/shared/texture_wrap.h"
 #include "core/shared/shading_normal.h"
 #include "core/shared/translucent.h"
+#include "core/shared/photon_chain.h"
 
 layout(constant_id = kSpecHasMirror) const bool kHasMirror = true;
 layout(constant_id = kSpecHasDielectric) const bool kHasDielectric = true;

@@ -83,26 +83,27 @@ struct Photon {
     float range;  // the light's range, whose window the flux still takes at the first hit
 };
 
-Photon EmitPhoton(inout Pcg32 rng) {
-    const GpuEmitter emitter = emitters[PickEmitter(Pcg32NextFloat(rng))];
+// From the numbers drawn before the photon's walk (kEmissionNumbers, core/shared/photon_chain.h):
+// the pick, then the point and direction, in Emitters::Emit's order.
+Photon EmitPhotonFrom(const float u[kEmissionNumbers]) {
+    const GpuEmitter emitter = emitters[PickEmitter(u[0])];
     const uint kind = EmitterKind(emitter);
     Photon photon;
     photon.flux = emitter.power.xyz * emitter.power.w;
     photon.range = 0;
     if (kHasTriangleLights && kind == kEmitterTriangle) {
-        const vec2 b = SampleUniformTriangle(Pcg32NextFloat(rng), Pcg32NextFloat(rng));
+        const vec2 b = SampleUniformTriangle(u[1], u[2]);
         const vec3 point = emitter.position.xyz + emitter.edge1.xyz * b.x + emitter.edge2.xyz * b.y;
         // A two-sided light leaves from either face with equal chance (Emitters::EmitFromTriangle).
-        const bool back = emitter.direction.w != 0.0 && Pcg32NextFloat(rng) < 0.5;
-        const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-        photon.direction = FrameFromNormal(emitter.direction.xyz) * SampleCosineHemisphere(u1, u2);
+        const bool back = emitter.direction.w != 0.0 && u[3] < 0.5;
+        photon.direction = FrameFromNormal(emitter.direction.xyz) * SampleCosineHemisphere(u[4], u[5]);
         const vec3 normal = back ? -emitter.direction.xyz : emitter.direction.xyz;
         if (back) photon.direction = -photon.direction;
         photon.origin = OffsetRayOrigin(point, normal);
         photon.flux *= EmissionTexel(emitter, b);
         return photon;
     }
-    const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+    const float u1 = u[1], u2 = u[2];
     if (kHasPointLights && kind == kEmitterPoint) {
         photon.origin = emitter.position.xyz;
         photon.direction = SampleUniformSphere(u1, u2);
@@ -134,7 +135,7 @@ Photon EmitPhoton(inout Pcg32 rng) {
         } else {
             drawn = EnvironmentDrawFrom(emitter, floatBitsToUint(emitter.portal_v.w), u1, u2);
         }
-        const float a = Pcg32NextFloat(rng), b = Pcg32NextFloat(rng);
+        const float a = u[3], b = u[4];
         photon.origin = OffsetRayOrigin(
             emitter.position.xyz + emitter.portal_u.xyz * a + emitter.portal_v.xyz * b, n);
         photon.direction = -drawn.toward;
@@ -154,7 +155,7 @@ Photon EmitPhoton(inout Pcg32 rng) {
             return photon;
         }
         const mat3 frame = FrameFromNormal(drawn.toward);
-        const vec2 d = SampleUniformDisk(Pcg32NextFloat(rng), Pcg32NextFloat(rng));
+        const vec2 d = SampleUniformDisk(u[3], u[4]);
         photon.origin = params.scene_sphere.xyz + drawn.toward * (1.01 * radius) +
                         (frame[0] * d.x + frame[1] * d.y) * radius;
         photon.flux = drawn.radiance * (kPi * radius * radius / drawn.pdf) * emitter.power.w;
@@ -166,11 +167,19 @@ Photon EmitPhoton(inout Pcg32 rng) {
         photon.flux = drawn.pdf > 0 ? drawn.radiance / drawn.pdf * emitter.power.w : vec3(0);
     } else if (kHasImageLights && kind == kEmitterProjection) {
         photon.origin = emitter.position.xyz;
-        ProjectionEmit(emitter, u1, u2, Pcg32NextFloat(rng), photon.direction, photon.flux);
+        ProjectionEmit(emitter, u1, u2, u[3], photon.direction, photon.flux);
         photon.flux *= emitter.power.w;
     }
     return photon;
 }
+
+float[kEmissionNumbers] DrawEmissionNumbers(inout Pcg32 rng) {
+    float u[kEmissionNumbers];
+    for (uint i = 0; i < kEmissionNumbers; ++i) u[i] = Pcg32NextFloat(rng);
+    return u;
+}
+
+Photon EmitPhoton(inout Pcg32 rng) { return EmitPhotonFrom(DrawEmissionNumbers(rng)); }
 
 struct LightSample {
     vec3 origin, direction;  // the shadow ray, toward the light

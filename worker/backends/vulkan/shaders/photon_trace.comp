@@ -1,8 +1,11 @@
 #version 460
 // The photon pass (core/ppm/photon_pass.cpp on the CPU): one thread a photon path, from a
 // light through specular and diffuse bounces (and through coats, as core/ppm/photon_walk.h)
-// with Russian roulette; at every diffuse hit after the first scattering the photon is gathered at once by the hit points whose sphere
-// holds it, into integer sums (GpuTallySum) that do not depend on thread order.
+// with Russian roulette; at every diffuse hit after the first scattering the photon is gathered
+// at once by the hit points whose sphere holds it, into integer sums (GpuTallySum) that do not
+// depend on thread order. Adaptive tracing (params.chain_steps > 0): one thread a Markov chain
+// (core/shared/photon_chain.h) whose steps test photons for visibility without gathering, then
+// trace the chain's state again, gathering.
 #include "common.glsl"
 #include "trace.glsl"
 #include "lights.glsl"
@@ -13,6 +16,8 @@ layout(local_size_x = kWorkgroupSize) in;
 
 shared uint group_segments;
 shared uint group_discarded;
+shared uint group_visible;
+shared uint group_steps;
 
 // Fixed-point flux of one deposit: the clamp keeps every addend below 2^31 units, so a sum
 // of the at most 2^32 - 1 photons a tally counts stays below 2^63.
@@ -59,12 +64,32 @@ void Gather(vec3 p, vec3 direction, vec3 flux) {
     }
 }
 
-// Follows one photon; returns the rays traced, and sets `discarded` where its flux turned
-// NaN or Inf (the path ends there, before depositing).
-uint TracePhoton(uint photon, out bool discarded) {
+// Whether some hit point's sphere holds a photon at p arriving along `direction`, facing it.
+bool Reaches(vec3 p, vec3 direction) {
+    const ivec3 cell = GridCell(p);
+    const vec3 within = p * params.grid_inverse_cell - vec3(cell);
+    const ivec3 step = mix(ivec3(-1), ivec3(1), greaterThanEqual(within, vec3(0.5)));
+    for (uint corner = 0; corner < 8; ++corner) {
+        const uint bucket = GridBucket(cell + ivec3(corner & 1, (corner >> 1) & 1, corner >> 2) * step);
+        const uint end = grid_begin[bucket + 1];
+        for (uint e = grid_begin[bucket]; e < end; ++e) {
+            const GpuGridEntry entry = grid_entries[e];
+            const vec3 offset_to = entry.position.xyz - p;
+            if (dot(offset_to, offset_to) <= entry.position.w && dot(entry.normal.xyz, direction) < 0.0)
+                return true;
+        }
+    }
+    return false;
+}
+
+// Follows the photon emitted by `u` whose walk draws from `rng`; returns the rays traced.
+// Gathering (`gather`), its deposits go to the hit points; otherwise the walk stops at the first
+// one a hit point holds, setting `visible`. Sets `discarded` where its flux turned NaN or Inf (the
+// path ends there, before depositing).
+uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool visible, out bool discarded) {
     discarded = false;
-    Pcg32 rng = Pcg32Seeded(FamilySeed(params.seed_prefix, photon));
-    const Photon emitted = EmitPhoton(rng);
+    visible = false;
+    const Photon emitted = EmitPhotonFrom(u);
     vec3 origin = emitted.origin, direction = emitted.direction, flux = emitted.flux;
     bool scattered = false;
     uint segments = 0;
@@ -103,7 +128,13 @@ uint TracePhoton(uint photon, out bool discarded) {
                 else scatter = SpecularBounce(frame * wi, weight, false);
             }
             if (at_base) {
-                if (scattered && across > 0.0) Gather(surface.position, direction, flux / across);
+                if (scattered && across > 0.0) {
+                    if (gather) Gather(surface.position, direction, flux / across);
+                    else if (Reaches(surface.position, direction)) {
+                        visible = true;
+                        break;
+                    }
+                }
                 if (!(arrival > 0.0)) break;  // from below the shading normal
                 flux *= arrival;
                 // Back to its side or, through a translucent surface, on to the other
@@ -145,8 +176,15 @@ uint TracePhoton(uint photon, out bool discarded) {
                     }
                     if (MaxComponent(flux) <= 0.0 || returns == kMaxCoatReturns) break;
                     const float inside = kShadingNormals ? abs(wi.z) : 1.0;
-                    if (inside > 0.0) Gather(surface.position, direction, flux / inside);
+                    if (inside > 0.0) {
+                        if (gather) Gather(surface.position, direction, flux / inside);
+                        else if (Reaches(surface.position, direction)) {
+                            visible = true;
+                            break;
+                        }
+                    }
                 }
+                if (visible) break;
                 if (!escaped) break;
                 const vec3 geometric = toward ? surface.geometric_normal : -surface.geometric_normal;
                 if (!(dot(direction, geometric) > 0)) break;  // the shading normal pointed it inside
@@ -190,18 +228,82 @@ uint TracePhoton(uint photon, out bool discarded) {
     return segments;
 }
 
+// Photon `photon` of the batch, traced and gathered (uniform tracing).
+uint TracePhoton(uint photon, out bool discarded) {
+    Pcg32 rng = Pcg32Seeded(FamilySeed(params.seed_prefix, photon));
+    const float u[kEmissionNumbers] = DrawEmissionNumbers(rng);
+    bool visible;
+    return TracePath(u, rng, true, visible, discarded);
+}
+
+// Chain `chain` of the batch's params.end / params.chain_steps (rounded up), over photons chain,
+// chain + chains, ...: each step tests the step's fresh photon (the one uniform tracing traces)
+// and, where it is not visible and the chain holds a state, a mutation of the state's emission
+// walked with the state's stream; then traces the state, gathering. As TraceAdaptivePhotons on
+// the CPU, whose chains are fewer and longer (kChainSteps here): the same estimate, not the same
+// photons.
+uint RunChain(uint chain, out uint discarded, out uint visible_photons, out uint steps) {
+    const uint chains = (params.end + params.chain_steps - 1) / params.chain_steps;
+    bool started = false;  // the state is read only once it has started
+    float state[kEmissionNumbers];
+    for (uint k = 0; k < kEmissionNumbers; ++k) state[k] = 0.0;
+    Pcg32 state_rng = Pcg32Seeded(0ul);
+    float size = kFirstMutationSize;
+    uint mutated = 0, accepted = 0, segments = 0;
+    discarded = 0, visible_photons = 0, steps = 0;
+    for (uint photon = chain; photon < params.end; photon += chains) {
+        Pcg32 rng = Pcg32Seeded(FamilySeed(params.seed_prefix, photon));
+        const float u[kEmissionNumbers] = DrawEmissionNumbers(rng);
+        bool visible, lost;
+        segments += TracePath(u, rng, false, visible, lost);
+        discarded += uint(lost);
+        if (visible) {  // the exchange: the chain moves to the fresh photon
+            ++visible_photons;
+            started = true;
+            state = u;
+            state_rng = rng;
+        } else if (started) {
+            Pcg32 proposal = Pcg32Seeded(FamilySeed(params.proposal_prefix, photon));
+            float v[kEmissionNumbers];
+            for (uint k = 0; k < kEmissionNumbers; ++k)
+                v[k] = MutateNumber(state[k], Pcg32NextFloat(proposal), size);
+            segments += TracePath(v, state_rng, false, visible, lost);
+            discarded += uint(lost);
+            ++mutated;
+            if (visible) {
+                ++accepted;
+                state = v;
+            }
+            size = AdaptMutationSize(size, accepted, mutated);
+        }
+        if (started) {
+            ++steps;
+            segments += TracePath(state, state_rng, true, visible, lost);
+        }
+    }
+    return segments;
+}
+
 void main() {
-    if (gl_LocalInvocationIndex == 0) group_segments = 0, group_discarded = 0;
+    if (gl_LocalInvocationIndex == 0) group_segments = 0, group_discarded = 0, group_visible = 0, group_steps = 0;
     barrier();
-    const uint photon = params.first + gl_GlobalInvocationID.x;
-    if (photon < params.end) {
+    const uint index = params.first + gl_GlobalInvocationID.x;
+    if (params.chain_steps == 0 && index < params.end) {
         bool discarded;
-        atomicAdd(group_segments, TracePhoton(photon, discarded));
+        atomicAdd(group_segments, TracePhoton(index, discarded));
         if (discarded) atomicAdd(group_discarded, 1u);
+    } else if (params.chain_steps > 0 && index < (params.end + params.chain_steps - 1) / params.chain_steps) {
+        uint discarded, visible, steps;
+        atomicAdd(group_segments, RunChain(index, discarded, visible, steps));
+        atomicAdd(group_discarded, discarded);
+        atomicAdd(group_visible, visible);
+        atomicAdd(group_steps, steps);
     }
     barrier();
     if (gl_LocalInvocationIndex == 0) {
         atomicAdd(counters.segments, uint64_t(group_segments));
         atomicAdd(counters.nonfinite_discarded, uint64_t(group_discarded));
+        atomicAdd(counters.visible_photons, uint64_t(group_visible));
+        atomicAdd(counters.chain_steps, uint64_t(group_steps));
     }
 }
