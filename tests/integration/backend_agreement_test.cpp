@@ -31,7 +31,7 @@ namespace {
 // A Vulkan render of the scene (stream 3) against two CPU renders (streams 1 and 2), with no
 // validation error on the way.
 void ExpectVulkanAgreesWithTheCpu(const std::string& scene_path, uint64_t photons = 1'000'000,
-                                  PhotonTracing tracing = PhotonTracing::kAuto) {
+                                  PhotonTracing tracing = PhotonTracing::kUniform) {
     const unsigned long long errors_before = testing::VulkanValidationErrors();
     testing::ExpectSameEstimator(testing::RenderSmall(scene_path, "vulkan", 3, photons, 0, tracing),
                                  testing::RenderSmall(scene_path, "cpu", 1, photons, 0, tracing),
