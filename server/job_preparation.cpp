@@ -181,7 +181,9 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
                          request.name, 100 * share, PhotonTracingName(tracing));
             // The chains bring about 1 / share as many photons near the hit points as the
             // pilot found, and a radius balancing bias (~R^2) against noise (~1 / (density
-            // R^2)) goes as density^-1/4: radii from the pilot's density shrink by share^1/4.
+            // R^2)) goes as density^-1/4; but a chain's steps are correlated, worth fewer
+            // photons than they find: radii from the pilot's density shrink by share^1/8 (on
+            // light-gap the best of the powers tried, docs/integrators.md).
             if (tracing == PhotonTracing::kAdaptive && !radii.empty() && share > 0) {
                 const double least = DensityRadiiSettings{}.least_footprints;
                 for (size_t i = 0; i < radii.size(); ++i)

@@ -433,9 +433,8 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
     vkCmdFillBuffer(*commands, buffers_->tally.Handle(), 0, VK_WHOLE_SIZE, 0);
     vkCmdFillBuffer(*commands, buffers_->counters.Handle(), 0, VK_WHOLE_SIZE, 0);
     stream_.Barrier();
-    // Photons in dispatches of at most kMaxThreadsPerDispatch, within the device's workgroup
-    // count limit.
-    // Adaptive tracing: a thread a chain instead of a photon.
+    // Photons (adaptive tracing: chains) a thread, in dispatches of at most
+    // kMaxThreadsPerDispatch, within the device's workgroup count limit.
     gpu::GpuParams params = BaseParams();
     params.seed_prefix = PhotonSeeds(job_.seed, spec.index).Prefix();
     params.end = spec.photons;
