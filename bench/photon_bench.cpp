@@ -78,7 +78,7 @@ void BM_PhotonBatch(benchmark::State& state, const std::string& name, bool with_
                                   features};
     PhotonPassScratch scratch;
     tbb::task_arena one_thread(1);
-    const BatchLayout layout;
+    const BatchLayout layout{kDefaultPhotonsPerBatch, kDefaultBatchesPerEpoch};  // full epochs
     uint64_t segments = 0, photons = 0, epoch = 0;
     double seconds = 0;
     for (auto _ : state) {

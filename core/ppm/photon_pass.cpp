@@ -9,7 +9,7 @@
 #include <algorithm>
 
 #include "core/ppm/direct_light.h"
-#include "core/ppm/photon_walk.h"
+#include "core/ppm/photon_trace.h"
 #include "core/sampling/frame.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
@@ -17,94 +17,45 @@
 #include "core/util/radix_sort.h"
 
 namespace pf {
+namespace photon_trace {
 namespace {
 
-// A photon path in flight.
-struct PhotonPath {
-    Ray ray;
-    Rgb flux;
-    Rng rng;
-    bool scattered = false;  // the first hit of an unscattered photon is direct light
-    int bounces = 0;
-    const PunctualLight* ranged = nullptr;  // the light's window is still to apply at the first hit
-};
-
-// A photon emitted by `numbers` whose walk draws from `rng`.
-PhotonPath StartPhotonFrom(const PhotonPassInputs& inputs, const EmissionNumbers& numbers,
-                           const Rng& rng) {
-    PhotonPath path;
-    path.rng = rng;
-    const EmittedPhoton emitted = inputs.emitters->Emit(numbers);
-    path.ray = emitted.ray;
-    path.flux = emitted.flux;
-    path.ranged = emitted.ranged;
-    return path;
-}
-
-// Photon `photon` of the batch whose streams `seeds` holds: its random numbers are a function
-// of (job seed, batch index, photon index) alone.
-PhotonPath StartPhoton(const PhotonPassInputs& inputs, const SeedFamily& seeds, uint32_t photon) {
-    Rng rng(seeds.Seed(photon));
-    const EmissionNumbers numbers = EmissionNumbers::Draw(rng);
-    return StartPhotonFrom(inputs, numbers, rng);
-}
-
-// Continues a path at its hit (ScatterPhotonAt): a deposit at every diffuse hit after the
-// first scattering (a coat turning a photon back to its base is a scattering). Returns false where
-// the path ends.
-template <bool kSpecular, bool kTextures>
-bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath& path,
-                   std::vector<PhotonDeposit>& deposits) {
-    if (path.ranged != nullptr) {  // the light's range, over the first segment
-        path.flux *= path.ranged->RangeWindow(hit.t);
-        path.ranged = nullptr;
-    }
-    const PhotonEvent event = ScatterPhotonAt<kSpecular, kTextures>(
-        *inputs.scene, hit, path.ray, path.flux, path.rng,
-        [&](const Vec3& position, const Vec3& direction, const Rgb& flux, bool returned,
-            float cosine) {
-            if (!path.scattered && !returned) return;
-            // With shading normals, the flux per unit of its cosine: hit points weigh it by
-            // theirs (GatherDeposits).
-            if (!inputs.features.ShadingNormals())
-                deposits.push_back({position, direction, flux});
-            else if (cosine > 0)
-                deposits.push_back({position, direction, flux / cosine});
-        });
-    if (event == PhotonEvent::kEnded) return false;
-    path.scattered = true;
-    return ++path.bounces < inputs.max_bounces;
-}
-
 // Adds the sorted deposits to the hit points within their radius whose surface faces the
-// photon; each counts `counts[i]` photons where kCounted (adaptive tracing), one otherwise.
+// photon, each as one photon; or, kCounted (adaptive tracing), as sorted_counts[i] photons.
+// The uniform loop reads no counts.
 template <bool kCounted>
 void GatherSorted(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     const std::vector<PhotonDeposit>& sorted = scratch.sorted_deposits;
-    const auto add = [&](size_t i, uint32_t index, const Rgb& flux, bool inner) {
-        if constexpr (kCounted)
-            scratch.tally.Add(index, flux, inner, scratch.sorted_counts[i]);
-        else
-            scratch.tally.Add(index, flux, inner);
-    };
+    const uint32_t* counts = scratch.sorted_counts.data();
     if (!inputs.features.ShadingNormals()) {
-        for (size_t i = 0; i < sorted.size(); ++i)
-            inputs.grid->ForEachGathering(sorted[i].position, sorted[i].direction,
-                                          [&](uint32_t index, bool inner, const Vec3&) {
-                                              add(i, index, sorted[i].flux, inner);
-                                          });
+        for (const PhotonDeposit& deposit : sorted) {
+            const uint32_t count = kCounted ? *counts++ : 1;
+            inputs.grid->ForEachGathering(
+                deposit.position, deposit.direction, [&](uint32_t index, bool inner, const Vec3&) {
+                    if constexpr (kCounted)
+                        scratch.tally.Add(index, deposit.flux, inner, count);
+                    else
+                        scratch.tally.Add(index, deposit.flux, inner);
+                });
+        }
     } else {  // Veach's arrival factor at each hit point, by its own shading normal
-        for (size_t i = 0; i < sorted.size(); ++i)
-            inputs.grid->ForEachGathering(sorted[i].position, sorted[i].direction,
-                                          [&](uint32_t index, bool inner, const Vec3& normal) {
-                                              const float facing =
-                                                  -Dot(Normalize(normal), sorted[i].direction);
-                                              add(i, index, sorted[i].flux * facing, inner);
-                                          });
+        for (const PhotonDeposit& deposit : sorted) {
+            const uint32_t count = kCounted ? *counts++ : 1;
+            inputs.grid->ForEachGathering(
+                deposit.position, deposit.direction,
+                [&](uint32_t index, bool inner, const Vec3& normal) {
+                    const float facing = -Dot(Normalize(normal), deposit.direction);
+                    if constexpr (kCounted)
+                        scratch.tally.Add(index, deposit.flux * facing, inner, count);
+                    else
+                        scratch.tally.Add(index, deposit.flux * facing, inner);
+                });
+        }
     }
 }
 
-// Adds every deposit to the hit points within their radius whose surface faces the photon.
+}  // namespace
+
 // Deposits are visited in the order of their grid bucket (ties in path order), so the grid's
 // arrays are read front to back instead of at random: a deterministic order, and a much
 // faster one once the hit points no longer fit in cache.
@@ -132,6 +83,15 @@ void GatherDeposits(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     }
     scratch.deposits.clear();
 }
+
+}  // namespace photon_trace
+
+namespace {
+
+using photon_trace::GatherDeposits;
+using photon_trace::PhotonPath;
+using photon_trace::ScatterPhoton;
+using photon_trace::StartPhoton;
 
 // Traces photons [begin, end) of the batch a packet at a time: each lane carries one path,
 // and a lane whose path ends takes the next photon, so packets stay full. Every photon's
@@ -182,152 +142,12 @@ uint64_t TracePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, uin
     return segments;
 }
 
-// Whether some deposit lands within a hit point's radius, facing it: the photon's visibility.
-bool Visible(const HashGrid& grid, std::span<const PhotonDeposit> deposits) {
-    for (const PhotonDeposit& deposit : deposits)
-        if (grid.Gathers(deposit.position, deposit.direction)) return true;
-    return false;
-}
-
-// Photons [begin, end) of the batch as steps of Markov chains (core/shared/photon_chain.h), one
-// chain a lane: lane c takes steps begin + c, begin + c + kLanes, ...; a step traces the
-// step's fresh photon (the one uniform tracing would trace) and, where that is not visible
-// and the chain holds a state, a mutation of its state's emission walked with the state's own
-// stream, so that its bounces follow the state's and its deposits land near them (with fresh
-// walks, a state whose deposits fall within small radii was seldom left: chains stuck, and at
-// equal time the error doubled). The state of each step, if any, counts once more. Every number is
-// the step's, so the deposits depend only on the batch. Returns the segments traced; counts into
-// scratch.
-template <bool kSpecular, bool kTextures>
-uint64_t TraceAdaptivePhotons(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t begin,
-                              uint32_t end, BatchScratch& scratch) {
-    constexpr int kLanes = Tracer::kPacketSize;
-    struct Chain {
-        bool started = false;   // holds a visible state
-        EmissionNumbers state;  // the state: its emission, and the stream its walk drew from
-        Rng tail;
-        uint32_t held = 0;  // steps the state has stood for since its deposits were last added
-        float size = gpu::kFirstMutationSize;
-        uint32_t mutated = 0, accepted = 0;
-    };
-    struct Lane {
-        PhotonPath path;
-        uint32_t photon = 0;  // the step
-        bool proposal = false;
-        EmissionNumbers numbers;  // the path's, and its walk's stream
-        Rng tail;
-    };
-    Chain chains[kLanes];
-    Lane lanes[kLanes];
-    Ray rays[kLanes] = {};
-    RayHit hits[kLanes];
-    bool active[kLanes], found[kLanes];
-    const SeedFamily fresh_seeds = PhotonSeeds(inputs.seed, spec.index);
-    const SeedFamily proposal_seeds = ProposalSeeds(inputs.seed, spec.index);
-    for (int lane = 0; lane < kLanes; ++lane) scratch.chain_state[lane].clear();
-    // A state's deposits go to the gather once for all the steps it stood for, its flux and
-    // photon count times their number (replaying them every step cost four times as much).
-    const auto add_state = [&](int lane) {
-        Chain& chain = chains[lane];
-        if (chain.held == 0) return;
-        for (const PhotonDeposit& deposit : scratch.chain_state[lane]) {
-            scratch.deposits.push_back(
-                {deposit.position, deposit.direction, deposit.flux * float(chain.held)});
-            scratch.deposit_counts.push_back(chain.held);
-        }
-        chain.held = 0;
-    };
-    // The step's fresh photon on the lane, if the chain has steps left.
-    const auto start_step = [&](int lane, uint32_t photon) {
-        if (photon >= end) return false;
-        Lane& l = lanes[lane];
-        Rng rng(fresh_seeds.Seed(photon));
-        l.photon = photon;
-        l.proposal = false;
-        l.numbers = EmissionNumbers::Draw(rng);
-        l.tail = rng;
-        l.path = StartPhotonFrom(inputs, l.numbers, rng);
-        scratch.chain_candidate[lane].clear();
-        return true;
-    };
-    // The path on the lane has ended: the chain moves, or proposes; true while the step goes on.
-    const auto path_ended = [&](int lane) {
-        Lane& l = lanes[lane];
-        Chain& chain = chains[lane];
-        std::vector<PhotonDeposit>& candidate = scratch.chain_candidate[lane];
-        std::vector<PhotonDeposit>& state = scratch.chain_state[lane];
-        const bool visible = Visible(*inputs.grid, candidate);
-        if (!l.proposal) scratch.visible_photons += visible;
-        if (l.proposal) {
-            ++chain.mutated;
-            chain.accepted += visible;
-            chain.size = gpu::AdaptMutationSize(chain.size, chain.accepted, chain.mutated);
-        }
-        if (visible) {  // a fresh photon replaces the state (the exchange), a mutation is taken
-            add_state(lane);
-            chain.started = true;
-            chain.state = l.numbers;
-            chain.tail = l.tail;
-            std::swap(state, candidate);
-        } else if (!l.proposal && chain.started) {
-            Rng rng(proposal_seeds.Seed(l.photon));
-            for (uint32_t k = 0; k < gpu::kEmissionNumbers; ++k)
-                l.numbers.u[k] = gpu::MutateNumber(chain.state.u[k], rng.NextFloat(), chain.size);
-            l.proposal = true;
-            l.tail = chain.tail;
-            l.path = StartPhotonFrom(inputs, l.numbers, chain.tail);
-            candidate.clear();
-            return true;
-        }
-        if (chain.started) {
-            ++chain.held;
-            ++scratch.chain_steps;
-        }
-        return false;
-    };
-    int live = 0;
-    for (int lane = 0; lane < kLanes; ++lane) {
-        active[lane] = start_step(lane, begin + lane);
-        live += active[lane];
-    }
-    uint64_t segments = 0;
-    while (live > 0) {
-        for (int lane = 0; lane < kLanes; ++lane)
-            if (active[lane]) rays[lane] = lanes[lane].path.ray;
-        inputs.tracer->IntersectPacket(rays, active, hits, found);
-        for (int lane = 0; lane < kLanes; ++lane) {
-            if (!active[lane]) continue;
-            ++segments;
-            PhotonPath& path = lanes[lane].path;
-            const bool finite = IsFinite(path.flux);
-            scratch.nonfinite_discarded += !finite;
-            if (finite && found[lane] &&
-                ScatterPhoton<kSpecular, kTextures>(inputs, hits[lane], path,
-                                                    scratch.chain_candidate[lane]))
-                continue;
-            if (path_ended(lane)) continue;
-            if (!start_step(lane, lanes[lane].photon + kLanes)) {
-                add_state(lane);
-                active[lane] = false;
-                --live;
-            }
-        }
-        if (scratch.deposits.size() >= kMaxPendingDeposits) GatherDeposits(inputs, scratch);
-    }
-    return segments;
-}
-
 }  // namespace
 
 SeedFamily PhotonSeeds(uint64_t seed, uint64_t batch_index) {
     // The stream id separates the random numbers of photons from those of direct light.
     constexpr uint64_t kPhotonStream = 0x70686f746f6e0001ull;
     return SeedFamily(seed, kPhotonStream, batch_index);
-}
-
-SeedFamily ProposalSeeds(uint64_t seed, uint64_t batch_index) {
-    constexpr uint64_t kProposalStream = 0x70686f746f6e0002ull;
-    return SeedFamily(seed, kProposalStream, batch_index);
 }
 
 ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec, uint32_t chunk,
@@ -344,11 +164,7 @@ ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec
     // The photon loop for the scene's features and the tracing, chosen once per chunk.
     const SceneFeatures& features = inputs.features;
     const auto trace =
-        inputs.adaptive ? (features.GeneralSurfaces()
-                               ? (features.textures ? TraceAdaptivePhotons<true, true>
-                                                    : TraceAdaptivePhotons<true, false>)
-                               : (features.textures ? TraceAdaptivePhotons<false, true>
-                                                    : TraceAdaptivePhotons<false, false>))
+        inputs.adaptive ? photon_trace::TraceAdaptive
         : features.GeneralSurfaces()
             ? (features.textures ? TracePhotons<true, true> : TracePhotons<true, false>)
             : (features.textures ? TracePhotons<false, true> : TracePhotons<false, false>);
