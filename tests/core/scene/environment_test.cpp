@@ -324,7 +324,9 @@ TEST(EnvironmentTest, APortalLetsInItsWindowsLightAndOnlyThat) {
             const Vec3 q = photon.ray.origin - scene.environment->portal->corner;
             EXPECT_NEAR(q.z, 0, 1e-3f);
             // Directions drawn from a texel that is partly behind the portal may carry nothing.
-            if (!IsBlack(photon.flux)) EXPECT_LT(photon.ray.direction.z, 0);
+            if (!IsBlack(photon.flux)) {
+                EXPECT_LT(photon.ray.direction.z, 0);
+            }
         }
         // Light samples at a point under it: their mean is the irradiance there, and a ray
         // that escapes toward a sample's direction finds the same radiance and density.
