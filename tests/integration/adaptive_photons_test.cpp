@@ -15,25 +15,23 @@
 #include "core/camera/camera_pass.h"
 #include "core/ppm/hash_grid.h"
 #include "core/ppm/photon_pass.h"
-#include "core/scene/scene_loader.h"
 #include "core/shared/photon_chain.h"
 #include "embedded/local_render.h"
-#include "embree/embree_tracer.h"
+#include "tests/support/lit_scene.h"
 
 namespace pf {
 namespace {
 
+// A shipped scene with its 24x24 camera pass, every radius `radius`.
 struct LoadedScene {
-    Scene scene;
-    std::unique_ptr<Emitters> emitters;
-    std::unique_ptr<embree::EmbreeTracer> tracer;
+    std::unique_ptr<const testing::LitScene> lit;
     std::vector<HitPoint> hit_points;
     HashGrid grid;
 
-    // Photon pass inputs over the scene's 24x24 camera pass, every radius `radius`.
     PhotonPassInputs Inputs(bool adaptive) const {
-        PhotonPassInputs inputs{&scene, emitters.get(), tracer.get(), hit_points, &grid, 9};
-        inputs.features = AnalyseFeatures(scene, *emitters);
+        PhotonPassInputs inputs{
+            &lit->scene, lit->emitters.get(), lit->tracer.get(), hit_points, &grid,
+            9,           lit->features};
         inputs.adaptive = adaptive;
         return inputs;
     }
@@ -41,12 +39,11 @@ struct LoadedScene {
 
 std::unique_ptr<LoadedScene> Load(const std::string& name, float radius) {
     auto loaded = std::make_unique<LoadedScene>();
-    absl::StatusOr<Scene> scene = LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + name);
-    EXPECT_TRUE(scene.ok()) << scene.status();
-    loaded->scene = std::move(*scene);
-    loaded->emitters = std::make_unique<Emitters>(loaded->scene);
-    loaded->tracer = std::move(*embree::EmbreeTracer::Create(loaded->scene));
-    loaded->hit_points = RunCameraPass(loaded->scene, *loaded->tracer, {24, 24, 1, 3}).hit_points;
+    loaded->lit = testing::LoadLitScene(name);
+    EXPECT_NE(loaded->lit, nullptr);
+    if (loaded->lit == nullptr) return nullptr;
+    loaded->hit_points =
+        RunCameraPass(loaded->lit->scene, *loaded->lit->tracer, {24, 24, 1, 3}).hit_points;
     loaded->grid.Build(loaded->hit_points,
                        std::vector<float>(loaded->hit_points.size(), radius * radius));
     return loaded;
@@ -118,6 +115,7 @@ TEST(AdaptivePhotonsTest, BatchesEstimateWhatUniformOnesDoWithLessSpreadThroughA
     // in. Each batch is an independent estimate (its chains start afresh), so the means of 48
     // of each compare within 4 sigma of their spread.
     const std::unique_ptr<LoadedScene> loaded = Load("light-gap.gltf", 0.08f);
+    ASSERT_NE(loaded, nullptr);
     ASSERT_GT(loaded->hit_points.size(), 400u);
     const double visible = VisiblePhotonShare(loaded->Inputs(false), 1u << 15);
     EXPECT_GT(visible, 0.0);
@@ -142,6 +140,7 @@ TEST(AdaptivePhotonsTest, BatchesEstimateWhatUniformOnesDoWithLessSpreadThroughA
 
 TEST(AdaptivePhotonsTest, ABatchIsTheSameOnOneThreadAndOnTwo) {
     const std::unique_ptr<LoadedScene> loaded = Load("caustic-room.gltf", 0.02f);
+    ASSERT_NE(loaded, nullptr);
     const PhotonPassInputs inputs = loaded->Inputs(true);
     // Two chunks a batch, so the chunks' sums meet too.
     const std::vector<BatchSpec> specs = {{3, 0, kPhotonsPerChunk + 5000, 0, 0},

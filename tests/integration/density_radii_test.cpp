@@ -13,27 +13,10 @@
 
 #include "core/camera/camera_pass.h"
 #include "core/pm/photon_map.h"
-#include "core/scene/scene_loader.h"
-#include "embree/embree_tracer.h"
+#include "tests/support/lit_scene.h"
 
 namespace pf {
 namespace {
-
-struct Furnace {
-    Scene scene;
-    std::unique_ptr<Emitters> emitters;
-    std::unique_ptr<embree::EmbreeTracer> tracer;
-    SceneFeatures features;
-};
-
-Furnace LoadFurnace() {
-    Furnace furnace;
-    furnace.scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/furnace.gltf");
-    furnace.emitters = std::make_unique<Emitters>(furnace.scene);
-    furnace.tracer = std::move(*embree::EmbreeTracer::Create(furnace.scene));
-    furnace.features = AnalyseFeatures(furnace.scene, *furnace.emitters);
-    return furnace;
-}
 
 // Points on the floor (y = -1) of the furnace, away from its edges, facing up.
 std::vector<HitPoint> FloorPoints() {
@@ -51,7 +34,9 @@ double Median(std::vector<float> values) {
 }
 
 TEST(DensityRadiiTest, FurnaceRadiiFollowThePhotonDensityInClosedForm) {
-    const Furnace furnace = LoadFurnace();
+    const std::unique_ptr<const testing::LitScene> lit = testing::LoadLitScene("furnace.gltf");
+    ASSERT_NE(lit, nullptr);
+    const testing::LitScene& furnace = *lit;
     const std::vector<HitPoint> points = FloorPoints();
     const std::vector<float> footprint(points.size(), 0.01f);
     DensityRadiiSettings settings;
@@ -86,7 +71,9 @@ TEST(DensityRadiiTest, FurnaceRadiiFollowThePhotonDensityInClosedForm) {
 }
 
 TEST(DensityRadiiTest, RadiiKeepToTheirBoundsAndEmptySlotsKeepTheFallback) {
-    const Furnace furnace = LoadFurnace();
+    const std::unique_ptr<const testing::LitScene> lit = testing::LoadLitScene("furnace.gltf");
+    ASSERT_NE(lit, nullptr);
+    const testing::LitScene& furnace = *lit;
     std::vector<HitPoint> points = FloorPoints();
     std::vector<float> footprint(points.size());
     for (size_t i = 0; i < footprint.size(); ++i) footprint[i] = 1e-4f * float(1 + i % 7);

@@ -12,32 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "core/scene/scene_loader.h"
-#include "embree/embree_tracer.h"
+#include "tests/support/lit_scene.h"
 
 namespace pf {
 namespace {
 
-// A shipped scene with its lights and an Embree scene over it (the emitters keep a reference
-// to the scene, so all three stay together); null, with a test failure, where it fails to load.
-struct LitScene {
-    Scene scene;
-    std::unique_ptr<Emitters> emitters;
-    std::unique_ptr<embree::EmbreeTracer> tracer;
-};
-std::unique_ptr<const LitScene> LoadLitScene(const std::string& name) {
-    absl::StatusOr<Scene> scene = LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + name);
-    EXPECT_TRUE(scene.ok()) << scene.status();
-    if (!scene.ok()) return nullptr;
-    auto lit = std::make_unique<LitScene>();
-    lit->scene = std::move(*scene);
-    lit->emitters = std::make_unique<Emitters>(lit->scene);
-    auto tracer = embree::EmbreeTracer::Create(lit->scene);
-    EXPECT_TRUE(tracer.ok()) << tracer.status();
-    if (!tracer.ok()) return nullptr;
-    lit->tracer = std::move(*tracer);
-    return lit;
-}
+using testing::LitScene;
+using testing::LoadLitScene;
 
 TEST(DirectLightTest, SamplesNearEmittingWallsAreBoundedAndUnbiased) {
     // The white furnace: a closed cube, every wall of albedo 0.5 emitting Le = 1 inward, so

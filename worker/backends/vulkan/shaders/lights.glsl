@@ -179,8 +179,6 @@ float[kEmissionNumbers] DrawEmissionNumbers(inout Pcg32 rng) {
     return u;
 }
 
-Photon EmitPhoton(inout Pcg32 rng) { return EmitPhotonFrom(DrawEmissionNumbers(rng)); }
-
 struct LightSample {
     vec3 origin, direction;  // the shadow ray, toward the light
     float distance;          // how far the shadow ray goes
