@@ -42,45 +42,20 @@ public:
     // hit point's, as stored (DecodeOctahedral: not normalised).
     template <typename Visit>
     void ForEachGathering(const Vec3& p, const Vec3& direction, Visit&& visit) const {
-        if (entry_index_.empty()) return;
-        const uint32_t bucket = Bucket(CellOf(p.x), CellOf(p.y), CellOf(p.z));
-        uint32_t begin = bucket_begin_[bucket];
-        const uint32_t end = bucket_begin_[bucket + 1];
-        // Two phases: the distance test over the bucket's contiguous coordinates, four entries
-        // at a time, gathering a bit mask; then only the few that pass are looked at again.
-        constexpr uint32_t kChunk = 64;
-        while (begin < end) {
-            const uint32_t count = std::min(end - begin, kChunk);
-            uint64_t inside = InsideMask(begin, count, p);
-            if (count < kChunk) inside &= (uint64_t{1} << count) - 1;
-            for (; inside != 0; inside &= inside - 1) {
-                const uint32_t e = begin + static_cast<uint32_t>(std::countr_zero(inside));
-                const Vec3 normal = DecodeOctahedral(entry_normal_[e]);
-                if (Dot(normal, direction) >= 0) continue;
-                const float dx = entry_x_[e] - p.x, dy = entry_y_[e] - p.y, dz = entry_z_[e] - p.z;
-                visit(entry_index_[e], 2 * (dx * dx + dy * dy + dz * dz) <= entry_radius_sq_[e],
-                      normal);
-            }
-            begin += count;
-        }
+        ScanInside(p, [&](uint32_t e) {
+            const Vec3 normal = DecodeOctahedral(entry_normal_[e]);
+            if (Dot(normal, direction) >= 0) return false;
+            const float dx = entry_x_[e] - p.x, dy = entry_y_[e] - p.y, dz = entry_z_[e] - p.z;
+            visit(entry_index_[e], 2 * (dx * dx + dy * dy + dz * dz) <= entry_radius_sq_[e],
+                  normal);
+            return false;
+        });
     }
     // Whether some hit point would gather a photon at p arriving along `direction`
     // (ForEachGathering visits one): stops at the first.
     bool Gathers(const Vec3& p, const Vec3& direction) const {
-        if (entry_index_.empty()) return false;
-        const uint32_t bucket = Bucket(CellOf(p.x), CellOf(p.y), CellOf(p.z));
-        constexpr uint32_t kChunk = 64;
-        for (uint32_t begin = bucket_begin_[bucket], end = bucket_begin_[bucket + 1]; begin < end;
-             begin += kChunk) {
-            const uint32_t count = std::min(end - begin, kChunk);
-            uint64_t inside = InsideMask(begin, count, p);
-            if (count < kChunk) inside &= (uint64_t{1} << count) - 1;
-            for (; inside != 0; inside &= inside - 1) {
-                const uint32_t e = begin + static_cast<uint32_t>(std::countr_zero(inside));
-                if (Dot(DecodeOctahedral(entry_normal_[e]), direction) < 0) return true;
-            }
-        }
-        return false;
+        return ScanInside(
+            p, [&](uint32_t e) { return Dot(DecodeOctahedral(entry_normal_[e]), direction) < 0; });
     }
     // The bucket a photon at p looks in; photons sorted by it share memory traffic.
     uint32_t BucketOf(const Vec3& p) const {
@@ -90,6 +65,25 @@ public:
     int BucketBits() const { return std::bit_width(bucket_mask_); }
 
 private:
+    // Calls found(entry) for the entries of p's bucket whose sphere holds p, in order, until it
+    // returns true; returns whether it did. Two phases: the distance test over the bucket's
+    // contiguous coordinates, four entries at a time, gathering a bit mask; then only the few
+    // that pass are looked at again.
+    template <typename Found>
+    bool ScanInside(const Vec3& p, Found&& found) const {
+        if (entry_index_.empty()) return false;
+        const uint32_t bucket = Bucket(CellOf(p.x), CellOf(p.y), CellOf(p.z));
+        constexpr uint32_t kChunk = 64;
+        for (uint32_t begin = bucket_begin_[bucket], end = bucket_begin_[bucket + 1]; begin < end;
+             begin += kChunk) {
+            const uint32_t count = std::min(end - begin, kChunk);
+            uint64_t inside = InsideMask(begin, count, p);
+            if (count < kChunk) inside &= (uint64_t{1} << count) - 1;
+            for (; inside != 0; inside &= inside - 1)
+                if (found(begin + static_cast<uint32_t>(std::countr_zero(inside)))) return true;
+        }
+        return false;
+    }
     // Clamped so that radii shrinking toward zero or far-away photons cannot overflow the
     // conversion; clamped cells only merge, which costs candidates, never correctness.
     int64_t CellOf(float coordinate) const {
