@@ -1,9 +1,58 @@
-// Camera passes traced with the coordinator's own Embree scene.
+// Camera passes traced with the coordinator's own Embree scene, each epoch's while the epoch
+// before it runs.
 #include "server/camera_passes.h"
+
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
+
+#include <mutex>
+#include <optional>
 
 #include "embree/embree_tracer.h"
 
 namespace pf {
+namespace {
+
+// Passes traced one epoch ahead: asked for epoch e's pass, returns it (traced while epoch e - 1
+// ran, else now) and starts tracing e + 1's in the background, on the TBB arena that created
+// it. A pass is a function of its epoch alone, so the image is the same; what an epoch's end
+// costs the coordinator is then the merge, not the pass, while the workers wait for the next
+// epoch's batches.
+class PrefetchedPasses {
+public:
+    explicit PrefetchedPasses(EpochCameraPass passes)
+        : passes_(std::move(passes)), arena_(tbb::task_arena::attach()) {}
+    PrefetchedPasses(const PrefetchedPasses&) = delete;
+    PrefetchedPasses& operator=(const PrefetchedPasses&) = delete;
+    ~PrefetchedPasses() {  // a pass no epoch will take is cut short
+        group_.cancel();
+        arena_.execute([&] { group_.wait(); });
+    }
+
+    CameraPassResult operator()(uint64_t epoch) {
+        std::lock_guard lock(mutex_);
+        std::optional<CameraPassResult> result;
+        if (ahead_) {
+            arena_.execute([&] { group_.wait(); });
+            if (*ahead_ == epoch) result = std::move(next_);
+            ahead_.reset();
+        }
+        if (!result) result = passes_(epoch);
+        ahead_ = epoch + 1;
+        arena_.execute([&] { group_.run([this, next = epoch + 1] { next_ = passes_(next); }); });
+        return std::move(*result);
+    }
+
+private:
+    EpochCameraPass passes_;
+    tbb::task_arena arena_;
+    tbb::task_group group_;
+    std::mutex mutex_;
+    std::optional<uint64_t> ahead_;  // the epoch whose pass group_ traces into next_
+    CameraPassResult next_;
+};
+
+}  // namespace
 
 absl::StatusOr<EpochCameraPass> EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
                                                   const CameraPassSettings& film) {
@@ -17,11 +66,11 @@ EpochCameraPass EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
                                   const CameraPassSettings& film,
                                   std::shared_ptr<const Tracer> tracer) {
     // The passes keep the payload, and so its scene, alive.
-    EpochCameraPass passes =
-        TracedCameraPasses(payload->scene, std::move(tracer), film, payload->spec);
-    return [payload = std::move(payload), passes = std::move(passes)](uint64_t epoch) {
-        return passes(epoch);
-    };
+    auto passes = std::make_shared<PrefetchedPasses>(
+        [payload,
+         traced = TracedCameraPasses(payload->scene, std::move(tracer), film, payload->spec)](
+            uint64_t epoch) { return traced(epoch); });
+    return [passes = std::move(passes)](uint64_t epoch) { return (*passes)(epoch); };
 }
 
 }  // namespace pf

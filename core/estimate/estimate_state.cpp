@@ -179,7 +179,7 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
           array(n, "hit point", &e.epoch_flux_, "epoch flux"),
           array(n, "hit point", &e.epoch_flux_even_, "epoch even flux")})
         if (!status.ok()) return status;
-    e.hit_points_ = std::move(hit_points);
+    e.SetHitPoints(std::move(hit_points));
     return estimate;
 }
 

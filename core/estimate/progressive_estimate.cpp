@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "core/util/check.h"
 
@@ -31,8 +32,8 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
     if (settings.stochastic) {
         BeginEpochPass(std::move(camera_pass));
     } else {
-        hit_points_ =
-            std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points));
+        SetHitPoints(
+            std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points)));
         BeginEpochPass(next_passes_(0));
     }
     const double radius_sq = settings.initial_radius * settings.initial_radius;
@@ -57,10 +58,35 @@ void ProgressiveEstimate::BeginEpochPass(CameraPassResult camera_pass) {
     PF_CHECK(camera_pass.emission.pixels.size() == direct_sum_.size());
     if (settings_.stochastic) {
         PF_CHECK(camera_pass.hit_points.size() == epoch_direct_.size());
-        hit_points_ =
-            std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points));
+        SetHitPoints(
+            std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points)));
     }
     epoch_emission_ = std::move(camera_pass.emission);
+}
+
+void ProgressiveEstimate::SetHitPoints(std::shared_ptr<const std::vector<HitPoint>> hit_points) {
+    hit_points_ = std::move(hit_points);
+    const std::vector<HitPoint>& points = *hit_points_;
+    const size_t pixels = direct_sum_.size();
+    // A counting sort by pixel, stable.
+    pixel_begin_.assign(pixels + 1, 0);
+    for (const HitPoint& point : points) ++pixel_begin_[point.pixel + 1];
+    std::partial_sum(pixel_begin_.begin(), pixel_begin_.end(), pixel_begin_.begin());
+    pixel_order_.clear();
+    const auto by_pixel = [](const HitPoint& a, const HitPoint& b) { return a.pixel < b.pixel; };
+    if (std::is_sorted(points.begin(), points.end(), by_pixel)) return;
+    pixel_order_.resize(points.size());
+    std::vector<uint32_t> cursor(pixel_begin_.begin(), pixel_begin_.end() - 1);
+    for (size_t i = 0; i < points.size(); ++i)
+        pixel_order_[cursor[points[i].pixel]++] = static_cast<uint32_t>(i);
+}
+
+template <typename Block>
+void ProgressiveEstimate::ForEachPixelBlock(Block&& block) const {
+    const size_t pixels = direct_sum_.size();
+    tbb::parallel_for(size_t{0}, (pixels + kPixelBlock - 1) / kPixelBlock, [&](size_t index) {
+        block(index, index * kPixelBlock, std::min(pixels, (index + 1) * kPixelBlock));
+    });
 }
 
 EpochSamples ProgressiveEstimate::EpochPass(uint64_t epoch) const {
@@ -198,15 +224,16 @@ void ProgressiveEstimate::FinishEpoch() {
 }
 
 Image ProgressiveEstimate::Resolve() const {
-    std::vector<Rgbd> sums(direct_sum_.size(), Rgbd(0.0));
-    const std::vector<HitPoint>& hit_points = *hit_points_;
-    for (size_t i = 0; i < hit_points.size(); ++i)
-        sums[hit_points[i].pixel] +=
-            EstimateRadiance(points_[i], static_cast<double>(photons_emitted_));
-    Image image(epoch_emission_.width, epoch_emission_.height);
+    const double photons = static_cast<double>(photons_emitted_);
     const double inverse_spp = 1.0 / settings_.samples_per_pixel;
-    for (size_t p = 0; p < sums.size(); ++p)
-        image.pixels[p] = Rgb(EmissionAndDirect(p) + sums[p] * inverse_spp);
+    Image image(epoch_emission_.width, epoch_emission_.height);
+    ForEachPixelBlock([&](size_t, size_t begin, size_t end) {
+        for (size_t p = begin; p < end; ++p) {
+            Rgbd sum(0.0);
+            ForEachHitPointOf(p, [&](uint32_t i) { sum += EstimateRadiance(points_[i], photons); });
+            image.pixels[p] = Rgb(EmissionAndDirect(p) + sum * inverse_spp);
+        }
+    });
     return image;
 }
 
@@ -219,57 +246,69 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
                  samples_odd = static_cast<double>(MergedSamples(1));
     ErrorEstimate error;
     if (!(photons_even > 0 && photons_odd > 0 && samples_odd > 0)) return error;
-    // Per pixel, summed over its hit points: the photon estimate, the difference of its
-    // halves, the bias estimate 2 (L - L_inner) of it, and that estimate's own variance.
     const size_t pixels = direct_sum_.size();
-    std::vector<Rgbd> value(pixels, Rgbd(0.0)), difference(pixels, Rgbd(0.0)),
-        bias(pixels, Rgbd(0.0));
-    std::vector<Rgbd> bias_noise(pixels, Rgbd(0.0));
-    const std::vector<HitPoint>& hit_points = *hit_points_;
-    for (size_t i = 0; i < hit_points.size(); ++i) {
-        const PointEstimate& point = points_[i];
-        const Rgbd even = EstimateRadiance({0, point.radius_sq, flux_even_[i]}, photons_even);
-        const Rgbd odd =
-            EstimateRadiance({0, point.radius_sq, point.flux - flux_even_[i]}, photons_odd);
-        const uint32_t pixel = hit_points[i].pixel;
-        const Rgbd photon_part = EstimateRadiance(point, photons);
-        value[pixel] += photon_part;
-        difference[pixel] += even - odd;
-        const GatherCounts& counts = counts_[i];
-        if (counts.all > 0) {
-            // The inner fraction f = inner / all is 1/2 where the density is flat; L_inner =
-            // 2 f L, so bias = 2 (L - L_inner) = 2 (1 - 2 f) L. Each photon falls inside with
-            // probability f: var(f) = f (1 - f) sum(w^2) / sum(w)^2, with f pulled toward 1/2
-            // by half a photon each way so that a few photons all on one side (f = 0 or 1)
-            // do not claim certainty.
-            const double f = counts.inner / counts.all;
-            bias[pixel] += photon_part * (2 * (1 - 2 * f));
-            const double f_smooth = (counts.inner + 0.5) / (counts.all + 1);
-            const double f_variance =
-                f_smooth * (1 - f_smooth) * counts.weight_sq / (counts.all * counts.all);
-            bias_noise[pixel] += photon_part * photon_part * (16 * f_variance);
-        }
-    }
     const double inverse_spp = 1.0 / settings_.samples_per_pixel;
     const double variance_scale = photons_even * photons_odd / (photons * photons);
-    double squared = 0, relative = 0, bias_squared = 0, bias_relative = 0;
-    for (size_t p = 0; p < pixels; ++p)
-        for (int c = 0; c < 3; ++c) {
-            // Emission and direct light differ between even and odd epochs as photons do
-            // between even and odd batches.
-            const double seen_even = emission_even_[p][c] + direct_even_[p][c],
-                         seen_all = emission_sum_[p][c] + direct_sum_[p][c];
-            const double d = difference[p][c] * inverse_spp + seen_even / samples_even -
-                             (seen_all - seen_even) / samples_odd;
-            const double v = EmissionAndDirect(p)[c] + value[p][c] * inverse_spp;
-            AddHalfVariance(v, d, variance_scale, &squared, &relative);
-            // b^2 overestimates the squared bias by b's variance: take it off (the sum over
-            // pixels is clamped at zero below, not each pixel, to stay unbiased).
-            const double b = bias[p][c] * inverse_spp;
-            const double b_squared = b * b - bias_noise[p][c] * inverse_spp * inverse_spp;
-            bias_squared += b_squared;
-            bias_relative += b_squared / (v * v + 0.01);
+    // Sums over pixels and channels, per block of pixels, added in block order below.
+    struct Sums {
+        double squared = 0, relative = 0, bias_squared = 0, bias_relative = 0;
+    };
+    std::vector<Sums> block_sums((pixels + kPixelBlock - 1) / kPixelBlock);
+    ForEachPixelBlock([&](size_t block, size_t begin, size_t end) {
+        Sums& sums = block_sums[block];
+        for (size_t p = begin; p < end; ++p) {
+            // Summed over the pixel's hit points: the photon estimate, the difference of its
+            // halves, the bias estimate 2 (L - L_inner) of it, and that estimate's own variance.
+            Rgbd value(0.0), difference(0.0), bias(0.0), bias_noise(0.0);
+            ForEachHitPointOf(p, [&](uint32_t i) {
+                const PointEstimate& point = points_[i];
+                const Rgbd even =
+                    EstimateRadiance({0, point.radius_sq, flux_even_[i]}, photons_even);
+                const Rgbd odd =
+                    EstimateRadiance({0, point.radius_sq, point.flux - flux_even_[i]}, photons_odd);
+                const Rgbd photon_part = EstimateRadiance(point, photons);
+                value += photon_part;
+                difference += even - odd;
+                const GatherCounts& counts = counts_[i];
+                if (counts.all > 0) {
+                    // The inner fraction f = inner / all is 1/2 where the density is flat;
+                    // L_inner = 2 f L, so bias = 2 (L - L_inner) = 2 (1 - 2 f) L. Each photon
+                    // falls inside with probability f: var(f) = f (1 - f) sum(w^2) / sum(w)^2,
+                    // with f pulled toward 1/2 by half a photon each way so that a few photons
+                    // all on one side (f = 0 or 1) do not claim certainty.
+                    const double f = counts.inner / counts.all;
+                    bias += photon_part * (2 * (1 - 2 * f));
+                    const double f_smooth = (counts.inner + 0.5) / (counts.all + 1);
+                    const double f_variance =
+                        f_smooth * (1 - f_smooth) * counts.weight_sq / (counts.all * counts.all);
+                    bias_noise += photon_part * photon_part * (16 * f_variance);
+                }
+            });
+            for (int c = 0; c < 3; ++c) {
+                // Emission and direct light differ between even and odd epochs as photons do
+                // between even and odd batches.
+                const double seen_even = emission_even_[p][c] + direct_even_[p][c],
+                             seen_all = emission_sum_[p][c] + direct_sum_[p][c];
+                const double d = difference[c] * inverse_spp + seen_even / samples_even -
+                                 (seen_all - seen_even) / samples_odd;
+                const double v = EmissionAndDirect(p)[c] + value[c] * inverse_spp;
+                AddHalfVariance(v, d, variance_scale, &sums.squared, &sums.relative);
+                // b^2 overestimates the squared bias by b's variance: take it off (the sum over
+                // pixels is clamped at zero below, not each pixel, to stay unbiased).
+                const double b = bias[c] * inverse_spp;
+                const double b_squared = b * b - bias_noise[c] * inverse_spp * inverse_spp;
+                sums.bias_squared += b_squared;
+                sums.bias_relative += b_squared / (v * v + 0.01);
+            }
         }
+    });
+    double squared = 0, relative = 0, bias_squared = 0, bias_relative = 0;
+    for (const Sums& sums : block_sums) {
+        squared += sums.squared;
+        relative += sums.relative;
+        bias_squared += sums.bias_squared;
+        bias_relative += sums.bias_relative;
+    }
     const double samples = 3.0 * static_cast<double>(pixels);
     bias_squared = std::max(bias_squared, 0.0) / samples;
     error.known = true;

@@ -133,6 +133,19 @@ private:
 
     // Takes the epoch's pass as it begins: its emission, and for sppm its hit points.
     void BeginEpochPass(CameraPassResult camera_pass);
+    // Holds `hit_points` and indexes them by pixel (pixel_begin_, pixel_order_).
+    void SetHitPoints(std::shared_ptr<const std::vector<HitPoint>> hit_points);
+    // Calls visit(i) for each hit point i of pixel p, in index order.
+    template <typename Visit>
+    void ForEachHitPointOf(size_t p, Visit&& visit) const {
+        for (uint32_t k = pixel_begin_[p]; k < pixel_begin_[p + 1]; ++k)
+            visit(pixel_order_.empty() ? k : pixel_order_[k]);
+    }
+    // Calls block(index, begin, end) for the pixels [begin, end) of each block of kPixelBlock,
+    // in parallel: sums per pixel, and per block, are the same on any number of threads.
+    template <typename Block>
+    void ForEachPixelBlock(Block&& block) const;
+    static constexpr size_t kPixelBlock = 1024;
     // Epoch `epoch`'s camera samples a pixel (EpochCameraSamples).
     EpochSamples EpochPass(uint64_t epoch) const;
     // Camera samples a pixel over the merged epochs of one parity (0: the even, 1: the odd).
@@ -141,6 +154,10 @@ private:
     Rgbd EmissionAndDirect(size_t p) const;
 
     std::shared_ptr<const std::vector<HitPoint>> hit_points_;
+    // Hit points by pixel: pixel p's are pixel_order_[pixel_begin_[p] .. pixel_begin_[p + 1])
+    // in index order; an empty pixel_order_ where the hit points are in pixel order already
+    // (sppm's slots).
+    std::vector<uint32_t> pixel_begin_, pixel_order_;
     // Per pixel, sums over the merged epochs' camera samples of the emission seen and of the
     // direct light, with those of the even epochs apart; the current epoch's emission and
     // direct samples (per slot) apart.

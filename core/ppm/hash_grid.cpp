@@ -1,12 +1,25 @@
-// Building the hit-point hash grid in two passes (count, then fill) into CSR arrays.
+// Building the hit-point hash grid into CSR arrays: a parallel counting sort by bucket.
 #include "core/ppm/hash_grid.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
+#include <atomic>
 #include <bit>
+#include <cmath>
+#include <numeric>
 
 #include "core/util/check.h"
 
 namespace pf {
+namespace {
+
+// Hit points (or buckets) a task.
+constexpr size_t kGrain = 4096;
+
+}  // namespace
 
 int HashGrid::OverlappedBuckets(const Vec3& center, float radius, uint32_t buckets[8]) const {
     // 2 radius <= cell size, so the sphere spans at most 2 cells an axis; the clamp only
@@ -28,51 +41,76 @@ int HashGrid::OverlappedBuckets(const Vec3& center, float radius, uint32_t bucke
 
 void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float> radius_sq) {
     PF_CHECK(hit_points.size() == radius_sq.size());
-    auto usable = [&](size_t i) { return radius_sq[i] > 0 && !IsBlack(hit_points[i].weight); };
-    std::vector<float> radius(hit_points.size());
-    float max_radius = 0;
-    for (size_t i = 0; i < hit_points.size(); ++i) {
-        radius[i] = std::sqrt(radius_sq[i]);
-        if (usable(i)) max_radius = std::max(max_radius, radius[i]);
-    }
+    const size_t n = hit_points.size();
+    // Hit points that no photon can change are left out: their radius is 0 (the entry's
+    // radius below), as for a zero radius.
+    std::vector<float> radius(n);
+    const float max_radius = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, n, kGrain), 0.0f,
+        [&](const tbb::blocked_range<size_t>& r, float largest) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                const bool usable = radius_sq[i] > 0 && !IsBlack(hit_points[i].weight);
+                radius[i] = usable ? std::sqrt(radius_sq[i]) : 0.0f;
+                largest = std::max(largest, radius[i]);
+            }
+            return largest;
+        },
+        [](float a, float b) { return std::max(a, b); });
     for (auto* entries : {&entry_x_, &entry_y_, &entry_z_, &entry_radius_sq_}) entries->clear();
     entry_normal_.clear();
     entry_index_.clear();
     bucket_begin_.clear();
     if (!(max_radius > 0)) return;
     inverse_cell_size_ = 1.0f / (2.0f * max_radius);  // cells twice the largest radius wide
-    const uint64_t bucket_count = std::bit_ceil(std::max<uint64_t>(2 * hit_points.size(), 64));
+    const uint64_t bucket_count = std::bit_ceil(std::max<uint64_t>(2 * n, 64));
     bucket_mask_ = bucket_count - 1;
 
-    std::vector<uint32_t> counts(bucket_count + 1, 0);
-    uint32_t buckets[8];
-    for (size_t i = 0; i < hit_points.size(); ++i) {
-        if (!usable(i)) continue;
-        const int n = OverlappedBuckets(hit_points[i].position, radius[i], buckets);
-        for (int k = 0; k < n; ++k) ++counts[buckets[k] + 1];
-    }
-    for (uint64_t b = 0; b < bucket_count; ++b) counts[b + 1] += counts[b];
-    bucket_begin_ = counts;
-    const size_t entry_count = counts[bucket_count];
+    // A counting sort by bucket, in parallel: the hit points of each bucket are counted, then
+    // placed in any order, then each bucket's are sorted by index, so the layout (a bucket's
+    // entries in hit-point order, which fixes the gather's order of sums) does not depend on
+    // the threads. The buckets are computed again in the second pass rather than kept from
+    // the first, which would take 33 bytes a hit point of scratch for a few float operations.
+    const auto each_usable = [&](auto&& visit) {
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
+                uint32_t buckets[8];
+                for (size_t i = r.begin(); i < r.end(); ++i) {
+                    if (radius[i] == 0) continue;
+                    const int count = OverlappedBuckets(hit_points[i].position, radius[i], buckets);
+                    for (int k = 0; k < count; ++k) visit(i, buckets[k]);
+                }
+            });
+    };
+    std::vector<uint32_t> cursor(bucket_count + 1, 0);
+    each_usable([&](size_t, uint32_t bucket) {
+        std::atomic_ref(cursor[bucket + 1]).fetch_add(1, std::memory_order_relaxed);
+    });
+    std::inclusive_scan(cursor.begin(), cursor.end(), cursor.begin());
+    bucket_begin_ = cursor;
+    const size_t entry_count = cursor[bucket_count];
+    entry_index_.resize(entry_count);
+    each_usable([&](size_t i, uint32_t bucket) {
+        const uint32_t e = std::atomic_ref(cursor[bucket]).fetch_add(1, std::memory_order_relaxed);
+        entry_index_[e] = static_cast<uint32_t>(i);
+    });
     for (auto* entries : {&entry_x_, &entry_y_, &entry_z_, &entry_radius_sq_})
         entries->resize(entry_count + kEntryPadding);
     entry_normal_.resize(entry_count);
-    entry_index_.resize(entry_count);
-    // Second pass: the buckets are computed again rather than kept from the first, which
-    // would take 33 bytes a hit point of scratch for a few float operations saved.
-    for (size_t i = 0; i < hit_points.size(); ++i) {
-        if (!usable(i)) continue;
-        const int n = OverlappedBuckets(hit_points[i].position, radius[i], buckets);
-        const Vec3& p = hit_points[i].position;
-        const uint32_t normal = EncodeOctahedral(hit_points[i].normal);
-        for (int k = 0; k < n; ++k) {
-            const uint32_t e = counts[buckets[k]]++;
-            entry_x_[e] = p.x, entry_y_[e] = p.y, entry_z_[e] = p.z;
-            entry_radius_sq_[e] = radius_sq[i];
-            entry_normal_[e] = normal;
-            entry_index_[e] = static_cast<uint32_t>(i);
-        }
-    }
+    tbb::parallel_for(tbb::blocked_range<uint64_t>(0, bucket_count, kGrain),
+                      [&](const tbb::blocked_range<uint64_t>& r) {
+                          for (uint64_t b = r.begin(); b < r.end(); ++b) {
+                              const auto begin = entry_index_.begin() + bucket_begin_[b];
+                              const auto end = entry_index_.begin() + bucket_begin_[b + 1];
+                              std::sort(begin, end);
+                              for (uint32_t e = bucket_begin_[b]; e < bucket_begin_[b + 1]; ++e) {
+                                  const uint32_t i = entry_index_[e];
+                                  const Vec3& p = hit_points[i].position;
+                                  entry_x_[e] = p.x, entry_y_[e] = p.y, entry_z_[e] = p.z;
+                                  entry_radius_sq_[e] = radius_sq[i];
+                                  entry_normal_[e] = EncodeOctahedral(hit_points[i].normal);
+                              }
+                          }
+                      });
 }
 
 }  // namespace pf

@@ -33,6 +33,8 @@ class HashGrid {
 public:
     // radius_sq[i] is hit point i's squared search radius (world units^2); hit points with a
     // zero radius or a black weight are left out, since no photon can change their estimate.
+    // Runs in parallel on the calling TBB arena; the grid, and so the order in which lookups
+    // visit hit points (ascending index), does not depend on the thread count.
     void Build(std::span<const HitPoint> hit_points, std::span<const float> radius_sq);
 
     // Calls visit(index, inner, normal) for every hit point whose search sphere contains p and

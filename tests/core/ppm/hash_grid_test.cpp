@@ -2,6 +2,7 @@
 #include "core/ppm/hash_grid.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <vector>
@@ -42,6 +43,35 @@ TEST(HashGridTest, MatchesBruteForceForMixedRadii) {
         std::sort(found.begin(), found.end());
         ASSERT_EQ(found, expected) << "query " << query;
     }
+}
+
+TEST(HashGridTest, VisitsInIndexOrderWhateverTheThreadsThatBuiltIt) {
+    // The gather sums in visit order, so the order is part of the image: ascending hit point
+    // index, from a grid built on one thread or on several.
+    Rng rng(9);
+    std::vector<HitPoint> hit_points(40000);
+    std::vector<float> radius_sq(hit_points.size());
+    for (size_t i = 0; i < hit_points.size(); ++i) {
+        hit_points[i] = {Vec3(rng.NextFloat(), rng.NextFloat(), rng.NextFloat()), Vec3(0, 0, 1),
+                         Rgb(0.5f), uint32_t(i)};
+        radius_sq[i] = 0.004f * rng.NextFloat();
+    }
+    HashGrid one, four;
+    tbb::task_arena(1).execute([&] { one.Build(hit_points, radius_sq); });
+    tbb::task_arena(4).execute([&] { four.Build(hit_points, radius_sq); });
+    int nonempty = 0;
+    for (int query = 0; query < 2000; ++query) {
+        const Vec3 p(rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
+        std::vector<uint32_t> from_one, from_four;
+        one.ForEachGathering(p, Vec3(0, 0, -1),
+                             [&](uint32_t i, bool, const Vec3&) { from_one.push_back(i); });
+        four.ForEachGathering(p, Vec3(0, 0, -1),
+                              [&](uint32_t i, bool, const Vec3&) { from_four.push_back(i); });
+        ASSERT_EQ(from_one, from_four) << "query " << query;
+        ASSERT_TRUE(std::is_sorted(from_one.begin(), from_one.end())) << "query " << query;
+        nonempty += from_one.size() > 1;
+    }
+    EXPECT_GT(nonempty, 1000);  // most queries find several hit points
 }
 
 TEST(HashGridTest, RadiiFarBelowTheCoordinatesStillFindTheirPhotons) {
