@@ -9,6 +9,7 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <memory>
 #include <numeric>
 
 #include "core/util/check.h"
@@ -42,8 +43,7 @@ int HashGrid::OverlappedBuckets(const Vec3& center, float radius, uint32_t bucke
 void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float> radius_sq) {
     PF_CHECK(hit_points.size() == radius_sq.size());
     const size_t n = hit_points.size();
-    // Hit points that no photon can change are left out: their radius is 0 (the entry's
-    // radius below), as for a zero radius.
+    // Search radii, 0 for the hit points left out (no radius, or a black weight).
     std::vector<float> radius(n);
     const float max_radius = tbb::parallel_reduce(
         tbb::blocked_range<size_t>(0, n, kGrain), 0.0f,
@@ -68,31 +68,36 @@ void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float
     // A counting sort by bucket, in parallel: the hit points of each bucket are counted, then
     // placed in any order, then each bucket's are sorted by index, so the layout (a bucket's
     // entries in hit-point order, which fixes the gather's order of sums) does not depend on
-    // the threads. The buckets are computed again in the second pass rather than kept from
-    // the first, which would take 33 bytes a hit point of scratch for a few float operations.
-    const auto each_usable = [&](auto&& visit) {
-        tbb::parallel_for(
-            tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
-                uint32_t buckets[8];
-                for (size_t i = r.begin(); i < r.end(); ++i) {
-                    if (radius[i] == 0) continue;
-                    const int count = OverlappedBuckets(hit_points[i].position, radius[i], buckets);
-                    for (int k = 0; k < count; ++k) visit(i, buckets[k]);
-                }
-            });
-    };
+    // the threads. Each hit point's buckets and packed normal are kept between the passes.
+    const auto overlapped = std::make_unique_for_overwrite<uint32_t[]>(8 * n);
+    const auto normal = std::make_unique_for_overwrite<uint32_t[]>(n);
+    std::vector<uint8_t> overlapped_count(n, 0);
     std::vector<uint32_t> cursor(bucket_count + 1, 0);
-    each_usable([&](size_t, uint32_t bucket) {
-        std::atomic_ref(cursor[bucket + 1]).fetch_add(1, std::memory_order_relaxed);
-    });
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                if (radius[i] == 0) continue;
+                uint32_t* buckets = &overlapped[8 * i];
+                const int count = OverlappedBuckets(hit_points[i].position, radius[i], buckets);
+                overlapped_count[i] = static_cast<uint8_t>(count);
+                normal[i] = EncodeOctahedral(hit_points[i].normal);
+                for (int k = 0; k < count; ++k)
+                    std::atomic_ref(cursor[buckets[k] + 1]).fetch_add(1, std::memory_order_relaxed);
+            }
+        });
     std::inclusive_scan(cursor.begin(), cursor.end(), cursor.begin());
     bucket_begin_ = cursor;
     const size_t entry_count = cursor[bucket_count];
     entry_index_.resize(entry_count);
-    each_usable([&](size_t i, uint32_t bucket) {
-        const uint32_t e = std::atomic_ref(cursor[bucket]).fetch_add(1, std::memory_order_relaxed);
-        entry_index_[e] = static_cast<uint32_t>(i);
-    });
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kGrain),
+                      [&](const tbb::blocked_range<size_t>& r) {
+                          for (size_t i = r.begin(); i < r.end(); ++i)
+                              for (int k = 0; k < overlapped_count[i]; ++k) {
+                                  const uint32_t e = std::atomic_ref(cursor[overlapped[8 * i + k]])
+                                                         .fetch_add(1, std::memory_order_relaxed);
+                                  entry_index_[e] = static_cast<uint32_t>(i);
+                              }
+                      });
     for (auto* entries : {&entry_x_, &entry_y_, &entry_z_, &entry_radius_sq_})
         entries->resize(entry_count + kEntryPadding);
     entry_normal_.resize(entry_count);
@@ -107,7 +112,7 @@ void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float
                                   const Vec3& p = hit_points[i].position;
                                   entry_x_[e] = p.x, entry_y_[e] = p.y, entry_z_[e] = p.z;
                                   entry_radius_sq_[e] = radius_sq[i];
-                                  entry_normal_[e] = EncodeOctahedral(hit_points[i].normal);
+                                  entry_normal_[e] = normal[i];
                               }
                           }
                       });
