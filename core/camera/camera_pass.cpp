@@ -232,6 +232,10 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                     }
                 }
                 result.emission.At(x, y) = emission / static_cast<float>(spp);
+                if (settings.emission_only) {  // no hit points kept
+                    row_hit_points[y].clear();
+                    row_footprints[y].clear();
+                }
             }
         }
     });
