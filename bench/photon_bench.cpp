@@ -5,7 +5,8 @@
 // also carries one direct-light sample for a slice of the hit points (shadow rays, not photon
 // segments); the ratio is given for the photon pass alone and for whole batches. Last, the
 // photon pass instantiated for the scene's features (what backends run) against the general
-// path, forced, on cornell-box (diffuse only: no specular or texture code), as a ratio.
+// path, forced, on cornell-box (diffuse only: no specular or texture code), as a ratio. And the
+// grid's rebuild over the same hit points, which a worker runs every epoch.
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 #include <tbb/task_arena.h>
@@ -18,7 +19,9 @@
 
 #include "core/camera/camera_pass.h"
 #include "core/estimate/progressive_estimate.h"
+#include "core/ppm/hash_grid.h"
 #include "core/ppm/photon_pass.h"
+#include "core/sampling/rng.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene_features.h"
 #include "core/scene/scene_loader.h"
@@ -123,6 +126,21 @@ void BM_EmbreeRandomRays(benchmark::State& state, const std::string& name) {
     g_rates["rays/" + name] = traced / seconds;
 }
 
+// Rebuilding the grid over the demo's hit points, as a worker does every epoch: radii spread
+// between half and all of R0, as after a few epochs.
+void BM_GridBuild(benchmark::State& state, const std::string& name) {
+    BenchScene& bench = Load(name);
+    const std::vector<HitPoint>& hit_points = bench.camera_pass.hit_points;
+    const float radius = DefaultInitialRadius(bench.camera_pass, bench.scene);
+    std::vector<float> radius_sq(hit_points.size());
+    Rng rng(3);
+    for (float& r2 : radius_sq) r2 = radius * radius * (0.25f + 0.75f * rng.NextFloat());
+    HashGrid grid;
+    for (auto _ : state) grid.Build(hit_points, radius_sq);
+    state.counters["hit points/s"] = benchmark::Counter(
+        double(hit_points.size()) * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
 }  // namespace
 }  // namespace pf
 
@@ -143,6 +161,9 @@ int main(int argc, char** argv) {
             ->Unit(benchmark::kMillisecond)
             ->MinTime(1.0);
     }
+    benchmark::RegisterBenchmark("BM_GridBuild/cornell-box", pf::BM_GridBuild, "cornell-box")
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(1.0);
     benchmark::RegisterBenchmark("BM_PhotonPassGeneral/cornell-box", pf::BM_PhotonBatch,
                                  "cornell-box", false, true)
         ->Unit(benchmark::kMillisecond)
