@@ -68,9 +68,14 @@ void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float
     // A counting sort by bucket, in parallel: the hit points of each bucket are counted, then
     // placed in any order, then each bucket's are sorted by index, so the layout (a bucket's
     // entries in hit-point order, which fixes the gather's order of sums) does not depend on
-    // the threads. Each hit point's buckets and packed normal are kept between the passes.
+    // the threads. Each hit point's buckets are kept between the passes, and what its entries
+    // copy is packed into one record, which the last pass reads in bucket order.
     const auto overlapped = std::make_unique_for_overwrite<uint32_t[]>(8 * n);
-    const auto normal = std::make_unique_for_overwrite<uint32_t[]>(n);
+    struct Entry {
+        float x, y, z, radius_sq;
+        uint32_t normal;
+    };
+    const auto entry = std::make_unique_for_overwrite<Entry[]>(n);
     std::vector<uint8_t> overlapped_count(n, 0);
     std::vector<uint32_t> cursor(bucket_count + 1, 0);
     tbb::parallel_for(
@@ -80,7 +85,8 @@ void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float
                 uint32_t* buckets = &overlapped[8 * i];
                 const int count = OverlappedBuckets(hit_points[i].position, radius[i], buckets);
                 overlapped_count[i] = static_cast<uint8_t>(count);
-                normal[i] = EncodeOctahedral(hit_points[i].normal);
+                const Vec3& p = hit_points[i].position;
+                entry[i] = {p.x, p.y, p.z, radius_sq[i], EncodeOctahedral(hit_points[i].normal)};
                 for (int k = 0; k < count; ++k)
                     std::atomic_ref(cursor[buckets[k] + 1]).fetch_add(1, std::memory_order_relaxed);
             }
@@ -108,11 +114,11 @@ void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float
                               const auto end = entry_index_.begin() + bucket_begin_[b + 1];
                               std::sort(begin, end);
                               for (uint32_t e = bucket_begin_[b]; e < bucket_begin_[b + 1]; ++e) {
-                                  const uint32_t i = entry_index_[e];
-                                  const Vec3& p = hit_points[i].position;
-                                  entry_x_[e] = p.x, entry_y_[e] = p.y, entry_z_[e] = p.z;
-                                  entry_radius_sq_[e] = radius_sq[i];
-                                  entry_normal_[e] = normal[i];
+                                  const Entry& copied = entry[entry_index_[e]];
+                                  entry_x_[e] = copied.x, entry_y_[e] = copied.y;
+                                  entry_z_[e] = copied.z;
+                                  entry_radius_sq_[e] = copied.radius_sq;
+                                  entry_normal_[e] = copied.normal;
                               }
                           }
                       });
