@@ -7,6 +7,7 @@
 
 #include <mutex>
 #include <optional>
+#include <utility>
 
 #include "embree/embree_tracer.h"
 
@@ -32,14 +33,26 @@ public:
     CameraPassResult operator()(uint64_t epoch) {
         std::lock_guard lock(mutex_);
         std::optional<CameraPassResult> result;
-        if (ahead_) {
+        if (const std::optional<uint64_t> ahead = std::exchange(ahead_, std::nullopt)) {
+            if (*ahead != epoch) group_.cancel();  // not the one wanted: cut it short
             arena_.execute([&] { group_.wait(); });
-            if (*ahead_ == epoch) result = std::move(next_);
-            ahead_.reset();
+            // A pass that failed (say, out of memory) is traced again here, where its error
+            // reaches the caller.
+            if (*ahead == epoch && !failed_) result = std::move(next_);
+            next_ = {};
+            failed_ = false;
         }
         if (!result) result = passes_(epoch);
         ahead_ = epoch + 1;
-        arena_.execute([&] { group_.run([this, next = epoch + 1] { next_ = passes_(next); }); });
+        arena_.execute([&] {
+            group_.run([this, next = epoch + 1] {
+                try {
+                    next_ = passes_(next);
+                } catch (...) {
+                    failed_ = true;
+                }
+            });
+        });
         return std::move(*result);
     }
 
@@ -50,6 +63,7 @@ private:
     std::mutex mutex_;
     std::optional<uint64_t> ahead_;  // the epoch whose pass group_ traces into next_
     CameraPassResult next_;
+    bool failed_ = false;  // that pass threw
 };
 
 }  // namespace

@@ -14,6 +14,10 @@ namespace pf {
 
 // Passes over the payload's scene, kept alive by the result (with an Embree scene of its
 // own); `film` the job's film, its features analysed. The scene's load errors, or Embree's.
+// Each call returns epoch e's pass and starts tracing e + 1's on the calling thread's TBB
+// arena, so the job holds one pass more than it uses (for sppm, a pass's hit points); calls
+// may come from any thread; destroying the result waits for a pass in flight,
+// cut short.
 absl::StatusOr<EpochCameraPass> EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
                                                   const CameraPassSettings& film);
 // The same through `tracer`, an Embree scene of the payload's scene already built (a job's

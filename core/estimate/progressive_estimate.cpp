@@ -70,7 +70,10 @@ void ProgressiveEstimate::SetHitPoints(std::shared_ptr<const std::vector<HitPoin
     const size_t pixels = direct_sum_.size();
     // A counting sort by pixel, stable.
     pixel_begin_.assign(pixels + 1, 0);
-    for (const HitPoint& point : points) ++pixel_begin_[point.pixel + 1];
+    for (const HitPoint& point : points) {
+        PF_CHECK(point.pixel < pixels);
+        ++pixel_begin_[point.pixel + 1];
+    }
     std::partial_sum(pixel_begin_.begin(), pixel_begin_.end(), pixel_begin_.begin());
     pixel_order_.clear();
     const auto by_pixel = [](const HitPoint& a, const HitPoint& b) { return a.pixel < b.pixel; };

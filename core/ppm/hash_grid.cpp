@@ -68,42 +68,46 @@ void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float
     // A counting sort by bucket, in parallel: the hit points of each bucket are counted, then
     // placed in any order, then each bucket's are sorted by index, so the layout (a bucket's
     // entries in hit-point order, which fixes the gather's order of sums) does not depend on
-    // the threads. Each hit point's buckets are kept between the passes, and what its entries
-    // copy is packed into one record, which the last pass reads in bucket order.
-    const auto overlapped = std::make_unique_for_overwrite<uint32_t[]>(8 * n);
+    // the threads. Each block of kGrain hit points keeps its hit points' buckets, packed, for
+    // the second pass (about 13 bytes a hit point, where computing them again cost the build a
+    // third more time), and what a hit point's entries copy is packed into one record, which
+    // the last pass reads in bucket order.
     struct Entry {
         float x, y, z, radius_sq;
         uint32_t normal;
     };
     const auto entry = std::make_unique_for_overwrite<Entry[]>(n);
     std::vector<uint8_t> overlapped_count(n, 0);
+    std::vector<std::vector<uint32_t>> overlapped((n + kGrain - 1) / kGrain);
     std::vector<uint32_t> cursor(bucket_count + 1, 0);
-    tbb::parallel_for(
-        tbb::blocked_range<size_t>(0, n, kGrain), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i < r.end(); ++i) {
-                if (radius[i] == 0) continue;
-                uint32_t* buckets = &overlapped[8 * i];
-                const int count = OverlappedBuckets(hit_points[i].position, radius[i], buckets);
-                overlapped_count[i] = static_cast<uint8_t>(count);
-                const Vec3& p = hit_points[i].position;
-                entry[i] = {p.x, p.y, p.z, radius_sq[i], EncodeOctahedral(hit_points[i].normal)};
-                for (int k = 0; k < count; ++k)
-                    std::atomic_ref(cursor[buckets[k] + 1]).fetch_add(1, std::memory_order_relaxed);
-            }
-        });
+    tbb::parallel_for(size_t{0}, overlapped.size(), [&](size_t block) {
+        std::vector<uint32_t>& kept = overlapped[block];
+        for (size_t i = block * kGrain; i < std::min(n, (block + 1) * kGrain); ++i) {
+            if (radius[i] == 0) continue;
+            uint32_t buckets[8];
+            const int count = OverlappedBuckets(hit_points[i].position, radius[i], buckets);
+            overlapped_count[i] = static_cast<uint8_t>(count);
+            kept.insert(kept.end(), buckets, buckets + count);
+            const Vec3& p = hit_points[i].position;
+            entry[i] = {p.x, p.y, p.z, radius_sq[i], EncodeOctahedral(hit_points[i].normal)};
+            for (int k = 0; k < count; ++k)
+                std::atomic_ref(cursor[buckets[k] + 1]).fetch_add(1, std::memory_order_relaxed);
+        }
+    });
     std::inclusive_scan(cursor.begin(), cursor.end(), cursor.begin());
     bucket_begin_ = cursor;
     const size_t entry_count = cursor[bucket_count];
     entry_index_.resize(entry_count);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kGrain),
-                      [&](const tbb::blocked_range<size_t>& r) {
-                          for (size_t i = r.begin(); i < r.end(); ++i)
-                              for (int k = 0; k < overlapped_count[i]; ++k) {
-                                  const uint32_t e = std::atomic_ref(cursor[overlapped[8 * i + k]])
-                                                         .fetch_add(1, std::memory_order_relaxed);
-                                  entry_index_[e] = static_cast<uint32_t>(i);
-                              }
-                      });
+    tbb::parallel_for(size_t{0}, overlapped.size(), [&](size_t block) {
+        const uint32_t* buckets = overlapped[block].data();
+        for (size_t i = block * kGrain; i < std::min(n, (block + 1) * kGrain); ++i)
+            for (int k = 0; k < overlapped_count[i]; ++k) {
+                const uint32_t e =
+                    std::atomic_ref(cursor[*buckets++]).fetch_add(1, std::memory_order_relaxed);
+                entry_index_[e] = static_cast<uint32_t>(i);
+            }
+        std::vector<uint32_t>().swap(overlapped[block]);
+    });
     for (auto* entries : {&entry_x_, &entry_y_, &entry_z_, &entry_radius_sq_})
         entries->resize(entry_count + kEntryPadding);
     entry_normal_.resize(entry_count);
