@@ -169,10 +169,12 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
                                  "adaptive where a pilot finds under 5% reach it")
                     ->default_str("auto"),
                 {"auto", "uniform", "adaptive"}, ParsePhotonTracing);
-    // capture_default_str, not default_val: default_val would re-parse "0.666667" into alpha,
-    // and the render would no longer match a farm job left at the default 2/3.
-    command->add_option("--alpha", s->alpha, "Radius reduction ratio alpha in (0, 1]")
-        ->capture_default_str()
+    command
+        ->add_option("--alpha", s->alpha,
+                     "ppm, sppm: radius reduction ratio alpha in (0, 1] for every epoch "
+                     "(default: balanced, each epoch's chosen in [0.55, 0.95] from the estimated "
+                     "bias and noise, 2/3 where they balance)")
+        ->default_str("balanced")
         ->check(FiniteRange(1e-9, 1.0));
     command
         ->add_option("--radius", s->initial_radius,

@@ -52,7 +52,7 @@ ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcom
             {"photonfarm:nonfinite_discarded", absl::StrCat(outcome.progress.nonfinite_discarded)},
             {"photonfarm:seed", absl::StrCat(job.seed)},
             {"photonfarm:photon_stream", absl::StrCat(job.photon_stream)},
-            {"photonfarm:alpha", absl::StrFormat("%.17g", job.alpha)},
+            {"photonfarm:alpha", job.alpha == 0 ? "balanced" : absl::StrFormat("%.17g", job.alpha)},
             {"photonfarm:initial_radius", absl::StrFormat("%.9g", outcome.initial_radius)},
             {"photonfarm:scene_features", outcome.scene_features},
             {"photonfarm:integrator", std::string(IntegratorName(job.integrator))},

@@ -209,7 +209,7 @@ absl::StatusOr<JobSpec> FromProto(const photonfarm::v1::JobSettings& settings) {
         spec.samples_per_pixel = static_cast<int>(settings.samples_per_pixel());
     spec.photon_budget = settings.photon_budget();
     spec.seconds_budget = settings.seconds_budget();
-    if (settings.alpha() != 0) spec.alpha = settings.alpha();
+    spec.alpha = settings.alpha();
     spec.initial_radius = settings.initial_radius();
     spec.seed = settings.seed();
     spec.photon_stream = settings.photon_stream();

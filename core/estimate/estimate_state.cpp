@@ -18,7 +18,8 @@ constexpr uint32_t kFixedMagic = 0x50485046;  // "PFHP": the hit points kept apa
 // each epoch's camera pass, for ppm too. 5: ppm's epoch passes take their own camera samples a
 // pixel (EpochSamplesPerPixel), not its k. 6: small epochs first (the layout's
 // first_epoch_photons), emission and direct light summed over camera samples, not epochs.
-constexpr uint32_t kVersion = 6;
+// 7: whether alpha is balanced (EstimateSettings::balanced).
+constexpr uint32_t kVersion = 7;
 
 absl::Status Corrupt(const std::string& what) {
     return absl::DataLossError(absl::StrCat("estimate state: ", what));
@@ -55,6 +56,7 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
     out.Value(settings_.layout.first_epoch_photons);
     out.Value(settings_.min_radius);
     out.Value(static_cast<uint8_t>(settings_.stochastic));
+    out.Value(static_cast<uint8_t>(settings_.balanced));
     out.Value(epoch_emission_.width);
     out.Value(epoch_emission_.height);
     for (uint64_t value : {epoch_, photons_emitted_, photons_emitted_even_, nonfinite_discarded_})
@@ -100,14 +102,15 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
     if (!in.Value(&n) || n > kMaxHitPoints || !in.Value(&hit_points_here))
         return Corrupt("hit points");
     EstimateSettings& settings = e.settings_;
-    uint8_t stochastic = 0;
+    uint8_t stochastic = 0, balanced = 0;
     if (!(in.Value(&settings.alpha) && in.Value(&settings.initial_radius) &&
           in.Value(&settings.samples_per_pixel) && in.Value(&settings.layout.photons_per_batch) &&
           in.Value(&settings.layout.batches_per_epoch) &&
           in.Value(&settings.layout.first_epoch_photons) && in.Value(&settings.min_radius) &&
-          in.Value(&stochastic)))
+          in.Value(&stochastic) && in.Value(&balanced)))
         return Corrupt("truncated settings");
     settings.stochastic = stochastic != 0;
+    settings.balanced = balanced != 0;
     if (!(settings.alpha > 0 && settings.alpha <= 1 && settings.initial_radius > 0 &&
           std::isfinite(settings.initial_radius) && settings.min_radius >= 0 &&
           settings.min_radius <= settings.initial_radius && settings.samples_per_pixel > 0 &&

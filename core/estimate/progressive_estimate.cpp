@@ -173,7 +173,7 @@ void ProgressiveEstimate::FinishEpoch() {
     const uint64_t growing = settings_.layout.GrowingEpochs();
     const bool holding = epoch_ + 1 < growing;
     const bool closing = growing > 1 && epoch_ + 1 == growing;
-    const double alpha = holding ? 1.0 : settings_.alpha;
+    const double alpha = holding ? 1.0 : BalancedAlpha();
     const double min_radius_sq = settings_.min_radius * settings_.min_radius;
     const bool even_epoch = epoch_ % 2 == 0;
     tbb::parallel_for(
@@ -240,25 +240,22 @@ Image ProgressiveEstimate::Resolve() const {
     return image;
 }
 
-ErrorEstimate ProgressiveEstimate::EstimateError() const {
+ProgressiveEstimate::ErrorSums ProgressiveEstimate::SumErrors() const {
     const double photons = static_cast<double>(photons_emitted_);
     const double photons_even = static_cast<double>(photons_emitted_even_);
     const double photons_odd = photons - photons_even;
     // Camera samples a pixel over the even epochs and the odd.
     const double samples_even = static_cast<double>(MergedSamples(0)),
                  samples_odd = static_cast<double>(MergedSamples(1));
-    ErrorEstimate error;
-    if (!(photons_even > 0 && photons_odd > 0 && samples_odd > 0)) return error;
+    ErrorSums total;
+    if (!(photons_even > 0 && photons_odd > 0 && samples_odd > 0)) return total;
     const size_t pixels = direct_sum_.size();
     const double inverse_spp = 1.0 / settings_.samples_per_pixel;
     const double variance_scale = photons_even * photons_odd / (photons * photons);
     // Sums over pixels and channels, per block of pixels, added in block order below.
-    struct Sums {
-        double squared = 0, relative = 0, bias_squared = 0, bias_relative = 0;
-    };
-    std::vector<Sums> block_sums((pixels + kPixelBlock - 1) / kPixelBlock);
+    std::vector<ErrorSums> block_sums((pixels + kPixelBlock - 1) / kPixelBlock);
     ForEachPixelBlock([&](size_t block, size_t begin, size_t end) {
-        Sums& sums = block_sums[block];
+        ErrorSums& sums = block_sums[block];
         for (size_t p = begin; p < end; ++p) {
             // Summed over the pixel's hit points: the photon estimate, the difference of its
             // halves, the bias estimate 2 (L - L_inner) of it, and that estimate's own variance.
@@ -292,12 +289,14 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
                 // between even and odd batches.
                 const double seen_even = emission_even_[p][c] + direct_even_[p][c],
                              seen_all = emission_sum_[p][c] + direct_sum_[p][c];
-                const double d = difference[c] * inverse_spp + seen_even / samples_even -
+                const double photon_difference = difference[c] * inverse_spp;
+                const double d = photon_difference + seen_even / samples_even -
                                  (seen_all - seen_even) / samples_odd;
                 const double v = EmissionAndDirect(p)[c] + value[c] * inverse_spp;
                 AddHalfVariance(v, d, variance_scale, &sums.squared, &sums.relative);
+                sums.photon_squared += photon_difference * photon_difference * variance_scale;
                 // b^2 overestimates the squared bias by b's variance: take it off (the sum over
-                // pixels is clamped at zero below, not each pixel, to stay unbiased).
+                // pixels is clamped at zero by the callers, not each pixel, to stay unbiased).
                 const double b = bias[c] * inverse_spp;
                 const double b_squared = b * b - bias_noise[c] * inverse_spp * inverse_spp;
                 sums.bias_squared += b_squared;
@@ -305,25 +304,45 @@ ErrorEstimate ProgressiveEstimate::EstimateError() const {
             }
         }
     });
-    double squared = 0, relative = 0, bias_squared = 0, bias_relative = 0;
-    for (const Sums& sums : block_sums) {
-        squared += sums.squared;
-        relative += sums.relative;
-        bias_squared += sums.bias_squared;
-        bias_relative += sums.bias_relative;
+    for (const ErrorSums& sums : block_sums) {
+        total.squared += sums.squared;
+        total.relative += sums.relative;
+        total.photon_squared += sums.photon_squared;
+        total.bias_squared += sums.bias_squared;
+        total.bias_relative += sums.bias_relative;
     }
-    const double samples = 3.0 * static_cast<double>(pixels);
-    bias_squared = std::max(bias_squared, 0.0) / samples;
+    total.samples = 3.0 * static_cast<double>(pixels);
+    return total;
+}
+
+ErrorEstimate ProgressiveEstimate::EstimateError() const {
+    const ErrorSums sums = SumErrors();
+    ErrorEstimate error;
+    if (!(sums.samples > 0)) return error;
+    const double bias_squared = std::max(sums.bias_squared, 0.0) / sums.samples;
     error.known = true;
-    error.rmse = std::sqrt(squared / samples + bias_squared);
-    error.rel_mse = relative / samples + std::max(bias_relative, 0.0) / samples;
+    error.rmse = std::sqrt(sums.squared / sums.samples + bias_squared);
+    error.rel_mse = sums.relative / sums.samples + std::max(sums.bias_relative, 0.0) / sums.samples;
     error.bias_rmse = std::sqrt(bias_squared);
     return error;
 }
 
+double ProgressiveEstimate::BalancedAlpha() const {
+    if (!settings_.balanced) return settings_.alpha;
+    const ErrorSums sums = SumErrors();
+    if (!(sums.samples > 0)) return settings_.alpha;
+    const double bias_squared = std::max(sums.bias_squared, 0.0);
+    if (!(bias_squared > 0)) return kBalancedAlphaMost;
+    if (!(sums.photon_squared > 0)) return kBalancedAlphaLeast;
+    const double r = bias_squared / (0.5 * sums.photon_squared);
+    return std::clamp(1 - (1 - settings_.alpha) * std::sqrt(r), kBalancedAlphaLeast,
+                      kBalancedAlphaMost);
+}
+
 EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass,
                              const Scene& scene, const std::string& scene_name) {
-    EstimateSettings estimate{spec.alpha, spec.initial_radius, spec.samples_per_pixel,
+    EstimateSettings estimate{spec.alpha == 0 ? kDefaultAlpha : spec.alpha, spec.alpha == 0,
+                              spec.initial_radius, spec.samples_per_pixel,
                               ResolvedLayout(spec, camera_pass.emission.pixels.size())};
     if (estimate.initial_radius == 0) estimate.initial_radius = scene.hints.initial_radius;
     if (estimate.initial_radius == 0)

@@ -36,10 +36,19 @@ struct GatherCounts {
     double all = 0, inner = 0, weight_sq = 0;
 };
 
+// The bounds of a balanced estimate's ratio (EstimateSettings::balanced): below 1, so radii
+// always shrink and the estimate stays consistent; not so far below alpha that an estimate
+// that overrates its bias shrinks for good what it cannot grow back (0.4 did on caustic-glass,
+// docs/integrators.md).
+inline constexpr double kBalancedAlphaLeast = 0.55, kBalancedAlphaMost = 0.95;
+
 struct EstimateSettings {
     double alpha = kDefaultAlpha;  // radius reduction ratio, (0, 1]
-    double initial_radius = 0;     // R0, world units, > 0 (the median where each point has its own)
-    int samples_per_pixel = 4;     // k: camera paths per pixel (the resolve divides by it)
+    // Each epoch's ratio chosen from the estimate's own error (BalancedAlpha), `alpha` where
+    // bias and noise balance; otherwise `alpha` every epoch.
+    bool balanced = false;
+    double initial_radius = 0;  // R0, world units, > 0 (the median where each point has its own)
+    int samples_per_pixel = 4;  // k: camera paths per pixel (the resolve divides by it)
     BatchLayout layout;
     double min_radius = 0;  // radii shrink no further (ShrinkRatio), world units, <= R0
     // Stochastic progressive photon mapping: photons gather at each epoch's camera pass (N, R,
@@ -146,6 +155,26 @@ private:
     template <typename Block>
     void ForEachPixelBlock(Block&& block) const;
     static constexpr size_t kPixelBlock = 1024;
+    // The error estimate's sums over pixels and channels (samples: their count; 0 where
+    // unknown): the squared error and its relative form, the photon part's alone, and the
+    // squared bias (less its noise, not clamped) in both forms.
+    struct ErrorSums {
+        double squared = 0, relative = 0, photon_squared = 0, bias_squared = 0, bias_relative = 0,
+               samples = 0;
+    };
+    ErrorSums SumErrors() const;
+    // The ratio the epoch's photons shrink radii by. Balanced: a disc estimate's squared bias
+    // grows as R^4 and its variance falls as 1 / R^2, so their sum is least where the squared
+    // bias is half the variance. With r the merged epochs' estimated squared bias over half the
+    // photon part's variance, summed over the image (emission and direct light do not depend
+    // on R; absolute, not relative, so that r is the same for a light a billion times
+    // brighter), alpha = 1 - (1 - settings.alpha) sqrt(r) within [kBalancedAlphaLeast,
+    // kBalancedAlphaMost]: the settings' ratio at balance, which keeps it (at 2/3 both fall as
+    // N^(-2/3): kDefaultAlpha), radii shrinking faster where bias weighs more and
+    // slower where noise does. A function of the merged state alone, so a restored checkpoint
+    // and every thread count choose alike. Unbalanced, or while the error is unknown (the first
+    // two epochs): the settings' alpha.
+    double BalancedAlpha() const;
     // Epoch `epoch`'s camera samples a pixel (EpochCameraSamples).
     EpochSamples EpochPass(uint64_t epoch) const;
     // Camera samples a pixel over the merged epochs of one parity (0: the even, 1: the odd).

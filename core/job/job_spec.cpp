@@ -22,8 +22,8 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
                        "must lie in [1, 32768]");
     if (s.samples_per_pixel < 1 || s.samples_per_pixel > 1024)
         return invalid("--spp", "settings.samples_per_pixel", "must lie in [1, 1024]");
-    if (!(s.alpha > 0 && s.alpha <= 1))
-        return invalid("--alpha", "settings.alpha", "must lie in (0, 1]");
+    if (!(s.alpha >= 0 && s.alpha <= 1))
+        return invalid("--alpha", "settings.alpha", "must lie in (0, 1] (0: balanced)");
     if (!(s.initial_radius >= 0 && std::isfinite(s.initial_radius)))
         return invalid("--radius", "settings.initial_radius", "must be positive and finite");
     // 0: left to the job (ResolvedLayout).

@@ -15,8 +15,9 @@
 
 namespace pf {
 
-// The default radius-reduction ratio alpha: the asymptotically optimal 2/3 derived by
-// Kaplanyan & Dachsbacher 2013 ("Adaptive Progressive Photon Mapping", section 5).
+// The radius-reduction ratio alpha where bias and noise balance: the asymptotically optimal
+// 2/3 derived by Kaplanyan & Dachsbacher 2013 ("Adaptive Progressive Photon Mapping",
+// section 5).
 inline constexpr double kDefaultAlpha = 2.0 / 3.0;
 
 struct JobSpec {
@@ -30,7 +31,10 @@ struct JobSpec {
     // pass) but trace independent photons and light samples: how a reference for the error
     // against run time is made (docs/convergence.md). 0: the stream of `seed` itself.
     uint64_t photon_stream = 0;
-    double alpha = kDefaultAlpha;
+    // ppm, sppm: the radius-reduction ratio of every epoch, in (0, 1]; 0 (the default):
+    // balanced, each epoch's chosen from the estimated bias and noise about kDefaultAlpha
+    // (EstimateSettings::balanced).
+    double alpha = 0;
     // ppm, sppm: auto is resolved by the coordinator before any worker sees the job.
     PhotonTracing photon_tracing = PhotonTracing::kAuto;
     double initial_radius = 0;  // R0, world units, for all; 0: each its own (DensityInitialRadii)

@@ -286,7 +286,7 @@ TEST(CoordinatorTest, SubmittedSettingsOutOfRangeAreRefusedNamingTheField) {
         {"settings.seconds_budget", [](JobRequest& r) { r.spec.seconds_budget = 1e300; }},
         {"settings.target_error",
          [](JobRequest& r) { r.spec.target_error = std::numeric_limits<double>::infinity(); }},
-        {"settings.alpha", [](JobRequest& r) { r.spec.alpha = 0; }},
+        {"settings.alpha", [](JobRequest& r) { r.spec.alpha = -0.5; }},
         {"settings.initial_radius", [](JobRequest& r) { r.spec.initial_radius = -1; }},
         // (0 leaves a count to the coordinator: ResolvedLayout.)
         {"settings.photons_per_batch",

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/job/job_spec.h"
 #include "embedded/local_render.h"
 
 namespace pf::testing {
@@ -20,6 +21,9 @@ Image RenderSmall(const std::string& scene_path, const std::string& backend, uin
     settings.job.photon_stream = stream;
     settings.job.initial_radius = initial_radius;
     settings.job.photon_tracing = tracing;
+    // A fixed alpha: balanced, each render's radii would follow its own photons' noise, and
+    // these renders compare the photons' estimator, not the radius schedule.
+    settings.job.alpha = kDefaultAlpha;
     absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
     EXPECT_TRUE(outcome.ok()) << outcome.status();
     return outcome.ok() ? outcome->image : Image();

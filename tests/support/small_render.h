@@ -1,5 +1,5 @@
 // One small local render for tests that compare images statistically: 32x32, 1M photons (unless
-// given) in batches of 2^16, two threads.
+// given) in batches of 2^16, two threads, alpha fixed at 2/3.
 #pragma once
 
 #include <cstdint>

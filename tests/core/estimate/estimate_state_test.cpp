@@ -47,6 +47,8 @@ ProgressiveEstimate MakeEstimate() {
     EstimateSettings settings;
     settings.initial_radius = 0.5;
     settings.samples_per_pixel = 3;
+    // Each epoch's alpha from the error so far: a restored estimate must choose it alike.
+    settings.balanced = true;
     // Epochs of 500, 1000, 2000, then 4000 photons (and 2, 4, 8, then 16 camera samples a
     // pixel): saved within the growing epochs and after them.
     settings.layout = {1000, 4, 500};
