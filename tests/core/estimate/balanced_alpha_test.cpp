@@ -6,44 +6,17 @@
 
 #include "core/estimate/progressive_estimate.h"
 #include "core/job/job_spec.h"
+#include "tests/core/estimate/one_point_estimate.h"
 
 namespace pf {
 namespace {
 
-constexpr uint32_t kPhotons = 1000;  // emitted per batch
-constexpr double kRadius = 0.5;
-
-// One pixel seen through one hit point of weight 1, two batches an epoch.
 ProgressiveEstimate OnePointEstimate(bool balanced) {
-    CameraPassResult camera_pass;
-    camera_pass.hit_points = {HitPoint{Vec3(0.0f), Vec3(0, 0, 1), Rgb(1.0f), 0}};
-    camera_pass.footprint = {0.01f};
-    camera_pass.emission = Image(1, 1);
-    EstimateSettings settings;
-    settings.balanced = balanced;
-    settings.initial_radius = kRadius;
-    settings.samples_per_pixel = 1;
-    settings.layout = {kPhotons, 2};
-    return ProgressiveEstimate(std::move(camera_pass), settings, [](uint64_t) {
-        CameraPassResult pass;  // the epochs' passes: no emission, one slot
-        pass.emission = Image(1, 1);
-        return pass;
-    });
+    return testing::OnePointEstimate(kDefaultAlpha, balanced);
 }
-
-// Batch `batch_in_epoch` of the epoch: `photons` photons of flux `flux` in all, `inner` of
-// them within R / sqrt(2).
 BatchResult Batch(const ProgressiveEstimate& estimate, uint32_t batch_in_epoch, float flux,
                   uint32_t photons, uint32_t inner) {
-    BatchResult result;
-    result.spec = MakeBatchSpec(estimate.Settings().layout, estimate.Epoch(), batch_in_epoch, 1);
-    result.tally.hit_point = {0};
-    result.tally.photons = {photons};
-    result.tally.inner_photons = {inner};
-    result.tally.flux = {Rgb(flux)};
-    result.samples.assign(result.spec.sample_end - result.spec.sample_begin, Rgb(0.0f));
-    result.photons_emitted = kPhotons;
-    return result;
+    return testing::OnePointBatch(estimate, batch_in_epoch, flux, photons, inner);
 }
 
 // Merges an epoch of the two batches and returns the ratio it shrank R^2 by.

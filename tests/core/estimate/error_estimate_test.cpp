@@ -6,54 +6,25 @@
 
 #include "core/estimate/progressive_estimate.h"
 #include "core/job/job_spec.h"
+#include "tests/core/estimate/one_point_estimate.h"
 
 namespace pf {
 namespace {
 
-constexpr uint32_t kPhotons = 1000;  // per batch
-constexpr double kRadius = 0.5;
+constexpr uint32_t kPhotons = testing::kOnePointPhotons;
+constexpr double kRadius = testing::kOnePointRadius;
 
-// One pixel seen through one hit point of weight 1; alpha = 1 keeps the radius, so the
-// estimate is the plain density tau / (pi R^2 N).
-ProgressiveEstimate OnePointEstimate() {
-    CameraPassResult camera_pass;
-    camera_pass.hit_points = {HitPoint{Vec3(0.0f), Vec3(0, 0, 1), Rgb(1.0f), 0}};
-    camera_pass.footprint = {0.01f};
-    camera_pass.emission = Image(1, 1);
-    EstimateSettings settings;
-    settings.alpha = 1.0;
-    settings.initial_radius = kRadius;
-    settings.samples_per_pixel = 1;
-    settings.layout = {kPhotons, 2};
-    return ProgressiveEstimate(std::move(camera_pass), settings, [](uint64_t) {
-        CameraPassResult pass;  // the epochs' passes: no emission, one slot
-        pass.emission = Image(1, 1);
-        return pass;
-    });
-}
-
-// Batch `index % 2` of the epoch, whose one tally entry carries `flux` (W x N_emitted) in
-// `photons` photons, `inner` of them within R / sqrt(2) (half of them: a flat density, no bias).
-BatchResult Batch(const ProgressiveEstimate& estimate, uint32_t batch_in_epoch, float flux,
-                  uint32_t photons = 2, uint32_t inner = 1) {
-    BatchResult result;
-    result.spec = MakeBatchSpec(estimate.Settings().layout, estimate.Epoch(), batch_in_epoch, 1);
-    result.tally.hit_point = {0};
-    result.tally.photons = {photons};
-    result.tally.inner_photons = {inner};
-    result.tally.flux = {Rgb(flux)};
-    result.samples.assign(result.spec.sample_end - result.spec.sample_begin, Rgb(0.0f));
-    result.photons_emitted = kPhotons;
-    return result;
-}
+// alpha = 1 keeps the radius, so the estimate is the plain density tau / (pi R^2 N).
+ProgressiveEstimate OnePointEstimate() { return testing::OnePointEstimate(1.0); }
+using testing::OnePointBatch;
 
 TEST(ErrorEstimateTest, UnknownUntilBothHalvesHavePhotonsAndDirectLight) {
     ProgressiveEstimate estimate = OnePointEstimate();
     EXPECT_FALSE(estimate.EstimateError().known);
     // After one epoch both halves have photons, but the direct light of odd epochs is missing.
-    estimate.MergeEpoch(std::vector{Batch(estimate, 0, 2), Batch(estimate, 1, 1)});
+    estimate.MergeEpoch(std::vector{OnePointBatch(estimate, 0, 2), OnePointBatch(estimate, 1, 1)});
     EXPECT_FALSE(estimate.EstimateError().known);
-    estimate.MergeEpoch(std::vector{Batch(estimate, 0, 2), Batch(estimate, 1, 1)});
+    estimate.MergeEpoch(std::vector{OnePointBatch(estimate, 0, 2), OnePointBatch(estimate, 1, 1)});
     EXPECT_TRUE(estimate.EstimateError().known);
 }
 
@@ -63,7 +34,8 @@ TEST(ErrorEstimateTest, IsHalfTheDifferenceOfEqualHalves) {
     // standard error |L_even - L_odd| / 2 in every channel.
     ProgressiveEstimate estimate = OnePointEstimate();
     for (int epoch = 0; epoch < 2; ++epoch)
-        estimate.MergeEpoch(std::vector{Batch(estimate, 0, 2), Batch(estimate, 1, 1)});
+        estimate.MergeEpoch(
+            std::vector{OnePointBatch(estimate, 0, 2), OnePointBatch(estimate, 1, 1)});
     const double area = kPiD * kRadius * kRadius;
     const double even = 4 / (area * 2 * kPhotons), odd = 2 / (area * 2 * kPhotons);
     const double value = (even + odd) / 2;
@@ -80,8 +52,8 @@ TEST(ErrorEstimateTest, PhotonsCrowdingTheInnerDiscShowAsBias) {
     // bias 2 (L - L_inner) = -L, less the little its own noise claims (4000 photons).
     ProgressiveEstimate estimate = OnePointEstimate();
     for (int epoch = 0; epoch < 2; ++epoch)
-        estimate.MergeEpoch(
-            std::vector{Batch(estimate, 0, 3, 1000, 750), Batch(estimate, 1, 3, 1000, 750)});
+        estimate.MergeEpoch(std::vector{OnePointBatch(estimate, 0, 3, 1000, 750),
+                                        OnePointBatch(estimate, 1, 3, 1000, 750)});
     const double value = estimate.Resolve().pixels[0].x;
     const ErrorEstimate error = estimate.EstimateError();
     ASSERT_TRUE(error.known);
@@ -92,14 +64,16 @@ TEST(ErrorEstimateTest, PhotonsCrowdingTheInnerDiscShowAsBias) {
     // the nothing it shows.
     ProgressiveEstimate flat = OnePointEstimate();
     for (int epoch = 0; epoch < 2; ++epoch)
-        flat.MergeEpoch(std::vector{Batch(flat, 0, 3, 1000, 500), Batch(flat, 1, 3, 1000, 500)});
+        flat.MergeEpoch(std::vector{OnePointBatch(flat, 0, 3, 1000, 500),
+                                    OnePointBatch(flat, 1, 3, 1000, 500)});
     EXPECT_EQ(flat.EstimateError().bias_rmse, 0.0);
 }
 
 TEST(ErrorEstimateTest, AgreeingHalvesGiveZeroAndTheTargetEndsTheBudget) {
     ProgressiveEstimate estimate = OnePointEstimate();
     for (int epoch = 0; epoch < 2; ++epoch)
-        estimate.MergeEpoch(std::vector{Batch(estimate, 0, 3), Batch(estimate, 1, 3)});
+        estimate.MergeEpoch(
+            std::vector{OnePointBatch(estimate, 0, 3), OnePointBatch(estimate, 1, 3)});
     const ErrorEstimate error = estimate.EstimateError();
     ASSERT_TRUE(error.known);
     EXPECT_EQ(error.rmse, 0.0);
