@@ -18,8 +18,9 @@ constexpr uint32_t kFixedMagic = 0x50485046;  // "PFHP": the hit points kept apa
 // each epoch's camera pass, for ppm too. 5: ppm's epoch passes take their own camera samples a
 // pixel (EpochSamplesPerPixel), not its k. 6: small epochs first (the layout's
 // first_epoch_photons), emission and direct light summed over camera samples, not epochs.
-// 7: whether alpha is balanced (EstimateSettings::balanced).
-constexpr uint32_t kVersion = 7;
+// 7: whether alpha is balanced (EstimateSettings::balanced). 8: the bias estimate's counts
+// of the even batches (GatherCounts, EvenPhotons).
+constexpr uint32_t kVersion = 8;
 
 absl::Status Corrupt(const std::string& what) {
     return absl::DataLossError(absl::StrCat("estimate state: ", what));
@@ -74,7 +75,8 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
           PackedArray(direct_even_), PackedArray(epoch_emission_.pixels),
           PackedArray(epoch_direct_), PackedArray(points_), PackedArray(flux_even_),
           PackedArray(counts_), PackedArray(epoch_photons_), PackedArray(epoch_inner_photons_),
-          PackedArray(epoch_flux_), PackedArray(epoch_flux_even_)})
+          PackedArray(epoch_even_photons_), PackedArray(epoch_flux_),
+          PackedArray(epoch_flux_even_)})
         arrays.push_back(array);
     WritePacked(out, arrays);
 }
@@ -179,6 +181,7 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
           array(n, "hit point", &e.counts_, "gather counts"),
           array(n, "hit point", &e.epoch_photons_, "epoch photons"),
           array(n, "hit point", &e.epoch_inner_photons_, "epoch inner photons"),
+          array(n, "hit point", &e.epoch_even_photons_, "epoch even photons"),
           array(n, "hit point", &e.epoch_flux_, "epoch flux"),
           array(n, "hit point", &e.epoch_flux_even_, "epoch even flux")})
         if (!status.ok()) return status;

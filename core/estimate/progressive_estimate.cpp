@@ -50,6 +50,7 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
     counts_.assign(hit_points_->size(), GatherCounts{});
     epoch_photons_.assign(hit_points_->size(), 0);
     epoch_inner_photons_.assign(hit_points_->size(), 0);
+    epoch_even_photons_.assign(hit_points_->size(), EvenPhotons{});
     epoch_flux_.assign(hit_points_->size(), Rgbd(0.0));
     epoch_flux_even_.assign(hit_points_->size(), Rgbd(0.0));
 }
@@ -146,7 +147,11 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
                               // exact in double).
                               const Rgbd flux = Rgbd(tally.flux[e]) * Rgbd(hit_points[i].weight);
                               epoch_flux_[i] += flux;
-                              if (even) epoch_flux_even_[i] += flux;
+                              if (even) {
+                                  epoch_flux_even_[i] += flux;
+                                  epoch_even_photons_[i].all += tally.photons[e];
+                                  epoch_even_photons_[i].inner += tally.inner_photons[e];
+                              }
                           }
                       });
     PF_CHECK(result.samples.size() == result.spec.sample_end - result.spec.sample_begin &&
@@ -192,7 +197,10 @@ void ProgressiveEstimate::FinishEpoch() {
                 counts.all = (counts.all + photons) * shrink;
                 counts.inner =
                     (counts.inner + static_cast<double>(epoch_inner_photons_[i])) * shrink;
-                counts.weight_sq = (counts.weight_sq + photons) * shrink * shrink;
+                EvenPhotons& even = epoch_even_photons_[i];
+                counts.all_even = (counts.all_even + static_cast<double>(even.all)) * shrink;
+                counts.inner_even = (counts.inner_even + static_cast<double>(even.inner)) * shrink;
+                even = EvenPhotons{};
                 points_[i] =
                     UpdateEstimate(point, pass_photons, epoch_flux_[i], alpha, min_radius_sq);
                 epoch_photons_[i] = 0;
@@ -240,6 +248,18 @@ Image ProgressiveEstimate::Resolve() const {
     return image;
 }
 
+namespace {
+
+// A disc estimate L's bias from the fraction f = inner / all of its photons within R / sqrt(2)
+// (1/2 where the density is flat): the inner disc's estimate is 2 f L and has half the bias,
+// so bias = 2 (L - 2 f L).
+Rgbd InnerDiscBias(const Rgbd& estimate, double inner, double all) {
+    if (!(all > 0)) return Rgbd(0.0);
+    return estimate * (2 * (1 - 2 * inner / all));
+}
+
+}  // namespace
+
 ProgressiveEstimate::ErrorSums ProgressiveEstimate::SumErrors() const {
     const double photons = static_cast<double>(photons_emitted_);
     const double photons_even = static_cast<double>(photons_emitted_even_);
@@ -258,31 +278,20 @@ ProgressiveEstimate::ErrorSums ProgressiveEstimate::SumErrors() const {
         ErrorSums& sums = block_sums[block];
         for (size_t p = begin; p < end; ++p) {
             // Summed over the pixel's hit points: the photon estimate, the difference of its
-            // halves, the bias estimate 2 (L - L_inner) of it, and that estimate's own variance.
-            Rgbd value(0.0), difference(0.0), bias(0.0), bias_noise(0.0);
+            // halves, and the bias estimate 2 (L - L_inner) of each half.
+            Rgbd value(0.0), difference(0.0), bias_even(0.0), bias_odd(0.0);
             ForEachHitPointOf(p, [&](uint32_t i) {
                 const PointEstimate& point = points_[i];
                 const Rgbd even =
                     EstimateRadiance({0, point.radius_sq, flux_even_[i]}, photons_even);
                 const Rgbd odd =
                     EstimateRadiance({0, point.radius_sq, point.flux - flux_even_[i]}, photons_odd);
-                const Rgbd photon_part = EstimateRadiance(point, photons);
-                value += photon_part;
+                value += EstimateRadiance(point, photons);
                 difference += even - odd;
                 const GatherCounts& counts = counts_[i];
-                if (counts.all > 0) {
-                    // The inner fraction f = inner / all is 1/2 where the density is flat;
-                    // L_inner = 2 f L, so bias = 2 (L - L_inner) = 2 (1 - 2 f) L. Each photon
-                    // falls inside with probability f: var(f) = f (1 - f) sum(w^2) / sum(w)^2,
-                    // with f pulled toward 1/2 by half a photon each way so that a few photons
-                    // all on one side (f = 0 or 1) do not claim certainty.
-                    const double f = counts.inner / counts.all;
-                    bias += photon_part * (2 * (1 - 2 * f));
-                    const double f_smooth = (counts.inner + 0.5) / (counts.all + 1);
-                    const double f_variance =
-                        f_smooth * (1 - f_smooth) * counts.weight_sq / (counts.all * counts.all);
-                    bias_noise += photon_part * photon_part * (16 * f_variance);
-                }
+                bias_even += InnerDiscBias(even, counts.inner_even, counts.all_even);
+                bias_odd += InnerDiscBias(odd, counts.inner - counts.inner_even,
+                                          counts.all - counts.all_even);
             });
             for (int c = 0; c < 3; ++c) {
                 // Emission and direct light differ between even and odd epochs as photons do
@@ -295,10 +304,11 @@ ProgressiveEstimate::ErrorSums ProgressiveEstimate::SumErrors() const {
                 const double v = EmissionAndDirect(p)[c] + value[c] * inverse_spp;
                 AddHalfVariance(v, d, variance_scale, &sums.squared, &sums.relative);
                 sums.photon_squared += photon_difference * photon_difference * variance_scale;
-                // b^2 overestimates the squared bias by b's variance: take it off (the sum over
-                // pixels is clamped at zero by the callers, not each pixel, to stay unbiased).
-                const double b = bias[c] * inverse_spp;
-                const double b_squared = b * b - bias_noise[c] * inverse_spp * inverse_spp;
+                // The product of two independent estimates of the bias is an unbiased estimate
+                // of its square, whatever the hit points' photons share (b^2 less the sum of
+                // each hit point's variance is not: discs of one pixel overlap). The sum over
+                // pixels is clamped at zero by the callers, not each pixel, to stay unbiased.
+                const double b_squared = bias_even[c] * bias_odd[c] * inverse_spp * inverse_spp;
                 sums.bias_squared += b_squared;
                 sums.bias_relative += b_squared / (v * v + 0.01);
             }

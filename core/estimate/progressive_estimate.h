@@ -30,10 +30,15 @@
 namespace pf {
 
 // A hit point's photon counts, shrunk with tau so that they count photons within the current
-// radius: all of them, those within R / sqrt(2), and the sum of squared weights that gives
-// the inner fraction's variance (a photon of epoch i weighs prod of later R'^2 / R^2).
+// radius: all of them and those within R / sqrt(2), and the same of the even-numbered batches
+// alone (the bias estimate's two independent halves).
 struct GatherCounts {
-    double all = 0, inner = 0, weight_sq = 0;
+    double all = 0, inner = 0, all_even = 0, inner_even = 0;
+};
+
+// The current epoch's even-numbered batches' photons at a hit point, all and inner.
+struct EvenPhotons {
+    uint64_t all = 0, inner = 0;
 };
 
 // The bounds of a balanced estimate's ratio (EstimateSettings::balanced): below 1, so radii
@@ -210,6 +215,7 @@ private:
     // merged state so that Resolve() between folds shows the last merged epoch exactly.
     std::vector<uint64_t> epoch_photons_;
     std::vector<uint64_t> epoch_inner_photons_;
+    std::vector<EvenPhotons> epoch_even_photons_;
     std::vector<Rgbd> epoch_flux_;
     std::vector<Rgbd> epoch_flux_even_;
     std::vector<Rgb> epoch_direct_;  // per slot of the epoch's pass

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include "core/estimate/progressive_estimate.h"
 #include "core/job/job_spec.h"
@@ -49,7 +51,7 @@ TEST(ErrorEstimateTest, IsHalfTheDifferenceOfEqualHalves) {
 TEST(ErrorEstimateTest, PhotonsCrowdingTheInnerDiscShowAsBias) {
     // Equal halves (no variance), but three quarters of the photons fall in the inner disc of
     // half the area: the inner density is 1.5x the whole disc's, so L_inner = 1.5 L and the
-    // bias 2 (L - L_inner) = -L, less the little its own noise claims (4000 photons).
+    // bias 2 (L - L_inner) = -L, in each half alike.
     ProgressiveEstimate estimate = OnePointEstimate();
     for (int epoch = 0; epoch < 2; ++epoch)
         estimate.MergeEpoch(std::vector{OnePointBatch(estimate, 0, 3, 1000, 750),
@@ -57,16 +59,73 @@ TEST(ErrorEstimateTest, PhotonsCrowdingTheInnerDiscShowAsBias) {
     const double value = estimate.Resolve().pixels[0].x;
     const ErrorEstimate error = estimate.EstimateError();
     ASSERT_TRUE(error.known);
-    EXPECT_GT(error.bias_rmse, 0.99 * value);
-    EXPECT_LE(error.bias_rmse, value);
+    EXPECT_NEAR(error.bias_rmse, value, 1e-6 * value);
     EXPECT_DOUBLE_EQ(error.rmse, error.bias_rmse) << "no variance between equal halves";
-    // A flat density (half inside) claims no bias: the noise of the inner fraction outweighs
-    // the nothing it shows.
+    // A flat density (half inside) claims no bias.
     ProgressiveEstimate flat = OnePointEstimate();
     for (int epoch = 0; epoch < 2; ++epoch)
         flat.MergeEpoch(std::vector{OnePointBatch(flat, 0, 3, 1000, 500),
                                     OnePointBatch(flat, 1, 3, 1000, 500)});
     EXPECT_EQ(flat.EstimateError().bias_rmse, 0.0);
+}
+
+// Pixels of two hit points at one place, so that both discs find the same photons (as a
+// pixel's hit points do while the radius is wider than the pixel): `pixels` pixels, alpha 1
+// (no shrinking), two epochs of two batches in which each pixel's points find `photons`
+// photons of flux 1 each, each within R / sqrt(2) with probability `inner`. Returns the
+// estimate's bias part over the pixel value (every pixel's expected value is alike).
+double SharedDiscsBias(uint32_t pixels, uint32_t photons, double inner) {
+    CameraPassResult camera_pass;
+    for (uint32_t p = 0; p < pixels; ++p)
+        for (int twice = 0; twice < 2; ++twice)
+            camera_pass.hit_points.push_back({Vec3(0.0f), Vec3(0, 0, 1), Rgb(1.0f), p});
+    camera_pass.emission = Image(pixels, 1);
+    EstimateSettings settings;
+    settings.alpha = 1;
+    settings.initial_radius = kRadius;
+    settings.samples_per_pixel = 2;
+    settings.layout = {kPhotons, 2};
+    ProgressiveEstimate estimate(std::move(camera_pass), settings, [pixels](uint64_t) {
+        CameraPassResult pass;
+        pass.emission = Image(pixels, 1);
+        return pass;
+    });
+    std::mt19937_64 rng(7);
+    std::binomial_distribution<uint32_t> inside(photons, inner);
+    for (int epoch = 0; epoch < 2; ++epoch) {
+        std::vector<BatchResult> batches;
+        for (const BatchSpec& spec : estimate.EpochBatches()) {
+            BatchResult& result = batches.emplace_back();
+            result.spec = spec;
+            for (uint32_t p = 0; p < pixels; ++p) {
+                const uint32_t in = inside(rng);
+                for (uint32_t i : {2 * p, 2 * p + 1}) {
+                    result.tally.hit_point.push_back(i);
+                    result.tally.photons.push_back(photons);
+                    result.tally.inner_photons.push_back(in);
+                    result.tally.flux.push_back(Rgb(float(photons)));
+                }
+            }
+            result.samples.assign(spec.sample_end - spec.sample_begin, Rgb(0.0f));
+            result.photons_emitted = kPhotons;
+        }
+        estimate.MergeEpoch(batches);
+    }
+    const ErrorEstimate error = estimate.EstimateError();
+    EXPECT_TRUE(error.known);
+    return error.bias_rmse / estimate.Resolve().pixels[0].x;
+}
+
+TEST(ErrorEstimateTest, DiscsSharingPhotonsClaimNoBiasWhereTheDensityIsFlat) {
+    // Each point's bias estimate 2 (1 - 2f) L has variance 16 L^2 f (1 - f) / N = 4 L^2 / N
+    // (N = 400 photons). Squared and less that variance per point, a pixel's mean of two
+    // equal estimates would claim a squared bias of 4 L^2 / N - 2 L^2 / N, a bias of
+    // L sqrt(2 / N) = 0.071 L. The product of the halves' estimates has mean 0 and, over 2^16
+    // pixels, a standard deviation of 8 L^2 / (N 256): four of them, clamped and rooted, are
+    // 0.018 L.
+    EXPECT_LT(SharedDiscsBias(1 << 16, 100, 0.5), 0.018);
+    // A true bias is measured as it is: 60% inside gives 2 (1 - 1.2) L = -0.4 L.
+    EXPECT_NEAR(SharedDiscsBias(1 << 12, 100, 0.6), 0.4, 0.02);
 }
 
 TEST(ErrorEstimateTest, AgreeingHalvesGiveZeroAndTheTargetEndsTheBudget) {
