@@ -252,10 +252,12 @@ namespace {
 
 // A disc estimate L's bias from the fraction f = inner / all of its photons within R / sqrt(2)
 // (1/2 where the density is flat): the inner disc's estimate is 2 f L and has half the bias,
-// so bias = 2 (L - 2 f L).
+// so bias = 2 (L - 2 f L). At most L: the radiance is not negative, so the estimate cannot
+// exceed it by more than itself; the quadratic model would claim up to 2 L where a caustic's
+// focus, narrower than the disc, lies in its outer ring (f near 0).
 Rgbd InnerDiscBias(const Rgbd& estimate, double inner, double all) {
     if (!(all > 0)) return Rgbd(0.0);
-    return estimate * (2 * (1 - 2 * inner / all));
+    return estimate * std::min(2 * (1 - 2 * inner / all), 1.0);
 }
 
 }  // namespace

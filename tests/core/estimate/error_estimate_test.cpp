@@ -69,6 +69,18 @@ TEST(ErrorEstimateTest, PhotonsCrowdingTheInnerDiscShowAsBias) {
     EXPECT_EQ(flat.EstimateError().bias_rmse, 0.0);
 }
 
+TEST(ErrorEstimateTest, PhotonsAllInTheOuterRingClaimABiasOfAtMostTheEstimate) {
+    // No photon within R / sqrt(2) (a caustic's focus in the disc's outer ring): the quadratic
+    // model's 2 (L - L_inner) would be 2 L, but the radiance is not negative, so the estimate
+    // can exceed it by L at most.
+    ProgressiveEstimate estimate = OnePointEstimate();
+    for (int epoch = 0; epoch < 2; ++epoch)
+        estimate.MergeEpoch(std::vector{OnePointBatch(estimate, 0, 3, 1000, 0),
+                                        OnePointBatch(estimate, 1, 3, 1000, 0)});
+    const double value = estimate.Resolve().pixels[0].x;
+    EXPECT_NEAR(estimate.EstimateError().bias_rmse, value, 1e-6 * value);
+}
+
 // Pixels of two hit points at one place, so that both discs find the same photons (as a
 // pixel's hit points do while the radius is wider than the pixel): `pixels` pixels, alpha 1
 // (no shrinking), two epochs of two batches in which each pixel's points find `photons`
