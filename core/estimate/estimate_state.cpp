@@ -19,7 +19,7 @@ constexpr uint32_t kFixedMagic = 0x50485046;  // "PFHP": the hit points kept apa
 // pixel (EpochSamplesPerPixel), not its k. 6: small epochs first (the layout's
 // first_epoch_photons), emission and direct light summed over camera samples, not epochs.
 // 7: whether alpha is balanced (EstimateSettings::balanced). 8: the bias estimate's counts
-// of the even batches (GatherCounts, EvenPhotons).
+// of the even batches (GatherCounts), and the epoch's counts in one array (EpochPhotons).
 constexpr uint32_t kVersion = 8;
 
 absl::Status Corrupt(const std::string& what) {
@@ -74,8 +74,7 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
          {PackedArray(emission_sum_), PackedArray(emission_even_), PackedArray(direct_sum_),
           PackedArray(direct_even_), PackedArray(epoch_emission_.pixels),
           PackedArray(epoch_direct_), PackedArray(points_), PackedArray(flux_even_),
-          PackedArray(counts_), PackedArray(epoch_photons_), PackedArray(epoch_inner_photons_),
-          PackedArray(epoch_even_photons_), PackedArray(epoch_flux_),
+          PackedArray(counts_), PackedArray(epoch_photons_), PackedArray(epoch_flux_),
           PackedArray(epoch_flux_even_)})
         arrays.push_back(array);
     WritePacked(out, arrays);
@@ -179,9 +178,7 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
           array(n, "hit point", &e.points_, "N, R, tau"),
           array(n, "hit point", &e.flux_even_, "even flux"),
           array(n, "hit point", &e.counts_, "gather counts"),
-          array(n, "hit point", &e.epoch_photons_, "epoch photons"),
-          array(n, "hit point", &e.epoch_inner_photons_, "epoch inner photons"),
-          array(n, "hit point", &e.epoch_even_photons_, "epoch even photons"),
+          array(n, "hit point", &e.epoch_photons_, "epoch photon counts"),
           array(n, "hit point", &e.epoch_flux_, "epoch flux"),
           array(n, "hit point", &e.epoch_flux_even_, "epoch even flux")})
         if (!status.ok()) return status;

@@ -48,9 +48,7 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
     }
     flux_even_.assign(hit_points_->size(), Rgbd(0.0));
     counts_.assign(hit_points_->size(), GatherCounts{});
-    epoch_photons_.assign(hit_points_->size(), 0);
-    epoch_inner_photons_.assign(hit_points_->size(), 0);
-    epoch_even_photons_.assign(hit_points_->size(), EvenPhotons{});
+    epoch_photons_.assign(hit_points_->size(), EpochPhotons{});
     epoch_flux_.assign(hit_points_->size(), Rgbd(0.0));
     epoch_flux_even_.assign(hit_points_->size(), Rgbd(0.0));
 }
@@ -141,16 +139,17 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
                       [&](const tbb::blocked_range<size_t>& r) {
                           for (size_t e = r.begin(); e < r.end(); ++e) {
                               const uint32_t i = tally.hit_point[e];
-                              epoch_photons_[i] += tally.photons[e];
-                              epoch_inner_photons_[i] += tally.inner_photons[e];
+                              EpochPhotons& found = epoch_photons_[i];
+                              found.all += tally.photons[e];
+                              found.inner += tally.inner_photons[e];
                               // Phi_M: the photons' flux times the BSDF weight (a float product,
                               // exact in double).
                               const Rgbd flux = Rgbd(tally.flux[e]) * Rgbd(hit_points[i].weight);
                               epoch_flux_[i] += flux;
                               if (even) {
                                   epoch_flux_even_[i] += flux;
-                                  epoch_even_photons_[i].all += tally.photons[e];
-                                  epoch_even_photons_[i].inner += tally.inner_photons[e];
+                                  found.all_even += tally.photons[e];
+                                  found.inner_even += tally.inner_photons[e];
                               }
                           }
                       });
@@ -184,7 +183,7 @@ void ProgressiveEstimate::FinishEpoch() {
     tbb::parallel_for(
         tbb::blocked_range<size_t>(0, points_.size()), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i < r.end(); ++i) {
-                const double photons = static_cast<double>(epoch_photons_[i]);
+                const double photons = static_cast<double>(epoch_photons_[i].all);
                 PointEstimate point = points_[i];
                 double pass_photons = photons;
                 if (closing) {  // the pass's photons so far, as if they all came now
@@ -193,18 +192,10 @@ void ProgressiveEstimate::FinishEpoch() {
                 }
                 const double shrink = ShrinkRatio(point, pass_photons, alpha, min_radius_sq);
                 flux_even_[i] = (flux_even_[i] + epoch_flux_even_[i]) * shrink;
-                GatherCounts& counts = counts_[i];
-                counts.all = (counts.all + photons) * shrink;
-                counts.inner =
-                    (counts.inner + static_cast<double>(epoch_inner_photons_[i])) * shrink;
-                EvenPhotons& even = epoch_even_photons_[i];
-                counts.all_even = (counts.all_even + static_cast<double>(even.all)) * shrink;
-                counts.inner_even = (counts.inner_even + static_cast<double>(even.inner)) * shrink;
-                even = EvenPhotons{};
+                counts_[i].Fold(epoch_photons_[i], shrink);
                 points_[i] =
                     UpdateEstimate(point, pass_photons, epoch_flux_[i], alpha, min_radius_sq);
-                epoch_photons_[i] = 0;
-                epoch_inner_photons_[i] = 0;
+                epoch_photons_[i] = EpochPhotons{};
                 epoch_flux_[i] = Rgbd(0.0);
                 epoch_flux_even_[i] = Rgbd(0.0);
             }

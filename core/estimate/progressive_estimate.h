@@ -29,16 +29,24 @@
 
 namespace pf {
 
-// A hit point's photon counts, shrunk with tau so that they count photons within the current
-// radius: all of them and those within R / sqrt(2), and the same of the even-numbered batches
-// alone (the bias estimate's two independent halves).
-struct GatherCounts {
-    double all = 0, inner = 0, all_even = 0, inner_even = 0;
+// The current epoch's photons at a hit point: all of them (M) and those within R / sqrt(2),
+// and the same of the even-numbered batches alone (the bias estimate's two independent halves).
+struct EpochPhotons {
+    uint64_t all = 0, inner = 0, all_even = 0, inner_even = 0;
 };
 
-// The current epoch's even-numbered batches' photons at a hit point, all and inner.
-struct EvenPhotons {
-    uint64_t all = 0, inner = 0;
+// A hit point's photon counts as EpochPhotons, over the merged epochs, shrunk with tau so that
+// they count photons within the current radius.
+struct GatherCounts {
+    double all = 0, inner = 0, all_even = 0, inner_even = 0;
+
+    // Adds an epoch's photons and shrinks the sums by the epoch's ratio R'^2 / R^2.
+    void Fold(const EpochPhotons& epoch, double shrink) {
+        all = (all + static_cast<double>(epoch.all)) * shrink;
+        inner = (inner + static_cast<double>(epoch.inner)) * shrink;
+        all_even = (all_even + static_cast<double>(epoch.all_even)) * shrink;
+        inner_even = (inner_even + static_cast<double>(epoch.inner_even)) * shrink;
+    }
 };
 
 // The bounds of a balanced estimate's ratio (EstimateSettings::balanced): below 1, so radii
@@ -213,9 +221,7 @@ private:
     uint32_t batches_folded_ = 0;  // of the current epoch
     // The current epoch's sums (M and Phi_M per hit point) and direct samples, apart from the
     // merged state so that Resolve() between folds shows the last merged epoch exactly.
-    std::vector<uint64_t> epoch_photons_;
-    std::vector<uint64_t> epoch_inner_photons_;
-    std::vector<EvenPhotons> epoch_even_photons_;
+    std::vector<EpochPhotons> epoch_photons_;
     std::vector<Rgbd> epoch_flux_;
     std::vector<Rgbd> epoch_flux_even_;
     std::vector<Rgb> epoch_direct_;  // per slot of the epoch's pass

@@ -48,35 +48,35 @@ TEST(ErrorEstimateTest, IsHalfTheDifferenceOfEqualHalves) {
     EXPECT_NEAR(error.rel_mse, expected * expected / (value * value + 0.01), 1e-9);
 }
 
+// Two epochs whose two batches each find 1000 photons of flux 3, `inner` of them within
+// R / sqrt(2): equal halves, so no variance, only what the inner fraction says of the bias.
+ProgressiveEstimate EqualHalves(uint32_t inner) {
+    ProgressiveEstimate estimate = OnePointEstimate();
+    for (int epoch = 0; epoch < 2; ++epoch)
+        estimate.MergeEpoch(std::vector{OnePointBatch(estimate, 0, 3, 1000, inner),
+                                        OnePointBatch(estimate, 1, 3, 1000, inner)});
+    return estimate;
+}
+
 TEST(ErrorEstimateTest, PhotonsCrowdingTheInnerDiscShowAsBias) {
     // Equal halves (no variance), but three quarters of the photons fall in the inner disc of
     // half the area: the inner density is 1.5x the whole disc's, so L_inner = 1.5 L and the
     // bias 2 (L - L_inner) = -L, in each half alike.
-    ProgressiveEstimate estimate = OnePointEstimate();
-    for (int epoch = 0; epoch < 2; ++epoch)
-        estimate.MergeEpoch(std::vector{OnePointBatch(estimate, 0, 3, 1000, 750),
-                                        OnePointBatch(estimate, 1, 3, 1000, 750)});
+    const ProgressiveEstimate estimate = EqualHalves(750);
     const double value = estimate.Resolve().pixels[0].x;
     const ErrorEstimate error = estimate.EstimateError();
     ASSERT_TRUE(error.known);
     EXPECT_NEAR(error.bias_rmse, value, 1e-6 * value);
     EXPECT_DOUBLE_EQ(error.rmse, error.bias_rmse) << "no variance between equal halves";
     // A flat density (half inside) claims no bias.
-    ProgressiveEstimate flat = OnePointEstimate();
-    for (int epoch = 0; epoch < 2; ++epoch)
-        flat.MergeEpoch(std::vector{OnePointBatch(flat, 0, 3, 1000, 500),
-                                    OnePointBatch(flat, 1, 3, 1000, 500)});
-    EXPECT_EQ(flat.EstimateError().bias_rmse, 0.0);
+    EXPECT_EQ(EqualHalves(500).EstimateError().bias_rmse, 0.0);
 }
 
 TEST(ErrorEstimateTest, PhotonsAllInTheOuterRingClaimABiasOfAtMostTheEstimate) {
     // No photon within R / sqrt(2) (a caustic's focus in the disc's outer ring): the quadratic
     // model's 2 (L - L_inner) would be 2 L, but the radiance is not negative, so the estimate
     // can exceed it by L at most.
-    ProgressiveEstimate estimate = OnePointEstimate();
-    for (int epoch = 0; epoch < 2; ++epoch)
-        estimate.MergeEpoch(std::vector{OnePointBatch(estimate, 0, 3, 1000, 0),
-                                        OnePointBatch(estimate, 1, 3, 1000, 0)});
+    const ProgressiveEstimate estimate = EqualHalves(0);
     const double value = estimate.Resolve().pixels[0].x;
     EXPECT_NEAR(estimate.EstimateError().bias_rmse, value, 1e-6 * value);
 }

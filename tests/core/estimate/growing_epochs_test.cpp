@@ -7,31 +7,17 @@
 
 #include "core/estimate/progressive_estimate.h"
 #include "core/job/job_spec.h"
+#include "tests/core/estimate/one_point_estimate.h"
 
 namespace pf {
 namespace {
 
-constexpr double kRadius = 0.5;
+constexpr double kRadius = testing::kOnePointRadius;
 
 // One pixel seen through one hit point of weight 1. The epoch passes see `emission(epoch)`.
 ProgressiveEstimate OnePoint(const BatchLayout& layout, double alpha,
                              std::function<float(uint64_t)> emission) {
-    CameraPassResult camera_pass;
-    camera_pass.hit_points = {HitPoint{Vec3(0.0f), Vec3(0, 0, 1), Rgb(1.0f), 0}};
-    camera_pass.footprint = {0.01f};
-    camera_pass.emission = Image(1, 1);
-    EstimateSettings settings;
-    settings.alpha = alpha;
-    settings.initial_radius = kRadius;
-    settings.samples_per_pixel = 1;
-    settings.layout = layout;
-    return ProgressiveEstimate(std::move(camera_pass), settings,
-                               [emission = std::move(emission)](uint64_t epoch) {
-                                   CameraPassResult pass;
-                                   pass.emission = Image(1, 1);
-                                   pass.emission.pixels[0] = Rgb(emission(epoch));
-                                   return pass;
-                               });
+    return testing::OnePointEstimate(alpha, false, layout, std::move(emission));
 }
 
 // The current epoch's batches, each with `found` photons at the hit point (flux 1 each) and

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "core/estimate/progressive_estimate.h"
 
@@ -11,8 +12,12 @@ namespace pf::testing {
 inline constexpr uint32_t kOnePointPhotons = 1000;  // emitted per batch
 inline constexpr double kOnePointRadius = 0.5;
 
-// One hit point of weight 1 in a 1x1 image, two batches an epoch, R0 kOnePointRadius.
-inline ProgressiveEstimate OnePointEstimate(double alpha, bool balanced = false) {
+// One hit point of weight 1 in a 1x1 image, R0 kOnePointRadius, by default two batches an
+// epoch of kOnePointPhotons each. The epochs' passes have one slot and see `emission(epoch)`
+// (none without it).
+inline ProgressiveEstimate OnePointEstimate(double alpha, bool balanced = false,
+                                            const BatchLayout& layout = {kOnePointPhotons, 2},
+                                            std::function<float(uint64_t)> emission = nullptr) {
     CameraPassResult camera_pass;
     camera_pass.hit_points = {HitPoint{Vec3(0.0f), Vec3(0, 0, 1), Rgb(1.0f), 0}};
     camera_pass.footprint = {0.01f};
@@ -22,12 +27,14 @@ inline ProgressiveEstimate OnePointEstimate(double alpha, bool balanced = false)
     settings.balanced = balanced;
     settings.initial_radius = kOnePointRadius;
     settings.samples_per_pixel = 1;
-    settings.layout = {kOnePointPhotons, 2};
-    return ProgressiveEstimate(std::move(camera_pass), settings, [](uint64_t) {
-        CameraPassResult pass;  // the epochs' passes: no emission, one slot
-        pass.emission = Image(1, 1);
-        return pass;
-    });
+    settings.layout = layout;
+    return ProgressiveEstimate(std::move(camera_pass), settings,
+                               [emission = std::move(emission)](uint64_t epoch) {
+                                   CameraPassResult pass;
+                                   pass.emission = Image(1, 1);
+                                   if (emission) pass.emission.pixels[0] = Rgb(emission(epoch));
+                                   return pass;
+                               });
 }
 
 // Batch `batch_in_epoch` of the estimate's epoch, whose one tally entry carries `flux`
