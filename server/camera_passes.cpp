@@ -16,7 +16,8 @@ namespace {
 
 // Passes traced one epoch ahead: asked for epoch e's pass, returns it (traced while epoch e - 1
 // ran, else now) and starts tracing e + 1's in the background, on the TBB arena that created
-// it. A pass is a function of its epoch alone, so the image is the same; what an epoch's end
+// it, for the same fixed hit points. A pass is a function of its epoch and those alone, so the
+// image is the same; what an epoch's end
 // costs the coordinator is then the merge, not the pass, while the workers wait for the next
 // epoch's batches.
 class PrefetchedPasses {
@@ -30,24 +31,27 @@ public:
         arena_.execute([&] { group_.wait(); });
     }
 
-    CameraPassResult operator()(uint64_t epoch) {
+    CameraPassResult operator()(uint64_t epoch,
+                                const std::shared_ptr<const PixelHitPoints>& fixed) {
         std::lock_guard lock(mutex_);
         std::optional<CameraPassResult> result;
         if (const std::optional<uint64_t> ahead = std::exchange(ahead_, std::nullopt)) {
-            if (*ahead != epoch) group_.cancel();  // not the one wanted: cut it short
+            const bool wanted = *ahead == epoch && fixed_ == fixed;
+            if (!wanted) group_.cancel();  // cut it short
             arena_.execute([&] { group_.wait(); });
             // A pass that failed (say, out of memory) is traced again here, where its error
             // reaches the caller.
-            if (*ahead == epoch && !failed_) result = std::move(next_);
+            if (wanted && !failed_) result = std::move(next_);
             next_ = {};
             failed_ = false;
         }
-        if (!result) result = passes_(epoch);
+        if (!result) result = passes_(epoch, fixed);
         ahead_ = epoch + 1;
+        fixed_ = fixed;
         arena_.execute([&] {
             group_.run([this, next = epoch + 1] {
                 try {
-                    next_ = passes_(next);
+                    next_ = passes_(next, fixed_);
                 } catch (...) {
                     failed_ = true;
                 }
@@ -61,7 +65,8 @@ private:
     tbb::task_arena arena_;
     tbb::task_group group_;
     std::mutex mutex_;
-    std::optional<uint64_t> ahead_;  // the epoch whose pass group_ traces into next_
+    std::optional<uint64_t> ahead_;                // the epoch whose pass group_ traces into next_
+    std::shared_ptr<const PixelHitPoints> fixed_;  // for the hit points it credits
     CameraPassResult next_;
     bool failed_ = false;  // that pass threw
 };
@@ -83,8 +88,13 @@ EpochCameraPass EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
     auto passes = std::make_shared<PrefetchedPasses>(
         [payload,
          traced = TracedCameraPasses(payload->scene, std::move(tracer), film, payload->spec)](
-            uint64_t epoch) { return traced(epoch); });
-    return [passes = std::move(passes)](uint64_t epoch) { return (*passes)(epoch); };
+            uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed) {
+            return traced(epoch, fixed);
+        });
+    return [passes = std::move(passes)](uint64_t epoch,
+                                        const std::shared_ptr<const PixelHitPoints>& fixed) {
+        return (*passes)(epoch, fixed);
+    };
 }
 
 }  // namespace pf

@@ -139,7 +139,7 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
         // direct light is sampled at the workers' stochastic passes).
         EpochCameraPass passes = EpochCameraPasses(payload, *film, tracer);
         CameraPassResult camera_pass = integrator == Integrator::kSppm
-                                           ? passes(0)
+                                           ? passes(0, nullptr)
                                            : RunCameraPass(payload->scene, *tracer, *film);
         EstimateSettings settings =
             EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);

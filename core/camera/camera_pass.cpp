@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <optional>
 
 #include "absl/strings/str_format.h"
@@ -184,8 +185,44 @@ std::vector<uint32_t> MortonOrder(const std::vector<HitPoint>& hit_points, const
 
 }  // namespace
 
+PixelHitPoints PixelHitPoints::Index(std::shared_ptr<const std::vector<HitPoint>> points,
+                                     size_t pixels) {
+    PixelHitPoints index;
+    index.points = std::move(points);
+    const std::vector<HitPoint>& all = *index.points;
+    // A counting sort by pixel, stable.
+    index.begin.assign(pixels + 1, 0);
+    for (const HitPoint& point : all) {
+        PF_CHECK(point.pixel < pixels);
+        ++index.begin[point.pixel + 1];
+    }
+    std::partial_sum(index.begin.begin(), index.begin.end(), index.begin.begin());
+    const auto by_pixel = [](const HitPoint& a, const HitPoint& b) { return a.pixel < b.pixel; };
+    if (std::is_sorted(all.begin(), all.end(), by_pixel)) return index;
+    index.order.resize(all.size());
+    std::vector<uint32_t> cursor(index.begin.begin(), index.begin.end() - 1);
+    for (size_t i = 0; i < all.size(); ++i)
+        index.order[cursor[all[i].pixel]++] = static_cast<uint32_t>(i);
+    return index;
+}
+
+std::optional<uint32_t> CoveringHitPoint(const PixelHitPoints& fixed, uint32_t pixel,
+                                         const HitPoint& hit) {
+    std::optional<uint32_t> nearest, nearest_facing;
+    float distance = 0, distance_facing = 0;
+    fixed.ForEachOf(pixel, [&](uint32_t i) {
+        const HitPoint& candidate = (*fixed.points)[i];
+        if (IsBlack(candidate.weight)) return;
+        const float d = LengthSquared(candidate.position - hit.position);
+        if (!nearest || d < distance) nearest = i, distance = d;
+        if (Dot(candidate.normal, hit.normal) >= 0.5f && (!nearest_facing || d < distance_facing))
+            nearest_facing = i, distance_facing = d;
+    });
+    return nearest_facing ? nearest_facing : nearest;
+}
+
 CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
-                               const CameraPassSettings& settings) {
+                               const CameraPassSettings& settings, const PixelHitPoints* fixed) {
     const int width = settings.width, height = settings.height, spp = settings.samples_per_pixel;
     const Film film{width, height, spp};
     // Textures are filtered over a sample's share of the pixel.
@@ -202,6 +239,10 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     std::vector<std::vector<float>> row_footprints(height);
     CameraPassResult result;
     result.emission = Image(width, height);
+    PF_CHECK(fixed == nullptr ||
+             (settings.emission_only && fixed->begin.size() == size_t(width) * height + 1));
+    // Each fixed hit point lies in one pixel, so rows in parallel credit disjoint ones.
+    if (fixed != nullptr) result.coverage.assign(fixed->points->size(), Rgb(0.0f));
     // The camera path for the scene's features, chosen once.
     const SceneFeatures& features = settings.features;
     const auto trace =
@@ -233,6 +274,11 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                 }
                 result.emission.At(x, y) = emission / static_cast<float>(spp);
                 if (settings.emission_only) {  // no hit points kept
+                    if (fixed != nullptr)
+                        for (const HitPoint& hit : row_hit_points[y])
+                            if (const std::optional<uint32_t> i =
+                                    CoveringHitPoint(*fixed, pixel, hit))
+                                result.coverage[*i] += hit.weight / static_cast<float>(spp);
                     row_hit_points[y].clear();
                     row_footprints[y].clear();
                 }
@@ -295,11 +341,13 @@ CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobS
 
 EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,
                                    const CameraPassSettings& film, const JobSpec& spec) {
-    return [&scene, tracer = std::move(tracer), film, spec](uint64_t epoch) {
+    return [&scene, tracer = std::move(tracer), film, spec](
+               uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed) {
         return RunCameraPass(scene, *tracer,
                              spec.integrator == Integrator::kSppm
                                  ? StochasticCameraPass(film, spec, epoch)
-                                 : EmissionCameraPass(film, spec, epoch));
+                                 : EmissionCameraPass(film, spec, epoch),
+                             fixed.get());
     };
 }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -42,13 +43,42 @@ struct CameraPassSettings {
     int max_depth = 0;  // JobSpec::max_depth: surfaces a path meets at most (0: kMaxCameraDepth)
 };
 
+// Hit points indexed by pixel: pixel p's are points[order[begin[p] .. begin[p + 1])] in index
+// order; `order` is empty where the points are in pixel order already (sppm's slots).
+struct PixelHitPoints {
+    std::shared_ptr<const std::vector<HitPoint>> points;
+    std::vector<uint32_t> begin, order;
+
+    // Indexes `points` (each in one of `pixels` pixels) by pixel, stably.
+    static PixelHitPoints Index(std::shared_ptr<const std::vector<HitPoint>> points, size_t pixels);
+    // Calls visit(i) for each hit point i of pixel p, in index order.
+    template <typename Visit>
+    void ForEachOf(size_t p, Visit&& visit) const {
+        for (uint32_t k = begin[p]; k < begin[p + 1]; ++k) visit(order.empty() ? k : order[k]);
+    }
+};
+
 struct CameraPassResult {
     // Ordered along a Morton curve through the scene; in slot order for a stochastic pass.
     std::vector<HitPoint> hit_points;
     // Per hit point: a pixel's width at its distance, world units (0 for an empty slot).
     std::vector<float> footprint;
     Image emission;  // emission reaching each pixel, averaged over its k paths
+    // ppm's emission pass: per fixed hit point (PixelHitPoints::points), the weights of the
+    // pass's hit points it stands for (CoveringHitPoint), averaged over the pass's samples of
+    // its pixel as `emission` is. Over its own weight, it is the share of the pixel that its
+    // estimate stands for this epoch: fixed hit points alone would give each 1/k for good, so
+    // that a pixel across an edge between surfaces lit differently kept the split of its k
+    // samples, never its area's (docs/design.md).
+    std::vector<Rgb> coverage;
 };
+
+// Of the hit points of `pixel` in `fixed` whose weight is not black, the one that stands for a
+// fresh camera sample's `hit` there: the nearest of those facing the same way (normals within
+// 60 degrees: the same surface, or the same side of a translucent one), else the nearest of
+// all; none where the pixel has no such hit point.
+std::optional<uint32_t> CoveringHitPoint(const PixelHitPoints& fixed, uint32_t pixel,
+                                         const HitPoint& hit);
 
 // Longest specular chain followed; Russian roulette applies after kCameraRouletteDepth; the
 // first kCameraSplits glass interfaces of a sample are split into both branches.
@@ -57,9 +87,11 @@ inline constexpr int kCameraRouletteDepth = 4;
 inline constexpr int kCameraSplits = 2;
 
 // Runs in parallel over rows (on the calling TBB arena); the result does not depend on the
-// thread count.
+// thread count. An emission pass (settings.emission_only) given ppm's `fixed` hit points
+// credits each of its samples' hit points to one of them (CameraPassResult::coverage).
 CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
-                               const CameraPassSettings& settings);
+                               const CameraPassSettings& settings,
+                               const PixelHitPoints* fixed = nullptr);
 
 // Stochastic progressive photon mapping's pass of `epoch` for job `spec`: `film` (FilmFor)
 // with the epoch's camera samples (EpochCameraSamples: the pixel's next k). The coordinator
@@ -77,9 +109,10 @@ CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobS
                                       uint64_t epoch);
 
 // The coordinator's camera pass of an epoch: for sppm the StochasticCameraPass (its emission,
-// and its slots, pixel * k + sample, where photons gather and direct light is sampled), for
-// ppm the EmissionCameraPass.
-using EpochCameraPass = std::function<CameraPassResult(uint64_t epoch)>;
+// and its slots, pixel * k + sample, where photons gather and direct light is sampled; `fixed`
+// null), for ppm the EmissionCameraPass, its coverage of the `fixed` hit points.
+using EpochCameraPass = std::function<CameraPassResult(
+    uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed)>;
 
 // Each epoch's pass of `film` for job `spec` (ppm or sppm) over
 // `scene` through `tracer`, which the function keeps alive; `scene` must outlive it.

@@ -20,7 +20,8 @@ constexpr uint32_t kFixedMagic = 0x50485046;  // "PFHP": the hit points kept apa
 // first_epoch_photons), emission and direct light summed over camera samples, not epochs.
 // 7: whether alpha is balanced (EstimateSettings::balanced). 8: the bias estimate's counts
 // of the even batches (GatherCounts), and the epoch's counts in one array (EpochPhotons).
-constexpr uint32_t kVersion = 8;
+// 9: ppm's fixed hit points' shares of their pixels (CameraPassResult::coverage).
+constexpr uint32_t kVersion = 9;
 
 absl::Status Corrupt(const std::string& what) {
     return absl::DataLossError(absl::StrCat("estimate state: ", what));
@@ -47,7 +48,8 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
     const bool hit_points_here = settings_.stochastic || fixed == FixedPart::kIncluded;
     out.Value(kMagic);
     out.Value(kVersion);
-    out.Value<uint64_t>(hit_points_->size());
+    const std::vector<HitPoint>& hit_points = *by_pixel_->points;
+    out.Value<uint64_t>(hit_points.size());
     out.Value(static_cast<uint8_t>(hit_points_here));
     out.Value(settings_.alpha);
     out.Value(settings_.initial_radius);
@@ -69,13 +71,14 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
          {epoch_photons_emitted_, epoch_photons_emitted_even_, epoch_nonfinite_discarded_})
         out.Value(value);
     std::vector<PackedArray> arrays;
-    if (hit_points_here) arrays.push_back(*hit_points_);
+    if (hit_points_here) arrays.push_back(hit_points);
     for (PackedArray array :
          {PackedArray(emission_sum_), PackedArray(emission_even_), PackedArray(direct_sum_),
           PackedArray(direct_even_), PackedArray(epoch_emission_.pixels),
           PackedArray(epoch_direct_), PackedArray(points_), PackedArray(flux_even_),
           PackedArray(counts_), PackedArray(epoch_photons_), PackedArray(epoch_flux_),
-          PackedArray(epoch_flux_even_)})
+          PackedArray(epoch_flux_even_), PackedArray(coverage_sum_), PackedArray(coverage_even_),
+          PackedArray(epoch_coverage_)})
         arrays.push_back(array);
     WritePacked(out, arrays);
 }
@@ -84,7 +87,7 @@ bool ProgressiveEstimate::SaveFixed(ByteWriter& out) const {
     if (settings_.stochastic) return false;
     out.Value(kFixedMagic);
     out.Value(kVersion);
-    const PackedArray hit_points[] = {*hit_points_};
+    const PackedArray hit_points[] = {*by_pixel_->points};
     WritePacked(out, hit_points);
     return true;
 }
@@ -162,6 +165,7 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
     if (settings.stochastic && n != slots)
         return Corrupt("a stochastic estimate's hit points are not one per camera sample");
     e.epoch_emission_ = Image(width, height);
+    const uint64_t covered = settings.stochastic ? 0 : n;  // ppm's shares of pixels
     const auto array = [&](uint64_t count, const char* per, auto* values,
                            const char* what) -> absl::Status {
         if (!ReadPacked(in, count, values))
@@ -180,7 +184,10 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
           array(n, "hit point", &e.counts_, "gather counts"),
           array(n, "hit point", &e.epoch_photons_, "epoch photon counts"),
           array(n, "hit point", &e.epoch_flux_, "epoch flux"),
-          array(n, "hit point", &e.epoch_flux_even_, "epoch even flux")})
+          array(n, "hit point", &e.epoch_flux_even_, "epoch even flux"),
+          array(covered, "fixed hit point", &e.coverage_sum_, "coverage"),
+          array(covered, "fixed hit point", &e.coverage_even_, "even coverage"),
+          array(covered, "fixed hit point", &e.epoch_coverage_, "epoch coverage")})
         if (!status.ok()) return status;
     e.SetHitPoints(std::move(hit_points));
     return estimate;

@@ -34,10 +34,13 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
     } else {
         SetHitPoints(
             std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points)));
-        BeginEpochPass(next_passes_(0));
+        coverage_sum_.assign(HitPoints().size(), Rgbd(0.0));
+        coverage_even_.assign(HitPoints().size(), Rgbd(0.0));
+        BeginEpochPass(next_passes_(0, by_pixel_));
     }
+    const size_t n = HitPoints().size();
     const double radius_sq = settings.initial_radius * settings.initial_radius;
-    points_.assign(hit_points_->size(), PointEstimate{0.0, radius_sq, Rgbd(0.0)});
+    points_.assign(n, PointEstimate{0.0, radius_sq, Rgbd(0.0)});
     if (!initial_radii.empty()) {
         PF_CHECK(initial_radii.size() == points_.size());
         for (size_t i = 0; i < points_.size(); ++i) {
@@ -46,11 +49,11 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
             points_[i].radius_sq = radius * radius;
         }
     }
-    flux_even_.assign(hit_points_->size(), Rgbd(0.0));
-    counts_.assign(hit_points_->size(), GatherCounts{});
-    epoch_photons_.assign(hit_points_->size(), EpochPhotons{});
-    epoch_flux_.assign(hit_points_->size(), Rgbd(0.0));
-    epoch_flux_even_.assign(hit_points_->size(), Rgbd(0.0));
+    flux_even_.assign(n, Rgbd(0.0));
+    counts_.assign(n, GatherCounts{});
+    epoch_photons_.assign(n, EpochPhotons{});
+    epoch_flux_.assign(n, Rgbd(0.0));
+    epoch_flux_even_.assign(n, Rgbd(0.0));
 }
 
 void ProgressiveEstimate::BeginEpochPass(CameraPassResult camera_pass) {
@@ -59,28 +62,25 @@ void ProgressiveEstimate::BeginEpochPass(CameraPassResult camera_pass) {
         PF_CHECK(camera_pass.hit_points.size() == epoch_direct_.size());
         SetHitPoints(
             std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points)));
+    } else {
+        PF_CHECK(camera_pass.coverage.size() == HitPoints().size());
+        epoch_coverage_ = std::move(camera_pass.coverage);
     }
     epoch_emission_ = std::move(camera_pass.emission);
 }
 
 void ProgressiveEstimate::SetHitPoints(std::shared_ptr<const std::vector<HitPoint>> hit_points) {
-    hit_points_ = std::move(hit_points);
-    const std::vector<HitPoint>& points = *hit_points_;
-    const size_t pixels = direct_sum_.size();
-    // A counting sort by pixel, stable.
-    pixel_begin_.assign(pixels + 1, 0);
-    for (const HitPoint& point : points) {
-        PF_CHECK(point.pixel < pixels);
-        ++pixel_begin_[point.pixel + 1];
-    }
-    std::partial_sum(pixel_begin_.begin(), pixel_begin_.end(), pixel_begin_.begin());
-    pixel_order_.clear();
-    const auto by_pixel = [](const HitPoint& a, const HitPoint& b) { return a.pixel < b.pixel; };
-    if (std::is_sorted(points.begin(), points.end(), by_pixel)) return;
-    pixel_order_.resize(points.size());
-    std::vector<uint32_t> cursor(pixel_begin_.begin(), pixel_begin_.end() - 1);
-    for (size_t i = 0; i < points.size(); ++i)
-        pixel_order_[cursor[points[i].pixel]++] = static_cast<uint32_t>(i);
+    by_pixel_ = std::make_shared<const PixelHitPoints>(
+        PixelHitPoints::Index(std::move(hit_points), direct_sum_.size()));
+}
+
+Rgbd ProgressiveEstimate::Share(size_t i, const std::vector<Rgbd>& coverage, double samples) const {
+    if (settings_.stochastic || !(samples > 0)) return Rgbd(1.0 / settings_.samples_per_pixel);
+    const Rgb& weight = HitPoints()[i].weight;
+    Rgbd share(0.0);
+    for (int c = 0; c < 3; ++c)
+        if (weight[c] > 0) share[c] = coverage[i][c] / (samples * double(weight[c]));
+    return share;
 }
 
 template <typename Block>
@@ -126,7 +126,7 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
     const uint32_t j = batches_folded_;
     PF_CHECK(j < settings_.layout.batches_per_epoch && result.spec.epoch == epoch_ &&
              result.spec.index == epoch_ * settings_.layout.batches_per_epoch + j);
-    const std::vector<HitPoint>& hit_points = *hit_points_;
+    const std::span<const HitPoint> hit_points = HitPoints();
     const Tally& tally = result.tally;
     PF_CHECK(tally.Size() == 0 || tally.hit_point.back() < hit_points.size());
     PF_CHECK(tally.photons.size() == tally.Size() && tally.inner_photons.size() == tally.Size() &&
@@ -180,6 +180,8 @@ void ProgressiveEstimate::FinishEpoch() {
     const double alpha = holding ? 1.0 : BalancedAlpha();
     const double min_radius_sq = settings_.min_radius * settings_.min_radius;
     const bool even_epoch = epoch_ % 2 == 0;
+    // The epoch's camera samples a pixel.
+    const size_t k = epoch_direct_.size() / emission_sum_.size();
     tbb::parallel_for(
         tbb::blocked_range<size_t>(0, points_.size()), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i < r.end(); ++i) {
@@ -198,6 +200,11 @@ void ProgressiveEstimate::FinishEpoch() {
                 epoch_photons_[i] = EpochPhotons{};
                 epoch_flux_[i] = Rgbd(0.0);
                 epoch_flux_even_[i] = Rgbd(0.0);
+                if (!settings_.stochastic) {
+                    const Rgbd covered = Rgbd(epoch_coverage_[i]) * static_cast<double>(k);
+                    coverage_sum_[i] += covered;
+                    if (even_epoch) coverage_even_[i] += covered;
+                }
             }
         });
     photons_emitted_ += epoch_photons_emitted_;
@@ -211,7 +218,6 @@ void ProgressiveEstimate::FinishEpoch() {
     batches_folded_ = 0;
     // Each pixel's emission and its slots' direct samples: the epoch's estimate of what photons
     // do not carry, summed over its camera samples (a growing epoch has fewer than later ones).
-    const size_t k = epoch_direct_.size() / emission_sum_.size();
     for (size_t p = 0; p < emission_sum_.size(); ++p) {
         Rgbd direct(0.0);
         for (size_t s = p * k; s < (p + 1) * k; ++s) direct += Rgbd(epoch_direct_[s]);
@@ -222,18 +228,20 @@ void ProgressiveEstimate::FinishEpoch() {
     }
     ++epoch_;
     epoch_direct_.assign(emission_sum_.size() * size_t(EpochPass(epoch_).per_pixel), Rgb(0.0f));
-    BeginEpochPass(next_passes_(epoch_));
+    BeginEpochPass(next_passes_(epoch_, settings_.stochastic ? nullptr : by_pixel_));
 }
 
 Image ProgressiveEstimate::Resolve() const {
     const double photons = static_cast<double>(photons_emitted_);
-    const double inverse_spp = 1.0 / settings_.samples_per_pixel;
+    const double samples = static_cast<double>(MergedSamples(0) + MergedSamples(1));
     Image image(epoch_emission_.width, epoch_emission_.height);
     ForEachPixelBlock([&](size_t, size_t begin, size_t end) {
         for (size_t p = begin; p < end; ++p) {
             Rgbd sum(0.0);
-            ForEachHitPointOf(p, [&](uint32_t i) { sum += EstimateRadiance(points_[i], photons); });
-            image.pixels[p] = Rgb(EmissionAndDirect(p) + sum * inverse_spp);
+            ForEachHitPointOf(p, [&](uint32_t i) {
+                sum += EstimateRadiance(points_[i], photons) * Share(i, coverage_sum_, samples);
+            });
+            image.pixels[p] = Rgb(EmissionAndDirect(p) + sum);
         }
     });
     return image;
@@ -263,45 +271,55 @@ ProgressiveEstimate::ErrorSums ProgressiveEstimate::SumErrors() const {
     ErrorSums total;
     if (!(photons_even > 0 && photons_odd > 0 && samples_odd > 0)) return total;
     const size_t pixels = direct_sum_.size();
-    const double inverse_spp = 1.0 / settings_.samples_per_pixel;
     const double variance_scale = photons_even * photons_odd / (photons * photons);
     // Sums over pixels and channels, per block of pixels, added in block order below.
     std::vector<ErrorSums> block_sums((pixels + kPixelBlock - 1) / kPixelBlock);
     ForEachPixelBlock([&](size_t block, size_t begin, size_t end) {
         ErrorSums& sums = block_sums[block];
         for (size_t p = begin; p < end; ++p) {
-            // Summed over the pixel's hit points: the photon estimate, the difference of its
-            // halves, and the bias estimate 2 (L - L_inner) of each half.
+            // Summed over the pixel's hit points, each times its share of the pixel: the photon
+            // estimate, the difference of its halves, and the bias estimate 2 (L - L_inner) of
+            // each half. For ppm also the photon estimate times the share of the even epochs'
+            // camera samples and of all (not divided by their counts).
             Rgbd value(0.0), difference(0.0), bias_even(0.0), bias_odd(0.0);
+            Rgbd covered_even(0.0), covered_all(0.0);
             ForEachHitPointOf(p, [&](uint32_t i) {
                 const PointEstimate& point = points_[i];
+                const Rgbd share = Share(i, coverage_sum_, samples_even + samples_odd);
                 const Rgbd even =
                     EstimateRadiance({0, point.radius_sq, flux_even_[i]}, photons_even);
                 const Rgbd odd =
                     EstimateRadiance({0, point.radius_sq, point.flux - flux_even_[i]}, photons_odd);
-                value += EstimateRadiance(point, photons);
-                difference += even - odd;
+                const Rgbd estimate = EstimateRadiance(point, photons);
+                value += estimate * share;
+                difference += (even - odd) * share;
                 const GatherCounts& counts = counts_[i];
-                bias_even += InnerDiscBias(even, counts.inner_even, counts.all_even);
+                bias_even += InnerDiscBias(even, counts.inner_even, counts.all_even) * share;
                 bias_odd += InnerDiscBias(odd, counts.inner - counts.inner_even,
-                                          counts.all - counts.all_even);
+                                          counts.all - counts.all_even) *
+                            share;
+                if (!settings_.stochastic) {
+                    covered_even += estimate * Share(i, coverage_even_, 1.0);
+                    covered_all += estimate * Share(i, coverage_sum_, 1.0);
+                }
             });
             for (int c = 0; c < 3; ++c) {
-                // Emission and direct light differ between even and odd epochs as photons do
-                // between even and odd batches.
-                const double seen_even = emission_even_[p][c] + direct_even_[p][c],
-                             seen_all = emission_sum_[p][c] + direct_sum_[p][c];
-                const double photon_difference = difference[c] * inverse_spp;
+                // Emission, direct light and (ppm) the hit points' shares of the pixel differ
+                // between even and odd epochs as photons do between even and odd batches.
+                const double seen_even =
+                                 emission_even_[p][c] + direct_even_[p][c] + covered_even[c],
+                             seen_all = emission_sum_[p][c] + direct_sum_[p][c] + covered_all[c];
+                const double photon_difference = difference[c];
                 const double d = photon_difference + seen_even / samples_even -
                                  (seen_all - seen_even) / samples_odd;
-                const double v = EmissionAndDirect(p)[c] + value[c] * inverse_spp;
+                const double v = EmissionAndDirect(p)[c] + value[c];
                 AddHalfVariance(v, d, variance_scale, &sums.squared, &sums.relative);
                 sums.photon_squared += photon_difference * photon_difference * variance_scale;
                 // The product of two independent estimates of the bias is an unbiased estimate
                 // of its square, whatever the hit points' photons share (b^2 less the sum of
                 // each hit point's variance is not: discs of one pixel overlap). The sum over
                 // pixels is clamped at zero by the callers, not each pixel, to stay unbiased.
-                const double b_squared = bias_even[c] * bias_odd[c] * inverse_spp * inverse_spp;
+                const double b_squared = bias_even[c] * bias_odd[c];
                 sums.bias_squared += b_squared;
                 sums.bias_relative += b_squared / (v * v + 0.01);
             }

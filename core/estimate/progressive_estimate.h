@@ -15,6 +15,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -87,10 +88,10 @@ public:
     // An estimate restored by Load needs its camera passes again.
     void SetEpochCameraPass(EpochCameraPass next_passes) { next_passes_ = std::move(next_passes); }
 
-    std::span<const HitPoint> HitPoints() const { return *hit_points_; }
+    std::span<const HitPoint> HitPoints() const { return *by_pixel_->points; }
     // The same hit points, shared with whoever needs them past this object's life.
     std::shared_ptr<const std::vector<HitPoint>> SharedHitPoints() const override {
-        return hit_points_;
+        return by_pixel_->points;
     }
     const PointEstimate& Point(size_t hit_point) const { return points_[hit_point]; }
     const EstimateSettings& Settings() const { return settings_; }
@@ -129,8 +130,8 @@ public:
     // Once every batch of the epoch is folded: updates N, R, tau and starts the next epoch.
     void FinishEpoch() override;
     // The image as of the last merged epoch: per pixel, the mean emission and direct light
-    // over the merged epochs' camera samples, and tau / (pi R^2 N_emitted) averaged over its
-    // hit points (k camera paths).
+    // over the merged epochs' camera samples, and tau / (pi R^2 N_emitted) of each of its hit
+    // points times its share of the pixel (Share: 1/k for sppm's).
     Image Resolve() const override;
     // The error of Resolve()'s image. Variance: from the even and odd half-estimates. Bias:
     // a disc estimate's bias grows as R^2 (radiance locally quadratic), so the estimate from
@@ -153,16 +154,22 @@ public:
 private:
     ProgressiveEstimate() = default;
 
-    // Takes the epoch's pass as it begins: its emission, and for sppm its hit points.
+    // Takes the epoch's pass as it begins: its emission, for ppm its coverage of the fixed
+    // hit points, for sppm its hit points.
     void BeginEpochPass(CameraPassResult camera_pass);
-    // Holds `hit_points` and indexes them by pixel (pixel_begin_, pixel_order_).
+    // Holds `hit_points` and indexes them by pixel (by_pixel_).
     void SetHitPoints(std::shared_ptr<const std::vector<HitPoint>> hit_points);
     // Calls visit(i) for each hit point i of pixel p, in index order.
     template <typename Visit>
     void ForEachHitPointOf(size_t p, Visit&& visit) const {
-        for (uint32_t k = pixel_begin_[p]; k < pixel_begin_[p + 1]; ++k)
-            visit(pixel_order_.empty() ? k : pixel_order_[k]);
+        by_pixel_->ForEachOf(p, std::forward<Visit>(visit));
     }
+    // Hit point i's share of its pixel, per channel, by which its photon estimate counts in
+    // the pixel: for ppm, the weight of the merged epochs' camera samples it stands for
+    // (`coverage`: coverage_sum_, or coverage_even_ for the even epochs) over those samples'
+    // count `samples` and its own weight (CameraPassResult::coverage); 1/k for sppm's slots and
+    // before the first epoch is merged.
+    Rgbd Share(size_t i, const std::vector<Rgbd>& coverage, double samples) const;
     // Calls block(index, begin, end) for the pixels [begin, end) of each block of kPixelBlock,
     // in parallel: sums per pixel, and per block, are the same on any number of threads.
     template <typename Block>
@@ -195,11 +202,13 @@ private:
     // Pixel p's mean emission and direct light over the merged epochs' camera samples.
     Rgbd EmissionAndDirect(size_t p) const;
 
-    std::shared_ptr<const std::vector<HitPoint>> hit_points_;
-    // Hit points by pixel: pixel p's are pixel_order_[pixel_begin_[p] .. pixel_begin_[p + 1])
-    // in index order; an empty pixel_order_ where the hit points are in pixel order already
-    // (sppm's slots).
-    std::vector<uint32_t> pixel_begin_, pixel_order_;
+    // The hit points photons gather at, by pixel; ppm's are given to its emission passes.
+    std::shared_ptr<const PixelHitPoints> by_pixel_;
+    // ppm's, per fixed hit point: the weights of the camera samples it stands for, summed over
+    // the merged epochs and over the even ones, and the current epoch's pass's apart
+    // (CameraPassResult::coverage); empty for sppm.
+    std::vector<Rgbd> coverage_sum_, coverage_even_;
+    std::vector<Rgb> epoch_coverage_;
     // Per pixel, sums over the merged epochs' camera samples of the emission seen and of the
     // direct light, with those of the even epochs apart; the current epoch's emission and
     // direct samples (per slot) apart.

@@ -17,11 +17,17 @@ namespace {
 constexpr uint32_t kHitPoints = 300;
 constexpr int kEpochs = 5;
 
-// Each epoch's camera pass (a ppm estimate takes its emission, a stochastic one its hit points
-// too): every slot (pixel * 3 + sample of a 10x10 film) traced
-// anew, a few black, weights and emission changing with the epoch.
-CameraPassResult StochasticPass(uint64_t epoch) {
+// Each epoch's camera pass (a ppm estimate takes its emission and coverage, a stochastic one its
+// hit points too): every slot (pixel * 3 + sample of a 10x10 film) traced anew, a few black,
+// weights and emission changing with the epoch.
+CameraPassResult StochasticPass(uint64_t epoch,
+                                const std::shared_ptr<const PixelHitPoints>& fixed) {
     CameraPassResult pass;
+    // ppm's: shares of the fixed hit points' pixels changing with the epoch.
+    if (fixed)
+        for (size_t i = 0; i < fixed->points->size(); ++i)
+            pass.coverage.push_back((*fixed->points)[i].weight *
+                                    (0.2f + 0.1f * float((i + epoch) % 5)));
     pass.emission = Image(10, 10);
     pass.emission.At(int(epoch % 10), 4) = Rgb(2.0f, 1.0f, 0.5f);
     std::mt19937 rng(static_cast<uint32_t>(epoch + 3));
@@ -139,7 +145,8 @@ std::unique_ptr<Estimate> MakeStochastic() {
     settings.initial_radius = 0.5;
     settings.samples_per_pixel = 3;
     settings.layout = {1000, 4};
-    return std::make_unique<ProgressiveEstimate>(StochasticPass(0), settings, StochasticPass);
+    return std::make_unique<ProgressiveEstimate>(StochasticPass(0, nullptr), settings,
+                                                 StochasticPass);
 }
 
 std::unique_ptr<Estimate> MakePpm() {

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 
 #include "core/estimate/progressive_estimate.h"
 
@@ -14,7 +15,7 @@ inline constexpr double kOnePointRadius = 0.5;
 
 // One hit point of weight 1 in a 1x1 image, R0 kOnePointRadius, by default two batches an
 // epoch of kOnePointPhotons each. The epochs' passes have one slot and see `emission(epoch)`
-// (none without it).
+// (none without it), and every camera sample the hit point.
 inline ProgressiveEstimate OnePointEstimate(double alpha, bool balanced = false,
                                             const BatchLayout& layout = {kOnePointPhotons, 2},
                                             std::function<float(uint64_t)> emission = nullptr) {
@@ -29,10 +30,12 @@ inline ProgressiveEstimate OnePointEstimate(double alpha, bool balanced = false,
     settings.samples_per_pixel = 1;
     settings.layout = layout;
     return ProgressiveEstimate(std::move(camera_pass), settings,
-                               [emission = std::move(emission)](uint64_t epoch) {
+                               [emission = std::move(emission)](
+                                   uint64_t epoch, const std::shared_ptr<const PixelHitPoints>&) {
                                    CameraPassResult pass;
                                    pass.emission = Image(1, 1);
                                    if (emission) pass.emission.pixels[0] = Rgb(emission(epoch));
+                                   pass.coverage = {Rgb(1.0f)};  // every sample sees it
                                    return pass;
                                });
 }
