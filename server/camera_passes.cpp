@@ -17,9 +17,8 @@ namespace {
 // Passes traced one epoch ahead: asked for epoch e's pass, returns it (traced while epoch e - 1
 // ran, else now) and starts tracing e + 1's in the background, on the TBB arena that created
 // it, for the same fixed hit points. A pass is a function of its epoch and those alone, so the
-// image is the same; what an epoch's end
-// costs the coordinator is then the merge, not the pass, while the workers wait for the next
-// epoch's batches.
+// image is the same; what an epoch's end costs the coordinator is then the merge, not the
+// pass, while the workers wait for the next epoch's batches.
 class PrefetchedPasses {
 public:
     explicit PrefetchedPasses(EpochCameraPass passes)
