@@ -278,7 +278,11 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                         for (const HitPoint& hit : row_hit_points[y])
                             if (const std::optional<uint32_t> i =
                                     CoveringHitPoint(*fixed, pixel, hit))
-                                result.coverage[*i] += hit.weight / static_cast<float>(spp);
+                                result.coverage[*i] += hit.weight;
+                    if (fixed != nullptr)  // averaged over the pixel's samples
+                        fixed->ForEachOf(pixel, [&](uint32_t i) {
+                            result.coverage[i] /= static_cast<float>(spp);
+                        });
                     row_hit_points[y].clear();
                     row_footprints[y].clear();
                 }
