@@ -55,8 +55,7 @@ absl::StatusOr<Rate> Measure(const std::string& backend_name, const std::string&
             (*backend)->BeginJob({&*scene, &emitters, estimate.HitPoints(), 1, &spec});
         !status.ok())
         return status;
-    if (absl::Status status =
-            (*backend)->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq(), nullptr);
+    if (absl::Status status = (*backend)->BeginEpoch(estimate.Epoch(), estimate.Regions(), nullptr);
         !status.ok())
         return status;
     const std::vector<BatchSpec> batches = estimate.EpochBatches();

@@ -28,7 +28,7 @@ double Seconds(std::chrono::steady_clock::time_point start) {
 // Folds `batches` of the current epoch's batches, run by `backend`.
 void RunBatches(Backend& backend, ProgressiveEstimate& estimate, size_t batches) {
     if (estimate.BatchesFolded() == 0)
-        (void)backend.BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq(), nullptr);
+        (void)backend.BeginEpoch(estimate.Epoch(), estimate.Regions(), nullptr);
     const std::vector<BatchSpec> specs = estimate.EpochBatches();
     absl::StatusOr<std::vector<BatchResult>> results =
         backend.RunBatches(std::span(specs).subspan(estimate.BatchesFolded(), batches));

@@ -62,7 +62,7 @@ Recorded& Record() {
     const Emitters emitters(r.scene);
     std::unique_ptr<Backend> backend = std::move(*CreateBackend("cpu", r.scene));
     (void)backend->BeginJob({&r.scene, &emitters, estimate.HitPoints(), 1, &spec});
-    (void)backend->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq(), nullptr);
+    (void)backend->BeginEpoch(estimate.Epoch(), estimate.Regions(), nullptr);
     const std::vector<BatchSpec> specs = estimate.EpochBatches();
     {
         tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
@@ -77,7 +77,7 @@ Recorded& Record() {
     // real epochs later they have spread out as in any long run.
     estimate.MergeEpoch(r.results);
     for (int epoch = 1; epoch < 4; ++epoch) {
-        (void)backend->BeginEpoch(estimate.Epoch(), estimate.SearchRadiusSq(), nullptr);
+        (void)backend->BeginEpoch(estimate.Epoch(), estimate.Regions(), nullptr);
         estimate.MergeEpoch(*backend->RunBatches(estimate.EpochBatches()));
     }
     {
@@ -88,7 +88,7 @@ Recorded& Record() {
         r.farm_wire_bytes_per_photon = double(ToProto(result).ByteSizeLong()) / kFarmBatch;
     }
     r.radii_bytes =
-        double(EncodeFloats(estimate.SearchRadiusSq()).size()) / estimate.HitPoints().size();
+        double(EncodeGatherRegions(estimate.Regions()).size()) / estimate.HitPoints().size();
     r.hit_point_bytes =
         double(EncodeHitPoints(estimate.HitPoints()).size()) / estimate.HitPoints().size();
     for (const BatchResult& result : r.results) {
@@ -100,7 +100,8 @@ Recorded& Record() {
 
 // Each epoch's camera pass as the fold sees it, without tracing it: the merge alone is timed
 // (the coordinator traces a pass an epoch besides: camera_pass_bench times it).
-CameraPassResult UntracedPasses(uint64_t, const std::shared_ptr<const PixelHitPoints>& fixed) {
+CameraPassResult UntracedPasses(uint64_t, const std::shared_ptr<const PixelHitPoints>& fixed,
+                                const std::shared_ptr<const std::vector<float>>&) {
     CameraPassResult pass;
     pass.emission = Image(512, 512);
     if (fixed) pass.coverage.assign(fixed->points->size(), Rgb(0.25f));

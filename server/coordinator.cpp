@@ -349,7 +349,7 @@ absl::StatusOr<CoordinatorLease> Coordinator::Lease(const std::string& worker_id
                 lease.grant = {job->Id(),
                                std::move(granted.payload),
                                granted.epoch->epoch,
-                               granted.epoch->radius_sq,
+                               granted.epoch->regions,
                                std::move(granted.batches),
                                granted.epoch->hit_points};
                 lease.epoch = std::move(granted.epoch);

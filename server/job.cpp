@@ -32,10 +32,10 @@ const Blob& LazyBlob::Get() const {
     return blob_;
 }
 
-EpochInputs::EpochInputs(uint64_t epoch_in, std::vector<float> radius_sq_in)
+EpochInputs::EpochInputs(uint64_t epoch_in, GatherRegions regions_in)
     : epoch(epoch_in),
-      radius_sq(std::make_shared<const std::vector<float>>(std::move(radius_sq_in))),
-      blob([radii = radius_sq] { return EncodeFloats(*radii); }) {}
+      regions(std::make_shared<const GatherRegions>(std::move(regions_in))),
+      blob([regions = regions] { return EncodeGatherRegions(*regions); }) {}
 
 Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
     : id_(std::move(id)),
@@ -75,7 +75,7 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
             });
     std::lock_guard lock(mutex_);
     warnings_ = std::move(prepared.warnings);
-    StartEpochLocked(estimate_->SearchRadiusSq());
+    StartEpochLocked(estimate_->Regions());
 }
 
 std::shared_ptr<const LazyBlob> Job::SceneBlob() const {
@@ -103,9 +103,9 @@ std::shared_ptr<const Blob> Job::FindBlob(const std::string& digest) const {
     return match(epoch_, epoch_->blob);
 }
 
-void Job::StartEpochLocked(std::vector<float> radius_sq) {
+void Job::StartEpochLocked(GatherRegions regions) {
     const uint64_t epoch = estimate_->Epoch();
-    auto inputs = std::make_shared<EpochInputs>(epoch, std::move(radius_sq));
+    auto inputs = std::make_shared<EpochInputs>(epoch, std::move(regions));
     if (estimate_->Kind() == Integrator::kSppm) inputs->hit_points = estimate_->SharedHitPoints();
     epoch_ = std::move(inputs);
     slots_.clear();
@@ -228,7 +228,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
             continue;
         }
         // Every batch of the epoch is folded: update the estimate and start the next epoch.
-        std::vector<float> radius_sq;
+        GatherRegions regions;
         uint64_t photons = 0, discarded = 0, samples = 0;
         bool reached = true;
         ErrorEstimate error;
@@ -238,7 +238,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
             std::lock_guard estimate_lock(estimate_mutex_);
             if (estimate_) {
                 estimate_->FinishEpoch();
-                radius_sq = estimate_->SearchRadiusSq();
+                regions = estimate_->Regions();
                 photons = estimate_->PhotonsEmitted();
                 samples = estimate_->CameraSamples();
                 discarded = estimate_->NonfiniteDiscarded();
@@ -275,7 +275,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
             EndLocked(JobState::kDone, "", now);
             break;
         }
-        StartEpochLocked(std::move(radius_sq));
+        StartEpochLocked(std::move(regions));
         break;
     }
     folding_ = false;

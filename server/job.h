@@ -56,10 +56,10 @@ private:
 
 // The inputs of one epoch's photon pass: the squared search radii.
 struct EpochInputs {
-    explicit EpochInputs(uint64_t epoch_in, std::vector<float> radius_sq_in);
+    explicit EpochInputs(uint64_t epoch_in, GatherRegions regions_in);
     uint64_t epoch;
-    std::shared_ptr<const std::vector<float>> radius_sq;
-    LazyBlob blob;  // EncodeFloats(radius_sq)
+    std::shared_ptr<const GatherRegions> regions;
+    LazyBlob blob;  // EncodeGatherRegions(regions)
     // sppm: the epoch's camera pass's hit points (WorkGrant::epoch_hit_points); null for the
     // others.
     std::shared_ptr<const std::vector<HitPoint>> hit_points;
@@ -182,7 +182,7 @@ private:
         bool folded = false;
     };
     bool LeasableLocked(const Slot& slot, Clock::time_point now) const;
-    void StartEpochLocked(std::vector<float> radius_sq);
+    void StartEpochLocked(GatherRegions regions);
     // Folds the results that are next in order, and finishes the epoch when all are in.
     // Called by the thread that stored a result; one thread folds at a time.
     bool FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point now);

@@ -10,6 +10,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/scene/prepared_scene.h"
+#include "core/util/check.h"
 #include "core/util/sha256.h"
 
 namespace pf {
@@ -112,6 +113,38 @@ absl::StatusOr<std::vector<float>> DecodeFloats(std::string_view bytes, uint64_t
     std::vector<float> values(expected_count);
     ReadPlanes(raw->data(), values.size(), values.data());
     return values;
+}
+
+std::string EncodeGatherRegions(const GatherRegions& regions) {
+    PF_CHECK(regions.edges.empty() || regions.edges.size() == regions.radius_sq.size());
+    std::vector<uint8_t> raw;
+    AppendPlanes(regions.radius_sq.data(), regions.radius_sq.size(), &raw);
+    if (!regions.edges.empty()) {
+        const std::span<const uint64_t> edges(regions.edges);
+        AppendField(edges, 0, &raw);
+        AppendField(edges, 4, &raw);
+    }
+    return Compress(raw);
+}
+
+absl::StatusOr<GatherRegions> DecodeGatherRegions(std::string_view bytes, uint64_t expected_count) {
+    // The frame's size tells whether edges follow the radii.
+    uint64_t size = 0;
+    if (bytes.size() >= 8) std::memcpy(&size, bytes.data(), 8);
+    const bool edges = size == 12 * expected_count && expected_count > 0;
+    absl::StatusOr<std::vector<uint8_t>> raw =
+        Decompress(bytes, (edges ? 12 : 4) * expected_count, "gather regions");
+    if (!raw.ok()) return raw.status();
+    GatherRegions regions;
+    regions.radius_sq.resize(expected_count);
+    ReadPlanes(raw->data(), expected_count, regions.radius_sq.data());
+    if (edges) {
+        regions.edges.resize(expected_count);
+        const std::span<uint64_t> out(regions.edges);
+        ReadField(raw->data() + 4 * expected_count, 0, out);
+        ReadField(raw->data() + 8 * expected_count, 4, out);
+    }
+    return regions;
 }
 
 std::string EncodeHitPoints(std::span<const HitPoint> hit_points) {

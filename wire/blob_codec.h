@@ -13,6 +13,7 @@
 
 #include "absl/status/statusor.h"
 #include "core/film/image.h"
+#include "core/job/gather_regions.h"
 #include "core/job/hit_point.h"
 #include "core/scene/scene.h"
 
@@ -29,6 +30,12 @@ struct Blob {
 std::string EncodeFloats(std::span<const float> values);
 // `expected_count` guards against a blob for another job: any other count is refused.
 absl::StatusOr<std::vector<float>> DecodeFloats(std::string_view bytes, uint64_t expected_count);
+
+// An epoch's gather regions: the squared radii as byte planes, then, where some hit point's
+// surface ends within its radius, the edges' low and high words as byte planes (nearly all
+// 0xff: a few bits a hit point after zstd). `expected_count` as for DecodeFloats.
+std::string EncodeGatherRegions(const GatherRegions& regions);
+absl::StatusOr<GatherRegions> DecodeGatherRegions(std::string_view bytes, uint64_t expected_count);
 
 // What the photon pass reads of each hit point (position, normal, weight); the pixel stays
 // with the coordinator and decodes as 0.

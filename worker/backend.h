@@ -11,6 +11,7 @@
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
 #include "core/job/batch.h"
+#include "core/job/gather_regions.h"
 #include "core/job/hit_point.h"
 #include "core/job/job_spec.h"
 #include "core/scene/emitters.h"
@@ -35,12 +36,12 @@ public:
     virtual std::string_view Name() const = 0;
     // Makes `job` the job that following epochs and batches belong to.
     virtual absl::Status BeginJob(const JobInputs& job) = 0;
-    // Begins epoch `epoch`: sets its squared search radii, one per hit point (copied); none
-    // for the integrators that render pixels. For stochastic progressive photon mapping the
+    // Begins epoch `epoch`: sets its gather regions, one per hit point (copied); none for the
+    // integrators that render pixels. For stochastic progressive photon mapping the
     // backend first traces the epoch's hit points itself (StochasticCameraPass), as the
     // coordinator does, unless `traced` gives them (copied): the coordinator's own pass, where
     // it runs in this process (WorkGrant::epoch_hit_points). Null otherwise.
-    virtual absl::Status BeginEpoch(uint64_t epoch, std::span<const float> radius_sq,
+    virtual absl::Status BeginEpoch(uint64_t epoch, const GatherRegions& regions,
                                     const std::vector<HitPoint>* traced) = 0;
     // Runs the batches, in parallel where the backend can; results in the order of `specs`.
     // Errors are the device's (a lost GPU), never the batches'.

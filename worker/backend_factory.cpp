@@ -18,9 +18,9 @@ public:
 
     std::string_view Name() const override { return backend_.Name(); }
     absl::Status BeginJob(const JobInputs& job) override { return backend_.BeginJob(job); }
-    absl::Status BeginEpoch(uint64_t epoch, std::span<const float> radius_sq,
+    absl::Status BeginEpoch(uint64_t epoch, const GatherRegions& regions,
                             const std::vector<HitPoint>* traced) override {
-        return backend_.BeginEpoch(epoch, radius_sq, traced);
+        return backend_.BeginEpoch(epoch, regions, traced);
     }
     absl::StatusOr<std::vector<BatchResult>> RunBatches(std::span<const BatchSpec> specs) override {
         return backend_.RunBatches(specs);

@@ -152,12 +152,12 @@ absl::StatusOr<WorkGrant> GrpcWorkSource::Lease(uint32_t chunks) {
                          "x", settings->height, " film"));
     absl::StatusOr<std::shared_ptr<const JobPayload>> payload = PayloadFor(job, *settings);
     if (!payload.ok()) return payload.status();
-    absl::StatusOr<std::shared_ptr<const std::vector<float>>> radii =
-        RadiiFor(response.radii_digest(), job.hit_point_count());
-    if (!radii.ok()) return radii.status();
+    absl::StatusOr<std::shared_ptr<const GatherRegions>> regions =
+        RegionsFor(response.radii_digest(), job.hit_point_count());
+    if (!regions.ok()) return regions.status();
     grant.job_id = job.job_id();
     grant.job = *payload;
-    grant.radius_sq = *radii;
+    grant.regions = *regions;
     // What a batch's sample slice indexes: the slots of the epoch's camera pass (pixels x its
     // samples a pixel), where the photon mappers sample direct light, or the pixels.
     const uint64_t items =
@@ -288,20 +288,20 @@ absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(
     return std::shared_ptr<const JobPayload>(payload);
 }
 
-absl::StatusOr<std::shared_ptr<const std::vector<float>>> GrpcWorkSource::RadiiFor(
+absl::StatusOr<std::shared_ptr<const GatherRegions>> GrpcWorkSource::RegionsFor(
     const std::string& digest, uint64_t count) {
     {
         std::lock_guard lock(mutex_);
-        if (std::shared_ptr<const std::vector<float>> radii = Lookup(radii_, digest)) return radii;
+        if (std::shared_ptr<const GatherRegions> regions = Lookup(regions_, digest)) return regions;
     }
     absl::StatusOr<std::string> bytes = FetchBlob(digest, false);
     if (!bytes.ok()) return bytes.status();
-    absl::StatusOr<std::vector<float>> radius_sq = DecodeFloats(*bytes, count);
-    if (!radius_sq.ok()) return radius_sq.status();
-    auto radii = std::make_shared<const std::vector<float>>(std::move(*radius_sq));
+    absl::StatusOr<GatherRegions> decoded = DecodeGatherRegions(*bytes, count);
+    if (!decoded.ok()) return decoded.status();
+    auto regions = std::make_shared<const GatherRegions>(std::move(*decoded));
     std::lock_guard lock(mutex_);
-    Remember(radii_, digest, std::shared_ptr<const std::vector<float>>(radii), kRadiiKept);
-    return std::shared_ptr<const std::vector<float>>(radii);
+    Remember(regions_, digest, std::shared_ptr<const GatherRegions>(regions), kRadiiKept);
+    return std::shared_ptr<const GatherRegions>(regions);
 }
 
 }  // namespace pf

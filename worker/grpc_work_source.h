@@ -42,8 +42,8 @@ private:
     absl::StatusOr<std::string> FetchBlob(const std::string& digest, bool keep_on_disk);
     absl::StatusOr<std::shared_ptr<const JobPayload>> PayloadFor(
         const photonfarm::v1::JobInputs& job, const JobSpec& spec);
-    absl::StatusOr<std::shared_ptr<const std::vector<float>>> RadiiFor(const std::string& digest,
-                                                                       uint64_t count);
+    absl::StatusOr<std::shared_ptr<const GatherRegions>> RegionsFor(const std::string& digest,
+                                                                    uint64_t count);
 
     std::shared_ptr<grpc::Channel> channel_;
     std::unique_ptr<photonfarm::v1::Work::Stub> stub_;
@@ -54,9 +54,9 @@ private:
     mutable std::mutex mutex_;
     std::string worker_id_;  // empty: not registered
     double heartbeat_seconds_ = 2;
-    // Recently used payloads (by scene and hit point digests) and radii (by digest).
+    // Recently used payloads (by scene and hit point digests) and gather regions (by digest).
     std::list<std::pair<std::string, std::shared_ptr<const JobPayload>>> payloads_;
-    std::list<std::pair<std::string, std::shared_ptr<const std::vector<float>>>> radii_;
+    std::list<std::pair<std::string, std::shared_ptr<const GatherRegions>>> regions_;
 };
 
 }  // namespace pf

@@ -106,7 +106,7 @@ absl::StatusOr<WorkerLoop::JobBackend*> WorkerLoop::BackendFor(const WorkGrant& 
     }
     JobBackend& current = backends_.front();
     if (current.epoch != grant.epoch) {
-        if (absl::Status status = current.backend->BeginEpoch(grant.epoch, *grant.radius_sq,
+        if (absl::Status status = current.backend->BeginEpoch(grant.epoch, *grant.regions,
                                                               grant.epoch_hit_points.get());
             !status.ok())
             return BackendError(status, backend_name_, grant.job_id);

@@ -11,6 +11,7 @@
 #include <span>
 #include <vector>
 
+#include "core/camera/surface_extent.h"
 #include "core/film/image.h"
 #include "core/geometry/tracer.h"
 #include "core/job/hit_point.h"
@@ -71,6 +72,10 @@ struct CameraPassResult {
     // that a pixel across an edge between surfaces lit differently kept the split of its k
     // samples, never its area's (docs/design.md).
     std::vector<Rgb> coverage;
+    // Per hit point, for the coordinator's estimate: how far its surface reaches about it
+    // (ProbeSurfaceExtents), where the pass was asked to probe; empty otherwise (every surface
+    // then counts as filling its disc).
+    std::vector<SurfaceExtent> extent;
 };
 
 // Of the hit points of `pixel` in `fixed` whose weight is not black, the one that stands for a
@@ -110,9 +115,12 @@ CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobS
 
 // The coordinator's camera pass of an epoch: for sppm the StochasticCameraPass (its emission,
 // and its slots, pixel * k + sample, where photons gather and direct light is sampled; `fixed`
-// null), for ppm the EmissionCameraPass, its coverage of the `fixed` hit points.
+// null), its hit points' surfaces probed as far as `reach` (per slot, world units: no radius
+// of the slot's is wider) where that is given; for ppm the EmissionCameraPass, its coverage of
+// the `fixed` hit points (`reach` null).
 using EpochCameraPass = std::function<CameraPassResult(
-    uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed)>;
+    uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed,
+    const std::shared_ptr<const std::vector<float>>& reach)>;
 
 // Each epoch's pass of `film` for job `spec` (ppm or sppm) over
 // `scene` through `tracer`, which the function keeps alive; `scene` must outlive it.

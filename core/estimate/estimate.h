@@ -13,6 +13,7 @@
 #include "absl/status/statusor.h"
 #include "core/film/image.h"
 #include "core/job/batch.h"
+#include "core/job/gather_regions.h"
 #include "core/job/hit_point.h"
 #include "core/job/integrator.h"
 #include "core/util/byte_stream.h"
@@ -58,9 +59,9 @@ public:
     // whoever needs them past this object's life.
     virtual std::shared_ptr<const std::vector<HitPoint>> SharedHitPoints() const = 0;
 
-    // This epoch's squared search radii, one per hit point; empty where batches gather at no
-    // hit points (path, pm).
-    virtual std::vector<float> SearchRadiusSq() const = 0;
+    // This epoch's gather regions, one per hit point; empty where batches gather at no hit
+    // points (path, pm).
+    virtual GatherRegions Regions() const = 0;
     // The batches of the current epoch, in batch-index order.
     virtual std::vector<BatchSpec> EpochBatches() const = 0;
     // Adds the next batch of the current epoch: batches must come in batch-index order, so the

@@ -20,8 +20,9 @@ constexpr uint32_t kFixedMagic = 0x50485046;  // "PFHP": the hit points kept apa
 // first_epoch_photons), emission and direct light summed over camera samples, not epochs.
 // 7: whether alpha is balanced (EstimateSettings::balanced). 8: the bias estimate's counts
 // of the even batches (GatherCounts), and the epoch's counts in one array (EpochPhotons).
-// 9: ppm's fixed hit points' shares of their pixels (CameraPassResult::coverage).
-constexpr uint32_t kVersion = 9;
+// 9: ppm's fixed hit points' shares of their pixels (CameraPassResult::coverage). 10: how far
+// each hit point's surface reaches (SurfaceExtent), where probed, and sppm's probe reach.
+constexpr uint32_t kVersion = 10;
 
 absl::Status Corrupt(const std::string& what) {
     return absl::DataLossError(absl::StrCat("estimate state: ", what));
@@ -51,6 +52,7 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
     const std::vector<HitPoint>& hit_points = *by_pixel_->points;
     out.Value<uint64_t>(hit_points.size());
     out.Value(static_cast<uint8_t>(hit_points_here));
+    out.Value(static_cast<uint8_t>(!extent_.empty()));
     out.Value(settings_.alpha);
     out.Value(settings_.initial_radius);
     out.Value(settings_.samples_per_pixel);
@@ -80,6 +82,8 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
           PackedArray(epoch_flux_even_), PackedArray(coverage_sum_), PackedArray(coverage_even_),
           PackedArray(epoch_coverage_)})
         arrays.push_back(array);
+    arrays.push_back(extent_);
+    if (reach_ != nullptr) arrays.push_back(*reach_);
     WritePacked(out, arrays);
 }
 
@@ -102,8 +106,8 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
         return Corrupt(
             absl::StrCat("format version ", version, "; this build reads version ", kVersion));
     uint64_t n = 0;  // hit points
-    uint8_t hit_points_here = 0;
-    if (!in.Value(&n) || n > kMaxHitPoints || !in.Value(&hit_points_here))
+    uint8_t hit_points_here = 0, probed = 0;
+    if (!in.Value(&n) || n > kMaxHitPoints || !in.Value(&hit_points_here) || !in.Value(&probed))
         return Corrupt("hit points");
     EstimateSettings& settings = e.settings_;
     uint8_t stochastic = 0, balanced = 0;
@@ -187,8 +191,15 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
           array(n, "hit point", &e.epoch_flux_even_, "epoch even flux"),
           array(covered, "fixed hit point", &e.coverage_sum_, "coverage"),
           array(covered, "fixed hit point", &e.coverage_even_, "even coverage"),
-          array(covered, "fixed hit point", &e.epoch_coverage_, "epoch coverage")})
+          array(covered, "fixed hit point", &e.epoch_coverage_, "epoch coverage"),
+          array(probed != 0 ? n : 0, "hit point", &e.extent_, "surface extents")})
         if (!status.ok()) return status;
+    if (settings.stochastic) {
+        std::vector<float> reach;
+        if (absl::Status status = array(n, "hit point", &reach, "probe reach"); !status.ok())
+            return status;
+        e.reach_ = std::make_shared<const std::vector<float>>(std::move(reach));
+    }
     e.SetHitPoints(std::move(hit_points));
     return estimate;
 }

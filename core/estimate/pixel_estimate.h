@@ -39,7 +39,7 @@ public:
     bool LightReachedAnything() const override { return light_reached_; }
     double InitialRadius() const override { return 0; }
     std::shared_ptr<const std::vector<HitPoint>> SharedHitPoints() const override;
-    std::vector<float> SearchRadiusSq() const override { return {}; }
+    GatherRegions Regions() const override { return {}; }
     std::vector<BatchSpec> EpochBatches() const override;
     void FoldBatch(const BatchResult& result) override;
     uint32_t BatchesFolded() const override { return batches_folded_; }

@@ -33,10 +33,12 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
     } else {
         SetHitPoints(
             std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points)));
+        extent_ = std::move(camera_pass.extent);
         coverage_sum_.assign(HitPoints().size(), Rgbd(0.0));
         coverage_even_.assign(HitPoints().size(), Rgbd(0.0));
-        BeginEpochPass(next_passes_(0, by_pixel_));
+        BeginEpochPass(next_passes_(0, by_pixel_, nullptr));
     }
+    PF_CHECK(extent_.empty() || extent_.size() == HitPoints().size());
     const size_t n = HitPoints().size();
     const double radius_sq = settings.initial_radius * settings.initial_radius;
     points_.assign(n, PointEstimate{0.0, radius_sq, Rgbd(0.0)});
@@ -47,6 +49,12 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
             PF_CHECK(std::isfinite(radius));
             points_[i].radius_sq = radius * radius;
         }
+    }
+    // sppm's later passes probe each slot's surface as far as its initial radius.
+    if (settings.stochastic) {
+        std::vector<float> reach(n);
+        for (size_t i = 0; i < n; ++i) reach[i] = float(std::sqrt(points_[i].radius_sq));
+        reach_ = std::make_shared<const std::vector<float>>(std::move(reach));
     }
     flux_even_.assign(n, Rgbd(0.0));
     counts_.assign(n, GatherCounts{});
@@ -59,8 +67,11 @@ void ProgressiveEstimate::BeginEpochPass(CameraPassResult camera_pass) {
     PF_CHECK(camera_pass.emission.pixels.size() == direct_sum_.size());
     if (settings_.stochastic) {
         PF_CHECK(camera_pass.hit_points.size() == epoch_direct_.size());
+        PF_CHECK(camera_pass.extent.empty() ||
+                 camera_pass.extent.size() == camera_pass.hit_points.size());
         SetHitPoints(
             std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points)));
+        extent_ = std::move(camera_pass.extent);
     } else {
         PF_CHECK(camera_pass.coverage.size() == HitPoints().size());
         epoch_coverage_ = std::move(camera_pass.coverage);
@@ -106,11 +117,17 @@ Rgbd ProgressiveEstimate::EmissionAndDirect(size_t p) const {
            static_cast<double>(MergedSamples(0) + MergedSamples(1));
 }
 
-std::vector<float> ProgressiveEstimate::SearchRadiusSq() const {
-    std::vector<float> radius_sq(points_.size());
+GatherRegions ProgressiveEstimate::Regions() const {
+    GatherRegions regions;
+    regions.radius_sq.resize(points_.size());
     for (size_t i = 0; i < points_.size(); ++i)
-        radius_sq[i] = static_cast<float>(points_[i].radius_sq);
-    return radius_sq;
+        regions.radius_sq[i] = static_cast<float>(points_[i].radius_sq);
+    if (!extent_.empty()) {
+        regions.edges.resize(points_.size());
+        for (size_t i = 0; i < points_.size(); ++i)
+            regions.edges[i] = extent_[i].Edges(std::sqrt(points_[i].radius_sq));
+    }
+    return regions;
 }
 
 std::vector<BatchSpec> ProgressiveEstimate::EpochBatches() const {
@@ -192,10 +209,18 @@ void ProgressiveEstimate::FinishEpoch() {
                     point.photon_count = 0;
                 }
                 const double shrink = ShrinkRatio(point, pass_photons, alpha, min_radius_sq);
-                flux_even_[i] = (flux_even_[i] + epoch_flux_even_[i]) * shrink;
-                counts_[i].Fold(epoch_photons_[i], shrink);
-                points_[i] =
-                    UpdateEstimate(point, pass_photons, epoch_flux_[i], alpha, min_radius_sq);
+                // The epoch's photons over the area of the hit point's surface within R: as
+                // if its surface filled the disc, which the estimate divides by.
+                double area = 1.0, inner_scale = 1.0;
+                if (!extent_.empty()) {
+                    const double radius = std::sqrt(point.radius_sq);
+                    area = extent_[i].AreaFraction(radius);
+                    inner_scale = area / extent_[i].AreaFraction(radius * std::sqrt(0.5));
+                }
+                flux_even_[i] = (flux_even_[i] + epoch_flux_even_[i] / area) * shrink;
+                counts_[i].Fold(epoch_photons_[i], shrink, inner_scale);
+                points_[i] = UpdateEstimate(point, pass_photons, epoch_flux_[i] / area, alpha,
+                                            min_radius_sq);
                 epoch_photons_[i] = EpochPhotons{};
                 epoch_flux_[i] = Rgbd(0.0);
                 epoch_flux_even_[i] = Rgbd(0.0);
@@ -227,7 +252,7 @@ void ProgressiveEstimate::FinishEpoch() {
     }
     ++epoch_;
     epoch_direct_.assign(emission_sum_.size() * size_t(EpochPass(epoch_).per_pixel), Rgb(0.0f));
-    BeginEpochPass(next_passes_(epoch_, settings_.stochastic ? nullptr : by_pixel_));
+    BeginEpochPass(next_passes_(epoch_, settings_.stochastic ? nullptr : by_pixel_, reach_));
 }
 
 Image ProgressiveEstimate::Resolve() const {

@@ -41,12 +41,15 @@ struct EpochPhotons {
 struct GatherCounts {
     double all = 0, inner = 0, all_even = 0, inner_even = 0;
 
-    // Adds an epoch's photons and shrinks the sums by the epoch's ratio R'^2 / R^2.
-    void Fold(const EpochPhotons& epoch, double shrink) {
+    // Adds an epoch's photons and shrinks the sums by the epoch's ratio R'^2 / R^2. The inner
+    // photons count times `inner_scale`, the ratio of the surface within R to twice that within
+    // R / sqrt(2) (1 on a surface that fills the disc), so that their expected share is 1/2
+    // wherever the density is flat.
+    void Fold(const EpochPhotons& epoch, double shrink, double inner_scale = 1.0) {
         all = (all + static_cast<double>(epoch.all)) * shrink;
-        inner = (inner + static_cast<double>(epoch.inner)) * shrink;
+        inner = (inner + static_cast<double>(epoch.inner) * inner_scale) * shrink;
         all_even = (all_even + static_cast<double>(epoch.all_even)) * shrink;
-        inner_even = (inner_even + static_cast<double>(epoch.inner_even)) * shrink;
+        inner_even = (inner_even + static_cast<double>(epoch.inner_even) * inner_scale) * shrink;
     }
 };
 
@@ -119,8 +122,9 @@ public:
     // reaches (the image is then emission only).
     bool LightReachedAnything() const override { return light_reached_; }
 
-    // This epoch's squared search radii, one per hit point, for the photon pass.
-    std::vector<float> SearchRadiusSq() const override;
+    // This epoch's squared search radii, one per hit point, and the edges of their surfaces
+    // within them (SurfaceExtent::Edges; none where no pass probed them), for the photon pass.
+    GatherRegions Regions() const override;
     // The batches of the current epoch, in batch-index order.
     std::vector<BatchSpec> EpochBatches() const override;
     // Adds the next batch of the current epoch to the epoch's sums: batches must come in
@@ -204,6 +208,12 @@ private:
 
     // The hit points photons gather at, by pixel; ppm's are given to its emission passes.
     std::shared_ptr<const PixelHitPoints> by_pixel_;
+    // How far each hit point's surface reaches (CameraPassResult::extent): an epoch's photons
+    // count over the area of that surface within R. Empty: every surface fills its disc.
+    std::vector<SurfaceExtent> extent_;
+    // sppm: how far each slot's passes probe its hit points' surfaces (its initial radius, which
+    // no later radius exceeds); null for ppm, whose fixed hit points came probed.
+    std::shared_ptr<const std::vector<float>> reach_;
     // ppm's, per fixed hit point: the weights of the camera samples it stands for, summed over
     // the merged epochs and over the even ones, and the current epoch's pass's apart
     // (CameraPassResult::coverage); empty for sppm.

@@ -68,11 +68,12 @@ inline int DepthLimit(int max_depth, int hard_limit) {
 inline constexpr int kMaxDepthSetting = 1 << 16;
 
 // Hit points cost about this much memory each across the estimate (~140 bytes, 72 more for
-// the even half-estimate of the error, 56 for the bias estimate's counts and 60 for ppm's
-// shares of their pixels), the grid (8 entries of 24 bytes) and one tally accumulator per
-// thread (20 bytes): 2^25 of them (4K at 4 hit points per pixel) take ~18 GB.
+// the even half-estimate of the error, 56 for the bias estimate's counts, 60 for ppm's shares
+// of their pixels and 36 for how far their surfaces reach), the epoch's gather regions (12
+// bytes, and 8 in the grid), the grid (8 entries of 24 bytes) and one tally accumulator per
+// thread (20 bytes): 2^25 of them (4K at 4 hit points per pixel) take ~20 GB.
 inline constexpr uint64_t kMaxHitPoints = uint64_t{1} << 25;
-inline constexpr uint64_t kBytesPerHitPoint = 552;
+inline constexpr uint64_t kBytesPerHitPoint = 608;
 
 // Limits on the batch layout: a batch's photon count fits the wire's uint32 with room to
 // spare; an epoch's batches are slots the coordinator tracks one by one.

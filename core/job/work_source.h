@@ -11,6 +11,7 @@
 
 #include "absl/status/statusor.h"
 #include "core/job/batch.h"
+#include "core/job/gather_regions.h"
 #include "core/job/hit_point.h"
 #include "core/job/job_spec.h"
 #include "core/scene/emitters.h"
@@ -45,8 +46,8 @@ struct WorkGrant {
     std::string job_id;
     std::shared_ptr<const JobPayload> job;
     uint64_t epoch = 0;
-    std::shared_ptr<const std::vector<float>> radius_sq;  // the epoch's, one per hit point
-    std::vector<BatchSpec> batches;                       // empty: no work now
+    std::shared_ptr<const GatherRegions> regions;  // the epoch's, one per hit point
+    std::vector<BatchSpec> batches;                // empty: no work now
     // sppm: the epoch's hit points as the coordinator traced them, where it runs in this
     // process (the embedded render), so the worker need not trace the same pass again; null
     // across the network (workers trace their own: the wire carries radii only).

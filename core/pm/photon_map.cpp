@@ -61,7 +61,7 @@ void TraceMapPhotons(const Scene& scene, const Emitters& emitters, const Tracer&
             const PhotonEvent event = ScatterPhotonAt<kSpecular, kTextures>(
                 scene, hit, ray, flux, rng,
                 [&](const Vec3& position, const Vec3& direction, const Rgb& power, bool returned,
-                    float cosine) {
+                    float cosine, const Vec3&) {
                     // With shading normals, per unit of its cosine (EstimateDiffuseRadiance).
                     if (per_cosine && !(cosine > 0)) return;
                     const Rgb stored =

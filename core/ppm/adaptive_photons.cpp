@@ -13,7 +13,7 @@ namespace {
 // Whether some deposit lands within a hit point's radius, facing it: the photon's visibility.
 bool Visible(const HashGrid& grid, std::span<const PhotonDeposit> deposits) {
     for (const PhotonDeposit& deposit : deposits)
-        if (grid.Gathers(deposit.position, deposit.direction)) return true;
+        if (grid.Gathers(deposit.position, deposit.direction, deposit.normal)) return true;
     return false;
 }
 
@@ -59,8 +59,8 @@ uint64_t TraceAdaptivePhotons(const PhotonPassInputs& inputs, const BatchSpec& s
         Chain& chain = chains[lane];
         if (chain.held == 0) return;
         for (const PhotonDeposit& deposit : scratch.chain_state[lane]) {
-            scratch.deposits.push_back(
-                {deposit.position, deposit.direction, deposit.flux * float(chain.held)});
+            scratch.deposits.push_back({deposit.position, deposit.direction,
+                                        deposit.flux * float(chain.held), deposit.normal});
             scratch.deposit_counts.push_back(chain.held);
         }
         chain.held = 0;

@@ -40,8 +40,15 @@ int HashGrid::OverlappedBuckets(const Vec3& center, float radius, uint32_t bucke
     return count;
 }
 
-void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float> radius_sq) {
+void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float> radius_sq,
+                     std::span<const uint64_t> edges) {
     PF_CHECK(hit_points.size() == radius_sq.size());
+    PF_CHECK(edges.empty() || edges.size() == hit_points.size());
+    // Kept only where some surface ends within its radius.
+    edges_.clear();
+    if (std::any_of(edges.begin(), edges.end(),
+                    [](uint64_t e) { return e != gpu::kUnboundedEdges; }))
+        edges_.assign(edges.begin(), edges.end());
     const size_t n = hit_points.size();
     // Search radii, 0 for the hit points left out (no radius, or a black weight).
     std::vector<float> radius(n);

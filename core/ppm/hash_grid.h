@@ -22,6 +22,7 @@
 #include "core/math/morton.h"
 #include "core/math/octahedral.h"
 #include "core/math/vec3.h"
+#include "core/shared/surface_edges.h"
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -33,31 +34,39 @@ class HashGrid {
 public:
     // radius_sq[i] is hit point i's squared search radius (world units^2); hit points with a
     // zero radius or a black weight are left out, since no photon can change their estimate.
+    // edges[i] (gpu::WithinSurfaceEdges), where given, where hit point i's surface ends within
+    // its radius; empty: every surface fills its disc.
     // Runs in parallel on the calling TBB arena; the grid, and so the order in which lookups
     // visit hit points (ascending index), does not depend on the thread count.
-    void Build(std::span<const HitPoint> hit_points, std::span<const float> radius_sq);
+    void Build(std::span<const HitPoint> hit_points, std::span<const float> radius_sq,
+               std::span<const uint64_t> edges = {});
 
-    // Calls visit(index, inner, normal) for every hit point whose search sphere contains p and
-    // whose surface faces a photon arriving along `direction` (photons from behind are
-    // rejected), in a fixed order. `inner`: p also lies within R / sqrt(2), the disc of half the
-    // area (for the estimate of the bias, ProgressiveEstimate::EstimateError); `normal`: the
-    // hit point's, as stored (DecodeOctahedral: not normalised).
+    // Calls visit(index, inner, normal) for every hit point that gathers a photon at p arriving
+    // along `direction` onto a surface of normal `landed` (turned toward the side it arrived
+    // from), in a fixed order: p lies within its search sphere, its surface faces the photon
+    // (photons from behind are rejected), and, where its surface ends within the sphere, p is
+    // on that surface within its reach (gpu::WithinSurfaceEdges). `inner`: p also lies within R /
+    // sqrt(2), the disc of half the area (for the estimate of the bias,
+    // ProgressiveEstimate::EstimateError); `normal`: the hit point's, as stored (DecodeOctahedral:
+    // not normalised).
     template <typename Visit>
-    void ForEachGathering(const Vec3& p, const Vec3& direction, Visit&& visit) const {
+    void ForEachGathering(const Vec3& p, const Vec3& direction, const Vec3& landed,
+                          Visit&& visit) const {
         ScanInside(p, [&](uint32_t e) {
             const Vec3 normal = DecodeOctahedral(entry_normal_[e]);
-            if (Dot(normal, direction) >= 0) return false;
+            if (!Takes(e, normal, p, direction, landed)) return false;
             const float dx = entry_x_[e] - p.x, dy = entry_y_[e] - p.y, dz = entry_z_[e] - p.z;
             visit(entry_index_[e], 2 * (dx * dx + dy * dy + dz * dz) <= entry_radius_sq_[e],
                   normal);
             return false;
         });
     }
-    // Whether some hit point would gather a photon at p arriving along `direction`
-    // (ForEachGathering visits one): stops at the first.
-    bool Gathers(const Vec3& p, const Vec3& direction) const {
-        return ScanInside(
-            p, [&](uint32_t e) { return Dot(DecodeOctahedral(entry_normal_[e]), direction) < 0; });
+    // Whether some hit point would gather that photon (ForEachGathering visits one): stops at
+    // the first.
+    bool Gathers(const Vec3& p, const Vec3& direction, const Vec3& landed) const {
+        return ScanInside(p, [&](uint32_t e) {
+            return Takes(e, DecodeOctahedral(entry_normal_[e]), p, direction, landed);
+        });
     }
     // The bucket a photon at p looks in; photons sorted by it share memory traffic.
     uint32_t BucketOf(const Vec3& p) const {
@@ -132,6 +141,16 @@ private:
 #endif
         return inside;
     }
+    // Whether entry e, of hit point normal `normal`, whose sphere holds p, takes a photon there
+    // (ForEachGathering).
+    bool Takes(uint32_t e, const Vec3& normal, const Vec3& p, const Vec3& direction,
+               const Vec3& landed) const {
+        if (Dot(normal, direction) >= 0) return false;
+        const uint64_t edges = edges_.empty() ? gpu::kUnboundedEdges : edges_[entry_index_[e]];
+        return gpu::WithinSurfaceEdges(edges, normal, landed,
+                                       p - Vec3(entry_x_[e], entry_y_[e], entry_z_[e]),
+                                       entry_radius_sq_[e]);
+    }
     // The distinct buckets of the cells that the sphere (center, radius) overlaps; returns count.
     int OverlappedBuckets(const Vec3& center, float radius, uint32_t buckets[8]) const;
 
@@ -146,6 +165,9 @@ private:
     std::vector<float> entry_x_, entry_y_, entry_z_, entry_radius_sq_;
     std::vector<uint32_t> entry_normal_;  // octahedral, read only for those within their radius
     std::vector<uint32_t> entry_index_;   // the hit point of each entry
+    // Per hit point, where its surface ends (Build's edges), read only for the photons that
+    // land on its surface within its sphere; empty where none was given.
+    std::vector<uint64_t> edges_;
 };
 
 }  // namespace pf

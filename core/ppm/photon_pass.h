@@ -70,6 +70,7 @@ struct PhotonDeposit {
     Vec3 position;
     Vec3 direction;  // of travel, unit
     Rgb flux;        // W x N_emitted
+    Vec3 normal;     // the surface's where it landed, toward the side it arrived from
 };
 
 // One thread's reusable working memory for batches; not thread-safe.

@@ -58,14 +58,14 @@ bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath
     const PhotonEvent event = ScatterPhotonAt<kSpecular, kTextures>(
         *inputs.scene, hit, path.ray, path.flux, path.rng,
         [&](const Vec3& position, const Vec3& direction, const Rgb& flux, bool returned,
-            float cosine) {
+            float cosine, const Vec3& normal) {
             if (!path.scattered && !returned) return;
             // With shading normals, the flux per unit of its cosine: hit points weigh it by
             // theirs (GatherDeposits).
             if (!inputs.features.ShadingNormals())
-                deposits.push_back({position, direction, flux});
+                deposits.push_back({position, direction, flux, normal});
             else if (cosine > 0)
-                deposits.push_back({position, direction, flux / cosine});
+                deposits.push_back({position, direction, flux / cosine, normal});
         });
     if (event == PhotonEvent::kEnded) return false;
     path.scattered = true;

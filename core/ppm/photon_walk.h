@@ -35,7 +35,7 @@ bool LeaveCoatedBase(const Material& material, const Vec3& position, const Frame
         ray.direction = leaving.direction;
         if (leaving.escaped) return true;
         if (IsBlack(flux) || returns == kMaxCoatReturns) return false;
-        land(position, ray.direction, flux, true, std::abs(Dot(ray.direction, frame.n)));
+        land(position, ray.direction, flux, true, std::abs(Dot(ray.direction, frame.n)), frame.n);
         const float survive = std::min(1.0f, MaxComponent(base_color));
         if (!(rng.NextFloat() < survive)) return false;
         flux *= base_color / survive;
@@ -44,12 +44,14 @@ bool LeaveCoatedBase(const Material& material, const Vec3& position, const Frame
 }
 
 // Continues the photon (ray, flux) at `hit`: calls land(position, direction, flux, returned,
-// cosine) at a diffuse surface before scattering (again, with `returned` true, each time a coat
-// over it turns the photon back to it), then moves ray and flux to the next segment. `cosine`
+// cosine, normal) at a diffuse surface before scattering (again, with `returned` true, each time a
+// coat over it turns the photon back to it), then moves ray and flux to the next segment. `cosine`
 // is |direction . the normal the flux crossed| (the surface's; the shading normal's under a
 // coat): where shading normals differ from the surface's, a point gathering the photon weighs
 // its flux by |direction . its own shading normal| / cosine (Veach's arrival factor, taken at
-// the gathering point, whose normal may differ from the photon's). Returns where
+// the gathering point, whose normal may differ from the photon's); `normal`, the surface's,
+// turned toward the side the photon arrived from (the surface it landed on, for a gather
+// that keeps to the hit point's own surface: HashGrid::ForEachGathering). Returns where
 // it scattered, or kEnded where roulette or a bounce below the surface ends it. Instantiated
 // for the scene's features: without specular materials or coats every surface is diffuse,
 // without textures every base colour is the material's.
@@ -84,7 +86,8 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
         }
         if (coat.at_base) {
             land(surface.position, ray.direction, flux, false,
-                 std::abs(Dot(ray.direction, surface.geometric_normal)));
+                 std::abs(Dot(ray.direction, surface.geometric_normal)),
+                 front_facing ? surface.geometric_normal : -surface.geometric_normal);
             if (!(arrival > 0)) return PhotonEvent::kEnded;  // from below the shading normal
             flux *= arrival;
             // Back to its side or, through a translucent surface, on to the other.

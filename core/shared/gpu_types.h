@@ -51,7 +51,10 @@ PF_CONST(uint32_t) kBindingSheenTables = 24;  // float[kSheenTableSize]: kSheenT
 // GpuHitPoint[]: where the batches' direct light is sampled, the epoch's camera pass (ppm); the
 // hit points' own buffer where they are the same (sppm) or no pass is traced.
 PF_CONST(uint32_t) kBindingDirectPoints = 25;
-PF_CONST(uint32_t) kBindingCount = 26;
+// uint64_t[], per hit point, this epoch: where its surface ends within its radius
+// (core/shared/surface_edges.h).
+PF_CONST(uint32_t) kBindingSurfaceEdges = 26;
+PF_CONST(uint32_t) kBindingCount = 27;
 
 // What the prefix-sum kernels scan (GpuParams.scan_target).
 PF_CONST(uint32_t) kScanGridBegin = 0;

@@ -95,7 +95,7 @@ public:
         }
         if (epoch_ != lease.grant.epoch) {
             EXPECT_TRUE(
-                backend_->BeginEpoch(lease.grant.epoch, *lease.grant.radius_sq, nullptr).ok());
+                backend_->BeginEpoch(lease.grant.epoch, *lease.grant.regions, nullptr).ok());
         }
         epoch_ = lease.grant.epoch;
         return *backend_->RunBatches(lease.grant.batches);

@@ -52,10 +52,14 @@ std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size,
     spec.photon_budget = 1;
     spec.layout = layout;
     const CameraPassSettings film = *FilmFor(spec, setup->scene);
-    const CameraPassResult camera_pass = RunCameraPass(setup->scene, *tracer, film);
+    CameraPassResult camera_pass = RunCameraPass(setup->scene, *tracer, film);
+    const EstimateSettings settings = EstimateFor(spec, camera_pass, setup->scene, name);
+    // The hit points' surfaces probed, so that both backends keep to them alike.
+    camera_pass.extent = ProbeSurfaceExtents(
+        setup->scene, *tracer, camera_pass.hit_points,
+        std::vector<float>(camera_pass.hit_points.size(), float(settings.initial_radius)));
     setup->estimate = std::make_unique<ProgressiveEstimate>(
-        camera_pass, EstimateFor(spec, camera_pass, setup->scene, name),
-        TracedCameraPasses(setup->scene, tracer, film, spec));
+        camera_pass, settings, TracedCameraPasses(setup->scene, tracer, film, spec));
     setup->emitters = std::make_unique<Emitters>(setup->scene);
     setup->cpu = std::move(*CreateBackend("cpu", setup->scene));
     absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", setup->scene);
@@ -68,8 +72,7 @@ std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size,
                                     setup->estimate->HitPoints(), 7, &setup->spec})
                         .ok());
         EXPECT_TRUE(
-            backend
-                ->BeginEpoch(setup->estimate->Epoch(), setup->estimate->SearchRadiusSq(), nullptr)
+            backend->BeginEpoch(setup->estimate->Epoch(), setup->estimate->Regions(), nullptr)
                 .ok());
     }
     return setup;
@@ -111,8 +114,7 @@ TEST_F(VulkanBackendTest, BatchIsAPureFunctionOfItsSpec) {
     // The second batch alone, after the grid was rebuilt: the same integers summed in
     // whatever order the device's threads arrived.
     ASSERT_TRUE(
-        setup->vulkan
-            ->BeginEpoch(setup->estimate->Epoch(), setup->estimate->SearchRadiusSq(), nullptr)
+        setup->vulkan->BeginEpoch(setup->estimate->Epoch(), setup->estimate->Regions(), nullptr)
             .ok());
     const absl::StatusOr<std::vector<BatchResult>> one =
         setup->vulkan->RunBatches(std::span(specs).subspan(1, 1));
@@ -309,7 +311,8 @@ TEST_F(VulkanBackendTest, SppmEpochsTraceTheirOwnHitPointsAndMatchTheCpuBackend)
     spec.samples_per_pixel = 2;
     spec.photon_budget = 1;
     spec.layout = {1u << 14, 16};  // 16 batches an epoch: 15 degrees of freedom to compare
-    const std::vector<float> radius_sq(size_t{24} * 24 * 2, 0.03f * 0.03f);
+    const GatherRegions regions{std::vector<float>(size_t{24} * 24 * 2, 0.03f * 0.03f), {}};
+    const std::vector<float>& radius_sq = regions.radius_sq;
     std::unique_ptr<Backend> cpu = std::move(*CreateBackend("cpu", scene));
     absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", scene);
     ASSERT_TRUE(vulkan.ok()) << vulkan.status();
@@ -318,7 +321,7 @@ TEST_F(VulkanBackendTest, SppmEpochsTraceTheirOwnHitPointsAndMatchTheCpuBackend)
     for (uint64_t epoch : {0u, 5u}) {
         SCOPED_TRACE(epoch);
         for (Backend* backend : {cpu.get(), vulkan->get()})
-            ASSERT_TRUE(backend->BeginEpoch(epoch, radius_sq, nullptr).ok());
+            ASSERT_TRUE(backend->BeginEpoch(epoch, regions, nullptr).ok());
         std::vector<BatchSpec> specs;
         for (uint32_t b = 0; b < spec.layout.batches_per_epoch; ++b)
             specs.push_back(

@@ -17,11 +17,18 @@ namespace {
 constexpr uint32_t kHitPoints = 300;
 constexpr int kEpochs = 5;
 
+// Where a hit point's surface ends: some within the radius, some not at all.
+SurfaceExtent EdgeOf(uint64_t i) {
+    SurfaceExtent extent = SurfaceExtent::Unbounded();
+    if (i % 3 != 0) extent.reach[i % gpu::kEdgeSectors] = 0.05f * float(i % 11);
+    return extent;
+}
+
 // Each epoch's camera pass (a ppm estimate takes its emission and coverage, a stochastic one its
 // hit points too): every slot (pixel * 3 + sample of a 10x10 film) traced anew, a few black,
 // weights and emission changing with the epoch.
-CameraPassResult StochasticPass(uint64_t epoch,
-                                const std::shared_ptr<const PixelHitPoints>& fixed) {
+CameraPassResult StochasticPass(uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed,
+                                const std::shared_ptr<const std::vector<float>>&) {
     CameraPassResult pass;
     // ppm's: shares of the fixed hit points' pixels changing with the epoch.
     if (fixed)
@@ -37,6 +44,7 @@ CameraPassResult StochasticPass(uint64_t epoch,
             {Vec3(float(i) + 0.1f * float(epoch), 0, 0), Vec3(0, 0, 1),
              empty ? Rgb(0.0f) : Rgb(0.1f + 0.01f * float(rng() % 17), 0.2f, 0.3f), i / 3});
         pass.footprint.push_back(empty ? 0.0f : 0.5f);
+        pass.extent.push_back(EdgeOf(i + epoch));
     }
     return pass;
 }
@@ -46,10 +54,12 @@ ProgressiveEstimate MakeEstimate() {
     camera_pass.emission = Image(10, 10);
     camera_pass.emission.At(3, 4) = Rgb(2.0f, 1.0f, 0.5f);
     std::mt19937 rng(7);
-    for (uint32_t i = 0; i < kHitPoints; ++i)
+    for (uint32_t i = 0; i < kHitPoints; ++i) {
         camera_pass.hit_points.push_back({Vec3(float(i), 0, 0), Vec3(0, 0, 1),
                                           Rgb(0.1f + 0.001f * float(i % 17), 0.2f, 0.3f),
                                           uint32_t(rng() % 100)});
+        camera_pass.extent.push_back(EdgeOf(i));
+    }
     EstimateSettings settings;
     settings.initial_radius = 0.5;
     settings.samples_per_pixel = 3;
@@ -145,7 +155,7 @@ std::unique_ptr<Estimate> MakeStochastic() {
     settings.initial_radius = 0.5;
     settings.samples_per_pixel = 3;
     settings.layout = {1000, 4};
-    return std::make_unique<ProgressiveEstimate>(StochasticPass(0, nullptr), settings,
+    return std::make_unique<ProgressiveEstimate>(StochasticPass(0, nullptr, nullptr), settings,
                                                  StochasticPass);
 }
 

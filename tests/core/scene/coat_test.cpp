@@ -169,9 +169,10 @@ TEST(CoatTest, PhotonsReflectedByACoatKeepTheirFlux) {
         Ray ray{{0, 0, 1}, Incident(kCos)};
         Rgb flux(1.0f);
         const RayHit hit{1.0f, 0, 1.0f / 3, 1.0f / 3};
-        const PhotonEvent event = ScatterPhotonAt<true, false>(
-            scene, hit, ray, flux, rng,
-            [&](const Vec3&, const Vec3&, const Rgb& power, bool, float) { landed += power.x; });
+        const PhotonEvent event =
+            ScatterPhotonAt<true, false>(scene, hit, ray, flux, rng,
+                                         [&](const Vec3&, const Vec3&, const Rgb& power, bool,
+                                             float, const Vec3&) { landed += power.x; });
         if (event != PhotonEvent::kNonDiffuse) continue;
         carried += flux.x;
         EXPECT_NEAR(ray.direction.z, kCos, 1e-5f) << "the mirror direction";

@@ -81,7 +81,7 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     return absl::OkStatus();
 }
 
-absl::Status CpuBackend::BeginEpoch(uint64_t epoch, std::span<const float> radius_sq,
+absl::Status CpuBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regions,
                                     const std::vector<HitPoint>* traced) {
     if (film_) {
         const bool sppm = job_.spec->integrator == Integrator::kSppm;
@@ -93,8 +93,9 @@ absl::Status CpuBackend::BeginEpoch(uint64_t epoch, std::span<const float> radiu
         if (sppm) job_.hit_points = epoch_hit_points_;
         direct_sequence_ = DirectLightSequence{pass.samples_per_pixel, pass.first_sample};
     }
-    PF_CHECK(radius_sq.size() == job_.hit_points.size());
-    if (!radius_sq.empty()) grid_.Build(job_.hit_points, radius_sq);
+    PF_CHECK(regions.radius_sq.size() == job_.hit_points.size() &&
+             (regions.edges.empty() || regions.edges.size() == regions.radius_sq.size()));
+    if (!regions.radius_sq.empty()) grid_.Build(job_.hit_points, regions.radius_sq, regions.edges);
     return absl::OkStatus();
 }
 

@@ -25,7 +25,7 @@ public:
 
     std::string_view Name() const override { return "cpu"; }
     absl::Status BeginJob(const JobInputs& job) override;
-    absl::Status BeginEpoch(uint64_t epoch, std::span<const float> radius_sq,
+    absl::Status BeginEpoch(uint64_t epoch, const GatherRegions& regions,
                             const std::vector<HitPoint>* traced) override;
     absl::StatusOr<std::vector<BatchResult>> RunBatches(std::span<const BatchSpec> specs) override;
 

@@ -138,10 +138,11 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
 struct VulkanBackend::JobBuffers {
     Buffer nodes, triangles, shading, normals, uvs, tangents, sheen_tables, materials, textures,
         texels, emitters, emitter_cdf, light_image_texels, light_image_tables;
-    Buffer hit_points, radius_sq, grid_begin, grid_cursor, grid_entries, scan_blocks, tally, direct,
-        counters, direct_points;
+    Buffer hit_points, radius_sq, surface_edges, grid_begin, grid_cursor, grid_entries, scan_blocks,
+        tally, direct, counters, direct_points;
     Buffer tally_offsets, tally_entries;
-    Buffer radius_upload, hit_point_upload, direct_point_upload, direct_readback, counters_readback;
+    Buffer radius_upload, edges_upload, hit_point_upload, direct_point_upload, direct_readback,
+        counters_readback;
 
     // Uploads what kernels read and makes the rest; RESOURCE_EXHAUSTED where the device runs out.
     // `direct_points`: how many points of an epoch's camera pass direct light is sampled at,
@@ -187,6 +188,7 @@ struct VulkanBackend::JobBuffers {
         upload(buffers->light_image_tables, Bytes(gpu_scene.light_image_tables));
         upload(buffers->hit_points, std::as_bytes(hit_points));
         make(buffers->radius_sq, n * sizeof(float), MemoryUse::kDevice);
+        make(buffers->surface_edges, n * sizeof(uint64_t), MemoryUse::kDevice);
         make(buffers->grid_begin, (buckets + 1) * sizeof(uint32_t), MemoryUse::kDevice);
         make(buffers->grid_cursor, buckets * sizeof(uint32_t), MemoryUse::kDevice);
         make(buffers->grid_entries, n * sizeof(gpu::GpuGridEntry), MemoryUse::kDevice);
@@ -205,6 +207,7 @@ struct VulkanBackend::JobBuffers {
         }
         make(buffers->counters, sizeof(gpu::GpuCounters), MemoryUse::kDevice);
         make(buffers->radius_upload, n * sizeof(float), MemoryUse::kUpload);
+        make(buffers->edges_upload, n * sizeof(uint64_t), MemoryUse::kUpload);
         if (hit_points_per_epoch)
             make(buffers->hit_point_upload, n * sizeof(gpu::GpuHitPoint), MemoryUse::kUpload);
         make(buffers->direct_readback, direct_count * sizeof(gpu::vec4), MemoryUse::kReadback);
@@ -224,6 +227,7 @@ struct VulkanBackend::JobBuffers {
         b[gpu::kBindingEmitterCdf] = emitter_cdf.Handle();
         b[gpu::kBindingHitPoints] = hit_points.Handle(),
         b[gpu::kBindingRadiusSq] = radius_sq.Handle();
+        b[gpu::kBindingSurfaceEdges] = surface_edges.Handle();
         b[gpu::kBindingGridBegin] = grid_begin.Handle(),
         b[gpu::kBindingGridCursor] = grid_cursor.Handle();
         b[gpu::kBindingGridEntries] = grid_entries.Handle(),
@@ -352,12 +356,13 @@ gpu::GpuParams VulkanBackend::BaseParams() const {
     return params;
 }
 
-absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, std::span<const float> radius_sq,
+absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regions,
                                        const std::vector<HitPoint>* traced) {
     if (buffers_ == nullptr) return absl::FailedPreconditionError("BeginEpoch before a job");
     const size_t n = job_.hit_points.size();
-    if (radius_sq.size() != n)
-        return absl::InvalidArgumentError("one radius per hit point expected");
+    const std::span<const float> radius_sq = regions.radius_sq;
+    if (radius_sq.size() != n || !(regions.edges.empty() || regions.edges.size() == n))
+        return absl::InvalidArgumentError("one radius and edge set per hit point expected");
     if (film_) {
         const CameraPassSettings pass = StochasticCameraPass(*film_, *job_.spec, epoch);
         std::vector<HitPoint> points =
@@ -380,13 +385,22 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, std::span<const float> ra
             max_radius_sq = std::max(max_radius_sq, radius_sq[i]);
     grid_inverse_cell_ = max_radius_sq > 0 ? 0.5f / std::sqrt(max_radius_sq) : 1.0f;
     if (n > 0) std::memcpy(buffers_->radius_upload.Mapped(), radius_sq.data(), n * sizeof(float));
+    auto* edges = static_cast<uint64_t*>(buffers_->edges_upload.Mapped());
+    if (regions.edges.empty())
+        std::fill_n(edges, n, gpu::kUnboundedEdges);
+    else
+        std::ranges::copy(regions.edges, edges);
 
     absl::StatusOr<VkCommandBuffer> commands = stream_.Begin();
     if (!commands.ok()) return commands.status();
     const VkBufferCopy radii{.size = n * sizeof(float)};
-    if (n > 0)
+    const VkBufferCopy edge_copy{.size = n * sizeof(uint64_t)};
+    if (n > 0) {
         vkCmdCopyBuffer(*commands, buffers_->radius_upload.Handle(), buffers_->radius_sq.Handle(),
                         1, &radii);
+        vkCmdCopyBuffer(*commands, buffers_->edges_upload.Handle(),
+                        buffers_->surface_edges.Handle(), 1, &edge_copy);
+    }
     const VkBufferCopy points{.size = epoch_hit_points_.size() * sizeof(gpu::GpuHitPoint)};
     if (film_ && !epoch_hit_points_.empty()) {
         if (SppmJob())

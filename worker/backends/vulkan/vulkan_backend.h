@@ -56,7 +56,7 @@ public:
     // Uploads the scene and hit points; RESOURCE_EXHAUSTED, naming the buffer and the limit,
     // where the job does not fit the device.
     absl::Status BeginJob(const JobInputs& job) override;
-    absl::Status BeginEpoch(uint64_t epoch, std::span<const float> radius_sq,
+    absl::Status BeginEpoch(uint64_t epoch, const GatherRegions& regions,
                             const std::vector<HitPoint>* traced) override;
     absl::StatusOr<std::vector<BatchResult>> RunBatches(std::span<const BatchSpec> specs) override;
 

@@ -12,6 +12,7 @@
 #include "core/shared/shading_normal.h"
 #include "core/shared/translucent.h"
 #include "core/shared/photon_chain.h"
+#include "core/shared/surface_edges.h"
 
 layout(constant_id = kSpecHasMirror) const bool kHasMirror = true;
 layout(constant_id = kSpecHasDielectric) const bool kHasDielectric = true;
@@ -56,6 +57,7 @@ layout(std430, binding = kBindingEmitterCdf) readonly buffer EmitterCdf { float 
 layout(std430, binding = kBindingHitPoints) readonly buffer HitPoints { GpuHitPoint hit_points[]; };
 layout(std430, binding = kBindingDirectPoints) readonly buffer DirectPoints { GpuHitPoint direct_points[]; };
 layout(std430, binding = kBindingRadiusSq) readonly buffer RadiusSq { float radius_sq[]; };
+layout(std430, binding = kBindingSurfaceEdges) readonly buffer SurfaceEdges { uint64_t surface_edges[]; };
 layout(std430, binding = kBindingGridBegin) buffer GridBegin { uint grid_begin[]; };
 layout(std430, binding = kBindingGridCursor) buffer GridCursor { uint grid_cursor[]; };
 layout(std430, binding = kBindingGridEntries) buffer GridEntries { GpuGridEntry grid_entries[]; };

@@ -23,10 +23,22 @@ shared uint group_steps;
 // of the at most 2^32 - 1 photons a tally counts stays below 2^63.
 uint64_t ToFixed(float flux) { return uint64_t(min(flux * params.flux_to_fixed + 0.5, 2147483648.0)); }
 
-// Adds a deposit to the hit points whose sphere holds it. `flux` is per unit of its cosine
+// Whether the hit point of grid entry `entry` takes a photon at p arriving along `direction`
+// onto a surface of normal `landed` (toward the side it arrived from), as HashGrid::Takes: its
+// sphere holds p, its surface faces the photon, and its gather region holds it
+// (WithinSurfaceEdges).
+bool Takes(GpuGridEntry entry, vec3 p, vec3 direction, vec3 landed) {
+    const vec3 offset = p - entry.position.xyz;
+    if (dot(offset, offset) > entry.position.w || !(dot(entry.normal.xyz, direction) < 0.0))
+        return false;
+    return WithinSurfaceEdges(surface_edges[floatBitsToUint(entry.normal.w)], entry.normal.xyz,
+                              landed, offset, entry.position.w);
+}
+
+// Adds a deposit to the hit points that take it (Takes). `flux` is per unit of its cosine
 // where some shading normal differs from its surface's (kShadingNormals): each hit point then
 // weighs it by its own (Veach's arrival factor, as GatherDeposits on the CPU).
-void Gather(vec3 p, vec3 direction, vec3 flux) {
+void Gather(vec3 p, vec3 direction, vec3 landed, vec3 flux) {
     const ivec3 cell = GridCell(p);
     // The neighbour on the nearer side in each axis: cells are two radii wide.
     const vec3 within = p * params.grid_inverse_cell - vec3(cell);
@@ -44,10 +56,10 @@ void Gather(vec3 p, vec3 direction, vec3 flux) {
         const uint end = grid_begin[bucket + 1];
         for (uint e = grid_begin[bucket]; e < end; ++e) {
             const GpuGridEntry entry = grid_entries[e];
+            if (!Takes(entry, p, direction, landed)) continue;
             const vec3 offset_to = entry.position.xyz - p;
             const float distance_sq = dot(offset_to, offset_to);
             const float facing = -dot(entry.normal.xyz, direction);
-            if (distance_sq > entry.position.w || !(facing > 0)) continue;
             const uint index = floatBitsToUint(entry.normal.w);
             atomicAdd(tally[index].photons, 1u);
             if (2.0 * distance_sq <= entry.position.w) atomicAdd(tally[index].inner_photons, 1u);
@@ -64,8 +76,9 @@ void Gather(vec3 p, vec3 direction, vec3 flux) {
     }
 }
 
-// Whether some hit point's sphere holds a photon at p arriving along `direction`, facing it.
-bool Reaches(vec3 p, vec3 direction) {
+// Whether some hit point takes a photon at p arriving along `direction` onto a surface of normal
+// `landed` (Takes).
+bool Reaches(vec3 p, vec3 direction, vec3 landed) {
     const ivec3 cell = GridCell(p);
     const vec3 within = p * params.grid_inverse_cell - vec3(cell);
     const ivec3 step = mix(ivec3(-1), ivec3(1), greaterThanEqual(within, vec3(0.5)));
@@ -73,10 +86,7 @@ bool Reaches(vec3 p, vec3 direction) {
         const uint bucket = GridBucket(cell + ivec3(corner & 1, (corner >> 1) & 1, corner >> 2) * step);
         const uint end = grid_begin[bucket + 1];
         for (uint e = grid_begin[bucket]; e < end; ++e) {
-            const GpuGridEntry entry = grid_entries[e];
-            const vec3 offset_to = entry.position.xyz - p;
-            if (dot(offset_to, offset_to) <= entry.position.w && dot(entry.normal.xyz, direction) < 0.0)
-                return true;
+            if (Takes(grid_entries[e], p, direction, landed)) return true;
         }
     }
     return false;
@@ -128,9 +138,11 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
                 else scatter = SpecularBounce(frame * wi, weight, false);
             }
             if (at_base) {
+                // The surface it landed on, toward the side it arrived from (HashGrid::Takes).
+                const vec3 landed = front_facing ? surface.geometric_normal : -surface.geometric_normal;
                 if (scattered && across > 0.0) {
-                    if (gather) Gather(surface.position, direction, flux / across);
-                    else if (Reaches(surface.position, direction)) {
+                    if (gather) Gather(surface.position, direction, landed, flux / across);
+                    else if (Reaches(surface.position, direction, landed)) {
                         visible = true;
                         break;
                     }
@@ -177,8 +189,8 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
                     if (MaxComponent(flux) <= 0.0 || returns == kMaxCoatReturns) break;
                     const float inside = kShadingNormals ? abs(wi.z) : 1.0;
                     if (inside > 0.0) {
-                        if (gather) Gather(surface.position, direction, flux / inside);
-                        else if (Reaches(surface.position, direction)) {
+                        if (gather) Gather(surface.position, direction, normal, flux / inside);
+                        else if (Reaches(surface.position, direction, normal)) {
                             visible = true;
                             break;
                         }
