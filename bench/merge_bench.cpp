@@ -100,8 +100,7 @@ Recorded& Record() {
 
 // Each epoch's camera pass as the fold sees it, without tracing it: the merge alone is timed
 // (the coordinator traces a pass an epoch besides: camera_pass_bench times it).
-CameraPassResult UntracedPasses(uint64_t, const std::shared_ptr<const PixelHitPoints>& fixed,
-                                const std::shared_ptr<const std::vector<float>>&) {
+CameraPassResult UntracedPasses(uint64_t, const std::shared_ptr<const PixelHitPoints>& fixed) {
     CameraPassResult pass;
     pass.emission = Image(512, 512);
     if (fixed) pass.coverage.assign(fixed->points->size(), Rgb(0.25f));

@@ -30,12 +30,12 @@ public:
         arena_.execute([&] { group_.wait(); });
     }
 
-    CameraPassResult operator()(uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed,
-                                const std::shared_ptr<const std::vector<float>>& reach) {
+    CameraPassResult operator()(uint64_t epoch,
+                                const std::shared_ptr<const PixelHitPoints>& fixed) {
         std::lock_guard lock(mutex_);
         std::optional<CameraPassResult> result;
         if (const std::optional<uint64_t> ahead = std::exchange(ahead_, std::nullopt)) {
-            const bool wanted = *ahead == epoch && fixed_ == fixed && reach_ == reach;
+            const bool wanted = *ahead == epoch && fixed_ == fixed;
             if (!wanted) group_.cancel();  // cut it short
             arena_.execute([&] { group_.wait(); });
             // A pass that failed (say, out of memory) is traced again here, where its error
@@ -44,14 +44,13 @@ public:
             next_ = {};
             failed_ = false;
         }
-        if (!result) result = passes_(epoch, fixed, reach);
+        if (!result) result = passes_(epoch, fixed);
         ahead_ = epoch + 1;
         fixed_ = fixed;
-        reach_ = reach;
         arena_.execute([&] {
             group_.run([this, next = epoch + 1] {
                 try {
-                    next_ = passes_(next, fixed_, reach_);
+                    next_ = passes_(next, fixed_);
                 } catch (...) {
                     failed_ = true;
                 }
@@ -67,7 +66,6 @@ private:
     std::mutex mutex_;
     std::optional<uint64_t> ahead_;                // the epoch whose pass group_ traces into next_
     std::shared_ptr<const PixelHitPoints> fixed_;  // for the hit points it credits
-    std::shared_ptr<const std::vector<float>> reach_;  // how far it probes its hit points
     CameraPassResult next_;
     bool failed_ = false;  // that pass threw
 };
@@ -89,14 +87,12 @@ EpochCameraPass EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
     auto passes = std::make_shared<PrefetchedPasses>(
         [payload,
          traced = TracedCameraPasses(payload->scene, std::move(tracer), film, payload->spec)](
-            uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed,
-            const std::shared_ptr<const std::vector<float>>& reach) {
-            return traced(epoch, fixed, reach);
+            uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed) {
+            return traced(epoch, fixed);
         });
     return [passes = std::move(passes)](uint64_t epoch,
-                                        const std::shared_ptr<const PixelHitPoints>& fixed,
-                                        const std::shared_ptr<const std::vector<float>>& reach) {
-        return (*passes)(epoch, fixed, reach);
+                                        const std::shared_ptr<const PixelHitPoints>& fixed) {
+        return (*passes)(epoch, fixed);
     };
 }
 

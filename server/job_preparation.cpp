@@ -139,7 +139,7 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
         // direct light is sampled at the workers' stochastic passes).
         EpochCameraPass passes = EpochCameraPasses(payload, *film, tracer);
         CameraPassResult camera_pass = integrator == Integrator::kSppm
-                                           ? passes(0, nullptr, nullptr)
+                                           ? passes(0, nullptr)
                                            : RunCameraPass(payload->scene, *tracer, *film);
         EstimateSettings settings =
             EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
@@ -194,14 +194,17 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
                 settings.min_radius = std::min(settings.min_radius, settings.initial_radius);
             }
         }
-        // Where each hit point's surface ends, as far as its initial radius reaches (sppm's
-        // estimate has each later pass probed as far).
+        // ppm: where each fixed hit point's surface ends, as far as its initial radius reaches
+        // (docs/design.md). sppm's hit points, new every epoch, gather in their spheres: probing
+        // each pass cost it half its photons, more than the edges gained it (docs/integrators.md).
         const auto probe_start = Clock::now();
-        std::vector<float> reach = radii;
-        if (reach.empty())
-            reach.assign(camera_pass.hit_points.size(), float(settings.initial_radius));
-        camera_pass.extent =
-            ProbeSurfaceExtents(payload->scene, *tracer, camera_pass.hit_points, reach);
+        if (integrator == Integrator::kPpm) {
+            std::vector<float> reach = radii;
+            if (reach.empty())
+                reach.assign(camera_pass.hit_points.size(), float(settings.initial_radius));
+            camera_pass.extent =
+                ProbeSurfaceExtents(payload->scene, *tracer, camera_pass.hit_points, reach);
+        }
         spdlog::info(
             "{}: camera pass: {}x{}, {} hit points in {:.2f} s, their surfaces probed in {:.2f} s, "
             "initial radius {:.4g}",

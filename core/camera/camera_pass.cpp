@@ -3,7 +3,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_group.h>
 
 #include <algorithm>
 #include <cmath>
@@ -300,16 +299,16 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     if (settings.stochastic) {  // slots stay in pixel order: slot i is the state's index i
         result.hit_points = std::move(hit_points);
         result.footprint = std::move(footprints);
-    } else {
-        // Order hit points along a Morton curve: those a photon finds together then lie
-        // together in memory, for the grid's candidates and the tally's sums alike.
-        const std::vector<uint32_t> order = MortonOrder(hit_points, scene.bounds);
-        result.hit_points.reserve(order.size());
-        result.footprint.reserve(order.size());
-        for (uint32_t index : order) {
-            result.hit_points.push_back(hit_points[index]);
-            result.footprint.push_back(footprints[index]);
-        }
+        return result;
+    }
+    // Order hit points along a Morton curve: those a photon finds together then lie together
+    // in memory, for the grid's candidates and the tally's sums alike.
+    const std::vector<uint32_t> order = MortonOrder(hit_points, scene.bounds);
+    result.hit_points.reserve(order.size());
+    result.footprint.reserve(order.size());
+    for (uint32_t index : order) {
+        result.hit_points.push_back(hit_points[index]);
+        result.footprint.push_back(footprints[index]);
     }
     return result;
 }
@@ -347,18 +346,12 @@ CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobS
 EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,
                                    const CameraPassSettings& film, const JobSpec& spec) {
     return [&scene, tracer = std::move(tracer), film, spec](
-               uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed,
-               const std::shared_ptr<const std::vector<float>>& reach) {
-        CameraPassResult pass = RunCameraPass(scene, *tracer,
-                                              spec.integrator == Integrator::kSppm
-                                                  ? StochasticCameraPass(film, spec, epoch)
-                                                  : EmissionCameraPass(film, spec, epoch),
-                                              fixed.get());
-        // A pass cut short (the coordinator's traced ahead for an epoch no one will take) holds
-        // only some of its hit points.
-        if (reach != nullptr && !tbb::is_current_task_group_canceling())
-            pass.extent = ProbeSurfaceExtents(scene, *tracer, pass.hit_points, *reach);
-        return pass;
+               uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed) {
+        return RunCameraPass(scene, *tracer,
+                             spec.integrator == Integrator::kSppm
+                                 ? StochasticCameraPass(film, spec, epoch)
+                                 : EmissionCameraPass(film, spec, epoch),
+                             fixed.get());
     };
 }
 

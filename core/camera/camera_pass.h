@@ -73,8 +73,8 @@ struct CameraPassResult {
     // samples, never its area's (docs/design.md).
     std::vector<Rgb> coverage;
     // Per hit point, for the coordinator's estimate: how far its surface reaches about it
-    // (ProbeSurfaceExtents), where the pass was asked to probe; empty otherwise (every surface
-    // then counts as filling its disc).
+    // (ProbeSurfaceExtents: ppm's fixed hit points, probed when the job is prepared); empty
+    // where not probed (every surface then counts as filling its disc).
     std::vector<SurfaceExtent> extent;
 };
 
@@ -115,12 +115,9 @@ CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobS
 
 // The coordinator's camera pass of an epoch: for sppm the StochasticCameraPass (its emission,
 // and its slots, pixel * k + sample, where photons gather and direct light is sampled; `fixed`
-// null), its hit points' surfaces probed as far as `reach` (per slot, world units: no radius
-// of the slot's is wider) where that is given; for ppm the EmissionCameraPass, its coverage of
-// the `fixed` hit points (`reach` null).
+// null), for ppm the EmissionCameraPass, its coverage of the `fixed` hit points.
 using EpochCameraPass = std::function<CameraPassResult(
-    uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed,
-    const std::shared_ptr<const std::vector<float>>& reach)>;
+    uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed)>;
 
 // Each epoch's pass of `film` for job `spec` (ppm or sppm) over
 // `scene` through `tracer`, which the function keeps alive; `scene` must outlive it.

@@ -21,7 +21,7 @@ constexpr uint32_t kFixedMagic = 0x50485046;  // "PFHP": the hit points kept apa
 // 7: whether alpha is balanced (EstimateSettings::balanced). 8: the bias estimate's counts
 // of the even batches (GatherCounts), and the epoch's counts in one array (EpochPhotons).
 // 9: ppm's fixed hit points' shares of their pixels (CameraPassResult::coverage). 10: how far
-// each hit point's surface reaches (SurfaceExtent), where probed, and sppm's probe reach.
+// each hit point's surface reaches (SurfaceExtent), where probed.
 constexpr uint32_t kVersion = 10;
 
 absl::Status Corrupt(const std::string& what) {
@@ -83,7 +83,6 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
           PackedArray(epoch_coverage_)})
         arrays.push_back(array);
     arrays.push_back(extent_);
-    if (reach_ != nullptr) arrays.push_back(*reach_);
     WritePacked(out, arrays);
 }
 
@@ -194,12 +193,6 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
           array(covered, "fixed hit point", &e.epoch_coverage_, "epoch coverage"),
           array(probed != 0 ? n : 0, "hit point", &e.extent_, "surface extents")})
         if (!status.ok()) return status;
-    if (settings.stochastic) {
-        std::vector<float> reach;
-        if (absl::Status status = array(n, "hit point", &reach, "probe reach"); !status.ok())
-            return status;
-        e.reach_ = std::make_shared<const std::vector<float>>(std::move(reach));
-    }
     e.SetHitPoints(std::move(hit_points));
     return estimate;
 }

@@ -36,7 +36,7 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
         extent_ = std::move(camera_pass.extent);
         coverage_sum_.assign(HitPoints().size(), Rgbd(0.0));
         coverage_even_.assign(HitPoints().size(), Rgbd(0.0));
-        BeginEpochPass(next_passes_(0, by_pixel_, nullptr));
+        BeginEpochPass(next_passes_(0, by_pixel_));
     }
     PF_CHECK(extent_.empty() || extent_.size() == HitPoints().size());
     const size_t n = HitPoints().size();
@@ -49,12 +49,6 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
             PF_CHECK(std::isfinite(radius));
             points_[i].radius_sq = radius * radius;
         }
-    }
-    // sppm's later passes probe each slot's surface as far as its initial radius.
-    if (settings.stochastic) {
-        std::vector<float> reach(n);
-        for (size_t i = 0; i < n; ++i) reach[i] = float(std::sqrt(points_[i].radius_sq));
-        reach_ = std::make_shared<const std::vector<float>>(std::move(reach));
     }
     flux_even_.assign(n, Rgbd(0.0));
     counts_.assign(n, GatherCounts{});
@@ -252,7 +246,7 @@ void ProgressiveEstimate::FinishEpoch() {
     }
     ++epoch_;
     epoch_direct_.assign(emission_sum_.size() * size_t(EpochPass(epoch_).per_pixel), Rgb(0.0f));
-    BeginEpochPass(next_passes_(epoch_, settings_.stochastic ? nullptr : by_pixel_, reach_));
+    BeginEpochPass(next_passes_(epoch_, settings_.stochastic ? nullptr : by_pixel_));
 }
 
 Image ProgressiveEstimate::Resolve() const {

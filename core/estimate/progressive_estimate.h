@@ -211,9 +211,6 @@ private:
     // How far each hit point's surface reaches (CameraPassResult::extent): an epoch's photons
     // count over the area of that surface within R. Empty: every surface fills its disc.
     std::vector<SurfaceExtent> extent_;
-    // sppm: how far each slot's passes probe its hit points' surfaces (its initial radius, which
-    // no later radius exceeds); null for ppm, whose fixed hit points came probed.
-    std::shared_ptr<const std::vector<float>> reach_;
     // ppm's, per fixed hit point: the weights of the camera samples it stands for, summed over
     // the merged epochs and over the even ones, and the current epoch's pass's apart
     // (CameraPassResult::coverage); empty for sppm.

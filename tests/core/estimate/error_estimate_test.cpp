@@ -98,8 +98,7 @@ double SharedDiscsBias(uint32_t pixels, uint32_t photons, double inner) {
     settings.samples_per_pixel = 2;
     settings.layout = {kPhotons, 2};
     ProgressiveEstimate estimate(std::move(camera_pass), settings,
-                                 [pixels](uint64_t, const std::shared_ptr<const PixelHitPoints>&,
-                                          const std::shared_ptr<const std::vector<float>>&) {
+                                 [pixels](uint64_t, const std::shared_ptr<const PixelHitPoints>&) {
                                      CameraPassResult pass;
                                      pass.emission = Image(pixels, 1);
                                      pass.coverage.assign(2 * pixels,

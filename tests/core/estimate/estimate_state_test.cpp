@@ -27,8 +27,8 @@ SurfaceExtent EdgeOf(uint64_t i) {
 // Each epoch's camera pass (a ppm estimate takes its emission and coverage, a stochastic one its
 // hit points too): every slot (pixel * 3 + sample of a 10x10 film) traced anew, a few black,
 // weights and emission changing with the epoch.
-CameraPassResult StochasticPass(uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed,
-                                const std::shared_ptr<const std::vector<float>>&) {
+CameraPassResult StochasticPass(uint64_t epoch,
+                                const std::shared_ptr<const PixelHitPoints>& fixed) {
     CameraPassResult pass;
     // ppm's: shares of the fixed hit points' pixels changing with the epoch.
     if (fixed)
@@ -155,7 +155,7 @@ std::unique_ptr<Estimate> MakeStochastic() {
     settings.initial_radius = 0.5;
     settings.samples_per_pixel = 3;
     settings.layout = {1000, 4};
-    return std::make_unique<ProgressiveEstimate>(StochasticPass(0, nullptr, nullptr), settings,
+    return std::make_unique<ProgressiveEstimate>(StochasticPass(0, nullptr), settings,
                                                  StochasticPass);
 }
 

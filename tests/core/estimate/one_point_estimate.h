@@ -31,8 +31,7 @@ inline ProgressiveEstimate OnePointEstimate(double alpha, bool balanced = false,
     settings.layout = layout;
     return ProgressiveEstimate(std::move(camera_pass), settings,
                                [emission = std::move(emission)](
-                                   uint64_t epoch, const std::shared_ptr<const PixelHitPoints>&,
-                                   const std::shared_ptr<const std::vector<float>>&) {
+                                   uint64_t epoch, const std::shared_ptr<const PixelHitPoints>&) {
                                    CameraPassResult pass;
                                    pass.emission = Image(1, 1);
                                    if (emission) pass.emission.pixels[0] = Rgb(emission(epoch));

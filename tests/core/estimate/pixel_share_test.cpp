@@ -34,8 +34,7 @@ ProgressiveEstimate TwoPointPixel(std::function<Rgb(uint64_t)> on_a,
     settings.layout = {kPhotons, 2};
     return ProgressiveEstimate(
         std::move(camera_pass), settings,
-        [on_a, on_b](uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed,
-                     const std::shared_ptr<const std::vector<float>>&) {
+        [on_a, on_b](uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed) {
             EXPECT_TRUE(fixed && fixed->points->size() == 2);
             CameraPassResult pass;
             pass.emission = Image(1, 1);
