@@ -21,23 +21,26 @@ constexpr uint32_t kFixedMagic = 0x50485046;  // "PFHP": the hit points kept apa
 // 7: whether alpha is balanced (EstimateSettings::balanced). 8: the bias estimate's counts
 // of the even batches (GatherCounts), and the epoch's counts in one array (EpochPhotons).
 // 9: ppm's fixed hit points' shares of their pixels (CameraPassResult::coverage). 10: how far
-// each hit point's surface reaches (SurfaceExtent), where probed.
+// each hit point's surface reaches (SurfaceExtent), where probed, with the hit points.
 constexpr uint32_t kVersion = 10;
 
 absl::Status Corrupt(const std::string& what) {
     return absl::DataLossError(absl::StrCat("estimate state: ", what));
 }
 
-// A ppm estimate's hit points as SaveFixed wrote them: `count` of them, all of `fixed`.
-absl::Status LoadFixedHitPoints(ByteReader& fixed, uint64_t count,
-                                std::vector<HitPoint>* hit_points) {
+// A ppm estimate's hit points as SaveFixed wrote them, with their surfaces' extents: `count`
+// of them (of the extents, `extents`), all of `fixed`.
+absl::Status LoadFixedHitPoints(ByteReader& fixed, uint64_t count, uint64_t extents,
+                                std::vector<HitPoint>* hit_points,
+                                std::vector<SurfaceExtent>* extent) {
     uint32_t magic = 0, version = 0;
     if (!fixed.Value(&magic) || magic != kFixedMagic)
         return Corrupt("its hit points kept apart are not hit points");
     if (!fixed.Value(&version) || version != kVersion)
         return Corrupt(absl::StrCat("its hit points kept apart are of format version ", version,
                                     "; this build reads version ", kVersion));
-    if (!ReadPacked(fixed, count, hit_points) || !fixed.AtEnd())
+    if (!ReadPacked(fixed, count, hit_points) || !ReadPacked(fixed, extents, extent) ||
+        !fixed.AtEnd())
         return Corrupt(absl::StrCat("its hit points kept apart are not its ", count));
     return absl::OkStatus();
 }
@@ -73,7 +76,8 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
          {epoch_photons_emitted_, epoch_photons_emitted_even_, epoch_nonfinite_discarded_})
         out.Value(value);
     std::vector<PackedArray> arrays;
-    if (hit_points_here) arrays.push_back(hit_points);
+    // The hit points and their surfaces' extents, or (ppm, kept apart) neither.
+    if (hit_points_here) arrays.push_back(hit_points), arrays.push_back(extent_);
     for (PackedArray array :
          {PackedArray(emission_sum_), PackedArray(emission_even_), PackedArray(direct_sum_),
           PackedArray(direct_even_), PackedArray(epoch_emission_.pixels),
@@ -82,7 +86,6 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
           PackedArray(epoch_flux_even_), PackedArray(coverage_sum_), PackedArray(coverage_even_),
           PackedArray(epoch_coverage_)})
         arrays.push_back(array);
-    arrays.push_back(extent_);
     WritePacked(out, arrays);
 }
 
@@ -90,8 +93,8 @@ bool ProgressiveEstimate::SaveFixed(ByteWriter& out) const {
     if (settings_.stochastic) return false;
     out.Value(kFixedMagic);
     out.Value(kVersion);
-    const PackedArray hit_points[] = {*by_pixel_->points};
-    WritePacked(out, hit_points);
+    const PackedArray fixed[] = {*by_pixel_->points, extent_};
+    WritePacked(out, fixed);
     return true;
 }
 
@@ -157,9 +160,12 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
         return Corrupt("hit points given apart to a state that holds its own");
     if (hit_points_here == 0 && fixed == nullptr)
         return Corrupt("its hit points are kept apart (SaveFixed) and were not given");
+    const uint64_t extents = probed != 0 ? n : 0;
     if (hit_points_here != 0) {
         if (!ReadPacked(in, n, hit_points.get())) return Corrupt("hit points");
-    } else if (absl::Status status = LoadFixedHitPoints(*fixed, n, hit_points.get());
+        if (!ReadPacked(in, extents, &e.extent_)) return Corrupt("surface extents");
+    } else if (absl::Status status =
+                   LoadFixedHitPoints(*fixed, n, extents, hit_points.get(), &e.extent_);
                !status.ok()) {
         return status;
     }
@@ -190,8 +196,7 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
           array(n, "hit point", &e.epoch_flux_even_, "epoch even flux"),
           array(covered, "fixed hit point", &e.coverage_sum_, "coverage"),
           array(covered, "fixed hit point", &e.coverage_even_, "even coverage"),
-          array(covered, "fixed hit point", &e.epoch_coverage_, "epoch coverage"),
-          array(probed != 0 ? n : 0, "hit point", &e.extent_, "surface extents")})
+          array(covered, "fixed hit point", &e.epoch_coverage_, "epoch coverage")})
         if (!status.ok()) return status;
     e.SetHitPoints(std::move(hit_points));
     return estimate;

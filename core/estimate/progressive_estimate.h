@@ -151,7 +151,7 @@ public:
     // not its own (estimate_state.cpp).
     using Estimate::Save;
     void Save(ByteWriter& out, FixedPart fixed) const override;
-    bool SaveFixed(ByteWriter& out) const override;  // a ppm estimate's hit points
+    bool SaveFixed(ByteWriter& out) const override;  // ppm's hit points and their extents
     static absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> Load(ByteReader& in,
                                                                      ByteReader* fixed = nullptr);
 

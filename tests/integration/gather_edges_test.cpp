@@ -13,6 +13,7 @@
 #include "core/scene/scene_loader.h"
 #include "embedded/local_render.h"
 #include "embree/embree_tracer.h"
+#include "tests/support/epoch_render.h"
 #include "tests/support/gltf_builder.h"
 
 namespace pf {
@@ -90,21 +91,11 @@ std::string ThinWallScene() {
 TEST(GatherEdges, NoLightLeaksUnderAThinWall) {
     constexpr int kSize = 24;
     const std::string scene = testing::WriteTextFile(ThinWallScene(), "thin-wall.pbrt");
-    const auto settings = [&](Integrator integrator, uint64_t epochs) {
-        RenderSettings s;
-        s.scene_path = scene;
-        s.threads = 2;
-        s.job.integrator = integrator;
-        s.job.width = s.job.height = kSize;
-        s.job.seed = 7;
-        s.job.epoch_budget = epochs;
-        return s;
-    };
-    RenderSettings path_settings = settings(Integrator::kPath, 128);
+    RenderSettings path_settings = testing::EpochRender(scene, Integrator::kPath, kSize, 7, 128);
     path_settings.job.samples_per_pixel = 16;
     const absl::StatusOr<RenderOutcome> path = RenderLocally(path_settings);
     ASSERT_TRUE(path.ok()) << path.status();
-    RenderSettings ppm_settings = settings(Integrator::kPpm, 32);
+    RenderSettings ppm_settings = testing::EpochRender(scene, Integrator::kPpm, kSize, 7, 32);
     ppm_settings.job.layout = {1u << 16, 4};
     const absl::StatusOr<RenderOutcome> ppm = RenderLocally(ppm_settings);
     ASSERT_TRUE(ppm.ok()) << ppm.status();

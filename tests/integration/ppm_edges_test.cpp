@@ -21,6 +21,7 @@
 
 #include "core/camera/camera_pass.h"
 #include "embedded/local_render.h"
+#include "tests/support/epoch_render.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/lit_scene.h"
 
@@ -42,13 +43,7 @@ std::string EdgesScene() {
 }
 
 RenderSettings Settings(const std::string& scene, Integrator integrator, uint64_t epochs) {
-    RenderSettings settings;
-    settings.scene_path = scene;
-    settings.threads = 2;
-    settings.job.integrator = integrator;
-    settings.job.width = settings.job.height = kSize;
-    settings.job.seed = 3;
-    settings.job.epoch_budget = epochs;
+    RenderSettings settings = testing::EpochRender(scene, integrator, kSize, 3, epochs);
     if (integrator == Integrator::kPpm) settings.job.layout = {1u << 12, 2};
     return settings;
 }
