@@ -165,8 +165,8 @@ private:
     std::vector<float> entry_x_, entry_y_, entry_z_, entry_radius_sq_;
     std::vector<uint32_t> entry_normal_;  // octahedral, read only for those within their radius
     std::vector<uint32_t> entry_index_;   // the hit point of each entry
-    // Per hit point, where its surface ends (Build's edges), read only for the photons that
-    // land on its surface within its sphere; empty where none was given.
+    // Per hit point, where its surface ends (Build's edges), read only for the photons within
+    // its sphere that face it; empty where none was given or every surface fills its disc.
     std::vector<uint64_t> edges_;
 };
 
