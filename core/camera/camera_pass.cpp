@@ -47,14 +47,14 @@ struct CameraPath {
 // Textures are filtered over the sample's share of the pixel's cone (the pixel's angle over
 // the square root of its samples, as pbrt-v4 scales its ray differentials).
 template <bool kSpecular, bool kTextures>
-Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const Ray& primary, uint32_t pixel,
-                      PixelFootprint pixel_width, PixelFootprint filter_width, int splits,
-                      int max_depth, Rng& rng, std::vector<HitPoint>& hit_points,
+Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const CameraRay& primary,
+                      uint32_t pixel, PixelFootprint pixel_width, PixelFootprint filter_width,
+                      int splits, int max_depth, Rng& rng, std::vector<HitPoint>& hit_points,
                       std::vector<float>& footprints) {
     Rgb emission(0.0f);
     CameraPath stack[kCameraSplits + 1];
     int pending = 0;
-    stack[pending++] = {primary, Rgb(1.0f), 0.0f, 0, splits};
+    stack[pending++] = {primary.ray, Rgb(primary.weight), 0.0f, 0, splits};
     while (pending > 0) {
         CameraPath path = stack[--pending];
         for (; path.depth < max_depth; ++path.depth) {
@@ -225,6 +225,7 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                                const CameraPassSettings& settings, const PixelHitPoints* fixed) {
     const int width = settings.width, height = settings.height, spp = settings.samples_per_pixel;
     const Film film{width, height, spp};
+    const FilterSampler filter(scene.camera.filter);
     // Textures are filtered over a sample's share of the pixel.
     const PixelFootprint pixel_width = scene.camera.Footprint(height);
     const float share = 1.0f / std::sqrt(static_cast<float>(settings.samples_per_pixel));
@@ -261,7 +262,7 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                     PixelSampler sampler = PixelSampler::InEpochSequence(
                         settings.seed, sample_stream, pixel, settings.epoch,
                         settings.first_sample + uint64_t(s));
-                    const Ray ray = PixelSampleRay(scene.camera, film, x, y, sampler);
+                    const CameraRay ray = PixelSampleRay(scene.camera, film, filter, x, y, sampler);
                     const size_t before = row_hit_points[y].size();
                     emission += trace(scene, tracer, ray, pixel, pixel_width, filter_width, splits,
                                       max_depth, rng, row_hit_points[y], row_footprints[y]);

@@ -1,8 +1,8 @@
 // Where a pixel's camera samples go, the same for every integrator: a pixel's samples, their
 // index counting over the whole run (in the even epochs, and apart in the odd: InEpoch), take
-// their point in the pixel, their point on the lens and any further stratified numbers from a
-// scrambled (0,2)-sequence of that pixel (core/shared/sobol.h), keyed by (seed, pixel, index)
-// alone. Every aligned run of 2^m of them is then stratified over the pixel and over the
+// their point under the pixel's filter, their point on the lens and any further stratified numbers
+// from a scrambled (0,2)-sequence of that pixel (core/shared/sobol.h), keyed by (seed, pixel,
+// index) alone. Every aligned run of 2^m of them is then stratified over the pixel and over the
 // lens, so a pixel's integral of a sharp edge converges at the rate of stratified sampling
 // across epochs, and an image is the same whoever traced which sample.
 #pragma once
@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/camera/pixel_filter.h"
 #include "core/geometry/ray.h"
 #include "core/math/point2.h"
 #include "core/sampling/rng.h"
@@ -67,16 +68,27 @@ private:
     uint64_t pair_ = 0;
 };
 
-// The camera ray of pixel (x, y) through the sampler's first pair (the point in the pixel)
-// and, only where the camera has a lens, its second (the point on the lens).
-inline Ray PixelSampleRay(const Camera& camera, const Film& film, int x, int y,
-                          PixelSampler& sampler) {
-    const Point2 offset = sampler.Next2D();
-    const float fx = (static_cast<float>(x) + offset.x) / static_cast<float>(film.width);
-    const float fy = (static_cast<float>(y) + offset.y) / static_cast<float>(film.height);
-    if (!camera.HasLens()) return camera.GenerateRay(fx, fy, film.Aspect());
+// A camera ray and the weight its radiance takes in its pixel's mean (the filter's sign where
+// it has negative lobes, else 1).
+struct CameraRay {
+    Ray ray;
+    float weight = 1.0f;
+};
+
+// The camera ray of pixel (x, y) through the sampler's first pair (its place under the
+// pixel's filter, around the pixel's centre) and, only where the camera has a lens, its second
+// (the point on the lens).
+inline CameraRay PixelSampleRay(const Camera& camera, const Film& film, const FilterSampler& filter,
+                                int x, int y, PixelSampler& sampler) {
+    const FilterSample place = filter.Sample(sampler.Next2D());
+    const float fx =
+        (static_cast<float>(x) + 0.5f + place.offset.x) / static_cast<float>(film.width);
+    const float fy =
+        (static_cast<float>(y) + 0.5f + place.offset.y) / static_cast<float>(film.height);
+    if (!camera.HasLens()) return {camera.GenerateRay(fx, fy, film.Aspect()), place.weight};
     const Point2 lens = sampler.Next2D();
-    return camera.GenerateRay(fx, fy, film.Aspect(), SampleUniformDisk(lens.x, lens.y));
+    return {camera.GenerateRay(fx, fy, film.Aspect(), SampleUniformDisk(lens.x, lens.y)),
+            place.weight};
 }
 
 }  // namespace pf

@@ -83,7 +83,7 @@ Rgbd ProgressiveEstimate::Share(size_t i, const std::vector<Rgbd>& coverage, dou
     const Rgb& weight = HitPoints()[i].weight;
     Rgbd share(0.0);
     for (int c = 0; c < 3; ++c)
-        if (weight[c] > 0) share[c] = coverage[i][c] / (samples * double(weight[c]));
+        if (weight[c] != 0) share[c] = coverage[i][c] / (samples * double(weight[c]));
     return share;
 }
 

@@ -25,6 +25,7 @@ std::vector<BatchResult> RunPixelBatches(const Camera& camera, const Film& film,
                                          const RadianceFunction& radiance) {
     std::vector<BatchResult> results(specs.size());
     const float inverse_spp = 1.0f / static_cast<float>(film.samples_per_pixel);
+    const FilterSampler filter(camera.filter);
     for (size_t b = 0; b < specs.size(); ++b) {
         const BatchSpec& spec = specs[b];
         PF_CHECK(spec.sample_begin <= spec.sample_end && spec.sample_end <= film.Pixels());
@@ -44,8 +45,9 @@ std::vector<BatchResult> RunPixelBatches(const Camera& camera, const Film& film,
                     for (int s = 0; s < film.samples_per_pixel; ++s) {
                         PixelSampler sampler = PixelSampler::InEpoch(
                             seed, kPixelSampleStream, pixel, spec.epoch, film.samples_per_pixel, s);
-                        const Rgb sample =
-                            radiance(PixelSampleRay(camera, film, x, y, sampler), rng);
+                        const CameraRay camera_ray =
+                            PixelSampleRay(camera, film, filter, x, y, sampler);
+                        const Rgb sample = radiance(camera_ray.ray, rng) * camera_ray.weight;
                         if (IsFinite(sample))
                             sum += sample;
                         else

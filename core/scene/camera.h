@@ -26,6 +26,21 @@ struct ScreenWindow {
     bool Given() const { return x_min < x_max && y_min < y_max; }
 };
 
+// How a pixel weighs the film around it (pbrt-v4's PixelFilter): a separable f(x) f(y) over
+// [-radius, radius] pixels from the pixel's centre. Each camera sample is placed by sampling the
+// filter (filter importance sampling, as pbrt-v4 does), so a pixel is the mean of its samples:
+// box, triangle and Gaussian give every sample weight 1; Mitchell's and the windowed sinc's
+// negative lobes give theirs a sign (core/camera/pixel_filter.h).
+enum class FilterKind : uint32_t { kBox, kTriangle, kGaussian, kMitchell, kSinc };
+
+struct PixelFilter {
+    FilterKind kind = FilterKind::kBox;
+    float radius_x = 0.5f, radius_y = 0.5f;  // pixels
+    float sigma = 0.5f;                      // Gaussian: standard deviation, pixels
+    float b = 1.0f / 3, c = 1.0f / 3;        // Mitchell-Netravali's B and C
+    float tau = 3.0f;                        // windowed sinc: lobes of the Lanczos window
+};
+
 // How wide a pixel is where a camera path meets a surface `length` along it: base + length x
 // angle (world units).
 struct PixelFootprint {
@@ -46,6 +61,9 @@ struct Camera {
     // Spherical: pbrt's "equalarea" mapping (1), else "equirectangular" (0). Not a bool: the
     // camera is written byte for byte into prepared scenes, and must have no padding.
     uint32_t equal_area = 1;
+    // Each pixel's filter: pbrt's PixelFilter (its Gaussian where a pbrt file names none), a
+    // box of one pixel for glTF.
+    PixelFilter filter;
 
     bool HasLens() const { return lens_radius > 0 && projection == Projection::kPerspective; }
 
@@ -98,7 +116,18 @@ private:
     Vec3 SphericalDirection(float x, float y) const {
         Vec3 d;  // camera space, pbrt's before its y-z swap
         if (equal_area) {
-            // Wrapped into the square as pbrt's WrapEqualAreaSquare does for (x, y) in [0, 1).
+            // A filter's samples reach past the film's border: folded back into the square as
+            // pbrt's WrapEqualAreaSquare does, where the sphere continues.
+            if (x < 0) {
+                x = -x, y = 1 - y;
+            } else if (x > 1) {
+                x = 2 - x, y = 1 - y;
+            }
+            if (y < 0) {
+                x = 1 - x, y = -y;
+            } else if (y > 1) {
+                x = 1 - x, y = 2 - y;
+            }
             d = gpu::EqualAreaSquareToSphere(Point2{x, y});
         } else {
             const float theta = 3.14159265f * y, phi = 2.0f * 3.14159265f * x;

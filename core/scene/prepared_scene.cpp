@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "core/camera/pixel_filter.h"
 #include "core/scene/texture_filter.h"
 #include "core/shared/coat.h"
 #include "core/util/byte_stream.h"
@@ -28,7 +29,8 @@ constexpr uint64_t kMaxCount = uint64_t{1} << 32;
 // Types written whole must have no padding: their size is the sum of their fields'.
 static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
 static_assert(sizeof(Material) == 200, "Material gained a field or padding: encode it");
-static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4,
+static_assert(sizeof(PixelFilter) == 4 + 6 * 4);
+static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4 + sizeof(PixelFilter),
               "Camera gained a field or padding: encode it");
 static_assert(sizeof(Prototype) == 8 + 24 && sizeof(Instance) == 4 + 21 * 4);
 static_assert(sizeof(Bounds) == 24 && sizeof(SceneRenderHints) == 16);
@@ -428,6 +430,8 @@ absl::Status CheckLightsAndCamera(const Scene& scene) {
         !Finite(camera.window.y_min) || !Finite(camera.window.y_max) ||
         !Finite(camera.lens_radius) || !Finite(camera.focal_distance))
         return Invalid("camera not finite");
+    if (const std::optional<std::string> problem = FilterProblem(camera.filter))
+        return Invalid(absl::StrCat("the camera's pixel filter: ", *problem));
     if (!Finite(scene.bounds.lower) || !Finite(scene.bounds.upper))
         return Invalid("bounds not finite");
     if (scene.hints.width < 0 || scene.hints.height < 0 ||

@@ -19,8 +19,8 @@
 namespace pf {
 
 // 2: the environment light; 8: its portal; 9: coated materials and cut-outs; 10: Fresnel-mix
-// coats, roughness and mix textures; 16: sheen, transmittance textures.
-inline constexpr uint32_t kPreparedSceneVersion = 16;
+// coats, roughness and mix textures; 16: sheen, transmittance textures; 17: the pixel filter.
+inline constexpr uint32_t kPreparedSceneVersion = 17;
 
 // Normals go only where a triangle is smooth, texture coordinates only where a material has a
 // texture, textures only where a material reads them (others stay as empty placeholders, so

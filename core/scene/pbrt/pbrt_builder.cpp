@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <map>
 #include <set>
 
 #include "absl/strings/str_cat.h"
+#include "core/camera/pixel_filter.h"
 #include "core/film/color_space.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/loop_subdivision.h"
@@ -133,6 +135,7 @@ absl::Status PbrtSceneBuilder::FinishCamera() {
         out.window = {static_cast<float>(window[0] * sx), static_cast<float>(window[1] * sx),
                       static_cast<float>(window[2] * sy), static_cast<float>(window[3] * sy)};
     }
+    out.filter = pixel_filter_;
     out.lens_radius = static_cast<float>(camera.lens_radius);
     out.focal_distance = static_cast<float>(camera.focal_distance);
     scene_.hints.width = film_width_;
@@ -170,6 +173,40 @@ absl::Status PbrtSceneBuilder::Film(ParameterList& parameters, const Location& w
         return ErrorAt(where,
                        "Film: \"whitebalance\" must be 0 (none) or a temperature in [4000, "
                        "25000] K (the CIE daylight locus)");
+    return absl::OkStatus();
+}
+
+absl::Status PbrtSceneBuilder::PixelFilter(const std::string& type, ParameterList& parameters,
+                                           const Location& where) {
+    // pbrt-v4's filters and their default radii and parameters.
+    static const std::map<std::string, std::pair<FilterKind, float>> kFilters = {
+        {"box", {FilterKind::kBox, 0.5f}},
+        {"triangle", {FilterKind::kTriangle, 2.0f}},
+        {"gaussian", {FilterKind::kGaussian, 1.5f}},
+        {"mitchell", {FilterKind::kMitchell, 2.0f}},
+        {"sinc", {FilterKind::kSinc, 4.0f}}};
+    const auto known = kFilters.find(type);
+    if (known == kFilters.end())
+        return ErrorAt(where, absl::StrCat("PixelFilter \"", type,
+                                           "\": not a filter (box, triangle, gaussian, mitchell, "
+                                           "sinc)"));
+    pf::PixelFilter filter;
+    filter.kind = known->second.first;
+    filter.radius_x = static_cast<float>(parameters.Float("xradius", known->second.second));
+    filter.radius_y = static_cast<float>(parameters.Float("yradius", known->second.second));
+    if (filter.kind == FilterKind::kGaussian)
+        filter.sigma = static_cast<float>(parameters.Float("sigma", 0.5));
+    if (filter.kind == FilterKind::kMitchell) {
+        filter.b = static_cast<float>(parameters.Float("B", 1.0 / 3));
+        filter.c = static_cast<float>(parameters.Float("C", 1.0 / 3));
+    }
+    if (filter.kind == FilterKind::kSinc)
+        filter.tau = static_cast<float>(parameters.Float("tau", 3.0));
+    if (const std::optional<std::string> problem = FilterProblem(filter))
+        return ErrorAt(where, absl::StrCat("PixelFilter \"", type, "\": ", *problem));
+    if (camera_finished_)
+        return ErrorAt(where, "PixelFilter: must come before WorldBegin, as the camera's options");
+    pixel_filter_ = filter;
     return absl::OkStatus();
 }
 

@@ -272,10 +272,10 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, TokenStrea
         status = Film(*parameters, where);
     } else if (name == "Sampler") {
         status = Sampler(*type, *parameters, where);
-    } else if (name == "PixelFilter" || name == "Accelerator") {
+    } else if (name == "PixelFilter") {
+        status = PixelFilter(*type, *parameters, where);
+    } else if (name == "Accelerator") {
         parameters->ConsumeAll();
-        if (name != "Accelerator")
-            Warn(where, "PixelFilter: photonfarm averages each pixel's hit points (a box filter)");
     } else if (name == "Integrator") {
         status = Integrator(*type, *parameters, where);
     } else if (name == "Shape") {

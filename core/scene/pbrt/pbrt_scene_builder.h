@@ -129,6 +129,8 @@ private:
     // Directives.
     absl::Status Camera(const std::string& type, ParameterList& parameters, const Location& where);
     absl::Status Film(ParameterList& parameters, const Location& where);
+    absl::Status PixelFilter(const std::string& type, ParameterList& parameters,
+                             const Location& where);
     absl::Status Integrator(const std::string& type, ParameterList& parameters,
                             const Location& where);
     absl::Status Sampler(const std::string& type, ParameterList& parameters, const Location& where);
@@ -233,6 +235,8 @@ private:
     bool in_world_ = false, transform_at_start_ = true, camera_finished_ = false;
     int film_width_ = 1280, film_height_ = 720;
     double film_iso_ = 100, film_white_balance_ = 0;  // pbrt-v4's PixelSensor parameters
+    // pbrt-v4's default: a Gaussian of radius 1.5 pixels and sigma 0.5.
+    pf::PixelFilter pixel_filter_{FilterKind::kGaussian, 1.5f, 1.5f, 0.5f};
 
     std::vector<MaterialRef> materials_;
     std::map<std::string, int> named_materials_;

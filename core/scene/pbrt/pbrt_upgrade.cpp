@@ -2,6 +2,7 @@
 #include "core/scene/pbrt/pbrt_upgrade.h"
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -326,6 +327,27 @@ absl::Status UpgradeDirective(const std::string& directive, std::string* type,
             Changed(result, "the Film's \"scale\" is pbrt-v4's \"iso\" (100 x scale)");
         }
         parameters->Rename("maxsampleluminance", "maxcomponentvalue");
+    }
+    if (directive == "PixelFilter") {  // pbrt-v3's widths are radii; its Gaussian took alpha
+        for (const auto& [v3, v4] : {std::pair{"xwidth", "xradius"}, {"ywidth", "yradius"}})
+            if (parameters->Find(v3) != nullptr) {
+                parameters->Rename(v3, v4);
+                Changed(result, absl::StrCat("PixelFilter \"", v3, "\" is pbrt-v4's \"", v4, "\""));
+            }
+        if (Parameter* alpha = parameters->Find("alpha"); alpha != nullptr && *type == "gaussian" &&
+                                                          alpha->type == "float" &&
+                                                          alpha->numbers.size() == 1) {
+            if (!(alpha->numbers[0] > 0))
+                return Refused("PixelFilter \"gaussian\": \"alpha\" must be positive");
+            alpha->name = "sigma";
+            alpha->numbers[0] = 1 / std::sqrt(2 * alpha->numbers[0]);
+            Changed(result,
+                    "the Gaussian filter's \"alpha\" is pbrt-v4's \"sigma\" (1 / sqrt(2 alpha))");
+        }
+        if (parameters->Find("supersample") != nullptr) {  // pbrt-v3's Mitchell option
+            parameters->Remove("supersample");
+            Changed(result, "PixelFilter \"supersample\" is gone in pbrt-v4");
+        }
     }
     if (directive == "Sampler") {
         const std::string v3 = *type;

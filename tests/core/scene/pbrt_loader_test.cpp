@@ -347,7 +347,57 @@ TEST(PbrtLoaderTest, UnsupportedThingsWarnAtTheirLocation) {
     EXPECT_TRUE(
         Contains(warnings, "scenes/scene.pbrt:8:1: warning: Shape \"curve\" is not supported"));
     EXPECT_TRUE(Contains(warnings, "MakeNamedMedium"));
-    EXPECT_TRUE(Contains(warnings, "scenes/scene.pbrt:1:1: warning: PixelFilter"));
+    EXPECT_FALSE(Contains(warnings, "PixelFilter")) << "the filter is the camera's";
+}
+
+TEST(PbrtLoaderTest, PixelFilterIsTheCamerasWithPbrtsDefaults) {
+    const auto with = [](const std::string& filter) {
+        SceneBundle bundle = Bundle(kQuad);
+        bundle.files["scene.pbrt"] = filter + "\n" + bundle.files["scene.pbrt"];
+        return Load(bundle);
+    };
+    // None given: pbrt-v4's Gaussian, radius 1.5 and sigma 0.5.
+    const absl::StatusOr<Scene> plain = Load(Bundle(kQuad));
+    ASSERT_TRUE(plain.ok()) << plain.status();
+    EXPECT_EQ(plain->camera.filter.kind, FilterKind::kGaussian);
+    EXPECT_EQ(plain->camera.filter.radius_x, 1.5f);
+    EXPECT_EQ(plain->camera.filter.sigma, 0.5f);
+    const absl::StatusOr<Scene> triangle = with("PixelFilter \"triangle\"");
+    ASSERT_TRUE(triangle.ok()) << triangle.status();
+    EXPECT_EQ(triangle->camera.filter.kind, FilterKind::kTriangle);
+    EXPECT_EQ(triangle->camera.filter.radius_y, 2.0f);
+    const absl::StatusOr<Scene> mitchell =
+        with("PixelFilter \"mitchell\" \"float xradius\" 1 \"float B\" 0.5 \"float C\" 0.25");
+    ASSERT_TRUE(mitchell.ok()) << mitchell.status();
+    EXPECT_EQ(mitchell->camera.filter.kind, FilterKind::kMitchell);
+    EXPECT_EQ(mitchell->camera.filter.radius_x, 1.0f);
+    EXPECT_EQ(mitchell->camera.filter.radius_y, 2.0f);
+    EXPECT_EQ(mitchell->camera.filter.b, 0.5f);
+    EXPECT_EQ(mitchell->camera.filter.c, 0.25f);
+    const absl::StatusOr<Scene> sinc = with("PixelFilter \"sinc\" \"float tau\" 2");
+    ASSERT_TRUE(sinc.ok()) << sinc.status();
+    EXPECT_EQ(sinc->camera.filter.radius_x, 4.0f);
+    EXPECT_EQ(sinc->camera.filter.tau, 2.0f);
+    // pbrt-v3's form: widths that are radii, and the Gaussian's alpha (sigma = 1 / sqrt(2 alpha)).
+    std::vector<std::string> warnings;
+    SceneBundle v3 = Bundle(kQuad);
+    v3.files["scene.pbrt"] =
+        "PixelFilter \"gaussian\" \"float xwidth\" 2 \"float ywidth\" 1 \"float alpha\" 2\n" +
+        v3.files["scene.pbrt"];
+    const absl::StatusOr<Scene> old = Load(v3, &warnings);
+    ASSERT_TRUE(old.ok()) << old.status();
+    EXPECT_EQ(old->camera.filter.radius_x, 2.0f);
+    EXPECT_EQ(old->camera.filter.radius_y, 1.0f);
+    EXPECT_FLOAT_EQ(old->camera.filter.sigma, 0.5f);
+    EXPECT_TRUE(Contains(warnings, "read as a pbrt-v3 file"));
+    // Refused, naming the place.
+    ExpectError(with("PixelFilter \"lanczos\""),
+                "scenes/scene.pbrt:1:1: PixelFilter \"lanczos\": not a filter");
+    ExpectError(with("PixelFilter \"box\" \"float xradius\" 0"),
+                "scenes/scene.pbrt:1:1: PixelFilter \"box\": radius 0");
+    ExpectError(with("PixelFilter \"gaussian\" \"float alpha\" -1"), "\"alpha\" must be positive");
+    ExpectError(Load(Bundle("PixelFilter \"box\"\n" + std::string(kQuad))),
+                "PixelFilter: must come before WorldBegin");
 }
 
 TEST(PbrtLoaderTest, BadInputIsAOneLineErrorNamingFileLineAndColumn) {
