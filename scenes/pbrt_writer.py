@@ -145,6 +145,8 @@ class PbrtWriter:
                                                       math.degrees(2 * math.atan(math.tan(math.radians(yfov_degrees) / 2) * aspect))),
             'Film "rgb" "integer xresolution" 512 "integer yresolution" %d' % round(512 / aspect),
         ]
+        if self.gltf_twin:  # glTF knows no pixel filter: both forms average each pixel's samples
+            self.header.append('PixelFilter "box"')
 
     def light(self, *args, **kwargs):
         raise NotImplementedError("punctual lights are written to glTF scenes only")

@@ -10,12 +10,12 @@
 #include <cmath>
 #include <cstdint>
 
-#include "core/camera/pixel_filter.h"
 #include "core/geometry/ray.h"
 #include "core/math/point2.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/camera.h"
+#include "core/scene/pixel_filter.h"
 #include "core/shared/sobol.h"
 
 namespace pf {

@@ -30,7 +30,7 @@ struct ScreenWindow {
 // [-radius, radius] pixels from the pixel's centre. Each camera sample is placed by sampling the
 // filter (filter importance sampling, as pbrt-v4 does), so a pixel is the mean of its samples:
 // box, triangle and Gaussian give every sample weight 1; Mitchell's and the windowed sinc's
-// negative lobes give theirs a sign (core/camera/pixel_filter.h).
+// negative lobes give theirs a sign (core/scene/pixel_filter.h).
 enum class FilterKind : uint32_t { kBox, kTriangle, kGaussian, kMitchell, kSinc };
 
 struct PixelFilter {

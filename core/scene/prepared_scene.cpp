@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
-#include "core/camera/pixel_filter.h"
+#include "core/scene/pixel_filter.h"
 #include "core/scene/texture_filter.h"
 #include "core/shared/coat.h"
 #include "core/util/byte_stream.h"

@@ -212,11 +212,13 @@ double CoatedAlbedo(double mu) {
                          (1 - kAlbedo * turned_back);
 }
 
-// The turned cube as a pbrt file under the sky, of the material `material` (its directives).
+// The turned cube as a pbrt file under the sky, of the material `material` (its directives); a
+// box pixel filter, as the expected images integrate each pixel's square.
 std::string CubePbrt(const std::string& material) {
     std::string text = absl::StrFormat(
         "LookAt 0 0 2.6  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 45\n"
-        "Film \"rgb\" \"integer xresolution\" %d \"integer yresolution\" %d\nWorldBegin\n"
+        "Film \"rgb\" \"integer xresolution\" %d \"integer yresolution\" %d\n"
+        "PixelFilter \"box\"\nWorldBegin\n"
         "LightSource \"infinite\" \"rgb L\" [%g %g %g]\n",
         kSize, kSize, kSky.x, kSky.y, kSky.z);
     text += material + "Shape \"trianglemesh\" \"point3 P\" [";

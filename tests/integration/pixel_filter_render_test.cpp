@@ -10,7 +10,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/camera/pixel_filter.h"
+#include "core/scene/pixel_filter.h"
 #include "embedded/local_render.h"
 #include "tests/support/epoch_render.h"
 #include "tests/support/gltf_builder.h"

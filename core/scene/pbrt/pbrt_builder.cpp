@@ -8,12 +8,12 @@
 #include <set>
 
 #include "absl/strings/str_cat.h"
-#include "core/camera/pixel_filter.h"
 #include "core/film/color_space.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/loop_subdivision.h"
 #include "core/scene/pbrt/pbrt_scene_builder.h"
 #include "core/scene/pbrt/pbrt_shapes.h"
+#include "core/scene/pixel_filter.h"
 #include "core/scene/ply_reader.h"
 
 namespace pf::pbrt {

@@ -95,6 +95,15 @@ TEST(CameraTest, SphericalCamerasSeeEveryDirectionAsPbrtMapsThem) {
     EXPECT_TRUE(near(camera.GenerateRay(0.5f, 0.5f, 1).direction, Vec3(0, 1, 0)));
     EXPECT_TRUE(near(camera.GenerateRay(0.0f, 0.0f, 1).direction, Vec3(0, -1, 0)));
     EXPECT_EQ(camera.GenerateRay(0.7f, 0.2f, 1).origin, Vec3(0, 0, 0));
+    // A pixel filter's samples reach past the film's border: folded back as pbrt's
+    // WrapEqualAreaSquare folds them, where the sphere continues across the square's edge.
+    EXPECT_TRUE(near(camera.GenerateRay(-0.05f, 0.3f, 1).direction,
+                     camera.GenerateRay(0.05f, 0.7f, 1).direction));
+    EXPECT_TRUE(near(camera.GenerateRay(0.2f, 1.04f, 1).direction,
+                     camera.GenerateRay(0.8f, 0.96f, 1).direction));
+    EXPECT_TRUE(near(camera.GenerateRay(-0.01f, 0.5f, 1).direction,
+                     camera.GenerateRay(0.01f, 0.5f, 1).direction))
+        << "the square's edge is a seam of the sphere";
 }
 
 }  // namespace

@@ -1,10 +1,10 @@
-// Where a pixel's filter puts its camera samples (core/camera/pixel_filter.h): for each of
+// Where a pixel's filter puts its camera samples (core/scene/pixel_filter.h): for each of
 // pbrt-v4's filters, the samples' weighted density over the pixel's neighbourhood is the
 // filter's own, normalised -- each strip's share of the weights against the filter's integral
 // over the strip, integrated by Simpson's rule from the formulas written out here; positive
 // filters give every sample weight 1, Mitchell's outer lobes negative weights; bad parameters
 // are refused.
-#include "core/camera/pixel_filter.h"
+#include "core/scene/pixel_filter.h"
 
 #include <gtest/gtest.h>
 

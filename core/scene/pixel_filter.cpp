@@ -1,4 +1,4 @@
-#include "core/camera/pixel_filter.h"
+#include "core/scene/pixel_filter.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +13,9 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxRadius = 16;  // pixels: wider filters blur more than any scene asks
 constexpr int kBinsPerPixel = 64;  // tabulated filters: bins per pixel of radius
 constexpr double kSolveTolerance = 1e-9;
+constexpr double kNewtonClose = 1e-5;
+constexpr int kGaussianTable = 256;  // intervals of u the Gaussian's inverse is tabulated at
+constexpr int kNewtonIntervals = 2;  // at each end, where the spline would not do
 
 double Gaussian(double x, double sigma) {
     return std::exp(-x * x / (2 * sigma * sigma)) / (sigma * std::sqrt(2 * kPi));
@@ -96,6 +99,7 @@ FilterSampler::Axis FilterSampler::MakeAxis(const PixelFilter& filter, double ra
     axis.radius = radius;
     if (filter.kind == FilterKind::kGaussian) {
         axis.gaussian_floor = Gaussian(radius, filter.sigma);
+        axis.gaussian_base = GaussianCdf(-radius, filter.sigma);
         axis.gaussian_total = GaussianCdf(radius, filter.sigma) -
                               GaussianCdf(-radius, filter.sigma) - 2 * radius * axis.gaussian_floor;
     }
@@ -120,11 +124,48 @@ FilterSampler::Axis FilterSampler::MakeAxis(const PixelFilter& filter, double ra
     return axis;
 }
 
+double FilterSampler::SolveGaussian(const Axis& axis, double u, double lo, double hi,
+                                    double x) const {
+    // CDF(x) = u for the density g(x) - g(r): Newton's steps kept inside the bracket that
+    // bisection keeps. A step under kNewtonClose of the radius leaves an error near its square.
+    const double sigma = filter_.sigma, r = axis.radius;
+    for (int step = 0; step < 64; ++step) {
+        const double cdf =
+            (GaussianCdf(x, sigma) - axis.gaussian_base - axis.gaussian_floor * (x + r)) /
+            axis.gaussian_total;
+        if (cdf < u)
+            lo = x;
+        else
+            hi = x;
+        const double density = (Gaussian(x, sigma) - axis.gaussian_floor) / axis.gaussian_total;
+        double next = density > 0 ? x - (cdf - u) / density : 0.5 * (lo + hi);
+        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        const bool done = std::abs(next - x) <= kNewtonClose * r;
+        x = next;
+        if (done || hi - lo <= kSolveTolerance * r) break;
+    }
+    return x;
+}
+
 FilterSampler::FilterSampler(const PixelFilter& filter)
     : filter_(filter),
       x_(MakeAxis(filter, filter.radius_x)),
       y_(MakeAxis(filter, filter.radius_y)) {
     PF_CHECK(!FilterProblem(filter));
+    if (filter.kind != FilterKind::kGaussian) return;
+    for (Axis* axis : {&x_, &y_}) {
+        const double r = axis->radius;
+        axis->inverse.assign(kGaussianTable + 1, 0.0);
+        axis->inverse[0] = -r, axis->inverse[kGaussianTable] = r;
+        for (int i = 1; i < kGaussianTable; ++i) {
+            const double u = double(i) / kGaussianTable;
+            axis->inverse[i] = SolveGaussian(*axis, u, axis->inverse[i - 1], r, (2 * u - 1) * r);
+        }
+        axis->slope.assign(kGaussianTable + 1, 0.0);  // dx/du; the ends' (infinite) unused
+        for (int i = 1; i < kGaussianTable; ++i)
+            axis->slope[i] = axis->gaussian_total /
+                             (Gaussian(axis->inverse[i], filter.sigma) - axis->gaussian_floor);
+    }
 }
 
 double FilterSampler::SampleAxis(const Axis& axis, double u, float* weight) const {
@@ -135,27 +176,19 @@ double FilterSampler::SampleAxis(const Axis& axis, double u, float* weight) cons
         case FilterKind::kTriangle:
             return u < 0.5 ? r * (std::sqrt(2 * u) - 1) : r * (1 - std::sqrt(2 * (1 - u)));
         case FilterKind::kGaussian: {
-            // Solve CDF(x) = u for the density g(x) - g(r): Newton's steps kept inside the
-            // bracket that bisection keeps.
-            const double sigma = filter_.sigma;
-            const double base = GaussianCdf(-r, sigma);
-            double lo = -r, hi = r, x = (2 * u - 1) * r * 0.5;
-            for (int step = 0; step < 64; ++step) {
-                const double cdf = (GaussianCdf(x, sigma) - base - axis.gaussian_floor * (x + r)) /
-                                   axis.gaussian_total;
-                if (cdf < u)
-                    lo = x;
-                else
-                    hi = x;
-                const double density =
-                    (Gaussian(x, sigma) - axis.gaussian_floor) / axis.gaussian_total;
-                double next = density > 0 ? x - (cdf - u) / density : 0.5 * (lo + hi);
-                if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-                const bool done = std::abs(next - x) <= kSolveTolerance * r;
-                x = next;
-                if (done) break;
-            }
-            return x;
+            // The inverse CDF between the table's nodes: a cubic Hermite spline through their
+            // x and dx/du = 1 / density (error of order h^4); in the outer intervals, where the
+            // density falls to zero and x(u) turns like a square root, Newton's steps.
+            const int last = static_cast<int>(axis.inverse.size()) - 1;
+            const double at = u * last;
+            const int i = std::clamp(static_cast<int>(at), 0, last - 1);
+            const double* x = axis.inverse.data() + i;
+            if (i < kNewtonIntervals || i >= last - kNewtonIntervals)
+                return SolveGaussian(axis, u, x[0], x[1], x[0] + (x[1] - x[0]) * (at - i));
+            const double t = at - i, t2 = t * t, t3 = t2 * t, h = 1.0 / last;
+            const double* slope = axis.slope.data() + i;
+            return (2 * t3 - 3 * t2 + 1) * x[0] + (t3 - 2 * t2 + t) * h * slope[0] +
+                   (-2 * t3 + 3 * t2) * x[1] + (t3 - t2) * h * slope[1];
         }
         case FilterKind::kMitchell:
         case FilterKind::kSinc: {

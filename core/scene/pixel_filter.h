@@ -43,13 +43,16 @@ private:
     // equal bins of [-radius, radius] with each bin's sign.
     struct Axis {
         double radius = 0.5;
-        // Gaussian: the normalisation of g(x) - g(radius), and g(radius).
-        double gaussian_total = 0, gaussian_floor = 0;
-        std::vector<double> cdf;  // bins + 1 entries, 0 to 1
+        // Gaussian: the normalisation of g(x) - g(radius), g(radius), and the Gaussian's
+        // integral below -radius.
+        double gaussian_total = 0, gaussian_floor = 0, gaussian_base = 0;
+        std::vector<double> inverse, slope;  // x and dx/du at u = i / (size - 1)
+        std::vector<double> cdf;             // bins + 1 entries, 0 to 1
         std::vector<float> sign;  // +1 or -1 per bin, times (integral |f|) / (integral f)
     };
     static Axis MakeAxis(const PixelFilter& filter, double radius);
     double SampleAxis(const Axis& axis, double u, float* weight) const;
+    double SolveGaussian(const Axis& axis, double u, double lo, double hi, double x) const;
 
     PixelFilter filter_;
     Axis x_, y_;
