@@ -2,9 +2,11 @@
 // a sample's offset from the pixel's centre is drawn with density |f| (each axis on its own,
 // the filters being separable) from the pixel's stratified numbers, so the pixel is the plain
 // mean of its samples times their weights f / |f| x (integral of |f|) / (integral of f): 1
-// wherever f is positive. Box, triangle and Gaussian are inverted exactly (every sample weight
-// 1); Mitchell's and the windowed sinc's densities are tabulated, piecewise constant, as pbrt-v4
-// tabulates every filter, their negative lobes giving negative weights.
+// wherever f is positive. Box and triangle are inverted in closed form, the truncated Gaussian
+// by a cubic spline through its inverse CDF solved at 257 points (Newton's steps at the ends),
+// every sample weighing 1; Mitchell's and the windowed sinc's densities are tabulated,
+// piecewise constant, as pbrt-v4 tabulates every filter, their negative lobes giving negative
+// weights.
 #pragma once
 
 #include <optional>

@@ -338,7 +338,7 @@ absl::Status UpgradeDirective(const std::string& directive, std::string* type,
                                                           alpha->type == "float" &&
                                                           alpha->numbers.size() == 1) {
             if (!(alpha->numbers[0] > 0))
-                return Refused("PixelFilter \"gaussian\": \"alpha\" must be positive");
+                return Refused("the Gaussian's \"alpha\" must be positive");
             alpha->name = "sigma";
             alpha->numbers[0] = 1 / std::sqrt(2 * alpha->numbers[0]);
             Changed(result,
