@@ -5,13 +5,13 @@
 #  - The reference: the path tracer for REF_SECONDS with a seed of its own; for caustic-glass,
 #    whose small light the path tracer finds through the glass only by chance, stochastic
 #    progressive photon mapping; for the furnaces the exact image L = 2.
-#  - path, ppm and sppm: one render of SECONDS each; their convergence logs (every epoch
+#  - path, ppm, sppm and rpm: one render of SECONDS each; their convergence logs (every epoch
 #    measured against the reference) are the curves.
 #  - pm: its error is fixed by its maps, so it runs once per map size (PM_SIZES photons per
 #    map, PM_EPOCHS epochs each); each run is one point.
 # Writes OUT/<scene>.png (log-log relative error against seconds, one curve per integrator),
 # OUT/<scene>.csv (integrator,photons,seconds,relative_error,peak_memory_mb per run),
-# OUT/table.md (the last point of every run) and OUT/ratios.md (for ppm and sppm, the time to
+# OUT/table.md (the last point of every run) and OUT/ratios.md (for ppm, sppm and rpm, the time to
 # the path tracer's error at a quarter of its run and at its end, over the path tracer's time:
 # below 1, faster than the path tracer; bench/time_to_error.awk), and prints both tables.
 # SCENES="a b" renders those scenes alone and keeps the other scenes' rows of OUT/table.md. A
@@ -86,7 +86,7 @@ for gltf in scenes/*.gltf; do
     csv="$out/$scene.csv"
     echo "integrator,photons,seconds,relative_error,peak_memory_mb" >"$csv"
     plots=()
-    for integrator in path ppm sppm; do
+    for integrator in path ppm sppm rpm; do
         read -r s e m p < <(render "$scene-$integrator" "$gltf" --integrator "$integrator" --seconds "$seconds" \
                                --reference "$reference")
         echo "$integrator,$p,$s,$e,$m" >>"$csv"
@@ -104,7 +104,7 @@ for gltf in scenes/*.gltf; do
             { s = $col["seconds"]; e = $col["reference_rel_error"] }
             !done && s >= at * seconds { print s, e; done = 1 }
             END { if (!done) print s, e }' "$path_curve")
-        for integrator in ppm sppm; do
+        for integrator in ppm sppm rpm; do
             t=$(awk -F, -v target="$path_e" -v column=reference_rel_error \
                 -f "$(dirname "$0")/time_to_error.awk" "$work/$scene-$integrator.curve.csv")
             if [[ $t == never ]]; then
@@ -136,7 +136,7 @@ set ylabel "relative error against the reference"
 set title "$scene, ${size}x${size}: error against run time"
 set grid
 set key top right
-plot ${plots[0]}, ${plots[1]}, ${plots[2]}, \\
+plot ${plots[0]}, ${plots[1]}, ${plots[2]}, ${plots[3]}, \\
      "$pm_points" using 1:2 with linespoints pt 7 lw 2 title "pm (one run per map size)", \\
      "$pm_points" using 1:2:3 with labels offset 0,1 notitle
 EOF

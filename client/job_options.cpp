@@ -48,22 +48,26 @@ void AddPhotonMapOptions(CLI::App* command, PhotonMapSettings* m) {
             "specular bounces are stored)")
         ->capture_default_str()
         ->transform(CountWithUnit(0, kMaxMapPhotons));
-    command->add_option("--pm-nearest", m->nearest, "pm: k, photons per density estimate")
+    command
+        ->add_option("--pm-nearest", m->nearest,
+                     "pm: k, photons per density estimate (rpm: its radii reach the k nearest "
+                     "of a --pm-photons global map)")
         ->capture_default_str()
         ->check(WholeNumber(1, kMaxNearestPhotons));
     command
-        ->add_option("--pm-max-radius", m->max_radius,
-                     "pm: largest radius of the nearest-photon search, world units (default: 2% of "
-                     "the scene's "
-                     "diagonal)")
+        ->add_option(
+            "--pm-max-radius", m->max_radius,
+            "pm, rpm: largest radius of the nearest-photon search, world units (default: 2% of "
+            "the scene's "
+            "diagonal)")
         ->check(FinitePositive());
     EnumChoices(command->add_option("--pm-filter", m->filter, "pm: density estimation filter")
                     ->default_str("cone"),
                 {"box", "cone", "gaussian"}, ParseDensityFilter);
     command
         ->add_option("--final-gather", m->final_gather,
-                     "pm: gather rays per camera sample for indirect light (0: read the global map "
-                     "directly)")
+                     "pm, rpm: gather rays per camera sample for indirect light (pm's 0: read the "
+                     "global map directly; rpm's 0: 4)")
         ->capture_default_str()
         ->check(WholeNumber(0, kMaxFinalGatherRays));
     EnumChoices(
@@ -110,7 +114,8 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
             ->add_option(
                 "--integrator", s->integrator,
                 "Light transport: ppm (progressive photon mapping), sppm (stochastic ppm), pm "
-                "(classic photon mapping, maps stored in memory), path (path tracing, the unbiased "
+                "(classic photon mapping, maps stored in memory), rpm (reverse photon mapping: "
+                "photons splatted into final-gather hits), path (path tracing, the unbiased "
                 "reference); docs/integrators.md")
             ->default_str("ppm"),
         IntegratorNames(), ParseIntegrator);
@@ -118,7 +123,7 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
         command
             ->add_option(
                 "--photons", s->photon_budget,
-                "Photon budget of ppm and sppm, e.g. 20M (finishes the epoch that reaches it; "
+                "Photon budget of ppm, sppm and rpm, e.g. 20M (finishes the epoch that reaches it; "
                 "default 20M)")
             ->transform(CountWithUnit(1, kMaxPhotonBudget));
     auto* epochs =
@@ -147,13 +152,14 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
         ->excludes(target_error);
     command
         ->add_option("--photons-per-batch", s->layout.photons_per_batch,
-                     "Photon paths per batch, the unit of work (default: ppm 524288; sppm one "
-                     "photon per camera sample of an epoch, in batches of 32768)")
+                     "Photon paths per batch, the unit of work (default: ppm 524288; sppm and "
+                     "rpm one photon per camera sample of an epoch, in batches of 32768)")
         ->check(WholeNumber(1, kMaxPhotonsPerBatch));
     command
         ->add_option("--batches-per-epoch", s->layout.batches_per_epoch,
                      "Batches per epoch; radii shrink once per epoch, and a farm runs at most this "
-                     "many batches at once (default: 8; sppm as many as its photons need)")
+                     "many batches at once (default: 8; sppm and rpm as many as their photons "
+                     "need)")
         ->check(WholeNumber(1, kMaxBatchesPerEpoch));
     command
         ->add_option("--first-epoch-photons", s->layout.first_epoch_photons,
@@ -163,7 +169,8 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
         ->transform(CountWithUnit(1, uint64_t{kMaxPhotonsPerBatch} * kMaxBatchesPerEpoch));
     EnumChoices(command
                     ->add_option("--photon-tracing", s->photon_tracing,
-                                 "ppm, sppm: independent photons, or Markov chains toward the "
+                                 "ppm, sppm, rpm (uniform only): independent photons, or Markov "
+                                 "chains toward the "
                                  "photons that reach what the camera sees (adaptive: for light "
                                  "through a gap, a caustic in an open scene); auto chooses "
                                  "adaptive where a pilot finds under 5% reach it")
@@ -184,8 +191,7 @@ void AddJobOptions(CLI::App* command, JobSpec* s) {
     command
         ->add_option("--spp", s->samples_per_pixel,
                      "Camera paths per pixel: hit points (ppm), hit points per epoch (sppm), "
-                     "samples per epoch "
-                     "(path, pm)")
+                     "samples per epoch (path, pm, rpm: each with its gather rays)")
         ->default_val(s->samples_per_pixel)
         ->check(WholeNumber(1, 1024));
     command

@@ -49,7 +49,8 @@ Job::Job(std::string id, PreparedJob prepared, Clock::time_point submitted)
                            : 0),
       item_count_(GathersAtHitPoints(prepared.estimate->Kind())
                       ? uint64_t(prepared.spec.width) * uint64_t(prepared.spec.height) *
-                            uint64_t(MaxEpochSamplesPerPixel(prepared.spec))
+                            uint64_t(MaxEpochSamplesPerPixel(prepared.spec)) *
+                            SlotsPerCameraSample(prepared.spec)
                       : prepared.estimate->ItemCount()),
       initial_radius_(prepared.estimate->InitialRadius()),
       scene_features_(std::move(prepared.scene_features)),
@@ -106,7 +107,8 @@ std::shared_ptr<const Blob> Job::FindBlob(const std::string& digest) const {
 void Job::StartEpochLocked(GatherRegions regions) {
     const uint64_t epoch = estimate_->Epoch();
     auto inputs = std::make_shared<EpochInputs>(epoch, std::move(regions));
-    if (estimate_->Kind() == Integrator::kSppm) inputs->hit_points = estimate_->SharedHitPoints();
+    if (TracesHitPointsEachEpoch(estimate_->Kind()))
+        inputs->hit_points = estimate_->SharedHitPoints();
     epoch_ = std::move(inputs);
     slots_.clear();
     for (const BatchSpec& spec : estimate_->EpochBatches()) slots_.push_back({spec});

@@ -142,7 +142,7 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
     prepared.owner = record.owner();
     prepared.spec = *spec;
     prepared.priority = record.settings().priority();
-    const bool stochastic = spec->integrator == Integrator::kSppm;
+    const bool stochastic = TracesHitPointsEachEpoch(spec->integrator);
     auto payload =
         std::make_shared<JobPayload>(std::move(*scene),
                                      stochastic ? std::make_shared<const std::vector<HitPoint>>()

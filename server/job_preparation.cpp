@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <set>
 
@@ -138,12 +139,11 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
         // ppm's gives the epoch's emission (its photons gather at hit points traced once, its
         // direct light is sampled at the workers' stochastic passes).
         EpochCameraPass passes = EpochCameraPasses(payload, *film, tracer);
-        CameraPassResult camera_pass = integrator == Integrator::kSppm
+        CameraPassResult camera_pass = TracesHitPointsEachEpoch(integrator)
                                            ? passes(0, nullptr)
                                            : RunCameraPass(payload->scene, *tracer, *film);
         EstimateSettings settings =
             EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
-        settings.stochastic = integrator == Integrator::kSppm;
         const double camera_seconds = std::chrono::duration<double>(Clock::now() - start).count();
         // R0 left open (no --radius, no pbrt "radius"): each hit point's from the photons.
         std::vector<float> radii;
@@ -155,6 +155,17 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
             density.first_epoch_photons = settings.layout.PhotonsPerEpoch();
             density.seed = request.spec.seed;
             density.max_depth = request.spec.max_depth;
+            if (integrator == Integrator::kRpm) {
+                // Classic photon mapping's radii: those its k nearest reach in maps of its
+                // photons, within its search's limit, whatever the pixels' footprints.
+                const PhotonMapSettings& maps = request.spec.photon_map;
+                density.first_epoch_photons = std::max<uint64_t>(maps.global_photons, 1);
+                density.first_epoch_photons_found = maps.nearest;
+                density.least_footprints = 0;
+                density.most_footprints = std::numeric_limits<double>::infinity();
+                density.most_diagonal =
+                    MaxSearchRadius(maps, payload->scene) / payload->scene.bounds.Diagonal();
+            }
             const double footprint_radius = settings.initial_radius;
             radii = DensityInitialRadii(payload->scene, payload->emitters, *tracer, film->features,
                                         camera_pass.hit_points, camera_pass.footprint,
@@ -169,6 +180,10 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
                 footprint_radius);
         }
         PhotonTracing& tracing = request.spec.photon_tracing;
+        if (integrator == Integrator::kRpm) {  // uniform only (CheckJobSpec)
+            tracing = PhotonTracing::kUniform;
+            payload->spec.photon_tracing = tracing;
+        }
         if (tracing != PhotonTracing::kUniform) {
             const double share =
                 VisibleShare(*payload, *tracer, film->features, camera_pass.hit_points, radii,
@@ -233,7 +248,7 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
                 : 0});
     }
     // Workers trace a stochastic job's hit points themselves, epoch by epoch.
-    payload->hit_points = integrator == Integrator::kSppm
+    payload->hit_points = TracesHitPointsEachEpoch(integrator)
                               ? std::make_shared<const std::vector<HitPoint>>()
                               : prepared.estimate->SharedHitPoints();
     prepared.payload = std::move(payload);

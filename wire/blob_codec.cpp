@@ -87,12 +87,15 @@ void ReadField(const uint8_t* planes, size_t offset, std::span<T> items) {
 }
 
 // The HitPoint words a worker reads, by their offset in wire order: position, normal, weight
-// and the coat. The pixel only the coordinator's merge uses; it is not sent.
+// and the coat. The pixel only the coordinator's merge uses; it is not sent. Nor is what the
+// hit point gathers: the hit points sent are ppm's, which gather kScatteredPhotons, the
+// default (sppm's and rpm's workers trace their own).
 constexpr size_t kHitPointWordOffsets[] = {0, 4, 8, 12, 16, 20, 24, 28, 32, 40};
 constexpr size_t kHitPointWords = std::size(kHitPointWordOffsets);
-static_assert(sizeof(HitPoint) == 44 && offsetof(HitPoint, pixel) == 36 &&
-                  offsetof(HitPoint, coat) == 40,
-              "HitPoint is nine 4-byte words of geometry and weight, the pixel, then the coat");
+static_assert(sizeof(HitPoint) == 48 && offsetof(HitPoint, pixel) == 36 &&
+                  offsetof(HitPoint, coat) == 40 && offsetof(HitPoint, gathers) == 44,
+              "HitPoint is nine 4-byte words of geometry and weight, the pixel, the coat, then "
+              "what it gathers");
 
 }  // namespace
 

@@ -23,6 +23,8 @@ v1::Integrator ToProto(Integrator integrator) {
             return v1::INTEGRATOR_PM;
         case Integrator::kPath:
             return v1::INTEGRATOR_PATH;
+        case Integrator::kRpm:
+            return v1::INTEGRATOR_RPM;
     }
     return v1::INTEGRATOR_UNSPECIFIED;
 }
@@ -103,6 +105,8 @@ absl::StatusOr<Integrator> IntegratorFromProto(int integrator, const char* field
             return Integrator::kPm;
         case v1::INTEGRATOR_PATH:
             return Integrator::kPath;
+        case v1::INTEGRATOR_RPM:
+            return Integrator::kRpm;
         default:
             return Unknown(field, integrator);
     }

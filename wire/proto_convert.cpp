@@ -179,7 +179,7 @@ photonfarm::v1::JobSettings ToProto(const JobSpec& spec) {
         out_environment->set_scale(environment.scale);
         out_environment->set_rotate_degrees(environment.rotate_degrees);
     }
-    if (spec.integrator == Integrator::kPm) {
+    if (spec.integrator == Integrator::kPm || spec.integrator == Integrator::kRpm) {
         const PhotonMapSettings& maps = spec.photon_map;
         photonfarm::v1::PhotonMapSettings* out_maps = out.mutable_photon_map();
         out_maps->set_global_photons(maps.global_photons);

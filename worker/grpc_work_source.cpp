@@ -159,11 +159,13 @@ absl::StatusOr<WorkGrant> GrpcWorkSource::Lease(uint32_t chunks) {
     grant.job = *payload;
     grant.regions = *regions;
     // What a batch's sample slice indexes: the slots of the epoch's camera pass (pixels x its
-    // samples a pixel), where the photon mappers sample direct light, or the pixels.
+    // samples a pixel x their slots), where the photon mappers sample direct light, or the
+    // pixels.
     const uint64_t items =
         uint64_t(settings->width) * uint64_t(settings->height) *
-        uint64_t(gathers ? EpochCameraSamples(*settings, response.batches(0).epoch()).per_pixel
-                         : 1);
+        (gathers ? uint64_t(EpochCameraSamples(*settings, response.batches(0).epoch()).per_pixel) *
+                       SlotsPerCameraSample(*settings)
+                 : 1);
     for (const v1::BatchSpec& spec : response.batches()) {
         grant.batches.push_back(FromProto(spec));
         if (grant.batches.back().epoch != grant.batches.front().epoch)
@@ -267,7 +269,7 @@ absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(
     absl::StatusOr<std::string> hit_point_bytes = FetchBlob(job.hit_points_digest(), true);
     if (!hit_point_bytes.ok()) return hit_point_bytes.status();
     // A stochastic job's hit points are traced here, epoch by epoch (CpuBackend::BeginEpoch).
-    const uint64_t sent = spec.integrator == Integrator::kSppm ? 0 : job.hit_point_count();
+    const uint64_t sent = TracesHitPointsEachEpoch(spec.integrator) ? 0 : job.hit_point_count();
     absl::StatusOr<std::vector<HitPoint>> hit_points = DecodeHitPoints(*hit_point_bytes, sent);
     if (!hit_points.ok()) return hit_points.status();
     for (size_t i = 0; i < hit_points->size(); ++i) {

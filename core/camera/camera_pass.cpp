@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "absl/strings/str_format.h"
+#include "core/camera/gather_ray.h"
 #include "core/camera/pixel_sample.h"
 #include "core/math/morton.h"
 #include "core/sampling/rng.h"
@@ -36,6 +37,48 @@ struct CameraPath {
     int splits_left = 0;  // glass interfaces still to split rather than choose at random
 };
 
+// Reverse photon mapping's gather hits of the camera hit point just appended (hit_points'
+// last): `rays` cosine-weighted final-gather rays about its normal, each leaving one slot,
+// where it lands on a diffuse surface (FollowToDiffuse), weighted so that the slot's photon
+// estimate is the ray's share of the light the camera hit point reflects; black where it finds
+// none. The camera hit point keeps the caustics alone (direct light is sampled there); under
+// a coat, which gather rays would have to cross, it keeps every scattered photon as ppm's do
+// and its gather slots stay black.
+void TraceGatherHits(const Scene& scene, const Tracer& tracer, const Vec3& geometric_normal,
+                     int rays, Rng& rng, std::vector<HitPoint>& hit_points,
+                     std::vector<float>& footprints) {
+    HitPoint& camera_hit = hit_points.back();
+    const HitPoint origin_point = camera_hit;
+    const float footprint = footprints.back();
+    const bool coated = camera_hit.coat != kNoCoat;
+    camera_hit.gathers = coated ? kScatteredPhotons : kCausticPhoton;
+    const Vec3 geometric =
+        Dot(origin_point.normal, geometric_normal) >= 0 ? geometric_normal : -geometric_normal;
+    const Vec3 origin = OffsetRayOrigin(origin_point.position, geometric, scene.bounds.Magnitude());
+    const Frame frame = Frame::FromNormal(origin_point.normal);
+    // camera weight x albedo / pi x (pi / rays) x the landing's albedo / pi, per unit of the
+    // landing's photon flux density: the estimate of one gather ray's light.
+    const Rgb weight = origin_point.weight / static_cast<float>(rays);
+    for (int i = 0; i < rays; ++i) {
+        std::optional<DiffuseLanding> landing;
+        if (!coated) {
+            const float u1 = rng.NextFloat();
+            const float u2 = rng.NextFloat();
+            const Vec3 direction = frame.ToWorld(SampleCosineHemisphere(u1, u2));
+            if (Dot(direction, geometric) > 0)
+                landing = FollowToDiffuse(scene, tracer, {origin, direction}, rng);
+        }
+        if (landing)
+            hit_points.push_back({landing->position, landing->normal,
+                                  weight * landing->weight * landing->albedo, origin_point.pixel,
+                                  landing->coat, kAllPhotons});
+        else
+            hit_points.push_back({Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), Rgb(0.0f), origin_point.pixel,
+                                  kNoCoat, kAllPhotons});
+        footprints.push_back(footprint);
+    }
+}
+
 // Traces one camera sample; appends the hit points it reaches and returns the emission it saw.
 // At its first `splits` (up to kCameraSplits) glass interfaces the path follows both reflection and
 // transmission, each weighted by its probability, instead of choosing one at random: the few
@@ -49,8 +92,8 @@ struct CameraPath {
 template <bool kSpecular, bool kTextures>
 Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const CameraRay& primary,
                       uint32_t pixel, PixelFootprint pixel_width, PixelFootprint filter_width,
-                      int splits, int max_depth, Rng& rng, std::vector<HitPoint>& hit_points,
-                      std::vector<float>& footprints) {
+                      int splits, int max_depth, int gather_rays, Rng& rng,
+                      std::vector<HitPoint>& hit_points, std::vector<float>& footprints) {
     Rgb emission(0.0f);
     CameraPath stack[kCameraSplits + 1];
     int pending = 0;
@@ -126,6 +169,9 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const CameraRay&
                         const DiffuseSide side = ChooseDiffuseSide(material, base_color, rng);
                         add(side.through ? -normal : normal, side.albedo);
                     }
+                    if (gather_rays > 0)
+                        TraceGatherHits(scene, tracer, surface.geometric_normal, gather_rays, rng,
+                                        hit_points, footprints);
                     break;
                 }
                 bounce = arrival.reflected;
@@ -231,6 +277,8 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
     const float share = 1.0f / std::sqrt(static_cast<float>(settings.samples_per_pixel));
     const PixelFootprint filter_width{pixel_width.base * share, pixel_width.angle * share};
     const int splits = settings.stochastic ? 0 : kCameraSplits;
+    PF_CHECK(settings.gather_rays == 0 || (settings.stochastic && !settings.emission_only));
+    const int gather_rays = settings.gather_rays;
     const int max_depth = DepthLimit(settings.max_depth, kMaxCameraDepth);
     const uint64_t sample_stream = settings.stochastic      ? kStochasticSampleStream
                                    : settings.emission_only ? kEmissionSampleStream
@@ -264,13 +312,18 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                         settings.first_sample + uint64_t(s));
                     const CameraRay ray = PixelSampleRay(scene.camera, film, filter, x, y, sampler);
                     const size_t before = row_hit_points[y].size();
-                    emission += trace(scene, tracer, ray, pixel, pixel_width, filter_width, splits,
-                                      max_depth, rng, row_hit_points[y], row_footprints[y]);
-                    // A stochastic pass keeps one slot per sample, black where it found nothing.
+                    emission +=
+                        trace(scene, tracer, ray, pixel, pixel_width, filter_width, splits,
+                              max_depth, gather_rays, rng, row_hit_points[y], row_footprints[y]);
+                    // A stochastic pass keeps 1 + gather_rays slots per sample (one without
+                    // gather rays), black where it found nothing.
                     if (settings.stochastic && row_hit_points[y].size() == before) {
-                        row_hit_points[y].push_back(
-                            {Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), Rgb(0.0f), pixel});
-                        row_footprints[y].push_back(0.0f);
+                        for (int slot = 0; slot <= gather_rays; ++slot) {
+                            row_hit_points[y].push_back(
+                                {Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), Rgb(0.0f), pixel, kNoCoat,
+                                 slot == 0 && gather_rays > 0 ? kCausticPhoton : kAllPhotons});
+                            row_footprints[y].push_back(0.0f);
+                        }
                     }
                 }
                 result.emission.At(x, y) = emission / static_cast<float>(spp);
@@ -349,7 +402,7 @@ EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tra
     return [&scene, tracer = std::move(tracer), film, spec](
                uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed) {
         return RunCameraPass(scene, *tracer,
-                             spec.integrator == Integrator::kSppm
+                             TracesHitPointsEachEpoch(spec.integrator)
                                  ? StochasticCameraPass(film, spec, epoch)
                                  : EmissionCameraPass(film, spec, epoch),
                              fixed.get());
@@ -375,6 +428,8 @@ float MedianRadius(std::span<const float> radii, std::span<const float> footprin
 absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& scene) {
     CameraPassSettings film{spec.width, spec.height, spec.samples_per_pixel, spec.seed};
     film.max_depth = spec.max_depth;
+    if (spec.integrator == Integrator::kRpm)
+        film.gather_rays = static_cast<int>(RpmGatherRays(spec.photon_map));
     const double aspect = scene.camera.aspect_ratio > 0 ? scene.camera.aspect_ratio : 1.0;
     if (film.width == 0 && film.height == 0) {
         film.width = scene.hints.width > 0 ? scene.hints.width : 512;
@@ -392,12 +447,15 @@ absl::StatusOr<CameraPassSettings> FilmFor(const JobSpec& spec, const Scene& sce
                                 film.height, pixels, kMaxHitPoints));
         return film;
     }
-    const uint64_t most_hit_points = pixels * uint64_t(film.samples_per_pixel);
+    const uint64_t most_hit_points =
+        pixels * uint64_t(film.samples_per_pixel) * uint64_t(1 + film.gather_rays);
     if (most_hit_points > kMaxHitPoints)
         return absl::ResourceExhaustedError(absl::StrFormat(
-            "%dx%d pixels x %d spp = %d hit points exceeds the limit of %d (about %d bytes each)",
-            film.width, film.height, film.samples_per_pixel, most_hit_points, kMaxHitPoints,
-            kBytesPerHitPoint));
+            "%dx%d pixels x %d spp%s = %d hit points exceeds the limit of %d (about %d bytes each)",
+            film.width, film.height, film.samples_per_pixel,
+            film.gather_rays > 0 ? absl::StrFormat(" x (1 + %d gather rays)", film.gather_rays)
+                                 : std::string(),
+            most_hit_points, kMaxHitPoints, kBytesPerHitPoint));
     return film;
 }
 

@@ -32,8 +32,8 @@ struct CameraPassSettings {
     uint64_t first_sample = 0;
     // Stochastic progressive photon mapping's pass (Hachisuka & Jensen 2009), traced anew
     // every epoch: each sample follows one branch at glass rather than splitting, and leaves
-    // exactly one hit point, in slot order (pixel * k + sample), black where the path found no
-    // diffuse surface, so that slot i carries N, R, tau across epochs.
+    // exactly one hit point (1 + gather_rays for rpm), in slot order (pixel * k + sample), black
+    // where the path found no diffuse surface, so that slot i carries N, R, tau across epochs.
     bool stochastic = false;
     // ppm's emission, sampled afresh every epoch (EmissionCameraPass): the fixed pass's paths,
     // split at glass as they are, from samples of their own, keeping no hit points.
@@ -42,6 +42,10 @@ struct CameraPassSettings {
     // by default.
     SceneFeatures features = SceneFeatures::All();
     int max_depth = 0;  // JobSpec::max_depth: surfaces a path meets at most (0: kMaxCameraDepth)
+    // Reverse photon mapping's (a stochastic pass): each sample's final-gather rays, each a slot
+    // of its own after the sample's, so a sample keeps 1 + gather_rays slots in a fixed order
+    // (pixel, sample, ray); the camera hit point then gathers caustics alone. 0: none.
+    int gather_rays = 0;
 };
 
 // Hit points indexed by pixel: pixel p's are points[order[begin[p] .. begin[p + 1])] in index

@@ -22,7 +22,8 @@ constexpr uint32_t kFixedMagic = 0x50485046;  // "PFHP": the hit points kept apa
 // of the even batches (GatherCounts), and the epoch's counts in one array (EpochPhotons).
 // 9: ppm's fixed hit points' shares of their pixels (CameraPassResult::coverage). 10: how far
 // each hit point's surface reaches (SurfaceExtent), where probed, with the hit points.
-constexpr uint32_t kVersion = 10;
+// 11: the photons each hit point gathers (HitPoint::gathers), and rpm's gather rays.
+constexpr uint32_t kVersion = 11;
 
 absl::Status Corrupt(const std::string& what) {
     return absl::DataLossError(absl::StrCat("estimate state: ", what));
@@ -65,6 +66,7 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
     out.Value(settings_.min_radius);
     out.Value(static_cast<uint8_t>(settings_.stochastic));
     out.Value(static_cast<uint8_t>(settings_.balanced));
+    out.Value(settings_.gather_rays);
     out.Value(epoch_emission_.width);
     out.Value(epoch_emission_.height);
     for (uint64_t value : {epoch_, photons_emitted_, photons_emitted_even_, nonfinite_discarded_})
@@ -117,7 +119,7 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
           in.Value(&settings.samples_per_pixel) && in.Value(&settings.layout.photons_per_batch) &&
           in.Value(&settings.layout.batches_per_epoch) &&
           in.Value(&settings.layout.first_epoch_photons) && in.Value(&settings.min_radius) &&
-          in.Value(&stochastic) && in.Value(&balanced)))
+          in.Value(&stochastic) && in.Value(&balanced) && in.Value(&settings.gather_rays)))
         return Corrupt("truncated settings");
     settings.stochastic = stochastic != 0;
     settings.balanced = balanced != 0;
@@ -128,7 +130,9 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
           settings.layout.photons_per_batch <= kMaxPhotonsPerBatch &&
           settings.layout.batches_per_epoch >= 1 &&
           settings.layout.batches_per_epoch <= kMaxBatchesPerEpoch &&
-          settings.layout.first_epoch_photons <= settings.layout.PhotonsPerEpoch()))
+          settings.layout.first_epoch_photons <= settings.layout.PhotonsPerEpoch() &&
+          settings.gather_rays <= kMaxFinalGatherRays &&
+          (settings.gather_rays == 0 || settings.stochastic)))
         return Corrupt("settings out of range");
     int width = 0, height = 0;
     if (!(in.Value(&width) && in.Value(&height)) || width < 1 || height < 1 || width > 32768 ||
@@ -147,10 +151,11 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
     if (e.batches_folded_ >= settings.layout.batches_per_epoch)
         return Corrupt("more batches folded than an epoch has");
     // The current epoch's camera samples (sppm: its hit points; ppm: its direct-light slots).
-    const uint64_t slots =
-        pixels * uint64_t(EpochCameraSamples(e.Kind(), settings.samples_per_pixel, settings.layout,
-                                             pixels, e.epoch_)
-                              .per_pixel);
+    const uint64_t slots = pixels *
+                           uint64_t(EpochCameraSamples(e.Kind(), settings.samples_per_pixel,
+                                                       settings.layout, pixels, e.epoch_)
+                                        .per_pixel) *
+                           (1 + uint64_t(settings.gather_rays));
     if (slots > kMaxHitPoints) return Corrupt("more camera samples than a job may have");
 
     auto hit_points = std::make_shared<std::vector<HitPoint>>();
@@ -169,10 +174,14 @@ absl::StatusOr<std::unique_ptr<ProgressiveEstimate>> ProgressiveEstimate::Load(B
                !status.ok()) {
         return status;
     }
-    for (const HitPoint& hit_point : *hit_points)
+    for (const HitPoint& hit_point : *hit_points) {
         if (hit_point.pixel >= pixels) return Corrupt("a hit point lies outside the image");
+        if (hit_point.gathers == 0 || (hit_point.gathers & ~kAllPhotons) != 0)
+            return Corrupt("a hit point gathers no known photons");
+    }
     if (settings.stochastic && n != slots)
-        return Corrupt("a stochastic estimate's hit points are not one per camera sample");
+        return Corrupt(
+            "a stochastic estimate's hit points are not one per camera sample and gather ray");
     e.epoch_emission_ = Image(width, height);
     const uint64_t covered = settings.stochastic ? 0 : n;  // ppm's shares of pixels
     const auto array = [&](uint64_t count, const char* per, auto* values,

@@ -27,7 +27,9 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
     emission_even_.assign(pixels, Rgbd(0.0));
     direct_sum_.assign(pixels, Rgbd(0.0));
     direct_even_.assign(pixels, Rgbd(0.0));
-    epoch_direct_.assign(pixels * size_t(EpochPass(0).per_pixel), Rgb(0.0f));
+    PF_CHECK(settings.gather_rays == 0 || (settings.stochastic && settings.alpha == 1));
+    epoch_direct_.assign(pixels * size_t(EpochPass(0).per_pixel) * settings.SlotsPerSample(),
+                         Rgb(0.0f));
     if (settings.stochastic) {
         BeginEpochPass(std::move(camera_pass));
     } else {
@@ -190,8 +192,9 @@ void ProgressiveEstimate::FinishEpoch() {
     const double alpha = holding ? 1.0 : BalancedAlpha();
     const double min_radius_sq = settings_.min_radius * settings_.min_radius;
     const bool even_epoch = epoch_ % 2 == 0;
-    // The epoch's camera samples a pixel.
-    const size_t k = epoch_direct_.size() / emission_sum_.size();
+    // The epoch's slots a pixel, and its camera samples.
+    const size_t slots = epoch_direct_.size() / emission_sum_.size();
+    const size_t k = slots / settings_.SlotsPerSample();
     tbb::parallel_for(
         tbb::blocked_range<size_t>(0, points_.size()), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i < r.end(); ++i) {
@@ -238,14 +241,16 @@ void ProgressiveEstimate::FinishEpoch() {
     // do not carry, summed over its camera samples (a growing epoch has fewer than later ones).
     for (size_t p = 0; p < emission_sum_.size(); ++p) {
         Rgbd direct(0.0);
-        for (size_t s = p * k; s < (p + 1) * k; ++s) direct += Rgbd(epoch_direct_[s]);
+        for (size_t s = p * slots; s < (p + 1) * slots; ++s) direct += Rgbd(epoch_direct_[s]);
         const Rgbd emission = Rgbd(epoch_emission_.pixels[p]) * static_cast<double>(k);
         emission_sum_[p] += emission;
         direct_sum_[p] += direct;
         if (even_epoch) emission_even_[p] += emission, direct_even_[p] += direct;
     }
     ++epoch_;
-    epoch_direct_.assign(emission_sum_.size() * size_t(EpochPass(epoch_).per_pixel), Rgb(0.0f));
+    epoch_direct_.assign(
+        emission_sum_.size() * size_t(EpochPass(epoch_).per_pixel) * settings_.SlotsPerSample(),
+        Rgb(0.0f));
     BeginEpochPass(next_passes_(epoch_, settings_.stochastic ? nullptr : by_pixel_));
 }
 
@@ -383,6 +388,12 @@ EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera
     EstimateSettings estimate{spec.alpha == 0 ? kDefaultAlpha : spec.alpha, spec.alpha == 0,
                               spec.initial_radius, spec.samples_per_pixel,
                               ResolvedLayout(spec, camera_pass.emission.pixels.size())};
+    estimate.stochastic = TracesHitPointsEachEpoch(spec.integrator);
+    if (spec.integrator == Integrator::kRpm) {  // radii kept, as classic photon mapping's
+        estimate.alpha = 1;
+        estimate.balanced = false;
+        estimate.gather_rays = RpmGatherRays(spec.photon_map);
+    }
     if (estimate.initial_radius == 0) estimate.initial_radius = scene.hints.initial_radius;
     if (estimate.initial_radius == 0)
         estimate.initial_radius = DefaultInitialRadius(camera_pass, scene);

@@ -72,11 +72,16 @@ struct EstimateSettings {
     // tau kept per slot, pixel * k + sample). Otherwise (ppm) at one set of hit points for the
     // whole render, traced once, splitting at glass.
     bool stochastic = false;
+    // Reverse photon mapping (stochastic, alpha 1): each camera sample's final-gather rays,
+    // each a slot after the sample's own (CameraPassSettings::gather_rays). 0: none.
+    uint32_t gather_rays = 0;
+    // The slots a camera sample of an epoch's pass keeps.
+    uint64_t SlotsPerSample() const { return 1 + uint64_t(gather_rays); }
 };
 
 // The estimator's settings, R0 from the scene (pbrt's sppm "radius") or else the camera pass
-// where not given. `scene_name` names the
-// scene in the warning for a camera that sees no diffuse surface.
+// where not given; sppm and rpm stochastic, rpm's alpha 1 with its gather rays. `scene_name` names
+// the scene in the warning for a camera that sees no diffuse surface.
 EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera_pass,
                              const Scene& scene, const std::string& scene_name);
 
@@ -99,10 +104,11 @@ public:
     const PointEstimate& Point(size_t hit_point) const { return points_[hit_point]; }
     const EstimateSettings& Settings() const { return settings_; }
     Integrator Kind() const override {
-        return settings_.stochastic ? Integrator::kSppm : Integrator::kPpm;
+        if (!settings_.stochastic) return Integrator::kPpm;
+        return settings_.gather_rays > 0 ? Integrator::kRpm : Integrator::kSppm;
     }
-    // The slots of the current epoch's camera pass (pixels x EpochCameraSamples), which the
-    // batches' direct-light slices index.
+    // The slots of the current epoch's camera pass (pixels x EpochCameraSamples x
+    // SlotsPerSample), which the batches' direct-light slices index.
     uint64_t ItemCount() const override { return epoch_direct_.size(); }
     uint64_t Epoch() const override {
         return epoch_;

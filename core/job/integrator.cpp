@@ -23,10 +23,11 @@ std::string_view Name(const std::array<std::pair<Enum, std::string_view>, kCount
     return "unknown";
 }
 
-constexpr std::array<std::pair<Integrator, std::string_view>, 4> kIntegrators{
+constexpr std::array<std::pair<Integrator, std::string_view>, 5> kIntegrators{
     {{Integrator::kPm, "pm"},
      {Integrator::kPpm, "ppm"},
      {Integrator::kSppm, "sppm"},
+     {Integrator::kRpm, "rpm"},
      {Integrator::kPath, "path"}}};
 constexpr std::array<std::pair<PhotonTracing, std::string_view>, 3> kTracings{
     {{PhotonTracing::kAuto, "auto"},

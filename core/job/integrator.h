@@ -25,16 +25,28 @@ enum class Integrator : uint32_t {
     // Unidirectional path tracing with next-event estimation and multiple importance
     // sampling: the unbiased reference; batches render pixels.
     kPath,
+    // Reverse photon mapping (Havran, Herzog & Seidel 2005): each epoch's camera samples trace
+    // their final-gather rays first and keep where they land as hit points; batches shoot
+    // photons into them (never stored). Classic photon mapping's final-gather estimate, its
+    // radii fixed (PhotonMapSettings: the global map's k nearest), at a cost that grows with
+    // the photons rather than with gather rays x k-nearest searches.
+    kRpm,
 };
 
 std::string_view IntegratorName(Integrator integrator);
 std::optional<Integrator> ParseIntegrator(std::string_view name);
-std::vector<std::string> IntegratorNames();  // "pm", "ppm", "sppm", "path", for --help
+std::vector<std::string> IntegratorNames();  // "pm", "ppm", "sppm", "rpm", "path", for --help
 
-// Whether the integrator's batches shoot photons into hit points (ppm, sppm) rather than
+// Whether the integrator's batches shoot photons into hit points (ppm, sppm, rpm) rather than
 // render pixels (pm, path).
 inline bool GathersAtHitPoints(Integrator integrator) {
-    return integrator == Integrator::kPpm || integrator == Integrator::kSppm;
+    return integrator == Integrator::kPpm || integrator == Integrator::kSppm ||
+           integrator == Integrator::kRpm;
+}
+// Whether its hit points are traced anew every epoch, by the coordinator and every worker
+// alike (sppm's camera samples, rpm's with their gather hits), rather than once (ppm).
+inline bool TracesHitPointsEachEpoch(Integrator integrator) {
+    return integrator == Integrator::kSppm || integrator == Integrator::kRpm;
 }
 
 // The photon backends a worker can run on (`--backend`; worker/backend_factory.h makes them):
@@ -42,8 +54,8 @@ inline bool GathersAtHitPoints(Integrator integrator) {
 inline std::vector<std::string> BackendNames() { return {"cpu", "vulkan"}; }
 
 // Whether the photon backend named `backend` (worker/backend_factory.h) runs jobs of
-// `integrator`: the cpu backend runs every one, the vulkan backend the progressive photon
-// mappers (ppm and sppm). A coordinator leases a worker only jobs its backend runs.
+// `integrator`: the cpu backend runs every one, the vulkan backend those that shoot photons
+// into hit points (ppm, sppm). A coordinator leases a worker only jobs its backend runs.
 inline bool RunsOnBackend(Integrator integrator, std::string_view backend) {
     return backend != "vulkan" || integrator == Integrator::kPpm || integrator == Integrator::kSppm;
 }
@@ -67,9 +79,15 @@ std::optional<PhotonIndex> ParsePhotonIndex(std::string_view name);
 std::string_view DensityFilterName(DensityFilter filter);
 std::optional<DensityFilter> ParseDensityFilter(std::string_view name);
 
-// Classic photon mapping's settings. The maps are built once per job (on every worker, from
-// the job's seed, so every worker holds the same maps) and kept in memory: their size grows
-// with the photons emitted, and PhotonMapBytes says how much.
+// Final-gather rays a camera sample of rpm traces where PhotonMapSettings::final_gather is 0.
+// Each is a hit point of the epoch (pixels x k x (1 + rays) of them, the camera sample's own
+// included), so memory grows with them.
+inline constexpr uint32_t kRpmGatherRays = 4;
+
+// Classic photon mapping's settings (and reverse photon mapping's: its radii are those the
+// global map's k nearest reach, its gather rays `final_gather`). The maps are built once per job
+// (on every worker, from the job's seed, so every worker holds the same maps) and kept in memory:
+// their size grows with the photons emitted, and PhotonMapBytes says how much.
 struct PhotonMapSettings {
     uint64_t global_photons = 1'000'000;  // emitted for the global map (indirect light)
     uint64_t caustic_photons =
@@ -81,5 +99,10 @@ struct PhotonMapSettings {
         0;  // gather rays per camera sample for indirect light; 0: read the global map directly
     PhotonIndex index = PhotonIndex::kKdTree;
 };
+
+// The gather rays of each rpm camera sample.
+inline uint32_t RpmGatherRays(const PhotonMapSettings& settings) {
+    return settings.final_gather > 0 ? settings.final_gather : kRpmGatherRays;
+}
 
 }  // namespace pf

@@ -74,9 +74,25 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
                 s.integrator == Integrator::kPm ? " (its maps' size is --pm-photons)" : ""));
     if (s.photon_tracing != PhotonTracing::kAuto && !GathersAtHitPoints(s.integrator))
         return invalid("--photon-tracing", "settings.photon_tracing",
-                       absl::StrCat("applies to ppm and sppm, whose photons gather at hit points, "
-                                    "not to the ",
+                       absl::StrCat("applies to ppm, sppm and rpm, whose photons gather at hit "
+                                    "points, not to the ",
                                     std::string(IntegratorName(s.integrator)), " integrator"));
+    if (s.integrator == Integrator::kRpm) {
+        if (s.photon_tracing == PhotonTracing::kAdaptive)
+            return invalid("--photon-tracing", "settings.photon_tracing",
+                           "adaptive is not offered for rpm: its gather hits see most of the "
+                           "scene, where Markov chains toward them would not pay");
+        if (s.alpha != 0)
+            return invalid("--alpha", "settings.alpha",
+                           "applies to ppm and sppm: rpm keeps its radii, as classic photon "
+                           "mapping does (--pm-nearest and --pm-photons set them)");
+        // A gather hit's photons would have to reach it within the depth the camera path and
+        // its gather ray left them, which a deposit does not record.
+        if (s.max_depth != 0)
+            return invalid("--max-depth", "settings.max_depth",
+                           "is not offered for rpm, whose photons reach its gather hits at any "
+                           "depth: give it to ppm, sppm, pm or path");
+    }
     if (absl::Status status = CheckEnvironmentSettings(s.environment, names); !status.ok())
         return status;
     if (s.max_depth < 0 || s.max_depth > kMaxDepthSetting)
@@ -84,7 +100,8 @@ absl::Status CheckJobSpec(const JobSpec& s, SettingNames names) {
                        absl::StrCat("must lie in [0, ", kMaxDepthSetting, "] (0: no limit)"));
     if (s.camera.size() > 256)
         return invalid("--camera", "settings.camera", "must be at most 256 characters");
-    if (s.integrator == Integrator::kPm) return CheckPhotonMapSettings(s.photon_map, names);
+    if (s.integrator == Integrator::kPm || s.integrator == Integrator::kRpm)
+        return CheckPhotonMapSettings(s.photon_map, names);
     return absl::OkStatus();
 }
 
@@ -143,7 +160,7 @@ absl::Status CheckPhotonMapSettings(const PhotonMapSettings& m, SettingNames nam
 BatchLayout ResolvedLayout(const JobSpec& spec, uint64_t pixels) {
     BatchLayout layout = spec.layout;
     const bool open = layout.photons_per_batch == 0 && layout.batches_per_epoch == 0;
-    if (spec.integrator != Integrator::kSppm) {
+    if (!TracesHitPointsEachEpoch(spec.integrator)) {
         if (layout.photons_per_batch == 0) layout.photons_per_batch = kDefaultPhotonsPerBatch;
         if (layout.batches_per_epoch == 0) layout.batches_per_epoch = kDefaultBatchesPerEpoch;
     } else {
@@ -182,7 +199,7 @@ int PpmSamplesPerPixel(uint64_t photons, uint64_t pixels) {
 
 EpochSamples EpochCameraSamples(Integrator integrator, int samples_per_pixel,
                                 const BatchLayout& layout, uint64_t pixels, uint64_t epoch) {
-    if (integrator == Integrator::kSppm)
+    if (TracesHitPointsEachEpoch(integrator))
         return {samples_per_pixel, (epoch >> 1) * uint64_t(samples_per_pixel)};
     const auto in = [&](uint64_t e) {
         return PpmSamplesPerPixel(layout.PhotonsInEpoch(e), pixels);

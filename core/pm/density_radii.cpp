@@ -23,6 +23,12 @@ std::vector<float> DensityInitialRadii(const Scene& scene, const Emitters& emitt
     PhotonMapSettings pilot;
     pilot.global_photons = pilot.caustic_photons = settings.pilot_photons;
     pilot.index = PhotonIndex::kKdTree;
+    // Where some hit point gathers direct light (rpm's gather hits), the global map holds
+    // every landing, as a global map for final gathering does; it then stands for all.
+    const bool everything =
+        std::any_of(hit_points.begin(), hit_points.end(),
+                    [](const HitPoint& h) { return h.gathers & kDirectPhoton; });
+    pilot.final_gather = everything ? 1 : 0;
     const PhotonMaps maps = BuildPhotonMaps(scene, emitters, tracer, features, pilot, settings.seed,
                                             settings.max_depth);
     const struct {
@@ -47,9 +53,14 @@ std::vector<float> DensityInitialRadii(const Scene& scene, const Emitters& emitt
                 const float least =
                     std::min(static_cast<float>(settings.least_footprints) * footprint[i], most);
                 // Photons per unit area and photon emitted: each map's k nearest (or those
-                // within the scene's bound) over their disc.
+                // within the scene's bound) over their disc, of the maps whose photons the hit
+                // point gathers.
+                const uint32_t gathers = hit_points[i].gathers;
+                const bool caustics_alone = gathers == kCausticPhoton;
                 double density = 0;
                 for (const auto& source : sources) {
+                    const bool caustic = &source == &sources[1];
+                    if (caustic ? everything && !caustics_alone : caustics_alone) continue;
                     if (source.emitted == 0 || source.lookup->Photons().empty()) continue;
                     source.lookup->Nearest(hit_points[i].position, settings.nearest,
                                            diagonal_limit * diagonal_limit, nearest);
@@ -57,6 +68,12 @@ std::vector<float> DensityInitialRadii(const Scene& scene, const Emitters& emitt
                     if (radius_sq > 0)
                         density += static_cast<double>(nearest.entries.size()) /
                                    (std::numbers::pi * radius_sq * source.emitted);
+                }
+                // Caustics alone, with none about: no radius (the hit point takes no part)
+                // rather than the widest, which would widen the gather grid's cells for all.
+                if (caustics_alone && !(density > 0)) {
+                    radii[i] = 0;
+                    continue;
                 }
                 const double radius =
                     density > 0 ? std::sqrt(found_per_density / density) : double(most);

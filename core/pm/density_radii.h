@@ -41,10 +41,12 @@ struct DensityRadiiSettings {
 };
 
 // One R0 per hit point (world units): sqrt(c / (pi rho M)), rho the pilot's photons per unit
-// area and emitted photon around it (the photons ppm gathers: those that scattered before,
-// the global map's and the caustic map's), M the first epoch's photons and c the photons it
-// should find, clamped to the bounds; `fallback` where the footprint is 0 (an empty slot of a
-// stochastic pass). Deterministic for the seed; in parallel on the calling TBB arena.
+// area and emitted photon around it, of the photons it gathers (HitPoint::gathers: for ppm's
+// those that scattered before, the global map's and the caustic map's; rpm's gather hits every
+// landing; its camera hit points the caustic map's alone, 0 where it finds none), M the first
+// epoch's photons and c the photons it should find, clamped to the bounds; `fallback` where
+// the footprint is 0 (an empty slot of a stochastic pass). Deterministic for the seed; in
+// parallel on the calling TBB arena.
 std::vector<float> DensityInitialRadii(const Scene& scene, const Emitters& emitters,
                                        const Tracer& tracer, const SceneFeatures& features,
                                        std::span<const HitPoint> hit_points,

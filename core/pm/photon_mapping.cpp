@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "core/camera/camera_pass.h"
+#include "core/camera/gather_ray.h"
 #include "core/pm/density_estimate.h"
 #include "core/ppm/direct_light.h"
 #include "core/sampling/frame.h"
@@ -14,58 +15,18 @@
 namespace pf {
 namespace {
 
-// Gather rays follow specular and rough bounces this far at most before giving up.
-constexpr int kMaxGatherDepth = 16;
-
-// What the radiance at a diffuse base is worth where a path reached it (ArriveAtCoat): 1
-// uncoated; under a coat the weight of the way in times CoatInside.
-float CoatedRadianceFactor(const Material& material, const CoatArrival& arrival) {
-    if (!material.HasCoat()) return 1.0f;
-    return arrival.weight * CoatInside(CoatOf(material));
-}
-
-// Reflected radiance from the global map where a gather ray from `origin` lands (after any
-// specular or rough bounces, whose emission is left out: light through them is a caustic,
-// the caustic map's), times the bounces' weight.
-Rgb GatherRay(const PhotonMappingInputs& inputs, Ray ray, Rng& rng, NearestPhotons& scratch) {
-    const Scene& scene = *inputs.scene;
-    Rgb weight(1.0f);
-    for (int depth = 0; depth < kMaxGatherDepth; ++depth) {
-        RayHit hit;
-        if (!inputs.tracer->Intersect(ray, &hit)) return Rgb(0.0f);
-        const SurfacePoint surface = scene.Surface(hit);
-        std::optional<Material> shading;  // where a texture sets the roughness
-        const Material& material = scene.ShadingMaterial(surface, shading);
-        const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-        weight *= InsideTransmittance(material, front_facing, hit.t);
-        const Rgb base_color = scene.BaseColor(surface);
-        const CoatArrival arrival =
-            material.type == MaterialType::kDiffuse
-                ? ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng)
-                : CoatArrival{};
-        if (material.type == MaterialType::kDiffuse && arrival.at_base) {
-            const DiffuseSide side = ChooseDiffuseSide(material, base_color, rng);
-            const Vec3 normal =
-                front_facing != side.through ? surface.shading_normal : -surface.shading_normal;
-            const float max_radius_sq = inputs.max_radius * inputs.max_radius;
-            return weight * CoatedRadianceFactor(material, arrival) *
-                   EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal,
-                                           side.albedo, inputs.settings.nearest, max_radius_sq,
-                                           inputs.settings.filter, inputs.features.ShadingNormals(),
-                                           scratch);
-        }
-        const SpecularBounce bounce =
-            material.type == MaterialType::kDiffuse
-                ? arrival.reflected
-                : ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                                    base_color, rng);
-        weight *= bounce.weight;
-        if (IsBlack(weight)) return Rgb(0.0f);
-        const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal
-                                                             : surface.geometric_normal;
-        ray = {OffsetRayOrigin(surface.position, side, scene.bounds.Magnitude()), bounce.direction};
-    }
-    return Rgb(0.0f);
+// Reflected radiance from the global map where a gather ray from `origin` lands
+// (FollowToDiffuse), times the weight of the way there.
+Rgb GatherRay(const PhotonMappingInputs& inputs, const Ray& ray, Rng& rng,
+              NearestPhotons& scratch) {
+    const std::optional<DiffuseLanding> landing =
+        FollowToDiffuse(*inputs.scene, *inputs.tracer, ray, rng);
+    if (!landing) return Rgb(0.0f);
+    const float max_radius_sq = inputs.max_radius * inputs.max_radius;
+    return landing->weight * EstimateDiffuseRadiance(
+                                 *inputs.maps->global, landing->position, landing->normal,
+                                 landing->albedo, inputs.settings.nearest, max_radius_sq,
+                                 inputs.settings.filter, inputs.features.ShadingNormals(), scratch);
 }
 
 // The light leaving diffuse point `surface` toward the camera path, its albedo `albedo`, the

@@ -13,7 +13,8 @@ namespace {
 // Whether some deposit lands within a hit point's radius, facing it: the photon's visibility.
 bool Visible(const HashGrid& grid, std::span<const PhotonDeposit> deposits) {
     for (const PhotonDeposit& deposit : deposits)
-        if (grid.Gathers(deposit.position, deposit.direction, deposit.normal)) return true;
+        if (grid.Gathers(deposit.position, deposit.direction, deposit.normal, deposit.kind))
+            return true;
     return false;
 }
 
@@ -60,7 +61,8 @@ uint64_t TraceAdaptivePhotons(const PhotonPassInputs& inputs, const BatchSpec& s
         if (chain.held == 0) return;
         for (const PhotonDeposit& deposit : scratch.chain_state[lane]) {
             scratch.deposits.push_back({deposit.position, deposit.direction,
-                                        deposit.flux * float(chain.held), deposit.normal});
+                                        deposit.flux * float(chain.held), deposit.normal,
+                                        deposit.kind});
             scratch.deposit_counts.push_back(chain.held);
         }
         chain.held = 0;

@@ -124,6 +124,7 @@ uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
         for (int lane = 0; lane < lanes; ++lane) {
             const uint32_t index = first + static_cast<uint32_t>(begin) + lane;
             const HitPoint& hit_point = hit_points[index];
+            if (hit_point.gathers & kDirectPhoton) continue;  // its photons carry direct light
             const Material* coat = hit_point.coat == kNoCoat ? nullptr : &materials[hit_point.coat];
             if (sequence != nullptr) {
                 // The emitter's pick with the point on it, and the cosine ray, from the pixel's
@@ -131,9 +132,11 @@ uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
                 // microfacet from the point's stream.
                 const uint64_t prefix = gpu::FamilyPrefixOf(
                     sequences, PixelSampler::SequenceOf(hit_point.pixel, epoch));
+                const uint64_t slots = uint64_t(sequence->slots_per_sample);
                 const auto sample = static_cast<uint32_t>(
-                    sequence->first +
-                    (index - uint64_t{hit_point.pixel} * uint64_t(sequence->samples_per_pixel)));
+                    sequence->first + (index - uint64_t{hit_point.pixel} *
+                                                   uint64_t(sequence->samples_per_pixel) * slots) /
+                                          slots);
                 DirectLightNumbers numbers;
                 numbers.light = gpu::SequenceSample2D(prefix, sample, 0);
                 numbers.pick_from_light = true;
@@ -160,6 +163,10 @@ uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
         if (emitters.FoundByRays()) tracer.IntersectPacket(bsdf_rays, bsdf_active, hits, found);
         for (int lane = 0; lane < lanes; ++lane) {
             const HitPoint& hit_point = hit_points[first + begin + lane];
+            if (hit_point.gathers & kDirectPhoton) {
+                out[begin + lane] = Rgb(0.0f);
+                continue;
+            }
             const Rgb sample =
                 hit_point.weight * FinishDirectLight(emitters, hit_point.normal, samples[lane],
                                                      occluded[lane],

@@ -63,6 +63,7 @@ SeedFamily DirectLightSeeds(uint64_t seed, uint64_t epoch);
 struct DirectLightSequence {
     int samples_per_pixel = 0;  // the pass's k
     uint64_t first = 0;
+    int slots_per_sample = 1;  // 1 + gather rays for rpm (CameraPassSettings::gather_rays)
 };
 // The part of seed's pixel sequences of direct light that all pixels share
 // (gpu::FamilyPartial), for the Vulkan kernel to derive each pixel's.
@@ -73,7 +74,8 @@ uint64_t DirectLightSequences(uint64_t seed);
 // out[i]. Hit point h's sample in `epoch` draws from a stream seeded by (seed, epoch, h)
 // alone, or, given `sequence`, from its pixel's scrambled (0,2)-sequences keyed by (seed,
 // pixel, epoch's parity, index). Rays are cast in packets. A sample that comes out NaN or Inf
-// is set to 0; returns how many were. `materials` holds the hit points' coats.
+// is set to 0; returns how many were. `materials` holds the hit points' coats. A hit point
+// that gathers direct photons (rpm's gather hits) takes no sample: 0.
 uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
                            std::span<const Material> materials,
                            std::span<const HitPoint> hit_points, uint32_t first, uint64_t seed,

@@ -49,6 +49,14 @@ void HashGrid::Build(std::span<const HitPoint> hit_points, std::span<const float
     if (std::any_of(edges.begin(), edges.end(),
                     [](uint64_t e) { return e != gpu::kUnboundedEdges; }))
         edges_.assign(edges.begin(), edges.end());
+    // Kept only where some hit point gathers other photons than ppm's.
+    gathers_.clear();
+    if (std::any_of(hit_points.begin(), hit_points.end(),
+                    [](const HitPoint& h) { return h.gathers != kScatteredPhotons; })) {
+        gathers_.resize(hit_points.size());
+        for (size_t i = 0; i < hit_points.size(); ++i)
+            gathers_[i] = static_cast<uint8_t>(hit_points[i].gathers);
+    }
     const size_t n = hit_points.size();
     // Search radii, 0 for the hit points left out (no radius, or a black weight).
     std::vector<float> radius(n);

@@ -41,20 +41,21 @@ public:
     void Build(std::span<const HitPoint> hit_points, std::span<const float> radius_sq,
                std::span<const uint64_t> edges = {});
 
-    // Calls visit(index, inner, normal) for every hit point that gathers a photon at p arriving
-    // along `direction` onto a surface of normal `landed` (turned toward the side it arrived
-    // from), in a fixed order: p lies within its search sphere, its surface faces the photon
-    // (photons from behind are rejected), and, where its surface ends within the sphere, p is
-    // on that surface within its reach (gpu::WithinSurfaceEdges). `inner`: p also lies within R /
-    // sqrt(2), the disc of half the area (for the estimate of the bias,
+    // Calls visit(index, inner, normal) for every hit point that gathers a photon of `kind`
+    // (kDirectPhoton, ...: hit_point.h) at p arriving along `direction` onto a surface of
+    // normal `landed` (turned toward the side it arrived from), in a fixed order: it gathers
+    // that kind (HitPoint::gathers), p lies within its search sphere, its surface faces the
+    // photon (photons from behind are rejected), and, where its surface ends within the
+    // sphere, p is on that surface within its reach (gpu::WithinSurfaceEdges). `inner`: p also lies
+    // within R / sqrt(2), the disc of half the area (for the estimate of the bias,
     // ProgressiveEstimate::EstimateError); `normal`: the hit point's, as stored (DecodeOctahedral:
     // not normalised).
     template <typename Visit>
-    void ForEachGathering(const Vec3& p, const Vec3& direction, const Vec3& landed,
+    void ForEachGathering(const Vec3& p, const Vec3& direction, const Vec3& landed, uint32_t kind,
                           Visit&& visit) const {
         ScanInside(p, [&](uint32_t e) {
             const Vec3 normal = DecodeOctahedral(entry_normal_[e]);
-            if (!Takes(e, normal, p, direction, landed)) return false;
+            if (!Takes(e, normal, p, direction, landed, kind)) return false;
             const float dx = entry_x_[e] - p.x, dy = entry_y_[e] - p.y, dz = entry_z_[e] - p.z;
             visit(entry_index_[e], 2 * (dx * dx + dy * dy + dz * dz) <= entry_radius_sq_[e],
                   normal);
@@ -63,9 +64,9 @@ public:
     }
     // Whether some hit point would gather that photon (ForEachGathering visits one): stops at
     // the first.
-    bool Gathers(const Vec3& p, const Vec3& direction, const Vec3& landed) const {
+    bool Gathers(const Vec3& p, const Vec3& direction, const Vec3& landed, uint32_t kind) const {
         return ScanInside(p, [&](uint32_t e) {
-            return Takes(e, DecodeOctahedral(entry_normal_[e]), p, direction, landed);
+            return Takes(e, DecodeOctahedral(entry_normal_[e]), p, direction, landed, kind);
         });
     }
     // The bucket a photon at p looks in; photons sorted by it share memory traffic.
@@ -144,8 +145,9 @@ private:
     // Whether entry e, of hit point normal `normal`, whose sphere holds p, takes a photon there
     // (ForEachGathering).
     bool Takes(uint32_t e, const Vec3& normal, const Vec3& p, const Vec3& direction,
-               const Vec3& landed) const {
+               const Vec3& landed, uint32_t kind) const {
         if (Dot(normal, direction) >= 0) return false;
+        if (!gathers_.empty() && (gathers_[entry_index_[e]] & kind) == 0) return false;
         const uint64_t edges = edges_.empty() ? gpu::kUnboundedEdges : edges_[entry_index_[e]];
         return gpu::WithinSurfaceEdges(edges, normal, landed,
                                        p - Vec3(entry_x_[e], entry_y_[e], entry_z_[e]),
@@ -165,6 +167,9 @@ private:
     std::vector<float> entry_x_, entry_y_, entry_z_, entry_radius_sq_;
     std::vector<uint32_t> entry_normal_;  // octahedral, read only for those within their radius
     std::vector<uint32_t> entry_index_;   // the hit point of each entry
+    // Per hit point, the photons it gathers (HitPoint::gathers); empty where every one gathers
+    // kScatteredPhotons, all a ppm or sppm photon pass deposits.
+    std::vector<uint8_t> gathers_;
     // Per hit point, where its surface ends (Build's edges), read only for the photons within
     // its sphere that face it; empty where none was given or every surface fills its disc.
     std::vector<uint64_t> edges_;

@@ -30,20 +30,20 @@ void GatherSorted(const PhotonPassInputs& inputs, BatchScratch& scratch) {
     if (!inputs.features.ShadingNormals()) {
         for (const PhotonDeposit& deposit : sorted) {
             const uint32_t count = kCounted ? *counts++ : 1;
-            inputs.grid->ForEachGathering(deposit.position, deposit.direction, deposit.normal,
-                                          [&](uint32_t index, bool inner, const Vec3&) {
-                                              if constexpr (kCounted)
-                                                  scratch.tally.Add(index, deposit.flux, inner,
-                                                                    count);
-                                              else
-                                                  scratch.tally.Add(index, deposit.flux, inner);
-                                          });
+            inputs.grid->ForEachGathering(
+                deposit.position, deposit.direction, deposit.normal, deposit.kind,
+                [&](uint32_t index, bool inner, const Vec3&) {
+                    if constexpr (kCounted)
+                        scratch.tally.Add(index, deposit.flux, inner, count);
+                    else
+                        scratch.tally.Add(index, deposit.flux, inner);
+                });
         }
     } else {  // Veach's arrival factor at each hit point, by its own shading normal
         for (const PhotonDeposit& deposit : sorted) {
             const uint32_t count = kCounted ? *counts++ : 1;
             inputs.grid->ForEachGathering(
-                deposit.position, deposit.direction, deposit.normal,
+                deposit.position, deposit.direction, deposit.normal, deposit.kind,
                 [&](uint32_t index, bool inner, const Vec3& normal) {
                     const float facing = -Dot(Normalize(normal), deposit.direction);
                     if constexpr (kCounted)

@@ -52,6 +52,9 @@ struct PhotonPassInputs {
     // Adaptive photon tracing (core/shared/photon_chain.h): each chunk runs Markov chains
     // toward the photons that reach a hit point instead of tracing independent photons.
     bool adaptive = false;
+    // Photons deposit at their first surface too (kDirectPhoton), for hit points that gather
+    // direct light (rpm's gather hits); otherwise only once they have scattered.
+    bool direct_photons = false;
 };
 
 // A batch gathers its deposits once this many are pending (about 80 MB of deposits and keys
@@ -65,12 +68,14 @@ SeedFamily PhotonSeeds(uint64_t seed, uint64_t batch_index);
 // step's photon index), apart from its photons'.
 SeedFamily ProposalSeeds(uint64_t seed, uint64_t batch_index);
 
-// Where a photon landed on a diffuse surface after scattering at least once.
+// Where a photon landed on a diffuse surface (after scattering at least once, but where
+// PhotonPassInputs::direct_photons).
 struct PhotonDeposit {
     Vec3 position;
     Vec3 direction;  // of travel, unit
     Rgb flux;        // W x N_emitted
     Vec3 normal;     // the surface's where it landed, toward the side it arrived from
+    uint32_t kind;   // how it came there: kDirectPhoton, kCausticPhoton or kDiffusePhoton
 };
 
 // One thread's reusable working memory for batches; not thread-safe.

@@ -20,6 +20,7 @@ struct PhotonPath {
     Rgb flux;
     Rng rng;
     bool scattered = false;  // the first hit of an unscattered photon is direct light
+    bool diffused = false;   // it has scattered at a diffuse surface (no longer a caustic)
     int bounces = 0;
     const PunctualLight* ranged = nullptr;  // the light's window is still to apply at the first hit
 };
@@ -46,8 +47,8 @@ inline PhotonPath StartPhoton(const PhotonPassInputs& inputs, const SeedFamily& 
 }
 
 // Continues a path at its hit (ScatterPhotonAt): a deposit at every diffuse hit after the
-// first scattering (a coat turning a photon back to its base is a scattering). Returns false where
-// the path ends.
+// first scattering (a coat turning a photon back to its base is a scattering), and at the first
+// where inputs.direct_photons. Returns false where the path ends.
 template <bool kSpecular, bool kTextures>
 bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath& path,
                    std::vector<PhotonDeposit>& deposits) {
@@ -59,16 +60,20 @@ bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath
         *inputs.scene, hit, path.ray, path.flux, path.rng,
         [&](const Vec3& position, const Vec3& direction, const Rgb& flux, bool returned,
             float cosine, const Vec3& normal) {
-            if (!path.scattered && !returned) return;
+            const uint32_t kind = !path.scattered && !returned ? kDirectPhoton
+                                  : path.diffused || returned  ? kDiffusePhoton
+                                                               : kCausticPhoton;
+            if (kind == kDirectPhoton && !inputs.direct_photons) return;
             // With shading normals, the flux per unit of its cosine: hit points weigh it by
             // theirs (GatherDeposits).
             if (!inputs.features.ShadingNormals())
-                deposits.push_back({position, direction, flux, normal});
+                deposits.push_back({position, direction, flux, normal, kind});
             else if (cosine > 0)
-                deposits.push_back({position, direction, flux / cosine, normal});
+                deposits.push_back({position, direction, flux / cosine, normal, kind});
         });
     if (event == PhotonEvent::kEnded) return false;
     path.scattered = true;
+    path.diffused = path.diffused || event == PhotonEvent::kDiffuse;
     return ++path.bounces < inputs.max_bounces;
 }
 

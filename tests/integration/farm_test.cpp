@@ -38,14 +38,15 @@ TEST_F(FarmTest, OneTwoAndFiveWorkersOfMixedThreadCountsGiveRendersImage) {
 }
 
 TEST_F(FarmTest, EveryIntegratorGivesRendersImageOnTwoWorkers) {
-    // Stochastic ppm's workers trace each epoch's hit points themselves, classic pm's build
-    // the photon maps themselves, and the path tracer's render pixels: every one must still
+    // Stochastic ppm's workers trace each epoch's hit points themselves (rpm's with their
+    // gather hits), classic pm's build the photon maps themselves, and the path tracer's
+    // render pixels: every one must still
     // give the image `photonfarm render` gives, byte for byte.
     StartWorker();
     StartWorker();
     // Rough metal and rough glass: caustics for the caustic map, glossy paths for all.
     const std::string scene = std::string(PF_SOURCE_DIR) + "/scenes/cornell-glossy.gltf";
-    for (const std::string integrator : {"sppm", "pm", "path"}) {
+    for (const std::string integrator : {"sppm", "pm", "rpm", "path"}) {
         const std::vector<std::string> flags =
             Concat(kJobFlags, {"--integrator", integrator, "--epochs", "3", "--pm-photons", "20k",
                                "--pm-caustic-photons", "20k", "--log-level", "warn"});

@@ -51,6 +51,7 @@ RenderSettings Small(const std::string& scene, Integrator integrator, int size) 
             job.samples_per_pixel = 16, job.photon_budget = 12'000'000;
             break;
         case Integrator::kSppm:
+        case Integrator::kRpm:
             job.photon_budget = 12'000'000;
             break;
         case Integrator::kPm:
@@ -97,7 +98,10 @@ TEST_P(WhiteFurnace, ConvergesToEmissionOverOneMinusAlbedo) {
     switch (GetParam()) {
         case Integrator::kPpm:
         case Integrator::kSppm:
+        case Integrator::kRpm:
             // Unbiased on a flat density, noise as derived for numerics_cases.cpp's furnaces.
+            // rpm's photon part is ppm's, rho^2 of L, at gather hits spread over the whole box
+            // rather than the interior alone: the interior's sigma bounds it.
             sigma = testing::FurnaceMeanSigma(kRho, static_cast<double>(outcome->progress.photons),
                                               interior.area_fraction, direct_samples);
             break;
@@ -132,7 +136,7 @@ TEST_P(WhiteFurnace, ConvergesToEmissionOverOneMinusAlbedo) {
 
 INSTANTIATE_TEST_SUITE_P(Integrators, WhiteFurnace,
                          ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
-                                           Integrator::kPath),
+                                           Integrator::kRpm, Integrator::kPath),
                          Name);
 
 // pbrt's maxdepth (JobSpec::max_depth) in the furnace: a path scattering at most d times sees
@@ -568,6 +572,10 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(SceneCase{"cornell-box.gltf", Integrator::kPpm, 0.165},
                       SceneCase{"cornell-box.gltf", Integrator::kSppm, 0.165},
                       SceneCase{"cornell-box.gltf", Integrator::kPm, 0.165},
+                      SceneCase{"cornell-box.gltf", Integrator::kRpm, 0.165},
+                      // Caustics at the camera's hit points (the rough metal sphere's), gather
+                      // rays through its rough reflection.
+                      SceneCase{"cornell-glossy.gltf", Integrator::kRpm, 0.1},
                       SceneCase{"cornell-glossy.gltf", Integrator::kSppm, 0.1},
                       // Normal-mapped tiles: photons leave and land by the tilted normals,
                       // carrying Veach's adjoint factors (core/shared/shading_normal.h).

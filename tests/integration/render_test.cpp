@@ -339,10 +339,11 @@ RenderSettings DeterminismRender(const std::string& scene, Integrator integrator
 class Determinism : public ::testing::TestWithParam<Integrator> {};
 
 TEST_P(Determinism, SameSeedGivesBitIdenticalImagesForOneTwoThreeAndSevenThreads) {
-    // cornell-glass (glass, a mirror) for every integrator; caustic-glass too for the two
-    // progressive ones, whose caustic paths are the longest.
+    // cornell-glass (glass, a mirror) for every integrator; caustic-glass too for those that
+    // gather photons at hit points, whose caustic paths are the longest.
     std::vector<std::string> scenes = {"cornell-glass.gltf"};
-    if (GetParam() == Integrator::kPpm || GetParam() == Integrator::kSppm)
+    if (GetParam() == Integrator::kPpm || GetParam() == Integrator::kSppm ||
+        GetParam() == Integrator::kRpm)
         scenes.push_back("caustic-glass.gltf");
     for (const std::string& scene : scenes) {
         const absl::StatusOr<RenderOutcome> one =
@@ -364,7 +365,7 @@ TEST_P(Determinism, SameSeedGivesBitIdenticalImagesForOneTwoThreeAndSevenThreads
 
 INSTANTIATE_TEST_SUITE_P(Integrators, Determinism,
                          ::testing::Values(Integrator::kPpm, Integrator::kSppm, Integrator::kPm,
-                                           Integrator::kPath),
+                                           Integrator::kRpm, Integrator::kPath),
                          [](const ::testing::TestParamInfo<Integrator>& integrator) {
                              return std::string(IntegratorName(integrator.param));
                          });

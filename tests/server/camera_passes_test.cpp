@@ -18,7 +18,7 @@ void ExpectSamePass(const CameraPassResult& a, const CameraPassResult& b, uint64
     for (size_t i = 0; i < a.hit_points.size(); ++i) {
         const HitPoint &p = a.hit_points[i], &q = b.hit_points[i];
         ASSERT_TRUE(p.position == q.position && p.normal == q.normal && p.weight == q.weight &&
-                    p.pixel == q.pixel && p.coat == q.coat)
+                    p.pixel == q.pixel && p.coat == q.coat && p.gathers == q.gathers)
             << "epoch " << epoch << ", hit point " << i;
     }
     EXPECT_EQ(a.footprint, b.footprint) << "epoch " << epoch;
@@ -27,7 +27,7 @@ void ExpectSamePass(const CameraPassResult& a, const CameraPassResult& b, uint64
 }
 
 TEST(CameraPassesTest, PassesTracedAheadAreThePassesTracedOnDemand) {
-    for (const Integrator integrator : {Integrator::kSppm, Integrator::kPpm}) {
+    for (const Integrator integrator : {Integrator::kSppm, Integrator::kRpm, Integrator::kPpm}) {
         absl::StatusOr<Scene> scene =
             LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-glass.gltf");
         ASSERT_TRUE(scene.ok()) << scene.status();

@@ -43,7 +43,7 @@ void ExpectBijection(const std::vector<Core>& values,
 
 TEST(WireEnumsTest, IntegratorsMapOneToOneAndUnspecifiedIsTheDefault) {
     ExpectBijection<Integrator>(
-        {Integrator::kPpm, Integrator::kSppm, Integrator::kPm, Integrator::kPath},
+        {Integrator::kPpm, Integrator::kSppm, Integrator::kPm, Integrator::kRpm, Integrator::kPath},
         v1::Integrator_descriptor(), IntegratorFromProto);
     EXPECT_EQ(*IntegratorFromProto(v1::INTEGRATOR_UNSPECIFIED, "f"), JobSpec{}.integrator);
 }

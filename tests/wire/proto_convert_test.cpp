@@ -94,8 +94,8 @@ TEST(ProtoConvertTest, PhotonTracingRoundTripsAndAppliesToThePhotonMappersOnly) 
     const absl::StatusOr<JobSpec> refused = FromProto(ToProto(spec));
     ASSERT_FALSE(refused.ok());
     EXPECT_EQ(refused.status().message(),
-              "settings.photon_tracing applies to ppm and sppm, whose photons gather at hit "
-              "points, not to the path integrator");
+              "settings.photon_tracing applies to ppm, sppm and rpm, whose photons gather at "
+              "hit points, not to the path integrator");
 }
 
 TEST(ProtoConvertTest, HostileResultsAreRefused) {

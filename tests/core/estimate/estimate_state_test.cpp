@@ -159,6 +159,19 @@ std::unique_ptr<Estimate> MakeStochastic() {
                                                  StochasticPass);
 }
 
+// rpm's: one camera sample a pixel with two gather rays, the three slots of each pixel.
+std::unique_ptr<Estimate> MakeReverse() {
+    EstimateSettings settings;
+    settings.stochastic = true;
+    settings.alpha = 1;
+    settings.gather_rays = 2;
+    settings.initial_radius = 0.5;
+    settings.samples_per_pixel = 1;
+    settings.layout = {1000, 4};
+    return std::make_unique<ProgressiveEstimate>(StochasticPass(0, nullptr), settings,
+                                                 StochasticPass);
+}
+
 std::unique_ptr<Estimate> MakePpm() {
     return std::make_unique<ProgressiveEstimate>(MakeEstimate());
 }
@@ -204,6 +217,7 @@ TEST_P(AnyEstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
 INSTANTIATE_TEST_SUITE_P(Kinds, AnyEstimateStateTest,
                          ::testing::Values(EstimateKind{"ppm", MakePpm},
                                            EstimateKind{"sppm", MakeStochastic},
+                                           EstimateKind{"rpm", MakeReverse},
                                            EstimateKind{"path", MakePixels}),
                          [](const auto& param_info) { return std::string(param_info.param.name); });
 
@@ -251,11 +265,13 @@ TEST(EstimateStateTest, HitPointsKeptApartOnceItEndsBitIdentical) {
     }
 }
 
-// sppm traces its hit points anew every epoch and path has none: nothing of them is fixed,
+// sppm and rpm trace their hit points anew every epoch and path has none: nothing of them is
+// fixed,
 // and a state saved "apart" is the whole state.
 TEST(EstimateStateTest, OnlyPpmKeepsAPartApart) {
     std::vector<std::unique_ptr<Estimate>> estimates;
     estimates.push_back(MakeStochastic());
+    estimates.push_back(MakeReverse());
     estimates.push_back(MakePixels());
     for (const std::unique_ptr<Estimate>& estimate : estimates) {
         ByteWriter fixed, apart, whole;

@@ -56,9 +56,9 @@ TEST(HashGridTest, MatchesBruteForceForMixedRadiiAndEdges) {
         if (query % 2 == 0) landed = Normalize(landed - direction * 2.0f);
         // Each found hit point with whether p lies in its inner disc (R / sqrt(2)).
         std::vector<std::pair<uint32_t, bool>> found, expected;
-        grid.ForEachGathering(p, direction, landed, [&](uint32_t i, bool inner, const Vec3&) {
-            found.emplace_back(i, inner);
-        });
+        grid.ForEachGathering(
+            p, direction, landed, kScatteredPhotons,
+            [&](uint32_t i, bool inner, const Vec3&) { found.emplace_back(i, inner); });
         for (uint32_t i = 0; i < hit_points.size(); ++i) {
             const float distance_sq = LengthSquared(hit_points[i].position - p);
             if (radius_sq[i] > 0 && distance_sq <= radius_sq[i] &&
@@ -91,9 +91,9 @@ TEST(HashGridTest, VisitsInIndexOrderWhateverTheThreadsThatBuiltIt) {
     for (int query = 0; query < 2000; ++query) {
         const Vec3 p(rng.NextFloat(), rng.NextFloat(), rng.NextFloat());
         std::vector<uint32_t> from_one, from_four;
-        one.ForEachGathering(p, Vec3(0, 0, -1), Vec3(0, 0, 1),
+        one.ForEachGathering(p, Vec3(0, 0, -1), Vec3(0, 0, 1), kScatteredPhotons,
                              [&](uint32_t i, bool, const Vec3&) { from_one.push_back(i); });
-        four.ForEachGathering(p, Vec3(0, 0, -1), Vec3(0, 0, 1),
+        four.ForEachGathering(p, Vec3(0, 0, -1), Vec3(0, 0, 1), kScatteredPhotons,
                               [&](uint32_t i, bool, const Vec3&) { from_four.push_back(i); });
         ASSERT_EQ(from_one, from_four) << "query " << query;
         ASSERT_TRUE(std::is_sorted(from_one.begin(), from_one.end())) << "query " << query;
@@ -112,7 +112,7 @@ TEST(HashGridTest, RadiiFarBelowTheCoordinatesStillFindTheirPhotons) {
     HashGrid grid;
     grid.Build(hit_points, radius_sq);
     std::vector<uint32_t> found;
-    grid.ForEachGathering(hit_points[0].position, Vec3(0, 0, -1), Vec3(0, 0, 1),
+    grid.ForEachGathering(hit_points[0].position, Vec3(0, 0, -1), Vec3(0, 0, 1), kScatteredPhotons,
                           [&](uint32_t i, bool, const Vec3&) { found.push_back(i); });
     EXPECT_EQ(found, std::vector<uint32_t>{0});
 }
@@ -121,14 +121,37 @@ TEST(HashGridTest, EmptyAndBlackHitPointsAreLeftOut) {
     HashGrid grid;
     grid.Build({}, {});
     int visits = 0;
-    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1), Vec3(0, 0, 1),
+    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1), Vec3(0, 0, 1), kScatteredPhotons,
                           [&](uint32_t, bool, const Vec3&) { ++visits; });
     const std::vector<HitPoint> black = {{Vec3(0.0f), Vec3(0, 0, 1), Rgb(0.0f), 0}};
     const std::vector<float> radius_sq = {1.0f};
     grid.Build(black, radius_sq);
-    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1), Vec3(0, 0, 1),
+    grid.ForEachGathering(Vec3(0.0f), Vec3(0, 0, -1), Vec3(0, 0, 1), kScatteredPhotons,
                           [&](uint32_t, bool, const Vec3&) { ++visits; });
     EXPECT_EQ(visits, 0);
+}
+
+TEST(HashGridTest, EachHitPointGathersTheKindsOfPhotonItNames) {
+    // Three hit points at one place: ppm's (every scattered photon), rpm's camera hit point
+    // (caustics alone) and its gather hit (every photon, direct light's included).
+    const std::vector<HitPoint> hit_points = {
+        {Vec3(0.0f), Vec3(0, 0, 1), Rgb(0.5f), 0, kNoCoat, kScatteredPhotons},
+        {Vec3(0.0f), Vec3(0, 0, 1), Rgb(0.5f), 0, kNoCoat, kCausticPhoton},
+        {Vec3(0.0f), Vec3(0, 0, 1), Rgb(0.5f), 0, kNoCoat, kAllPhotons}};
+    const std::vector<float> radius_sq(3, 1.0f);
+    HashGrid grid;
+    grid.Build(hit_points, radius_sq);
+    const auto gathering = [&](uint32_t kind) {
+        std::vector<uint32_t> found;
+        grid.ForEachGathering(Vec3(0.1f, 0, 0), Vec3(0, 0, -1), Vec3(0, 0, 1), kind,
+                              [&](uint32_t i, bool, const Vec3&) { found.push_back(i); });
+        EXPECT_EQ(grid.Gathers(Vec3(0.1f, 0, 0), Vec3(0, 0, -1), Vec3(0, 0, 1), kind),
+                  !found.empty());
+        return found;
+    };
+    EXPECT_EQ(gathering(kDirectPhoton), (std::vector<uint32_t>{2}));
+    EXPECT_EQ(gathering(kCausticPhoton), (std::vector<uint32_t>{0, 1, 2}));
+    EXPECT_EQ(gathering(kDiffusePhoton), (std::vector<uint32_t>{0, 2}));
 }
 
 }  // namespace

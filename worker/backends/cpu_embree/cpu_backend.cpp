@@ -35,7 +35,8 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     // hit points given.
     switch (job.spec != nullptr ? job.spec->integrator : Integrator::kPpm) {
         case Integrator::kPpm:
-        case Integrator::kSppm: {
+        case Integrator::kSppm:
+        case Integrator::kRpm: {
             if (job.spec == nullptr) break;
             absl::StatusOr<CameraPassSettings> film = FilmFor(*job.spec, *job.scene);
             if (!film.ok()) return film.status();
@@ -84,14 +85,16 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
 absl::Status CpuBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regions,
                                     const std::vector<HitPoint>* traced) {
     if (film_) {
-        const bool sppm = job_.spec->integrator == Integrator::kSppm;
+        // sppm's and rpm's hit points are the pass's; ppm samples direct light there.
+        const bool stochastic = TracesHitPointsEachEpoch(job_.spec->integrator);
         const CameraPassSettings pass = StochasticCameraPass(*film_, *job_.spec, epoch);
-        if (sppm && traced != nullptr)
+        if (stochastic && traced != nullptr)
             epoch_hit_points_ = *traced;
         else
             epoch_hit_points_ = RunCameraPass(*job_.scene, tracer_, pass).hit_points;
-        if (sppm) job_.hit_points = epoch_hit_points_;
-        direct_sequence_ = DirectLightSequence{pass.samples_per_pixel, pass.first_sample};
+        if (stochastic) job_.hit_points = epoch_hit_points_;
+        direct_sequence_ =
+            DirectLightSequence{pass.samples_per_pixel, pass.first_sample, 1 + pass.gather_rays};
     }
     PF_CHECK(regions.radius_sq.size() == job_.hit_points.size() &&
              (regions.edges.empty() || regions.edges.size() == regions.radius_sq.size()));
@@ -113,6 +116,7 @@ absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const 
     if (job_.spec != nullptr) {
         inputs.max_bounces = DepthLimit(job_.spec->max_depth, kMaxPhotonBounces);
         inputs.adaptive = job_.spec->photon_tracing == PhotonTracing::kAdaptive;
+        inputs.direct_photons = job_.spec->integrator == Integrator::kRpm;
     }
     return RunPhotonBatches(inputs, specs, scratch_);
 }
