@@ -1,26 +1,25 @@
 // A hit point: where a camera path first reached a diffuse surface (Hachisuka et al. 2008,
-// section 4.1). Created once by the camera pass and fixed for the whole render.
+// section 4.1), or, for reverse photon mapping, where a final-gather ray from one landed.
+// Created by the camera pass: once for ppm, every epoch for sppm and rpm.
 #pragma once
 
 #include <cstdint>
 
 #include "core/math/vec3.h"
+#include "core/shared/photon_kinds.h"
 
 namespace pf {
 
 // A hit point on a diffuse surface under no coat.
 inline constexpr uint32_t kNoCoat = 0xffffffffu;
 
-// How a photon came to land where it did, as one bit (PhotonDeposit::kind); a hit point
-// gathers the kinds its mask names (HitPoint::gathers).
-inline constexpr uint32_t kDirectPhoton = 1;   // at its first surface: direct light
-inline constexpr uint32_t kCausticPhoton = 2;  // after specular and rough bounces alone
-inline constexpr uint32_t kDiffusePhoton = 4;  // after a diffuse bounce (or a coat's return)
-// ppm's and sppm's hit points: every photon but direct light, which is sampled apart.
-inline constexpr uint32_t kScatteredPhotons = kCausticPhoton | kDiffusePhoton;
-// rpm's gather hits: all light leaving the surface, as classic photon mapping's global map
-// holds it for final gathering.
-inline constexpr uint32_t kAllPhotons = kDirectPhoton | kCausticPhoton | kDiffusePhoton;
+// How a photon came to land where it did, and which kinds a hit point gathers
+// (HitPoint::gathers): core/shared/photon_kinds.h.
+using gpu::kAllPhotons;
+using gpu::kCausticPhoton;
+using gpu::kDiffusePhoton;
+using gpu::kDirectPhoton;
+using gpu::kScatteredPhotons;
 
 struct HitPoint {
     Vec3 position;   // world space

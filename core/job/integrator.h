@@ -55,9 +55,9 @@ inline std::vector<std::string> BackendNames() { return {"cpu", "vulkan"}; }
 
 // Whether the photon backend named `backend` (worker/backend_factory.h) runs jobs of
 // `integrator`: the cpu backend runs every one, the vulkan backend those that shoot photons
-// into hit points (ppm, sppm). A coordinator leases a worker only jobs its backend runs.
+// into hit points (ppm, sppm, rpm). A coordinator leases a worker only jobs its backend runs.
 inline bool RunsOnBackend(Integrator integrator, std::string_view backend) {
-    return backend != "vulkan" || integrator == Integrator::kPpm || integrator == Integrator::kSppm;
+    return backend != "vulkan" || GathersAtHitPoints(integrator);
 }
 
 // How ppm and sppm trace photons (`--photon-tracing`): independent photons, or Markov chains

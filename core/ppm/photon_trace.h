@@ -60,9 +60,7 @@ bool ScatterPhoton(const PhotonPassInputs& inputs, const RayHit& hit, PhotonPath
         *inputs.scene, hit, path.ray, path.flux, path.rng,
         [&](const Vec3& position, const Vec3& direction, const Rgb& flux, bool returned,
             float cosine, const Vec3& normal) {
-            const uint32_t kind = !path.scattered && !returned ? kDirectPhoton
-                                  : path.diffused || returned  ? kDiffusePhoton
-                                                               : kCausticPhoton;
+            const uint32_t kind = gpu::PhotonKind(path.scattered, path.diffused, returned);
             if (kind == kDirectPhoton && !inputs.direct_photons) return;
             // With shading normals, the flux per unit of its cosine: hit points weigh it by
             // theirs (GatherDeposits).

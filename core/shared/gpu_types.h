@@ -86,7 +86,10 @@ PF_CONST(uint32_t) kSpecHasAbsorption = 20;         // Material::absorption insi
 PF_CONST(uint32_t) kSpecHasShadingDetail = 21;      // normal or bump maps
 PF_CONST(uint32_t) kSpecHasTranslucency = 22;       // Material::transmittance
 PF_CONST(uint32_t) kSpecHasSheen = 23;              // Material::sheen_color, its textures
-PF_CONST(uint32_t) kSpecCount = 24;
+// Not the scene's but the job's: its hit points gather kinds of photon of their own
+// (GpuHitPoint::weight.w; core/shared/photon_kinds.h), direct light's among them (rpm's).
+PF_CONST(uint32_t) kSpecPhotonKinds = 24;
+PF_CONST(uint32_t) kSpecCount = 25;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -217,7 +220,7 @@ PF_GPU_LAYOUT(GpuEmitter, 176);
 struct GpuHitPoint {
     vec4 position;  // xyz; w: the material whose coat covers it, or kNoCoat (uint bits)
     vec4 normal;    // xyz unit, toward the camera path's side; w: its pixel (uint bits)
-    vec4 weight;    // camera throughput x BSDF, 1/sr
+    vec4 weight;    // xyz camera throughput x BSDF, 1/sr; w: the photons it gathers (uint bits)
 };
 PF_GPU_LAYOUT(GpuHitPoint, 48);
 
@@ -286,9 +289,12 @@ struct GpuParams {
     // photons: adaptive tracing's steps a chain (one chain a thread); 0: uniform tracing
     uint32_t chain_steps;
     uint64_t proposal_prefix;  // photons, adaptive: the stream family of the chains' mutations
-    // 112 of the 128 bytes Vulkan assures
+    // direct: the pass's slots a camera sample (1 + rpm's gather rays; DirectLightSequence)
+    uint32_t direct_slots_per_sample;
+    // 116 bytes, padded to 128 (the vec4's alignment): all the 128 bytes Vulkan assures; a
+    // field more must take a pad's place below or share one.
 };
-PF_GPU_LAYOUT(GpuParams, 112);
+PF_GPU_LAYOUT(GpuParams, 128);
 
 PF_GPU_END
 

@@ -99,7 +99,8 @@ TEST_F(FarmTest, CpuAndVulkanWorkersShareAJob) {
     // image must be a draw of the CPU-only estimator, by the checks of image_agreement.cpp,
     // against CPU renders of photon streams 1 and 2 (the job's is 0: a reference of stream 0
     // would be nearly the same image, not an independent draw, and fails the spread check).
-    // ppm, then sppm, whose Vulkan worker traces each epoch's hit points on its CPU.
+    // ppm, then sppm and rpm, whose Vulkan worker traces each epoch's hit points (rpm's
+    // gather hits with them) on its CPU.
     const auto image = [](std::vector<Rgb> pixels) {
         Image result(48, 48);
         result.pixels = std::move(pixels);
@@ -107,8 +108,8 @@ TEST_F(FarmTest, CpuAndVulkanWorkersShareAJob) {
     };
     uint64_t vulkan_batches = 0;
     for (const std::vector<std::string>& flags :
-         {std::vector<std::string>{}, {"--integrator", "sppm"}}) {
-        SCOPED_TRACE(flags.empty() ? "ppm" : "sppm");
+         {std::vector<std::string>{}, {"--integrator", "sppm"}, {"--integrator", "rpm"}}) {
+        SCOPED_TRACE(flags.empty() ? "ppm" : flags[1]);
         ASSERT_EQ(SubmitAndWatch(TempPath("mixed.exr"), kEpochs, flags), 0);
         const absl::StatusOr<v1::ListWorkersResponse> workers = client_->ListWorkers();
         ASSERT_TRUE(workers.ok()) << workers.status();

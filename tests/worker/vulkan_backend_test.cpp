@@ -300,33 +300,50 @@ TEST_F(VulkanBackendTest, CornellBoxBatchesMatchAndABiasedOrSwappedKernelWouldNo
     EXPECT_EQ(broken(keep, keep), "");
 }
 
-TEST_F(VulkanBackendTest, SppmEpochsTraceTheirOwnHitPointsAndMatchTheCpuBackend) {
+TEST_F(VulkanBackendTest, StochasticEpochsTraceTheirOwnHitPointsAndMatchTheCpuBackend) {
     // Each backend traces the epoch's stochastic camera pass itself; both must gather on the
-    // same hit points, epoch after epoch (the slots move with every epoch's jitter).
+    // same hit points, epoch after epoch (the slots move with every epoch's jitter): sppm's,
+    // and rpm's camera hit points (caustics alone: the rough metal sphere's) with their gather
+    // hits (every photon, direct light's included), no direct light sampled at the latter.
     Scene scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-glossy.gltf");
     const Emitters emitters(scene);
-    JobSpec spec;
-    spec.integrator = Integrator::kSppm;
-    spec.width = spec.height = 24;
-    spec.samples_per_pixel = 2;
-    spec.photon_budget = 1;
-    spec.layout = {1u << 14, 16};  // 16 batches an epoch: 15 degrees of freedom to compare
-    const GatherRegions regions{std::vector<float>(size_t{24} * 24 * 2, 0.03f * 0.03f), {}};
-    const std::vector<float>& radius_sq = regions.radius_sq;
-    std::unique_ptr<Backend> cpu = std::move(*CreateBackend("cpu", scene));
-    absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", scene);
-    ASSERT_TRUE(vulkan.ok()) << vulkan.status();
-    for (Backend* backend : {cpu.get(), vulkan->get()})
-        ASSERT_TRUE(backend->BeginJob({&scene, &emitters, {}, 7, &spec}).ok());
-    for (uint64_t epoch : {0u, 5u}) {
-        SCOPED_TRACE(epoch);
+    for (const Integrator integrator : {Integrator::kSppm, Integrator::kRpm}) {
+        SCOPED_TRACE(IntegratorName(integrator));
+        JobSpec spec;
+        spec.integrator = integrator;
+        spec.width = spec.height = 24;
+        spec.samples_per_pixel = 2;
+        spec.photon_budget = 1;
+        spec.layout = {1u << 14, 16};  // 16 batches an epoch: 15 degrees of freedom to compare
+        const GatherRegions regions{
+            std::vector<float>(size_t{24} * 24 * 2 * SlotsPerCameraSample(spec), 0.03f * 0.03f),
+            {}};
+        const std::vector<float>& radius_sq = regions.radius_sq;
+        std::unique_ptr<Backend> cpu = std::move(*CreateBackend("cpu", scene));
+        absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", scene);
+        ASSERT_TRUE(vulkan.ok()) << vulkan.status();
         for (Backend* backend : {cpu.get(), vulkan->get()})
-            ASSERT_TRUE(backend->BeginEpoch(epoch, regions, nullptr).ok());
-        std::vector<BatchSpec> specs;
-        for (uint32_t b = 0; b < spec.layout.batches_per_epoch; ++b)
-            specs.push_back(
-                MakeBatchSpec(spec.layout, epoch, b, static_cast<uint32_t>(radius_sq.size())));
-        ExpectBatchesAgree(*cpu, **vulkan, specs);
+            ASSERT_TRUE(backend->BeginJob({&scene, &emitters, {}, 7, &spec}).ok());
+        for (uint64_t epoch : {0u, 5u}) {
+            SCOPED_TRACE(epoch);
+            for (Backend* backend : {cpu.get(), vulkan->get()})
+                ASSERT_TRUE(backend->BeginEpoch(epoch, regions, nullptr).ok());
+            std::vector<BatchSpec> specs;
+            for (uint32_t b = 0; b < spec.layout.batches_per_epoch; ++b)
+                specs.push_back(
+                    MakeBatchSpec(spec.layout, epoch, b, static_cast<uint32_t>(radius_sq.size())));
+            const auto [cpu_results, gpu_results] = ExpectBatchesAgree(*cpu, **vulkan, specs);
+            if (integrator != Integrator::kRpm || gpu_results.empty()) continue;
+            // Direct light at camera hit points alone: every fifth slot (1 + 4 gather rays).
+            size_t lit = 0;
+            for (const BatchResult& result : gpu_results)
+                for (uint32_t i = 0; i < result.samples.size(); ++i) {
+                    const bool gather_slot = (result.spec.sample_begin + i) % 5 != 0;
+                    if (gather_slot) EXPECT_TRUE(IsBlack(result.samples[i]));
+                    lit += !IsBlack(result.samples[i]);
+                }
+            EXPECT_GT(lit, radius_sq.size() / 5 / 2);
+        }
     }
 }
 

@@ -56,7 +56,7 @@ static_assert(gpu::kNoCoat == kNoCoat);
 gpu::GpuHitPoint ToGpu(const HitPoint& h) {
     return {{h.position.x, h.position.y, h.position.z, std::bit_cast<float>(h.coat)},
             {h.normal.x, h.normal.y, h.normal.z, std::bit_cast<float>(h.pixel)},
-            {h.weight.x, h.weight.y, h.weight.z, 0}};
+            {h.weight.x, h.weight.y, h.weight.z, std::bit_cast<float>(h.gathers)}};
 }
 
 // Device buffers filled from host data through staging buffers, all copies in one submission.
@@ -276,8 +276,8 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     size_t direct_points = 0;
     if (job.spec != nullptr && GathersAtHitPoints(job.spec->integrator)) {
         // Each epoch's camera pass is traced on this machine's CPU, as the CPU backend does;
-        // the device holds one slot per pixel sample, black until the first epoch: sppm's hit
-        // points, or ppm's points of direct light.
+        // the device holds one slot per pixel sample (and rpm's gather rays), black until the
+        // first epoch: sppm's and rpm's hit points, or ppm's points of direct light.
         absl::StatusOr<CameraPassSettings> film = FilmFor(*job.spec, scene_);
         if (!film.ok()) return film.status();
         film->features = AnalyseFeatures(scene_, *job.emitters);
@@ -290,10 +290,11 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
         film_ = *film;
         // Room for the largest epoch's pass (a growing epoch takes fewer samples).
         epoch_hit_points_.assign(size_t(film_->width) * size_t(film_->height) *
-                                     size_t(MaxEpochSamplesPerPixel(*job.spec)),
+                                     size_t(MaxEpochSamplesPerPixel(*job.spec)) *
+                                     SlotsPerCameraSample(*job.spec),
                                  {});
         max_epoch_points_ = epoch_hit_points_.size();
-        if (job.spec->integrator == Integrator::kSppm)
+        if (StochasticJob())
             job_.hit_points = epoch_hit_points_;
         else
             direct_points = epoch_hit_points_.size();
@@ -320,8 +321,9 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     if (!(gpu_scene->max_photon_flux > 0) || !std::isfinite(flux_to_fixed_))
         return absl::InvalidArgumentError("the scene's lights carry no finite power");
 
-    absl::StatusOr<std::unique_ptr<Kernels>> kernels =
-        Kernels::Create(*context_, SpecConstantsFor(features_));
+    SpecConstants spec = SpecConstantsFor(features_);
+    spec[gpu::kSpecPhotonKinds] = job.spec != nullptr && job.spec->integrator == Integrator::kRpm;
+    absl::StatusOr<std::unique_ptr<Kernels>> kernels = Kernels::Create(*context_, spec);
     if (!kernels.ok()) return kernels.status();
     kernels_ = std::move(*kernels);
 
@@ -332,7 +334,7 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
                                     gpu::kScanBlock, kMaxBuckets);
 
     absl::StatusOr<std::unique_ptr<JobBuffers>> buffers = JobBuffers::Create(
-        *context_, stream_, *gpu_scene, hit_points, buckets_, SppmJob(), direct_points);
+        *context_, stream_, *gpu_scene, hit_points, buckets_, StochasticJob(), direct_points);
     if (!buffers.ok()) return buffers.status();
     kernels_->BindBuffers((*buffers)->Bindings());
     buffers_ = std::move(*buffers);
@@ -366,14 +368,16 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regi
     if (film_) {
         const CameraPassSettings pass = StochasticCameraPass(*film_, *job_.spec, epoch);
         std::vector<HitPoint> points =
-            SppmJob() && traced != nullptr
+            StochasticJob() && traced != nullptr
                 ? *traced
                 : RunCameraPass(scene_, *camera_tracer_, pass).hit_points;
-        direct_sequence_ = DirectLightSequence{pass.samples_per_pixel, pass.first_sample};
-        PF_CHECK(SppmJob() ? points.size() == n : points.size() <= max_epoch_points_);
+        direct_sequence_ =
+            DirectLightSequence{pass.samples_per_pixel, pass.first_sample, 1 + pass.gather_rays};
+        PF_CHECK(StochasticJob() ? points.size() == n : points.size() <= max_epoch_points_);
         epoch_hit_points_ = std::move(points);
-        if (SppmJob()) job_.hit_points = epoch_hit_points_;
-        Buffer& upload = SppmJob() ? buffers_->hit_point_upload : buffers_->direct_point_upload;
+        if (StochasticJob()) job_.hit_points = epoch_hit_points_;
+        Buffer& upload =
+            StochasticJob() ? buffers_->hit_point_upload : buffers_->direct_point_upload;
         std::ranges::transform(epoch_hit_points_, static_cast<gpu::GpuHitPoint*>(upload.Mapped()),
                                ToGpu);
     }
@@ -403,7 +407,7 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regi
     }
     const VkBufferCopy points{.size = epoch_hit_points_.size() * sizeof(gpu::GpuHitPoint)};
     if (film_ && !epoch_hit_points_.empty()) {
-        if (SppmJob())
+        if (StochasticJob())
             vkCmdCopyBuffer(*commands, buffers_->hit_point_upload.Handle(),
                             buffers_->hit_points.Handle(), 1, &points);
         else
@@ -477,6 +481,7 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
             static_cast<uint32_t>(direct_sequence_->samples_per_pixel);
         direct.direct_sequences = DirectLightSequences(job_.seed);
         direct.direct_first_sample = direct_sequence_->first;
+        direct.direct_slots_per_sample = static_cast<uint32_t>(direct_sequence_->slots_per_sample);
         direct.epoch_parity = static_cast<uint32_t>(spec.epoch & 1);
     }
     for (uint64_t first = 0; first < direct_count; first += per_dispatch) {

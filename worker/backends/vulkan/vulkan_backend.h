@@ -82,18 +82,18 @@ private:
     SceneFeatures features_;
     std::unique_ptr<Kernels> kernels_;
     std::unique_ptr<JobBuffers> buffers_;
-    // Whether the job is sppm's, whose hit points change every epoch.
-    bool SppmJob() const {
-        return job_.spec != nullptr && job_.spec->integrator == Integrator::kSppm;
+    // Whether the job is sppm's or rpm's, whose hit points change every epoch.
+    bool StochasticJob() const {
+        return job_.spec != nullptr && TracesHitPointsEachEpoch(job_.spec->integrator);
     }
     // Whether the job traces its photons adaptively (JobSpec::photon_tracing).
     bool Adaptive() const {
         return job_.spec != nullptr && job_.spec->photon_tracing == PhotonTracing::kAdaptive;
     }
 
-    // ppm, sppm: the film whose epoch passes are traced, on the CPU through camera_tracer_
+    // ppm, sppm, rpm: the film whose epoch passes are traced, on the CPU through camera_tracer_
     // (made for the first such job), and the pass's points: sppm's hit points, which
-    // job_.hit_points views, or ppm's points of direct light.
+    // job_.hit_points views (rpm's too), or ppm's points of direct light.
     std::optional<CameraPassSettings> film_;
     std::unique_ptr<Tracer> camera_tracer_;
     std::vector<HitPoint> epoch_hit_points_;

@@ -13,6 +13,7 @@
 #include "core/shared/translucent.h"
 #include "core/shared/photon_chain.h"
 #include "core/shared/surface_edges.h"
+#include "core/shared/photon_kinds.h"
 
 layout(constant_id = kSpecHasMirror) const bool kHasMirror = true;
 layout(constant_id = kSpecHasDielectric) const bool kHasDielectric = true;
@@ -38,6 +39,8 @@ layout(constant_id = kSpecHasAbsorption) const bool kHasAbsorption = true;
 layout(constant_id = kSpecHasShadingDetail) const bool kHasShadingDetail = true;
 layout(constant_id = kSpecHasTranslucency) const bool kHasTranslucency = true;
 layout(constant_id = kSpecHasSheen) const bool kHasSheen = true;
+// The job's hit points gather kinds of photon of their own (rpm's), direct light's among them.
+layout(constant_id = kSpecPhotonKinds) const bool kPhotonKinds = true;
 // Some shading normal differs from its surface's (SceneFeatures::ShadingNormals).
 const bool kShadingNormals = kHasSmoothNormals || kHasShadingDetail;
 

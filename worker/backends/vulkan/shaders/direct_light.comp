@@ -1,7 +1,7 @@
 #version 460
 // One direct-light sample for each point of a batch's slice of the epoch's camera samples
 // (direct_points: core/ppm/direct_light.cpp on
-// the CPU, with the same random numbers): a light sample with its shadow ray and, in a scene
+// the CPU, with the same random numbers; none at rpm's gather hits): a light sample with its shadow ray and, in a scene
 // with emitting triangles or an environment, a cosine-distributed ray that may find one,
 // weighed by the power heuristic, under a coat times what it lets through; the result times the
 // hit point's weight.
@@ -19,7 +19,11 @@ void main() {
     if (gl_LocalInvocationIndex == 0) group_discarded = 0;
     barrier();
     const uint index = params.first + gl_GlobalInvocationID.x;
-    if (index < params.end) {
+    // rpm's gather hits take no sample: their photons carry direct light.
+    const bool gather_hit = index < params.end && kPhotonKinds &&
+                            (floatBitsToUint(direct_points[index].weight.w) & kDirectPhoton) != 0u;
+    if (gather_hit) direct[index - params.direct_begin] = vec4(0);
+    if (index < params.end && !gather_hit) {
         const GpuHitPoint point = direct_points[index];
         Pcg32 rng = Pcg32Seeded(FamilySeed(params.seed_prefix, index));
         const vec3 normal = point.normal.xyz;
@@ -37,8 +41,9 @@ void main() {
             // PixelSampler::SequenceOf: 2 pixel + the epoch's parity.
             sequence = FamilyPrefixOf(params.direct_sequences,
                                       2ul * uint64_t(pixel) + uint64_t(params.epoch_parity));
+            const uint slots = params.direct_slots_per_sample;
             sample_index = uint(params.direct_first_sample +
-                                uint64_t(index - pixel * params.direct_samples_per_pixel));
+                                uint64_t((index - pixel * params.direct_samples_per_pixel * slots) / slots));
             light_u = SequenceSample2D(sequence, sample_index, 0u);
         } else {
             pick = Pcg32NextFloat(rng);

@@ -1,8 +1,9 @@
 #version 460
 // The photon pass (core/ppm/photon_pass.cpp on the CPU): one thread a photon path, from a
 // light through specular and diffuse bounces (and through coats, as core/ppm/photon_walk.h)
-// with Russian roulette; at every diffuse hit after the first scattering the photon is gathered
-// at once by the hit points whose sphere holds it, into integer sums (GpuTallySum) that do not
+// with Russian roulette; at every diffuse hit after the first scattering (and at the first too
+// where hit points gather kinds of photon of their own: kPhotonKinds, rpm's) the photon is
+// gathered at once by the hit points whose sphere holds it and that gather its kind, into integer sums (GpuTallySum) that do not
 // depend on thread order. Adaptive tracing (params.chain_steps > 0): one thread a Markov chain
 // (core/shared/photon_chain.h) whose steps test photons for visibility without gathering, then
 // trace the chain's state again, gathering.
@@ -23,22 +24,23 @@ shared uint group_steps;
 // of the at most 2^32 - 1 photons a tally counts stays below 2^63.
 uint64_t ToFixed(float flux) { return uint64_t(min(flux * params.flux_to_fixed + 0.5, 2147483648.0)); }
 
-// Whether the hit point of grid entry `entry` takes a photon at p arriving along `direction`
-// onto a surface of normal `landed` (toward the side it arrived from), as HashGrid::Takes: its
-// sphere holds p, its surface faces the photon, and its gather region holds it
-// (WithinSurfaceEdges).
-bool Takes(GpuGridEntry entry, vec3 p, vec3 direction, vec3 landed) {
+// Whether the hit point of grid entry `entry` takes a photon of `kind` (photon_kinds.h) at p
+// arriving along `direction` onto a surface of normal `landed` (toward the side it arrived
+// from), as HashGrid::Takes: its sphere holds p, its surface faces the photon, it gathers that
+// kind, and its gather region holds it (WithinSurfaceEdges).
+bool Takes(GpuGridEntry entry, vec3 p, vec3 direction, vec3 landed, uint kind) {
     const vec3 offset = p - entry.position.xyz;
     if (dot(offset, offset) > entry.position.w || !(dot(entry.normal.xyz, direction) < 0.0))
         return false;
-    return WithinSurfaceEdges(surface_edges[floatBitsToUint(entry.normal.w)], entry.normal.xyz,
-                              landed, offset, entry.position.w);
+    const uint index = floatBitsToUint(entry.normal.w);
+    if (kPhotonKinds && (floatBitsToUint(hit_points[index].weight.w) & kind) == 0u) return false;
+    return WithinSurfaceEdges(surface_edges[index], entry.normal.xyz, landed, offset, entry.position.w);
 }
 
 // Adds a deposit to the hit points that take it (Takes). `flux` is per unit of its cosine
 // where some shading normal differs from its surface's (kShadingNormals): each hit point then
 // weighs it by its own (Veach's arrival factor, as GatherDeposits on the CPU).
-void Gather(vec3 p, vec3 direction, vec3 landed, vec3 flux) {
+void Gather(vec3 p, vec3 direction, vec3 landed, vec3 flux, uint kind) {
     const ivec3 cell = GridCell(p);
     // The neighbour on the nearer side in each axis: cells are two radii wide.
     const vec3 within = p * params.grid_inverse_cell - vec3(cell);
@@ -56,7 +58,7 @@ void Gather(vec3 p, vec3 direction, vec3 landed, vec3 flux) {
         const uint end = grid_begin[bucket + 1];
         for (uint e = grid_begin[bucket]; e < end; ++e) {
             const GpuGridEntry entry = grid_entries[e];
-            if (!Takes(entry, p, direction, landed)) continue;
+            if (!Takes(entry, p, direction, landed, kind)) continue;
             const vec3 offset_to = entry.position.xyz - p;
             const float distance_sq = dot(offset_to, offset_to);
             const float facing = -dot(entry.normal.xyz, direction);
@@ -76,9 +78,9 @@ void Gather(vec3 p, vec3 direction, vec3 landed, vec3 flux) {
     }
 }
 
-// Whether some hit point takes a photon at p arriving along `direction` onto a surface of normal
-// `landed` (Takes).
-bool Reaches(vec3 p, vec3 direction, vec3 landed) {
+// Whether some hit point takes a photon of `kind` at p arriving along `direction` onto a surface
+// of normal `landed` (Takes).
+bool Reaches(vec3 p, vec3 direction, vec3 landed, uint kind) {
     const ivec3 cell = GridCell(p);
     const vec3 within = p * params.grid_inverse_cell - vec3(cell);
     const ivec3 step = mix(ivec3(-1), ivec3(1), greaterThanEqual(within, vec3(0.5)));
@@ -86,7 +88,7 @@ bool Reaches(vec3 p, vec3 direction, vec3 landed) {
         const uint bucket = GridBucket(cell + ivec3(corner & 1, (corner >> 1) & 1, corner >> 2) * step);
         const uint end = grid_begin[bucket + 1];
         for (uint e = grid_begin[bucket]; e < end; ++e) {
-            if (Takes(grid_entries[e], p, direction, landed)) return true;
+            if (Takes(grid_entries[e], p, direction, landed, kind)) return true;
         }
     }
     return false;
@@ -102,6 +104,7 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
     const Photon emitted = EmitPhotonFrom(u);
     vec3 origin = emitted.origin, direction = emitted.direction, flux = emitted.flux;
     bool scattered = false;
+    bool diffused = false;  // it has left a diffuse surface: no longer a caustic
     uint segments = 0;
     for (uint bounce = 0; bounce < params.max_bounces; ++bounce) {
         ++segments;
@@ -140,9 +143,10 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
             if (at_base) {
                 // The surface it landed on, toward the side it arrived from (HashGrid::Takes).
                 const vec3 landed = front_facing ? surface.geometric_normal : -surface.geometric_normal;
-                if (scattered && across > 0.0) {
-                    if (gather) Gather(surface.position, direction, landed, flux / across);
-                    else if (Reaches(surface.position, direction, landed)) {
+                const uint kind = PhotonKind(scattered, diffused, false);
+                if ((scattered || kPhotonKinds) && across > 0.0) {
+                    if (gather) Gather(surface.position, direction, landed, flux / across, kind);
+                    else if (Reaches(surface.position, direction, landed, kind)) {
                         visible = true;
                         break;
                     }
@@ -189,8 +193,8 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
                     if (MaxComponent(flux) <= 0.0 || returns == kMaxCoatReturns) break;
                     const float inside = kShadingNormals ? abs(wi.z) : 1.0;
                     if (inside > 0.0) {
-                        if (gather) Gather(surface.position, direction, normal, flux / inside);
-                        else if (Reaches(surface.position, direction, normal)) {
+                        if (gather) Gather(surface.position, direction, normal, flux / inside, kDiffusePhoton);
+                        else if (Reaches(surface.position, direction, normal, kDiffusePhoton)) {
                             visible = true;
                             break;
                         }
@@ -203,6 +207,7 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
                 if (shaded && coated) flux *= ShadingDeparture(direction, surface.shading_normal, surface.geometric_normal);
                 origin = OffsetRayOrigin(surface.position, geometric);
                 scattered = true;
+                diffused = true;
                 continue;
             }
         } else if (kHasMirror || kHasDielectric || kHasThinDielectric || kHasRoughConductor || kHasRoughDielectric) {
