@@ -9,6 +9,7 @@
 #include <optional>
 #include <utility>
 
+#include "core/pm/density_radii.h"
 #include "embree/embree_tracer.h"
 
 namespace pf {
@@ -83,10 +84,23 @@ absl::StatusOr<EpochCameraPass> EpochCameraPasses(std::shared_ptr<const JobPaylo
 EpochCameraPass EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
                                   const CameraPassSettings& film,
                                   std::shared_ptr<const Tracer> tracer) {
+    // rpm's slots take the radius their place and kind call for, every epoch, from pilot maps
+    // kept for the job (unless one radius was asked for all).
+    SlotRadii radii;
+    const JobSpec& spec = payload->spec;
+    if (spec.integrator == Integrator::kRpm && spec.initial_radius == 0 &&
+        payload->scene.hints.initial_radius == 0) {
+        auto density = std::make_shared<const DensityRadii>(
+            payload->scene, payload->emitters, *tracer, film.features, /*everything=*/true,
+            ReverseRadiiSettings(spec, payload->scene));
+        radii = [density](std::span<const HitPoint> hit_points, std::span<const float> footprint) {
+            return density->CellRadii(hit_points, footprint, 0.0f);
+        };
+    }
     // The passes keep the payload, and so its scene, alive.
     auto passes = std::make_shared<PrefetchedPasses>(
-        [payload,
-         traced = TracedCameraPasses(payload->scene, std::move(tracer), film, payload->spec)](
+        [payload, traced = TracedCameraPasses(payload->scene, std::move(tracer), film,
+                                              payload->spec, std::move(radii))](
             uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed) {
             return traced(epoch, fixed);
         });

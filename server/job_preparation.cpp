@@ -8,7 +8,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <random>
 #include <set>
 
@@ -147,25 +146,20 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
         const double camera_seconds = std::chrono::duration<double>(Clock::now() - start).count();
         // R0 left open (no --radius, no pbrt "radius"): each hit point's from the photons.
         std::vector<float> radii;
-        if (request.spec.initial_radius == 0 && payload->scene.hints.initial_radius == 0 &&
-            !camera_pass.hit_points.empty()) {
+        if (integrator == Integrator::kRpm) {
+            // Its passes bring each slot's radius, epoch by epoch (EpochCameraPasses).
+            if (const double median = MedianRadius(camera_pass.radius, camera_pass.footprint);
+                median > 0)
+                settings.initial_radius = median;
+            settings.min_radius = std::min(settings.min_radius, settings.initial_radius);
+        } else if (request.spec.initial_radius == 0 && payload->scene.hints.initial_radius == 0 &&
+                   !camera_pass.hit_points.empty()) {
             const auto pilot_start = Clock::now();
             DensityRadiiSettings density;
             // The first pass: a full epoch (the growing epochs are one pass together).
             density.first_epoch_photons = settings.layout.PhotonsPerEpoch();
             density.seed = request.spec.seed;
             density.max_depth = request.spec.max_depth;
-            if (integrator == Integrator::kRpm) {
-                // Classic photon mapping's radii: those its k nearest reach in maps of its
-                // photons, within its search's limit, whatever the pixels' footprints.
-                const PhotonMapSettings& maps = request.spec.photon_map;
-                density.first_epoch_photons = std::max<uint64_t>(maps.global_photons, 1);
-                density.first_epoch_photons_found = maps.nearest;
-                density.least_footprints = 0;
-                density.most_footprints = std::numeric_limits<double>::infinity();
-                density.most_diagonal =
-                    MaxSearchRadius(maps, payload->scene) / payload->scene.bounds.Diagonal();
-            }
             const double footprint_radius = settings.initial_radius;
             radii = DensityInitialRadii(payload->scene, payload->emitters, *tracer, film->features,
                                         camera_pass.hit_points, camera_pass.footprint,

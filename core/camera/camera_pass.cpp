@@ -398,14 +398,17 @@ CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobS
 }
 
 EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,
-                                   const CameraPassSettings& film, const JobSpec& spec) {
-    return [&scene, tracer = std::move(tracer), film, spec](
+                                   const CameraPassSettings& film, const JobSpec& spec,
+                                   SlotRadii radii) {
+    return [&scene, tracer = std::move(tracer), film, spec, radii = std::move(radii)](
                uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed) {
-        return RunCameraPass(scene, *tracer,
-                             TracesHitPointsEachEpoch(spec.integrator)
-                                 ? StochasticCameraPass(film, spec, epoch)
-                                 : EmissionCameraPass(film, spec, epoch),
-                             fixed.get());
+        CameraPassResult pass = RunCameraPass(scene, *tracer,
+                                              TracesHitPointsEachEpoch(spec.integrator)
+                                                  ? StochasticCameraPass(film, spec, epoch)
+                                                  : EmissionCameraPass(film, spec, epoch),
+                                              fixed.get());
+        if (radii) pass.radius = radii(pass.hit_points, pass.footprint);
+        return pass;
     };
 }
 

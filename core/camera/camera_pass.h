@@ -76,6 +76,9 @@ struct CameraPassResult {
     // that a pixel across an edge between surfaces lit differently kept the split of its k
     // samples, never its area's (docs/design.md).
     std::vector<Rgb> coverage;
+    // rpm's, per slot: the radius its place and kind call for this epoch (EpochCameraPasses'
+    // SlotRadii; 0 for an empty slot); empty where radii are kept from epoch to epoch.
+    std::vector<float> radius;
     // Per hit point, for the coordinator's estimate: how far its surface reaches about it
     // (ProbeSurfaceExtents: ppm's fixed hit points, probed when the job is prepared); empty
     // where not probed (every surface then counts as filling its disc).
@@ -123,10 +126,17 @@ CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobS
 using EpochCameraPass = std::function<CameraPassResult(
     uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed)>;
 
-// Each epoch's pass of `film` for job `spec` (ppm or sppm) over
-// `scene` through `tracer`, which the function keeps alive; `scene` must outlive it.
+// The radii a pass's slots call for, from their hit points and footprints (rpm's:
+// core/pm/density_radii.h's DensityRadii, whose room is above this one's).
+using SlotRadii = std::function<std::vector<float>(std::span<const HitPoint> hit_points,
+                                                   std::span<const float> footprint)>;
+
+// Each epoch's pass of `film` for job `spec` (ppm, sppm or rpm) over `scene` through `tracer`,
+// which the function keeps alive; `scene` must outlive it. `radii`, where given, sets each
+// pass's CameraPassResult::radius.
 EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,
-                                   const CameraPassSettings& film, const JobSpec& spec);
+                                   const CameraPassSettings& film, const JobSpec& spec,
+                                   SlotRadii radii = {});
 
 // The initial search radius R0: the median pixel footprint over the hit points, capped at 1%
 // of the scene's diagonal. A disk of that radius covers about pi pixels, so with k = 4 hit

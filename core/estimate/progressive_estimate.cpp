@@ -30,6 +30,12 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
     PF_CHECK(settings.gather_rays == 0 || (settings.stochastic && settings.alpha == 1));
     epoch_direct_.assign(pixels * size_t(EpochPass(0).per_pixel) * settings.SlotsPerSample(),
                          Rgb(0.0f));
+    // rpm's first pass brings its slots' radii (before any photon: nothing to rescale).
+    std::vector<float> pass_radii;
+    if (settings.stochastic && initial_radii.empty() && !camera_pass.radius.empty()) {
+        pass_radii = std::move(camera_pass.radius);
+        initial_radii = pass_radii;
+    }
     if (settings.stochastic) {
         BeginEpochPass(std::move(camera_pass));
     } else {
@@ -61,6 +67,8 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
 
 void ProgressiveEstimate::BeginEpochPass(CameraPassResult camera_pass) {
     PF_CHECK(camera_pass.emission.pixels.size() == direct_sum_.size());
+    if (settings_.stochastic && !camera_pass.radius.empty() && !points_.empty())
+        TakeSlotRadii(camera_pass.radius);
     if (settings_.stochastic) {
         PF_CHECK(camera_pass.hit_points.size() == epoch_direct_.size());
         PF_CHECK(camera_pass.extent.empty() ||
@@ -73,6 +81,24 @@ void ProgressiveEstimate::BeginEpochPass(CameraPassResult camera_pass) {
         epoch_coverage_ = std::move(camera_pass.coverage);
     }
     epoch_emission_ = std::move(camera_pass.emission);
+}
+
+void ProgressiveEstimate::TakeSlotRadii(std::span<const float> radii) {
+    PF_CHECK(radii.size() == points_.size());
+    const double min_radius_sq = settings_.min_radius * settings_.min_radius;
+    for (size_t i = 0; i < points_.size(); ++i) {
+        if (!(radii[i] > 0)) continue;  // an empty slot keeps its radius
+        const double radius_sq = std::max(double(radii[i]) * double(radii[i]), min_radius_sq);
+        PF_CHECK(std::isfinite(radius_sq));
+        // The sums count what lies within the radius: the new one's share of them (none
+        // where it had no radius: it gathered nothing).
+        const double scale = points_[i].radius_sq > 0 ? radius_sq / points_[i].radius_sq : 0.0;
+        points_[i].photon_count *= scale;
+        points_[i].flux *= scale;
+        points_[i].radius_sq = radius_sq;
+        flux_even_[i] *= scale;
+        counts_[i].Fold(EpochPhotons{}, scale);
+    }
 }
 
 void ProgressiveEstimate::SetHitPoints(std::shared_ptr<const std::vector<HitPoint>> hit_points) {

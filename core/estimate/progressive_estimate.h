@@ -90,7 +90,8 @@ public:
     // `camera_pass`: the hit points photons gather at (for sppm, epoch 0's pass); each epoch's
     // pass comes from `next_passes` (for ppm epoch 0's too, here). `initial_radii`: R0 of each
     // hit point (sppm: of each slot), world units (DensityInitialRadii), raised to the
-    // settings' min_radius; empty: the settings' initial_radius for all.
+    // settings' min_radius; empty: the pass's radii (rpm's: CameraPassResult::radius), else
+    // the settings' initial_radius for all.
     ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings,
                         EpochCameraPass next_passes, std::span<const float> initial_radii = {});
     // An estimate restored by Load needs its camera passes again.
@@ -169,6 +170,12 @@ private:
     void BeginEpochPass(CameraPassResult camera_pass);
     // Holds `hit_points` and indexes them by pixel (by_pixel_).
     void SetHitPoints(std::shared_ptr<const std::vector<HitPoint>> hit_points);
+    // rpm: each slot's radius for the epoch beginning (CameraPassResult::radius; 0 keeps it).
+    // Its radius is not its own: the slot moved, and its place and kind call for another. A
+    // slot's sums are rescaled to count what the new disc holds (tau R'^2 / R^2, as a shrink
+    // does), so its estimate, tau / (pi R^2 N_emitted), is the sum of each epoch's photons
+    // over that epoch's disc.
+    void TakeSlotRadii(std::span<const float> radii);
     // Calls visit(i) for each hit point i of pixel p, in index order.
     template <typename Visit>
     void ForEachHitPointOf(size_t p, Visit&& visit) const {

@@ -5,12 +5,16 @@
 // density only chooses where it starts.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
+#include <unordered_map>
 #include <vector>
 
 #include "core/geometry/tracer.h"
 #include "core/job/hit_point.h"
+#include "core/job/job_spec.h"
+#include "core/pm/photon_map.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene.h"
 #include "core/scene/scene_features.h"
@@ -38,6 +42,52 @@ struct DensityRadiiSettings {
     double least_footprints = 0.25, most_footprints = 8, most_diagonal = 0.01;
     uint64_t seed = 0;
     int max_depth = 0;  // JobSpec::max_depth
+};
+
+// Reverse photon mapping's: classic photon mapping's radii, those its k nearest
+// (PhotonMapSettings::nearest) reach in a global map of its global_photons, within its
+// search's limit (MaxSearchRadius), whatever the pixels' footprints.
+DensityRadiiSettings ReverseRadiiSettings(const JobSpec& spec, const Scene& scene);
+
+// The pilot maps kept, for radii asked again and again (reverse photon mapping's: its slots
+// move every epoch, each taking the radius its new place and kind call for). `everything`:
+// the global map holds every landing (some hit point gathers direct light), and then stands
+// for the caustic map's too but where a hit point gathers caustics alone. Immutable once built.
+class DensityRadii {
+public:
+    DensityRadii(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
+                 const SceneFeatures& features, bool everything,
+                 const DensityRadiiSettings& settings);
+    // DensityInitialRadii's radii at `hit_points`, the density from each map's k nearest.
+    // Thread-safe.
+    std::vector<float> Radii(std::span<const HitPoint> hit_points, std::span<const float> footprint,
+                             float fallback) const;
+    // The same from the photons counted per cell of a grid over the maps (cells about twice
+    // the k nearest's median reach, so a cell of a plane holds some 4k / pi photons; a cell
+    // with fewer than k / 2 takes its 26 neighbours' too, over nine cells' area): a density a
+    // few hash lookups away rather than a k-nearest search, for radii wanted every epoch; a
+    // surface's area in a cell is taken as the cell's face (exact for surfaces along the
+    // axes; corners and slopes choose radii within a factor of about 1.7). Thread-safe.
+    std::vector<float> CellRadii(std::span<const HitPoint> hit_points,
+                                 std::span<const float> footprint, float fallback) const;
+
+private:
+    // Whether `point` gathers the photons of map `map` (0 global, 1 caustic).
+    bool Gathers(const HitPoint& point, int map) const;
+    // The radius for hit point `point` of footprint `footprint`, from its density (photons per
+    // unit area and emitted photon, of the maps it gathers: `density`).
+    float RadiusFor(const HitPoint& point, float footprint, double density) const;
+    // Photons per unit area and emitted photon of map `map` (0 global, 1 caustic) about p, by
+    // the grid's cells.
+    double CellDensity(const Vec3& p, int map) const;
+
+    DensityRadiiSettings settings_;
+    bool everything_;
+    float diagonal_limit_;
+    PhotonMaps maps_;
+    double emitted_[2] = {0, 0};  // the maps' photons emitted
+    float cell_size_ = 0;
+    std::unordered_map<uint64_t, std::array<uint32_t, 2>> cells_;  // photons per map a cell
 };
 
 // One R0 per hit point (world units): sqrt(c / (pi rho M)), rho the pilot's photons per unit

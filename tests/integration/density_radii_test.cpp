@@ -70,6 +70,40 @@ TEST(DensityRadiiTest, FurnaceRadiiFollowThePhotonDensityInClosedForm) {
     for (size_t i = 0; i < radii.size(); ++i) EXPECT_NEAR(quarter[i] / radii[i], 0.5, 1e-5);
 }
 
+// The radii rpm asks for every epoch, from photons counted per grid cell rather than the k
+// nearest: on the furnace's floor (a surface along the axes, where a cell's face is its area)
+// the same closed form, within the cells' counting noise (some 20 photons a cell: 1/sqrt(20)
+// a point, a few percent for the median); and each of its hit points gathering every photon
+// (rpm's gather hits), the global map holds the photons' first landings too, twice the photons
+// at albedo 1/2 (1 / (1 - rho) landings a photon rather than rho / (1 - rho)): radii 1/sqrt(2)
+// of ppm's.
+TEST(DensityRadiiTest, CellRadiiFollowThePhotonDensityAsTheNearestDo) {
+    const std::unique_ptr<const testing::LitScene> lit = testing::LoadLitScene("furnace.gltf");
+    ASSERT_NE(lit, nullptr);
+    const testing::LitScene& furnace = *lit;
+    std::vector<HitPoint> points = FloorPoints();
+    const std::vector<float> footprint(points.size(), 0.01f);
+    DensityRadiiSettings settings;
+    settings.first_epoch_photons = 1u << 22;
+    settings.seed = 5;
+    settings.most_footprints = 1000;  // bounds out of the way
+    settings.least_footprints = 0.001;
+    settings.most_diagonal = 1;
+    const DensityRadii scattered(furnace.scene, *furnace.emitters, *furnace.tracer,
+                                 furnace.features, /*everything=*/false, settings);
+    const double nearest = Median(scattered.Radii(points, footprint, 0.5f));
+    const double cells = Median(scattered.CellRadii(points, footprint, 0.5f));
+    EXPECT_NEAR(cells / nearest, 1.0, 0.08);
+    for (HitPoint& point : points) point.gathers = kAllPhotons;
+    const DensityRadii everything(furnace.scene, *furnace.emitters, *furnace.tracer,
+                                  furnace.features, /*everything=*/true, settings);
+    EXPECT_NEAR(Median(everything.CellRadii(points, footprint, 0.5f)) / cells, std::sqrt(0.5),
+                0.06);
+    // Caustics alone where there are none: no radius.
+    for (HitPoint& point : points) point.gathers = kCausticPhoton;
+    for (const float radius : everything.CellRadii(points, footprint, 0.5f)) EXPECT_EQ(radius, 0);
+}
+
 TEST(DensityRadiiTest, RadiiKeepToTheirBoundsAndEmptySlotsKeepTheFallback) {
     const std::unique_ptr<const testing::LitScene> lit = testing::LoadLitScene("furnace.gltf");
     ASSERT_NE(lit, nullptr);

@@ -159,6 +159,15 @@ std::unique_ptr<Estimate> MakeStochastic() {
                                                  StochasticPass);
 }
 
+// rpm's passes: the stochastic ones, each slot with a radius of its epoch's (0 for some, which
+// keep theirs).
+CameraPassResult ReversePass(uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed) {
+    CameraPassResult pass = StochasticPass(epoch, fixed);
+    for (uint32_t i = 0; i < kHitPoints; ++i)
+        pass.radius.push_back((i + epoch) % 5 == 0 ? 0.0f : 0.2f + 0.05f * float((i + epoch) % 7));
+    return pass;
+}
+
 // rpm's: one camera sample a pixel with two gather rays, the three slots of each pixel.
 std::unique_ptr<Estimate> MakeReverse() {
     EstimateSettings settings;
@@ -168,8 +177,7 @@ std::unique_ptr<Estimate> MakeReverse() {
     settings.initial_radius = 0.5;
     settings.samples_per_pixel = 1;
     settings.layout = {1000, 4};
-    return std::make_unique<ProgressiveEstimate>(StochasticPass(0, nullptr), settings,
-                                                 StochasticPass);
+    return std::make_unique<ProgressiveEstimate>(ReversePass(0, nullptr), settings, ReversePass);
 }
 
 std::unique_ptr<Estimate> MakePpm() {
@@ -204,7 +212,8 @@ TEST_P(AnyEstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
         EXPECT_TRUE(SamePixels((*loaded)->Resolve(), estimate->Resolve())) << "after fold " << b;
         if (GathersAtHitPoints((*loaded)->Kind()))  // its next epochs' camera passes, as the
                                                     // coordinator reattaches them
-            static_cast<ProgressiveEstimate&>(**loaded).SetEpochCameraPass(StochasticPass);
+            static_cast<ProgressiveEstimate&>(**loaded).SetEpochCameraPass(
+                (*loaded)->Kind() == Integrator::kRpm ? ReversePass : StochasticPass);
         estimate = std::move(*loaded);
         fold_next(*estimate);
     }
