@@ -32,12 +32,19 @@ Rgb GatherRay(const PhotonMappingInputs& inputs, const Ray& ray, Rng& rng,
 // The light leaving diffuse point `surface` toward the camera path, its albedo `albedo`, the
 // material `coat` over it if any. Under a coat the global map's estimate stands in for final
 // gathering (gather rays would have to cross the coat; the map holds the photons it turned
-// back).
+// back), and with final gathering, whose global map holds every landing, for all of it.
 Rgb DiffuseRadiance(const PhotonMappingInputs& inputs, const SurfacePoint& surface,
                     const Vec3& normal, const Vec3& geometric, const Rgb& albedo,
                     const Material* coat, Rng& rng, NearestPhotons& scratch) {
     const float max_radius_sq = inputs.max_radius * inputs.max_radius;
     const PhotonMapSettings& settings = inputs.settings;
+    // Under a coat with final gathering, the global map holds every landing, direct light's and
+    // caustics' included: it alone tells the light there (with the light sample and the caustic
+    // map besides, both would count twice).
+    if (settings.final_gather > 0 && coat != nullptr)
+        return EstimateDiffuseRadiance(*inputs.maps->global, surface.position, normal, albedo,
+                                       settings.nearest, max_radius_sq, settings.filter,
+                                       inputs.features.ShadingNormals(), scratch);
     Rgb radiance = albedo / kPi *
                    SampleDirectIrradiance(*inputs.emitters, *inputs.tracer, surface.position,
                                           normal, coat, rng);
