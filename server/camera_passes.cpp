@@ -92,7 +92,7 @@ EpochCameraPass EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
         payload->scene.hints.initial_radius == 0) {
         auto density = std::make_shared<const DensityRadii>(
             payload->scene, payload->emitters, *tracer, film.features, /*everything=*/true,
-            ReverseRadiiSettings(spec, payload->scene));
+            ReverseRadiiSettings(spec, payload->scene), /*cells=*/true);
         radii = [density](std::span<const HitPoint> hit_points, std::span<const float> footprint) {
             return density->CellRadii(hit_points, footprint, 0.0f);
         };

@@ -415,7 +415,7 @@ EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera
                               spec.initial_radius, spec.samples_per_pixel,
                               ResolvedLayout(spec, camera_pass.emission.pixels.size())};
     estimate.stochastic = TracesHitPointsEachEpoch(spec.integrator);
-    if (spec.integrator == Integrator::kRpm) {  // radii kept, as classic photon mapping's
+    if (spec.integrator == Integrator::kRpm) {  // radii never shrink, as classic pm's
         estimate.alpha = 1;
         estimate.balanced = false;
         estimate.gather_rays = RpmGatherRays(spec.photon_map);

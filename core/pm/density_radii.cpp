@@ -27,7 +27,7 @@ uint64_t CellKey(int64_t x, int64_t y, int64_t z) {
 
 DensityRadii::DensityRadii(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
                            const SceneFeatures& features, bool everything,
-                           const DensityRadiiSettings& settings)
+                           const DensityRadiiSettings& settings, bool cells)
     : settings_(settings),
       everything_(everything),
       diagonal_limit_(static_cast<float>(settings.most_diagonal * scene.bounds.Diagonal())) {
@@ -40,6 +40,7 @@ DensityRadii::DensityRadii(const Scene& scene, const Emitters& emitters, const T
                             settings.max_depth);
     emitted_[0] = double(maps_.global_emitted);
     emitted_[1] = double(maps_.caustic_emitted);
+    if (!cells) return;
     // The cells: twice the median reach of the k nearest about a sample of the photons.
     const PhotonLookup& sampled = maps_.global->Photons().empty() ? *maps_.caustic : *maps_.global;
     const std::span<const StoredPhoton> photons = sampled.Photons();

@@ -55,14 +55,16 @@ DensityRadiiSettings ReverseRadiiSettings(const JobSpec& spec, const Scene& scen
 // for the caustic map's too but where a hit point gathers caustics alone. Immutable once built.
 class DensityRadii {
 public:
+    // `cells`: count the photons per cell too, for CellRadii.
     DensityRadii(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
                  const SceneFeatures& features, bool everything,
-                 const DensityRadiiSettings& settings);
+                 const DensityRadiiSettings& settings, bool cells = false);
     // DensityInitialRadii's radii at `hit_points`, the density from each map's k nearest.
     // Thread-safe.
     std::vector<float> Radii(std::span<const HitPoint> hit_points, std::span<const float> footprint,
                              float fallback) const;
-    // The same from the photons counted per cell of a grid over the maps (cells about twice
+    // The same from the photons counted per cell of a grid over the maps (built with `cells`;
+    // cells about twice
     // the k nearest's median reach, so a cell of a plane holds some 4k / pi photons; a cell
     // with fewer than k / 2 takes its 26 neighbours' too, over nine cells' area): a density a
     // few hash lookups away rather than a k-nearest search, for radii wanted every epoch; a

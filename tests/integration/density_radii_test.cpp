@@ -90,13 +90,13 @@ TEST(DensityRadiiTest, CellRadiiFollowThePhotonDensityAsTheNearestDo) {
     settings.least_footprints = 0.001;
     settings.most_diagonal = 1;
     const DensityRadii scattered(furnace.scene, *furnace.emitters, *furnace.tracer,
-                                 furnace.features, /*everything=*/false, settings);
+                                 furnace.features, /*everything=*/false, settings, /*cells=*/true);
     const double nearest = Median(scattered.Radii(points, footprint, 0.5f));
     const double cells = Median(scattered.CellRadii(points, footprint, 0.5f));
     EXPECT_NEAR(cells / nearest, 1.0, 0.08);
     for (HitPoint& point : points) point.gathers = kAllPhotons;
     const DensityRadii everything(furnace.scene, *furnace.emitters, *furnace.tracer,
-                                  furnace.features, /*everything=*/true, settings);
+                                  furnace.features, /*everything=*/true, settings, /*cells=*/true);
     EXPECT_NEAR(Median(everything.CellRadii(points, footprint, 0.5f)) / cells, std::sqrt(0.5),
                 0.06);
     // Caustics alone where there are none: no radius.
