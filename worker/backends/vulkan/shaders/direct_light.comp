@@ -1,10 +1,9 @@
 #version 460
 // One direct-light sample for each point of a batch's slice of the epoch's camera samples
-// (direct_points: core/ppm/direct_light.cpp on
-// the CPU, with the same random numbers; none at rpm's gather hits): a light sample with its shadow ray and, in a scene
-// with emitting triangles or an environment, a cosine-distributed ray that may find one,
-// weighed by the power heuristic, under a coat times what it lets through; the result times the
-// hit point's weight.
+// (direct_points: core/ppm/direct_light.cpp on the CPU, with the same random numbers; none at
+// rpm's gather hits): a light sample with its shadow ray and, in a scene with emitting
+// triangles or an environment, a cosine-distributed ray that may find one, weighed by the power
+// heuristic, under a coat times what it lets through; the result times the hit point's weight.
 #include "common.glsl"
 #include "trace.glsl"
 #include "lights.glsl"

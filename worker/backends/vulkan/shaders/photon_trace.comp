@@ -3,8 +3,8 @@
 // light through specular and diffuse bounces (and through coats, as core/ppm/photon_walk.h)
 // with Russian roulette; at every diffuse hit after the first scattering (and at the first too
 // where hit points gather kinds of photon of their own: kPhotonKinds, rpm's) the photon is
-// gathered at once by the hit points whose sphere holds it and that gather its kind, into integer sums (GpuTallySum) that do not
-// depend on thread order. Adaptive tracing (params.chain_steps > 0): one thread a Markov chain
+// gathered at once by the hit points whose sphere holds it and that gather its kind, into
+// integer sums (GpuTallySum) that do not depend on thread order. Adaptive tracing (params.chain_steps > 0): one thread a Markov chain
 // (core/shared/photon_chain.h) whose steps test photons for visibility without gathering, then
 // trace the chain's state again, gathering.
 #include "common.glsl"
