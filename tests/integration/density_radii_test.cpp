@@ -33,18 +33,24 @@ double Median(std::vector<float> values) {
     return values[values.size() / 2];
 }
 
+// The furnace tests' settings: 2^22 photons a first epoch, seed 5, the bounds out of the way.
+DensityRadiiSettings UnboundedSettings() {
+    DensityRadiiSettings settings;
+    settings.first_epoch_photons = 1u << 22;
+    settings.seed = 5;
+    settings.most_footprints = 1000;
+    settings.least_footprints = 0.001;
+    settings.most_diagonal = 1;
+    return settings;
+}
+
 TEST(DensityRadiiTest, FurnaceRadiiFollowThePhotonDensityInClosedForm) {
     const std::unique_ptr<const testing::LitScene> lit = testing::LoadLitScene("furnace.gltf");
     ASSERT_NE(lit, nullptr);
     const testing::LitScene& furnace = *lit;
     const std::vector<HitPoint> points = FloorPoints();
     const std::vector<float> footprint(points.size(), 0.01f);
-    DensityRadiiSettings settings;
-    settings.first_epoch_photons = 1u << 22;
-    settings.seed = 5;
-    settings.most_footprints = 1000;  // bounds out of the way
-    settings.least_footprints = 0.001;
-    settings.most_diagonal = 1;
+    DensityRadiiSettings settings = UnboundedSettings();
     // The pilot's global map, as DensityInitialRadii builds it: its photons per unit area and
     // photon emitted over the furnace's 24 m^2 of walls (the furnace has no caustics).
     PhotonMapSettings pilot;
@@ -83,12 +89,7 @@ TEST(DensityRadiiTest, CellRadiiFollowThePhotonDensityAsTheNearestDo) {
     const testing::LitScene& furnace = *lit;
     std::vector<HitPoint> points = FloorPoints();
     const std::vector<float> footprint(points.size(), 0.01f);
-    DensityRadiiSettings settings;
-    settings.first_epoch_photons = 1u << 22;
-    settings.seed = 5;
-    settings.most_footprints = 1000;  // bounds out of the way
-    settings.least_footprints = 0.001;
-    settings.most_diagonal = 1;
+    DensityRadiiSettings settings = UnboundedSettings();
     const DensityRadii scattered(furnace.scene, *furnace.emitters, *furnace.tracer,
                                  furnace.features, /*everything=*/false, settings, /*cells=*/true);
     const double nearest = Median(scattered.Radii(points, footprint, 0.5f));

@@ -149,15 +149,22 @@ struct EstimateKind {
     EstimateFactory make;
 };
 
-std::unique_ptr<Estimate> MakeStochastic() {
+// A stochastic estimate of `samples` camera samples a pixel, each with `gather_rays` (rpm's,
+// at alpha 1) besides, whose passes `passes` traces.
+std::unique_ptr<Estimate> MakeStochasticOf(int samples, uint32_t gather_rays,
+                                           EpochCameraPass passes) {
     EstimateSettings settings;
     settings.stochastic = true;
+    if (gather_rays > 0) settings.alpha = 1;
+    settings.gather_rays = gather_rays;
     settings.initial_radius = 0.5;
-    settings.samples_per_pixel = 3;
+    settings.samples_per_pixel = samples;
     settings.layout = {1000, 4};
-    return std::make_unique<ProgressiveEstimate>(StochasticPass(0, nullptr), settings,
-                                                 StochasticPass);
+    CameraPassResult first = passes(0, nullptr);
+    return std::make_unique<ProgressiveEstimate>(std::move(first), settings, std::move(passes));
 }
+
+std::unique_ptr<Estimate> MakeStochastic() { return MakeStochasticOf(3, 0, StochasticPass); }
 
 // rpm's passes: the stochastic ones, each slot with a radius of its epoch's (0 for some, which
 // keep theirs).
@@ -169,16 +176,7 @@ CameraPassResult ReversePass(uint64_t epoch, const std::shared_ptr<const PixelHi
 }
 
 // rpm's: one camera sample a pixel with two gather rays, the three slots of each pixel.
-std::unique_ptr<Estimate> MakeReverse() {
-    EstimateSettings settings;
-    settings.stochastic = true;
-    settings.alpha = 1;
-    settings.gather_rays = 2;
-    settings.initial_radius = 0.5;
-    settings.samples_per_pixel = 1;
-    settings.layout = {1000, 4};
-    return std::make_unique<ProgressiveEstimate>(ReversePass(0, nullptr), settings, ReversePass);
-}
+std::unique_ptr<Estimate> MakeReverse() { return MakeStochasticOf(1, 2, ReversePass); }
 
 std::unique_ptr<Estimate> MakePpm() {
     return std::make_unique<ProgressiveEstimate>(MakeEstimate());
