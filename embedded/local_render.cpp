@@ -22,13 +22,7 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings,
                                             const EpochCallback& on_epoch) {
     JobSpec spec = settings.job;
     auto check = [&](const JobSpec& job) -> absl::Status {
-        if (absl::Status status = CheckJobSpec(job, SettingNames::kFlags); !status.ok())
-            return status;
-        if (!RunsOnBackend(job.integrator, settings.backend))
-            return absl::InvalidArgumentError(
-                absl::StrCat("--backend ", settings.backend, " runs --integrator ppm or sppm, not ",
-                             std::string(IntegratorName(job.integrator)), ": use --backend cpu"));
-        return absl::OkStatus();
+        return CheckJobSpec(job, SettingNames::kFlags);
     };
     {  // the flags alone, before any work
         JobSpec flags = spec;

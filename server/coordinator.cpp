@@ -8,11 +8,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <random>
-#include <set>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
-#include "absl/strings/str_join.h"
 #include "server/job_preparation.h"
 
 namespace pf {
@@ -163,20 +161,8 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
         std::lock_guard lock(mutex_);
         // An epoch's chunks are all the work there is until it is merged: fewer than the
         // workers' threads leave threads idle.
-        const Integrator integrator = prepared->spec.integrator;
         uint64_t threads = 0;
-        std::set<std::string> other_backends;
-        for (const auto& [id, worker] : workers_) {
-            if (RunsOnBackend(integrator, worker.registration.backend))
-                threads += worker.registration.threads;
-            else
-                other_backends.insert(worker.registration.backend);
-        }
-        if (threads == 0 && !other_backends.empty())
-            prepared->warnings.push_back(absl::StrCat(
-                "no connected worker runs the ", std::string(IntegratorName(integrator)),
-                " integrator (connected: ", absl::StrJoin(other_backends, ", "),
-                "): the job waits for one that does (cpu workers run every integrator)"));
+        for (const auto& [id, worker] : workers_) threads += worker.registration.threads;
         const BatchLayout& layout = prepared->spec.layout;
         const uint64_t chunks = uint64_t{layout.batches_per_epoch} *
                                 ChunkCount(MakeBatchSpec(layout, layout.GrowingEpochs(), 0, 0));
@@ -312,13 +298,12 @@ std::vector<WorkerView> Coordinator::ListWorkers() const {
     return views;
 }
 
-std::shared_ptr<Job> Coordinator::PickJobLocked(const std::string& backend,
-                                                Clock::time_point now) const {
+std::shared_ptr<Job> Coordinator::PickJobLocked(Clock::time_point now) const {
     std::shared_ptr<Job> best;
     uint32_t best_leased = 0;
     for (const std::string& id : job_order_) {  // oldest first: ties go to the older job
         const std::shared_ptr<Job>& job = jobs_.at(id);
-        if (!RunsOnBackend(job->Kind(), backend) || job->Leasable(now) == 0) continue;
+        if (job->Leasable(now) == 0) continue;
         const uint32_t leased = job->Leased(now);
         if (!best || job->Priority() > best->Priority() ||
             (job->Priority() == best->Priority() && leased < best_leased)) {
@@ -342,7 +327,7 @@ absl::StatusOr<CoordinatorLease> Coordinator::Lease(const std::string& worker_id
         if (worker == workers_.end())
             return absl::NotFoundError(absl::StrCat("worker_id: unknown worker '", worker_id, "'"));
         worker->second.last_seen = now;
-        if (std::shared_ptr<Job> job = PickJobLocked(worker->second.registration.backend, now)) {
+        if (std::shared_ptr<Job> job = PickJobLocked(now)) {
             Job::Lease granted =
                 job->LeaseBatches(worker_id, chunks, now, now + Duration(options_.lease_seconds));
             if (!granted.batches.empty()) {

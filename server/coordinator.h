@@ -151,7 +151,7 @@ private:
     Clock::duration Duration(double seconds) const;
     void ReapWorkersLocked(Clock::time_point now);
     void ForgetEndedJobsLocked();
-    std::shared_ptr<Job> PickJobLocked(const std::string& backend, Clock::time_point now) const;
+    std::shared_ptr<Job> PickJobLocked(Clock::time_point now) const;
     void NotifyWork();
 
     // The checkpoint thread: writes each running job every checkpoint_seconds and each ended

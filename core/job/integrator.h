@@ -53,13 +53,6 @@ inline bool TracesHitPointsEachEpoch(Integrator integrator) {
 // "cpu" (Embree, the default) and "vulkan" (compute kernels).
 inline std::vector<std::string> BackendNames() { return {"cpu", "vulkan"}; }
 
-// Whether the photon backend named `backend` (worker/backend_factory.h) runs jobs of
-// `integrator`: the cpu backend runs every one, the vulkan backend those that shoot photons
-// into hit points (ppm, sppm, rpm). A coordinator leases a worker only jobs its backend runs.
-inline bool RunsOnBackend(Integrator integrator, std::string_view backend) {
-    return backend != "vulkan" || GathersAtHitPoints(integrator);
-}
-
 // How ppm and sppm trace photons (`--photon-tracing`): independent photons, or Markov chains
 // toward the photons that reach a hit point (adaptive photon tracing, Hachisuka & Jensen 2011;
 // core/shared/photon_chain.h). Auto: the coordinator chooses adaptive where a pilot finds few
@@ -72,6 +65,7 @@ std::optional<PhotonTracing> ParsePhotonTracing(std::string_view name);
 // How classic photon mapping finds a point's nearest photons.
 enum class PhotonIndex : uint32_t { kKdTree, kGrid };
 // How it weights them in the density estimate (Jensen 2001, section 7.1).
+// Numbered as core/shared/density_filter.h's kFilter*.
 enum class DensityFilter : uint32_t { kBox, kCone, kGaussian };
 
 std::string_view PhotonIndexName(PhotonIndex index);

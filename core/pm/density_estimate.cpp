@@ -5,38 +5,6 @@
 
 namespace pf {
 
-float FilterWeight(DensityFilter filter, float distance_sq, float radius_sq) {
-    switch (filter) {
-        case DensityFilter::kBox:
-            return 1.0f;
-        case DensityFilter::kCone:
-            return 1.0f - std::sqrt(distance_sq / radius_sq) / kConeFilterK;
-        case DensityFilter::kGaussian: {
-            const float s2 = distance_sq / radius_sq;
-            return 1.0f - (1.0f - std::exp(-0.5f * kGaussianBeta * s2)) /
-                              (1.0f - std::exp(-kGaussianBeta));
-        }
-    }
-    return 1.0f;
-}
-
-float FilterNormalisation(DensityFilter filter) {
-    switch (filter) {
-        case DensityFilter::kBox:
-            return 1.0f;
-        // integral over the unit disc of (1 - s / k) 2 s ds = 1 - 2 / (3 k)
-        case DensityFilter::kCone:
-            return 1.0f - 2.0f / (3.0f * kConeFilterK);
-        // integral of (1 - (1 - e^(-beta s^2 / 2)) / (1 - e^-beta)) 2 s ds
-        case DensityFilter::kGaussian: {
-            const float b = kGaussianBeta;
-            return 1.0f -
-                   (1.0f - (2.0f / b) * (1.0f - std::exp(-0.5f * b))) / (1.0f - std::exp(-b));
-        }
-    }
-    return 1.0f;
-}
-
 Rgb EstimateDiffuseRadiance(const PhotonLookup& lookup, const Vec3& p, const Vec3& n,
                             const Rgb& albedo, uint32_t k, float max_radius_sq,
                             DensityFilter filter, bool per_cosine, NearestPhotons& scratch) {

@@ -7,19 +7,21 @@
 #include "core/job/integrator.h"
 #include "core/math/vec3.h"
 #include "core/pm/photon_map.h"
+#include "core/shared/density_filter.h"
 
 namespace pf {
 
-// The cone filter's constant k >= 1: weights fall from 1 at the point to 1 - 1/k at r.
-inline constexpr float kConeFilterK = 1.1f;
-// The Gaussian filter's beta (Pavicic 1990, as Jensen uses it).
-inline constexpr float kGaussianBeta = 1.953f;
+using gpu::kConeFilterK;
+using gpu::kGaussianBeta;
 
 // The weight of a photon at squared distance distance_sq from the point, in a disc of
-// squared radius radius_sq, and the filter's normalisation c = (1 / (pi r^2)) integral of
-// the weight over the disc.
-float FilterWeight(DensityFilter filter, float distance_sq, float radius_sq);
-float FilterNormalisation(DensityFilter filter);
+// squared radius radius_sq, and the filter's normalisation (core/shared/density_filter.h).
+inline float FilterWeight(DensityFilter filter, float distance_sq, float radius_sq) {
+    return gpu::DensityFilterWeight(static_cast<uint32_t>(filter), distance_sq, radius_sq);
+}
+inline float FilterNormalisation(DensityFilter filter) {
+    return gpu::DensityFilterNormalisation(static_cast<uint32_t>(filter));
+}
 
 // Reflected radiance at point p of a diffuse surface with unit (shading) normal n (on the side
 // light is gathered from) and albedo rho, from `lookup`'s k nearest photons within

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/pm/photon_map.h"
@@ -17,6 +18,11 @@ public:
     PhotonGrid(std::vector<StoredPhoton> photons, float cell_size);
     void Nearest(const Vec3& p, uint32_t k, float max_distance_sq,
                  NearestPhotons& out) const override;
+    float CellSize() const { return cell_size_; }
+    // Each bucket's first photon in Photons(), and one past the last bucket's last: the
+    // buckets are hashed cells (Teschner et al. 2003), bucket_mask + 1 of them, a power of two.
+    std::span<const uint32_t> BucketBegin() const { return bucket_begin_; }
+    uint64_t BucketMask() const { return bucket_mask_; }
     uint64_t Bytes() const override {
         return photons_.size() * sizeof(StoredPhoton) + bucket_begin_.size() * sizeof(uint32_t);
     }

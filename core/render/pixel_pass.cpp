@@ -20,6 +20,14 @@ SeedFamily PixelSeeds(uint64_t seed, uint64_t epoch) {
     return SeedFamily(seed, kPixelStream, epoch);
 }
 
+CameraRay PixelBatchRay(const Camera& camera, const Film& film, const FilterSampler& filter,
+                        uint64_t seed, uint64_t epoch, uint32_t pixel, int s) {
+    PixelSampler sampler =
+        PixelSampler::InEpoch(seed, kPixelSampleStream, pixel, epoch, film.samples_per_pixel, s);
+    return PixelSampleRay(camera, film, filter, static_cast<int>(pixel % film.width),
+                          static_cast<int>(pixel / film.width), sampler);
+}
+
 std::vector<BatchResult> RunPixelBatches(const Camera& camera, const Film& film, uint64_t seed,
                                          std::span<const BatchSpec> specs,
                                          const RadianceFunction& radiance) {
@@ -34,28 +42,21 @@ std::vector<BatchResult> RunPixelBatches(const Camera& camera, const Film& film,
         result.samples.resize(spec.sample_end - spec.sample_begin);
         const SeedFamily seeds = PixelSeeds(seed, spec.epoch);
         tbb::combinable<uint64_t> discarded([] { return uint64_t{0}; });
-        tbb::parallel_for(
-            tbb::blocked_range<uint32_t>(spec.sample_begin, spec.sample_end, 16),
-            [&](const tbb::blocked_range<uint32_t>& pixels) {
-                for (uint32_t pixel = pixels.begin(); pixel < pixels.end(); ++pixel) {
-                    Rng rng(seeds.Seed(pixel));
-                    const int x = static_cast<int>(pixel % film.width);
-                    const int y = static_cast<int>(pixel / film.width);
-                    Rgb sum(0.0f);
-                    for (int s = 0; s < film.samples_per_pixel; ++s) {
-                        PixelSampler sampler = PixelSampler::InEpoch(
-                            seed, kPixelSampleStream, pixel, spec.epoch, film.samples_per_pixel, s);
-                        const CameraRay camera_ray =
-                            PixelSampleRay(camera, film, filter, x, y, sampler);
-                        const Rgb sample = radiance(camera_ray.ray, rng) * camera_ray.weight;
-                        if (IsFinite(sample))
-                            sum += sample;
-                        else
-                            ++discarded.local();
-                    }
-                    result.samples[pixel - spec.sample_begin] = sum * inverse_spp;
-                }
-            });
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(spec.sample_begin, spec.sample_end, 16),
+                          [&](const tbb::blocked_range<uint32_t>& pixels) {
+                              for (uint32_t pixel = pixels.begin(); pixel < pixels.end(); ++pixel) {
+                                  Rgb sum(0.0f);
+                                  for (int s = 0; s < film.samples_per_pixel; ++s) {
+                                      const CameraRay camera_ray = PixelBatchRay(
+                                          camera, film, filter, seed, spec.epoch, pixel, s);
+                                      Rng rng(seeds.Seed(PixelSampleStream(film, pixel, s)));
+                                      const Rgb sample =
+                                          radiance(camera_ray.ray, rng) * camera_ray.weight;
+                                      AddPixelSample(sample, sum, discarded.local());
+                                  }
+                                  result.samples[pixel - spec.sample_begin] = sum * inverse_spp;
+                              }
+                          });
         result.nonfinite_discarded = discarded.combine(std::plus<>());
     }
     return results;

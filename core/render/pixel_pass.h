@@ -1,8 +1,9 @@
 // Batches of the integrators that render pixels (path, pm): each takes every pixel of its
 // slice `samples_per_pixel` times and returns the mean per pixel. A pixel's samples in an epoch
-// continue its earlier epochs' (PixelSampler::InEpoch: stratified across epochs), their
-// paths drawing from a stream seeded by (seed, epoch, pixel) alone, so a batch is a pure
-// function of its spec, whoever runs it.
+// continue its earlier epochs' (PixelSampler::InEpoch: stratified across epochs), each sample's
+// path drawing from a stream of its own seeded by (seed, epoch, pixel, sample) alone, so a
+// batch is a pure function of its spec, whoever runs it, and the Vulkan backend
+// (pixel_trace.comp) draws from the same streams, a thread a sample.
 #pragma once
 
 #include <cstdint>
@@ -24,6 +25,24 @@ using RadianceFunction = std::function<Rgb(const Ray& ray, Rng& rng)>;
 // The streams of epoch `epoch`'s pixel samples: pixel p draws from
 // Rng(PixelSeeds(seed, epoch).Seed(p)).
 SeedFamily PixelSeeds(uint64_t seed, uint64_t epoch);
+
+// Which of PixelSeeds(seed, epoch)'s streams sample s of pixel p draws from.
+inline uint64_t PixelSampleStream(const Film& film, uint64_t pixel, int s) {
+    return pixel * uint64_t(film.samples_per_pixel) + uint64_t(s);
+}
+
+// Adds a camera sample to its pixel's sum, or counts it in `discarded` where it is NaN or Inf
+// (it then counts as black).
+inline void AddPixelSample(const Rgb& sample, Rgb& sum, uint64_t& discarded) {
+    if (IsFinite(sample))
+        sum += sample;
+    else
+        ++discarded;
+}
+
+// Sample s of pixel p's camera ray in epoch `epoch`, for a job of `seed`.
+CameraRay PixelBatchRay(const Camera& camera, const Film& film, const FilterSampler& filter,
+                        uint64_t seed, uint64_t epoch, uint32_t pixel, int s);
 
 // Runs the batches on the calling TBB arena, pixels in parallel; results in the order of
 // `specs`. A sample that comes out NaN or Inf counts as black and is counted in

@@ -163,11 +163,8 @@ inline RoughReflection EvaluateRoughConductor(const Material& material, const Rg
     const Vec3 h = Normalize(wo + wi);
     const float cos_h = Dot(h, n);
     const float alpha = std::max(material.roughness, kMinRoughness);
-    const float lambda_o = gpu::GgxLambda(cos_o, alpha), lambda_i = gpu::GgxLambda(cos_i, alpha);
-    const float d = GgxDistribution(cos_h, alpha);
-    // f cos_i = F D G2 / (4 cos_o).
     const Rgb fresnel = gpu::ConductorFresnel(ConductorOf(material), Dot(wo, h), tint, 1.0f);
-    return {fresnel * (d / ((1.0f + lambda_o + lambda_i) * 4.0f * cos_o)),
+    return {fresnel * gpu::GgxReflectionCosine(cos_o, cos_i, cos_h, alpha),
             GgxReflectionPdf(cos_o, cos_h, alpha)};
 }
 

@@ -16,24 +16,25 @@ PF_CONST(uint32_t) kMaxBvhDepth = 60;
 PF_CONST(uint32_t) kBvhStackSize = kMaxBvhDepth + 4;
 
 // Descriptor set 0, one layout for every pipeline.
-PF_CONST(uint32_t) kBindingBvhNodes = 0;       // GpuBvhNode[]
-PF_CONST(uint32_t) kBindingTriangles = 1;      // GpuTriangle[], in BVH leaf order
-PF_CONST(uint32_t) kBindingShading = 2;        // GpuTriangleShading[], in scene order
-PF_CONST(uint32_t) kBindingNormals = 3;        // vec4[], per vertex
-PF_CONST(uint32_t) kBindingUvs = 4;            // vec2[], per vertex
-PF_CONST(uint32_t) kBindingMaterials = 5;      // GpuMaterial[]
-PF_CONST(uint32_t) kBindingTextures = 6;       // GpuTexture[]
-PF_CONST(uint32_t) kBindingTexels = 7;         // vec4[], every texture's texels
-PF_CONST(uint32_t) kBindingEmitters = 8;       // GpuEmitter[]
-PF_CONST(uint32_t) kBindingEmitterCdf = 9;     // float[]: cdf[i] = P(emitter <= i)
-PF_CONST(uint32_t) kBindingHitPoints = 10;     // GpuHitPoint[]
-PF_CONST(uint32_t) kBindingRadiusSq = 11;      // float[], per hit point, this epoch
-PF_CONST(uint32_t) kBindingGridBegin = 12;     // uint[buckets + 1]: counts, then CSR offsets
-PF_CONST(uint32_t) kBindingGridCursor = 13;    // uint[buckets]: next free slot while filling
-PF_CONST(uint32_t) kBindingGridEntries = 14;   // GpuGridEntry[]
-PF_CONST(uint32_t) kBindingScanBlocks = 15;    // uint[]: per-block sums of the prefix scan
-PF_CONST(uint32_t) kBindingTally = 16;         // GpuTallySum[], per hit point
-PF_CONST(uint32_t) kBindingDirect = 17;        // vec4[], a batch's direct-light samples
+PF_CONST(uint32_t) kBindingBvhNodes = 0;      // GpuBvhNode[]
+PF_CONST(uint32_t) kBindingTriangles = 1;     // GpuTriangle[], in BVH leaf order
+PF_CONST(uint32_t) kBindingShading = 2;       // GpuTriangleShading[], in scene order
+PF_CONST(uint32_t) kBindingNormals = 3;       // vec4[], per vertex
+PF_CONST(uint32_t) kBindingUvs = 4;           // vec2[], per vertex
+PF_CONST(uint32_t) kBindingMaterials = 5;     // GpuMaterial[]
+PF_CONST(uint32_t) kBindingTextures = 6;      // GpuTexture[]
+PF_CONST(uint32_t) kBindingTexels = 7;        // vec4[], every texture's texels
+PF_CONST(uint32_t) kBindingEmitters = 8;      // GpuEmitter[]
+PF_CONST(uint32_t) kBindingEmitterCdf = 9;    // float[]: cdf[i] = P(emitter <= i)
+PF_CONST(uint32_t) kBindingHitPoints = 10;    // GpuHitPoint[]
+PF_CONST(uint32_t) kBindingRadiusSq = 11;     // float[], per hit point, this epoch
+PF_CONST(uint32_t) kBindingGridBegin = 12;    // uint[buckets + 1]: counts, then CSR offsets
+PF_CONST(uint32_t) kBindingGridCursor = 13;   // uint[buckets]: next free slot while filling
+PF_CONST(uint32_t) kBindingGridEntries = 14;  // GpuGridEntry[]
+PF_CONST(uint32_t) kBindingScanBlocks = 15;   // uint[]: per-block sums of the prefix scan
+PF_CONST(uint32_t) kBindingTally = 16;        // GpuTallySum[], per hit point
+PF_CONST(uint32_t)
+kBindingDirect = 17;  // vec4[], a batch's direct-light samples, or camera samples' radiance
 PF_CONST(uint32_t) kBindingCounters = 18;      // GpuCounters
 PF_CONST(uint32_t) kBindingTallyOffsets = 19;  // uint[hit points + 1]: flags, then offsets
 PF_CONST(uint32_t) kBindingTallyEntries = 20;  // GpuTallyEntry[]: the sparse tally, host-visible
@@ -54,7 +55,19 @@ PF_CONST(uint32_t) kBindingDirectPoints = 25;
 // uint64_t[], per hit point, this epoch: where its surface ends within its radius
 // (core/shared/surface_edges.h).
 PF_CONST(uint32_t) kBindingSurfaceEdges = 26;
-PF_CONST(uint32_t) kBindingCount = 27;
+// The integrators that render pixels (path, pm; pixel_trace.comp): a batch's camera rays
+// (GpuCameraRay[], one a camera sample; their radiance goes to kBindingDirect), the job's
+// constants (GpuPixelJob), and pm's two photon maps, one after the other, each a hashed grid
+// (PhotonGrid's own arrays): the photons' positions (vec4[], what the search reads), their
+// directions and powers (GpuPhotonPower[], read for the k nearest alone) and each map's bucket
+// offsets (uint[], buckets + 1 a map). 32 bindings in all: lavapipe's limit
+// (maxPerStageDescriptorStorageBuffers; Vulkan assures only 4, every GPU here allows more).
+PF_CONST(uint32_t) kBindingCameraRays = 27;
+PF_CONST(uint32_t) kBindingPixelJob = 28;
+PF_CONST(uint32_t) kBindingPhotonPositions = 29;
+PF_CONST(uint32_t) kBindingPhotonPowers = 30;
+PF_CONST(uint32_t) kBindingPhotonBuckets = 31;
+PF_CONST(uint32_t) kBindingCount = 32;
 
 // What the prefix-sum kernels scan (GpuParams.scan_target).
 PF_CONST(uint32_t) kScanGridBegin = 0;
@@ -89,7 +102,11 @@ PF_CONST(uint32_t) kSpecHasSheen = 23;              // Material::sheen_color, it
 // Not the scene's but the job's: its hit points gather kinds of photon of their own
 // (GpuHitPoint::weight.w; core/shared/photon_kinds.h), direct light's among them (rpm's).
 PF_CONST(uint32_t) kSpecPhotonKinds = 24;
-PF_CONST(uint32_t) kSpecCount = 25;
+// The job's, for pixel_trace.comp: classic photon mapping (1) or the path tracer (0), and pm's
+// k nearest photons (the size of each thread's search heap; not a boolean).
+PF_CONST(uint32_t) kSpecPhotonMapping = 25;
+PF_CONST(uint32_t) kSpecNearest = 26;
+PF_CONST(uint32_t) kSpecCount = 27;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -263,6 +280,51 @@ struct GpuCounters {
 };
 PF_GPU_LAYOUT(GpuCounters, 48);
 
+// A camera sample's ray, made on the host (core/camera/pixel_sample.h: the pixel's filter, the
+// lens), and the weight its radiance takes in its pixel's mean.
+struct GpuCameraRay {
+    vec4 origin;     // xyz; w: the weight (PixelSampleRay's)
+    vec4 direction;  // xyz unit
+};
+PF_GPU_LAYOUT(GpuCameraRay, 32);
+
+// One of classic photon mapping's maps as a hashed uniform grid (core/pm/photon_grid.h, whose
+// arrays are uploaded as they are): its photons from first_photon, its bucket offsets from
+// first_bucket (bucket_mask + 2 of them).
+struct GpuPhotonMap {
+    uint32_t first_photon;
+    uint32_t photon_count;
+    uint32_t first_bucket;
+    uint32_t bucket_mask;
+    float cell_size;
+    float inverse_cell_size;
+    uint32_t pad0, pad1;
+};
+PF_GPU_LAYOUT(GpuPhotonMap, 32);
+
+// A stored photon's direction of travel and power (W, over the photons emitted for its map).
+struct GpuPhotonPower {
+    vec4 direction;  // xyz unit
+    vec4 power;      // xyz
+};
+PF_GPU_LAYOUT(GpuPhotonPower, 32);
+
+// What every camera sample of a pixel job reads (path, pm), fixed for the job.
+struct GpuPixelJob {
+    uint32_t samples_per_pixel;
+    uint32_t max_depth;          // path: surfaces a path scatters at; pm: a camera path's surfaces
+    uint32_t roulette_depth;     // Russian roulette from this bounce on (kPathRouletteDepth, ...)
+    uint32_t gather_depth;       // pm: surfaces a gather ray follows at most (kMaxGatherDepth)
+    uint32_t final_gather;       // pm: gather rays at a diffuse hit (0: the global map there)
+    uint32_t density_filter;     // pm: the density filter (core/shared/density_filter.h)
+    float max_radius_sq;         // pm: the k-nearest search's limit (MaxSearchRadius squared)
+    float filter_normalisation;  // pm: DensityFilterNormalisation(density_filter)
+    uint32_t per_cosine;  // pm: the photons' power is per unit of their cosine (shading normals)
+    uint32_t pad0, pad1, pad2;
+    GpuPhotonMap global_map, caustic_map;
+};
+PF_GPU_LAYOUT(GpuPixelJob, 112);
+
 // Push constants, the same block for every pipeline.
 struct GpuParams {
     vec4 scene_sphere;          // xyz centre, w radius: the bounding sphere (directional lights)
@@ -272,13 +334,17 @@ struct GpuParams {
     uint32_t hit_point_count;
     float flux_to_fixed;  // fixed-point units per watt of photon flux
     uint32_t emitter_count;
-    uint32_t first;        // photons: first photon of this dispatch; direct: first hit point
-    uint32_t end;          // photons: one past the batch's last photon; direct: of the slice
-    uint64_t seed_prefix;  // the stream family of the batch's photons or direct samples
+    // photons: first photon of this dispatch; direct: first hit point; pixels: the first of the
+    // batch's camera samples (pixel by pixel, each pixel's in order) of this dispatch
+    uint32_t first;
+    uint32_t end;  // photons: one past the batch's last photon; direct: of the slice; pixels: of
+                   // the batch's samples
+    uint64_t seed_prefix;  // the stream family of the batch's photons, direct samples or pixels
     uint32_t scan_count;   // elements the scan covers
     uint32_t max_bounces;
-    uint32_t direct_begin;         // direct: the slice's first hit point (output index 0)
-    uint32_t scan_target;          // kScanGridBegin or kScanTallyOffsets
+    uint32_t direct_begin;  // direct: the slice's first hit point (output index 0); pixels: the
+                            // batch's first pixel
+    uint32_t scan_target;   // kScanGridBegin or kScanTallyOffsets
     uint32_t environment_emitter;  // the environment's index into the emitters, if any
     // direct: the points are the epoch's camera pass in slot order, this many a pixel, and take
     // its samples' numbers (core/ppm/direct_light.h, DirectLightSequence); 0: a stream each.

@@ -38,6 +38,13 @@ PF_GPU_FN float GgxReflectionPdf(float cos_o, float cos_h, float alpha) {
     return GgxDistribution(cos_h, alpha) / ((1.0f + GgxLambda(cos_o, alpha)) * 4.0f * cos_o);
 }
 
+// f cos(wi) of a reflection, without its Fresnel term, for light sampling at rough metal:
+// D(h) G2(wo, wi) / (4 cos_o), both cosines positive, h their half vector.
+PF_GPU_FN float GgxReflectionCosine(float cos_o, float cos_i, float cos_h, float alpha) {
+    return GgxDistribution(cos_h, alpha) /
+           ((1.0f + GgxLambda(cos_o, alpha) + GgxLambda(cos_i, alpha)) * 4.0f * cos_o);
+}
+
 // A microfacet normal drawn with density G1(wo) max(0, wo.m) D(m) / wo.z, for wo.z > 0.
 PF_GPU_FN vec3 SampleGgxVisibleNormal(vec3 wo, float alpha, float u1, float u2) {
     // The view stretched to the unit-roughness configuration, and a frame around it.

@@ -48,8 +48,6 @@ expect_failure() { expect_failure_of "$photonfarm" "$@"; }
 oiiotool --pattern constant:color=1,1,1 4x4 3 -d float -o "$work/small.exr"
 printf '{"asset": {"version": "2.0"' >"$work/broken.gltf"
 cp -r "$source_dir/scenes/pbrt" "$work/pbrt"
-sed 's/^WorldBegin/Integrator "volpath" "integer maxdepth" 3\nWorldBegin/' "$source_dir/scenes/pbrt/cornell-box.pbrt" \
-    >"$work/pbrt/volpath.pbrt"
 expect_failure "unknown flag" "--frobnicate" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --frobnicate
 expect_failure "missing scene" "nope.gltf" render "$work/nope.gltf" --out "$work/a.exr"
 expect_failure "malformed scene" "broken.gltf" render "$work/broken.gltf" --out "$work/a.exr" --photons 1000
@@ -79,11 +77,6 @@ expect_failure "outputs without --watch" "need --watch" submit "$source_dir/scen
     --server $closed --out "$work/a.exr"
 VK_ICD_FILENAMES=/nonexistent/icd.json expect_failure "vulkan without a driver" "vulkan backend: no Vulkan driver" \
     render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --backend vulkan
-expect_failure "an integrator the backend does not run" "--backend vulkan runs --integrator ppm or sppm, not pm" \
-    render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --backend vulkan --integrator pm
-expect_failure "an integrator the scene chose that the backend does not run" \
-    "--backend vulkan runs --integrator ppm or sppm, not path" \
-    render "$work/pbrt/volpath.pbrt" --out "$work/a.exr" --backend vulkan
 expect_failure "unknown backend" "--backend" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" \
     --backend cuda
 expect_failure "bad alpha" "alpha" render "$source_dir/scenes/cornell-box.gltf" --out "$work/a.exr" --alpha 2

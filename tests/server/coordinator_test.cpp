@@ -333,31 +333,5 @@ TEST(CoordinatorTest, AJobWhoseEpochsCannotKeepTheWorkersBusyIsSubmittedWithAWar
     EXPECT_NE(starved->warnings[0].find("64 threads"), std::string::npos) << starved->warnings[0];
 }
 
-TEST(CoordinatorTest, AJobNoConnectedWorkerRunsIsSubmittedWithAWarningAndWaits) {
-    FakeClock clock;
-    Coordinator coordinator(Options(&clock));
-    const std::string gpu =
-        *coordinator.RegisterWorker({"vulkan", 1, std::string(kPhotonfarmVersion), ""});
-    JobRequest request = SmallJob(4 * 4096);
-    request.spec.integrator = Integrator::kPath;
-    request.spec.photon_budget = 0;
-    request.spec.epoch_budget = 2;
-    const absl::StatusOr<JobProgress> waiting = coordinator.Submit(std::move(request));
-    ASSERT_TRUE(waiting.ok()) << waiting.status();
-    ASSERT_EQ(waiting->warnings.size(), 1u);
-    EXPECT_NE(waiting->warnings[0].find(
-                  "no connected worker runs the path integrator (connected: vulkan)"),
-              std::string::npos)
-        << waiting->warnings[0];
-    const absl::StatusOr<CoordinatorLease> lease = coordinator.Lease(gpu, 4, 0);
-    ASSERT_TRUE(lease.ok()) << lease.status();
-    EXPECT_TRUE(lease->grant.batches.empty())
-        << "a vulkan worker is never leased a path tracing job";
-    // A ppm job, which the vulkan worker runs, comes without the warning.
-    const absl::StatusOr<JobProgress> ppm = coordinator.Submit(SmallJob(64 * 4096));
-    ASSERT_TRUE(ppm.ok()) << ppm.status();
-    EXPECT_TRUE(ppm->warnings.empty()) << ppm->warnings[0];
-}
-
 }  // namespace
 }  // namespace pf

@@ -11,6 +11,7 @@
 
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
+#include "core/shared/gpu_types.h"
 
 namespace pf::vk {
 namespace {
@@ -161,6 +162,10 @@ DeviceInfo Describe(VkPhysicalDevice device, uint32_t index) {
         info.unusable = "no 64-bit buffer atomics (shaderBufferInt64Atomics)";
     else if (ComputeQueueFamily(device) < 0)
         info.unusable = "no compute queue";
+    else if (properties.limits.maxPerStageDescriptorStorageBuffers < gpu::kBindingCount)
+        info.unusable =
+            absl::StrCat("binds ", properties.limits.maxPerStageDescriptorStorageBuffers,
+                         " storage buffers a kernel, ", gpu::kBindingCount, " needed");
     return info;
 }
 

@@ -218,6 +218,7 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
 
 SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     SpecConstants spec{};
+    spec[gpu::kSpecNearest] = 1;  // a heap of one where the job has none (pixel_trace.comp)
     spec[gpu::kSpecHasMirror] = features.mirror;
     spec[gpu::kSpecHasDielectric] = features.dielectric;
     spec[gpu::kSpecHasThinDielectric] = features.thin_dielectric;

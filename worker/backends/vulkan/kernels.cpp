@@ -5,6 +5,8 @@
 #include <span>
 #include <vector>
 
+#include "core/util/check.h"
+
 namespace pf::vk {
 namespace {
 
@@ -36,11 +38,14 @@ constexpr uint32_t kTallyFlagsSpirv[] = {
 constexpr uint32_t kTallyCompactSpirv[] = {
 #include "worker/backends/vulkan/shaders/tally_compact.comp.spv.inc"
 };
+constexpr uint32_t kPixelTraceSpirv[] = {
+#include "worker/backends/vulkan/shaders/pixel_trace.comp.spv.inc"
+};
 
 // In the order of Kernel.
 constexpr std::span<const uint32_t> kSpirv[] = {
-    kGridCountSpirv,   kScanBlocksSpirv,  kScanTotalsSpirv, kScanAddSpirv,     kGridFillSpirv,
-    kPhotonTraceSpirv, kDirectLightSpirv, kTallyFlagsSpirv, kTallyCompactSpirv};
+    kGridCountSpirv,   kScanBlocksSpirv,  kScanTotalsSpirv, kScanAddSpirv,      kGridFillSpirv,
+    kPhotonTraceSpirv, kDirectLightSpirv, kTallyFlagsSpirv, kTallyCompactSpirv, kPixelTraceSpirv};
 static_assert(std::size(kSpirv) == static_cast<size_t>(Kernel::kCount));
 
 // A shader module destroyed with its scope (pipelines keep what they need).
@@ -55,7 +60,8 @@ struct ShaderModule {
 }  // namespace
 
 absl::StatusOr<std::unique_ptr<Kernels>> Kernels::Create(const Context& context,
-                                                         const SpecConstants& spec) {
+                                                         const SpecConstants& spec,
+                                                         bool pixel_job) {
     std::unique_ptr<Kernels> kernels(new Kernels(context.Device()));
     const VkDevice device = context.Device();
     std::vector<VkDescriptorSetLayoutBinding> bindings;
@@ -101,6 +107,7 @@ absl::StatusOr<std::unique_ptr<Kernels>> Kernels::Create(const Context& context,
                                               .dataSize = sizeof(spec),
                                               .pData = spec.data()};
     for (size_t k = 0; k < kernels->pipelines_.size(); ++k) {
+        if ((k == static_cast<size_t>(Kernel::kPixelTrace)) != pixel_job) continue;
         ShaderModule shader{device};
         const VkShaderModuleCreateInfo module{.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
                                               .codeSize = kSpirv[k].size_bytes(),
@@ -146,6 +153,7 @@ void Kernels::BindBuffers(const std::array<VkBuffer, gpu::kBindingCount>& buffer
 void Kernels::Dispatch(VkCommandBuffer commands, Kernel kernel, const gpu::GpuParams& params,
                        uint32_t groups) const {
     if (groups == 0) return;
+    PF_CHECK(pipelines_[static_cast<size_t>(kernel)] != VK_NULL_HANDLE);
     vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE,
                       pipelines_[static_cast<size_t>(kernel)]);
     vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0,

@@ -22,16 +22,20 @@ enum class Kernel {
     kDirectLight,
     kTallyFlags,
     kTallyCompact,
+    kPixelTrace,
     kCount
 };
 
-// Specialisation constant values, indexed by the kSpec* ids (each 0 or 1).
+// Specialisation constant values, indexed by the kSpec* ids (0 or 1 but kSpecNearest).
 using SpecConstants = std::array<uint32_t, gpu::kSpecCount>;
 
 class Kernels {
 public:
+    // The pipelines of a photon job (ppm, sppm, rpm: every kernel but kPixelTrace), or of a
+    // pixel job (path, pm: kPixelTrace alone), so that neither compiles the other's.
     static absl::StatusOr<std::unique_ptr<Kernels>> Create(const Context& context,
-                                                           const SpecConstants& spec);
+                                                           const SpecConstants& spec,
+                                                           bool pixel_job);
     ~Kernels();
     Kernels(const Kernels&) = delete;
     Kernels& operator=(const Kernels&) = delete;

@@ -30,8 +30,11 @@
 #include "core/job/job_spec.h"
 #include "core/ppm/direct_light.h"
 #include "core/ppm/photon_pass.h"
+#include "core/render/pixel_pass.h"
 #include "core/util/check.h"
 #include "embree/embree_tracer.h"
+#include "worker/backends/vulkan/job_buffers.h"
+#include "worker/backends/vulkan/pixel_jobs.h"
 
 namespace pf::vk {
 namespace {
@@ -42,11 +45,6 @@ constexpr float kHeadroom = 256.0f;
 constexpr uint32_t kMaxBuckets = 1u << 21;
 
 double Mib(uint64_t bytes) { return static_cast<double>(bytes) / (1 << 20); }
-
-template <typename T>
-std::span<const std::byte> Bytes(const std::vector<T>& values) {
-    return std::as_bytes(std::span(values));
-}
 
 uint32_t Groups(uint64_t threads, uint32_t per_group) {
     return static_cast<uint32_t>((threads + per_group - 1) / per_group);
@@ -59,47 +57,10 @@ gpu::GpuHitPoint ToGpu(const HitPoint& h) {
             {h.weight.x, h.weight.y, h.weight.z, std::bit_cast<float>(h.gathers)}};
 }
 
-// Device buffers filled from host data through staging buffers, all copies in one submission.
-class Uploader {
-public:
-    Uploader(const Context& context, CommandStream& stream) : context_(context), stream_(stream) {}
-
-    absl::StatusOr<Buffer> Upload(std::span<const std::byte> data) {
-        if (commands_ == VK_NULL_HANDLE) {
-            absl::StatusOr<VkCommandBuffer> commands = stream_.Begin();
-            if (!commands.ok()) return commands.status();
-            commands_ = *commands;
-        }
-        absl::StatusOr<Buffer> device = Buffer::Create(context_, data.size(), MemoryUse::kDevice);
-        if (!device.ok() || data.empty()) return device;
-        absl::StatusOr<Buffer> staging = Buffer::Create(context_, data.size(), MemoryUse::kUpload);
-        if (!staging.ok()) return staging.status();
-        std::memcpy(staging->Mapped(), data.data(), data.size());
-        const VkBufferCopy region{.srcOffset = 0, .dstOffset = 0, .size = data.size()};
-        vkCmdCopyBuffer(commands_, staging->Handle(), device->Handle(), 1, &region);
-        staging_.push_back(std::move(*staging));
-        return device;
-    }
-    absl::Status Finish() {
-        if (commands_ == VK_NULL_HANDLE) return absl::OkStatus();
-        stream_.Barrier();
-        absl::Status status = stream_.SubmitAndWait();
-        staging_.clear();
-        commands_ = VK_NULL_HANDLE;
-        return status;
-    }
-
-private:
-    const Context& context_;
-    CommandStream& stream_;
-    VkCommandBuffer commands_ = VK_NULL_HANDLE;
-    std::vector<Buffer> staging_;
-};
-
 }  // namespace
 
 absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scene,
-                          size_t hit_points) {
+                          size_t hit_points, uint64_t map_bytes) {
     struct Need {
         const char* what;
         uint64_t bytes;
@@ -112,6 +73,7 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
         {"hit points", hit_points * sizeof(gpu::GpuHitPoint)},
         {"grid entries", hit_points * sizeof(gpu::GpuGridEntry)},
         {"tally", hit_points * sizeof(gpu::GpuTallySum)},
+        {"photon maps", map_bytes},
     };
     uint64_t total = 0;
     for (const Need& need : needs) {
@@ -119,9 +81,11 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
         if (need.bytes > device.max_buffer_bytes)
             return absl::ResourceExhaustedError(absl::StrCat(
                 "job too large for Vulkan device ", device.name, ": its ", need.what, " (",
-                hit_points, " hit points) need ", Mib(need.bytes),
-                " MiB in one buffer, the device allows ", Mib(device.max_buffer_bytes),
-                " MiB (maxStorageBufferRange); use fewer pixels or samples, or the cpu backend"));
+                hit_points, " hit points, ", Mib(map_bytes), " MiB of photon maps) need ",
+                Mib(need.bytes), " MiB in one buffer, the device allows ",
+                Mib(device.max_buffer_bytes),
+                " MiB (maxStorageBufferRange); use fewer pixels, samples or photons, or the cpu "
+                "backend"));
     }
     // Direct samples, radii, the grid's buckets and the staging buffers come on top: under
     // 100 bytes a hit point.
@@ -130,121 +94,9 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
         return absl::ResourceExhaustedError(
             absl::StrCat("job too large for Vulkan device ", device.name, ": it needs ", Mib(total),
                          " MiB, the device has ", Mib(device.memory_bytes),
-                         " MiB; use fewer pixels or samples, or the cpu backend"));
+                         " MiB; use fewer pixels, samples or photons, or the cpu backend"));
     return absl::OkStatus();
 }
-
-// Every buffer of a job, named by what it holds; Bindings() lists them in binding order.
-struct VulkanBackend::JobBuffers {
-    Buffer nodes, triangles, shading, normals, uvs, tangents, sheen_tables, materials, textures,
-        texels, emitters, emitter_cdf, light_image_texels, light_image_tables;
-    Buffer hit_points, radius_sq, surface_edges, grid_begin, grid_cursor, grid_entries, scan_blocks,
-        tally, direct, counters, direct_points;
-    Buffer tally_offsets, tally_entries;
-    Buffer radius_upload, edges_upload, hit_point_upload, direct_point_upload, direct_readback,
-        counters_readback;
-
-    // Uploads what kernels read and makes the rest; RESOURCE_EXHAUSTED where the device runs out.
-    // `direct_points`: how many points of an epoch's camera pass direct light is sampled at,
-    // uploaded every epoch (0: at the hit points).
-    static absl::StatusOr<std::unique_ptr<JobBuffers>> Create(
-        const Context& context, CommandStream& stream, const GpuScene& gpu_scene,
-        std::span<const gpu::GpuHitPoint> hit_points, uint32_t buckets, bool hit_points_per_epoch,
-        size_t direct_points) {
-        const size_t n = hit_points.size();
-        const size_t direct_count = direct_points > 0 ? direct_points : n;
-        auto buffers = std::make_unique<JobBuffers>();
-        Uploader uploader(context, stream);
-        absl::Status status;
-        const auto upload = [&](Buffer& buffer, std::span<const std::byte> data) {
-            if (!status.ok()) return;
-            absl::StatusOr<Buffer> made = uploader.Upload(data);
-            if (made.ok())
-                buffer = std::move(*made);
-            else
-                status = made.status();
-        };
-        const auto make = [&](Buffer& buffer, uint64_t bytes, MemoryUse use) {
-            if (!status.ok()) return;
-            absl::StatusOr<Buffer> made = Buffer::Create(context, bytes, use);
-            if (made.ok())
-                buffer = std::move(*made);
-            else
-                status = made.status();
-        };
-        upload(buffers->nodes, Bytes(gpu_scene.nodes));
-        upload(buffers->triangles, Bytes(gpu_scene.triangles));
-        upload(buffers->shading, Bytes(gpu_scene.shading));
-        upload(buffers->normals, Bytes(gpu_scene.normals));
-        upload(buffers->uvs, Bytes(gpu_scene.uvs));
-        upload(buffers->tangents, Bytes(gpu_scene.tangents));
-        upload(buffers->sheen_tables, Bytes(gpu_scene.sheen_tables));
-        upload(buffers->materials, Bytes(gpu_scene.materials));
-        upload(buffers->textures, Bytes(gpu_scene.textures));
-        upload(buffers->texels, Bytes(gpu_scene.texels));
-        upload(buffers->emitters, Bytes(gpu_scene.emitters));
-        upload(buffers->emitter_cdf, Bytes(gpu_scene.emitter_cdf));
-        upload(buffers->light_image_texels, Bytes(gpu_scene.light_image_texels));
-        upload(buffers->light_image_tables, Bytes(gpu_scene.light_image_tables));
-        upload(buffers->hit_points, std::as_bytes(hit_points));
-        make(buffers->radius_sq, n * sizeof(float), MemoryUse::kDevice);
-        make(buffers->surface_edges, n * sizeof(uint64_t), MemoryUse::kDevice);
-        make(buffers->grid_begin, (buckets + 1) * sizeof(uint32_t), MemoryUse::kDevice);
-        make(buffers->grid_cursor, buckets * sizeof(uint32_t), MemoryUse::kDevice);
-        make(buffers->grid_entries, n * sizeof(gpu::GpuGridEntry), MemoryUse::kDevice);
-        const uint64_t scanned = std::max<uint64_t>(buckets, n) + 1;  // the longest array scanned
-        make(buffers->scan_blocks, Groups(scanned, gpu::kScanBlock) * sizeof(uint32_t),
-             MemoryUse::kDevice);
-        make(buffers->tally, n * sizeof(gpu::GpuTallySum), MemoryUse::kDevice);
-        make(buffers->tally_offsets, (n + 1) * sizeof(uint32_t), MemoryUse::kDevice);
-        make(buffers->tally_entries, n * sizeof(gpu::GpuTallyEntry), MemoryUse::kKernelToHost);
-        make(buffers->direct, direct_count * sizeof(gpu::vec4), MemoryUse::kDevice);
-        if (direct_points > 0) {
-            make(buffers->direct_points, direct_points * sizeof(gpu::GpuHitPoint),
-                 MemoryUse::kDevice);
-            make(buffers->direct_point_upload, direct_points * sizeof(gpu::GpuHitPoint),
-                 MemoryUse::kUpload);
-        }
-        make(buffers->counters, sizeof(gpu::GpuCounters), MemoryUse::kDevice);
-        make(buffers->radius_upload, n * sizeof(float), MemoryUse::kUpload);
-        make(buffers->edges_upload, n * sizeof(uint64_t), MemoryUse::kUpload);
-        if (hit_points_per_epoch)
-            make(buffers->hit_point_upload, n * sizeof(gpu::GpuHitPoint), MemoryUse::kUpload);
-        make(buffers->direct_readback, direct_count * sizeof(gpu::vec4), MemoryUse::kReadback);
-        make(buffers->counters_readback, sizeof(gpu::GpuCounters), MemoryUse::kReadback);
-        if (absl::Status finished = uploader.Finish(); status.ok()) status = finished;
-        if (!status.ok()) return status;
-        return buffers;
-    }
-
-    std::array<VkBuffer, gpu::kBindingCount> Bindings() const {
-        std::array<VkBuffer, gpu::kBindingCount> b{};
-        b[gpu::kBindingBvhNodes] = nodes.Handle(), b[gpu::kBindingTriangles] = triangles.Handle();
-        b[gpu::kBindingShading] = shading.Handle(), b[gpu::kBindingNormals] = normals.Handle();
-        b[gpu::kBindingUvs] = uvs.Handle(), b[gpu::kBindingMaterials] = materials.Handle();
-        b[gpu::kBindingTextures] = textures.Handle(), b[gpu::kBindingTexels] = texels.Handle();
-        b[gpu::kBindingEmitters] = emitters.Handle(),
-        b[gpu::kBindingEmitterCdf] = emitter_cdf.Handle();
-        b[gpu::kBindingHitPoints] = hit_points.Handle(),
-        b[gpu::kBindingRadiusSq] = radius_sq.Handle();
-        b[gpu::kBindingSurfaceEdges] = surface_edges.Handle();
-        b[gpu::kBindingGridBegin] = grid_begin.Handle(),
-        b[gpu::kBindingGridCursor] = grid_cursor.Handle();
-        b[gpu::kBindingGridEntries] = grid_entries.Handle(),
-        b[gpu::kBindingScanBlocks] = scan_blocks.Handle();
-        b[gpu::kBindingTally] = tally.Handle(), b[gpu::kBindingDirect] = direct.Handle();
-        b[gpu::kBindingCounters] = counters.Handle();
-        b[gpu::kBindingTallyOffsets] = tally_offsets.Handle(),
-        b[gpu::kBindingTallyEntries] = tally_entries.Handle();
-        b[gpu::kBindingLightImageTexels] = light_image_texels.Handle();
-        b[gpu::kBindingLightImageTables] = light_image_tables.Handle();
-        b[gpu::kBindingTangents] = tangents.Handle();
-        b[gpu::kBindingSheenTables] = sheen_tables.Handle();
-        b[gpu::kBindingDirectPoints] =
-            direct_points.Handle() != VK_NULL_HANDLE ? direct_points.Handle() : hit_points.Handle();
-        return b;
-    }
-};
 
 absl::StatusOr<std::unique_ptr<VulkanBackend>> VulkanBackend::Create(
     std::shared_ptr<Context> context, const Scene& scene) {
@@ -264,10 +116,6 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     if (job.scene == nullptr || job.emitters == nullptr || !job.emitters->HasPower())
         return absl::InvalidArgumentError("job has no scene or no light");
     if (job.scene != &scene_) return absl::InvalidArgumentError("job's scene is not the backend's");
-    if (job.spec != nullptr && !RunsOnBackend(job.spec->integrator, Name()))
-        return absl::FailedPreconditionError(
-            absl::StrCat("the vulkan backend does not run the ",
-                         std::string(IntegratorName(job.spec->integrator)), " integrator"));
     buffers_.reset();
     kernels_.reset();
     film_.reset();
@@ -281,12 +129,8 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
         absl::StatusOr<CameraPassSettings> film = FilmFor(*job.spec, scene_);
         if (!film.ok()) return film.status();
         film->features = AnalyseFeatures(scene_, *job.emitters);
-        if (camera_tracer_ == nullptr) {
-            absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer =
-                embree::EmbreeTracer::Create(scene_);
-            if (!tracer.ok()) return tracer.status();
-            camera_tracer_ = std::move(*tracer);
-        }
+        if (absl::StatusOr<const Tracer*> tracer = CameraTracer(); !tracer.ok())
+            return tracer.status();
         film_ = *film;
         // Room for the largest epoch's pass (a growing epoch takes fewer samples).
         epoch_hit_points_.assign(size_t(film_->width) * size_t(film_->height) *
@@ -303,11 +147,22 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
         return absl::ResourceExhaustedError("over 2^31 hit points");
     absl::StatusOr<GpuScene> gpu_scene = BuildGpuScene(scene_, *job.emitters);
     if (!gpu_scene.ok()) return gpu_scene.status();
+    std::optional<PixelJobData> pixels;
+    if (PixelJob()) {
+        absl::StatusOr<const Tracer*> tracer = CameraTracer();
+        if (!tracer.ok()) return tracer.status();
+        absl::StatusOr<PixelJobData> prepared =
+            PreparePixelJob(*job.spec, scene_, *job.emitters, **tracer,
+                            AnalyseFeatures(scene_, *job.emitters), job.seed);
+        if (!prepared.ok()) return prepared.status();
+        pixels = std::move(*prepared);
+    }
     const DeviceCapacity capacity{context_->Info().name, context_->Limits().maxStorageBufferRange,
                                   context_->Info().device_local_bytes};
     // ppm's points of direct light take what a hit point takes, or less.
     if (absl::Status status =
-            CheckJobFits(capacity, *gpu_scene, job_.hit_points.size() + direct_points);
+            CheckJobFits(capacity, *gpu_scene, job_.hit_points.size() + direct_points,
+                         pixels ? pixels->MapBytes() : 0);
         !status.ok())
         return status;
     features_ = gpu_scene->features;
@@ -323,7 +178,11 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
 
     SpecConstants spec = SpecConstantsFor(features_);
     spec[gpu::kSpecPhotonKinds] = job.spec != nullptr && job.spec->integrator == Integrator::kRpm;
-    absl::StatusOr<std::unique_ptr<Kernels>> kernels = Kernels::Create(*context_, spec);
+    if (PixelJob() && job.spec->integrator == Integrator::kPm) {
+        spec[gpu::kSpecPhotonMapping] = 1;
+        spec[gpu::kSpecNearest] = job.spec->photon_map.nearest;
+    }
+    absl::StatusOr<std::unique_ptr<Kernels>> kernels = Kernels::Create(*context_, spec, PixelJob());
     if (!kernels.ok()) return kernels.status();
     kernels_ = std::move(*kernels);
 
@@ -333,14 +192,25 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     buckets_ = std::clamp<uint32_t>(std::bit_ceil(static_cast<uint32_t>(2 * n + 1)),
                                     gpu::kScanBlock, kMaxBuckets);
 
-    absl::StatusOr<std::unique_ptr<JobBuffers>> buffers = JobBuffers::Create(
-        *context_, stream_, *gpu_scene, hit_points, buckets_, StochasticJob(), direct_points);
+    absl::StatusOr<std::unique_ptr<JobBuffers>> buffers =
+        JobBuffers::Create(*context_, stream_, *gpu_scene, hit_points, buckets_, StochasticJob(),
+                           direct_points, pixels ? &*pixels : nullptr);
     if (!buffers.ok()) return buffers.status();
     kernels_->BindBuffers((*buffers)->Bindings());
     buffers_ = std::move(*buffers);
     spdlog::debug("Vulkan job: {} hit points, {} triangles, kernels for {}", n,
                   scene_.triangles.size(), features_.ToString());
     return absl::OkStatus();
+}
+
+absl::StatusOr<const Tracer*> VulkanBackend::CameraTracer() {
+    if (camera_tracer_ == nullptr) {
+        absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer =
+            embree::EmbreeTracer::Create(scene_);
+        if (!tracer.ok()) return tracer.status();
+        camera_tracer_ = std::move(*tracer);
+    }
+    return camera_tracer_.get();
 }
 
 gpu::GpuParams VulkanBackend::BaseParams() const {
@@ -365,6 +235,7 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regi
     const std::span<const float> radius_sq = regions.radius_sq;
     if (radius_sq.size() != n || !(regions.edges.empty() || regions.edges.size() == n))
         return absl::InvalidArgumentError("one radius and edge set per hit point expected");
+    if (PixelJob()) return absl::OkStatus();  // pixel batches need nothing an epoch
     if (film_) {
         const CameraPassSettings pass = StochasticCameraPass(*film_, *job_.spec, epoch);
         std::vector<HitPoint> points =
@@ -445,7 +316,52 @@ void VulkanBackend::RecordScan(VkCommandBuffer commands, uint32_t target, uint32
     stream_.Barrier();
 }
 
+absl::StatusOr<BatchResult> VulkanBackend::RunPixelBatch(const BatchSpec& spec) {
+    const Film film = PixelFilm(*job_.spec);
+    const uint64_t samples =
+        uint64_t{spec.sample_end - spec.sample_begin} * uint64_t(film.samples_per_pixel);
+    if (samples >= (uint64_t{1} << 32))
+        return absl::InvalidArgumentError("a pixel batch of 2^32 camera samples or more");
+    const size_t room = buffers_->camera_samples;
+    if (absl::Status status = buffers_->ReserveCameraSamples(*context_, samples); !status.ok())
+        return status;
+    if (buffers_->camera_samples != room) kernels_->BindBuffers(buffers_->Bindings());
+    MakeCameraRays(scene_.camera, film, job_.seed, spec,
+                   static_cast<gpu::GpuCameraRay*>(buffers_->camera_ray_upload.Mapped()));
+    absl::StatusOr<VkCommandBuffer> commands = stream_.Begin();
+    if (!commands.ok()) return commands.status();
+    const VkBufferCopy rays{.size = samples * sizeof(gpu::GpuCameraRay)};
+    if (samples > 0)
+        vkCmdCopyBuffer(*commands, buffers_->camera_ray_upload.Handle(),
+                        buffers_->camera_rays.Handle(), 1, &rays);
+    stream_.Barrier();
+    gpu::GpuParams params = BaseParams();
+    params.seed_prefix = PixelSeeds(job_.seed, spec.epoch).Prefix();
+    params.end = static_cast<uint32_t>(samples);
+    params.direct_begin = spec.sample_begin;
+    const uint64_t per_dispatch = std::min<uint64_t>(
+        kMaxThreadsPerDispatch,
+        uint64_t{context_->Limits().maxComputeWorkGroupCount[0]} * gpu::kWorkgroupSize);
+    for (uint64_t first = 0; first < samples; first += per_dispatch) {
+        params.first = static_cast<uint32_t>(first);
+        kernels_->Dispatch(
+            *commands, Kernel::kPixelTrace, params,
+            Groups(std::min<uint64_t>(per_dispatch, samples - first), gpu::kWorkgroupSize));
+    }
+    stream_.Barrier();
+    const VkBufferCopy radiance{.size = samples * sizeof(gpu::vec4)};
+    if (samples > 0)
+        vkCmdCopyBuffer(*commands, buffers_->direct.Handle(), buffers_->direct_readback.Handle(), 1,
+                        &radiance);
+    stream_.Barrier();
+    if (absl::Status status = stream_.SubmitAndWait(); !status.ok()) return status;
+    buffers_->direct_readback.InvalidateForRead();
+    return SumCameraSamples(film, spec,
+                            static_cast<const gpu::vec4*>(buffers_->direct_readback.Mapped()));
+}
+
 absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
+    if (PixelJob()) return RunPixelBatch(spec);
     absl::StatusOr<VkCommandBuffer> commands = stream_.Begin();
     if (!commands.ok()) return commands.status();
     vkCmdFillBuffer(*commands, buffers_->tally.Handle(), 0, VK_WHOLE_SIZE, 0);

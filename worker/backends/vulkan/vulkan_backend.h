@@ -1,9 +1,11 @@
-// The Vulkan compute photon backend: the same batches as the CPU backend, traced by
-// compute kernels on the chosen device (a GPU, or lavapipe). Per job: the scene's buffers
-// and kernels specialised to its features; per epoch: the radii uploaded and the hit-point
-// grid rebuilt on the device (for sppm, the epoch's hit points traced on the CPU and uploaded
-// first); per batch: photon and direct-light kernels, then the tally read back and made
-// sparse. Not thread-safe; one job at a time.
+// The Vulkan compute backend: the same batches as the CPU backend, for every integrator,
+// traced by compute kernels on the chosen device (a GPU, or lavapipe). Per job: the scene's
+// buffers and kernels specialised to its features (and to the job: pm's maps built on the host
+// and uploaded). Photon integrators (ppm, sppm, rpm): per epoch, the radii uploaded and the
+// hit-point grid rebuilt on the device (for sppm and rpm, the epoch's hit points traced on the
+// CPU and uploaded first); per batch, photon and direct-light kernels, then the tally read back
+// and made sparse. Pixel integrators (path, pm): per batch, the camera rays made on the host
+// and a thread a camera sample (pixel_trace.comp). Not thread-safe; one job at a time.
 #pragma once
 
 #include <memory>
@@ -30,10 +32,12 @@ struct DeviceCapacity {
     uint64_t memory_bytes = 0;      // the largest device-local heap
 };
 
-// OK where a job over `gpu_scene` with `hit_points` fits `device`; RESOURCE_EXHAUSTED naming
-// the buffer, the need and the limit otherwise.
+// OK where a job over `gpu_scene` with `hit_points` (and pm's maps, `map_bytes`) fits
+// `device`; RESOURCE_EXHAUSTED naming the buffer, the need and the limit otherwise.
 absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scene,
-                          size_t hit_points);
+                          size_t hit_points, uint64_t map_bytes = 0);
+
+struct JobBuffers;
 
 // Threads of one photon or direct-light dispatch at most: enough to fill the largest GPUs
 // (an H100 holds 270k resident threads), short enough to keep each dispatch brief; bigger
@@ -66,9 +70,12 @@ public:
 
 private:
     VulkanBackend(std::shared_ptr<Context> context, const Scene& scene, CommandStream stream);
-    struct JobBuffers;
 
+    // The host's Embree tracer over the scene, made for the first job that needs one.
+    absl::StatusOr<const Tracer*> CameraTracer();
     absl::StatusOr<BatchResult> RunBatch(const BatchSpec& spec);
+    // A batch of the integrators that render pixels (path, pm).
+    absl::StatusOr<BatchResult> RunPixelBatch(const BatchSpec& spec);
     // The finished batch's results, from the host-visible buffers.
     BatchResult ReadResult(const BatchSpec& spec) const;
     // Records an exclusive prefix sum of `count` elements of the array `target` (kScan*).
@@ -86,14 +93,18 @@ private:
     bool StochasticJob() const {
         return job_.spec != nullptr && TracesHitPointsEachEpoch(job_.spec->integrator);
     }
+    // Whether the job renders pixels (path, pm) rather than shooting photons into hit points.
+    bool PixelJob() const {
+        return job_.spec != nullptr && !GathersAtHitPoints(job_.spec->integrator);
+    }
     // Whether the job traces its photons adaptively (JobSpec::photon_tracing).
     bool Adaptive() const {
         return job_.spec != nullptr && job_.spec->photon_tracing == PhotonTracing::kAdaptive;
     }
 
     // ppm, sppm, rpm: the film whose epoch passes are traced, on the CPU through camera_tracer_
-    // (made for the first such job), and the pass's points: sppm's hit points, which
-    // job_.hit_points views (rpm's too), or ppm's points of direct light.
+    // (made for the first job that needs it, pm's maps too), and the pass's points: sppm's hit
+    // points, which job_.hit_points views (rpm's too), or ppm's points of direct light.
     std::optional<CameraPassSettings> film_;
     std::unique_ptr<Tracer> camera_tracer_;
     std::vector<HitPoint> epoch_hit_points_;

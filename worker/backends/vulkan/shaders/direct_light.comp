@@ -8,6 +8,7 @@
 #include "trace.glsl"
 #include "lights.glsl"
 #include "specular.glsl"
+#include "direct.glsl"
 #include "core/shared/sobol.h"
 
 layout(local_size_x = kWorkgroupSize) in;
@@ -25,7 +26,6 @@ void main() {
     if (index < params.end && !gather_hit) {
         const GpuHitPoint point = direct_points[index];
         Pcg32 rng = Pcg32Seeded(FamilySeed(params.seed_prefix, index));
-        const vec3 normal = point.normal.xyz;
         // The numbers as the CPU draws them (core/ppm/direct_light.cpp): with the pass's
         // sequences, the emitter's pick with the point on it and the cosine ray from the slot's
         // camera sample's index in its pixel's sequences, the coat's microfacet from the
@@ -49,47 +49,17 @@ void main() {
             light_u.x = Pcg32NextFloat(rng);
             light_u.y = Pcg32NextFloat(rng);
         }
-        LightSample light;
-        vec3 light_part = vec3(0), ray_part = vec3(0);
-        vec3 ray_direction = normal;
-        RayHit hit;
-        if (SampleLightFrom(point.position.xyz, normal, pick, light_u, sequenced, light) &&
-            !TraceRay(light.origin, light.direction, light.distance, true, hit)) {
-            const float cosine = dot(light.direction, normal);
-            const float weight = light.pdf > 0 ? PowerHeuristic(light.pdf, cosine / kPi) : 1.0;
-            light_part = light.radiance_over_pdf * (cosine * weight);
-        }
-        if (kHasTriangleLights || kHasEnvironment) {
-            vec2 u;
+        vec2 cosine_u = vec2(0);
+        if (kLightsFoundByRays) {
             if (sequenced) {
-                u = SequenceSample2D(sequence, sample_index, 1u);
+                cosine_u = SequenceSample2D(sequence, sample_index, 1u);
             } else {
-                u.x = Pcg32NextFloat(rng);
-                u.y = Pcg32NextFloat(rng);
+                cosine_u.x = Pcg32NextFloat(rng);
+                cosine_u.y = Pcg32NextFloat(rng);
             }
-            ray_direction = FrameFromNormal(normal) * SampleCosineHemisphere(u.x, u.y);
-            const vec3 origin = OffsetRayOrigin(point.position.xyz, normal);
-            float pdf = 0;
-            vec3 radiance = vec3(0);
-            if (TraceRay(origin, ray_direction, kInfinity, false, hit)) {
-                if (kHasTriangleLights) radiance = HitEmitter(hit, origin, origin + ray_direction * hit.t, pdf);
-            } else if (kHasEnvironment) {
-                radiance = EscapedRay(origin, ray_direction, pdf);
-            }
-            // L cos / (cos / pi): the cosine ray's own weight is pi.
-            if (pdf > 0) ray_part = radiance * (kPi * PowerHeuristic(dot(ray_direction, normal) / kPi, pdf));
         }
-        // Under a coat, what it lets through of each (core/ppm/direct_light.cpp's CoatFactor).
-        const uint coat = floatBitsToUint(point.position.w);
-        if (kHasCoats && coat != kNoCoat) {
-            const Coat layer = CoatOf(materials[coat]);
-            float u1 = 0, u2 = 0;
-            if (layer.alpha > 0.0) u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-            const mat3 frame = FrameFromNormal(normal);
-            if (MaxComponent(light_part) > 0.0) light_part *= CoatTransmittance(layer, light.direction * frame, u1, u2);
-            if (MaxComponent(ray_part) > 0.0) ray_part *= CoatTransmittance(layer, ray_direction * frame, u1, u2);
-        }
-        const vec3 irradiance = light_part + ray_part;
+        const vec3 irradiance = DirectIrradiance(point.position.xyz, point.normal.xyz, floatBitsToUint(point.position.w),
+                                                 pick, light_u, sequenced, cosine_u, rng);
         vec3 value = point.weight.xyz * irradiance;
         if (!IsFinite(value)) {
             atomicAdd(group_discarded, 1u);

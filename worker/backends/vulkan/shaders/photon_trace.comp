@@ -211,27 +211,7 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
                 continue;
             }
         } else if (kHasMirror || kHasDielectric || kHasThinDielectric || kHasRoughConductor || kHasRoughDielectric) {
-            if (kHasCoats && material.coat.x > 0.0) {  // a coated conductor
-                const mat3 frame = FrameFromNormal(front_facing ? surface.shading_normal : -surface.shading_normal);
-                const float base_alpha = material.type == kMaterialRoughConductor ? max(material.roughness, 1e-3) : 0.0;
-                vec3 wi;
-                const vec3 weight =
-                    ScatterCoatedConductor(CoatOf(material), ConductorOf(material), -direction * frame, surface.base_color,
-                                           base_alpha, rng, wi);
-                scatter = SpecularBounce(frame * wi, weight, false);
-            } else {
-                // As ScatterNonDiffuse: one number for a specular surface, three for a rough one.
-                const float u_branch = Pcg32NextFloat(rng);
-                if ((kHasRoughConductor && material.type == kMaterialRoughConductor) ||
-                    (kHasRoughDielectric && material.type == kMaterialRoughDielectric)) {
-                    const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-                    scatter = ScatterRough(material, direction, surface.shading_normal, front_facing, surface.base_color,
-                                          u_branch, u1, u2);
-                } else {
-                    scatter = ScatterSpecular(material, direction, surface.shading_normal, front_facing,
-                                             surface.base_color, u_branch);
-                }
-            }
+            scatter = ScatterNonDiffuse(material, surface, direction, front_facing, rng);
         }
         const float survive = min(1.0, MaxComponent(scatter.weight));
         if (!(Pcg32NextFloat(rng) < survive) || !(arrival > 0.0)) break;

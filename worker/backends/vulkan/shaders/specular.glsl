@@ -76,3 +76,36 @@ SpecularBounce ScatterRough(GpuMaterial material, vec3 d, vec3 normal, bool fron
     if (!(wi.z < 0.0)) return absorbed;
     return SpecularBounce(frame * wi, tint * GgxMaskingRatio(wo.z, -wi.z, alpha), true);
 }
+
+// Scatters d at a non-diffuse surface (ScatterNonDiffuse): a coated conductor through its coat,
+// a rough surface by its microfacets (three numbers), a specular one by Fresnel (one).
+SpecularBounce ScatterNonDiffuse(GpuMaterial material, Surface surface, vec3 d, bool front_facing, inout Pcg32 rng) {
+    if (kHasCoats && material.coat.x > 0.0) {  // a coated conductor
+        const mat3 frame = FrameFromNormal(front_facing ? surface.shading_normal : -surface.shading_normal);
+        const float base_alpha = material.type == kMaterialRoughConductor ? max(material.roughness, 1e-3) : 0.0;
+        vec3 wi;
+        const vec3 weight = ScatterCoatedConductor(CoatOf(material), ConductorOf(material), -d * frame,
+                                                   surface.base_color, base_alpha, rng, wi);
+        return SpecularBounce(frame * wi, weight, false);
+    }
+    const float u_branch = Pcg32NextFloat(rng);
+    if ((kHasRoughConductor && material.type == kMaterialRoughConductor) ||
+        (kHasRoughDielectric && material.type == kMaterialRoughDielectric)) {
+        const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+        return ScatterRough(material, d, surface.shading_normal, front_facing, surface.base_color, u_branch, u1, u2);
+    }
+    return ScatterSpecular(material, d, surface.shading_normal, front_facing, surface.base_color, u_branch);
+}
+
+// Light sampling at rough metal (EvaluateRoughConductor in core/scene/glossy.h): f cos(wi) into
+// `value` and the density with which ScatterRough chooses wi; n the shading normal on wo's side.
+float EvaluateRoughConductor(GpuMaterial material, vec3 tint, vec3 n, vec3 wo, vec3 wi, out vec3 value) {
+    value = vec3(0.0);
+    const float cos_o = dot(wo, n), cos_i = dot(wi, n);
+    if (!(cos_o > 0.0 && cos_i > 0.0)) return 0.0;
+    const vec3 h = normalize(wo + wi);
+    const float cos_h = dot(h, n);
+    const float alpha = max(material.roughness, 1e-3);
+    value = ConductorFresnel(ConductorOf(material), dot(wo, h), tint, 1.0) * GgxReflectionCosine(cos_o, cos_i, cos_h, alpha);
+    return GgxReflectionPdf(cos_o, cos_h, alpha);
+}
