@@ -133,6 +133,75 @@ TEST_F(FarmTest, CpuAndVulkanWorkersShareAJob) {
     }
 }
 
+TEST_F(FarmTest, VulkanWorkersRunThePixelIntegratorsAsRenderDoes) {
+    // path and pm on the device (pixel_trace.comp): a farm of two Vulkan workers gives the image
+    // `photonfarm render --backend vulkan` gives, byte for byte; a Vulkan and a CPU worker share
+    // a job, each running some of its batches, and since the device follows the CPU's paths but
+    // for float rounding the image is the CPU render's to 1e-3 in nearly every pixel.
+    testing::SkipWithoutVulkan();
+    if (IsSkipped() || HasFatalFailure()) return;
+    const std::string scene = std::string(PF_SOURCE_DIR) + "/scenes/cornell-glossy.gltf";
+    const auto flags = [](const std::string& integrator) {
+        return Concat(kJobFlags, {"--integrator", integrator, "--epochs", "3", "--pm-photons",
+                                  "20k", "--pm-caustic-photons", "20k", "--log-level", "warn"});
+    };
+    const auto submit = [&](const std::string& integrator, const std::string& out) {
+        return RunClient(Concat(
+            {"submit", scene, "--server", address_, "--watch", "--interval", "0", "--out", out},
+            Concat(flags(integrator), Credentials().ClientFlags())));
+    };
+    const auto render = [&](const std::string& integrator, const std::string& backend) {
+        const std::string out = TempPath("render-" + integrator + "-" + backend + ".exr");
+        EXPECT_EQ(RunClient(Concat(
+                      {"render", scene, "--threads", "2", "--backend", backend, "--out", out},
+                      flags(integrator))),
+                  0);
+        return Pixels(out);
+    };
+    ChildProcess& first = StartWorker("vulkan");
+    ChildProcess& second = StartWorker("vulkan");
+    ASSERT_TRUE(WaitForWorkers(2));
+    for (const std::string integrator : {"pm", "path"}) {
+        const std::string farm = TempPath("farm-vulkan-" + integrator + ".exr");
+        ASSERT_EQ(submit(integrator, farm), 0) << integrator;
+        EXPECT_TRUE(Identical(Pixels(farm), render(integrator, "vulkan")))
+            << integrator << ": the Vulkan farm's image differs from render --backend vulkan's";
+    }
+    second.Signal(SIGTERM);
+    EXPECT_EQ(second.Wait(DeadlineSeconds()), 0);
+    ChildProcess& cpu = StartWorker("cpu");
+    const auto batches = [&](const std::string& backend_prefix) {
+        uint64_t done = 0;
+        const absl::StatusOr<v1::ListWorkersResponse> workers = client_->ListWorkers();
+        EXPECT_TRUE(workers.ok()) << workers.status();
+        if (workers.ok())
+            for (const v1::WorkerStatus& worker : workers->workers())
+                if (worker.backend().starts_with(backend_prefix)) done += worker.batches_done();
+        return done;
+    };
+    ASSERT_TRUE(WaitForWorkers(2));  // the stopped worker left the farm as it ended
+    for (const std::string integrator : {"pm", "path"}) {
+        SCOPED_TRACE(integrator);
+        const uint64_t gpu_before = batches("vulkan: "), cpu_before = batches("cpu");
+        const std::string mixed = TempPath("farm-mixed-" + integrator + ".exr");
+        ASSERT_EQ(submit(integrator, mixed), 0);
+        EXPECT_GT(batches("vulkan: "), gpu_before) << "the Vulkan worker ran none of the job";
+        EXPECT_GT(batches("cpu"), cpu_before) << "the CPU worker ran none of the job";
+        const std::vector<Rgb> image = Pixels(mixed), reference = render(integrator, "cpu");
+        ASSERT_EQ(image.size(), reference.size());
+        size_t agreeing = 0;
+        for (size_t p = 0; p < image.size(); ++p)
+            agreeing += MaxComponent(Abs(image[p] - reference[p])) <=
+                        1e-3f * std::max(1.0f, MaxComponent(reference[p]));
+        EXPECT_GE(double(agreeing), 0.97 * double(image.size()))
+            << agreeing << " of " << image.size() << " pixels agree with the CPU render";
+    }
+    for (ChildProcess* worker : {&first, &cpu}) {
+        worker->Signal(SIGTERM);
+        EXPECT_EQ(worker->Wait(DeadlineSeconds()), 0);
+    }
+}
+
 TEST_F(FarmTest, WorkerKilledMidJobChangesNothing) {
     ChildProcess& doomed = StartWorker();
     StartWorker();

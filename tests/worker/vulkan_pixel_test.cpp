@@ -1,0 +1,146 @@
+// The integrators that render pixels (path, pm) on the Vulkan backend against the CPU
+// backend, under the Khronos validation layer. Both trace each camera sample from the same ray
+// with the same stream, drawing its numbers in the same order, so the device's paths are the
+// CPU's but for float rounding (a rounding that flips a Russian roulette or a Fresnel choice
+// sends a path its own way): nearly every pixel must agree to 1e-3, and the images' means
+// closely. A kernel that mis-weighs any light path would fail it outright.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/job/job_spec.h"
+#include "core/scene/emitters.h"
+#include "core/scene/scene_loader.h"
+#include "tests/support/vulkan_validation.h"
+#include "worker/backend_factory.h"
+#include "worker/backends/vulkan/context.h"
+
+namespace pf {
+namespace {
+
+struct PixelCase {
+    std::string scene;
+    Integrator integrator;
+    uint32_t final_gather = 0;  // pm
+};
+
+std::string CaseName(const ::testing::TestParamInfo<PixelCase>& info) {
+    std::string name = info.param.scene.substr(0, info.param.scene.find('.')) + "_" +
+                       std::string(IntegratorName(info.param.integrator));
+    if (info.param.final_gather > 0) name += "_final_gather";
+    std::ranges::replace(name, '-', '_');
+    return name;
+}
+
+class VulkanPixelTest : public ::testing::TestWithParam<PixelCase> {
+protected:
+    void SetUp() override {
+        testing::SkipWithoutVulkan();
+        if (IsSkipped() || HasFatalFailure()) return;
+        context_ = *vk::Context::Shared();
+    }
+    void TearDown() override {
+        EXPECT_EQ(vk::Context::ValidationErrors(), 0u) << "see the 'Vulkan validation' lines above";
+    }
+
+    std::shared_ptr<vk::Context> context_;
+};
+
+TEST_P(VulkanPixelTest, BatchesFollowTheCpuBackendsPaths) {
+    const PixelCase& param = GetParam();
+    const Scene scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + param.scene);
+    const Emitters emitters(scene);
+    JobSpec spec;
+    spec.integrator = param.integrator;
+    spec.width = spec.height = 24;
+    spec.samples_per_pixel = 4;
+    spec.seed = 3;
+    spec.photon_map.global_photons = spec.photon_map.caustic_photons = 50'000;
+    spec.photon_map.final_gather = param.final_gather;
+    spec.layout = {0, 3};  // three batches an epoch: slices of the image
+    std::unique_ptr<Backend> cpu = std::move(*CreateBackend("cpu", scene));
+    absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", scene);
+    ASSERT_TRUE(vulkan.ok()) << vulkan.status();
+    std::vector<BatchSpec> specs;
+    for (uint64_t epoch : {0u, 3u})
+        for (uint32_t b = 0; b < spec.layout.batches_per_epoch; ++b)
+            specs.push_back(MakeBatchSpec(spec.layout, epoch, b, 24 * 24));
+    std::vector<BatchResult> results[2];
+    for (int i = 0; i < 2; ++i) {
+        Backend& backend = i == 0 ? *cpu : **vulkan;
+        ASSERT_TRUE(backend.BeginJob({&scene, &emitters, {}, 7, &spec}).ok());
+        for (const BatchSpec& batch : specs) {
+            ASSERT_TRUE(backend.BeginEpoch(batch.epoch, {}, nullptr).ok());
+            absl::StatusOr<std::vector<BatchResult>> ran = backend.RunBatches({&batch, 1});
+            ASSERT_TRUE(ran.ok()) << ran.status();
+            results[i].push_back(std::move(ran->front()));
+        }
+    }
+    size_t pixels = 0, agreeing = 0;
+    Rgbd sums[2] = {Rgbd(0.0), Rgbd(0.0)};
+    for (size_t b = 0; b < specs.size(); ++b) {
+        const BatchResult &c = results[0][b], &g = results[1][b];
+        ASSERT_EQ(c.samples.size(), specs[b].sample_end - specs[b].sample_begin);
+        ASSERT_EQ(g.samples.size(), c.samples.size());
+        EXPECT_EQ(g.nonfinite_discarded, c.nonfinite_discarded);
+        for (size_t p = 0; p < c.samples.size(); ++p) {
+            ++pixels;
+            sums[0] = sums[0] + Rgbd(c.samples[p]);
+            sums[1] = sums[1] + Rgbd(g.samples[p]);
+            const Rgb difference = Abs(c.samples[p] - g.samples[p]);
+            agreeing +=
+                MaxComponent(difference) <= 1e-3f * std::max(1.0f, MaxComponent(c.samples[p]));
+        }
+    }
+    ASSERT_EQ(pixels, 2u * 24 * 24);
+    EXPECT_GE(double(agreeing), 0.97 * double(pixels))
+        << agreeing << " of " << pixels << " pixels agree to 1e-3";
+    for (int channel = 0; channel < 3; ++channel) {
+        const double cpu_mean = sums[0][channel] / double(pixels);
+        const double gpu_mean = sums[1][channel] / double(pixels);
+        EXPECT_GT(cpu_mean, 0.0) << "channel " << channel << ": a black image proves nothing";
+        EXPECT_NEAR(gpu_mean, cpu_mean, 0.01 * cpu_mean) << "channel " << channel;
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, VulkanPixelTest,
+    ::testing::Values(
+        // Rough metal and rough glass: GGX sampling, light sampling at metal weighed by MIS.
+        PixelCase{"cornell-glossy.gltf", Integrator::kPath},
+        PixelCase{"cornell-glossy.gltf", Integrator::kPm},
+        PixelCase{"cornell-glossy.gltf", Integrator::kPm, 2},
+        // Glass, its caustic map; sheen and coats; diffuse transmission and textures; bump
+        // maps (shading normals: photons per unit cosine); a sky with its portal-less map.
+        PixelCase{"cornell-glass.gltf", Integrator::kPath},
+        PixelCase{"cornell-glass.gltf", Integrator::kPm},
+        PixelCase{"cornell-velvet.gltf", Integrator::kPath},
+        PixelCase{"cornell-velvet.gltf", Integrator::kPm, 2},
+        PixelCase{"cornell-stained.gltf", Integrator::kPath},
+        PixelCase{"cornell-stained.gltf", Integrator::kPm},
+        PixelCase{"cornell-bumpy.gltf", Integrator::kPath},
+        PixelCase{"cornell-bumpy.gltf", Integrator::kPm}),
+    CaseName);
+
+TEST_F(VulkanPixelTest, PhotonMapsTooLargeForTheDeviceAreRefusedNamingThem) {
+    // The maps are checked against the host's memory when built (as on the CPU) and against
+    // the device's when uploaded.
+    const Scene scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
+    const Emitters emitters(scene);
+    JobSpec spec;
+    spec.integrator = Integrator::kPm;
+    spec.width = spec.height = 8;
+    spec.photon_map.global_photons = spec.photon_map.caustic_photons = 1'000'000'000'000;
+    absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", scene);
+    ASSERT_TRUE(vulkan.ok()) << vulkan.status();
+    const absl::Status refused = (*vulkan)->BeginJob({&scene, &emitters, {}, 7, &spec});
+    EXPECT_TRUE(absl::IsResourceExhausted(refused)) << refused;
+    EXPECT_NE(refused.message().find("--pm-photons"), std::string::npos) << refused;
+}
+
+}  // namespace
+}  // namespace pf
