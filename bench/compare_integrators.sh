@@ -2,9 +2,8 @@
 # The photon mapping family side by side (docs/integrators.md): every shipped scene rendered by
 # each integrator and measured against a long reference, as error against run time, with the
 # memory each run took.
-#  - The reference: the path tracer for REF_SECONDS with a seed of its own; for caustic-glass,
-#    whose small light the path tracer finds through the glass only by chance, stochastic
-#    progressive photon mapping; for the furnaces the exact image L = 2.
+#  - The reference: bench/reference.sh's (the path tracer for REF_SECONDS; sppm for
+#    caustic-glass; the exact image for the furnaces).
 #  - path, ppm, sppm and rpm: one render of SECONDS each; their convergence logs (every epoch
 #    measured against the reference) are the curves.
 #  - pm: its error is fixed by its maps, so it runs once per map size (PM_SIZES photons per
@@ -19,6 +18,7 @@
 # --environment.
 # Usage: bench/compare_integrators.sh BUILD_DIR [OUT_DIR] [SIZE] [SECONDS] [REF_SECONDS]
 set -euo pipefail
+source "$(dirname "$0")/reference.sh"
 build=${1:?usage: compare_integrators.sh BUILD_DIR [OUT_DIR] [SIZE] [SECONDS] [REF_SECONDS]}
 out=${2:-docs/integrators}
 size=${3:-96}
@@ -75,14 +75,7 @@ for gltf in scenes/*.gltf; do
     sky=()
     [[ -f scenes/$scene-sky.hdr ]] && sky=(--environment "scenes/$scene-sky.hdr")
     reference="$work/$scene-reference.exr"
-    if [[ $scene == furnace* ]]; then
-        oiiotool --pattern constant:color=2,2,2 "${size}x${size}" 3 -d float -o "$reference"
-    else
-        ref_integrator=path
-        [[ $scene == caustic-glass ]] && ref_integrator=sppm
-        "$photonfarm" render "$gltf" "${sky[@]}" "${common[@]}" --integrator "$ref_integrator" --seed 977 \
-            --seconds "$ref_seconds" --out "$reference" 2>"$work/log" >/dev/null || { cat "$work/log" >&2; exit 1; }
-    fi
+    make_reference "$photonfarm" "$gltf" "$reference" "$size" "$ref_seconds" "${sky[@]}"
     csv="$out/$scene.csv"
     echo "integrator,photons,seconds,relative_error,peak_memory_mb" >"$csv"
     plots=()
