@@ -21,7 +21,7 @@ trap 'rm -rf "$work"' EXIT
 mkdir -p "$out"
 photonfarm="$build/client/photonfarm"
 device=$("$build/worker/photonfarm-worker" --list-devices 2>/dev/null |
-    sed -n 's/^vulkan device [0-9]*: \(.*\) *<- --backend vulkan uses this one.*/\1/p' | head -1)
+    sed -n 's/^vulkan device [0-9]*: \(.*[^ ]\) *<- --backend vulkan uses this one.*/\1/p' | head -1)
 
 # run NAME ARGS...: one render; prints "rate error" (the rate as the render's last line says it,
 # e.g. 853.9k, and the relative error at its end).

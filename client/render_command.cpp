@@ -165,7 +165,7 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
         ->check(CLI::Range(1, 4096));
     render
         ->add_option("--backend", s.backend,
-                     "Photon backend: cpu (Embree) or vulkan (compute on a GPU)")
+                     "Backend of the batches: cpu (Embree) or vulkan (compute on a GPU)")
         ->default_val(s.backend)
         ->check(CLI::IsMember(BackendNames()));
     auto* every = render

@@ -78,7 +78,7 @@ void AddWorkerOptions(CLI::App& app, WorkerFlags* flags) {
         ->envname("PHOTONFARM_THREADS")
         ->check(CLI::Range(1, 4096));
     app.add_option("--backend", flags->backend,
-                   "Photon backend: cpu (Embree) or vulkan (compute on a GPU)")
+                   "Backend of the batches: cpu (Embree) or vulkan (compute on a GPU)")
         ->default_val(flags->backend)
         ->check(CLI::IsMember(pf::BackendNames()));
     app.add_flag_callback(

@@ -133,11 +133,12 @@ TEST_F(FarmTest, CpuAndVulkanWorkersShareAJob) {
     }
 }
 
-TEST_F(FarmTest, VulkanWorkersRunThePixelIntegratorsAsRenderDoes) {
-    // path and pm on the device (pixel_trace.comp): a farm of two Vulkan workers gives the image
-    // `photonfarm render --backend vulkan` gives, byte for byte; a Vulkan and a CPU worker share
-    // a job, each running some of its batches, and since the device follows the CPU's paths but
-    // for float rounding the image is the CPU render's to 1e-3 in nearly every pixel.
+TEST_F(FarmTest, VulkanWorkersRunEveryIntegratorAsRenderDoes) {
+    // Every integrator on the device: a farm of two Vulkan workers gives the image `photonfarm
+    // render --backend vulkan` gives, byte for byte. path and pm (pixel_trace.comp): a Vulkan and
+    // a CPU worker share a job, each running some of its batches, and since the device follows
+    // the CPU's paths but for float rounding the image is the CPU render's to 1e-3 in nearly
+    // every pixel (the photon integrators' mixed jobs: CpuAndVulkanWorkersShareAJob).
     testing::SkipWithoutVulkan();
     if (IsSkipped() || HasFatalFailure()) return;
     const std::string scene = std::string(PF_SOURCE_DIR) + "/scenes/cornell-glossy.gltf";
@@ -161,7 +162,7 @@ TEST_F(FarmTest, VulkanWorkersRunThePixelIntegratorsAsRenderDoes) {
     ChildProcess& first = StartWorker("vulkan");
     ChildProcess& second = StartWorker("vulkan");
     ASSERT_TRUE(WaitForWorkers(2));
-    for (const std::string integrator : {"pm", "path"}) {
+    for (const std::string integrator : {"ppm", "sppm", "rpm", "pm", "path"}) {
         const std::string farm = TempPath("farm-vulkan-" + integrator + ".exr");
         ASSERT_EQ(submit(integrator, farm), 0) << integrator;
         EXPECT_TRUE(Identical(Pixels(farm), render(integrator, "vulkan")))

@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <chrono>
 #include <cstring>
 
 #include "absl/strings/str_cat.h"
@@ -73,6 +74,7 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
         {"hit points", hit_points * sizeof(gpu::GpuHitPoint)},
         {"grid entries", hit_points * sizeof(gpu::GpuGridEntry)},
         {"tally", hit_points * sizeof(gpu::GpuTallySum)},
+        // Three buffers (positions, powers, buckets), checked as one: a little early.
         {"photon maps", map_bytes},
     };
     uint64_t total = 0;
@@ -81,8 +83,9 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
         if (need.bytes > device.max_buffer_bytes)
             return absl::ResourceExhaustedError(absl::StrCat(
                 "job too large for Vulkan device ", device.name, ": its ", need.what, " (",
-                hit_points, " hit points, ", Mib(map_bytes), " MiB of photon maps) need ",
-                Mib(need.bytes), " MiB in one buffer, the device allows ",
+                map_bytes > 0 ? absl::StrCat(Mib(map_bytes), " MiB")
+                              : absl::StrCat(hit_points, " hit points"),
+                ") need ", Mib(need.bytes), " MiB in one buffer, the device allows ",
                 Mib(device.max_buffer_bytes),
                 " MiB (maxStorageBufferRange); use fewer pixels, samples or photons, or the cpu "
                 "backend"));
@@ -192,14 +195,20 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     buckets_ = std::clamp<uint32_t>(std::bit_ceil(static_cast<uint32_t>(2 * n + 1)),
                                     gpu::kScanBlock, kMaxBuckets);
 
+    const auto upload_start = std::chrono::steady_clock::now();
     absl::StatusOr<std::unique_ptr<JobBuffers>> buffers =
         JobBuffers::Create(*context_, stream_, *gpu_scene, hit_points, buckets_, StochasticJob(),
                            direct_points, pixels ? &*pixels : nullptr);
     if (!buffers.ok()) return buffers.status();
     kernels_->BindBuffers((*buffers)->Bindings());
     buffers_ = std::move(*buffers);
-    spdlog::debug("Vulkan job: {} hit points, {} triangles, kernels for {}", n,
-                  scene_.triangles.size(), features_.ToString());
+    const double upload_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - upload_start).count();
+    if (pixels && pixels->MapBytes() > 0)
+        spdlog::info("photon maps: {:.0f} MB uploaded to the device with the scene in {:.3f} s",
+                     pixels->MapBytes() / 1e6, upload_seconds);
+    spdlog::debug("Vulkan job: {} hit points, {} triangles, kernels for {}; uploaded in {:.3f} s",
+                  n, scene_.triangles.size(), features_.ToString(), upload_seconds);
     return absl::OkStatus();
 }
 
