@@ -18,6 +18,8 @@
 #include "tests/support/vulkan_validation.h"
 #include "worker/backend_factory.h"
 #include "worker/backends/vulkan/context.h"
+#include "worker/backends/vulkan/gpu_scene.h"
+#include "worker/backends/vulkan/vulkan_backend.h"
 
 namespace pf {
 namespace {
@@ -140,6 +142,18 @@ TEST_F(VulkanPixelTest, PhotonMapsTooLargeForTheDeviceAreRefusedNamingThem) {
     const absl::Status refused = (*vulkan)->BeginJob({&scene, &emitters, {}, 7, &spec});
     EXPECT_TRUE(absl::IsResourceExhausted(refused)) << refused;
     EXPECT_NE(refused.message().find("--pm-photons"), std::string::npos) << refused;
+    // Against the device: each of the maps' three arrays is one buffer.
+    const vk::GpuScene gpu_scene = *vk::BuildGpuScene(scene, emitters);
+    vk::PixelJobData maps;
+    maps.photon_positions.resize(40'000);
+    maps.photon_powers.resize(40'000);  // 1.28 MB
+    const vk::DeviceCapacity small{"small GPU", 1u << 20, 1u << 30};
+    const absl::Status buffer = vk::CheckJobFits(small, gpu_scene, 0, &maps);
+    EXPECT_TRUE(absl::IsResourceExhausted(buffer)) << buffer;
+    EXPECT_NE(buffer.message().find("photon map powers (40000 photons stored)"), std::string::npos)
+        << buffer;
+    maps.photon_powers.resize(30'000);  // 0.96 MB: fits, as do the positions (0.64 MB)
+    EXPECT_TRUE(vk::CheckJobFits(small, gpu_scene, 0, &maps).ok());
 }
 
 }  // namespace

@@ -61,7 +61,9 @@ gpu::GpuHitPoint ToGpu(const HitPoint& h) {
 }  // namespace
 
 absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scene,
-                          size_t hit_points, uint64_t map_bytes) {
+                          size_t hit_points, const PixelJobData* pixels) {
+    const PixelJobData none;
+    const PixelJobData& maps = pixels != nullptr ? *pixels : none;
     struct Need {
         const char* what;
         uint64_t bytes;
@@ -74,8 +76,9 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
         {"hit points", hit_points * sizeof(gpu::GpuHitPoint)},
         {"grid entries", hit_points * sizeof(gpu::GpuGridEntry)},
         {"tally", hit_points * sizeof(gpu::GpuTallySum)},
-        // Three buffers (positions, powers, buckets), checked as one: a little early.
-        {"photon maps", map_bytes},
+        {"photon map positions", maps.photon_positions.size() * sizeof(gpu::vec4)},
+        {"photon map powers", maps.photon_powers.size() * sizeof(gpu::GpuPhotonPower)},
+        {"photon map buckets", maps.photon_buckets.size() * sizeof(uint32_t)},
     };
     uint64_t total = 0;
     for (const Need& need : needs) {
@@ -83,8 +86,8 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
         if (need.bytes > device.max_buffer_bytes)
             return absl::ResourceExhaustedError(absl::StrCat(
                 "job too large for Vulkan device ", device.name, ": its ", need.what, " (",
-                map_bytes > 0 ? absl::StrCat(Mib(map_bytes), " MiB")
-                              : absl::StrCat(hit_points, " hit points"),
+                maps.MapBytes() > 0 ? absl::StrCat(maps.photon_powers.size(), " photons stored")
+                                    : absl::StrCat(hit_points, " hit points"),
                 ") need ", Mib(need.bytes), " MiB in one buffer, the device allows ",
                 Mib(device.max_buffer_bytes),
                 " MiB (maxStorageBufferRange); use fewer pixels, samples or photons, or the cpu "
@@ -165,7 +168,7 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     // ppm's points of direct light take what a hit point takes, or less.
     if (absl::Status status =
             CheckJobFits(capacity, *gpu_scene, job_.hit_points.size() + direct_points,
-                         pixels ? pixels->MapBytes() : 0);
+                         pixels ? &*pixels : nullptr);
         !status.ok())
         return status;
     features_ = gpu_scene->features;

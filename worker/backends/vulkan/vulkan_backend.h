@@ -22,6 +22,7 @@
 #include "worker/backends/vulkan/context.h"
 #include "worker/backends/vulkan/gpu_scene.h"
 #include "worker/backends/vulkan/kernels.h"
+#include "worker/backends/vulkan/pixel_jobs.h"
 
 namespace pf::vk {
 
@@ -32,10 +33,10 @@ struct DeviceCapacity {
     uint64_t memory_bytes = 0;      // the largest device-local heap
 };
 
-// OK where a job over `gpu_scene` with `hit_points` (and pm's maps, `map_bytes`) fits
-// `device`; RESOURCE_EXHAUSTED naming the buffer, the need and the limit otherwise.
+// OK where a job over `gpu_scene` with `hit_points` (and a pixel job's uploads, `pixels`: pm's
+// maps) fits `device`; RESOURCE_EXHAUSTED naming the buffer, the need and the limit otherwise.
 absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scene,
-                          size_t hit_points, uint64_t map_bytes = 0);
+                          size_t hit_points, const PixelJobData* pixels = nullptr);
 
 struct JobBuffers;
 
