@@ -13,6 +13,9 @@ namespace pf {
 
 using gpu::kConeFilterK;
 using gpu::kGaussianBeta;
+static_assert(uint32_t(DensityFilter::kBox) == gpu::kFilterBox &&
+              uint32_t(DensityFilter::kCone) == gpu::kFilterCone &&
+              uint32_t(DensityFilter::kGaussian) == gpu::kFilterGaussian);
 
 // The weight of a photon at squared distance distance_sq from the point, in a disc of
 // squared radius radius_sq, and the filter's normalisation (core/shared/density_filter.h).

@@ -22,8 +22,8 @@ namespace pf {
 // The radiance arriving along a camera ray, one sample; called from many threads at once.
 using RadianceFunction = std::function<Rgb(const Ray& ray, Rng& rng)>;
 
-// The streams of epoch `epoch`'s pixel samples: pixel p draws from
-// Rng(PixelSeeds(seed, epoch).Seed(p)).
+// The streams of epoch `epoch`'s camera samples: sample s of pixel p draws from
+// Rng(PixelSeeds(seed, epoch).Seed(PixelSampleStream(film, p, s))).
 SeedFamily PixelSeeds(uint64_t seed, uint64_t epoch);
 
 // Which of PixelSeeds(seed, epoch)'s streams sample s of pixel p draws from.
