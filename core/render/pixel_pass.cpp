@@ -45,11 +45,11 @@ std::vector<BatchResult> RunPixelBatches(const Camera& camera, const Film& film,
         tbb::parallel_for(tbb::blocked_range<uint32_t>(spec.sample_begin, spec.sample_end, 16),
                           [&](const tbb::blocked_range<uint32_t>& pixels) {
                               for (uint32_t pixel = pixels.begin(); pixel < pixels.end(); ++pixel) {
+                                  Rng rng(seeds.Seed(pixel));
                                   Rgb sum(0.0f);
                                   for (int s = 0; s < film.samples_per_pixel; ++s) {
                                       const CameraRay camera_ray = PixelBatchRay(
                                           camera, film, filter, seed, spec.epoch, pixel, s);
-                                      Rng rng(seeds.Seed(PixelSampleStream(film, pixel, s)));
                                       const Rgb sample =
                                           radiance(camera_ray.ray, rng) * camera_ray.weight;
                                       AddPixelSample(sample, sum, discarded.local());

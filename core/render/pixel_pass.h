@@ -1,9 +1,9 @@
 // Batches of the integrators that render pixels (path, pm): each takes every pixel of its
 // slice `samples_per_pixel` times and returns the mean per pixel. A pixel's samples in an epoch
-// continue its earlier epochs' (PixelSampler::InEpoch: stratified across epochs), each sample's
-// path drawing from a stream of its own seeded by (seed, epoch, pixel, sample) alone, so a
-// batch is a pure function of its spec, whoever runs it, and the Vulkan backend
-// (pixel_trace.comp) draws from the same streams, a thread a sample.
+// continue its earlier epochs' (PixelSampler::InEpoch: stratified across epochs), their paths
+// drawing one after another from a stream seeded by (seed, epoch, pixel) alone, so a batch is a
+// pure function of its spec, whoever runs it; the Vulkan backend (pixel_trace.comp, a thread a
+// pixel) draws from the same streams in the same order.
 #pragma once
 
 #include <cstdint>
@@ -22,14 +22,9 @@ namespace pf {
 // The radiance arriving along a camera ray, one sample; called from many threads at once.
 using RadianceFunction = std::function<Rgb(const Ray& ray, Rng& rng)>;
 
-// The streams of epoch `epoch`'s camera samples: sample s of pixel p draws from
-// Rng(PixelSeeds(seed, epoch).Seed(PixelSampleStream(film, p, s))).
+// The streams of epoch `epoch`'s pixel samples: pixel p's samples draw from
+// Rng(PixelSeeds(seed, epoch).Seed(p)), in order.
 SeedFamily PixelSeeds(uint64_t seed, uint64_t epoch);
-
-// Which of PixelSeeds(seed, epoch)'s streams sample s of pixel p draws from.
-inline uint64_t PixelSampleStream(const Film& film, uint64_t pixel, int s) {
-    return pixel * uint64_t(film.samples_per_pixel) + uint64_t(s);
-}
 
 // Adds a camera sample to its pixel's sum, or counts it in `discarded` where it is NaN or Inf
 // (it then counts as black).

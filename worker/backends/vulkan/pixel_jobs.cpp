@@ -104,22 +104,14 @@ void MakeCameraRays(const Camera& camera, const Film& film, uint64_t seed, const
                       });
 }
 
-BatchResult SumCameraSamples(const Film& film, const BatchSpec& spec, const gpu::vec4* samples) {
+BatchResult PixelMeans(const BatchSpec& spec, const gpu::vec4* means) {
     BatchResult result;
     result.spec = spec;
     result.samples.resize(spec.sample_end - spec.sample_begin);
-    const auto spp = static_cast<uint32_t>(film.samples_per_pixel);
-    const float inverse_spp = 1.0f / static_cast<float>(spp);
     for (size_t pixel = 0; pixel < result.samples.size(); ++pixel) {
-        Rgb sum(0.0f);
-        for (uint32_t s = 0; s < spp; ++s) {
-            const gpu::vec4& sample = samples[pixel * spp + s];
-            if (sample.w != 0.0f)  // NaN or Inf on the device
-                ++result.nonfinite_discarded;
-            else
-                AddPixelSample({sample.x, sample.y, sample.z}, sum, result.nonfinite_discarded);
-        }
-        result.samples[pixel] = sum * inverse_spp;
+        const gpu::vec4& mean = means[pixel];
+        result.samples[pixel] = {mean.x, mean.y, mean.z};
+        result.nonfinite_discarded += static_cast<uint64_t>(mean.w);
     }
     return result;
 }

@@ -50,8 +50,8 @@ inline Film PixelFilm(const JobSpec& spec) {
 void MakeCameraRays(const Camera& camera, const Film& film, uint64_t seed, const BatchSpec& spec,
                     gpu::GpuCameraRay* out);
 
-// The batch's result from its samples' radiance, as pixel_trace.comp writes it: each pixel's
-// mean, summed in sample order as RunPixelBatches sums it.
-BatchResult SumCameraSamples(const Film& film, const BatchSpec& spec, const gpu::vec4* samples);
+// The batch's result from its pixels' means as pixel_trace.comp writes them (w: the samples
+// that came out NaN or Inf).
+BatchResult PixelMeans(const BatchSpec& spec, const gpu::vec4* means);
 
 }  // namespace pf::vk

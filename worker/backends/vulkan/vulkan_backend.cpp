@@ -349,27 +349,27 @@ absl::StatusOr<BatchResult> VulkanBackend::RunPixelBatch(const BatchSpec& spec) 
     stream_.Barrier();
     gpu::GpuParams params = BaseParams();
     params.seed_prefix = PixelSeeds(job_.seed, spec.epoch).Prefix();
-    params.end = static_cast<uint32_t>(samples);
+    const uint32_t pixels = spec.sample_end - spec.sample_begin;
+    params.end = pixels;
     params.direct_begin = spec.sample_begin;
     const uint64_t per_dispatch = std::min<uint64_t>(
         kMaxThreadsPerDispatch,
         uint64_t{context_->Limits().maxComputeWorkGroupCount[0]} * gpu::kWorkgroupSize);
-    for (uint64_t first = 0; first < samples; first += per_dispatch) {
+    for (uint64_t first = 0; first < pixels; first += per_dispatch) {
         params.first = static_cast<uint32_t>(first);
         kernels_->Dispatch(
             *commands, Kernel::kPixelTrace, params,
-            Groups(std::min<uint64_t>(per_dispatch, samples - first), gpu::kWorkgroupSize));
+            Groups(std::min<uint64_t>(per_dispatch, pixels - first), gpu::kWorkgroupSize));
     }
     stream_.Barrier();
-    const VkBufferCopy radiance{.size = samples * sizeof(gpu::vec4)};
-    if (samples > 0)
+    const VkBufferCopy means{.size = pixels * sizeof(gpu::vec4)};
+    if (pixels > 0)
         vkCmdCopyBuffer(*commands, buffers_->direct.Handle(), buffers_->direct_readback.Handle(), 1,
-                        &radiance);
+                        &means);
     stream_.Barrier();
     if (absl::Status status = stream_.SubmitAndWait(); !status.ok()) return status;
     buffers_->direct_readback.InvalidateForRead();
-    return SumCameraSamples(film, spec,
-                            static_cast<const gpu::vec4*>(buffers_->direct_readback.Mapped()));
+    return PixelMeans(spec, static_cast<const gpu::vec4*>(buffers_->direct_readback.Mapped()));
 }
 
 absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {

@@ -1,6 +1,6 @@
 #version 460
-// The integrators that render pixels, a thread a camera sample (the megakernel design: one
-// kernel follows a sample's whole path): the path tracer (core/render/path_tracer.cpp on the
+// The integrators that render pixels, a thread a pixel (the megakernel design: one kernel
+// follows each of its camera samples' whole path): the path tracer (core/render/path_tracer.cpp on the
 // CPU: next-event estimation weighed against BSDF sampling by the power heuristic at diffuse
 // and rough-metal vertices, coats walked as TraceCoatedBase does) or, specialised with
 // kPhotonMapping, classic photon mapping's rendering pass (core/pm/photon_mapping.cpp: direct
@@ -370,15 +370,21 @@ vec3 PhotonMappingRadiance(vec3 origin, vec3 direction, inout Pcg32 rng) {
 }
 
 void main() {
-    const uint index = params.first + gl_GlobalInvocationID.x;
-    if (index >= params.end) return;
+    const uint pixel = params.first + gl_GlobalInvocationID.x;  // of the batch
+    if (pixel >= params.end) return;
+    // The pixel's samples one after another from its stream (RunPixelBatches), summed in order,
+    // those that come out NaN or Inf counted and left out.
     const uint spp = pixel_job.samples_per_pixel;
-    // PixelSampleStream: pixel x samples a pixel + sample.
-    const uint64_t stream = uint64_t(params.direct_begin + index / spp) * uint64_t(spp) + uint64_t(index % spp);
-    Pcg32 rng = Pcg32Seeded(FamilySeed(params.seed_prefix, stream));
-    const GpuCameraRay ray = camera_rays[index];
-    const vec3 radiance = kPhotonMapping ? PhotonMappingRadiance(ray.origin.xyz, ray.direction.xyz, rng)
-                                         : TracePath(ray.origin.xyz, ray.direction.xyz, rng);
-    const vec3 value = radiance * ray.origin.w;
-    direct[index] = IsFinite(value) ? vec4(value, 0) : vec4(0, 0, 0, 1);
+    Pcg32 rng = Pcg32Seeded(FamilySeed(params.seed_prefix, uint64_t(params.direct_begin + pixel)));
+    vec3 sum = vec3(0);
+    uint discarded = 0;
+    for (uint s = 0; s < spp; ++s) {
+        const GpuCameraRay ray = camera_rays[pixel * spp + s];
+        const vec3 radiance = kPhotonMapping ? PhotonMappingRadiance(ray.origin.xyz, ray.direction.xyz, rng)
+                                             : TracePath(ray.origin.xyz, ray.direction.xyz, rng);
+        const vec3 value = radiance * ray.origin.w;
+        if (IsFinite(value)) sum += value;
+        else ++discarded;
+    }
+    direct[pixel] = vec4(sum * (1.0 / float(spp)), float(discarded));
 }
