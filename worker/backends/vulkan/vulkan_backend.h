@@ -5,7 +5,7 @@
 // hit-point grid rebuilt on the device (for sppm and rpm, the epoch's hit points traced on the
 // CPU and uploaded first); per batch, photon and direct-light kernels, then the tally read back
 // and made sparse. Pixel integrators (path, pm): per batch, the camera rays made on the host
-// and a thread a camera sample (pixel_trace.comp). Not thread-safe; one job at a time.
+// and a thread a pixel (pixel_trace.comp). Not thread-safe; one job at a time.
 #pragma once
 
 #include <memory>
