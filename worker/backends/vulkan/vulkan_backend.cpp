@@ -328,6 +328,19 @@ void VulkanBackend::RecordScan(VkCommandBuffer commands, uint32_t target, uint32
     stream_.Barrier();
 }
 
+void VulkanBackend::RecordThreads(VkCommandBuffer commands, Kernel kernel, gpu::GpuParams params,
+                                  uint64_t first, uint64_t threads) {
+    const uint64_t per_dispatch = std::min<uint64_t>(
+        kMaxThreadsPerDispatch,
+        uint64_t{context_->Limits().maxComputeWorkGroupCount[0]} * gpu::kWorkgroupSize);
+    for (uint64_t done = 0; done < threads; done += per_dispatch) {
+        params.first = static_cast<uint32_t>(first + done);
+        kernels_->Dispatch(
+            commands, kernel, params,
+            Groups(std::min<uint64_t>(per_dispatch, threads - done), gpu::kWorkgroupSize));
+    }
+}
+
 absl::StatusOr<BatchResult> VulkanBackend::RunPixelBatch(const BatchSpec& spec) {
     const Film film = PixelFilm(*job_.spec);
     const uint64_t samples =
@@ -352,15 +365,7 @@ absl::StatusOr<BatchResult> VulkanBackend::RunPixelBatch(const BatchSpec& spec) 
     const uint32_t pixels = spec.sample_end - spec.sample_begin;
     params.end = pixels;
     params.direct_begin = spec.sample_begin;
-    const uint64_t per_dispatch = std::min<uint64_t>(
-        kMaxThreadsPerDispatch,
-        uint64_t{context_->Limits().maxComputeWorkGroupCount[0]} * gpu::kWorkgroupSize);
-    for (uint64_t first = 0; first < pixels; first += per_dispatch) {
-        params.first = static_cast<uint32_t>(first);
-        kernels_->Dispatch(
-            *commands, Kernel::kPixelTrace, params,
-            Groups(std::min<uint64_t>(per_dispatch, pixels - first), gpu::kWorkgroupSize));
-    }
+    RecordThreads(*commands, Kernel::kPixelTrace, params, 0, pixels);
     stream_.Barrier();
     const VkBufferCopy means{.size = pixels * sizeof(gpu::vec4)};
     if (pixels > 0)
@@ -390,15 +395,7 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
     }
     const uint64_t threads =
         Adaptive() ? (uint64_t{spec.photons} + kChainSteps - 1) / kChainSteps : spec.photons;
-    const uint64_t per_dispatch = std::min<uint64_t>(
-        kMaxThreadsPerDispatch,
-        uint64_t{context_->Limits().maxComputeWorkGroupCount[0]} * gpu::kWorkgroupSize);
-    for (uint64_t first = 0; first < threads; first += per_dispatch) {
-        params.first = static_cast<uint32_t>(first);
-        kernels_->Dispatch(
-            *commands, Kernel::kPhotonTrace, params,
-            Groups(std::min<uint64_t>(per_dispatch, threads - first), gpu::kWorkgroupSize));
-    }
+    RecordThreads(*commands, Kernel::kPhotonTrace, params, 0, threads);
     const uint32_t direct_count = spec.sample_end - spec.sample_begin;
     gpu::GpuParams direct = BaseParams();
     direct.seed_prefix = DirectLightSeeds(job_.seed, spec.epoch).Prefix();
@@ -412,12 +409,7 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
         direct.direct_slots_per_sample = static_cast<uint32_t>(direct_sequence_->slots_per_sample);
         direct.epoch_parity = static_cast<uint32_t>(spec.epoch & 1);
     }
-    for (uint64_t first = 0; first < direct_count; first += per_dispatch) {
-        direct.first = static_cast<uint32_t>(spec.sample_begin + first);
-        kernels_->Dispatch(
-            *commands, Kernel::kDirectLight, direct,
-            Groups(std::min<uint64_t>(per_dispatch, direct_count - first), gpu::kWorkgroupSize));
-    }
+    RecordThreads(*commands, Kernel::kDirectLight, direct, spec.sample_begin, direct_count);
     stream_.Barrier();
     // The sparse tally, made on the device in hit point order: flags, their prefix sum, and
     // each reached hit point's entry written to host-visible memory.

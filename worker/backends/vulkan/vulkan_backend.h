@@ -81,6 +81,10 @@ private:
     BatchResult ReadResult(const BatchSpec& spec) const;
     // Records an exclusive prefix sum of `count` elements of the array `target` (kScan*).
     void RecordScan(VkCommandBuffer commands, uint32_t target, uint32_t count);
+    // Records `kernel` over `threads` threads from params.first = `first`, in dispatches of at
+    // most kMaxThreadsPerDispatch within the device's workgroup count limit.
+    void RecordThreads(VkCommandBuffer commands, Kernel kernel, gpu::GpuParams params,
+                       uint64_t first, uint64_t threads);
     gpu::GpuParams BaseParams() const;
 
     std::shared_ptr<Context> context_;
