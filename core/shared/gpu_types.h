@@ -68,6 +68,11 @@ PF_CONST(uint32_t) kBindingPhotonPositions = 29;
 PF_CONST(uint32_t) kBindingPhotonPowers = 30;
 PF_CONST(uint32_t) kBindingPhotonBuckets = 31;
 PF_CONST(uint32_t) kBindingCount = 32;
+// The path tracer's wavefront holds its paths (GpuPathState[], one a pixel of the batch), its
+// queues and counters in pm's map bindings, which path jobs leave free.
+PF_CONST(uint32_t) kBindingPathStates = kBindingPhotonPositions;
+PF_CONST(uint32_t) kBindingPathQueues = kBindingPhotonPowers;
+PF_CONST(uint32_t) kBindingPathCounters = kBindingPhotonBuckets;
 
 // What the prefix-sum kernels scan (GpuParams.scan_target).
 PF_CONST(uint32_t) kScanGridBegin = 0;
@@ -106,7 +111,36 @@ PF_CONST(uint32_t) kSpecPhotonKinds = 24;
 // k nearest photons (the size of each thread's search heap; not a boolean).
 PF_CONST(uint32_t) kSpecPhotonMapping = 25;
 PF_CONST(uint32_t) kSpecNearest = 26;
-PF_CONST(uint32_t) kSpecCount = 27;
+// The path tracer's, for path_wavefront.comp: the stage a pipeline runs (kStage*), and the class
+// of vertex it shades (kVertex*, path_vertex.glsl; kVertexAny in the megakernel). Not booleans.
+PF_CONST(uint32_t) kSpecWavefrontStage = 27;
+PF_CONST(uint32_t) kSpecVertexClass = 28;
+PF_CONST(uint32_t) kSpecCount = 29;
+
+// The path tracer's wavefront (path_wavefront.comp): its stages, and the classes of vertex,
+// each shaded by a pipeline of its own from a queue of its own.
+PF_CONST(uint32_t) kStageStart = 0;       // a path a pixel, its first camera sample queued
+PF_CONST(uint32_t) kStageExtendArgs = 1;  // the extend stage's workgroups, from its queue
+PF_CONST(uint32_t) kStageExtend = 2;      // closest hits; vertices queued by class
+PF_CONST(uint32_t) kStageShadeArgs = 3;   // each shading pipeline's workgroups
+PF_CONST(uint32_t) kStageShade = 4;       // a class's vertices; paths going on queued
+PF_CONST(uint32_t) kVertexDiffuse = 0;    // diffuse, translucent or not, uncoated
+PF_CONST(uint32_t) kVertexCoated = 1;     // coated diffuse
+PF_CONST(uint32_t) kVertexRough = 2;      // rough conductor, uncoated
+PF_CONST(uint32_t) kVertexSpecular = 3;   // every other: found by its own sampling alone
+PF_CONST(uint32_t) kVertexClasses = 4;
+PF_CONST(uint32_t) kVertexAny = 4;
+// The wavefront's counters (uint[kPathCounterWords], kBindingPathCounters): each queue's
+// length, then dispatch arguments (VkDispatchIndirectCommand) for the extend stage and for
+// each class's shading.
+PF_CONST(uint32_t) kPathCountRays = 0;      // two: the ray queues read and written in turn
+PF_CONST(uint32_t) kPathCountVertices = 2;  // kVertexClasses: each class's queue
+PF_CONST(uint32_t) kPathExtendArgs = 8;
+PF_CONST(uint32_t) kPathShadeArgs = 12;  // 4 words a class (three used)
+PF_CONST(uint32_t) kPathCounterWords = 28;
+// Queues, each a path slot per pixel (uint[kPathQueues * pixels], kBindingPathQueues): the two
+// ray queues, then a vertex queue a class.
+PF_CONST(uint32_t) kPathQueues = 6;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.
@@ -325,6 +359,26 @@ struct GpuPixelJob {
 };
 PF_GPU_LAYOUT(GpuPixelJob, 112);
 
+// A path of the wavefront between stages (PathState in path_vertex.glsl, with the pixel's
+// samples so far): a slot a pixel of the batch, its samples traced one after another.
+struct GpuPathState {
+    vec4 origin, direction;     // xyz: the ray the path follows next
+    vec4 radiance, throughput;  // xyz: of the sample being traced
+    vec4 bounced_at;            // xyz: its last diffuse or rough vertex
+    vec4 sum;                   // xyz: the pixel's finished samples, each times its filter weight
+    vec4 hit;                   // the extend stage's closest hit: t, triangle (its bits), b1, b2
+    uint64_t rng_state, rng_increment;  // the pixel's stream (Pcg32)
+    float bsdf_pdf;
+    uint32_t flags;          // kPathSpecularBounce, kPathCoatExit
+    uint32_t depth;          // surfaces the sample's path has met
+    uint32_t traced_sample;  // the pixel's sample being traced
+    uint32_t discarded;      // the pixel's samples left out (NaN or Inf)
+    uint32_t pad0, pad1, pad2;
+};
+PF_GPU_LAYOUT(GpuPathState, 160);
+PF_CONST(uint32_t) kPathSpecularBounce = 1;
+PF_CONST(uint32_t) kPathCoatExit = 2;
+
 // Push constants, the same block for every pipeline.
 struct GpuParams {
     vec4 scene_sphere;          // xyz centre, w radius: the bounding sphere (directional lights)
@@ -357,7 +411,8 @@ struct GpuParams {
     uint64_t proposal_prefix;  // photons, adaptive: the stream family of the chains' mutations
     // direct: the pass's slots a camera sample (1 + rpm's gather rays; DirectLightSequence)
     uint32_t direct_slots_per_sample;
-    // 116 bytes, padded to 128 (the vec4's alignment): all the 128 bytes Vulkan assures; a
+    uint32_t path_queue;  // the path tracer's wavefront: the ray queue its stages read (0 or 1)
+    // 120 bytes, padded to 128 (the vec4's alignment): all the 128 bytes Vulkan assures; a
     // field more must take a pad's place below or share one.
 };
 PF_GPU_LAYOUT(GpuParams, 128);

@@ -31,7 +31,7 @@ absl::StatusOr<Buffer> Buffer::Create(const Context& context, VkDeviceSize bytes
     VkBufferUsageFlags usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
     if (use == MemoryUse::kDevice)
         usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT |
-                VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
+                VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
     if (use == MemoryUse::kUpload) usage = VK_BUFFER_USAGE_TRANSFER_SRC_BIT;
     if (use == MemoryUse::kKernelToHost) usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     const VkBufferCreateInfo info{.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO,

@@ -11,7 +11,7 @@
 namespace pf::vk {
 
 enum class MemoryUse {
-    kDevice,        // device-local: kernels' storage; filled by transfers
+    kDevice,        // device-local: kernels' storage and dispatch arguments; filled by transfers
     kUpload,        // host-visible, coherent: written by the CPU, copied to the device
     kReadback,      // host-visible, cached where possible: copied from the device, read by the CPU
     kKernelToHost,  // host-visible, cached where possible: written by kernels, read by the CPU

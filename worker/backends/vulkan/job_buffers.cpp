@@ -120,6 +120,30 @@ absl::Status JobBuffers::ReserveCameraSamples(const Context& context, size_t sam
     return absl::OkStatus();
 }
 
+absl::Status JobBuffers::ReservePathSlots(const Context& context, size_t pixels) {
+    pixels = std::max<size_t>(pixels, 1);
+    if (pixels <= path_slots) return absl::OkStatus();
+    absl::StatusOr<Buffer> states =
+        Buffer::Create(context, pixels * sizeof(gpu::GpuPathState), MemoryUse::kDevice);
+    if (!states.ok()) return states.status();
+    absl::StatusOr<Buffer> queues =
+        Buffer::Create(context, pixels * gpu::kPathQueues * sizeof(uint32_t), MemoryUse::kDevice);
+    if (!queues.ok()) return queues.status();
+    if (path_counters.Handle() == VK_NULL_HANDLE) {
+        const size_t bytes = gpu::kPathCounterWords * sizeof(uint32_t);
+        absl::StatusOr<Buffer> words = Buffer::Create(context, bytes, MemoryUse::kDevice);
+        if (!words.ok()) return words.status();
+        absl::StatusOr<Buffer> readback = Buffer::Create(context, bytes, MemoryUse::kReadback);
+        if (!readback.ok()) return readback.status();
+        path_counters = std::move(*words);
+        path_counters_readback = std::move(*readback);
+    }
+    path_states = std::move(*states);
+    path_queues = std::move(*queues);
+    path_slots = pixels;
+    return absl::OkStatus();
+}
+
 std::array<VkBuffer, gpu::kBindingCount> JobBuffers::Bindings() const {
     std::array<VkBuffer, gpu::kBindingCount> b{};
     b[gpu::kBindingBvhNodes] = nodes.Handle(), b[gpu::kBindingTriangles] = triangles.Handle();
@@ -146,6 +170,11 @@ std::array<VkBuffer, gpu::kBindingCount> JobBuffers::Bindings() const {
     b[gpu::kBindingPhotonPositions] = photon_positions.Handle();
     b[gpu::kBindingPhotonPowers] = photon_powers.Handle();
     b[gpu::kBindingPhotonBuckets] = photon_buckets.Handle();
+    if (path_slots > 0) {  // a wavefront path job: no maps
+        b[gpu::kBindingPathStates] = path_states.Handle();
+        b[gpu::kBindingPathQueues] = path_queues.Handle();
+        b[gpu::kBindingPathCounters] = path_counters.Handle();
+    }
     b[gpu::kBindingDirectPoints] =
         direct_points.Handle() != VK_NULL_HANDLE ? direct_points.Handle() : hit_points.Handle();
     return b;

@@ -70,10 +70,16 @@ struct JobBuffers {
     Buffer pixel_job, photon_positions, photon_powers, photon_buckets;
     Buffer camera_rays, camera_ray_upload;
     size_t camera_samples = 0;  // what camera_rays, direct and direct_readback hold
+    // The path tracer's wavefront: a path a pixel, its queues and their counters (bound in
+    // place of pm's maps), and the counters read back between rounds.
+    Buffer path_states, path_queues, path_counters, path_counters_readback;
+    size_t path_slots = 0;
 
     // Makes room for `samples` camera samples a batch (at least one), keeping what is there
     // if it is enough; the buffers' bindings change where it grows. Pixel jobs only.
     absl::Status ReserveCameraSamples(const Context& context, size_t samples);
+    // Makes room for `pixels` paths of the wavefront (at least one), as ReserveCameraSamples.
+    absl::Status ReservePathSlots(const Context& context, size_t pixels);
 
     // Uploads what kernels read and makes the rest; RESOURCE_EXHAUSTED where the device runs out.
     // `direct_points`: how many points of an epoch's camera pass direct light is sampled at,

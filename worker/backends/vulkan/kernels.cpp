@@ -41,12 +41,42 @@ constexpr uint32_t kTallyCompactSpirv[] = {
 constexpr uint32_t kPixelTraceSpirv[] = {
 #include "worker/backends/vulkan/shaders/pixel_trace.comp.spv.inc"
 };
+constexpr uint32_t kPathWavefrontSpirv[] = {
+#include "worker/backends/vulkan/shaders/path_wavefront.comp.spv.inc"
+};
+
+// A pipeline: its code, the set that compiles it, and the wavefront's stage and class of
+// vertex (kSpecWavefrontStage, kSpecVertexClass; the megakernel shades every class).
+struct Pipeline {
+    std::span<const uint32_t> spirv;
+    KernelSet set;
+    uint32_t stage = gpu::kStageStart;
+    uint32_t vertex_class = gpu::kVertexAny;
+};
 
 // In the order of Kernel.
-constexpr std::span<const uint32_t> kSpirv[] = {
-    kGridCountSpirv,   kScanBlocksSpirv,  kScanTotalsSpirv, kScanAddSpirv,      kGridFillSpirv,
-    kPhotonTraceSpirv, kDirectLightSpirv, kTallyFlagsSpirv, kTallyCompactSpirv, kPixelTraceSpirv};
-static_assert(std::size(kSpirv) == static_cast<size_t>(Kernel::kCount));
+constexpr Pipeline kPipelines[] = {
+    {kGridCountSpirv, KernelSet::kPhotons},
+    {kScanBlocksSpirv, KernelSet::kPhotons},
+    {kScanTotalsSpirv, KernelSet::kPhotons},
+    {kScanAddSpirv, KernelSet::kPhotons},
+    {kGridFillSpirv, KernelSet::kPhotons},
+    {kPhotonTraceSpirv, KernelSet::kPhotons},
+    {kDirectLightSpirv, KernelSet::kPhotons},
+    {kTallyFlagsSpirv, KernelSet::kPhotons},
+    {kTallyCompactSpirv, KernelSet::kPhotons},
+    {kPixelTraceSpirv, KernelSet::kPixels},
+    {kPathWavefrontSpirv, KernelSet::kPathWavefront, gpu::kStageStart},
+    {kPathWavefrontSpirv, KernelSet::kPathWavefront, gpu::kStageExtendArgs},
+    {kPathWavefrontSpirv, KernelSet::kPathWavefront, gpu::kStageExtend},
+    {kPathWavefrontSpirv, KernelSet::kPathWavefront, gpu::kStageShadeArgs},
+    {kPathWavefrontSpirv, KernelSet::kPathWavefront, gpu::kStageShade, gpu::kVertexDiffuse},
+    {kPathWavefrontSpirv, KernelSet::kPathWavefront, gpu::kStageShade, gpu::kVertexCoated},
+    {kPathWavefrontSpirv, KernelSet::kPathWavefront, gpu::kStageShade, gpu::kVertexRough},
+    {kPathWavefrontSpirv, KernelSet::kPathWavefront, gpu::kStageShade, gpu::kVertexSpecular}};
+static_assert(std::size(kPipelines) == static_cast<size_t>(Kernel::kCount));
+static_assert(static_cast<size_t>(Kernel::kPathShadeSpecular) ==
+              static_cast<size_t>(Kernel::kPathShadeDiffuse) + gpu::kVertexSpecular);
 
 // A shader module destroyed with its scope (pipelines keep what they need).
 struct ShaderModule {
@@ -60,8 +90,7 @@ struct ShaderModule {
 }  // namespace
 
 absl::StatusOr<std::unique_ptr<Kernels>> Kernels::Create(const Context& context,
-                                                         const SpecConstants& spec,
-                                                         bool pixel_job) {
+                                                         const SpecConstants& spec, KernelSet set) {
     std::unique_ptr<Kernels> kernels(new Kernels(context.Device()));
     const VkDevice device = context.Device();
     std::vector<VkDescriptorSetLayoutBinding> bindings;
@@ -102,16 +131,24 @@ absl::StatusOr<std::unique_ptr<Kernels>> Kernels::Create(const Context& context,
     for (uint32_t id = 0; id < gpu::kSpecCount; ++id)
         entries[id] = {
             .constantID = id, .offset = id * uint32_t{sizeof(uint32_t)}, .size = sizeof(uint32_t)};
-    const VkSpecializationInfo specialization{.mapEntryCount = gpu::kSpecCount,
-                                              .pMapEntries = entries.data(),
-                                              .dataSize = sizeof(spec),
-                                              .pData = spec.data()};
     for (size_t k = 0; k < kernels->pipelines_.size(); ++k) {
-        if ((k == static_cast<size_t>(Kernel::kPixelTrace)) != pixel_job) continue;
+        const Pipeline& made = kPipelines[k];
+        if (made.set != set) continue;
+        // No vertex of these classes is ever queued without the feature (VertexClass).
+        if ((made.vertex_class == gpu::kVertexCoated && spec[gpu::kSpecHasCoats] == 0) ||
+            (made.vertex_class == gpu::kVertexRough && spec[gpu::kSpecHasRoughConductor] == 0))
+            continue;
+        SpecConstants values = spec;
+        values[gpu::kSpecWavefrontStage] = made.stage;
+        values[gpu::kSpecVertexClass] = made.vertex_class;
+        const VkSpecializationInfo specialization{.mapEntryCount = gpu::kSpecCount,
+                                                  .pMapEntries = entries.data(),
+                                                  .dataSize = sizeof(values),
+                                                  .pData = values.data()};
         ShaderModule shader{device};
         const VkShaderModuleCreateInfo module{.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO,
-                                              .codeSize = kSpirv[k].size_bytes(),
-                                              .pCode = kSpirv[k].data()};
+                                              .codeSize = made.spirv.size_bytes(),
+                                              .pCode = made.spirv.data()};
         PF_VK_TRY(vkCreateShaderModule(device, &module, nullptr, &shader.module));
         const VkComputePipelineCreateInfo pipeline{
             .sType = VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO,
@@ -150,16 +187,27 @@ void Kernels::BindBuffers(const std::array<VkBuffer, gpu::kBindingCount>& buffer
     vkUpdateDescriptorSets(device_, gpu::kBindingCount, writes.data(), 0, nullptr);
 }
 
-void Kernels::Dispatch(VkCommandBuffer commands, Kernel kernel, const gpu::GpuParams& params,
-                       uint32_t groups) const {
-    if (groups == 0) return;
+void Kernels::Bind(VkCommandBuffer commands, Kernel kernel, const gpu::GpuParams& params) const {
     PF_CHECK(pipelines_[static_cast<size_t>(kernel)] != VK_NULL_HANDLE);
     vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE,
                       pipelines_[static_cast<size_t>(kernel)]);
     vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0,
                             nullptr);
     vkCmdPushConstants(commands, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(params), &params);
+}
+
+void Kernels::Dispatch(VkCommandBuffer commands, Kernel kernel, const gpu::GpuParams& params,
+                       uint32_t groups) const {
+    if (groups == 0) return;
+    Bind(commands, kernel, params);
     vkCmdDispatch(commands, groups, 1, 1);
+}
+
+void Kernels::DispatchIndirect(VkCommandBuffer commands, Kernel kernel,
+                               const gpu::GpuParams& params, VkBuffer arguments,
+                               VkDeviceSize offset) const {
+    Bind(commands, kernel, params);
+    vkCmdDispatchIndirect(commands, arguments, offset);
 }
 
 }  // namespace pf::vk

@@ -62,6 +62,7 @@ namespace pf::vk {
     X(vkCmdBindDescriptorSets)                  \
     X(vkCmdPushConstants)                       \
     X(vkCmdDispatch)                            \
+    X(vkCmdDispatchIndirect)                    \
     X(vkCmdPipelineBarrier)                     \
     X(vkCmdFillBuffer)                          \
     X(vkCmdCopyBuffer)                          \

@@ -106,15 +106,20 @@ absl::Status CheckJobFits(const DeviceCapacity& device, const GpuScene& gpu_scen
 
 absl::StatusOr<std::unique_ptr<VulkanBackend>> VulkanBackend::Create(
     std::shared_ptr<Context> context, const Scene& scene) {
+    absl::StatusOr<PathDesign> path_design = PathDesignFromEnvironment();
+    if (!path_design.ok()) return path_design.status();
     absl::StatusOr<CommandStream> stream = CommandStream::Create(*context);
     if (!stream.ok()) return stream.status();
     return std::unique_ptr<VulkanBackend>(
-        new VulkanBackend(std::move(context), scene, std::move(*stream)));
+        new VulkanBackend(std::move(context), scene, std::move(*stream), *path_design));
 }
 
 VulkanBackend::VulkanBackend(std::shared_ptr<Context> context, const Scene& scene,
-                             CommandStream stream)
-    : context_(std::move(context)), scene_(scene), stream_(std::move(stream)) {}
+                             CommandStream stream, PathDesign path_design)
+    : context_(std::move(context)),
+      scene_(scene),
+      stream_(std::move(stream)),
+      path_design_(path_design) {}
 
 VulkanBackend::~VulkanBackend() = default;
 
@@ -188,7 +193,13 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
         spec[gpu::kSpecPhotonMapping] = 1;
         spec[gpu::kSpecNearest] = job.spec->photon_map.nearest;
     }
-    absl::StatusOr<std::unique_ptr<Kernels>> kernels = Kernels::Create(*context_, spec, PixelJob());
+    wavefront_ = PixelJob() && job.spec->integrator == Integrator::kPath &&
+                 path_design_ == PathDesign::kWavefront;
+    if (wavefront_) wavefront_rounds_per_sample_ = uint64_t{pixels->job.max_depth} + 2;
+    const KernelSet set = !PixelJob()  ? KernelSet::kPhotons
+                          : wavefront_ ? KernelSet::kPathWavefront
+                                       : KernelSet::kPixels;
+    absl::StatusOr<std::unique_ptr<Kernels>> kernels = Kernels::Create(*context_, spec, set);
     if (!kernels.ok()) return kernels.status();
     kernels_ = std::move(*kernels);
 
@@ -350,7 +361,13 @@ absl::StatusOr<BatchResult> VulkanBackend::RunPixelBatch(const BatchSpec& spec) 
     const size_t room = buffers_->camera_samples;
     if (absl::Status status = buffers_->ReserveCameraSamples(*context_, samples); !status.ok())
         return status;
-    if (buffers_->camera_samples != room) kernels_->BindBuffers(buffers_->Bindings());
+    const uint32_t pixels = spec.sample_end - spec.sample_begin;
+    const size_t slots = buffers_->path_slots;
+    if (wavefront_)
+        if (absl::Status status = buffers_->ReservePathSlots(*context_, pixels); !status.ok())
+            return status;
+    if (buffers_->camera_samples != room || buffers_->path_slots != slots)
+        kernels_->BindBuffers(buffers_->Bindings());
     MakeCameraRays(scene_.camera, film, job_.seed, spec,
                    static_cast<gpu::GpuCameraRay*>(buffers_->camera_ray_upload.Mapped()));
     absl::StatusOr<VkCommandBuffer> commands = stream_.Begin();
@@ -362,10 +379,15 @@ absl::StatusOr<BatchResult> VulkanBackend::RunPixelBatch(const BatchSpec& spec) 
     stream_.Barrier();
     gpu::GpuParams params = BaseParams();
     params.seed_prefix = PixelSeeds(job_.seed, spec.epoch).Prefix();
-    const uint32_t pixels = spec.sample_end - spec.sample_begin;
     params.end = pixels;
     params.direct_begin = spec.sample_begin;
-    RecordThreads(*commands, Kernel::kPixelTrace, params, 0, pixels);
+    if (wavefront_) {
+        commands = TraceWavefront(stream_, *commands, *kernels_, *buffers_, params, pixels,
+                                  wavefront_rounds_per_sample_ * uint64_t(film.samples_per_pixel));
+        if (!commands.ok()) return commands.status();
+    } else {
+        RecordThreads(*commands, Kernel::kPixelTrace, params, 0, pixels);
+    }
     stream_.Barrier();
     const VkBufferCopy means{.size = pixels * sizeof(gpu::vec4)};
     if (pixels > 0)

@@ -22,6 +22,7 @@
 #include "worker/backends/vulkan/context.h"
 #include "worker/backends/vulkan/gpu_scene.h"
 #include "worker/backends/vulkan/kernels.h"
+#include "worker/backends/vulkan/path_wavefront.h"
 #include "worker/backends/vulkan/pixel_jobs.h"
 
 namespace pf::vk {
@@ -52,7 +53,8 @@ inline constexpr uint32_t kChainSteps = 64;
 
 class VulkanBackend final : public Backend {
 public:
-    // A backend on `context`'s device for jobs over `scene` (which must outlive it).
+    // A backend on `context`'s device for jobs over `scene` (which must outlive it), its path
+    // tracer's design from PHOTONFARM_VULKAN_PATH (PathDesignFromEnvironment).
     static absl::StatusOr<std::unique_ptr<VulkanBackend>> Create(std::shared_ptr<Context> context,
                                                                  const Scene& scene);
     ~VulkanBackend() override;
@@ -70,7 +72,8 @@ public:
     const SceneFeatures& Features() const { return features_; }
 
 private:
-    VulkanBackend(std::shared_ptr<Context> context, const Scene& scene, CommandStream stream);
+    VulkanBackend(std::shared_ptr<Context> context, const Scene& scene, CommandStream stream,
+                  PathDesign path_design);
 
     // The host's Embree tracer over the scene, made for the first job that needs one.
     absl::StatusOr<const Tracer*> CameraTracer();
@@ -94,6 +97,11 @@ private:
     SceneFeatures features_;
     std::unique_ptr<Kernels> kernels_;
     std::unique_ptr<JobBuffers> buffers_;
+    PathDesign path_design_;
+    // Whether the job is the path tracer's and runs as a wavefront, and its rounds a sample at
+    // most (the surfaces a path meets, and its escape).
+    bool wavefront_ = false;
+    uint64_t wavefront_rounds_per_sample_ = 0;
     // Whether the job is sppm's or rpm's, whose hit points change every epoch.
     bool StochasticJob() const {
         return job_.spec != nullptr && TracesHitPointsEachEpoch(job_.spec->integrator);

@@ -71,6 +71,7 @@ layout(std430, binding = kBindingCounters) buffer Counters { GpuCounters counter
 layout(std430, binding = kBindingTallyOffsets) buffer TallyOffsets { uint tally_offsets[]; };
 layout(std430, binding = kBindingTallyEntries) writeonly buffer TallyEntries { GpuTallyEntry tally_entries[]; };
 layout(std430, binding = kBindingSheenTables) readonly buffer SheenTables { float sheen_tables[]; };
+layout(std430, binding = kBindingPixelJob) readonly buffer PixelJob { GpuPixelJob pixel_job; };
 
 const float kPi = 3.14159265358979323846;
 const float kInfinity = 1.0 / 0.0;

@@ -4,7 +4,6 @@
 // it or the search's limit is reached), filtered as core/pm/density_estimate.cpp does.
 #include "core/shared/density_filter.h"
 
-layout(std430, binding = kBindingPixelJob) readonly buffer PixelJob { GpuPixelJob pixel_job; };
 layout(std430, binding = kBindingPhotonPositions) readonly buffer PhotonPositions { vec4 photon_positions[]; };
 layout(std430, binding = kBindingPhotonPowers) readonly buffer PhotonPowers { GpuPhotonPower photon_powers[]; };
 layout(std430, binding = kBindingPhotonBuckets) readonly buffer PhotonBuckets { uint photon_buckets[]; };
