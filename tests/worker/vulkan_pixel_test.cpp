@@ -3,7 +3,8 @@
 // with the same stream, drawing its numbers in the same order, so the device's paths are the
 // CPU's but for float rounding (a rounding that flips a Russian roulette or a Fresnel choice
 // sends a path its own way): nearly every pixel must agree to 1e-3, and the images' means
-// closely. A kernel that mis-weighs any light path would fail it outright.
+// closely. A kernel that mis-weighs any light path would fail it outright. The path tracer's
+// wavefront design is held to its megakernel's images, which it must match but for rounding.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -52,36 +53,47 @@ protected:
     std::shared_ptr<vk::Context> context_;
 };
 
-TEST_P(VulkanPixelTest, BatchesFollowTheCpuBackendsPaths) {
-    const PixelCase& param = GetParam();
-    const Scene scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + param.scene);
-    const Emitters emitters(scene);
+// A 24x24 job of `integrator` over `scene` at 4 samples a pixel, in three batches an epoch.
+JobSpec SmallJob(Integrator integrator, uint32_t final_gather = 0) {
     JobSpec spec;
-    spec.integrator = param.integrator;
+    spec.integrator = integrator;
     spec.width = spec.height = 24;
     spec.samples_per_pixel = 4;
     spec.seed = 3;
     spec.photon_map.global_photons = spec.photon_map.caustic_photons = 50'000;
-    spec.photon_map.final_gather = param.final_gather;
+    spec.photon_map.final_gather = final_gather;
     spec.layout = {0, 3};  // three batches an epoch: slices of the image
+    return spec;
+}
+
+// The batches of epochs 0 and 3 of `spec`, run on `backend`.
+void RunEpochs(Backend& backend, const Scene& scene, const Emitters& emitters, const JobSpec& spec,
+               std::vector<BatchSpec>& specs, std::vector<BatchResult>& results) {
+    specs.clear();
+    for (uint64_t epoch : {0u, 3u})
+        for (uint32_t b = 0; b < spec.layout.batches_per_epoch; ++b)
+            specs.push_back(MakeBatchSpec(spec.layout, epoch, b, spec.width * spec.height));
+    ASSERT_TRUE(backend.BeginJob({&scene, &emitters, {}, 7, &spec}).ok());
+    for (const BatchSpec& batch : specs) {
+        ASSERT_TRUE(backend.BeginEpoch(batch.epoch, {}, nullptr).ok());
+        absl::StatusOr<std::vector<BatchResult>> ran = backend.RunBatches({&batch, 1});
+        ASSERT_TRUE(ran.ok()) << ran.status();
+        results.push_back(std::move(ran->front()));
+    }
+}
+
+TEST_P(VulkanPixelTest, BatchesFollowTheCpuBackendsPaths) {
+    const PixelCase& param = GetParam();
+    const Scene scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + param.scene);
+    const Emitters emitters(scene);
+    const JobSpec spec = SmallJob(param.integrator, param.final_gather);
     std::unique_ptr<Backend> cpu = std::move(*CreateBackend("cpu", scene));
     absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", scene);
     ASSERT_TRUE(vulkan.ok()) << vulkan.status();
     std::vector<BatchSpec> specs;
-    for (uint64_t epoch : {0u, 3u})
-        for (uint32_t b = 0; b < spec.layout.batches_per_epoch; ++b)
-            specs.push_back(MakeBatchSpec(spec.layout, epoch, b, 24 * 24));
     std::vector<BatchResult> results[2];
-    for (int i = 0; i < 2; ++i) {
-        Backend& backend = i == 0 ? *cpu : **vulkan;
-        ASSERT_TRUE(backend.BeginJob({&scene, &emitters, {}, 7, &spec}).ok());
-        for (const BatchSpec& batch : specs) {
-            ASSERT_TRUE(backend.BeginEpoch(batch.epoch, {}, nullptr).ok());
-            absl::StatusOr<std::vector<BatchResult>> ran = backend.RunBatches({&batch, 1});
-            ASSERT_TRUE(ran.ok()) << ran.status();
-            results[i].push_back(std::move(ran->front()));
-        }
-    }
+    ASSERT_NO_FATAL_FAILURE(RunEpochs(*cpu, scene, emitters, spec, specs, results[0]));
+    ASSERT_NO_FATAL_FAILURE(RunEpochs(**vulkan, scene, emitters, spec, specs, results[1]));
     size_t pixels = 0, agreeing = 0;
     Rgbd sums[2] = {Rgbd(0.0), Rgbd(0.0)};
     for (size_t b = 0; b < specs.size(); ++b) {
@@ -154,6 +166,53 @@ TEST_F(VulkanPixelTest, PhotonMapsTooLargeForTheDeviceAreRefusedNamingThem) {
         << buffer;
     maps.photon_powers.resize(30'000);  // 0.96 MB: fits, as do the positions (0.64 MB)
     EXPECT_TRUE(vk::CheckJobFits(small, gpu_scene, 0, &maps).ok());
+}
+
+// The path tracer's two designs on the device (PHOTONFARM_VULKAN_PATH) run the same vertex
+// code on the same numbers in the same order: a pixel's mean may differ only by the rounding of
+// differently compiled pipelines (none at all on lavapipe). Scenes that queue every class of
+// vertex: coats, rough gold mixed with paint, translucent paper (cornell-materials); specular
+// glass; a sky that escaping paths find.
+TEST_F(VulkanPixelTest, PathWavefrontTracesTheMegakernelsPaths) {
+    for (const char* path :
+         {"pbrt/cornell-materials.pbrt", "cornell-glass.gltf", "pbrt/sky-courtyard.pbrt"}) {
+        SCOPED_TRACE(path);
+        const Scene scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + path);
+        const Emitters emitters(scene);
+        const JobSpec spec = SmallJob(Integrator::kPath);
+        std::vector<BatchSpec> specs;
+        std::vector<BatchResult> results[2];
+        for (int design = 0; design < 2; ++design) {
+            setenv("PHOTONFARM_VULKAN_PATH", design == 0 ? "megakernel" : "wavefront", 1);
+            absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", scene);
+            unsetenv("PHOTONFARM_VULKAN_PATH");
+            ASSERT_TRUE(vulkan.ok()) << vulkan.status();
+            ASSERT_NO_FATAL_FAILURE(
+                RunEpochs(**vulkan, scene, emitters, spec, specs, results[design]));
+            EXPECT_EQ(static_cast<vk::VulkanBackend&>(**vulkan).RunsPathWavefront(), design == 1);
+        }
+        size_t pixels = 0, agreeing = 0;
+        for (size_t b = 0; b < specs.size(); ++b) {
+            const BatchResult &m = results[0][b], &w = results[1][b];
+            ASSERT_EQ(w.samples.size(), m.samples.size());
+            EXPECT_EQ(w.nonfinite_discarded, m.nonfinite_discarded);
+            for (size_t p = 0; p < m.samples.size(); ++p, ++pixels)
+                agreeing += MaxComponent(Abs(m.samples[p] - w.samples[p])) <=
+                            1e-5f * std::max(1.0f, MaxComponent(m.samples[p]));
+        }
+        EXPECT_EQ(pixels, 2u * 24 * 24);
+        EXPECT_GE(double(agreeing), 0.99 * double(pixels))
+            << agreeing << " of " << pixels << " pixels agree to 1e-5";
+    }
+}
+
+TEST(VulkanPathDesignTest, AnUnknownDesignIsRefusedNamingTheVariable) {
+    setenv("PHOTONFARM_VULKAN_PATH", "wavefrnt", 1);
+    const absl::StatusOr<vk::PathDesign> design = vk::PathDesignFromEnvironment();
+    unsetenv("PHOTONFARM_VULKAN_PATH");
+    EXPECT_TRUE(absl::IsInvalidArgument(design.status())) << design.status();
+    EXPECT_EQ(design.status().message(),
+              "PHOTONFARM_VULKAN_PATH=wavefrnt: expected megakernel or wavefront");
 }
 
 }  // namespace

@@ -68,6 +68,8 @@ public:
     absl::StatusOr<std::vector<BatchResult>> RunBatches(std::span<const BatchSpec> specs) override;
 
     const Context& GetContext() const { return *context_; }
+    // Whether the current job traces paths through the wavefront's kernels.
+    bool RunsPathWavefront() const { return wavefront_; }
     // The current job's scene features (what its kernels were specialised for).
     const SceneFeatures& Features() const { return features_; }
 
