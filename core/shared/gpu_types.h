@@ -141,6 +141,9 @@ PF_CONST(uint32_t) kPathCounterWords = 28;
 // Queues, each a path slot per pixel (uint[kPathQueues * pixels], kBindingPathQueues): the two
 // ray queues, then a vertex queue a class.
 PF_CONST(uint32_t) kPathQueues = 6;
+// Workgroups a wavefront dispatch takes at most (Vulkan assures 65535 in x); its threads loop
+// over the rest of their queue.
+PF_CONST(uint32_t) kPathMaxGroups = 65535;
 
 // Threads per workgroup of every kernel but the scan; the scan's workgroup covers
 // kScanBlock elements, kScanPerThread per thread.

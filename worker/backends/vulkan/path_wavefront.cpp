@@ -1,6 +1,7 @@
 // Recording the wavefront's rounds.
 #include "worker/backends/vulkan/path_wavefront.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 
@@ -62,10 +63,11 @@ absl::StatusOr<VkCommandBuffer> TraceWavefront(CommandStream& stream, VkCommandB
     stream.Barrier();
     params.end = pixels;
     params.path_queue = 0;
-    for (uint32_t first = 0; first < pixels; first += gpu::kWorkgroupSize * 65535u) {
+    constexpr uint32_t kMaxThreads = gpu::kWorkgroupSize * gpu::kPathMaxGroups;
+    for (uint32_t first = 0; first < pixels; first += kMaxThreads) {
         params.first = first;
         kernels.Dispatch(commands, Kernel::kPathStart, params,
-                         Groups(std::min<uint64_t>(pixels - first, gpu::kWorkgroupSize * 65535u)));
+                         Groups(std::min<uint64_t>(pixels - first, kMaxThreads)));
     }
     params.first = 0;
     stream.Barrier();

@@ -26,10 +26,6 @@ layout(std430, binding = kBindingPathStates) buffer PathStates { GpuPathState pa
 layout(std430, binding = kBindingPathQueues) buffer PathQueues { uint path_queues[]; };
 layout(std430, binding = kBindingPathCounters) buffer PathCounters { uint path_counters[]; };
 
-// Workgroups an indirect dispatch takes at most (Vulkan assures 65535); threads loop over the
-// rest of their queue.
-const uint kMaxGroups = 65535;
-
 uint BatchPixels() { return params.end; }
 uint NextRays() { return 1 - params.path_queue; }
 
@@ -90,7 +86,7 @@ uint HitMaterial(RayHit hit) {
 }
 
 void WriteGroups(uint at, uint threads) {
-    path_counters[at] = min((threads + kWorkgroupSize - 1) / kWorkgroupSize, kMaxGroups);
+    path_counters[at] = min((threads + kWorkgroupSize - 1) / kWorkgroupSize, kPathMaxGroups);
     path_counters[at + 1] = 1;
     path_counters[at + 2] = 1;
 }
