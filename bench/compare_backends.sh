@@ -10,6 +10,7 @@
 # Usage: bench/compare_backends.sh BUILD_DIR [OUT_DIR] [SIZE] [SECONDS] [REF_SECONDS]
 set -euo pipefail
 source "$(dirname "$0")/reference.sh"
+source "$(dirname "$0")/vulkan_device.sh"
 build=${1:?usage: compare_backends.sh BUILD_DIR [OUT_DIR] [SIZE] [SECONDS] [REF_SECONDS]}
 out=${2:-docs/integrators}
 size=${3:-64}
@@ -20,8 +21,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$out"
 photonfarm="$build/client/photonfarm"
-device=$("$build/worker/photonfarm-worker" --list-devices 2>/dev/null |
-    sed -n 's/^vulkan device [0-9]*: \(.*[^ ]\) *<- --backend vulkan uses this one.*/\1/p' | head -1)
+device=$(vulkan_device "$build")
 
 # run NAME ARGS...: one render; prints "rate error" (the rate as the render's last line says it,
 # e.g. 853.9k, and the relative error at its end).

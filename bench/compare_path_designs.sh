@@ -11,6 +11,7 @@
 # Writes OUT/path_designs.md and prints it.
 # Usage: bench/compare_path_designs.sh BUILD_DIR [OUT_DIR] [SIZE] [EPOCHS] [SPP]
 set -euo pipefail
+source "$(dirname "$0")/vulkan_device.sh"
 build=${1:?usage: compare_path_designs.sh BUILD_DIR [OUT_DIR] [SIZE] [EPOCHS] [SPP]}
 out=${2:-docs/integrators}
 size=${3:-64}
@@ -20,8 +21,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 mkdir -p "$out"
 photonfarm="$build/client/photonfarm"
-device=$("$build/worker/photonfarm-worker" --list-devices 2>/dev/null |
-    sed -n 's/^vulkan device [0-9]*: \(.*[^ ]\) *<- --backend vulkan uses this one.*/\1/p' | head -1)
+device=$(vulkan_device "$build")
 
 # run NAME DESIGN SCENE ARGS...: one render; prints "rate seconds" (camera samples a second as
 # the render's last line says it, and the wall time of the whole run).
