@@ -3,6 +3,8 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 DEMO_SECONDS ?= 60
+# Where the first render's dashboard listens (port 0: a free one; the render prints the URL).
+DEMO_WEB_LISTEN ?= 127.0.0.1:0
 
 .PHONY: all deps configure build demo test bench clean
 
@@ -19,13 +21,15 @@ build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
 # Renders the Cornell box with a glass and a mirror sphere for about a minute on all cores,
+# with its dashboard served at the URL it prints (the image converging, its error falling),
 # then for a quarter of that with the Vulkan backend (on the best GPU; lavapipe without one),
 # then the Cornell box from its pbrt-v4 form for a sixth.
 demo: build
 	@mkdir -p out
 	./$(BUILD)/client/photonfarm render scenes/cornell-glass.gltf --width 512 --height 512 \
 		--seconds $(DEMO_SECONDS) --out out/cornell-glass.exr --png out/cornell-glass.png \
-		--snapshot-every 15 --snapshot-dir out/snapshots --report out/convergence
+		--snapshot-every 15 --snapshot-dir out/snapshots --report out/convergence \
+		--web-listen $(DEMO_WEB_LISTEN)
 	./$(BUILD)/worker/photonfarm-worker --list-devices
 	./$(BUILD)/client/photonfarm render scenes/cornell-glass.gltf --width 256 --height 256 --backend vulkan --photons-per-batch 131072 \
 		--seconds $$(( $(DEMO_SECONDS) / 4 )) --out out/cornell-glass-vulkan.exr --png out/cornell-glass-vulkan.png \

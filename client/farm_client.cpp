@@ -1,7 +1,6 @@
 // Jobs service calls.
 #include "client/farm_client.h"
 
-#include <google/protobuf/util/json_util.h>
 #include <grpcpp/client_context.h>
 
 #include <chrono>
@@ -160,15 +159,6 @@ absl::StatusOr<v1::Snapshot> FarmClient::Watch(
             peer_, ": job ", job_id, " did not end within ", deadline_seconds,
             " s; last seen: ", last.has_status() ? StatusLine(last.status()) : "no snapshot"));
     return FromGrpcStatus(status, peer_);
-}
-
-std::string ToJson(const google::protobuf::Message& message) {
-    google::protobuf::util::JsonPrintOptions options;
-    options.preserve_proto_field_names = true;
-    options.always_print_primitive_fields = true;
-    std::string json;
-    (void)google::protobuf::util::MessageToJsonString(message, &json, options);
-    return json;
 }
 
 std::string StatusLine(const v1::JobStatus& status) {

@@ -77,8 +77,6 @@ private:
     std::shared_ptr<photonfarm::v1::Jobs::Stub> stub_;
 };
 
-// One line of JSON for a message (field names as in the .proto), for --json output.
-std::string ToJson(const google::protobuf::Message& message);
 // A job's state in words: "running", "done", ...
 std::string StateName(photonfarm::v1::JobState state);
 // A job's status in one line, for messages: state, epochs, photons, workers, seconds, the

@@ -15,6 +15,7 @@
 #include "client/output_files.h"
 #include "client/submit_command.h"
 #include "core/job/integrator.h"
+#include "wire/json.h"
 #include "wire/proto_convert.h"
 
 namespace pf {

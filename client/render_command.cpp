@@ -36,7 +36,14 @@ struct RenderOptions {
     std::string snapshot_dir;
     std::string reference_path, report_dir;
     float exposure = 0;
+    bool plaintext = false;  // lets --web-listen take a non-loopback address
 };
+
+// 127.0.0.0/8, ::1 and localhost: where a plain-text, token-less dashboard may listen.
+bool IsLoopback(const std::string& address) {
+    const std::string host = address.substr(0, address.rfind(':'));
+    return host.starts_with("127.") || host == "[::1]" || host == "localhost";
+}
 
 ImageMetadata Metadata(const RenderOptions& options, const RenderOutcome& outcome) {
     const RenderSettings& s = options.settings;
@@ -79,6 +86,12 @@ int RunRender(const RenderOptions& options) {
         else
             prepared = reference.status();
     }
+    if (prepared.ok() && !settings.web_listen.empty() && !options.plaintext &&
+        !IsLoopback(settings.web_listen))
+        prepared = absl::InvalidArgumentError(absl::StrCat(
+            "--web-listen: ", settings.web_listen,
+            " is not a loopback address; the embedded dashboard is plain HTTP with no login, so "
+            "add --plaintext to serve it there (or run a coordinator with TLS and tokens)"));
     if (!prepared.ok()) {
         spdlog::error("{}", std::string(prepared.message()));
         return 1;
@@ -176,6 +189,13 @@ void AddRenderCommand(CLI::App& app, int* exit_code) {
                                    "Directory for snapshot-NNNN.exr");
     every->needs(dir);
     dir->needs(every);
+    render
+        ->add_option("--web-listen", s.web_listen,
+                     "Serve the browser dashboard at HOST:PORT while rendering (plain HTTP; a "
+                     "loopback address unless --plaintext)")
+        ->check(HostAndPort(0));
+    render->add_flag("--plaintext", options->plaintext,
+                     "Let --web-listen serve plain HTTP on a non-loopback address");
     AddReferenceOption(render, &options->reference_path);
     AddReportOption(render, &options->report_dir);
     render->callback([options, render, exit_code] {

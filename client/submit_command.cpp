@@ -18,6 +18,7 @@
 #include "core/scene/scene_bundle.h"
 #include "core/scene/scene_loader.h"
 #include "core/util/command_line.h"
+#include "wire/json.h"
 #include "wire/proto_convert.h"
 
 namespace pf {

@@ -17,6 +17,10 @@ find_package(OpenSSL REQUIRED)  # SHA-256 content addresses
 find_package(zstd CONFIG REQUIRED)  # blobs and images on the wire
 find_package(gRPC CONFIG REQUIRED)
 find_package(prometheus-cpp CONFIG REQUIRED)  # the coordinator's /metrics
+# Debian ships pkg-config files only for these two.
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(stb REQUIRED IMPORTED_TARGET stb)  # PNG encoding (stb_image_write)
+pkg_check_modules(httplib REQUIRED IMPORTED_TARGET cpp-httplib)  # the dashboard's HTTP(S)
 # Headers and glslc only: the worker opens libvulkan.so.1 at run time (vk_api.cpp), so it
 # starts, and says why, on machines without a Vulkan loader.
 find_package(Vulkan REQUIRED COMPONENTS glslc)

@@ -11,6 +11,8 @@ packages=(
     libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev
     libvulkan-dev glslc mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
     libzstd-dev zlib1g-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev libassimp-dev libdraco-dev libmeshoptimizer-dev
+    libcpp-httplib-dev
+    chromium chromium-driver python3-selenium
     gnuplot-nox fonts-dejavu-core
     clang libclang-rt-14-dev clang-format
     podman buildah runc netavark aardvark-dns debootstrap uidmap slirp4netns fuse-overlayfs

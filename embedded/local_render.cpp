@@ -12,6 +12,7 @@
 #include "core/scene/scene_bundle.h"
 #include "core/scene/scene_loader.h"
 #include "server/coordinator.h"
+#include "server/dashboard_server.h"
 #include "server/in_process_source.h"
 #include "worker/backend_factory.h"
 #include "worker/worker_loop.h"
@@ -46,6 +47,15 @@ absl::StatusOr<RenderOutcome> RenderLocally(const RenderSettings& settings,
     CoordinatorOptions options;
     options.setting_names = SettingNames::kFlags;
     Coordinator coordinator(options);
+    const AccessControl open_access(ServerSecurity{.plaintext = true});
+    std::unique_ptr<DashboardServer> dashboard;  // destroyed before the coordinator
+    if (!settings.web_listen.empty()) {
+        absl::StatusOr<std::unique_ptr<DashboardServer>> started = DashboardServer::Start(
+            settings.web_listen, ServerSecurity{.plaintext = true}, coordinator, open_access);
+        if (!started.ok()) return started.status();
+        dashboard = std::move(*started);
+        spdlog::info("watch the render at {}", dashboard->Url());
+    }
     tbb::task_arena arena(settings.threads > 0 ? settings.threads
                                                : tbb::this_task_arena::max_concurrency());
     absl::StatusOr<RenderOutcome> outcome = RenderOutcome{};

@@ -32,6 +32,9 @@ struct RenderSettings {
     std::shared_ptr<const Image> reference;  // every epoch is measured against it, when set
     const std::atomic<bool>* stop =
         nullptr;  // set from elsewhere (a signal) to stop after an epoch
+    // Serve the browser dashboard here ("host:port") while rendering: plain HTTP, no tokens,
+    // so the caller keeps it on a loopback address unless the user said otherwise.
+    std::string web_listen;
 };
 
 struct RenderProgress {

@@ -9,14 +9,6 @@
 namespace pf {
 namespace {
 
-// Equal strings of equal length, in time that does not depend on where they differ.
-bool ConstantTimeEqual(const std::string& a, const std::string& b) {
-    if (a.size() != b.size()) return false;
-    unsigned char difference = 0;
-    for (size_t i = 0; i < a.size(); ++i) difference |= static_cast<unsigned char>(a[i] ^ b[i]);
-    return difference == 0;
-}
-
 const char* RoleName(Role role) { return role == Role::kClient ? "client" : "worker"; }
 
 }  // namespace
@@ -54,18 +46,29 @@ absl::StatusOr<std::string> AccessControl::Authorize(const grpc::ServerContext& 
                 "this coordinator requires workers to present a TLS certificate signed by its "
                 "worker CA (--tls-cert, --tls-key)");
     }
-    const std::vector<Digest>& accepted = role == Role::kClient ? client_tokens_ : worker_tokens_;
-    if (accepted.empty()) return PeerHost(context.peer());  // an open role: plain text, local use
+    if (!TokensRequired(role)) return PeerHost(context.peer());  // an open role: plain text
     const auto& metadata = context.client_metadata();
     const auto header = metadata.find(kTokenMetadataKey);
-    if (header == metadata.end())
-        return absl::UnauthenticatedError(
-            absl::StrCat("no token: a ", RoleName(role), " must send one (--token-file)"));
+    if (header == metadata.end()) return AuthorizeToken(nullptr, role);
     const std::string value(header->second.data(), header->second.size());
     if (!value.starts_with(kTokenPrefix))
         return absl::UnauthenticatedError(absl::StrCat(
             "the ", kTokenMetadataKey, " header must read \"", kTokenPrefix, "TOKEN\""));
-    const std::string sha256 = Sha256Hex(std::string_view(value).substr(sizeof(kTokenPrefix) - 1));
+    const std::string secret = value.substr(sizeof(kTokenPrefix) - 1);
+    return AuthorizeToken(&secret, role);
+}
+
+bool AccessControl::TokensRequired(Role role) const {
+    return !(role == Role::kClient ? client_tokens_ : worker_tokens_).empty();
+}
+
+absl::StatusOr<std::string> AccessControl::AuthorizeToken(const std::string* secret,
+                                                          Role role) const {
+    if (secret == nullptr)
+        return absl::UnauthenticatedError(
+            absl::StrCat("no token: a ", RoleName(role), " must send one (--token-file)"));
+    const std::vector<Digest>& accepted = role == Role::kClient ? client_tokens_ : worker_tokens_;
+    const std::string sha256 = Sha256Hex(*secret);
     if (const std::string* name = Find(accepted, sha256)) return *name;
     const std::vector<Digest>& other = role == Role::kClient ? worker_tokens_ : client_tokens_;
     if (Find(other, sha256) != nullptr)
@@ -73,6 +76,13 @@ absl::StatusOr<std::string> AccessControl::Authorize(const grpc::ServerContext& 
             absl::StrCat("a ", RoleName(role == Role::kClient ? Role::kWorker : Role::kClient),
                          "'s token does not open the ", RoleName(role), "s' service"));
     return absl::UnauthenticatedError("the token is not valid here");
+}
+
+bool ConstantTimeEqual(const std::string& a, const std::string& b) {
+    if (a.size() != b.size()) return false;
+    unsigned char difference = 0;
+    for (size_t i = 0; i < a.size(); ++i) difference |= static_cast<unsigned char>(a[i] ^ b[i]);
+    return difference == 0;
 }
 
 std::string PeerHost(const std::string& peer) {

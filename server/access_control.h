@@ -26,6 +26,14 @@ public:
     // under mutual TLS, without a verified certificate); PERMISSION_DENIED for the other
     // role's token.
     absl::StatusOr<std::string> Authorize(const grpc::ServerContext& context, Role role) const;
+    // The same check for a token from elsewhere (the dashboard's login, an HTTP bearer
+    // header): the token's name; UNAUTHENTICATED for a missing (null) or unknown token,
+    // PERMISSION_DENIED for the other role's. Only where TokensRequired(role).
+    absl::StatusOr<std::string> AuthorizeToken(const std::string* secret, Role role) const;
+    // Whether `role` must present a token (tokens are configured for it).
+    bool TokensRequired(Role role) const;
+    // The transport is TLS.
+    bool Encrypted() const { return !plaintext_; }
     // Nobody is checked (plain text and no tokens).
     bool Open() const;
 
@@ -42,6 +50,9 @@ private:
     const bool worker_certificates_;
     const std::vector<Digest> client_tokens_, worker_tokens_;
 };
+
+// Equal strings of equal length, in time that does not depend on where they differ (secrets).
+bool ConstantTimeEqual(const std::string& a, const std::string& b);
 
 // The address part of a peer string ("ipv4:10.0.0.3:51234" -> "10.0.0.3").
 std::string PeerHost(const std::string& peer);

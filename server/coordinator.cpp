@@ -241,7 +241,7 @@ absl::StatusOr<std::string> Coordinator::RegisterWorker(const WorkerRegistration
     ReapWorkersLocked(Now());
     // Unguessable, since it is all a worker's later calls show: one worker cannot act for another.
     const std::string id = absl::StrCat("worker-", next_id_++, "-", RandomHex(16));
-    workers_[id] = {registration, Now()};
+    workers_[id] = {registration, Now(), Now()};
     spdlog::info("worker {} registered ({}, {} threads, from {})", id, registration.backend,
                  registration.threads,
                  registration.peer.empty() ? "this process" : registration.peer);
@@ -289,9 +289,13 @@ std::vector<WorkerView> Coordinator::ListWorkers() const {
     const Clock::time_point now = Now();
     std::vector<WorkerView> views;
     for (const auto& [id, worker] : workers_) {
-        WorkerView view{id, worker.registration,
-                        std::chrono::duration<double>(now - worker.last_seen).count(), 0,
-                        worker.batches_done};
+        WorkerView view{id,
+                        worker.registration,
+                        std::chrono::duration<double>(now - worker.last_seen).count(),
+                        std::chrono::duration<double>(now - worker.registered).count(),
+                        0,
+                        worker.batches_done,
+                        worker.photons_reported};
         for (const auto& [job_id, job] : jobs_) view.batches_leased += job->LeasedBy(id, now);
         views.push_back(std::move(view));
     }
@@ -360,6 +364,7 @@ absl::StatusOr<TallyVerdict> Coordinator::Report(const std::string& worker_id,
         }
         worker->second.last_seen = Now();
         ++worker->second.batches_done;
+        worker->second.photons_reported += result.photons_emitted;
         auto it = jobs_.find(job_id);
         if (it == jobs_.end()) {
             ++refusals_.job_gone;

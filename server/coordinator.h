@@ -73,8 +73,10 @@ struct WorkerView {
     std::string worker_id;
     WorkerRegistration registration;
     double seconds_since_heartbeat = 0;
+    double seconds_registered = 0;
     uint32_t batches_leased = 0;
-    uint64_t batches_done = 0;
+    uint64_t batches_done = 0;      // results reported, accepted or not
+    uint64_t photons_reported = 0;  // in those results
 };
 
 // Tallies refused, by reason, since the coordinator started.
@@ -144,8 +146,8 @@ public:
 private:
     struct Worker {
         WorkerRegistration registration;
-        Clock::time_point last_seen;
-        uint64_t batches_done = 0;
+        Clock::time_point registered, last_seen;
+        uint64_t batches_done = 0, photons_reported = 0;
     };
     Clock::time_point Now() const { return options_.now(); }
     Clock::duration Duration(double seconds) const;

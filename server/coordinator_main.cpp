@@ -14,6 +14,7 @@
 #include "core/util/command_line.h"
 #include "server/coordinator.h"
 #include "server/coordinator_server.h"
+#include "server/dashboard_server.h"
 #include "server/metrics.h"
 #include "wire/rpc_status.h"
 #include "wire/server_security.h"
@@ -43,6 +44,7 @@ void BlockStopSignals() {
 struct CoordinatorFlags {
     std::string listen = "0.0.0.0:50051";
     std::string metrics_listen;
+    std::string web_listen;
     pf::CoordinatorOptions options;
     pf::ServerOptions server;
     pf::ServerSecurityFlags security;
@@ -85,6 +87,11 @@ void AddCoordinatorOptions(CLI::App& app, CoordinatorFlags* flags) {
                    "Serve Prometheus metrics at http://HOST:PORT/metrics (plain HTTP: bind it "
                    "to a private address)")
         ->envname("PHOTONFARM_METRICS_LISTEN")
+        ->check(pf::HostAndPort(0));
+    app.add_option("--web-listen", flags->web_listen,
+                   "Serve the browser dashboard at HOST:PORT: HTTPS with the coordinator's "
+                   "certificate, plain HTTP only with --plaintext; client tokens log in")
+        ->envname("PHOTONFARM_WEB_LISTEN")
         ->check(pf::HostAndPort(0));
     app.add_option("--checkpoint-dir", options.checkpoint_dir,
                    "Keep every job's state here, and resume the jobs found here at start "
@@ -152,6 +159,17 @@ int Serve(const CoordinatorFlags& flags) {
         }
         metrics = std::move(*started);
     }
+    std::unique_ptr<pf::DashboardServer> dashboard;
+    if (!flags.web_listen.empty()) {
+        absl::StatusOr<std::unique_ptr<pf::DashboardServer>> started = pf::DashboardServer::Start(
+            flags.web_listen, flags.server.security, coordinator, (*server)->Access());
+        if (!started.ok()) {
+            std::fprintf(stderr, "photonfarm-coordinator: error: %s\n",
+                         std::string(started.status().message()).c_str());
+            return 1;
+        }
+        dashboard = std::move(*started);
+    }
     const std::string host = flags.listen.substr(0, flags.listen.rfind(':'));
     // A line on stdout with the bound address (and one with the metrics'), for scripts
     // that asked for port 0.
@@ -160,10 +178,12 @@ int Serve(const CoordinatorFlags& flags) {
         std::printf("metrics on %s:%d\n",
                     flags.metrics_listen.substr(0, flags.metrics_listen.rfind(':')).c_str(),
                     metrics->Port());
+    if (dashboard) std::printf("dashboard on %s\n", dashboard->Url().c_str());
     std::fflush(stdout);
     pf::LogServerSecurity(flags.server.security, host, (*server)->Port());
     const int signal = WaitForStopSignal();
     spdlog::info("{}: shutting down", signal == SIGTERM ? "SIGTERM" : "SIGINT");
+    dashboard.reset();
     (*server)->Shutdown();
     return 0;
 }

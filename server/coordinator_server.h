@@ -34,6 +34,8 @@ public:
     ~CoordinatorServer();
 
     int Port() const { return port_; }
+    // Who may call: the dashboard checks its callers with the same tokens.
+    const AccessControl& Access() const { return access_; }
     // Stops taking calls, ends watch streams and lease waits, and waits for handlers to return.
     void Shutdown();
 

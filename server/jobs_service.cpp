@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
+#include "server/job_views.h"
 #include "wire/proto_convert.h"
 #include "wire/rpc_status.h"
 
@@ -110,8 +111,7 @@ grpc::Status JobsService::CancelJob(grpc::ServerContext* context,
 grpc::Status JobsService::ListJobs(grpc::ServerContext* context, const v1::ListJobsRequest*,
                                    v1::ListJobsResponse* response) {
     if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
-    for (const JobProgress& progress : coordinator_.ListJobs())
-        *response->add_jobs() = ToProto(progress);
+    *response = JobListView(coordinator_);
     return grpc::Status::OK;
 }
 
@@ -133,29 +133,14 @@ grpc::Status JobsService::GetConvergence(grpc::ServerContext* context,
     if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
     absl::StatusOr<std::shared_ptr<Job>> job = coordinator_.FindJob(request->job_id());
     if (!job.ok()) return ToGrpcStatus(job.status());
-    const JobProgress progress = (*job)->Progress(coordinator_.Options().now());
-    *response->mutable_status() = ToProto(progress);
-    for (const ConvergencePoint& point : (*job)->Convergence())
-        *response->add_points() = ToProto(point);
-    if (std::shared_ptr<const Image> image = (*job)->CurrentImage())
-        response->set_pixels(static_cast<uint64_t>(image->width) * image->height);
+    *response = ConvergenceView(**job, coordinator_.Options().now());
     return grpc::Status::OK;
 }
 
 grpc::Status JobsService::ListWorkers(grpc::ServerContext* context, const v1::ListWorkersRequest*,
                                       v1::ListWorkersResponse* response) {
     if (grpc::Status denied = Authorize(*context); !denied.ok()) return denied;
-    for (const WorkerView& view : coordinator_.ListWorkers()) {
-        v1::WorkerStatus* worker = response->add_workers();
-        worker->set_worker_id(view.worker_id);
-        worker->set_backend(view.registration.backend);
-        worker->set_threads(view.registration.threads);
-        worker->set_version(view.registration.version);
-        worker->set_peer(view.registration.peer);
-        worker->set_seconds_since_heartbeat(view.seconds_since_heartbeat);
-        worker->set_batches_leased(view.batches_leased);
-        worker->set_batches_done(view.batches_done);
-    }
+    *response = WorkerListView(coordinator_);
     return grpc::Status::OK;
 }
 

@@ -287,6 +287,7 @@ photonfarm::v1::JobStatus ToProto(const JobProgress& progress) {
     status.set_scene_features(progress.scene_features);
     status.set_integrator(ToProto(progress.integrator));
     status.set_camera_samples(progress.camera_samples);
+    status.set_owner(progress.owner);
     status.set_message(progress.message);
     for (const std::string& warning : progress.warnings) status.add_warnings(warning);
     return status;

@@ -101,6 +101,41 @@ void SetDeadline(grpc::ClientContext* context, double seconds) {
                               std::chrono::duration<double>(seconds)));
 }
 
+int HttpStatusCode(absl::StatusCode code) {
+    switch (code) {
+        case absl::StatusCode::kOk:
+            return 200;
+        case absl::StatusCode::kInvalidArgument:
+        case absl::StatusCode::kOutOfRange:
+            return 400;
+        case absl::StatusCode::kUnauthenticated:
+            return 401;
+        case absl::StatusCode::kPermissionDenied:
+            return 403;
+        case absl::StatusCode::kNotFound:
+            return 404;
+        case absl::StatusCode::kAlreadyExists:
+        case absl::StatusCode::kAborted:
+        case absl::StatusCode::kFailedPrecondition:
+            return 409;
+        case absl::StatusCode::kResourceExhausted:
+            return 429;
+        case absl::StatusCode::kCancelled:
+            return 499;
+        case absl::StatusCode::kUnimplemented:
+            return 501;
+        case absl::StatusCode::kUnavailable:
+            return 503;
+        case absl::StatusCode::kDeadlineExceeded:
+            return 504;
+        case absl::StatusCode::kInternal:
+        case absl::StatusCode::kDataLoss:
+        case absl::StatusCode::kUnknown:
+        default:
+            return 500;
+    }
+}
+
 grpc::Status ToGrpcStatus(const absl::Status& status) {
     if (status.ok()) return grpc::Status::OK;
     return grpc::Status(ToGrpcCode(status.code()), std::string(status.message()));

@@ -18,6 +18,9 @@ namespace pf {
 inline constexpr int kMaxMessageBytes = (1 << 30) + (16 << 20);
 
 grpc::Status ToGrpcStatus(const absl::Status& status);
+// The HTTP status the dashboard answers a refusal with (400, 401, 403, 404, 409, 429, 500,
+// 503 ...), the same code for the same refusal as over gRPC.
+int HttpStatusCode(absl::StatusCode code);
 // A client call's deadline, `seconds` from now.
 void SetDeadline(grpc::ClientContext* context, double seconds);
 // `peer` names the other end in the message: "coordinator at 127.0.0.1:5000: ...".

@@ -4,6 +4,7 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
@@ -13,6 +14,7 @@
 #include <exception>
 
 #include "absl/strings/str_cat.h"
+#include "core/util/file_io.h"
 
 namespace pf {
 namespace {
@@ -25,10 +27,29 @@ void AddChannels(Imf::FrameBuffer& frame_buffer, Rgb* pixels, int width) {
     frame_buffer.insert("B", Imf::Slice(Imf::FLOAT, base + offsetof(Rgb, z), x_stride, y_stride));
 }
 
+// An EXR file written into a string.
+class StringStream final : public Imf::OStream {
+public:
+    StringStream() : Imf::OStream("memory") {}
+    void write(const char bytes[], int count) override {
+        const size_t end = position_ + static_cast<size_t>(count);
+        if (end > bytes_.size()) bytes_.resize(end);
+        bytes_.replace(position_, static_cast<size_t>(count), bytes, static_cast<size_t>(count));
+        position_ = end;
+    }
+    uint64_t tellp() override { return position_; }
+    void seekp(uint64_t position) override { position_ = position; }
+    std::string Take() { return std::move(bytes_); }
+
+private:
+    std::string bytes_;
+    size_t position_ = 0;
+};
+
 }  // namespace
 
-absl::Status WriteExr(const std::string& path, const Image& image, const ImageMetadata& metadata) {
-    const std::string temporary = path + ".partial";
+absl::StatusOr<std::string> EncodeExr(const Image& image, const ImageMetadata& metadata) {
+    StringStream stream;
     try {
         Imf::Header header(image.width, image.height);
         header.compression() = Imf::ZIP_COMPRESSION;
@@ -37,16 +58,20 @@ absl::Status WriteExr(const std::string& path, const Image& image, const ImageMe
         for (const auto& [key, value] : metadata) header.insert(key, Imf::StringAttribute(value));
         Imf::FrameBuffer frame_buffer;
         AddChannels(frame_buffer, const_cast<Rgb*>(image.pixels.data()), image.width);
-        Imf::OutputFile file(temporary.c_str(), header);
+        Imf::OutputFile file(stream, header);
         file.setFrameBuffer(frame_buffer);
         file.writePixels(image.height);
     } catch (const std::exception& error) {
-        std::remove(temporary.c_str());
-        return absl::UnavailableError(absl::StrCat(path, ": cannot write EXR: ", error.what()));
+        return absl::InvalidArgumentError(absl::StrCat("cannot encode EXR: ", error.what()));
     }
-    if (std::rename(temporary.c_str(), path.c_str()) != 0)
-        return absl::UnavailableError(absl::StrCat(path, ": cannot replace the file"));
-    return absl::OkStatus();
+    return stream.Take();
+}
+
+absl::Status WriteExr(const std::string& path, const Image& image, const ImageMetadata& metadata) {
+    absl::StatusOr<std::string> exr = EncodeExr(image, metadata);
+    if (!exr.ok())
+        return absl::InvalidArgumentError(absl::StrCat(path, ": ", exr.status().message()));
+    return WriteFileAtomically(path, *exr);
 }
 
 absl::StatusOr<Image> ReadExr(const std::string& path, ImageMetadata* metadata) {

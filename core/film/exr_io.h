@@ -13,8 +13,11 @@ namespace pf {
 
 using ImageMetadata = std::map<std::string, std::string>;
 
-// Writes 32-bit float R, G, B channels, ZIP-compressed, with each metadata entry as a
-// string attribute. Writes to a temporary file first and renames, so an existing file is
+// The EXR file's bytes: 32-bit float R, G, B channels, ZIP-compressed, with each metadata
+// entry as a string attribute.
+absl::StatusOr<std::string> EncodeExr(const Image& image, const ImageMetadata& metadata = {});
+
+// EncodeExr's bytes, written to a temporary file first and renamed, so an existing file is
 // replaced only by a complete one.
 absl::Status WriteExr(const std::string& path, const Image& image,
                       const ImageMetadata& metadata = {});

@@ -1,7 +1,7 @@
-// PNG output with OpenImageIO.
+// PNG output with stb_image_write.
 #include "core/film/png_writer.h"
 
-#include <OpenImageIO/imageio.h>
+#include <stb_image_write.h>
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "core/util/file_io.h"
 
 namespace pf {
 namespace {
@@ -21,23 +22,33 @@ uint8_t EncodeSrgb(float linear) {
     return static_cast<uint8_t>(std::lround(encoded * 255.0f));
 }
 
+void AppendBytes(void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                               static_cast<size_t>(size));
+}
+
 }  // namespace
 
-absl::Status WritePng(const std::string& path, const Image& image, float exposure) {
+absl::StatusOr<std::string> EncodePng(const Image& image, float exposure) {
+    if (image.width <= 0 || image.height <= 0 ||
+        image.pixels.size() != static_cast<size_t>(image.width) * image.height)
+        return absl::InvalidArgumentError("cannot encode an empty image as PNG");
     const float scale = std::exp2(exposure);
     std::vector<uint8_t> bytes(image.pixels.size() * 3);
     for (size_t i = 0; i < image.pixels.size(); ++i)
         for (int c = 0; c < 3; ++c) bytes[3 * i + c] = EncodeSrgb(image.pixels[i][c] * scale);
-    auto output = OIIO::ImageOutput::create(path);
-    if (!output)
-        return absl::InvalidArgumentError(
-            absl::StrCat(path, ": cannot write PNG: ", OIIO::geterror()));
-    const OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-    if (!output->open(path, spec) || !output->write_image(OIIO::TypeDesc::UINT8, bytes.data()) ||
-        !output->close())
-        return absl::UnavailableError(
-            absl::StrCat(path, ": cannot write PNG: ", output->geterror()));
-    return absl::OkStatus();
+    std::string png;
+    if (stbi_write_png_to_func(AppendBytes, &png, image.width, image.height, 3, bytes.data(),
+                               image.width * 3) == 0)
+        return absl::InternalError("stb_image_write could not encode the PNG");
+    return png;
+}
+
+absl::Status WritePng(const std::string& path, const Image& image, float exposure) {
+    absl::StatusOr<std::string> png = EncodePng(image, exposure);
+    if (!png.ok())
+        return absl::InvalidArgumentError(absl::StrCat(path, ": ", png.status().message()));
+    return WriteFileAtomically(path, *png);
 }
 
 }  // namespace pf
