@@ -161,7 +161,7 @@ for address in 127.0.0.1:70000 127.0.0.1:-1 127.0.0.1:abc 127.0.0.1: nocolon ::1
         jobs --server "$address"
 done
 # The coordinator and the worker: addresses, durations, limits and thread counts.
-for case in "--listen 127.0.0.1:70000" "--listen localhost:x" "--metrics-listen 127.0.0.1:-1" \
+for case in "--listen 127.0.0.1:70000" "--listen localhost:x" "--metrics-listen 127.0.0.1:-1" "--web-listen 127.0.0.1:x" \
     "--heartbeat-seconds 0" "--heartbeat-seconds nan" "--worker-timeout-seconds -1" "--lease-seconds inf" \
     "--checkpoint-seconds 0" "--max-jobs 0" "--max-jobs-per-client -1" "--max-watchers-per-job 0" \
     "--max-bundle-bytes -1" "--max-render-pixels 0" "--max-photons-per-batch 0" "--max-message-bytes 0" \
@@ -174,6 +174,14 @@ for case in "--coordinator 127.0.0.1:0" "--coordinator 127.0.0.1:65536" "--threa
     read -r flag value <<<"$case"
     expect_failure_of "$worker" "worker $flag $value" "$flag" --coordinator "$closed" "$flag" "$value"
 done
+
+expect_failure_of "$coordinator" "coordinator --web-listen on a port in use" "--web-listen: cannot listen on $closed" \
+    --plaintext --listen 127.0.0.1:0 --web-listen "$closed"
+# The embedded dashboard: plain HTTP with no login, so not on a public address unless asked.
+expect_failure "render --web-listen on a public address" "--web-listen: 0.0.0.0:0 is not a loopback address.*--plaintext" \
+    render "$scene" --out "$work/a.exr" --web-listen 0.0.0.0:0
+expect_failure "render --web-listen not an address" "--web-listen: must be HOST:PORT" \
+    render "$scene" --out "$work/a.exr" --web-listen dashboard
 
 expect_failure "reference of another size" "reference: the image is" render "$source_dir/scenes/cornell-box.gltf" \
     --out "$work/b.exr" --width 8 --height 8 --photons 1000 --reference "$work/small.exr"

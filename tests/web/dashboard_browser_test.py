@@ -208,6 +208,25 @@ def main():
         cells = [c.text for c in driver.find_elements(By.CSS_SELECTOR, "#workers tbody tr td")]
         assert cells[1] == "cpu" and cells[3] == "1", cells
         driver.save_screenshot(f"{out_dir}/workers.png")
+
+        # photonfarm render --web-listen: the same pages for a render on one machine, with no
+        # login (plain HTTP on loopback); cancelling from the page ends the render, which
+        # writes its image.
+        driver.delete_all_cookies()  # the farm's Secure cookie has the same host
+        render = start([photonfarm, "render", f"{source_dir}/scenes/cornell-box.gltf", "--width", "64",
+                        "--height", "64", "--threads", "1", "--until-cancelled", "--out", f"{work}/embedded.exr",
+                        "--web-listen", "127.0.0.1:0"])
+        processes.append(render)
+        driver.get(read_until(render, r"watch the render at (http://127\.0\.0\.1:\d+/)").group(1))
+        wait_for(driver, lambda d: d.find_elements(By.CSS_SELECTOR, "#jobs tbody tr a"), "the render's job")
+        cells = [c.text for c in driver.find_elements(By.CSS_SELECTOR, "#jobs tbody tr td")]
+        assert cells[2] == "RUNNING" and cells[11] == "this process", cells
+        driver.find_element(By.CSS_SELECTOR, "#jobs tbody tr a").click()
+        wait_for(driver, loaded_epoch, "the render's image")
+        driver.save_screenshot(f"{out_dir}/render.png")
+        driver.find_element(By.ID, "cancel").click()
+        assert render.wait(timeout=TIMEOUT) == 0, "".join(l for l in render.lines if l)
+        assert os.path.getsize(f"{work}/embedded.exr") > 0
         print(f"screenshots in {out_dir}")
         return 0
     finally:
