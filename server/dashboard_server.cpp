@@ -43,6 +43,8 @@ void Reply(const HttpResponse& response, httplib::Response& out) {
     for (const auto& [name, value] : response.headers) out.set_header(name, value);
     out.set_header("X-Content-Type-Options", "nosniff");
     out.set_header("X-Frame-Options", "DENY");
+    // Only the coordinator's own script, style and images; no framing.
+    out.set_header("Content-Security-Policy", "default-src 'self'; frame-ancestors 'none'");
     out.set_content(response.body, response.content_type);
 }
 
