@@ -26,6 +26,16 @@ ServerSecurity Tls() {
     return security;
 }
 
+// A coordinator and its dashboard over HTTPS with tokens, on a free port of 127.0.0.1.
+struct TlsDashboard {
+    FakeClock clock;
+    Coordinator coordinator{Options(&clock)};
+    ServerSecurity security = Tls();
+    AccessControl access{security};
+    absl::StatusOr<std::unique_ptr<DashboardServer>> server =
+        DashboardServer::Start("127.0.0.1:0", security, coordinator, access);
+};
+
 std::unique_ptr<httplib::SSLClient> Client(int port) {
     auto client = std::make_unique<httplib::SSLClient>("127.0.0.1", port);
     client->set_ca_cert_path(Credentials().Path("ca.pem").c_str());
@@ -35,15 +45,11 @@ std::unique_ptr<httplib::SSLClient> Client(int port) {
 }
 
 TEST(DashboardServerTest, ServesThePageAndTheApiOverTlsWithTheCoordinatorsCertificate) {
-    FakeClock clock;
-    Coordinator coordinator(Options(&clock));
-    const ServerSecurity security = Tls();
-    const AccessControl access(security);
-    absl::StatusOr<std::unique_ptr<DashboardServer>> server =
-        DashboardServer::Start("127.0.0.1:0", security, coordinator, access);
-    ASSERT_TRUE(server.ok()) << server.status();
-    EXPECT_EQ((*server)->Url(), "https://127.0.0.1:" + std::to_string((*server)->Port()) + "/");
-    const auto client = Client((*server)->Port());
+    TlsDashboard dashboard;
+    ASSERT_TRUE(dashboard.server.ok()) << dashboard.server.status();
+    DashboardServer& server = **dashboard.server;
+    EXPECT_EQ(server.Url(), "https://127.0.0.1:" + std::to_string(server.Port()) + "/");
+    const auto client = Client(server.Port());
     const httplib::Result page = client->Get("/");
     ASSERT_TRUE(page) << httplib::to_string(page.error());
     EXPECT_EQ(page->status, 200);
@@ -64,27 +70,20 @@ TEST(DashboardServerTest, ServesThePageAndTheApiOverTlsWithTheCoordinatorsCertif
 }
 
 TEST(DashboardServerTest, APlainTextClientGetsNoAnswerFromATlsDashboard) {
-    FakeClock clock;
-    Coordinator coordinator(Options(&clock));
-    const ServerSecurity security = Tls();
-    const AccessControl access(security);
-    absl::StatusOr<std::unique_ptr<DashboardServer>> server =
-        DashboardServer::Start("127.0.0.1:0", security, coordinator, access);
-    ASSERT_TRUE(server.ok()) << server.status();
-    httplib::Client plain("127.0.0.1", (*server)->Port());
+    TlsDashboard dashboard;
+    ASSERT_TRUE(dashboard.server.ok()) << dashboard.server.status();
+    DashboardServer& server = **dashboard.server;
+    httplib::Client plain("127.0.0.1", server.Port());
     plain.set_read_timeout(5, 0);
     const httplib::Result page = plain.Get("/");
     EXPECT_TRUE(!page || page->status != 200);
 }
 
 TEST(DashboardServerTest, AJobsEventStreamSpeaksOncePerMergedEpochAndEndsWithTheJob) {
-    FakeClock clock;
-    Coordinator coordinator(Options(&clock));
-    const ServerSecurity security = Tls();
-    const AccessControl access(security);
-    absl::StatusOr<std::unique_ptr<DashboardServer>> server =
-        DashboardServer::Start("127.0.0.1:0", security, coordinator, access);
-    ASSERT_TRUE(server.ok()) << server.status();
+    TlsDashboard dashboard;
+    ASSERT_TRUE(dashboard.server.ok()) << dashboard.server.status();
+    Coordinator& coordinator = dashboard.coordinator;
+    DashboardServer& server = **dashboard.server;
     const std::string job_id = coordinator.Submit(SmallJob(2 * 4 * 4096))->job_id;
     const std::string worker = *coordinator.RegisterWorker(Cpu());
     BatchRunner runner;
@@ -96,7 +95,7 @@ TEST(DashboardServerTest, AJobsEventStreamSpeaksOncePerMergedEpochAndEndsWithThe
                       TallyVerdict::kAccepted);
     };
 
-    const auto client = Client((*server)->Port());
+    const auto client = Client(server.Port());
     std::string received;
     std::vector<nlohmann::json> events;
     const httplib::Result stream =
