@@ -65,9 +65,9 @@ service_pid=$!
 export DOCKER_HOST=unix://$W/podman-$$.sock
 for _ in $(seq 100); do [ -S "$W/podman-$$.sock" ] && break; sleep 0.1; done
 
-port=$(free_port) metrics_port=$(free_port)
+port=$(free_port) metrics_port=$(free_port) web_port=$(free_port)
 export PHOTONFARM_IMAGE=$PF_TAG PHOTONFARM_TAG=test PHOTONFARM_SECRETS=$secrets PHOTONFARM_PORT=$port \
-    PHOTONFARM_METRICS_PORT=$metrics_port
+    PHOTONFARM_METRICS_PORT=$metrics_port PHOTONFARM_WEB_PORT=$web_port
 say "docker-compose up --scale worker=3 (coordinator on 127.0.0.1:$port)"
 docker-compose -p "$project" -f "$SOURCE/deploy/compose.yaml" up -d --no-build --scale worker=3 > "$W/compose.log" 2>&1 \
     || { cat "$W/compose.log"; exit 1; }
@@ -108,7 +108,16 @@ metrics=$(cat <&3)
 exec 3>&-
 grep -q '^photonfarm_workers{backend="cpu"} 3' <<< "$metrics" || { echo "FAIL: metrics: workers"; grep photonfarm_workers <<< "$metrics"; exit 1; }
 grep -q "^photonfarm_photons_total $((20 * 6 * 8192))" <<< "$metrics" || { echo "FAIL: metrics: photons"; grep photons_total <<< "$metrics"; exit 1; }
-say "health check and metrics agree"
+# The dashboard's JSON endpoint over HTTPS with the coordinator's certificate and a client token.
+python3 - "$web_port" "$secrets" <<'PY' || { echo "FAIL: the dashboard's /api/jobs"; exit 1; }
+import json, ssl, sys, urllib.request
+port, secrets = sys.argv[1:3]
+token = open(f"{secrets}/client-token").read().strip()
+request = urllib.request.Request(f"https://127.0.0.1:{port}/api/jobs", headers={"Authorization": f"Bearer {token}"})
+jobs = json.load(urllib.request.urlopen(request, context=ssl.create_default_context(cafile=f"{secrets}/ca.pem"), timeout=30))["jobs"]
+assert [job["state"] for job in jobs] == ["JOB_STATE_DONE"], jobs
+PY
+say "health check, metrics and the dashboard agree"
 
 # Workers leave cleanly on SIGTERM (compose stop sends it): exit 0 and unregistered.
 docker-compose -p "$project" -f "$SOURCE/deploy/compose.yaml" stop -t 60 worker > /dev/null 2>&1
