@@ -105,9 +105,9 @@ TEST_P(AnalyticRender, GlassInTheFurnaceConservesEnergy) {
     // small patch of wall behind the sphere: their mean varies 24x more than independent
     // pixels would), so catching 2% there takes 16 renders of 3M photons (48M, 16 s) on the
     // CPU. Vulkan on lavapipe traces about 0.3M photons a second, so it gets 12 renders of 500k
-    // (6M, about 20 s; more renders than 8 of 750k for a smaller t quantile): its glass pixels'
-    // check catches about 6%, and its whole image's 1.4%; its kernels are held to the CPU's
-    // batch by batch in vulkan_backend_test.
+    // (6M, about 20 s there, 148 s on a 2-core AMD EPYC host; more renders than 8 of 750k for a
+    // smaller t quantile): its glass pixels' check catches about 6%, and its whole image's 1.4%;
+    // its kernels are held to the CPU's batch by batch in vulkan_backend_test.
     constexpr double kRho = 0.5, kGap = 0.2;
     const bool vulkan = GetParam() == "vulkan";
     const int renders = vulkan ? 12 : 16;
