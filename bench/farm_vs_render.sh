@@ -2,7 +2,8 @@
 # Whole-run throughput of the farm against the embedded renderer with the same total threads:
 # photonfarm render --threads 2, then a coordinator and two one-thread workers on 127.0.0.1,
 # the same job (scene, photons, batch layout) for both, in alternation for ROUNDS rounds.
-# Prints photons per second after the camera pass for both and their ratio per round
+# Prints photons per second after the camera pass for both (the farm's is the coordinator's, from
+# the submission's status) and their ratio per round
 # (target >= 0.95). The default layout is one a farm would use: batches of 4 chunks, so the
 # coordinator merges a quarter of the tally entries per photon of the one-machine default.
 # Usage: bench/farm_vs_render.sh BUILD_DIR [SCENE] [PHOTONS] [ROUNDS] [LAYOUT FLAGS...]
@@ -44,8 +45,12 @@ farm_rate() {
         "$build/worker/photonfarm-worker" --coordinator "$address" --plaintext --threads 1 --log-level warn &
         workers+=($!)
     done
+    # The first status is the submission's (its elapsed time: the camera pass, run by the
+    # coordinator), the last the job's end: photons over the time between, as for the render.
     "$build/client/photonfarm" submit "$scene" --server "$address" --plaintext --photons "$photons" "${layout[@]}" --watch --json \
-        --log-level warn | tail -n 1 | sed 's/.*"photons_per_second":\([0-9.e+]*\).*/\1/'
+        --log-level warn > "$work/farm.json"
+    sed -n '1p;$p' "$work/farm.json" | grep -o '"photons":"[0-9]*"\|"elapsed_seconds":[0-9.e+-]*' |
+        sed 's/.*://; s/"//g' | paste - - | awk 'NR == 1 { camera = $2 } NR == 2 { printf "%.0f", $1 / ($2 - camera) }'
     stop_farm
 }
 
