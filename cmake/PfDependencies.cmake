@@ -17,6 +17,7 @@ find_package(OpenSSL REQUIRED)  # SHA-256 content addresses
 find_package(zstd CONFIG REQUIRED)  # blobs and images on the wire
 find_package(gRPC CONFIG REQUIRED)
 find_package(prometheus-cpp CONFIG REQUIRED)  # the coordinator's /metrics
+find_package(nlohmann_json CONFIG REQUIRED)  # the dashboard's small JSON; tests edit glTF JSON
 # Debian ships pkg-config files only for these two.
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(stb REQUIRED IMPORTED_TARGET stb)  # PNG encoding (stb_image_write)
@@ -36,7 +37,6 @@ set_target_properties(OpenImageIO::OpenImageIO PROPERTIES
 if(PF_BUILD_TESTS)
     find_package(GTest CONFIG REQUIRED)
     include(GoogleTest)
-    find_package(nlohmann_json CONFIG REQUIRED)  # tests edit shipped scenes' glTF JSON
 endif()
 if(PF_BUILD_BENCH)
     find_package(benchmark CONFIG REQUIRED)

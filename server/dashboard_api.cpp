@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <nlohmann/json.hpp>
 
 #include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
@@ -31,23 +32,6 @@ HttpResponse Asset(std::string_view body, const char* type) {
     return {200, type, std::string(body), {{"Cache-Control", "no-cache"}}};
 }
 
-// A JSON string literal, quotes included.
-std::string Quoted(absl::string_view text) {
-    std::string out = "\"";
-    for (const char c : text) {
-        if (c == '"' || c == '\\') {
-            out += '\\';
-            out += c;
-        } else if (static_cast<unsigned char>(c) < 0x20) {
-            out += c < 16 ? "\\u000" : "\\u001";
-            out += "0123456789abcdef"[c & 15];
-        } else {
-            out += c;
-        }
-    }
-    return out + "\"";
-}
-
 // The value of `name` in a Cookie header ("a=1; pf_session=...").
 std::string CookieValue(const std::map<std::string, std::string>& headers, absl::string_view name) {
     const auto cookie = headers.find("cookie");
@@ -60,16 +44,13 @@ std::string CookieValue(const std::map<std::string, std::string>& headers, absl:
     return "";
 }
 
-// The "token" field of the login's JSON body ({"token": "..."}): a secret has no quotes or
-// backslashes, so a plain scan suffices; empty when absent.
-std::string TokenField(absl::string_view body) {
-    const size_t key = body.find("\"token\"");
-    if (key == absl::string_view::npos) return "";
-    const size_t open = body.find('"', body.find(':', key));
-    if (open == absl::string_view::npos) return "";
-    const size_t close = body.find('"', open + 1);
-    if (close == absl::string_view::npos) return "";
-    return std::string(body.substr(open + 1, close - open - 1));
+// The "token" field of the login's JSON body ({"token": "..."}); empty when the body is not
+// such an object.
+std::string TokenField(const std::string& body) {
+    const nlohmann::json parsed = nlohmann::json::parse(body, nullptr, /*allow_exceptions=*/false);
+    if (!parsed.is_object()) return "";
+    const auto token = parsed.find("token");
+    return token != parsed.end() && token->is_string() ? token->get<std::string>() : "";
 }
 
 // The request's Origin, when it has one, names this server (its Host header).
@@ -95,11 +76,9 @@ DashboardApi::DashboardApi(Coordinator& coordinator, const AccessControl& access
       sessions_([&coordinator] { return coordinator.Options().now(); }) {}
 
 HttpResponse DashboardApi::Error(const absl::Status& status) {
-    return {HttpStatusCode(status.code()),
-            kJson,
-            absl::StrCat("{\"code\": ", Quoted(absl::StatusCodeToString(status.code())),
-                         ", \"error\": ", Quoted(status.message()), "}"),
-            {}};
+    const nlohmann::json body = {{"code", absl::StatusCodeToString(status.code())},
+                                 {"error", std::string(status.message())}};
+    return {HttpStatusCode(status.code()), kJson, body.dump(), {}};
 }
 
 std::string DashboardApi::SessionCookie(const std::string& id, bool expire) const {
@@ -153,6 +132,13 @@ absl::Status DashboardApi::CheckAction(const HttpRequest& request) const {
     return absl::OkStatus();
 }
 
+HttpResponse DashboardApi::SessionJson(const DashboardSession& session) const {
+    const nlohmann::json body = {{"name", session.name},
+                                 {"csrf_token", session.csrf_token},
+                                 {"tokens_required", access_.TokensRequired(Role::kClient)}};
+    return Json(body.dump());
+}
+
 HttpResponse DashboardApi::Login(const HttpRequest& request) {
     if (absl::Status origin = CheckOrigin(request); !origin.ok()) return Error(origin);
     std::string name = request.peer;
@@ -164,9 +150,7 @@ HttpResponse DashboardApi::Login(const HttpRequest& request) {
         name = std::move(*authorized);
     }
     auto [id, session] = sessions_.Open(name);
-    HttpResponse response = Json(absl::StrCat(
-        "{\"name\": ", Quoted(session.name), ", \"csrf_token\": ", Quoted(session.csrf_token),
-        ", \"tokens_required\": ", access_.TokensRequired(Role::kClient), "}"));
+    HttpResponse response = SessionJson(session);
     response.headers.emplace_back("Set-Cookie", SessionCookie(id, false));
     return response;
 }
@@ -174,11 +158,7 @@ HttpResponse DashboardApi::Login(const HttpRequest& request) {
 // The page's first question: who am I, and my CSRF token. Where no tokens are configured a
 // session opens without a login.
 HttpResponse DashboardApi::Session(const HttpRequest& request) {
-    if (const auto session = CookieSession(request))
-        return Json(absl::StrCat("{\"name\": ", Quoted(session->second.name),
-                                 ", \"csrf_token\": ", Quoted(session->second.csrf_token),
-                                 ", \"tokens_required\": ", access_.TokensRequired(Role::kClient),
-                                 "}"));
+    if (const auto session = CookieSession(request)) return SessionJson(session->second);
     if (!access_.TokensRequired(Role::kClient)) return Login(request);
     return Error(absl::UnauthenticatedError("log in with a client token (POST /api/login)"));
 }

@@ -65,6 +65,8 @@ private:
     HttpResponse Login(const HttpRequest& request);
     HttpResponse Session(const HttpRequest& request);
     HttpResponse Logout(const HttpRequest& request);
+    // {"name", "csrf_token", "tokens_required"}: what the page learns of its session.
+    HttpResponse SessionJson(const DashboardSession& session) const;
     HttpResponse JobRequest(const HttpRequest& request, const std::string& job_id,
                             const std::string& what);
     // The session the request's cookie names, if live.

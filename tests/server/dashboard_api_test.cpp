@@ -93,6 +93,8 @@ TEST(DashboardApiTest, NothingIsReadWithoutAClientToken) {
     EXPECT_EQ(dashboard.api.Handle(Get("/api/jobs/" + dashboard.job_id + "/image.png")).status,
               401);
     EXPECT_EQ(dashboard.api.Handle(Post("/api/login", {}, "{\"token\": \"wrong\"}")).status, 401);
+    for (const char* body : {"not json", "{\"token\": 7}", "[\"token\"]", ""})
+        EXPECT_EQ(dashboard.api.Handle(Post("/api/login", {}, body)).status, 401) << body;
     EXPECT_EQ(dashboard.api.Handle(Get("/api/jobs", {{"authorization", "Bearer wrong"}})).status,
               401);
     EXPECT_EQ(dashboard.api.Handle(Get("/api/jobs", {{"cookie", "pf_session=forged"}})).status,
