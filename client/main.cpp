@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
         pf::AddJobCommands(app, &exit_code);
         pf::AddCompareCommand(app, &exit_code);
         pf::SetUpLogging("photonfarm");
-        pf::RouteGrpcLogsToDebug();
+        pf::SetUpGrpc();
         if (std::optional<int> parse_exit = pf::ParseCommandLine(app, argc, argv, "photonfarm"))
             return *parse_exit;
         return exit_code;

@@ -265,11 +265,15 @@ absl::StatusOr<uint32_t> Coordinator::UnregisterWorker(const std::string& worker
     uint32_t returned = 0;
     for (const auto& [id, job] : jobs_) returned += job->ReleaseLeases(worker_id);
     spdlog::info("worker {} left, returning {} leases", worker_id, returned);
-    work_available_.notify_all();
+    WakeLeasesLocked(returned);
     return returned;
 }
 
 void Coordinator::ReapWorkersLocked(Clock::time_point now) {
+    // Every lease and heartbeat comes here: a walk over every worker each time would cost
+    // the coordinator workers x calls per second, so it walks a tenth of a timeout apart.
+    if (now < next_reap_) return;
+    next_reap_ = now + Duration(options_.worker_timeout_seconds / 10);
     for (auto it = workers_.begin(); it != workers_.end();) {
         if (now - it->second.last_seen > Duration(options_.worker_timeout_seconds)) {
             uint32_t released = 0;
@@ -277,7 +281,7 @@ void Coordinator::ReapWorkersLocked(Clock::time_point now) {
             spdlog::warn("worker {} silent for {:.0f} s: gone; {} leases handed out again",
                          it->first, options_.worker_timeout_seconds, released);
             it = workers_.erase(it);
-            work_available_.notify_all();
+            WakeLeasesLocked(released);
         } else {
             ++it;
         }
@@ -346,8 +350,12 @@ absl::StatusOr<CoordinatorLease> Coordinator::Lease(const std::string& worker_id
                 return lease;
             }
         }
-        if (shut_down_ || work_available_.wait_until(lock, until) == std::cv_status::timeout)
-            return lease;
+        // Looked once more after the wait ends, timed out or not: a wake-up meant for this
+        // thread may come as it times out (WakeLeasesLocked wakes one waiter per new batch).
+        if (shut_down_ || Clock::now() >= until) return lease;
+        ++lease_waiters_;
+        work_available_.wait_until(lock, until);
+        --lease_waiters_;
     }
 }
 
@@ -402,7 +410,7 @@ absl::StatusOr<TallyVerdict> Coordinator::Report(const std::string& worker_id,
             break;
     }
     if (outcome->epoch_finished) {
-        work_available_.notify_all();
+        WakeLeasesLocked(job->Leasable(Now()));
         if (checkpoints_ && !job->Running()) checkpoint_wake_.notify_all();  // its final state, now
     }
     return outcome->verdict;
@@ -442,6 +450,11 @@ std::shared_ptr<const Blob> Coordinator::FindBlob(const std::string& digest) con
 void Coordinator::NotifyWork() {
     std::lock_guard lock(mutex_);
     work_available_.notify_all();
+}
+
+void Coordinator::WakeLeasesLocked(uint64_t batches) {
+    if (batches >= lease_waiters_) return work_available_.notify_all();
+    for (uint64_t i = 0; i < batches; ++i) work_available_.notify_one();
 }
 
 void Coordinator::Shutdown() {

@@ -154,7 +154,10 @@ private:
     void ReapWorkersLocked(Clock::time_point now);
     void ForgetEndedJobsLocked();
     std::shared_ptr<Job> PickJobLocked(Clock::time_point now) const;
-    void NotifyWork();
+    void NotifyWork();  // wakes every waiting lease (a job came, went or changed)
+    // Wakes a waiting lease per batch that became leasable (all of them when there are more
+    // batches than waiters), not every waiter at every epoch's end.
+    void WakeLeasesLocked(uint64_t batches);
 
     // The checkpoint thread: writes each running job every checkpoint_seconds and each ended
     // one once, and removes forgotten jobs' folders.
@@ -171,6 +174,8 @@ private:
     std::thread checkpoint_thread_;
     mutable std::mutex mutex_;
     std::condition_variable work_available_;
+    uint64_t lease_waiters_ = 0;     // leases waiting on work_available_
+    Clock::time_point next_reap_{};  // ReapWorkersLocked walks the workers again from then
     std::map<std::string, std::shared_ptr<Job>> jobs_;  // by id
     std::vector<std::string> job_order_;  // submission order, for fairness ties and listings
     std::map<std::string, Worker> workers_;

@@ -194,7 +194,7 @@ int main(int argc, char** argv) {
     pf::KeepLargeBuffersForReuse();
     try {
         pf::SetUpLogging("photonfarm-coordinator");
-        pf::RouteGrpcLogsToDebug();
+        pf::SetUpGrpc();
         CLI::App app{"photonfarm-coordinator: the render farm's coordinator"};
         CoordinatorFlags flags;
         AddCoordinatorOptions(app, &flags);

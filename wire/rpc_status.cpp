@@ -7,6 +7,7 @@
 #include <chrono>
 
 #include "absl/strings/str_cat.h"
+#include "absl/synchronization/mutex.h"
 
 namespace pf {
 namespace {
@@ -152,10 +153,11 @@ absl::Status FromGrpcStatus(const grpc::Status& status, const std::string& peer)
     return absl::Status(FromGrpcCode(status.error_code()), message);
 }
 
-void RouteGrpcLogsToDebug() {
+void SetUpGrpc() {
     gpr_set_log_function([](gpr_log_func_args* args) {
         spdlog::debug("grpc: {} ({}:{})", args->message, args->file, args->line);
     });
+    absl::SetMutexDeadlockDetectionMode(absl::OnDeadlockCycle::kIgnore);
 }
 
 }  // namespace pf

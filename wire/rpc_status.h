@@ -26,9 +26,13 @@ void SetDeadline(grpc::ClientContext* context, double seconds);
 // `peer` names the other end in the message: "coordinator at 127.0.0.1:5000: ...".
 absl::Status FromGrpcStatus(const grpc::Status& status, const std::string& peer);
 
-// gRPC's own log lines (a failed TLS handshake, a dropped connection) go to our log at debug
-// level, so a user sees the one-line error the call returns rather than the library's noise;
-// --log-level debug shows them.
-void RouteGrpcLogsToDebug();
+// Sets gRPC up for a program, before its first call:
+// - gRPC's own log lines (a failed TLS handshake, a dropped connection) go to our log at debug
+//   level, so a user sees the one-line error the call returns rather than the library's noise;
+//   --log-level debug shows them.
+// - abseil's mutex deadlock detection is off: Debian builds abseil without NDEBUG, so every
+//   absl::Mutex (gRPC's locks) also records its lock order in one global graph, about 5% of a
+//   loaded coordinator's CPU (bench/farm_load, docs/farm.md).
+void SetUpGrpc();
 
 }  // namespace pf

@@ -182,7 +182,7 @@ int main(int argc, char** argv) {
     pf::KeepLargeBuffersForReuse();
     try {
         pf::SetUpLogging("photonfarm-worker");
-        pf::RouteGrpcLogsToDebug();
+        pf::SetUpGrpc();
         CLI::App app{"photonfarm-worker: runs photon batches for a photonfarm coordinator"};
         WorkerFlags flags;
         AddWorkerOptions(app, &flags);

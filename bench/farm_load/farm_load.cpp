@@ -28,6 +28,7 @@
 #include "core/util/command_line.h"
 #include "tests/support/farm_credentials.h"
 #include "wire/proto_convert.h"
+#include "wire/rpc_status.h"
 
 namespace pf::load {
 namespace {
@@ -61,6 +62,7 @@ std::string WriteClientTokens(const std::string& dir, size_t clients,
 
 int Run(const Flags& flags) {
     spdlog::set_level(spdlog::level::warn);  // the recordings' coordinator: one line per job
+    SetUpGrpc();
     const testing::FarmCredentials& credentials = testing::TestCredentials(PF_SOURCE_DIR);
     std::vector<std::string> secrets;
     const std::string client_tokens = WriteClientTokens(credentials.dir, flags.clients, secrets);
