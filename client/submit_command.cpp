@@ -281,7 +281,7 @@ void AddSubmitCommand(CLI::App& app, int* exit_code) {
                        "Name in listings (default: the scene's file name)");
     submit
         ->add_option("--priority", options->priority,
-                     "Higher runs first; equal priorities share workers")
+                     "Its share of the workers weighs 2^priority: +1 gets twice the workers of 0")
         ->default_val(0)
         ->check(SignedWholeNumber(-kMaxJobPriority, kMaxJobPriority));
     AddJobOptions(submit, &options->spec);

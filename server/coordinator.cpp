@@ -5,8 +5,10 @@
 
 #include <algorithm>
 #include <cinttypes>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <random>
 
 #include "absl/strings/str_cat.h"
@@ -72,27 +74,29 @@ void Coordinator::WriteCheckpoints(bool running_too) {
         forgotten.swap(forgotten_);
     }
     for (const std::string& id : forgotten) checkpoints_->Remove(id);
+    for (const std::shared_ptr<Job>& job : jobs) WriteCheckpointLocked(*job, running_too);
+}
+
+void Coordinator::WriteCheckpointLocked(Job& job, bool running_too) {
     const auto seconds = [](Clock::duration d) { return std::chrono::duration<double>(d).count(); };
-    for (const std::shared_ptr<Job>& job : jobs) {
-        const auto start = Clock::now();
-        std::optional<JobCheckpointData> checkpoint = job->TakeFinalCheckpoint();
-        if (!checkpoint && running_too) {
-            absl::StatusOr<JobCheckpointData> running = job->Checkpoint(Now());
-            if (running.ok()) checkpoint = std::move(*running);
-        }
-        if (!checkpoint) continue;
-        const auto saved = Clock::now();
-        if (absl::Status status = checkpoints_->Write(*checkpoint); !status.ok()) {
-            spdlog::error("job {}: checkpoint not written: {}", job->Id(),
-                          std::string(status.message()));
-            continue;
-        }
-        // Its own bytes; the fixed parts it names are written once per job.
-        spdlog::debug(
-            "job {}: checkpoint {} saved in {:.3f} s, written in {:.3f} s ({:.1f} MB)", job->Id(),
-            checkpoint->record.sequence(), seconds(saved - start), seconds(Clock::now() - saved),
-            double(checkpoint->record.ByteSizeLong() + checkpoint->estimate.size()) / (1 << 20));
+    const auto start = Clock::now();
+    std::optional<JobCheckpointData> checkpoint = job.TakeFinalCheckpoint();
+    if (!checkpoint && running_too) {
+        absl::StatusOr<JobCheckpointData> running = job.Checkpoint(Now());
+        if (running.ok()) checkpoint = std::move(*running);
     }
+    if (!checkpoint) return;
+    const auto saved = Clock::now();
+    if (absl::Status status = checkpoints_->Write(*checkpoint); !status.ok()) {
+        spdlog::error("job {}: checkpoint not written: {}", job.Id(),
+                      std::string(status.message()));
+        return;
+    }
+    // Its own bytes; the fixed parts it names are written once per job.
+    spdlog::debug(
+        "job {}: checkpoint {} saved in {:.3f} s, written in {:.3f} s ({:.1f} MB)", job.Id(),
+        checkpoint->record.sequence(), seconds(saved - start), seconds(Clock::now() - saved),
+        double(checkpoint->record.ByteSizeLong() + checkpoint->estimate.size()) / (1 << 20));
 }
 
 size_t Coordinator::RestoreCheckpoints() {
@@ -180,6 +184,10 @@ absl::StatusOr<JobProgress> Coordinator::Submit(JobRequest request) {
         job_order_.push_back(id);
         ForgetEndedJobsLocked();
     }
+    if (checkpoints_) {  // before the client hears of it: a crash must not lose an accepted job
+        std::lock_guard writer(checkpoint_mutex_);
+        WriteCheckpointLocked(*job, true);
+    }
     spdlog::info("job {} submitted", job->Id());
     for (const std::string& warning : job->Progress(Now()).warnings)
         spdlog::warn("job {}: {}", job->Id(), warning);
@@ -223,6 +231,7 @@ void Coordinator::ForgetEndedJobsLocked() {
          it != job_order_.end() && ended > options_.finished_jobs_kept;) {
         if (jobs_.at(*it)->Progress(Now()).state != JobState::kRunning) {
             if (checkpoints_) forgotten_.push_back(*it);
+            shares_.erase(*it);
             jobs_.erase(*it);
             it = job_order_.erase(it);
             --ended;
@@ -306,17 +315,48 @@ std::vector<WorkerView> Coordinator::ListWorkers() const {
     return views;
 }
 
-std::shared_ptr<Job> Coordinator::PickJobLocked(Clock::time_point now) const {
-    std::shared_ptr<Job> best;
-    uint32_t best_leased = 0;
+double PriorityWeight(int priority) {
+    return std::ldexp(1.0, std::clamp(priority, -kPriorityWeightRange, kPriorityWeightRange));
+}
+
+std::shared_ptr<Job> Coordinator::PickJobLocked(Clock::time_point now) {
+    // Weighted fair sharing of the workers (start-time fair queueing): each job counts the
+    // photons it was leased divided by its weight, 2^priority, and the job that would stand
+    // lowest after one more batch goes next. So while jobs have batches to hand out, one of
+    // priority p + 1 is leased twice the photons of one of priority p, and none waits for
+    // another to finish. A job without batches to hand out (at its epoch's end, or new) rejoins
+    // at the least count among those that kept theirs: it earns no credit while it waits.
+    struct Candidate {
+        std::shared_ptr<Job> job;
+        Job::LeaseLoad load;
+        JobShare* share;
+    };
+    std::vector<Candidate> candidates;
+    double floor = std::numeric_limits<double>::infinity();
     for (const std::string& id : job_order_) {  // oldest first: ties go to the older job
         const std::shared_ptr<Job>& job = jobs_.at(id);
-        if (job->Leasable(now) == 0) continue;
-        const uint32_t leased = job->Leased(now);
-        if (!best || job->Priority() > best->Priority() ||
-            (job->Priority() == best->Priority() && leased < best_leased)) {
-            best = job;
-            best_leased = leased;
+        JobShare& share = shares_[id];
+        const Job::LeaseLoad load = job->Load(now);
+        if (load.leasable == 0) {
+            share.active = false;
+            continue;
+        }
+        if (share.active) floor = std::min(floor, share.weighted_photons);
+        candidates.push_back({job, load, &share});
+    }
+    if (std::isfinite(floor)) share_floor_ = std::max(share_floor_, floor);
+    std::shared_ptr<Job> best;
+    double best_finish = 0;
+    for (const Candidate& candidate : candidates) {
+        JobShare& share = *candidate.share;
+        if (!share.active) share.weighted_photons = std::max(share.weighted_photons, share_floor_);
+        share.active = true;
+        const double finish =
+            share.weighted_photons +
+            candidate.load.batch_photons / PriorityWeight(candidate.job->Priority());
+        if (!best || finish < best_finish) {
+            best = candidate.job;
+            best_finish = finish;
         }
     }
     return best;
@@ -339,6 +379,9 @@ absl::StatusOr<CoordinatorLease> Coordinator::Lease(const std::string& worker_id
             Job::Lease granted =
                 job->LeaseBatches(worker_id, chunks, now, now + Duration(options_.lease_seconds));
             if (!granted.batches.empty()) {
+                uint64_t photons = 0;
+                for (const BatchSpec& spec : granted.batches) photons += spec.photons;
+                shares_[job->Id()].weighted_photons += photons / PriorityWeight(job->Priority());
                 lease.grant = {job->Id(),
                                std::move(granted.payload),
                                granted.epoch->epoch,

@@ -26,6 +26,11 @@
 
 namespace pf {
 
+// A job's weight in the lease choice: 2^priority, priorities beyond +-kPriorityWeightRange
+// weighing as those bounds (docs/farm.md, "Scheduling and failures").
+inline constexpr int kPriorityWeightRange = 30;
+double PriorityWeight(int priority);
+
 // Limits on what one client may ask of the coordinator; over one, RESOURCE_EXHAUSTED naming
 // the coordinator's flag. The scene's own limits (triangles, textures) are SceneLimits.
 struct ClientLimits {
@@ -113,9 +118,9 @@ public:
     absl::Status Heartbeat(const std::string& worker_id);
     absl::StatusOr<uint32_t> UnregisterWorker(const std::string& worker_id);  // leases returned
     std::vector<WorkerView> ListWorkers() const;
-    // Batches of one job covering about `chunks` chunks (at least one batch), the highest
-    // priority first, then the job with the fewest batches out; waits up to `wait_seconds`
-    // for work when there is none.
+    // Batches of one job covering about `chunks` chunks (at least one batch), of the job
+    // holding the fewest photons out for its weight (PriorityWeight); waits up to
+    // `wait_seconds` for work when there is none.
     absl::StatusOr<CoordinatorLease> Lease(const std::string& worker_id, uint32_t chunks,
                                            double wait_seconds);
     absl::StatusOr<TallyVerdict> Report(const std::string& worker_id, const std::string& job_id,
@@ -153,7 +158,7 @@ private:
     Clock::duration Duration(double seconds) const;
     void ReapWorkersLocked(Clock::time_point now);
     void ForgetEndedJobsLocked();
-    std::shared_ptr<Job> PickJobLocked(Clock::time_point now) const;
+    std::shared_ptr<Job> PickJobLocked(Clock::time_point now);
     void NotifyWork();  // wakes every waiting lease (a job came, went or changed)
     // Wakes a waiting lease per batch that became leasable (all of them when there are more
     // batches than waiters), not every waiter at every epoch's end.
@@ -164,6 +169,8 @@ private:
     void CheckpointLoop();
     // Ended jobs' final states and, when `running_too`, running jobs' current ones.
     void WriteCheckpoints(bool running_too);
+    // The same for one job, under checkpoint_mutex_.
+    void WriteCheckpointLocked(Job& job, bool running_too);
 
     const CoordinatorOptions options_;
     std::unique_ptr<CheckpointStore> checkpoints_;  // null without a checkpoint folder
@@ -178,6 +185,13 @@ private:
     Clock::time_point next_reap_{};  // ReapWorkersLocked walks the workers again from then
     std::map<std::string, std::shared_ptr<Job>> jobs_;  // by id
     std::vector<std::string> job_order_;  // submission order, for fairness ties and listings
+    // The lease choice's state (PickJobLocked), by job id.
+    struct JobShare {
+        double weighted_photons = 0;  // photons leased / PriorityWeight, from where it joined
+        bool active = false;          // it had batches to hand out at the last choice
+    };
+    std::map<std::string, JobShare> shares_;
+    double share_floor_ = 0;  // where a job (re)joins: the least count among those that stayed
     std::map<std::string, Worker> workers_;
     RefusalCounts refusals_;
     uint64_t photons_accepted_ = 0;

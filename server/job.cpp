@@ -128,6 +128,17 @@ uint32_t Job::Leasable(Clock::time_point now) const {
         slots_.begin(), slots_.end(), [&](const Slot& s) { return LeasableLocked(s, now); }));
 }
 
+Job::LeaseLoad Job::Load(Clock::time_point now) const {
+    std::lock_guard lock(mutex_);
+    LeaseLoad load;
+    if (state_ != JobState::kRunning) return load;
+    for (const Slot& slot : slots_) {
+        load.batch_photons = slot.spec.photons;
+        load.leasable += LeasableLocked(slot, now);
+    }
+    return load;
+}
+
 uint32_t Job::Leased(Clock::time_point now) const {
     std::lock_guard lock(mutex_);
     return static_cast<uint32_t>(std::count_if(slots_.begin(), slots_.end(), [&](const Slot& s) {

@@ -122,6 +122,13 @@ public:
     };
     // Slots that may be leased now: neither reported nor under a live lease.
     uint32_t Leasable(Clock::time_point now) const;
+    // What the lease choice weighs (Coordinator::PickJobLocked), in one look: the slots
+    // leasable now and a batch's photons this epoch.
+    struct LeaseLoad {
+        uint32_t leasable = 0;
+        uint32_t batch_photons = 0;
+    };
+    LeaseLoad Load(Clock::time_point now) const;
     uint32_t Leased(Clock::time_point now) const;  // under a live lease
     uint32_t LeasedBy(const std::string& worker, Clock::time_point now) const;
     // Leases slots to `worker` until `deadline`, lowest index first, until their chunks cover

@@ -42,6 +42,9 @@ std::string Percentiles(std::vector<double> values) {
                            1e3 * values.back(), values.size());
 }
 
+// The intervals the shares of photons over time are given for.
+constexpr double kShareSeconds = 10;
+
 double MiB(uint64_t bytes) { return static_cast<double>(bytes) / (1 << 20); }
 
 }  // namespace
@@ -167,12 +170,13 @@ std::string LoadReport::Text() const {
 
     // Jobs.
     std::map<std::string, size_t> states;
-    size_t identical = 0;
+    size_t identical = 0, interrupted = 0;
     std::map<int, std::pair<double, size_t>> seconds_by_priority;
     for (const JobOutcome& outcome : outcomes) {
         ++states[outcome.state];
         if (outcome.state != "done") continue;
         identical += outcome.identical;
+        interrupted += outcome.interrupted;
         if (!outcome.identical)
             absl::StrAppendFormat(&text,
                                   "  job %s (slot %d): image DIFFERS from its reference (%u "
@@ -185,8 +189,10 @@ std::string LoadReport::Text() const {
     }
     absl::StrAppend(&text, "jobs:");
     for (const auto& [state, count] : states) absl::StrAppend(&text, " ", count, " ", state);
-    absl::StrAppendFormat(&text, "; %d of %d done are bit-identical to their reference\n",
-                          identical, states["done"]);
+    absl::StrAppendFormat(&text,
+                          "; %d of %d done are bit-identical to their reference (%d of them "
+                          "ran across a coordinator restart)\n",
+                          identical, states["done"], interrupted);
     for (const auto& [priority, sum] : seconds_by_priority)
         absl::StrAppendFormat(&text, "  priority %d: %d jobs done, %.1f s each on average\n",
                               priority, sum.second, sum.first / sum.second);
@@ -194,6 +200,7 @@ std::string LoadReport::Text() const {
     // Shares of the photons merged in the window, by priority and by client, and the longest
     // time a running job merged nothing while others did.
     std::map<int, uint64_t> by_priority;
+    std::map<int, std::map<int, uint64_t>> over_time;  // by interval of kShareSeconds
     std::map<std::string, uint64_t> by_owner;
     std::map<std::string, double> idle_since;
     double longest_idle = 0;
@@ -210,6 +217,7 @@ std::string LoadReport::Text() const {
             const uint64_t gained =
                 before == all[i - 1].jobs.end() ? 0 : job.photons - before->second.photons;
             by_priority[job.priority] += gained;
+            over_time[static_cast<int>((all[i].t - 1) / kShareSeconds)][job.priority] += gained;
             by_owner[job.owner] += gained;
             total += gained;
             if (!job.running || gained > 0 || before == all[i - 1].jobs.end())
@@ -230,8 +238,22 @@ std::string LoadReport::Text() const {
     for (const auto& [owner, photons] : by_owner)
         absl::StrAppendFormat(&text, " %s: %.1f%%", owner,
                               100.0 * photons / std::max<uint64_t>(total, 1));
+    absl::StrAppend(&text, "\n");
+    if (by_priority.size() > 1) {
+        absl::StrAppendFormat(&text,
+                              "shares by priority over time (%.0f-s intervals):", kShareSeconds);
+        for (const auto& [interval, shares] : over_time) {
+            uint64_t photons = 0;
+            for (const auto& [priority, gained] : shares) photons += gained;
+            absl::StrAppendFormat(&text, "\n  %3.0f s:", (interval + 1) * kShareSeconds);
+            for (const auto& [priority, gained] : shares)
+                absl::StrAppendFormat(&text, " %d: %4.1f%%", priority,
+                                      100.0 * gained / std::max<uint64_t>(photons, 1));
+        }
+        absl::StrAppend(&text, "\n");
+    }
     absl::StrAppendFormat(&text,
-                          "\nlongest a running job merged nothing while others did: %.0f s; "
+                          "longest a running job merged nothing while others did: %.0f s; "
                           "most jobs one client ran at once: %d (limit %d)\n",
                           longest_idle, most_running, max_jobs_per_client);
     absl::StrAppendFormat(&text, "coordinator stopped with exit code %d\n%s\n", coordinator_exit,

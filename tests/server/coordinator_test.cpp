@@ -234,6 +234,8 @@ TEST(CoordinatorTest, CancelEndsLeasesKeepsTheImageAndFreesTheInputs) {
     EXPECT_TRUE(payload.expired()) << "a cancelled job's scene and hit points are freed";
 }
 
+// Weights 1, 32, 1: the high-priority job's whole epoch goes out before the others' first
+// batch, then the equal ones alternate.
 TEST(CoordinatorTest, HigherPriorityFirstThenFewestBatchesOut) {
     FakeClock clock;
     Coordinator coordinator(Options(&clock));
@@ -248,6 +250,35 @@ TEST(CoordinatorTest, HigherPriorityFirstThenFewestBatchesOut) {
     // Then the two equal jobs alternate, the older first.
     EXPECT_EQ(std::vector<std::string>(order.begin() + 4, order.end()),
               (std::vector<std::string>{low, low2, low, low2}));
+}
+
+// Jobs share the workers by weight (2^priority): one batch at a time, a job of priority 1 is
+// leased twice the photons of one of priority 0 while both have batches to hand out, and a
+// job of low priority still gets its share while a much higher one has work.
+TEST(CoordinatorTest, WorkersAreSharedByPriorityWeightWithoutStarvation) {
+    FakeClock clock;
+    Coordinator coordinator(Options(&clock));
+    auto many_batches = [](int priority) {
+        JobRequest request = SmallJob(1'000'000, priority);
+        request.spec.layout = {1u << 12, 64};
+        return request;
+    };
+    const std::string low = coordinator.Submit(many_batches(0))->job_id;
+    const std::string high = coordinator.Submit(many_batches(1))->job_id;
+    const std::string worker = *coordinator.RegisterWorker(Cpu());
+    std::map<std::string, int> leases;
+    for (int i = 0; i < 30; ++i) ++leases[coordinator.Lease(worker, 1, 0)->grant.job_id];
+    EXPECT_EQ(leases[high], 20);
+    EXPECT_EQ(leases[low], 10);
+
+    // A new job joins at the others' level: no credit for the time before it came. Weights
+    // 1, 2, 16: the urgent job first catches up half a batch on the high one, then 16:2:1.
+    const std::string urgent = coordinator.Submit(many_batches(4))->job_id;
+    leases.clear();
+    for (int i = 0; i < 34; ++i) ++leases[coordinator.Lease(worker, 1, 0)->grant.job_id];
+    EXPECT_EQ(leases[urgent], 30);
+    EXPECT_EQ(leases[high], 3);
+    EXPECT_EQ(leases[low], 1) << "the low-priority job is not starved";
 }
 
 TEST(CoordinatorTest, BadRequestsNameTheFieldOrFile) {
