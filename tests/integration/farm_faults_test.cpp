@@ -108,6 +108,58 @@ TEST_F(FarmTest, DuplicateStaleAndUnknownTalliesAreRefused) {
     EXPECT_EQ(worker.Report(epoch0.job(), epoch0.batches(0)), v1::TALLY_VERDICT_JOB_GONE);
 }
 
+// The farm over a bad network (testing::FaultProxy between workers and the coordinator): one
+// worker's every packet delayed 5-25 ms, another's connections reset again and again, and a
+// hand-driven worker partitioned for longer than its lease while it holds a batch. The
+// partitioned batch is leased again when its lease expires (the epochs go on without it), its
+// late result is refused as stale once the partition heals, and the image is bit-identical
+// to an uninterrupted render.
+TEST_F(FarmTest, ABadNetworkLosesNothingAndCountsNothingTwice) {
+    StopCoordinator();
+    // Leases of a second; workers never declared gone here, so that the late result meets its
+    // verdict rather than an unknown worker.
+    StartCoordinator("127.0.0.1:0", {"--lease-seconds", "1"}, /*worker_timeout_seconds=*/600);
+    ASSERT_FALSE(HasFatalFailure());
+    auto slow = testing::FaultProxy::Start(address_);
+    auto flaky = testing::FaultProxy::Start(address_);
+    auto partitioned = testing::FaultProxy::Start(address_);
+    ASSERT_TRUE(slow.ok() && flaky.ok() && partitioned.ok());
+    (*slow)->SetDelay(0.005, 0.02);
+    StartWorker("cpu", 1, (*slow)->Address());
+    StartWorker("cpu", 1, (*flaky)->Address());
+    FakeWorker straggler((*partitioned)->Address());
+    const v1::JobStatus job = Submit(kLongEpochs);
+    v1::LeaseBatchesResponse held;
+    ASSERT_TRUE(straggler.Lease(1, &held).ok());
+    ASSERT_EQ(held.batches_size(), 1) << FarmState();
+    const uint64_t held_epoch = held.batches(0).epoch();
+
+    (*partitioned)->Partition(true);
+    v1::TallyVerdict late = v1::TALLY_VERDICT_UNSPECIFIED;
+    std::thread report([&] { late = straggler.Report(held.job(), held.batches(0)); });
+    // The epochs go on past the held batch's only once its lease expired and another worker
+    // ran it; meanwhile the flaky worker's connections are reset every 100 ms.
+    const v1::JobStatus moved_on = WatchUntil(job.job_id(), [&](const v1::JobStatus& status) {
+        (*flaky)->DropConnections();
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+        return status.epochs() >= held_epoch + 2;
+    });
+    EXPECT_GE(moved_on.epochs(), held_epoch + 2) << "the held batch was leased again";
+    (*partitioned)->Partition(false);
+    report.join();
+    EXPECT_TRUE(straggler.last_status_.ok()) << straggler.last_status_.error_message();
+    EXPECT_EQ(late, v1::TALLY_VERDICT_STALE) << "the epoch of the late result has merged";
+    EXPECT_GE((*flaky)->ConnectionsAccepted(), 2u) << "the flaky worker reconnected";
+
+    ASSERT_EQ(WatchUntil(job.job_id()).state(), v1::JOB_STATE_DONE);
+    const absl::StatusOr<v1::GetResultResponse> result = client_->GetResult(job.job_id());
+    ASSERT_TRUE(result.ok()) << result.status();
+    const absl::StatusOr<Image> image = FromProto(result->image());
+    ASSERT_TRUE(image.ok());
+    EXPECT_TRUE(Identical(image->pixels, Reference(kLongEpochs)))
+        << "the job's image differs from an uninterrupted render";
+}
+
 TEST_F(FarmTest, MalformedRequestsNameTheField) {
     v1::SubmitJobRequest request;
     absl::Status status = client_->Submit(request).status();

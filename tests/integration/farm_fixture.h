@@ -30,6 +30,7 @@
 #include "photonfarm/v1/work.grpc.pb.h"
 #include "tests/support/child_process.h"
 #include "tests/support/farm_credentials.h"
+#include "tests/support/fault_proxy.h"
 #include "tests/support/image_agreement.h"
 #include "tests/support/test_env.h"
 #include "tests/support/vulkan_validation.h"
@@ -104,13 +105,14 @@ protected:
     void SetUp() override { StartCoordinator("127.0.0.1:0"); }
 
     // Starts the coordinator on `listen` with the fixture's flags and connects the client.
-    void StartCoordinator(const std::string& listen, const std::vector<std::string>& flags = {}) {
+    void StartCoordinator(const std::string& listen, const std::vector<std::string>& flags = {},
+                          double worker_timeout_seconds = WorkerTimeoutSeconds()) {
         ASSERT_FALSE(coordinator_) << "one coordinator at a time";
         coordinator_ = std::make_unique<ChildProcess>(Concat(
             Concat(
                 {kBin + "/server/photonfarm-coordinator", "--listen", listen, "--heartbeat-seconds",
                  std::to_string(HeartbeatSeconds()), "--worker-timeout-seconds",
-                 std::to_string(WorkerTimeoutSeconds()), "--log-level", "warn"},
+                 std::to_string(worker_timeout_seconds), "--log-level", "warn"},
                 Credentials().CoordinatorFlags()),
             flags));
         const std::optional<std::string> line = coordinator_->ReadLine(DeadlineSeconds());
@@ -136,10 +138,13 @@ protected:
         StopCoordinator();
     }
 
-    ChildProcess& StartWorker(const std::string& backend = "cpu", int threads = 1) {
+    // A worker of the coordinator, reached at `through` where given (a FaultProxy's address).
+    ChildProcess& StartWorker(const std::string& backend = "cpu", int threads = 1,
+                              const std::string& through = "") {
         workers_.push_back(std::make_unique<ChildProcess>(
-            Concat({kBin + "/worker/photonfarm-worker", "--coordinator", address_, "--threads",
-                    std::to_string(threads), "--backend", backend, "--log-level", "warn"},
+            Concat({kBin + "/worker/photonfarm-worker", "--coordinator",
+                    through.empty() ? address_ : through, "--threads", std::to_string(threads),
+                    "--backend", backend, "--log-level", "warn"},
                    Credentials().WorkerFlags())));
         return *workers_.back();
     }
