@@ -158,6 +158,8 @@ private:
     Clock::duration Duration(double seconds) const;
     void ReapWorkersLocked(Clock::time_point now);
     void ForgetEndedJobsLocked();
+    // A submission of `owner`'s, counted against the limits while it was prepared, is over.
+    void EndSubmissionLocked(const std::string& owner);
     std::shared_ptr<Job> PickJobLocked(Clock::time_point now);
     void NotifyWork();  // wakes every waiting lease (a job came, went or changed)
     // Wakes a waiting lease per batch that became leasable (all of them when there are more
@@ -184,6 +186,7 @@ private:
     uint64_t lease_waiters_ = 0;     // leases waiting on work_available_
     Clock::time_point next_reap_{};  // ReapWorkersLocked walks the workers again from then
     std::map<std::string, std::shared_ptr<Job>> jobs_;  // by id
+    std::map<std::string, size_t> submitting_;          // submissions being prepared, by owner
     std::vector<std::string> job_order_;  // submission order, for fairness ties and listings
     // The lease choice's state (PickJobLocked), by job id.
     struct JobShare {

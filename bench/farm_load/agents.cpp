@@ -3,6 +3,7 @@
 
 #include <grpcpp/client_context.h>
 
+#include <cstring>
 #include <deque>
 #include <set>
 
@@ -22,6 +23,9 @@ namespace v1 = photonfarm::v1;
 constexpr double kCallSeconds = 30;
 // How long a slot waits before trying again after a refused or failed call.
 constexpr double kRetrySeconds = 0.5;
+// A watch stream is opened again after this long, so that no stalled stream holds the
+// harness at its end.
+constexpr double kWatchSeconds = 10;
 // Blobs a worker remembers having fetched (a real worker caches a few jobs' blobs).
 constexpr size_t kBlobsKept = 64;
 
@@ -290,8 +294,8 @@ std::vector<JobOutcome> RunJobSlot(LoadContext& ctx, SlotBoard& board, const Slo
         board.Publish(slot.slot, outcome.job_id);
         // Follow the job to its end, through coordinator restarts.
         while (true) {
-            absl::StatusOr<v1::Snapshot> last =
-                client->Watch(outcome.job_id, 0, false, [](const v1::Snapshot&) { return true; });
+            absl::StatusOr<v1::Snapshot> last = client->Watch(
+                outcome.job_id, 0, false, [](const v1::Snapshot&) { return true; }, kWatchSeconds);
             if (last.ok() && Terminal(last->status().state())) break;
             if (!last.ok() && last.status().code() == absl::StatusCode::kNotFound) {
                 outcome.state = "lost";
@@ -336,14 +340,24 @@ std::vector<SnapshotArrival> RunWatcher(LoadContext& ctx, SlotBoard& board, size
     uint64_t seen = 0;
     std::string job_id;
     while (board.Next(slot, seen, job_id)) {
-        bool first = true;  // sent when the stream opens, not by a merge
-        (void)client->Watch(job_id, 0, true, [&](const v1::Snapshot& snapshot) {
-            ++ctx.counters.snapshots;
-            if (!first)
-                arrivals.push_back({job_id, snapshot.status().epochs(), SinceStart(ctx.start)});
-            first = false;
-            return !ctx.stop_workers.Stopped();
-        });
+        // Watched to its end (again after a restart or a stream past kWatchSeconds).
+        absl::StatusOr<v1::Snapshot> last;
+        do {
+            bool first = true;  // sent when the stream opens, not by a merge
+            last = client->Watch(
+                job_id, 0, true,
+                [&](const v1::Snapshot& snapshot) {
+                    ++ctx.counters.snapshots;
+                    if (!first)
+                        arrivals.push_back(
+                            {job_id, snapshot.status().epochs(), SinceStart(ctx.start)});
+                    first = false;
+                    return !ctx.stop_workers.Stopped();
+                },
+                kWatchSeconds);
+        } while (!(last.ok() && Terminal(last->status().state())) &&
+                 !(!last.ok() && last.status().code() == absl::StatusCode::kNotFound) &&
+                 ctx.stop_workers.SleepFor(kRetrySeconds));
     }
     return arrivals;
 }

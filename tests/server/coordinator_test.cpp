@@ -20,6 +20,7 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <thread>
 
 #include "absl/strings/str_split.h"
 #include "core/scene/scene_loader.h"
@@ -128,6 +129,35 @@ TEST(CoordinatorTest, RequestsOverTheClientLimitsAreRefused) {
     ASSERT_TRUE(coordinator.Cancel(first).ok());
     EXPECT_TRUE(coordinator.Submit(SmallJob(1'000'000, 0, "alice")).ok())
         << "an ended job no longer counts";
+}
+
+// Submissions of one client at once: the limit counts those still being prepared (their
+// camera passes run outside the coordinator's lock), so exactly the limit's worth get in.
+TEST(CoordinatorTest, ConcurrentSubmissionsOfOneClientStayWithinItsLimit) {
+    FakeClock clock;
+    CoordinatorOptions options = Options(&clock);
+    options.client_limits.max_jobs_per_client = 2;
+    Coordinator coordinator(options);
+    constexpr int kSubmissions = 6;
+    std::vector<JobRequest> requests;
+    for (int i = 0; i < kSubmissions; ++i) requests.push_back(SmallJob(1'000'000, 0, "alice"));
+    std::vector<absl::StatusOr<JobProgress>> outcomes(kSubmissions, absl::UnknownError("unset"));
+    std::vector<std::thread> submitters;
+    for (int i = 0; i < kSubmissions; ++i)
+        submitters.emplace_back(
+            [&, i] { outcomes[i] = coordinator.Submit(std::move(requests[i])); });
+    for (std::thread& submitter : submitters) submitter.join();
+    int accepted = 0;
+    for (const absl::StatusOr<JobProgress>& outcome : outcomes) {
+        if (outcome.ok())
+            ++accepted;
+        else
+            ExpectOverLimit(outcome, "--max-jobs-per-client");
+    }
+    EXPECT_EQ(accepted, 2);
+    EXPECT_EQ(coordinator.ListJobs().size(), 2u);
+    EXPECT_TRUE(coordinator.Submit(SmallJob(1'000'000, 0, "bob")).ok())
+        << "another client's submissions are not held back by them";
 }
 
 TEST(CoordinatorTest, WatchersPerJobAreCounted) {
