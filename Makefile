@@ -53,6 +53,7 @@ bench: build
 	./$(BUILD)/bench/backend_bench --seconds 3
 	./$(BUILD)/bench/numerics_report
 	bench/farm_vs_render.sh $(BUILD)
+	./$(BUILD)/bench/farm_load --workers 50 --jobs 8 --watchers 8 --seconds 30
 
 clean:
 	rm -rf $(BUILD) out

@@ -205,15 +205,21 @@ int Run(const Flags& flags) {
 int main(int argc, char** argv) {
     pf::load::Flags flags;
     CLI::App app{"farm_load: one coordinator under many simulated workers, jobs and watchers"};
-    app.add_option("--workers", flags.workers, "Simulated workers, each on its own connection");
-    app.add_option("--jobs", flags.jobs, "Job slots: each submits its job again as it finishes");
-    app.add_option("--clients", flags.clients, "Clients (tokens) the slots are spread over");
+    app.add_option("--workers", flags.workers, "Simulated workers, each on its own connection")
+        ->check(CLI::Range(1, 100000));
+    app.add_option("--jobs", flags.jobs, "Job slots: each submits its job again as it finishes")
+        ->check(CLI::Range(1, 10000));
+    app.add_option("--clients", flags.clients, "Clients (tokens) the slots are spread over")
+        ->check(CLI::Range(1, 10000));
     app.add_option("--watchers", flags.watchers, "Snapshot streams with images, over the slots");
-    app.add_option("--seconds", flags.seconds, "How long slots keep submitting");
+    app.add_option("--seconds", flags.seconds, "How long slots keep submitting")
+        ->check(CLI::Range(1.0, 86400.0));
     app.add_option("--batch-seconds", flags.batch_seconds,
-                   "A simulated worker's compute time per batch");
+                   "A simulated worker's compute time per batch")
+        ->check(CLI::Range(0.0, 3600.0));
     app.add_option("--warmup-seconds", flags.warmup_seconds, "Left out of the rates at the start");
-    app.add_option("--print-every", flags.print_every, "Seconds between progress lines");
+    app.add_option("--print-every", flags.print_every, "Seconds between progress lines")
+        ->check(CLI::Range(1.0, 3600.0));
     app.add_option("--crash-at", flags.crash_at,
                    "Kill the coordinator (SIGKILL) at this second and restart it from its "
                    "checkpoints (0: never)");
