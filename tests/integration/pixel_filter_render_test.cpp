@@ -142,9 +142,11 @@ TEST(PixelFilterRender, MitchellsNegativeWeightsCarryPpmsPhotons) {
             blocks_reference.push_back(a), blocks_ppm.push_back(b);
             brightest = std::max(brightest, a);
         }
-    for (size_t i = 0; i < blocks_reference.size(); ++i)
-        if (blocks_reference[i] > 0.05 * brightest)
+    for (size_t i = 0; i < blocks_reference.size(); ++i) {
+        if (blocks_reference[i] > 0.05 * brightest) {
             EXPECT_NEAR(blocks_ppm[i] / blocks_reference[i], 1.0, 0.1) << "block " << i;
+        }
+    }
 }
 
 }  // namespace
