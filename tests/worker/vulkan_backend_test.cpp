@@ -339,7 +339,9 @@ TEST_F(VulkanBackendTest, StochasticEpochsTraceTheirOwnHitPointsAndMatchTheCpuBa
             for (const BatchResult& result : gpu_results)
                 for (uint32_t i = 0; i < result.samples.size(); ++i) {
                     const bool gather_slot = (result.spec.sample_begin + i) % 5 != 0;
-                    if (gather_slot) EXPECT_TRUE(IsBlack(result.samples[i]));
+                    if (gather_slot) {
+                        EXPECT_TRUE(IsBlack(result.samples[i]));
+                    }
                     lit += !IsBlack(result.samples[i]);
                 }
             EXPECT_GT(lit, radius_sq.size() / 5 / 2);
