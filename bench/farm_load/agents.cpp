@@ -12,6 +12,7 @@
 #include "core/job/work_source.h"
 #include "photonfarm/v1/work.grpc.pb.h"
 #include "wire/proto_convert.h"
+#include "wire/rpc_status.h"
 
 namespace pf::load {
 namespace {
@@ -28,12 +29,6 @@ constexpr double kRetrySeconds = 0.5;
 constexpr double kWatchSeconds = 10;
 // Blobs a worker remembers having fetched (a real worker caches a few jobs' blobs).
 constexpr size_t kBlobsKept = 64;
-
-void SetDeadline(grpc::ClientContext& context, double seconds) {
-    context.set_deadline(std::chrono::system_clock::now() +
-                         std::chrono::duration_cast<std::chrono::system_clock::duration>(
-                             std::chrono::duration<double>(seconds)));
-}
 
 double SecondsSince(SteadyClock::time_point start) {
     return std::chrono::duration<double>(SteadyClock::now() - start).count();
@@ -76,7 +71,7 @@ public:
         }
         if (!worker_id_.empty()) {
             grpc::ClientContext context;
-            SetDeadline(context, kCallSeconds);
+            SetDeadline(&context, kCallSeconds);
             v1::UnregisterWorkerRequest request;
             request.set_worker_id(worker_id_);
             v1::UnregisterWorkerResponse response;
@@ -97,7 +92,7 @@ private:
 
     bool Register() {
         grpc::ClientContext context;
-        SetDeadline(context, kCallSeconds);
+        SetDeadline(&context, kCallSeconds);
         v1::RegisterWorkerRequest request;
         request.set_backend("cpu");
         request.set_threads(1);
@@ -116,7 +111,7 @@ private:
 
     void Heartbeat() {
         grpc::ClientContext context;
-        SetDeadline(context, kCallSeconds);
+        SetDeadline(&context, kCallSeconds);
         v1::HeartbeatRequest request;
         request.set_worker_id(worker_id_);
         v1::HeartbeatResponse response;
@@ -129,7 +124,7 @@ private:
 
     bool Lease(v1::LeaseBatchesResponse& response) {
         grpc::ClientContext context;
-        SetDeadline(context, kCallSeconds);
+        SetDeadline(&context, kCallSeconds);
         v1::LeaseBatchesRequest request;
         request.set_worker_id(worker_id_);
         request.set_chunks(1);
@@ -148,7 +143,7 @@ private:
     void Fetch(const std::string& digest) {
         if (std::find(blobs_.begin(), blobs_.end(), digest) != blobs_.end()) return;
         grpc::ClientContext context;
-        SetDeadline(context, kCallSeconds);
+        SetDeadline(&context, kCallSeconds);
         v1::FetchBlobRequest request;
         request.set_digest(digest);
         std::unique_ptr<grpc::ClientReader<v1::BlobChunk>> reader =
@@ -166,7 +161,7 @@ private:
 
     void Report(const std::string& job_id, v1::BatchResult result) {
         grpc::ClientContext context;
-        SetDeadline(context, kCallSeconds);
+        SetDeadline(&context, kCallSeconds);
         v1::ReportTallyRequest request;
         request.set_worker_id(worker_id_);
         request.set_job_id(job_id);
