@@ -284,10 +284,18 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                                    : settings.emission_only ? kEmissionSampleStream
                                                             : kFixedSampleStream;
 
+    // The pixels traced: all, or a part of a stochastic pass (which keeps no emission).
+    const uint64_t pixels = uint64_t(width) * uint64_t(height);
+    const uint64_t first_pixel = settings.first_pixel;
+    const uint64_t end_pixel =
+        settings.pixel_count == 0 ? pixels : first_pixel + settings.pixel_count;
+    const bool part = end_pixel - first_pixel < pixels;
+    PF_CHECK(first_pixel <= end_pixel && end_pixel <= pixels &&
+             (!part || (settings.stochastic && fixed == nullptr)));
     std::vector<std::vector<HitPoint>> row_hit_points(height);
     std::vector<std::vector<float>> row_footprints(height);
     CameraPassResult result;
-    result.emission = Image(width, height);
+    if (!part) result.emission = Image(width, height);
     PF_CHECK(fixed == nullptr ||
              (settings.emission_only && fixed->begin.size() == size_t(width) * height + 1));
     // Each fixed hit point lies in one pixel, so rows in parallel credit disjoint ones.
@@ -299,50 +307,57 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
             ? (features.textures ? TraceCameraSample<true, true> : TraceCameraSample<true, false>)
             : (features.textures ? TraceCameraSample<false, true>
                                  : TraceCameraSample<false, false>);
-    tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& rows) {
-        for (int y = rows.begin(); y < rows.end(); ++y) {
-            for (int x = 0; x < width; ++x) {
-                const auto pixel = static_cast<uint32_t>(y * width + x);
-                Rng rng(
-                    HashSeed(settings.seed, kCameraStream ^ sample_stream, settings.epoch, pixel));
-                Rgb emission(0.0f);
-                for (int s = 0; s < spp; ++s) {
-                    PixelSampler sampler = PixelSampler::InEpochSequence(
-                        settings.seed, sample_stream, pixel, settings.epoch,
-                        settings.first_sample + uint64_t(s));
-                    const CameraRay ray = PixelSampleRay(scene.camera, film, filter, x, y, sampler);
-                    const size_t before = row_hit_points[y].size();
-                    emission +=
-                        trace(scene, tracer, ray, pixel, pixel_width, filter_width, splits,
-                              max_depth, gather_rays, rng, row_hit_points[y], row_footprints[y]);
-                    // A stochastic pass keeps 1 + gather_rays slots per sample (one without
-                    // gather rays), black where it found nothing.
-                    if (settings.stochastic && row_hit_points[y].size() == before) {
-                        for (int slot = 0; slot <= gather_rays; ++slot) {
-                            row_hit_points[y].push_back(
-                                {Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), Rgb(0.0f), pixel, kNoCoat,
-                                 slot == 0 && gather_rays > 0 ? kCausticPhoton : kAllPhotons});
-                            row_footprints[y].push_back(0.0f);
+    const auto first_row = static_cast<int>(first_pixel / width);
+    const auto end_row = static_cast<int>((end_pixel + width - 1) / width);
+    tbb::parallel_for(
+        tbb::blocked_range<int>(first_row, end_row), [&](const tbb::blocked_range<int>& rows) {
+            for (int y = rows.begin(); y < rows.end(); ++y) {
+                const uint64_t row = uint64_t(y) * width;
+                const auto x_begin = static_cast<int>(std::max(first_pixel, row) - row);
+                const auto x_end = static_cast<int>(std::min(end_pixel, row + width) - row);
+                for (int x = x_begin; x < x_end; ++x) {
+                    const auto pixel = static_cast<uint32_t>(y * width + x);
+                    Rng rng(HashSeed(settings.seed, kCameraStream ^ sample_stream, settings.epoch,
+                                     pixel));
+                    Rgb emission(0.0f);
+                    for (int s = 0; s < spp; ++s) {
+                        PixelSampler sampler = PixelSampler::InEpochSequence(
+                            settings.seed, sample_stream, pixel, settings.epoch,
+                            settings.first_sample + uint64_t(s));
+                        const CameraRay ray =
+                            PixelSampleRay(scene.camera, film, filter, x, y, sampler);
+                        const size_t before = row_hit_points[y].size();
+                        emission += trace(scene, tracer, ray, pixel, pixel_width, filter_width,
+                                          splits, max_depth, gather_rays, rng, row_hit_points[y],
+                                          row_footprints[y]);
+                        // A stochastic pass keeps 1 + gather_rays slots per sample (one without
+                        // gather rays), black where it found nothing.
+                        if (settings.stochastic && row_hit_points[y].size() == before) {
+                            for (int slot = 0; slot <= gather_rays; ++slot) {
+                                row_hit_points[y].push_back(
+                                    {Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), Rgb(0.0f), pixel, kNoCoat,
+                                     slot == 0 && gather_rays > 0 ? kCausticPhoton : kAllPhotons});
+                                row_footprints[y].push_back(0.0f);
+                            }
                         }
                     }
-                }
-                result.emission.At(x, y) = emission / static_cast<float>(spp);
-                if (settings.emission_only) {  // no hit points kept
-                    if (fixed != nullptr)
-                        for (const HitPoint& hit : row_hit_points[y])
-                            if (const std::optional<uint32_t> i =
-                                    CoveringHitPoint(*fixed, pixel, hit))
-                                result.coverage[*i] += hit.weight;
-                    if (fixed != nullptr)  // averaged over the pixel's samples
-                        fixed->ForEachOf(pixel, [&](uint32_t i) {
-                            result.coverage[i] /= static_cast<float>(spp);
-                        });
-                    row_hit_points[y].clear();
-                    row_footprints[y].clear();
+                    if (!part) result.emission.At(x, y) = emission / static_cast<float>(spp);
+                    if (settings.emission_only) {  // no hit points kept
+                        if (fixed != nullptr)
+                            for (const HitPoint& hit : row_hit_points[y])
+                                if (const std::optional<uint32_t> i =
+                                        CoveringHitPoint(*fixed, pixel, hit))
+                                    result.coverage[*i] += hit.weight;
+                        if (fixed != nullptr)  // averaged over the pixel's samples
+                            fixed->ForEachOf(pixel, [&](uint32_t i) {
+                                result.coverage[i] /= static_cast<float>(spp);
+                            });
+                        row_hit_points[y].clear();
+                        row_footprints[y].clear();
+                    }
                 }
             }
-        }
-    });
+        });
     if (settings.emission_only) return result;
     std::vector<HitPoint> hit_points;
     std::vector<float> footprints;
@@ -388,6 +403,36 @@ CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, const Jo
     CameraPassSettings settings = EpochPass(film, spec, epoch);
     settings.stochastic = true;
     return settings;
+}
+
+void CameraPassPart::Reset(const CameraPassSettings& pass) {
+    PF_CHECK(pass.stochastic && pass.pixel_count == 0);
+    pass_ = pass;
+    slots_per_pixel_ = uint64_t(pass.samples_per_pixel) * uint64_t(1 + pass.gather_rays);
+    points_.clear();
+    first_pixel_ = end_pixel_ = 0;
+}
+
+bool CameraPassPart::Cover(const Scene& scene, const Tracer& tracer,
+                           std::span<const BatchSpec> specs) {
+    uint64_t begin = UINT64_MAX, end = 0;
+    for (const BatchSpec& spec : specs)
+        if (spec.sample_end > spec.sample_begin) {
+            begin = std::min<uint64_t>(begin, spec.sample_begin);
+            end = std::max<uint64_t>(end, spec.sample_end);
+        }
+    if (begin >= end) return false;
+    const uint64_t first_pixel = begin / slots_per_pixel_;
+    const uint64_t end_pixel = (end + slots_per_pixel_ - 1) / slots_per_pixel_;
+    if (first_pixel >= first_pixel_ && end_pixel <= end_pixel_) return false;
+    CameraPassSettings part = pass_;
+    part.first_pixel = static_cast<uint32_t>(first_pixel);
+    part.pixel_count = static_cast<uint32_t>(end_pixel - first_pixel);
+    points_ = RunCameraPass(scene, tracer, part).hit_points;
+    PF_CHECK(points_.size() == (end_pixel - first_pixel) * slots_per_pixel_);
+    first_pixel_ = first_pixel;
+    end_pixel_ = end_pixel;
+    return true;
 }
 
 CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobSpec& spec,

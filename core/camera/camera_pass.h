@@ -14,6 +14,7 @@
 #include "core/camera/surface_extent.h"
 #include "core/film/image.h"
 #include "core/geometry/tracer.h"
+#include "core/job/batch.h"
 #include "core/job/hit_point.h"
 #include "core/job/job_spec.h"
 #include "core/scene/scene.h"
@@ -46,6 +47,10 @@ struct CameraPassSettings {
     // of its own after the sample's, so a sample keeps 1 + gather_rays slots in a fixed order
     // (pixel, sample, ray); the camera hit point then gathers caustics alone. 0: none.
     int gather_rays = 0;
+    // The pixels traced, [first_pixel, first_pixel + pixel_count) in row order; 0: all. A part
+    // of a stochastic pass holds the same slots as the whole pass's for those pixels (each
+    // pixel's paths draw from streams of its own), from slot first_pixel * k * (1 + gather_rays).
+    uint32_t first_pixel = 0, pixel_count = 0;
 };
 
 // Hit points indexed by pixel: pixel p's are points[order[begin[p] .. begin[p + 1])] in index
@@ -111,6 +116,28 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
 // slots.
 CameraPassSettings StochasticCameraPass(const CameraPassSettings& film, const JobSpec& spec,
                                         uint64_t epoch);
+
+// The slots of a stochastic pass a worker's batches sample ppm's direct light at: the pixels
+// their sample slices lie in, traced when batches need them, rather than the whole pass on
+// every worker. Each pixel's paths draw from streams of their own, so a part's slots are the
+// whole pass's, bit for bit.
+class CameraPassPart {
+public:
+    // Forgets the part held; the next Cover traces from `pass` (a StochasticCameraPass).
+    void Reset(const CameraPassSettings& pass);
+    // Holds the slots of `specs`' sample slices, with the rest of their pixels' (the pixels
+    // from the first's to the last's), tracing them unless held already. Returns whether it
+    // traced.
+    bool Cover(const Scene& scene, const Tracer& tracer, std::span<const BatchSpec> specs);
+    std::span<const HitPoint> Points() const { return points_; }
+    uint64_t FirstSlot() const { return first_pixel_ * slots_per_pixel_; }
+
+private:
+    CameraPassSettings pass_;
+    uint64_t slots_per_pixel_ = 1;
+    std::vector<HitPoint> points_;
+    uint64_t first_pixel_ = 0, end_pixel_ = 0;  // the part held
+};
 
 // Progressive photon mapping's emission pass of `epoch`: the emission the camera sees, directly
 // or through specular chains, from the epoch's own camera samples, with no hit points (photons

@@ -107,10 +107,12 @@ uint64_t DirectLightSequences(uint64_t seed) { return gpu::FamilyPartial(seed, k
 uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
                            std::span<const Material> materials,
                            std::span<const HitPoint> hit_points, uint32_t first, uint64_t seed,
-                           uint64_t epoch, const DirectLightSequence* sequence,
-                           std::span<Rgb> out) {
+                           uint64_t epoch, const DirectLightSequence* sequence, std::span<Rgb> out,
+                           uint64_t points_offset) {
     uint64_t discarded = 0;
-    PF_CHECK(first + out.size() <= hit_points.size());
+    PF_CHECK(first >= points_offset && first - points_offset + out.size() <= hit_points.size());
+    // The points sampled, out[i]'s at points[i]; its index in the whole set is first + i.
+    const std::span<const HitPoint> points = hit_points.subspan(first - points_offset, out.size());
     constexpr int kLanes = Tracer::kPacketSize;
     const SeedFamily seeds = DirectLightSeeds(seed, epoch);
     const uint64_t sequences = DirectLightSequences(seed);
@@ -123,7 +125,7 @@ uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
         RayHit hits[kLanes];
         for (int lane = 0; lane < lanes; ++lane) {
             const uint32_t index = first + static_cast<uint32_t>(begin) + lane;
-            const HitPoint& hit_point = hit_points[index];
+            const HitPoint& hit_point = points[begin + lane];
             if (hit_point.gathers & kDirectPhoton) continue;  // its photons carry direct light
             const Material* coat = hit_point.coat == kNoCoat ? nullptr : &materials[hit_point.coat];
             if (sequence != nullptr) {
@@ -162,7 +164,7 @@ uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
         tracer.OccludedPacket(shadow_rays, shadow_active, occluded);
         if (emitters.FoundByRays()) tracer.IntersectPacket(bsdf_rays, bsdf_active, hits, found);
         for (int lane = 0; lane < lanes; ++lane) {
-            const HitPoint& hit_point = hit_points[first + begin + lane];
+            const HitPoint& hit_point = points[begin + lane];
             if (hit_point.gathers & kDirectPhoton) {
                 out[begin + lane] = Rgb(0.0f);
                 continue;

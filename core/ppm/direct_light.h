@@ -75,10 +75,13 @@ uint64_t DirectLightSequences(uint64_t seed);
 // alone, or, given `sequence`, from its pixel's scrambled (0,2)-sequences keyed by (seed,
 // pixel, epoch's parity, index). Rays are cast in packets. A sample that comes out NaN or Inf
 // is set to 0; returns how many were. `materials` holds the hit points' coats. A hit point
-// that gathers direct photons (rpm's gather hits) takes no sample: 0.
+// that gathers direct photons (rpm's gather hits) takes no sample: 0. `points_offset`: the
+// index h of hit_points[0], where they are a part of a larger set (a worker's part of an epoch's
+// camera pass); `first` and h count in the whole set.
 uint64_t SampleDirectLight(const Emitters& emitters, const Tracer& tracer,
                            std::span<const Material> materials,
                            std::span<const HitPoint> hit_points, uint32_t first, uint64_t seed,
-                           uint64_t epoch, const DirectLightSequence* sequence, std::span<Rgb> out);
+                           uint64_t epoch, const DirectLightSequence* sequence, std::span<Rgb> out,
+                           uint64_t points_offset = 0);
 
 }  // namespace pf

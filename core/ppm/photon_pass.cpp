@@ -239,7 +239,8 @@ std::vector<BatchResult> RunPhotonBatches(const PhotonPassInputs& inputs,
         result.nonfinite_discarded += SampleDirectLight(
             *inputs.emitters, *inputs.tracer, inputs.scene->materials, inputs.DirectPoints(),
             spec.sample_begin, inputs.seed, spec.epoch,
-            inputs.direct_sequence ? &*inputs.direct_sequence : nullptr, result.samples);
+            inputs.direct_sequence ? &*inputs.direct_sequence : nullptr, result.samples,
+            inputs.direct_points.empty() ? 0 : inputs.direct_offset);
     });
     return results;
 }

@@ -43,6 +43,7 @@ struct PhotonPassInputs {
     // Where the batches' direct-light slices sample: the epoch's camera pass (for sppm the
     // hit points themselves); empty: the hit points.
     std::span<const HitPoint> direct_points;
+    uint64_t direct_offset = 0;  // the slot of direct_points[0] in the pass (a part of it)
     std::span<const HitPoint> DirectPoints() const {
         return direct_points.empty() ? hit_points : direct_points;
     }

@@ -8,10 +8,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "core/camera/camera_pass.h"
 #include "tests/support/lit_scene.h"
 
 namespace pf {
@@ -101,6 +103,66 @@ TEST(DirectLightTest, APixelsSequencesStratifyItsLightSamplesAcrossEpochs) {
         }
     EXPECT_LT(squared[1], 0.1 * squared[0])
         << "stream MSE " << squared[0] / kSeeds << ", sequenced " << squared[1] / kSeeds;
+}
+
+// Bit for bit: a float's bits, so that -0 and NaN compare as stored.
+bool SameBits(const HitPoint& a, const HitPoint& b) {
+    return std::memcmp(&a, &b, sizeof(HitPoint)) == 0;
+}
+
+TEST(DirectLightTest, APartOfAnEpochsPassHoldsTheWholePassesSlotsAndSamples) {
+    // A worker traces only the pixels of its batches' direct-light slices (CameraPassPart):
+    // their slots and the light sampled there must be the whole pass's, for slices that start
+    // and end inside rows and pixels, with rpm's gather rays (three slots a sample) and without.
+    const std::unique_ptr<const LitScene> lit = LoadLitScene("cornell-glossy.gltf");
+    ASSERT_NE(lit, nullptr);
+    for (const int gather_rays : {0, 2}) {
+        SCOPED_TRACE(::testing::Message() << gather_rays << " gather rays");
+        CameraPassSettings pass{37, 23, 2, 9};  // rows of 37 pixels, 2 samples a pixel
+        pass.stochastic = true;
+        pass.epoch = 3;
+        pass.first_sample = 6;
+        pass.gather_rays = gather_rays;
+        pass.features = lit->features;
+        const std::vector<HitPoint> whole =
+            RunCameraPass(lit->scene, *lit->tracer, pass).hit_points;
+        const uint64_t slots_per_pixel = 2ull * (1 + gather_rays);
+        ASSERT_EQ(whole.size(), 37u * 23u * slots_per_pixel);
+        const DirectLightSequence sequence{2, 6, 1 + gather_rays};
+        CameraPassPart part;
+        part.Reset(pass);
+        const std::vector<std::vector<BatchSpec>> leases = {
+            {{.epoch = 3, .sample_begin = 5, .sample_end = 100}},
+            {{.epoch = 3, .sample_begin = 97, .sample_end = 1301}},
+            {{.epoch = 3, .sample_begin = 10, .sample_end = 20},
+             {.epoch = 3, .sample_begin = 500, .sample_end = 611}},
+            {{.epoch = 3, .sample_begin = 0, .sample_end = uint32_t(whole.size())}}};
+        for (const std::vector<BatchSpec>& specs : leases) {
+            EXPECT_TRUE(part.Cover(lit->scene, *lit->tracer, specs));
+            EXPECT_FALSE(part.Cover(lit->scene, *lit->tracer, specs)) << "traced it twice";
+            const std::span<const HitPoint> points = part.Points();
+            ASSERT_LE(part.FirstSlot() + points.size(), whole.size());
+            EXPECT_EQ(part.FirstSlot() % slots_per_pixel, 0u);
+            for (size_t i = 0; i < points.size(); ++i)
+                ASSERT_TRUE(SameBits(points[i], whole[part.FirstSlot() + i])) << "slot " << i;
+            for (const BatchSpec& spec : specs) {
+                ASSERT_LE(part.FirstSlot(), spec.sample_begin);
+                ASSERT_LE(spec.sample_end, part.FirstSlot() + points.size());
+                std::vector<Rgb> from_part(spec.sample_end - spec.sample_begin),
+                    from_whole(from_part.size());
+                SampleDirectLight(*lit->emitters, *lit->tracer, lit->scene.materials, points,
+                                  spec.sample_begin, 5, 3, &sequence, from_part, part.FirstSlot());
+                SampleDirectLight(*lit->emitters, *lit->tracer, lit->scene.materials, whole,
+                                  spec.sample_begin, 5, 3, &sequence, from_whole);
+                EXPECT_EQ(std::memcmp(from_part.data(), from_whole.data(),
+                                      from_part.size() * sizeof(Rgb)),
+                          0);
+            }
+        }
+        // A lease inside the part held traces nothing more.
+        EXPECT_FALSE(part.Cover(lit->scene, *lit->tracer,
+                                std::vector<BatchSpec>{{.sample_begin = 7, .sample_end = 8}}));
+    }
 }
 
 }  // namespace

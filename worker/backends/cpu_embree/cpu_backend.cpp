@@ -88,7 +88,9 @@ absl::Status CpuBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regions
         // sppm's and rpm's hit points are the pass's; ppm samples direct light there.
         const bool stochastic = TracesHitPointsEachEpoch(job_.spec->integrator);
         const CameraPassSettings pass = StochasticCameraPass(*film_, *job_.spec, epoch);
-        if (stochastic && traced != nullptr)
+        if (!stochastic)
+            direct_points_.Reset(pass);  // traced by parts, as batches need them
+        else if (traced != nullptr)
             epoch_hit_points_ = *traced;
         else
             epoch_hit_points_ = RunCameraPass(*job_.scene, tracer_, pass).hit_points;
@@ -111,7 +113,13 @@ absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const 
     }
     PhotonPassInputs inputs{job_.scene, job_.emitters, &tracer_, job_.hit_points,
                             &grid_,     job_.seed,     features_};
-    inputs.direct_points = epoch_hit_points_;
+    if (film_ && !TracesHitPointsEachEpoch(job_.spec->integrator)) {
+        direct_points_.Cover(*job_.scene, tracer_, specs);
+        inputs.direct_points = direct_points_.Points();
+        inputs.direct_offset = direct_points_.FirstSlot();
+    } else {
+        inputs.direct_points = epoch_hit_points_;
+    }
     inputs.direct_sequence = direct_sequence_;
     if (job_.spec != nullptr) {
         inputs.max_bounces = DepthLimit(job_.spec->max_depth, kMaxPhotonBounces);

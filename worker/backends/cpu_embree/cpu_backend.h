@@ -37,11 +37,12 @@ private:
     PhotonPassScratch scratch_;
     RadianceFunction radiance_;               // path, pm: a camera sample's radiance
     std::shared_ptr<const PhotonMaps> maps_;  // pm: the job's photon maps
-    // ppm, sppm: the film whose epoch passes are traced (StochasticCameraPass), and the current
-    // epoch's pass's hit points, where
-    // the epoch's direct light is sampled (and sppm's photons gather).
+    // ppm, sppm, rpm: the film whose epoch passes are traced (StochasticCameraPass), and the
+    // current epoch's pass's hit points, where sppm's and rpm's photons gather and the epoch's
+    // direct light is sampled; ppm's, where it samples direct light, in parts.
     std::optional<CameraPassSettings> film_;
     std::vector<HitPoint> epoch_hit_points_;
+    CameraPassPart direct_points_;
     std::optional<DirectLightSequence> direct_sequence_;  // the pass's camera samples
 };
 

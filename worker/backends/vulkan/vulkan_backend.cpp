@@ -144,15 +144,15 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
             return tracer.status();
         film_ = *film;
         // Room for the largest epoch's pass (a growing epoch takes fewer samples).
-        epoch_hit_points_.assign(size_t(film_->width) * size_t(film_->height) *
-                                     size_t(MaxEpochSamplesPerPixel(*job.spec)) *
-                                     SlotsPerCameraSample(*job.spec),
-                                 {});
-        max_epoch_points_ = epoch_hit_points_.size();
-        if (StochasticJob())
+        max_epoch_points_ = size_t(film_->width) * size_t(film_->height) *
+                            size_t(MaxEpochSamplesPerPixel(*job.spec)) *
+                            SlotsPerCameraSample(*job.spec);
+        if (StochasticJob()) {
+            epoch_hit_points_.assign(max_epoch_points_, {});
             job_.hit_points = epoch_hit_points_;
-        else
-            direct_points = epoch_hit_points_.size();
+        } else {
+            direct_points = max_epoch_points_;
+        }
     }
     if (job_.hit_points.size() >= (size_t{1} << 31))
         return absl::ResourceExhaustedError("over 2^31 hit points");
@@ -261,19 +261,20 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regi
     if (PixelJob()) return absl::OkStatus();  // pixel batches need nothing an epoch
     if (film_) {
         const CameraPassSettings pass = StochasticCameraPass(*film_, *job_.spec, epoch);
-        std::vector<HitPoint> points =
-            StochasticJob() && traced != nullptr
-                ? *traced
-                : RunCameraPass(scene_, *camera_tracer_, pass).hit_points;
         direct_sequence_ =
             DirectLightSequence{pass.samples_per_pixel, pass.first_sample, 1 + pass.gather_rays};
-        PF_CHECK(StochasticJob() ? points.size() == n : points.size() <= max_epoch_points_);
-        epoch_hit_points_ = std::move(points);
-        if (StochasticJob()) job_.hit_points = epoch_hit_points_;
-        Buffer& upload =
-            StochasticJob() ? buffers_->hit_point_upload : buffers_->direct_point_upload;
-        std::ranges::transform(epoch_hit_points_, static_cast<gpu::GpuHitPoint*>(upload.Mapped()),
-                               ToGpu);
+        if (StochasticJob()) {
+            epoch_hit_points_ = traced != nullptr
+                                    ? *traced
+                                    : RunCameraPass(scene_, *camera_tracer_, pass).hit_points;
+            PF_CHECK(epoch_hit_points_.size() == n);
+            job_.hit_points = epoch_hit_points_;
+            std::ranges::transform(
+                epoch_hit_points_,
+                static_cast<gpu::GpuHitPoint*>(buffers_->hit_point_upload.Mapped()), ToGpu);
+        } else {
+            direct_points_.Reset(pass);  // traced by parts as batches need them (RunBatches)
+        }
     }
     // Cells two of the largest radius wide, as the CPU grid: the largest over the hit points
     // the grid holds (a radius and a weight).
@@ -300,14 +301,9 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regi
                         buffers_->surface_edges.Handle(), 1, &edge_copy);
     }
     const VkBufferCopy points{.size = epoch_hit_points_.size() * sizeof(gpu::GpuHitPoint)};
-    if (film_ && !epoch_hit_points_.empty()) {
-        if (StochasticJob())
-            vkCmdCopyBuffer(*commands, buffers_->hit_point_upload.Handle(),
-                            buffers_->hit_points.Handle(), 1, &points);
-        else
-            vkCmdCopyBuffer(*commands, buffers_->direct_point_upload.Handle(),
-                            buffers_->direct_points.Handle(), 1, &points);
-    }
+    if (film_ && StochasticJob() && !epoch_hit_points_.empty())
+        vkCmdCopyBuffer(*commands, buffers_->hit_point_upload.Handle(),
+                        buffers_->hit_points.Handle(), 1, &points);
     vkCmdFillBuffer(*commands, buffers_->grid_begin.Handle(), 0, VK_WHOLE_SIZE, 0);
     stream_.Barrier();
     gpu::GpuParams params = BaseParams();
@@ -495,9 +491,31 @@ BatchResult VulkanBackend::ReadResult(const BatchSpec& spec) const {
     return result;
 }
 
+absl::Status VulkanBackend::UploadDirectPoints(std::span<const BatchSpec> specs) {
+    if (!direct_points_.Cover(scene_, *camera_tracer_, specs)) return absl::OkStatus();
+    const std::span<const HitPoint> part = direct_points_.Points();
+    PF_CHECK(direct_points_.FirstSlot() + part.size() <= max_epoch_points_);
+    // The part lies in the device's buffer where the whole pass's slots would.
+    const VkDeviceSize offset = direct_points_.FirstSlot() * sizeof(gpu::GpuHitPoint);
+    std::ranges::transform(part,
+                           static_cast<gpu::GpuHitPoint*>(buffers_->direct_point_upload.Mapped()) +
+                               direct_points_.FirstSlot(),
+                           ToGpu);
+    absl::StatusOr<VkCommandBuffer> commands = stream_.Begin();
+    if (!commands.ok()) return commands.status();
+    const VkBufferCopy copy{
+        .srcOffset = offset, .dstOffset = offset, .size = part.size() * sizeof(gpu::GpuHitPoint)};
+    vkCmdCopyBuffer(*commands, buffers_->direct_point_upload.Handle(),
+                    buffers_->direct_points.Handle(), 1, &copy);
+    stream_.Barrier();
+    return stream_.SubmitAndWait();
+}
+
 absl::StatusOr<std::vector<BatchResult>> VulkanBackend::RunBatches(
     std::span<const BatchSpec> specs) {
     if (buffers_ == nullptr) return absl::FailedPreconditionError("RunBatches before a job");
+    if (film_ && !StochasticJob())
+        if (absl::Status status = UploadDirectPoints(specs); !status.ok()) return status;
     std::vector<BatchResult> results;
     results.reserve(specs.size());
     for (const BatchSpec& spec : specs) {

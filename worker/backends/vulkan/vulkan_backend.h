@@ -80,6 +80,9 @@ private:
     // The host's Embree tracer over the scene, made for the first job that needs one.
     absl::StatusOr<const Tracer*> CameraTracer();
     absl::StatusOr<BatchResult> RunBatch(const BatchSpec& spec);
+    // ppm: traces the epoch pass's pixels that `specs`' direct-light slices lie in, unless
+    // held already, and copies their points to the device where the whole pass's would lie.
+    absl::Status UploadDirectPoints(std::span<const BatchSpec> specs);
     // A batch of the integrators that render pixels (path, pm).
     absl::StatusOr<BatchResult> RunPixelBatch(const BatchSpec& spec);
     // The finished batch's results, from the host-visible buffers.
@@ -119,10 +122,12 @@ private:
 
     // ppm, sppm, rpm: the film whose epoch passes are traced, on the CPU through camera_tracer_
     // (made for the first job that needs it, pm's maps too), and the pass's points: sppm's hit
-    // points, which job_.hit_points views (rpm's too), or ppm's points of direct light.
+    // points, which job_.hit_points views (rpm's too), or the part of ppm's points of direct
+    // light that the batches run need (UploadDirectPoints).
     std::optional<CameraPassSettings> film_;
     std::unique_ptr<Tracer> camera_tracer_;
     std::vector<HitPoint> epoch_hit_points_;
+    CameraPassPart direct_points_;
     size_t max_epoch_points_ = 0;                         // the buffers' room for them
     std::optional<DirectLightSequence> direct_sequence_;  // the pass's camera samples
     gpu::vec4 scene_sphere_{};
