@@ -46,8 +46,7 @@ absl::StatusOr<Rate> Measure(const std::string& backend_name, const std::string&
     const CameraPassSettings film = *FilmFor(spec, *scene);
     const CameraPassResult camera_pass = RunCameraPass(*scene, *tracer, film);
     const ProgressiveEstimate estimate(camera_pass,
-                                       EstimateFor(spec, camera_pass, *scene, scene_name),
-                                       TracedCameraPasses(*scene, tracer, film, spec));
+                                       EstimateFor(spec, camera_pass, *scene, scene_name), {});
     const Emitters emitters(*scene);
     absl::StatusOr<std::unique_ptr<Backend>> backend = CreateBackend(backend_name, *scene);
     if (!backend.ok()) return backend.status();

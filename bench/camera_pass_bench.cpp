@@ -1,4 +1,4 @@
-// The coordinator's camera pass of a ppm epoch (EmissionCameraPass: the emission the camera
+// The workers' emission pass of a ppm epoch (EmissionCameraPass: the emission the camera
 // sees, at the epoch's fresh camera samples), alone and crediting each sample's diffuse hit to
 // the fixed hit points it stands for (CameraPassResult::coverage), on cornell-box at 256x256,
 // 4 fixed hit points a pixel, a full epoch's samples a pixel in the default layout (32); on all

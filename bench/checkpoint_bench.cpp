@@ -74,8 +74,7 @@ int Run() {
     spec.photon_budget = 1;
     const CameraPassSettings film = *FilmFor(spec, scene);
     CameraPassResult camera_pass = RunCameraPass(scene, *tracer, film);
-    ProgressiveEstimate estimate(camera_pass, EstimateFor(spec, camera_pass, scene, "cornell"),
-                                 TracedCameraPasses(scene, tracer, film, spec));
+    ProgressiveEstimate estimate(camera_pass, EstimateFor(spec, camera_pass, scene, "cornell"), {});
     const Emitters emitters(scene);
     std::unique_ptr<Backend> backend = std::move(*CreateBackend("cpu", scene));
     (void)backend->BeginJob({&scene, &emitters, estimate.HitPoints(), 1, &spec});

@@ -57,8 +57,7 @@ Recorded& Record() {
     const CameraPassSettings film = *FilmFor(spec, r.scene);
     r.camera_pass = RunCameraPass(r.scene, *tracer, film);
     r.settings = EstimateFor(spec, r.camera_pass, r.scene, "cornell-box");
-    ProgressiveEstimate estimate(r.camera_pass, r.settings,
-                                 TracedCameraPasses(r.scene, tracer, film, spec));
+    ProgressiveEstimate estimate(r.camera_pass, r.settings, {});
     const Emitters emitters(r.scene);
     std::unique_ptr<Backend> backend = std::move(*CreateBackend("cpu", r.scene));
     (void)backend->BeginJob({&r.scene, &emitters, estimate.HitPoints(), 1, &spec});
@@ -98,20 +97,12 @@ Recorded& Record() {
     return r;
 }
 
-// Each epoch's camera pass as the fold sees it, without tracing it: the merge alone is timed
-// (the coordinator traces a pass an epoch besides: camera_pass_bench times it).
-CameraPassResult UntracedPasses(uint64_t, const std::shared_ptr<const PixelHitPoints>& fixed) {
-    CameraPassResult pass;
-    pass.emission = Image(512, 512);
-    if (fixed) pass.coverage.assign(fixed->points->size(), Rgb(0.25f));
-    return pass;
-}
-
-// Folding one epoch's recorded results and finishing it, as the coordinator does.
+// Folding one epoch's recorded results (their emission pass's shares too) and finishing it, as
+// the coordinator does.
 // The fold and the update run on the job's thread with TBB's help: range(0) threads.
 void BM_MergeEpoch(benchmark::State& state) {
     Recorded& r = Record();
-    ProgressiveEstimate estimate(r.camera_pass, r.settings, UntracedPasses);
+    ProgressiveEstimate estimate(r.camera_pass, r.settings, {});
     tbb::task_arena arena(static_cast<int>(state.range(0)));
     for (auto _ : state)
         arena.execute([&] {

@@ -17,7 +17,7 @@ namespace {
 
 // Passes traced one epoch ahead: asked for epoch e's pass, returns it (traced while epoch e - 1
 // ran, else now) and starts tracing e + 1's in the background, on the TBB arena that created
-// it, for the same fixed hit points. A pass is a function of its epoch and those alone, so the
+// it. A pass is a function of its epoch alone, so the
 // image is the same; what an epoch's end costs the coordinator is then the merge, not the
 // pass, while the workers wait for the next epoch's batches.
 class PrefetchedPasses {
@@ -31,12 +31,11 @@ public:
         arena_.execute([&] { group_.wait(); });
     }
 
-    CameraPassResult operator()(uint64_t epoch,
-                                const std::shared_ptr<const PixelHitPoints>& fixed) {
+    CameraPassResult operator()(uint64_t epoch) {
         std::lock_guard lock(mutex_);
         std::optional<CameraPassResult> result;
         if (const std::optional<uint64_t> ahead = std::exchange(ahead_, std::nullopt)) {
-            const bool wanted = *ahead == epoch && fixed_ == fixed;
+            const bool wanted = *ahead == epoch;
             if (!wanted) group_.cancel();  // cut it short
             arena_.execute([&] { group_.wait(); });
             // A pass that failed (say, out of memory) is traced again here, where its error
@@ -45,13 +44,12 @@ public:
             next_ = {};
             failed_ = false;
         }
-        if (!result) result = passes_(epoch, fixed);
+        if (!result) result = passes_(epoch);
         ahead_ = epoch + 1;
-        fixed_ = fixed;
         arena_.execute([&] {
             group_.run([this, next = epoch + 1] {
                 try {
-                    next_ = passes_(next, fixed_);
+                    next_ = passes_(next);
                 } catch (...) {
                     failed_ = true;
                 }
@@ -65,8 +63,7 @@ private:
     tbb::task_arena arena_;
     tbb::task_group group_;
     std::mutex mutex_;
-    std::optional<uint64_t> ahead_;                // the epoch whose pass group_ traces into next_
-    std::shared_ptr<const PixelHitPoints> fixed_;  // for the hit points it credits
+    std::optional<uint64_t> ahead_;  // the epoch whose pass group_ traces into next_
     CameraPassResult next_;
     bool failed_ = false;  // that pass threw
 };
@@ -100,14 +97,10 @@ EpochCameraPass EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
     // The passes keep the payload, and so its scene, alive.
     auto passes = std::make_shared<PrefetchedPasses>(
         [payload, traced = TracedCameraPasses(payload->scene, std::move(tracer), film,
-                                              payload->spec, std::move(radii))](
-            uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed) {
-            return traced(epoch, fixed);
+                                              payload->spec, std::move(radii))](uint64_t epoch) {
+            return traced(epoch);
         });
-    return [passes = std::move(passes)](uint64_t epoch,
-                                        const std::shared_ptr<const PixelHitPoints>& fixed) {
-        return (*passes)(epoch, fixed);
-    };
+    return [passes = std::move(passes)](uint64_t epoch) { return (*passes)(epoch); };
 }
 
 }  // namespace pf

@@ -1,6 +1,6 @@
-// The coordinator's camera passes for a ppm or sppm job, one an epoch (TracedCameraPasses):
-// sppm's hit points traced anew, as its workers trace them, or ppm's emission; each traced
-// while the epoch before it runs.
+// The coordinator's camera passes for an sppm or rpm job, one an epoch (TracedCameraPasses):
+// the hit points traced anew, as its workers trace them; each traced while the epoch before
+// it runs.
 #pragma once
 
 #include <memory>

@@ -111,7 +111,8 @@ void Job::StartEpochLocked(GatherRegions regions) {
         inputs->hit_points = estimate_->SharedHitPoints();
     epoch_ = std::move(inputs);
     slots_.clear();
-    for (const BatchSpec& spec : estimate_->EpochBatches()) slots_.push_back({spec});
+    for (const BatchSpec& spec : estimate_->EpochBatches())
+        slots_.push_back({spec, estimate_->EmissionShape(spec)});
     // A job restored from a checkpoint may have folded some of the epoch's batches already.
     next_fold_ = estimate_->BatchesFolded();
     for (uint32_t i = 0; i < next_fold_; ++i) slots_[i].folded = true;
@@ -206,6 +207,12 @@ absl::StatusOr<Job::ReportOutcome> Job::Report(const std::string& worker, BatchR
     if (!SameSpec(slot.spec, result.spec))
         return absl::InvalidArgumentError(
             absl::StrCat("result.spec: does not match batch ", slot.spec.index));
+    if (const auto [pixels, covered] = slot.emission_shape;
+        result.emission.size() != pixels || result.coverage.size() != covered)
+        return absl::InvalidArgumentError(
+            absl::StrCat("result.emission: ", result.emission.size(), " pixels and ",
+                         result.coverage.size(), " hit points covered for batch ", slot.spec.index,
+                         ", which has ", pixels, " and ", covered));
     for (uint32_t hit_point : result.tally.hit_point)
         if (hit_point >= hit_point_count_)
             return absl::InvalidArgumentError(

@@ -180,7 +180,8 @@ public:
 private:
     struct Slot {
         BatchSpec spec;
-        std::string worker;  // holding the lease
+        std::pair<uint64_t, uint64_t> emission_shape;  // Estimate::EmissionShape of spec
+        std::string worker;                            // holding the lease
         std::vector<std::string>
             lessees;  // every worker that held it this epoch: who may report it
         Clock::time_point deadline{};

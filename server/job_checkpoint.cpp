@@ -148,7 +148,7 @@ absl::StatusOr<std::shared_ptr<Job>> Job::Restore(const JobCheckpointData& check
                                      stochastic ? std::make_shared<const std::vector<HitPoint>>()
                                                 : (*estimate)->SharedHitPoints(),
                                      *spec);
-    if (GathersAtHitPoints(spec->integrator)) {  // its next epochs' passes are traced here again
+    if (stochastic) {  // its next epochs' passes are traced here again
         absl::StatusOr<CameraPassSettings> film = FilmFor(*spec, payload->scene);
         if (!film.ok()) return lost(std::string(film.status().message()));
         film->features = AnalyseFeatures(payload->scene, payload->emitters);

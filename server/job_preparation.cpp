@@ -134,13 +134,14 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
     const Integrator integrator = request.spec.integrator;
     if (GathersAtHitPoints(integrator)) {
         const auto start = Clock::now();
-        // Every epoch's camera pass: sppm's photons gather and its direct light is sampled there;
-        // ppm's gives the epoch's emission (its photons gather at hit points traced once, its
-        // direct light is sampled at the workers' stochastic passes).
-        EpochCameraPass passes = EpochCameraPasses(payload, *film, tracer);
-        CameraPassResult camera_pass = TracesHitPointsEachEpoch(integrator)
-                                           ? passes(0, nullptr)
-                                           : RunCameraPass(payload->scene, *tracer, *film);
+        // sppm's and rpm's camera pass of every epoch, traced here: their photons gather and
+        // direct light is sampled there. ppm's photons gather at hit points traced once; the
+        // workers trace each epoch's emission and direct light, each batch its pixels'.
+        const bool stochastic = TracesHitPointsEachEpoch(integrator);
+        EpochCameraPass passes =
+            stochastic ? EpochCameraPasses(payload, *film, tracer) : EpochCameraPass{};
+        CameraPassResult camera_pass =
+            stochastic ? passes(0) : RunCameraPass(payload->scene, *tracer, *film);
         EstimateSettings settings =
             EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
         const double camera_seconds = std::chrono::duration<double>(Clock::now() - start).count();

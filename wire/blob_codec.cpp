@@ -86,11 +86,12 @@ void ReadField(const uint8_t* planes, size_t offset, std::span<T> items) {
         std::memcpy(reinterpret_cast<uint8_t*>(&items[i]) + offset, &words[i], 4);
 }
 
-// The HitPoint words a worker reads, by their offset in wire order: position, normal, weight
-// and the coat. The pixel only the coordinator's merge uses; it is not sent. Nor is what the
-// hit point gathers: the hit points sent are ppm's, which gather kScatteredPhotons, the
-// default (sppm's and rpm's workers trace their own).
-constexpr size_t kHitPointWordOffsets[] = {0, 4, 8, 12, 16, 20, 24, 28, 32, 40};
+// The HitPoint words a worker reads, by their offset in wire order: position, normal, weight,
+// the pixel (a batch credits its pixels' hit points with their share of the epoch's emission
+// pass, TraceBatchEmission) and the coat. Not what the hit point gathers: the hit points sent
+// are ppm's, which gather kScatteredPhotons, the default (sppm's and rpm's workers trace their
+// own).
+constexpr size_t kHitPointWordOffsets[] = {0, 4, 8, 12, 16, 20, 24, 28, 32, 36, 40};
 constexpr size_t kHitPointWords = std::size(kHitPointWordOffsets);
 static_assert(sizeof(HitPoint) == 48 && offsetof(HitPoint, pixel) == 36 &&
                   offsetof(HitPoint, coat) == 40 && offsetof(HitPoint, gathers) == 44,

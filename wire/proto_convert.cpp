@@ -3,6 +3,9 @@
 
 #include <cmath>
 #include <limits>
+#include <span>
+#include <tuple>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "wire/blob_codec.h"
@@ -15,6 +18,28 @@ absl::Status Invalid(const std::string& what) {
 }
 
 bool NonNegativeFinite(double v) { return std::isfinite(v) && v >= 0; }
+
+void AddColours(std::span<const Rgb> colours, google::protobuf::RepeatedField<float>* out) {
+    out->Reserve(static_cast<int>(3 * colours.size()));
+    for (const Rgb& colour : colours)
+        for (int c = 0; c < 3; ++c) out->Add(colour[c]);
+}
+
+// `values` read three at a time as colours, each non-negative and finite; `what` names them.
+absl::StatusOr<std::vector<Rgb>> Colours(const google::protobuf::RepeatedField<float>& values,
+                                         const char* what) {
+    if (values.size() % 3 != 0)
+        return Invalid(absl::StrCat(what, " has ", values.size(), " values, not three a colour"));
+    std::vector<Rgb> colours(static_cast<size_t>(values.size() / 3));
+    for (size_t i = 0; i < colours.size(); ++i) {
+        const Rgb colour(values[3 * i], values[3 * i + 1], values[3 * i + 2]);
+        if (!NonNegativeFinite(colour.x) || !NonNegativeFinite(colour.y) ||
+            !NonNegativeFinite(colour.z))
+            return Invalid(absl::StrCat(what, " ", i, " is negative, NaN or Inf"));
+        colours[i] = colour;
+    }
+    return colours;
+}
 
 }  // namespace
 
@@ -49,9 +74,9 @@ photonfarm::v1::BatchResult ToProto(const BatchResult& result) {
         tally->add_inner_photons(result.tally.inner_photons[e]);
         for (int c = 0; c < 3; ++c) tally->add_flux(result.tally.flux[e][c]);
     }
-    out.mutable_samples()->Reserve(static_cast<int>(3 * result.samples.size()));
-    for (const Rgb& sample : result.samples)
-        for (int c = 0; c < 3; ++c) out.add_samples(sample[c]);
+    AddColours(result.samples, out.mutable_samples());
+    AddColours(result.emission, out.mutable_emission());
+    AddColours(result.coverage, out.mutable_coverage());
     out.set_photons_emitted(result.photons_emitted);
     out.set_segments_traced(result.segments_traced);
     out.set_nonfinite_discarded(result.nonfinite_discarded);
@@ -105,14 +130,14 @@ absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message
     if (static_cast<uint64_t>(message.samples_size()) != 3ull * slice)
         return Invalid(
             absl::StrCat("samples has ", message.samples_size(), " values for a slice of ", slice));
-    result.samples.resize(slice);
-    for (uint32_t i = 0; i < slice; ++i) {
-        const Rgb direct(message.samples(3 * i), message.samples(3 * i + 1),
-                         message.samples(3 * i + 2));
-        if (!NonNegativeFinite(direct.x) || !NonNegativeFinite(direct.y) ||
-            !NonNegativeFinite(direct.z))
-            return Invalid(absl::StrCat("sample ", i, " is negative, NaN or Inf"));
-        result.samples[i] = direct;
+    // The emission pass's share: its sizes are the job's to check (Estimate::EmissionShape).
+    for (auto [field, what, out] :
+         {std::tuple(&message.samples(), "sample", &result.samples),
+          std::tuple(&message.emission(), "emission", &result.emission),
+          std::tuple(&message.coverage(), "coverage", &result.coverage)}) {
+        absl::StatusOr<std::vector<Rgb>> colours = Colours(*field, what);
+        if (!colours.ok()) return colours.status();
+        *out = std::move(*colours);
     }
     if (message.photons_emitted() != spec.photons)
         return Invalid(absl::StrCat("emitted ", message.photons_emitted(),

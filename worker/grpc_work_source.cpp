@@ -260,10 +260,9 @@ absl::StatusOr<std::shared_ptr<const JobPayload>> GrpcWorkSource::PayloadFor(
     if (!scene_bytes.ok()) return scene_bytes.status();
     // The coordinator parsed the scene's files once and sends what tracing needs (a prepared
     // scene); it is hostile input all the same. Photons look textures up at a point; camera
-    // samples traced here (sppm, path, pm) filter them over their footprint, as the
-    // coordinator's camera pass does.
-    absl::StatusOr<Scene> scene =
-        DecodeSceneBlob(*scene_bytes, /*texture_filter=*/spec.integrator != Integrator::kPpm);
+    // samples traced here (every integrator's: ppm's epoch passes for direct light and
+    // emission too) filter them over their footprint, as the coordinator's camera pass does.
+    absl::StatusOr<Scene> scene = DecodeSceneBlob(*scene_bytes, /*texture_filter=*/true);
     if (!scene.ok())
         return absl::DataLossError(absl::StrCat(address_, ": ", scene.status().message()));
     absl::StatusOr<std::string> hit_point_bytes = FetchBlob(job.hit_points_digest(), true);

@@ -9,6 +9,7 @@
 #include <numeric>
 #include <optional>
 
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "core/camera/gather_ray.h"
 #include "core/camera/pixel_sample.h"
@@ -233,9 +234,15 @@ std::vector<uint32_t> MortonOrder(const std::vector<HitPoint>& hit_points, const
 
 PixelHitPoints PixelHitPoints::Index(std::shared_ptr<const std::vector<HitPoint>> points,
                                      size_t pixels) {
+    PixelHitPoints index = Index(std::span<const HitPoint>(*points), pixels);
+    index.owner = std::move(points);
+    return index;
+}
+
+PixelHitPoints PixelHitPoints::Index(std::span<const HitPoint> points, size_t pixels) {
     PixelHitPoints index;
-    index.points = std::move(points);
-    const std::vector<HitPoint>& all = *index.points;
+    index.points = points;
+    const std::span<const HitPoint> all = points;
     // A counting sort by pixel, stable.
     index.begin.assign(pixels + 1, 0);
     for (const HitPoint& point : all) {
@@ -256,14 +263,14 @@ std::optional<uint32_t> CoveringHitPoint(const PixelHitPoints& fixed, uint32_t p
                                          const HitPoint& hit) {
     std::optional<uint32_t> nearest, nearest_facing;
     float distance = 0, distance_facing = 0;
-    fixed.ForEachOf(pixel, [&](uint32_t i) {
-        const HitPoint& candidate = (*fixed.points)[i];
-        if (IsBlack(candidate.weight)) return;
+    for (uint32_t k = fixed.begin[pixel]; k < fixed.begin[pixel + 1]; ++k) {
+        const HitPoint& candidate = fixed.points[fixed.At(k)];
+        if (IsBlack(candidate.weight)) continue;
         const float d = LengthSquared(candidate.position - hit.position);
-        if (!nearest || d < distance) nearest = i, distance = d;
+        if (!nearest || d < distance) nearest = k, distance = d;
         if (Dot(candidate.normal, hit.normal) >= 0.5f && (!nearest_facing || d < distance_facing))
-            nearest_facing = i, distance_facing = d;
-    });
+            nearest_facing = k, distance_facing = d;
+    }
     return nearest_facing ? nearest_facing : nearest;
 }
 
@@ -291,15 +298,18 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
         settings.pixel_count == 0 ? pixels : first_pixel + settings.pixel_count;
     const bool part = end_pixel - first_pixel < pixels;
     PF_CHECK(first_pixel <= end_pixel && end_pixel <= pixels &&
-             (!part || (settings.stochastic && fixed == nullptr)));
+             (!part || settings.stochastic || settings.emission_only));
     std::vector<std::vector<HitPoint>> row_hit_points(height);
     std::vector<std::vector<float>> row_footprints(height);
     CameraPassResult result;
-    if (!part) result.emission = Image(width, height);
-    PF_CHECK(fixed == nullptr ||
-             (settings.emission_only && fixed->begin.size() == size_t(width) * height + 1));
+    // A part's emission is a row of its pixels.
+    result.emission =
+        part ? Image(static_cast<int>(end_pixel - first_pixel), 1) : Image(width, height);
+    PF_CHECK(fixed == nullptr || (settings.emission_only && fixed->begin.size() == pixels + 1));
     // Each fixed hit point lies in one pixel, so rows in parallel credit disjoint ones.
-    if (fixed != nullptr) result.coverage.assign(fixed->points->size(), Rgb(0.0f));
+    const uint32_t first_covered = fixed != nullptr ? fixed->begin[first_pixel] : 0;
+    if (fixed != nullptr)
+        result.coverage.assign(fixed->begin[end_pixel] - first_covered, Rgb(0.0f));
     // The camera path for the scene's features, chosen once.
     const SceneFeatures& features = settings.features;
     const auto trace =
@@ -341,17 +351,18 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                             }
                         }
                     }
-                    if (!part) result.emission.At(x, y) = emission / static_cast<float>(spp);
+                    result.emission.pixels[pixel - first_pixel] =
+                        emission / static_cast<float>(spp);
                     if (settings.emission_only) {  // no hit points kept
-                        if (fixed != nullptr)
+                        if (fixed != nullptr) {
                             for (const HitPoint& hit : row_hit_points[y])
-                                if (const std::optional<uint32_t> i =
+                                if (const std::optional<uint32_t> k =
                                         CoveringHitPoint(*fixed, pixel, hit))
-                                    result.coverage[*i] += hit.weight;
-                        if (fixed != nullptr)  // averaged over the pixel's samples
-                            fixed->ForEachOf(pixel, [&](uint32_t i) {
-                                result.coverage[i] /= static_cast<float>(spp);
-                            });
+                                    result.coverage[*k - first_covered] += hit.weight;
+                            // averaged over the pixel's samples
+                            for (uint32_t k = fixed->begin[pixel]; k < fixed->begin[pixel + 1]; ++k)
+                                result.coverage[k - first_covered] /= static_cast<float>(spp);
+                        }
                         row_hit_points[y].clear();
                         row_footprints[y].clear();
                     }
@@ -435,6 +446,46 @@ bool CameraPassPart::Cover(const Scene& scene, const Tracer& tracer,
     return true;
 }
 
+absl::StatusOr<PixelHitPoints> IndexFixedHitPoints(std::span<const HitPoint> points,
+                                                   const CameraPassSettings& film) {
+    const uint64_t pixels = uint64_t(film.width) * uint64_t(film.height);
+    for (size_t i = 0; i < points.size(); ++i)
+        if (points[i].pixel >= pixels)
+            return absl::InvalidArgumentError(
+                absl::StrCat("hit point ", i, " lies in pixel ", points[i].pixel, " of ", pixels));
+    return PixelHitPoints::Index(points, pixels);
+}
+
+void TraceBatchEmission(const Scene& scene, const Tracer& tracer, const CameraPassSettings& pass,
+                        const PixelHitPoints& fixed, std::span<BatchResult> results) {
+    PF_CHECK(pass.emission_only && pass.gather_rays == 0);
+    const auto slots_per_pixel = static_cast<uint64_t>(pass.samples_per_pixel);  // one a sample
+    uint64_t first = UINT64_MAX, end = 0;
+    for (const BatchResult& result : results) {
+        const auto [begin, stop] = SlicePixels(result.spec, slots_per_pixel);
+        if (begin < stop) first = std::min(first, begin), end = std::max(end, stop);
+    }
+    CameraPassResult traced;
+    if (first < end) {
+        CameraPassSettings part = pass;
+        part.first_pixel = static_cast<uint32_t>(first);
+        part.pixel_count = static_cast<uint32_t>(end - first);
+        traced = RunCameraPass(scene, tracer, part, &fixed);
+    }
+    for (BatchResult& result : results) {
+        const auto [begin, stop] = SlicePixels(result.spec, slots_per_pixel);
+        result.emission.clear();
+        result.coverage.clear();
+        if (begin >= stop) continue;
+        const auto pixels = traced.emission.pixels.begin();
+        result.emission.assign(pixels + static_cast<ptrdiff_t>(begin - first),
+                               pixels + static_cast<ptrdiff_t>(stop - first));
+        const auto covered = traced.coverage.begin();
+        result.coverage.assign(covered + (fixed.begin[begin] - fixed.begin[first]),
+                               covered + (fixed.begin[stop] - fixed.begin[first]));
+    }
+}
+
 CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobSpec& spec,
                                       uint64_t epoch) {
     CameraPassSettings settings = EpochPass(film, spec, epoch);
@@ -445,16 +496,14 @@ CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobS
 EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,
                                    const CameraPassSettings& film, const JobSpec& spec,
                                    SlotRadii radii) {
-    return [&scene, tracer = std::move(tracer), film, spec, radii = std::move(radii)](
-               uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed) {
-        CameraPassResult pass = RunCameraPass(scene, *tracer,
-                                              TracesHitPointsEachEpoch(spec.integrator)
-                                                  ? StochasticCameraPass(film, spec, epoch)
-                                                  : EmissionCameraPass(film, spec, epoch),
-                                              fixed.get());
-        if (radii) pass.radius = radii(pass.hit_points, pass.footprint);
-        return pass;
-    };
+    PF_CHECK(TracesHitPointsEachEpoch(spec.integrator));
+    return
+        [&scene, tracer = std::move(tracer), film, spec, radii = std::move(radii)](uint64_t epoch) {
+            CameraPassResult pass =
+                RunCameraPass(scene, *tracer, StochasticCameraPass(film, spec, epoch));
+            if (radii) pass.radius = radii(pass.hit_points, pass.footprint);
+            return pass;
+        };
 }
 
 float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& scene) {

@@ -48,23 +48,29 @@ struct CameraPassSettings {
     // (pixel, sample, ray); the camera hit point then gathers caustics alone. 0: none.
     int gather_rays = 0;
     // The pixels traced, [first_pixel, first_pixel + pixel_count) in row order; 0: all. A part
-    // of a stochastic pass holds the same slots as the whole pass's for those pixels (each
-    // pixel's paths draw from streams of its own), from slot first_pixel * k * (1 + gather_rays).
+    // of a pass holds what the whole pass holds for those pixels (each pixel's paths draw from
+    // streams of its own): a stochastic pass's slots from slot first_pixel * k * (1 +
+    // gather_rays), an emission pass's emission and coverage (CameraPassResult).
     uint32_t first_pixel = 0, pixel_count = 0;
 };
 
 // Hit points indexed by pixel: pixel p's are points[order[begin[p] .. begin[p + 1])] in index
 // order; `order` is empty where the points are in pixel order already (sppm's slots).
 struct PixelHitPoints {
-    std::shared_ptr<const std::vector<HitPoint>> points;
+    std::span<const HitPoint> points;
+    std::shared_ptr<const std::vector<HitPoint>> owner;  // holds `points`, where it was given
     std::vector<uint32_t> begin, order;
 
-    // Indexes `points` (each in one of `pixels` pixels) by pixel, stably.
+    // Indexes `points` (each in one of `pixels` pixels) by pixel, stably, keeping them.
     static PixelHitPoints Index(std::shared_ptr<const std::vector<HitPoint>> points, size_t pixels);
+    // The same over points held elsewhere, which must outlive the index.
+    static PixelHitPoints Index(std::span<const HitPoint> points, size_t pixels);
+    // The hit point at place k of the pixel order (pixel p's are at places begin[p] ..).
+    uint32_t At(size_t k) const { return order.empty() ? static_cast<uint32_t>(k) : order[k]; }
     // Calls visit(i) for each hit point i of pixel p, in index order.
     template <typename Visit>
     void ForEachOf(size_t p, Visit&& visit) const {
-        for (uint32_t k = begin[p]; k < begin[p + 1]; ++k) visit(order.empty() ? k : order[k]);
+        for (uint32_t k = begin[p]; k < begin[p + 1]; ++k) visit(At(k));
     }
 };
 
@@ -73,10 +79,13 @@ struct CameraPassResult {
     std::vector<HitPoint> hit_points;
     // Per hit point: a pixel's width at its distance, world units (0 for an empty slot).
     std::vector<float> footprint;
-    Image emission;  // emission reaching each pixel, averaged over its k paths
-    // ppm's emission pass: per fixed hit point (PixelHitPoints::points), the weights of the
-    // pass's hit points it stands for (CoveringHitPoint), averaged over the pass's samples of
-    // its pixel as `emission` is. Over its own weight, it is the share of the pixel that its
+    // Emission reaching each pixel, averaged over its k paths; a part's (first_pixel,
+    // pixel_count) is one row of its pixels.
+    Image emission;
+    // ppm's emission pass: per fixed hit point of the pixels traced, in pixel order (place k of
+    // PixelHitPoints, from the first pixel's first), the weights of the pass's hit points it
+    // stands for (CoveringHitPoint), averaged over the pass's samples of its pixel as
+    // `emission` is. Over its own weight, it is the share of the pixel that its
     // estimate stands for this epoch: fixed hit points alone would give each 1/k for good, so
     // that a pixel across an edge between surfaces lit differently kept the split of its k
     // samples, never its area's (docs/design.md).
@@ -93,7 +102,8 @@ struct CameraPassResult {
 // Of the hit points of `pixel` in `fixed` whose weight is not black, the one that stands for a
 // fresh camera sample's `hit` there: the nearest of those facing the same way (normals within
 // 60 degrees: the same surface, or the same side of a translucent one), else the nearest of
-// all; none where the pixel has no such hit point.
+// all; its place in the pixel order (PixelHitPoints::At); none where the pixel has no such
+// hit point.
 std::optional<uint32_t> CoveringHitPoint(const PixelHitPoints& fixed, uint32_t pixel,
                                          const HitPoint& hit);
 
@@ -147,18 +157,30 @@ private:
 CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobSpec& spec,
                                       uint64_t epoch);
 
-// The coordinator's camera pass of an epoch: for sppm the StochasticCameraPass (its emission,
-// and its slots, pixel * k + sample, where photons gather and direct light is sampled; `fixed`
-// null), for ppm the EmissionCameraPass, its coverage of the `fixed` hit points.
-using EpochCameraPass = std::function<CameraPassResult(
-    uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed)>;
+// ppm's fixed hit points indexed by pixel, for a worker's share of each epoch's emission pass
+// (TraceBatchEmission); `points` must outlive the index. INVALID_ARGUMENT where one lies in no
+// pixel of `film` (they come from the coordinator).
+absl::StatusOr<PixelHitPoints> IndexFixedHitPoints(std::span<const HitPoint> points,
+                                                   const CameraPassSettings& film);
+
+// ppm: each batch's share of its epoch's emission pass `pass` (EmissionCameraPass): the
+// emission and the coverage of `fixed` at its SlicePixels (BatchResult::emission, coverage),
+// the pixels of all of `results` traced as one part. The same, bit for bit, as the whole
+// pass's at those pixels, whoever traces them.
+void TraceBatchEmission(const Scene& scene, const Tracer& tracer, const CameraPassSettings& pass,
+                        const PixelHitPoints& fixed, std::span<BatchResult> results);
+
+// The coordinator's camera pass of an epoch of sppm or rpm: the StochasticCameraPass, its
+// emission and its slots, pixel * k + sample, where photons gather and direct light is sampled.
+// (ppm's workers trace each epoch's emission and direct light, each batch its pixels'.)
+using EpochCameraPass = std::function<CameraPassResult(uint64_t epoch)>;
 
 // The radii a pass's slots call for, from their hit points and footprints (rpm's:
 // core/pm/density_radii.h's DensityRadii, whose room is above this one's).
 using SlotRadii = std::function<std::vector<float>(std::span<const HitPoint> hit_points,
                                                    std::span<const float> footprint)>;
 
-// Each epoch's pass of `film` for job `spec` (ppm, sppm or rpm) over `scene` through `tracer`,
+// Each epoch's pass of `film` for job `spec` (sppm or rpm) over `scene` through `tracer`,
 // which the function keeps alive; `scene` must outlive it. `radii`, where given, sets each
 // pass's CameraPassResult::radius.
 EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "absl/status/statusor.h"
@@ -64,6 +65,14 @@ public:
     virtual GatherRegions Regions() const = 0;
     // The batches of the current epoch, in batch-index order.
     virtual std::vector<BatchSpec> EpochBatches() const = 0;
+    // How many emission and coverage values the result of batch `spec` brings
+    // (BatchResult::emission, coverage): ppm's share of the epoch's emission pass, none for the
+    // others. Reads only what stays as it is over the estimate's life, so may be called while
+    // another thread folds.
+    virtual std::pair<uint64_t, uint64_t> EmissionShape(const BatchSpec& spec) const {
+        (void)spec;
+        return {0, 0};
+    }
     // Adds the next batch of the current epoch: batches must come in batch-index order, so the
     // sums are the same whoever ran them and whenever they arrived.
     virtual void FoldBatch(const BatchResult& result) = 0;

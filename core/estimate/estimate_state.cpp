@@ -53,7 +53,7 @@ void ProgressiveEstimate::Save(ByteWriter& out, FixedPart fixed) const {
     const bool hit_points_here = settings_.stochastic || fixed == FixedPart::kIncluded;
     out.Value(kMagic);
     out.Value(kVersion);
-    const std::vector<HitPoint>& hit_points = *by_pixel_->points;
+    const std::vector<HitPoint>& hit_points = *by_pixel_->owner;
     out.Value<uint64_t>(hit_points.size());
     out.Value(static_cast<uint8_t>(hit_points_here));
     out.Value(static_cast<uint8_t>(!extent_.empty()));
@@ -95,7 +95,7 @@ bool ProgressiveEstimate::SaveFixed(ByteWriter& out) const {
     if (settings_.stochastic) return false;
     out.Value(kFixedMagic);
     out.Value(kVersion);
-    const PackedArray fixed[] = {*by_pixel_->points, extent_};
+    const PackedArray fixed[] = {*by_pixel_->owner, extent_};
     WritePacked(out, fixed);
     return true;
 }

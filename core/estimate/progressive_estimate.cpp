@@ -17,7 +17,7 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
                                          EpochCameraPass next_passes,
                                          std::span<const float> initial_radii)
     : next_passes_(std::move(next_passes)), settings_(settings) {
-    PF_CHECK(next_passes_);
+    PF_CHECK(next_passes_ || !settings.stochastic);
     PF_CHECK(settings.alpha > 0 && settings.alpha <= 1);
     PF_CHECK(settings.initial_radius > 0 && std::isfinite(settings.initial_radius));
     PF_CHECK(settings.min_radius >= 0 && settings.min_radius <= settings.initial_radius);
@@ -44,7 +44,9 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
         extent_ = std::move(camera_pass.extent);
         coverage_sum_.assign(HitPoints().size(), Rgbd(0.0));
         coverage_even_.assign(HitPoints().size(), Rgbd(0.0));
-        BeginEpochPass(next_passes_(0, by_pixel_));
+        // Each epoch's emission pass comes with its batches (BatchResult::emission).
+        epoch_emission_ = Image(camera_pass.emission.width, camera_pass.emission.height);
+        epoch_coverage_.assign(HitPoints().size(), Rgb(0.0f));
     }
     PF_CHECK(extent_.empty() || extent_.size() == HitPoints().size());
     const size_t n = HitPoints().size();
@@ -66,21 +68,21 @@ ProgressiveEstimate::ProgressiveEstimate(CameraPassResult camera_pass,
 }
 
 void ProgressiveEstimate::BeginEpochPass(CameraPassResult camera_pass) {
-    PF_CHECK(camera_pass.emission.pixels.size() == direct_sum_.size());
-    if (settings_.stochastic && !camera_pass.radius.empty() && !points_.empty())
-        TakeSlotRadii(camera_pass.radius);
-    if (settings_.stochastic) {
-        PF_CHECK(camera_pass.hit_points.size() == epoch_direct_.size());
-        PF_CHECK(camera_pass.extent.empty() ||
-                 camera_pass.extent.size() == camera_pass.hit_points.size());
-        SetHitPoints(
-            std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points)));
-        extent_ = std::move(camera_pass.extent);
-    } else {
-        PF_CHECK(camera_pass.coverage.size() == HitPoints().size());
-        epoch_coverage_ = std::move(camera_pass.coverage);
-    }
+    PF_CHECK(settings_.stochastic && camera_pass.emission.pixels.size() == direct_sum_.size());
+    if (!camera_pass.radius.empty() && !points_.empty()) TakeSlotRadii(camera_pass.radius);
+    PF_CHECK(camera_pass.hit_points.size() == epoch_direct_.size());
+    PF_CHECK(camera_pass.extent.empty() ||
+             camera_pass.extent.size() == camera_pass.hit_points.size());
+    SetHitPoints(std::make_shared<const std::vector<HitPoint>>(std::move(camera_pass.hit_points)));
+    extent_ = std::move(camera_pass.extent);
     epoch_emission_ = std::move(camera_pass.emission);
+}
+
+std::pair<uint64_t, uint64_t> ProgressiveEstimate::EmissionShape(const BatchSpec& spec) const {
+    if (settings_.stochastic) return {0, 0};
+    const auto [begin, end] = SlicePixels(spec, EpochPass(spec.epoch).per_pixel);
+    if (begin >= end || end > direct_sum_.size()) return {0, 0};
+    return {end - begin, by_pixel_->begin[end] - by_pixel_->begin[begin]};
 }
 
 void ProgressiveEstimate::TakeSlotRadii(std::span<const float> radii) {
@@ -202,6 +204,16 @@ void ProgressiveEstimate::FoldBatch(const BatchResult& result) {
                            std::any_of(result.samples.begin(), result.samples.end(),
                                        [](const Rgb& d) { return !IsBlack(d); });
     if (even) epoch_photons_emitted_even_ += result.photons_emitted;
+    if (!settings_.stochastic) {  // the batch's share of the epoch's emission pass
+        const auto [begin, end] = SlicePixels(result.spec, EpochPass(epoch_).per_pixel);
+        PF_CHECK(std::pair(result.emission.size(), result.coverage.size()) ==
+                 EmissionShape(result.spec));
+        std::ranges::copy(result.emission,
+                          epoch_emission_.pixels.begin() + static_cast<ptrdiff_t>(begin));
+        const uint32_t first = begin < end ? by_pixel_->begin[begin] : 0;
+        for (size_t k = 0; k < result.coverage.size(); ++k)
+            epoch_coverage_[by_pixel_->At(first + k)] = result.coverage[k];
+    }
     ++batches_folded_;
 }
 
@@ -277,7 +289,8 @@ void ProgressiveEstimate::FinishEpoch() {
     epoch_direct_.assign(
         emission_sum_.size() * size_t(EpochPass(epoch_).per_pixel) * settings_.SlotsPerSample(),
         Rgb(0.0f));
-    BeginEpochPass(next_passes_(epoch_, settings_.stochastic ? nullptr : by_pixel_));
+    // ppm's next emission pass comes with the next epoch's batches.
+    if (settings_.stochastic) BeginEpochPass(next_passes_(epoch_));
 }
 
 Image ProgressiveEstimate::Resolve() const {

@@ -87,20 +87,21 @@ EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera
 
 class ProgressiveEstimate final : public Estimate {
 public:
-    // `camera_pass`: the hit points photons gather at (for sppm, epoch 0's pass); each epoch's
-    // pass comes from `next_passes` (for ppm epoch 0's too, here). `initial_radii`: R0 of each
+    // `camera_pass`: the hit points photons gather at (for sppm, epoch 0's pass); sppm's and
+    // rpm's later passes come from `next_passes` (ppm's from its batches, BatchResult::emission:
+    // none given). `initial_radii`: R0 of each
     // hit point (sppm: of each slot), world units (DensityInitialRadii), raised to the
     // settings' min_radius; empty: the pass's radii (rpm's: CameraPassResult::radius), else
     // the settings' initial_radius for all.
     ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings,
                         EpochCameraPass next_passes, std::span<const float> initial_radii = {});
-    // An estimate restored by Load needs its camera passes again.
+    // An sppm or rpm estimate restored by Load needs its camera passes again.
     void SetEpochCameraPass(EpochCameraPass next_passes) { next_passes_ = std::move(next_passes); }
 
-    std::span<const HitPoint> HitPoints() const { return *by_pixel_->points; }
+    std::span<const HitPoint> HitPoints() const { return by_pixel_->points; }
     // The same hit points, shared with whoever needs them past this object's life.
     std::shared_ptr<const std::vector<HitPoint>> SharedHitPoints() const override {
-        return by_pixel_->points;
+        return by_pixel_->owner;
     }
     const PointEstimate& Point(size_t hit_point) const { return points_[hit_point]; }
     const EstimateSettings& Settings() const { return settings_; }
@@ -134,8 +135,11 @@ public:
     GatherRegions Regions() const override;
     // The batches of the current epoch, in batch-index order.
     std::vector<BatchSpec> EpochBatches() const override;
+    // ppm: its SlicePixels of the epoch's pass and their fixed hit points.
+    std::pair<uint64_t, uint64_t> EmissionShape(const BatchSpec& spec) const override;
     // Adds the next batch of the current epoch to the epoch's sums: batches must come in
     // batch-index order, so the sums are the same whoever ran them and whenever they arrived.
+    // ppm's batches bring the epoch's emission pass too, each its pixels' (EmissionShape).
     void FoldBatch(const BatchResult& result) override;
     uint32_t BatchesFolded() const override { return batches_folded_; }
     // Once every batch of the epoch is folded: updates N, R, tau and starts the next epoch.
@@ -165,8 +169,7 @@ public:
 private:
     ProgressiveEstimate() = default;
 
-    // Takes the epoch's pass as it begins: its emission, for ppm its coverage of the fixed
-    // hit points, for sppm its hit points.
+    // sppm, rpm: takes the epoch's pass as it begins, its hit points and emission.
     void BeginEpochPass(CameraPassResult camera_pass);
     // Holds `hit_points` and indexes them by pixel (by_pixel_).
     void SetHitPoints(std::shared_ptr<const std::vector<HitPoint>> hit_points);

@@ -25,4 +25,12 @@ BatchSpec MakeBatchSpec(const BatchLayout& layout, uint64_t epoch, uint32_t batc
             static_cast<uint32_t>(slice_begin), static_cast<uint32_t>(slice_end)};
 }
 
+std::pair<uint64_t, uint64_t> SlicePixels(const BatchSpec& spec, uint64_t slots_per_pixel) {
+    PF_CHECK(slots_per_pixel > 0);
+    const auto first_at_or_after = [&](uint64_t slot) {
+        return (slot + slots_per_pixel - 1) / slots_per_pixel;
+    };
+    return {first_at_or_after(spec.sample_begin), first_at_or_after(spec.sample_end)};
+}
+
 }  // namespace pf

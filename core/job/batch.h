@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/math/vec3.h"
@@ -76,6 +77,11 @@ inline uint32_t ChunkCount(const BatchSpec& spec) {
 BatchSpec MakeBatchSpec(const BatchLayout& layout, uint64_t epoch, uint32_t batch_in_epoch,
                         uint32_t hit_point_count);
 
+// The pixels whose emission batch `spec` samples for ppm, [first, second): those whose first
+// slot of the epoch's pass (`slots_per_pixel` a pixel) lies in its direct-light slice, so the
+// batches of an epoch share its pixels out, each once.
+std::pair<uint64_t, uint64_t> SlicePixels(const BatchSpec& spec, uint64_t slots_per_pixel);
+
 // Photon contributions of one batch, sorted by hit point index, one entry per hit point reached.
 struct Tally {
     std::vector<uint32_t> hit_point;
@@ -92,7 +98,12 @@ struct Tally {
 struct BatchResult {
     BatchSpec spec;
     Tally tally;
-    std::vector<Rgb> samples;      // one per item of the spec's slice (BatchSpec::sample_begin)
+    std::vector<Rgb> samples;  // one per item of the spec's slice (BatchSpec::sample_begin)
+    // ppm: the epoch's emission pass (EmissionCameraPass) at the pixels of the slice
+    // (SlicePixels): the emission each sees, averaged over its samples, and the coverage of
+    // their fixed hit points (CameraPassResult::coverage), in pixel order
+    // (PixelHitPoints::ForEachOf). Empty for the other integrators.
+    std::vector<Rgb> emission, coverage;
     uint64_t photons_emitted = 0;  // every path emitted, escaped or absorbed ones included
     uint64_t segments_traced = 0;  // photon rays cast, for throughput statistics
     // Photon paths and direct-light samples dropped because a value had become NaN or Inf

@@ -165,5 +165,44 @@ TEST(DirectLightTest, APartOfAnEpochsPassHoldsTheWholePassesSlotsAndSamples) {
     }
 }
 
+TEST(DirectLightTest, BatchesShareOutTheEmissionPassAsTheWholePassGivesIt) {
+    // ppm's workers trace each epoch's emission pass, each batch at its slice's pixels
+    // (TraceBatchEmission), leases of several batches as one part: together the batches must
+    // give every pixel's emission and every fixed hit point's coverage as the whole pass does,
+    // each once. Glass, so samples split and pixels hold several hit points.
+    const std::unique_ptr<const LitScene> lit = LoadLitScene("cornell-glass.gltf");
+    ASSERT_NE(lit, nullptr);
+    CameraPassSettings film{29, 17, 3, 4};
+    film.features = lit->features;
+    const std::vector<HitPoint> points = RunCameraPass(lit->scene, *lit->tracer, film).hit_points;
+    const absl::StatusOr<PixelHitPoints> fixed = IndexFixedHitPoints(points, film);
+    ASSERT_TRUE(fixed.ok()) << fixed.status();
+    CameraPassSettings pass = film;
+    pass.emission_only = true;
+    pass.epoch = 5;
+    const CameraPassResult whole = RunCameraPass(lit->scene, *lit->tracer, pass, &*fixed);
+    ASSERT_EQ(whole.coverage.size(), points.size());
+    // Seven batches over the pass's slots (3 a pixel), leased as {0, 1, 2}, {3}, {4, 5, 6}.
+    constexpr uint32_t kBatches = 7;
+    std::vector<BatchResult> results(kBatches);
+    for (uint32_t j = 0; j < kBatches; ++j)
+        results[j].spec = MakeBatchSpec({1000, kBatches}, 5, j, 29 * 17 * 3);
+    for (const auto [first, count] : {std::pair(0, 3), std::pair(3, 1), std::pair(4, 3)})
+        TraceBatchEmission(lit->scene, *lit->tracer, pass, *fixed,
+                           std::span(results).subspan(first, count));
+    std::vector<Rgb> emission, coverage;
+    for (const BatchResult& result : results) {
+        emission.insert(emission.end(), result.emission.begin(), result.emission.end());
+        coverage.insert(coverage.end(), result.coverage.begin(), result.coverage.end());
+    }
+    ASSERT_EQ(emission.size(), whole.emission.pixels.size());
+    EXPECT_EQ(
+        std::memcmp(emission.data(), whole.emission.pixels.data(), emission.size() * sizeof(Rgb)),
+        0);
+    ASSERT_EQ(coverage.size(), whole.coverage.size());
+    EXPECT_EQ(std::memcmp(coverage.data(), whole.coverage.data(), coverage.size() * sizeof(Rgb)),
+              0);
+}
+
 }  // namespace
 }  // namespace pf

@@ -123,15 +123,17 @@ TEST(PpmEdges, FixedHitPointsStandForTheirShareOfEachPixel) {
         PixelHitPoints::Index(std::make_shared<const std::vector<HitPoint>>(
                                   RunCameraPass(lit->scene, *lit->tracer, film).hit_points),
                               size_t(kPixels) * kPixels));
-    const std::vector<HitPoint>& points = *fixed->points;
+    const std::span<const HitPoint> points = fixed->points;
     std::vector<double> share(points.size(), 0.0);
     double samples = 0;
     for (uint64_t epoch = 0; epoch < kEpochs; ++epoch) {
         const CameraPassSettings pass = EmissionCameraPass(film, spec, epoch);
         const CameraPassResult result = RunCameraPass(lit->scene, *lit->tracer, pass, fixed.get());
         ASSERT_EQ(result.coverage.size(), points.size());
-        for (size_t i = 0; i < points.size(); ++i)
-            share[i] += double(result.coverage[i].y) / points[i].weight.y * pass.samples_per_pixel;
+        for (size_t k = 0; k < points.size(); ++k) {  // in pixel order
+            const uint32_t i = fixed->At(k);
+            share[i] += double(result.coverage[k].y) / points[i].weight.y * pass.samples_per_pixel;
+        }
         samples += pass.samples_per_pixel;
     }
     ASSERT_EQ(samples, kEpochs * 64.0);

@@ -58,8 +58,8 @@ std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size,
     camera_pass.extent = ProbeSurfaceExtents(
         setup->scene, *tracer, camera_pass.hit_points,
         std::vector<float>(camera_pass.hit_points.size(), float(settings.initial_radius)));
-    setup->estimate = std::make_unique<ProgressiveEstimate>(
-        camera_pass, settings, TracedCameraPasses(setup->scene, tracer, film, spec));
+    setup->estimate =
+        std::make_unique<ProgressiveEstimate>(camera_pass, settings, EpochCameraPass{});
     setup->emitters = std::make_unique<Emitters>(setup->scene);
     setup->cpu = std::move(*CreateBackend("cpu", setup->scene));
     absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", setup->scene);

@@ -97,14 +97,7 @@ double SharedDiscsBias(uint32_t pixels, uint32_t photons, double inner) {
     settings.initial_radius = kRadius;
     settings.samples_per_pixel = 2;
     settings.layout = {kPhotons, 2};
-    ProgressiveEstimate estimate(std::move(camera_pass), settings,
-                                 [pixels](uint64_t, const std::shared_ptr<const PixelHitPoints>&) {
-                                     CameraPassResult pass;
-                                     pass.emission = Image(pixels, 1);
-                                     pass.coverage.assign(2 * pixels,
-                                                          Rgb(0.5f));  // half the samples each
-                                     return pass;
-                                 });
+    ProgressiveEstimate estimate(std::move(camera_pass), settings, {});
     std::mt19937_64 rng(7);
     std::binomial_distribution<uint32_t> inside(photons, inner);
     for (int epoch = 0; epoch < 2; ++epoch) {
@@ -123,6 +116,7 @@ double SharedDiscsBias(uint32_t pixels, uint32_t photons, double inner) {
             }
             result.samples.assign(spec.sample_end - spec.sample_begin, Rgb(0.0f));
             result.photons_emitted = kPhotons;
+            testing::UniformEmission(estimate, result, 0.0f, Rgb(0.5f));  // half the samples each
         }
         estimate.MergeEpoch(batches);
     }

@@ -24,17 +24,10 @@ SurfaceExtent EdgeOf(uint64_t i) {
     return extent;
 }
 
-// Each epoch's camera pass (a ppm estimate takes its emission and coverage, a stochastic one its
-// hit points too): every slot (pixel * 3 + sample of a 10x10 film) traced anew, a few black,
-// weights and emission changing with the epoch.
-CameraPassResult StochasticPass(uint64_t epoch,
-                                const std::shared_ptr<const PixelHitPoints>& fixed) {
+// Each epoch's camera pass of a stochastic estimate: every slot (pixel * 3 + sample of a 10x10
+// film) traced anew, a few black, weights and emission changing with the epoch.
+CameraPassResult StochasticPass(uint64_t epoch) {
     CameraPassResult pass;
-    // ppm's: shares of the fixed hit points' pixels changing with the epoch.
-    if (fixed)
-        for (size_t i = 0; i < fixed->points->size(); ++i)
-            pass.coverage.push_back((*fixed->points)[i].weight *
-                                    (0.2f + 0.1f * float((i + epoch) % 5)));
     pass.emission = Image(10, 10);
     pass.emission.At(int(epoch % 10), 4) = Rgb(2.0f, 1.0f, 0.5f);
     std::mt19937 rng(static_cast<uint32_t>(epoch + 3));
@@ -68,11 +61,12 @@ ProgressiveEstimate MakeEstimate() {
     // Epochs of 500, 1000, 2000, then 4000 photons (and 2, 4, 8, then 16 camera samples a
     // pixel): saved within the growing epochs and after them.
     settings.layout = {1000, 4, 500};
-    return ProgressiveEstimate(std::move(camera_pass), settings, StochasticPass);
+    return ProgressiveEstimate(std::move(camera_pass), settings, {});
 }
 
-// A made-up result for the next batch: random hit points, counts and flux, from a seed of its own.
-BatchResult RandomBatch(const BatchSpec& spec) {
+// A made-up result for batch `spec` of `estimate`: random hit points, counts and flux, and for
+// ppm its share of the emission pass, from a seed of its own.
+BatchResult RandomBatch(const Estimate& estimate, const BatchSpec& spec) {
     std::mt19937 rng(static_cast<uint32_t>(spec.index * 7919 + 13));
     BatchResult result;
     result.spec = spec;
@@ -88,11 +82,16 @@ BatchResult RandomBatch(const BatchSpec& spec) {
     for (uint32_t i = spec.sample_begin; i < spec.sample_end; ++i)
         result.samples.push_back(Rgb(float(rng() % 100) * 1e-2f, 0.5f, 0.0f));
     result.photons_emitted = spec.photons;
+    const auto [pixels, covered] = estimate.EmissionShape(spec);
+    for (uint64_t p = 0; p < pixels; ++p)
+        result.emission.push_back(p % 7 == 0 ? Rgb(2.0f, 1.0f, float(rng() % 10)) : Rgb(0.0f));
+    for (uint64_t k = 0; k < covered; ++k)
+        result.coverage.push_back(Rgb(0.02f * float(rng() % 10), 0.05f, 0.03f));
     return result;
 }
 
 void FoldNext(ProgressiveEstimate& estimate) {
-    estimate.FoldBatch(RandomBatch(estimate.EpochBatches()[estimate.BatchesFolded()]));
+    estimate.FoldBatch(RandomBatch(estimate, estimate.EpochBatches()[estimate.BatchesFolded()]));
     if (estimate.BatchesFolded() == estimate.Settings().layout.batches_per_epoch)
         estimate.FinishEpoch();
 }
@@ -120,7 +119,6 @@ TEST(EstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
         ASSERT_TRUE(loaded.ok()) << loaded.status();
         EXPECT_TRUE(reader.AtEnd());
         EXPECT_TRUE(SamePixels((*loaded)->Resolve(), current.Resolve())) << "after fold " << b;
-        (*loaded)->SetEpochCameraPass(StochasticPass);  // as the coordinator reattaches them
         estimate = std::move(*loaded);
         FoldNext(*estimate);
     }
@@ -160,7 +158,7 @@ std::unique_ptr<Estimate> MakeStochasticOf(int samples, uint32_t gather_rays,
     settings.initial_radius = 0.5;
     settings.samples_per_pixel = samples;
     settings.layout = {1000, 4};
-    CameraPassResult first = passes(0, nullptr);
+    CameraPassResult first = passes(0);
     return std::make_unique<ProgressiveEstimate>(std::move(first), settings, std::move(passes));
 }
 
@@ -168,8 +166,8 @@ std::unique_ptr<Estimate> MakeStochastic() { return MakeStochasticOf(3, 0, Stoch
 
 // rpm's passes: the stochastic ones, each slot with a radius of its epoch's (0 for some, which
 // keep theirs).
-CameraPassResult ReversePass(uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed) {
-    CameraPassResult pass = StochasticPass(epoch, fixed);
+CameraPassResult ReversePass(uint64_t epoch) {
+    CameraPassResult pass = StochasticPass(epoch);
     for (uint32_t i = 0; i < kHitPoints; ++i)
         pass.radius.push_back((i + epoch) % 5 == 0 ? 0.0f : 0.2f + 0.05f * float((i + epoch) % 7));
     return pass;
@@ -191,7 +189,8 @@ class AnyEstimateStateTest : public ::testing::TestWithParam<EstimateKind> {};
 
 TEST_P(AnyEstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
     const auto fold_next = [](Estimate& estimate) {
-        BatchResult result = RandomBatch(estimate.EpochBatches()[estimate.BatchesFolded()]);
+        BatchResult result =
+            RandomBatch(estimate, estimate.EpochBatches()[estimate.BatchesFolded()]);
         if (!GathersAtHitPoints(estimate.Kind())) result.tally = {}, result.photons_emitted = 0;
         estimate.FoldBatch(result);
         if (estimate.BatchesFolded() == estimate.EpochBatches().size()) estimate.FinishEpoch();
@@ -208,8 +207,8 @@ TEST_P(AnyEstimateStateTest, SavedAndLoadedAtEveryFoldItEndsBitIdentical) {
         EXPECT_TRUE(reader.AtEnd());
         EXPECT_EQ((*loaded)->Kind(), estimate->Kind());
         EXPECT_TRUE(SamePixels((*loaded)->Resolve(), estimate->Resolve())) << "after fold " << b;
-        if (GathersAtHitPoints((*loaded)->Kind()))  // its next epochs' camera passes, as the
-                                                    // coordinator reattaches them
+        if (TracesHitPointsEachEpoch((*loaded)->Kind()))  // its next epochs' camera passes, as
+                                                          // the coordinator reattaches them
             static_cast<ProgressiveEstimate&>(**loaded).SetEpochCameraPass(
                 (*loaded)->Kind() == Integrator::kRpm ? ReversePass : StochasticPass);
         estimate = std::move(*loaded);
@@ -256,7 +255,6 @@ TEST(EstimateStateTest, HitPointsKeptApartOnceItEndsBitIdentical) {
         ByteWriter again;
         (*loaded)->Save(again);
         EXPECT_TRUE(again.Bytes() == whole.Bytes()) << "after fold " << b;
-        (*loaded)->SetEpochCameraPass(StochasticPass);
         estimate = std::move(*loaded);
         FoldNext(*estimate);
     }

@@ -14,15 +14,15 @@ namespace {
 
 constexpr double kRadius = testing::kOnePointRadius;
 
-// One pixel seen through one hit point of weight 1. The epoch passes see `emission(epoch)`.
-ProgressiveEstimate OnePoint(const BatchLayout& layout, double alpha,
-                             std::function<float(uint64_t)> emission) {
-    return testing::OnePointEstimate(alpha, false, layout, std::move(emission));
+// One pixel seen through one hit point of weight 1.
+ProgressiveEstimate OnePoint(const BatchLayout& layout, double alpha) {
+    return testing::OnePointEstimate(alpha, false, layout);
 }
 
-// The current epoch's batches, each with `found` photons at the hit point (flux 1 each) and
-// `direct` in every direct-light slot.
-std::vector<BatchResult> Epoch(const ProgressiveEstimate& estimate, uint32_t found, float direct) {
+// The current epoch's batches, each with `found` photons at the hit point (flux 1 each),
+// `direct` in every direct-light slot, and the emission pass seeing `emission`.
+std::vector<BatchResult> Epoch(const ProgressiveEstimate& estimate, uint32_t found, float direct,
+                               float emission = 0.0f) {
     std::vector<BatchResult> results;
     for (const BatchSpec& spec : estimate.EpochBatches()) {
         BatchResult result;
@@ -35,6 +35,7 @@ std::vector<BatchResult> Epoch(const ProgressiveEstimate& estimate, uint32_t fou
         }
         result.samples.assign(spec.sample_end - spec.sample_begin, Rgb(direct));
         result.photons_emitted = spec.photons;
+        testing::UniformEmission(estimate, result, emission);
         results.push_back(std::move(result));
     }
     return results;
@@ -45,7 +46,7 @@ TEST(GrowingEpochsTest, RadiiHoldThroughTheGrowingEpochsAndTheLastShrinksThemAsA
     const BatchLayout layout{1000, 2, 250};
     ASSERT_EQ(layout.GrowingEpochs(), 3u);
     const double alpha = 2.0 / 3.0;
-    ProgressiveEstimate estimate = OnePoint(layout, alpha, [](uint64_t) { return 0.0f; });
+    ProgressiveEstimate estimate = OnePoint(layout, alpha);
     const double r0_sq = kRadius * kRadius;
     double found = 0;
     for (uint32_t epoch = 0; epoch < 2; ++epoch) {
@@ -76,14 +77,13 @@ TEST(GrowingEpochsTest, EmissionAndDirectLightAreMeanedOverCameraSamplesNotEpoch
     const BatchLayout layout{64, 1, 8};
     ASSERT_EQ(layout.GrowingEpochs(), 3u);
     const int samples[] = {4, 8, 16, 32, 32};
-    ProgressiveEstimate estimate =
-        OnePoint(layout, 2.0 / 3.0, [](uint64_t epoch) { return float(epoch + 1); });
+    ProgressiveEstimate estimate = OnePoint(layout, 2.0 / 3.0);
     double weighted = 0, count = 0;
     uint64_t traced = 1;  // the fixed pass's k = 1
     for (uint64_t epoch = 0; epoch < 5; ++epoch) {
         ASSERT_EQ(estimate.ItemCount(), uint64_t(samples[epoch])) << epoch;
         const float direct = 0.5f * float(epoch);
-        estimate.MergeEpoch(Epoch(estimate, 0, direct));
+        estimate.MergeEpoch(Epoch(estimate, 0, direct, float(epoch + 1)));
         weighted += samples[epoch] * (double(epoch + 1) + direct);
         count += samples[epoch];
         traced += uint64_t(samples[epoch]);

@@ -14,11 +14,9 @@ inline constexpr uint32_t kOnePointPhotons = 1000;  // emitted per batch
 inline constexpr double kOnePointRadius = 0.5;
 
 // One hit point of weight 1 in a 1x1 image, R0 kOnePointRadius, by default two batches an
-// epoch of kOnePointPhotons each. The epochs' passes have one slot and see `emission(epoch)`
-// (none without it), and every camera sample the hit point.
+// epoch of kOnePointPhotons each. The epochs' passes have one slot a camera sample.
 inline ProgressiveEstimate OnePointEstimate(double alpha, bool balanced = false,
-                                            const BatchLayout& layout = {kOnePointPhotons, 2},
-                                            std::function<float(uint64_t)> emission = nullptr) {
+                                            const BatchLayout& layout = {kOnePointPhotons, 2}) {
     CameraPassResult camera_pass;
     camera_pass.hit_points = {HitPoint{Vec3(0.0f), Vec3(0, 0, 1), Rgb(1.0f), 0}};
     camera_pass.footprint = {0.01f};
@@ -29,15 +27,17 @@ inline ProgressiveEstimate OnePointEstimate(double alpha, bool balanced = false,
     settings.initial_radius = kOnePointRadius;
     settings.samples_per_pixel = 1;
     settings.layout = layout;
-    return ProgressiveEstimate(std::move(camera_pass), settings,
-                               [emission = std::move(emission)](
-                                   uint64_t epoch, const std::shared_ptr<const PixelHitPoints>&) {
-                                   CameraPassResult pass;
-                                   pass.emission = Image(1, 1);
-                                   if (emission) pass.emission.pixels[0] = Rgb(emission(epoch));
-                                   pass.coverage = {Rgb(1.0f)};  // every sample sees it
-                                   return pass;
-                               });
+    return ProgressiveEstimate(std::move(camera_pass), settings, {});
+}
+
+// The epoch's emission pass as the batch of `result.spec` brings it (BatchResult::emission,
+// coverage): `emission` at each of its pixels, `coverage` at each of their hit points (by
+// default every camera sample of a pixel stands for each, at weight 1).
+inline void UniformEmission(const Estimate& estimate, BatchResult& result, float emission,
+                            Rgb coverage = Rgb(1.0f)) {
+    const auto [pixels, covered] = estimate.EmissionShape(result.spec);
+    result.emission.assign(pixels, Rgb(emission));
+    result.coverage.assign(covered, coverage);
 }
 
 // Batch `batch_in_epoch` of the estimate's epoch, whose one tally entry carries `flux`
@@ -53,6 +53,7 @@ inline BatchResult OnePointBatch(const ProgressiveEstimate& estimate, uint32_t b
     result.tally.flux = {Rgb(flux)};
     result.samples.assign(result.spec.sample_end - result.spec.sample_begin, Rgb(0.0f));
     result.photons_emitted = kOnePointPhotons;
+    UniformEmission(estimate, result, 0.0f);
     return result;
 }
 

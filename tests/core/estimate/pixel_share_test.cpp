@@ -17,11 +17,13 @@ namespace {
 constexpr uint32_t kPhotons = 1000;  // emitted per batch
 constexpr double kRadius = 0.5;
 
-// One pixel of two fixed hit points: A, weight (0.4, 0.4, 0.4), and B, weight 0.5. Each epoch's
-// pass has its samples' hits stand for A with the weights `on_a(epoch)` and for B with
-// `on_b(epoch)` (averaged over the samples, as a pass gives them); alpha 1, so radii hold.
-ProgressiveEstimate TwoPointPixel(std::function<Rgb(uint64_t)> on_a,
-                                  std::function<Rgb(uint64_t)> on_b) {
+// Weights of an epoch's samples that a hit point stands for, averaged over the samples, as an
+// epoch's emission pass gives them (BatchResult::coverage).
+using Coverage = std::function<Rgb(uint64_t epoch)>;
+
+// One pixel of two fixed hit points: A, weight (0.4, 0.4, 0.4), and B, weight 0.5; alpha 1, so
+// radii hold.
+ProgressiveEstimate TwoPointPixel() {
     CameraPassResult camera_pass;
     camera_pass.hit_points = {HitPoint{Vec3(0.0f), Vec3(0, 0, 1), Rgb(0.4f), 0},
                               HitPoint{Vec3(1.0f, 0, 0), Vec3(1, 0, 0), Rgb(0.5f), 0}};
@@ -32,20 +34,13 @@ ProgressiveEstimate TwoPointPixel(std::function<Rgb(uint64_t)> on_a,
     settings.initial_radius = kRadius;
     settings.samples_per_pixel = 2;
     settings.layout = {kPhotons, 2};
-    return ProgressiveEstimate(
-        std::move(camera_pass), settings,
-        [on_a, on_b](uint64_t epoch, const std::shared_ptr<const PixelHitPoints>& fixed) {
-            EXPECT_TRUE(fixed && fixed->points->size() == 2);
-            CameraPassResult pass;
-            pass.emission = Image(1, 1);
-            pass.coverage = {on_a(epoch), on_b(epoch)};
-            return pass;
-        });
+    return ProgressiveEstimate(std::move(camera_pass), settings, {});
 }
 
 // Merges an epoch whose two batches each bring A the flux 3 and B the flux 1 (W x N_emitted),
-// in 4 photons, 2 within R / sqrt(2) (a flat density: no bias).
-void MergeEpoch(ProgressiveEstimate& estimate) {
+// in 4 photons, 2 within R / sqrt(2) (a flat density: no bias), and whose samples' hits stand
+// for A with the weights `on_a(epoch)` and for B with `on_b(epoch)`.
+void MergeEpoch(ProgressiveEstimate& estimate, const Coverage& on_a, const Coverage& on_b) {
     std::vector<BatchResult> batches;
     for (const BatchSpec& spec : estimate.EpochBatches()) {
         BatchResult& result = batches.emplace_back();
@@ -56,6 +51,11 @@ void MergeEpoch(ProgressiveEstimate& estimate) {
         result.tally.flux = {Rgb(3.0f), Rgb(1.0f)};
         result.samples.assign(spec.sample_end - spec.sample_begin, Rgb(0.0f));
         result.photons_emitted = kPhotons;
+        // The batch whose slice holds the pixel brings its emission pass (A, B in pixel order).
+        if (estimate.EmissionShape(spec).first == 1) {
+            result.emission = {Rgb(0.0f)};
+            result.coverage = {on_a(spec.epoch), on_b(spec.epoch)};
+        }
     }
     estimate.MergeEpoch(batches);
 }
@@ -68,10 +68,11 @@ const double kDensityB = 1.0 / (kPiD * kRadius * kRadius * kPhotons);
 TEST(PixelShareTest, HitPointsCountByTheWeightOfTheSamplesTheyStandFor) {
     // Three quarters of the samples land near A, on a texel coloured (0.8, 0.4, 0.2) where A's
     // is grey 0.4; a quarter near B, with B's own weight. Fixed hit points alone gave each half.
-    ProgressiveEstimate estimate =
-        TwoPointPixel([](uint64_t) { return Rgb(0.8f, 0.4f, 0.2f) * 0.75f; },
-                      [](uint64_t) { return Rgb(0.5f) * 0.25f; });
-    for (int epoch = 0; epoch < 3; ++epoch) MergeEpoch(estimate);
+    ProgressiveEstimate estimate = TwoPointPixel();
+    for (int epoch = 0; epoch < 3; ++epoch)
+        MergeEpoch(
+            estimate, [](uint64_t) { return Rgb(0.8f, 0.4f, 0.2f) * 0.75f; },
+            [](uint64_t) { return Rgb(0.5f) * 0.25f; });
     const Rgb pixel = estimate.Resolve().pixels[0];
     const Rgb texel(0.8f, 0.4f, 0.2f);
     for (int c = 0; c < 3; ++c) {
@@ -84,10 +85,11 @@ TEST(PixelShareTest, TheErrorEstimateSeesTheSharesNoise) {
     // Even epochs' samples land on A nine times in ten, odd ones once in ten; the photons'
     // halves agree, so the error is the shares' alone: half the difference between the pixel
     // the even epochs' samples give and the odd ones'.
-    ProgressiveEstimate estimate =
-        TwoPointPixel([](uint64_t epoch) { return Rgb(0.4f) * (epoch % 2 == 0 ? 0.9f : 0.1f); },
-                      [](uint64_t epoch) { return Rgb(0.5f) * (epoch % 2 == 0 ? 0.1f : 0.9f); });
-    for (int epoch = 0; epoch < 4; ++epoch) MergeEpoch(estimate);
+    ProgressiveEstimate estimate = TwoPointPixel();
+    for (int epoch = 0; epoch < 4; ++epoch)
+        MergeEpoch(
+            estimate, [](uint64_t e) { return Rgb(0.4f) * (e % 2 == 0 ? 0.9f : 0.1f); },
+            [](uint64_t e) { return Rgb(0.5f) * (e % 2 == 0 ? 0.1f : 0.9f); });
     const ErrorEstimate error = estimate.EstimateError();
     ASSERT_TRUE(error.known);
     const double even = 0.4 * 0.9 * kDensityA + 0.5 * 0.1 * kDensityB;

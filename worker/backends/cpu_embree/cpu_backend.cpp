@@ -22,6 +22,7 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     grid_ = HashGrid();
     radiance_ = nullptr;
     film_.reset();
+    fixed_ = {};
     epoch_hit_points_.clear();
     direct_sequence_.reset();
     maps_.reset();
@@ -42,6 +43,11 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
             if (!film.ok()) return film.status();
             film->features = features_;
             film_ = *film;
+            if (job.spec->integrator == Integrator::kPpm) {
+                absl::StatusOr<PixelHitPoints> fixed = IndexFixedHitPoints(job.hit_points, *film_);
+                if (!fixed.ok()) return fixed.status();
+                fixed_ = std::move(*fixed);
+            }
             break;
         }
         case Integrator::kPath: {
@@ -88,9 +94,10 @@ absl::Status CpuBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regions
         // sppm's and rpm's hit points are the pass's; ppm samples direct light there.
         const bool stochastic = TracesHitPointsEachEpoch(job_.spec->integrator);
         const CameraPassSettings pass = StochasticCameraPass(*film_, *job_.spec, epoch);
-        if (!stochastic)
-            direct_points_.Reset(pass);  // traced by parts, as batches need them
-        else if (traced != nullptr)
+        if (!stochastic) {  // both traced by parts, as batches need them
+            direct_points_.Reset(pass);
+            emission_pass_ = EmissionCameraPass(*film_, *job_.spec, epoch);
+        } else if (traced != nullptr)
             epoch_hit_points_ = *traced;
         else
             epoch_hit_points_ = RunCameraPass(*job_.scene, tracer_, pass).hit_points;
@@ -126,7 +133,10 @@ absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const 
         inputs.adaptive = job_.spec->photon_tracing == PhotonTracing::kAdaptive;
         inputs.direct_photons = job_.spec->integrator == Integrator::kRpm;
     }
-    return RunPhotonBatches(inputs, specs, scratch_);
+    std::vector<BatchResult> results = RunPhotonBatches(inputs, specs, scratch_);
+    if (film_ && !TracesHitPointsEachEpoch(job_.spec->integrator))
+        TraceBatchEmission(*job_.scene, tracer_, emission_pass_, fixed_, results);
+    return results;
 }
 
 }  // namespace pf::embree

@@ -43,6 +43,10 @@ private:
     std::optional<CameraPassSettings> film_;
     std::vector<HitPoint> epoch_hit_points_;
     CameraPassPart direct_points_;
+    // ppm: the job's hit points by pixel, and the epoch's emission pass, whose share each batch
+    // traces (TraceBatchEmission).
+    PixelHitPoints fixed_;
+    CameraPassSettings emission_pass_;
     std::optional<DirectLightSequence> direct_sequence_;  // the pass's camera samples
 };
 

@@ -130,6 +130,7 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     buffers_.reset();
     kernels_.reset();
     film_.reset();
+    fixed_ = {};
     direct_sequence_.reset();
     job_ = job;
     size_t direct_points = 0;
@@ -152,6 +153,9 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
             job_.hit_points = epoch_hit_points_;
         } else {
             direct_points = max_epoch_points_;
+            absl::StatusOr<PixelHitPoints> fixed = IndexFixedHitPoints(job.hit_points, *film_);
+            if (!fixed.ok()) return fixed.status();
+            fixed_ = std::move(*fixed);
         }
     }
     if (job_.hit_points.size() >= (size_t{1} << 31))
@@ -272,8 +276,9 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regi
             std::ranges::transform(
                 epoch_hit_points_,
                 static_cast<gpu::GpuHitPoint*>(buffers_->hit_point_upload.Mapped()), ToGpu);
-        } else {
-            direct_points_.Reset(pass);  // traced by parts as batches need them (RunBatches)
+        } else {  // both traced by parts as batches need them (RunBatches)
+            direct_points_.Reset(pass);
+            emission_pass_ = EmissionCameraPass(*film_, *job_.spec, epoch);
         }
     }
     // Cells two of the largest radius wide, as the CPU grid: the largest over the hit points
@@ -523,6 +528,8 @@ absl::StatusOr<std::vector<BatchResult>> VulkanBackend::RunBatches(
         if (!result.ok()) return result.status();
         results.push_back(std::move(*result));
     }
+    if (film_ && !StochasticJob())
+        TraceBatchEmission(scene_, *camera_tracer_, emission_pass_, fixed_, results);
     return results;
 }
 

@@ -128,6 +128,10 @@ private:
     std::unique_ptr<Tracer> camera_tracer_;
     std::vector<HitPoint> epoch_hit_points_;
     CameraPassPart direct_points_;
+    // ppm: the job's hit points by pixel, and the epoch's emission pass, whose share each batch
+    // traces on the CPU (TraceBatchEmission).
+    PixelHitPoints fixed_;
+    CameraPassSettings emission_pass_;
     size_t max_epoch_points_ = 0;                         // the buffers' room for them
     std::optional<DirectLightSequence> direct_sequence_;  // the pass's camera samples
     gpu::vec4 scene_sphere_{};
