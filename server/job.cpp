@@ -207,12 +207,6 @@ absl::StatusOr<Job::ReportOutcome> Job::Report(const std::string& worker, BatchR
     if (!SameSpec(slot.spec, result.spec))
         return absl::InvalidArgumentError(
             absl::StrCat("result.spec: does not match batch ", slot.spec.index));
-    if (const auto [pixels, covered] = slot.emission_shape;
-        result.emission.size() != pixels || result.coverage.size() != covered)
-        return absl::InvalidArgumentError(
-            absl::StrCat("result.emission: ", result.emission.size(), " pixels and ",
-                         result.coverage.size(), " hit points covered for batch ", slot.spec.index,
-                         ", which has ", pixels, " and ", covered));
     for (uint32_t hit_point : result.tally.hit_point)
         if (hit_point >= hit_point_count_)
             return absl::InvalidArgumentError(
@@ -222,6 +216,13 @@ absl::StatusOr<Job::ReportOutcome> Job::Report(const std::string& worker, BatchR
     if (std::find(slot.lessees.begin(), slot.lessees.end(), worker) == slot.lessees.end())
         return ReportOutcome{TallyVerdict::kNotLeased};
     if (slot.result || slot.folded) return ReportOutcome{TallyVerdict::kDuplicate};
+    // ppm's share of the epoch's emission pass: the slice's pixels and their hit points.
+    if (const auto [pixels, covered] = slot.emission_shape;
+        result.emission.size() != pixels || result.coverage.size() != covered)
+        return absl::InvalidArgumentError(
+            absl::StrCat("result.emission: ", result.emission.size(), " pixels and ",
+                         result.coverage.size(), " hit points covered for batch ", slot.spec.index,
+                         ", which has ", pixels, " and ", covered));
     slot.result = std::move(result);
     workers_seen_[worker] = now;
     return ReportOutcome{TallyVerdict::kAccepted, FoldReadyLocked(lock, now)};

@@ -130,7 +130,8 @@ absl::StatusOr<BatchResult> FromProto(const photonfarm::v1::BatchResult& message
     if (static_cast<uint64_t>(message.samples_size()) != 3ull * slice)
         return Invalid(
             absl::StrCat("samples has ", message.samples_size(), " values for a slice of ", slice));
-    // The emission pass's share: its sizes are the job's to check (Estimate::EmissionShape).
+    // The direct samples, then ppm's share of the emission pass, whose sizes the job checks
+    // (Estimate::EmissionShape).
     for (auto [field, what, out] :
          {std::tuple(&message.samples(), "sample", &result.samples),
           std::tuple(&message.emission(), "emission", &result.emission),

@@ -89,10 +89,9 @@ class ProgressiveEstimate final : public Estimate {
 public:
     // `camera_pass`: the hit points photons gather at (for sppm, epoch 0's pass); sppm's and
     // rpm's later passes come from `next_passes` (ppm's from its batches, BatchResult::emission:
-    // none given). `initial_radii`: R0 of each
-    // hit point (sppm: of each slot), world units (DensityInitialRadii), raised to the
-    // settings' min_radius; empty: the pass's radii (rpm's: CameraPassResult::radius), else
-    // the settings' initial_radius for all.
+    // none given). `initial_radii`: R0 of each hit point (sppm: of each slot), world units
+    // (DensityInitialRadii), raised to the settings' min_radius; empty: the pass's radii (rpm's:
+    // CameraPassResult::radius), else the settings' initial_radius for all.
     ProgressiveEstimate(CameraPassResult camera_pass, const EstimateSettings& settings,
                         EpochCameraPass next_passes, std::span<const float> initial_radii = {});
     // An sppm or rpm estimate restored by Load needs its camera passes again.

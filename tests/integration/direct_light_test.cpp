@@ -187,7 +187,7 @@ TEST(DirectLightTest, BatchesShareOutTheEmissionPassAsTheWholePassGivesIt) {
     std::vector<BatchResult> results(kBatches);
     for (uint32_t j = 0; j < kBatches; ++j)
         results[j].spec = MakeBatchSpec({1000, kBatches}, 5, j, 29 * 17 * 3);
-    for (const auto [first, count] : {std::pair(0, 3), std::pair(3, 1), std::pair(4, 3)})
+    for (const auto& [first, count] : {std::pair(0, 3), std::pair(3, 1), std::pair(4, 3)})
         TraceBatchEmission(lit->scene, *lit->tracer, pass, *fixed,
                            std::span(results).subspan(first, count));
     std::vector<Rgb> emission, coverage;

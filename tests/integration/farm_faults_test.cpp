@@ -1,7 +1,12 @@
 // The farm under faults and bad input: cancelled and stalled jobs, forged and malformed
 // requests, a coordinator killed at random moments, workers told to stop (the fixture in
 // farm_fixture.h).
+#include <algorithm>
+#include <string>
+#include <vector>
+
 #include "tests/integration/farm_fixture.h"
+#include "wire/blob_codec.h"
 
 namespace pf {
 namespace {
@@ -54,6 +59,7 @@ public:
         result.spec = FromProto(spec);
         result.samples.assign(spec.sample_end() - spec.sample_begin(), Rgb(0.0f));
         result.photons_emitted = spec.photons();
+        AddEmission(job, result);
         v1::ReportTallyRequest request;
         request.set_worker_id(worker.empty() ? id_ : worker);
         request.set_job_id(job.job_id());
@@ -66,8 +72,41 @@ public:
     grpc::Status last_status_;
 
 private:
+    // ppm's share of the epoch's emission pass, black but of the size the coordinator takes:
+    // the slice's pixels (SlicePixels) and the job's hit points in them. None where the job's
+    // hit points cannot be fetched (a job that ended): such a report is refused before its
+    // emission is read.
+    void AddEmission(const v1::JobInputs& job, BatchResult& result) {
+        const absl::StatusOr<JobSpec> spec = FromProto(job.settings());
+        if (!spec.ok() || spec->integrator != Integrator::kPpm) return;
+        if (hit_points_.empty()) {
+            v1::FetchBlobRequest request;
+            request.set_digest(job.hit_points_digest());
+            grpc::ClientContext context;
+            std::unique_ptr<grpc::ClientReader<v1::BlobChunk>> reader =
+                stub_->FetchBlob(&context, request);
+            std::string bytes;
+            for (v1::BlobChunk chunk; reader->Read(&chunk);) bytes += chunk.data();
+            if (!reader->Finish().ok()) return;
+            absl::StatusOr<std::vector<HitPoint>> points =
+                DecodeHitPoints(bytes, job.hit_point_count());
+            if (!points.ok()) return;
+            hit_points_ = std::move(*points);
+        }
+        const auto [first, end] =
+            SlicePixels(result.spec, EpochCameraSamples(*spec, result.spec.epoch).per_pixel);
+        result.emission.assign(end - first, Rgb(0.0f));
+        result.coverage.assign(std::ranges::count_if(hit_points_,
+                                                     [first, end](const HitPoint& point) {
+                                                         return point.pixel >= first &&
+                                                                point.pixel < end;
+                                                     }),
+                               Rgb(0.0f));
+    }
+
     std::unique_ptr<v1::Work::Stub> stub_;
     std::string id_;
+    std::vector<HitPoint> hit_points_;  // the job's, fetched for the first report
 };
 
 // A job that stalls (here: no worker at all) fails its watch at the deadline with the job's

@@ -353,6 +353,19 @@ TEST_F(HostilePeersTest, HostileWorkerMergesNothingAndTheJobStillRendersExactly)
         EXPECT_EQ(hostile.Report(job_id, repeated, &verdict).error_code(),
                   grpc::StatusCode::INVALID_ARGUMENT);
     }
+    // ppm's share of the epoch's emission pass missing, of another size, or poisoned.
+    const auto refused_naming = [&](const v1::BatchResult& result, const std::string& field) {
+        const grpc::Status status = hostile.Report(job_id, result, &verdict);
+        EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << field;
+        EXPECT_NE(status.error_message().find(field), std::string::npos) << status.error_message();
+    };
+    refused_naming(HostileWorker::Plausible(held), "result.emission");
+    v1::BatchResult one_pixel = HostileWorker::Plausible(held);
+    for (int c = 0; c < 3; ++c) one_pixel.add_emission(0.5f), one_pixel.add_coverage(0.1f);
+    refused_naming(one_pixel, "result.emission");
+    v1::BatchResult poisoned_emission = one_pixel;
+    poisoned_emission.set_emission(1, std::numeric_limits<float>::quiet_NaN());
+    refused_naming(poisoned_emission, "emission 0 is negative, NaN or Inf");
     // A message over the coordinator's limit.
     v1::BatchResult oversized = HostileWorker::Plausible(held);
     for (int i = 0; i < kMaxMessageBytes / 4; ++i) oversized.mutable_tally()->add_flux(1.0f);
@@ -363,7 +376,7 @@ TEST_F(HostilePeersTest, HostileWorkerMergesNothingAndTheJobStillRendersExactly)
     EXPECT_EQ(refused.not_leased, 1u);
     EXPECT_EQ(refused.stale, 1u);
     EXPECT_EQ(refused.unknown_worker, 1u);
-    EXPECT_EQ(refused.malformed, 2u + 4u * kMalformedPerBatch);
+    EXPECT_EQ(refused.malformed, 5u + 4u * kMalformedPerBatch);
     const v1::GetResultResponse after = Result(job_id);
     EXPECT_EQ(after.status().epochs(), 1u);
     EXPECT_EQ(after.status().photons(), before.status().photons());
