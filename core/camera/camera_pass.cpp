@@ -291,7 +291,8 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                                    : settings.emission_only ? kEmissionSampleStream
                                                             : kFixedSampleStream;
 
-    // The pixels traced: all, or a part of a stochastic pass (which keeps no emission).
+    // The pixels traced: all, or a part (CameraPassSettings::first_pixel) of a stochastic pass
+    // or of an emission pass.
     const uint64_t pixels = uint64_t(width) * uint64_t(height);
     const uint64_t first_pixel = settings.first_pixel;
     const uint64_t end_pixel =
