@@ -36,6 +36,10 @@ struct CameraPath {
     float length = 0;  // distance travelled, for the pixel footprint
     int depth = 0;
     int splits_left = 0;  // glass interfaces still to split rather than choose at random
+    // The product of the refractions' scales of radiance in throughput (RefractionScale), which
+    // Russian roulette leaves out: a path inside glass is not less worth following (pbrt-v4's
+    // etaScale).
+    float refraction = 1.0f;
 };
 
 // Reverse photon mapping's gather hits of the camera hit point just appended (hit_points'
@@ -180,11 +184,13 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const CameraRay&
                            ReflectionProbability(material, path.ray.direction, n, front_facing);
                        path.splits_left > 0 && reflect > 0 && reflect < 1) {
                 // Continue with the reflection; the transmission waits on the stack.
-                const SpecularBounce transmitted =
-                    TransmitSpecular(material, path.ray.direction, n, front_facing, base_color);
+                const SpecularBounce transmitted = TransmitSpecular(
+                    material, path.ray.direction, n, front_facing, base_color, kCarriesRadiance);
                 CameraPath& other = stack[pending++];
                 other = path;
                 other.throughput *= transmitted.weight * (1.0f - reflect);
+                if (transmitted.transmitted)
+                    other.refraction *= RefractionOf(material, front_facing);
                 other.ray = {OffsetRayOrigin(surface.position,
                                              front_facing ? -surface.geometric_normal
                                                           : surface.geometric_normal,
@@ -197,11 +203,13 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const CameraRay&
                 bounce.weight *= reflect;
             } else {
                 bounce = ScatterNonDiffuse(material, path.ray.direction, n, front_facing,
-                                           base_color, rng);
+                                           base_color, rng, kCarriesRadiance);
             }
             path.throughput *= bounce.weight;
+            if (bounce.transmitted) path.refraction *= RefractionOf(material, front_facing);
             if (path.depth >= kCameraRouletteDepth) {
-                const float survive = std::min(1.0f, MaxComponent(path.throughput));
+                const float survive =
+                    std::min(1.0f, MaxComponent(path.throughput) / path.refraction);
                 if (!(rng.NextFloat() < survive)) break;
                 path.throughput /= survive;
             }

@@ -33,7 +33,7 @@ std::optional<DiffuseLanding> FollowToDiffuse(const Scene& scene, const Tracer& 
             material.type == MaterialType::kDiffuse
                 ? arrival.reflected
                 : ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                                    base_color, rng);
+                                    base_color, rng, kCarriesRadiance);
         weight *= bounce.weight;
         if (IsBlack(weight)) return std::nullopt;
         const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal

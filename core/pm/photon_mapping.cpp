@@ -78,6 +78,7 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
     thread_local NearestPhotons scratch;
     const Scene& scene = *inputs.scene;
     Rgb radiance(0.0f), throughput(1.0f);
+    float refraction = 1.0f;  // the refractions' scales in throughput, out of Russian roulette
     float length = 0;
     for (int depth = 0; depth < DepthLimit(inputs.max_depth, kMaxCameraDepth); ++depth) {
         RayHit hit;
@@ -120,10 +121,11 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
             material.type == MaterialType::kDiffuse
                 ? arrival.reflected
                 : ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                                    scene.BaseColor(surface), rng);
+                                    scene.BaseColor(surface), rng, kCarriesRadiance);
         throughput *= bounce.weight;
+        if (bounce.transmitted) refraction *= RefractionOf(material, front_facing);
         if (depth >= kCameraRouletteDepth) {
-            const float survive = std::min(1.0f, MaxComponent(throughput));
+            const float survive = std::min(1.0f, MaxComponent(throughput) / refraction);
             if (!(rng.NextFloat() < survive)) break;
             throughput /= survive;
         }

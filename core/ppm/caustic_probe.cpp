@@ -38,7 +38,7 @@ CausticProbe ProbeCaustics(const Scene& scene, const Emitters& emitters, const T
                 material.type == MaterialType::kDiffuse
                     ? arrival.reflected
                     : ScatterNonDiffuse(material, ray.direction, surface.shading_normal,
-                                        front_facing, scene.BaseColor(surface), rng);
+                                        front_facing, scene.BaseColor(surface), rng, kCarriesFlux);
             if (IsBlack(next.weight)) break;
             const Vec3 side = front_facing == next.transmitted ? -surface.geometric_normal
                                                                : surface.geometric_normal;

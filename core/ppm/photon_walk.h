@@ -121,7 +121,7 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
         bounce = coat.reflected;
     } else {
         bounce = ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                                   base_color, rng);
+                                   base_color, rng, kCarriesFlux);
     }
     const float survive = std::min(1.0f, MaxComponent(bounce.weight));
     if (!(rng.NextFloat() < survive) || !(arrival > 0)) return PhotonEvent::kEnded;

@@ -66,6 +66,9 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
     const Scene& scene = *inputs.scene;
     const float scale = scene.bounds.Magnitude();
     Rgb radiance(0.0f), throughput(1.0f);
+    // The refractions' scales of radiance in throughput (RefractionOf), which Russian roulette
+    // leaves out (pbrt-v4's etaScale): inside glass a path is worth following as much as outside.
+    float refraction = 1.0f;
     // Emission found by a specular bounce (or seen directly) counts in full: light sampling
     // cannot find it. After a diffuse bounce it is weighed against light sampling.
     bool specular_bounce = true;
@@ -187,8 +190,9 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
                 const float weight = light.pdf > 0 ? PowerHeuristic(light.pdf, f.pdf) : 1.0f;
                 radiance += throughput * f.value * light.radiance_over_pdf * weight;
             }
-            const SpecularBounce bounce = ScatterNonDiffuse(
-                material, ray.direction, surface.shading_normal, front_facing, base_color, rng);
+            const SpecularBounce bounce =
+                ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
+                                  base_color, rng, kCarriesRadiance);
             throughput *= bounce.weight;
             bsdf_pdf =
                 EvaluateRoughConductor(material, base_color, normal, wo, bounce.direction).pdf;
@@ -201,9 +205,11 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
                    bounce.direction};
         } else {
             // Specular surfaces, and rough glass, whose light is found by its own sampling alone.
-            const SpecularBounce bounce = ScatterNonDiffuse(
-                material, ray.direction, surface.shading_normal, front_facing, base_color, rng);
+            const SpecularBounce bounce =
+                ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
+                                  base_color, rng, kCarriesRadiance);
             throughput *= bounce.weight;
+            if (bounce.transmitted) refraction *= RefractionOf(material, front_facing);
             specular_bounce = true;
             coat_exit = false;
             const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal
@@ -211,7 +217,7 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
             ray = {OffsetRayOrigin(surface.position, side, scale), bounce.direction};
         }
         if (depth >= kPathRouletteDepth) {
-            const float survive = std::min(1.0f, MaxComponent(throughput));
+            const float survive = std::min(1.0f, MaxComponent(throughput) / refraction);
             if (!(rng.NextFloat() < survive)) break;
             throughput /= survive;
         }

@@ -57,10 +57,11 @@ inline DiffuseSide ChooseDiffuseSide(const Material& material, const Rgb& base_c
 
 // Scatters d at a rough surface; `normal` is the shading normal on the triangle's front
 // side, u_branch chooses reflection or refraction (rough glass), (u1, u2) the microfacet. A
-// black weight ends the path (the sample left the hemisphere it must stay in).
+// black weight ends the path (the sample left the hemisphere it must stay in). `carries` as
+// TransmitSpecular's: a camera path's radiance refracted scales by eta^2.
 inline SpecularBounce ScatterRough(const Material& material, const Vec3& d, const Vec3& normal,
                                    bool front_facing, const Rgb& tint, float u_branch, float u1,
-                                   float u2) {
+                                   float u2, uint32_t carries) {
     const Vec3 n = front_facing ? normal : -normal;  // facing the incident side
     const Frame frame = Frame::FromNormal(n);
     const Vec3 wo = frame.ToLocal(-d);
@@ -83,13 +84,16 @@ inline SpecularBounce ScatterRough(const Material& material, const Vec3& d, cons
     Vec3 wi;
     if (!Refract(-wo, m, eta, wi)) return reflect(Rgb(1.0f));  // rounding against the Fresnel term
     if (!(wi.z < 0)) return absorbed;
-    return {frame.ToWorld(wi), tint * GgxMaskingRatio(wo.z, -wi.z, alpha), true};
+    return {frame.ToWorld(wi),
+            tint * (GgxMaskingRatio(wo.z, -wi.z, alpha) * RefractionScale(carries, eta)), true};
 }
 
 // Scatters d at a surface that is not diffuse, drawing one number (specular) or three
-// (rough) from rng.
+// (rough) from rng; `carries` says whether a refraction scales the weight (kCarriesRadiance:
+// camera paths) or not (kCarriesFlux: photons).
 inline SpecularBounce ScatterNonDiffuse(const Material& material, const Vec3& d, const Vec3& normal,
-                                        bool front_facing, const Rgb& tint, Rng& rng) {
+                                        bool front_facing, const Rgb& tint, Rng& rng,
+                                        uint32_t carries) {
     if (material.HasCoat()) {  // a coated conductor
         const Frame frame = Frame::FromNormal(front_facing ? normal : -normal);
         Vec3 wi;
@@ -101,10 +105,10 @@ inline SpecularBounce ScatterNonDiffuse(const Material& material, const Vec3& d,
     }
     const float u_branch = rng.NextFloat();
     if (!material.IsRough())
-        return ScatterSpecular(material, d, normal, front_facing, tint, u_branch);
+        return ScatterSpecular(material, d, normal, front_facing, tint, u_branch, carries);
     const float u1 = rng.NextFloat();
     const float u2 = rng.NextFloat();
-    return ScatterRough(material, d, normal, front_facing, tint, u_branch, u1, u2);
+    return ScatterRough(material, d, normal, front_facing, tint, u_branch, u1, u2, carries);
 }
 
 // Where a ray along d meets a coated diffuse surface: the coat reflects it (a non-diffuse

@@ -15,7 +15,10 @@ namespace pf {
 
 // Fresnel reflectance and refraction, defined once for the CPU and the Vulkan kernels.
 using gpu::FresnelDielectric;  // (cos_incident, eta = n_incident / n_transmitted)
+using gpu::kCarriesFlux;       // what a path carries (core/shared/path_sampling.h): photons
+using gpu::kCarriesRadiance;   // camera paths, whose radiance refraction scales by eta^2
 using gpu::Refract;            // (d, n facing d's side, eta, out refracted); false under TIR
+using gpu::RefractionScale;
 
 // The material's conductor Fresnel term, as core/shared/conductor.h takes it.
 inline gpu::Conductor ConductorOf(const Material& material) {
@@ -69,24 +72,39 @@ inline SpecularBounce ReflectSpecular(const Material& material, const Vec3& d, c
 
 // The transmitted branch, tinted by the base colour: refracted through solid glass (reflected
 // instead should rounding disagree with ReflectionProbability about total internal
-// reflection), straight through a thin sheet.
+// reflection), straight through a thin sheet. `carries` (kCarriesRadiance or kCarriesFlux)
+// says whether the refraction scales the weight by eta^2 (RefractionScale).
 inline SpecularBounce TransmitSpecular(const Material& material, const Vec3& d, const Vec3& normal,
-                                       bool front_facing, const Rgb& tint) {
+                                       bool front_facing, const Rgb& tint, uint32_t carries) {
     if (material.type == MaterialType::kThinDielectric) return {d, tint, true};
     const Vec3 n = front_facing ? normal : -normal;
+    const float eta = front_facing ? 1.0f / material.ior : material.ior;
     Vec3 refracted;
-    if (!Refract(d, n, front_facing ? 1.0f / material.ior : material.ior, refracted))
+    if (!Refract(d, n, eta, refracted))
         return ReflectSpecular(material, d, normal, front_facing, tint);
-    return {refracted, tint, true};
+    return {refracted, tint * RefractionScale(carries, eta), true};
+}
+
+// The scale of radiance that a camera path transmitted through `material` took
+// (RefractionScale of kCarriesRadiance): eta^2 through solid glass, smooth or rough, 1 through
+// a thin sheet. Russian roulette divides it out.
+inline float RefractionOf(const Material& material, bool front_facing) {
+    if (material.type != MaterialType::kDielectric &&
+        material.type != MaterialType::kRoughDielectric)
+        return 1.0f;
+    const float eta = front_facing ? 1.0f / material.ior : material.ior;
+    return eta * eta;
 }
 
 // Scatters incoming direction d at a specular surface, choosing the branch with its
-// probability (u uniform in [0, 1)), so the carried weight is only the branch's tint.
+// probability (u uniform in [0, 1)), so the carried weight is only the branch's tint (and a
+// refraction's scale of radiance, for camera paths).
 inline SpecularBounce ScatterSpecular(const Material& material, const Vec3& d, const Vec3& normal,
-                                      bool front_facing, const Rgb& tint, float u) {
+                                      bool front_facing, const Rgb& tint, float u,
+                                      uint32_t carries) {
     if (u < ReflectionProbability(material, d, normal, front_facing))
         return ReflectSpecular(material, d, normal, front_facing, tint);
-    return TransmitSpecular(material, d, normal, front_facing, tint);
+    return TransmitSpecular(material, d, normal, front_facing, tint, carries);
 }
 
 }  // namespace pf

@@ -366,7 +366,7 @@ PF_GPU_LAYOUT(GpuPixelJob, 112);
 // samples so far): a slot a pixel of the batch, its samples traced one after another.
 struct GpuPathState {
     vec4 origin, direction;     // xyz: the ray the path follows next
-    vec4 radiance, throughput;  // xyz: of the sample being traced
+    vec4 radiance, throughput;  // xyz: of the sample being traced; throughput.w its refraction
     vec4 bounced_at;            // xyz: its last diffuse or rough vertex
     vec4 sum;                   // xyz: the pixel's finished samples, each times its filter weight
     vec4 hit;                   // the extend stage's closest hit: t, triangle (its bits), b1, b2

@@ -132,6 +132,24 @@ PF_GPU_FN bool Refract(vec3 d, vec3 n, float eta, PF_OUT(vec3) refracted) {
     return true;
 }
 
+// What a path carries, which decides what a refraction does to it (pbrt-v4's TransportMode):
+// camera paths (every integrator's, the path tracer's, final gathering) carry radiance, photons
+// carry flux. Radiance over the square of the index, L / eta^2, is what stays unchanged along
+// a ray through interfaces (Veach 1997, section 5.2: the solid angle of a pencil of rays shrinks
+// by (eta_i / eta_t)^2 as it enters a denser medium), so radiance arriving from the transmitted
+// side is scaled by (eta_i / eta_t)^2 on the incident side; flux crossing an interface is not
+// scaled. Paths that go in and out of one medium cancel the factor: it shows where a path ends
+// on the other side (a floor seen through water, an emitter inside glass, a camera inside a
+// medium).
+PF_CONST(uint32_t) kCarriesRadiance = 0;
+PF_CONST(uint32_t) kCarriesFlux = 1;
+
+// The factor a refraction with eta = n_incident / n_transmitted applies to what the path
+// carries, the incident side being the side the path arrives from.
+PF_GPU_FN float RefractionScale(uint32_t carries, float eta) {
+    return carries == kCarriesRadiance ? eta * eta : 1.0f;
+}
+
 // One coordinate of a ray origin moved off a surface along its geometric normal, toward the
 // side the normal faces, by a few units in the last place rather than by a fixed epsilon
 // (Wachter & Binder 2019, "A Fast and Robust Method for Avoiding Self-Intersection", Ray

@@ -132,8 +132,8 @@ TEST(CoatTest, CoatedMirrorKeepsWhatArrives) {
     constexpr int kSamples = 50000;
     double sum = 0;
     for (int i = 0; i < kSamples; ++i) {
-        const SpecularBounce bounce =
-            ScatterNonDiffuse(mirror, Incident(0.7f), {0, 0, 1}, true, Rgb(1.0f), rng);
+        const SpecularBounce bounce = ScatterNonDiffuse(mirror, Incident(0.7f), {0, 0, 1}, true,
+                                                        Rgb(1.0f), rng, kCarriesRadiance);
         sum += Average(bounce.weight);
         ASSERT_GT(bounce.direction.z, 0) << "a coated mirror reflects";
         // Both the coat's and the mirror's reflections are the mirror direction of d.
@@ -147,7 +147,7 @@ TEST(CoatTest, CoatedMirrorKeepsWhatArrives) {
     double tinted = 0;
     for (int i = 0; i < kSamples; ++i)
         tinted += Average(ScatterNonDiffuse(copper, Incident(1.0f), {0, 0, 1}, true,
-                                            Rgb(0.95f, 0.64f, 0.54f), rng)
+                                            Rgb(0.95f, 0.64f, 0.54f), rng, kCarriesRadiance)
                               .weight);
     EXPECT_LT(tinted / kSamples, Average(Rgb(0.95f, 0.64f, 0.54f)));
 }

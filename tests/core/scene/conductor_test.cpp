@@ -123,7 +123,8 @@ TEST(ConductorTest, RoughGoldSamplesAsItEvaluates) {
         Rng rng(11);
         Rgbd sampled(0.0), integrated(0.0);
         for (int i = 0; i < kSamples; ++i) {
-            sampled += Rgbd(ScatterNonDiffuse(gold, d, n, true, Rgb(1.0f), rng).weight);
+            sampled +=
+                Rgbd(ScatterNonDiffuse(gold, d, n, true, Rgb(1.0f), rng, kCarriesRadiance).weight);
             Vec3 wi = SampleUniformSphere(rng.NextFloat(), rng.NextFloat());
             wi.z = std::abs(wi.z);
             integrated += Rgbd(EvaluateRoughConductor(gold, Rgb(1.0f), n, -d, wi).value) * 2 * kPi;

@@ -54,8 +54,8 @@ TEST(SpecularTest, RefractionObeysSnellsLaw) {
 }
 
 TEST(SpecularTest, ClearGlassConservesEnergyAndReflectsAtTheFresnelRate) {
-    // Every branch of clear glass carries weight 1, and reflection happens with probability F:
-    // reflected + transmitted energy is exactly the incident energy.
+    // Every branch of clear glass carries flux with weight 1, and reflection happens with
+    // probability F: reflected + transmitted energy is exactly the incident energy.
     const Material glass = Glass();
     for (float cos_i : {0.1f, 0.5f, 0.9f, 1.0f}) {
         const Vec3 d(std::sqrt(1 - cos_i * cos_i), 0, -cos_i);
@@ -63,8 +63,8 @@ TEST(SpecularTest, ClearGlassConservesEnergyAndReflectsAtTheFresnelRate) {
         int reflected = 0;
         constexpr int kTrials = 200000;
         for (int i = 0; i < kTrials; ++i) {
-            const SpecularBounce b =
-                ScatterSpecular(glass, d, Vec3(0, 0, 1), true, Rgb(1.0f), rng.NextFloat());
+            const SpecularBounce b = ScatterSpecular(glass, d, Vec3(0, 0, 1), true, Rgb(1.0f),
+                                                     rng.NextFloat(), kCarriesFlux);
             ASSERT_EQ(b.weight, Rgb(1.0f));
             reflected += !b.transmitted;
         }
@@ -74,11 +74,39 @@ TEST(SpecularTest, ClearGlassConservesEnergyAndReflectsAtTheFresnelRate) {
     }
 }
 
+// Radiance refracted into glass of index 1.5 is 1.5^2 times the radiance outside (L / eta^2
+// is invariant: Veach 1997, section 5.2), so a camera path entering glass carries 1 / 1.5^2 of
+// what it finds inside, and one leaving carries 1.5^2; photons carry flux, which refraction
+// does not scale. The reflected branch is never scaled.
+TEST(SpecularTest, RefractionScalesRadianceByEtaSquaredAndFluxNot) {
+    const Material glass = Glass();
+    const Vec3 in = Normalize(Vec3(0.3f, 0, -1));
+    const Vec3 out = Normalize(Vec3(0.2f, 0, 1));  // inside, within the critical angle
+    constexpr float kUTransmit = 0.999f;           // above every Fresnel reflectance here
+    const auto weight = [&](const Vec3& d, bool front, uint32_t carries) {
+        const SpecularBounce b =
+            ScatterSpecular(glass, d, Vec3(0, 0, 1), front, Rgb(1.0f), kUTransmit, carries);
+        EXPECT_TRUE(b.transmitted);
+        return b.weight.x;
+    };
+    EXPECT_FLOAT_EQ(weight(in, true, kCarriesRadiance), 1.0f / (1.5f * 1.5f));
+    EXPECT_FLOAT_EQ(weight(out, false, kCarriesRadiance), 1.5f * 1.5f);
+    EXPECT_FLOAT_EQ(weight(in, true, kCarriesFlux), 1.0f);
+    EXPECT_FLOAT_EQ(weight(out, false, kCarriesFlux), 1.0f);
+    EXPECT_FLOAT_EQ(RefractionOf(glass, true), 1.0f / (1.5f * 1.5f));
+    EXPECT_FLOAT_EQ(RefractionOf(Glass(MaterialType::kThinDielectric), true), 1.0f);
+    const SpecularBounce reflected =
+        ScatterSpecular(glass, in, Vec3(0, 0, 1), true, Rgb(1.0f), 0.0f, kCarriesRadiance);
+    EXPECT_FALSE(reflected.transmitted);
+    EXPECT_EQ(reflected.weight, Rgb(1.0f));
+}
+
 TEST(SpecularTest, LeavingGlassAtGrazingAngleReflectsTotally) {
     const Material glass = Glass();
     const Vec3 d = Normalize(Vec3(0.9f, 0, 0.3f));  // inside, heading out through the back face
     for (float u : {0.0f, 0.5f, 0.999f}) {
-        const SpecularBounce b = ScatterSpecular(glass, d, Vec3(0, 0, 1), false, Rgb(1.0f), u);
+        const SpecularBounce b =
+            ScatterSpecular(glass, d, Vec3(0, 0, 1), false, Rgb(1.0f), u, kCarriesRadiance);
         EXPECT_FALSE(b.transmitted);
         EXPECT_NEAR(b.direction.z, -0.3f / Length(Vec3(0.9f, 0, 0.3f)), 1e-5f);
     }
@@ -89,9 +117,9 @@ TEST(SpecularTest, ThinGlassPassesStraightThroughAndConservesEnergy) {
     const Vec3 d = Normalize(Vec3(0.3f, 0.2f, -1.0f));
     Rng rng(9);
     for (int i = 0; i < 1000; ++i) {
-        const SpecularBounce b =
-            ScatterSpecular(sheet, d, Vec3(0, 0, 1), true, Rgb(1.0f), rng.NextFloat());
-        EXPECT_EQ(b.weight, Rgb(1.0f));
+        const SpecularBounce b = ScatterSpecular(sheet, d, Vec3(0, 0, 1), true, Rgb(1.0f),
+                                                 rng.NextFloat(), kCarriesRadiance);
+        EXPECT_EQ(b.weight, Rgb(1.0f));  // out on the side it came from: no change of index
         if (b.transmitted)
             EXPECT_EQ(b.direction, d);
         else
@@ -103,7 +131,8 @@ TEST(SpecularTest, MirrorReflectsWithItsTint) {
     Material mirror;
     mirror.type = MaterialType::kMirror;
     const Vec3 d = Normalize(Vec3(1, 0, -1));
-    const SpecularBounce b = ScatterSpecular(mirror, d, Vec3(0, 0, 1), true, Rgb(0.9f), 0.5f);
+    const SpecularBounce b =
+        ScatterSpecular(mirror, d, Vec3(0, 0, 1), true, Rgb(0.9f), 0.5f, kCarriesRadiance);
     EXPECT_FALSE(b.transmitted);
     EXPECT_NEAR(b.direction.x, d.x, 1e-6f);
     EXPECT_NEAR(b.direction.z, -d.z, 1e-6f);

@@ -112,11 +112,12 @@ struct PathState {
     bool coat_exit;  // the last bounce left a coated base: light sampling found its light
     float bsdf_pdf;  // of the last diffuse or rough bounce, solid angle
     vec3 bounced_at;
-    uint depth;  // surfaces met so far
+    uint depth;        // surfaces met so far
+    float refraction;  // the refractions' scales of radiance in throughput, out of Russian roulette
 };
 
 PathState BeginPath(vec3 origin, vec3 direction) {
-    return PathState(origin, direction, vec3(0), vec3(1), true, false, 0.0, origin, 0);
+    return PathState(origin, direction, vec3(0), vec3(1), true, false, 0.0, origin, 0, 1.0);
 }
 
 // The class of vertex a material makes.
@@ -220,7 +221,7 @@ bool PathVertex(inout PathState path, bool found, RayHit hit, inout Pcg32 rng) {
             const float weight = light.pdf > 0 ? PowerHeuristic(light.pdf, pdf) : 1.0;
             path.radiance += path.throughput * value * light.radiance_over_pdf * weight;
         }
-        const SpecularBounce bounce = ScatterNonDiffuse(material, surface, direction, front_facing, rng);
+        const SpecularBounce bounce = ScatterNonDiffuse(material, surface, direction, front_facing, rng, kCarriesRadiance);
         path.throughput *= bounce.weight;
         vec3 unused;
         path.bsdf_pdf = EvaluateRoughConductor(material, base_color, normal, wo, bounce.direction, unused);
@@ -231,8 +232,9 @@ bool PathVertex(inout PathState path, bool found, RayHit hit, inout Pcg32 rng) {
         path.direction = bounce.direction;
     } else {
         // Specular surfaces, and rough glass, whose light is found by its own sampling alone.
-        const SpecularBounce bounce = ScatterNonDiffuse(material, surface, direction, front_facing, rng);
+        const SpecularBounce bounce = ScatterNonDiffuse(material, surface, direction, front_facing, rng, kCarriesRadiance);
         path.throughput *= bounce.weight;
+        if (bounce.transmitted) path.refraction *= RefractionOf(material, front_facing);
         path.specular_bounce = true;
         path.coat_exit = false;
         path.origin = OffsetRayOrigin(surface.position, front_facing == bounce.transmitted ? -surface.geometric_normal
@@ -240,7 +242,7 @@ bool PathVertex(inout PathState path, bool found, RayHit hit, inout Pcg32 rng) {
         path.direction = bounce.direction;
     }
     if (path.depth >= pixel_job.roulette_depth) {
-        const float survive = min(1.0, MaxComponent(path.throughput));
+        const float survive = min(1.0, MaxComponent(path.throughput) / path.refraction);
         if (!(Pcg32NextFloat(rng) < survive)) return false;
         path.throughput /= survive;
     }

@@ -37,14 +37,14 @@ PathState LoadPath(uint slot) {
     const GpuPathState s = paths[slot];
     return PathState(s.origin.xyz, s.direction.xyz, s.radiance.xyz, s.throughput.xyz,
                      (s.flags & kPathSpecularBounce) != 0, (s.flags & kPathCoatExit) != 0, s.bsdf_pdf,
-                     s.bounced_at.xyz, s.depth);
+                     s.bounced_at.xyz, s.depth, s.throughput.w);
 }
 
 void StorePath(uint slot, PathState path, Pcg32 rng) {
     paths[slot].origin.xyz = path.origin;
     paths[slot].direction.xyz = path.direction;
     paths[slot].radiance.xyz = path.radiance;
-    paths[slot].throughput.xyz = path.throughput;
+    paths[slot].throughput = vec4(path.throughput, path.refraction);
     paths[slot].bounced_at.xyz = path.bounced_at;
     paths[slot].bsdf_pdf = path.bsdf_pdf;
     paths[slot].flags = (path.specular_bounce ? kPathSpecularBounce : 0) | (path.coat_exit ? kPathCoatExit : 0);

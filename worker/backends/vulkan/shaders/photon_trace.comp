@@ -211,7 +211,7 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
                 continue;
             }
         } else if (kHasMirror || kHasDielectric || kHasThinDielectric || kHasRoughConductor || kHasRoughDielectric) {
-            scatter = ScatterNonDiffuse(material, surface, direction, front_facing, rng);
+            scatter = ScatterNonDiffuse(material, surface, direction, front_facing, rng, kCarriesFlux);
         }
         const float survive = min(1.0, MaxComponent(scatter.weight));
         if (!(Pcg32NextFloat(rng) < survive) || !(arrival > 0.0)) break;

@@ -61,7 +61,7 @@ vec3 GatherRay(vec3 origin, vec3 direction, inout Pcg32 rng) {
         }
         const SpecularBounce bounce = material.type == kMaterialDiffuse
                                           ? reflected
-                                          : ScatterNonDiffuse(material, surface, direction, front_facing, rng);
+                                          : ScatterNonDiffuse(material, surface, direction, front_facing, rng, kCarriesRadiance);
         weight *= bounce.weight;
         if (all(equal(weight, vec3(0)))) return vec3(0);
         origin = OffsetRayOrigin(surface.position, front_facing == bounce.transmitted ? -surface.geometric_normal
@@ -105,6 +105,7 @@ vec3 DiffuseRadiance(vec3 p, vec3 normal, vec3 geometric, vec3 albedo, uint coat
 
 vec3 PhotonMappingRadiance(vec3 origin, vec3 direction, inout Pcg32 rng) {
     vec3 radiance = vec3(0), throughput = vec3(1);
+    float refraction = 1.0;  // the refractions' scales in throughput, out of Russian roulette
     for (uint depth = 0; depth < pixel_job.max_depth; ++depth) {
         RayHit hit;
         if (!TraceRay(origin, direction, kInfinity, false, hit)) {
@@ -144,10 +145,11 @@ vec3 PhotonMappingRadiance(vec3 origin, vec3 direction, inout Pcg32 rng) {
         }
         const SpecularBounce bounce = material.type == kMaterialDiffuse
                                           ? reflected
-                                          : ScatterNonDiffuse(material, surface, direction, front_facing, rng);
+                                          : ScatterNonDiffuse(material, surface, direction, front_facing, rng, kCarriesRadiance);
         throughput *= bounce.weight;
+        if (bounce.transmitted) refraction *= RefractionOf(material, front_facing);
         if (depth >= pixel_job.roulette_depth) {
-            const float survive = min(1.0, MaxComponent(throughput));
+            const float survive = min(1.0, MaxComponent(throughput) / refraction);
             if (!(Pcg32NextFloat(rng) < survive)) break;
             throughput /= survive;
         }

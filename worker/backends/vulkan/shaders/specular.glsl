@@ -26,7 +26,9 @@ struct SpecularBounce {
 };
 
 // d arrives at a specular surface of `material` whose front-side shading normal is `normal`.
-SpecularBounce ScatterSpecular(GpuMaterial material, vec3 d, vec3 normal, bool front_facing, vec3 tint, float u) {
+// `carries` (kCarriesRadiance, kCarriesFlux) as TransmitSpecular's in core/scene/specular.h.
+SpecularBounce ScatterSpecular(GpuMaterial material, vec3 d, vec3 normal, bool front_facing, vec3 tint, float u,
+                               uint carries) {
     const vec3 n = front_facing ? normal : -normal;  // facing the incident side
     const float ior = material.base_color.w;
     const float cos_i = -dot(d, n);
@@ -45,15 +47,16 @@ SpecularBounce ScatterSpecular(GpuMaterial material, vec3 d, vec3 normal, bool f
     if (kHasThinDielectric && material.type == kMaterialThinDielectric) return SpecularBounce(d, tint, true);
     // Refraction through solid glass; reflected instead should rounding disagree with the
     // Fresnel term about total internal reflection.
+    const float eta = front_facing ? 1.0 / ior : ior;
     vec3 refracted;
-    if (!Refract(d, n, front_facing ? 1.0 / ior : ior, refracted)) return reflected;
-    return SpecularBounce(refracted, tint, true);
+    if (!Refract(d, n, eta, refracted)) return reflected;
+    return SpecularBounce(refracted, tint * RefractionScale(carries, eta), true);
 }
 
 // d arrives at a rough surface; u_branch chooses reflection or refraction (rough glass),
 // (u1, u2) the microfacet. A black weight ends the path.
 SpecularBounce ScatterRough(GpuMaterial material, vec3 d, vec3 normal, bool front_facing, vec3 tint, float u_branch,
-                            float u1, float u2) {
+                            float u1, float u2, uint carries) {
     const vec3 n = front_facing ? normal : -normal;  // facing the incident side
     const mat3 frame = FrameFromNormal(n);
     const vec3 wo = -d * frame;  // to the local frame: the transpose
@@ -74,12 +77,14 @@ SpecularBounce ScatterRough(GpuMaterial material, vec3 d, vec3 normal, bool fron
         return SpecularBounce(frame * reflected, weight * GgxMaskingRatio(wo.z, reflected.z, alpha), false);
     }
     if (!(wi.z < 0.0)) return absorbed;
-    return SpecularBounce(frame * wi, tint * GgxMaskingRatio(wo.z, -wi.z, alpha), true);
+    return SpecularBounce(frame * wi, tint * (GgxMaskingRatio(wo.z, -wi.z, alpha) * RefractionScale(carries, eta)),
+                          true);
 }
 
 // Scatters d at a non-diffuse surface (ScatterNonDiffuse): a coated conductor through its coat,
 // a rough surface by its microfacets (three numbers), a specular one by Fresnel (one).
-SpecularBounce ScatterNonDiffuse(GpuMaterial material, Surface surface, vec3 d, bool front_facing, inout Pcg32 rng) {
+SpecularBounce ScatterNonDiffuse(GpuMaterial material, Surface surface, vec3 d, bool front_facing, inout Pcg32 rng,
+                                 uint carries) {
     if (kHasCoats && material.coat.x > 0.0) {  // a coated conductor
         const mat3 frame = FrameFromNormal(front_facing ? surface.shading_normal : -surface.shading_normal);
         const float base_alpha = material.type == kMaterialRoughConductor ? max(material.roughness, 1e-3) : 0.0;
@@ -92,9 +97,20 @@ SpecularBounce ScatterNonDiffuse(GpuMaterial material, Surface surface, vec3 d, 
     if ((kHasRoughConductor && material.type == kMaterialRoughConductor) ||
         (kHasRoughDielectric && material.type == kMaterialRoughDielectric)) {
         const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-        return ScatterRough(material, d, surface.shading_normal, front_facing, surface.base_color, u_branch, u1, u2);
+        return ScatterRough(material, d, surface.shading_normal, front_facing, surface.base_color, u_branch, u1, u2,
+                            carries);
     }
-    return ScatterSpecular(material, d, surface.shading_normal, front_facing, surface.base_color, u_branch);
+    return ScatterSpecular(material, d, surface.shading_normal, front_facing, surface.base_color, u_branch, carries);
+}
+
+// The scale of radiance a camera path transmitted through `material` took (RefractionOf in
+// core/scene/specular.h), which Russian roulette divides out.
+float RefractionOf(GpuMaterial material, bool front_facing) {
+    const bool solid = (kHasDielectric && material.type == kMaterialDielectric) ||
+                       (kHasRoughDielectric && material.type == kMaterialRoughDielectric);
+    if (!solid) return 1.0;
+    const float eta = front_facing ? 1.0 / material.base_color.w : material.base_color.w;
+    return eta * eta;
 }
 
 // Light sampling at rough metal (EvaluateRoughConductor in core/scene/glossy.h): f cos(wi) into
