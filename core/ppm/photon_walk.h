@@ -34,7 +34,8 @@ bool LeaveCoatedBase(const Material& material, const Vec3& position, const Frame
         flux *= leaving.weight;
         ray.direction = leaving.direction;
         if (leaving.escaped) return true;
-        if (IsBlack(flux) || returns == kMaxCoatReturns) return false;
+        // The coat's visits to the base (Material::coat_depth), this landing's the first.
+        if (IsBlack(flux) || returns + 1 >= static_cast<int>(material.coat_depth)) return false;
         land(position, ray.direction, flux, true, std::abs(Dot(ray.direction, frame.n)), frame.n);
         const float survive = std::min(1.0f, MaxComponent(base_color));
         if (!(rng.NextFloat() < survive)) return false;

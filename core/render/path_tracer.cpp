@@ -26,7 +26,7 @@ bool TraceCoatedBase(const PathInputs& inputs, const SurfacePoint& surface, bool
     const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
     const Vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
     const Frame frame = Frame::FromNormal(normal);
-    for (int returns = 0; returns <= kMaxCoatReturns; ++returns) {
+    for (uint32_t visit = 0; visit < coat.depth; ++visit) {  // each with its chance to leave
         LightSample light;
         if (inputs.emitters->SampleDirect(surface.position, normal, rng, &light) &&
             !inputs.tracer->Occluded(light.shadow_ray)) {

@@ -56,9 +56,11 @@ struct Material {
     float coat_roughness = 0.0f;
     float coat_thickness = 0.0f;
     float coat_weight = 1.0f;
-    // The most bounces a path takes between a coated conductor and its coat before it is
-    // taken as absorbed (pbrt-v4's maxdepth).
-    uint32_t coat_depth = 10;
+    // The most visits light pays a coat's base, each followed by its chance to leave through
+    // the coat, before it is taken as absorbed: pbrt-v4's maxdepth counts crossings of the
+    // layer, two a visit, so its default 10 is 5 here (pbrt_materials.cpp); glTF's coats,
+    // which name none, as many as matter (gpu::kMaxCoatReturns).
+    uint32_t coat_depth = 64;
     // A sheen over the coat (core/shared/sheen.h, glTF's KHR_materials_sheen): its colour
     // (black: none) and roughness, times the sheen texture's colour and the sheen roughness
     // texture's first channel at the point where they are set (Scene::ShadingMaterial).

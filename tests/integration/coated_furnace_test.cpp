@@ -38,9 +38,9 @@ std::string CoatedFurnace(const std::string& body) {
 TEST(CoatedFurnace, PathTracerCountsEachLightOnceUnderACoat) {
     for (const char* body :
          {"Material \"coateddiffuse\" \"rgb reflectance\" [1 1 1] \"float roughness\" 0 "
-          "\"float thickness\" 0\n",
+          "\"float thickness\" 0 \"integer maxdepth\" 128\n",
           "Material \"coateddiffuse\" \"rgb reflectance\" [1 1 1] \"float roughness\" 0 "
-          "\"float thickness\" 0 \"float eta\" 2.2\n"}) {
+          "\"float thickness\" 0 \"float eta\" 2.2 \"integer maxdepth\" 128\n"}) {
         RenderSettings settings;
         settings.scene_path = testing::WriteTextFile(CoatedFurnace(body), "coated-furnace.pbrt");
         settings.threads = 2;
@@ -74,7 +74,7 @@ TEST(CoatedFurnace, PhotonMappersGatherRightUnderACoat) {
     constexpr int kRenders = 8;
     const std::string scene = testing::WriteTextFile(
         CoatedFurnace("Material \"coateddiffuse\" \"rgb reflectance\" [1 1 1] \"float "
-                      "roughness\" 0 \"float thickness\" 0\n"),
+                      "roughness\" 0 \"float thickness\" 0 \"integer maxdepth\" 128\n"),
         "coated-furnace.pbrt");
     for (const Integrator integrator : {Integrator::kSppm, Integrator::kRpm, Integrator::kPm}) {
         double sum = 0, sum_sq = 0;

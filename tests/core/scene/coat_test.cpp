@@ -183,5 +183,55 @@ TEST(CoatTest, PhotonsReflectedByACoatKeepTheirFlux) {
     EXPECT_NEAR(landed / kPhotons, 1 - fresnel, 5 * sigma) << "flux reaching the base";
 }
 
+// pbrt-v4's maxdepth counts crossings of the layer, so its default 10 lets light visit the
+// base 5 times, each with a chance to leave: under a smooth coat of index eta and optical
+// thickness t over a Lambertian base of albedo rho, light arriving at cosine mu comes back
+// F(mu) + (1 - F(mu)) T(mu_t) rho E sum_{k < K} (rho R)^k, K the visits (coat_test.cpp's
+// closed form, cut at K). Photons walk so (core/ppm/photon_walk.h), as do camera paths.
+TEST(CoatTest, PhotonsVisitTheBaseAsOftenAsTheCoatsDepthAllows) {
+    constexpr float kEta = 1.5f, kThickness = 0.01f, kAlbedo = 0.9f;
+    const double escape = Integrate([&](double mu) {
+        return 2 * mu * std::exp(-kThickness / mu) * (1 - gpu::FresnelDielectric(mu, kEta));
+    });
+    const double turned_back = Integrate([&](double mu) {
+        return 2 * mu * std::exp(-2 * kThickness / mu) * gpu::FresnelDielectric(mu, kEta);
+    });
+    Scene scene;
+    scene.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
+    scene.triangles = {{{0, 1, 2}, 0, false, {0, 0, 1}}};
+    scene.bounds.Extend({-1, -1, 0}), scene.bounds.Extend({1, 1, 0});
+    for (const uint32_t visits : {1u, 2u, 5u}) {
+        Material coated;
+        coated.base_color = Rgb(kAlbedo);
+        coated.coat_ior = kEta;
+        coated.coat_thickness = kThickness;
+        coated.coat_depth = visits;
+        scene.materials = {coated};
+        constexpr float kCos = 0.8f;
+        const double fresnel = gpu::FresnelDielectric(kCos, 1 / kEta);
+        const double mu_t = std::sqrt(1 - (1 - kCos * kCos) / (kEta * kEta));
+        double series = 0;
+        for (uint32_t k = 0; k < visits; ++k) series += std::pow(kAlbedo * turned_back, k);
+        const double expected =
+            fresnel + (1 - fresnel) * std::exp(-kThickness / mu_t) * kAlbedo * escape * series;
+        Rng rng(13);
+        constexpr int kPhotons = 400000;
+        double sum = 0, sum_sq = 0;
+        for (int i = 0; i < kPhotons; ++i) {
+            Ray ray{{0, 0, 1}, Incident(kCos)};
+            Rgb flux(1.0f);
+            const RayHit hit{1.0f, 0, 1.0f / 3, 1.0f / 3};
+            const PhotonEvent event = ScatterPhotonAt<true, false>(
+                scene, hit, ray, flux, rng,
+                [](const Vec3&, const Vec3&, const Rgb&, bool, float, const Vec3&) {});
+            const double out = event == PhotonEvent::kEnded ? 0.0 : double(flux.x);
+            sum += out, sum_sq += out * out;
+        }
+        const double mean = sum / kPhotons;
+        const double sigma = std::sqrt((sum_sq / kPhotons - mean * mean) / kPhotons);
+        EXPECT_NEAR(mean, expected, 5 * sigma) << visits << " visits";
+    }
+}
+
 }  // namespace
 }  // namespace pf

@@ -24,7 +24,7 @@ inline float Walk(const Material& material, const Vec3& d, Rng& rng, Vec3& out) 
     }
     float flux = arrival.weight;
     const Frame frame = Frame::FromNormal(n);
-    for (int returns = 0; returns <= kMaxCoatReturns; ++returns) {
+    for (uint32_t visit = 0; visit < material.coat_depth; ++visit) {
         flux *= material.base_color.x;  // albedo as a weight: no roulette, less noise
         const CoatLeaving leaving = LeaveCoatAt(
             material, frame, SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()), rng);

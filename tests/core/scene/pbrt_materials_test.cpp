@@ -193,12 +193,12 @@ TEST(PbrtMaterialsTest, CoatsTakePbrtsParameters) {
     EXPECT_EQ(plain.coat_ior, 1.5f);
     EXPECT_EQ(plain.coat_roughness, 0.0f);
     EXPECT_NEAR(plain.coat_thickness, 0.01f, 1e-7f);
-    EXPECT_EQ(plain.coat_depth, 10u);
+    EXPECT_EQ(plain.coat_depth, 5u);  // visits to the base: maxdepth / 2
     const Material& given = scene->materials[1];
     EXPECT_NEAR(given.coat_ior, 1.33f, 1e-6f);
     EXPECT_NEAR(given.coat_roughness, 0.2f, 1e-6f);  // sqrt(0.04): pbrt remaps roughness
     EXPECT_NEAR(given.coat_thickness, 0.2f, 1e-6f);
-    EXPECT_EQ(given.coat_depth, 5u);
+    EXPECT_EQ(given.coat_depth, 2u);
     EXPECT_TRUE(Contains(warnings, "scattering inside the coat (\"albedo\") is left out"));
     // A coated conductor: the metal under the coat, its index kept in vacuum (the coat divides
     // it by its own where light meets the base), reflecting r at normal incidence in air.

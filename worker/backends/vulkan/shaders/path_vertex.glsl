@@ -75,7 +75,7 @@ bool TraceCoatedBase(Surface surface, bool front_facing, GpuMaterial material, v
     throughput = vec3(0);
     origin = surface.position;
     direction = normal;
-    for (int returns = 0; returns <= kMaxCoatReturns; ++returns) {
+    for (uint visit = 0; visit < coat.depth; ++visit) {  // each with its chance to leave
         LightSample light;
         if (SampleVisibleLight(surface.position, normal, rng, light)) {
             const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);

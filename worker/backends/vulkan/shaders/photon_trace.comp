@@ -190,7 +190,7 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
                         escaped = true;
                         break;
                     }
-                    if (MaxComponent(flux) <= 0.0 || returns == kMaxCoatReturns) break;
+                    if (MaxComponent(flux) <= 0.0 || returns + 1 >= int(CoatOf(material).depth)) break;
                     const float inside = kShadingNormals ? abs(wi.z) : 1.0;
                     if (inside > 0.0) {
                         if (gather) Gather(surface.position, direction, normal, flux / inside, kDiffusePhoton);
