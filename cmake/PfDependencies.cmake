@@ -8,7 +8,6 @@ find_package(TBB CONFIG REQUIRED)
 find_package(OpenEXR CONFIG REQUIRED)
 find_package(spdlog CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
-find_package(assimp CONFIG REQUIRED)  # PLY meshes of pbrt scenes
 find_package(ZLIB REQUIRED)  # pbrt's .pbrt.gz and .ply.gz
 find_package(draco CONFIG REQUIRED)  # glTF KHR_draco_mesh_compression
 find_package(meshoptimizer CONFIG REQUIRED)  # glTF EXT_meshopt_compression

@@ -10,7 +10,7 @@ packages=(
     libopenimageio-dev openimageio-tools libopenexr-dev
     libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev
     libvulkan-dev glslc mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
-    libzstd-dev zlib1g-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev libassimp-dev libdraco-dev libmeshoptimizer-dev
+    libzstd-dev zlib1g-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev libdraco-dev libmeshoptimizer-dev
     libcpp-httplib-dev
     chromium chromium-driver python3-selenium
     gnuplot-nox fonts-dejavu-core

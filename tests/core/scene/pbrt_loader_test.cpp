@@ -428,7 +428,7 @@ TEST(PbrtLoaderTest, BadInputIsAOneLineErrorNamingFileLineAndColumn) {
                 "scenes/scene.pbrt:6:22: 'missing.pbrt' is not in the scene bundle");
     ExpectError(Load(Bundle("Shape \"plymesh\" \"string filename\" \"bad.ply\"\n",
                             {{"bad.ply", "ply\nformat nonsense\n"}})),
-                "bad.ply: not a valid PLY mesh");
+                "bad.ply: PLY header line 2: \"format\" needs an encoding and a version");
     ExpectError(
         Load(Bundle(
             std::string("Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"t.png\"\n"
