@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # Builds the scene-parser fuzzers, the gzip decoder's, the spectrum files', the Draco and
-# meshopt decoders' and the prepared-scene decoder's with clang (libFuzzer, AddressSanitizer, UBSan)
-# in their own build folder and runs each for a fixed time over a copy of its seed corpus.
+# meshopt decoders', the PLY reader's and the prepared-scene decoder's with clang (libFuzzer,
+# AddressSanitizer, UBSan) in their own build folder and runs each for a fixed time over a copy
+# of its seed corpus.
 # Fails if a fuzzer finds a crash, a sanitizer error, a leak or a hang (the input is left in
 # the build folder).
 # Usage: run_fuzzers.sh SOURCE_DIR FUZZ_BUILD_DIR [SECONDS_EACH]
 set -euo pipefail
 source_dir=$1
 build_dir=$2
-seconds=${3:-${PF_FUZZ_SECONDS:-30}}
+seconds=${3:-${PF_FUZZ_SECONDS:-26}}
 source "$source_dir/tests/support/prerequisite.sh"
 command -v clang++ >/dev/null ||
     skip_for_want_of "run_fuzzers: clang++ is not installed (package clang); cannot build the fuzzers"
@@ -22,10 +23,10 @@ if [ ! -f "$build_dir/build.ninja" ]; then
         -DPF_BUILD_TESTS=OFF -DPF_BUILD_BENCH=OFF -DPF_BUILD_FUZZERS=ON >"$build_dir.configure.log" 2>&1 ||
         { cat "$build_dir.configure.log" >&2; exit 1; }
 fi
-cmake --build "$build_dir" --target pbrt_fuzzer gltf_fuzzer gzip_fuzzer spectrum_fuzzer draco_fuzzer meshopt_fuzzer prepared_scene_fuzzer prepared_scene_seeds -- -j "$(nproc)" >"$build_dir.build.log" 2>&1 ||
+cmake --build "$build_dir" --target pbrt_fuzzer gltf_fuzzer gzip_fuzzer spectrum_fuzzer draco_fuzzer meshopt_fuzzer ply_fuzzer prepared_scene_fuzzer prepared_scene_seeds -- -j "$(nproc)" >"$build_dir.build.log" 2>&1 ||
     { tail -50 "$build_dir.build.log" >&2; exit 1; }
 status=0
-for format in pbrt gltf gzip spectrum draco meshopt prepared_scene; do
+for format in pbrt gltf gzip spectrum draco meshopt ply prepared_scene; do
     corpus="$build_dir/corpus-$format"
     rm -rf "$corpus" && mkdir -p "$corpus"
     if [ "$format" = prepared_scene ]; then  # seeds made from the shipped scenes, not kept
