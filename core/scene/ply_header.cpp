@@ -84,24 +84,6 @@ uint64_t MinInstanceSize(const PlyElement& element, PlyEncoding encoding) {
 
 }  // namespace
 
-size_t PlyScalarSize(PlyScalar type) {
-    switch (type) {
-        case PlyScalar::kInt8:
-        case PlyScalar::kUint8:
-            return 1;
-        case PlyScalar::kInt16:
-        case PlyScalar::kUint16:
-            return 2;
-        case PlyScalar::kInt32:
-        case PlyScalar::kUint32:
-        case PlyScalar::kFloat32:
-            return 4;
-        case PlyScalar::kFloat64:
-            return 8;
-    }
-    return 0;
-}
-
 int PlyElement::Find(std::string_view property) const {
     for (size_t i = 0; i < properties.size(); ++i)
         if (properties[i].name == property) return static_cast<int>(i);

@@ -28,7 +28,23 @@ enum class PlyScalar : uint8_t {
 };
 
 // Bytes a scalar of `type` takes in binary data.
-size_t PlyScalarSize(PlyScalar type);
+constexpr size_t PlyScalarSize(PlyScalar type) {
+    switch (type) {
+        case PlyScalar::kInt8:
+        case PlyScalar::kUint8:
+            return 1;
+        case PlyScalar::kInt16:
+        case PlyScalar::kUint16:
+            return 2;
+        case PlyScalar::kInt32:
+        case PlyScalar::kUint32:
+        case PlyScalar::kFloat32:
+            return 4;
+        case PlyScalar::kFloat64:
+            return 8;
+    }
+    return 1;
+}
 
 struct PlyProperty {
     std::string name;

@@ -312,8 +312,11 @@ absl::Status ReadFaces(const Context& context, const Layout& layout, const PlyEl
                 continue;
             }
             triangles += length - 2;
-            for (size_t k = 1; k + 1 < polygon.size(); ++k)
-                mesh->indices.insert(mesh->indices.end(), {polygon[0], polygon[k], polygon[k + 1]});
+            for (size_t k = 1; k + 1 < polygon.size(); ++k) {
+                mesh->indices.push_back(polygon[0]);
+                mesh->indices.push_back(polygon[k]);
+                mesh->indices.push_back(polygon[k + 1]);
+            }
         }
     }
     return absl::OkStatus();
