@@ -360,7 +360,7 @@ absl::StatusOr<Layout> FindLayout(const PlyHeader& header, const std::string& na
             absl::StrCat(name, ": PLY file has no \"vertex\" element"));
     if (face < 0 || header.elements[face].count == 0) {
         for (const PlyElement& other : header.elements)  // e.g. "tristrips" (triangle strips)
-            if (other.name != "face" &&
+            if (other.name != "face" && other.name != "vertex" &&
                 (other.Find("vertex_indices") >= 0 || other.Find("vertex_index") >= 0))
                 return absl::InvalidArgumentError(
                     absl::StrCat(name, ": PLY element \"", other.name,

@@ -524,6 +524,19 @@ void FilesThatAreNotSurfacesAreRefused() {
                       .Line("1 0 0")
                       .bytes(),
                   "PLY file has no faces (a point cloud is not a surface)");
+    // Indices listed in the vertices themselves (a malformed file) are not faces either.
+    ExpectRefused(PlyWriter("ascii")
+                      .Line("element vertex 3")
+                      .Line("property float x")
+                      .Line("property float y")
+                      .Line("property float z")
+                      .Line("property list uchar int vertex_indices")
+                      .EndHeader()
+                      .Line("0 0 0 3 0 1 2")
+                      .Line("1 0 0 0")
+                      .Line("0 1 0 0")
+                      .bytes(),
+                  "PLY file has no faces");
     ExpectRefused(Triangle("ascii").Line("2 0 1").bytes(),
                   "no polygon of 3 or more vertices (1 faces of fewer");
     ExpectRefused(PlyWriter("ascii")
