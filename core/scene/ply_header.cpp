@@ -6,6 +6,7 @@
 #include <optional>
 #include <utility>
 
+#include "absl/strings/escaping.h"
 #include "absl/strings/str_cat.h"
 
 namespace pf {
@@ -84,6 +85,11 @@ uint64_t MinInstanceSize(const PlyElement& element, PlyEncoding encoding) {
 
 }  // namespace
 
+std::string PlyQuoted(std::string_view text) {
+    const std::string shown(text.substr(0, 64));
+    return absl::StrCat("\"", absl::CHexEscape(shown), text.size() > 64 ? "...\"" : "\"");
+}
+
 int PlyElement::Find(std::string_view property) const {
     for (size_t i = 0; i < properties.size(); ++i)
         if (properties[i].name == property) return static_cast<int>(i);
@@ -140,11 +146,11 @@ absl::StatusOr<PlyHeader> ParsePlyHeader(std::string_view bytes, const std::stri
             } else if (words[1] == "binary_big_endian") {
                 header.encoding = PlyEncoding::kBinaryBigEndian;
             } else {
-                return error(absl::StrCat("unknown format \"", words[1],
-                                          "\" (ascii, binary_little_endian or binary_big_endian)"));
+                return error(absl::StrCat("unknown format ", PlyQuoted(words[1]),
+                                          " (ascii, binary_little_endian or binary_big_endian)"));
             }
             if (words[2] != "1.0" && words[2] != "1")
-                return error(absl::StrCat("version \"", words[2], "\" is not 1.0"));
+                return error(absl::StrCat("version ", PlyQuoted(words[2]), " is not 1.0"));
             has_format = true;
         } else if (keyword == "element") {
             PlyElement element;
@@ -154,12 +160,12 @@ absl::StatusOr<PlyHeader> ParsePlyHeader(std::string_view bytes, const std::stri
             const auto [end, problem] =
                 std::from_chars(count.data(), count.data() + count.size(), element.count);
             if (problem != std::errc() || end != count.data() + count.size())
-                return error(absl::StrCat("element \"", words[1], "\" has count \"", count,
-                                          "\", not a whole number below 2^64"));
+                return error(absl::StrCat("element ", PlyQuoted(words[1]), " has count ",
+                                          PlyQuoted(count), ", not a whole number below 2^64"));
             for (const PlyElement& other : header.elements)
                 if (other.name == element.name &&
                     (element.name == "vertex" || element.name == "face"))
-                    return error(absl::StrCat("a second element \"", element.name, "\""));
+                    return error(absl::StrCat("a second element ", PlyQuoted(element.name)));
             element.line = lines.number();
             header.elements.push_back(std::move(element));
         } else if (keyword == "property") {
@@ -171,13 +177,13 @@ absl::StatusOr<PlyHeader> ParsePlyHeader(std::string_view bytes, const std::stri
                                   : "\"property\" needs a type and a name");
             for (size_t i = list ? 2 : 1; i + 1 < words.size(); ++i)
                 if (!ScalarNamed(words[i]))
-                    return error(absl::StrCat("unknown type \"", words[i], "\""));
+                    return error(absl::StrCat("unknown type ", PlyQuoted(words[i])));
             property.is_list = list;
             if (list) {
                 property.count_type = *ScalarNamed(words[2]);
                 if (!IsInteger(property.count_type))
-                    return error(absl::StrCat("a list's count type must be an integer, not \"",
-                                              words[2], "\""));
+                    return error(absl::StrCat("a list's count type must be an integer, not ",
+                                              PlyQuoted(words[2])));
             }
             property.type = *ScalarNamed(words[words.size() - 2]);
             property.name = words.back();
@@ -201,7 +207,7 @@ absl::Status CheckPlyCounts(const PlyHeader& header, size_t data_size, const std
         const uint64_t size = MinInstanceSize(element, header.encoding);
         if (size != 0 && element.count > (available - needed) / size)
             return absl::InvalidArgumentError(
-                absl::StrCat(name, ": PLY element \"", element.name, "\" (header line ",
+                absl::StrCat(name, ": PLY element ", PlyQuoted(element.name), " (header line ",
                              element.line, ") declares ", element.count,
                              " instances, more than the ", data_size, " bytes of data can hold"));
         needed += element.count * size;

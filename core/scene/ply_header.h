@@ -80,6 +80,10 @@ struct PlyHeader {
 // Lines end in LF or CRLF (or a lone CR where the first line does); the data begins right after
 // the one line terminator of end_header, whatever its first byte. Errors (INVALID_ARGUMENT) are
 // one line naming `name` and the header line.
+// `text` from a file as a message shows it: quoted, control and non-ASCII bytes escaped, cut
+// after 64 bytes.
+std::string PlyQuoted(std::string_view text);
+
 absl::StatusOr<PlyHeader> ParsePlyHeader(std::string_view bytes, const std::string& name);
 
 // Whether every element's instances fit in the `data_size` bytes after the header: each takes

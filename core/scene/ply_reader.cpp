@@ -110,7 +110,7 @@ public:
         const char* first = token.data() + (token[0] == '+' ? 1 : 0);
         const auto [end, problem] = std::from_chars(first, token.data() + token.size(), *value);
         if (problem == std::errc() && end == token.data() + token.size()) return true;
-        problem_ = absl::StrCat("\"", std::string(token.substr(0, 32)), "\" is not a number");
+        problem_ = absl::StrCat(PlyQuoted(token), " is not a number");
         return false;
     }
     bool Skip(uint64_t count, PlyScalar) {
@@ -166,12 +166,18 @@ struct Context {
     const SceneLimits& limits;
 };
 
+// An element as messages name it: vertex and face bare, any other quoted as PlyQuoted shows it.
+std::string ElementNoun(const PlyElement& element) {
+    return element.name == "vertex" || element.name == "face" ? element.name
+                                                              : PlyQuoted(element.name);
+}
+
 template <class Data>
 absl::Status DataError(const Context& context, const Data& data, const PlyElement& element,
                        uint64_t index, const PlyProperty& property, const std::string& what) {
-    return absl::InvalidArgumentError(absl::StrCat(context.name, ": PLY ", data.Line(),
-                                                   element.name, " ", index, " of ", element.count,
-                                                   ", property \"", property.name, "\": ", what));
+    return absl::InvalidArgumentError(
+        absl::StrCat(context.name, ": PLY ", data.Line(), ElementNoun(element), " ", index, " of ",
+                     element.count, ", property ", PlyQuoted(property.name), ": ", what));
 }
 
 // A list's length: a whole number (which ASCII data may fail to give).
@@ -205,8 +211,8 @@ template <class Data>
 absl::Status SkipElement(const Context& context, Data& data, const PlyElement& element) {
     if (!element.HasList()) {
         if (data.SkipAll(element)) return absl::OkStatus();
-        return absl::InvalidArgumentError(absl::StrCat(context.name, ": PLY element \"",
-                                                       element.name, "\" (", element.count,
+        return absl::InvalidArgumentError(absl::StrCat(context.name, ": PLY element ",
+                                                       PlyQuoted(element.name), " (", element.count,
                                                        " instances): ", data.Problem()));
     }
     for (uint64_t i = 0; i < element.count; ++i)
@@ -293,8 +299,8 @@ absl::Status ReadFaces(const Context& context, const Layout& layout, const PlyEl
             if (length >= 3 && triangles + (length - 2) > context.limits.max_triangles)
                 return absl::ResourceExhaustedError(
                     absl::StrCat(context.name, ": PLY mesh has more triangles than the limit of ",
-                                 context.limits.max_triangles, " (passed at ", element.name, " ", i,
-                                 " of ", element.count, ")"));
+                                 context.limits.max_triangles, " (passed at ", ElementNoun(element),
+                                 " ", i, " of ", element.count, ")"));
             polygon.clear();
             for (uint64_t k = 0; k < length; ++k) {
                 double value = 0;
@@ -363,8 +369,8 @@ absl::StatusOr<Layout> FindLayout(const PlyHeader& header, const std::string& na
             if (other.name != "face" && other.name != "vertex" &&
                 (other.Find("vertex_indices") >= 0 || other.Find("vertex_index") >= 0))
                 return absl::InvalidArgumentError(
-                    absl::StrCat(name, ": PLY element \"", other.name,
-                                 "\" is not read (only \"face\" polygons are)"));
+                    absl::StrCat(name, ": PLY element ", PlyQuoted(other.name),
+                                 " is not read (only \"face\" polygons are)"));
         return absl::InvalidArgumentError(
             absl::StrCat(name, ": PLY file has no faces (a point cloud is not a surface)"));
     }

@@ -440,7 +440,7 @@ void CountsBeyondTheDataAreRefusedBeforeAnythingIsAllocated() {
                       .Put<uint8_t>(3)
                       .Row<int32_t>({0, 1, 2})
                       .bytes(),
-                  "extra 0 of 1, property \"values\": the data ends early");
+                  "\"extra\" 0 of 1, property \"values\": the data ends early");
     ExpectRefused(Triangle("ascii").Row<int>({1000, 0, 1, 2}).bytes(),
                   "line 13, face 0 of 1, property \"vertex_indices\": the data ends early");
 }
@@ -477,6 +477,11 @@ void BadValuesAreRefusedNamingWhere() {
     ExpectRefused(Triangle("ascii").Line("3 0 one 2").bytes(),
                   "line 13, face 0 of 1, property \"vertex_indices\": \"one\" is not a number");
     ExpectRefused(Triangle("ascii").Line("-3 0 1 2").bytes(), "list length -3 is not a count");
+    // Text from the file is shown escaped (no terminal control codes in a message) and cut.
+    ExpectRefused(Triangle("ascii").Line("3 0 \x1b[31m 2").bytes(),
+                  "\"\\x1b[31m\" is not a number");
+    ExpectRefused("ply\nformat " + std::string(100, 'a') + " 1.0\nend_header\n",
+                  "unknown format \"" + std::string(64, 'a') + "...\"");
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
     for (const float bad : {nan, inf, -inf}) {
