@@ -44,7 +44,7 @@ absl::StatusOr<Rate> Measure(const std::string& backend_name, const std::string&
     spec.photon_budget = 1;
     spec.layout = {photons, 8};
     const CameraPassSettings film = *FilmFor(spec, *scene);
-    const CameraPassResult camera_pass = RunCameraPass(*scene, *tracer, film);
+    const CameraPassResult camera_pass = RunCameraPass(*scene, Emitters(*scene), *tracer, film);
     const ProgressiveEstimate estimate(camera_pass,
                                        EstimateFor(spec, camera_pass, *scene, scene_name), {});
     const Emitters emitters(*scene);

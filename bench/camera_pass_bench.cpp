@@ -43,10 +43,10 @@ Setup& Get() {
     s.spec.seed = 1;
     s.film = *FilmFor(s.spec, s.scene);
     s.film.features = AnalyseFeatures(s.scene, *s.emitters);
-    s.fixed = std::make_shared<const PixelHitPoints>(
-        PixelHitPoints::Index(std::make_shared<const std::vector<HitPoint>>(
-                                  RunCameraPass(s.scene, *s.tracer, s.film).hit_points),
-                              size_t(s.film.width) * size_t(s.film.height)));
+    s.fixed = std::make_shared<const PixelHitPoints>(PixelHitPoints::Index(
+        std::make_shared<const std::vector<HitPoint>>(
+            RunCameraPass(s.scene, *s.emitters, *s.tracer, s.film).hit_points),
+        size_t(s.film.width) * size_t(s.film.height)));
     return s;
 }
 
@@ -58,7 +58,8 @@ void BM_EmissionPass(benchmark::State& state) {
         ResolvedLayout(s.spec, uint64_t(s.film.width) * s.film.height).GrowingEpochs();
     const CameraPassSettings pass = EmissionCameraPass(s.film, s.spec, full);
     const PixelHitPoints* fixed = state.range(0) != 0 ? s.fixed.get() : nullptr;
-    for (auto _ : state) benchmark::DoNotOptimize(RunCameraPass(s.scene, *s.tracer, pass, fixed));
+    for (auto _ : state)
+        benchmark::DoNotOptimize(RunCameraPass(s.scene, *s.emitters, *s.tracer, pass, fixed));
     state.counters["samples/pixel"] = pass.samples_per_pixel;
 }
 BENCHMARK(BM_EmissionPass)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -73,7 +73,7 @@ int Run() {
     spec.seed = 1;
     spec.photon_budget = 1;
     const CameraPassSettings film = *FilmFor(spec, scene);
-    CameraPassResult camera_pass = RunCameraPass(scene, *tracer, film);
+    CameraPassResult camera_pass = RunCameraPass(scene, Emitters(scene), *tracer, film);
     ProgressiveEstimate estimate(camera_pass, EstimateFor(spec, camera_pass, scene, "cornell"), {});
     const Emitters emitters(scene);
     std::unique_ptr<Backend> backend = std::move(*CreateBackend("cpu", scene));

@@ -55,7 +55,7 @@ Recorded& Record() {
     spec.seed = 1;
     spec.photon_budget = 1;
     const CameraPassSettings film = *FilmFor(spec, r.scene);
-    r.camera_pass = RunCameraPass(r.scene, *tracer, film);
+    r.camera_pass = RunCameraPass(r.scene, Emitters(r.scene), *tracer, film);
     r.settings = EstimateFor(spec, r.camera_pass, r.scene, "cornell-box");
     ProgressiveEstimate estimate(r.camera_pass, r.settings, {});
     const Emitters emitters(r.scene);

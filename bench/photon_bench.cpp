@@ -56,7 +56,8 @@ BenchScene& Load(const std::string& name) {
     entry->scene = std::move(*scene);
     entry->emitters = std::make_unique<Emitters>(entry->scene);
     entry->tracer = std::move(*embree::EmbreeTracer::Create(entry->scene));
-    entry->camera_pass = RunCameraPass(entry->scene, *entry->tracer, {kWidth, kHeight, kSpp, 1});
+    entry->camera_pass =
+        RunCameraPass(entry->scene, *entry->emitters, *entry->tracer, {kWidth, kHeight, kSpp, 1});
     const float radius = DefaultInitialRadius(entry->camera_pass, entry->scene);
     const std::vector<float> radius_sq(entry->camera_pass.hit_points.size(), radius * radius);
     entry->grid.Build(entry->camera_pass.hit_points, radius_sq);

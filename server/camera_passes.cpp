@@ -96,10 +96,9 @@ EpochCameraPass EpochCameraPasses(std::shared_ptr<const JobPayload> payload,
     }
     // The passes keep the payload, and so its scene, alive.
     auto passes = std::make_shared<PrefetchedPasses>(
-        [payload, traced = TracedCameraPasses(payload->scene, std::move(tracer), film,
-                                              payload->spec, std::move(radii))](uint64_t epoch) {
-            return traced(epoch);
-        });
+        [payload, traced = TracedCameraPasses(payload->scene, payload->emitters, std::move(tracer),
+                                              film, payload->spec, std::move(radii))](
+            uint64_t epoch) { return traced(epoch); });
     return [passes = std::move(passes)](uint64_t epoch) { return (*passes)(epoch); };
 }
 

@@ -141,7 +141,8 @@ absl::StatusOr<PreparedJob> PrepareJob(JobRequest request, const CoordinatorOpti
         EpochCameraPass passes =
             stochastic ? EpochCameraPasses(payload, *film, tracer) : EpochCameraPass{};
         CameraPassResult camera_pass =
-            stochastic ? passes(0) : RunCameraPass(payload->scene, *tracer, *film);
+            stochastic ? passes(0)
+                       : RunCameraPass(payload->scene, payload->emitters, *tracer, *film);
         EstimateSettings settings =
             EstimateFor(request.spec, camera_pass, payload->scene, request.bundle.main_file);
         const double camera_seconds = std::chrono::duration<double>(Clock::now() - start).count();

@@ -17,6 +17,7 @@
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/glossy.h"
+#include "core/scene/glossy_lights.h"
 #include "core/util/check.h"
 
 namespace pf {
@@ -94,11 +95,14 @@ void TraceGatherHits(const Scene& scene, const Tracer& tracer, const Vec3& geome
 // where the path still splits, else one chosen (ChooseDiffuseSide).
 // Textures are filtered over the sample's share of the pixel's cone (the pixel's angle over
 // the square root of its samples, as pbrt-v4 scales its ray differentials).
+// Where the scene has punctual lights (`punctual`), a path at a glossy surface takes them by
+// light sampling (core/scene/glossy_lights.h), added to the emission it saw.
 template <bool kSpecular, bool kTextures>
-Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const CameraRay& primary,
-                      uint32_t pixel, PixelFootprint pixel_width, PixelFootprint filter_width,
-                      int splits, int max_depth, int gather_rays, Rng& rng,
-                      std::vector<HitPoint>& hit_points, std::vector<float>& footprints) {
+Rgb TraceCameraSample(const Scene& scene, const Emitters& emitters, bool punctual,
+                      const Tracer& tracer, const CameraRay& primary, uint32_t pixel,
+                      PixelFootprint pixel_width, PixelFootprint filter_width, int splits,
+                      int max_depth, int gather_rays, Rng& rng, std::vector<HitPoint>& hit_points,
+                      std::vector<float>& footprints) {
     Rgb emission(0.0f);
     CameraPath stack[kCameraSplits + 1];
     int pending = 0;
@@ -127,6 +131,10 @@ Rgb TraceCameraSample(const Scene& scene, const Tracer& tracer, const CameraRay&
                     ? scene.BaseColor(surface, filter_width.base + path.length * filter_width.angle)
                     : material.base_color;
             const Vec3& n = surface.shading_normal;
+            if (kSpecular && punctual && GlossyToPunctualLights(material))
+                emission += path.throughput *
+                            PunctualLightOnGloss(emitters, tracer, surface, material, base_color,
+                                                 front_facing, -path.ray.direction, rng);
             SpecularBounce bounce;
             if (!kSpecular || material.type == MaterialType::kDiffuse) {
                 CoatArrival arrival;
@@ -282,7 +290,7 @@ std::optional<uint32_t> CoveringHitPoint(const PixelHitPoints& fixed, uint32_t p
     return nearest_facing ? nearest_facing : nearest;
 }
 
-CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
+CameraPassResult RunCameraPass(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
                                const CameraPassSettings& settings, const PixelHitPoints* fixed) {
     const int width = settings.width, height = settings.height, spp = settings.samples_per_pixel;
     const Film film{width, height, spp};
@@ -346,9 +354,9 @@ CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
                         const CameraRay ray =
                             PixelSampleRay(scene.camera, film, filter, x, y, sampler);
                         const size_t before = row_hit_points[y].size();
-                        emission += trace(scene, tracer, ray, pixel, pixel_width, filter_width,
-                                          splits, max_depth, gather_rays, rng, row_hit_points[y],
-                                          row_footprints[y]);
+                        emission += trace(scene, emitters, features.PunctualLights(), tracer, ray,
+                                          pixel, pixel_width, filter_width, splits, max_depth,
+                                          gather_rays, rng, row_hit_points[y], row_footprints[y]);
                         // A stochastic pass keeps 1 + gather_rays slots per sample (one without
                         // gather rays), black where it found nothing.
                         if (settings.stochastic && row_hit_points[y].size() == before) {
@@ -433,7 +441,7 @@ void CameraPassPart::Reset(const CameraPassSettings& pass) {
     first_pixel_ = end_pixel_ = 0;
 }
 
-bool CameraPassPart::Cover(const Scene& scene, const Tracer& tracer,
+bool CameraPassPart::Cover(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
                            std::span<const BatchSpec> specs) {
     uint64_t begin = UINT64_MAX, end = 0;
     for (const BatchSpec& spec : specs)
@@ -448,7 +456,7 @@ bool CameraPassPart::Cover(const Scene& scene, const Tracer& tracer,
     CameraPassSettings part = pass_;
     part.first_pixel = static_cast<uint32_t>(first_pixel);
     part.pixel_count = static_cast<uint32_t>(end_pixel - first_pixel);
-    points_ = RunCameraPass(scene, tracer, part).hit_points;
+    points_ = RunCameraPass(scene, emitters, tracer, part).hit_points;
     PF_CHECK(points_.size() == (end_pixel - first_pixel) * slots_per_pixel_);
     first_pixel_ = first_pixel;
     end_pixel_ = end_pixel;
@@ -465,8 +473,9 @@ absl::StatusOr<PixelHitPoints> IndexFixedHitPoints(std::span<const HitPoint> poi
     return PixelHitPoints::Index(points, pixels);
 }
 
-void TraceBatchEmission(const Scene& scene, const Tracer& tracer, const CameraPassSettings& pass,
-                        const PixelHitPoints& fixed, std::span<BatchResult> results) {
+void TraceBatchEmission(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
+                        const CameraPassSettings& pass, const PixelHitPoints& fixed,
+                        std::span<BatchResult> results) {
     PF_CHECK(pass.emission_only && pass.gather_rays == 0);
     const auto slots_per_pixel = static_cast<uint64_t>(pass.samples_per_pixel);  // one a sample
     uint64_t first = UINT64_MAX, end = 0;
@@ -479,7 +488,7 @@ void TraceBatchEmission(const Scene& scene, const Tracer& tracer, const CameraPa
         CameraPassSettings part = pass;
         part.first_pixel = static_cast<uint32_t>(first);
         part.pixel_count = static_cast<uint32_t>(end - first);
-        traced = RunCameraPass(scene, tracer, part, &fixed);
+        traced = RunCameraPass(scene, emitters, tracer, part, &fixed);
     }
     for (BatchResult& result : results) {
         const auto [begin, stop] = SlicePixels(result.spec, slots_per_pixel);
@@ -502,17 +511,18 @@ CameraPassSettings EmissionCameraPass(const CameraPassSettings& film, const JobS
     return settings;
 }
 
-EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,
+EpochCameraPass TracedCameraPasses(const Scene& scene, const Emitters& emitters,
+                                   std::shared_ptr<const Tracer> tracer,
                                    const CameraPassSettings& film, const JobSpec& spec,
                                    SlotRadii radii) {
     PF_CHECK(TracesHitPointsEachEpoch(spec.integrator));
-    return
-        [&scene, tracer = std::move(tracer), film, spec, radii = std::move(radii)](uint64_t epoch) {
-            CameraPassResult pass =
-                RunCameraPass(scene, *tracer, StochasticCameraPass(film, spec, epoch));
-            if (radii) pass.radius = radii(pass.hit_points, pass.footprint);
-            return pass;
-        };
+    return [&scene, &emitters, tracer = std::move(tracer), film, spec,
+            radii = std::move(radii)](uint64_t epoch) {
+        CameraPassResult pass =
+            RunCameraPass(scene, emitters, *tracer, StochasticCameraPass(film, spec, epoch));
+        if (radii) pass.radius = radii(pass.hit_points, pass.footprint);
+        return pass;
+    };
 }
 
 float DefaultInitialRadius(const CameraPassResult& camera_pass, const Scene& scene) {

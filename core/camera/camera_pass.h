@@ -17,6 +17,7 @@
 #include "core/job/batch.h"
 #include "core/job/hit_point.h"
 #include "core/job/job_spec.h"
+#include "core/scene/emitters.h"
 #include "core/scene/scene.h"
 #include "core/scene/scene_features.h"
 
@@ -116,7 +117,9 @@ inline constexpr int kCameraSplits = 2;
 // Runs in parallel over rows (on the calling TBB arena); the result does not depend on the
 // thread count. An emission pass (settings.emission_only) given ppm's `fixed` hit points
 // credits each of its samples' hit points to one of them (CameraPassResult::coverage).
-CameraPassResult RunCameraPass(const Scene& scene, const Tracer& tracer,
+// `emitters` (the scene's) light the glossy surfaces paths meet with punctual lights, which
+// no path finds by itself (core/scene/glossy_lights.h): their light counts as emission seen.
+CameraPassResult RunCameraPass(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
                                const CameraPassSettings& settings,
                                const PixelHitPoints* fixed = nullptr);
 
@@ -138,7 +141,8 @@ public:
     // Holds the slots of `specs`' sample slices, with the rest of their pixels' (the pixels
     // from the first's to the last's), tracing them unless held already. Returns whether it
     // traced.
-    bool Cover(const Scene& scene, const Tracer& tracer, std::span<const BatchSpec> specs);
+    bool Cover(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
+               std::span<const BatchSpec> specs);
     std::span<const HitPoint> Points() const { return points_; }
     uint64_t FirstSlot() const { return first_pixel_ * slots_per_pixel_; }
 
@@ -167,8 +171,9 @@ absl::StatusOr<PixelHitPoints> IndexFixedHitPoints(std::span<const HitPoint> poi
 // emission and the coverage of `fixed` at its SlicePixels (BatchResult::emission, coverage),
 // the pixels of all of `results` traced as one part. The same, bit for bit, as the whole
 // pass's at those pixels, whoever traces them.
-void TraceBatchEmission(const Scene& scene, const Tracer& tracer, const CameraPassSettings& pass,
-                        const PixelHitPoints& fixed, std::span<BatchResult> results);
+void TraceBatchEmission(const Scene& scene, const Emitters& emitters, const Tracer& tracer,
+                        const CameraPassSettings& pass, const PixelHitPoints& fixed,
+                        std::span<BatchResult> results);
 
 // The coordinator's camera pass of an epoch of sppm or rpm: the StochasticCameraPass, its
 // emission and its slots, pixel * k + sample, where photons gather and direct light is sampled.
@@ -180,10 +185,11 @@ using EpochCameraPass = std::function<CameraPassResult(uint64_t epoch)>;
 using SlotRadii = std::function<std::vector<float>(std::span<const HitPoint> hit_points,
                                                    std::span<const float> footprint)>;
 
-// Each epoch's pass of `film` for job `spec` (sppm or rpm) over `scene` through `tracer`,
-// which the function keeps alive; `scene` must outlive it. `radii`, where given, sets each
-// pass's CameraPassResult::radius.
-EpochCameraPass TracedCameraPasses(const Scene& scene, std::shared_ptr<const Tracer> tracer,
+// Each epoch's pass of `film` for job `spec` (sppm or rpm) over `scene` (lit by `emitters`)
+// through `tracer`, which the function keeps alive; `scene` and `emitters` must outlive it.
+// `radii`, where given, sets each pass's CameraPassResult::radius.
+EpochCameraPass TracedCameraPasses(const Scene& scene, const Emitters& emitters,
+                                   std::shared_ptr<const Tracer> tracer,
                                    const CameraPassSettings& film, const JobSpec& spec,
                                    SlotRadii radii = {});
 

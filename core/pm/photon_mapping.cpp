@@ -11,6 +11,7 @@
 #include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/glossy.h"
+#include "core/scene/glossy_lights.h"
 
 namespace pf {
 namespace {
@@ -96,6 +97,11 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
         throughput *= InsideTransmittance(material, front_facing, hit.t);
         // Emission seen directly or through specular and rough bounces (no light map holds it).
         if (material.EmitsToward(front_facing)) radiance += throughput * scene.Emission(surface);
+        // Punctual lights on a glossy surface, which no path finds (core/scene/glossy_lights.h).
+        if (inputs.features.PunctualLights() && GlossyToPunctualLights(material))
+            radiance += throughput * PunctualLightOnGloss(*inputs.emitters, *inputs.tracer, surface,
+                                                          material, scene.BaseColor(surface),
+                                                          front_facing, -ray.direction, rng);
         const CoatArrival arrival =
             material.type == MaterialType::kDiffuse
                 ? ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng)

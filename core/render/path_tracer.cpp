@@ -8,6 +8,7 @@
 #include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/glossy.h"
+#include "core/scene/glossy_lights.h"
 
 namespace pf {
 namespace {
@@ -114,6 +115,13 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
             base_color = diffuse_seen || inputs.filter_angle <= 0
                              ? scene.BaseColor(surface)
                              : scene.BaseColor(surface, length * inputs.filter_angle);
+        // Punctual lights on a glossy surface, which no path finds (core/scene/glossy_lights.h);
+        // bare rough metal's light sampling below takes every light.
+        if (kSpecular && inputs.features.PunctualLights() && GlossyToPunctualLights(material) &&
+            (material.type != MaterialType::kRoughConductor || material.HasCoat()))
+            radiance += throughput * PunctualLightOnGloss(*inputs.emitters, *inputs.tracer, surface,
+                                                          material, base_color, front_facing,
+                                                          -ray.direction, rng);
         const CoatArrival arrival =
             kSpecular && material.type == MaterialType::kDiffuse
                 ? ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng)

@@ -61,6 +61,9 @@ struct Material {
     // layer, two a visit, so its default 10 is 5 here (pbrt_materials.cpp); glTF's coats,
     // which name none, as many as matter (gpu::kMaxCoatReturns).
     uint32_t coat_depth = 64;
+    // pbrt-v4's nsamples: the walks averaged in each estimate of a coated conductor's response
+    // to a punctual light (core/shared/glossy_lights.h's CoatedConductorResponse).
+    uint32_t coat_samples = 1;
     // A sheen over the coat (core/shared/sheen.h, glTF's KHR_materials_sheen): its colour
     // (black: none) and roughness, times the sheen texture's colour and the sheen roughness
     // texture's first channel at the point where they are set (Scene::ShadingMaterial).

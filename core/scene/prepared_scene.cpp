@@ -28,7 +28,7 @@ constexpr uint64_t kMaxCount = uint64_t{1} << 32;
 
 // Types written whole must have no padding: their size is the sum of their fields'.
 static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
-static_assert(sizeof(Material) == 200, "Material gained a field or padding: encode it");
+static_assert(sizeof(Material) == 204, "Material gained a field or padding: encode it");
 static_assert(sizeof(PixelFilter) == 4 + 6 * 4);
 static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4 + sizeof(PixelFilter),
               "Camera gained a field or padding: encode it");
@@ -307,7 +307,8 @@ absl::Status CheckMaterials(const Scene& scene) {
               material.coat_roughness >= 0.0f && material.coat_roughness <= 1.0f &&
               material.coat_thickness >= 0.0f && Finite(material.coat_thickness) &&
               material.coat_weight >= 0.0f && material.coat_weight <= 1.0f &&
-              material.coat_depth <= 1024))
+              material.coat_depth <= 1024 && material.coat_samples >= 1 &&
+              material.coat_samples <= 1024))
             return Invalid(absl::StrCat(name, ": a coat out of range"));
         // A sheen: a colour in [0, 1], over a coat (its layers' kinds carry it).
         if (!(Finite(material.sheen_color) && MinComponent(material.sheen_color) >= 0.0f &&

@@ -43,6 +43,10 @@ struct SceneFeatures {
     // Anything but opaque diffuse surfaces: what the passes' general variants handle.
     bool GeneralSurfaces() const { return Specular() || translucent; }
     bool Rough() const { return rough_conductor || rough_dielectric; }
+    // Lights that are deltas, which only light sampling finds (core/scene/glossy_lights.h).
+    bool PunctualLights() const {
+        return point_lights || spot_lights || directional_lights || image_lights;
+    }
     // Whether shading reads texture coordinates (light emission aside).
     bool ReadsUv() const {
         return textures || cut_outs || roughness_textures || mix_textures || shading_detail ||

@@ -54,9 +54,9 @@ PF_GPU_FN vec3 CoatReflection(Coat coat, vec3 wo, vec3 wi) {
 
 // Rough glass of GGX alpha `alpha`, eta = n on wo's side / n on the other (as ScatterRough's):
 // f |cos wi| for a camera path (radiance) with the light along wi on either side -- reflection
-// F D G2 / (4 cos_o cos_i), transmission Walter et al. 2007's eq. 21 times eta^2 (radiance
-// from the other side scales by it: path_sampling.h's RefractionScale) -- and the transmitted
-// part tinted by `tint`.
+// F D G2 / (4 cos_o cos_i), transmission Walter et al. 2007's eq. 21, the BTDF of radiance
+// (its n_o^2, eta^2 here, is what ScatterRough's RefractionScale carries) -- and the
+// transmitted part tinted by `tint`.
 PF_GPU_FN vec3 RoughDielectricResponse(float eta, float alpha, vec3 tint, vec3 wo, vec3 wi) {
     if (!(wo.z > 0.0f) || wi.z == 0.0f) return vec3(0.0f, 0.0f, 0.0f);
     if (wi.z > 0.0f) {

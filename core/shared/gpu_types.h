@@ -213,7 +213,7 @@ struct GpuMaterial {
                  // bits), w: a texture scaling it, or -1 (int bits)
     vec4 conductor_eta;  // a conductor's complex index, xyz: eta; w: its Fresnel kind
                          // (kConductor*, uint bits); core/shared/conductor.h
-    vec4 conductor_k;    // xyz: k
+    vec4 conductor_k;    // xyz: k; w: the coat's samples (Material::coat_samples), its bits
     vec4 absorption;     // xyz: a solid dielectric's absorption coefficient (BeerLambert)
     vec4 detail;         // x: the normal map's texture, or -1 (int bits), y: its scale; z: the bump
                   // map's texture, or -1 (int bits), w: its scale (core/shared/shading_normal.h)

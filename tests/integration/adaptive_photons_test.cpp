@@ -42,8 +42,9 @@ std::unique_ptr<LoadedScene> Load(const std::string& name, float radius) {
     loaded->lit = testing::LoadLitScene(name);
     EXPECT_NE(loaded->lit, nullptr);
     if (loaded->lit == nullptr) return nullptr;
-    loaded->hit_points =
-        RunCameraPass(loaded->lit->scene, *loaded->lit->tracer, {24, 24, 1, 3}).hit_points;
+    loaded->hit_points = RunCameraPass(loaded->lit->scene, *loaded->lit->emitters,
+                                       *loaded->lit->tracer, {24, 24, 1, 3})
+                             .hit_points;
     loaded->grid.Build(loaded->hit_points,
                        std::vector<float>(loaded->hit_points.size(), radius * radius));
     return loaded;

@@ -125,7 +125,7 @@ TEST(DirectLightTest, APartOfAnEpochsPassHoldsTheWholePassesSlotsAndSamples) {
         pass.gather_rays = gather_rays;
         pass.features = lit->features;
         const std::vector<HitPoint> whole =
-            RunCameraPass(lit->scene, *lit->tracer, pass).hit_points;
+            RunCameraPass(lit->scene, *lit->emitters, *lit->tracer, pass).hit_points;
         const uint64_t slots_per_pixel = 2ull * (1 + gather_rays);
         ASSERT_EQ(whole.size(), 37u * 23u * slots_per_pixel);
         const DirectLightSequence sequence{2, 6, 1 + gather_rays};
@@ -138,8 +138,9 @@ TEST(DirectLightTest, APartOfAnEpochsPassHoldsTheWholePassesSlotsAndSamples) {
              {.epoch = 3, .sample_begin = 500, .sample_end = 611}},
             {{.epoch = 3, .sample_begin = 0, .sample_end = uint32_t(whole.size())}}};
         for (const std::vector<BatchSpec>& specs : leases) {
-            EXPECT_TRUE(part.Cover(lit->scene, *lit->tracer, specs));
-            EXPECT_FALSE(part.Cover(lit->scene, *lit->tracer, specs)) << "traced it twice";
+            EXPECT_TRUE(part.Cover(lit->scene, *lit->emitters, *lit->tracer, specs));
+            EXPECT_FALSE(part.Cover(lit->scene, *lit->emitters, *lit->tracer, specs))
+                << "traced it twice";
             const std::span<const HitPoint> points = part.Points();
             ASSERT_LE(part.FirstSlot() + points.size(), whole.size());
             EXPECT_EQ(part.FirstSlot() % slots_per_pixel, 0u);
@@ -160,7 +161,7 @@ TEST(DirectLightTest, APartOfAnEpochsPassHoldsTheWholePassesSlotsAndSamples) {
             }
         }
         // A lease inside the part held traces nothing more.
-        EXPECT_FALSE(part.Cover(lit->scene, *lit->tracer,
+        EXPECT_FALSE(part.Cover(lit->scene, *lit->emitters, *lit->tracer,
                                 std::vector<BatchSpec>{{.sample_begin = 7, .sample_end = 8}}));
     }
 }
@@ -174,13 +175,15 @@ TEST(DirectLightTest, BatchesShareOutTheEmissionPassAsTheWholePassGivesIt) {
     ASSERT_NE(lit, nullptr);
     CameraPassSettings film{29, 17, 3, 4};
     film.features = lit->features;
-    const std::vector<HitPoint> points = RunCameraPass(lit->scene, *lit->tracer, film).hit_points;
+    const std::vector<HitPoint> points =
+        RunCameraPass(lit->scene, *lit->emitters, *lit->tracer, film).hit_points;
     const absl::StatusOr<PixelHitPoints> fixed = IndexFixedHitPoints(points, film);
     ASSERT_TRUE(fixed.ok()) << fixed.status();
     CameraPassSettings pass = film;
     pass.emission_only = true;
     pass.epoch = 5;
-    const CameraPassResult whole = RunCameraPass(lit->scene, *lit->tracer, pass, &*fixed);
+    const CameraPassResult whole =
+        RunCameraPass(lit->scene, *lit->emitters, *lit->tracer, pass, &*fixed);
     ASSERT_EQ(whole.coverage.size(), points.size());
     // Seven batches over the pass's slots (3 a pixel), leased as {0, 1, 2}, {3}, {4, 5, 6}.
     constexpr uint32_t kBatches = 7;
@@ -188,7 +191,7 @@ TEST(DirectLightTest, BatchesShareOutTheEmissionPassAsTheWholePassGivesIt) {
     for (uint32_t j = 0; j < kBatches; ++j)
         results[j].spec = MakeBatchSpec({1000, kBatches}, 5, j, 29 * 17 * 3);
     for (const auto& [first, count] : {std::pair(0, 3), std::pair(3, 1), std::pair(4, 3)})
-        TraceBatchEmission(lit->scene, *lit->tracer, pass, *fixed,
+        TraceBatchEmission(lit->scene, *lit->emitters, *lit->tracer, pass, *fixed,
                            std::span(results).subspan(first, count));
     std::vector<Rgb> emission, coverage;
     for (const BatchResult& result : results) {

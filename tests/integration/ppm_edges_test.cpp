@@ -119,16 +119,17 @@ TEST(PpmEdges, FixedHitPointsStandForTheirShareOfEachPixel) {
     spec.layout = {1u << 17, 1, 1u << 17};  // every epoch full: 64 camera samples a pixel
     CameraPassSettings film = *FilmFor(spec, lit->scene);
     film.features = lit->features;
-    const auto fixed = std::make_shared<const PixelHitPoints>(
-        PixelHitPoints::Index(std::make_shared<const std::vector<HitPoint>>(
-                                  RunCameraPass(lit->scene, *lit->tracer, film).hit_points),
-                              size_t(kPixels) * kPixels));
+    const auto fixed = std::make_shared<const PixelHitPoints>(PixelHitPoints::Index(
+        std::make_shared<const std::vector<HitPoint>>(
+            RunCameraPass(lit->scene, *lit->emitters, *lit->tracer, film).hit_points),
+        size_t(kPixels) * kPixels));
     const std::span<const HitPoint> points = fixed->points;
     std::vector<double> share(points.size(), 0.0);
     double samples = 0;
     for (uint64_t epoch = 0; epoch < kEpochs; ++epoch) {
         const CameraPassSettings pass = EmissionCameraPass(film, spec, epoch);
-        const CameraPassResult result = RunCameraPass(lit->scene, *lit->tracer, pass, fixed.get());
+        const CameraPassResult result =
+            RunCameraPass(lit->scene, *lit->emitters, *lit->tracer, pass, fixed.get());
         ASSERT_EQ(result.coverage.size(), points.size());
         for (size_t k = 0; k < points.size(); ++k) {  // in pixel order
             const uint32_t i = fixed->At(k);
@@ -141,7 +142,7 @@ TEST(PpmEdges, FixedHitPointsStandForTheirShareOfEachPixel) {
     dense.samples_per_pixel = kReferenceSamples;
     dense.seed = 77;
     const std::vector<HitPoint> reference =
-        RunCameraPass(lit->scene, *lit->tracer, dense).hit_points;
+        RunCameraPass(lit->scene, *lit->emitters, *lit->tracer, dense).hit_points;
     // Which way a hit point faces, as CoveringHitPoint tells surfaces apart: by the six axes
     // the Cornell box's faces and the blocks' near faces lie closest to.
     const auto facing = [](const HitPoint& point) {

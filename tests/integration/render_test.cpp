@@ -496,7 +496,8 @@ TEST(RenderTest, PhotonsAndDirectSamplesTurnedNanAreDroppedAndCounted) {
     absl::StatusOr<std::unique_ptr<embree::EmbreeTracer>> tracer =
         embree::EmbreeTracer::Create(*scene);
     ASSERT_TRUE(tracer.ok());
-    const CameraPassResult camera_pass = RunCameraPass(*scene, **tracer, {16, 16, 1, 1});
+    const CameraPassResult camera_pass =
+        RunCameraPass(*scene, Emitters(*scene), **tracer, {16, 16, 1, 1});
     ASSERT_FALSE(camera_pass.hit_points.empty());
     scene->materials[0].base_color = Rgb(std::nanf(""));
     std::vector<HitPoint> hit_points = camera_pass.hit_points;

@@ -42,7 +42,7 @@ ReversePass TraceReversePass(const testing::LitScene& lit) {
     CameraPassSettings film = *FilmFor(spec, lit.scene);
     film.features = lit.features;
     const CameraPassSettings pass = StochasticCameraPass(film, spec, 2);
-    return {pass, RunCameraPass(lit.scene, *lit.tracer, pass)};
+    return {pass, RunCameraPass(lit.scene, *lit.emitters, *lit.tracer, pass)};
 }
 
 // Each camera sample keeps 1 + gather rays slots of its pixel, in order: the camera hit point

@@ -42,7 +42,7 @@ TEST(CameraPassesTest, PassesTracedAheadAreThePassesTracedOnDemand) {
         ASSERT_TRUE(ahead.ok()) << ahead.status();
         std::shared_ptr<const Tracer> tracer = *embree::EmbreeTracer::Create(payload->scene);
         const EpochCameraPass on_demand =
-            TracedCameraPasses(payload->scene, tracer, film, payload->spec);
+            TracedCameraPasses(payload->scene, payload->emitters, tracer, film, payload->spec);
         // In order (each traced ahead), then a skip, a step back and a repeat (traced then).
         for (const uint64_t epoch : {0, 1, 2, 5, 3, 4, 4})
             ExpectSamePass((*ahead)(epoch), on_demand(epoch), epoch);

@@ -141,7 +141,7 @@ FurnacePass TraceFurnacePass(const std::string& scene_path, const JobSpec& job, 
         embree::EmbreeTracer::Create(*scene);
     const absl::StatusOr<CameraPassSettings> film = FilmFor(job, *scene);
     if (!tracer.ok() || !film.ok()) return pass;
-    const CameraPassResult camera_pass = RunCameraPass(*scene, **tracer, *film);
+    const CameraPassResult camera_pass = RunCameraPass(*scene, Emitters(*scene), **tracer, *film);
     pass.hit_points = camera_pass.hit_points.size();
     pass.initial_radius = DefaultInitialRadius(camera_pass, *scene);
     pass.emission = camera_pass.emission;

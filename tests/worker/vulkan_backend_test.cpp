@@ -52,7 +52,8 @@ std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size,
     spec.photon_budget = 1;
     spec.layout = layout;
     const CameraPassSettings film = *FilmFor(spec, setup->scene);
-    CameraPassResult camera_pass = RunCameraPass(setup->scene, *tracer, film);
+    setup->emitters = std::make_unique<Emitters>(setup->scene);
+    CameraPassResult camera_pass = RunCameraPass(setup->scene, *setup->emitters, *tracer, film);
     const EstimateSettings settings = EstimateFor(spec, camera_pass, setup->scene, name);
     // The hit points' surfaces probed, so that both backends keep to them alike.
     camera_pass.extent = ProbeSurfaceExtents(
@@ -60,7 +61,6 @@ std::unique_ptr<Rendering> BeginBoth(const std::string& name, int size,
         std::vector<float>(camera_pass.hit_points.size(), float(settings.initial_radius)));
     setup->estimate =
         std::make_unique<ProgressiveEstimate>(camera_pass, settings, EpochCameraPass{});
-    setup->emitters = std::make_unique<Emitters>(setup->scene);
     setup->cpu = std::move(*CreateBackend("cpu", setup->scene));
     absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", setup->scene);
     EXPECT_TRUE(vulkan.ok()) << vulkan.status();

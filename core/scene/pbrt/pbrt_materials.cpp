@@ -149,7 +149,7 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
         m.coat_roughness = *alpha;
         const double thickness = parameters.Float("thickness", 0.01);
         const int depth = parameters.Integer("maxdepth", 10);
-        parameters.Integer("nsamples", 1);  // pbrt's evaluation samples: a walk here needs none
+        const int samples = parameters.Integer("nsamples", 1);
         parameters.Float("g", 0.0);
         const std::optional<Rgb> albedo = parameters.Color("albedo");
         if (albedo && MaxComponent(*albedo) > 0)
@@ -165,6 +165,10 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
         if (!(depth >= 1 && depth <= 1024))
             return ErrorAt(
                 where, absl::StrCat("Material \"", type, "\": \"maxdepth\" must lie in [1, 1024]"));
+        if (!(samples >= 1 && samples <= 1024))
+            return ErrorAt(
+                where, absl::StrCat("Material \"", type, "\": \"nsamples\" must lie in [1, 1024]"));
+        m.coat_samples = static_cast<uint32_t>(samples);
         m.coat_thickness = static_cast<float>(thickness);
         // pbrt-v4's walk crosses the layer once per step: down to the base, up to the coat
         // (where light may leave), so maxdepth allows maxdepth / 2 visits to the base with a

@@ -199,6 +199,8 @@ TEST(PbrtMaterialsTest, CoatsTakePbrtsParameters) {
     EXPECT_NEAR(given.coat_roughness, 0.2f, 1e-6f);  // sqrt(0.04): pbrt remaps roughness
     EXPECT_NEAR(given.coat_thickness, 0.2f, 1e-6f);
     EXPECT_EQ(given.coat_depth, 2u);
+    EXPECT_EQ(given.coat_samples, 4u);
+    EXPECT_EQ(plain.coat_samples, 1u);
     EXPECT_TRUE(Contains(warnings, "scattering inside the coat (\"albedo\") is left out"));
     // A coated conductor: the metal under the coat, its index kept in vacuum (the coat divides
     // it by its own where light meets the base), reflecting r at normal incidence in air.

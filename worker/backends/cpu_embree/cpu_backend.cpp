@@ -100,7 +100,8 @@ absl::Status CpuBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regions
         } else if (traced != nullptr)
             epoch_hit_points_ = *traced;
         else
-            epoch_hit_points_ = RunCameraPass(*job_.scene, tracer_, pass).hit_points;
+            epoch_hit_points_ =
+                RunCameraPass(*job_.scene, *job_.emitters, tracer_, pass).hit_points;
         if (stochastic) job_.hit_points = epoch_hit_points_;
         direct_sequence_ =
             DirectLightSequence{pass.samples_per_pixel, pass.first_sample, 1 + pass.gather_rays};
@@ -121,7 +122,7 @@ absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const 
     PhotonPassInputs inputs{job_.scene, job_.emitters, &tracer_, job_.hit_points,
                             &grid_,     job_.seed,     features_};
     if (film_ && !TracesHitPointsEachEpoch(job_.spec->integrator)) {
-        direct_points_.Cover(*job_.scene, tracer_, specs);
+        direct_points_.Cover(*job_.scene, *job_.emitters, tracer_, specs);
         inputs.direct_points = direct_points_.Points();
         inputs.direct_offset = direct_points_.FirstSlot();
     } else {
@@ -135,7 +136,7 @@ absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const 
     }
     std::vector<BatchResult> results = RunPhotonBatches(inputs, specs, scratch_);
     if (film_ && !TracesHitPointsEachEpoch(job_.spec->integrator))
-        TraceBatchEmission(*job_.scene, tracer_, emission_pass_, fixed_, results);
+        TraceBatchEmission(*job_.scene, *job_.emitters, tracer_, emission_pass_, fixed_, results);
     return results;
 }
 

@@ -268,9 +268,10 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regi
         direct_sequence_ =
             DirectLightSequence{pass.samples_per_pixel, pass.first_sample, 1 + pass.gather_rays};
         if (StochasticJob()) {
-            epoch_hit_points_ = traced != nullptr
-                                    ? *traced
-                                    : RunCameraPass(scene_, *camera_tracer_, pass).hit_points;
+            epoch_hit_points_ =
+                traced != nullptr
+                    ? *traced
+                    : RunCameraPass(scene_, *job_.emitters, *camera_tracer_, pass).hit_points;
             PF_CHECK(epoch_hit_points_.size() == n);
             job_.hit_points = epoch_hit_points_;
             std::ranges::transform(
@@ -497,7 +498,8 @@ BatchResult VulkanBackend::ReadResult(const BatchSpec& spec) const {
 }
 
 absl::Status VulkanBackend::UploadDirectPoints(std::span<const BatchSpec> specs) {
-    if (!direct_points_.Cover(scene_, *camera_tracer_, specs)) return absl::OkStatus();
+    if (!direct_points_.Cover(scene_, *job_.emitters, *camera_tracer_, specs))
+        return absl::OkStatus();
     const std::span<const HitPoint> part = direct_points_.Points();
     PF_CHECK(direct_points_.FirstSlot() + part.size() <= max_epoch_points_);
     // The part lies in the device's buffer where the whole pass's slots would.
@@ -529,7 +531,8 @@ absl::StatusOr<std::vector<BatchResult>> VulkanBackend::RunBatches(
         results.push_back(std::move(*result));
     }
     if (film_ && !StochasticJob())
-        TraceBatchEmission(scene_, *camera_tracer_, emission_pass_, fixed_, results);
+        TraceBatchEmission(scene_, *job_.emitters, *camera_tracer_, emission_pass_, fixed_,
+                           results);
     return results;
 }
 

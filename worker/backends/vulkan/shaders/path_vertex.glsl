@@ -60,6 +60,25 @@ bool SampleVisibleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample light) 
            !TraceRay(light.origin, light.direction, light.distance, true, unused);
 }
 
+// What a camera path arriving along -wo at a glossy vertex (GlossyToPunctualLights) sees of
+// punctual lights (PunctualLightOnGloss in core/scene/glossy_lights.h): one light sample, kept
+// where it picked a punctual light, f |cos| times its radiance over pdf where its shadow ray is
+// clear; rough glass takes a light on either side. Three numbers, then a coated conductor's.
+vec3 PunctualLightOnGloss(GpuMaterial material, Surface surface, bool front_facing, vec3 wo, inout Pcg32 rng) {
+    const vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
+    const float pick = Pcg32NextFloat(rng), u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
+    LightSample light;
+    bool found = SampleLightFrom(surface.position, geometric, pick, vec2(u1, u2), false, light);
+    if (!found && kHasRoughDielectric && material.type == kMaterialRoughDielectric && !Coated(material))
+        found = SampleLightFrom(surface.position, -geometric, pick, vec2(u1, u2), false, light);
+    if (!found || light.pdf > 0.0) return vec3(0.0);
+    const vec3 f = GlossyResponse(material, surface, front_facing, wo, light.direction, rng);
+    RayHit unused;
+    if (!(MaxComponent(f) > 0.0) || TraceRay(light.origin, light.direction, light.distance, true, unused))
+        return vec3(0.0);
+    return f * light.radiance_over_pdf;
+}
+
 // The light leaving a coated diffuse base toward a path that entered the coat carrying
 // `entered` (TraceCoatedBase): light sampling through the coat at each visit, then a cosine
 // bounce inside that the coat lets out or turns back. Sets the path leaving the coat; false
@@ -159,6 +178,10 @@ bool PathVertex(inout PathState path, bool found, RayHit hit, inout Pcg32 rng) {
     if (path.depth >= pixel_job.max_depth) return false;
     const uint kind = kVertexClass == kVertexAny ? VertexClass(material) : kVertexClass;
     const vec3 base_color = surface.base_color;
+    // Punctual lights on a glossy surface, which no path finds; bare rough metal's light
+    // sampling below takes every light.
+    if (kind != kVertexDiffuse && kind != kVertexRough && GlossyToPunctualLights(material))
+        path.radiance += path.throughput * PunctualLightOnGloss(material, surface, front_facing, -direction, rng);
     float arrival_weight;
     SpecularBounce reflected;
     const bool at_base = kind != kVertexCoated ||

@@ -125,6 +125,9 @@ vec3 PhotonMappingRadiance(vec3 origin, vec3 direction, inout Pcg32 rng) {
             float unused;
             radiance += throughput * HitEmitter(hit, origin, surface.position, unused);
         }
+        // Punctual lights on a glossy surface, which no path finds.
+        if (GlossyToPunctualLights(material))
+            radiance += throughput * PunctualLightOnGloss(material, surface, front_facing, -direction, rng);
         float arrival_weight;
         SpecularBounce reflected;
         const bool at_base = material.type != kMaterialDiffuse ||

@@ -5,6 +5,7 @@
 // Materials the scene lacks are compiled out.
 #include "core/shared/microfacet.h"
 #include "core/shared/coat.h"
+#include "core/shared/glossy_lights.h"
 
 // The material's coat, as core/shared/coat.h takes it (glossy.h's CoatOf).
 Coat CoatOf(GpuMaterial material) {
@@ -113,6 +114,12 @@ float RefractionOf(GpuMaterial material, bool front_facing) {
     return eta * eta;
 }
 
+// Whether the scene has lights that are deltas (SceneFeatures::PunctualLights).
+const bool kHasPunctualLights = kHasPointLights || kHasSpotLights || kHasDirectionalLights || kHasImageLights;
+
+// The walks of a coated conductor's response to a punctual light (Material::coat_samples).
+uint CoatSamples(GpuMaterial material) { return floatBitsToUint(material.conductor_k.w); }
+
 // Light sampling at rough metal (EvaluateRoughConductor in core/scene/glossy.h): f cos(wi) into
 // `value` and the density with which ScatterRough chooses wi; n the shading normal on wo's side.
 float EvaluateRoughConductor(GpuMaterial material, vec3 tint, vec3 n, vec3 wo, vec3 wi, out vec3 value) {
@@ -124,4 +131,40 @@ float EvaluateRoughConductor(GpuMaterial material, vec3 tint, vec3 n, vec3 wo, v
     const float alpha = max(material.roughness, 1e-3);
     value = ConductorFresnel(ConductorOf(material), dot(wo, h), tint, 1.0) * GgxReflectionCosine(cos_o, cos_i, cos_h, alpha);
     return GgxReflectionPdf(cos_o, cos_h, alpha);
+}
+
+// Whether a camera path at `material` takes punctual lights by light sampling there
+// (GlossyToPunctualLights in core/scene/glossy_lights.h); false in a scene without them.
+bool GlossyToPunctualLights(GpuMaterial material) {
+    if (!kHasPunctualLights) return false;
+    if (kHasCoats && material.coat.x > 0.0)
+        return material.coat.y > 0.0 || (kHasSheen && MaxComponent(material.sheen.xyz) > 0.0) ||
+               (kHasRoughConductor && material.type == kMaterialRoughConductor);
+    return (kHasRoughConductor && material.type == kMaterialRoughConductor) ||
+           (kHasRoughDielectric && material.type == kMaterialRoughDielectric);
+}
+
+// f(wo, wi) |cos wi| of what `material` reflects of a punctual light along wi toward wo
+// (GlossyResponse in core/scene/glossy_lights.h); draws numbers for a coated conductor only.
+vec3 GlossyResponse(GpuMaterial material, Surface surface, bool front_facing, vec3 wo, vec3 wi, inout Pcg32 rng) {
+    const vec3 n = front_facing ? surface.shading_normal : -surface.shading_normal;
+    const mat3 frame = FrameFromNormal(n);
+    const vec3 local_o = wo * frame, local_i = wi * frame;  // to the local frame: the transpose
+    if (kHasCoats && material.coat.x > 0.0) {
+        if (material.type == kMaterialDiffuse) return CoatReflection(CoatOf(material), local_o, local_i);
+        const float base_alpha = material.type == kMaterialRoughConductor ? max(material.roughness, 1e-3) : 0.0;
+        return CoatedConductorResponse(CoatOf(material), ConductorOf(material), surface.base_color, base_alpha,
+                                       local_o, local_i, CoatSamples(material), rng);
+    }
+    if (kHasRoughConductor && material.type == kMaterialRoughConductor) {
+        vec3 value;
+        EvaluateRoughConductor(material, surface.base_color, n, wo, wi, value);
+        return value;
+    }
+    if (kHasRoughDielectric && material.type == kMaterialRoughDielectric) {
+        const float ior = material.base_color.w;
+        return RoughDielectricResponse(front_facing ? 1.0 / ior : ior, max(material.roughness, 1e-3),
+                                       surface.base_color, local_o, local_i);
+    }
+    return vec3(0.0);
 }
