@@ -123,7 +123,7 @@ Rgb TraceCameraSample(const Scene& scene, const Emitters& emitters, bool punctua
             std::optional<Material> shading;  // where a texture sets the roughness
             const Material& material = scene.ShadingMaterial(surface, shading);
             const bool front_facing = Dot(path.ray.direction, surface.geometric_normal) < 0;
-            if (kSpecular) path.throughput *= InsideTransmittance(material, front_facing, hit.t);
+            if (kSpecular) path.throughput *= SegmentTransmittance(material, front_facing, hit.t);
             if (material.EmitsToward(front_facing))
                 emission += path.throughput * scene.Emission(surface);
             const Rgb base_color =

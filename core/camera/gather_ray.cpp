@@ -15,7 +15,7 @@ std::optional<DiffuseLanding> FollowToDiffuse(const Scene& scene, const Tracer& 
         std::optional<Material> shading;  // where a texture sets the roughness
         const Material& material = scene.ShadingMaterial(surface, shading);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-        weight *= InsideTransmittance(material, front_facing, hit.t);
+        weight *= SegmentTransmittance(material, front_facing, hit.t);
         const Rgb base_color = scene.BaseColor(surface);
         const CoatArrival arrival =
             material.type == MaterialType::kDiffuse

@@ -94,7 +94,7 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
         std::optional<Material> shading;  // where a texture sets the roughness
         const Material& material = scene.ShadingMaterial(surface, shading);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-        throughput *= InsideTransmittance(material, front_facing, hit.t);
+        throughput *= SegmentTransmittance(material, front_facing, hit.t);
         // Emission seen directly or through specular and rough bounces (no light map holds it).
         if (material.EmitsToward(front_facing)) radiance += throughput * scene.Emission(surface);
         // Punctual lights on a glossy surface, which no path finds (core/scene/glossy_lights.h).

@@ -63,7 +63,7 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
     std::optional<Material> shading;  // where a texture sets the roughness
     const Material& material = scene.ShadingMaterial(surface, shading);
     const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-    if (kSpecular) flux *= InsideTransmittance(material, front_facing, hit.t);
+    if (kSpecular) flux *= SegmentTransmittance(material, front_facing, hit.t);
     // Veach's adjoint for shading normals: one factor where the photon arrives (after it lands:
     // the points gathering it weigh it by their own normals), one where it leaves.
     const bool shaded = !(surface.shading_normal == surface.geometric_normal);

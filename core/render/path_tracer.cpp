@@ -95,7 +95,7 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
         std::optional<Material> shading;  // where a texture sets the roughness
         const Material& material = scene.ShadingMaterial(surface, shading);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-        throughput *= InsideTransmittance(material, front_facing, hit.t);
+        throughput *= SegmentTransmittance(material, front_facing, hit.t);
         if (material.EmitsToward(front_facing)) {
             float weight = 1.0f;
             if (!specular_bounce) {

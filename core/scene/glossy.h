@@ -32,12 +32,14 @@ inline gpu::Coat CoatOf(const Material& material) {
 }
 
 // What survives of a path's weight along the segment of length `distance` that ends where it
-// meets `material` from behind (front_facing false): the segment crossed the absorbing volume
-// inside a solid dielectric (closed surfaces, one volume at a time; gpu::BeerLambert). 1
-// elsewhere. Every pass multiplies by it at every hit, the Vulkan kernels too.
-inline Rgb InsideTransmittance(const Material& material, bool front_facing, float distance) {
-    if (front_facing || !material.HasVolume()) return Rgb(1.0f);
-    return gpu::BeerLambert(material.absorption, distance);
+// meets `material`: the segment crossed the medium on the side it arrived from
+// (Material::absorption behind the surface, outside_absorption in front; gpu::BeerLambert),
+// where the surfaces bounding a medium name it. 1 without. Every pass multiplies by it at
+// every hit, the Vulkan kernels too (specular.glsl's SegmentTransmittance).
+inline Rgb SegmentTransmittance(const Material& material, bool front_facing, float distance) {
+    if (!material.HasVolume()) return Rgb(1.0f);
+    return gpu::BeerLambert(front_facing ? material.outside_absorption : material.absorption,
+                            distance);
 }
 
 // The side of a diffuse surface a path reads or leaves by (core/shared/translucent.h): its

@@ -77,11 +77,15 @@ struct Material {
     uint32_t conductor = 0;
     Rgb conductor_eta{1.0f};
     Rgb conductor_k{0.0f};
-    // The absorption coefficient, per unit of world length and channel, of the volume inside a
-    // solid dielectric (glTF's KHR_materials_volume attenuation, a pbrt homogeneous medium's
-    // sigma_a): light crossing a length d of it keeps exp(-absorption d) (Beer-Lambert;
-    // InsideTransmittance in core/scene/glossy.h).
+    // The absorption coefficients, per unit of world length and channel, of the media on the
+    // two sides of the surface: `absorption` behind it (inside a solid dielectric: glTF's
+    // KHR_materials_volume attenuation, pbrt's MediumInterface inside), `outside_absorption` in
+    // front (pbrt's MediumInterface outside: a liquid around the glass that holds it). Light
+    // crossing a length d of one keeps exp(-absorption d) (Beer-Lambert): a path segment takes
+    // the medium of the side of the surface it ends at (SegmentTransmittance in
+    // core/scene/glossy.h).
     Rgb absorption{0.0f};
+    Rgb outside_absorption{0.0f};
     // Diffuse transmission (pbrt-v4's diffusetransmission; core/shared/translucent.h): a
     // diffuse surface reflecting base_color and letting this through to its other side, both
     // Lambertian, times transmittance_texture's colour at the point where it has one (clamped
@@ -126,7 +130,7 @@ struct Material {
                sheen_roughness_texture != kNoTexture || transmittance_texture != kNoTexture;
     }
     // Whether the volume inside absorbs.
-    bool HasVolume() const { return !IsBlack(absorption); }
+    bool HasVolume() const { return !IsBlack(absorption) || !IsBlack(outside_absorption); }
     // Whether some rays pass through the surface.
     bool HasCutOuts() const { return alpha_texture != kNoTexture || !(alpha >= 1.0f); }
     bool IsEmissive() const { return !IsBlack(emission); }

@@ -28,7 +28,7 @@ constexpr uint64_t kMaxCount = uint64_t{1} << 32;
 
 // Types written whole must have no padding: their size is the sum of their fields'.
 static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
-static_assert(sizeof(Material) == 204, "Material gained a field or padding: encode it");
+static_assert(sizeof(Material) == 216, "Material gained a field or padding: encode it");
 static_assert(sizeof(PixelFilter) == 4 + 6 * 4);
 static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4 + sizeof(PixelFilter),
               "Camera gained a field or padding: encode it");
@@ -323,7 +323,9 @@ absl::Status CheckMaterials(const Scene& scene) {
         if (!(material.conductor <= gpu::kConductorReflectance &&
               in_range(material.conductor_eta, 1e-30f) && in_range(material.conductor_k, 0.0f)))
             return Invalid(absl::StrCat(name, ": a conductor's Fresnel term out of range"));
-        if (!(Finite(material.absorption) && MinComponent(material.absorption) >= 0))
+        if (!(Finite(material.absorption) && MinComponent(material.absorption) >= 0 &&
+              Finite(material.outside_absorption) &&
+              MinComponent(material.outside_absorption) >= 0))
             return Invalid(absl::StrCat(name, ": absorption out of range"));
         if (!(Finite(material.transmittance) && MinComponent(material.transmittance) >= 0 &&
               (!material.IsTranslucent() ||

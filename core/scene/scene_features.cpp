@@ -52,7 +52,7 @@ std::string SceneFeatures::ToString() const {
     if (coats) parts.push_back("coated");
     if (fresnel_mixes) parts.push_back("specular over diffuse");
     if (conductor_fresnel) parts.push_back("metal Fresnel");
-    if (absorption) parts.push_back("absorbing glass");
+    if (absorption) parts.push_back("absorbing media");
     if (translucent) parts.push_back("diffuse transmission");
     if (sheen) parts.push_back("sheen");
     if (sheen_textures) parts.push_back("sheen textures");

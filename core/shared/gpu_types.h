@@ -214,14 +214,15 @@ struct GpuMaterial {
     vec4 conductor_eta;  // a conductor's complex index, xyz: eta; w: its Fresnel kind
                          // (kConductor*, uint bits); core/shared/conductor.h
     vec4 conductor_k;    // xyz: k; w: the coat's samples (Material::coat_samples), its bits
-    vec4 absorption;     // xyz: a solid dielectric's absorption coefficient (BeerLambert)
+    vec4 absorption;     // xyz: the absorption coefficient of the medium behind (BeerLambert)
     vec4 detail;         // x: the normal map's texture, or -1 (int bits), y: its scale; z: the bump
                   // map's texture, or -1 (int bits), w: its scale (core/shared/shading_normal.h)
     vec4 transmittance;  // xyz: a diffuse surface's diffuse transmission (translucent.h); w: its
                          // texture, or -1 (int bits)
     vec4 sheen;          // xyz: the sheen's colour (black: none), w: its roughness (sheen.h)
+    vec4 outside_absorption;  // xyz: ... and of the medium in front (Material's)
 };
-PF_GPU_LAYOUT(GpuMaterial, 192);
+PF_GPU_LAYOUT(GpuMaterial, 208);
 
 struct GpuTexture {
     uint32_t first_texel;  // into the texels binding

@@ -492,7 +492,7 @@ TEST_P(AbsorbingGlassEnvironment, PbrtMediumInsideGlassAttenuatesAlongTheChord) 
                 "MediumInterface \"ink\" \"\"\nMaterial \"dielectric\" \"float eta\" 1\n",
                 kSigmaA.x / 2, kSigmaA.y / 2, kSigmaA.z / 2)),
             "ink-cube.pbrt"),
-        GetParam(), "absorbing glass", ThroughTheChord);
+        GetParam(), "absorbing media", ThroughTheChord);
 }
 
 TEST_P(AbsorbingGlassEnvironment, GltfVolumeAttenuatesAlongTheChord) {
@@ -506,7 +506,7 @@ TEST_P(AbsorbingGlassEnvironment, GltfVolumeAttenuatesAlongTheChord) {
         R"("attenuationColor":[%.9g,%.9g,%.9g]})",
         kDistance, std::exp(-kSigmaA.x * kDistance), std::exp(-kSigmaA.y * kDistance),
         std::exp(-kSigmaA.z * kDistance));
-    ExpectCubeShows(testing::WriteGltf(cube, "ink-cube.gltf"), GetParam(), "absorbing glass",
+    ExpectCubeShows(testing::WriteGltf(cube, "ink-cube.gltf"), GetParam(), "absorbing media",
                     ThroughTheChord);
 }
 

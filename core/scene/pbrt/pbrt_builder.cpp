@@ -260,6 +260,14 @@ absl::Status PbrtSceneBuilder::Integrator(const std::string& type, ParameterList
 
 absl::Status PbrtSceneBuilder::Sampler(const std::string& type, ParameterList& parameters,
                                        const Location& where) {
+    // pbrt-v4's samplers (pbrt-v3's names are upgraded to theirs before this), as pbrt-v4
+    // refuses any other: photonfarm's sequence is its own, but a misspelt name is an error.
+    static const std::set<std::string> kSamplers = {
+        "halton", "independent", "paddedsobol", "pmj02bn", "sobol", "stratified", "zsobol"};
+    if (!kSamplers.contains(type))
+        return ErrorAt(where, absl::StrCat("Sampler \"", type,
+                                           "\" is not one of pbrt-v4's (halton, independent, "
+                                           "paddedsobol, pmj02bn, sobol, stratified, zsobol)"));
     const int pixel_samples = parameters.Integer("pixelsamples", 16);  // pbrt-v4's default
     if (pixel_samples < 1) return ErrorAt(where, "Sampler: \"pixelsamples\" must be at least 1");
     scene_.render_settings.pixel_samples = pixel_samples;
@@ -386,6 +394,13 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
         if (state.area_light)
             Warn(Location{},
                  absl::StrCat(element, ": an emitting \"interface\" shape is left out"));
+        // Media are read at the surfaces that bound them: one bounded by nothing else is lost.
+        for (const std::string& medium : {state.inside_medium, state.outside_medium})
+            if (!medium.empty() && !IsBlack(media_.at(medium).absorption))
+                Warn(Location{}, absl::StrCat("MediumInterface: the medium \"", medium,
+                                              "\" of \"interface\" shapes (no surface) is left "
+                                              "out; media are rendered at surfaces that bound "
+                                              "them"));
         return absl::OkStatus();
     }
     Rgb emission(0.0f);
@@ -447,9 +462,10 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
                                               "alpha texture (the alpha's scale is applied)"));
         }
     }
+    const Absorption absorption = MediumAbsorption(state);
     absl::StatusOr<uint32_t> index =
         SceneMaterial(state.material, emission, state.area_light && state.area_light->two_sided,
-                      state.alpha, emission_texture, InsideAbsorption(state, element));
+                      state.alpha, emission_texture, absorption.inside, absorption.outside);
     if (!index.ok()) return index.status();
     MeshPlacement placement{world, *index, front, state.reverse_orientation, mapping.uv};
     if (!scene_.MaterialReadsUv(*index))
@@ -467,10 +483,12 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
 
 absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emission, bool two_sided,
                                                          const FloatInput& alpha,
-                                                         int32_t emission_texture, Rgb absorption) {
+                                                         int32_t emission_texture, Rgb absorption,
+                                                         Rgb outside_absorption) {
     const auto key =
         std::make_tuple(material, emission.x, emission.y, emission.z, two_sided, emission_texture,
-                        alpha.value, alpha.texture, absorption.x, absorption.y, absorption.z);
+                        alpha.value, alpha.texture, absorption.x, absorption.y, absorption.z,
+                        outside_absorption.x, outside_absorption.y, outside_absorption.z);
     if (const auto it = scene_materials_.find(key); it != scene_materials_.end()) return it->second;
     Material out = material >= 0 ? materials_[material].material : DefaultMaterial().material;
     if (material >= 0 && materials_[material].mix[0] >= 0) {
@@ -478,8 +496,9 @@ absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emiss
         // point is, it emits), then the mix, which comes after them.
         uint32_t parts[2];
         for (int i = 0; i < 2; ++i) {
-            absl::StatusOr<uint32_t> part = SceneMaterial(
-                materials_[material].mix[i], emission, two_sided, FloatInput{}, emission_texture);
+            absl::StatusOr<uint32_t> part =
+                SceneMaterial(materials_[material].mix[i], emission, two_sided, FloatInput{},
+                              emission_texture, absorption, outside_absorption);
             if (!part.ok()) return part.status();
             parts[i] = *part;
         }
@@ -491,6 +510,7 @@ absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emiss
     out.alpha = alpha.value;
     out.alpha_texture = alpha.texture;
     out.absorption = absorption;
+    out.outside_absorption = outside_absorption;
     const auto index = static_cast<uint32_t>(scene_.materials.size());
     scene_.materials.push_back(out);
     scene_materials_[key] = index;

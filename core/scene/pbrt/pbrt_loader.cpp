@@ -25,7 +25,10 @@ void PbrtSceneBuilder::Warn(const Location& where, const std::string& what) {
     if (options_.references_only) return;
     // The same warning for many shapes is logged once, with the count at the end.
     if (warning_counts_[what]++ > 0) return;
-    const std::string line = absl::StrCat(where.ToString(), ": warning: ", what);
+    // A warning whose text names its element itself (Location{}) takes no location of its own.
+    const std::string line = where.file.empty()
+                                 ? absl::StrCat("warning: ", what)
+                                 : absl::StrCat(where.ToString(), ": warning: ", what);
     spdlog::warn("{}", line);
     if (options_.warnings) options_.warnings->push_back(line);
 }
@@ -506,10 +509,16 @@ std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& direct
         return ObjectInstance(*object, it->second, where);
     }
     if (name == "MediumInterface") {
+        // "inside" "outside", or one name for both sides (pbrt-v4's parser reads it so).
         absl::StatusOr<std::string> inside = string_argument();
         if (!inside.ok()) return inside.status();
-        if (in.NextIs(TokenKind::kString)) in.Skip();  // outside: air, as far as rendered
-        return SetMediumInterface(*inside, where);
+        std::string outside = *inside;
+        if (in.NextIs(TokenKind::kString)) {
+            absl::StatusOr<std::string> second = string_argument();
+            if (!second.ok()) return second.status();
+            outside = *second;
+        }
+        return SetMediumInterface(*inside, outside, where);
     }
     if (name == "ColorSpace") {
         absl::StatusOr<std::string> space = string_argument();

@@ -1,7 +1,8 @@
 // pbrt-v4's participating media, as far as photonfarm renders them: a homogeneous medium's
-// absorption inside a dielectric (MediumInterface's inside, on a shape of glass), which every
-// pass applies by Beer-Lambert along the segments inside (Material::absorption). Scattering,
-// emission and the other media types are left out, each with a note.
+// absorption on either side of the shapes that bound it (MediumInterface's inside and outside),
+// which every pass applies by Beer-Lambert along each segment, by the medium of the side of the
+// surface it ends at (Material::absorption, outside_absorption). Scattering, emission and the
+// other media types are left out, each with a note.
 #include <algorithm>
 
 #include "absl/strings/str_cat.h"
@@ -48,26 +49,26 @@ absl::Status PbrtSceneBuilder::MakeNamedMedium(const std::string& name, Paramete
 }
 
 absl::Status PbrtSceneBuilder::SetMediumInterface(const std::string& inside,
+                                                  const std::string& outside,
                                                   const Location& where) {
-    if (!inside.empty() && !media_.contains(inside))
-        return ErrorAt(where, absl::StrCat("MediumInterface: no medium named \"", inside, "\""));
+    for (const std::string& name : {inside, outside})
+        if (!name.empty() && !media_.contains(name))
+            return ErrorAt(where, absl::StrCat("MediumInterface: no medium named \"", name, "\""));
     state_.inside_medium = inside;
+    state_.outside_medium = outside;
     return absl::OkStatus();
 }
 
-Rgb PbrtSceneBuilder::InsideAbsorption(const GraphicsState& state, const std::string& element) {
-    if (state.inside_medium.empty()) return Rgb(0.0f);
-    const Rgb absorption = media_.at(state.inside_medium).absorption;
-    const Material& material =
-        state.material >= 0 ? materials_[state.material].material : DefaultMaterial().material;
-    if (material.type == MaterialType::kDielectric ||
-        material.type == MaterialType::kRoughDielectric)
-        return absorption;
-    if (!IsBlack(absorption))
-        Warn(Location{}, absl::StrCat(element, ": the medium \"", state.inside_medium,
-                                      "\" is inside a surface that is not solid glass; media "
-                                      "are rendered inside glass only, so it is left out"));
-    return Rgb(0.0f);
+// A segment of a path ends at a surface; the surface's media say what it crossed: its inside
+// medium where it ended at the back (it came from inside), its outside medium at the front.
+// For media bounded by surfaces that name them (glass of liquid: the liquid's surface with the
+// liquid inside, the glass's with it outside), that is the medium the segment crossed.
+PbrtSceneBuilder::Absorption PbrtSceneBuilder::MediumAbsorption(const GraphicsState& state) const {
+    Absorption absorption;
+    if (!state.inside_medium.empty()) absorption.inside = media_.at(state.inside_medium).absorption;
+    if (!state.outside_medium.empty())
+        absorption.outside = media_.at(state.outside_medium).absorption;
+    return absorption;
 }
 
 }  // namespace pf::pbrt

@@ -69,8 +69,10 @@ struct GraphicsState {
     bool reverse_orientation = false;
     int material = -1;  // into materials_; -1: pbrt's default, diffuse 0.5
     std::optional<AreaLight> area_light;
-    FloatInput alpha;           // not state pbrt keeps: Shape sets it for the one shape it makes
-    std::string inside_medium;  // MediumInterface's inside medium; empty: none
+    FloatInput alpha;  // not state pbrt keeps: Shape sets it for the one shape it makes
+    // MediumInterface's media: inside, the side a shape's normals face away from, and
+    // outside; empty: none (vacuum).
+    std::string inside_medium, outside_medium;
 };
 
 // A named medium, as far as it is rendered (pbrt_media.cpp): its absorption coefficient.
@@ -207,13 +209,18 @@ private:
     void WarnUnused(const ParameterList& parameters, const std::string& directive);
     absl::StatusOr<uint32_t> SceneMaterial(int material, Rgb emission, bool two_sided,
                                            const FloatInput& alpha, int32_t emission_texture,
-                                           Rgb absorption = Rgb(0.0f));
-    // Media (pbrt_media.cpp): MakeNamedMedium, MediumInterface's inside medium, and the
-    // absorption a shape of `state` takes from it (glass only; noted elsewhere).
+                                           Rgb absorption = Rgb(0.0f),
+                                           Rgb outside_absorption = Rgb(0.0f));
+    // Media (pbrt_media.cpp): MakeNamedMedium, MediumInterface's inside and outside media, and
+    // the absorption a shape of `state` takes from them on either side.
     absl::Status MakeNamedMedium(const std::string& name, ParameterList& parameters,
                                  const Location& where);
-    absl::Status SetMediumInterface(const std::string& inside, const Location& where);
-    Rgb InsideAbsorption(const GraphicsState& state, const std::string& element);
+    absl::Status SetMediumInterface(const std::string& inside, const std::string& outside,
+                                    const Location& where);
+    struct Absorption {
+        Rgb inside{0.0f}, outside{0.0f};
+    };
+    Absorption MediumAbsorption(const GraphicsState& state) const;
     static const MaterialRef& DefaultMaterial();
 
     SceneFiles& files_;
@@ -245,9 +252,11 @@ private:
     std::map<std::tuple<std::string, ImageDecodeOptions>, int32_t>
         images_;  // (path, how it is decoded) -> Scene::textures
     std::map<std::string, Medium> media_;
-    std::map<
-        std::tuple<int, float, float, float, bool, int32_t, float, int32_t, float, float, float>,
-        uint32_t>
+    // (material, emission, two-sided, emission texture, alpha, its texture, absorption inside
+    // and outside) -> Scene::materials
+    std::map<std::tuple<int, float, float, float, bool, int32_t, float, int32_t, float, float,
+                        float, float, float, float>,
+             uint32_t>
         scene_materials_;
 
     std::map<std::string, std::vector<ObjectShape>> objects_;

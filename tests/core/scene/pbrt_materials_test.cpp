@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "absl/strings/match.h"
 #include "core/scene/pbrt/pbrt_parameters.h"
 #include "core/scene/scene_files.h"
 #include "core/scene/specular.h"
@@ -140,15 +141,22 @@ TEST(PbrtMaterialsTest, CheckerboardAndBilerpAreBakedAsPbrtEvaluatesThem) {
     }
 }
 
-TEST(PbrtMaterialsTest, AMediumInsideGlassAbsorbs) {
+// A medium is read at the surfaces that bound it: MediumInterface's inside behind a shape, its
+// outside in front (a liquid around the glass that holds it), one name for both sides.
+TEST(PbrtMaterialsTest, MediaAbsorbOnTheSidesOfTheSurfacesThatBoundThem) {
     const std::string world =
         std::string(
             "MakeNamedMedium \"ink\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [0.1 0.2 "
             "0.3] \"float scale\" 10\n"
+            "MakeNamedMedium \"tea\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [0.5 0.25 "
+            "0.125] \"rgb sigma_s\" [0 0 0]\n"
             "MakeNamedMedium \"smoke\" \"string type\" \"uniformgrid\"\n"
             "AttributeBegin\nMediumInterface \"ink\" \"\"\nMaterial \"dielectric\"\n") +
         kQuad + "Material \"diffuse\"\n" + kQuad + "AttributeEnd\n" + "Material \"dielectric\"\n" +
-        kQuad + "MediumInterface \"smoke\"\n" + kQuad;
+        kQuad + "MediumInterface \"smoke\"\n" + kQuad + "MediumInterface \"\" \"tea\"\n" + kQuad +
+        "MediumInterface \"tea\"\n" + kQuad +
+        "AttributeBegin\nMaterial \"interface\"\nMediumInterface \"ink\" \"\"\n" + kQuad +
+        "AttributeEnd\n";
     std::vector<std::string> warnings;
     const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
     ASSERT_TRUE(scene.ok()) << scene.status();
@@ -157,19 +165,36 @@ TEST(PbrtMaterialsTest, AMediumInsideGlassAbsorbs) {
     };
     // sigma_a x scale inside the glass; pbrt-v4's default sigma_s (1) is scattering, noted.
     EXPECT_EQ(material_of(0).absorption, Rgb(1.0f, 2.0f, 3.0f));
-    EXPECT_FALSE(material_of(1).HasVolume()) << "a diffuse surface holds no medium";
+    EXPECT_EQ(material_of(0).outside_absorption, Rgb(0.0f));
+    EXPECT_EQ(material_of(1).absorption, Rgb(1.0f, 2.0f, 3.0f)) << "any surface bounds a medium";
     EXPECT_FALSE(material_of(2).HasVolume()) << "AttributeEnd restores no medium";
     EXPECT_FALSE(material_of(3).HasVolume()) << "a grid medium is left out";
+    EXPECT_EQ(material_of(4).absorption, Rgb(0.0f));
+    EXPECT_EQ(material_of(4).outside_absorption, Rgb(0.5f, 0.25f, 0.125f)) << "tea outside";
+    EXPECT_EQ(material_of(5).absorption, Rgb(0.5f, 0.25f, 0.125f)) << "one name: both sides";
+    EXPECT_EQ(material_of(5).outside_absorption, Rgb(0.5f, 0.25f, 0.125f));
+    EXPECT_EQ(scene->triangles.size(), 12u) << "the interface shape is left out";
     EXPECT_TRUE(Contains(warnings, "scattering (sigma_s) is left out; the medium absorbs only"));
-    EXPECT_TRUE(Contains(warnings, "is inside a surface that is not solid glass"));
     EXPECT_TRUE(Contains(warnings, "\"uniformgrid\" media are not rendered"));
+    EXPECT_TRUE(Contains(warnings, "the medium \"ink\" of \"interface\" shapes (no surface)"));
+    for (const std::string& warning : warnings)
+        EXPECT_FALSE(absl::StartsWith(warning, ":1:1:")) << warning << ": a location of none";
 
     ExpectError(Load(Bundle(std::string("MediumInterface \"fog\" \"\"\n") + kQuad)),
+                "MediumInterface: no medium named \"fog\"");
+    ExpectError(Load(Bundle(std::string("MediumInterface \"\" \"fog\"\n") + kQuad)),
                 "MediumInterface: no medium named \"fog\"");
     ExpectError(Load(Bundle(std::string("MakeNamedMedium \"ink\" \"string type\" "
                                         "\"homogeneous\" \"rgb sigma_a\" [-1 0 0]\n") +
                             kQuad)),
                 "sigma_a, sigma_s and scale must be finite and not negative");
+}
+
+// pbrt-v4 refuses a sampler it does not know; so does photonfarm, naming pbrt-v4's.
+TEST(PbrtMaterialsTest, AnUnknownSamplerIsAnError) {
+    SceneBundle bundle = Bundle(kQuad);
+    bundle.files["scene.pbrt"] = "Sampler \"zsobl\"\n" + bundle.files["scene.pbrt"];
+    ExpectError(Load(bundle), "scenes/scene.pbrt:1:1: Sampler \"zsobl\" is not one of pbrt-v4's");
 }
 
 TEST(PbrtMaterialsTest, CoatsTakePbrtsParameters) {

@@ -88,7 +88,7 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     EXPECT_FALSE(features.triangle_lights) << "an emissive material on no triangle emits nothing";
     EXPECT_EQ(SceneFeatures::All().ToString(),
               "diffuse, mirror, glass, thin glass, rough metal, rough glass, coated, "
-              "specular over diffuse, metal Fresnel, absorbing glass, diffuse transmission, sheen, "
+              "specular over diffuse, metal Fresnel, absorbing media, diffuse transmission, sheen, "
               "sheen textures, cut-outs, "
               "mixed materials, "
               "textures, roughness textures, "

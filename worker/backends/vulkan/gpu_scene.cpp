@@ -62,7 +62,8 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
              gpu::vec4{std::bit_cast<float>(material.normal_texture), material.normal_scale,
                        std::bit_cast<float>(material.bump_texture), material.bump_scale},
              Vec4(material.transmittance, std::bit_cast<float>(material.transmittance_texture)),
-             Vec4(material.sheen_color, material.sheen_roughness)});
+             Vec4(material.sheen_color, material.sheen_roughness),
+             Vec4(material.outside_absorption, 0.0f)});
     if (!gpu_scene.features.ReadsUv() && !gpu_scene.features.textured_lights) return;
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {
         gpu_scene.textures.push_back({static_cast<uint32_t>(gpu_scene.texels.size()),

@@ -164,7 +164,7 @@ bool PathVertex(inout PathState path, bool found, RayHit hit, inout Pcg32 rng) {
     const Surface surface = SurfaceAt(hit);
     const GpuMaterial material = ShadingMaterial(surface);
     const bool front_facing = dot(direction, surface.geometric_normal) < 0;
-    if (kHasAbsorption && !front_facing) path.throughput *= BeerLambert(material.absorption.xyz, hit.t);
+    if (kHasAbsorption) path.throughput *= SegmentTransmittance(material, front_facing, hit.t);
     if (kHasTriangleLights) {
         float light_pdf;
         const vec3 emitted = HitEmitter(hit, path.specular_bounce ? path.origin : path.bounced_at, surface.position, light_pdf);

@@ -119,7 +119,7 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
         const GpuMaterial material = ShadingMaterial(surface);
         const bool front_facing = dot(direction, surface.geometric_normal) < 0;
         // Out of an absorbing glass's inside (InsideTransmittance).
-        if (kHasAbsorption && !front_facing) flux *= BeerLambert(material.absorption.xyz, hit.t);
+        if (kHasAbsorption) flux *= SegmentTransmittance(material, front_facing, hit.t);
         // Veach's adjoint for shading normals, as ScatterPhotonAt: arriving here (after landing),
         // and leaving.
         const bool shaded = kShadingNormals && surface.shading_normal != surface.geometric_normal;

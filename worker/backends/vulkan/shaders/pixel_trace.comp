@@ -46,7 +46,7 @@ vec3 GatherRay(vec3 origin, vec3 direction, inout Pcg32 rng) {
         const Surface surface = SurfaceAt(hit);
         const GpuMaterial material = ShadingMaterial(surface);
         const bool front_facing = dot(direction, surface.geometric_normal) < 0;
-        if (kHasAbsorption && !front_facing) weight *= BeerLambert(material.absorption.xyz, hit.t);
+        if (kHasAbsorption) weight *= SegmentTransmittance(material, front_facing, hit.t);
         float arrival_weight;
         SpecularBounce reflected;
         const bool at_base = material.type != kMaterialDiffuse ||
@@ -119,7 +119,7 @@ vec3 PhotonMappingRadiance(vec3 origin, vec3 direction, inout Pcg32 rng) {
         const Surface surface = SurfaceAt(hit);
         const GpuMaterial material = ShadingMaterial(surface);
         const bool front_facing = dot(direction, surface.geometric_normal) < 0;
-        if (kHasAbsorption && !front_facing) throughput *= BeerLambert(material.absorption.xyz, hit.t);
+        if (kHasAbsorption) throughput *= SegmentTransmittance(material, front_facing, hit.t);
         // Emission seen directly or through specular and rough bounces (no light map holds it).
         if (kHasTriangleLights) {
             float unused;

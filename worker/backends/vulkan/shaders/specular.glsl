@@ -7,6 +7,13 @@
 #include "core/shared/coat.h"
 #include "core/shared/glossy_lights.h"
 
+// What survives of a path's weight along the segment of length `distance` that ends where it
+// meets `material` (SegmentTransmittance in core/scene/glossy.h): the medium of the side it
+// arrived from, behind the surface or in front.
+vec3 SegmentTransmittance(GpuMaterial material, bool front_facing, float distance) {
+    return BeerLambert(front_facing ? material.outside_absorption.xyz : material.absorption.xyz, distance);
+}
+
 // The material's coat, as core/shared/coat.h takes it (glossy.h's CoatOf).
 Coat CoatOf(GpuMaterial material) {
     return Coat(floatBitsToUint(material.layer.x), material.coat.x, material.coat.y, material.coat.z, material.layer.y,
