@@ -50,30 +50,52 @@ void ToRtcRays(const Ray (&rays)[Tracer::kPacketSize], const bool (&active)[Trac
 }
 
 // What the cut-out filter of one triangle geometry reads: the scene's alpha (a copy of what
-// Scene::Alpha reads, owned by the tracer) and where the geometry's triangles begin in it.
+// Scene::Alpha reads, owned by the tracer) and the geometry's triangles in it.
 struct CutOutGeometry {
     const Scene* alpha = nullptr;
-    uint32_t first_triangle = 0;
+    const std::vector<uint32_t>* triangles = nullptr;
 };
 
+// The triangles of one Embree scene (the world's, or a prototype's), as one geometry, or, where
+// some have cut-outs, two: geometry 0 the others, which runs no filter, and geometry 1 those,
+// which runs the cut-out filter, so that only the triangles with cut-outs pay for it.
+struct TriangleGroup {
+    uint32_t first = 0;  // not split: geometry 0's primitive i is Scene::triangles[first + i]
+    bool split = false;
+    std::vector<uint32_t> triangles[2];  // split: each geometry's Scene::triangles, in order
+    uint32_t Triangle(unsigned geometry, unsigned primitive) const {
+        return split ? triangles[geometry][primitive] : first + primitive;
+    }
+};
+
+// The top scene's geometry ids: the world's two, then the instances'.
+constexpr unsigned kFirstInstanceGeometry = 2;
+
 // Embree's intersection and occlusion filter for geometries with cut-outs: a hit the ray
-// passes through (core/shared/alpha.h) is rejected, and traversal goes on past it.
+// passes through (core/shared/alpha.h) is rejected, and traversal goes on past it. Within an
+// instance Embree hands the filter the ray in the prototype's space, where the triangle's
+// normal is too.
 void CutOutFilter(const RTCFilterFunctionNArguments* args) {
     const auto* geometry = static_cast<const CutOutGeometry*>(args->geometryUserPtr);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
-        const uint32_t triangle = geometry->first_triangle + RTCHitN_primID(args->hit, args->N, i);
-        const Material& material =
-            geometry->alpha->materials[geometry->alpha->triangles[triangle].material];
+        const uint32_t triangle = (*geometry->triangles)[RTCHitN_primID(args->hit, args->N, i)];
+        const Triangle& hit = geometry->alpha->triangles[triangle];
+        const Material& material = geometry->alpha->materials[hit.material];
         if (!material.HasCutOuts()) continue;
-        const float alpha = geometry->alpha->Alpha(triangle, RTCHitN_u(args->hit, args->N, i),
-                                                   RTCHitN_v(args->hit, args->N, i));
-        const Vec3 origin(RTCRayN_org_x(args->ray, args->N, i),
-                          RTCRayN_org_y(args->ray, args->N, i),
-                          RTCRayN_org_z(args->ray, args->N, i));
         const Vec3 direction(RTCRayN_dir_x(args->ray, args->N, i),
                              RTCRayN_dir_y(args->ray, args->N, i),
                              RTCRayN_dir_z(args->ray, args->N, i));
+        if (gpu::PassesBackFace(material.surface_flags, Dot(direction, hit.normal))) {
+            args->valid[i] = 0;
+            continue;
+        }
+        const float alpha = geometry->alpha->Alpha(triangle, RTCHitN_u(args->hit, args->N, i),
+                                                   RTCHitN_v(args->hit, args->N, i));
+        if (alpha >= 1.0f) continue;
+        const Vec3 origin(RTCRayN_org_x(args->ray, args->N, i),
+                          RTCRayN_org_y(args->ray, args->N, i),
+                          RTCRayN_org_z(args->ray, args->N, i));
         if (!gpu::AlphaMeets(alpha, material.alpha_cutoff,
                              gpu::AlphaHash(origin, direction, triangle)))
             args->valid[i] = 0;
@@ -88,10 +110,14 @@ struct EmbreeTracer::Handles {
     RTCBuffer vertices =
         nullptr;  // every position, shared by the world's and prototypes' geometries
     std::vector<RTCScene> prototypes;  // one scene per Scene::prototypes entry
-    RTCScene scene = nullptr;          // geometry 0: the world's triangles; 1 + i: instance i
-    std::vector<uint32_t> instance_first_triangle;  // per instance: its prototype's first triangle
-    // With cut-outs: what their filter reads, and one entry per triangle geometry (stable
-    // addresses: reserved before any is attached).
+    // Geometries 0 and 1: the world's triangles; kFirstInstanceGeometry + i: instance i.
+    RTCScene scene = nullptr;
+    // The world's triangles, then each prototype's (stable addresses: reserved before any is
+    // attached, as the filters point into them).
+    std::vector<TriangleGroup> groups;
+    std::vector<uint32_t> instance_group;  // per instance: its prototype's group
+    // With cut-outs: what their filter reads, and one entry per filtered geometry (stable
+    // addresses, likewise).
     std::unique_ptr<Scene> alpha;
     std::vector<CutOutGeometry> cut_out_geometries;
     ~Handles() {
@@ -100,9 +126,12 @@ struct EmbreeTracer::Handles {
         if (vertices) rtcReleaseBuffer(vertices);
     }
 
-    // Attaches triangles [first, first + count) of `triangles` as geometry `id` of `target`.
-    bool AttachTriangles(RTCScene target, const std::vector<Triangle>& triangles, uint32_t first,
-                         uint32_t count, size_t vertex_count, unsigned id) {
+    // Attaches `count` triangles, the i-th Scene::triangles[triangle(i)], as geometry `id` of
+    // `target`; with the cut-out filter over them where `filtered` lists them.
+    template <typename TriangleOf>
+    bool AttachTriangles(RTCScene target, const std::vector<Triangle>& triangles,
+                         TriangleOf triangle, uint32_t count, size_t vertex_count, unsigned id,
+                         const std::vector<uint32_t>* filtered) {
         RTCGeometry geometry = rtcNewGeometry(device.Handle(), RTC_GEOMETRY_TYPE_TRIANGLE);
         rtcSetGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, vertices, 0,
                              sizeof(float) * 3, vertex_count);
@@ -113,9 +142,9 @@ struct EmbreeTracer::Handles {
             return false;
         }
         for (uint32_t t = 0; t < count; ++t)
-            for (int k = 0; k < 3; ++k) indices[3 * t + k] = triangles[first + t].vertex[k];
-        if (alpha) {
-            cut_out_geometries.push_back({alpha.get(), first});
+            for (int k = 0; k < 3; ++k) indices[3 * t + k] = triangles[triangle(t)].vertex[k];
+        if (filtered != nullptr) {
+            cut_out_geometries.push_back({alpha.get(), filtered});
             rtcSetGeometryUserData(geometry, &cut_out_geometries.back());
             rtcSetGeometryIntersectFilterFunction(geometry, CutOutFilter);
             rtcSetGeometryOccludedFilterFunction(geometry, CutOutFilter);
@@ -126,14 +155,45 @@ struct EmbreeTracer::Handles {
         return true;
     }
 
-    // Our hit from Embree's: instance geometries are 1 + the instance's index.
-    void ToRayHit(unsigned instance_geometry, unsigned primitive, RayHit* hit) const {
+    // Attaches triangles [first, first + count) of `scene` to `target` as geometry 0 and,
+    // those with cut-outs, geometry 1 (TriangleGroup), described in `group`.
+    bool AttachGroup(RTCScene target, const Scene& scene, uint32_t first, uint32_t count,
+                     size_t vertex_count, TriangleGroup* group) {
+        group->first = first;
+        const auto cut_out = [&](uint32_t t) {
+            return scene.materials[scene.triangles[t].material].HasCutOuts();
+        };
+        bool any = false;
+        for (uint32_t t = first; alpha && !any && t < first + count; ++t) any = cut_out(t);
+        if (!any)
+            return AttachTriangles(
+                target, scene.triangles, [first](uint32_t i) { return first + i; }, count,
+                vertex_count, 0, nullptr);
+        group->split = true;
+        for (uint32_t t = first; t < first + count; ++t)
+            group->triangles[cut_out(t) ? 1 : 0].push_back(t);
+        for (unsigned id = 0; id < 2; ++id) {
+            const std::vector<uint32_t>& part = group->triangles[id];
+            if (!part.empty() &&
+                !AttachTriangles(
+                    target, scene.triangles, [&part](uint32_t i) { return part[i]; },
+                    static_cast<uint32_t>(part.size()), vertex_count, id,
+                    id == 1 ? &part : nullptr))
+                return false;
+        }
+        return true;
+    }
+
+    // Our hit from Embree's: the instance (kFirstInstanceGeometry + its index), the geometry
+    // within its scene, the primitive within that geometry.
+    void ToRayHit(unsigned instance_geometry, unsigned geometry, unsigned primitive,
+                  RayHit* hit) const {
         if (instance_geometry == RTC_INVALID_GEOMETRY_ID) {
-            hit->triangle = primitive;
+            hit->triangle = groups[0].Triangle(geometry, primitive);
             hit->instance = Instance::kNone;
         } else {
-            hit->instance = instance_geometry - 1;
-            hit->triangle = instance_first_triangle[hit->instance] + primitive;
+            hit->instance = instance_geometry - kFirstInstanceGeometry;
+            hit->triangle = groups[instance_group[hit->instance]].Triangle(geometry, primitive);
         }
     }
 };
@@ -166,22 +226,25 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Scene& 
         handles->alpha->uvs = scene.uvs;
         handles->alpha->materials = scene.materials;
         handles->alpha->textures = scene.textures;
+        handles->alpha->colors = scene.colors;
         handles->cut_out_geometries.reserve(scene.prototypes.size() + 1);
     }
-    for (const Prototype& prototype : scene.prototypes) {
+    handles->groups.resize(scene.prototypes.size() + 1);
+    for (size_t p = 0; p < scene.prototypes.size(); ++p) {
+        const Prototype& prototype = scene.prototypes[p];
         RTCScene prototype_scene = rtcNewScene(handles->device.Handle());
         handles->prototypes.push_back(prototype_scene);
         rtcSetSceneBuildQuality(prototype_scene, RTC_BUILD_QUALITY_HIGH);
-        if (!handles->AttachTriangles(prototype_scene, scene.triangles, prototype.first_triangle,
-                                      prototype.triangle_count, vertex_count, 0))
+        if (!handles->AttachGroup(prototype_scene, scene, prototype.first_triangle,
+                                  prototype.triangle_count, vertex_count, &handles->groups[1 + p]))
             return out_of_memory();
         rtcCommitScene(prototype_scene);
     }
     handles->scene = rtcNewScene(handles->device.Handle());
     rtcSetSceneBuildQuality(handles->scene, RTC_BUILD_QUALITY_HIGH);
     if (scene.WorldTriangleCount() > 0 &&
-        !handles->AttachTriangles(handles->scene, scene.triangles, 0, scene.WorldTriangleCount(),
-                                  vertex_count, 0))
+        !handles->AttachGroup(handles->scene, scene, 0, scene.WorldTriangleCount(), vertex_count,
+                              &handles->groups[0]))
         return out_of_memory();
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
@@ -190,10 +253,9 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Scene& 
         rtcSetGeometryTransform(geometry, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR,
                                 instance.to_world.data());
         rtcCommitGeometry(geometry);
-        rtcAttachGeometryByID(handles->scene, geometry, i + 1);
+        rtcAttachGeometryByID(handles->scene, geometry, kFirstInstanceGeometry + i);
         rtcReleaseGeometry(geometry);
-        handles->instance_first_triangle.push_back(
-            scene.prototypes[instance.prototype].first_triangle);
+        handles->instance_group.push_back(1 + instance.prototype);
     }
     rtcCommitScene(handles->scene);
     if (!handles->device.LastError().empty())
@@ -216,7 +278,7 @@ bool EmbreeTracer::Intersect(const Ray& ray, RayHit* hit) const {
     hit->t = ray_hit.ray.tfar;
     hit->b1 = ray_hit.hit.u;
     hit->b2 = ray_hit.hit.v;
-    handles_->ToRayHit(ray_hit.hit.instID[0], ray_hit.hit.primID, hit);
+    handles_->ToRayHit(ray_hit.hit.instID[0], ray_hit.hit.geomID, ray_hit.hit.primID, hit);
     return true;
 }
 
@@ -236,10 +298,12 @@ void EmbreeTracer::IntersectPacket(const Ray (&rays)[kPacketSize],
     for (int i = 0; i < kPacketSize; ++i) {
         if (!active[i]) continue;
         found[i] = packet.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        if (!found[i]) continue;
         hits[i].t = packet.ray.tfar[i];
         hits[i].b1 = packet.hit.u[i];
         hits[i].b2 = packet.hit.v[i];
-        handles_->ToRayHit(packet.hit.instID[0][i], packet.hit.primID[i], &hits[i]);
+        handles_->ToRayHit(packet.hit.instID[0][i], packet.hit.geomID[i], packet.hit.primID[i],
+                           &hits[i]);
     }
 }
 

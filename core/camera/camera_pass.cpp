@@ -329,11 +329,11 @@ CameraPassResult RunCameraPass(const Scene& scene, const Emitters& emitters, con
         result.coverage.assign(fixed->begin[end_pixel] - first_covered, Rgb(0.0f));
     // The camera path for the scene's features, chosen once.
     const SceneFeatures& features = settings.features;
-    const auto trace =
-        features.GeneralSurfaces()
-            ? (features.textures ? TraceCameraSample<true, true> : TraceCameraSample<true, false>)
-            : (features.textures ? TraceCameraSample<false, true>
-                                 : TraceCameraSample<false, false>);
+    const auto trace = features.GeneralSurfaces()
+                           ? (features.VaryingBaseColor() ? TraceCameraSample<true, true>
+                                                          : TraceCameraSample<true, false>)
+                           : (features.VaryingBaseColor() ? TraceCameraSample<false, true>
+                                                          : TraceCameraSample<false, false>);
     const auto first_row = static_cast<int>(first_pixel / width);
     const auto end_row = static_cast<int>((end_pixel + width - 1) / width);
     tbb::parallel_for(

@@ -85,10 +85,11 @@ std::vector<StoredPhoton> TraceMap(const Scene& scene, const Emitters& emitters,
                                    const Tracer& tracer, const SceneFeatures& features,
                                    MapKind kind, bool everything, int max_bounces, uint64_t seed,
                                    uint64_t count, uint64_t emitted) {
-    const auto trace =
-        features.GeneralSurfaces()
-            ? (features.textures ? TraceMapPhotons<true, true> : TraceMapPhotons<true, false>)
-            : (features.textures ? TraceMapPhotons<false, true> : TraceMapPhotons<false, false>);
+    const auto trace = features.GeneralSurfaces()
+                           ? (features.VaryingBaseColor() ? TraceMapPhotons<true, true>
+                                                          : TraceMapPhotons<true, false>)
+                           : (features.VaryingBaseColor() ? TraceMapPhotons<false, true>
+                                                          : TraceMapPhotons<false, false>);
     const uint64_t tasks = (count + kPhotonsPerTask - 1) / kPhotonsPerTask;
     std::vector<std::vector<StoredPhoton>> parts(tasks);
     const double inverse_emitted = emitted > 0 ? 1.0 / static_cast<double>(emitted) : 0.0;

@@ -153,10 +153,10 @@ uint64_t TraceAdaptive(const PhotonPassInputs& inputs, const BatchSpec& spec, ui
                        uint32_t end, BatchScratch& scratch) {
     const SceneFeatures& features = inputs.features;
     const auto trace = features.GeneralSurfaces()
-                           ? (features.textures ? TraceAdaptivePhotons<true, true>
-                                                : TraceAdaptivePhotons<true, false>)
-                           : (features.textures ? TraceAdaptivePhotons<false, true>
-                                                : TraceAdaptivePhotons<false, false>);
+                           ? (features.VaryingBaseColor() ? TraceAdaptivePhotons<true, true>
+                                                          : TraceAdaptivePhotons<true, false>)
+                           : (features.VaryingBaseColor() ? TraceAdaptivePhotons<false, true>
+                                                          : TraceAdaptivePhotons<false, false>);
     return trace(inputs, spec, begin, end, scratch);
 }
 

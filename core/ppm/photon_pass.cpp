@@ -167,8 +167,9 @@ ChunkResult RunPhotonChunk(const PhotonPassInputs& inputs, const BatchSpec& spec
     const auto trace =
         inputs.adaptive ? photon_trace::TraceAdaptive
         : features.GeneralSurfaces()
-            ? (features.textures ? TracePhotons<true, true> : TracePhotons<true, false>)
-            : (features.textures ? TracePhotons<false, true> : TracePhotons<false, false>);
+            ? (features.VaryingBaseColor() ? TracePhotons<true, true> : TracePhotons<true, false>)
+            : (features.VaryingBaseColor() ? TracePhotons<false, true>
+                                           : TracePhotons<false, false>);
     result.segments_traced = trace(inputs, spec, begin, end, scratch);
     result.nonfinite_discarded = scratch.nonfinite_discarded;
     result.visible_photons = scratch.visible_photons;

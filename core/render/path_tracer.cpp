@@ -239,10 +239,10 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
 Rgb TracePath(const PathInputs& inputs, Ray ray, Rng& rng) {
     const SceneFeatures& features = inputs.features;
     if (features.GeneralSurfaces())
-        return features.textures ? TracePathFor<true, true>(inputs, ray, rng)
-                                 : TracePathFor<true, false>(inputs, ray, rng);
-    return features.textures ? TracePathFor<false, true>(inputs, ray, rng)
-                             : TracePathFor<false, false>(inputs, ray, rng);
+        return features.VaryingBaseColor() ? TracePathFor<true, true>(inputs, ray, rng)
+                                           : TracePathFor<true, false>(inputs, ray, rng);
+    return features.VaryingBaseColor() ? TracePathFor<false, true>(inputs, ray, rng)
+                                       : TracePathFor<false, false>(inputs, ray, rng);
 }
 
 }  // namespace pf

@@ -1,6 +1,8 @@
 // Photon emission and direct-light sampling over all of a scene's emitters.
 #include "core/scene/emitters.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/sampling/frame.h"
@@ -12,16 +14,21 @@ namespace {
 float SpotSolidAngle(const PunctualLight& light) { return 2.0f * kPi * (1.0f - light.cos_outer); }
 
 // The mean of a texture's bilinear lookups over the triangle uv0 + b1 edge1 + b2 edge2 of
-// texture space: at the centroids of its subdivision into n^2 equal triangles, n growing with
-// the texels it covers (up to 64, 4096 lookups).
-Rgbd MeanOverTriangle(const Texture& texture, Point2 uv0, Point2 edge1, Point2 edge2) {
+// texture space, each times the vertex colours `colors` interpolated there: at the centroids of
+// its subdivision into n^2 equal triangles, n growing with the texels it covers (up to 64,
+// 4096 lookups).
+Rgbd MeanOverTriangle(const Texture& texture, Point2 uv0, Point2 edge1, Point2 edge2,
+                      const std::array<Rgb, 3>& colors) {
     const double texels = 0.5 * std::abs(double(edge1.x) * edge2.y - double(edge1.y) * edge2.x) *
                           texture.width * texture.height;
     const int n = static_cast<int>(std::clamp(std::ceil(std::sqrt(texels)), 1.0, 64.0));
     Rgbd sum;
     const auto add = [&](double b1, double b2) {
-        sum += Rgbd(texture.Sample(static_cast<float>(uv0.x + edge1.x * b1 + edge2.x * b2),
-                                   static_cast<float>(uv0.y + edge1.y * b1 + edge2.y * b2)));
+        const Rgbd color =
+            Rgbd(colors[0]) * (1 - b1 - b2) + Rgbd(colors[1]) * b1 + Rgbd(colors[2]) * b2;
+        sum +=
+            color * Rgbd(texture.Sample(static_cast<float>(uv0.x + edge1.x * b1 + edge2.x * b2),
+                                        static_cast<float>(uv0.y + edge1.y * b1 + edge2.y * b2)));
     };
     for (int i = 0; i < n; ++i)
         for (int j = 0; i + j < n; ++j) {
@@ -56,10 +63,14 @@ std::vector<Emitters::Record> Emitters::Records() const {
                 record.texture = triangle.texture_index;
                 record.uv0 = triangle.uv0, record.uv_edge1 = triangle.uv_edge1,
                 record.uv_edge2 = triangle.uv_edge2;
-                record.power =
-                    triangle.radiance * ((triangle.two_sided ? 2.0f : 1.0f) * kPi * triangle.area);
                 record.peak = LargestTexel(*triangle.texture);
             }
+            if (triangle.colored) record.colored_triangle = static_cast<int32_t>(triangle.triangle);
+            // A photon's flux varies with where it leaves: the power before that (colours lie
+            // in [0, 1], so they raise no peak).
+            if (triangle.texture != nullptr || triangle.colored)
+                record.power =
+                    triangle.radiance * ((triangle.two_sided ? 2.0f : 1.0f) * kPi * triangle.area);
         } else if (record.kind == EmitterKind::kPunctual) {
             record.light = emitters_[i].index;
         }
@@ -105,6 +116,12 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
             emissive.uv_edge2 = {uv2.x - uv0.x, uv2.y - uv0.y};
         }
         emissive.invisible = material.alpha <= 0 && material.alpha_texture == kNoTexture;
+        if ((material.surface_flags & gpu::kSurfaceVertexEmission) != 0 && !scene.colors.empty()) {
+            for (int k = 0; k < 3; ++k) emissive.colors[k] = scene.colors[triangle.vertex[k]].rgb;
+            emissive.colored = std::any_of(emissive.colors.begin(), emissive.colors.end(),
+                                           [](const Rgb& c) { return !(c == Rgb(1.0f)); });
+            emissive.triangle = t;
+        }
         triangles_.push_back(emissive);
         if (add(EmitterKind::kTriangle, index, emissive.Power()))
             emitter_of_triangle_[t] = static_cast<int32_t>(emitters_.size() - 1);
@@ -176,8 +193,13 @@ EmittedPhoton Emitters::Emit(const EmissionNumbers& numbers) const {
 Rgbd Emitters::EmissiveTriangle::Power() const {
     const double sides = two_sided ? 2.0 : 1.0;
     const Rgbd power = Rgbd(radiance) * (sides * kPiD * area);
-    if (texture == nullptr) return power;
-    return power * MeanOverTriangle(*texture, uv0, uv_edge1, uv_edge2);
+    const std::array<Rgb, 3> white{Rgb(1.0f), Rgb(1.0f), Rgb(1.0f)};
+    if (texture != nullptr)
+        return power *
+               MeanOverTriangle(*texture, uv0, uv_edge1, uv_edge2, colored ? colors : white);
+    if (!colored) return power;
+    // The mean of a linear function over a triangle: its value at the centroid.
+    return power * ((Rgbd(colors[0]) + Rgbd(colors[1]) + Rgbd(colors[2])) * (1.0 / 3));
 }
 
 EmittedPhoton Emitters::EmitFromTriangle(const EmissiveTriangle& triangle, const float* u) const {

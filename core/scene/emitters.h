@@ -118,9 +118,12 @@ public:
         // texture coordinates at p0 and along the edges.
         int32_t texture = kNoTexture;
         Point2 uv0, uv_edge1, uv_edge2;
+        // Triangle: the world triangle whose vertex colours scale its emission (glTF's unlit
+        // base colour, gpu::kSurfaceVertexEmission), or -1.
+        int32_t colored_triangle = -1;
         // W per channel: a photon's flux before the 1 / probability of its pick (and before
-        // the texel it leaves from for a textured triangle, and the falloff of its direction
-        // for a spot light).
+        // the texel and vertex colour it leaves from for a textured or coloured triangle, and
+        // the falloff of its direction for a spot light).
         Rgb power;
         // The largest factor of `power` per channel a photon's texel or falloff may bring.
         float peak = 1;
@@ -171,14 +174,27 @@ private:
         // Cut out everywhere (alpha 0): no ray meets it, so light sampling alone finds its
         // light, unweighed by MIS (pbrt-v4's invisible area lights, taken as delta lights).
         bool invisible = false;
+        // The vertex colours scaling Le, interpolated (Scene::colors), where `colored`; and
+        // the world triangle they are of.
+        bool colored = false;
+        std::array<Rgb, 3> colors{Rgb(1.0f), Rgb(1.0f), Rgb(1.0f)};
+        uint32_t triangle = 0;
+        // What scales Le at barycentrics (b1, b2): the vertex colour times the texel.
+        Rgb FactorAt(float b1, float b2) const {
+            Rgb factor(1.0f);
+            if (colored) factor = colors[0] * (1 - b1 - b2) + colors[1] * b1 + colors[2] * b2;
+            if (texture != nullptr)
+                factor *= texture->Sample(uv0.x + uv_edge1.x * b1 + uv_edge2.x * b2,
+                                          uv0.y + uv_edge1.y * b1 + uv_edge2.y * b2);
+            return factor;
+        }
         // Le at barycentrics (b1, b2).
         Rgb RadianceAt(float b1, float b2) const {
-            if (texture == nullptr) return radiance;
-            return radiance * texture->Sample(uv0.x + uv_edge1.x * b1 + uv_edge2.x * b2,
-                                              uv0.y + uv_edge1.y * b1 + uv_edge2.y * b2);
+            if (texture == nullptr && !colored) return radiance;
+            return radiance * FactorAt(b1, b2);
         }
-        // Emitted power, W per channel: pi A Le from each emitting side, the texture
-        // integrated over the triangle.
+        // Emitted power, W per channel: pi A Le from each emitting side, the texture and
+        // vertex colours integrated over the triangle.
         Rgbd Power() const;
         // The cosine at the light toward `to_light` (unit, from the receiver): of the side that
         // faces the receiver for a two-sided light.

@@ -7,6 +7,7 @@
 #include <cstdint>
 
 #include "core/math/vec3.h"
+#include "core/shared/gpu_types.h"
 
 namespace pf {
 
@@ -98,6 +99,10 @@ struct Material {
     float alpha = 1.0f;
     float alpha_cutoff = 0.0f;
     int32_t alpha_texture = kNoTexture;
+    // gpu::kSurface* (core/shared/gpu_types.h): back faces that let every ray through (a glTF
+    // mesh that is single-sided and open), alpha times the vertex colours' alpha, emission
+    // times the vertex colours (Scene::colors).
+    uint32_t surface_flags = 0;
     // kMix: the two materials (indices into Scene::materials, both below this one's) and the
     // probability of the second, times the first channel of mix_texture at the point where it
     // has one (glTF's metallic, pbrt's amount textures).
@@ -131,8 +136,12 @@ struct Material {
     }
     // Whether the volume inside absorbs.
     bool HasVolume() const { return !IsBlack(absorption) || !IsBlack(outside_absorption); }
-    // Whether some rays pass through the surface.
-    bool HasCutOuts() const { return alpha_texture != kNoTexture || !(alpha >= 1.0f); }
+    // Whether some rays pass through the surface: where alpha says, or at its back faces.
+    bool HasCutOuts() const {
+        return alpha_texture != kNoTexture || !(alpha >= 1.0f) ||
+               (surface_flags & (gpu::kSurfaceSingleSided | gpu::kSurfaceVertexAlpha)) != 0;
+    }
+    bool SingleSided() const { return (surface_flags & gpu::kSurfaceSingleSided) != 0; }
     bool IsEmissive() const { return !IsBlack(emission); }
     // Whether light crosses the diffuse surface to its other side.
     bool IsTranslucent() const { return !IsBlack(transmittance); }

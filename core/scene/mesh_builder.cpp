@@ -72,6 +72,8 @@ absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement
         return error("uv and position counts differ");
     if (!mesh.tangents.empty() && mesh.tangents.size() != vertex_count)
         return error("tangent and position counts differ");
+    if (!mesh.colors.empty() && mesh.colors.size() != vertex_count)
+        return error("colour and position counts differ");
     if (mesh.indices.size() % 3 != 0) return error("index count is not a multiple of 3");
     if (scene->triangles.size() + mesh.indices.size() / 3 > limits.max_triangles)
         return absl::ResourceExhaustedError(
@@ -134,6 +136,14 @@ absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement
         if (prototype) ++scene->prototypes[*prototype].triangle_count;
     }
     AppendTangents(mesh, placement, base, first_triangle, scene);
+    // Vertex colours, once a mesh has them: white for every other vertex.
+    if (!mesh.colors.empty() || !scene->colors.empty()) {
+        scene->colors.resize(base);
+        if (mesh.colors.empty())
+            scene->colors.resize(scene->positions.size());
+        else
+            scene->colors.insert(scene->colors.end(), mesh.colors.begin(), mesh.colors.end());
+    }
     return absl::OkStatus();
 }
 
@@ -237,6 +247,7 @@ absl::StatusOr<Scene> FlattenInstances(const Scene& scene, uint64_t max_triangle
                 const Vec3 t = instance.ApplyVector(scene.tangents[v]);
                 flat.tangents.push_back(LengthSquared(t) > 0 ? Normalize(t) : t);
             }
+            if (!scene.colors.empty()) flat.colors.push_back(scene.colors[v]);
         }
         for (Triangle triangle : local.triangles) {
             for (uint32_t& v : triangle.vertex) v += base;

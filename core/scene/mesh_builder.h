@@ -17,10 +17,11 @@ namespace pf {
 
 struct TriangleMesh {
     std::vector<Vec3> positions;
-    std::vector<Vec3> normals;      // empty, or one per position
-    std::vector<Point2> uvs;        // empty, or one per position
-    std::vector<uint32_t> indices;  // 3 per triangle, each below positions.size()
-    std::vector<Vec3> tangents;     // empty, or one per position (glTF's TANGENT): along +u
+    std::vector<Vec3> normals;        // empty, or one per position
+    std::vector<Point2> uvs;          // empty, or one per position
+    std::vector<uint32_t> indices;    // 3 per triangle, each below positions.size()
+    std::vector<Vec3> tangents;       // empty, or one per position (glTF's TANGENT): along +u
+    std::vector<VertexColor> colors;  // empty, or one per position (glTF's COLOR_0), in [0, 1]
 };
 
 // Which side of a triangle is its front (where emission leaves and what "outside" is for glass).

@@ -28,7 +28,8 @@ constexpr uint64_t kMaxCount = uint64_t{1} << 32;
 
 // Types written whole must have no padding: their size is the sum of their fields'.
 static_assert(sizeof(Vec3) == 12 && sizeof(Point2) == 8);
-static_assert(sizeof(Material) == 216, "Material gained a field or padding: encode it");
+static_assert(sizeof(Material) == 220, "Material gained a field or padding: encode it");
+static_assert(sizeof(VertexColor) == 16);
 static_assert(sizeof(PixelFilter) == 4 + 6 * 4);
 static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4 + sizeof(PixelFilter),
               "Camera gained a field or padding: encode it");
@@ -136,6 +137,7 @@ void WritePayload(const Scene& scene, ByteWriter& out) {
     Write(out, smooth ? scene.normals : std::vector<Vec3>());
     Write(out, textured ? scene.uvs : std::vector<Point2>());
     Write(out, scene.tangents);
+    Write(out, scene.colors);
     std::vector<uint32_t> vertices, materials;
     std::vector<uint8_t> smooth_flags;
     std::vector<Vec3> normals;
@@ -198,6 +200,7 @@ absl::Status ReadPayload(ByteReader& in, Scene* scene) {
     if (!in.Array(&scene->normals, kMaxCount)) return fail("normals");
     if (!in.Array(&scene->uvs, kMaxCount)) return fail("texture coordinates");
     if (!in.Array(&scene->tangents, kMaxCount)) return fail("tangents");
+    if (!in.Array(&scene->colors, kMaxCount)) return fail("vertex colours");
     std::vector<uint32_t> vertices, materials;
     std::vector<uint8_t> smooth;
     std::vector<Vec3> normals;
@@ -343,8 +346,8 @@ absl::Status CheckMaterials(const Scene& scene) {
             return Invalid(absl::StrCat(name, ": a mix of materials ", material.mix_first, " and ",
                                         material.mix_second, " by ", material.mix_amount));
         if (!(material.alpha >= 0.0f && material.alpha <= 1.0f && material.alpha_cutoff >= 0.0f &&
-              material.alpha_cutoff <= 1.0f))
-            return Invalid(absl::StrCat(name, ": alpha out of range"));
+              material.alpha_cutoff <= 1.0f && material.surface_flags <= gpu::kSurfaceFlags))
+            return Invalid(absl::StrCat(name, ": alpha out of range, or unknown surface flags"));
         for (const int32_t texture : material.Textures()) {
             if (texture == kNoTexture) continue;
             if (texture < 0 || static_cast<size_t>(texture) >= scene.textures.size() ||
@@ -373,6 +376,13 @@ absl::Status CheckGeometry(const Scene& scene) {
         return Invalid("texture coordinates not one per vertex");
     if (!scene.tangents.empty() && scene.tangents.size() != vertices)
         return Invalid("tangents not one per vertex");
+    if (!scene.colors.empty() && scene.colors.size() != vertices)
+        return Invalid("vertex colours not one per vertex");
+    // In [0, 1] (NaN fails): a colour multiplies albedos, which must not exceed 1.
+    const auto unit = [](float x) { return x >= 0.0f && x <= 1.0f; };
+    for (const VertexColor& color : scene.colors)
+        if (!unit(color.rgb.x) || !unit(color.rgb.y) || !unit(color.rgb.z) || !unit(color.alpha))
+            return Invalid("a vertex colour outside [0, 1]");
     for (size_t t = 0; t < scene.triangles.size(); ++t) {
         const Triangle& triangle = scene.triangles[t];
         for (uint32_t v : triangle.vertex)

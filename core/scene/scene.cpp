@@ -99,6 +99,11 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
         const float area = Length(Cross(p1 - p0, p2 - p0));
         surface.uv_per_length = area > 0 ? std::sqrt(uv_area / area) : 0.0f;
     }
+    if (!colors.empty()) [[unlikely]] {
+        const VertexColor &c0 = colors[triangle.vertex[0]], &c1 = colors[triangle.vertex[1]],
+                          &c2 = colors[triangle.vertex[2]];
+        surface.color = c0.rgb * b0 + c1.rgb * hit.b1 + c2.rgb * hit.b2;
+    }
     surface.material =
         ResolveMaterial(triangle.material, surface.position, hit.triangle, surface.uv);
     // A normal or bump map reads the texture coordinates, which are set then.
@@ -141,25 +146,26 @@ void Scene::AddShadingDetail(const Triangle& triangle, const Instance* instance,
 
 Rgb Scene::BaseColor(const SurfacePoint& surface) const {
     const Material& material = materials[surface.material];
-    if (material.base_color_texture == kNoTexture) return material.base_color;
-    return material.base_color *
-           textures[material.base_color_texture]->Sample(surface.uv.x, surface.uv.y);
+    // glTF: the base colour is its factor x its texture x the vertex colour.
+    const Rgb base_color = material.base_color * surface.color;
+    if (material.base_color_texture == kNoTexture) return base_color;
+    return base_color * textures[material.base_color_texture]->Sample(surface.uv.x, surface.uv.y);
 }
 
 Rgb Scene::BaseColor(const SurfacePoint& surface, float width) const {
     const Material& material = materials[surface.material];
-    if (material.base_color_texture == kNoTexture) return material.base_color;
-    if (!texture_filter) return BaseColor(surface);
-    return material.base_color * texture_filter->Sample(material.base_color_texture, surface.uv.x,
-                                                        surface.uv.y,
-                                                        width * surface.uv_per_length);
+    if (material.base_color_texture == kNoTexture || !texture_filter) return BaseColor(surface);
+    return material.base_color * surface.color *
+           texture_filter->Sample(material.base_color_texture, surface.uv.x, surface.uv.y,
+                                  width * surface.uv_per_length);
 }
 
 Rgb Scene::Emission(const SurfacePoint& surface) const {
     const Material& material = materials[surface.material];
-    if (material.emission_texture == kNoTexture) return material.emission;
-    return material.emission *
-           textures[material.emission_texture]->Sample(surface.uv.x, surface.uv.y);
+    Rgb emission = material.emission;
+    if ((material.surface_flags & gpu::kSurfaceVertexEmission) != 0) emission *= surface.color;
+    if (material.emission_texture == kNoTexture) return emission;
+    return emission * textures[material.emission_texture]->Sample(surface.uv.x, surface.uv.y);
 }
 
 uint32_t Scene::ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle,
@@ -217,11 +223,18 @@ bool Scene::MixReadsUv(uint32_t m) const {
 float Scene::Alpha(uint32_t triangle, float b1, float b2) const {
     const Triangle& t = triangles[triangle];
     const Material& material = materials[t.material];
-    if (material.alpha_texture == kNoTexture) return material.alpha;
+    float alpha = material.alpha;
     const float b0 = 1 - b1 - b2;
-    const Point2 uv = {uvs[t.vertex[0]].x * b0 + uvs[t.vertex[1]].x * b1 + uvs[t.vertex[2]].x * b2,
-                       uvs[t.vertex[0]].y * b0 + uvs[t.vertex[1]].y * b1 + uvs[t.vertex[2]].y * b2};
-    return material.alpha * textures[material.alpha_texture]->Sample(uv.x, uv.y).x;
+    if (material.alpha_texture != kNoTexture) {
+        const Point2 uv = {
+            uvs[t.vertex[0]].x * b0 + uvs[t.vertex[1]].x * b1 + uvs[t.vertex[2]].x * b2,
+            uvs[t.vertex[0]].y * b0 + uvs[t.vertex[1]].y * b1 + uvs[t.vertex[2]].y * b2};
+        alpha *= textures[material.alpha_texture]->Sample(uv.x, uv.y).x;
+    }
+    if ((material.surface_flags & gpu::kSurfaceVertexAlpha) != 0 && !colors.empty())
+        alpha *= colors[t.vertex[0]].alpha * b0 + colors[t.vertex[1]].alpha * b1 +
+                 colors[t.vertex[2]].alpha * b2;
+    return alpha;
 }
 
 float Scene::TriangleArea(uint32_t triangle) const {

@@ -75,6 +75,12 @@ struct PunctualLight {
     Rgb ImageFactor(const Vec3& toward) const;
 };
 
+// A vertex's colour (glTF's COLOR_0): linear RGB and alpha, each in [0, 1].
+struct VertexColor {
+    Rgb rgb{1.0f};
+    float alpha = 1.0f;
+};
+
 struct Bounds {
     Vec3 lower{1e30f}, upper{-1e30f};
     void Extend(const Vec3& p) { lower = Min(lower, p), upper = Max(upper, p); }
@@ -95,7 +101,8 @@ struct SurfacePoint {
     Vec3 shading_normal;    // unit, interpolated, on the same side as geometric_normal
     Point2 uv;              // texture coordinates; set only where the material reads them
     float uv_per_length =
-        0;  // texture-coordinate units per world length on this triangle; likewise
+        0;            // texture-coordinate units per world length on this triangle; likewise
+    Rgb color{1.0f};  // the vertex colours interpolated (Scene::colors; white without)
     uint32_t material = 0;
 };
 
@@ -168,6 +175,10 @@ struct Scene {
     // unit, along increasing u (zero where the mesh needs none); the bitangent's side is each
     // triangle's own (core/scene/tangents.h).
     std::vector<Vec3> tangents;
+    // One per position where some mesh has vertex colours (glTF's COLOR_0; white for the
+    // vertices of meshes without), else empty: they multiply the base colour, and the alpha
+    // and emission where the material says so (Material::surface_flags).
+    std::vector<VertexColor> colors;
     std::vector<Triangle> triangles;  // the world's own, then each prototype's (in its space)
     std::vector<Prototype> prototypes;
     std::vector<Instance> instances;
@@ -225,18 +236,20 @@ struct Scene {
     bool MixReadsUv(uint32_t m) const;
     // Whether material `m` (or a material a mix may be) reads vertex tangents: a normal map.
     bool NeedsTangents(uint32_t m) const;
-    // Diffuse reflectance or specular tint at a surface point, texture applied (bilinear, at
-    // the point: what a photon meets).
+    // Diffuse reflectance or specular tint at a surface point, texture and vertex colour
+    // applied (bilinear, at the point: what a photon meets).
     Rgb BaseColor(const SurfacePoint& surface) const;
     // The same averaged over a footprint `width` world units across (a camera sample's cone
     // where it meets the surface), by texture_filter (the point lookup where there is none).
     Rgb BaseColor(const SurfacePoint& surface, float width) const;
     // The radiance a surface point emits (from the sides its material emits toward), emission
-    // texture applied (bilinear, at the point: what Emitters samples).
+    // texture applied (bilinear, at the point: what Emitters samples), and the vertex colour
+    // where the material says so (gpu::kSurfaceVertexEmission).
     Rgb Emission(const SurfacePoint& surface) const;
     // The alpha of `triangle` at barycentrics (b1, b2): its material's, times its alpha
-    // texture's first channel there (bilinear, at the point). Material::HasCutOuts says where
-    // it is not 1.
+    // texture's first channel there (bilinear, at the point), times the vertex colours' alpha
+    // where the material says so (gpu::kSurfaceVertexAlpha). Material::HasCutOuts says where
+    // it may not be 1.
     float Alpha(uint32_t triangle, float b1, float b2) const;
     // The area of a world triangle.
     float TriangleArea(uint32_t triangle) const;

@@ -20,6 +20,7 @@ SceneFeatures SceneFeatures::All() {
                        &all.cut_outs,
                        &all.mixes,
                        &all.textures,
+                       &all.vertex_colors,
                        &all.roughness_textures,
                        &all.mix_textures,
                        &all.fresnel_mixes,
@@ -59,6 +60,7 @@ std::string SceneFeatures::ToString() const {
     if (cut_outs) parts.push_back("cut-outs");
     if (mixes) parts.push_back("mixed materials");
     if (textures) parts.push_back("textures");
+    if (vertex_colors) parts.push_back("vertex colours");
     if (roughness_textures) parts.push_back("roughness textures");
     if (mix_textures) parts.push_back("textured mixes");
     if (smooth_normals) parts.push_back("smooth normals");
@@ -76,6 +78,7 @@ std::string SceneFeatures::ToString() const {
 
 SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
     SceneFeatures features;
+    features.vertex_colors = !scene.colors.empty();
     std::vector<bool> used(scene.materials.size(), false);
     for (const Triangle& triangle : scene.triangles) {
         used[triangle.material] = true;

@@ -14,10 +14,11 @@ struct SceneFeatures {
     // Materials on at least one triangle.
     bool mirror = false, dielectric = false, thin_dielectric = false;
     bool rough_conductor = false, rough_dielectric = false;  // GGX
-    bool coats = false;     // a dielectric coat over a diffuse or conductor base
-    bool cut_outs = false;  // alpha: rays pass through parts of some surface
-    bool mixes = false;     // a material that is one of two at each point
-    bool textures = false;  // a used material has a base colour (or transmittance) texture
+    bool coats = false;          // a dielectric coat over a diffuse or conductor base
+    bool cut_outs = false;       // alpha: rays pass through parts of some surface
+    bool mixes = false;          // a material that is one of two at each point
+    bool textures = false;       // a used material has a base colour (or transmittance) texture
+    bool vertex_colors = false;  // vertices carry colours (Scene::colors: glTF's COLOR_0)
     bool roughness_textures = false;  // a used material's roughness has a texture
     bool mix_textures = false;        // a used mix's amount has a texture
     bool fresnel_mixes = false;       // glTF's dielectric: specular over diffuse (kCoatFresnelMix)
@@ -47,6 +48,9 @@ struct SceneFeatures {
     bool PunctualLights() const {
         return point_lights || spot_lights || directional_lights || image_lights;
     }
+    // Whether the base colour varies over a surface: a texture or vertex colours (what the
+    // passes' textured variants read, Scene::BaseColor).
+    bool VaryingBaseColor() const { return textures || vertex_colors; }
     // Whether shading reads texture coordinates (light emission aside).
     bool ReadsUv() const {
         return textures || cut_outs || roughness_textures || mix_textures || shading_detail ||

@@ -47,7 +47,10 @@ PF_CONST(uint32_t) kBindingLightImageTexels = 21;  // vec4[]
 // (width + 1)), and each texel's probability (width x height). A projection light's: its
 // texels' cumulative sums (width x height + 1), then each texel's probability.
 PF_CONST(uint32_t) kBindingLightImageTables = 22;
-PF_CONST(uint32_t) kBindingTangents = 23;     // vec4[], per vertex: xyz Scene::tangents
+// vec4[], per vertex: xyz Scene::tangents (normal or bump maps); and, in scenes with vertex
+// colours, each vertex's colour (rgb, alpha: Scene::colors) after its tangent, or alone where
+// there are no tangents (TangentSlot, ColorSlot in trace.glsl): no binding is left for them.
+PF_CONST(uint32_t) kBindingTangents = 23;
 PF_CONST(uint32_t) kBindingSheenTables = 24;  // float[kSheenTableSize]: kSheenTables (sheen.h)
 // GpuHitPoint[]: where the batches' direct light is sampled, the epoch's camera pass (ppm); the
 // hit points' own buffer where they are the same (sppm) or no pass is traced.
@@ -115,7 +118,8 @@ PF_CONST(uint32_t) kSpecNearest = 26;
 // of vertex it shades (kVertex*, path_vertex.glsl; kVertexAny in the megakernel). Not booleans.
 PF_CONST(uint32_t) kSpecWavefrontStage = 27;
 PF_CONST(uint32_t) kSpecVertexClass = 28;
-PF_CONST(uint32_t) kSpecCount = 29;
+PF_CONST(uint32_t) kSpecHasVertexColors = 29;  // Scene::colors (glTF's COLOR_0)
+PF_CONST(uint32_t) kSpecCount = 30;
 
 // The path tracer's wavefront (path_wavefront.comp): its stages, and the classes of vertex,
 // each shaded by a pipeline of its own from a queue of its own.
@@ -160,6 +164,15 @@ PF_CONST(uint32_t) kMaterialThinDielectric = 3;
 PF_CONST(uint32_t) kMaterialRoughConductor = 4;
 PF_CONST(uint32_t) kMaterialRoughDielectric = 5;
 PF_CONST(uint32_t) kMaterialMix = 6;
+// Material::surface_flags (GpuMaterial::alpha.w, uint bits): what a surface does beyond its
+// material. Single-sided: its back faces let every ray through (glTF's doubleSided false on an
+// open mesh; core/shared/alpha.h). Vertex alpha: its alpha is times the vertex colours' (glTF's
+// COLOR_0 under alphaMode MASK or BLEND). Vertex emission: its emission is times the vertex
+// colours (KHR_materials_unlit's base colour).
+PF_CONST(uint32_t) kSurfaceSingleSided = 1;
+PF_CONST(uint32_t) kSurfaceVertexAlpha = 2;
+PF_CONST(uint32_t) kSurfaceVertexEmission = 4;
+PF_CONST(uint32_t) kSurfaceFlags = 7;  // every flag
 PF_CONST(uint32_t) kEmitterTriangle = 0;
 PF_CONST(uint32_t) kEmitterPoint = 1;
 PF_CONST(uint32_t) kEmitterSpot = 2;
@@ -181,7 +194,8 @@ PF_GPU_LAYOUT(GpuBvhNode, 64);
 // A triangle as the intersection test wants it, in leaf order.
 struct GpuTriangle {
     vec4 p0;     // xyz; w: the scene triangle's index (uint bits)
-    vec4 edge1;  // p1 - p0
+    vec4 edge1;  // p1 - p0; w: 1 where its material has cut-outs (trace.glsl's MeetsSurface
+                 // runs for those alone), else 0
     vec4 edge2;  // p2 - p0
 };
 PF_GPU_LAYOUT(GpuTriangle, 48);
@@ -208,7 +222,7 @@ struct GpuMaterial {
     vec4 layer;  // the coat's kind (kCoat*, uint bits), y: a Fresnel mix's weight; z, w: the
                  // sheen's colour and roughness textures, or -1 (int bits)
     vec4 alpha;  // x: alpha (1 without cut-outs), y: its cutoff (0: stochastic); z: the alpha
-                 // texture, or -1 (int bits); core/shared/alpha.h
+                 // texture, or -1 (int bits); core/shared/alpha.h; w: kSurface* flags (uint bits)
     uvec4 mix;   // kMaterialMix: x, y the two materials; z the second's probability (float
                  // bits), w: a texture scaling it, or -1 (int bits)
     vec4 conductor_eta;  // a conductor's complex index, xyz: eta; w: its Fresnel kind
@@ -259,7 +273,9 @@ struct GpuEmitter {
     vec4 cone;  // spot: cos_inner, cos_outer, 1 / max(0.001, cos_inner - cos_outer), smoothstep (1)
                 // or quadratic (0). Lights with an image: the rotation's third row
     vec4 texture;   // triangle: xy the texture coordinates at p0, z the emission texture
-                    // (int bits), -1 for none; radiance and power are then times its texel.
+                    // (int bits), -1 for none; radiance and power are then times its texel;
+                    // w the triangle whose vertex colours scale them too, or kNoEmitter (uint
+                    // bits).
                     // Lights with an image: x its first texel, y its first table entry (uint
                     // bits); projection: zw the image's half-width and half-height on the
                     // plane z = 1

@@ -91,7 +91,7 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
               "specular over diffuse, metal Fresnel, absorbing media, diffuse transmission, sheen, "
               "sheen textures, cut-outs, "
               "mixed materials, "
-              "textures, roughness textures, "
+              "textures, vertex colours, roughness textures, "
               "textured mixes, smooth normals, normal or bump maps, area lights, "
               "point lights, spot lights, directional lights, environment light, textured lights, "
               "goniometric or projection lights, caustics");

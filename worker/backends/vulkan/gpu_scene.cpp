@@ -21,8 +21,10 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
     for (uint32_t t : bvh.order) {
         const Triangle& triangle = scene.triangles[t];
         const Vec3& p0 = scene.positions[triangle.vertex[0]];
-        gpu_scene.triangles.push_back({Vec4(p0, t), Vec4(scene.positions[triangle.vertex[1]] - p0),
-                                       Vec4(scene.positions[triangle.vertex[2]] - p0)});
+        const bool cut_out = scene.materials[triangle.material].HasCutOuts();
+        gpu_scene.triangles.push_back(
+            {Vec4(p0, t), Vec4(scene.positions[triangle.vertex[1]] - p0, cut_out ? 1.0f : 0.0f),
+             Vec4(scene.positions[triangle.vertex[2]] - p0)});
     }
     for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
         const Triangle& triangle = scene.triangles[t];
@@ -38,8 +40,19 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
         for (const Vec3& normal : scene.normals) gpu_scene.normals.push_back(Vec4(normal));
     if (gpu_scene.features.ReadsUv())
         for (const Point2& uv : scene.uvs) gpu_scene.uvs.push_back({uv.x, uv.y});
-    if (gpu_scene.features.shading_detail)
+    // Vertex colours share the tangents' binding: each after its vertex's tangent where the
+    // scene has normal or bump maps (a zero tangent where it has none), else alone.
+    if (gpu_scene.features.vertex_colors) {
+        for (size_t v = 0; v < scene.positions.size(); ++v) {
+            if (gpu_scene.features.shading_detail)
+                gpu_scene.tangents.push_back(
+                    Vec4(v < scene.tangents.size() ? scene.tangents[v] : Vec3(0.0f)));
+            const VertexColor& color = scene.colors[v];
+            gpu_scene.tangents.push_back(Vec4(color.rgb, color.alpha));
+        }
+    } else if (gpu_scene.features.shading_detail) {
         for (const Vec3& tangent : scene.tangents) gpu_scene.tangents.push_back(Vec4(tangent));
+    }
     if (gpu_scene.features.sheen)
         gpu_scene.sheen_tables.assign(std::begin(gpu::kSheenTables), std::end(gpu::kSheenTables));
     for (const Material& material : scene.materials)
@@ -52,7 +65,8 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
                        std::bit_cast<float>(material.sheen_texture),
                        std::bit_cast<float>(material.sheen_roughness_texture)},
              gpu::vec4{material.alpha, material.alpha_cutoff,
-                       std::bit_cast<float>(material.alpha_texture), 0},
+                       std::bit_cast<float>(material.alpha_texture),
+                       std::bit_cast<float>(material.surface_flags)},
              gpu::uvec4{material.mix_first, material.mix_second,
                         std::bit_cast<uint32_t>(material.mix_amount),
                         std::bit_cast<uint32_t>(material.mix_texture)},
@@ -163,7 +177,9 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
             emitter.direction = Vec4(record.normal, record.two_sided ? 1.0f : 0.0f);
             emitter.radiance = Vec4(record.radiance);
             emitter.texture = {record.uv0.x, record.uv0.y, std::bit_cast<float>(record.texture),
-                               0.0f};
+                               std::bit_cast<float>(record.colored_triangle < 0
+                                                        ? gpu::kNoEmitter
+                                                        : uint32_t(record.colored_triangle))};
             emitter.uv_edges = {record.uv_edge1.x, record.uv_edge1.y, record.uv_edge2.x,
                                 record.uv_edge2.y};
         } else {
@@ -245,6 +261,7 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasShadingDetail] = features.shading_detail;
     spec[gpu::kSpecHasTranslucency] = features.translucent;
     spec[gpu::kSpecHasSheen] = features.sheen;
+    spec[gpu::kSpecHasVertexColors] = features.vertex_colors;
     return spec;
 }
 

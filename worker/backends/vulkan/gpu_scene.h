@@ -24,7 +24,8 @@ struct GpuScene {
     std::vector<gpu::GpuTriangleShading> shading;
     std::vector<gpu::vec4> normals;
     std::vector<gpu::vec2> uvs;
-    std::vector<gpu::vec4> tangents;  // where the scene has normal maps
+    // Where the scene has normal or bump maps, or vertex colours (gpu::kBindingTangents).
+    std::vector<gpu::vec4> tangents;
     std::vector<float> sheen_tables;  // gpu::kSheenTables, where the scene has sheen
     std::vector<gpu::GpuMaterial> materials;
     std::vector<gpu::GpuTexture> textures;

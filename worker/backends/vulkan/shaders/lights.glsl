@@ -18,13 +18,19 @@ float SpotFalloff(GpuEmitter light, float cos_axis) {
 
 uint EmitterKind(GpuEmitter emitter) { return floatBitsToUint(emitter.position.w); }
 
-// A triangle light's emission texture at barycentrics b, 1 where it has none
-// (Emitters::EmissiveTriangle::RadianceAt).
+// What scales a triangle light's radiance at barycentrics b: its vertex colour times its
+// emission texture's texel, 1 where it has neither (Emitters::EmissiveTriangle::FactorAt).
 vec3 EmissionTexel(GpuEmitter emitter, vec2 b) {
+    vec3 factor = vec3(1);
+    if (kHasVertexColors) {
+        const uint triangle = floatBitsToUint(emitter.texture.w);
+        if (triangle != kNoEmitter) factor = VertexColorAt(shading[triangle].vertices.xyz, b.x, b.y).xyz;
+    }
     const int texture = floatBitsToInt(emitter.texture.z);
-    if (!kHasTexturedLights || texture < 0) return vec3(1);
-    return TextureSample(textures[texture],
-                         emitter.texture.xy + emitter.uv_edges.xy * b.x + emitter.uv_edges.zw * b.y);
+    if (kHasTexturedLights && texture >= 0)
+        factor *= TextureSample(textures[texture],
+                                emitter.texture.xy + emitter.uv_edges.xy * b.x + emitter.uv_edges.zw * b.y);
+    return factor;
 }
 
 // The cosine at a triangle light toward unit to_light (from the receiver): of the side that

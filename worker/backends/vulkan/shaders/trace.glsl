@@ -34,19 +34,36 @@ vec3 TextureSample(GpuTexture texture, vec2 uv) {
     return mix(top, bottom, w.y);
 }
 
-// Whether the ray meets scene triangle `index` at (b1, b2) or passes through a cut-out there, as
-// the CPU tracer's Embree filter decides (core/shared/alpha.h, Scene::Alpha).
+// Where vertex v's tangent and colour lie in the tangents binding (gpu::kBindingTangents).
+uint TangentSlot(uint v) { return kHasVertexColors ? 2u * v : v; }
+uint ColorSlot(uint v) { return kHasShadingDetail ? 2u * v + 1u : v; }
+
+// The vertex colours (rgb, alpha) of `vertices` interpolated at barycentrics (b1, b2)
+// (Scene::colors); only where the scene has them.
+vec4 VertexColorAt(uvec3 vertices, float b1, float b2) {
+    return vertex_tangents[ColorSlot(vertices.x)] * (1.0 - b1 - b2) + vertex_tangents[ColorSlot(vertices.y)] * b1 +
+           vertex_tangents[ColorSlot(vertices.z)] * b2;
+}
+
+// Whether the ray meets scene triangle `index` at (b1, b2) or passes through a cut-out there, or
+// through a single-sided surface's back face, as the CPU tracer's Embree filter decides
+// (core/shared/alpha.h, Scene::Alpha).
 bool MeetsSurface(uint index, float b1, float b2, vec3 origin, vec3 direction) {
     const GpuTriangleShading shade = shading[index];
     const GpuMaterial material = materials[shade.vertices.w & ~kSmoothBit];
+    const uint flags = floatBitsToUint(material.alpha.w);
+    if (PassesBackFace(flags, dot(direction, shade.normal.xyz))) return false;
     float alpha = material.alpha.x;
     const int texture = floatBitsToInt(material.alpha.z);
-    if (alpha >= 1.0 && texture < 0) return true;
+    const bool vertex_alpha = kHasVertexColors && (flags & kSurfaceVertexAlpha) != 0;
+    if (alpha >= 1.0 && texture < 0 && !vertex_alpha) return true;
     if (texture >= 0) {
         const vec2 uv = vertex_uvs[shade.vertices.x] * (1.0 - b1 - b2) + vertex_uvs[shade.vertices.y] * b1 +
                         vertex_uvs[shade.vertices.z] * b2;
         alpha *= TextureSample(textures[texture], uv).x;
     }
+    if (vertex_alpha) alpha *= VertexColorAt(shade.vertices.xyz, b1, b2).w;
+    if (alpha >= 1.0) return true;
     return AlphaMeets(alpha, material.alpha.y, AlphaHash(origin, direction, index));
 }
 
@@ -64,7 +81,9 @@ bool IntersectTriangle(uint index, vec3 origin, vec3 direction, inout float t_ma
     if (b2 < 0 || b1 + b2 > 1) return false;
     const float t = dot(triangle.edge2.xyz, q) * inverse;
     if (!(t > 0 && t < t_max)) return false;
-    if (kHasCutOuts && !MeetsSurface(floatBitsToUint(triangle.p0.w), b1, b2, origin, direction)) return false;
+    // Only the triangles whose material has cut-outs pay for the test.
+    if (kHasCutOuts && triangle.edge1.w != 0.0 && !MeetsSurface(floatBitsToUint(triangle.p0.w), b1, b2, origin, direction))
+        return false;
     t_max = t;
     hit = RayHit(t, index, b1, b2);
     return true;
@@ -138,8 +157,9 @@ void AddShadingDetail(GpuMaterial material, GpuTriangle triangle, GpuTriangleSha
     }
     if (normal_texture >= 0) {
         const float b0 = 1.0 - hit.b1 - hit.b2;
-        const vec3 tangent = vertex_tangents[shade.vertices.x].xyz * b0 + vertex_tangents[shade.vertices.y].xyz * hit.b1 +
-                             vertex_tangents[shade.vertices.z].xyz * hit.b2;
+        const vec3 tangent = vertex_tangents[TangentSlot(shade.vertices.x)].xyz * b0 +
+                             vertex_tangents[TangentSlot(shade.vertices.y)].xyz * hit.b1 +
+                             vertex_tangents[TangentSlot(shade.vertices.z)].xyz * hit.b2;
         const float sign =
             BitangentSign(surface.geometric_normal, triangle.edge1.xyz, triangle.edge2.xyz, duv1, duv2);
         n = NormalFromMap(n, tangent, sign, TextureSample(textures[normal_texture], surface.uv), material.detail.y);
@@ -177,6 +197,8 @@ Surface SurfaceAt(RayHit hit) {
     const GpuMaterial material = materials[surface.material];
     if (kHasShadingDetail) AddShadingDetail(material, triangle, shade, hit, surface);
     surface.base_color = material.base_color.xyz;
+    // glTF's base colour: factor x vertex colour x texture (Scene::BaseColor).
+    if (kHasVertexColors) surface.base_color *= VertexColorAt(shade.vertices.xyz, hit.b1, hit.b2).xyz;
     if (kHasTextures && material.texture >= 0) surface.base_color *= TextureSample(textures[material.texture], surface.uv);
     return surface;
 }
