@@ -84,13 +84,19 @@ class GltfWriter:
         if extensions:
             material["extensions"] = extensions
             self.extensions.update(extensions)
+        if emission is None:
+            # pbrt's surfaces are seen from both sides; glTF's default (single-sided) would let
+            # rays through an open mesh's back faces. Emitters stay single-sided: they emit from
+            # their front alone, as the pbrt forms' area lights.
+            material["doubleSided"] = True
         self.doc["materials"].append(material)
         return len(self.doc["materials"]) - 1
 
     def gltf_material(self, name, pbr, extensions):
         """A material as glTF writes it: pbrMetallicRoughness's fields and extensions as given
         (glTF-only scenes, for what pbrt has no word for)."""
-        self.doc["materials"].append({"name": name, "pbrMetallicRoughness": pbr, "extensions": extensions})
+        self.doc["materials"].append({"name": name, "pbrMetallicRoughness": pbr, "extensions": extensions,
+                                      "doubleSided": True})
         self.extensions.update(extensions)
         return len(self.doc["materials"]) - 1
 
