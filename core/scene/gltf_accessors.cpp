@@ -216,9 +216,29 @@ int CoordinateSet(const tinygltf::Material& material) {
     return material.normalTexture.index >= 0 ? material.normalTexture.texCoord : 0;
 }
 
+namespace {
+
+// A triangle strip's or fan's indices as a list of triangles, as the glTF specification
+// numbers them (3.7.2.1: strip triangle i is {v_i, v_(i+(1+i%2)), v_(i+(2-i%2))}, fan triangle
+// i is {v_(i+1), v_(i+2), v_0}).
+std::vector<uint32_t> TriangleList(int mode, const std::vector<uint32_t>& indices) {
+    std::vector<uint32_t> list;
+    if (indices.size() < 3) return list;
+    list.reserve(3 * (indices.size() - 2));
+    for (size_t i = 0; i + 2 < indices.size(); ++i) {
+        if (mode == TINYGLTF_MODE_TRIANGLE_STRIP)
+            list.insert(list.end(), {indices[i], indices[i + 1 + i % 2], indices[i + 2 - i % 2]});
+        else
+            list.insert(list.end(), {indices[i + 1], indices[i + 2], indices[0]});
+    }
+    return list;
+}
+
+}  // namespace
+
 absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
                                            const tinygltf::Primitive& primitive,
-                                           uint64_t max_triangles) {
+                                           uint64_t max_triangles, VertexAttributes* extra) {
     auto error = [](const std::string& what) { return absl::InvalidArgumentError(what); };
     // The texture coordinates the material's texture reads (its texCoord), TEXCOORD_0 where it
     // has none.
@@ -226,9 +246,16 @@ absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
     if (primitive.material >= 0 && primitive.material < static_cast<int>(model.materials.size()))
         set = CoordinateSet(model.materials[primitive.material]);
     const std::string uv_name = absl::StrCat("TEXCOORD_", set);
+    const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        return error(absl::StrCat("mode ", mode, " is not triangles"));
     if (const auto draco = primitive.extensions.find("KHR_draco_mesh_compression");
-        draco != primitive.extensions.end())
-        return DecodeDracoPrimitive(model, draco->second, uv_name, max_triangles);
+        draco != primitive.extensions.end()) {
+        if (mode != TINYGLTF_MODE_TRIANGLES)
+            return error("a Draco-compressed primitive must be triangles (mode 4)");
+        return DecodeDracoPrimitive(model, primitive, draco->second, uv_name, max_triangles, extra);
+    }
     const auto position_it = primitive.attributes.find("POSITION");
     if (position_it == primitive.attributes.end()) return error("has no POSITION attribute");
     std::vector<float> positions, normals, uvs, tangents;
@@ -269,11 +296,22 @@ absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
     } else {
         for (uint32_t i = 0; i < vertex_count; ++i) mesh.indices.push_back(i);
     }
+    if (mode != TINYGLTF_MODE_TRIANGLES) mesh.indices = TriangleList(mode, mesh.indices);
     if (mesh.indices.size() % 3 != 0) return error("index count is not a multiple of 3");
     for (size_t i = 0; i < mesh.indices.size(); ++i)
         if (mesh.indices[i] >= vertex_count)
             return error(absl::StrCat("triangle ", i / 3, " has an index beyond the ", vertex_count,
                                       " vertices"));
+    if (extra != nullptr)
+        for (const auto& [name, components] : extra->wanted) {
+            const auto it = primitive.attributes.find(name);
+            if (it == primitive.attributes.end()) continue;
+            std::vector<float>& values = extra->values[name];
+            if (absl::Status s = ReadFloats(model, it->second, components, &values); !s.ok())
+                return error(absl::StrCat(name, ": ", s.message()));
+            if (values.size() != vertex_count * components)
+                return error(absl::StrCat(name, " and POSITION counts differ"));
+        }
     return mesh;
 }
 

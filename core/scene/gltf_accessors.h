@@ -6,6 +6,7 @@
 #include <tiny_gltf.h>
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -33,12 +34,22 @@ const tinygltf::TextureInfo* CoordinateTexture(const tinygltf::Material& materia
 // The TEXCOORD_n set those are: CoordinateTexture's, else the normal texture's, else 0.
 int CoordinateSet(const tinygltf::Material& material);
 
+// Vertex attributes a caller asks ReadTriangles for beyond the mesh's own (COLOR_0, JOINTS_n,
+// WEIGHTS_n): by name, the components a vertex; what the primitive has of them comes back in
+// `values`, as ReadFloats reads them (normalised where the accessor says so), one per vertex.
+struct VertexAttributes {
+    std::map<std::string, int> wanted;
+    std::map<std::string, std::vector<float>> values;
+};
+
 // A triangle primitive's mesh: POSITION, NORMAL and TANGENT if given, the TEXCOORD_n set its
-// material's CoordinateSet names, and its indices (or 0, 1, 2, ... without), every index
-// checked against the vertices; from its Draco stream where it is compressed
+// material's CoordinateSet names, and its indices (or 0, 1, 2, ... without; a triangle strip's
+// or fan's turned into a list of triangles), every index checked against the vertices; and the
+// `extra` attributes asked for; from its Draco stream where it is compressed
 // (KHR_draco_mesh_compression, gltf_draco.h). Errors say what is wrong, for the caller to place.
 absl::StatusOr<TriangleMesh> ReadTriangles(const tinygltf::Model& model,
                                            const tinygltf::Primitive& primitive,
-                                           uint64_t max_triangles);
+                                           uint64_t max_triangles,
+                                           VertexAttributes* extra = nullptr);
 
 }  // namespace pf

@@ -20,6 +20,8 @@ std::string ImageName(int index, const tinygltf::Image& image, const unsigned ch
     const char* extension = "";
     if (size >= 8 && std::memcmp(bytes, "\x89PNG", 4) == 0) extension = ".png";
     if (size >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF) extension = ".jpg";
+    if (size >= 12 && std::memcmp(bytes, "RIFF", 4) == 0 && std::memcmp(bytes + 8, "WEBP", 4) == 0)
+        extension = ".webp";
     return absl::EndsWithIgnoreCase(label, extension) ? label : absl::StrCat(label, extension);
 }
 

@@ -16,10 +16,12 @@ namespace pf {
 namespace {
 
 // The stream's attribute `name` (its unique id in the extension's attributes) as
-// `components` floats a point; empty where the extension does not name it.
+// `components` floats a point, unsigned integers mapped to [0, 1] where `normalized`; empty
+// where the extension does not name it.
 absl::StatusOr<std::vector<float>> Attribute(const draco::Mesh& mesh,
                                              const tinygltf::Value& attributes,
-                                             const std::string& name, int components) {
+                                             const std::string& name, int components,
+                                             bool normalized = false) {
     if (!attributes.Has(name)) return std::vector<float>{};
     const tinygltf::Value& id = attributes.Get(name);
     if (!id.IsInt() || id.GetNumberAsInt() < 0)
@@ -51,6 +53,12 @@ absl::StatusOr<std::vector<float>> Attribute(const draco::Mesh& mesh,
                                             &values[size_t(p.value()) * components]))
             return absl::InvalidArgumentError(absl::StrCat(
                 "KHR_draco_mesh_compression: ", name, " of point ", p.value(), " is unreadable"));
+    // As glTF normalises an unsigned accessor (ConvertValue gives the integers).
+    const float scale = attribute->data_type() == draco::DT_UINT8    ? 1.0f / 255
+                        : attribute->data_type() == draco::DT_UINT16 ? 1.0f / 65535
+                                                                     : 1.0f;
+    if (normalized && scale != 1.0f)
+        for (float& value : values) value *= scale;
     return values;
 }
 
@@ -144,9 +152,10 @@ absl::Status CheckDracoCounts(std::string_view stream, uint64_t max_triangles) {
 }  // namespace
 
 absl::StatusOr<TriangleMesh> DecodeDracoPrimitive(const tinygltf::Model& model,
+                                                  const tinygltf::Primitive& primitive,
                                                   const tinygltf::Value& extension,
                                                   const std::string& uv_attribute,
-                                                  uint64_t max_triangles) {
+                                                  uint64_t max_triangles, VertexAttributes* extra) {
     const auto malformed = [](const std::string& what) {
         return absl::InvalidArgumentError(absl::StrCat("KHR_draco_mesh_compression: ", what));
     };
@@ -185,6 +194,18 @@ absl::StatusOr<TriangleMesh> DecodeDracoPrimitive(const tinygltf::Model& model,
     if (!normals.ok()) return normals.status();
     absl::StatusOr<std::vector<float>> uvs = Attribute(mesh, attributes, uv_attribute, 2);
     if (!uvs.ok()) return uvs.status();
+    if (extra != nullptr)
+        for (const auto& [name, components] : extra->wanted) {
+            const auto accessor = primitive.attributes.find(name);
+            const bool normalized = accessor != primitive.attributes.end() &&
+                                    accessor->second >= 0 &&
+                                    accessor->second < static_cast<int>(model.accessors.size()) &&
+                                    model.accessors[accessor->second].normalized;
+            absl::StatusOr<std::vector<float>> values =
+                Attribute(mesh, attributes, name, components, normalized);
+            if (!values.ok()) return values.status();
+            if (!values->empty()) extra->values[name] = std::move(*values);
+        }
     TriangleMesh out;
     const size_t points = mesh.num_points();
     for (size_t p = 0; p < points; ++p) {

@@ -1,5 +1,6 @@
-// glTF 2.0 loading: node hierarchy, triangle meshes, the camera, KHR_lights_punctual and the
-// materials (gltf_materials.h).
+// glTF 2.0 loading: node hierarchy, triangle meshes (vertex colours, morph targets at their
+// default weights, skins in their default pose: gltf_skin.h; single-sided open meshes), GPU
+// instances, the camera, KHR_lights_punctual and the materials (gltf_materials.h).
 #include "core/scene/gltf_loader.h"
 
 #include <spdlog/spdlog.h>
@@ -17,11 +18,16 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
 #include "core/math/transform.h"
+#include "core/scene/closed_surface.h"
 #include "core/scene/gltf_accessors.h"
 #include "core/scene/gltf_bundle_files.h"
 #include "core/scene/gltf_draco.h"
 #include "core/scene/gltf_materials.h"
+#include "core/scene/gltf_mesh_read.h"
 #include "core/scene/gltf_meshopt.h"
+#include "core/scene/gltf_skin.h"
+#include "core/scene/gltf_spec_gloss.h"
+#include "core/scene/gltf_textures.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/scene_bundle.h"
 #include "core/scene/scene_files.h"
@@ -61,7 +67,11 @@ class GltfSceneBuilder {
 public:
     GltfSceneBuilder(const std::string& path, const tinygltf::Model& model,
                      const SceneLimits& limits, const GltfImages& images, const std::string& camera)
-        : path_(path), model_(model), wanted_camera_(camera), limits_(limits), images_(images) {
+        : path_(path),
+          model_(model),
+          wanted_camera_(camera),
+          limits_(limits),
+          textures_(path, model, images, limits, &scene_) {
         scene_.source = path;
     }
 
@@ -71,13 +81,29 @@ private:
     absl::Status Error(const std::string& element, const std::string& what) const {
         return absl::InvalidArgumentError(absl::StrCat(path_, ": ", element, ": ", what));
     }
+    // Notes the file's extensions that nothing here reads and its animations.
+    void NoteLeftOut() const;
     absl::Status VisitNode(int index, const Transform& parent, int depth);
+    // A mesh placed rigidly by `world`: once, or, where several nodes (or GPU instances) use
+    // it, as an instance of its prototype.
     absl::Status AddMesh(int mesh_index, const Transform& world);
-    absl::StatusOr<TriangleMesh> ReadPrimitive(const tinygltf::Primitive& primitive,
-                                               const std::string& element) const;
-    absl::Status AddPrimitive(int mesh_index, size_t primitive_index, const std::string& element,
-                              const Transform& world, uint32_t material,
-                              std::optional<uint32_t> prototype);
+    // A mesh placed by one node alone: rigidly by `world`, or posed by `pose`'s joints.
+    absl::Status AddPlacedMesh(int mesh_index, const Transform& world, const GltfPose& pose);
+    // Each primitive of a mesh read, deformed as `pose` says (nullopt where it is skipped:
+    // points, lines), and whether they close a surface together.
+    struct MeshRead {
+        std::vector<std::optional<TriangleMesh>> primitives;
+        bool closed = false;
+    };
+    absl::StatusOr<MeshRead> ReadMesh(int mesh_index, const GltfPose& pose);
+    // The Scene material primitive `primitive` of a mesh (`closed` or open) uses: its glTF
+    // material's, as a single-sided variant where it is one-sided, open and opaque to
+    // transmission, with its vertex colours' alpha where its alpha mode reads alpha.
+    absl::StatusOr<uint32_t> PrimitiveMaterial(const tinygltf::Primitive& primitive,
+                                               const TriangleMesh& mesh, bool closed);
+    absl::Status AppendPrimitive(const TriangleMesh& mesh, const std::string& element,
+                                 const Transform& world, uint32_t material,
+                                 std::optional<uint32_t> prototype);
     absl::Status AddLight(int light_index, const Transform& world);
     absl::Status SetCamera(int camera_index, const Transform& world);
     // Whether the camera node met now (the cameras_seen_.size()-th, named `names`) is the
@@ -85,24 +111,9 @@ private:
     bool WantedCamera(const std::vector<std::string>& names) const;
     void FrameBounds();
     absl::StatusOr<uint32_t> MaterialIndex(int gltf_material);
-    // The metallic-roughness materials of a glTF material without transmission, whose
-    // common parts (base colour, emission, alpha) `material` holds: returns the one its
-    // surfaces use (a mix where metallic or clearcoat lies between 0 and 1).
-    absl::StatusOr<uint32_t> MetallicRoughness(const tinygltf::Material& source,
-                                               const std::string& element, Material material);
-    // Scene::textures' index of glTF texture `gltf_texture` decoded with `options` (by
-    // default, glTF's colour: sRGB, alpha ignored).
-    absl::StatusOr<int32_t> TextureIndex(int gltf_texture, const std::string& element,
-                                         ImageDecodeOptions options = SrgbColour());
-    static ImageDecodeOptions SrgbColour() {
-        ImageDecodeOptions options;
-        options.encoding = ImageEncoding::kSrgb;
-        return options;
-    }
-    uint32_t AddMaterial(const Material& material) {
-        scene_.materials.push_back(material);
-        return static_cast<uint32_t>(scene_.materials.size() - 1);
-    }
+    // Material `material` with gpu::kSurface* `flags` added: itself without, else a copy made
+    // once (the triangles name it; its mix's parts are shared).
+    uint32_t Variant(uint32_t material, uint32_t flags);
 
     const std::string& path_;
     const tinygltf::Model& model_;
@@ -111,35 +122,38 @@ private:
     const std::string& wanted_camera_;          // LoadGltf's `camera`
     std::vector<std::string> cameras_seen_;     // "#index 'name'" of each camera node met
     std::map<int, uint32_t> material_indices_;  // glTF material -> Scene::materials
-    // (glTF image, how it is decoded) -> Scene::textures
-    std::map<std::pair<int, ImageDecodeOptions>, int32_t> texture_indices_;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> variants_;  // (material, flags) -> variant
     std::map<uint32_t, UvTransform> material_uvs_;  // Scene::materials -> its texture's transform
-    std::map<std::pair<int, size_t>, TriangleMesh>
-        meshes_;                    // (mesh, primitive) emitting in several nodes
-    std::map<int, int> mesh_uses_;  // glTF mesh -> how many nodes name it
+    // A mesh that several nodes use: its emitting primitives (each with its material), placed
+    // as world triangles by every node.
+    std::map<int, std::vector<std::pair<TriangleMesh, uint32_t>>> emitting_;
+    std::map<int, int> mesh_uses_;  // glTF mesh -> how many rigid placements name it
     std::map<int, uint32_t>
-        mesh_prototypes_;  // glTF mesh used by several nodes -> Scene::prototypes
+        mesh_prototypes_;                // glTF mesh used by several nodes -> Scene::prototypes
+    std::vector<Transform> node_world_;  // every node's default world transform (skins)
     const SceneLimits& limits_;
-    const GltfImages& images_;
+    GltfTextureReader textures_;
 };
 
 absl::StatusOr<Scene> GltfSceneBuilder::Build() {
     // A required extension changes what the file means: one not read here is refused, as the
     // glTF specification asks, rather than rendered wrong.
     static const std::set<std::string> kSupported = {
-        "KHR_lights_punctual",        "KHR_materials_emissive_strength",
-        "KHR_texture_transform",      "KHR_materials_transmission",
-        "KHR_materials_ior",          "KHR_materials_volume",
-        "KHR_materials_specular",     "KHR_materials_clearcoat",
-        "KHR_materials_sheen",        "KHR_mesh_quantization",
-        "KHR_draco_mesh_compression", "EXT_meshopt_compression",
-        "KHR_meshopt_compression"};
+        "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_texture_transform",
+        "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
+        "KHR_materials_specular", "KHR_materials_clearcoat", "KHR_materials_sheen",
+        "KHR_mesh_quantization", "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+        "KHR_meshopt_compression", "KHR_materials_unlit", "KHR_materials_pbrSpecularGlossiness",
+        // Read image by image: a texture whose only image is KTX2 is refused where a material
+        // reads it, naming the way out (GltfTextureReader).
+        "KHR_texture_basisu", "EXT_texture_webp", "EXT_mesh_gpu_instancing"};
     for (const std::string& extension : model_.extensionsRequired)
         if (!kSupported.contains(extension))
             return Error("extensionsRequired",
                          absl::StrCat("'", extension,
                                       "' is not supported (a sample model's glTF/ variant "
                                       "usually does without it)"));
+    NoteLeftOut();
     std::vector<int> roots;
     if (!model_.scenes.empty()) {
         const int scene_index = model_.defaultScene >= 0 ? model_.defaultScene : 0;
@@ -149,8 +163,15 @@ absl::StatusOr<Scene> GltfSceneBuilder::Build() {
     } else {
         for (int i = 0; i < static_cast<int>(model_.nodes.size()); ++i) roots.push_back(i);
     }
-    for (const tinygltf::Node& node : model_.nodes)
-        if (node.mesh >= 0) ++mesh_uses_[node.mesh];
+    // Rigid placements of each mesh: a node's (or its GPU instances'); skinned nodes and nodes
+    // with morph weights of their own pose theirs alone.
+    for (int n = 0; n < static_cast<int>(model_.nodes.size()); ++n) {
+        const tinygltf::Node& node = model_.nodes[n];
+        if (node.mesh < 0 || node.skin >= 0 || !node.weights.empty()) continue;
+        const absl::StatusOr<std::vector<Transform>> instances = GltfGpuInstances(model_, node);
+        mesh_uses_[node.mesh] += instances.ok() && !instances->empty() ? 2 : 1;
+    }
+    if (!model_.skins.empty()) node_world_ = NodeWorldTransforms(model_);
     for (int root : roots)
         if (absl::Status status = VisitNode(root, Transform{}, 0); !status.ok()) return status;
     FinishInstancing(&scene_);
@@ -162,6 +183,35 @@ absl::StatusOr<Scene> GltfSceneBuilder::Build() {
                                                           absl::StrJoin(cameras_seen_, ", ")));
     if (!has_camera_) FrameBounds();
     return std::move(scene_);
+}
+
+void GltfSceneBuilder::NoteLeftOut() const {
+    // Read, or harmless to leave (metadata); KHR_materials_* ones are noted per material
+    // (KHR_materials_variants, whose default materials are read, here).
+    static const std::set<std::string> kRead = {"KHR_lights_punctual",
+                                                "KHR_texture_transform",
+                                                "KHR_mesh_quantization",
+                                                "KHR_draco_mesh_compression",
+                                                "EXT_meshopt_compression",
+                                                "KHR_meshopt_compression",
+                                                "KHR_texture_basisu",
+                                                "EXT_texture_webp",
+                                                "EXT_mesh_gpu_instancing",
+                                                "KHR_xmp_json_ld",
+                                                "KHR_xmp"};
+    std::vector<std::string> left_out;
+    for (const std::string& extension : model_.extensionsUsed)
+        if (!kRead.contains(extension) &&
+            (!extension.starts_with("KHR_materials_") || extension == "KHR_materials_variants"))
+            left_out.push_back(extension);
+    if (!left_out.empty())
+        spdlog::warn("{}: {} not read (optional: what the file gives without them is rendered)",
+                     path_, absl::StrJoin(left_out, ", "));
+    if (!model_.animations.empty())
+        spdlog::warn(
+            "{}: {} animation(s) not played: the scene is rendered as its nodes' default "
+            "transforms (and skins' default pose) place it",
+            path_, model_.animations.size());
 }
 
 bool GltfSceneBuilder::WantedCamera(const std::vector<std::string>& names) const {
@@ -209,8 +259,34 @@ absl::Status GltfSceneBuilder::VisitNode(int index, const Transform& parent, int
     if (!local.IsFinite()) return Error(element, "transform has NaN or Inf");
     const Transform world = parent * local;
     if (!world.IsFinite()) return Error(element, "world transform overflows to NaN or Inf");
-    if (node.mesh >= 0)
-        if (absl::Status status = AddMesh(node.mesh, world); !status.ok()) return status;
+    if (node.mesh >= 0 && node.mesh >= static_cast<int>(model_.meshes.size()))
+        return Error(absl::StrCat("mesh #", node.mesh), "does not exist");
+    if (node.mesh >= 0 && node.skin >= 0) {
+        // glTF's skinning places the vertices by the joints alone: the node's transform is not
+        // applied (the specification: it must be ignored).
+        absl::StatusOr<std::vector<Transform>> joints =
+            JointMatrices(model_, node.skin, node_world_);
+        GltfPose pose{node.weights.empty() ? &model_.meshes[node.mesh].weights : &node.weights,
+                      joints.ok() ? &*joints : nullptr};
+        if (!joints.ok())
+            spdlog::warn(
+                "{}: {}: skin #{} cannot be posed ({}): its mesh is placed by the node's "
+                "transform, in its bind pose",
+                path_, element, node.skin, std::string(joints.status().message()));
+        if (absl::Status status = AddPlacedMesh(node.mesh, world, pose); !status.ok())
+            return status;
+    } else if (node.mesh >= 0 && !node.weights.empty()) {
+        if (absl::Status status = AddPlacedMesh(node.mesh, world, {&node.weights, nullptr});
+            !status.ok())
+            return status;
+    } else if (node.mesh >= 0) {
+        absl::StatusOr<std::vector<Transform>> instances = GltfGpuInstances(model_, node);
+        if (!instances.ok()) return Error(element, std::string(instances.status().message()));
+        if (instances->empty()) instances->push_back(Transform{});
+        for (const Transform& instance : *instances)
+            if (absl::Status status = AddMesh(node.mesh, world * instance); !status.ok())
+                return status;
+    }
     if (node.camera >= 0) {
         const std::string camera_name = node.camera < static_cast<int>(model_.cameras.size())
                                             ? model_.cameras[node.camera].name
@@ -230,72 +306,139 @@ absl::Status GltfSceneBuilder::VisitNode(int index, const Transform& parent, int
 }
 
 absl::Status GltfSceneBuilder::AddMesh(int mesh_index, const Transform& world) {
-    if (mesh_index >= static_cast<int>(model_.meshes.size()))
-        return Error(absl::StrCat("mesh #", mesh_index), "does not exist");
     const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
+    const GltfPose rigid{&mesh.weights, nullptr};
+    if (mesh_uses_[mesh_index] < 2) return AddPlacedMesh(mesh_index, world, rigid);
+    // A mesh that several nodes use is stored once, as a prototype each node places by an
+    // instance; its emitting primitives are lights, placed as world triangles by every node.
     const std::string name = Describe("mesh", mesh_index, mesh.name);
-    // Adds the primitives that emit (or, with false, those that do not; with nullopt, all).
-    const auto add_primitives = [&](std::optional<bool> emitting, const Transform& placement,
-                                    std::optional<uint32_t> prototype) {
-        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-            absl::StatusOr<uint32_t> material = MaterialIndex(mesh.primitives[p].material);
+    auto [prototype, first] = mesh_prototypes_.try_emplace(mesh_index, 0);
+    if (first) {
+        absl::StatusOr<MeshRead> read = ReadMesh(mesh_index, rigid);
+        if (!read.ok()) return read.status();
+        prototype->second = BeginPrototype(&scene_);
+        std::vector<std::pair<TriangleMesh, uint32_t>>& emitting = emitting_[mesh_index];
+        for (size_t p = 0; p < read->primitives.size(); ++p) {
+            if (!read->primitives[p]) continue;
+            absl::StatusOr<uint32_t> material =
+                PrimitiveMaterial(mesh.primitives[p], *read->primitives[p], read->closed);
             if (!material.ok()) return material.status();
-            if (emitting && scene_.materials[*material].IsEmissive() != *emitting) continue;
+            if (scene_.materials[*material].IsEmissive()) {
+                emitting.emplace_back(std::move(*read->primitives[p]), *material);
+                continue;
+            }
             if (absl::Status status =
-                    AddPrimitive(mesh_index, p, absl::StrCat(name, " primitive ", p), placement,
-                                 *material, prototype);
+                    AppendPrimitive(*read->primitives[p], absl::StrCat(name, " primitive ", p),
+                                    Transform{}, *material, prototype->second);
                 !status.ok())
                 return status;
         }
-        return absl::OkStatus();
-    };
-    // A mesh that several nodes use is stored once, as a prototype each node places by an
-    // instance; its emitting primitives are lights, placed as world triangles by every node.
-    if (mesh_uses_[mesh_index] < 2) return add_primitives(std::nullopt, world, std::nullopt);
-    auto [prototype, first] = mesh_prototypes_.try_emplace(mesh_index, 0);
-    if (first) {
-        prototype->second = BeginPrototype(&scene_);
-        if (absl::Status status = add_primitives(false, Transform{}, prototype->second);
+    }
+    for (const auto& [primitive, material] : emitting_[mesh_index])
+        if (absl::Status status = AppendPrimitive(primitive, absl::StrCat(name, " (emitting)"),
+                                                  world, material, std::nullopt);
             !status.ok())
             return status;
-    }
-    if (absl::Status status = add_primitives(true, world, std::nullopt); !status.ok())
-        return status;
     return AddInstance(prototype->second, world, limits_, absl::StrCat(path_, ": ", name), &scene_);
 }
 
-absl::StatusOr<TriangleMesh> GltfSceneBuilder::ReadPrimitive(const tinygltf::Primitive& primitive,
-                                                             const std::string& element) const {
-    absl::StatusOr<TriangleMesh> mesh = ReadTriangles(model_, primitive, limits_.max_triangles);
-    if (!mesh.ok()) return Error(element, std::string(mesh.status().message()));
-    return mesh;
+absl::Status GltfSceneBuilder::AddPlacedMesh(int mesh_index, const Transform& world,
+                                             const GltfPose& pose) {
+    const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
+    absl::StatusOr<MeshRead> read = ReadMesh(mesh_index, pose);
+    if (!read.ok()) return read.status();
+    // A skinned mesh's vertices are in the world already.
+    const Transform placement = pose.joints != nullptr ? Transform{} : world;
+    for (size_t p = 0; p < read->primitives.size(); ++p) {
+        if (!read->primitives[p]) continue;
+        absl::StatusOr<uint32_t> material =
+            PrimitiveMaterial(mesh.primitives[p], *read->primitives[p], read->closed);
+        if (!material.ok()) return material.status();
+        if (absl::Status status = AppendPrimitive(
+                *read->primitives[p],
+                absl::StrCat(Describe("mesh", mesh_index, mesh.name), " primitive ", p), placement,
+                *material, std::nullopt);
+            !status.ok())
+            return status;
+    }
+    return absl::OkStatus();
 }
 
-absl::Status GltfSceneBuilder::AddPrimitive(int mesh_index, size_t primitive_index,
-                                            const std::string& element, const Transform& world,
-                                            uint32_t material, std::optional<uint32_t> prototype) {
-    const tinygltf::Primitive& primitive = model_.meshes[mesh_index].primitives[primitive_index];
-    if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) {
-        spdlog::warn("{}: {}: mode {} is not triangles; skipped", path_, element, primitive.mode);
-        return absl::OkStatus();
+absl::StatusOr<GltfSceneBuilder::MeshRead> GltfSceneBuilder::ReadMesh(int mesh_index,
+                                                                      const GltfPose& pose) {
+    const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
+    MeshRead read;
+    std::vector<const TriangleMesh*> parts;
+    for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+        absl::StatusOr<std::optional<TriangleMesh>> primitive = ReadGltfPrimitive(
+            model_, mesh.primitives[p], pose, limits_.max_triangles,
+            absl::StrCat(path_, ": ", Describe("mesh", mesh_index, mesh.name), " primitive ", p));
+        if (!primitive.ok()) return primitive.status();
+        read.primitives.push_back(std::move(*primitive));
     }
+    for (const std::optional<TriangleMesh>& primitive : read.primitives)
+        if (primitive) parts.push_back(&*primitive);
+    // Only where some primitive is single-sided does it matter whether they close a surface.
+    const bool single_sided = std::any_of(
+        mesh.primitives.begin(), mesh.primitives.end(), [&](const tinygltf::Primitive& p) {
+            return p.material < 0 || p.material >= static_cast<int>(model_.materials.size()) ||
+                   !model_.materials[p.material].doubleSided;
+        });
+    read.closed = single_sided && IsClosedSurface(parts);
+    return read;
+}
+
+absl::StatusOr<uint32_t> GltfSceneBuilder::PrimitiveMaterial(const tinygltf::Primitive& primitive,
+                                                             const TriangleMesh& mesh,
+                                                             bool closed) {
+    absl::StatusOr<uint32_t> material = MaterialIndex(primitive.material);
+    if (!material.ok()) return material;
+    const bool given =
+        primitive.material >= 0 && primitive.material < static_cast<int>(model_.materials.size());
+    // glTF's default material is single-sided and opaque.
+    const bool double_sided = given && model_.materials[primitive.material].doubleSided;
+    const std::string alpha_mode =
+        given ? model_.materials[primitive.material].alphaMode : "OPAQUE";
+    const double cutoff = given ? model_.materials[primitive.material].alphaCutoff : 0.5;
+    uint32_t flags = 0;
+    // A viewer shows nothing of a single-sided surface from behind; a closed one is never seen
+    // from behind, and glass must be crossed both ways, so they stay as they are.
+    const std::function<bool(uint32_t)> transmits = [&](uint32_t m) {
+        const Material& at = scene_.materials[m];
+        if (at.type == MaterialType::kMix)
+            return transmits(at.mix_first) || transmits(at.mix_second);
+        return at.type == MaterialType::kDielectric || at.type == MaterialType::kThinDielectric ||
+               at.type == MaterialType::kRoughDielectric || at.IsTranslucent();
+    };
+    if (!double_sided && !closed && !transmits(*material)) flags |= gpu::kSurfaceSingleSided;
+    const bool vertex_alpha = std::any_of(mesh.colors.begin(), mesh.colors.end(),
+                                          [](const VertexColor& c) { return c.alpha < 1.0f; });
+    if (vertex_alpha && (alpha_mode == "BLEND" || (alpha_mode == "MASK" && cutoff > 0)))
+        flags |= gpu::kSurfaceVertexAlpha;
+    return Variant(*material, flags);
+}
+
+uint32_t GltfSceneBuilder::Variant(uint32_t material, uint32_t flags) {
+    if ((scene_.materials[material].surface_flags | flags) ==
+        scene_.materials[material].surface_flags)
+        return material;
+    const auto [it, made] = variants_.try_emplace({material, flags}, 0);
+    if (!made) return it->second;
+    Material variant = scene_.materials[material];
+    variant.surface_flags |= flags;
+    scene_.materials.push_back(variant);
+    it->second = static_cast<uint32_t>(scene_.materials.size() - 1);
+    material_uvs_[it->second] = material_uvs_[material];
+    return it->second;
+}
+
+absl::Status GltfSceneBuilder::AppendPrimitive(const TriangleMesh& mesh, const std::string& element,
+                                               const Transform& world, uint32_t material,
+                                               std::optional<uint32_t> prototype) {
     const MeshPlacement placement{world, material, FrontFace::kObjectWinding, false,
                                   material_uvs_[material]};
-    const std::string where = absl::StrCat(path_, ": ", element);
-    if (mesh_uses_[mesh_index] < 2 || prototype) {  // placed once
-        absl::StatusOr<TriangleMesh> mesh = ReadPrimitive(primitive, element);
-        if (!mesh.ok()) return mesh.status();
-        return AppendMesh(*mesh, placement, limits_, where, &scene_, prototype);
-    }
-    // An emitting primitive of a mesh that several nodes use is read once and placed by each.
-    const auto key = std::make_pair(mesh_index, primitive_index);
-    auto cached = meshes_.find(key);
-    if (cached == meshes_.end()) {
-        absl::StatusOr<TriangleMesh> mesh = ReadPrimitive(primitive, element);
-        if (!mesh.ok()) return mesh.status();
-        cached = meshes_.emplace(key, std::move(*mesh)).first;
-    }
-    return AppendMesh(cached->second, placement, limits_, where, &scene_, prototype);
+    return AppendMesh(mesh, placement, limits_, absl::StrCat(path_, ": ", element), &scene_,
+                      prototype);
 }
 
 absl::Status GltfSceneBuilder::AddLight(int light_index, const Transform& world) {
@@ -387,10 +530,9 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
     UvTransform uv;
     if (gltf_material < 0) {
         // glTF's default material: every property at its default (white rough metal).
-        const absl::StatusOr<uint32_t> added = AddGltfMaterial(
-            tinygltf::Material(), absl::StrCat(path_, ": the default material"),
-            [](int, const ImageDecodeOptions&) -> absl::StatusOr<int32_t> { return kNoTexture; },
-            scene_.materials);
+        const absl::StatusOr<uint32_t> added =
+            AddGltfMaterial(tinygltf::Material(), absl::StrCat(path_, ": the default material"),
+                            textures_.Access("the default material"), scene_.materials);
         if (!added.ok()) return added.status();
         index = *added;
     } else {
@@ -407,7 +549,9 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
             for (const auto& [other, name] :
                  {std::pair{&source.emissiveTexture, "emissive texture"},
                   std::pair{&source.pbrMetallicRoughness.metallicRoughnessTexture,
-                            "metallic-roughness texture"}})
+                            source.extensions.contains("KHR_materials_pbrSpecularGlossiness")
+                                ? "specular-glossiness texture"
+                                : "metallic-roughness texture"}})
                 if (coordinates != other && other->index >= 0 &&
                     (other->texCoord != coordinates->texCoord ||
                      Extension(other->extensions, "KHR_texture_transform") != nullptr ||
@@ -429,58 +573,14 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::MaterialIndex(int gltf_material) {
                 "first texture (texCoord {}, its KHR_texture_transform)",
                 path_, element, CoordinateSet(source));
         }
-        const absl::StatusOr<uint32_t> added = AddGltfMaterial(
-            source, absl::StrCat(path_, ": ", element),
-            [&](int texture, const ImageDecodeOptions& options) {
-                return TextureIndex(texture, element, options);
-            },
-            scene_.materials);
+        const absl::StatusOr<uint32_t> added =
+            AddGltfMaterial(source, absl::StrCat(path_, ": ", element), textures_.Access(element),
+                            scene_.materials);
         if (!added.ok()) return added.status();
         index = *added;
     }
     material_indices_[gltf_material] = index;
     material_uvs_[index] = uv;
-    return index;
-}
-
-absl::StatusOr<int32_t> GltfSceneBuilder::TextureIndex(int gltf_texture, const std::string& element,
-                                                       ImageDecodeOptions options) {
-    if (gltf_texture >= static_cast<int>(model_.textures.size()) ||
-        model_.textures[gltf_texture].source < 0 ||
-        model_.textures[gltf_texture].source >= static_cast<int>(model_.images.size()))
-        return Error(element, absl::StrCat("texture #", gltf_texture, " has no image"));
-    const int image_index = model_.textures[gltf_texture].source;
-    // The sampler's wrap modes (its filters are the renderer's: bilinear, MIP levels).
-    if (const int sampler = model_.textures[gltf_texture].sampler;
-        sampler >= 0 && sampler < static_cast<int>(model_.samplers.size())) {
-        const auto wrap = [](int mode) {
-            return mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? gpu::kWrapClamp
-                   : mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? gpu::kWrapMirror
-                                                                   : gpu::kWrapRepeat;
-        };
-        options.wrap_u = wrap(model_.samplers[sampler].wrapS);
-        options.wrap_v = wrap(model_.samplers[sampler].wrapT);
-    }
-    if (const auto it = texture_indices_.find({image_index, options}); it != texture_indices_.end())
-        return it->second;
-    const auto encoded = images_.find(image_index);
-    if (encoded == images_.end())
-        return Error(element, absl::StrCat("image #", image_index, " has no data"));
-    absl::StatusOr<Texture> texture =
-        DecodeImage(encoded->second.bytes, encoded->second.name, limits_, options);
-    if (!texture.ok())
-        return absl::Status(texture.status().code(),
-                            absl::StrCat(path_, ": ", element, ": ", texture.status().message()));
-    // An alpha channel that is all 1 (or none) cuts nothing out: no texture, no cost.
-    if (options.channels == ImageChannels::kAlpha &&
-        std::all_of(texture->texels.begin(), texture->texels.end(),
-                    [](const Rgb& texel) { return texel.x >= 1.0f; })) {
-        texture_indices_[{image_index, options}] = kNoTexture;
-        return kNoTexture;
-    }
-    const auto index = static_cast<int32_t>(scene_.textures.size());
-    scene_.textures.push_back(std::make_shared<const Texture>(std::move(*texture)));
-    texture_indices_[{image_index, options}] = index;
     return index;
 }
 
@@ -511,15 +611,17 @@ absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& nam
                                              static_cast<unsigned int>(main.size()), base_dir)
                : loader.LoadASCIIFromString(&model, &error, &warning, main.data(),
                                             static_cast<unsigned int>(main.size()), base_dir);
-    // Image files a bundle leaves out (no material reads them; PackSceneBundle) are expected
-    // missing; a base colour image that is missing is an error below.
+    // tinygltf reads buffers and images itself, and warns of an image it does not find: the
+    // files a bundle leaves out on purpose (no material reads them: PackSceneBundle), and the
+    // KTX2 images of KHR_texture_basisu beside their fallbacks. An image a material does read
+    // and that is missing is refused where it is read, naming it (GltfTextureReader); the
+    // warnings are tinygltf's others.
     for (size_t begin = 0; begin < warning.size();) {
         const size_t end = std::min(warning.find('\n', begin), warning.size());
         const std::string line = warning.substr(begin, end - begin);
-        if (!line.empty() && !absl::StartsWith(line, "File not found")) {
+        if (!line.empty() && !absl::StartsWith(line, "File not found") &&
+            !absl::StartsWith(line, "Failed to load external 'uri' for image"))
             spdlog::warn("{}: {}", name, line);
-            break;
-        }
         begin = end + 1;
     }
     if (!loaded) {
@@ -527,6 +629,7 @@ absl::StatusOr<Scene> LoadGltf(const SceneBundle& bundle, const std::string& nam
         return absl::InvalidArgumentError(absl::StrCat(
             name, ": not a valid glTF file: ", first_line.empty() ? "parse failed" : first_line));
     }
+    PrepareSpecularGlossiness(&model);
     return GltfSceneBuilder(name, model, limits, images, camera).Build();
 }
 

@@ -18,6 +18,10 @@
 // W/(m^2 sr), from the front face, and the back one too where the material is doubleSided.
 // alphaMode MASK and BLEND cut the surface out where alpha says; normalTexture tilts the
 // shading normal (Material::normal_texture).
+// KHR_materials_unlit: an emitter of radiance the base colour (factor x texture x vertex
+// colour) over a black BSDF: the surface shows its colour and reflects nothing.
+// KHR_materials_pbrSpecularGlossiness: the metallic-roughness material the Khronos converter
+// makes of it (gltf_spec_gloss.h).
 #include "core/scene/gltf_materials.h"
 
 #include <spdlog/spdlog.h>
@@ -28,6 +32,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "core/scene/gltf_spec_gloss.h"
 #include "core/shared/coat.h"
 #include "core/shared/conductor.h"
 
@@ -59,9 +64,16 @@ float IorOfF0(double f0) {
 
 class GltfMaterialBuilder {
 public:
+    // `spec_gloss`: the values of a material read as specular-glossiness, which stand for its
+    // metallic-roughness ones (null for others).
     GltfMaterialBuilder(const tinygltf::Material& source, const std::string& where,
-                        const GltfTextureLookup& texture, std::vector<Material>& materials)
-        : source_(source), where_(where), texture_(texture), materials_(materials) {}
+                        const GltfTextureAccess& textures, std::vector<Material>& materials,
+                        const ConvertedSpecularGlossiness* spec_gloss = nullptr)
+        : source_(source),
+          where_(where),
+          textures_(textures),
+          materials_(materials),
+          spec_gloss_(spec_gloss) {}
 
     absl::StatusOr<uint32_t> Build();
 
@@ -75,6 +87,8 @@ private:
     absl::Status ReadAlpha(Material& material);
     // The metallic-roughness model's materials; returns the one surfaces use.
     absl::StatusOr<uint32_t> MetallicRoughness(const Material& common);
+    // KHR_materials_unlit's emitter; returns it.
+    absl::StatusOr<uint32_t> Unlit(const Material& common);
     // KHR_materials_sheen, kept in sheen_ until Sheened puts it over each surface.
     absl::Status ReadSheen();
     // `material` with the sheen over it: over its coat, or, uncoated, over no coat at all
@@ -112,7 +126,7 @@ private:
         options.encoding = ImageEncoding::kLinear;
         options.channels = channel;
         options.exponent = exponent;
-        return texture_(index, options);
+        return textures_.index(index, options);
     }
     void NoteTextureLeftOut(const tinygltf::Value& extension, const char* name,
                             std::initializer_list<const char*> keys, const char* instead) const {
@@ -123,8 +137,9 @@ private:
 
     const tinygltf::Material& source_;
     const std::string& where_;
-    const GltfTextureLookup& texture_;
+    const GltfTextureAccess& textures_;
     std::vector<Material>& materials_;
+    const ConvertedSpecularGlossiness* spec_gloss_;
     Material sheen_;  // its sheen fields only
 };
 
@@ -138,8 +153,11 @@ absl::Status GltfMaterialBuilder::ReadCommon(Material& material) {
         return Error("baseColorFactor must lie in [0, 1]");
     ImageDecodeOptions colour;  // glTF's colour textures are sRGB-encoded
     colour.encoding = ImageEncoding::kSrgb;
-    if (pbr.baseColorTexture.index >= 0) {
-        const absl::StatusOr<int32_t> texture = texture_(pbr.baseColorTexture.index, colour);
+    if (spec_gloss_ != nullptr) {  // converted, baked where it varies
+        material.base_color = spec_gloss_->factors.base_color;
+        material.base_color_texture = spec_gloss_->base_color_texture;
+    } else if (pbr.baseColorTexture.index >= 0) {
+        const absl::StatusOr<int32_t> texture = textures_.index(pbr.baseColorTexture.index, colour);
         if (!texture.ok()) return texture.status();
         material.base_color_texture = *texture;
     }
@@ -153,7 +171,8 @@ absl::Status GltfMaterialBuilder::ReadCommon(Material& material) {
     if (!IsFinite(material.emission) || MinComponent(material.emission) < 0)
         return Error("emission must be finite and non-negative");
     if (material.IsEmissive() && source_.emissiveTexture.index >= 0) {
-        const absl::StatusOr<int32_t> texture = texture_(source_.emissiveTexture.index, colour);
+        const absl::StatusOr<int32_t> texture =
+            textures_.index(source_.emissiveTexture.index, colour);
         if (!texture.ok()) return texture.status();
         material.emission_texture = *texture;
     }
@@ -161,7 +180,8 @@ absl::Status GltfMaterialBuilder::ReadCommon(Material& material) {
     if (source_.normalTexture.index >= 0) {
         ImageDecodeOptions linear;
         linear.encoding = ImageEncoding::kLinear;
-        const absl::StatusOr<int32_t> texture = texture_(source_.normalTexture.index, linear);
+        const absl::StatusOr<int32_t> texture =
+            textures_.index(source_.normalTexture.index, linear);
         if (!texture.ok()) return texture.status();
         material.normal_texture = *texture;
         material.normal_scale = static_cast<float>(source_.normalTexture.scale);
@@ -185,7 +205,8 @@ absl::Status GltfMaterialBuilder::ReadAlpha(Material& material) {
     if (pbr.baseColorTexture.index >= 0) {
         ImageDecodeOptions options;
         options.channels = ImageChannels::kAlpha;  // alpha is linear
-        const absl::StatusOr<int32_t> texture = texture_(pbr.baseColorTexture.index, options);
+        const absl::StatusOr<int32_t> texture =
+            textures_.index(pbr.baseColorTexture.index, options);
         if (!texture.ok()) return texture.status();
         material.alpha_texture = *texture;
     }
@@ -222,7 +243,7 @@ absl::Status GltfMaterialBuilder::ReadSheen() {
     if (const int index = ExtensionTexture(*e, "sheenColorTexture"); index >= 0) {
         ImageDecodeOptions colour_texture;  // sRGB-encoded, as the base colour's
         colour_texture.encoding = ImageEncoding::kSrgb;
-        const absl::StatusOr<int32_t> texture = texture_(index, colour_texture);
+        const absl::StatusOr<int32_t> texture = textures_.index(index, colour_texture);
         if (!texture.ok()) return texture.status();
         sheen_.sheen_texture = *texture;
     }
@@ -237,26 +258,32 @@ absl::Status GltfMaterialBuilder::ReadSheen() {
 
 absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& common) {
     const auto& pbr = source_.pbrMetallicRoughness;
-    if (!(pbr.metallicFactor >= 0 && pbr.metallicFactor <= 1 && pbr.roughnessFactor >= 0 &&
-          pbr.roughnessFactor <= 1))
+    // A specular-glossiness material's converted values, its baked textures (its own stand in
+    // the metallic-roughness slots only for their coordinates: PrepareSpecularGlossiness).
+    const double metallic_factor = spec_gloss_ ? spec_gloss_->factors.metallic : pbr.metallicFactor;
+    const double roughness_factor =
+        spec_gloss_ ? spec_gloss_->factors.roughness : pbr.roughnessFactor;
+    if (!(metallic_factor >= 0 && metallic_factor <= 1 && roughness_factor >= 0 &&
+          roughness_factor <= 1))
         return Error("metallicFactor and roughnessFactor must lie in [0, 1]");
     // GGX alpha: glTF's roughness squared, the texture's green channel read squared to match.
-    const float alpha = static_cast<float>(pbr.roughnessFactor * pbr.roughnessFactor);
+    const float alpha = static_cast<float>(roughness_factor * roughness_factor);
     const bool smooth = alpha < kMinRoughness;
-    const int maps = pbr.metallicRoughnessTexture.index;
-    int32_t roughness_texture = kNoTexture, metallic_texture = kNoTexture;
+    const int maps = spec_gloss_ ? -1 : pbr.metallicRoughnessTexture.index;
+    int32_t roughness_texture = spec_gloss_ ? spec_gloss_->alpha_texture : kNoTexture;
+    int32_t metallic_texture = spec_gloss_ ? spec_gloss_->metallic_texture : kNoTexture;
     if (maps >= 0 && !smooth) {
         const absl::StatusOr<int32_t> texture = ChannelTexture(maps, ImageChannels::kGreen, 2);
         if (!texture.ok()) return texture.status();
         roughness_texture = *texture;
     }
-    if (maps >= 0 && pbr.metallicFactor > 0) {
+    if (maps >= 0 && metallic_factor > 0) {
         const absl::StatusOr<int32_t> texture = ChannelTexture(maps, ImageChannels::kBlue);
         if (!texture.ok()) return texture.status();
         metallic_texture = *texture;
     }
-    const bool dielectric = pbr.metallicFactor < 1 || metallic_texture != kNoTexture;
-    const bool metal = pbr.metallicFactor > 0;
+    const bool dielectric = metallic_factor < 1 || metallic_texture != kNoTexture;
+    const bool metal = metallic_factor > 0;
 
     Material base = common;  // each part emits as the surface does
     base.roughness_texture = roughness_texture;
@@ -378,13 +405,30 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::MetallicRoughness(const Material& 
     if (metal) metal_index = with_clearcoat(conductor, clear_conductor);
     if (!metal) return dielectric_index;
     if (!dielectric) return metal_index;
-    return Mix(base, dielectric_index, metal_index, static_cast<float>(pbr.metallicFactor),
+    return Mix(base, dielectric_index, metal_index, static_cast<float>(metallic_factor),
                metallic_texture);
+}
+
+absl::StatusOr<uint32_t> GltfMaterialBuilder::Unlit(const Material& common) {
+    // The base colour (factor x texture; x vertex colour, Scene::Emission) is what the camera
+    // sees, emitted toward it as radiance; the surface reflects nothing. Photon mapping has no
+    // surface seen without being lit: an emitter lights the scene as any other does, which is
+    // what an unlit sky dome or a model with its lighting baked in wants.
+    Material unlit = common;
+    unlit.emission = common.base_color;
+    unlit.emission_texture = common.base_color_texture;
+    unlit.base_color = Rgb(0.0f);
+    unlit.base_color_texture = kNoTexture;
+    unlit.normal_texture = kNoTexture;
+    unlit.surface_flags |= gpu::kSurfaceVertexEmission;
+    if (absl::Status status = ReadAlpha(unlit); !status.ok()) return status;
+    return Add(unlit);
 }
 
 absl::StatusOr<uint32_t> GltfMaterialBuilder::Build() {
     Material common;
     if (absl::Status status = ReadCommon(common); !status.ok()) return status;
+    if (Extension(source_.extensions, "KHR_materials_unlit") != nullptr) return Unlit(common);
     double transmission = 0.0;
     if (const tinygltf::Value* e = Extension(source_.extensions, "KHR_materials_transmission"))
         transmission = NumberOr(*e, "transmissionFactor", 0.0);
@@ -440,7 +484,8 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::Build() {
         if (name.starts_with("KHR_materials_") && name != "KHR_materials_emissive_strength" &&
             name != "KHR_materials_ior" && name != "KHR_materials_specular" &&
             name != "KHR_materials_clearcoat" && name != "KHR_materials_transmission" &&
-            name != "KHR_materials_volume" && name != "KHR_materials_sheen")
+            name != "KHR_materials_volume" && name != "KHR_materials_sheen" &&
+            name != "KHR_materials_pbrSpecularGlossiness")
             left_out.push_back(name);
     if (!left_out.empty()) spdlog::warn("{}: {} left out", where_, absl::StrJoin(left_out, ", "));
     if (absl::Status status = ReadSheen(); !status.ok()) return status;
@@ -452,6 +497,13 @@ absl::StatusOr<uint32_t> GltfMaterialBuilder::Build() {
 }
 
 }  // namespace
+
+int GltfTextureImage(const tinygltf::Texture& texture) {
+    if (texture.source >= 0) return texture.source;
+    if (const tinygltf::Value* webp = Extension(texture.extensions, "EXT_texture_webp"))
+        return static_cast<int>(NumberOr(*webp, "source", -1));
+    return -1;
+}
 
 std::vector<int> GltfTexturesRead(const tinygltf::Material& material) {
     std::vector<int> read;
@@ -471,13 +523,25 @@ std::vector<int> GltfTexturesRead(const tinygltf::Material& material) {
         for (const char* key : {"sheenColorTexture", "sheenRoughnessTexture"})
             if (const int texture = ExtensionTexture(*e, key); texture >= 0)
                 read.push_back(texture);
+    if (const tinygltf::Value* e =
+            Extension(material.extensions, "KHR_materials_pbrSpecularGlossiness"))
+        for (const char* key : {"diffuseTexture", "specularGlossinessTexture"})
+            if (const int texture = ExtensionTexture(*e, key); texture >= 0)
+                read.push_back(texture);
     return read;
 }
 
 absl::StatusOr<uint32_t> AddGltfMaterial(const tinygltf::Material& source, const std::string& where,
-                                         const GltfTextureLookup& texture,
+                                         const GltfTextureAccess& textures,
                                          std::vector<Material>& materials) {
-    return GltfMaterialBuilder(source, where, texture, materials).Build();
+    const tinygltf::Value* spec_gloss =
+        Extension(source.extensions, "KHR_materials_pbrSpecularGlossiness");
+    if (spec_gloss == nullptr || Extension(source.extensions, "KHR_materials_unlit") != nullptr)
+        return GltfMaterialBuilder(source, where, textures, materials).Build();
+    const absl::StatusOr<ConvertedSpecularGlossiness> converted =
+        ConvertSpecularGlossiness(*spec_gloss, where, textures);
+    if (!converted.ok()) return converted.status();
+    return GltfMaterialBuilder(source, where, textures, materials, &*converted).Build();
 }
 
 }  // namespace pf

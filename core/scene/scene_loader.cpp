@@ -100,7 +100,7 @@ void LeaveOutUnusedImages(const std::string& scene_path, const tinygltf::Model& 
     for (const tinygltf::Material& material : model.materials)
         for (const int texture : GltfTexturesRead(material))
             if (texture < static_cast<int>(model.textures.size()))
-                used.insert(model.textures[texture].source);
+                used.insert(GltfTextureImage(model.textures[texture]));
     std::set<std::string> kept;
     for (const tinygltf::Buffer& buffer : model.buffers) kept.insert(buffer.uri);
     for (int i : used)

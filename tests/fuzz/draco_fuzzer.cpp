@@ -18,7 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const tinygltf::Value extension(tinygltf::Value::Object{
         {"bufferView", tinygltf::Value(0)}, {"attributes", tinygltf::Value(attributes)}});
     const absl::StatusOr<pf::TriangleMesh> mesh =
-        pf::DecodeDracoPrimitive(model, extension, "TEXCOORD_0", 1 << 20);
+        pf::DecodeDracoPrimitive(model, tinygltf::Primitive(), extension, "TEXCOORD_0", 1 << 20);
     if (mesh.ok())
         for (uint32_t index : mesh->indices)
             if (index >= mesh->positions.size()) __builtin_trap();

@@ -35,6 +35,7 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
         }
         return images.size() - 1;
     };
+    for (const std::string& png : scene.images_png_base64) add_image(png, "");
     for (const TestMaterial& m : scene.materials) {
         std::string texture;
         if (!m.texture_png_base64.empty())
@@ -48,17 +49,32 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
             normal =
                 absl::StrCat(R"(,"normalTexture":{"index":)", add_image(m.normal_png_base64, ""),
                              R"(,"scale":)", m.normal_scale, "}");
-        std::string material = absl::StrCat(
-            R"({"pbrMetallicRoughness":{"baseColorFactor":[)", m.base_color.x, ",", m.base_color.y,
-            ",", m.base_color.z, R"(,1],"metallicFactor":)", m.metallic, R"(,"roughnessFactor":)",
-            m.roughness, m.texture_emissive ? "" : texture, "}", m.texture_emissive ? texture : "",
-            normal);
+        std::string material =
+            m.metallic_roughness
+                ? absl::StrCat(R"({"pbrMetallicRoughness":{"baseColorFactor":[)", m.base_color.x,
+                               ",", m.base_color.y, ",", m.base_color.z, R"(,1],"metallicFactor":)",
+                               m.metallic, R"(,"roughnessFactor":)", m.roughness,
+                               m.texture_emissive ? "" : texture, "}",
+                               m.texture_emissive ? texture : "", normal)
+                : absl::StrCat(R"({"name":"m")", normal);
         if (!IsBlack(m.emission))
             absl::StrAppend(&material, R"(,"emissiveFactor":)", Floats(m.emission));
         if (!m.extensions.empty())
             absl::StrAppend(&material, R"(,"extensions":{)", m.extensions, "}");
         materials.push_back(material + m.extra + "}");
     }
+    // Appends `bytes` to the buffer in a view of their own; returns the view's index.
+    const auto add_view = [&](const std::string& bytes) {
+        const size_t offset = blob->size();
+        blob->append(bytes);
+        while (blob->size() % 4) blob->push_back('\0');
+        views.push_back(absl::StrCat(R"({"buffer":0,"byteOffset":)", offset, R"(,"byteLength":)",
+                                     bytes.size(), "}"));
+        return views.size() - 1;
+    };
+    for (const TestAccessor& accessor : scene.accessors)
+        accessors.push_back(
+            absl::StrCat(R"({"bufferView":)", add_view(accessor.bytes), ",", accessor.fields, "}"));
     for (const TestMesh& mesh : scene.meshes) {
         const size_t offset = blob->size();
         blob->resize(offset + mesh.positions.size() * 12);
@@ -83,9 +99,28 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
                                              mesh.uvs.size() / 2, R"(,"type":"VEC2"})"));
             absl::StrAppend(&attributes, R"(,"TEXCOORD_0":)", accessors.size() - 1);
         }
+        const size_t vertices = mesh.positions.size();
+        const std::string type = mesh.color_components == 3 ? "VEC3" : "VEC4";
+        if (!mesh.colors.empty()) {
+            accessors.push_back(absl::StrCat(R"({"bufferView":)", add_view(Bytes(mesh.colors)),
+                                             R"(,"componentType":5126,"count":)", vertices,
+                                             R"(,"type":")", type, "\"}"));
+            absl::StrAppend(&attributes, R"(,"COLOR_0":)", accessors.size() - 1);
+        }
+        if (!mesh.colors_unorm.empty()) {
+            std::string bytes;
+            for (const uint16_t value : mesh.colors_unorm)
+                bytes.append(reinterpret_cast<const char*>(&value), mesh.color_bytes);
+            accessors.push_back(
+                absl::StrCat(R"({"bufferView":)", add_view(bytes), R"(,"componentType":)",
+                             mesh.color_bytes == 1 ? 5121 : 5123, R"(,"normalized":true,"count":)",
+                             vertices, R"(,"type":")", type, "\"}"));
+            absl::StrAppend(&attributes, R"(,"COLOR_0":)", accessors.size() - 1);
+        }
         meshes.push_back(absl::StrCat(R"({"primitives":[{"attributes":{)", attributes,
-                                      R"(},"material":)", mesh.material, "}]}"));
-        nodes.push_back(absl::StrCat(R"({"mesh":)", meshes.size() - 1, "}"));
+                                      mesh.attributes_extra, R"(},"material":)", mesh.material,
+                                      mesh.primitive_extra, "}]", mesh.mesh_extra, "}"));
+        nodes.push_back(absl::StrCat(R"({"mesh":)", meshes.size() - 1, mesh.node_extra, "}"));
     }
     std::string cameras = "[]";
     if (scene.camera) {
@@ -129,7 +164,7 @@ std::string Json(const TestScene& scene, bool embed, std::string* blob) {
                         absl::StrJoin(materials, ","), R"(],"accessors":[)",
                         absl::StrJoin(accessors, ","), R"(],"bufferViews":[)",
                         absl::StrJoin(views, ","), R"(],"buffers":[{"byteLength":)", blob->size(),
-                        uri, R"(}],"cameras":)", cameras, extensions, "}");
+                        uri, R"(}],"cameras":)", cameras, extensions, scene.extra, "}");
 }
 
 void AppendU32(std::string* out, uint32_t v) { out->append(reinterpret_cast<const char*>(&v), 4); }

@@ -191,8 +191,8 @@ TEST(GltfAccessorsTest, DracoStreamsDeclaringMoreThanTheyHoldAreRefusedBeforeDec
         {"bufferView", tinygltf::Value(0)},
         {"attributes",
          tinygltf::Value(tinygltf::Value::Object{{"POSITION", tinygltf::Value(0)}})}});
-    const absl::StatusOr<TriangleMesh> mesh =
-        DecodeDracoPrimitive(model, extension, "TEXCOORD_0", uint64_t{1} << 26);
+    const absl::StatusOr<TriangleMesh> mesh = DecodeDracoPrimitive(
+        model, tinygltf::Primitive(), extension, "TEXCOORD_0", uint64_t{1} << 26);
     ASSERT_FALSE(mesh.ok());
     EXPECT_NE(mesh.status().message().find("268435414 triangles exceed the limit"),
               std::string::npos)
@@ -201,8 +201,8 @@ TEST(GltfAccessorsTest, DracoStreamsDeclaringMoreThanTheyHoldAreRefusedBeforeDec
     const std::string within = stream.substr(0, 13) + "\xa0\x8d\x06" + stream.substr(17);
     model.buffers[0].data.assign(within.begin(), within.end());
     view.byteLength = within.size();
-    const absl::StatusOr<TriangleMesh> dense =
-        DecodeDracoPrimitive(model, extension, "TEXCOORD_0", uint64_t{1} << 26);
+    const absl::StatusOr<TriangleMesh> dense = DecodeDracoPrimitive(
+        model, tinygltf::Primitive(), extension, "TEXCOORD_0", uint64_t{1} << 26);
     ASSERT_FALSE(dense.ok());
     EXPECT_NE(dense.status().message().find("declares 100000 elements in 42 bytes"),
               std::string::npos)

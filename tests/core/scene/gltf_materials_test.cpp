@@ -3,12 +3,19 @@
 // texture's green channel squared) as GGX alpha, KHR_materials_specular, _ior, _clearcoat and
 // _sheen, and a clear error for values out of range.
 #include <gtest/gtest.h>
+#include <spdlog/sinks/ostream_sink.h>
+#include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 
 #include "absl/strings/escaping.h"
+#include "core/scene/emitters.h"
 #include "core/scene/scene_loader.h"
 #include "core/shared/coat.h"
 #include "tests/support/gltf_builder.h"
@@ -325,6 +332,230 @@ TEST(GltfMaterialsTest, ValuesOutOfRangeAreRefusedNamingTheMaterial) {
             << scene.status();
         EXPECT_NE(scene.status().message().find(what), std::string::npos) << scene.status();
     }
+}
+
+TEST(GltfMaterialsTest, UnlitIsAnEmitterOfItsBaseColourOverABlackSurface) {
+    testing::TestMaterial material{Rgb(0.2f, 0.4f, 0.6f), Rgb(0.0f)};
+    material.extensions = R"("KHR_materials_unlit":{})";
+    const absl::StatusOr<Scene> scene = QuadWith(material, "unlit.gltf");
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Material& unlit = QuadMaterial(*scene);
+    EXPECT_EQ(unlit.type, MaterialType::kDiffuse);
+    EXPECT_EQ(unlit.base_color, Rgb(0.0f)) << "it reflects nothing";
+    EXPECT_EQ(unlit.emission, Rgb(0.2f, 0.4f, 0.6f)) << "it shows its base colour";
+    EXPECT_TRUE(unlit.EmitsToward(true));
+    EXPECT_FALSE(unlit.EmitsToward(false)) << "single-sided: from its front alone";
+    // It lights the scene as any emitter: the unit quad's power is pi A Le, beside the light's
+    // 0.16 m^2 of 10.
+    const Emitters emitters(*scene);
+    const Rgbd expected = Rgbd(0.2, 0.4, 0.6) * (kPiD * 4) + Rgbd(10.0) * (kPiD * 0.16);
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(emitters.TotalPower()[c], expected[c], 1e-4 * expected[c]);
+    // Its texture is the emission's (sRGB, as the base colour's), times the factor.
+    material.texture_png_base64 =
+        absl::Base64Escape(testing::TwoTexelPng({255, 255, 255, 0, 0, 0}, "unlit.png"));
+    const absl::StatusOr<Scene> textured = QuadWith(material, "unlit-textured.gltf");
+    ASSERT_TRUE(textured.ok()) << textured.status();
+    const Material& lit_texture = QuadMaterial(*textured);
+    EXPECT_EQ(lit_texture.base_color_texture, kNoTexture);
+    ASSERT_NE(lit_texture.emission_texture, kNoTexture);
+    EXPECT_EQ(textured->textures[lit_texture.emission_texture]->texels[0], Rgb(1.0f));
+    // The file may require it.
+    testing::TestScene required = testing::LitQuadScene();
+    required.materials[0] = material;
+    required.extra = R"(,"extensionsUsed":["KHR_materials_unlit"],)"
+                     R"("extensionsRequired":["KHR_materials_unlit"])";
+    EXPECT_TRUE(LoadScene(testing::WriteGltf(required, "unlit-required.gltf")).ok());
+}
+
+// The Khronos converter's specular-glossiness to metallic-roughness (the extension's
+// convert-between-workflows example, three.pbrUtilities.js), written out here from its text.
+struct MetalRough {
+    double base[3], metallic, roughness;
+};
+MetalRough KhronosConverter(const double diffuse[3], const double specular[3], double glossiness) {
+    const auto brightness = [](const double* c) {
+        return std::sqrt(0.299 * c[0] * c[0] + 0.587 * c[1] * c[1] + 0.114 * c[2] * c[2]);
+    };
+    const double one_minus_specular_strength =
+        1 - std::max({specular[0], specular[1], specular[2]});
+    double metallic = 0;
+    if (brightness(specular) >= 0.04) {
+        const double a = 0.04;
+        const double b = brightness(diffuse) * one_minus_specular_strength / (1 - 0.04) +
+                         brightness(specular) - 2 * 0.04;
+        const double c = 0.04 - brightness(specular);
+        metallic =
+            std::clamp((-b + std::sqrt(std::max(b * b - 4 * a * c, 0.0))) / (2 * a), 0.0, 1.0);
+    }
+    MetalRough out{{}, metallic, 1 - glossiness};
+    for (int i = 0; i < 3; ++i) {
+        const double from_diffuse =
+            diffuse[i] * one_minus_specular_strength / (1 - 0.04) / std::max(1 - metallic, 1e-6);
+        const double from_specular =
+            (specular[i] - 0.04 * (1 - metallic)) / std::max(metallic, 1e-6);
+        out.base[i] = std::clamp(
+            from_diffuse + (from_specular - from_diffuse) * metallic * metallic, 0.0, 1.0);
+    }
+    return out;
+}
+
+// The quad with a KHR_materials_pbrSpecularGlossiness material of `extension`'s members, the
+// file requiring the extension (so its metallic-roughness values are not what is read).
+absl::StatusOr<Scene> SpecGlossQuad(const std::string& extension, const std::string& name,
+                                    const std::vector<std::string>& images = {}) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+    scene.images_png_base64 = images;
+    testing::TestMaterial material{Rgb(0.5f), Rgb(0.0f)};
+    material.extensions =
+        absl::StrCat(R"("KHR_materials_pbrSpecularGlossiness":{)", extension, "}");
+    scene.materials[0] = material;
+    scene.extra = R"(,"extensionsUsed":["KHR_materials_pbrSpecularGlossiness"],)"
+                  R"("extensionsRequired":["KHR_materials_pbrSpecularGlossiness"])";
+    return LoadScene(testing::WriteGltf(scene, name));
+}
+
+TEST(GltfMaterialsTest, SpecularGlossinessIsConvertedAsTheKhronosConverterDoes) {
+    const double diffuse[3] = {0.5, 0.3, 0.2}, specular[3] = {0.9, 0.8, 0.7};
+    const MetalRough expected = KhronosConverter(diffuse, specular, 0.6);
+    ASSERT_GT(expected.metallic, 0.05);
+    ASSERT_LT(expected.metallic, 0.99) << "a case that mixes both";
+    const absl::StatusOr<Scene> scene = SpecGlossQuad(
+        R"("diffuseFactor":[0.5,0.3,0.2,1],"specularFactor":[0.9,0.8,0.7],"glossinessFactor":0.6)",
+        "spec-gloss.gltf");
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Material& mix = QuadMaterial(*scene);
+    ASSERT_EQ(mix.type, MaterialType::kMix);
+    EXPECT_NEAR(mix.mix_amount, expected.metallic, 1e-5);
+    const Material& dielectric = scene->materials[mix.mix_first];
+    const Material& metal = scene->materials[mix.mix_second];
+    EXPECT_EQ(metal.type, MaterialType::kRoughConductor);
+    EXPECT_NEAR(metal.roughness, expected.roughness * expected.roughness, 1e-5)
+        << "GGX alpha: roughness squared";
+    EXPECT_NEAR(dielectric.coat_roughness, expected.roughness * expected.roughness, 1e-5);
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(metal.base_color[c], expected.base[c], 1e-5) << c;
+        EXPECT_NEAR(dielectric.base_color[c], expected.base[c], 1e-5) << c;
+    }
+    // A dielectric's F0 (0.04) and full glossiness: no metal, the diffuse colour kept, smooth.
+    const absl::StatusOr<Scene> plastic = SpecGlossQuad(
+        R"("diffuseFactor":[0.6,0.5,0.4,1],"specularFactor":[0.04,0.04,0.04])", "plastic-sg.gltf");
+    ASSERT_TRUE(plastic.ok()) << plastic.status();
+    const Material& smooth = QuadMaterial(*plastic);
+    EXPECT_EQ(smooth.type, MaterialType::kDiffuse);
+    EXPECT_EQ(smooth.coat_kind, gpu::kCoatFresnelMix);
+    EXPECT_EQ(smooth.coat_roughness, 0.0f);
+    const double plastic_diffuse[3] = {0.6, 0.5, 0.4}, f0[3] = {0.04, 0.04, 0.04};
+    const MetalRough plain = KhronosConverter(plastic_diffuse, f0, 1.0);
+    EXPECT_EQ(plain.metallic, 0.0);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(smooth.base_color[c], plain.base[c], 1e-5);
+}
+
+TEST(GltfMaterialsTest, SpecularGlossinessTexturesAreConvertedTexelByTexel) {
+    // Diffuse texels (sRGB) and specular-glossiness texels (sRGB specular, linear glossiness).
+    const std::array<unsigned char, 8> diffuse_texels = {200, 100, 50, 255, 30, 60, 90, 255};
+    const std::array<unsigned char, 8> specular_texels = {230, 220, 210, 128, 10, 10, 10, 255};
+    const absl::StatusOr<Scene> scene = SpecGlossQuad(
+        R"("diffuseFactor":[1,0.8,1,1],"specularFactor":[1,1,0.9],"glossinessFactor":0.5,)"
+        R"("diffuseTexture":{"index":0},"specularGlossinessTexture":{"index":1})",
+        "spec-gloss-textured.gltf",
+        {absl::Base64Escape(testing::TwoTexelRgbaPng(diffuse_texels, "sg-diffuse.png", true)),
+         absl::Base64Escape(testing::TwoTexelRgbaPng(specular_texels, "sg-specular.png", true))});
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Material& mix = QuadMaterial(*scene);
+    ASSERT_EQ(mix.type, MaterialType::kMix) << "metallic varies: a mix by a baked texture";
+    EXPECT_EQ(mix.mix_amount, 1.0f);
+    ASSERT_NE(mix.mix_texture, kNoTexture);
+    const Material& metal = scene->materials[mix.mix_second];
+    ASSERT_NE(metal.base_color_texture, kNoTexture);
+    ASSERT_NE(metal.roughness_texture, kNoTexture);
+    EXPECT_EQ(metal.base_color, Rgb(1.0f));
+    EXPECT_EQ(metal.roughness, 1.0f);
+    const auto srgb = [](unsigned char v) {
+        const double x = v / 255.0;
+        return x <= 0.04045 ? x / 12.92 : std::pow((x + 0.055) / 1.055, 2.4);
+    };
+    for (int texel = 0; texel < 2; ++texel) {
+        const unsigned char* d = &diffuse_texels[4 * texel];
+        const unsigned char* s = &specular_texels[4 * texel];
+        const double linear_diffuse[3] = {srgb(d[0]), 0.8 * srgb(d[1]), srgb(d[2])};
+        const double linear_specular[3] = {srgb(s[0]), srgb(s[1]), 0.9 * srgb(s[2])};
+        const MetalRough expected =
+            KhronosConverter(linear_diffuse, linear_specular, 0.5 * s[3] / 255.0);
+        const Rgb base = scene->textures[metal.base_color_texture]->texels[texel];
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(base[c], expected.base[c], 1e-4) << texel;
+        EXPECT_NEAR(scene->textures[mix.mix_texture]->texels[texel].x, expected.metallic, 1e-4)
+            << texel;
+        EXPECT_NEAR(scene->textures[metal.roughness_texture]->texels[texel].x,
+                    expected.roughness * expected.roughness, 1e-4)
+            << texel;
+    }
+}
+
+TEST(GltfMaterialsTest, SpecularGlossinessIsReadWhereNoMetallicRoughnessIsGiven) {
+    // A material with both (the extension optional) is read as its metallic-roughness values;
+    // one with no pbrMetallicRoughness as its specular-glossiness ones.
+    testing::TestScene scene = testing::LitQuadScene();
+    testing::TestMaterial material{Rgb(0.7f), Rgb(0.0f)};
+    material.extensions =
+        R"("KHR_materials_pbrSpecularGlossiness":{"diffuseFactor":[0.1,0.2,0.3,1],)"
+        R"("specularFactor":[0.04,0.04,0.04],"glossinessFactor":0})";
+    scene.materials[0] = material;
+    const absl::StatusOr<Scene> both = LoadScene(testing::WriteGltf(scene, "both.gltf"));
+    ASSERT_TRUE(both.ok()) << both.status();
+    EXPECT_EQ(QuadMaterial(*both).base_color, Rgb(0.7f)) << "metallic-roughness read";
+    scene.materials[0].metallic_roughness = false;
+    const absl::StatusOr<Scene> alone = LoadScene(testing::WriteGltf(scene, "alone.gltf"));
+    ASSERT_TRUE(alone.ok()) << alone.status();
+    const Rgb base = QuadMaterial(*alone).base_color;
+    EXPECT_NEAR(base.x, 0.1f, 1e-6f);
+    EXPECT_NEAR(base.z, 0.3f, 1e-6f);
+    EXPECT_FLOAT_EQ(QuadMaterial(*alone).coat_roughness, 1.0f) << "glossiness 0: roughness 1";
+}
+
+TEST(GltfMaterialsTest, Ktx2TexturesFallBackToTheirSourceOrAreRefusedNamingTheWayOut) {
+    testing::TestScene scene = testing::LitQuadScene();
+    scene.meshes[0].uvs = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+    testing::TestMaterial material{Rgb(1.0f), Rgb(0.0f)};
+    material.texture_png_base64 =
+        absl::Base64Escape(testing::TwoTexelPng({255, 0, 0, 0, 0, 255}, "fallback.png"));
+    scene.materials[0] = material;
+    scene.extra = R"(,"extensionsUsed":["KHR_texture_basisu"])";
+    // The texture's KTX2 image (#1, a file that is not there: never read) by the extension, its
+    // PNG (#0) as its source.
+    std::string json = testing::GltfJson(scene);
+    const std::string texture = R"(],"textures":[{"source":0})";
+    ASSERT_NE(json.find(texture), std::string::npos);
+    json.replace(json.find(texture), texture.size(),
+                 R"(,{"uri":"absent.ktx2","mimeType":"image/ktx2"}],"textures":[{"source":0,)"
+                 R"("extensions":{"KHR_texture_basisu":{"source":1}}})");
+    // Its KTX2 image, skipped on purpose, is no cause for a warning.
+    std::ostringstream log;
+    const auto sink = std::make_shared<spdlog::sinks::ostream_sink_mt>(log);
+    spdlog::default_logger()->sinks().push_back(sink);
+    const absl::StatusOr<Scene> fallback = LoadScene(testing::WriteTextFile(json, "basisu.gltf"));
+    std::erase(spdlog::default_logger()->sinks(), sink);
+    ASSERT_TRUE(fallback.ok()) << fallback.status();
+    EXPECT_EQ(log.str().find("absent.ktx2"), std::string::npos) << log.str();
+    EXPECT_EQ(log.str().find("Failed to load"), std::string::npos) << log.str();
+    const Material& read = QuadMaterial(*fallback);
+    ASSERT_NE(read.base_color_texture, kNoTexture);
+    EXPECT_EQ(fallback->textures[read.base_color_texture]->texels[0], Rgb(1, 0, 0)) << "the PNG";
+    // Without a fallback, the file requiring the extension: refused naming the texture and the
+    // way out.
+    json.replace(json.find(R"({"source":0,"extensions")"), 12, "{");
+    const std::string used = R"("extensionsUsed":["KHR_texture_basisu"])";
+    json.replace(json.find(used), used.size(),
+                 used + R"(,"extensionsRequired":["KHR_texture_basisu"])");
+    const absl::StatusOr<Scene> ktx2 = LoadScene(testing::WriteTextFile(json, "basisu-only.gltf"));
+    ASSERT_FALSE(ktx2.ok());
+    const std::string message(ktx2.status().message());
+    EXPECT_NE(message.find("basisu-only.gltf"), std::string::npos) << message;
+    EXPECT_NE(message.find("texture #0"), std::string::npos) << message;
+    EXPECT_NE(message.find("KHR_texture_basisu"), std::string::npos) << message;
+    EXPECT_NE(message.find("ktx extract"), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
 }  // namespace

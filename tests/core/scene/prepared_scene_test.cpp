@@ -240,6 +240,32 @@ TEST(PreparedSceneTest, ImageLightsSurvive) {
     EXPECT_EQ(EncodePreparedScene(*decoded), bytes);
 }
 
+TEST(PreparedSceneTest, VertexColoursAndSurfaceFlagsTravel) {
+    // The floor's colours (its alpha read under BLEND) and its single-sided surface.
+    testing::TestScene built = testing::LitQuadScene();
+    built.materials[0].extra = R"(,"alphaMode":"BLEND")";
+    for (int v = 0; v < 6; ++v)
+        built.meshes[0].colors.insert(built.meshes[0].colors.end(), {0.1f * v, 0.5f, 1, 0.75f});
+    const Scene scene = *LoadScene(testing::WriteGltf(built, "colors-travel.gltf"));
+    const uint32_t floor = scene.triangles[0].material;
+    ASSERT_EQ(scene.materials[floor].surface_flags,
+              gpu::kSurfaceSingleSided | gpu::kSurfaceVertexAlpha);
+    const std::string bytes = EncodePreparedScene(scene);
+    const absl::StatusOr<Scene> decoded = DecodePreparedScene(bytes, false);
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    ASSERT_EQ(decoded->colors.size(), scene.colors.size());
+    for (size_t v = 0; v < scene.colors.size(); ++v) {
+        EXPECT_EQ(decoded->colors[v].rgb, scene.colors[v].rgb);
+        EXPECT_EQ(decoded->colors[v].alpha, scene.colors[v].alpha);
+    }
+    EXPECT_EQ(decoded->materials[floor].surface_flags, scene.materials[floor].surface_flags);
+    EXPECT_EQ(EncodePreparedScene(*decoded), bytes);
+    // A scene without colours carries none.
+    EXPECT_TRUE(
+        DecodePreparedScene(EncodePreparedScene(*LoadScene(Shipped("cornell-box.gltf"))), false)
+            ->colors.empty());
+}
+
 TEST(PreparedSceneTest, WhatNoTracingReadsIsLeftOut) {
     // cornell-box has no smooth triangle and no texture: no normals, no texture coordinates.
     Scene scene = *LoadScene(Shipped("cornell-box.gltf"));
@@ -318,6 +344,14 @@ TEST(PreparedSceneTest, HostileBytesAreRefusedNamingWhatIsWrong) {
         },
         "material 1: a mix of materials 0 and 1");
     broken([](Scene& s) { s.materials[0].alpha = 2; }, "material 0: alpha out of range");
+    broken([](Scene& s) { s.materials[0].surface_flags = 8; }, "unknown surface flags");
+    broken([](Scene& s) { s.colors.assign(3, VertexColor{}); },
+           "vertex colours not one per vertex");
+    broken(
+        [](Scene& s) {
+            s.colors.assign(s.positions.size(), VertexColor{Rgb(2.0f), 1.0f});
+        },
+        "a vertex colour outside [0, 1]");
     broken(
         [](Scene& s) {
             s.materials[1].coat_ior = 1.5f;

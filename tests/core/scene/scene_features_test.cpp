@@ -22,7 +22,8 @@ TEST(SceneFeaturesTest, ShippedScenesUseWhatTheyShow) {
     EXPECT_FALSE(box.textures);
     EXPECT_TRUE(box.triangle_lights);
     EXPECT_FALSE(box.point_lights || box.spot_lights || box.directional_lights);
-    EXPECT_EQ(box.ToString(), "diffuse, area lights");
+    // Its light, single-sided and open (glTF's default), lets rays through its back faces.
+    EXPECT_EQ(box.ToString(), "diffuse, cut-outs, area lights");
     const SceneFeatures glass = FeaturesOf(Shipped("cornell-glass.gltf"));
     EXPECT_TRUE(glass.mirror && glass.dielectric);
     EXPECT_FALSE(glass.thin_dielectric);
@@ -33,7 +34,7 @@ TEST(SceneFeaturesTest, ShippedScenesUseWhatTheyShow) {
     const SceneFeatures bumpy = FeaturesOf(Shipped("cornell-bumpy.gltf"));
     EXPECT_TRUE(bumpy.shading_detail && bumpy.ShadingNormals() && bumpy.ReadsUv());
     EXPECT_FALSE(bumpy.Specular() || bumpy.smooth_normals);
-    EXPECT_EQ(bumpy.ToString(), "diffuse, normal or bump maps, area lights");
+    EXPECT_EQ(bumpy.ToString(), "diffuse, cut-outs, normal or bump maps, area lights");
     EXPECT_FALSE(box.ShadingNormals());
 }
 
@@ -49,7 +50,7 @@ TEST(SceneFeaturesTest, CoatsAreAFeatureOfTheirOwn) {
     const SceneFeatures coated = FeaturesOf(scene);
     EXPECT_TRUE(coated.coats);
     EXPECT_TRUE(coated.Specular());
-    EXPECT_EQ(coated.ToString(), "diffuse, coated, area lights");
+    EXPECT_EQ(coated.ToString(), "diffuse, coated, cut-outs, area lights");
 }
 
 TEST(SceneFeaturesTest, DiffuseTransmissionTakesTheGeneralPathsButMakesNoCaustics) {
@@ -59,7 +60,7 @@ TEST(SceneFeaturesTest, DiffuseTransmissionTakesTheGeneralPathsButMakesNoCaustic
     const SceneFeatures translucent = FeaturesOf(scene);
     EXPECT_TRUE(translucent.translucent && translucent.GeneralSurfaces());
     EXPECT_FALSE(translucent.Specular()) << "no caustic map or probe for it";
-    EXPECT_EQ(translucent.ToString(), "diffuse, diffuse transmission, area lights");
+    EXPECT_EQ(translucent.ToString(), "diffuse, diffuse transmission, cut-outs, area lights");
 }
 
 TEST(SceneFeaturesTest, SheenIsAFeatureWhereASurfaceWearsOne) {
@@ -72,7 +73,7 @@ TEST(SceneFeaturesTest, SheenIsAFeatureWhereASurfaceWearsOne) {
     const SceneFeatures features = FeaturesOf(scene);
     EXPECT_TRUE(features.sheen && features.coats);
     EXPECT_FALSE(features.sheen_textures);
-    EXPECT_EQ(features.ToString(), "diffuse, coated, sheen, area lights");
+    EXPECT_EQ(features.ToString(), "diffuse, coated, sheen, cut-outs, area lights");
 }
 
 TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
