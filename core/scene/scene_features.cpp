@@ -18,6 +18,7 @@ SceneFeatures SceneFeatures::All() {
                        &all.rough_dielectric,
                        &all.coats,
                        &all.cut_outs,
+                       &all.alpha_textures,
                        &all.mixes,
                        &all.textures,
                        &all.vertex_colors,
@@ -98,6 +99,7 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
         features.rough_dielectric |= material.type == MaterialType::kRoughDielectric;
         features.coats |= material.HasCoat();
         features.cut_outs |= material.HasCutOuts();
+        features.alpha_textures |= material.alpha_texture != kNoTexture;
         features.mixes |= material.type == MaterialType::kMix;
         features.textures |=
             material.base_color_texture != kNoTexture ||

@@ -14,11 +14,12 @@ struct SceneFeatures {
     // Materials on at least one triangle.
     bool mirror = false, dielectric = false, thin_dielectric = false;
     bool rough_conductor = false, rough_dielectric = false;  // GGX
-    bool coats = false;          // a dielectric coat over a diffuse or conductor base
-    bool cut_outs = false;       // alpha: rays pass through parts of some surface
-    bool mixes = false;          // a material that is one of two at each point
-    bool textures = false;       // a used material has a base colour (or transmittance) texture
-    bool vertex_colors = false;  // vertices carry colours (Scene::colors: glTF's COLOR_0)
+    bool coats = false;           // a dielectric coat over a diffuse or conductor base
+    bool cut_outs = false;        // alpha: rays pass through parts of some surface
+    bool alpha_textures = false;  // a used material's alpha has a texture
+    bool mixes = false;           // a material that is one of two at each point
+    bool textures = false;        // a used material has a base colour (or transmittance) texture
+    bool vertex_colors = false;   // vertices carry colours (Scene::colors: glTF's COLOR_0)
     bool roughness_textures = false;  // a used material's roughness has a texture
     bool mix_textures = false;        // a used mix's amount has a texture
     bool fresnel_mixes = false;       // glTF's dielectric: specular over diffuse (kCoatFresnelMix)
@@ -53,7 +54,7 @@ struct SceneFeatures {
     bool VaryingBaseColor() const { return textures || vertex_colors; }
     // Whether shading reads texture coordinates (light emission aside).
     bool ReadsUv() const {
-        return textures || cut_outs || roughness_textures || mix_textures || shading_detail ||
+        return textures || alpha_textures || roughness_textures || mix_textures || shading_detail ||
                sheen_textures;
     }
     // Whether some shading normal differs from its surface's (Veach's adjoint factors apply).
