@@ -22,6 +22,7 @@
 #include "core/scene/gltf_accessors.h"
 #include "core/scene/gltf_bundle_files.h"
 #include "core/scene/gltf_draco.h"
+#include "core/scene/gltf_lights.h"
 #include "core/scene/gltf_materials.h"
 #include "core/scene/gltf_mesh_read.h"
 #include "core/scene/gltf_meshopt.h"
@@ -35,13 +36,10 @@
 namespace pf {
 namespace {
 
-// Luminous efficacy of KHR_lights_punctual's photometric intensities (the maximum, at 555 nm).
-constexpr double kLumensPerWatt = 683.0;
 constexpr int kMaxNodeDepth = 256;
 
 std::string Describe(const std::string& kind, int index, const std::string& name) {
-    return name.empty() ? absl::StrCat(kind, " #", index)
-                        : absl::StrCat(kind, " '", name, "' (#", index, ")");
+    return DescribeGltf(kind, index, name);
 }
 
 // KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv.
@@ -104,8 +102,6 @@ private:
     absl::Status AppendPrimitive(const TriangleMesh& mesh, const std::string& element,
                                  const Transform& world, uint32_t material,
                                  std::optional<uint32_t> prototype);
-    absl::Status AddLight(int light_index, const Transform& world);
-    absl::Status SetCamera(int camera_index, const Transform& world);
     // Whether the camera node met now (the cameras_seen_.size()-th, named `names`) is the
     // one asked for.
     bool WantedCamera(const std::vector<std::string>& names) const;
@@ -293,13 +289,20 @@ absl::Status GltfSceneBuilder::VisitNode(int index, const Transform& parent, int
                                             : "";
         cameras_seen_.push_back(absl::StrCat(cameras_seen_.size(), " '",
                                              node.name.empty() ? camera_name : node.name, "'"));
-        if (!has_camera_ && WantedCamera({node.name, camera_name}))
-            if (absl::Status status = SetCamera(node.camera, world); !status.ok()) return status;
+        if (!has_camera_ && WantedCamera({node.name, camera_name})) {
+            if (absl::Status status =
+                    SetGltfCamera(model_, node.camera, world, path_, &scene_.camera);
+                !status.ok())
+                return status;
+            has_camera_ = true;
+        }
     }
-    if (const tinygltf::Value* light = Extension(node.extensions, "KHR_lights_punctual"))
-        if (absl::Status status = AddLight(static_cast<int>(NumberOr(*light, "light", -1)), world);
-            !status.ok())
-            return status;
+    if (const tinygltf::Value* light = Extension(node.extensions, "KHR_lights_punctual")) {
+        absl::StatusOr<PunctualLight> placed = GltfPunctualLight(
+            model_, static_cast<int>(NumberOr(*light, "light", -1)), world, path_);
+        if (!placed.ok()) return placed.status();
+        scene_.lights.push_back(std::move(*placed));
+    }
     for (int child : node.children)
         if (absl::Status status = VisitNode(child, world, depth + 1); !status.ok()) return status;
     return absl::OkStatus();
@@ -439,86 +442,6 @@ absl::Status GltfSceneBuilder::AppendPrimitive(const TriangleMesh& mesh, const s
                                   material_uvs_[material]};
     return AppendMesh(mesh, placement, limits_, absl::StrCat(path_, ": ", element), &scene_,
                       prototype);
-}
-
-absl::Status GltfSceneBuilder::AddLight(int light_index, const Transform& world) {
-    if (light_index < 0 || light_index >= static_cast<int>(model_.lights.size()))
-        return Error(absl::StrCat("KHR_lights_punctual light #", light_index), "does not exist");
-    const tinygltf::Light& source = model_.lights[light_index];
-    const std::string element = Describe("light", light_index, source.name);
-    PunctualLight light;
-    light.name = source.name;
-    const Vec3d color = source.color.size() == 3
-                            ? Vec3d(source.color[0], source.color[1], source.color[2])
-                            : Vec3d(1.0);
-    // KHR_lights_punctual's photometric units (candela for point and spot lights, lux for
-    // directional ones) in watts, at 683 lm/W, the factor Blender's exporter multiplies watts by
-    // (so its lights come back as they were made).
-    light.intensity = Rgb(color * (source.intensity / kLumensPerWatt));
-    if (!IsFinite(light.intensity) || MinComponent(light.intensity) < 0)
-        return Error(element, "intensity or colour is negative, NaN or Inf");
-    if (!(source.range >= 0 && std::isfinite(source.range)))
-        return Error(element, "range must be finite and not negative");
-    light.position = Vec3(world.ApplyPoint(Vec3d(0.0)));
-    light.direction = Vec3(Normalize(world.ApplyVector(Vec3d(0, 0, -1))));
-    if (!IsFinite(light.direction))
-        return Error(element, "node transform collapses the light's direction");
-    if (source.type == "point") {
-        light.type = LightType::kPoint;
-        light.range = static_cast<float>(source.range);
-    } else if (source.type == "spot") {
-        light.type = LightType::kSpot;
-        light.range = static_cast<float>(source.range);
-        light.cos_inner = static_cast<float>(std::cos(source.spot.innerConeAngle));
-        light.cos_outer = static_cast<float>(std::cos(source.spot.outerConeAngle));
-        if (!(source.spot.outerConeAngle > 0 && source.spot.outerConeAngle <= kPiD / 2 &&
-              source.spot.innerConeAngle >= 0 &&
-              source.spot.innerConeAngle < source.spot.outerConeAngle))
-            return Error(element, "spot cone angles must satisfy 0 <= inner < outer <= pi/2");
-    } else if (source.type == "directional") {
-        light.type = LightType::kDirectional;
-        if (source.range > 0)
-            spdlog::warn("{}: {}: a directional light has no range; ignored", path_, element);
-    } else {
-        return Error(element, absl::StrCat("unknown light type '", source.type, "'"));
-    }
-    scene_.lights.push_back(light);
-    return absl::OkStatus();
-}
-
-absl::Status GltfSceneBuilder::SetCamera(int camera_index, const Transform& world) {
-    if (camera_index >= static_cast<int>(model_.cameras.size()))
-        return Error(absl::StrCat("camera #", camera_index), "does not exist");
-    const tinygltf::Camera& source = model_.cameras[camera_index];
-    const std::string element = Describe("camera", camera_index, source.name);
-    Camera& camera = scene_.camera;
-    if (source.type == "orthographic") {
-        // xmag and ymag: half the view's width and height, world units.
-        const double xmag = source.orthographic.xmag, ymag = source.orthographic.ymag;
-        if (!(xmag > 0 && ymag > 0 && xmag < 1e30 && ymag < 1e30))
-            return Error(element, "orthographic xmag and ymag must be positive and finite");
-        camera.projection = Projection::kOrthographic;
-        camera.window = {static_cast<float>(-xmag), static_cast<float>(xmag),
-                         static_cast<float>(-ymag), static_cast<float>(ymag)};
-        camera.aspect_ratio = static_cast<float>(xmag / ymag);
-    } else if (source.type == "perspective") {
-        camera.y_fov = static_cast<float>(source.perspective.yfov);
-        camera.aspect_ratio = static_cast<float>(source.perspective.aspectRatio);
-        if (!(camera.y_fov > 0 && camera.y_fov < kPi))
-            return Error(element, "yfov must lie in (0, pi)");
-    } else {
-        return Error(element, absl::StrCat("type '", source.type,
-                                           "' is unknown (perspective or orthographic)"));
-    }
-    camera.position = Vec3(world.ApplyPoint(Vec3d(0.0)));
-    camera.forward = Vec3(Normalize(world.ApplyVector(Vec3d(0, 0, -1))));
-    const Vec3 up_hint(Normalize(world.ApplyVector(Vec3d(0, 1, 0))));
-    camera.right = Normalize(Cross(camera.forward, up_hint));
-    camera.up = Cross(camera.right, camera.forward);
-    if (!IsFinite(camera.position) || !IsFinite(camera.right) || !IsFinite(camera.up))
-        return Error(element, "node transform is degenerate");
-    has_camera_ = true;
-    return absl::OkStatus();
 }
 
 // The materials of glTF material `gltf_material` (gltf_materials.h; -1: glTF's default
