@@ -16,6 +16,7 @@
 #include "core/scene/scene_loader.h"
 #include "embedded/local_render.h"
 #include "embree/embree_tracer.h"
+#include "tests/support/gltf_builder.h"
 #include "tests/support/test_env.h"
 
 namespace pf {
@@ -103,6 +104,44 @@ TEST(CutOutsTest, RaysPassWhereAlphaSays) {
     }
     const double sigma = std::sqrt(0.3 * 0.7 / kRays);
     EXPECT_NEAR(double(met) / kRays, 0.3, 5 * sigma);
+}
+
+// Where a ray from `origin` along `direction` first meets a surface (its z), -100 where it meets
+// none; and whether a shadow ray over the same 10 units is blocked.
+Cast CastAlong(const embree::EmbreeTracer& tracer, Vec3 origin, Vec3 direction) {
+    Ray ray{origin, direction};
+    ray.t_max = 10;
+    Cast cast{-100, false};
+    RayHit hit;
+    if (tracer.Intersect(ray, &hit)) cast.z = origin.z + direction.z * hit.t;
+    cast.occluded = tracer.Occluded(ray);
+    return cast;
+}
+
+TEST(CutOutsTest, SingleSidedGltfSurfacesLetRaysThroughTheirBackFaces) {
+    // The lit quad (single-sided, open), used by a second node turned half a turn about y and
+    // lowered to z = -2, so that it faces -z there: the mesh is a prototype placed twice, and
+    // Embree's filter sees the ray in the prototype's space.
+    testing::TestScene built = testing::LitQuadScene();
+    built.extra_nodes = {R"({"mesh":0,"translation":[0,0,-2],"rotation":[0,1,0,0]})"};
+    const absl::StatusOr<Scene> scene = LoadScene(testing::WriteGltf(built, "single-sided.gltf"));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->instances.size(), 2u);
+    auto tracer = embree::EmbreeTracer::Create(*scene);
+    ASSERT_TRUE(tracer.ok()) << tracer.status();
+    const Vec3 up(0, 0, 1), down(0, 0, -1);
+    // Front faces stop rays, closest-hit and shadow alike.
+    EXPECT_NEAR(CastAlong(**tracer, {0.5f, 0.5f, 3}, down).z, 0.0f, 1e-5f);
+    EXPECT_TRUE(CastAlong(**tracer, {0.5f, 0.5f, 3}, down).occluded);
+    EXPECT_NEAR(CastAlong(**tracer, {0.5f, 0.5f, -5}, up).z, -2.0f, 1e-5f);
+    // Back faces let them through: between the two, looking at either, nothing is met.
+    for (const Vec3& direction : {up, down}) {
+        const Cast between = CastAlong(**tracer, {0.5f, 0.5f, -1}, direction);
+        EXPECT_EQ(between.z, -100.0f) << direction.z;
+        EXPECT_FALSE(between.occluded) << direction.z;
+    }
+    // The light above (single-sided too, facing down) stops a ray from below.
+    EXPECT_NEAR(CastAlong(**tracer, {0.1f, 0.1f, -1}, up).z, 1.0f, 1e-5f);
 }
 
 // A render of the scene at `path` by `integrator`, 48x48.

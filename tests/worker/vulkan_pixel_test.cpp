@@ -15,7 +15,9 @@
 
 #include "core/job/job_spec.h"
 #include "core/scene/emitters.h"
+#include "core/scene/scene_features.h"
 #include "core/scene/scene_loader.h"
+#include "tests/support/gltf_builder.h"
 #include "tests/support/vulkan_validation.h"
 #include "worker/backend_factory.h"
 #include "worker/backends/vulkan/context.h"
@@ -82,11 +84,10 @@ void RunEpochs(Backend& backend, const Scene& scene, const Emitters& emitters, c
     }
 }
 
-TEST_P(VulkanPixelTest, BatchesFollowTheCpuBackendsPaths) {
-    const PixelCase& param = GetParam();
-    const Scene scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + param.scene);
+// Runs `integrator` on both backends over `scene` and expects the same pixels.
+void ExpectCpuAgreement(const Scene& scene, Integrator integrator, uint32_t final_gather) {
     const Emitters emitters(scene);
-    const JobSpec spec = SmallJob(param.integrator, param.final_gather);
+    const JobSpec spec = SmallJob(integrator, final_gather);
     std::unique_ptr<Backend> cpu = std::move(*CreateBackend("cpu", scene));
     absl::StatusOr<std::unique_ptr<Backend>> vulkan = CreateBackend("vulkan", scene);
     ASSERT_TRUE(vulkan.ok()) << vulkan.status();
@@ -121,6 +122,12 @@ TEST_P(VulkanPixelTest, BatchesFollowTheCpuBackendsPaths) {
     }
 }
 
+TEST_P(VulkanPixelTest, BatchesFollowTheCpuBackendsPaths) {
+    const PixelCase& param = GetParam();
+    const Scene scene = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/" + param.scene);
+    ExpectCpuAgreement(scene, param.integrator, param.final_gather);
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Scenes, VulkanPixelTest,
     ::testing::Values(
@@ -139,6 +146,46 @@ INSTANTIATE_TEST_SUITE_P(
         PixelCase{"cornell-bumpy.gltf", Integrator::kPath},
         PixelCase{"cornell-bumpy.gltf", Integrator::kPm}),
     CaseName);
+
+// glTF's vertex colours and single-sided surfaces on the device as on the CPU: the lit quad
+// with colours on its floor; a quad facing away from the camera between it and the floor (its
+// back faces let camera rays, light samples and light through); an unlit quad whose emission is
+// its vertex colours; a quad masked by its vertex colours' alpha.
+TEST_F(VulkanPixelTest, VertexColoursAndSingleSidedSurfacesFollowTheCpu) {
+    testing::TestScene built = testing::LitQuadScene();
+    built.meshes[0].color_components = 3;
+    built.meshes[0].colors = {1, 0.2f, 0.2f, 0.2f, 1,    0.2f, 0.2f, 0.2f, 1,
+                              1, 0.2f, 0.2f, 0.2f, 0.2f, 1,    1,    1,    1};
+    const auto quad = [](float x0, float y0, float x1, float y1, float z, bool up) {
+        std::vector<Vec3> corners = {{x0, y0, z}, {x1, y0, z}, {x1, y1, z},
+                                     {x0, y0, z}, {x1, y1, z}, {x0, y1, z}};
+        if (!up) std::swap(corners[1], corners[2]), std::swap(corners[4], corners[5]);
+        return corners;
+    };
+    testing::TestMaterial grey{Rgb(0.7f), Rgb(0.0f)};
+    testing::TestMaterial unlit{Rgb(0.9f), Rgb(0.0f)};
+    unlit.extensions = R"("KHR_materials_unlit":{})";
+    testing::TestMaterial masked{Rgb(0.6f, 0.6f, 0.2f), Rgb(0.0f)};
+    masked.extra = R"(,"alphaMode":"MASK","alphaCutoff":0.5,"doubleSided":true)";
+    built.materials.insert(built.materials.end(), {grey, unlit, masked});
+    built.meshes.push_back({quad(-0.9f, -0.9f, -0.2f, 0.9f, 0.5f, false), 2});
+    testing::TestMesh lamp{quad(0.3f, -0.9f, 0.9f, -0.3f, 0.2f, true), 3};
+    lamp.color_components = 3;
+    lamp.colors = {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 1, 1, 0};
+    testing::TestMesh cut{quad(0.3f, 0.2f, 0.9f, 0.9f, 0.3f, true), 4};
+    cut.colors = {1, 1, 1, 0, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 0, 1, 1, 1, 1, 1, 1, 1, 0};
+    built.meshes.insert(built.meshes.end(), {lamp, cut});
+    const Scene scene = *LoadScene(testing::WriteGltf(built, "colors-single-sided.gltf"));
+    const SceneFeatures features = AnalyseFeatures(scene, Emitters(scene));
+    ASSERT_TRUE(features.vertex_colors && features.cut_outs);
+    ExpectCpuAgreement(scene, Integrator::kPath, 0);
+    // The colours share the tangents' binding; a scene without pays nothing for them.
+    EXPECT_EQ(vk::BuildGpuScene(scene, Emitters(scene))->tangents.size(), scene.positions.size());
+    const Scene plain = *LoadScene(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf");
+    const vk::GpuScene plain_gpu = *vk::BuildGpuScene(plain, Emitters(plain));
+    EXPECT_TRUE(plain_gpu.tangents.empty());
+    EXPECT_EQ(vk::SpecConstantsFor(plain_gpu.features)[gpu::kSpecHasVertexColors], 0u);
+}
 
 TEST_F(VulkanPixelTest, PhotonMapsTooLargeForTheDeviceAreRefusedNamingThem) {
     // The maps are checked against the host's memory when built (as on the CPU) and against
