@@ -405,7 +405,9 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::PrimitiveMaterial(const tinygltf::Pri
     const double cutoff = given ? model_.materials[primitive.material].alphaCutoff : 0.5;
     uint32_t flags = 0;
     // A viewer shows nothing of a single-sided surface from behind; a closed one is never seen
-    // from behind, and glass must be crossed both ways, so they stay as they are.
+    // from behind, glass must be crossed both ways, and a light's back stops rays as pbrt's
+    // area lights do (a light on a ceiling must not let photons through the 0.1 mm gap behind
+    // it), so they stay as they are.
     const std::function<bool(uint32_t)> transmits = [&](uint32_t m) {
         const Material& at = scene_.materials[m];
         if (at.type == MaterialType::kMix)
@@ -413,7 +415,9 @@ absl::StatusOr<uint32_t> GltfSceneBuilder::PrimitiveMaterial(const tinygltf::Pri
         return at.type == MaterialType::kDielectric || at.type == MaterialType::kThinDielectric ||
                at.type == MaterialType::kRoughDielectric || at.IsTranslucent();
     };
-    if (!double_sided && !closed && !transmits(*material)) flags |= gpu::kSurfaceSingleSided;
+    if (!double_sided && !closed && !transmits(*material) &&
+        !scene_.materials[*material].IsEmissive())
+        flags |= gpu::kSurfaceSingleSided;
     const bool vertex_alpha = std::any_of(mesh.colors.begin(), mesh.colors.end(),
                                           [](const VertexColor& c) { return c.alpha < 1.0f; });
     if (vertex_alpha && (alpha_mode == "BLEND" || (alpha_mode == "MASK" && cutoff > 0)))

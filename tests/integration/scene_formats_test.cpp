@@ -69,15 +69,8 @@ TEST_P(SceneFormats, PbrtFormRendersTheGltfFormsImage) {
     }
     const Image pbrt = testing::RenderSmall(pbrt_path, "cpu", 1, kPhotons, kRadius);
     ASSERT_EQ(pbrt.pixels.size(), gltf.pixels.size());
-    // The Cornell light is single-sided in glTF (its default, honoured on an open mesh: rays
-    // pass its back faces), where pbrt's area light stops them: the few photons that graze the
-    // 0.1 mm gap between it and the ceiling go their own way in each form (measured: 1.0e-4 of
-    // another stream's difference).
-    const bool ceiling_light = GetParam() == "cornell-box" || GetParam() == "cornell-stained" ||
-                               GetParam() == "cornell-bumpy";
-    EXPECT_LE(
-        testing::MeanSquaredDifference(pbrt, gltf),
-        (ceiling_light ? 1e-3 : 1e-5) * testing::MeanSquaredDifference(gltf, gltf_other_stream));
+    EXPECT_LE(testing::MeanSquaredDifference(pbrt, gltf),
+              1e-5 * testing::MeanSquaredDifference(gltf, gltf_other_stream));
 }
 
 TEST(FilmExposure, ImageIsLinearInIsoTimesExposureTime) {
