@@ -29,9 +29,8 @@ absl::Status PbrtSceneBuilder::BaseColor(ParameterList& parameters, const std::s
         }
         const TextureRef& texture = it->second;
         if (!texture.unsupported.empty()) {
-            Warn(where,
-                 absl::StrCat("texture \"", *texture_name, "\" (", texture.unsupported,
-                              ") is not supported; using ", "its material's default colour"));
+            Warn(where, absl::StrCat("\"", name, "\": ", UnsupportedNote(texture), "; ",
+                                     "the material's default ", FormatRgb(fallback), " stands in"));
             return absl::OkStatus();
         }
         absl::StatusOr<int32_t> index = ImageIndex(texture);
@@ -67,8 +66,8 @@ absl::StatusOr<FloatInput> PbrtSceneBuilder::FloatParameter(
         return ErrorAt(where,
                        absl::StrCat(what, " names no float texture \"", *texture_name, "\""));
     if (!it->second.unsupported.empty()) {
-        Warn(where, absl::StrCat(what, " texture \"", *texture_name, "\" (", it->second.unsupported,
-                                 ") is not supported; ", name, " ", fallback, " is used"));
+        Warn(where, absl::StrCat(what, ": ", UnsupportedNote(it->second), "; its default ",
+                                 fallback, " stands in"));
         return input;
     }
     TextureRef texture = it->second;

@@ -34,10 +34,21 @@ struct TextureRef {
     std::string element;  // "file:line:column: Texture "name"", for errors
     Rgb scale{1.0f};
     TextureMapping mapping;
-    std::string unsupported;  // non-empty: the texture class photonfarm cannot evaluate
+    // Non-empty: what photonfarm cannot evaluate, the texture's class ("ptex") or, for one
+    // combining others, the operand's ("scale of Texture "p" (ptex) at ...").
+    std::string unsupported;
     // A procedural texture baked into linear texels (checkerboard, bilerp), in place of a file.
     std::shared_ptr<const pf::Texture> baked;
+    // "Texture "name" (class) at file:line:column", for the notes on what it is not, and its
+    // class.
+    std::string described, type;
 };
+
+// "Texture "w" (wrinkled) at f:3:1 is not evaluated by photonfarm", naming the operand that is
+// not where it is one of a scale or mix ("...: scale of Texture "p" (ptex) at f:2:1").
+std::string UnsupportedNote(const TextureRef& texture);
+// "0.5" for a grey, "(0.1 0.2 0.3)" otherwise.
+std::string FormatRgb(const Rgb& value);
 
 struct MaterialRef {
     Material material;       // emission left zero: it comes from the shape's area light

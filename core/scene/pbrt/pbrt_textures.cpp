@@ -12,6 +12,18 @@
 
 namespace pf::pbrt {
 
+std::string UnsupportedNote(const TextureRef& texture) {
+    if (texture.unsupported == texture.type)
+        return absl::StrCat(texture.described, " is not evaluated by photonfarm");
+    return absl::StrCat(texture.described,
+                        " is not evaluated by photonfarm: ", texture.unsupported);
+}
+
+std::string FormatRgb(const Rgb& value) {
+    if (value.x == value.y && value.y == value.z) return absl::StrCat(value.x);
+    return absl::StrCat("(", value.x, " ", value.y, " ", value.z, ")");
+}
+
 absl::StatusOr<int32_t> PbrtSceneBuilder::ImageIndex(const TextureRef& texture) {
     if (texture.baked != nullptr) {
         if (options_.references_only) return kNoTexture;
@@ -135,7 +147,8 @@ absl::StatusOr<PbrtSceneBuilder::Operand> PbrtSceneBuilder::TextureOperand(
             where, absl::StrCat(what, ": \"", name, "\" names no ", scalar ? "float" : "spectrum",
                                 " texture \"", *texture_name, "\""));
     operand.texture = &it->second;
-    if (it->second.path.empty() && it->second.baked == nullptr) {  // a constant
+    // A constant; a texture photonfarm cannot evaluate stays an operand, for its caller to note.
+    if (it->second.path.empty() && it->second.baked == nullptr && it->second.unsupported.empty()) {
         operand.value = it->second.scale;
         operand.texture = nullptr;
     }
@@ -180,7 +193,7 @@ absl::Status PbrtSceneBuilder::Combine(const std::string& name, const std::strin
             TextureOperand(parameters, operand, is_scalar, Rgb(fallback), what, where);
         if (!read.ok()) return read.status();
         if (read->texture != nullptr && !read->texture->unsupported.empty()) {
-            texture->unsupported = absl::StrCat(type, " of ", read->texture->unsupported);
+            texture->unsupported = absl::StrCat(type, " of ", read->texture->described);
             parameters.ConsumeAll();
             return absl::OkStatus();
         }
@@ -332,6 +345,8 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
     if (!IsFinite(texture.scale) || MinComponent(texture.scale) < 0)
         return ErrorAt(where, absl::StrCat("Texture \"", name,
                                            "\": its values must be finite and non-negative"));
+    texture.described = absl::StrCat("Texture \"", name, "\" (", type, ") at ", where.ToString());
+    texture.type = type;
     named[name] = texture;
     return absl::OkStatus();
 }

@@ -159,5 +159,37 @@ TEST(PbrtTexturesTest, ScaleAndMixCombineTheirOperands) {
     EXPECT_TRUE(Contains(warnings, "taken as its mean over all directions"));
 }
 
+TEST(PbrtTexturesTest, TexturesNotEvaluatedAreNotedWithTheirStandIn) {
+    // A texture class photonfarm does not evaluate (ptex), alone and as an operand of scale and
+    // mix, in a reflectance and a roughness: each use is noted with the texture's name, class
+    // and place, and the material's default stands in, never 1.
+    const std::string world =
+        "Texture \"p\" \"float\" \"ptex\" \"string filename\" \"p.ptx\"\n"  // line 6
+        "Texture \"s\" \"spectrum\" \"scale\" \"rgb tex\" [0.9 0.9 0.9] "
+        "\"texture scale\" \"p\"\n"                                                      // line 7
+        "Texture \"m\" \"float\" \"mix\" \"float tex1\" 0.1 \"texture amount\" \"p\"\n"  // line 8
+        "Material \"diffuse\" \"texture reflectance\" \"s\"\n" +
+        std::string(kQuad) + "Material \"conductor\" \"texture roughness\" \"m\"\n" + kQuad;
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Material& diffuse = scene->materials[scene->triangles[0].material];
+    EXPECT_EQ(diffuse.base_color_texture, kNoTexture);
+    EXPECT_EQ(diffuse.base_color, Rgb(0.5f));  // pbrt-v4's diffuse default, not 1
+    const Material& conductor = scene->materials[scene->triangles[2].material];
+    EXPECT_EQ(conductor.roughness_texture, kNoTexture);
+    EXPECT_EQ(conductor.roughness, 0.0f);  // the default roughness 0: a smooth conductor
+    EXPECT_TRUE(Contains(warnings,
+                         "Texture \"s\" (scale) at scenes/scene.pbrt:7:1 is not evaluated by "
+                         "photonfarm: scale of Texture \"p\" (ptex) at scenes/scene.pbrt:6:1; "
+                         "the material's default 0.5 stands in"))
+        << ::testing::PrintToString(warnings);
+    EXPECT_TRUE(Contains(warnings,
+                         "Texture \"m\" (mix) at scenes/scene.pbrt:8:1 is not evaluated by "
+                         "photonfarm: mix of Texture \"p\" (ptex) at scenes/scene.pbrt:6:1; its "
+                         "default 0 stands in"))
+        << ::testing::PrintToString(warnings);
+}
+
 }  // namespace
 }  // namespace pf
