@@ -13,6 +13,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/scene/pixel_filter.h"
 #include "core/scene/texture_filter.h"
+#include "core/scene/texture_program.h"
 #include "core/shared/coat.h"
 #include "core/util/byte_stream.h"
 #include "core/util/sha256.h"
@@ -84,6 +85,7 @@ void WriteTexture(const Texture& texture, ByteWriter& out) {
         std::any_of(texture.texels.begin(), texture.texels.end(), [&](const Rgb& t) {
             return negative_zero(t.x) || negative_zero(t.y) || negative_zero(t.z);
         });
+    Write(out, texture.program);
     if (palette.size() > 256 || !finite || signed_zeros) {
         out.Value(TexelEncoding::kFloats);
         Write(out, texture.texels);
@@ -107,8 +109,9 @@ void WriteTexture(const Texture& texture, ByteWriter& out) {
 bool ReadTexture(ByteReader& in, Texture* texture) {
     TexelEncoding encoding{};
     if (!in.Value(&texture->width) || !in.Value(&texture->height) || !in.Value(&texture->wrap_u) ||
-        !in.Value(&texture->wrap_v) || !in.Value(&encoding) ||
-        texture->wrap_u > gpu::kWrapOctahedral || texture->wrap_v > gpu::kWrapOctahedral)
+        !in.Value(&texture->wrap_v) || !in.Array(&texture->program, kMaxCount) ||
+        !in.Value(&encoding) || texture->wrap_u > gpu::kWrapOctahedral ||
+        texture->wrap_v > gpu::kWrapOctahedral)
         return false;
     if (encoding == TexelEncoding::kFloats) return in.Array(&texture->texels, kMaxCount);
     std::vector<float> palette;
@@ -152,9 +155,17 @@ void WritePayload(const Scene& scene, ByteWriter& out) {
     Write(out, scene.instances);
     Write(out, scene.materials);
     std::vector<bool> read(scene.textures.size(), false);
-    for (const Material& m : scene.materials)  // an index out of range is the decoder's to refuse
-        for (const int32_t texture : m.Textures())
-            if (texture >= 0 && size_t(texture) < read.size()) read[texture] = true;
+    const auto mark = [&](int32_t texture) {  // out of range: the decoder's to refuse
+        if (texture >= 0 && size_t(texture) < read.size()) read[texture] = true;
+    };
+    for (const Material& m : scene.materials)
+        for (const int32_t texture : m.Textures()) {
+            mark(texture);
+            // A procedural texture's images too.
+            if (texture >= 0 && size_t(texture) < read.size() && scene.textures[texture])
+                for (const size_t word : ProgramImageWords(scene.textures[texture]->program))
+                    mark(std::bit_cast<int32_t>(scene.textures[texture]->program[word].y));
+        }
     out.Value<uint64_t>(scene.textures.size());
     for (size_t t = 0; t < scene.textures.size(); ++t) {
         const bool keep = read[t] && scene.textures[t] != nullptr;
@@ -230,11 +241,19 @@ absl::Status ReadPayload(ByteReader& in, Scene* scene) {
         if (!ReadTexture(in, texture.get()))
             return Invalid(absl::StrCat("texture ", t, " truncated or its palette broken"));
         if (texture->width < 0 || texture->height < 0 ||
-            uint64_t(texture->width) * uint64_t(texture->height) != texture->texels.size())
+            uint64_t(texture->width) * uint64_t(texture->height) != texture->texels.size() ||
+            (texture->IsProcedural() && !texture->texels.empty()))
             return Invalid(absl::StrCat("texture ", t, ": ", texture->width, "x", texture->height,
                                         " with ", texture->texels.size(), " texels"));
         scene->textures.push_back(std::move(texture));
     }
+    // Procedural textures' programs, once every image they may read is known.
+    for (size_t t = 0; t < scene->textures.size(); ++t)
+        if (scene->textures[t]->IsProcedural())
+            if (absl::Status status =
+                    CheckTextureProgram(scene->textures[t]->program, scene->textures);
+                !status.ok())
+                return Invalid(absl::StrCat("texture ", t, ": ", status.message()));
     uint64_t lights = 0;
     if (!in.Value(&lights) || lights > kMaxCount) return fail("lights");
     for (uint64_t l = 0; l < lights; ++l) {
@@ -351,12 +370,18 @@ absl::Status CheckMaterials(const Scene& scene) {
         for (const int32_t texture : material.Textures()) {
             if (texture == kNoTexture) continue;
             if (texture < 0 || static_cast<size_t>(texture) >= scene.textures.size() ||
-                scene.textures[texture]->texels.empty())
+                (scene.textures[texture]->texels.empty() &&
+                 !scene.textures[texture]->IsProcedural()))
                 return Invalid(
                     absl::StrCat(name, ": texture ", texture, " of ", scene.textures.size()));
             if (scene.uvs.size() != scene.positions.size())
                 return Invalid(absl::StrCat(name, " has a texture, the vertices no coordinates"));
         }
+        // Normal and bump maps, cut-outs and emission are read as images.
+        for (const int32_t texture : {material.normal_texture, material.bump_texture,
+                                      material.alpha_texture, material.emission_texture})
+            if (texture != kNoTexture && scene.textures[texture]->IsProcedural())
+                return Invalid(absl::StrCat(name, ": texture ", texture, " is not an image"));
     }
     return absl::OkStatus();
 }
@@ -430,7 +455,7 @@ absl::Status CheckLightsAndCamera(const Scene& scene) {
             return Invalid(absl::StrCat("light ", l, ": a value out of range"));
         if (light.HasImage() != (light.image != nullptr) ||
             (light.image &&
-             (light.image->texels.empty() ||
+             (light.image->texels.empty() || light.image->IsProcedural() ||
               !std::all_of(light.image->texels.begin(), light.image->texels.end(),
                            [](const Rgb& t) { return Finite(t) && MinComponent(t) >= 0; }))))
             return Invalid(absl::StrCat("light ", l, ": its image is missing or out of range"));
@@ -459,7 +484,8 @@ absl::Status CheckLightsAndCamera(const Scene& scene) {
             !Finite(environment.scale) || MinComponent(environment.scale) < 0 ||
             !Finite(environment.to_map))
             return Invalid("environment: a value out of range");
-        if (uniform != image.texels.empty() || image.width < 0 || image.height < 0 ||
+        if (uniform != image.texels.empty() || image.IsProcedural() || image.width < 0 ||
+            image.height < 0 ||
             uint64_t(image.width) * uint64_t(image.height) != image.texels.size() ||
             (environment.mapping == EnvironmentMapping::kEqualArea && image.width != image.height))
             return Invalid(absl::StrCat("environment: a ", image.width, "x", image.height,

@@ -21,8 +21,8 @@ namespace pf {
 // 2: the environment light; 8: its portal; 9: coated materials and cut-outs; 10: Fresnel-mix
 // coats, roughness and mix textures; 16: sheen, transmittance textures; 17: the pixel filter;
 // 18: coats' samples (Material::coat_samples), media outside surfaces (outside_absorption).
-// 19: vertex colours, surface flags (single-sided surfaces).
-inline constexpr uint32_t kPreparedSceneVersion = 19;
+// 19: vertex colours, surface flags (single-sided surfaces); 20: procedural textures.
+inline constexpr uint32_t kPreparedSceneVersion = 20;
 
 // Normals go only where a triangle is smooth, texture coordinates only where a material has a
 // texture, textures only where a material reads them (others stay as empty placeholders, so

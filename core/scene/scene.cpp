@@ -6,6 +6,7 @@
 
 #include "core/shared/alpha.h"
 #include "core/shared/environment_map.h"
+#include "core/shared/procedural_texture.h"
 #include "core/shared/shading_normal.h"
 
 namespace pf {
@@ -104,8 +105,8 @@ SurfacePoint Scene::Surface(const RayHit& hit) const {
                           &c2 = colors[triangle.vertex[2]];
         surface.color = c0.rgb * b0 + c1.rgb * hit.b1 + c2.rgb * hit.b2;
     }
-    surface.material =
-        ResolveMaterial(triangle.material, surface.position, hit.triangle, surface.uv);
+    surface.material = ResolveMaterial(triangle.material, surface.position, hit.triangle,
+                                       surface.uv, surface.geometric_normal);
     // A normal or bump map reads the texture coordinates, which are set then.
     if (reads_uv && materials[surface.material].HasShadingDetail())
         AddShadingDetail(triangle, instance, {p0, p1, p2}, hit.b1, hit.b2, surface);
@@ -144,20 +145,52 @@ void Scene::AddShadingDetail(const Triangle& triangle, const Instance* instance,
     if (Dot(n, surface.geometric_normal) > 0) surface.shading_normal = n;
 }
 
+namespace {
+
+// A procedural texture's images, read as the scene reads its own.
+class SceneTextureImages final : public gpu::TextureImages {
+public:
+    explicit SceneTextureImages(const Scene& scene) : scene_(scene) {}
+    gpu::vec3 ImageValue(int32_t texture, gpu::vec2 uv, float width) const override {
+        if (width > 0 && scene_.texture_filter)
+            return scene_.texture_filter->Sample(texture, uv.x, uv.y, width);
+        return scene_.textures[texture]->Sample(uv.x, uv.y);
+    }
+
+private:
+    const Scene& scene_;
+};
+
+}  // namespace
+
+Rgb Scene::TextureValue(int32_t index, const SurfacePoint& surface, float width) const {
+    const Texture& texture = *textures[index];
+    if (!texture.IsProcedural()) [[likely]] {
+        if (width > 0 && texture_filter)
+            return texture_filter->Sample(index, surface.uv.x, surface.uv.y,
+                                          width * surface.uv_per_length);
+        return texture.Sample(surface.uv.x, surface.uv.y);
+    }
+    const gpu::TextureLookup at{surface.position, surface.geometric_normal, surface.uv, width,
+                                width * surface.uv_per_length};
+    return gpu::EvaluateProceduralTexture(texture.program.data(),
+                                          static_cast<uint32_t>(texture.program.size()), at,
+                                          SceneTextureImages(*this));
+}
+
 Rgb Scene::BaseColor(const SurfacePoint& surface) const {
     const Material& material = materials[surface.material];
     // glTF: the base colour is its factor x its texture x the vertex colour.
     const Rgb base_color = material.base_color * surface.color;
     if (material.base_color_texture == kNoTexture) return base_color;
-    return base_color * textures[material.base_color_texture]->Sample(surface.uv.x, surface.uv.y);
+    return base_color * TextureValue(material.base_color_texture, surface);
 }
 
 Rgb Scene::BaseColor(const SurfacePoint& surface, float width) const {
     const Material& material = materials[surface.material];
-    if (material.base_color_texture == kNoTexture || !texture_filter) return BaseColor(surface);
-    return material.base_color * surface.color *
-           texture_filter->Sample(material.base_color_texture, surface.uv.x, surface.uv.y,
-                                  width * surface.uv_per_length);
+    const Rgb base_color = material.base_color * surface.color;
+    if (material.base_color_texture == kNoTexture) return base_color;
+    return base_color * TextureValue(material.base_color_texture, surface, width);
 }
 
 Rgb Scene::Emission(const SurfacePoint& surface) const {
@@ -168,15 +201,16 @@ Rgb Scene::Emission(const SurfacePoint& surface) const {
     return emission * textures[material.emission_texture]->Sample(surface.uv.x, surface.uv.y);
 }
 
-uint32_t Scene::ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle,
-                           const Point2& uv) const {
+uint32_t Scene::ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle, const Point2& uv,
+                           const Vec3& normal) const {
     // A mix's materials come before it (the loaders and the prepared scene's check see to it),
     // so this ends.
+    SurfacePoint at;
+    at.position = position, at.geometric_normal = normal, at.uv = uv;
     while (materials[m].type == MaterialType::kMix) {
         const Material& mix = materials[m];
         float amount = mix.mix_amount;
-        if (mix.mix_texture != kNoTexture)
-            amount *= textures[mix.mix_texture]->Sample(uv.x, uv.y).x;
+        if (mix.mix_texture != kNoTexture) amount *= TextureValue(mix.mix_texture, at).x;
         // Salted by the mix, so that nested mixes choose independently.
         const float u = gpu::MixHash(position, triangle * 0x9e3779b9u + m);
         m = u < amount ? mix.mix_second : mix.mix_first;
@@ -187,9 +221,7 @@ uint32_t Scene::ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle,
 const Material& Scene::TexturedMaterial(const SurfacePoint& surface,
                                         std::optional<Material>& shading) const {
     Material& scratch = shading.emplace(materials[surface.material]);
-    const auto sample = [&](int32_t texture) {
-        return textures[texture]->Sample(surface.uv.x, surface.uv.y);
-    };
+    const auto sample = [&](int32_t texture) { return TextureValue(texture, surface); };
     if (scratch.roughness_texture != kNoTexture) {
         const float t = sample(scratch.roughness_texture).x;
         scratch.roughness = std::clamp(scratch.roughness * t, kMinRoughness, 1.0f);
@@ -226,10 +258,11 @@ float Scene::Alpha(uint32_t triangle, float b1, float b2) const {
     float alpha = material.alpha;
     const float b0 = 1 - b1 - b2;
     if (material.alpha_texture != kNoTexture) {
-        const Point2 uv = {
-            uvs[t.vertex[0]].x * b0 + uvs[t.vertex[1]].x * b1 + uvs[t.vertex[2]].x * b2,
-            uvs[t.vertex[0]].y * b0 + uvs[t.vertex[1]].y * b1 + uvs[t.vertex[2]].y * b2};
-        alpha *= textures[material.alpha_texture]->Sample(uv.x, uv.y).x;
+        // An image (the loaders give cut-outs no procedural texture): the coordinates alone.
+        SurfacePoint at;
+        at.uv = {uvs[t.vertex[0]].x * b0 + uvs[t.vertex[1]].x * b1 + uvs[t.vertex[2]].x * b2,
+                 uvs[t.vertex[0]].y * b0 + uvs[t.vertex[1]].y * b1 + uvs[t.vertex[2]].y * b2};
+        alpha *= TextureValue(material.alpha_texture, at).x;
     }
     if ((material.surface_flags & gpu::kSurfaceVertexAlpha) != 0 && !colors.empty())
         alpha *= colors[t.vertex[0]].alpha * b0 + colors[t.vertex[1]].alpha * b1 +

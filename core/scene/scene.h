@@ -205,15 +205,20 @@ struct Scene {
     // The surface point a ray hit: its material resolved through mixes (Material::kMix).
     SurfacePoint Surface(const RayHit& hit) const;
     // Material `m`, or where it is a mix, the one it is at `position` on `triangle` (texture
-    // coordinates `uv`, read where a mix's amount has a texture).
+    // coordinates `uv` and geometric normal `normal`, read where a mix's amount has a texture).
     uint32_t ResolveMaterial(uint32_t m, const Vec3& position, uint32_t triangle,
-                             const Point2& uv = {}) const {
+                             const Point2& uv = {}, const Vec3& normal = {}) const {
         if (materials[m].type != MaterialType::kMix) [[likely]]
             return m;
-        return ResolveMix(m, position, triangle, uv);
+        return ResolveMix(m, position, triangle, uv, normal);
     }
-    uint32_t ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle,
-                        const Point2& uv) const;
+    uint32_t ResolveMix(uint32_t m, const Vec3& position, uint32_t triangle, const Point2& uv,
+                        const Vec3& normal) const;
+    // Texture `texture` (an index into textures) at `surface`: an image's bilinear lookup at its
+    // coordinates, or where `width` > 0 (a camera sample's footprint, in world units) its
+    // average over it by texture_filter; a procedural texture's value there
+    // (core/shared/procedural_texture.h), over the same footprint.
+    Rgb TextureValue(int32_t texture, const SurfacePoint& surface, float width = 0) const;
     // The material shading `surface`: its material, or where that has textures for more than
     // its base colour, a copy made in `scratch` with them applied: to its GGX alphas
     // (Material::roughness_texture), to its sheen (Material::sheen_texture, the sheen roughness

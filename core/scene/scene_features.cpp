@@ -30,6 +30,7 @@ SceneFeatures SceneFeatures::All() {
                        &all.translucent,
                        &all.sheen,
                        &all.sheen_textures,
+                       &all.procedural_textures,
                        &all.smooth_normals,
                        &all.shading_detail,
                        &all.triangle_lights,
@@ -64,6 +65,7 @@ std::string SceneFeatures::ToString() const {
     if (vertex_colors) parts.push_back("vertex colours");
     if (roughness_textures) parts.push_back("roughness textures");
     if (mix_textures) parts.push_back("textured mixes");
+    if (procedural_textures) parts.push_back("procedural textures");
     if (smooth_normals) parts.push_back("smooth normals");
     if (shading_detail) parts.push_back("normal or bump maps");
     if (triangle_lights) parts.push_back("area lights");
@@ -117,6 +119,9 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
             material.HasSheen() && (material.sheen_texture != kNoTexture ||
                                     material.sheen_roughness_texture != kNoTexture);
         features.shading_detail |= material.HasShadingDetail();
+        for (const int32_t texture : material.Textures())
+            features.procedural_textures |= texture != kNoTexture && scene.textures[texture] &&
+                                            scene.textures[texture]->IsProcedural();
     }
     for (const Emitters::Record& record : emitters.Records()) {
         if (record.kind == EmitterKind::kTriangle) {

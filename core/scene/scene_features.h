@@ -28,8 +28,10 @@ struct SceneFeatures {
     bool translucent = false;         // diffuse transmission (Material::transmittance)
     bool sheen = false;               // a sheen over a coat (Material::sheen_color)
     bool sheen_textures = false;      // a used material's sheen has a texture
-    bool smooth_normals = false;      // a triangle interpolates vertex normals
-    bool shading_detail = false;      // a used material has a normal or bump map
+    // A used material has a procedural texture (Texture::program): pbrt-v4's noise, dots, ...
+    bool procedural_textures = false;
+    bool smooth_normals = false;  // a triangle interpolates vertex normals
+    bool shading_detail = false;  // a used material has a normal or bump map
     // Emitters with power.
     bool triangle_lights = false, point_lights = false, spot_lights = false,
          directional_lights = false, environment = false;

@@ -13,12 +13,18 @@
 
 namespace pf {
 
-// Row-major, row 0 at the top (glTF's v = 0), linear RGB.
+// Row-major, row 0 at the top (glTF's v = 0), linear RGB. Or a procedural texture (pbrt-v4's
+// noise, checkerboard, dots, scale and mix of them): no texels but a program, evaluated at
+// each point (core/shared/procedural_texture.h; Scene::TextureValue).
 struct Texture {
     int width = 0, height = 0;
     std::vector<Rgb> texels;
     // How each axis is addressed beyond the image (gpu::kWrap*, core/shared/texture_wrap.h).
     uint32_t wrap_u = gpu::kWrapRepeat, wrap_v = gpu::kWrapRepeat;
+    // A procedural texture's words; empty for an image. Its images are other textures.
+    std::vector<gpu::vec4> program;
+
+    bool IsProcedural() const { return !program.empty(); }
 
     Rgb Texel(int x, int y) const {
         gpu::WrapTexels(x, y, width, height, wrap_u, wrap_v);

@@ -1,10 +1,10 @@
 // The one prelude of the headers in core/shared/, which both C++ and GLSL compile: in C++,
 // namespace pf::gpu gets the GLSL vocabulary they are written in (vec2 and vec3 are Point2 and
 // Vec3; vec4 and uvec4 std430-aligned storage; sqrt, abs, min, max, clamp, dot, cross,
-// normalize, exp, pow, floor, sin, cos, acos, atan and the bit casts are GLSL's functions) and the
-// macros spell C++; in GLSL the same macros mean GLSL. Shared structs use only vec2, vec4, uvec4
-// and 32/64-bit scalars, whose std430 layout C++ reproduces exactly; each struct's size is asserted
-// in C++ (PF_GPU_LAYOUT), so the two cannot drift apart.
+// normalize, exp, log2, pow, floor, sin, cos, acos, atan and the bit casts are GLSL's functions)
+// and the macros spell C++; in GLSL the same macros mean GLSL. Shared structs use only vec2, vec4,
+// uvec4 and 32/64-bit scalars, whose std430 layout C++ reproduces exactly; each struct's size is
+// asserted in C++ (PF_GPU_LAYOUT), so the two cannot drift apart.
 #ifndef PF_CORE_SHARED_GPU_PRELUDE_H
 #define PF_CORE_SHARED_GPU_PRELUDE_H
 
@@ -35,6 +35,7 @@ inline float min(float a, float b) { return std::min(a, b); }
 inline float max(float a, float b) { return std::max(a, b); }
 inline float clamp(float x, float low, float high) { return std::clamp(x, low, high); }
 inline float exp(float x) { return std::exp(x); }
+inline float log2(float x) { return std::log2(x); }
 inline float pow(float x, float y) { return std::pow(x, y); }
 inline float floor(float x) { return std::floor(x); }
 inline float sin(float x) { return std::sin(x); }

@@ -16,14 +16,16 @@ PF_CONST(uint32_t) kMaxBvhDepth = 60;
 PF_CONST(uint32_t) kBvhStackSize = kMaxBvhDepth + 4;
 
 // Descriptor set 0, one layout for every pipeline.
-PF_CONST(uint32_t) kBindingBvhNodes = 0;      // GpuBvhNode[]
-PF_CONST(uint32_t) kBindingTriangles = 1;     // GpuTriangle[], in BVH leaf order
-PF_CONST(uint32_t) kBindingShading = 2;       // GpuTriangleShading[], in scene order
-PF_CONST(uint32_t) kBindingNormals = 3;       // vec4[], per vertex
-PF_CONST(uint32_t) kBindingUvs = 4;           // vec2[], per vertex
-PF_CONST(uint32_t) kBindingMaterials = 5;     // GpuMaterial[]
-PF_CONST(uint32_t) kBindingTextures = 6;      // GpuTexture[]
-PF_CONST(uint32_t) kBindingTexels = 7;        // vec4[], every texture's texels
+PF_CONST(uint32_t) kBindingBvhNodes = 0;   // GpuBvhNode[]
+PF_CONST(uint32_t) kBindingTriangles = 1;  // GpuTriangle[], in BVH leaf order
+PF_CONST(uint32_t) kBindingShading = 2;    // GpuTriangleShading[], in scene order
+PF_CONST(uint32_t) kBindingNormals = 3;    // vec4[], per vertex
+PF_CONST(uint32_t) kBindingUvs = 4;        // vec2[], per vertex
+PF_CONST(uint32_t) kBindingMaterials = 5;  // GpuMaterial[]
+PF_CONST(uint32_t) kBindingTextures = 6;   // GpuTexture[]
+// vec4[]: every texture's texels, and procedural textures' programs (procedural_texture.h),
+// after the noise permutation (noise.h) in scenes with procedural textures.
+PF_CONST(uint32_t) kBindingTexels = 7;
 PF_CONST(uint32_t) kBindingEmitters = 8;      // GpuEmitter[]
 PF_CONST(uint32_t) kBindingEmitterCdf = 9;    // float[]: cdf[i] = P(emitter <= i)
 PF_CONST(uint32_t) kBindingHitPoints = 10;    // GpuHitPoint[]
@@ -119,7 +121,9 @@ PF_CONST(uint32_t) kSpecNearest = 26;
 PF_CONST(uint32_t) kSpecWavefrontStage = 27;
 PF_CONST(uint32_t) kSpecVertexClass = 28;
 PF_CONST(uint32_t) kSpecHasVertexColors = 29;  // Scene::colors (glTF's COLOR_0)
-PF_CONST(uint32_t) kSpecCount = 30;
+// Procedural textures (Texture::program; core/shared/procedural_texture.h).
+PF_CONST(uint32_t) kSpecHasProceduralTextures = 30;
+PF_CONST(uint32_t) kSpecCount = 31;
 
 // The path tracer's wavefront (path_wavefront.comp): its stages, and the classes of vertex,
 // each shaded by a pipeline of its own from a queue of its own.
@@ -238,6 +242,8 @@ struct GpuMaterial {
 };
 PF_GPU_LAYOUT(GpuMaterial, 208);
 
+// An image; or, where width is 0, a procedural texture's program: its first word in the texels
+// binding and its length (height).
 struct GpuTexture {
     uint32_t first_texel;  // into the texels binding
     int32_t width, height;

@@ -135,6 +135,37 @@ TEST(BackendAgreementGltfMaterials, MetallicRoughnessMatchesTheCpus) {
     ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "metallic-roughness.gltf"), 4'000'000);
 }
 
+TEST(BackendAgreementTextures, ProceduralTexturesMatchTheCpus) {
+    // pbrt-v4's noise textures (core/shared/procedural_texture.h) on the surfaces photons
+    // bounce off: a floor whose reflectance is scaled by wrinkled and a marble wall; photons
+    // take each texture's value at their bounce, on the device as on the CPU. The noise is
+    // coarse and of few octaves, so that the CPU's camera pass, which filters it over its
+    // samples' footprint, resolves every octave as the device's point lookups do.
+    testing::SkipWithoutVulkan();
+    if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
+    ExpectVulkanAgreesWithTheCpu(testing::WriteTextFile(
+        "LookAt 0 -2.5 1.8  0 0.3 0.4  0 0 1\nCamera \"perspective\" \"float fov\" 50\n"
+        "WorldBegin\n"
+        "AttributeBegin\nScale 5 5 5\n"
+        "Texture \"wrinkles\" \"float\" \"wrinkled\" \"integer octaves\" 4\n"
+        "Scale 4 4 4\n"
+        "Texture \"stone\" \"spectrum\" \"marble\" \"float scale\" 3 \"integer octaves\" 5 "
+        "\"float variation\" 2\n"
+        "AttributeEnd\n"
+        "Texture \"floor\" \"spectrum\" \"scale\" \"rgb tex\" [0.9 0.7 0.5] "
+        "\"texture scale\" \"wrinkles\"\n"
+        "Material \"diffuse\" \"texture reflectance\" \"floor\"\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
+        "Material \"diffuse\" \"texture reflectance\" \"stone\"\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [-1 1 0  1 1 0  -1 1 1.5  1 1 1.5]\n"
+        "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [6 6 6]\n"
+        "Material \"diffuse\" \"rgb reflectance\" [0 0 0]\nTranslate 0 -0.6 1.4\n"
+        "Rotate 180 1 0 0\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [-0.3 -0.3 0  0.3 -0.3 0  -0.3 0.3 0  0.3 0.3 0]\n"
+        "AttributeEnd\n",
+        "procedural.pbrt"));
+}
+
 TEST(BackendAgreementRange, ARangedLightMatchesTheCpus) {
     // A glTF point light with a range of 1, near a wall (x = 1): the floor's direct light fades
     // by the range's window at the light samples' distance, its light off the wall by the

@@ -283,7 +283,7 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
     // "alpha" (a number, or a float texture): where the shape is absent (cut-outs).
     GraphicsState state = state_;
     const absl::StatusOr<FloatInput> alpha =
-        FloatParameter(parameters, "alpha", 1.0, "Shape: \"alpha\"", where);
+        FloatParameter(parameters, "alpha", 1.0, "Shape: \"alpha\"", where, 1, TextureUse::kCutOut);
     if (!alpha.ok()) return alpha.status();
     if (!(alpha->value >= 0 && alpha->value <= 1))
         return ErrorAt(where, "Shape: \"alpha\" must lie in [0, 1]");

@@ -10,6 +10,7 @@
 #include "absl/strings/str_format.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/pbrt/pbrt_scene_builder.h"
+#include "core/scene/texture_program.h"
 #include "core/shared/conductor.h"
 
 namespace pf::pbrt {
@@ -33,7 +34,8 @@ absl::Status PbrtSceneBuilder::BaseColor(ParameterList& parameters, const std::s
                                      "the material's default ", FormatRgb(fallback), " stands in"));
             return absl::OkStatus();
         }
-        absl::StatusOr<int32_t> index = ImageIndex(texture);
+        // A reflectance or transmittance at most 1, as pbrt-v4 clamps them.
+        absl::StatusOr<int32_t> index = TextureIndex(texture, 1, 1.0f);
         if (!index.ok()) return index.status();
         material->material.base_color = texture.scale;
         material->material.base_color_texture = *index;
@@ -53,7 +55,7 @@ absl::Status PbrtSceneBuilder::BaseColor(ParameterList& parameters, const std::s
 
 absl::StatusOr<FloatInput> PbrtSceneBuilder::FloatParameter(
     ParameterList& parameters, const std::string& name, double fallback, const std::string& what,
-    const Location& where, double exponent) {
+    const Location& where, double exponent, TextureUse use) {
     FloatInput input;
     input.value = static_cast<float>(fallback);
     const std::optional<std::string> texture_name = parameters.TextureName(name);
@@ -70,9 +72,16 @@ absl::StatusOr<FloatInput> PbrtSceneBuilder::FloatParameter(
                                  fallback, " stands in"));
         return input;
     }
-    TextureRef texture = it->second;
-    texture.decode.exponent = exponent;
-    const absl::StatusOr<int32_t> image = ImageIndex(texture);
+    const TextureRef& texture = it->second;
+    // A bump map differences texels a texel apart; cut-outs are tested inside the kernels'
+    // traversal, where a procedural texture's evaluation would weigh on every ray.
+    if (texture.program && use != TextureUse::kShading) {
+        Warn(where, absl::StrCat(what, ": ", texture.described, " is evaluated at each point, and ",
+                                 use == TextureUse::kBump ? "bump maps" : "cut-outs",
+                                 " read images; its default ", fallback, " stands in"));
+        return input;
+    }
+    const absl::StatusOr<int32_t> image = TextureIndex(texture, exponent);
     if (!image.ok()) return image.status();
     input = {texture.scale.x, *image, texture.mapping};
     return input;
@@ -349,9 +358,18 @@ absl::Status PbrtSceneBuilder::DiffuseTransmission(ParameterList& parameters, co
     // reflectance texture's where that has one and it is the same).
     const bool same_mapping =
         material->material.base_color_texture == kNoTexture || material->mapping == through.mapping;
-    if (texture != kNoTexture && same_mapping) {
+    // A procedural one is evaluated at each point, through the reflectance's mapping where it
+    // reads (s, t).
+    const bool procedural = texture != kNoTexture && scene_.textures[texture]->IsProcedural();
+    if (texture != kNoTexture && (same_mapping || procedural)) {
         material->material.transmittance_texture = texture;
-        material->mapping = through.mapping;
+        if (same_mapping) {
+            material->mapping = through.mapping;
+        } else if (!ProgramUvWords(scene_.textures[texture]->program).empty()) {
+            Warn(where,
+                 "Material \"diffusetransmission\": the \"transmittance\" texture is "
+                 "read through the reflectance texture's mapping, not its own");
+        }
     } else if (texture != kNoTexture) {
         const std::vector<Rgb>& texels = scene_.textures[texture]->texels;
         Rgbd sum(0.0);
@@ -466,8 +484,8 @@ absl::Status PbrtSceneBuilder::ShadingDetail(ParameterList& parameters, const Lo
         if (!textured) material->mapping = normal_map.mapping;
     }
     // The bump map: a float texture of displacement along the normal, in world units.
-    const absl::StatusOr<FloatInput> displacement =
-        FloatParameter(parameters, "displacement", 0.0, "Material: \"displacement\"", where);
+    const absl::StatusOr<FloatInput> displacement = FloatParameter(
+        parameters, "displacement", 0.0, "Material: \"displacement\"", where, 1, TextureUse::kBump);
     if (!displacement.ok()) return displacement.status();
     if (displacement->texture != kNoTexture) {
         if (!std::isfinite(displacement->value))

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <deque>
+#include <limits>
 #include <map>
 #include <optional>
 #include <string>
@@ -25,9 +26,20 @@ namespace pf::pbrt {
 // "file:line:column: what", INVALID_ARGUMENT.
 absl::Status ErrorAt(const Location& where, const std::string& what);
 
-// A texture as materials see it: an image (or none, for a constant) times a colour. The image
-// is read and decoded when a material first uses it, so unused textures cost nothing and are
-// not packed.
+struct TextureRef;
+
+// A procedural texture's program (core/shared/procedural_texture.h) before it is a scene
+// texture: its image operands are not yet scene textures but the texture each instruction's
+// header word reads, and each UV transform maps the coordinates of its texture's `mapping`.
+struct ProgramRef {
+    std::vector<gpu::vec4> words;
+    std::vector<std::pair<size_t, std::shared_ptr<const TextureRef>>> images;
+    bool reads_uv = false;  // some operand reads (s, t): its texture's mapping is theirs
+};
+
+// A texture as materials see it: an image (or none, for a constant) times a colour, or a
+// procedural texture's program. The image is read and decoded when a material first uses it,
+// so unused textures cost nothing and are not packed.
 struct TextureRef {
     std::string path;  // the image's bundle path; empty for a constant
     ImageDecodeOptions decode;
@@ -39,6 +51,9 @@ struct TextureRef {
     std::string unsupported;
     // A procedural texture baked into linear texels (checkerboard, bilerp), in place of a file.
     std::shared_ptr<const pf::Texture> baked;
+    // A procedural texture evaluated at each point (noise, dots, 3D checkerboard, directionmix,
+    // and scale, mix or checkerboard of those); its scale is 1.
+    std::shared_ptr<const ProgramRef> program;
     // "Texture "name" (class) at file:line:column", for the notes on what it is not, and its
     // class.
     std::string described, type;
@@ -158,12 +173,16 @@ private:
                                      const Location& where);
     absl::Status BaseColor(ParameterList& parameters, const std::string& name, Rgb fallback,
                            const Location& where, MaterialRef* material);
-    // Float parameter `name` (`fallback` where absent), a number or a float texture, its image
-    // decoded with each value raised to `exponent`; `what` ("Shape: \"alpha\"") names it in
-    // messages. A texture class photonfarm cannot evaluate gives `fallback`, with a note.
+    // How a float parameter's texture is read: at the shading point; by a cut-out's test or
+    // a bump map's differences, an image's texels.
+    enum class TextureUse { kShading, kCutOut, kBump };
+    // Float parameter `name` (`fallback` where absent), a number or a float texture, its values
+    // raised to `exponent`; `what` ("Shape: \"alpha\"") names it in messages. A texture
+    // photonfarm cannot evaluate (or not for `use`) gives `fallback`, with a note.
     absl::StatusOr<FloatInput> FloatParameter(ParameterList& parameters, const std::string& name,
                                               double fallback, const std::string& what,
-                                              const Location& where, double exponent = 1);
+                                              const Location& where, double exponent = 1,
+                                              TextureUse use = TextureUse::kShading);
     absl::Status Texture(const std::string& name, const std::string& kind, const std::string& type,
                          ParameterList& parameters, const Location& where);
     // An operand of pbrt-v4's scale and mix textures: a named texture of the kind asked for
@@ -204,6 +223,18 @@ private:
     // The scene texture of `texture`'s image, read and decoded on first use (kNoTexture while
     // packing, which only reads it).
     absl::StatusOr<int32_t> ImageIndex(const TextureRef& texture);
+    // The scene texture of `texture`: its image, or its program with its images' scene textures
+    // and each value raised to `exponent` and clamped to [0, bound] (kNoTexture while packing).
+    absl::StatusOr<int32_t> TextureIndex(const TextureRef& texture, double exponent = 1,
+                                         float bound = std::numeric_limits<float>::max());
+    // pbrt-v4's procedural textures evaluated at each point (Texture::program): fbm, wrinkled,
+    // windy, marble, dots, checkerboard of dimension 3 or of textures.
+    absl::Status MakeProgram(const std::string& name, const std::string& type, bool scalar,
+                             ParameterList& parameters, const Location& where, TextureRef* texture);
+    // The program of scale, mix or directionmix of `operands` (Combine's, as it reads them).
+    absl::Status CombineProgram(const std::string& what, const std::string& type,
+                                ParameterList& parameters, const std::vector<Operand>& operands,
+                                const Location& where, TextureRef* texture);
     // lat_long_map: an "infinite" light's image is pbrt-v3's latitude-longitude map.
     absl::Status LightSource(const std::string& type, ParameterList& parameters,
                              const Location& where, bool lat_long_map = false);
@@ -262,6 +293,8 @@ private:
     std::map<std::string, TextureRef> float_textures_;  // their value in every channel
     std::map<std::tuple<std::string, ImageDecodeOptions>, int32_t>
         images_;  // (path, how it is decoded) -> Scene::textures
+    // (a program's texture, exponent, bound) -> Scene::textures
+    std::map<std::tuple<const ProgramRef*, double, float>, int32_t> programs_;
     std::map<std::string, Medium> media_;
     // (material, emission, two-sided, emission texture, alpha, its texture, absorption inside
     // and outside) -> Scene::materials

@@ -9,6 +9,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/pbrt/pbrt_scene_builder.h"
+#include "core/util/check.h"
 
 namespace pf::pbrt {
 
@@ -86,9 +87,9 @@ absl::Status PbrtSceneBuilder::BakeProcedural(const std::string& type, bool scal
     };
     if (type == "checkerboard") {
         // pbrt-v4's: tex1 where floor(s) + floor(t) is even, tex2 where odd.
-        if (parameters.Integer("dimension", 2) != 2) return left_out("checkerboard of dimension 3");
+        parameters.Integer("dimension", 2);  // 2: MakeProgram evaluates others at each point
         const std::optional<Rgb> one = value("tex1", 1), two = value("tex2", 0);
-        if (!one || !two) return left_out("checkerboard of textures");
+        PF_CHECK(one && two);  // texture operands: MakeProgram's
         for (int y = 0; y < size; ++y)
             for (int x = 0; x < size; ++x) {
                 const auto [s, t] = at(x, y);
@@ -148,7 +149,8 @@ absl::StatusOr<PbrtSceneBuilder::Operand> PbrtSceneBuilder::TextureOperand(
                                 " texture \"", *texture_name, "\""));
     operand.texture = &it->second;
     // A constant; a texture photonfarm cannot evaluate stays an operand, for its caller to note.
-    if (it->second.path.empty() && it->second.baked == nullptr && it->second.unsupported.empty()) {
+    if (it->second.path.empty() && it->second.baked == nullptr && !it->second.program &&
+        it->second.unsupported.empty()) {
         operand.value = it->second.scale;
         operand.texture = nullptr;
     }
@@ -199,16 +201,13 @@ absl::Status PbrtSceneBuilder::Combine(const std::string& name, const std::strin
         }
         operands.push_back(*read);
     }
-    if (type == "directionmix") {
-        // pbrt-v4's amount is |n . dir| at each point, n the surface's normal: a function of
-        // how a surface faces, which no image over (u, v) holds. Its mean over all directions,
-        // 1/2, stands in.
-        parameters.Consume("dir");
-        operands[2].value = Rgb(0.5f);
-        Warn(where, absl::StrCat(what,
-                                 ": the amount |n . dir| is taken as its mean over all "
-                                 "directions, 0.5"));
-    }
+    // directionmix's amount is |n . dir| at each point, n the surface's normal, which no image
+    // over (u, v) holds; a procedural operand is evaluated at each point: a program of them.
+    if (type == "directionmix" ||
+        std::any_of(operands.begin(), operands.end(), [](const Operand& operand) {
+            return operand.texture != nullptr && operand.texture->program;
+        }))
+        return CombineProgram(what, type, parameters, operands, where, texture);
     const auto combine = [&](const std::vector<Rgb>& v) {
         return scale ? v[0] * v[1].x : v[0] * (1.0f - v[2].x) + v[1] * v[2].x;
     };
@@ -231,11 +230,10 @@ absl::Status PbrtSceneBuilder::Combine(const std::string& name, const std::strin
     }
     // Otherwise baked: every image read through one mapping, evaluated at each texel of the
     // finest of them over the unit square of that mapping's image coordinates.
+    // Images under different mappings: a program reading each through its own.
     for (const TextureRef* image : images)
-        if (!(image->mapping == images[0]->mapping)) {
-            texture->unsupported = absl::StrCat(type, " of textures with different mappings");
-            return absl::OkStatus();
-        }
+        if (!(image->mapping == images[0]->mapping))
+            return CombineProgram(what, type, parameters, operands, where, texture);
     std::vector<std::shared_ptr<const pf::Texture>> decoded(operands.size());
     int width = 1, height = 1;
     const pf::Texture* first = nullptr;  // whose wrap modes the baked image keeps
@@ -325,11 +323,25 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
         parameters.Float("maxanisotropy", 8);
         texture.path = *path;
         texture.element = absl::StrCat(where.ToString(), ": Texture \"", name, "\"");
+    } else if (type == "checkerboard" &&
+               (parameters.Integer("dimension", 2) != 2 || parameters.TextureName("tex1") ||
+                parameters.TextureName("tex2"))) {
+        // Of dimension 3, or of textures: evaluated at each point.
+        if (absl::Status status = MakeProgram(name, type, scalar, parameters, where, &texture);
+            !status.ok())
+            return status;
     } else if (type == "checkerboard" || type == "bilerp") {
         if (absl::Status status = BakeProcedural(type, scalar, parameters, where, &texture);
             !status.ok())
             return status;
         texture.element = absl::StrCat(where.ToString(), ": Texture \"", name, "\"");
+    } else if (type == "fbm" || type == "wrinkled" || type == "windy" || type == "dots" ||
+               (type == "marble" && !scalar)) {
+        // pbrt-v4's float noise textures (a spectrum one: pbrt-v3's, grey) and its spectrum
+        // marble; dots of either.
+        if (absl::Status status = MakeProgram(name, type, scalar, parameters, where, &texture);
+            !status.ok())
+            return status;
     } else if (type == "constant") {
         texture.scale = scalar ? Rgb(static_cast<float>(parameters.Float("value", 1.0)))
                                : parameters.Color("value").value_or(Rgb(1.0f));

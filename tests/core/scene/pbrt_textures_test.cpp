@@ -1,6 +1,7 @@
 // The pbrt-v4 importer's textures: the planar, spherical and cylindrical mappings against
-// pbrt-v4's formulas at the vertices, and the scale, mix and directionmix textures against
-// their values texel by texel.
+// pbrt-v4's formulas at the vertices, the scale, mix and directionmix textures against their
+// values texel by texel, the procedural ones (noise, dots, 3D checkerboard) at points against
+// pbrt-v4's formulas in the texture's space, and what photonfarm does not evaluate noted.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,12 +9,19 @@
 #include <string>
 #include <vector>
 
+#include "core/shared/noise.h"
+#include "core/shared/procedural_texture.h"
 #include "tests/core/scene/pbrt_test_support.h"
 
 namespace pf {
 namespace {
 
 using namespace pbrt_test;
+
+bool Near(const Rgb& a, const Rgb& b, float tolerance = 1e-5f) {
+    return std::abs(a.x - b.x) <= tolerance && std::abs(a.y - b.y) <= tolerance &&
+           std::abs(a.z - b.z) <= tolerance;
+}
 
 // The texture coordinates of `scene`'s vertex where triangle t's corner c is.
 Point2 CornerUv(const Scene& scene, uint32_t t, int c) {
@@ -154,9 +162,15 @@ TEST(PbrtTexturesTest, ScaleAndMixCombineTheirOperands) {
     EXPECT_TRUE(near(at(3, 0.75f), Rgb(0.0f, 0.0f, 1.0f)));
     EXPECT_TRUE(near(at(4, 0.25f), Rgb(0.0f)));
     EXPECT_TRUE(near(at(4, 0.75f), Rgb(1.0f, 0.0f, 0.0f)));
-    // directionmix: half of each, noted.
-    EXPECT_TRUE(near(at(5, 0.5f), Rgb(0.6f, 0.7f, 0.8f)));
-    EXPECT_TRUE(Contains(warnings, "taken as its mean over all directions"));
+    // directionmix: |n . dir| of tex1, the rest of tex2; the quad faces z: all of tex1.
+    ASSERT_TRUE(scene->textures[material(5).base_color_texture]->IsProcedural());
+    SurfacePoint point;
+    point.geometric_normal = Vec3(0, 0, -1);
+    EXPECT_TRUE(
+        near(scene->TextureValue(material(5).base_color_texture, point), Rgb(0.2f, 0.4f, 0.6f)));
+    point.geometric_normal = Normalize(Vec3(0, 1, 1));
+    EXPECT_TRUE(near(scene->TextureValue(material(5).base_color_texture, point),
+                     Rgb(0.2f, 0.4f, 0.6f) * std::sqrt(0.5f) + Rgb(1 - std::sqrt(0.5f))));
 }
 
 TEST(PbrtTexturesTest, TexturesNotEvaluatedAreNotedWithTheirStandIn) {
@@ -188,6 +202,176 @@ TEST(PbrtTexturesTest, TexturesNotEvaluatedAreNotedWithTheirStandIn) {
                          "Texture \"m\" (mix) at scenes/scene.pbrt:8:1 is not evaluated by "
                          "photonfarm: mix of Texture \"p\" (ptex) at scenes/scene.pbrt:6:1; its "
                          "default 0 stands in"))
+        << ::testing::PrintToString(warnings);
+}
+
+// A point of `scene`'s triangle t at barycentrics (b1, b2), as Scene::Surface makes it.
+SurfacePoint PointOn(const Scene& scene, uint32_t t, float b1, float b2) {
+    RayHit hit;
+    hit.triangle = t, hit.b1 = b1, hit.b2 = b2, hit.instance = Instance::kNone;
+    return scene.Surface(hit);
+}
+
+TEST(PbrtTexturesTest, NoiseTexturesAreEvaluatedInTheirOwnSpace) {
+    // Noise textures defined under a transform (x2, then moved by 0.5 in x), read by shapes
+    // placed under another: pbrt-v4 takes the world point through the inverse of the
+    // texture's transform, not the shape's.
+    const std::string world =
+        std::string(
+            "AttributeBegin\nTranslate 0.5 0 0\nScale 2 2 2\n"
+            "Texture \"w\" \"float\" \"wrinkled\" \"float roughness\" 0.3 \"integer octaves\" 5\n"
+            "Texture \"f\" \"float\" \"fbm\"\n"
+            "Texture \"wind\" \"float\" \"windy\"\n"
+            "Texture \"m\" \"spectrum\" \"marble\" \"float scale\" 3 \"float variation\" 0.5\n"
+            "AttributeEnd\n"
+            "Texture \"s\" \"spectrum\" \"scale\" \"rgb tex\" [0.9 0.6 0.3] \"texture scale\" "
+            "\"w\"\n"
+            "Material \"diffuse\" \"texture reflectance\" \"s\"\n"
+            "AttributeBegin\nTranslate 0 0 3\nRotate 30 0 0 1\n") +
+        kQuad +
+        "Material \"conductor\" \"texture roughness\" \"f\"\n"
+        "Translate 0 0 1\n" +
+        kQuad +
+        "Texture \"sw\" \"spectrum\" \"scale\" \"texture scale\" \"wind\"\n"
+        "Material \"diffuse\" \"texture reflectance\" \"sw\"\n"
+        "Translate 0 0 1\n" +
+        kQuad +
+        "Material \"diffuse\" \"texture reflectance\" \"m\"\n"
+        "Translate 0 0 1\n" +
+        kQuad + "AttributeEnd\n";
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    EXPECT_TRUE(warnings.empty()) << ::testing::PrintToString(warnings);
+    const auto in_texture_space = [](const Vec3& p) { return (p - Vec3(0.5f, 0, 0)) * 0.5f; };
+    int checked = 0;
+    for (const auto& [b1, b2] : {std::pair{0.1f, 0.2f}, std::pair{0.6f, 0.3f},
+                                 std::pair{0.33f, 0.33f}, std::pair{0.05f, 0.9f}}) {
+        // Each quad's first triangle.
+        const SurfacePoint wrinkled = PointOn(*scene, 0, b1, b2);
+        const Vec3 q = in_texture_space(wrinkled.position);
+        const float turbulence = gpu::Turbulence(q, 0.0f, 0.3f, 5);
+        EXPECT_TRUE(
+            Near(scene->BaseColor(wrinkled), Min(Rgb(0.9f, 0.6f, 0.3f) * turbulence, Rgb(1.0f))))
+            << q.x << " " << q.y << " " << q.z;
+        // A roughness texture's values map to GGX alpha as pbrt-v4's RoughnessToAlpha, sqrt.
+        const SurfacePoint rough = PointOn(*scene, 2, b1, b2);
+        std::optional<Material> scratch;
+        const Material& shading = scene->ShadingMaterial(rough, scratch);
+        const float fbm = gpu::FractalNoise(in_texture_space(rough.position), 0.0f, 0.5f, 8);
+        EXPECT_NEAR(shading.roughness, std::clamp(std::sqrt(std::max(fbm, 0.0f)), 1e-3f, 1.0f),
+                    1e-5f);
+        const SurfacePoint windy = PointOn(*scene, 4, b1, b2);
+        EXPECT_NEAR(scene->BaseColor(windy).x,
+                    std::clamp(gpu::WindyNoise(in_texture_space(windy.position), 0.0f), 0.0f, 1.0f),
+                    1e-6f);
+        // Marble: its scale multiplies the point in the texture's space.
+        const SurfacePoint marble = PointOn(*scene, 6, b1, b2);
+        EXPECT_TRUE(Near(
+            scene->BaseColor(marble),
+            Min(gpu::MarbleColourAt(in_texture_space(marble.position) * 3.0f, 0.0f, 0.5f, 8, 0.5f),
+                Rgb(1.0f))));
+        ++checked;
+    }
+    EXPECT_EQ(checked, 4);
+    // The quads moved: the noise differs from quad to quad, as the points do.
+    EXPECT_NE(scene->BaseColor(PointOn(*scene, 0, 0.2f, 0.2f)).x,
+              scene->BaseColor(PointOn(*scene, 4, 0.2f, 0.2f)).x);
+    ExpectError(Load(Bundle("Texture \"w\" \"float\" \"wrinkled\" \"float roughness\" 1e39\n")),
+                "Texture \"w\" (wrinkled): its parameters must be finite");
+}
+
+TEST(PbrtTexturesTest, DotsAndCheckerboardsAreEvaluatedAtEachPoint) {
+    // dots over (s, t) = (8u, 8v): pbrt-v4 shows "outside" in its dots and "inside" between
+    // them (DotsTexture::Create hands them over in that order); a 3D checkerboard in x, y, z;
+    // a 2D checkerboard of textures; scale of a procedural texture.
+    const std::string world =
+        std::string(
+            "Texture \"d\" \"spectrum\" \"dots\" \"rgb inside\" [1 0 0] \"rgb outside\" [0 0 1] "
+            "\"float uscale\" 8 \"float vscale\" 8\n"
+            "Texture \"c3\" \"spectrum\" \"checkerboard\" \"integer dimension\" 3 "
+            "\"rgb tex1\" [0.8 0.8 0.8] \"rgb tex2\" [0.1 0.2 0.3]\n"
+            "Texture \"f\" \"spectrum\" \"scale\" \"texture tex\" \"d\" \"float scale\" 0.5\n"
+            "Texture \"c2\" \"spectrum\" \"checkerboard\" \"texture tex1\" \"f\" "
+            "\"rgb tex2\" [0 1 0]\n"
+            "Material \"diffuse\" \"texture reflectance\" \"d\"\n") +
+        kQuad + "Material \"diffuse\" \"texture reflectance\" \"c3\"\n" + kQuad +
+        "Material \"diffuse\" \"texture reflectance\" \"c2\"\n" + kQuad;
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    EXPECT_TRUE(warnings.empty()) << ::testing::PrintToString(warnings);
+    // The dots' mapping is the material's: the mesh's coordinates are its (s, t).
+    const Scene& s = *scene;
+    const uint32_t dots = s.materials[s.triangles[0].material].base_color_texture;
+    ASSERT_NE(dots, kNoTexture);
+    int inside = 0, outside = 0;
+    for (int cell_s = 1; cell_s < 7; ++cell_s)
+        for (int cell_t = 1; cell_t < 7; ++cell_t) {
+            SurfacePoint point = PointOn(s, 0, 0.1f, 0.1f);
+            const auto noise = [](float x, float y) { return gpu::PerlinNoise(Vec3(x, y, 0.5f)); };
+            point.uv = {cell_s + 0.15f * noise(cell_s + 1.5f, cell_t + 2.8f),
+                        cell_t + 0.15f * noise(cell_s + 4.5f, cell_t + 9.8f)};
+            const bool dot = noise(cell_s + 0.5f, cell_t + 0.5f) > 0;
+            EXPECT_EQ(s.TextureValue(dots, point), dot ? Rgb(0, 0, 1) : Rgb(1, 0, 0));
+            (dot ? inside : outside) += 1;
+        }
+    EXPECT_GT(inside, 3);
+    EXPECT_GT(outside, 3);
+    const auto corner_uv = [&](uint32_t t, int c) { return s.uvs[s.triangles[t].vertex[c]]; };
+    for (int c = 0; c < 3; ++c) {
+        const Vec3 p = s.positions[s.triangles[0].vertex[c]];
+        // bilinearmesh's (u, v) is (0, 0) to (1, 1) over the quad from (-1, -1) to (1, 1).
+        EXPECT_NEAR(corner_uv(0, c).x, 8 * (p.x + 1) / 2, 1e-5f);
+        EXPECT_NEAR(corner_uv(0, c).y, 8 * (p.y + 1) / 2, 1e-5f);
+    }
+    // The 3D checkerboard: tex1 where floor(x) + floor(y) + floor(z) is even.
+    const uint32_t solid = s.materials[s.triangles[2].material].base_color_texture;
+    for (const Vec3& p : {Vec3(0.5f, 0.5f, 0), Vec3(-0.5f, 0.5f, 0), Vec3(-0.5f, -0.5f, 0)}) {
+        SurfacePoint point;
+        point.position = p;
+        const int sum = int(std::floor(p.x)) + int(std::floor(p.y)) + int(std::floor(p.z));
+        EXPECT_EQ(s.TextureValue(solid, point), sum % 2 == 0 ? Rgb(0.8f) : Rgb(0.1f, 0.2f, 0.3f));
+    }
+    // A checkerboard of the scaled dots, in its own (s, t) = (u, v) while the dots read
+    // (8u, 8v): the material's coordinates are the dots' (their mapping comes first).
+    const uint32_t checks = s.materials[s.triangles[4].material].base_color_texture;
+    for (const auto& [u, v] : {std::pair{0.3f, 0.6f}, std::pair{1.4f, 0.2f}}) {
+        SurfacePoint point;
+        point.uv = {8 * u, 8 * v};
+        SurfacePoint dots_point = point;
+        const Rgb expected = (int(std::floor(u)) + int(std::floor(v))) % 2 == 0
+                                 ? s.TextureValue(dots, dots_point) * 0.5f
+                                 : Rgb(0, 1, 0);
+        EXPECT_EQ(s.TextureValue(checks, point), expected) << u << " " << v;
+    }
+}
+
+TEST(PbrtTexturesTest, ProceduralCutOutsAndBumpMapsAreNoted) {
+    // Bump maps difference an image's texels; cut-outs are tested during traversal, where the
+    // kernels read images: a procedural texture in either is noted, its default standing in.
+    const std::string world = std::string(
+        "Texture \"w\" \"float\" \"wrinkled\"\n"
+        "Texture \"d\" \"float\" \"dots\"\n"
+        "Material \"diffuse\" \"texture displacement\" \"w\"\n"
+        "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0] "
+        "\"texture alpha\" \"d\"\n");
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const Material& material = scene->materials[scene->triangles[0].material];
+    EXPECT_EQ(material.bump_texture, kNoTexture);
+    EXPECT_EQ(material.alpha_texture, kNoTexture);
+    EXPECT_EQ(material.alpha, 1.0f);
+    EXPECT_TRUE(Contains(warnings,
+                         "Material: \"displacement\": Texture \"w\" (wrinkled) at "
+                         "scenes/scene.pbrt:6:1 is evaluated at each point, and bump "
+                         "maps read images; its default 0 stands in"))
+        << ::testing::PrintToString(warnings);
+    EXPECT_TRUE(Contains(warnings,
+                         "Shape: \"alpha\": Texture \"d\" (dots) at "
+                         "scenes/scene.pbrt:7:1 is evaluated at each point, and "
+                         "cut-outs read images; its default 1 stands in"))
         << ::testing::PrintToString(warnings);
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/scene/scene_loader.h"
+#include "core/scene/texture_program.h"
 #include "core/shared/coat.h"
 #include "core/util/byte_stream.h"
 #include "core/util/sha256.h"
@@ -57,6 +58,7 @@ void ExpectSameScene(const Scene& a, const Scene& b) {
     for (size_t t = 0; t < a.textures.size(); ++t) {
         EXPECT_EQ(a.textures[t]->width, b.textures[t]->width);
         EXPECT_TRUE(SameBytes(a.textures[t]->texels, b.textures[t]->texels));
+        EXPECT_TRUE(SameBytes(a.textures[t]->program, b.textures[t]->program));
     }
     ASSERT_EQ(a.lights.size(), b.lights.size());
     for (size_t l = 0; l < a.lights.size(); ++l) {
@@ -170,6 +172,41 @@ TEST(PreparedSceneTest, EveryTextureAMaterialReadsSurvives) {
     ASSERT_TRUE(decoded.ok()) << decoded.status();
     ExpectSameScene(scene, *decoded);
     for (size_t t = 1; t < 4; ++t) EXPECT_FALSE(decoded->textures[t]->texels.empty()) << t;
+}
+
+// A procedural texture's program survives, and the image it reads though no material names it;
+// a broken program is refused.
+TEST(PreparedSceneTest, ProceduralTexturesAndTheirImagesSurvive) {
+    Scene scene = TexturedInstancedScene();
+    ASSERT_EQ(scene.textures.size(), 1u);
+    auto mixed = std::make_shared<Texture>();
+    TextureProgramWriter write(&mixed->program);
+    const double identity[6] = {1, 0, 0, 0, 1, 0};
+    write.Image(0, identity);
+    write.Solid(gpu::kTextureWrinkled, Transform{}, 0.5f, 8);
+    write.Combine(gpu::kTextureMultiply);
+    scene.textures.push_back(mixed);
+    for (Material& material : scene.materials)
+        if (material.base_color_texture == 0) material.base_color_texture = 1;
+    const absl::StatusOr<Scene> decoded = DecodePreparedScene(EncodePreparedScene(scene), true);
+    ASSERT_TRUE(decoded.ok()) << decoded.status();
+    ExpectSameScene(scene, *decoded);
+    EXPECT_FALSE(decoded->textures[0]->texels.empty()) << "the program's image is kept";
+    const std::string refused = [&] {
+        mixed->program.pop_back();  // an operand left over
+        const absl::StatusOr<Scene> broken = DecodePreparedScene(EncodePreparedScene(scene), true);
+        return broken.ok() ? std::string() : std::string(broken.status().message());
+    }();
+    EXPECT_NE(refused.find("texture 1: texture program leaves 2 values"), std::string::npos)
+        << refused;
+    // Cut-outs, bump and normal maps and emission read images.
+    scene.textures.back() = std::make_shared<const Texture>(*decoded->textures[1]);
+    scene.materials[0].alpha_texture = 1;
+    const absl::StatusOr<Scene> cut = DecodePreparedScene(EncodePreparedScene(scene), true);
+    ASSERT_FALSE(cut.ok());
+    EXPECT_NE(cut.status().message().find("material 0: texture 1 is not an image"),
+              std::string::npos)
+        << cut.status();
 }
 
 TEST(PreparedSceneTest, CoatsSurvive) {

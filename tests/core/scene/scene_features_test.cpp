@@ -93,7 +93,7 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
               "sheen textures, cut-outs, "
               "mixed materials, "
               "textures, vertex colours, roughness textures, "
-              "textured mixes, smooth normals, normal or bump maps, area lights, "
+              "textured mixes, procedural textures, smooth normals, normal or bump maps, area lights, "
               "point lights, spot lights, directional lights, environment light, textured lights, "
               "goniometric or projection lights, caustics");
 }

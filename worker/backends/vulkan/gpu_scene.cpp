@@ -5,6 +5,7 @@
 #include <bit>
 
 #include "core/scene/mesh_builder.h"
+#include "core/shared/noise.h"
 #include "core/shared/sheen.h"
 #include "embree/bvh_builder.h"
 
@@ -79,10 +80,23 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
              Vec4(material.sheen_color, material.sheen_roughness),
              Vec4(material.outside_absorption, 0.0f)});
     if (!gpu_scene.features.ReadsUv() && !gpu_scene.features.textured_lights) return;
+    // Procedural textures' noise reads Perlin's permutation from the first texels (noise.h).
+    if (gpu_scene.features.procedural_textures)
+        for (int32_t i = 0; i < gpu::kNoisePermutationSize; i += 4)
+            gpu_scene.texels.push_back(
+                {float(gpu::kNoisePermutation[i]), float(gpu::kNoisePermutation[i + 1]),
+                 float(gpu::kNoisePermutation[i + 2]), float(gpu::kNoisePermutation[i + 3])});
     for (const std::shared_ptr<const Texture>& texture : scene.textures) {
-        gpu_scene.textures.push_back({static_cast<uint32_t>(gpu_scene.texels.size()),
-                                      texture->width, texture->height,
-                                      texture->wrap_u | (texture->wrap_v << 16)});
+        const auto first = static_cast<uint32_t>(gpu_scene.texels.size());
+        if (texture->IsProcedural()) {  // its program, where the kernels can evaluate it
+            gpu_scene.textures.push_back(
+                {first, 0, static_cast<int32_t>(texture->program.size()), 0});
+            gpu_scene.texels.insert(gpu_scene.texels.end(), texture->program.begin(),
+                                    texture->program.end());
+            continue;
+        }
+        gpu_scene.textures.push_back(
+            {first, texture->width, texture->height, texture->wrap_u | (texture->wrap_v << 16)});
         for (const Rgb& texel : texture->texels) gpu_scene.texels.push_back(Vec4(texel));
     }
 }
@@ -262,6 +276,7 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasTranslucency] = features.translucent;
     spec[gpu::kSpecHasSheen] = features.sheen;
     spec[gpu::kSpecHasVertexColors] = features.vertex_colors;
+    spec[gpu::kSpecHasProceduralTextures] = features.procedural_textures;
     return spec;
 }
 

@@ -40,6 +40,7 @@ layout(constant_id = kSpecHasShadingDetail) const bool kHasShadingDetail = true;
 layout(constant_id = kSpecHasTranslucency) const bool kHasTranslucency = true;
 layout(constant_id = kSpecHasSheen) const bool kHasSheen = true;
 layout(constant_id = kSpecHasVertexColors) const bool kHasVertexColors = true;
+layout(constant_id = kSpecHasProceduralTextures) const bool kHasProceduralTextures = true;
 // The job's hit points gather kinds of photon of their own (rpm's), direct light's among them.
 layout(constant_id = kSpecPhotonKinds) const bool kPhotonKinds = true;
 // Some shading normal differs from its surface's (SceneFeatures::ShadingNormals).

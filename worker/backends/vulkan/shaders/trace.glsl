@@ -45,6 +45,20 @@ vec4 VertexColorAt(uvec3 vertices, float b1, float b2) {
            vertex_tangents[ColorSlot(vertices.z)] * b2;
 }
 
+// A procedural texture's image operands (core/shared/procedural_texture.h), at the point.
+vec3 ProceduralImage(int texture, vec2 uv) { return TextureSample(textures[texture], uv); }
+
+#include "core/shared/procedural_texture.h"
+
+// Texture `texture` at a surface point: an image's texel at its coordinates, or a procedural
+// texture there (Scene::TextureValue's point lookup).
+vec3 TextureValue(int texture, vec3 position, vec3 normal, vec2 uv) {
+    const GpuTexture image = textures[texture];
+    if (!kHasProceduralTextures || image.width > 0) return TextureSample(image, uv);
+    return EvaluateProceduralTexture(image.first_texel, uint(image.height),
+                                     TextureLookup(position, normal, uv, 0.0, 0.0), 0u);
+}
+
 // Whether the ray meets scene triangle `index` at (b1, b2) or passes through a cut-out there, or
 // through a single-sided surface's back face, as the CPU tracer's Embree filter decides
 // (core/shared/alpha.h, Scene::Alpha).
@@ -60,7 +74,7 @@ bool MeetsSurface(uint index, float b1, float b2, vec3 origin, vec3 direction) {
     if (texture >= 0) {
         const vec2 uv = vertex_uvs[shade.vertices.x] * (1.0 - b1 - b2) + vertex_uvs[shade.vertices.y] * b1 +
                         vertex_uvs[shade.vertices.z] * b2;
-        alpha *= TextureSample(textures[texture], uv).x;
+        alpha *= TextureSample(textures[texture], uv).x;  // the loaders give cut-outs images
     }
     if (vertex_alpha) alpha *= VertexColorAt(shade.vertices.xyz, b1, b2).w;
     if (alpha >= 1.0) return true;
@@ -180,14 +194,21 @@ Surface SurfaceAt(RayHit hit) {
     if (kHasTextures || kHasRoughnessTextures || kHasMixTextures || kHasShadingDetail)
         surface.uv = vertex_uvs[shade.vertices.x] * b0 + vertex_uvs[shade.vertices.y] * hit.b1 +
                      vertex_uvs[shade.vertices.z] * hit.b2;
-    if (kHasMixes) {  // one of a mix's materials at this point, as Scene::ResolveMaterial picks
-        for (uint m = surface.material; materials[m].type == kMaterialMix; m = surface.material) {
-            float amount = uintBitsToFloat(materials[m].mix.z);
-            const int texture = int(materials[m].mix.w);
-            if (kHasMixTextures && texture >= 0) amount *= TextureSample(textures[texture], surface.uv).x;
-            const float u = MixHash(surface.position, floatBitsToUint(triangle.p0.w) * 0x9e3779b9u + m);
-            surface.material = u < amount ? materials[m].mix.y : materials[m].mix.x;
+    // One of a mix's materials at this point, as Scene::ResolveMaterial picks, then its base
+    // colour: a texture lookup a step (the kernels inline every call: one copy of a procedural
+    // texture's evaluation).
+    for (uint m = surface.material;; m = surface.material) {
+        const bool mix = kHasMixes && materials[m].type == kMaterialMix;
+        const int texture = mix ? (kHasMixTextures ? int(materials[m].mix.w) : -1) : (kHasTextures ? materials[m].texture : -1);
+        const vec3 value =
+            texture >= 0 ? TextureValue(texture, surface.position, surface.geometric_normal, surface.uv) : vec3(1.0);
+        if (!mix) {
+            surface.base_color = materials[m].base_color.xyz * value;
+            break;
         }
+        const float amount = uintBitsToFloat(materials[m].mix.z) * value.x;
+        const float u = MixHash(surface.position, floatBitsToUint(triangle.p0.w) * 0x9e3779b9u + m);
+        surface.material = u < amount ? materials[m].mix.y : materials[m].mix.x;
     }
     if (kHasSmoothNormals && (shade.vertices.w & kSmoothBit) != 0) {
         const vec3 n = vertex_normals[shade.vertices.x].xyz * b0 + vertex_normals[shade.vertices.y].xyz * hit.b1 +
@@ -196,32 +217,39 @@ Surface SurfaceAt(RayHit hit) {
     }
     const GpuMaterial material = materials[surface.material];
     if (kHasShadingDetail) AddShadingDetail(material, triangle, shade, hit, surface);
-    surface.base_color = material.base_color.xyz;
     // glTF's base colour: factor x vertex colour x texture (Scene::BaseColor).
     if (kHasVertexColors) surface.base_color *= VertexColorAt(shade.vertices.xyz, hit.b1, hit.b2).xyz;
-    if (kHasTextures && material.texture >= 0) surface.base_color *= TextureSample(textures[material.texture], surface.uv);
     return surface;
+}
+
+vec3 SurfaceTexture(int texture, Surface surface) {
+    return TextureValue(texture, surface.position, surface.geometric_normal, surface.uv);
 }
 
 // The material shading a surface point, its roughness, sheen and transmittance textures applied
 // (Scene::ShadingMaterial).
 GpuMaterial ShadingMaterial(Surface surface) {
     GpuMaterial material = materials[surface.material];
-    if (kHasRoughnessTextures && material.roughness_texture >= 0) {
-        const float t = TextureSample(textures[material.roughness_texture], surface.uv).x;
-        material.roughness = clamp(material.roughness * t, 1e-3, 1.0);
-        if (material.coat.y > 0.0) material.coat.y = clamp(material.coat.y * t, 1e-3, 1.0);
-    }
-    if (kHasTranslucency && kHasTextures) {
-        const int through = floatBitsToInt(material.transmittance.w);
-        if (through >= 0)
-            material.transmittance.xyz = min(material.transmittance.xyz * TextureSample(textures[through], surface.uv), vec3(1.0));
-    }
-    if (kHasSheen) {
-        const int colour = floatBitsToInt(material.layer.z), roughness = floatBitsToInt(material.layer.w);
-        if (colour >= 0) material.sheen.xyz = min(material.sheen.xyz * TextureSample(textures[colour], surface.uv), vec3(1.0));
-        if (roughness >= 0)
-            material.sheen.w = clamp(material.sheen.w * TextureSample(textures[roughness], surface.uv).x, 0.0, 1.0);
+    // Each texture in turn through one lookup (the kernels inline every call: one copy of a
+    // procedural texture's evaluation): roughness, transmittance, sheen colour and roughness.
+    for (int slot = 0; slot < 4; ++slot) {
+        int texture = -1;
+        if (slot == 0 && kHasRoughnessTextures) texture = material.roughness_texture;
+        if (slot == 1 && kHasTranslucency && kHasTextures) texture = floatBitsToInt(material.transmittance.w);
+        if (slot == 2 && kHasSheen) texture = floatBitsToInt(material.layer.z);
+        if (slot == 3 && kHasSheen) texture = floatBitsToInt(material.layer.w);
+        if (texture < 0) continue;
+        const vec3 value = SurfaceTexture(texture, surface);
+        if (slot == 0) {
+            material.roughness = clamp(material.roughness * value.x, 1e-3, 1.0);
+            if (material.coat.y > 0.0) material.coat.y = clamp(material.coat.y * value.x, 1e-3, 1.0);
+        } else if (slot == 1) {
+            material.transmittance.xyz = min(material.transmittance.xyz * value, vec3(1.0));
+        } else if (slot == 2) {
+            material.sheen.xyz = min(material.sheen.xyz * value, vec3(1.0));
+        } else {
+            material.sheen.w = clamp(material.sheen.w * value.x, 0.0, 1.0);
+        }
     }
     return material;
 }
