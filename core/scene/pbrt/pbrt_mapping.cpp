@@ -28,12 +28,11 @@ Point2 AboutTheAxis(TextureMapping::Kind kind, const Vec3d& q) {
 bool TextureMapping::operator==(const TextureMapping& other) const {
     return kind == other.kind && std::equal(std::begin(uv.m), std::end(uv.m), other.uv.m) &&
            texture_from_world.m == other.texture_from_world.m && vs == other.vs && vt == other.vt &&
-           origin == other.origin && ds == other.ds && dt == other.dt;
+           ds == other.ds && dt == other.dt;
 }
 
 absl::StatusOr<TextureMapping> ParseMapping(ParameterList& parameters,
-                                            const Transform& world_from_texture,
-                                            const Vec3d& render_origin) {
+                                            const Transform& world_from_texture) {
     TextureMapping mapping;
     const std::string kind = parameters.String("mapping", "uv");
     if (kind == "uv") {
@@ -47,15 +46,14 @@ absl::StatusOr<TextureMapping> ParseMapping(ParameterList& parameters,
         mapping.vs = parameters.Vector3("v1").value_or(Vec3d(1, 0, 0));
         mapping.vt = parameters.Vector3("v2").value_or(Vec3d(0, 1, 0));
         mapping.ds = parameters.Float("udelta", 0), mapping.dt = parameters.Float("vdelta", 0);
-        mapping.origin = render_origin;
-        return mapping;
-    }
-    if (kind != "spherical" && kind != "cylindrical")
+    } else if (kind == "spherical" || kind == "cylindrical") {
+        mapping.kind = kind == "spherical" ? TextureMapping::Kind::kSpherical
+                                           : TextureMapping::Kind::kCylindrical;
+    } else {
         return absl::InvalidArgumentError(
             absl::StrCat("mapping \"", kind,
                          "\" is unknown (\"uv\", \"planar\", \"spherical\", \"cylindrical\")"));
-    mapping.kind =
-        kind == "spherical" ? TextureMapping::Kind::kSpherical : TextureMapping::Kind::kCylindrical;
+    }
     const std::optional<Transform> inverse = world_from_texture.Inverse();
     if (!inverse) return absl::InvalidArgumentError("the texture's transform is singular");
     mapping.texture_from_world = *inverse;
@@ -68,7 +66,8 @@ TriangleMesh MapTextureCoordinates(const TriangleMesh& mesh, const Transform& wo
     out.uvs.clear();
     if (mapping.kind == TextureMapping::Kind::kPlanar) {
         for (const Vec3& position : mesh.positions) {
-            const Vec3d d = world.ApplyPoint(Vec3d(position)) - mapping.origin;
+            const Vec3d d =
+                mapping.texture_from_world.ApplyPoint(world.ApplyPoint(Vec3d(position)));
             out.uvs.push_back({static_cast<float>(mapping.ds + Dot(d, mapping.vs)),
                                static_cast<float>(mapping.dt + Dot(d, mapping.vt))});
         }

@@ -17,13 +17,12 @@ struct TextureMapping {
     // From (u, v) (kUv) or (s, t) (the others) to the image's coordinates: the uv mapping's
     // scales and offsets, pbrt's t pointing up the image, a baked texture's period.
     UvTransform uv;
-    // Spherical and cylindrical: from world space into the texture's, the inverse of the
-    // transform current at the Texture directive.
+    // Planar, spherical and cylindrical: from world space into the texture's, the inverse of
+    // the transform current at the Texture directive (pbrt-v4's textureFromRender: its render
+    // space's offset from the world cancels).
     Transform texture_from_world;
-    // Planar: s = ds + (p - origin) . vs, t = dt + (p - origin) . vt, with p in world space and
-    // `origin` where pbrt-v4's render space has its origin (the camera's position: its default
-    // "cameraworld" render space, in which it takes p).
-    Vec3d vs{1, 0, 0}, vt{0, 1, 0}, origin{0, 0, 0};
+    // Planar: s = ds + q . vs, t = dt + q . vt, q the point in the texture's space.
+    Vec3d vs{1, 0, 0}, vt{0, 1, 0};
     double ds = 0, dt = 0;
 
     bool FromMesh() const { return kind == Kind::kUv; }
@@ -31,12 +30,11 @@ struct TextureMapping {
 };
 
 // The mapping a Texture directive's parameters give ("mapping", "uscale" ... for uv; "v1",
-// "v2", "udelta", "vdelta" for planar), `world_from_texture` the transform current there and
-// `render_origin` the camera's position. Its `uv` maps to pbrt's (s, t), t up; the caller
-// composes the image's own. An unknown mapping or a singular transform is an error.
+// "v2", "udelta", "vdelta" for planar), `world_from_texture` the transform current there. Its
+// `uv` maps to pbrt's (s, t), t up; the caller composes the image's own. An unknown mapping or
+// a singular transform is an error.
 absl::StatusOr<TextureMapping> ParseMapping(ParameterList& parameters,
-                                            const Transform& world_from_texture,
-                                            const Vec3d& render_origin);
+                                            const Transform& world_from_texture);
 
 // `mesh` with its texture coordinates computed by `mapping` (not kUv) from its vertices placed
 // in the world by `world`: (s, t) at each corner. Planar coordinates are affine in the

@@ -120,12 +120,7 @@ absl::Status PbrtSceneBuilder::BakeProcedural(const std::string& type, bool scal
 
 absl::StatusOr<TextureMapping> PbrtSceneBuilder::Mapping(ParameterList& parameters,
                                                          const Location& where) {
-    // pbrt-v4's default render space, "cameraworld", has its origin at the camera.
-    const std::optional<Transform> world_from_camera =
-        camera_ ? camera_->camera_from_world.Inverse() : std::nullopt;
-    const Vec3d render_origin =
-        world_from_camera ? world_from_camera->ApplyPoint(Vec3d(0, 0, 0)) : Vec3d(0, 0, 0);
-    absl::StatusOr<TextureMapping> mapping = ParseMapping(parameters, state_.ctm, render_origin);
+    absl::StatusOr<TextureMapping> mapping = ParseMapping(parameters, state_.ctm);
     if (!mapping.ok()) return ErrorAt(where, absl::StrCat("Texture: ", mapping.status().message()));
     return mapping;
 }

@@ -28,15 +28,17 @@ Point2 CornerUv(const Scene& scene, uint32_t t, int c) {
     return scene.uvs[scene.triangles[t].vertex[c]];
 }
 
-TEST(PbrtTexturesTest, PlanarMappingProjectsRenderSpacePositions) {
-    // pbrt-v4 takes the point in its render space, "cameraworld": the camera (at z = -5 in
-    // Bundle's scene) is its origin. s = udelta + p . v1, t = vdelta + p . v2; photonfarm's v
-    // is 1 - t.
+TEST(PbrtTexturesTest, PlanarMappingProjectsPointsInTheTexturesSpace) {
+    // pbrt-v4 takes the point through its textureFromRender, the inverse of the transform
+    // current at the Texture directive (here a move by (1, 0, 0)): s = udelta + q . v1,
+    // t = vdelta + q . v2; photonfarm's v is 1 - t. The camera's place (its render space's
+    // origin) cancels; the shape's own transform does not enter.
     const std::string world =
         std::string(
+            "AttributeBegin\nTranslate 1 0 0\n"
             "Texture \"grid\" \"spectrum\" \"imagemap\" \"string filename\" \"g.png\" "
             "\"string mapping\" \"planar\" \"vector3 v1\" [0.5 0 0] \"vector3 v2\" "
-            "[0 0 0.25] \"float udelta\" 0.1 \"float vdelta\" 0.2\n"
+            "[0 0 0.25] \"float udelta\" 0.1 \"float vdelta\" 0.2\nAttributeEnd\n"
             "Material \"diffuse\" \"texture reflectance\" \"grid\"\n") +
         "Translate 0 0 3\n" + kQuad;
     const std::string png = TwoTexelPng({10, 20, 30, 40, 50, 60}, "photonfarm-grid.png");
@@ -44,9 +46,9 @@ TEST(PbrtTexturesTest, PlanarMappingProjectsRenderSpacePositions) {
     ASSERT_TRUE(scene.ok()) << scene.status();
     ASSERT_EQ(scene->uvs.size(), scene->positions.size());
     for (size_t v = 0; v < scene->positions.size(); ++v) {
-        const Vec3 p = scene->positions[v] - Vec3(0, 0, -5);
-        EXPECT_NEAR(scene->uvs[v].x, 0.1f + 0.5f * p.x, 1e-5f);
-        EXPECT_NEAR(scene->uvs[v].y, 1 - (0.2f + 0.25f * p.z), 1e-5f);
+        const Vec3 q = scene->positions[v] - Vec3(1, 0, 0);
+        EXPECT_NEAR(scene->uvs[v].x, 0.1f + 0.5f * q.x, 1e-5f);
+        EXPECT_NEAR(scene->uvs[v].y, 1 - (0.2f + 0.25f * q.z), 1e-5f);
     }
 }
 
