@@ -377,9 +377,9 @@ absl::Status CheckMaterials(const Scene& scene) {
             if (scene.uvs.size() != scene.positions.size())
                 return Invalid(absl::StrCat(name, " has a texture, the vertices no coordinates"));
         }
-        // Normal and bump maps, cut-outs and emission are read as images.
-        for (const int32_t texture : {material.normal_texture, material.bump_texture,
-                                      material.alpha_texture, material.emission_texture})
+        // Normal maps, cut-outs and emission are read as images.
+        for (const int32_t texture :
+             {material.normal_texture, material.alpha_texture, material.emission_texture})
             if (texture != kNoTexture && scene.textures[texture]->IsProcedural())
                 return Invalid(absl::StrCat(name, ": texture ", texture, " is not an image"));
     }

@@ -123,14 +123,29 @@ void Scene::AddShadingDetail(const Triangle& triangle, const Instance* instance,
     const float u = surface.uv.x, v = surface.uv.y;
     Vec3 n = surface.shading_normal;
     if (material.bump_texture != kNoTexture) {
-        // pbrt-v4's forward differences, a texel apart.
         const Texture& bump = *textures[material.bump_texture];
-        const float du = 1.0f / static_cast<float>(bump.width);
-        const float dv = 1.0f / static_cast<float>(bump.height);
-        const float d = bump.Sample(u, v).x;
-        const float d_u = (bump.Sample(u + du, v).x - d) / du * material.bump_scale;
-        const float d_v = (bump.Sample(u, v + dv).x - d) / dv * material.bump_scale;
-        n = gpu::NormalFromBump(n, gpu::TriangleDpDu(e1, e2, duv1, duv2), d_u, d_v);
+        const Vec3 dpdu = gpu::TriangleDpDu(e1, e2, duv1, duv2);
+        float d_u = 0, d_v = 0;
+        if (!bump.IsProcedural()) {
+            // pbrt-v4's forward differences, a texel apart.
+            const float du = 1.0f / static_cast<float>(bump.width);
+            const float dv = 1.0f / static_cast<float>(bump.height);
+            const float d = bump.Sample(u, v).x;
+            d_u = (bump.Sample(u + du, v).x - d) / du * material.bump_scale;
+            d_v = (bump.Sample(u, v + dv).x - d) / dv * material.bump_scale;
+        } else {
+            // At the point moved along the frame's ss and ts (pbrt's v: against ours).
+            const float h = gpu::kBumpStep;
+            const float d = TextureValue(material.bump_texture, surface).x;
+            SurfacePoint moved = surface;
+            moved.position = surface.position + gpu::BumpFrameAxis(n, dpdu, 0) * h;
+            moved.uv = {u + h, v};
+            d_u = (TextureValue(material.bump_texture, moved).x - d) / h * material.bump_scale;
+            moved.position = surface.position + gpu::BumpFrameAxis(n, dpdu, 1) * h;
+            moved.uv = {u, v - h};
+            d_v = -(TextureValue(material.bump_texture, moved).x - d) / h * material.bump_scale;
+        }
+        n = gpu::NormalFromBump(n, dpdu, d_u, d_v);
     }
     if (material.normal_texture != kNoTexture && !tangents.empty()) {
         const float b0 = 1.0f - b1 - b2;

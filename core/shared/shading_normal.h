@@ -47,6 +47,15 @@ PF_GPU_FN vec3 NormalFromBump(vec3 n, vec3 dpdu, float d_u, float d_v) {
     return dot(bumped, bumped) > 0.0f ? normalize(bumped) : n;
 }
 
+// A procedural displacement (evaluated at points, core/shared/procedural_texture.h) is
+// differenced as pbrt-v4's BumpMap does without ray differentials: steps of 0.0005 in u and v,
+// the point moved along NormalFromBump's frame, ss (axis 0) and ts (axis 1), by the step.
+PF_CONST(float) kBumpStep = 0.0005f;
+PF_GPU_FN vec3 BumpFrameAxis(vec3 n, vec3 dpdu, int32_t axis) {
+    const vec3 ss = dpdu - n * dot(n, dpdu);
+    return axis == 0 ? ss : cross(n, ss);
+}
+
 // dP/du of a triangle with edges e1 = p1 - p0, e2 = p2 - p0 and texture-coordinate edges duv1,
 // duv2; zero where its texture coordinates span no area.
 PF_GPU_FN vec3 TriangleDpDu(vec3 e1, vec3 e2, vec2 duv1, vec2 duv2) {

@@ -130,11 +130,11 @@ TEST_P(VulkanPixelTest, BatchesFollowTheCpuBackendsPaths) {
 
 TEST_F(VulkanPixelTest, ProceduralTexturesFollowTheCpuBackendsPaths) {
     // pbrt-v4's procedural textures, evaluated at each hit by the kernels as on the CPU: a
-    // floor of reflectance scaled by wrinkled, a wall of marble, a rough metal panel whose
-    // roughness is fbm, a wall mixing dots and the floor's texture by directionmix. The noise
-    // is coarse (its space the world's scaled by 5 and 20) and of few octaves: the CPU's camera
-    // samples, which filter it over their footprint, then resolve every octave, as the
-    // kernels' point lookups do.
+    // floor of reflectance scaled by wrinkled and bumped by it, a wall of marble, a rough metal
+    // panel whose roughness is fbm, a wall mixing dots and the floor's texture by directionmix.
+    // The noise is coarse (its space the world's scaled by 5 and 20) and of few octaves: the
+    // CPU's camera samples, which filter it over their footprint, then resolve every octave, as
+    // the kernels' point lookups do.
     const std::string path = testing::WriteTextFile(
         "LookAt 0 -2.5 1.8  0 0.3 0.4  0 0 1\nCamera \"perspective\" \"float fov\" 50\n"
         "WorldBegin\n"
@@ -151,7 +151,10 @@ TEST_F(VulkanPixelTest, ProceduralTexturesFollowTheCpuBackendsPaths) {
         "\"rgb outside\" [0.1 0.3 0.9] \"float uscale\" 6 \"float vscale\" 6\n"
         "Texture \"mixed\" \"spectrum\" \"directionmix\" \"texture tex1\" \"dots\" "
         "\"texture tex2\" \"floor\" \"vector3 dir\" [1 0 0]\n"
-        "Material \"diffuse\" \"texture reflectance\" \"floor\"\n"
+        "Texture \"bumps\" \"float\" \"scale\" \"texture tex\" \"wrinkles\" "
+        "\"float scale\" 0.02\n"
+        "Material \"diffuse\" \"texture reflectance\" \"floor\" \"texture displacement\" "
+        "\"bumps\"\n"
         "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0]\n"
         "Material \"diffuse\" \"texture reflectance\" \"stone\"\n"
         "Shape \"bilinearmesh\" \"point3 P\" [-1 1 0  1 1 0  -1 1 1.5  1 1 1.5]\n"

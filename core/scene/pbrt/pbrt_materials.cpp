@@ -73,12 +73,13 @@ absl::StatusOr<FloatInput> PbrtSceneBuilder::FloatParameter(
         return input;
     }
     const TextureRef& texture = it->second;
-    // A bump map differences texels a texel apart; cut-outs are tested inside the kernels'
-    // traversal, where a procedural texture's evaluation would weigh on every ray.
-    if (texture.program && use != TextureUse::kShading) {
-        Warn(where, absl::StrCat(what, ": ", texture.described, " is evaluated at each point, and ",
-                                 use == TextureUse::kBump ? "bump maps" : "cut-outs",
-                                 " read images; its default ", fallback, " stands in"));
+    // Cut-outs are tested inside the kernels' traversal, where a procedural texture's
+    // evaluation would weigh on every ray.
+    if (texture.program && use == TextureUse::kCutOut) {
+        Warn(where, absl::StrCat(what, ": ", texture.described,
+                                 " is evaluated at each point, and cut-outs read images; its "
+                                 "default ",
+                                 fallback, " stands in"));
         return input;
     }
     const absl::StatusOr<int32_t> image = TextureIndex(texture, exponent);
@@ -484,8 +485,8 @@ absl::Status PbrtSceneBuilder::ShadingDetail(ParameterList& parameters, const Lo
         if (!textured) material->mapping = normal_map.mapping;
     }
     // The bump map: a float texture of displacement along the normal, in world units.
-    const absl::StatusOr<FloatInput> displacement = FloatParameter(
-        parameters, "displacement", 0.0, "Material: \"displacement\"", where, 1, TextureUse::kBump);
+    const absl::StatusOr<FloatInput> displacement =
+        FloatParameter(parameters, "displacement", 0.0, "Material: \"displacement\"", where);
     if (!displacement.ok()) return displacement.status();
     if (displacement->texture != kNoTexture) {
         if (!std::isfinite(displacement->value))

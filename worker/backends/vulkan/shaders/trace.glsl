@@ -163,11 +163,24 @@ void AddShadingDetail(GpuMaterial material, GpuTriangle triangle, GpuTriangleSha
     vec3 n = surface.shading_normal;
     if (bump_texture >= 0) {
         const GpuTexture bump = textures[bump_texture];
-        const float du = 1.0 / float(bump.width), dv = 1.0 / float(bump.height);
-        const float d = TextureSample(bump, surface.uv).x;
-        const float d_u = (TextureSample(bump, surface.uv + vec2(du, 0.0)).x - d) / du * material.detail.w;
-        const float d_v = (TextureSample(bump, surface.uv + vec2(0.0, dv)).x - d) / dv * material.detail.w;
-        n = NormalFromBump(n, TriangleDpDu(triangle.edge1.xyz, triangle.edge2.xyz, duv1, duv2), d_u, d_v);
+        const vec3 dpdu = TriangleDpDu(triangle.edge1.xyz, triangle.edge2.xyz, duv1, duv2);
+        float d_u, d_v;
+        if (!kHasProceduralTextures || bump.width > 0) {
+            const float du = 1.0 / float(bump.width), dv = 1.0 / float(bump.height);
+            const float d = TextureSample(bump, surface.uv).x;
+            d_u = (TextureSample(bump, surface.uv + vec2(du, 0.0)).x - d) / du * material.detail.w;
+            d_v = (TextureSample(bump, surface.uv + vec2(0.0, dv)).x - d) / dv * material.detail.w;
+        } else {  // as Scene::AddShadingDetail: at the point and moved along ss and ts, one lookup
+            float d[3];
+            for (int i = 0; i < 3; ++i) {
+                const vec3 moved = i == 0 ? vec3(0.0) : BumpFrameAxis(n, dpdu, i - 1) * kBumpStep;
+                const vec2 uv = surface.uv + (i == 0 ? vec2(0.0) : (i == 1 ? vec2(kBumpStep, 0.0) : vec2(0.0, -kBumpStep)));
+                d[i] = TextureValue(bump_texture, surface.position + moved, surface.geometric_normal, uv).x;
+            }
+            d_u = (d[1] - d[0]) / kBumpStep * material.detail.w;
+            d_v = -(d[2] - d[0]) / kBumpStep * material.detail.w;
+        }
+        n = NormalFromBump(n, dpdu, d_u, d_v);
     }
     if (normal_texture >= 0) {
         const float b0 = 1.0 - hit.b1 - hit.b2;
