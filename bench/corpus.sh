@@ -120,8 +120,8 @@ pbrt_render() {
         for seed in 1 2; do
             local out=$entry/a.exr
             [[ $seed == 2 ]] && out=$entry/b.exr
-            (cd "$work/pbrt" && nice -n 19 timeout -k 10 "$timeout_s" "$pbrt" --quiet --nthreads "$threads" \
-                --spp "$half" --seed "$seed" --outfile "$out" "$(basename "$scene")") >>"$entry/log" 2>&1
+            { (cd "$work/pbrt" && nice -n 19 timeout -k 10 "$timeout_s" "$pbrt" --quiet --nthreads "$threads" \
+                --spp "$half" --seed "$seed" --outfile "$out" "$(basename "$scene")") >>"$entry/log" 2>&1; } 2>/dev/null
             local rc=$?
             if [[ $rc -ne 0 ]]; then
                 if [[ $rc -eq 124 || $rc -eq 137 ]]; then status="hung past ${timeout_s} s"
@@ -199,12 +199,12 @@ for scene in "${scenes[@]}"; do
             --seconds "$seconds" --threads "$threads" --log-level warn "$@" "${extra[@]}" >"$work/stdout" 2>"$work/stderr" </dev/null
     }
     start=$(now)
-    render
+    render 2>/dev/null  # not the shell's own line on a child killed by a signal
     rc=$?
     # A scene with no light of its own (most glTF samples, made for viewers' image-based light)
     # is refused by name; it is then rendered under a uniform white sky, and says so.
     if [[ $rc -ne 0 && $rc -lt 128 ]] && grep -q 'scene has no light' "$work/stderr"; then
-        render "${no_light[@]}"
+        render "${no_light[@]}" 2>/dev/null
         rc=$?
         lit="no light of its own: lit by ${no_light[*]}"
     fi
