@@ -141,19 +141,21 @@ pbrt_render() {
 # a scene that has none): shown as notes, left out of the classification.
 benign=('Film: "filename" is not used' 'the scene has no camera: framed on its bounds'
         "renders as photonfarm's path tracer (the same light transport)")
-# warnings STDERR: the distinct warnings photonfarm printed, without their file locations, each
-# with its count.
+# warnings STDERR SCENE: the distinct warnings photonfarm printed, without their file locations
+# (file:line:column, or SCENE's name), each with its count.
 warnings() {
-    grep -a ': warning: ' "$1" | sed -E 's/^[^:]*: warning: //; s/^[^ ]*:[0-9]+:[0-9]+: //; s/^warning: //; s/^[^ :]+\.(gltf|glb): //' |
+    local name=${2##*/}
+    grep -a ': warning: ' "$1" | sed -E 's/^[^:]*: warning: //; s/^[^ ]*:[0-9]+:[0-9]+: //; s/^warning: //; s/^job [^ ]+: //' |
+        awk -v prefix="$name: " 'index($0, prefix) == 1 { $0 = substr($0, length(prefix) + 1) } { print }' |
         cut -c1-160 | sort | uniq -c | sort -k1,1nr -k2 | sed -E 's/^ *([0-9]+) (.*)/\2\t\1/'
 }
 # join: "; "-joined warning lines from stdin, with " (xN)" for those printed N > 1 times.
 join() { awk -F'\t' '{ printf "%s%s%s", (NR > 1 ? "; " : ""), $1, ($2 > 1 ? " (x" $2 ")" : "") }'; }
 is_benign() { local b; for b in "${benign[@]}"; do [[ $1 == *"$b"* ]] && return 0; done; return 1; }
-# features STDERR: the warnings that name an approximation; notes STDERR: the others.
-features() { warnings "$1" | while IFS= read -r l; do is_benign "$l" || printf '%s\n' "$l"; done | join; }
+# features STDERR SCENE: the warnings that name an approximation; notes_of STDERR SCENE: the others.
+features() { warnings "$1" "$2" | while IFS= read -r l; do is_benign "$l" || printf '%s\n' "$l"; done | join; }
 notes_of() {
-    warnings "$1" | while IFS=$'\t' read -r l n; do
+    warnings "$1" "$2" | while IFS=$'\t' read -r l n; do
         is_benign "$l" || continue
         short=${l%%:*}
         [[ ${#short} -ge 12 ]] || short=${l%%;*}
@@ -223,9 +225,9 @@ for scene in "${scenes[@]}"; do
     elif [[ ! -s $out ]]; then
         class=refused notes="exit 0 but no image written"
     else
-        notes=$(features "$work/stderr")
+        notes=$(features "$work/stderr" "$scene")
         if [[ -n $notes ]]; then class=approximated; else class=clean; fi
-        benign_notes=$(notes_of "$work/stderr")
+        benign_notes=$(notes_of "$work/stderr" "$scene")
         [[ -n $benign_notes ]] && notes+="${notes:+; }notes: $benign_notes"
         integrator=$(oiiotool --info -v "$out" 2>/dev/null | sed -n 's/.*photonfarm:integrator: "\(.*\)"/\1/p')
     fi
