@@ -5,7 +5,9 @@
                                       scenes (have WorldBegin): HEIGHT is the Film's aspect at
                                       WIDTH pixels
   corpus_pbrt.py hash FILE            prints a SHA-256 of FILE and of every file it Includes or
-                                      Imports, recursively (the key of pbrt-v4's cached renders)
+                                      Imports, recursively, and of the size and time of each file
+                                      their string parameters name (the key of pbrt-v4's cached
+                                      renders)
   corpus_pbrt.py rewrite FILE W H DIR writes DIR/<FILE's name>: FILE with its Film at W x H
                                       (no crop window or file name, "rgb" for a gbuffer or
                                       spectral film) and every other entry of FILE's
@@ -110,31 +112,43 @@ def film_height(text, width):
     return max(1, round(int(width) * y / x))
 
 
-def included(folder, text):
-    """The files text Includes or Imports, resolved against folder (the top file's, as pbrt-v4
-    resolves them)."""
+def references(folder, text):
+    """The files text Includes or Imports, and those its string parameters name (meshes, images,
+    spectra), resolved against folder (the top file's, as pbrt-v4 resolves them)."""
     for name, args, params, start, end in directives(text):
         if name in ("Include", "Import") and args and args[0][0] == "string":
-            yield os.path.join(folder, args[0][1].strip('"'))
+            yield "scene", os.path.join(folder, args[0][1].strip('"'))
+        for key, values in params.items():
+            if key.split()[0] == "string":
+                for value in values:
+                    candidate = os.path.join(folder, value[1].strip('"'))
+                    if value[0] == "string" and os.path.isfile(candidate):
+                        yield "data", candidate
 
 
 def command_hash(path):
+    """Scene files by content; the data files they name (often large) by size and time."""
     digest = hashlib.sha256()
+    folder = os.path.dirname(os.path.abspath(path))
     seen = set()
-    pending = [os.path.abspath(path)]
+    pending = [("scene", os.path.abspath(path))]
     while pending:
-        current = pending.pop(0)
+        kind, current = pending.pop(0)
         if current in seen:
             continue
         seen.add(current)
+        if kind == "data":
+            info = os.stat(current)
+            digest.update(("%s\0%d %d\n" % (current, info.st_size, info.st_mtime_ns)).encode())
+            continue
         try:
             with open(current, "rb") as f:
                 data = f.read()
         except OSError:
-            data = b"(missing)"
+            digest.update(current.encode() + b"\0(missing)\n")
+            continue
         digest.update(current.encode() + b"\0" + hashlib.sha256(data).digest())
-        if data != b"(missing)":
-            pending.extend(included(os.path.dirname(os.path.abspath(path)), read_text(current)))
+        pending.extend(references(folder, read_text(current)))
     print(digest.hexdigest())
 
 
