@@ -49,7 +49,7 @@ width=128 seconds=5 timeout_s=600 threads=$(nproc) pbrt=$source_dir/../shared/to
 pbrt_spp=256 cache=${XDG_CACHE_HOME:-$HOME/.cache}/photonfarm-corpus images="" markdown=""
 tolerance=0.03 only="" check=0
 extra=()
-no_light=(--environment-color 1,1,1)
+no_light=(--environment-color "1,1,1")
 while [[ $# -gt 0 ]]; do
     case $1 in
         --build) build=$2; shift ;;
@@ -95,7 +95,7 @@ means() {
     local args=() image half_w='{TOP.width//2}' half_h='{TOP.height//2}'
     local rest_w='{TOP.width-TOP.width//2}' rest_h='{TOP.height-TOP.height//2}'
     for image in "$@"; do
-        args+=(-i "$image" --ch R,G,B --printstats --printstats:window="${half_w}x${half_h}+0+0"
+        args+=(-i "$image" --ch "R,G,B" --printstats --printstats:window="${half_w}x${half_h}+0+0"
                --printstats:window="${rest_w}x${half_h}+${half_w}+0"
                --printstats:window="${half_w}x${rest_h}+0+${half_h}"
                --printstats:window="${rest_w}x${rest_h}+${half_w}+${half_h}")
@@ -162,8 +162,6 @@ notes_of() {
         printf '%s\t%s\n' "$short" "$n"
     done | join
 }
-
-ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (b > 0) printf "%.3f", a / b; else if (a > 0) print "inf"; else print "-" }'; }
 
 # The scenes, sorted.
 mapfile -t candidates < <(cd "$dir" && find . -type f \( -name '*.pbrt' -o -name '*.gltf' -o -name '*.glb' \) | sed 's|^\./||' | LC_ALL=C sort)
