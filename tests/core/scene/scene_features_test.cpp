@@ -22,8 +22,9 @@ TEST(SceneFeaturesTest, ShippedScenesUseWhatTheyShow) {
     EXPECT_FALSE(box.textures);
     EXPECT_TRUE(box.triangle_lights);
     EXPECT_FALSE(box.point_lights || box.spot_lights || box.directional_lights);
-    // Its light, single-sided and open (glTF's default), lets rays through its back faces.
-    EXPECT_EQ(box.ToString(), "diffuse, cut-outs, area lights");
+    // Its light is single-sided and open (glTF's default), but an emitter's back stops rays as
+    // a pbrt area light's does: no cut-out test to pay for.
+    EXPECT_EQ(box.ToString(), "diffuse, area lights");
     const SceneFeatures glass = FeaturesOf(Shipped("cornell-glass.gltf"));
     EXPECT_TRUE(glass.mirror && glass.dielectric);
     EXPECT_FALSE(glass.thin_dielectric);
@@ -34,7 +35,7 @@ TEST(SceneFeaturesTest, ShippedScenesUseWhatTheyShow) {
     const SceneFeatures bumpy = FeaturesOf(Shipped("cornell-bumpy.gltf"));
     EXPECT_TRUE(bumpy.shading_detail && bumpy.ShadingNormals() && bumpy.ReadsUv());
     EXPECT_FALSE(bumpy.Specular() || bumpy.smooth_normals);
-    EXPECT_EQ(bumpy.ToString(), "diffuse, cut-outs, normal or bump maps, area lights");
+    EXPECT_EQ(bumpy.ToString(), "diffuse, normal or bump maps, area lights");
     EXPECT_FALSE(box.ShadingNormals());
 }
 
@@ -50,7 +51,7 @@ TEST(SceneFeaturesTest, CoatsAreAFeatureOfTheirOwn) {
     const SceneFeatures coated = FeaturesOf(scene);
     EXPECT_TRUE(coated.coats);
     EXPECT_TRUE(coated.Specular());
-    EXPECT_EQ(coated.ToString(), "diffuse, coated, cut-outs, area lights");
+    EXPECT_EQ(coated.ToString(), "diffuse, coated, area lights");
 }
 
 TEST(SceneFeaturesTest, DiffuseTransmissionTakesTheGeneralPathsButMakesNoCaustics) {
@@ -60,7 +61,7 @@ TEST(SceneFeaturesTest, DiffuseTransmissionTakesTheGeneralPathsButMakesNoCaustic
     const SceneFeatures translucent = FeaturesOf(scene);
     EXPECT_TRUE(translucent.translucent && translucent.GeneralSurfaces());
     EXPECT_FALSE(translucent.Specular()) << "no caustic map or probe for it";
-    EXPECT_EQ(translucent.ToString(), "diffuse, diffuse transmission, cut-outs, area lights");
+    EXPECT_EQ(translucent.ToString(), "diffuse, diffuse transmission, area lights");
 }
 
 TEST(SceneFeaturesTest, SheenIsAFeatureWhereASurfaceWearsOne) {
@@ -73,7 +74,7 @@ TEST(SceneFeaturesTest, SheenIsAFeatureWhereASurfaceWearsOne) {
     const SceneFeatures features = FeaturesOf(scene);
     EXPECT_TRUE(features.sheen && features.coats);
     EXPECT_FALSE(features.sheen_textures);
-    EXPECT_EQ(features.ToString(), "diffuse, coated, sheen, cut-outs, area lights");
+    EXPECT_EQ(features.ToString(), "diffuse, coated, sheen, area lights");
 }
 
 TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
@@ -87,15 +88,16 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     EXPECT_TRUE(features.spot_lights);
     EXPECT_FALSE(features.point_lights) << "a light of no power is no emitter";
     EXPECT_FALSE(features.triangle_lights) << "an emissive material on no triangle emits nothing";
-    EXPECT_EQ(SceneFeatures::All().ToString(),
-              "diffuse, mirror, glass, thin glass, rough metal, rough glass, coated, "
-              "specular over diffuse, metal Fresnel, absorbing media, diffuse transmission, sheen, "
-              "sheen textures, cut-outs, "
-              "mixed materials, "
-              "textures, vertex colours, roughness textures, "
-              "textured mixes, procedural textures, smooth normals, normal or bump maps, area lights, "
-              "point lights, spot lights, directional lights, environment light, textured lights, "
-              "goniometric or projection lights, caustics");
+    EXPECT_EQ(
+        SceneFeatures::All().ToString(),
+        "diffuse, mirror, glass, thin glass, rough metal, rough glass, coated, "
+        "specular over diffuse, metal Fresnel, absorbing media, diffuse transmission, sheen, "
+        "sheen textures, cut-outs, "
+        "mixed materials, "
+        "textures, vertex colours, roughness textures, "
+        "textured mixes, procedural textures, smooth normals, normal or bump maps, area lights, "
+        "point lights, spot lights, directional lights, environment light, textured lights, "
+        "goniometric or projection lights, caustics");
 }
 
 }  // namespace
