@@ -184,6 +184,35 @@ TEST(EmittersTest, ATexturedLightEmitsItsTexturesPowerAndNoneFromItsBlackTexels)
         }
 }
 
+TEST(EmittersTest, EachTexturedEmitterRecordsItsOwnTexturesLargestTexel) {
+    // Two unit squares of light, each of two triangles, over two textures whose largest
+    // components are 5 (blue, texel 2) and 2 (red, texel 0): each record's peak is its own
+    // texture's, however many triangles share it.
+    Scene scene =
+        SquareLight(Rgb(1.0f), Texture{2, 2, {Rgb(0.5f), Rgb(1.0f), Rgb(0, 0, 5), Rgb(0.25f)}});
+    const auto square = static_cast<uint32_t>(scene.positions.size());
+    for (uint32_t v = 0; v < 4; ++v) {
+        scene.positions.push_back(scene.positions[v] + Vec3(2, 0, 0));
+        scene.uvs.push_back(scene.uvs[v]);
+        scene.normals.push_back(Vec3(0.0f));
+    }
+    scene.triangles.push_back({{square, square + 3, square + 1}, 1, false, {0, 0, -1}});
+    scene.triangles.push_back({{square, square + 2, square + 3}, 1, false, {0, 0, -1}});
+    Material second = scene.materials[0];
+    second.emission_texture = 1;
+    scene.materials.push_back(second);
+    scene.textures.push_back(
+        std::make_shared<const Texture>(Texture{1, 2, {Rgb(2.0f, 0.5f, 0.5f), Rgb(1.0f)}}));
+    for (const Vec3& p : scene.positions) scene.bounds.Extend(p);
+    const Emitters emitters(scene);
+    const std::vector<Emitters::Record> records = emitters.Records();
+    ASSERT_EQ(records.size(), 4u);
+    for (const Emitters::Record& record : records) {
+        ASSERT_NE(record.texture, kNoTexture);
+        EXPECT_EQ(record.peak, record.texture == 0 ? 5.0f : 2.0f) << "texture " << record.texture;
+    }
+}
+
 // A scene of one floor triangle far below and one light.
 Scene LightOnly(const PunctualLight& light) {
     Scene scene;
