@@ -202,9 +202,12 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Scene& 
     absl::StatusOr<Device> device = Device::Create();
     if (!device.ok()) return device.status();
     auto handles = std::make_unique<Handles>(std::move(*device));
-    const auto out_of_memory = [&] {
-        return absl::ResourceExhaustedError(
-            absl::StrCat("cannot allocate Embree buffers: ", handles->device.LastError()));
+    // Embree's own error where it gave one; rtcSetNewGeometryBuffer may fail without.
+    const auto out_of_memory = [&](const std::string& what) {
+        const std::string reason = handles->device.LastError();
+        return absl::ResourceExhaustedError(absl::StrCat(scene.source,
+                                                         ": cannot allocate Embree's buffer of ",
+                                                         what, reason.empty() ? "" : ": ", reason));
     };
     // Embree reads vertices 16 bytes at a time: the last one needs 4 bytes of padding.
     const size_t vertex_count = scene.positions.size();
@@ -212,7 +215,7 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Scene& 
         rtcNewBuffer(handles->device.Handle(), sizeof(float) * 3 * vertex_count + sizeof(float));
     auto* vertices =
         handles->vertices ? static_cast<float*>(rtcGetBufferData(handles->vertices)) : nullptr;
-    if (vertices == nullptr) return out_of_memory();
+    if (vertices == nullptr) return out_of_memory(absl::StrCat(vertex_count, " vertices"));
     for (size_t v = 0; v < vertex_count; ++v) {
         vertices[3 * v] = scene.positions[v].x;
         vertices[3 * v + 1] = scene.positions[v].y;
@@ -235,9 +238,12 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Scene& 
         RTCScene prototype_scene = rtcNewScene(handles->device.Handle());
         handles->prototypes.push_back(prototype_scene);
         rtcSetSceneBuildQuality(prototype_scene, RTC_BUILD_QUALITY_HIGH);
-        if (!handles->AttachGroup(prototype_scene, scene, prototype.first_triangle,
+        // A prototype of no triangles (an object of no shapes) is an empty scene: nothing to hit.
+        if (prototype.triangle_count > 0 &&
+            !handles->AttachGroup(prototype_scene, scene, prototype.first_triangle,
                                   prototype.triangle_count, vertex_count, &handles->groups[1 + p]))
-            return out_of_memory();
+            return out_of_memory(
+                absl::StrCat("prototype ", p, "'s ", prototype.triangle_count, " triangles"));
         rtcCommitScene(prototype_scene);
     }
     handles->scene = rtcNewScene(handles->device.Handle());
@@ -245,7 +251,7 @@ absl::StatusOr<std::unique_ptr<EmbreeTracer>> EmbreeTracer::Create(const Scene& 
     if (scene.WorldTriangleCount() > 0 &&
         !handles->AttachGroup(handles->scene, scene, 0, scene.WorldTriangleCount(), vertex_count,
                               &handles->groups[0]))
-        return out_of_memory();
+        return out_of_memory(absl::StrCat(scene.WorldTriangleCount(), " triangles"));
     for (uint32_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
         RTCGeometry geometry = rtcNewGeometry(handles->device.Handle(), RTC_GEOMETRY_TYPE_INSTANCE);

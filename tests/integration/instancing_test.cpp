@@ -193,6 +193,35 @@ TEST_F(Instancing, RaysMeetTheSameSurfacesAsInTheExpandedScene) {
     EXPECT_EQ(packet_mismatches, 0);
 }
 
+// An object of no shapes (transparent-machines' "single arm 0": transforms only) is placed as
+// nothing, as pbrt-v4 places it: the scene loads, Embree builds it, and rays meet only the
+// other shapes.
+TEST(InstancingEmpty, AnObjectOfNoShapesIsPlacedAsNothing) {
+    const std::filesystem::path folder = testing::FreshTempDir("instancing-empty");
+    std::ofstream(folder / "scene.pbrt")
+        << "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 40\nWorldBegin\n"
+           "LightSource \"point\" \"rgb I\" [1 1 1]\n"
+           "ObjectBegin \"empty\"\nAttributeBegin\nTranslate 0 0 1\nAttributeEnd\nObjectEnd\n"
+           "ObjectInstance \"empty\"\nTranslate 3 0 0\nObjectInstance \"empty\"\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0] "
+           "\"integer indices\" [0 1 2 3]\n";
+    const absl::StatusOr<Scene> scene = LoadScene((folder / "scene.pbrt").string());
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    EXPECT_EQ(scene->instances.size(), 0u);
+    EXPECT_EQ(scene->WorldTriangleCount(), 2u);
+    const auto tracer = embree::EmbreeTracer::Create(*scene);
+    ASSERT_TRUE(tracer.ok()) << tracer.status();
+    // The quad (translated by 3 along x, as the Translate before it says) is hit; where the
+    // first instance would be, nothing.
+    RayHit hit;
+    Ray ray;
+    ray.origin = Vec3(3, 0, -2), ray.direction = Vec3(0, 0, 1);
+    ASSERT_TRUE((*tracer)->Intersect(ray, &hit));
+    EXPECT_NEAR(hit.t, 2.0f, 1e-5f);
+    ray.origin = Vec3(0, 0, -2);
+    EXPECT_FALSE((*tracer)->Intersect(ray, &hit));
+}
+
 TEST_F(Instancing, InstancedSceneRendersTheWrittenOutScenesImage) {
     testing::ExpectSameEstimator(testing::RenderSmall(Path("instanced.pbrt"), "cpu", 3),
                                  testing::RenderSmall(Path("written-out.pbrt"), "cpu", 1),

@@ -355,6 +355,9 @@ absl::Status PbrtSceneBuilder::ObjectInstance(const std::string& name,
     // defined (so a quadric's front is settled there, as pbrt-v4 does), at its first instance.
     auto [prototype, first] = object_prototypes_.try_emplace(name, 0);
     if (first) {
+        // pbrt-v4 places such an instance as nothing, and so do we (AddInstance skips it).
+        if (shapes.empty() && !options_.references_only)
+            spdlog::info("{}: the object holds no shapes; its instances add nothing", element);
         prototype->second = BeginPrototype(&scene_);
         for (const ObjectShape& shape : shapes)
             if (!shape.state.area_light)
