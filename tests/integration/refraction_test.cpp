@@ -66,14 +66,17 @@ double SeenThrough(double eta) {
 }
 
 // The scene, the camera at height `camera_z` looking straight down at the slab: at all of it
-// but a margin, so that no pixel's filter reaches past the mirrors to the sky.
-std::string SlabScene(double eta, double camera_z) {
+// but a margin, so that no pixel's filter reaches past the mirrors to the sky. `reversed`
+// writes the same slab from its other side: the top face turned over (its front toward the
+// slab) with eta 1 / eta, the index of the air above against the slab's.
+std::string SlabScene(double eta, double camera_z, bool reversed = false) {
     std::string scene = absl::StrCat(
         "LookAt 0 0 ", camera_z,
         "  0 0 -1  0 1 0\nCamera \"orthographic\" \"float screenwindow\" [-1.8 1.8 -1.8 1.8]\n"
         "WorldBegin\nLightSource \"infinite\" \"rgb L\" [1 1 1]\n"
-        "AttributeBegin\nMaterial \"dielectric\" \"float eta\" ",
-        eta,
+        "AttributeBegin\n",
+        reversed ? "ReverseOrientation\n" : "", "Material \"dielectric\" \"float eta\" ",
+        reversed ? 1 / eta : eta,
         "\nShape \"trianglemesh\" \"point3 P\" [-2 -2 1  2 -2 1  2 2 1  -2 2 1] "
         "\"integer indices\" [0 1 2  0 2 3]\nAttributeEnd\n"
         "AttributeBegin\nMaterial \"conductor\" \"rgb reflectance\" [1 1 1]\n");
@@ -123,10 +126,11 @@ Measured MeasureBlocks(const Image& image) {
 
 // A render of the slab at 32x32, with budgets that catch a 2% error.
 RenderSettings SlabRender(Integrator integrator, double eta, const View& view,
-                          const std::string& backend) {
+                          const std::string& backend, bool reversed = false) {
     RenderSettings settings;
     settings.scene_path = testing::WriteTextFile(
-        SlabScene(eta, view.camera_z), absl::StrCat("slab-", eta, "-", view.camera_z, ".pbrt"));
+        SlabScene(eta, view.camera_z, reversed),
+        absl::StrCat("slab-", eta, "-", view.camera_z, reversed ? "-reversed" : "", ".pbrt"));
     settings.threads = 2;
     settings.backend = backend;
     JobSpec& job = settings.job;
@@ -165,14 +169,15 @@ RenderSettings SlabRender(Integrator integrator, double eta, const View& view,
 }
 
 void ExpectClosedForm(Integrator integrator, double eta, const View& view,
-                      const std::string& backend = "cpu") {
+                      const std::string& backend = "cpu", bool reversed = false) {
     const absl::StatusOr<RenderOutcome> outcome =
-        RenderLocally(SlabRender(integrator, eta, view, backend));
+        RenderLocally(SlabRender(integrator, eta, view, backend, reversed));
     ASSERT_TRUE(outcome.ok()) << outcome.status();
     const Measured measured = MeasureBlocks(outcome->image);
     const double expected = view.expected(eta);
     const std::string what = std::string(IntegratorName(integrator)) + " on " + backend + ", eta " +
-                             std::to_string(eta) + ", " + view.name;
+                             std::to_string(eta) + (reversed ? " (as 1 / eta reversed)" : "") +
+                             ", " + view.name;
     std::printf("%s: %.5f (closed form %.5f, bound %.5f)\n", what.c_str(), measured.mean, expected,
                 measured.bound);
     // Beyond the noise: 0.2% for the closed form's quadrature and the mirrors' 0.9999; rpm's
@@ -198,6 +203,18 @@ TEST(Refraction, EveryIntegratorSeesTheFloorFromInsideTheSlabAsTheClosedForm) {
         for (const Integrator integrator : {Integrator::kPpm, Integrator::kSppm, Integrator::kRpm,
                                             Integrator::kPm, Integrator::kPath})
             ExpectClosedForm(integrator, eta, kInside);
+}
+
+// pbrt-v4's eta below 1 (glass-of-water's water against its glass): the interface whose front
+// side is the denser one. The slab written with its top turned over and eta 1 / 1.5 is the slab
+// of eta 1.5: the same closed form, from above (Fresnel from the air, the eta^2 of radiance
+// going in) and from inside (total internal reflection from the slab's side, the eta^2 coming
+// out), for the path tracer and ppm.
+TEST(Refraction, AnEtaBelowOneIsTheInterfaceSeenFromItsOtherSide) {
+    for (const Integrator integrator : {Integrator::kPpm, Integrator::kPath}) {
+        ExpectClosedForm(integrator, 1.5, kThrough, "cpu", true);
+        ExpectClosedForm(integrator, 1.5, kInside, "cpu", true);
+    }
 }
 
 // A glass of tea, seen straight down through its stack of interfaces onto a lamp below: air,

@@ -262,9 +262,11 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
                 material.material.roughness = *alpha;
             }
         }
-        if (!(material.material.ior >= 1.0f && std::isfinite(material.material.ior)))
-            return ErrorAt(where,
-                           absl::StrCat("Material \"", type, "\": \"eta\" must be at least 1"));
+        // An eta below 1 is an interface whose outside is the denser side (glass-of-water's
+        // water against glass); Fresnel, refraction and the eta^2 of radiance take either.
+        if (!(material.material.ior > 0.0f && std::isfinite(material.material.ior)))
+            return ErrorAt(where, absl::StrCat("Material \"", type,
+                                               "\": \"eta\" must be positive and finite"));
     } else if (type == "conductor") {
         material.material.type = MaterialType::kMirror;
         const absl::StatusOr<float> alpha = roughness_alpha();

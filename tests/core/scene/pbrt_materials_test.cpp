@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "absl/strings/match.h"
+#include "absl/strings/str_cat.h"
 #include "core/scene/pbrt/pbrt_parameters.h"
 #include "core/scene/scene_files.h"
 #include "core/scene/specular.h"
@@ -59,6 +60,24 @@ TEST(PbrtMaterialsTest, MaterialsMapOntoPhotonfarms) {
     EXPECT_NEAR(reflector.conductor_k.y, 2 * std::sqrt(0.9f / 0.1f), 1e-4f);
     EXPECT_NEAR(gpu::FresnelComplex(1, 1, reflector.conductor_k.y), 0.9f, 1e-5f);
     EXPECT_EQ(scene->materials[5].type, MaterialType::kThinDielectric);
+}
+
+TEST(PbrtMaterialsTest, ADielectricsEtaMayBeBelowOneButNotZero) {
+    // pbrt-v4 takes any positive eta: below 1, the front side is the denser one
+    // (bitterli/glass-of-water's 0.763, water against glass).
+    const absl::StatusOr<Scene> scene =
+        Load(Bundle(std::string("Material \"dielectric\" \"float eta\" 0.763\n") + kQuad +
+                    "Material \"dielectric\" \"float eta\" 0.5 \"float roughness\" 0.2\n" + kQuad));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->materials.size(), 2u);
+    EXPECT_EQ(scene->materials[0].type, MaterialType::kDielectric);
+    EXPECT_EQ(scene->materials[0].ior, 0.763f);
+    EXPECT_EQ(scene->materials[1].type, MaterialType::kRoughDielectric);
+    EXPECT_EQ(scene->materials[1].ior, 0.5f);
+    for (const char* eta : {"0", "-1.5"})
+        ExpectError(
+            Load(Bundle(absl::StrCat("Material \"dielectric\" \"float eta\" ", eta, "\n") + kQuad)),
+            "scenes/scene.pbrt:6:1: Material \"dielectric\": \"eta\" must be positive and finite");
 }
 
 TEST(PbrtMaterialsTest, ConductorsTakeAReflectanceOrAComplexIndex) {
