@@ -73,6 +73,11 @@ absl::StatusOr<FloatInput> PbrtSceneBuilder::FloatParameter(
         return input;
     }
     const TextureRef& texture = it->second;
+    if (use != TextureUse::kDisplacement && MinComponent(texture.scale) < 0)
+        return ErrorAt(where,
+                       absl::StrCat(what, " texture \"", *texture_name,
+                                    "\": its values must be non-negative (its scale is ",
+                                    texture.scale.x, "; only a displacement's may be below 0)"));
     // Cut-outs are tested inside the kernels' traversal, where a procedural texture's
     // evaluation would weigh on every ray.
     if (texture.program && use == TextureUse::kCutOut) {
@@ -488,7 +493,8 @@ absl::Status PbrtSceneBuilder::ShadingDetail(ParameterList& parameters, const Lo
     }
     // The bump map: a float texture of displacement along the normal, in world units.
     const absl::StatusOr<FloatInput> displacement =
-        FloatParameter(parameters, "displacement", 0.0, "Material: \"displacement\"", where);
+        FloatParameter(parameters, "displacement", 0.0, "Material: \"displacement\"", where,
+                       /*exponent=*/1, TextureUse::kDisplacement);
     if (!displacement.ok()) return displacement.status();
     if (displacement->texture != kNoTexture) {
         if (!std::isfinite(displacement->value))

@@ -174,8 +174,9 @@ private:
     absl::Status BaseColor(ParameterList& parameters, const std::string& name, Rgb fallback,
                            const Location& where, MaterialRef* material);
     // How a float parameter's texture is read: at the shading point; by a cut-out's test
-    // (during traversal), an image's texels.
-    enum class TextureUse { kShading, kCutOut };
+    // (during traversal), an image's texels; as a displacement, whose values alone may be
+    // negative (a bump pointing inwards).
+    enum class TextureUse { kShading, kCutOut, kDisplacement };
     // Float parameter `name` (`fallback` where absent), a number or a float texture, its values
     // raised to `exponent`; `what` ("Shape: \"alpha\"") names it in messages. A texture
     // photonfarm cannot evaluate (or not for `use`) gives `fallback`, with a note.

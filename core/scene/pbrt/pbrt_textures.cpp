@@ -349,9 +349,11 @@ absl::Status PbrtSceneBuilder::Texture(const std::string& name, const std::strin
         texture.unsupported = type;
     }
     if (!parameters.status().ok()) return parameters.status();
-    if (!IsFinite(texture.scale) || MinComponent(texture.scale) < 0)
-        return ErrorAt(where, absl::StrCat("Texture \"", name,
-                                           "\": its values must be finite and non-negative"));
+    // A float texture may scale its values below 0: as a displacement, a bump pointing inwards
+    // (pbrt-v4 allows it; kroken's carpet); FloatParameter refuses it anywhere else.
+    if (!IsFinite(texture.scale) || (!scalar && MinComponent(texture.scale) < 0))
+        return ErrorAt(where, absl::StrCat("Texture \"", name, "\": its values must be finite",
+                                           scalar ? "" : " and non-negative"));
     texture.described = absl::StrCat("Texture \"", name, "\" (", type, ") at ", where.ToString());
     texture.type = type;
     named[name] = texture;

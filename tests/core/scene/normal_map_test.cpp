@@ -166,6 +166,35 @@ TEST(NormalMapTest, PbrtsNormalmapAndDisplacementTiltTheShadingNormal) {
         "no.png");
 }
 
+TEST(NormalMapTest, ANegativeDisplacementScaleBumpsInwards) {
+    // pbrt-v4 takes a float texture's negative scale (kroken's carpet, scale -3.5): as a
+    // displacement, the bump points into the surface, so the ramp of the test above tilts the
+    // shading normal the other way (toward +x). Anywhere else a negative texture is refused,
+    // naming it.
+    using namespace pbrt_test;
+    const std::string ramp = TwoTexelPng({0, 0, 0, 255, 255, 255}, "pbrt-ramp.png");
+    ASSERT_FALSE(ramp.empty());
+    const std::string texture =
+        "Texture \"d\" \"float\" \"imagemap\" \"string filename\" \"ramp.png\" "
+        "\"string wrap\" \"clamp\" \"float scale\" -0.5\n";
+    const absl::StatusOr<Scene> scene =
+        Load(Bundle(texture + "Material \"diffuse\" \"texture displacement\" \"d\"\n" + kQuad,
+                    {{"ramp.png", ramp}}));
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const SurfacePoint bumped = scene->Surface({1.0f, 0, 0.25f, 0.0f});
+    ExpectNear(bumped.shading_normal, Normalize(bumped.geometric_normal + Vec3(0.5f, 0, 0)), 1e-5f,
+               "displacement of scale -0.5");
+    ExpectError(
+        Load(Bundle(texture + "Material \"conductor\" \"texture roughness\" \"d\"\n" + kQuad,
+                    {{"ramp.png", ramp}})),
+        "texture \"d\": its values must be non-negative (its scale is -0.5; only a "
+        "displacement's may be below 0)");
+    ExpectError(Load(Bundle("Texture \"c\" \"spectrum\" \"imagemap\" \"string filename\" "
+                            "\"ramp.png\" \"float scale\" -1\n",
+                            {{"ramp.png", ramp}})),
+                "Texture \"c\": its values must be finite and non-negative");
+}
+
 TEST(NormalMapTest, PhotonsCarryVeachsAdjointFactors) {
     const Vec3 n(0, 0, 1), tilted = Normalize(Vec3(0.4f, 0, 1));
     const Vec3 arriving = Normalize(Vec3(0.3f, 0.2f, -1)), leaving = Normalize(Vec3(-0.5f, 0, 1));
