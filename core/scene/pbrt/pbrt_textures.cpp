@@ -237,11 +237,12 @@ absl::Status PbrtSceneBuilder::Combine(const std::string& name, const std::strin
         absl::StatusOr<std::shared_ptr<const pf::Texture>> image =
             OperandImage(*operands[i].texture);
         if (!image.ok()) return image.status();
-        if (*image == nullptr) return absl::OkStatus();  // packing: the files are what counts
+        if (*image == nullptr) continue;  // packing: every operand's file is what counts
         decoded[i] = *image;
         if (first == nullptr) first = decoded[i].get();
         width = std::max(width, decoded[i]->width), height = std::max(height, decoded[i]->height);
     }
+    if (options_.references_only) return absl::OkStatus();
     if (uint64_t(width) * uint64_t(height) > options_.limits.max_image_pixels)
         return ErrorAt(where, absl::StrCat(what, ": its operands' ", width, "x", height,
                                            " texels exceed the image limit"));

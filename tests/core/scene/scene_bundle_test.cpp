@@ -12,6 +12,7 @@
 
 #include "absl/strings/escaping.h"
 #include "core/scene/scene_loader.h"
+#include "tests/support/png_fixture.h"
 #include "tests/support/test_env.h"
 
 namespace pf {
@@ -59,6 +60,32 @@ TEST(SceneBundleTest, PacksReferencedFilesAndLoadsFromTheBundleAlone) {
     const absl::StatusOr<Scene> scene = LoadScene(*bundle, "box.gltf");
     ASSERT_TRUE(scene.ok()) << scene.status();
     EXPECT_GT(scene->triangles.size(), 10u);
+}
+
+TEST(SceneBundleTest, PacksEveryImageOfAPbrtScaleOfTwoTextures) {
+    // kroken's "scale" of a spectrum image by a float image: packing once stopped at the first
+    // operand, so the second was missing from the bundle and the load refused the scene.
+    const std::filesystem::path root = testing::FreshTempDir("pack-pbrt-scale");
+    for (const char* name : {"colour.png", "dirt.png"})
+        std::ofstream(root / name, std::ios::binary)
+            << testing::TwoTexelPng({10, 20, 30, 200, 210, 220}, std::string("pack-") + name);
+    std::ofstream(root / "scene.pbrt")
+        << "LookAt 0 0 -5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n"
+           "LightSource \"point\" \"rgb I\" [1 1 1]\n"
+           "Texture \"c\" \"spectrum\" \"imagemap\" \"string filename\" \"colour.png\"\n"
+           "Texture \"d\" \"float\" \"imagemap\" \"string filename\" \"dirt.png\"\n"
+           "Texture \"muddled\" \"spectrum\" \"scale\" \"texture tex\" \"c\" "
+           "\"texture scale\" \"d\"\n"
+           "Material \"diffuse\" \"texture reflectance\" \"muddled\"\n"
+           "Shape \"bilinearmesh\" \"point3 P\" [-1 -1 0  1 -1 0  -1 1 0  1 1 0] "
+           "\"integer indices\" [0 1 2 3]\n";
+    const absl::StatusOr<SceneBundle> bundle = PackSceneBundle((root / "scene.pbrt").string());
+    ASSERT_TRUE(bundle.ok()) << bundle.status();
+    EXPECT_TRUE(bundle->files.contains("colour.png"));
+    EXPECT_TRUE(bundle->files.contains("dirt.png"));
+    const absl::StatusOr<Scene> scene = LoadScene(*bundle, "scene.pbrt");
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    EXPECT_EQ(scene->textures.size(), 1u);  // the product, baked
 }
 
 TEST(SceneBundleTest, LeavesOutImagesNoMaterialReads) {
