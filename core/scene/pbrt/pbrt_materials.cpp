@@ -161,7 +161,15 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
         const absl::StatusOr<float> alpha = roughness_alpha(prefix);
         if (!alpha.ok()) return alpha.status();
         m.coat_roughness = *alpha;
-        const double thickness = parameters.Float("thickness", 0.01);
+        // A textured thickness (kroken's moka pot) varies over the surface; one number stands
+        // in: pbrt-v4's default.
+        double thickness = 0.01;
+        if (const std::optional<std::string> texture = parameters.TextureName("thickness")) {
+            Warn(where, absl::StrCat("Material \"", type, "\": \"thickness\" from texture \"",
+                                     *texture, "\" is not read; the default 0.01 is used"));
+        } else {
+            thickness = parameters.Float("thickness", thickness);
+        }
         const int depth = parameters.Integer("maxdepth", 10);
         const int samples = parameters.Integer("nsamples", 1);
         parameters.Float("g", 0.0);

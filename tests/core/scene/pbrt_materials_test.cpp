@@ -216,6 +216,22 @@ TEST(PbrtMaterialsTest, AnUnknownSamplerIsAnError) {
     ExpectError(Load(bundle), "scenes/scene.pbrt:1:1: Sampler \"zsobl\" is not one of pbrt-v4's");
 }
 
+TEST(PbrtMaterialsTest, ATexturedCoatThicknessIsNamedAndTheDefaultUsed) {
+    // pbrt-v4 takes a float texture for a coat's thickness (kroken's moka pot); photonfarm's
+    // coat has one thickness: pbrt-v4's default 0.01, with a warning naming the texture.
+    const std::string world =
+        std::string("Texture \"t\" \"float\" \"constant\" \"float value\" 0.3\n") +
+        "Material \"coatedconductor\" \"texture thickness\" \"t\"\n" + kQuad;
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    ASSERT_EQ(scene->materials.size(), 1u);
+    EXPECT_EQ(scene->materials[0].coat_thickness, 0.01f);
+    EXPECT_TRUE(Contains(warnings,
+                         "Material \"coatedconductor\": \"thickness\" from texture \"t\" "
+                         "is not read; the default 0.01 is used"));
+}
+
 TEST(PbrtMaterialsTest, CoatsTakePbrtsParameters) {
     const std::string world =
         std::string("Material \"coateddiffuse\"\n") + kQuad +
