@@ -88,7 +88,7 @@ absl::Status PbrtSceneBuilder::Camera(const std::string& type, ParameterList& pa
             where,
             "Camera: \"float lensradius\" must be at least 0 and \"float focaldistance\" positive");
     if (const std::optional<Transform> world_from_camera = state_.ctm.Inverse())
-        coordinate_systems_["camera"] = *world_from_camera;
+        coordinate_systems_["camera"] = {*world_from_camera, *world_from_camera};
     else
         return ErrorAt(where, "Camera: the current transform is singular");
     camera_ = camera;

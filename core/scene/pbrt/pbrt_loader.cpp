@@ -4,6 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -31,6 +32,21 @@ void PbrtSceneBuilder::Warn(const Location& where, const std::string& what) {
                                  : absl::StrCat(where.ToString(), ": warning: ", what);
     spdlog::warn("{}", line);
     if (options_.warnings) options_.warnings->push_back(line);
+}
+
+void PbrtSceneBuilder::WarnIfMoving(const Location& where, const std::string& directive) {
+    double difference = 0, size = 0;
+    for (int row = 0; row < 4; ++row)
+        for (int column = 0; column < 4; ++column) {
+            difference = std::max(
+                difference, std::abs(state_.ctm.m[row][column] - state_.ctm_end.m[row][column]));
+            size = std::max(size, std::abs(state_.ctm.m[row][column]));
+        }
+    if (!(difference > 1e-9 * std::max(size, 1.0))) return;
+    Warn(where, absl::StrCat(directive,
+                             ": motion blur is left out: the transform differs between "
+                             "ActiveTransform StartTime and EndTime, and the scene renders "
+                             "still, at the start time"));
 }
 
 void PbrtSceneBuilder::WarnUnused(const ParameterList& parameters, const std::string& directive) {
@@ -250,8 +266,9 @@ absl::StatusOr<ParameterList> PbrtSceneBuilder::ReadParameters(TokenStream& in) 
 }
 
 absl::Status PbrtSceneBuilder::ApplyTransform(const Transform& transform) {
-    // Only the start-time transform is kept: motion blur is not rendered.
+    // The start-time transform is rendered; the end time's only compared with it.
     if (transform_at_start_) state_.ctm = state_.ctm * transform;
+    if (transform_at_end_) state_.ctm_end = state_.ctm_end * transform;
     if (!state_.ctm.IsFinite())
         return absl::InvalidArgumentError("transform overflows to NaN or Inf");
     return absl::OkStatus();
@@ -269,6 +286,7 @@ absl::Status PbrtSceneBuilder::TypedDirective(const Token& directive, TokenStrea
     absl::StatusOr<UpgradeResult> upgrade = Upgrade(name, &*type, nullptr, &*parameters, where);
     if (!upgrade.ok()) return upgrade.status();
     absl::Status status;
+    if (name == "Camera" || name == "Shape" || name == "LightSource") WarnIfMoving(where, name);
     if (name == "Camera") {
         status = Camera(*type, *parameters, where);
     } else if (name == "Film") {
@@ -383,22 +401,25 @@ std::optional<absl::Status> PbrtSceneBuilder::TransformDirective(const Token& di
             Transform::FromColumnMajor(v->data());  // pbrt lists the matrix transposed
         if (name == "Transform") {
             if (transform_at_start_) state_.ctm = given;
+            if (transform_at_end_) state_.ctm_end = given;
             return absl::OkStatus();
         }
         return transform_error(ApplyTransform(given));
     }
     if (name == "Identity") {
         if (transform_at_start_) state_.ctm = Transform{};
+        if (transform_at_end_) state_.ctm_end = Transform{};
         return absl::OkStatus();
     }
     if (name == "CoordinateSystem" || name == "CoordSysTransform") {
         absl::StatusOr<std::string> system = string_argument();
         if (!system.ok()) return system.status();
         if (name == "CoordinateSystem") {
-            coordinate_systems_[*system] = state_.ctm;
+            coordinate_systems_[*system] = {state_.ctm, state_.ctm_end};
         } else if (const auto it = coordinate_systems_.find(*system);
                    it != coordinate_systems_.end()) {
-            state_.ctm = it->second;
+            if (transform_at_start_) state_.ctm = it->second.first;
+            if (transform_at_end_) state_.ctm_end = it->second.second;
         } else {
             Warn(where, absl::StrCat("CoordSysTransform: no coordinate system \"", *system,
                                      "\"; the transform is unchanged"));
@@ -413,10 +434,7 @@ std::optional<absl::Status> PbrtSceneBuilder::TransformDirective(const Token& di
             return ErrorAt(where, absl::StrCat("ActiveTransform: '", which,
                                                "' is not StartTime, EndTime or All"));
         transform_at_start_ = which != "EndTime";
-        if (which == "EndTime")
-            Warn(where,
-                 "ActiveTransform EndTime: motion blur is not rendered; end-time transforms are "
-                 "ignored");
+        transform_at_end_ = which != "StartTime";
         return absl::OkStatus();
     }
     if (name == "TransformTimes") {
@@ -440,8 +458,8 @@ std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& direct
         if (in_world_) return ErrorAt(where, "WorldBegin appears twice");
         in_world_ = true;
         if (absl::Status status = FinishCamera(); !status.ok()) return status;
-        state_.ctm = Transform{};
-        coordinate_systems_["world"] = state_.ctm;
+        state_.ctm = state_.ctm_end = Transform{};
+        coordinate_systems_["world"] = {state_.ctm, state_.ctm_end};
         return absl::OkStatus();
     }
     if (name == "WorldEnd")
@@ -457,12 +475,14 @@ std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& direct
         return absl::OkStatus();
     }
     if (name == "TransformBegin") {
-        transform_stack_.emplace_back(state_.ctm, state_.reverse_orientation);
+        transform_stack_.push_back({state_.ctm, state_.ctm_end, state_.reverse_orientation});
         return absl::OkStatus();
     }
     if (name == "TransformEnd") {
         if (transform_stack_.empty()) return ErrorAt(where, "TransformEnd without TransformBegin");
-        std::tie(state_.ctm, state_.reverse_orientation) = transform_stack_.back();
+        state_.ctm = transform_stack_.back().start;
+        state_.ctm_end = transform_stack_.back().end;
+        state_.reverse_orientation = transform_stack_.back().reverse_orientation;
         transform_stack_.pop_back();
         return absl::OkStatus();
     }
@@ -506,6 +526,7 @@ std::optional<absl::Status> PbrtSceneBuilder::StateDirective(const Token& direct
         if (it == objects_.end())
             return ErrorAt(where,
                            absl::StrCat("ObjectInstance: no object named \"", *object, "\""));
+        WarnIfMoving(where, "ObjectInstance");
         return ObjectInstance(*object, it->second, where);
     }
     if (name == "MediumInterface") {

@@ -91,7 +91,10 @@ struct FloatInput {
 };
 
 struct GraphicsState {
-    Transform ctm;
+    Transform ctm;  // at the start time (ActiveTransform StartTime or All): what is rendered
+    // At the end time (ActiveTransform EndTime or All): motion blur is not rendered; kept only
+    // to say where something moves (PbrtSceneBuilder::WarnIfMoving).
+    Transform ctm_end;
     bool reverse_orientation = false;
     int material = -1;  // into materials_; -1: pbrt's default, diffuse 0.5
     std::optional<AreaLight> area_light;
@@ -249,6 +252,9 @@ private:
     absl::Status FinishCamera();
 
     void Warn(const Location& where, const std::string& what);
+    // Warns (once per directive) where `directive`'s transform differs between the start and
+    // end times: pbrt-v4 blurs it over the shutter; photonfarm renders it at the start time.
+    void WarnIfMoving(const Location& where, const std::string& directive);
     void WarnUnused(const ParameterList& parameters, const std::string& directive);
     absl::StatusOr<uint32_t> SceneMaterial(int material, Rgb emission, bool two_sided,
                                            const FloatInput& alpha, int32_t emission_texture,
@@ -279,10 +285,15 @@ private:
     Scene scene_;
     GraphicsState state_;
     std::vector<GraphicsState> attribute_stack_;
-    std::vector<std::pair<Transform, bool>> transform_stack_;  // TransformBegin/End (pbrt-v3)
-    std::map<std::string, Transform> coordinate_systems_;
+    struct SavedTransform {
+        Transform start, end;
+        bool reverse_orientation = false;
+    };
+    std::vector<SavedTransform> transform_stack_;  // TransformBegin/End (pbrt-v3)
+    std::map<std::string, std::pair<Transform, Transform>> coordinate_systems_;  // start, end
     std::optional<CameraSettings> camera_;
-    bool in_world_ = false, transform_at_start_ = true, camera_finished_ = false;
+    bool in_world_ = false, transform_at_start_ = true, transform_at_end_ = true,
+         camera_finished_ = false;
     int film_width_ = 1280, film_height_ = 720;
     double film_iso_ = 100, film_white_balance_ = 0;  // pbrt-v4's PixelSensor parameters
     // pbrt-v4's default: a Gaussian of radius 1.5 pixels and sigma 0.5.

@@ -129,6 +129,43 @@ TEST(PbrtLoaderTest, AttributesRestoreTheStateAndInstancesRepeatAnObject) {
     EXPECT_NEAR(scene->instances[1].ApplyPoint(Vec3(0.0f)).z, 5.0f, 1e-6f);
 }
 
+TEST(PbrtLoaderTest, MotionIsRenderedAtTheStartTimeAndWarnedOnce) {
+    // killeroo-moving: a shape whose StartTime and EndTime transforms differ is placed at its
+    // start-time transform (pbrt-v4's time 0), with one warning naming the directive; an
+    // EndTime transform equal to the start's moves nothing and says nothing.
+    const std::string moving =
+        "AttributeBegin\nActiveTransform StartTime\nTranslate 30 0 0\nActiveTransform All\n"
+        "Translate 0 2 0\n" +
+        std::string(kQuad) + kQuad + "AttributeEnd\n";
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(Bundle(moving), &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    EXPECT_NEAR(scene->bounds.lower.x, 29.0f, 1e-5f);  // the quad's -1, moved by 30 and 0
+    EXPECT_NEAR(scene->bounds.lower.y, 1.0f, 1e-5f);
+    int motion = 0;
+    for (const std::string& warning : warnings)
+        motion += warning.find("Shape: motion blur is left out") != std::string::npos;
+    EXPECT_EQ(motion, 1) << "once, however many shapes move";
+
+    const std::string still =
+        "ActiveTransform StartTime\nTranslate 1 0 0\nActiveTransform EndTime\nTranslate 1 0 0\n"
+        "ActiveTransform All\n" +
+        std::string(kQuad) +
+        "TransformBegin\nActiveTransform EndTime\nTranslate 0 0 5\nTransformEnd\n"
+        "ActiveTransform All\n" +
+        kQuad;
+    warnings.clear();
+    ASSERT_TRUE(Load(Bundle(still), &warnings).ok());
+    EXPECT_FALSE(Contains(warnings, "motion blur")) << "TransformEnd restores both times";
+
+    SceneBundle camera = Bundle(kQuad);
+    camera.files["scene.pbrt"] = "ActiveTransform EndTime\nTranslate 0 0 1\nActiveTransform All\n" +
+                                 camera.files["scene.pbrt"];
+    warnings.clear();
+    ASSERT_TRUE(Load(camera, &warnings).ok());
+    EXPECT_TRUE(Contains(warnings, "Camera: motion blur is left out"));
+}
+
 TEST(PbrtLoaderTest, EmittingShapesOfAnObjectArePlacedAsWorldTriangles) {
     const std::string world =
         std::string("ObjectBegin \"lamp\"\n") + kQuad +
