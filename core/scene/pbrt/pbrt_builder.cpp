@@ -148,10 +148,12 @@ absl::Status PbrtSceneBuilder::FinishCamera() {
 absl::Status PbrtSceneBuilder::Film(ParameterList& parameters, const Location& where) {
     film_width_ = parameters.Integer("xresolution", 1280);
     film_height_ = parameters.Integer("yresolution", 720);
+    // The image goes where --out says: a note, not a warning (nothing of the render changes).
     if (parameters.Has("filename")) {
         parameters.String("filename", "");
-        Warn(parameters.Find("filename")->where,
-             "Film: \"filename\" is not used; the image goes where --out says");
+        if (!options_.references_only)
+            spdlog::info("{}: Film: \"filename\" is not used; the image goes where --out says",
+                         parameters.Find("filename")->where.ToString());
     }
     film_iso_ = parameters.Float("iso", 100.0);
     film_white_balance_ = parameters.Float("whitebalance", 0.0);
