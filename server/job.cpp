@@ -251,7 +251,7 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
         // Every batch of the epoch is folded: update the estimate and start the next epoch.
         GatherRegions regions;
         uint64_t photons = 0, discarded = 0, samples = 0;
-        bool reached = true;
+        bool reached = true, black = false;
         ErrorEstimate error;
         std::optional<ImageDifference> measured;
         lock.unlock();
@@ -264,6 +264,13 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
                 samples = estimate_->CameraSamples();
                 discarded = estimate_->NonfiniteDiscarded();
                 reached = estimate_->LightReachedAnything();
+                // Where photons and light samples reached nothing, whether camera paths found
+                // light of their own (emitters, and light through glossy and specular bounces).
+                if (!reached) {
+                    const Image image = estimate_->Resolve();
+                    black = std::all_of(image.pixels.begin(), image.pixels.end(),
+                                        [](const Rgb& pixel) { return IsBlack(pixel); });
+                }
                 error = estimate_->EstimateError();
                 // In the image's units, as the film (pbrt's iso, shutter) scales it.
                 error.rmse *= film_.Gain();
@@ -286,11 +293,22 @@ bool Job::FoldReadyLocked(std::unique_lock<std::mutex>& lock, Clock::time_point 
         finished = true;
         if (BudgetFraction(spec_, photons_merged_, epochs_merged_, Seconds(now - started_),
                            estimated_error_) >= 1.0) {
-            if (!reached) {
-                warnings_.push_back(absl::StrCat(
-                    "no light reached anything the camera sees in ", photons_merged_,
-                    " photons: the image is emission only (a light shut inside a closed "
-                    "object, or a camera that sees only unlit surfaces?)"));
+            // Without hit points (a camera that sees no diffuse surface) photons have nothing
+            // to reach: the image is what camera paths find, right unless it is black.
+            const bool without_hit_points =
+                GathersAtHitPoints(spec_.integrator) && hit_point_count_ == 0;
+            if (!reached && (!without_hit_points || black)) {
+                warnings_.push_back(
+                    without_hit_points
+                        ? absl::StrCat("the camera sees no diffuse surface, and its paths found no "
+                                       "light directly or through glossy and specular bounces "
+                                       "in ",
+                                       photons_merged_, " photons: the image is black")
+                        : absl::StrCat("no light reached anything the camera sees in ",
+                                       photons_merged_,
+                                       " photons: the image is emission only (a light shut "
+                                       "inside a closed object, or a camera that sees only unlit "
+                                       "surfaces?)"));
                 spdlog::warn("job {}: {}", id_, warnings_.back());
             }
             EndLocked(JobState::kDone, "", now);

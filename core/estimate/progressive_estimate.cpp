@@ -437,8 +437,13 @@ EstimateSettings EstimateFor(const JobSpec& spec, const CameraPassResult& camera
     if (estimate.initial_radius == 0)
         estimate.initial_radius = DefaultInitialRadius(camera_pass, scene);
     if (camera_pass.hit_points.empty() || !(estimate.initial_radius > 0)) {
-        spdlog::warn("{}: the camera sees no diffuse surface; the image holds emission only",
-                     scene_name);
+        // Not a warning: the camera's paths still find light directly and through glossy and
+        // specular bounces (glTF's default material is a rough metal); Job warns where the
+        // image comes out black.
+        spdlog::info(
+            "{}: the camera sees no diffuse surface: photons add nothing, and the image is the "
+            "light its paths find directly and through glossy and specular bounces",
+            scene_name);
         estimate.initial_radius = std::max(estimate.initial_radius, 1e-3 * scene.bounds.Diagonal());
     }
     // 2^-20 of the scene's largest coordinate is 16 float steps of a position there: radii

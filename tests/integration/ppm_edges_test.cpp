@@ -191,5 +191,46 @@ TEST(PpmEdges, FixedHitPointsStandForTheirShareOfEachPixel) {
     EXPECT_LT(new_error, old_error / 20);
 }
 
+// A camera that sees only glossy surfaces (glTF's default material, a rough metal: corpus run
+// 1's SimpleMeshes) gets no hit points, and photons add nothing; but its paths find the sky
+// through the glossy bounce, and that image is right: no warning that it is "emission only".
+// Where those paths find no light either (a point light under the metal), the image is black,
+// and the render says so.
+TEST(PpmEdges, ACameraSeeingOnlyGlossSaysSoOnlyWhereTheImageIsBlack) {
+    const auto render = [](const std::string& light, const std::string& name) {
+        const std::string scene = testing::WriteTextFile(
+            "LookAt 0 3 3  0 0 0  0 1 0\nCamera \"perspective\" \"float fov\" 30\nWorldBegin\n" +
+                light +
+                "Material \"conductor\" \"rgb reflectance\" [0.8 0.8 0.8] \"float roughness\" "
+                "0.3\nShape \"bilinearmesh\" \"point3 P\" [-2 0 -2  2 0 -2  -2 0 2  2 0 2]\n",
+            name);
+        RenderSettings settings = Settings(scene, Integrator::kPpm, 2);
+        settings.job.width = settings.job.height = 8;
+        const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
+        EXPECT_TRUE(outcome.ok()) << outcome.status();
+        return outcome.ok() ? *outcome : RenderOutcome{};
+    };
+    const auto mentions = [](const RenderOutcome& outcome, const std::string& fragment) {
+        return std::any_of(
+            outcome.warnings.begin(), outcome.warnings.end(),
+            [&](const std::string& w) { return w.find(fragment) != std::string::npos; });
+    };
+    const RenderOutcome sky =
+        render("LightSource \"infinite\" \"rgb L\" [1 1 1]\n", "gloss-sky.pbrt");
+    EXPECT_EQ(sky.hit_points, 0u);
+    double mean = 0;
+    for (const Rgb& pixel : sky.image.pixels) mean += Luminance(pixel) / sky.image.pixels.size();
+    EXPECT_GT(mean, 0.1) << "the sky, through the metal";
+    EXPECT_FALSE(mentions(sky, "emission only"));
+    EXPECT_FALSE(mentions(sky, "black"));
+
+    const RenderOutcome dark = render(
+        "LightSource \"point\" \"point3 from\" [0 -1 0] \"rgb I\" [5 5 5]\n", "gloss-dark.pbrt");
+    EXPECT_EQ(dark.hit_points, 0u);
+    EXPECT_TRUE(std::all_of(dark.image.pixels.begin(), dark.image.pixels.end(),
+                            [](const Rgb& pixel) { return IsBlack(pixel); }));
+    EXPECT_TRUE(mentions(dark, "the camera sees no diffuse surface, and its paths found no light"));
+}
+
 }  // namespace
 }  // namespace pf
