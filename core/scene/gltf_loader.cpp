@@ -171,6 +171,7 @@ absl::StatusOr<Scene> GltfSceneBuilder::Build() {
     for (int root : roots)
         if (absl::Status status = VisitNode(root, Transform{}, 0); !status.ok()) return status;
     FinishInstancing(&scene_);
+    if (absl::Status status = textures_.DecodePending(); !status.ok()) return status;
     if (scene_.triangles.empty()) return Error("scene", "has no triangles");
     if (!has_camera_ && !wanted_camera_.empty())
         return Error("--camera " + wanted_camera_,

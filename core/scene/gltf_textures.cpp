@@ -1,6 +1,8 @@
 // glTF textures into a Scene's.
 #include "core/scene/gltf_textures.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <memory>
 
@@ -70,6 +72,13 @@ absl::StatusOr<int32_t> GltfTextureReader::Index(int texture, const std::string&
         Source(texture, element, options);
     if (!source.ok()) return source.status();
     if (const auto it = indices_.find(*source); it != indices_.end()) return it->second;
+    if (options.channels != ImageChannels::kAlpha && images_.contains(source->first)) {
+        const auto index = static_cast<int32_t>(scene_->textures.size());
+        scene_->textures.push_back(nullptr);
+        pending_.push_back({index, texture, element, options});
+        indices_[*source] = index;
+        return index;
+    }
     absl::StatusOr<Texture> decoded = Decode(texture, element, options);
     if (!decoded.ok()) return decoded.status();
     // An alpha channel that is all 1 (or none) cuts nothing out: no texture, no cost.
@@ -83,6 +92,20 @@ absl::StatusOr<int32_t> GltfTextureReader::Index(int texture, const std::string&
     scene_->textures.push_back(std::make_shared<const Texture>(std::move(*decoded)));
     indices_[*source] = index;
     return index;
+}
+
+absl::Status GltfTextureReader::DecodePending() {
+    std::vector<absl::StatusOr<Texture>> decoded(pending_.size(), Texture{});
+    tbb::parallel_for(size_t{0}, pending_.size(), [&](size_t i) {
+        decoded[i] = Decode(pending_[i].texture, pending_[i].element, pending_[i].options);
+    });
+    for (size_t i = 0; i < pending_.size(); ++i) {
+        if (!decoded[i].ok()) return decoded[i].status();
+        scene_->textures[pending_[i].index] =
+            std::make_shared<const Texture>(std::move(*decoded[i]));
+    }
+    pending_.clear();
+    return absl::OkStatus();
 }
 
 GltfTextureAccess GltfTextureReader::Access(const std::string& element) {

@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "core/scene/gltf_bundle_files.h"
@@ -28,8 +29,13 @@ public:
     // wrap modes applied); kNoTexture for an alpha channel that is 1 everywhere (it cuts
     // nothing out). Errors name `element` and the texture: one that does not exist, a KTX2
     // image alone (KHR_texture_basisu: the way out named), an image missing or undecodable.
+    // All but an alpha channel are decoded by DecodePending: their Scene::textures entries
+    // are null until then (and an undecodable image's error comes from it).
     absl::StatusOr<int32_t> Index(int texture, const std::string& element,
                                   const ImageDecodeOptions& options);
+    // Decodes the textures Index has left, all at once on TBB's threads (a model's dozen
+    // 2048^2 PNGs); the first error in the order they were asked for.
+    absl::Status DecodePending();
     // The same texture decoded, for a material to bake from; not added to the scene.
     absl::StatusOr<Texture> Decode(int texture, const std::string& element,
                                    const ImageDecodeOptions& options);
@@ -49,6 +55,13 @@ private:
     Scene* scene_;
     // (glTF image, how it is decoded) -> Scene::textures
     std::map<std::pair<int, ImageDecodeOptions>, int32_t> indices_;
+    struct Pending {
+        int32_t index;  // into Scene::textures
+        int texture;
+        std::string element;
+        ImageDecodeOptions options;
+    };
+    std::vector<Pending> pending_;
 };
 
 }  // namespace pf

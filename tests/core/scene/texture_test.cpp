@@ -5,8 +5,11 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <utility>
+#include <vector>
 
 #include "core/scene/image_decode.h"
 #include "core/scene/scene_files.h"
@@ -30,6 +33,59 @@ std::string CheckerboardPng() {
     const absl::StatusOr<std::string> bytes = ReadWholeFile(path);
     std::filesystem::remove(path);
     return bytes.ok() ? *bytes : std::string();
+}
+
+// An RGBA PNG of `values` (4 per texel) stored as `format` (8 or 16 bits), its bytes.
+template <typename Code>
+std::string RgbaPng(const std::vector<Code>& values, OIIO::TypeDesc format) {
+    const std::string path = testing::TempPath("photonfarm-codes.png");
+    auto out = OIIO::ImageOutput::create(path);
+    OIIO::ImageSpec spec(static_cast<int>(values.size() / 4), 1, 4, format);
+    spec.attribute("oiio:UnassociatedAlpha", 1);  // colour as given, not divided by alpha
+    EXPECT_TRUE(out && out->open(path, spec));
+    EXPECT_TRUE(out->write_image(format, values.data()));
+    out->close();
+    const absl::StatusOr<std::string> bytes = ReadWholeFile(path);
+    std::filesystem::remove(path);
+    return bytes.ok() ? *bytes : std::string();
+}
+
+// The sRGB transfer function (IEC 61966-2-1), written here in double precision.
+double SrgbDecoded(double encoded) {
+    return encoded <= 0.04045 ? encoded / 12.92 : std::pow((encoded + 0.055) / 1.055, 2.4);
+}
+
+TEST(TextureTest, EightAndSixteenBitCodesDecodeAsTheTransferFunctionSays) {
+    // 8- and 16-bit images are decoded through a table of their codes: every channel, the
+    // green alone, alpha (linear), and a gamma, against the formulas.
+    const std::vector<uint8_t> bytes8 = {0, 10, 128, 255, 255, 200, 3, 51};
+    const std::vector<uint16_t> codes16 = {0, 1000, 40000, 65535, 65535, 12345, 777, 13107};
+    for (int bits : {8, 16}) {
+        const std::string png = bits == 8 ? RgbaPng(bytes8, OIIO::TypeDesc::UINT8)
+                                          : RgbaPng(codes16, OIIO::TypeDesc::UINT16);
+        const auto value = [&](int k) {
+            return bits == 8 ? bytes8[k] / 255.0 : codes16[k] / 65535.0;
+        };
+        const absl::StatusOr<Texture> colour = DecodeImage(png, "codes.png", SceneLimits{});
+        ASSERT_TRUE(colour.ok()) << colour.status();
+        ASSERT_EQ(colour->texels.size(), 2u);
+        for (int texel = 0; texel < 2; ++texel)
+            for (int c = 0; c < 3; ++c)
+                EXPECT_NEAR(colour->texels[texel][c], SrgbDecoded(value(4 * texel + c)), 2e-6)
+                    << bits << " bits, texel " << texel << ", channel " << c;
+        ImageDecodeOptions options;
+        options.channels = ImageChannels::kGreen;
+        options.encoding = ImageEncoding::kGamma;
+        options.gamma = 1.8;
+        const absl::StatusOr<Texture> green = DecodeImage(png, "codes.png", SceneLimits{}, options);
+        ASSERT_TRUE(green.ok()) << green.status();
+        EXPECT_NEAR(green->texels[1].x, std::pow(value(5), 1.8), 2e-6) << bits << " bits";
+        options.channels = ImageChannels::kAlpha;
+        const absl::StatusOr<Texture> alpha = DecodeImage(png, "codes.png", SceneLimits{}, options);
+        ASSERT_TRUE(alpha.ok()) << alpha.status();
+        EXPECT_NEAR(alpha->texels[0].x, value(3), 1e-7) << bits << " bits";
+        EXPECT_NEAR(alpha->texels[1].x, value(7), 1e-7) << bits << " bits";
+    }
 }
 
 TEST(TextureTest, FootprintsAverageWhatTheyCover) {
