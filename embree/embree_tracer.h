@@ -1,5 +1,6 @@
-// The Tracer over Embree 3: the world's triangles and the scene's instances, each placing a
-// prototype's own BVH (two levels), single-ray and 8-wide queries. The only place
+// The Tracer over Embree 3: the world's triangles and curves (Embree's curve primitives) and the
+// scene's instances, each placing a prototype's own BVH (two levels), single-ray and 8-wide
+// queries. The only place
 // (with its .cpp) that includes Embree.
 #pragma once
 
@@ -15,9 +16,9 @@ namespace pf::embree {
 
 class EmbreeTracer final : public Tracer {
 public:
-    // Builds the BVHs over scene.triangles: the world's, one per prototype, and one over the
-    // instances. Hits name Scene::triangles and Scene::instances. The scene's geometry is
-    // copied; the scene need not outlive the tracer.
+    // Builds the BVHs over scene.triangles and scene.curves: the world's, one per prototype, and
+    // one over the instances. Hits name Scene::triangles (or curves) and Scene::instances. The
+    // scene's geometry is copied; the scene need not outlive the tracer.
     static absl::StatusOr<std::unique_ptr<EmbreeTracer>> Create(const Scene& scene);
     ~EmbreeTracer() override;
     EmbreeTracer(const EmbreeTracer&) = delete;

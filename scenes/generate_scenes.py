@@ -22,6 +22,7 @@ import base64
 import json
 import math
 import os
+import random
 import struct
 import sys
 import zlib
@@ -556,11 +557,51 @@ def caustic_room(writer):
     writer.camera([0.7, 0.8, 0.9], [1.3, 0.0, 0.0], 50.0)
 
 
+def cornell_curves(writer):
+    """The Cornell box in pbrt-v4's curves: three tufts of grass (tapered cylinder curves, one
+    object instanced three times, in pbrt-v4's hair material, which photonfarm shades as the
+    nearest diffuse surface), a curtain of flat B-spline strands hanging before the back wall, and
+    three broad ribbon leaves (degree 2 Bezier curves, each turning between the normals at its
+    ends). Seeded: the same file every time."""
+    cornell_room(writer)
+    rng = random.Random(57)
+    grass = writer.named_material("grass", "hair", '"rgb reflectance" [ 0.3 0.55 0.15 ]')
+    writer.begin_object("tuft")
+    blades = []
+    for _ in range(40):
+        angle, lean = rng.uniform(0, 2 * math.pi), rng.uniform(0.02, 0.07)
+        height = rng.uniform(0.09, 0.16)
+        x0, z0 = rng.gauss(0, 0.012), rng.gauss(0, 0.012)
+        dx, dz = math.cos(angle) * lean, math.sin(angle) * lean
+        blades.append([[x0, 0, z0], [x0 + 0.1 * dx, height / 3, z0 + 0.1 * dz],
+                       [x0 + 0.5 * dx, 2 * height / 3, z0 + 0.5 * dz], [x0 + dx, height, z0 + dz]])
+    writer.curves("blades", blades, grass,
+                  '"string type" "cylinder" "float width0" 0.006 "float width1" 0.001')
+    writer.end_object()
+    for x, z, turn, size in ((0.15, 0.2, 0, 1.0), (0.38, 0.12, 70, 1.2), (0.3, 0.35, 150, 0.9)):
+        writer.instance("tuft", [x, 0, z], turn, size)
+    strands = []
+    for i in range(14):
+        x = 0.12 + 0.32 * i / 13
+        sway = [rng.uniform(-0.03, 0.03) for _ in range(3)]
+        strands.append([[x, 0.52, 0.5], [x + sway[0], 0.44, 0.49], [x + sway[1], 0.36, 0.5],
+                        [x + sway[2], 0.28, 0.48], [x, 0.22, 0.5]])
+    writer.curves("strands", strands, writer.material("straw", (0.8, 0.7, 0.35)),
+                  '"string basis" "bspline" "float width" 0.004')
+    leaf = writer.material("leaf", (0.2, 0.5, 0.25))
+    for i, (x, z) in enumerate(((0.42, 0.3), (0.2, 0.42), (0.48, 0.22))):
+        tip = [x - 0.08 + 0.05 * i, 0.22, z - 0.05]
+        writer.ribbon("leaf_%d" % i, [[x, 0, z], [x - 0.02, 0.14, z + 0.02], tip],
+                      [[1, 0, 0], [0.6, 0.3, -0.74]], leaf,
+                      '"integer degree" 2 "float width0" 0.05 "float width1" 0.012')
+
+
 SCENES = {"cornell-box": cornell_box, "cornell-glass": cornell_glass, "cornell-glossy": cornell_glossy,
           "caustic-glass": caustic_glass, "furnace": furnace, "furnace-glass": furnace_glass,
           "sky-courtyard": sky_courtyard, "cornell-stained": cornell_stained,
           "cornell-bumpy": cornell_bumpy, "light-gap": light_gap, "caustic-room": caustic_room}
-PBRT_SCENES = {"cornell-lamps": cornell_lamps, "cornell-materials": cornell_materials}
+PBRT_SCENES = {"cornell-lamps": cornell_lamps, "cornell-materials": cornell_materials,
+               "cornell-curves": cornell_curves}
 GLTF_SCENES = {"cornell-velvet": cornell_velvet}
 
 if __name__ == "__main__":

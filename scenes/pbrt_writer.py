@@ -132,6 +132,36 @@ class PbrtWriter:
         out.append(line)
         out.append("AttributeEnd")
 
+    def curves(self, name, curve_list, material, parameters=""):
+        """pbrt-v4 curve shapes (pbrt-only scenes): each a list of control points, with the same
+        further parameters (type, basis, widths) written as pbrt-v4 writes them."""
+        out = self._begin(name, material)
+        for points in curve_list:
+            out.append('    Shape "curve" "point3 P" %s %s' % (numbers([c for p in points for c in p]),
+                                                          parameters))
+        out.append("AttributeEnd")
+
+    def ribbon(self, name, points, normals, material, parameters=""):
+        """A pbrt-v4 ribbon curve: a normal at each segment's ends."""
+        out = self._begin(name, material)
+        out.append('    Shape "curve" "string type" "ribbon" "point3 P" %s "normal N" %s %s' % (
+            numbers([c for p in points for c in p]), numbers([c for n in normals for c in n]), parameters))
+        out.append("AttributeEnd")
+
+    def begin_object(self, name):
+        """What follows until end_object is pbrt's object `name` (ObjectBegin), drawn by instance()."""
+        self._out().extend(["", 'ObjectBegin "%s"' % name])
+
+    def end_object(self):
+        self._out().append("ObjectEnd")
+
+    def instance(self, name, translate, rotate_y_degrees=0.0, scale=1.0):
+        self._out().extend(["AttributeBegin",
+                            "    Translate %s %s %s" % tuple(num(c) for c in translate),
+                            "    Rotate %s 0 1 0" % num(rotate_y_degrees),
+                            "    Scale %s %s %s" % ((num(scale),) * 3),
+                            '    ObjectInstance "%s"' % name, "AttributeEnd"])
+
     def camera(self, eye, target, yfov_degrees, aspect=1.0):
         up = [0, 1, 0] if abs(normalize([t - e for t, e in zip(target, eye)])[1]) < 0.999 else [0, 0, 1]
         self.header = [

@@ -21,10 +21,19 @@ struct Ray {
 // What a tracer reports for the closest hit: enough to rebuild the surface point.
 struct RayHit {
     float t = 0;
-    uint32_t triangle = 0;  // index into Scene::triangles
-    float b1 = 0, b2 = 0;   // barycentrics of vertices 1 and 2
+    // Index into Scene::triangles; with kCurveBit set (gpu::kCurveBit, core/shared/curve.h),
+    // the rest is an index into Scene::curves (IsCurve, CurveIndex).
+    static constexpr uint32_t kCurveBit = 0x80000000u;
+    uint32_t triangle = 0;
+    float b1 = 0, b2 = 0;  // barycentrics of vertices 1 and 2; of a curve, b1 is u along it
     uint32_t instance =
         ~0u;  // index into Scene::instances, or ~0u (Instance::kNone) for a world triangle
+    // A curve's: the ray that met it (world space, direction unit), from which Scene::Surface
+    // finds where across the curve it passed and which way the curve faces it.
+    Vec3 origin, direction;
+
+    bool IsCurve() const { return (triangle & kCurveBit) != 0; }
+    uint32_t CurveIndex() const { return triangle & ~kCurveBit; }
 };
 
 // Moves p off the surface along the geometric normal n, toward the side `n` faces, by a few

@@ -201,9 +201,13 @@ float MaxSearchRadius(const PhotonMapSettings& settings, const Scene& scene) {
 double SceneSurfaceArea(const Scene& scene) {
     double area = 0;
     for (uint32_t t = 0; t < scene.WorldTriangleCount(); ++t) area += scene.TriangleArea(t);
+    for (uint32_t c = 0; c < scene.WorldCurveCount(); ++c) area += scene.curves[c].Area();
     for (const Instance& instance : scene.instances) {
         const Prototype& prototype = scene.prototypes[instance.prototype];
         double prototype_area = 0;
+        for (uint32_t c = prototype.first_curve; c < prototype.first_curve + prototype.curve_count;
+             ++c)
+            prototype_area += scene.curves[c].Area();
         for (uint32_t t = prototype.first_triangle;
              t < prototype.first_triangle + prototype.triangle_count; ++t) {
             const Triangle& triangle = scene.triangles[t];

@@ -148,7 +148,11 @@ absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement
 }
 
 uint32_t BeginPrototype(Scene* scene) {
-    scene->prototypes.push_back({static_cast<uint32_t>(scene->triangles.size()), 0, {}});
+    scene->prototypes.push_back({static_cast<uint32_t>(scene->triangles.size()),
+                                 0,
+                                 static_cast<uint32_t>(scene->curves.size()),
+                                 0,
+                                 {}});
     return static_cast<uint32_t>(scene->prototypes.size() - 1);
 }
 
@@ -156,7 +160,7 @@ absl::Status AddInstance(uint32_t prototype, const Transform& from_object,
                          const SceneLimits& limits, const std::string& element, Scene* scene) {
     PF_CHECK(prototype < scene->prototypes.size());
     const Prototype& placed = scene->prototypes[prototype];
-    if (placed.triangle_count == 0) return absl::OkStatus();
+    if (placed.triangle_count == 0 && placed.curve_count == 0) return absl::OkStatus();
     if (scene->instances.size() >= limits.max_instances)
         return absl::ResourceExhaustedError(
             absl::StrCat(element, ": the scene would hold more than ", limits.max_instances,
@@ -181,32 +185,52 @@ absl::Status AddInstance(uint32_t prototype, const Transform& from_object,
     return absl::OkStatus();
 }
 
-void FinishInstancing(Scene* scene) {
-    if (scene->prototypes.empty()) return;
-    std::vector<bool> in_prototype(scene->triangles.size(), false);
-    for (const Prototype& prototype : scene->prototypes)
-        std::fill_n(in_prototype.begin() + prototype.first_triangle, prototype.triangle_count,
-                    true);
-    std::vector<Triangle> ordered;
-    ordered.reserve(scene->triangles.size());
-    for (size_t t = 0; t < scene->triangles.size(); ++t)
-        if (!in_prototype[t]) ordered.push_back(scene->triangles[t]);
-    for (Prototype& prototype : scene->prototypes) {
-        const auto first = scene->triangles.begin() + prototype.first_triangle;
-        prototype.first_triangle = static_cast<uint32_t>(ordered.size());
-        ordered.insert(ordered.end(), first, first + prototype.triangle_count);
+namespace {
+
+// The world's elements (triangles or curves) first, then each prototype's, whose `first` and
+// `count` name them.
+template <typename T>
+void WorldFirst(std::vector<T>& elements, std::vector<Prototype>& prototypes,
+                uint32_t Prototype::*first, uint32_t Prototype::*count) {
+    std::vector<bool> in_prototype(elements.size(), false);
+    for (const Prototype& prototype : prototypes)
+        std::fill_n(in_prototype.begin() + prototype.*first, prototype.*count, true);
+    std::vector<T> ordered;
+    ordered.reserve(elements.size());
+    for (size_t e = 0; e < elements.size(); ++e)
+        if (!in_prototype[e]) ordered.push_back(elements[e]);
+    for (Prototype& prototype : prototypes) {
+        const auto begin = elements.begin() + prototype.*first;
+        prototype.*first = static_cast<uint32_t>(ordered.size());
+        ordered.insert(ordered.end(), begin, begin + prototype.*count);
     }
-    scene->triangles = std::move(ordered);
+    elements = std::move(ordered);
 }
 
-absl::StatusOr<Scene> FlattenInstances(const Scene& scene, uint64_t max_triangles) {
-    uint64_t total = scene.WorldTriangleCount();
-    for (const Instance& instance : scene.instances)
+}  // namespace
+
+void FinishInstancing(Scene* scene) {
+    if (scene->prototypes.empty()) return;
+    WorldFirst(scene->triangles, scene->prototypes, &Prototype::first_triangle,
+               &Prototype::triangle_count);
+    WorldFirst(scene->curves, scene->prototypes, &Prototype::first_curve, &Prototype::curve_count);
+}
+
+absl::StatusOr<Scene> FlattenInstances(const Scene& scene, uint64_t max_triangles,
+                                       uint64_t max_curves) {
+    uint64_t total = scene.WorldTriangleCount(), total_curves = scene.WorldCurveCount();
+    for (const Instance& instance : scene.instances) {
         total += scene.prototypes[instance.prototype].triangle_count;
+        total_curves += scene.prototypes[instance.prototype].curve_count;
+    }
     if (total > max_triangles)
         return absl::ResourceExhaustedError(absl::StrCat(
             scene.source, ": its ", scene.instances.size(), " instances expand to ", total,
             " triangles, more than the ", max_triangles, " this backend holds"));
+    if (total_curves > max_curves)
+        return absl::ResourceExhaustedError(absl::StrCat(
+            scene.source, ": its ", scene.instances.size(), " instances expand to ", total_curves,
+            " curves, more than the ", max_curves, " this backend holds"));
     // Each prototype's vertices, once, and its triangles over them (AppendMesh gives every mesh
     // vertices of its own: no vertex belongs to two prototypes).
     struct Local {
@@ -233,8 +257,15 @@ absl::StatusOr<Scene> FlattenInstances(const Scene& scene, uint64_t max_triangle
     }
     Scene flat = scene;
     flat.triangles.resize(scene.WorldTriangleCount());
+    flat.curves.resize(scene.WorldCurveCount());
     flat.prototypes.clear();
     flat.instances.clear();
+    for (uint32_t i = 0; i < scene.instances.size(); ++i) {
+        const Prototype& prototype = scene.prototypes[scene.instances[i].prototype];
+        for (uint32_t c = prototype.first_curve; c < prototype.first_curve + prototype.curve_count;
+             ++c)
+            flat.curves.push_back(scene.WorldCurve(c, i));
+    }
     for (const Instance& instance : scene.instances) {
         const Local& local = locals[instance.prototype];
         const auto base = static_cast<uint32_t>(flat.positions.size());

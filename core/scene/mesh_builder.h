@@ -50,6 +50,7 @@ struct SceneLimits {
     uint64_t max_triangles = uint64_t{1}
                              << 26;  // 64 M stored (a prototype's once): ~5 GiB of scene
     uint64_t max_instances = uint64_t{1} << 24;     // 16 M: ~1.3 GiB
+    uint64_t max_curves = uint64_t{1} << 24;        // 16 M Bezier segments: ~1.4 GiB
     uint64_t max_image_pixels = uint64_t{1} << 26;  // per image: 8192 x 8192
     int max_include_depth = 32;
 };
@@ -75,18 +76,20 @@ absl::Status AppendMesh(const TriangleMesh& mesh, const MeshPlacement& placement
 // Starts a prototype, empty until meshes are appended to it; returns its index.
 uint32_t BeginPrototype(Scene* scene);
 
-// Places `prototype` in the world by `from_object` (a prototype without triangles places
-// nothing). Errors name `element`: a transform that is singular or not finite, the instance
+// Places `prototype` in the world by `from_object` (a prototype without triangles or curves
+// places nothing). Errors name `element`: a transform that is singular or not finite, the instance
 // limit exceeded (RESOURCE_EXHAUSTED).
 absl::Status AddInstance(uint32_t prototype, const Transform& from_object,
                          const SceneLimits& limits, const std::string& element, Scene* scene);
 
-// Puts the world's triangles before the prototypes' (Scene::WorldTriangleCount), as loaders
-// build them in file order; each loader calls it once, when done.
+// Puts the world's triangles and curves before the prototypes' (Scene::WorldTriangleCount,
+// WorldCurveCount), as loaders build them in file order; each loader calls it once, when done.
 void FinishInstancing(Scene* scene);
 
-// The scene with every instance expanded into world triangles, no prototypes left (for a
-// backend without instancing). RESOURCE_EXHAUSTED beyond `max_triangles` in all.
-absl::StatusOr<Scene> FlattenInstances(const Scene& scene, uint64_t max_triangles);
+// The scene with every instance expanded into world triangles and curves, no prototypes left
+// (for a backend without instancing). RESOURCE_EXHAUSTED beyond `max_triangles` triangles or
+// `max_curves` curves in all.
+absl::StatusOr<Scene> FlattenInstances(const Scene& scene, uint64_t max_triangles,
+                                       uint64_t max_curves = SceneLimits{}.max_curves);
 
 }  // namespace pf

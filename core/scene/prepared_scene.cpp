@@ -34,7 +34,9 @@ static_assert(sizeof(VertexColor) == 16);
 static_assert(sizeof(PixelFilter) == 4 + 6 * 4);
 static_assert(sizeof(Camera) == 4 * 12 + 4 * 4 + 4 + sizeof(ScreenWindow) + 4 + sizeof(PixelFilter),
               "Camera gained a field or padding: encode it");
-static_assert(sizeof(Prototype) == 8 + 24 && sizeof(Instance) == 4 + 21 * 4);
+static_assert(sizeof(Prototype) == 16 + 24 && sizeof(Instance) == 4 + 21 * 4);
+static_assert(sizeof(Curve) == 4 * 12 + 2 * 4 + 2 * 12 + 4 + 4,
+              "Curve gained a field or padding: encode it");
 static_assert(sizeof(Bounds) == 24 && sizeof(SceneRenderHints) == 16);
 
 absl::Status Invalid(const std::string& what) {
@@ -151,6 +153,7 @@ void WritePayload(const Scene& scene, ByteWriter& out) {
         normals.push_back(t.normal);
     }
     Write(out, vertices), Write(out, materials), Write(out, smooth_flags), Write(out, normals);
+    Write(out, scene.curves);
     Write(out, scene.prototypes);
     Write(out, scene.instances);
     Write(out, scene.materials);
@@ -231,6 +234,7 @@ absl::Status ReadPayload(ByteReader& in, Scene* scene) {
         triangle.smooth = smooth[t] == 1;
         triangle.normal = normals[t];
     }
+    if (!in.Array(&scene->curves, kMaxCount)) return fail("curves");
     if (!in.Array(&scene->prototypes, kMaxCount)) return fail("prototypes");
     if (!in.Array(&scene->instances, kMaxCount)) return fail("instances");
     if (!in.Array(&scene->materials, kMaxCount)) return fail("materials");
@@ -386,6 +390,46 @@ absl::Status CheckMaterials(const Scene& scene) {
     return absl::OkStatus();
 }
 
+// Whether material `m`, or one a mix of it may be, emits.
+bool Emits(const Scene& scene, uint32_t m) {
+    const Material& material = scene.materials[m];
+    if (material.IsEmissive()) return true;
+    // A mix's materials come before it (CheckMaterials), so this ends.
+    return material.type == MaterialType::kMix &&
+           (Emits(scene, material.mix_first) || Emits(scene, material.mix_second));
+}
+
+// Curves: control points and normals finite, widths finite, not negative and not both 0, a
+// ribbon's normals unit length, a known type, a material in range that emits nothing (emitters
+// are triangles). After CheckMaterials.
+absl::Status CheckCurves(const Scene& scene) {
+    for (size_t c = 0; c < scene.curves.size(); ++c) {
+        const Curve& curve = scene.curves[c];
+        const std::string name = absl::StrCat("curve ", c);
+        if (static_cast<uint32_t>(curve.type) > static_cast<uint32_t>(CurveType::kRibbon))
+            return Invalid(
+                absl::StrCat(name, ": unknown type ", static_cast<uint32_t>(curve.type)));
+        if (!std::all_of(curve.control.begin(), curve.control.end(),
+                         [](const Vec3& p) { return Finite(p); }) ||
+            !Finite(curve.normal[0]) || !Finite(curve.normal[1]))
+            return Invalid(absl::StrCat(name, ": a point or normal not finite"));
+        if (!(Finite(curve.width[0]) && Finite(curve.width[1]) && curve.width[0] >= 0 &&
+              curve.width[1] >= 0 && curve.Radius() > 0))
+            return Invalid(
+                absl::StrCat(name, ": widths ", curve.width[0], " and ", curve.width[1]));
+        if (curve.type == CurveType::kRibbon)
+            for (const Vec3& n : curve.normal)
+                if (!(std::abs(Length(n) - 1.0f) < 1e-3f))
+                    return Invalid(absl::StrCat(name, ": a ribbon normal not of unit length"));
+        if (curve.material >= scene.materials.size())
+            return Invalid(absl::StrCat(name, " uses material ", curve.material, " of ",
+                                        scene.materials.size()));
+        if (Emits(scene, curve.material))
+            return Invalid(absl::StrCat(name, " emits light (only triangles may)"));
+    }
+    return absl::OkStatus();
+}
+
 absl::Status CheckGeometry(const Scene& scene) {
     const size_t vertices = scene.positions.size();
     if (!std::all_of(scene.positions.begin(), scene.positions.end(),
@@ -423,15 +467,20 @@ absl::Status CheckGeometry(const Scene& scene) {
             return Invalid(absl::StrCat("triangle ", t, ": normal not finite"));
     }
     uint64_t first_prototype_triangle = scene.triangles.size();
+    uint64_t first_prototype_curve = scene.curves.size();
     for (size_t p = 0; p < scene.prototypes.size(); ++p) {
         const Prototype& prototype = scene.prototypes[p];
         if (uint64_t(prototype.first_triangle) + prototype.triangle_count > scene.triangles.size())
             return Invalid(absl::StrCat("prototype ", p, ": triangles out of range"));
+        if (uint64_t(prototype.first_curve) + prototype.curve_count > scene.curves.size())
+            return Invalid(absl::StrCat("prototype ", p, ": curves out of range"));
         first_prototype_triangle =
             std::min<uint64_t>(first_prototype_triangle, prototype.first_triangle);
+        first_prototype_curve = std::min<uint64_t>(first_prototype_curve, prototype.first_curve);
     }
     if (!scene.prototypes.empty() &&
-        scene.prototypes.front().first_triangle != first_prototype_triangle)
+        (scene.prototypes.front().first_triangle != first_prototype_triangle ||
+         scene.prototypes.front().first_curve != first_prototype_curve))
         return Invalid("prototypes out of order");
     for (size_t i = 0; i < scene.instances.size(); ++i) {
         const Instance& instance = scene.instances[i];
@@ -539,7 +588,8 @@ absl::StatusOr<Scene> DecodePreparedScene(std::string_view bytes, bool texture_f
     Scene scene;
     ByteReader in(payload);
     if (absl::Status status = ReadPayload(in, &scene); !status.ok()) return status;
-    for (const auto& check : {CheckGeometry, CheckMaterials, CheckLightsAndCamera})
+    // Curves after materials: whether one emits follows mixes, checked to end.
+    for (const auto& check : {CheckGeometry, CheckMaterials, CheckCurves, CheckLightsAndCamera})
         if (absl::Status status = check(scene); !status.ok()) return status;
     if (texture_filter && !scene.textures.empty())
         scene.texture_filter = MakeTextureFilter(scene.textures);

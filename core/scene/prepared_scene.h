@@ -1,5 +1,5 @@
 // A prepared scene: exactly what tracing a job's photons and camera samples needs of a loaded
-// Scene (triangles and instances, materials, the textures materials read, lights, camera,
+// Scene (triangles, curves and instances, materials, the textures materials read, lights, camera,
 // hints), in a versioned, checksummed binary form. The coordinator parses a job's bundle once
 // and sends workers this, so that no worker links a scene parser or an image library.
 // Encoding is lossless (every float as it was) and deterministic (the same scene gives the
@@ -21,8 +21,9 @@ namespace pf {
 // 2: the environment light; 8: its portal; 9: coated materials and cut-outs; 10: Fresnel-mix
 // coats, roughness and mix textures; 16: sheen, transmittance textures; 17: the pixel filter;
 // 18: coats' samples (Material::coat_samples), media outside surfaces (outside_absorption).
-// 19: vertex colours, surface flags (single-sided surfaces); 20: procedural textures.
-inline constexpr uint32_t kPreparedSceneVersion = 20;
+// 19: vertex colours, surface flags (single-sided surfaces); 20: procedural textures;
+// 21: curves.
+inline constexpr uint32_t kPreparedSceneVersion = 21;
 
 // Normals go only where a triangle is smooth, texture coordinates only where a material has a
 // texture, textures only where a material reads them (others stay as empty placeholders, so

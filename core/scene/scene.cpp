@@ -5,11 +5,14 @@
 #include <cmath>
 
 #include "core/shared/alpha.h"
+#include "core/shared/curve.h"
 #include "core/shared/environment_map.h"
 #include "core/shared/procedural_texture.h"
 #include "core/shared/shading_normal.h"
 
 namespace pf {
+
+static_assert(RayHit::kCurveBit == gpu::kCurveBit, "one bit marks a curve hit on both backends");
 
 float PunctualLight::SpotFalloff(float cos_axis) const {
     // KHR_lights_punctual, "Inner and Outer Cone Angles": a quadratic ramp between the cones.
@@ -66,7 +69,59 @@ Instance Instance::Make(uint32_t prototype, const Transform& from_object) {
     return instance;
 }
 
+Bounds Curve::Box() const {
+    // The control points' hull holds the curve; the band reaches half a width beyond it.
+    Bounds box;
+    for (const Vec3& p : control) box.Extend(p);
+    box.lower = box.lower - Vec3(Radius()), box.upper = box.upper + Vec3(Radius());
+    return box;
+}
+
+float Curve::Area() const {
+    const float length = Length(control[1] - control[0]) + Length(control[2] - control[1]) +
+                         Length(control[3] - control[2]);
+    return length * 0.5f * (width[0] + width[1]);
+}
+
+Curve Scene::WorldCurve(uint32_t curve, uint32_t instance) const {
+    Curve placed = curves[curve];
+    if (instance == Instance::kNone) return placed;
+    const Instance& by = instances[instance];
+    for (Vec3& p : placed.control) p = by.ApplyPoint(p);
+    for (Vec3& n : placed.normal) {
+        const Vec3 mapped = by.ApplyNormal(n);
+        if (LengthSquared(mapped) > 0) n = Normalize(mapped);
+    }
+    const float* m = by.to_world.data();
+    const double determinant = double(m[0]) * (double(m[5]) * m[10] - double(m[6]) * m[9]) -
+                               double(m[1]) * (double(m[4]) * m[10] - double(m[6]) * m[8]) +
+                               double(m[2]) * (double(m[4]) * m[9] - double(m[5]) * m[8]);
+    const auto scale = static_cast<float>(std::cbrt(std::abs(determinant)));
+    for (float& w : placed.width) w *= scale;
+    return placed;
+}
+
+SurfacePoint Scene::CurveSurface(const RayHit& hit) const {
+    const Curve curve = WorldCurve(hit.CurveIndex(), hit.instance);
+    const std::array<Vec3, 4>& p = curve.control;
+    const auto type = static_cast<uint32_t>(curve.type);
+    const float u = std::clamp(hit.b1, 0.0f, 1.0f);
+    const float v = gpu::CurveAcross(p[0], p[1], p[2], p[3], curve.width[0], curve.width[1], type,
+                                     curve.normal[0], curve.normal[1], u,
+                                     hit.origin + hit.direction * hit.t, hit.direction);
+    SurfacePoint surface;
+    gpu::CurveSurfaceAt(p[0], p[1], p[2], p[3], curve.width[0], curve.width[1], type,
+                        curve.normal[0], curve.normal[1], u, v, hit.direction, surface.position,
+                        surface.geometric_normal, surface.shading_normal);
+    surface.uv = {u, v};
+    surface.material = ResolveMaterial(curve.material, surface.position, hit.triangle, surface.uv,
+                                       surface.geometric_normal);
+    return surface;
+}
+
 SurfacePoint Scene::Surface(const RayHit& hit) const {
+    if (hit.IsCurve()) [[unlikely]]
+        return CurveSurface(hit);
     const Triangle& triangle = triangles[hit.triangle];
     const Instance* instance = hit.instance == Instance::kNone ? nullptr : &instances[hit.instance];
     Vec3 p0 = positions[triangle.vertex[0]], p1 = positions[triangle.vertex[1]],
@@ -283,6 +338,12 @@ float Scene::Alpha(uint32_t triangle, float b1, float b2) const {
         alpha *= colors[t.vertex[0]].alpha * b0 + colors[t.vertex[1]].alpha * b1 +
                  colors[t.vertex[2]].alpha * b2;
     return alpha;
+}
+
+float Scene::CurveAlpha(uint32_t curve, float u, float v) const {
+    const Material& material = materials[curves[curve].material];
+    if (material.alpha_texture == kNoTexture) return material.alpha;
+    return material.alpha * textures[material.alpha_texture]->Sample(u, v).x;
 }
 
 float Scene::TriangleArea(uint32_t triangle) const {

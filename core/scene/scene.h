@@ -30,6 +30,40 @@ struct Triangle {
     Vec3 normal;  // unit geometric normal, on the side counter-clockwise winding makes front
 };
 
+struct Bounds {
+    Vec3 lower{1e30f}, upper{-1e30f};
+    void Extend(const Vec3& p) { lower = Min(lower, p), upper = Max(upper, p); }
+    Vec3 Center() const { return (lower + upper) * 0.5f; }
+    float Diagonal() const { return Length(upper - lower); }
+    // The largest coordinate magnitude, for scale-aware ray offsets (OffsetRayOrigin); at
+    // least the smallest normal float, so an empty scene still offsets.
+    float Magnitude() const {
+        const Vec3 m = Max(Abs(lower), Abs(upper));
+        return std::max({m.x, m.y, m.z, std::numeric_limits<float>::min()});
+    }
+};
+
+// A curve's cross-section (pbrt-v4's curve "type"; gpu::kCurve*).
+enum class CurveType : uint32_t { kFlat = 0, kCylinder = 1, kRibbon = 2 };
+
+// One cubic Bezier segment of a curve (pbrt-v4's "curve" shape: hair, fur, grass), in world
+// space or a prototype's: a band whose width varies linearly along it. Flat and cylinder curves
+// face the ray that meets them (a cylinder shades as a round tube); a ribbon is a band whose
+// normal turns from one end's to the other's. What a hit on one is: core/shared/curve.h.
+struct Curve {
+    std::array<Vec3, 4> control;  // Bezier control points
+    std::array<float, 2> width;   // at u = 0 and u = 1, finite, >= 0, not both 0
+    std::array<Vec3, 2> normal;   // a ribbon's unit normals at u = 0 and 1 (its front's side)
+    uint32_t material = 0;
+    CurveType type = CurveType::kFlat;
+
+    // The largest half-width, and the box around the band.
+    float Radius() const { return 0.5f * std::max(width[0], width[1]); }
+    Bounds Box() const;
+    // pbrt-v4's Curve::Area: the control polygon's length times the mean width.
+    float Area() const;
+};
+
 enum class LightType : uint32_t { kPoint, kSpot, kDirectional, kGoniometric, kProjection };
 
 // KHR_lights_punctual lights, taken radiometrically: intensity in W/sr for point and spot,
@@ -81,19 +115,6 @@ struct VertexColor {
     float alpha = 1.0f;
 };
 
-struct Bounds {
-    Vec3 lower{1e30f}, upper{-1e30f};
-    void Extend(const Vec3& p) { lower = Min(lower, p), upper = Max(upper, p); }
-    Vec3 Center() const { return (lower + upper) * 0.5f; }
-    float Diagonal() const { return Length(upper - lower); }
-    // The largest coordinate magnitude, for scale-aware ray offsets (OffsetRayOrigin); at
-    // least the smallest normal float, so an empty scene still offsets.
-    float Magnitude() const {
-        const Vec3 m = Max(Abs(lower), Abs(upper));
-        return std::max({m.x, m.y, m.z, std::numeric_limits<float>::min()});
-    }
-};
-
 // A point on a surface, rebuilt from a ray hit.
 struct SurfacePoint {
     Vec3 position;
@@ -109,11 +130,13 @@ struct SurfacePoint {
 // A mesh stored once, in its own space, and placed any number of times by instances (pbrt's
 // ObjectBegin/ObjectInstance, a glTF mesh that several nodes use): triangles
 // [first_triangle, first_triangle + triangle_count) of Scene::triangles, which hold it in that
-// space. Prototypes follow the world's own triangles (Scene::WorldTriangleCount) and hold no
-// emitters: emitting shapes are always placed as world triangles.
+// space, and its curves likewise. Prototypes follow the world's own triangles
+// (Scene::WorldTriangleCount) and curves, and hold no emitters: emitting shapes are always
+// placed as world triangles.
 struct Prototype {
     uint32_t first_triangle = 0, triangle_count = 0;
-    Bounds bounds;  // in the prototype's space
+    uint32_t first_curve = 0, curve_count = 0;  // of Scene::curves, likewise
+    Bounds bounds;                              // in the prototype's space
 };
 
 // A prototype placed in the world: an affine object-to-world map, in float as tracing applies it.
@@ -180,6 +203,7 @@ struct Scene {
     // and emission where the material says so (Material::surface_flags).
     std::vector<VertexColor> colors;
     std::vector<Triangle> triangles;  // the world's own, then each prototype's (in its space)
+    std::vector<Curve> curves;        // likewise; never emitting
     std::vector<Prototype> prototypes;
     std::vector<Instance> instances;
     std::vector<Material> materials;
@@ -201,6 +225,14 @@ struct Scene {
         return prototypes.empty() ? static_cast<uint32_t>(triangles.size())
                                   : prototypes.front().first_triangle;
     }
+
+    uint32_t WorldCurveCount() const {
+        return prototypes.empty() ? static_cast<uint32_t>(curves.size())
+                                  : prototypes.front().first_curve;
+    }
+    // A curve as it lies in the world: placed by `instance` (Instance::kNone: a world curve),
+    // its widths scaled by the instance's mean scale (the cube root of its determinant).
+    Curve WorldCurve(uint32_t curve, uint32_t instance) const;
 
     // The surface point a ray hit: its material resolved through mixes (Material::kMix).
     SurfacePoint Surface(const RayHit& hit) const;
@@ -256,10 +288,13 @@ struct Scene {
     // where the material says so (gpu::kSurfaceVertexAlpha). Material::HasCutOuts says where
     // it may not be 1.
     float Alpha(uint32_t triangle, float b1, float b2) const;
+    // The same of a curve at (u, v) (core/shared/curve.h).
+    float CurveAlpha(uint32_t curve, float u, float v) const;
     // The area of a world triangle.
     float TriangleArea(uint32_t triangle) const;
 
 private:
+    SurfacePoint CurveSurface(const RayHit& hit) const;
     // Surface's last step where the material has a normal or bump map: `corners` are the
     // triangle's in world space.
     void AddShadingDetail(const Triangle& triangle, const Instance* instance,

@@ -32,6 +32,7 @@ SceneFeatures SceneFeatures::All() {
                        &all.sheen_textures,
                        &all.procedural_textures,
                        &all.smooth_normals,
+                       &all.curves,
                        &all.shading_detail,
                        &all.triangle_lights,
                        &all.point_lights,
@@ -67,6 +68,7 @@ std::string SceneFeatures::ToString() const {
     if (mix_textures) parts.push_back("textured mixes");
     if (procedural_textures) parts.push_back("procedural textures");
     if (smooth_normals) parts.push_back("smooth normals");
+    if (curves) parts.push_back("curves");
     if (shading_detail) parts.push_back("normal or bump maps");
     if (triangle_lights) parts.push_back("area lights");
     if (point_lights) parts.push_back("point lights");
@@ -87,6 +89,8 @@ SceneFeatures AnalyseFeatures(const Scene& scene, const Emitters& emitters) {
         used[triangle.material] = true;
         features.smooth_normals |= triangle.smooth;
     }
+    for (const Curve& curve : scene.curves) used[curve.material] = true;
+    features.curves = !scene.curves.empty();
     // A mix's materials (which come before it) are used where it is.
     for (size_t m = scene.materials.size(); m-- > 0;)
         if (used[m] && scene.materials[m].type == MaterialType::kMix)

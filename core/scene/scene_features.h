@@ -11,7 +11,7 @@
 namespace pf {
 
 struct SceneFeatures {
-    // Materials on at least one triangle.
+    // Materials on at least one triangle or curve.
     bool mirror = false, dielectric = false, thin_dielectric = false;
     bool rough_conductor = false, rough_dielectric = false;  // GGX
     bool coats = false;           // a dielectric coat over a diffuse or conductor base
@@ -31,6 +31,7 @@ struct SceneFeatures {
     // A used material has a procedural texture (Texture::program): pbrt-v4's noise, dots, ...
     bool procedural_textures = false;
     bool smooth_normals = false;  // a triangle interpolates vertex normals
+    bool curves = false;          // curve shapes (core/shared/curve.h)
     bool shading_detail = false;  // a used material has a normal or bump map
     // Emitters with power.
     bool triangle_lights = false, point_lights = false, spot_lights = false,
@@ -59,8 +60,9 @@ struct SceneFeatures {
         return textures || alpha_textures || roughness_textures || mix_textures || shading_detail ||
                sheen_textures;
     }
-    // Whether some shading normal differs from its surface's (Veach's adjoint factors apply).
-    bool ShadingNormals() const { return smooth_normals || shading_detail; }
+    // Whether some shading normal differs from its surface's (Veach's adjoint factors apply):
+    // a cylinder curve's does.
+    bool ShadingNormals() const { return smooth_normals || shading_detail || curves; }
     // Every feature on: the general code path, for comparison (bench/photon_bench).
     static SceneFeatures All();
     // "diffuse, glass, area lights, caustics": for logs, job metadata and EXR headers.

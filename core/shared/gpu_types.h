@@ -123,7 +123,9 @@ PF_CONST(uint32_t) kSpecVertexClass = 28;
 PF_CONST(uint32_t) kSpecHasVertexColors = 29;  // Scene::colors (glTF's COLOR_0)
 // Procedural textures (Texture::program; core/shared/procedural_texture.h).
 PF_CONST(uint32_t) kSpecHasProceduralTextures = 30;
-PF_CONST(uint32_t) kSpecCount = 31;
+// The scene's again: curve shapes (core/shared/curve.h) in the BVH's leaves.
+PF_CONST(uint32_t) kSpecHasCurves = 31;
+PF_CONST(uint32_t) kSpecCount = 32;
 
 // The path tracer's wavefront (path_wavefront.comp): its stages, and the classes of vertex,
 // each shaded by a pipeline of its own from a queue of its own.
@@ -195,7 +197,12 @@ struct GpuBvhNode {
 };
 PF_GPU_LAYOUT(GpuBvhNode, 64);
 
-// A triangle as the intersection test wants it, in leaf order.
+// A triangle as the intersection test wants it, in leaf order. A leaf's slot may instead be a
+// curve's (kCurveBit set in p0.w's bits, core/shared/curve.h): p0.w's other bits then index the
+// first of its two records, which follow the slots in the same binding: the first (cp0, w0),
+// (cp1, w1), (cp2, material), the second (cp3, type), (n0, the curve's index), (n1, 0) -- its
+// Bezier control points cp, widths at its ends w, a ribbon's end normals n (Curve in
+// core/scene/scene.h; material, type and index as uint bits).
 struct GpuTriangle {
     vec4 p0;     // xyz; w: the scene triangle's index (uint bits)
     vec4 edge1;  // p1 - p0; w: 1 where its material has cut-outs (trace.glsl's MeetsSurface

@@ -3,7 +3,8 @@
 // header and checksum, as a hostile coordinator could, so that mutations reach the checks
 // behind the checksum; the unframed input is decoded too, for the header's own checks. Any
 // outcome but a crash, a sanitizer report or a leak is fine. A scene that decodes is walked
-// as tracing would walk it (every triangle's surface at its centre).
+// as tracing would walk it (every triangle's surface at its centre, every world curve's
+// half way along it).
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -31,6 +32,18 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         hit.b1 = hit.b2 = 1.0f / 3;
         const pf::SurfacePoint surface = scene->Surface(hit);
         (void)scene->BaseColor(surface, 0.01f);
+    }
+    for (uint32_t c = 0; c < scene->WorldCurveCount(); ++c) {  // met half way, side on
+        pf::RayHit hit;
+        hit.triangle = pf::RayHit::kCurveBit | c;
+        hit.instance = pf::Instance::kNone;
+        hit.b1 = 0.5f;
+        hit.t = 1;
+        hit.origin = pf::Vec3(0, 0, -1);
+        hit.direction = pf::Vec3(0, 0, 1);
+        const pf::SurfacePoint surface = scene->Surface(hit);
+        (void)scene->BaseColor(surface, 0.01f);
+        (void)scene->CurveAlpha(c, surface.uv.x, surface.uv.y);
     }
     return 0;
 }

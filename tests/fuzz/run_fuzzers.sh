@@ -32,7 +32,8 @@ for format in pbrt gltf gzip spectrum draco meshopt ply prepared_scene; do
     if [ "$format" = prepared_scene ]; then  # seeds made from the shipped scenes, not kept
         ASAN_OPTIONS=detect_leaks=0 "$build_dir/tests/fuzz/prepared_scene_seeds" "$corpus" "$source_dir/scenes/cornell-box.gltf" \
             "$source_dir/scenes/pbrt/caustic-glass.pbrt" "$source_dir/scenes/cornell-bumpy.gltf" \
-            "$source_dir/scenes/pbrt/cornell-materials.pbrt" "$source_dir/scenes/cornell-velvet.gltf" 2>/dev/null
+            "$source_dir/scenes/pbrt/cornell-materials.pbrt" "$source_dir/scenes/cornell-velvet.gltf" \
+            "$source_dir/scenes/pbrt/cornell-curves.pbrt" 2>/dev/null
         seeds=()
     else
         cp "$source_dir/tests/fuzz/corpus/$format"/* "$corpus"/

@@ -9,6 +9,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "core/film/color_space.h"
+#include "core/scene/curve_builder.h"
 #include "core/scene/image_decode.h"
 #include "core/scene/loop_subdivision.h"
 #include "core/scene/pbrt/pbrt_scene_builder.h"
@@ -331,7 +332,23 @@ absl::Status PbrtSceneBuilder::Shape(const std::string& type, ParameterList& par
         if (!mesh.ok())
             return absl::Status(mesh.status().code(),
                                 absl::StrCat(element, ": ", mesh.status().message()));
-    } else if (type == "curve" || type == "hyperboloid" || type == "paraboloid" || type == "cone") {
+    } else if (type == "curve") {
+        bool ignored_normals = false;
+        absl::StatusOr<std::vector<Curve>> curves = CurveShape(parameters, where, &ignored_normals);
+        if (!curves.ok()) return curves.status();
+        if (ignored_normals)
+            Warn(where,
+                 "Shape \"curve\": \"normal N\" is read by \"ribbon\" curves only; "
+                 "ignored (as pbrt-v4 ignores it)");
+        WarnCurveState(state, where);
+        if (!current_object_.empty()) {
+            objects_[current_object_].push_back({TriangleMesh{}, state.ctm,
+                                                 FrontFace::kObjectWinding, state, element,
+                                                 std::move(*curves)});
+            return absl::OkStatus();
+        }
+        return AddCurves(*curves, state.ctm, state, element);
+    } else if (type == "hyperboloid" || type == "paraboloid" || type == "cone") {
         parameters.ConsumeAll();
         Warn(where, absl::StrCat("Shape \"", type, "\" is not supported; the shape is left out"));
         return absl::OkStatus();
@@ -361,18 +378,22 @@ absl::Status PbrtSceneBuilder::ObjectInstance(const std::string& name,
         if (shapes.empty() && !options_.references_only)
             spdlog::info("{}: the object holds no shapes; its instances add nothing", element);
         prototype->second = BeginPrototype(&scene_);
-        for (const ObjectShape& shape : shapes)
-            if (!shape.state.area_light)
-                if (absl::Status status =
-                        AddShape(shape.mesh, shape.world, shape.front, shape.state,
-                                 absl::StrCat(element, ": ", shape.element), prototype->second);
-                    !status.ok())
-                    return status;
+        for (const ObjectShape& shape : shapes) {
+            const std::string shape_element = absl::StrCat(element, ": ", shape.element);
+            absl::Status status;
+            if (!shape.curves.empty())  // curves never emit: all go to the prototype
+                status = AddCurves(shape.curves, shape.world, shape.state, shape_element,
+                                   prototype->second);
+            else if (!shape.state.area_light)
+                status = AddShape(shape.mesh, shape.world, shape.front, shape.state, shape_element,
+                                  prototype->second);
+            if (!status.ok()) return status;
+        }
     }
     // Emitting shapes are lights, which are sampled in world space: each instance places them as
     // world triangles (pbrt-v4 refuses area lights in instances).
     for (const ObjectShape& shape : shapes)
-        if (shape.state.area_light)
+        if (shape.state.area_light && shape.curves.empty())
             if (absl::Status status =
                     AddShape(shape.mesh, state_.ctm * shape.world, shape.front, shape.state,
                              absl::StrCat(element, ": ", shape.element));
@@ -484,6 +505,46 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
         return AppendMesh(WithTriangleUvs(mesh), placement, options_.limits, element, &scene_,
                           prototype);
     return AppendMesh(mesh, placement, options_.limits, element, &scene_, prototype);
+}
+
+void PbrtSceneBuilder::WarnCurveState(const GraphicsState& state, const Location& where) {
+    const MaterialRef& material =
+        state.material >= 0 ? materials_[state.material] : DefaultMaterial();
+    // pbrt-v4 cannot sample a point on a curve (Curve::Sample is not implemented): it stops.
+    if (state.area_light)
+        Warn(where,
+             "Shape \"curve\": an area light on a curve; the curve is drawn, emitting "
+             "nothing (pbrt-v4 cannot render it)");
+    const Material& m = material.material;
+    if (m.IsTranslucent() || m.type == MaterialType::kDielectric ||
+        m.type == MaterialType::kThinDielectric || m.type == MaterialType::kRoughDielectric)
+        Warn(where,
+             "Shape \"curve\": light through a curve is not followed (a curve is a band "
+             "seen from the side the light comes from)");
+    const bool textured = m.ReadsUv() || state.alpha.texture != kNoTexture;
+    if (textured &&
+        (!(material.mapping == TextureMapping{}) ||
+         (state.alpha.texture != kNoTexture && !(state.alpha.mapping == TextureMapping{}))))
+        Warn(where,
+             "Shape \"curve\": a texture on a curve is read at the curve's own (u, v), "
+             "without the texture's mapping");
+}
+
+absl::Status PbrtSceneBuilder::AddCurves(const std::vector<Curve>& curves, const Transform& world,
+                                         const GraphicsState& state, const std::string& element,
+                                         std::optional<uint32_t> prototype) {
+    if (options_.references_only) return absl::OkStatus();
+    const MaterialRef& material =
+        state.material >= 0 ? materials_[state.material] : DefaultMaterial();
+    if (material.interface) return absl::OkStatus();
+    // Curves never emit (WarnCurveState notes an area light on one).
+    absl::StatusOr<uint32_t> index = SceneMaterial(state.material, Rgb(0.0f), false, state.alpha,
+                                                   kNoTexture, InsideAbsorption(state, element));
+    if (!index.ok()) return index.status();
+    std::vector<Curve> placed = curves;
+    for (Curve& curve : placed) curve.material = *index;
+    return AppendCurves(placed, world, state.reverse_orientation, options_.limits, element, &scene_,
+                        prototype);
 }
 
 absl::StatusOr<uint32_t> PbrtSceneBuilder::SceneMaterial(int material, Rgb emission, bool two_sided,

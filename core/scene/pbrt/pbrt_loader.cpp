@@ -70,7 +70,7 @@ absl::StatusOr<Scene> PbrtSceneBuilder::Load(const std::string& main_file) {
             spdlog::warn("{}: ... and {} more times: {}", scene_.source, count - 1, what);
     FinishInstancing(&scene_);
     if (options_.references_only) return std::move(scene_);
-    if (scene_.triangles.empty())
+    if (scene_.triangles.empty() && scene_.curves.empty())
         return absl::InvalidArgumentError(absl::StrCat(scene_.source, ": scene has no shapes"));
     return std::move(scene_);
 }

@@ -452,16 +452,21 @@ absl::Status PbrtSceneBuilder::SubsurfaceAlbedo(ParameterList& parameters, const
 absl::Status PbrtSceneBuilder::HairColour(ParameterList& parameters, const Location& where,
                                           MaterialRef* material) {
     Rgb& colour = material->material.base_color;
-    if (const std::optional<Rgb> given = parameters.Color("color")) {  // pbrt-v4's "reflectance"
-        colour = Min(Max(*given, Rgb(0.0f)), Rgb(1.0f));
+    // pbrt-v4's order (HairMaterial::Create): "sigma_a", else "reflectance" (or pbrt-v3's
+    // "color"), else the melanin concentrations (eumelanin 1.3 where nothing is given).
+    const std::optional<Rgb> given_sigma_a = parameters.Color("sigma_a", SpectrumUse::kUnbounded);
+    std::optional<Rgb> reflectance = parameters.Color("reflectance");
+    if (const std::optional<Rgb> color = parameters.Color("color"); !reflectance)
+        reflectance = color;
+    if (reflectance && !given_sigma_a) {
+        colour = Min(Max(*reflectance, Rgb(0.0f)), Rgb(1.0f));
         return absl::OkStatus();
     }
-    // pbrt-v4's absorption: given, or of the melanin concentrations (eumelanin 1.3 where
-    // nothing is given); the colour its SigmaAFromReflectance inverts,
-    // exp(-sqrt(sigma_a) s(beta_n)).
+    // The absorption, given or of the melanins; the colour pbrt-v4's SigmaAFromReflectance
+    // inverts, exp(-sqrt(sigma_a) s(beta_n)).
     Rgb sigma_a(0.0f);
-    if (const std::optional<Rgb> given = parameters.Color("sigma_a", SpectrumUse::kUnbounded)) {
-        sigma_a = *given;
+    if (given_sigma_a) {
+        sigma_a = *given_sigma_a;
     } else {
         const bool melanin = parameters.Has("eumelanin") || parameters.Has("pheomelanin");
         const double eumelanin = parameters.Float("eumelanin", melanin ? 0.0 : 1.3);

@@ -109,13 +109,15 @@ struct Medium {
     Rgb absorption{0.0f};
 };
 
-// A shape inside ObjectBegin/ObjectEnd, kept in the object's space until instanced.
+// A shape inside ObjectBegin/ObjectEnd, kept in the object's space until instanced: a mesh,
+// or curves (then the mesh is empty).
 struct ObjectShape {
     TriangleMesh mesh;
     Transform world;  // the CTM where it was defined
     FrontFace front;
     GraphicsState state;
     std::string element;
+    std::vector<Curve> curves;
 };
 
 struct CameraSettings {
@@ -170,6 +172,13 @@ private:
     absl::Status AddShape(const TriangleMesh& mesh, const Transform& world, FrontFace front,
                           const GraphicsState& state, const std::string& element,
                           std::optional<uint32_t> prototype = std::nullopt);
+    // Notes what a curve of `state` does not render as pbrt-v4 would: an area light, light
+    // through it, a texture's mapping.
+    void WarnCurveState(const GraphicsState& state, const Location& where);
+    // Adds curves (pbrt_shapes.h's CurveShape) to the world or, given `prototype`, to it.
+    absl::Status AddCurves(const std::vector<Curve>& curves, const Transform& world,
+                           const GraphicsState& state, const std::string& element,
+                           std::optional<uint32_t> prototype = std::nullopt);
     absl::Status ObjectInstance(const std::string& name, const std::vector<ObjectShape>& shapes,
                                 const Location& where);
     absl::StatusOr<int> MakeMaterial(const std::string& type, ParameterList& parameters,

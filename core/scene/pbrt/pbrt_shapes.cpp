@@ -2,6 +2,7 @@
 #include "core/scene/pbrt/pbrt_shapes.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
@@ -271,6 +272,100 @@ absl::StatusOr<TriangleMesh> CylinderShape(ParameterList& parameters, const Loca
     if (!upward)
         for (Vec3& n : mesh.normals) n = -n;
     return mesh;
+}
+
+namespace {
+
+Vec3d Lerp(double t, const Vec3d& a, const Vec3d& b) { return a + (b - a) * t; }
+
+// One segment's cubic Bezier control points from `degree` + 1 of the curve's, `first` on.
+std::array<Vec3d, 4> BezierSegment(const std::vector<Vec3d>& p, size_t first, int degree,
+                                   bool bspline) {
+    const Vec3d* c = p.data() + first;
+    if (bspline && degree == 3)  // a uniform cubic B-spline's span, blossomed
+        return {(c[0] + c[1] * 4.0 + c[2]) / 6.0, Lerp(1.0 / 3.0, c[1], c[2]),
+                Lerp(2.0 / 3.0, c[1], c[2]), (c[1] + c[2] * 4.0 + c[3]) / 6.0};
+    if (degree == 3) return {c[0], c[1], c[2], c[3]};
+    // Quadratic: a B-spline's span as a Bezier's, then raised to a cubic (the same curve).
+    const Vec3d q0 = bspline ? Lerp(0.5, c[0], c[1]) : c[0];
+    const Vec3d q2 = bspline ? Lerp(0.5, c[1], c[2]) : c[2];
+    return {q0, Lerp(2.0 / 3.0, q0, c[1]), Lerp(1.0 / 3.0, c[1], q2), q2};
+}
+
+}  // namespace
+
+absl::StatusOr<std::vector<Curve>> CurveShape(ParameterList& parameters, const Location& where,
+                                              bool* ignored_normals) {
+    *ignored_normals = false;
+    const auto invalid = [&](const std::string& what) -> absl::Status {
+        return Invalid(where, absl::StrCat("Shape \"curve\": ", what));
+    };
+    const std::vector<Vec3d> points = parameters.Point3s("P");
+    const std::string basis = parameters.String("basis", "bezier");
+    const int degree = parameters.Integer("degree", 3);
+    const std::string type_name = parameters.String("type", "flat");
+    const std::vector<Vec3d> normals = parameters.Normals("N");
+    const double width = parameters.Float("width", 1.0);
+    const double width0 = parameters.Float("width0", width);
+    const double width1 = parameters.Float("width1", width);
+    parameters.Integer("splitdepth", 3);
+    if (!parameters.status().ok()) return parameters.status();
+    if (basis != "bezier" && basis != "bspline")
+        return invalid(
+            absl::StrCat("\"basis\" \"", basis, "\" is unknown (\"bezier\" or \"bspline\")"));
+    if (degree != 2 && degree != 3)
+        return invalid(absl::StrCat("\"degree\" ", degree, " is neither 2 nor 3"));
+    CurveType type = CurveType::kFlat;
+    if (type_name == "cylinder")
+        type = CurveType::kCylinder;
+    else if (type_name == "ribbon")
+        type = CurveType::kRibbon;
+    else if (type_name != "flat")
+        return invalid(absl::StrCat("\"type\" \"", type_name,
+                                    "\" is unknown (\"flat\", \"cylinder\" or "
+                                    "\"ribbon\")"));
+    const size_t count = points.size();
+    const auto unsigned_degree = static_cast<size_t>(degree);
+    const bool bspline = basis == "bspline";
+    // A Bezier curve's segments share their ends: degree + 1 points, then degree a segment.
+    if (count < unsigned_degree + 1 || (!bspline && (count - 1) % unsigned_degree != 0))
+        return invalid(absl::StrCat("\"point3 P\" has ", count, " points: a degree ", degree, " ",
+                                    basis, " curve needs ", degree + 1,
+                                    bspline ? " or more" : absl::StrCat(" + n x ", degree)));
+    for (size_t i = 0; i < count; ++i)
+        if (!IsFinite(points[i]))
+            return invalid(absl::StrCat("point ", i, " of \"point3 P\" is not finite"));
+    if (!(std::isfinite(width0) && std::isfinite(width1) && width0 >= 0 && width1 >= 0))
+        return invalid("its widths must be finite and not negative");
+    const size_t segments = bspline ? count - unsigned_degree : (count - 1) / unsigned_degree;
+    if (type != CurveType::kRibbon) {
+        *ignored_normals = !normals.empty();
+    } else if (normals.size() != segments + 1) {
+        return invalid(absl::StrCat("a ribbon of ", segments, " segments needs ", segments + 1,
+                                    " \"normal N\", not ", normals.size()));
+    }
+    std::vector<Curve> curves;
+    curves.reserve(segments);
+    for (size_t s = 0; s < segments; ++s) {
+        Curve curve;
+        const std::array<Vec3d, 4> control =
+            BezierSegment(points, bspline ? s : s * unsigned_degree, degree, bspline);
+        for (int i = 0; i < 4; ++i) curve.control[i] = Vec3(control[i]);
+        const double t0 = double(s) / double(segments), t1 = double(s + 1) / double(segments);
+        curve.width = {static_cast<float>(width0 + (width1 - width0) * t0),
+                       static_cast<float>(width0 + (width1 - width0) * t1)};
+        curve.normal = {Vec3(0.0f), Vec3(0.0f)};
+        if (type == CurveType::kRibbon)
+            for (int e = 0; e < 2; ++e) {
+                const Vec3d& n = normals[s + e];
+                if (!(IsFinite(n) && LengthSquared(n) > 0))
+                    return invalid(absl::StrCat("\"normal N\" ", s + e, " is zero or not finite"));
+                curve.normal[e] = Vec3(Normalize(n));
+            }
+        curve.type = type;
+        curves.push_back(curve);
+    }
+    return curves;
 }
 
 }  // namespace pf::pbrt

@@ -1,11 +1,15 @@
 // pbrt-v4 shapes as triangle meshes in object space: trianglemesh and bilinearmesh as given,
 // sphere and disk tessellated finely enough that their facets stay below a pixel in the
-// scenes photonfarm renders (with interpolated normals, so glass spheres refract smoothly).
+// scenes photonfarm renders (with interpolated normals, so glass spheres refract smoothly);
+// and curves as cubic Bezier segments.
 #pragma once
+
+#include <vector>
 
 #include "absl/status/statusor.h"
 #include "core/scene/mesh_builder.h"
 #include "core/scene/pbrt/pbrt_parameters.h"
+#include "core/scene/scene.h"
 
 namespace pf::pbrt {
 
@@ -25,5 +29,15 @@ absl::StatusOr<TriangleMesh> DiskShape(ParameterList& parameters, const Location
 // "radius" (1), "zmin" (-1), "zmax" (1), "phimax" (360): about the z axis, normals outward,
 // open at both ends.
 absl::StatusOr<TriangleMesh> CylinderShape(ParameterList& parameters, const Location& where);
+
+// pbrt-v4's "curve": "point3 P" control points, "string basis" ("bezier" or "bspline"),
+// "integer degree" (3 or 2), "string type" ("flat", "cylinder" or "ribbon"), "normal N" (a
+// ribbon's, one at each segment's ends), "float width" (1), "width0" and "width1" (its ends';
+// linear along the curve between), "integer splitdepth" (read and unused: a hint for pbrt's own
+// BVH). Its cubic Bezier segments in object space (material 0), each with its share of the
+// width and, for a ribbon, its end normals (unit). `ignored_normals` is set where "N" was given
+// to a curve that is not a ribbon (pbrt-v4 warns and ignores them).
+absl::StatusOr<std::vector<Curve>> CurveShape(ParameterList& parameters, const Location& where,
+                                              bool* ignored_normals);
 
 }  // namespace pf::pbrt

@@ -372,7 +372,7 @@ TEST(PbrtLoaderTest, UnsupportedThingsWarnAtTheirLocation) {
     std::vector<std::string> warnings;
     const std::string world =
         std::string("Shape \"sphere\" \"float radius\" 1 \"float bogus\" 3\n") +
-        "Shape \"curve\"\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n";
+        "Shape \"hyperboloid\"\nMakeNamedMedium \"fog\" \"string type\" \"homogeneous\"\n";
     SceneBundle bundle = Bundle(world);
     bundle.files["scene.pbrt"] =
         "PixelFilter \"gaussian\" \"float sigma\" 0.5\n" + bundle.files["scene.pbrt"];
@@ -381,8 +381,8 @@ TEST(PbrtLoaderTest, UnsupportedThingsWarnAtTheirLocation) {
     // The parameter's own line and column: line 7 (the filter and 5 lines of preamble before it).
     EXPECT_TRUE(Contains(
         warnings, "scenes/scene.pbrt:7:33: warning: Shape \"sphere\": parameter \"float bogus\""));
-    EXPECT_TRUE(
-        Contains(warnings, "scenes/scene.pbrt:8:1: warning: Shape \"curve\" is not supported"));
+    EXPECT_TRUE(Contains(warnings,
+                         "scenes/scene.pbrt:8:1: warning: Shape \"hyperboloid\" is not supported"));
     EXPECT_TRUE(Contains(warnings, "MakeNamedMedium"));
     EXPECT_FALSE(Contains(warnings, "PixelFilter")) << "the filter is the camera's";
 }

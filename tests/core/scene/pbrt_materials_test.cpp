@@ -557,5 +557,30 @@ TEST(PbrtMaterialsTest, SubsurfaceAndHairTakeTheirNearestSurfaces) {
     EXPECT_TRUE(Contains(warnings, "Material \"measured\" (a measured BSDF file) is not read"));
 }
 
+TEST(PbrtMaterialsTest, HairTakesItsColourInPbrtsOrder) {
+    // pbrt-v4's HairMaterial::Create: sigma_a over reflectance (or "color") over the melanins.
+    const std::string world =
+        std::string("Material \"hair\" \"rgb reflectance\" [0.3 0.5 0.7]\n") + kQuad +
+        "Material \"hair\" \"rgb reflectance\" [0.3 0.5 0.7] \"rgb sigma_a\" [0.1 0.2 0.3]\n" +
+        kQuad + "Material \"hair\" \"rgb reflectance\" [0.3 0.5 0.7] \"float eumelanin\" 2\n" +
+        kQuad;
+    std::vector<std::string> warnings;
+    const absl::StatusOr<Scene> scene = Load(Bundle(world), &warnings);
+    ASSERT_TRUE(scene.ok()) << scene.status();
+    const auto colour = [&](int shape) {
+        return scene->materials[scene->triangles[2 * shape].material].base_color;
+    };
+    EXPECT_EQ(colour(0), Rgb(0.3f, 0.5f, 0.7f));
+    // beta_n 0.3 (pbrt-v4's default): c = exp(-sqrt(sigma_a) s(0.3)).
+    const double b = 0.3;
+    const double s = 5.969 - 0.215 * b + 2.532 * b * b - 10.73 * std::pow(b, 3) +
+                     5.574 * std::pow(b, 4) + 0.245 * std::pow(b, 5);
+    EXPECT_NEAR(colour(1).y, std::exp(-std::sqrt(0.2) * s), 1e-6);
+    EXPECT_EQ(colour(2), Rgb(0.3f, 0.5f, 0.7f));
+    EXPECT_TRUE(Contains(warnings,
+                         "Material \"hair\" is shaded as a diffuse surface of its "
+                         "colour (0.3 0.5 0.7)"));
+}
+
 }  // namespace
 }  // namespace pf

@@ -5,6 +5,7 @@
 #include <bit>
 
 #include "core/scene/mesh_builder.h"
+#include "core/shared/curve.h"
 #include "core/shared/noise.h"
 #include "core/shared/sheen.h"
 #include "embree/bvh_builder.h"
@@ -17,15 +18,33 @@ gpu::vec4 Vec4(const Vec3& v, uint32_t w_bits) {
     return {v.x, v.y, v.z, std::bit_cast<float>(w_bits)};
 }
 
+// The BVH's primitives are the triangles, then the curves (index - triangle count). A curve's
+// leaf slot names its two records (gpu_types.h, GpuTriangle), which follow the slots.
 void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::GpuBvh& bvh,
                  GpuScene& gpu_scene) {
+    const auto triangle_count = static_cast<uint32_t>(scene.triangles.size());
+    const auto first_record = static_cast<uint32_t>(bvh.order.size());
     for (uint32_t t : bvh.order) {
+        if (t >= triangle_count) {
+            const uint32_t record = first_record + 2 * (t - triangle_count);
+            gpu_scene.triangles.push_back(
+                {Vec4(Vec3(0.0f), gpu::kCurveBit | record), Vec4(Vec3(0.0f)), Vec4(Vec3(0.0f))});
+            continue;
+        }
         const Triangle& triangle = scene.triangles[t];
         const Vec3& p0 = scene.positions[triangle.vertex[0]];
         const bool cut_out = scene.materials[triangle.material].HasCutOuts();
         gpu_scene.triangles.push_back(
             {Vec4(p0, t), Vec4(scene.positions[triangle.vertex[1]] - p0, cut_out ? 1.0f : 0.0f),
              Vec4(scene.positions[triangle.vertex[2]] - p0)});
+    }
+    for (uint32_t c = 0; c < scene.curves.size(); ++c) {
+        const Curve& curve = scene.curves[c];
+        const std::array<Vec3, 4>& p = curve.control;
+        gpu_scene.triangles.push_back(
+            {Vec4(p[0], curve.width[0]), Vec4(p[1], curve.width[1]), Vec4(p[2], curve.material)});
+        gpu_scene.triangles.push_back({Vec4(p[3], static_cast<uint32_t>(curve.type)),
+                                       Vec4(curve.normal[0], c), Vec4(curve.normal[1])});
     }
     for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
         const Triangle& triangle = scene.triangles[t];
@@ -36,6 +55,8 @@ void AddGeometry(const Scene& scene, const Emitters& emitters, const embree::Gpu
              {triangle.vertex[0], triangle.vertex[1], triangle.vertex[2],
               triangle.material | (triangle.smooth ? gpu::kSmoothBit : 0u)}});
     }
+    if (gpu_scene.shading.empty())  // curves alone: a placeholder no slot names
+        gpu_scene.shading.push_back({Vec4(Vec3(0, 0, 1), gpu::kNoEmitter), {0, 0, 0, 0}});
     // What no kernel of this scene reads is neither built nor uploaded.
     if (gpu_scene.features.smooth_normals)
         for (const Vec3& normal : scene.normals) gpu_scene.normals.push_back(Vec4(normal));
@@ -277,17 +298,19 @@ SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     spec[gpu::kSpecHasSheen] = features.sheen;
     spec[gpu::kSpecHasVertexColors] = features.vertex_colors;
     spec[gpu::kSpecHasProceduralTextures] = features.procedural_textures;
+    spec[gpu::kSpecHasCurves] = features.curves;
     return spec;
 }
 
 absl::StatusOr<GpuScene> BuildGpuScene(const Scene& job_scene, const Emitters& emitters) {
     GpuScene gpu_scene;
     gpu_scene.features = AnalyseFeatures(job_scene, emitters);
-    // The kernels traverse one BVH: instances are expanded into world triangles (the world's
-    // own keep their indices, so emitters still name them).
+    // The kernels traverse one BVH: instances are expanded into world triangles and curves (the
+    // world's own keep their indices, so emitters still name them).
     absl::StatusOr<Scene> flattened;
     if (!job_scene.instances.empty()) {
-        flattened = FlattenInstances(job_scene, SceneLimits{}.max_triangles);
+        flattened =
+            FlattenInstances(job_scene, SceneLimits{}.max_triangles, SceneLimits{}.max_curves);
         if (!flattened.ok()) return flattened.status();
     }
     const Scene& scene = job_scene.instances.empty() ? job_scene : *flattened;
@@ -297,6 +320,7 @@ absl::StatusOr<GpuScene> BuildGpuScene(const Scene& job_scene, const Emitters& e
         for (uint32_t v : triangle.vertex) box.Extend(scene.positions[v]);
         boxes.push_back(box);
     }
+    for (const Curve& curve : scene.curves) boxes.push_back(curve.Box());
     if (boxes.empty()) {
         // Nothing to hit: one empty box at the origin, over a degenerate triangle that no ray
         // intersects (its determinant is 0).
@@ -305,7 +329,7 @@ absl::StatusOr<GpuScene> BuildGpuScene(const Scene& job_scene, const Emitters& e
     absl::StatusOr<embree::GpuBvh> bvh = embree::BuildGpuBvh(boxes);
     if (!bvh.ok()) return bvh.status();
     gpu_scene.nodes = std::move(bvh->nodes);
-    if (scene.triangles.empty()) {
+    if (scene.triangles.empty() && scene.curves.empty()) {
         gpu_scene.triangles.push_back({Vec4(Vec3(0.0f), 0u), Vec4(Vec3(0.0f)), Vec4(Vec3(0.0f))});
         gpu_scene.shading.push_back({Vec4(Vec3(0, 0, 1), gpu::kNoEmitter), {0, 0, 0, 0}});
     } else {

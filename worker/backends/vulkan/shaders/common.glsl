@@ -14,6 +14,7 @@
 #include "core/shared/photon_chain.h"
 #include "core/shared/surface_edges.h"
 #include "core/shared/photon_kinds.h"
+#include "core/shared/curve.h"
 
 layout(constant_id = kSpecHasMirror) const bool kHasMirror = true;
 layout(constant_id = kSpecHasDielectric) const bool kHasDielectric = true;
@@ -43,8 +44,9 @@ layout(constant_id = kSpecHasVertexColors) const bool kHasVertexColors = true;
 layout(constant_id = kSpecHasProceduralTextures) const bool kHasProceduralTextures = true;
 // The job's hit points gather kinds of photon of their own (rpm's), direct light's among them.
 layout(constant_id = kSpecPhotonKinds) const bool kPhotonKinds = true;
+layout(constant_id = kSpecHasCurves) const bool kHasCurves = true;
 // Some shading normal differs from its surface's (SceneFeatures::ShadingNormals).
-const bool kShadingNormals = kHasSmoothNormals || kHasShadingDetail;
+const bool kShadingNormals = kHasSmoothNormals || kHasShadingDetail || kHasCurves;
 
 layout(push_constant, std430) uniform Push { GpuParams params; };
 

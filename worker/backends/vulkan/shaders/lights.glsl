@@ -274,6 +274,7 @@ bool SampleLightFrom(vec3 p, vec3 n, float pick, vec2 u, bool pick_from_u,
 // 0 where the triangle emits nothing or not toward p.
 vec3 HitEmitter(RayHit hit, vec3 p, vec3 on_light, out float pdf) {
     pdf = 0;
+    if (kHasCurves && CurveOfSlot(hit.triangle) != ~kCurveBit) return vec3(0);  // curves never emit
     const uint index = floatBitsToUint(shading[floatBitsToUint(triangles[hit.triangle].p0.w)].normal.w);
     if (index == kNoEmitter) return vec3(0);
     const GpuEmitter emitter = emitters[index];

@@ -82,7 +82,7 @@ void FinishSample(uint slot, vec3 radiance, Pcg32 rng) {
 // The material a hit's vertex shades with: only a mix's choice needs the surface.
 uint HitMaterial(RayHit hit) {
     if (kHasMixes) return SurfaceAt(hit).material;
-    return shading[floatBitsToUint(triangles[hit.triangle].p0.w)].vertices.w & ~kSmoothBit;
+    return SlotMaterial(hit.triangle);
 }
 
 void WriteGroups(uint at, uint threads) {
@@ -134,7 +134,8 @@ void main() {
         for (uint i = thread; i < queued; i += threads) {
             const uint slot = path_queues[(2 + kVertexClass) * BatchPixels() + i];
             const vec4 stored = paths[slot].hit;
-            const RayHit hit = RayHit(stored.x, floatBitsToUint(stored.y), stored.z, stored.w);
+            const RayHit hit = RayHit(stored.x, floatBitsToUint(stored.y), stored.z, stored.w,
+                                      paths[slot].direction.xyz);
             PathState path = LoadPath(slot);
             Pcg32 rng = LoadRng(slot);
             if (PathVertex(path, true, hit, rng)) {

@@ -1,10 +1,12 @@
 // Ray queries against the scene's BVH (built on the CPU by Embree's builder, flattened to
 // GpuBvhNode): closest hit and any hit, a stack-based traversal visiting the nearer child
-// first, Moeller-Trumbore triangle tests, cut-outs passed through.
+// first, Moeller-Trumbore triangle tests and pbrt-v4's curve test (core/shared/curve.h),
+// cut-outs passed through.
 struct RayHit {
     float t;
-    uint triangle;  // in leaf order (the triangles binding)
-    float b1, b2;   // barycentrics of vertices 1 and 2
+    uint triangle;    // in leaf order (the triangles binding): a triangle's slot or a curve's
+    float b1, b2;     // barycentrics of vertices 1 and 2; a curve's u and v
+    vec3 direction;   // the ray's, unit (a curve faces it)
 };
 
 // Entry distance of the ray into the box, or infinity where it misses within (0, t_max).
@@ -81,6 +83,49 @@ bool MeetsSurface(uint index, float b1, float b2, vec3 origin, vec3 direction) {
     return AlphaMeets(alpha, material.alpha.y, AlphaHash(origin, direction, index));
 }
 
+// A curve's two records (GpuTriangle's comment), from the first.
+struct CurveRecord {
+    vec3 p0, p1, p2, p3;  // Bezier control points
+    float w0, w1;         // widths at its ends
+    vec3 n0, n1;          // a ribbon's end normals
+    uint material, type, index;
+};
+
+CurveRecord LoadCurve(uint record) {
+    const GpuTriangle a = triangles[record], b = triangles[record + 1u];
+    return CurveRecord(a.p0.xyz, a.edge1.xyz, a.edge2.xyz, b.p0.xyz, a.p0.w, a.edge1.w, b.edge1.xyz, b.edge2.xyz,
+                       floatBitsToUint(a.edge2.w), floatBitsToUint(b.p0.w), floatBitsToUint(b.edge1.w));
+}
+
+// The curve record a leaf slot names, or kCurveBit's complement where the slot is a triangle's.
+uint CurveOfSlot(uint slot) {
+    if (!kHasCurves) return ~kCurveBit;
+    const uint bits = floatBitsToUint(triangles[slot].p0.w);
+    return (bits & kCurveBit) != 0u ? bits & ~kCurveBit : ~kCurveBit;
+}
+
+// Whether the ray meets the curve at (u, v) or passes through a cut-out there (Scene::CurveAlpha,
+// the CPU tracer's curve filter).
+bool MeetsCurve(CurveRecord curve, float u, float v, vec3 origin, vec3 direction) {
+    const GpuMaterial material = materials[curve.material];
+    float alpha = material.alpha.x;
+    const int texture = floatBitsToInt(material.alpha.z);
+    if (alpha >= 1.0 && texture < 0) return true;
+    if (texture >= 0) alpha *= TextureSample(textures[texture], vec2(u, v)).x;
+    return AlphaMeets(alpha, material.alpha.y, AlphaHash(origin, direction, kCurveBit | curve.index));
+}
+
+bool IntersectCurveSlot(uint slot, uint record, vec3 origin, vec3 direction, inout float t_max, inout RayHit hit) {
+    const CurveRecord c = LoadCurve(record);
+    float t, u, v;
+    if (!IntersectCurve(origin, direction, t_max, c.p0, c.p1, c.p2, c.p3, c.w0, c.w1, c.type, c.n0, c.n1, t, u, v))
+        return false;
+    if (kHasCutOuts && !MeetsCurve(c, u, v, origin, direction)) return false;
+    t_max = t;
+    hit = RayHit(t, slot, u, v, direction);
+    return true;
+}
+
 bool IntersectTriangle(uint index, vec3 origin, vec3 direction, inout float t_max, inout RayHit hit) {
     const GpuTriangle triangle = triangles[index];
     const vec3 p = cross(direction, triangle.edge2.xyz);
@@ -99,13 +144,19 @@ bool IntersectTriangle(uint index, vec3 origin, vec3 direction, inout float t_ma
     if (kHasCutOuts && triangle.edge1.w != 0.0 && !MeetsSurface(floatBitsToUint(triangle.p0.w), b1, b2, origin, direction))
         return false;
     t_max = t;
-    hit = RayHit(t, index, b1, b2);
+    hit = RayHit(t, index, b1, b2, direction);
     return true;
+}
+
+bool IntersectPrimitive(uint slot, vec3 origin, vec3 direction, inout float t_max, inout RayHit hit) {
+    const uint curve = CurveOfSlot(slot);
+    if (kHasCurves && curve != ~kCurveBit) return IntersectCurveSlot(slot, curve, origin, direction, t_max, hit);
+    return IntersectTriangle(slot, origin, direction, t_max, hit);
 }
 
 // Closest hit along origin + t direction, 0 < t < t_max; with `any_hit`, the first found.
 bool TraceRay(vec3 origin, vec3 direction, float t_max, bool any_hit, out RayHit hit) {
-    hit = RayHit(0, 0, 0, 0);
+    hit = RayHit(0, 0, 0, 0, direction);
     // Zero components become tiny ones, so the slab test never computes 0 x infinity.
     const vec3 safe = mix(vec3(1e-30), direction, greaterThan(abs(direction), vec3(1e-30)));
     const vec3 inverse_direction = 1.0 / safe;
@@ -121,11 +172,11 @@ bool TraceRay(vec3 origin, vec3 direction, float t_max, bool any_hit, out RayHit
         const uint right = floatBitsToUint(n.right_lower.w), right_count = floatBitsToUint(n.right_upper.w);
         bool visit_left = enter_left < kInfinity, visit_right = enter_right < kInfinity;
         if (visit_left && left_count > 0) {
-            for (uint i = left; i < left + left_count; ++i) found = IntersectTriangle(i, origin, direction, t_max, hit) || found;
+            for (uint i = left; i < left + left_count; ++i) found = IntersectPrimitive(i, origin, direction, t_max, hit) || found;
             visit_left = false;
         }
         if (visit_right && right_count > 0) {
-            for (uint i = right; i < right + right_count; ++i) found = IntersectTriangle(i, origin, direction, t_max, hit) || found;
+            for (uint i = right; i < right + right_count; ++i) found = IntersectPrimitive(i, origin, direction, t_max, hit) || found;
             visit_right = false;
         }
         if (found && any_hit) return true;
@@ -194,19 +245,41 @@ void AddShadingDetail(GpuMaterial material, GpuTriangle triangle, GpuTriangleSha
     if (dot(n, surface.geometric_normal) > 0.0) surface.shading_normal = n;
 }
 
+// The material of the triangle or curve in leaf slot `slot`, before a mix's choice.
+uint SlotMaterial(uint slot) {
+    const uint curve = CurveOfSlot(slot);
+    if (kHasCurves && curve != ~kCurveBit) return floatBitsToUint(triangles[curve].edge2.w);
+    return shading[floatBitsToUint(triangles[slot].p0.w)].vertices.w & ~kSmoothBit;
+}
+
 Surface SurfaceAt(RayHit hit) {
-    const GpuTriangle triangle = triangles[hit.triangle];
-    const GpuTriangleShading shade = shading[floatBitsToUint(triangle.p0.w)];
     Surface surface;
-    surface.position = triangle.p0.xyz + triangle.edge1.xyz * hit.b1 + triangle.edge2.xyz * hit.b2;
-    surface.geometric_normal = shade.normal.xyz;
-    surface.shading_normal = shade.normal.xyz;
-    surface.material = shade.vertices.w & ~kSmoothBit;
-    const float b0 = 1.0 - hit.b1 - hit.b2;
-    surface.uv = vec2(0);
-    if (kHasTextures || kHasRoughnessTextures || kHasMixTextures || kHasShadingDetail)
-        surface.uv = vertex_uvs[shade.vertices.x] * b0 + vertex_uvs[shade.vertices.y] * hit.b1 +
-                     vertex_uvs[shade.vertices.z] * hit.b2;
+    GpuTriangle triangle;
+    GpuTriangleShading shade;
+    uint salt;  // the mix's hash's: the scene triangle's index, or kCurveBit | the curve's
+    const uint curve = CurveOfSlot(hit.triangle);
+    const bool on_curve = kHasCurves && curve != ~kCurveBit;
+    if (on_curve) {  // Scene::CurveSurface
+        const CurveRecord c = LoadCurve(curve);
+        CurveSurfaceAt(c.p0, c.p1, c.p2, c.p3, c.w0, c.w1, c.type, c.n0, c.n1, hit.b1, hit.b2, hit.direction,
+                       surface.position, surface.geometric_normal, surface.shading_normal);
+        surface.uv = vec2(hit.b1, hit.b2);
+        surface.material = c.material;
+        salt = kCurveBit | c.index;
+    } else {
+        triangle = triangles[hit.triangle];
+        shade = shading[floatBitsToUint(triangle.p0.w)];
+        surface.position = triangle.p0.xyz + triangle.edge1.xyz * hit.b1 + triangle.edge2.xyz * hit.b2;
+        surface.geometric_normal = shade.normal.xyz;
+        surface.shading_normal = shade.normal.xyz;
+        surface.material = shade.vertices.w & ~kSmoothBit;
+        const float b0 = 1.0 - hit.b1 - hit.b2;
+        surface.uv = vec2(0);
+        if (kHasTextures || kHasRoughnessTextures || kHasMixTextures || kHasShadingDetail)
+            surface.uv = vertex_uvs[shade.vertices.x] * b0 + vertex_uvs[shade.vertices.y] * hit.b1 +
+                         vertex_uvs[shade.vertices.z] * hit.b2;
+        salt = floatBitsToUint(triangle.p0.w);
+    }
     // One of a mix's materials at this point, as Scene::ResolveMaterial picks, then its base
     // colour: a texture lookup a step (the kernels inline every call: one copy of a procedural
     // texture's evaluation).
@@ -220,9 +293,11 @@ Surface SurfaceAt(RayHit hit) {
             break;
         }
         const float amount = uintBitsToFloat(materials[m].mix.z) * value.x;
-        const float u = MixHash(surface.position, floatBitsToUint(triangle.p0.w) * 0x9e3779b9u + m);
+        const float u = MixHash(surface.position, salt * 0x9e3779b9u + m);
         surface.material = u < amount ? materials[m].mix.y : materials[m].mix.x;
     }
+    if (on_curve) return surface;  // no vertex normals, maps or colours
+    const float b0 = 1.0 - hit.b1 - hit.b2;
     if (kHasSmoothNormals && (shade.vertices.w & kSmoothBit) != 0) {
         const vec3 n = vertex_normals[shade.vertices.x].xyz * b0 + vertex_normals[shade.vertices.y].xyz * hit.b1 +
                        vertex_normals[shade.vertices.z].xyz * hit.b2;
