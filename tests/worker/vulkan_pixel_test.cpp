@@ -31,6 +31,10 @@ struct PixelCase {
     std::string scene;
     Integrator integrator;
     uint32_t final_gather = 0;  // pm
+    // The share of pixels that must agree to 1e-3: less where the backends' ray tests differ
+    // (curves: Embree's primitives on the CPU, pbrt-v4's test on the device, which part at a
+    // curve's edge, sending a path grazing it its own way); the means are held alike.
+    double agreeing_share = 0.97;
 };
 
 std::string CaseName(const ::testing::TestParamInfo<PixelCase>& info) {
@@ -38,6 +42,7 @@ std::string CaseName(const ::testing::TestParamInfo<PixelCase>& info) {
                        std::string(IntegratorName(info.param.integrator));
     if (info.param.final_gather > 0) name += "_final_gather";
     std::ranges::replace(name, '-', '_');
+    std::ranges::replace(name, '/', '_');
     return name;
 }
 
@@ -112,7 +117,7 @@ void ExpectPixelsFollowTheCpu(const Scene& scene, Integrator integrator, uint32_
         }
     }
     ASSERT_EQ(pixels, 2u * 24 * 24);
-    EXPECT_GE(double(agreeing), 0.97 * double(pixels))
+    EXPECT_GE(double(agreeing), param.agreeing_share * double(pixels))
         << agreeing << " of " << pixels << " pixels agree to 1e-3";
     for (int channel = 0; channel < 3; ++channel) {
         const double cpu_mean = sums[0][channel] / double(pixels);
@@ -190,7 +195,11 @@ INSTANTIATE_TEST_SUITE_P(
         PixelCase{"cornell-stained.gltf", Integrator::kPath},
         PixelCase{"cornell-stained.gltf", Integrator::kPm},
         PixelCase{"cornell-bumpy.gltf", Integrator::kPath},
-        PixelCase{"cornell-bumpy.gltf", Integrator::kPm}),
+        PixelCase{"cornell-bumpy.gltf", Integrator::kPm},
+        // Curves of each type (core/shared/curve.h's ray test against Embree's curves), some
+        // instanced: camera paths and shadow rays meet and shade them alike (the photon
+        // kernels trace with the same TraceRay).
+        PixelCase{"pbrt/cornell-curves.pbrt", Integrator::kPath, 0, 0.8}),
     CaseName);
 
 // glTF's vertex colours and single-sided surfaces on the device as on the CPU: the lit quad

@@ -538,8 +538,10 @@ absl::Status PbrtSceneBuilder::AddCurves(const std::vector<Curve>& curves, const
         state.material >= 0 ? materials_[state.material] : DefaultMaterial();
     if (material.interface) return absl::OkStatus();
     // Curves never emit (WarnCurveState notes an area light on one).
-    absl::StatusOr<uint32_t> index = SceneMaterial(state.material, Rgb(0.0f), false, state.alpha,
-                                                   kNoTexture, InsideAbsorption(state, element));
+    const Absorption absorption = MediumAbsorption(state);
+    absl::StatusOr<uint32_t> index =
+        SceneMaterial(state.material, Rgb(0.0f), false, state.alpha, kNoTexture, absorption.inside,
+                      absorption.outside);
     if (!index.ok()) return index.status();
     std::vector<Curve> placed = curves;
     for (Curve& curve : placed) curve.material = *index;

@@ -339,7 +339,8 @@ absl::StatusOr<int> PbrtSceneBuilder::MakeMaterial(const std::string& type,
         parameters.ConsumeAll();
         const Rgb& c = material.material.base_color;
         Warn(where, absl::StrCat("Material \"hair\" is shaded as a diffuse surface of its colour (",
-                                 absl::StrFormat("%.3g %.3g %.3g", c.x, c.y, c.z), ")"));
+                                 absl::StrFormat("%.3g %.3g %.3g", c.x, c.y, c.z),
+                                 ") until a hair model exists"));
     } else if (type == "measured") {
         parameters.ConsumeAll();
         material.material.base_color = Rgb(0.5f);
