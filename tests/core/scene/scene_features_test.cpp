@@ -39,6 +39,15 @@ TEST(SceneFeaturesTest, ShippedScenesUseWhatTheyShow) {
     EXPECT_FALSE(box.ShadingNormals());
 }
 
+TEST(SceneFeaturesTest, CurvesAreAFeatureOnlyWhereAShapeIsOne) {
+    // The kernels compile the curve test out (kHasCurves) of scenes without curves; a curve's
+    // cylinder normal is a shading normal.
+    const SceneFeatures curves = FeaturesOf(Shipped("pbrt/cornell-curves.pbrt"));
+    EXPECT_TRUE(curves.curves);
+    EXPECT_TRUE(curves.ShadingNormals());
+    EXPECT_FALSE(FeaturesOf(Shipped("pbrt/cornell-box.pbrt")).curves);
+}
+
 TEST(SceneFeaturesTest, CoatsAreAFeatureOfTheirOwn) {
     Scene scene = Shipped("cornell-box.gltf");
     EXPECT_FALSE(FeaturesOf(scene).coats);
@@ -88,16 +97,16 @@ TEST(SceneFeaturesTest, LightsCountOnlyWithPowerAndMaterialsOnlyWhereUsed) {
     EXPECT_TRUE(features.spot_lights);
     EXPECT_FALSE(features.point_lights) << "a light of no power is no emitter";
     EXPECT_FALSE(features.triangle_lights) << "an emissive material on no triangle emits nothing";
-    EXPECT_EQ(
-        SceneFeatures::All().ToString(),
-        "diffuse, mirror, glass, thin glass, rough metal, rough glass, coated, "
-        "specular over diffuse, metal Fresnel, absorbing media, diffuse transmission, sheen, "
-        "sheen textures, cut-outs, "
-        "mixed materials, "
-        "textures, vertex colours, roughness textures, "
-        "textured mixes, procedural textures, smooth normals, normal or bump maps, area lights, "
-        "point lights, spot lights, directional lights, environment light, textured lights, "
-        "goniometric or projection lights, caustics");
+    EXPECT_EQ(SceneFeatures::All().ToString(),
+              "diffuse, mirror, glass, thin glass, rough metal, rough glass, coated, "
+              "specular over diffuse, metal Fresnel, absorbing media, diffuse transmission, sheen, "
+              "sheen textures, cut-outs, "
+              "mixed materials, "
+              "textures, vertex colours, roughness textures, "
+              "textured mixes, procedural textures, smooth normals, curves, normal or bump maps, "
+              "area lights, "
+              "point lights, spot lights, directional lights, environment light, textured lights, "
+              "goniometric or projection lights, caustics");
 }
 
 }  // namespace
