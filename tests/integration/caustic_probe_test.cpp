@@ -34,6 +34,7 @@ TEST(CausticProbeTest, AMirrorTheLightCannotSeeCastsNone) {
     testing::TestScene scene = testing::LitQuadScene();
     testing::TestMaterial mirror{Rgb(0.9f), Rgb(0.0f)};
     mirror.metallic = 1, mirror.roughness = 0;  // glTF's perfect mirror
+    mirror.extra = R"(,"doubleSided":true)";    // a material of its own: no single-sided copy
     scene.materials.push_back(mirror);
     scene.meshes.push_back({{{-0.5f, -0.5f, -1}, {0.5f, 0.5f, -1}, {0.5f, -0.5f, -1}}, 2});
     const absl::StatusOr<Scene> loaded = LoadScene(testing::WriteGltf(scene, "hidden-mirror.gltf"));

@@ -499,7 +499,7 @@ TEST(RenderTest, PhotonsAndDirectSamplesTurnedNanAreDroppedAndCounted) {
     const CameraPassResult camera_pass =
         RunCameraPass(*scene, Emitters(*scene), **tracer, {16, 16, 1, 1});
     ASSERT_FALSE(camera_pass.hit_points.empty());
-    scene->materials[0].base_color = Rgb(std::nanf(""));
+    scene->materials[scene->triangles[0].material].base_color = Rgb(std::nanf(""));  // the quad's
     std::vector<HitPoint> hit_points = camera_pass.hit_points;
     for (HitPoint& hit_point : hit_points)
         hit_point.weight = Rgb(std::nanf(""));  // direct samples turn NaN

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -156,6 +157,15 @@ absl::Status PbrtSceneBuilder::Film(ParameterList& parameters, const Location& w
             spdlog::info("{}: Film: \"filename\" is not used; the image goes where --out says",
                          parameters.Find("filename")->where.ToString());
     }
+    // pbrt-v4 scales a sample whose largest RGB component exceeds this down to it, trading
+    // the energy of fireflies for less noise; photonfarm's estimators keep it all.
+    if (const double clamp =
+            parameters.Float("maxcomponentvalue", std::numeric_limits<double>::infinity());
+        parameters.Has("maxcomponentvalue") && std::isfinite(clamp))
+        Warn(parameters.Find("maxcomponentvalue")->where,
+             absl::StrCat("Film: \"maxcomponentvalue\" ", clamp,
+                          " is left out: samples are not clamped, so where pbrt-v4 would clip "
+                          "bright samples the image reads brighter than pbrt-v4's"));
     film_iso_ = parameters.Float("iso", 100.0);
     film_white_balance_ = parameters.Float("whitebalance", 0.0);
     const std::string sensor = parameters.String("sensor", "cie1931");

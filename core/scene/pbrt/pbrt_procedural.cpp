@@ -102,8 +102,12 @@ public:
         *notes = std::move(notes_);
     }
     const std::vector<gpu::vec4>& Words() const { return program_.words; }
+    // Whether every value is finite; an image's header holds kNoTexture's bits (NaN as a float)
+    // until the scene's images are numbered, so its texture word is not a value.
     bool Finite() const {
-        return std::all_of(program_.words.begin(), program_.words.end(), [](const gpu::vec4& w) {
+        std::vector<gpu::vec4> words = program_.words;
+        for (const size_t image : ProgramImageWords(words)) words[image].y = 0;
+        return std::all_of(words.begin(), words.end(), [](const gpu::vec4& w) {
             return std::isfinite(w.x) && std::isfinite(w.y) && std::isfinite(w.z) &&
                    std::isfinite(w.w);
         });

@@ -71,6 +71,21 @@ TEST(PbrtRenderSettingsTest, TheFilmsFilenameIsReadWithoutAWarning) {
     EXPECT_TRUE(warnings.empty()) << warnings.front();
 }
 
+TEST(PbrtRenderSettingsTest, AClampOfSamplesIsWarnedAsLeftOut) {
+    // pbrt-v4 clips samples brighter than maxcomponentvalue; photonfarm does not, which reads
+    // brighter on a scene of fireflies: a warning naming it (and none for pbrt-v4's default).
+    SceneBundle bundle = Bundle(kQuad);
+    std::string& text = bundle.files["scene.pbrt"];
+    const std::string film = "Film \"rgb\" ";
+    ASSERT_NE(text.find(film), std::string::npos);
+    text.replace(text.find(film), film.size(), film + "\"float maxcomponentvalue\" 10 ");
+    std::vector<std::string> warnings;
+    ASSERT_TRUE(Load(bundle, &warnings).ok());
+    ASSERT_EQ(warnings.size(), 1u);
+    EXPECT_NE(warnings[0].find("\"maxcomponentvalue\" 10 is left out"), std::string::npos)
+        << warnings[0];
+}
+
 TEST(PbrtRenderSettingsTest, OrthographicAndSphericalCamerasAndScreenWindows) {
     auto load = [](const std::string& camera) {
         SceneBundle bundle = Bundle(kQuad);

@@ -130,13 +130,17 @@ TEST(PbrtTexturesTest, ScaleAndMixCombineTheirOperands) {
             "Texture \"s3\" \"spectrum\" \"scale\" \"texture tex\" \"red\" \"texture scale\" "
             "\"grey\"\n"
             "Texture \"d\" \"spectrum\" \"directionmix\" \"texture tex1\" \"c\" \"rgb tex2\" "
-            "[1 1 1] \"vector3 dir\" [0 0 1]\n") +
+            "[1 1 1] \"vector3 dir\" [0 0 1]\n"
+            // directionmix of an image: its texture word is numbered once the images are.
+            "Texture \"d2\" \"spectrum\" \"directionmix\" \"texture tex1\" \"red\" \"rgb tex2\" "
+            "[0 0 1] \"vector3 dir\" [0 0 1]\n") +
         "Material \"diffuse\" \"texture reflectance\" \"m0\"\n" + kQuad +
         "Material \"diffuse\" \"texture reflectance\" \"s1\"\n" + kQuad +
         "Material \"diffuse\" \"texture reflectance\" \"s2\"\n" + kQuad +
         "Material \"diffuse\" \"texture reflectance\" \"m1\"\n" + kQuad +
         "Material \"diffuse\" \"texture reflectance\" \"s3\"\n" + kQuad +
-        "Material \"diffuse\" \"texture reflectance\" \"d\"\n" + kQuad;
+        "Material \"diffuse\" \"texture reflectance\" \"d\"\n" + kQuad +
+        "Material \"diffuse\" \"texture reflectance\" \"d2\"\n" + kQuad;
     std::vector<std::string> warnings;
     const absl::StatusOr<Scene> scene =
         Load(Bundle(world, {{"red.png", red}, {"grey.png", grey}}), &warnings);
@@ -173,6 +177,14 @@ TEST(PbrtTexturesTest, ScaleAndMixCombineTheirOperands) {
     point.geometric_normal = Normalize(Vec3(0, 1, 1));
     EXPECT_TRUE(near(scene->TextureValue(material(5).base_color_texture, point),
                      Rgb(0.2f, 0.4f, 0.6f) * std::sqrt(0.5f) + Rgb(1 - std::sqrt(0.5f))));
+    const int32_t d2 = material(6).base_color_texture;
+    ASSERT_TRUE(scene->textures[d2]->IsProcedural());
+    point.uv = {0.75f, 0.5f};
+    point.geometric_normal = Vec3(0, 0, 1);
+    EXPECT_TRUE(near(scene->TextureValue(d2, point), Rgb(1.0f, 0.0f, 0.0f)));
+    point.geometric_normal = Normalize(Vec3(0, 1, 1));
+    EXPECT_TRUE(
+        near(scene->TextureValue(d2, point), Rgb(std::sqrt(0.5f), 0.0f, 1 - std::sqrt(0.5f))));
 }
 
 TEST(PbrtTexturesTest, TexturesNotEvaluatedAreNotedWithTheirStandIn) {
