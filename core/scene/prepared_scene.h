@@ -20,9 +20,9 @@ namespace pf {
 
 // 2: the environment light; 8: its portal; 9: coated materials and cut-outs; 10: Fresnel-mix
 // coats, roughness and mix textures; 16: sheen, transmittance textures; 17: the pixel filter;
-// 18: coats' samples (Material::coat_samples), media outside surfaces (outside_absorption).
-// 19: vertex colours, surface flags (single-sided surfaces); 20: procedural textures;
-// 21: curves.
+// 18: coats' samples (Material::coat_samples); 19: media outside surfaces
+// (outside_absorption), vertex colours, surface flags (single-sided surfaces); 20: procedural
+// textures; 21: curves.
 inline constexpr uint32_t kPreparedSceneVersion = 21;
 
 // Normals go only where a triangle is smooth, texture coordinates only where a material has a

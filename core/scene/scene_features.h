@@ -24,7 +24,7 @@ struct SceneFeatures {
     bool mix_textures = false;        // a used mix's amount has a texture
     bool fresnel_mixes = false;       // glTF's dielectric: specular over diffuse (kCoatFresnelMix)
     bool conductor_fresnel = false;   // a metal's reflectance varies with angle (conductor.h)
-    bool absorption = false;          // glass whose inside absorbs (Material::absorption)
+    bool absorption = false;          // media on either side of a surface absorb (HasVolume)
     bool translucent = false;         // diffuse transmission (Material::transmittance)
     bool sheen = false;               // a sheen over a coat (Material::sheen_color)
     bool sheen_textures = false;      // a used material's sheen has a texture
@@ -45,8 +45,9 @@ struct SceneFeatures {
 
     // Surfaces that bend light into caustics: mirrors, glass, rough ones and coats.
     bool Specular() const { return mirror || dielectric || thin_dielectric || Rough() || coats; }
-    // Anything but opaque diffuse surfaces: what the passes' general variants handle.
-    bool GeneralSurfaces() const { return Specular() || translucent; }
+    // Anything but opaque diffuse surfaces in a vacuum: what the passes' general variants
+    // handle (media absorb along the segments between surfaces, glass or not).
+    bool GeneralSurfaces() const { return Specular() || translucent || absorption; }
     bool Rough() const { return rough_conductor || rough_dielectric; }
     // Lights that are deltas, which only light sampling finds (core/scene/glossy_lights.h).
     bool PunctualLights() const {

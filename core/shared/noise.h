@@ -67,6 +67,7 @@ PF_GPU_FN float NoiseLerp(float t, float a, float b) { return (1.0f - t) * a + t
 PF_GPU_FN float NoiseCoordinate(float x) {
     const float period = 1073741824.0f;
     if (abs(x) < period) return x;
+    if (!(abs(x) <= 3.0e38f)) return 0.0f;  // infinite or NaN: no cell to take an integer of
     const float whole = x < 0.0f ? -floor(-x / period) : floor(x / period);
     return x - period * whole;
 }

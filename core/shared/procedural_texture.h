@@ -119,7 +119,11 @@ PF_GPU_FN float CheckerIntegral(float x) {
     return x * 0.5f + y * (1.0f - 2.0f * abs(y));
 }
 PF_GPU_FN float CheckerAxis(float x, float r) {
-    if (floor(x - r) == floor(x + r)) return 1.0f - 2.0f * float(int32_t(floor(x)) & 1);
+    if (floor(x - r) == floor(x + r)) {
+        // The cell's parity in floats: an integer cast of a cell past 2^31 is undefined.
+        const float cell = floor(x);
+        return 1.0f - 2.0f * (cell - 2.0f * floor(cell * 0.5f));
+    }
     return (CheckerIntegral(x + r) - 2.0f * CheckerIntegral(x) + CheckerIntegral(x - r)) / (r * r);
 }
 

@@ -87,7 +87,8 @@ absl::StatusOr<FloatInput> PbrtSceneBuilder::FloatParameter(
                                  fallback, " stands in"));
         return input;
     }
-    const absl::StatusOr<int32_t> image = TextureIndex(texture, exponent);
+    const absl::StatusOr<int32_t> image = TextureIndex(
+        texture, exponent, std::numeric_limits<float>::max(), use == TextureUse::kDisplacement);
     if (!image.ok()) return image.status();
     input = {texture.scale.x, *image, texture.mapping};
     return input;

@@ -169,6 +169,23 @@ int StackDepth(const std::vector<gpu::vec4>& program) {
     return deepest;
 }
 
+// Hands `program` to `texture`, with the notes to warn of in `notes`: an error where a value
+// (of `values`) is not finite; where it needs more than the evaluator's stack (less room for
+// a final op), the texture is marked unsupported instead.
+absl::Status FinishProgram(ProgramBuilder& program, const std::string& what,
+                           const std::string& type, const std::string& values,
+                           const Location& where, TextureRef* texture,
+                           std::vector<std::string>* notes) {
+    if (!program.Finite())
+        return ErrorAt(where, absl::StrCat(what, ": ", values, " must be finite"));
+    if (StackDepth(program.Words()) > gpu::kTextureStackSize - 1) {
+        texture->unsupported = absl::StrCat(type, " of textures nested too deeply");
+        return absl::OkStatus();
+    }
+    program.Finish(texture, notes);
+    return absl::OkStatus();
+}
+
 }  // namespace
 
 absl::Status PbrtSceneBuilder::MakeProgram(const std::string& name, const std::string& type,
@@ -245,16 +262,11 @@ absl::Status PbrtSceneBuilder::MakeProgram(const std::string& name, const std::s
         parameters.ConsumeAll();
         return absl::OkStatus();
     }
-    if (!program.Finite())
-        return ErrorAt(where, absl::StrCat(what, ": its parameters must be finite"));
-    if (StackDepth(program.Words()) > gpu::kTextureStackSize - 1) {  // room for a final op
-        texture->unsupported = absl::StrCat(type, " of textures nested too deeply");
-        return absl::OkStatus();
-    }
     std::vector<std::string> notes;
-    program.Finish(texture, &notes);
+    const absl::Status status =
+        FinishProgram(program, what, type, "its parameters", where, texture, &notes);
     for (const std::string& note : notes) Warn(where, absl::StrCat(what, ": ", note));
-    return absl::OkStatus();
+    return status;
 }
 
 absl::Status PbrtSceneBuilder::CombineProgram(const std::string& what, const std::string& type,
@@ -275,26 +287,21 @@ absl::Status PbrtSceneBuilder::CombineProgram(const std::string& what, const std
     } else {
         program.Writer().Combine(type == "mix" ? gpu::kTextureMix : gpu::kTextureMultiply);
     }
-    if (!program.Finite())
-        return ErrorAt(where, absl::StrCat(what, ": its operands' mappings must be finite"));
-    if (StackDepth(program.Words()) > gpu::kTextureStackSize - 1) {
-        texture->unsupported = absl::StrCat(type, " of textures nested too deeply");
-        return absl::OkStatus();
-    }
     std::vector<std::string> notes;
-    program.Finish(texture, &notes);
+    const absl::Status status =
+        FinishProgram(program, what, type, "its operands' mappings", where, texture, &notes);
     for (const std::string& note : notes) Warn(where, absl::StrCat(what, ": ", note));
-    return absl::OkStatus();
+    return status;
 }
 
 absl::StatusOr<int32_t> PbrtSceneBuilder::TextureIndex(const TextureRef& texture, double exponent,
-                                                       float bound) {
+                                                       float bound, bool signed_values) {
     if (!texture.program) {
         TextureRef image = texture;
         image.decode.exponent = exponent;
         return ImageIndex(image);
     }
-    const auto key = std::make_tuple(texture.program.get(), exponent, bound);
+    const auto key = std::make_tuple(texture.program.get(), exponent, bound, signed_values);
     if (const auto it = programs_.find(key); it != programs_.end()) return it->second;
     auto made = std::make_shared<pf::Texture>();
     made->program = texture.program->words;
@@ -306,7 +313,7 @@ absl::StatusOr<int32_t> PbrtSceneBuilder::TextureIndex(const TextureRef& texture
     if (options_.references_only) return kNoTexture;  // packing: the images' files are read
     TextureProgramWriter writer(&made->program);
     if (exponent != 1) writer.Power(float(exponent));
-    writer.Clamp(bound);
+    if (!signed_values) writer.Clamp(bound);
     // Checked as a prepared scene's are (finite values, operands, images), though it was
     // made so.
     if (absl::Status check = CheckTextureProgram(made->program, scene_.textures); !check.ok())

@@ -237,9 +237,12 @@ private:
     // packing, which only reads it).
     absl::StatusOr<int32_t> ImageIndex(const TextureRef& texture);
     // The scene texture of `texture`: its image, or its program with its images' scene textures
-    // and each value raised to `exponent` and clamped to [0, bound] (kNoTexture while packing).
+    // and each value raised to `exponent` and clamped to [0, bound], or left signed where
+    // `signed_values` (a displacement: fbm and windy swing both ways) (kNoTexture while
+    // packing).
     absl::StatusOr<int32_t> TextureIndex(const TextureRef& texture, double exponent = 1,
-                                         float bound = std::numeric_limits<float>::max());
+                                         float bound = std::numeric_limits<float>::max(),
+                                         bool signed_values = false);
     // pbrt-v4's procedural textures evaluated at each point (Texture::program): fbm, wrinkled,
     // windy, marble, dots, checkerboard of dimension 3 or of textures.
     absl::Status MakeProgram(const std::string& name, const std::string& type, bool scalar,
@@ -315,7 +318,7 @@ private:
     std::map<std::tuple<std::string, ImageDecodeOptions>, int32_t>
         images_;  // (path, how it is decoded) -> Scene::textures
     // (a program's texture, exponent, bound) -> Scene::textures
-    std::map<std::tuple<const ProgramRef*, double, float>, int32_t> programs_;
+    std::map<std::tuple<const ProgramRef*, double, float, bool>, int32_t> programs_;
     std::map<std::string, Medium> media_;
     // (material, emission, two-sided, emission texture, alpha, its texture, absorption inside
     // and outside) -> Scene::materials

@@ -419,6 +419,14 @@ TEST(PbrtTexturesTest, ProceduralBumpMapsTiltTheNormalAsTheMovedSurfaceDoes) {
         tilted += std::abs(expected.x) + std::abs(expected.y) > 0.01f;
     }
     EXPECT_GT(tilted, 0) << "the bump tilts the normal somewhere";
+    // fbm swings both ways, and pbrt-v4's BumpMap reads a displacement as it is: no clamp at 0.
+    float lowest = 0, highest = 0;
+    for (int i = 0; i < 400; ++i) {
+        const float d = displacement(Vec3(0.37f * float(i % 20), 0.29f * float(i / 20), 0));
+        lowest = std::min(lowest, d), highest = std::max(highest, d);
+    }
+    EXPECT_LT(lowest, -0.005f);
+    EXPECT_GT(highest, 0.005f);
 }
 
 }  // namespace
