@@ -19,7 +19,14 @@ absl::StatusOr<std::pair<int, ImageDecodeOptions>> GltfTextureReader::Source(
         return error(absl::StrCat("texture #", texture, " does not exist"));
     const tinygltf::Texture& source = model_.textures[texture];
     const int image = GltfTextureImage(source);
-    if (image < 0 && Extension(source.extensions, "KHR_texture_basisu") != nullptr)
+    // Only a KTX2 image: through the extension, or (as some exporters write it) as the
+    // texture's own source.
+    const bool ktx2 = image < 0 ? Extension(source.extensions, "KHR_texture_basisu") != nullptr
+                      : image < static_cast<int>(model_.images.size())
+                          ? model_.images[image].mimeType == "image/ktx2" ||
+                                model_.images[image].uri.ends_with(".ktx2")
+                          : false;
+    if (ktx2)
         return error(absl::StrCat(
             "texture #", texture,
             " has only a KTX2 image (KHR_texture_basisu), which photonfarm cannot decode "

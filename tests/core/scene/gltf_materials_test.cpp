@@ -556,6 +556,16 @@ TEST(GltfMaterialsTest, Ktx2TexturesFallBackToTheirSourceOrAreRefusedNamingTheWa
     EXPECT_NE(message.find("KHR_texture_basisu"), std::string::npos) << message;
     EXPECT_NE(message.find("ktx extract"), std::string::npos) << message;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    // A texture whose own source is the KTX2 image (as AnisotropyBarnLamp's KTX2 variant has
+    // it): the same refusal, not the image reader's words.
+    const std::string by_extension = R"({"extensions":{"KHR_texture_basisu":{"source":1}}})";
+    ASSERT_NE(json.find(by_extension), std::string::npos);
+    json.replace(json.find(by_extension), by_extension.size(), R"({"source":1})");
+    const absl::StatusOr<Scene> direct =
+        LoadScene(testing::WriteTextFile(json, "ktx2-source.gltf"));
+    ASSERT_FALSE(direct.ok());
+    EXPECT_NE(std::string(direct.status().message()).find("ktx extract"), std::string::npos)
+        << direct.status();
 }
 
 }  // namespace
