@@ -267,30 +267,37 @@ double TeaClosedForm() {
     return Stack(tea, 1.0, Interface(1.5, 1)).t;
 }
 
-TEST(Refraction, ATeaOutsideItsGlassAbsorbs) {
-    const std::string scene = testing::WriteTextFile(TeaScene(), "tea.pbrt");
-    const double expected = TeaClosedForm();
-    for (const Integrator integrator : {Integrator::kPpm, Integrator::kPath}) {
+// Renders `scene` (a uniform field) with each of `integrators` and expects `expected` within
+// its blocks' bound, a bound that must catch a 2% error.
+void ExpectUniformClosedForm(const std::string& name, const std::string& scene, double expected,
+                             std::initializer_list<Integrator> integrators, uint64_t photons,
+                             uint32_t epochs, uint64_t seed) {
+    for (const Integrator integrator : integrators) {
         RenderSettings settings;
         settings.scene_path = scene;
         settings.threads = 2;
         settings.job.integrator = integrator;
         settings.job.width = settings.job.height = 16;
-        settings.job.seed = 9;
+        settings.job.seed = seed;
         if (integrator == Integrator::kPath)
-            settings.job.epoch_budget = 32;
+            settings.job.epoch_budget = epochs;
         else
-            settings.job.photon_budget = 200'000, settings.job.layout = {1u << 15, 2};
+            settings.job.photon_budget = photons, settings.job.layout = {1u << 15, 2};
         const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
         ASSERT_TRUE(outcome.ok()) << outcome.status();
         const Measured measured = MeasureBlocks(outcome->image);
-        std::printf("tea, %s: %.5f (closed form %.5f, bound %.5f)\n",
+        std::printf("%s, %s: %.5f (closed form %.5f, bound %.5f)\n", name.c_str(),
                     std::string(IntegratorName(integrator)).c_str(), measured.mean, expected,
                     measured.bound);
         const double allowed = measured.bound + 2e-3 * expected;
         EXPECT_NEAR(measured.mean, expected, allowed) << IntegratorName(integrator);
         EXPECT_LT(allowed, testing::kBiasToCatch * expected) << "a 2% error must not pass";
     }
+}
+
+TEST(Refraction, ATeaOutsideItsGlassAbsorbs) {
+    ExpectUniformClosedForm("tea", testing::WriteTextFile(TeaScene(), "tea.pbrt"), TeaClosedForm(),
+                            {Integrator::kPpm, Integrator::kPath}, 200'000, 32, 9);
 }
 
 // Fog in a scene of nothing but diffuse surfaces: a lamp of radiance Le facing up at z = 0,
@@ -312,25 +319,9 @@ TEST(Refraction, FogInADiffuseSceneAbsorbsInEveryIntegrator) {
                      "Shape \"trianglemesh\" \"point3 P\" [-2 -2 0  2 -2 0  2 2 0  -2 2 0] "
                      "\"integer indices\" [0 1 2  0 2 3]\nAttributeEnd\n"),
         "fog.pbrt");
-    const double expected = std::exp(-3 * kSigma);
-    for (const Integrator integrator : {Integrator::kPpm, Integrator::kSppm, Integrator::kPath}) {
-        RenderSettings settings;
-        settings.scene_path = scene;
-        settings.threads = 2;
-        settings.job.integrator = integrator;
-        settings.job.width = settings.job.height = 16;
-        settings.job.seed = 11;
-        if (integrator == Integrator::kPath)
-            settings.job.epoch_budget = 4;
-        else
-            settings.job.photon_budget = 100'000, settings.job.layout = {1u << 14, 2};
-        const absl::StatusOr<RenderOutcome> outcome = RenderLocally(settings);
-        ASSERT_TRUE(outcome.ok()) << outcome.status();
-        const Measured measured = MeasureBlocks(outcome->image);
-        const double allowed = measured.bound + 2e-3 * expected;
-        EXPECT_NEAR(measured.mean, expected, allowed) << IntegratorName(integrator);
-        EXPECT_LT(allowed, testing::kBiasToCatch * expected) << "a 2% error must not pass";
-    }
+    ExpectUniformClosedForm("fog", scene, std::exp(-3 * kSigma),
+                            {Integrator::kPpm, Integrator::kSppm, Integrator::kPath}, 100'000, 4,
+                            11);
 }
 
 // The Vulkan kernels trace the camera paths of pm and the path tracer as the CPU does, drawing
