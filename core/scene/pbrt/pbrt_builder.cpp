@@ -503,6 +503,18 @@ absl::Status PbrtSceneBuilder::AddShape(const TriangleMesh& mesh, const Transfor
         SceneMaterial(state.material, emission, state.area_light && state.area_light->two_sided,
                       state.alpha, emission_texture, absorption.inside, absorption.outside);
     if (!index.ok()) return index.status();
+    // Light is sampled from a surface that is not glass, and its shadow ray crosses the medium
+    // unattenuated (docs/scenes.md): said once.
+    if (const MaterialType type = scene_.materials[*index].type;
+        !warned_sampled_media_ && scene_.materials[*index].HasVolume() &&
+        type != MaterialType::kDielectric && type != MaterialType::kThinDielectric &&
+        type != MaterialType::kMirror) {
+        warned_sampled_media_ = true;
+        Warn(Location{}, absl::StrCat(element,
+                                      ": a medium borders a surface lit by light sampling; light "
+                                      "sampled from it is not attenuated by the medium, so "
+                                      "directly lit surfaces in it read brighter"));
+    }
     MeshPlacement placement{world, *index, front, state.reverse_orientation, mapping.uv};
     if (!scene_.MaterialReadsUv(*index))
         return AppendMesh(mesh, placement, options_.limits, element, &scene_, prototype);

@@ -319,6 +319,7 @@ private:
         images_;  // (path, how it is decoded) -> Scene::textures
     // (a program's texture, exponent, bound) -> Scene::textures
     std::map<std::tuple<const ProgramRef*, double, float, bool>, int32_t> programs_;
+    bool warned_sampled_media_ = false;  // a medium around a surface lit by light sampling
     std::map<std::string, Medium> media_;
     // (material, emission, two-sided, emission texture, alpha, its texture, absorption inside
     // and outside) -> Scene::materials

@@ -196,6 +196,8 @@ TEST(PbrtMaterialsTest, MediaAbsorbOnTheSidesOfTheSurfacesThatBoundThem) {
     EXPECT_TRUE(Contains(warnings, "scattering (sigma_s) is left out; the medium absorbs only"));
     EXPECT_TRUE(Contains(warnings, "\"uniformgrid\" media are not rendered"));
     EXPECT_TRUE(Contains(warnings, "the medium \"ink\" of \"interface\" shapes (no surface)"));
+    EXPECT_TRUE(Contains(warnings, "light sampled from it is not attenuated by the medium"))
+        << "the diffuse quad in ink";
     for (const std::string& warning : warnings)
         EXPECT_FALSE(absl::StartsWith(warning, ":1:1:")) << warning << ": a location of none";
 
