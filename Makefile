@@ -41,11 +41,13 @@ demo: build
 	@echo "demo: and out/cornell-box-pbrt.exr, .png from the pbrt-v4 scene scenes/pbrt/cornell-box.pbrt"
 
 # The whole suite through CTest, then what it skipped and why (CI=true turns every skip for a
-# missing prerequisite into a failure; docs/testing.md).
+# missing prerequisite into a failure; docs/testing.md), then its ten slowest tests and each
+# label's time against its budget (bench/suite_times.py).
 test: build
 	@status=0; ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) \
 		--output-junit "$(abspath $(BUILD))/Testing/junit.xml" || status=$$?; \
-	python3 tests/suite/skip_summary.py "$(abspath $(BUILD))/Testing/junit.xml"; exit $$status
+	python3 tests/suite/skip_summary.py "$(abspath $(BUILD))/Testing/junit.xml"; \
+	python3 bench/suite_times.py "$(abspath $(BUILD))" --top 10 || true; exit $$status
 
 bench: build
 	./$(BUILD)/bench/photon_bench

@@ -28,7 +28,9 @@ endfunction()
 # pf_add_test(NAME SOURCES ... [DEPS ...] [LABELS ...] [TIMEOUT SECONDS]): one GoogleTest
 # binary, each case its own CTest test with the binary's labels (unit unless given) and a
 # TIMEOUT per case (60 s unless given: the binary's slowest case on a loaded 2-core machine,
-# with room).
+# with room). The TIMEOUT is also each case's COST: on a fresh clone (no CTestCostData.txt yet)
+# `ctest -j` starts the binaries with long cases first, so the short ones fill the end of the run
+# instead of one long case running alone there.
 function(pf_add_test name)
     cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
     if(NOT ARG_TIMEOUT)
@@ -45,7 +47,7 @@ function(pf_add_test name)
     # gtest's printout of the parameter (bytes of pointers, for a struct of strings).
     gtest_discover_tests(${name} WORKING_DIRECTORY "${PROJECT_BINARY_DIR}" NO_PRETTY_VALUES
         PROPERTIES ENVIRONMENT "PF_SOURCE_DIR=${PROJECT_SOURCE_DIR}" TIMEOUT ${ARG_TIMEOUT}
-                   LABELS "${ARG_LABELS}"
+                   COST ${ARG_TIMEOUT} LABELS "${ARG_LABELS}"
         DISCOVERY_TIMEOUT 60)
 endfunction()
 
