@@ -1,23 +1,118 @@
-// Image decoding from memory through OpenImageIO's IOProxy.
+// Image decoding from memory: the samples through pf_image_oiio (OpenImageIO, loaded at the
+// first image; image_module.h), then their transfer function and channels here.
 #include "core/scene/image_decode.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
+#include <dlfcn.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <limits>
 #include <memory>
+#include <new>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "core/scene/image_module.h"
 
 namespace pf {
 namespace {
 
-// OpenImageIO's errors can span lines; messages here are one line.
-std::string FirstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
+// The module, loaded once per process: its entry point, or why there is none (one line).
+struct ImageModule {
+    PfDecodeImageFunction decode = nullptr;
+    std::string error;
+};
+
+// Where the module is looked for, first found first: `lib` beside the running executable's
+// folder (build/lib for build/tests/x, /usr/local/lib for /usr/local/bin/x), then the build
+// tree's own (PF_IMAGE_MODULE_BUILD_PATH, for executables deeper in it, such as the fuzzers).
+std::vector<std::string> ModulePaths() {
+    std::vector<std::string> paths;
+    std::error_code error;
+    const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (!error)
+        paths.push_back((executable.parent_path().parent_path() / "lib" / kPfImageModuleFile)
+                            .lexically_normal()
+                            .string());
+#ifdef PF_IMAGE_MODULE_BUILD_PATH
+    if (std::find(paths.begin(), paths.end(), PF_IMAGE_MODULE_BUILD_PATH) == paths.end())
+        paths.push_back(PF_IMAGE_MODULE_BUILD_PATH);
+#endif
+    return paths;
+}
+
+ImageModule LoadModule() {
+    ImageModule module;
+    const std::vector<std::string> paths = ModulePaths();
+    for (const std::string& path : paths) {
+        std::error_code missing;
+        if (!std::filesystem::exists(path, missing)) continue;
+        // Never closed: the module lives as long as the process.
+        void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (!handle) {
+            const char* reason = dlerror();
+            module.error = absl::StrCat("image module ", path, " could not be loaded (",
+                                        reason ? reason : "unknown error", ")");
+            return module;
+        }
+        module.decode =
+            reinterpret_cast<PfDecodeImageFunction>(dlsym(handle, kPfDecodeImageSymbol));
+        if (!module.decode)
+            module.error = absl::StrCat("image module ", path, " has no ", kPfDecodeImageSymbol,
+                                        " (a module from another build?)");
+        return module;
+    }
+    module.error = absl::StrCat("images cannot be decoded: the image module ", kPfImageModuleFile,
+                                " is not at ", absl::StrJoin(paths, " nor "));
+    return module;
+}
+
+// Loaded at the first call, once, whichever thread calls first (a function-local static).
+const ImageModule& Module() {
+    static const ImageModule module = LoadModule();
+    return module;
+}
+
+// The samples the module decodes, in memory owned here; `shape` says which are in use.
+struct DecodedSamples {
+    uint64_t max_pixels = 0;
+    PfImageShape shape{};
+    bool over_limit = false;
+    std::vector<uint8_t> uint8;
+    std::vector<uint16_t> uint16;
+    std::vector<float> floats;
+};
+
+void* AllocateSamples(void* context, const PfImageShape* shape) noexcept {
+    auto& decoded = *static_cast<DecodedSamples*>(context);
+    decoded.shape = *shape;
+    const uint64_t pixels = uint64_t(shape->width) * uint64_t(shape->height);
+    if (pixels > decoded.max_pixels) {
+        decoded.over_limit = true;
+        return nullptr;
+    }
+    const size_t count = pixels * size_t(shape->channels);
+    try {
+        switch (shape->samples) {
+            case kPfImageUint8:
+                decoded.uint8.resize(count);
+                return decoded.uint8.data();
+            case kPfImageUint16:
+                decoded.uint16.resize(count);
+                return decoded.uint16.data();
+            case kPfImageFloat:
+                decoded.floats.resize(count);
+                return decoded.floats.data();
+        }
+    } catch (const std::bad_alloc&) {
+    }
+    return nullptr;
+}
 
 }  // namespace
 
@@ -28,35 +123,28 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
     };
     const size_t dot = name.rfind('.');
     if (dot == std::string::npos) return error("image file has no extension to tell its format");
-    // OpenImageIO probes the file name on disk while it picks a reader; a name under
-    // /dev/null cannot be opened, so only the proxy's bytes are ever read.
-    const std::string probe_name = absl::StrCat("/dev/null/image", name.substr(dot));
-    OIIO::Filesystem::IOMemReader proxy(bytes.data(), bytes.size());
-    std::unique_ptr<OIIO::ImageInput> input =
-        OIIO::ImageInput::create(OIIO::string_view(probe_name), false, nullptr, &proxy);
-    if (!input)
-        return error(absl::StrCat("not a readable image (", FirstLine(OIIO::geterror()), ")"));
-    if (!input->supports("ioproxy"))
-        return error(absl::StrCat("image format '", input->format_name(),
-                                  "' cannot be read from a scene bundle"));
-    input->set_ioproxy(&proxy);
-    OIIO::ImageSpec spec;
-    // Colour as stored: glTF and pbrt-v4 read an RGBA image's colour without alpha multiplied
-    // in (OpenImageIO would premultiply a PNG's).
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    if (!input->open(probe_name, spec, config))
-        return error(absl::StrCat("not a readable image (", FirstLine(input->geterror()), ")"));
-    if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth != 1)
-        return error("image has no pixels or is a volume");
-    const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
-    if (pixels > limits.max_image_pixels)
+    const ImageModule& module = Module();
+    if (!module.decode)
+        return absl::FailedPreconditionError(absl::StrCat(name, ": ", module.error));
+    DecodedSamples decoded;
+    decoded.max_pixels = limits.max_image_pixels;
+    char message[512] = "";
+    const int32_t result = module.decode(bytes.data(), bytes.size(), name.substr(dot).c_str(),
+                                         AllocateSamples, &decoded, message, sizeof(message));
+    if (result == kPfImageFailed) return error(message);
+    const PfImageShape& spec = decoded.shape;
+    if (decoded.over_limit)
         return absl::ResourceExhaustedError(absl::StrCat(name, ": image is ", spec.width, "x",
                                                          spec.height, ", over the limit of ",
                                                          limits.max_image_pixels, " pixels"));
+    if (result != kPfImageDecoded)
+        return absl::ResourceExhaustedError(absl::StrCat(name, ": image of ", spec.width, "x",
+                                                         spec.height, "x", spec.channels,
+                                                         " samples does not fit in memory"));
+    const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
     ImageEncoding encoding = options.encoding;
     if (encoding == ImageEncoding::kAuto)
-        encoding = spec.format.is_floating_point() ? ImageEncoding::kLinear : ImageEncoding::kSrgb;
+        encoding = spec.samples == kPfImageFloat ? ImageEncoding::kLinear : ImageEncoding::kSrgb;
     auto to_linear = [&](float value) {
         if (!std::isfinite(value)) return 0.0f;
         switch (encoding) {
@@ -68,8 +156,7 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
                 return std::max(value, 0.0f);
         }
     };
-    const size_t count = pixels * size_t(spec.nchannels);
-    const int channels = spec.nchannels;
+    const int channels = spec.channels;
     Texture texture;
     texture.width = spec.width;
     texture.height = spec.height;
@@ -111,15 +198,10 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
             }
         }
     };
-    // 8- and 16-bit images (PNG, JPEG: nearly every glTF texture) are read as stored, with
-    // no conversion, and decoded through a table of every code (a pow per code, not per value;
-    // a quarter or half the memory of floats); others as floats.
-    const auto read_codes = [&](auto code_type, OIIO::TypeDesc format) -> absl::Status {
-        using Code = decltype(code_type);
-        const std::unique_ptr<Code[]> codes(new Code[count]);
-        if (!input->read_image(0, 0, 0, spec.nchannels, format, codes.get()))
-            return error(
-                absl::StrCat("image data is corrupt (", FirstLine(input->geterror()), ")"));
+    // 8- and 16-bit codes are decoded through a table of every code (a pow per code, not per
+    // value); floats one by one.
+    const auto decode_codes = [&](const auto& codes) {
+        using Code = typename std::decay_t<decltype(codes)>::value_type;
         constexpr size_t kCodes = size_t{std::numeric_limits<Code>::max()} + 1;
         constexpr float kLargest = std::numeric_limits<Code>::max();
         std::vector<float> table(kCodes);
@@ -127,22 +209,14 @@ absl::StatusOr<Texture> DecodeImage(std::string_view bytes, const std::string& n
             table[code] = to_linear(static_cast<float>(code) / kLargest);
         convert([&](size_t k) { return static_cast<float>(codes[k]) / kLargest; },
                 [&](size_t k) { return table[codes[k]]; });
-        return absl::OkStatus();
     };
-    if (spec.channelformats.empty() && spec.format == OIIO::TypeDesc::UINT8) {
-        if (absl::Status status = read_codes(uint8_t{}, OIIO::TypeDesc::UINT8); !status.ok())
-            return status;
-    } else if (spec.channelformats.empty() && spec.format == OIIO::TypeDesc::UINT16) {
-        if (absl::Status status = read_codes(uint16_t{}, OIIO::TypeDesc::UINT16); !status.ok())
-            return status;
-    } else {
-        const std::unique_ptr<float[]> values(new float[count]);
-        if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.get()))
-            return error(
-                absl::StrCat("image data is corrupt (", FirstLine(input->geterror()), ")"));
-        convert([&](size_t k) { return values[k]; },
-                [&](size_t k) { return to_linear(values[k]); });
-    }
+    if (spec.samples == kPfImageUint8)
+        decode_codes(decoded.uint8);
+    else if (spec.samples == kPfImageUint16)
+        decode_codes(decoded.uint16);
+    else
+        convert([&](size_t k) { return decoded.floats[k]; },
+                [&](size_t k) { return to_linear(decoded.floats[k]); });
     ApplyValueOptions(options, &texture);
     return texture;
 }

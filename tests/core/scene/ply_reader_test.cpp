@@ -601,8 +601,7 @@ void TheTriangleLimitHolds() {
                   absl::StatusCode::kResourceExhausted);
 }
 
-// Four test cases of several checks each: CTest runs every case as its own process, and this
-// binary takes ~0.4 s to start (OpenImageIO).
+// Four test cases of several checks each: CTest runs every case as its own process.
 TEST(PlyReaderTest, ReadsEveryEncodingScalarTypeListAndPolygon) {
     ReadsEveryEncodingAndScalarTypeName();
     ReadsListsOfEveryCountAndItemType();

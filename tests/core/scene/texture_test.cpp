@@ -2,18 +2,17 @@
 // average what the footprint covers; the point lookup agrees with it at a point.
 #include "core/scene/texture.h"
 
-#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
 #include <utility>
 #include <vector>
 
 #include "core/scene/image_decode.h"
 #include "core/scene/scene_files.h"
 #include "core/scene/texture_filter.h"
+#include "tests/support/png_fixture.h"
 #include "tests/support/test_env.h"
 
 namespace pf {
@@ -25,29 +24,15 @@ std::string CheckerboardPng() {
     for (int y = 0; y < 64; ++y)
         for (int x = 0; x < 64; ++x)
             for (int c = 0; c < 3; ++c) pixels[(y * 64 + x) * 3 + c] = (x + y) % 2 ? 255 : 0;
-    const std::string path = testing::TempPath("photonfarm-checkerboard.png");
-    auto out = OIIO::ImageOutput::create(path);
-    EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(64, 64, 3, OIIO::TypeDesc::UINT8)));
-    EXPECT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data()));
-    out->close();
-    const absl::StatusOr<std::string> bytes = ReadWholeFile(path);
-    std::filesystem::remove(path);
-    return bytes.ok() ? *bytes : std::string();
+    return testing::PngOf(64, 64, 3, pixels.data());
 }
 
-// An RGBA PNG of `values` (4 per texel) stored as `format` (8 or 16 bits), its bytes.
-template <typename Code>
-std::string RgbaPng(const std::vector<Code>& values, OIIO::TypeDesc format) {
-    const std::string path = testing::TempPath("photonfarm-codes.png");
-    auto out = OIIO::ImageOutput::create(path);
-    OIIO::ImageSpec spec(static_cast<int>(values.size() / 4), 1, 4, format);
-    spec.attribute("oiio:UnassociatedAlpha", 1);  // colour as given, not divided by alpha
-    EXPECT_TRUE(out && out->open(path, spec));
-    EXPECT_TRUE(out->write_image(format, values.data()));
-    out->close();
-    const absl::StatusOr<std::string> bytes = ReadWholeFile(path);
-    std::filesystem::remove(path);
-    return bytes.ok() ? *bytes : std::string();
+// An RGBA PNG of `values` (4 per texel, colour as given), 8- or 16-bit as they are, its bytes.
+std::string RgbaPng(const std::vector<uint8_t>& values) {
+    return testing::PngOf(static_cast<int>(values.size() / 4), 1, 4, values.data());
+}
+std::string RgbaPng(const std::vector<uint16_t>& values) {
+    return testing::SixteenBitPngOf(static_cast<int>(values.size() / 4), 1, 4, values.data());
 }
 
 // The sRGB transfer function (IEC 61966-2-1), written here in double precision.
@@ -61,8 +46,7 @@ TEST(TextureTest, EightAndSixteenBitCodesDecodeAsTheTransferFunctionSays) {
     const std::vector<uint8_t> bytes8 = {0, 10, 128, 255, 255, 200, 3, 51};
     const std::vector<uint16_t> codes16 = {0, 1000, 40000, 65535, 65535, 12345, 777, 13107};
     for (int bits : {8, 16}) {
-        const std::string png = bits == 8 ? RgbaPng(bytes8, OIIO::TypeDesc::UINT8)
-                                          : RgbaPng(codes16, OIIO::TypeDesc::UINT16);
+        const std::string png = bits == 8 ? RgbaPng(bytes8) : RgbaPng(codes16);
         const auto value = [&](int k) {
             return bits == 8 ? bytes8[k] / 255.0 : codes16[k] / 65535.0;
         };
