@@ -9,14 +9,13 @@ packages=(
     libembree-dev libtbb-dev
     libopenimageio-dev openimageio-tools libopenexr-dev
     libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev
-    libvulkan-dev glslc mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
+    libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers
     libzstd-dev zlib1g-dev nlohmann-json3-dev libcli11-dev libtinygltf-dev libstb-dev libdraco-dev libmeshoptimizer-dev
     libcpp-httplib-dev
     chromium chromium-driver python3-selenium
     gnuplot-nox fonts-dejavu-core
     clang libclang-rt-14-dev clang-format
-    podman buildah runc netavark aardvark-dns debootstrap uidmap slirp4netns fuse-overlayfs
-    containernetworking-plugins catatonit docker-compose
+    podman runc netavark aardvark-dns debootstrap catatonit docker-compose
 )
 
 missing=()
@@ -34,5 +33,9 @@ fi
 echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 apt-get update -qq
-apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+# --force-unsafe-io: dpkg skips its fsync per unpacked file (as Debian's container images do),
+# which is most of an install's time on a slow disk; a machine that loses power mid-install
+# reinstalls.
+apt-get install -y -qq --no-install-recommends -o Dpkg::Options::=--force-unsafe-io \
+    "${missing[@]}" >/dev/null
 echo "install-deps: done"
