@@ -214,7 +214,7 @@ double FurnaceStreamsCheck::DetectableBias() const {
 std::string FurnaceStreamsCheck::Describe() const {
     return absl::StrFormat(
         "RGB %+.3f%% %+.3f%% %+.3f%% of emission/(1-rho) over %d pixels, allowed %.3f%% %.3f%% "
-        "%.3f%% (sigma %.3f%% %.3f%% %.3f%% from %d renders, t %.2f, known bias %.3f%%); "
+        "%.3f%% (sigma %.3f%% %.3f%% %.3f%% from %d draws, t %.2f, known bias %.3f%%); "
         "catches %.2f%%",
         100 * error.x, 100 * error.y, 100 * error.z, pixels, 100 * Limit(0), 100 * Limit(1),
         100 * Limit(2), 100 * sigma.x, 100 * sigma.y, 100 * sigma.z, renders, quantile,
@@ -245,6 +245,43 @@ FurnaceStreamsCheck CheckFurnaceStreams(const std::vector<Image>& renders, const
     for (int c = 0; c < 3; ++c) check.sigma[c] = std::sqrt(squares[c] / (k - 1) / k);
     check.quantile = StudentTQuantile(kFalseAlarm / 2, k - 1);
     return check;
+}
+
+}  // namespace pf::testing
+
+namespace pf::testing {
+
+absl::StatusOr<EpochDraws> RenderEpochDraws(RenderSettings settings) {
+    JobSpec& job = settings.job;
+    const uint64_t per_epoch = job.layout.PhotonsPerEpoch();
+    if (job.integrator != Integrator::kPpm || job.alpha != 1.0 || per_epoch == 0 ||
+        job.photon_budget % per_epoch != 0)
+        return absl::InvalidArgumentError("epoch draws need ppm, alpha 1 and whole epochs");
+    job.layout.first_epoch_photons = per_epoch;  // every epoch full, none growing
+    EpochDraws draws;
+    std::vector<Rgbd> previous;  // k - 1 times I_k-1, per pixel
+    bool whole_epochs = true;
+    const absl::StatusOr<RenderOutcome> outcome =
+        RenderLocally(settings, [&](const RenderProgress& progress, const Job& rendering) {
+            const std::shared_ptr<const Image> image = rendering.CurrentImage();
+            const uint64_t k = progress.epochs;
+            whole_epochs = whole_epochs && image && k == draws.epochs.size() + 1 &&
+                           progress.photons == k * per_epoch;
+            if (!whole_epochs) return;
+            if (previous.empty()) previous.assign(image->pixels.size(), Rgbd(0.0));
+            Image draw(image->width, image->height);
+            for (size_t p = 0; p < image->pixels.size(); ++p) {
+                const Rgbd sum = Rgbd(image->pixels[p]) * static_cast<double>(k);
+                draw.pixels[p] = Rgb(sum - previous[p]);
+                previous[p] = sum;
+            }
+            draws.epochs.push_back(std::move(draw));
+        });
+    if (!outcome.ok()) return outcome.status();
+    if (!whole_epochs || draws.epochs.size() != outcome->progress.epochs)
+        return absl::InternalError("an epoch's image was missed or held a part of an epoch");
+    draws.outcome = *outcome;
+    return draws;
 }
 
 }  // namespace pf::testing

@@ -10,6 +10,7 @@
 #include "core/film/image.h"
 #include "core/job/job_spec.h"
 #include "core/math/vec3.h"
+#include "embedded/local_render.h"
 
 namespace pf::testing {
 
@@ -125,5 +126,23 @@ struct FurnaceStreamsCheck {
 FurnaceStreamsCheck CheckFurnaceStreams(const std::vector<Image>& renders, const FurnacePass& pass,
                                         const std::vector<bool>& region, double rho,
                                         double known_bias, const Rgbd& bias = Rgbd(1.0));
+
+// One ppm render whose epochs are the independent draws CheckFurnaceStreams takes, in place of
+// K renders on photon streams of their own (each of which builds its backend and traces its
+// camera pass again: on lavapipe about 10 s of pipeline set-up a render). At alpha = 1 a
+// radius never shrinks and ppm's estimate is the plain mean of its epochs' estimates: after
+// epoch k of P photons and k camera samples a pixel (the same P and k every epoch), the image
+// is I_k = (x_1 + ... + x_k) / k, where x_e is epoch e's own estimate (its photons over the
+// fixed discs, its direct-light samples and its emission pass), so x_k = k I_k - (k - 1) I_k-1.
+// The x_e are independent given the camera pass (each epoch's photons and camera samples are
+// drawn from their own numbers), each of expectation what one render's is: the streams' K
+// renders become one render's K epochs. `settings` must ask for ppm with alpha = 1 and a
+// budget of whole epochs (all full: none of the small first epochs). The outcome is the render's,
+// `epochs` its epochs' own images.
+struct EpochDraws {
+    RenderOutcome outcome;
+    std::vector<Image> epochs;
+};
+absl::StatusOr<EpochDraws> RenderEpochDraws(RenderSettings settings);
 
 }  // namespace pf::testing
