@@ -3,6 +3,19 @@
 // by channel and block by block, with budgets that let a 2% bias in any channel fail
 // (tests/support/image_agreement.cpp derives the checks; image_agreement_test.cpp shows them
 // failing on biased, tinted and channel-swapped images).
+//
+// Budgets: each case's photons are the fewest, in steps of two, whose comparison caught a bias
+// of about 1% or less on one 2-core run (ExpectSameEstimator fails any run whose comparison
+// could not catch 2%, so a budget too small fails the test rather than passing it). Most of a
+// case's time past that is fixed: the Vulkan context's pipelines compiled by lavapipe and
+// checked by the validation layer.
+//
+// Not paired: a Vulkan render and a CPU render of the same photon stream draw the same numbers
+// in the same order, yet their images are nearly independent draws (measured at 32x32 on the
+// sheen, coats, sky and two-sided-light cases: the spread of mean(V_s - C_s) was 0.6 to 1.6
+// times a single render's, where independent renders give 1.4; 18-56% of the pixels agreed
+// to 1e-3). Paths part at float rounding, and each progressive radius then follows
+// its own photon counts. A paired statistic would need two Vulkan renders for no less noise.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -45,7 +58,7 @@ class BackendAgreement : public ::testing::TestWithParam<std::string> {};
 TEST_P(BackendAgreement, VulkanImageMatchesTheCpuImagesWithinTheirNoise) {
     testing::SkipWithoutVulkan();
     if (IsSkipped() || HasFatalFailure()) return;
-    ExpectVulkanAgreesWithTheCpu(std::string(PF_SOURCE_DIR) + "/scenes/" + GetParam());
+    ExpectVulkanAgreesWithTheCpu(std::string(PF_SOURCE_DIR) + "/scenes/" + GetParam(), 250'000);
 }
 
 // The lit quad with a wall of `wall` beside it: at x = 1, from z = 0 to 1, facing -x (toward
@@ -71,15 +84,14 @@ TEST(BackendAgreementTextures, LightOffATexturedWallMatchesTheCpus) {
     // The lit quad with a textured wall beside it (2x1 texels: sRGB red, sRGB grey 128; factor
     // (1, 1, 0.5)): the floor's indirect light comes off the wall, so photons must take the
     // texture's albedo at their bounce there (direct light needs no texture on the device:
-    // hit points carry their BSDF weight). Same checks as the Cornell scenes; twice their
-    // photons, since at 1M the mean checks would catch only a 2.2% bias in green and blue.
+    // hit points carry their BSDF weight). Same checks as the Cornell scenes.
     testing::SkipWithoutVulkan();
     if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
     const testing::TestMaterial wall = TexturedWall(
         "iVBORw0KGgoAAAANSUhEUgAAAAIAAAABCAIAAAB7QOjdAAAAD0lEQVR4nGP4z8DQ0NAAAAkBAoCZxGkyAAAAAElFTk"
         "SuQmCC");
     ExpectVulkanAgreesWithTheCpu(
-        testing::WriteGltf(LitQuadWithWall(wall, 0, 1), "textured-wall.gltf"), 2'000'000);
+        testing::WriteGltf(LitQuadWithWall(wall, 0, 1), "textured-wall.gltf"), 500'000);
 }
 
 TEST(BackendAgreementTextures, WrapModesMatchTheCpus) {
@@ -92,7 +104,7 @@ TEST(BackendAgreementTextures, WrapModesMatchTheCpus) {
         absl::Base64Escape(testing::TwoTexelPng({250, 30, 30, 30, 30, 250}, "wrap.png")));
     wall.texture_sampler = R"({"wrapS":33071,"wrapT":33648})";
     ExpectVulkanAgreesWithTheCpu(
-        testing::WriteGltf(LitQuadWithWall(wall, -1, 2), "wrapped-wall.gltf"), 2'000'000);
+        testing::WriteGltf(LitQuadWithWall(wall, -1, 2), "wrapped-wall.gltf"), 500'000);
 }
 
 // A wall of `wall` in the lit quad scene at x = 0.4, from z = 0 to 1.2, facing -x (toward the
@@ -133,7 +145,7 @@ TEST(BackendAgreementGltfMaterials, MetallicRoughnessMatchesTheCpus) {
                                  {-1, -0.3f, 0.4f}, {-1, 0.3f, 1},    {-1, -0.3f, 1}};
     scene.camera_position = Vec3(-0.9f, 0, 0.6f);
     scene.camera_extra = R"(,"rotation":[0,-0.7071068,0,0.7071068])";
-    ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "metallic-roughness.gltf"), 4'000'000);
+    ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "metallic-roughness.gltf"), 500'000);
 }
 
 TEST(BackendAgreementTextures, ProceduralTexturesMatchTheCpus) {
@@ -179,7 +191,7 @@ TEST(BackendAgreementRange, ARangedLightMatchesTheCpus) {
         {{{1, -1, 0}, {1, 1, 1}, {1, 1, 0}, {1, -1, 0}, {1, -1, 1}, {1, 1, 1}}, 0});
     scene.lights = {R"({"type":"point","intensity":6830,"range":1.0})"};
     scene.light_node_fields = {R"(,"translation":[0.6,0,0.4])"};
-    ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "ranged-light.gltf"), 2'000'000);
+    ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "ranged-light.gltf"), 500'000);
 }
 
 TEST(BackendAgreementTwoSided, ATwoSidedLightMatchesTheCpus) {
@@ -198,7 +210,7 @@ TEST(BackendAgreementTwoSided, ATwoSidedLightMatchesTheCpus) {
             "Shape \"bilinearmesh\" \"point3 P\" [-0.3 -0.3 0  0.3 -0.3 0  -0.3 0.3 0  0.3 0.3 0]\n"
             "AttributeEnd\n",
             "two-sided-light.pbrt"),
-        2'000'000);
+        250'000);
 }
 
 TEST(BackendAgreementCoats, CoatedSurfacesMatchTheCpus) {
@@ -254,7 +266,7 @@ TEST(BackendAgreementShadingDetail, BumpMapsMatchTheCpus) {
             "Shape \"bilinearmesh\" \"point3 P\" [-0.3 -0.3 0  0.3 -0.3 0  -0.3 0.3 0  0.3 0.3 0]\n"
             "AttributeEnd\n",
             "bumped.pbrt"),
-        4'000'000);
+        500'000);
 }
 
 TEST(BackendAgreementConductors, MetalsFresnelTermsMatchTheCpus) {
@@ -287,7 +299,7 @@ TEST(BackendAgreementConductors, MetalsFresnelTermsMatchTheCpus) {
             "Shape \"bilinearmesh\" \"point3 P\" [-0.3 -0.3 0  0.3 -0.3 0  -0.3 0.3 0  0.3 0.3 0]\n"
             "AttributeEnd\n",
             "conductors.pbrt"),
-        6'000'000);
+        750'000);
 }
 
 TEST(BackendAgreementAbsorption, AbsorbingGlassMatchesTheCpus) {
@@ -303,7 +315,7 @@ TEST(BackendAgreementAbsorption, AbsorbingGlassMatchesTheCpus) {
         *glass, {{R"("thicknessFactor": 1.0)", R"("thicknessFactor": 1.0, "attenuationDistance": )"
                                                R"(0.1, "attenuationColor": [0.8, 0.5, 0.2])"}});
     ASSERT_NE(tinted, *glass);
-    ExpectVulkanAgreesWithTheCpu(testing::WriteTextFile(tinted, "tinted-glass.gltf"), 2'000'000);
+    ExpectVulkanAgreesWithTheCpu(testing::WriteTextFile(tinted, "tinted-glass.gltf"), 250'000);
 }
 
 TEST(BackendAgreementSheen, TexturedSheenMatchesTheCpus) {
@@ -324,7 +336,7 @@ TEST(BackendAgreementSheen, TexturedSheenMatchesTheCpus) {
     AddWallBesideTheLight(scene, wall);
     scene.camera_position = Vec3(-0.9f, -0.6f, 0.6f);
     scene.camera_extra = R"(,"rotation":[0,-0.6427876,0,0.7660444])";
-    ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "sheen-wall.gltf"), 4'000'000);
+    ExpectVulkanAgreesWithTheCpu(testing::WriteGltf(scene, "sheen-wall.gltf"), 500'000);
 }
 
 TEST(BackendAgreementTranslucency, LightThroughAPaperShadeMatchesTheCpus) {
@@ -360,7 +372,7 @@ TEST(BackendAgreementTranslucency, LightThroughAPaperShadeMatchesTheCpus) {
             "Shape \"bilinearmesh\" \"point3 P\" [-0.4 -0.4 0  0.4 -0.4 0  -0.4 0.4 0  0.4 0.4 0]\n"
             "AttributeEnd\n",
             "paper-shade.pbrt"),
-        6'000'000);
+        1'500'000);
 }
 
 TEST(BackendAgreementCutOuts, CutOutsAndMixesMatchTheCpus) {
@@ -403,7 +415,7 @@ TEST(BackendAgreementCutOuts, CutOutsAndMixesMatchTheCpus) {
            "0\n"
            "Shape \"bilinearmesh\" \"point3 P\" [-0.4 -0.4 0  0.4 -0.4 0  -0.4 0.4 0  0.4 0.4 0]\n"
            "AttributeEnd\n";
-    ExpectVulkanAgreesWithTheCpu(path, 3'000'000);
+    ExpectVulkanAgreesWithTheCpu(path, 750'000);
 }
 
 TEST(BackendAgreementTexturedLight, AnImageLightMatchesTheCpus) {
@@ -428,18 +440,18 @@ TEST(BackendAgreementTexturedLight, AnImageLightMatchesTheCpus) {
            "Material \"diffuse\" \"rgb reflectance\" [0 0 0]\nTranslate 0 0 0.6\nRotate 50 1 0 0\n"
            "Shape \"bilinearmesh\" \"point3 P\" [-0.3 -0.3 0  0.3 -0.3 0  -0.3 0.3 0  0.3 0.3 0]\n"
            "AttributeEnd\n";
-    ExpectVulkanAgreesWithTheCpu(path, 8'000'000);
+    ExpectVulkanAgreesWithTheCpu(path, 1'000'000);
 }
 
 TEST(BackendAgreementEnvironment, SkyLitCourtyardMatchesTheCpus) {
     // Lit by an environment map alone: photons leave the map, light samples draw from it and
     // the cosine ray escapes to it, on the device as on the CPU; the sky seen directly is the
-    // same in all three (blocks where the CPU renders agree exactly must match exactly). 8M
-    // photons (32 epochs of direct samples): at 1M only a 4% bias could be caught.
+    // same in all three (blocks where the CPU renders agree exactly must match exactly). 2M
+    // photons (8 epochs of direct samples): at 1M a bias of 1.24% could be caught.
     testing::SkipWithoutVulkan();
     if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
     ExpectVulkanAgreesWithTheCpu(std::string(PF_SOURCE_DIR) + "/scenes/pbrt/sky-courtyard.pbrt",
-                                 8'000'000);
+                                 2'000'000);
 }
 
 TEST(BackendAgreementAdaptive, AdaptivePhotonChainsMatchTheCpus) {
@@ -450,7 +462,7 @@ TEST(BackendAgreementAdaptive, AdaptivePhotonChainsMatchTheCpus) {
     // same in the mean (+2.6% within +-4.0% at 1M photons), is the noisier one.
     testing::SkipWithoutVulkan();
     if (::testing::Test::IsSkipped() || ::testing::Test::HasFatalFailure()) return;
-    ExpectVulkanAgreesWithTheCpu(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf", 1'000'000,
+    ExpectVulkanAgreesWithTheCpu(std::string(PF_SOURCE_DIR) + "/scenes/cornell-box.gltf", 250'000,
                                  PhotonTracing::kAdaptive);
 }
 
@@ -481,7 +493,7 @@ TEST(BackendAgreementImageLights, AProjectorAndAGoniometricLampMatchTheCpus) {
         SCOPED_TRACE(light);
         const std::string path = folder + "/image-light.pbrt";
         std::ofstream(path) << room << "AttributeBegin\n" << light << "AttributeEnd\n";
-        ExpectVulkanAgreesWithTheCpu(path, 4'000'000);
+        ExpectVulkanAgreesWithTheCpu(path, 1'000'000);
     }
 }
 
@@ -510,7 +522,7 @@ TEST(BackendAgreementPortal, ARoomLitThroughAPortalMatchesTheCpus) {
             "Shape \"bilinearmesh\" \"point3 P\" [%g %g %g  %g %g %g  %g %g %g  %g %g %g]\n", p0.x,
             p0.y, p0.z, a.x, a.y, a.z, b.x, b.y, b.z, p11.x, p11.y, p11.z);
     }
-    ExpectVulkanAgreesWithTheCpu(testing::WriteTextFile(room, "portal-room.pbrt"), 4'000'000);
+    ExpectVulkanAgreesWithTheCpu(testing::WriteTextFile(room, "portal-room.pbrt"), 1'000'000);
 }
 
 TEST(BackendAgreementDepth, PhotonsOnTheDeviceStopAtTheMaximumDepth) {
