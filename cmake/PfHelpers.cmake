@@ -91,7 +91,10 @@ function(pf_embed_text target file symbol)
                 -P "${PROJECT_SOURCE_DIR}/cmake/EmbedText.cmake"
         DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${file}" "${PROJECT_SOURCE_DIR}/cmake/EmbedText.cmake"
         COMMENT "embedding ${relative}")
-    target_sources(${target} PRIVATE "${header}")
+    # A target of its own, as pf_add_shaders explains: attached to TARGET, the command and so
+    # TARGET's compiles would wait for every library TARGET links.
+    add_custom_target(${target}_${symbol} DEPENDS "${header}")
+    add_dependencies(${target} ${target}_${symbol})
     target_include_directories(${target} PRIVATE "${PROJECT_BINARY_DIR}/embedded")
 endfunction()
 
@@ -100,7 +103,11 @@ endfunction()
 # TARGET's sources #include into an array by the shader's path from the source root with
 # ".spv.inc" appended ("worker/backends/vulkan/shaders/x.comp.spv.inc"). Shaders include
 # shared headers by their path from the source root; glslc's depfile tracks them.
+# The commands belong to a target of their own, TARGET_shaders, which depends on nothing:
+# attached to TARGET they would wait for TARGET's libraries to be linked, and glslc's
+# optimiser (a minute for the largest shader) would then gate the end of a fresh build.
 function(pf_add_shaders target)
+    set(outputs)
     foreach(shader IN LISTS ARGN)
         file(RELATIVE_PATH relative "${PROJECT_SOURCE_DIR}" "${CMAKE_CURRENT_SOURCE_DIR}/${shader}")
         set(output "${PROJECT_BINARY_DIR}/embedded/${relative}.spv.inc")
@@ -113,7 +120,9 @@ function(pf_add_shaders target)
             DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/${shader}"
             DEPFILE "${output}.d"
             COMMENT "glslc ${relative}")
-        target_sources(${target} PRIVATE "${output}")
+        list(APPEND outputs "${output}")
     endforeach()
+    add_custom_target(${target}_shaders DEPENDS ${outputs})
+    add_dependencies(${target} ${target}_shaders)
     target_include_directories(${target} PRIVATE "${PROJECT_BINARY_DIR}/embedded")
 endfunction()
