@@ -20,11 +20,25 @@ mkdir -p "$dest/lib"
 install -m 0644 "$module" "$dest/lib/"
 strip --strip-unneeded "$dest"/bin/* "$dest"/lib/* 2>/dev/null || true
 # The Debian packages holding every library ldd resolves for the programs given, one per line
-# (dpkg -S answers "package:arch: /path"); libc and the compiler's runtime come with the base.
+# (dpkg -S answers "package[:arch][, package]: /path"); libc and the compiler's runtime come
+# with the base. dpkg -S reads its whole database on every call (a second or more), so it is
+# asked once for all the libraries' real paths, and once more for those that no package lists
+# under their real path (ldd's path then: a package that ships a /lib symlink, say).
 packages_for() {
-    ldd "$@" | awk '/=> \//{print $3}' | sort -u | while read -r library; do
-        dpkg -S "$(readlink -f "$library")" 2>/dev/null || dpkg -S "$library" 2>/dev/null || true
-    done | cut -d: -f1 | sort -u | grep -v -E '^(libc6|libgcc-s1|libstdc\+\+6)$'
+    local -A original=()
+    local library
+    while read -r library; do
+        original[$(readlink -f "$library")]=$library
+    done < <(ldd "$@" | awk '/=> \//{print $3}' | sort -u)
+    local owners unlisted=()
+    owners=$(dpkg -S "${!original[@]}" 2>/dev/null || true)
+    local -A listed=()
+    while read -r library; do listed[$library]=1; done < <(awk -F': ' 'NF > 1 {print $NF}' <<< "$owners")
+    for library in "${!original[@]}"; do
+        [ -n "${listed[$library]:-}" ] || unlisted+=("${original[$library]}")
+    done
+    [ ${#unlisted[@]} -eq 0 ] || owners+=$'\n'$(dpkg -S "${unlisted[@]}" 2>/dev/null || true)
+    grep -v '^$' <<< "$owners" | cut -d: -f1 | sort -u | grep -v -E '^(libc6|libgcc-s1|libstdc\+\+6)$'
 }
 # One list per image: the worker's holds no scene parser and no image library. The module
 # is not linked, so ldd looks at it too: the coordinator's image gets OpenImageIO's packages.

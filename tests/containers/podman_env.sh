@@ -59,8 +59,26 @@ podman run --rm --pull=never "$PF_BASE" true > /dev/null 2>&1 \
     || skip "podman cannot run a container here: $(podman run --rm --pull=never "$PF_BASE" true 2>&1 | tail -1)"
 
 # The coordinator and worker images, from deploy/Containerfile with this build's binaries.
+# Built once for all the container tests: a stamp of what went into them (the recipe, the
+# binaries, the host's package database that names their libraries' packages, the base image)
+# is kept beside them, and a test that finds the same stamp and both images uses those.
 build_images() {
-    local context=$W/context
+    local context=$W/context stamp
+    stamp=$( { cat "$SOURCE/deploy/Containerfile" "$SOURCE/deploy/stage-binaries.sh" \
+        "$BUILD/server/photonfarm-coordinator" "$BUILD/worker/photonfarm-worker" "$BUILD/lib/libpf_image_oiio.so" "$BUILD/client/photonfarm" \
+        /var/lib/dpkg/status; podman image inspect --format '{{.Id}}' "$PF_BASE"; } | sha256sum)
+    if [ "$(cat "$W/images.stamp" 2> /dev/null)" = "$stamp" ] && podman image exists "$PF_TAG-coordinator:test" \
+        && podman image exists "$PF_TAG-worker:test"; then
+        say "images: as built for the same binaries and recipe"
+    else
+        build_image_pair "$context"
+        echo "$stamp" > "$W/images.stamp"
+    fi
+    check_image_sizes
+}
+build_image_pair() {
+    local context=$1
+    rm -f "$W/images.stamp"
     rm -rf "$context" && mkdir -p "$context/deploy"
     bash "$SOURCE/deploy/stage-binaries.sh" "$BUILD" "$context/prebuilt" > /dev/null
     cp "$SOURCE/deploy/Containerfile" "$context/deploy/"
@@ -71,6 +89,8 @@ build_images() {
         podman build --runtime runc --network host --format docker -q -f "$context/deploy/Containerfile" --target "$target" \
             --build-arg BASE="$PF_BASE" --build-arg BINARIES=prebuilt -t "$PF_TAG-$target:test" "$context" > /dev/null
     done
+}
+check_image_sizes() {
     # Every node of a scaling cluster pulls the worker image: it carries no scene parser and
     # no image library, and stays within 300 MB (issue 22).
     local base_bytes worker_bytes coordinator_bytes
