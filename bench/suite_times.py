@@ -101,7 +101,8 @@ def main() -> int:
         elif spent > budget:
             flag = "  OVER"
             over.append(label)
-        print(f"{label:12} {len(values):5d} {spent:8.0f} {budget if budget is not None else '-':>7}"
+        shown = f"{budget:.0f}" if budget is not None else "-"
+        print(f"{label:12} {len(values):5d} {spent:8.0f} {shown:>7}"
               f"{flag}")
     if args.wall_budget is not None and wall > args.wall_budget:
         print(f"\nwall-clock {wall:.0f} s is over its budget of {args.wall_budget:.0f} s")
