@@ -70,7 +70,9 @@ TEST(CoatTest, LosslessCoatOverWhiteBaseReflectsEverything) {
         Vec3 out;
         for (int i = 0; i < kSamples; ++i) sum += Walk(material, Incident(0.7f), rng, out);
         const double albedo = sum / kSamples;
-        if (alpha == 0) EXPECT_NEAR(albedo, 1.0, 1e-3) << "a smooth lossless coat keeps it all";
+        if (alpha == 0) {
+            EXPECT_NEAR(albedo, 1.0, 1e-3) << "a smooth lossless coat keeps it all";
+        }
         EXPECT_LT(albedo, previous) << "alpha " << alpha;
         EXPECT_GT(albedo, 0.5) << "alpha " << alpha;
         previous = albedo;

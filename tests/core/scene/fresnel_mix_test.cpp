@@ -23,11 +23,11 @@ Material Plastic(float albedo, float ior, float alpha, float weight = 1.0f) {
     return material;
 }
 
-struct Estimate {
+struct WalkEstimate {
     double mean, sigma;
 };
 
-Estimate MeanWalk(const Material& material, float cos_theta, int samples, uint64_t seed) {
+WalkEstimate MeanWalk(const Material& material, float cos_theta, int samples, uint64_t seed) {
     Rng rng(seed);
     double sum = 0, sum_sq = 0;
     Vec3 out;
@@ -48,7 +48,7 @@ TEST(FresnelMixTest, SmoothLayerReflectsFresnelPlusTheRestOfTheBase) {
             for (const float mu : {0.95f, 0.5f, 0.15f}) {
                 const double fresnel =
                     gpu::MixFresnel(gpu::Coat{gpu::kCoatFresnelMix, ior, 0, 0, weight, 0}, mu);
-                const Estimate walked = MeanWalk(material, mu, 200000, 7);
+                const WalkEstimate walked = MeanWalk(material, mu, 200000, 7);
                 EXPECT_NEAR(walked.mean, fresnel + (1 - fresnel) * albedo, 5 * walked.sigma + 1e-4)
                     << "ior " << ior << ", weight " << weight << ", albedo " << albedo << ", cos "
                     << mu;
@@ -67,7 +67,7 @@ TEST(FresnelMixTest, RoughLayerOverAWhiteBaseNeverReflectsMoreThanArrives) {
     // most at grazing angles on the roughest layers.
     for (const float alpha : {0.1f, 0.5f, 1.0f}) {
         for (const float mu : {0.9f, 0.5f, 0.2f}) {
-            const Estimate walked = MeanWalk(Plastic(1.0f, 1.5f, alpha), mu, 200000, 13);
+            const WalkEstimate walked = MeanWalk(Plastic(1.0f, 1.5f, alpha), mu, 200000, 13);
             EXPECT_LT(walked.mean, 1.0 + 5 * walked.sigma) << "alpha " << alpha << ", cos " << mu;
             // What gets lost is some of what the layer reflects, never what it lets through.
             const gpu::Coat coat{gpu::kCoatFresnelMix, 1.5f, alpha, 0, 1, 0};
@@ -133,7 +133,9 @@ TEST(FresnelMixTest, LightSamplingAndTheCameraSplitSeeWhatPhotonsSee) {
             EXPECT_NEAR(mean[0], mean[2], 5 * std::hypot(sigma[0], sigma[2]) + 1e-6) << where;
             EXPECT_NEAR(mean[0], mean[3], 5 * std::hypot(sigma[0], sigma[3]) + 1e-6) << where;
             EXPECT_NEAR(mean[1], mean[4], 5 * std::hypot(sigma[1], sigma[4]) + 1e-6) << where;
-            if (alpha == 0) EXPECT_NEAR(mean[2], 1 - gpu::MixFresnel(coat, mu), 1e-6) << where;
+            if (alpha == 0) {
+                EXPECT_NEAR(mean[2], 1 - gpu::MixFresnel(coat, mu), 1e-6) << where;
+            }
         }
     }
 }

@@ -355,9 +355,9 @@ PlyWriter Triangle(const std::string& encoding = "binary_little_endian") {
     return ply;
 }
 
-void ExpectRefused(const std::string& bytes, const std::string& fragment,
-                   const SceneLimits& limits = SceneLimits{},
-                   absl::StatusCode code = absl::StatusCode::kInvalidArgument) {
+void ExpectPlyRefused(const std::string& bytes, const std::string& fragment,
+                      const SceneLimits& limits = SceneLimits{},
+                      absl::StatusCode code = absl::StatusCode::kInvalidArgument) {
     const absl::StatusOr<TriangleMesh> mesh = ReadPly(bytes, kName, limits);
     ASSERT_FALSE(mesh.ok()) << fragment;
     const std::string message(mesh.status().message());
@@ -368,81 +368,83 @@ void ExpectRefused(const std::string& bytes, const std::string& fragment,
 }
 
 void MalformedHeadersAreRefusedNamingTheLine() {
-    ExpectRefused("", "not a PLY file");
-    ExpectRefused("solid cube\nendsolid\n", "not a PLY file");
-    ExpectRefused(std::string("\x1f\x8b\x08\x00", 4), "gzip-compressed but not named .gz");
-    ExpectRefused("ply\nformat nonsense 1.0\nend_header\n",
-                  "header line 2: unknown format \"nonsense\"");
-    ExpectRefused("ply\nformat ascii\nend_header\n", "header line 2: \"format\" needs");
-    ExpectRefused("ply\nformat ascii 2.0\nend_header\n", "version \"2.0\" is not 1.0");
-    ExpectRefused("ply\nformat ascii 1.0\nelement vertex 3\nproperty half x\n",
-                  "header line 4: unknown type \"half\"");
-    ExpectRefused("ply\nformat ascii 1.0\nelement face 1\nproperty list float int i\nend_header\n",
-                  "header line 4: a list's count type must be an integer");
-    ExpectRefused("ply\nformat ascii 1.0\nproperty float x\nend_header\n",
-                  "header line 3: \"property\" before any \"element\"");
-    ExpectRefused("ply\nformat ascii 1.0\nelement vertex -1\nend_header\n",
-                  "header line 3: element \"vertex\" has count \"-1\"");
-    ExpectRefused("ply\nformat ascii 1.0\nelement vertex 18446744073709551616\nend_header\n",
-                  "not a whole number below 2^64");
-    ExpectRefused("ply\nformat ascii 1.0\nelement vertex 0\nelement vertex 0\nend_header\n",
-                  "a second element \"vertex\"");
-    ExpectRefused("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n",
-                  "no end_header line");
-    ExpectRefused("ply\nelement vertex 0\nend_header\n", "end_header before any \"format\"");
+    ExpectPlyRefused("", "not a PLY file");
+    ExpectPlyRefused("solid cube\nendsolid\n", "not a PLY file");
+    ExpectPlyRefused(std::string("\x1f\x8b\x08\x00", 4), "gzip-compressed but not named .gz");
+    ExpectPlyRefused("ply\nformat nonsense 1.0\nend_header\n",
+                     "header line 2: unknown format \"nonsense\"");
+    ExpectPlyRefused("ply\nformat ascii\nend_header\n", "header line 2: \"format\" needs");
+    ExpectPlyRefused("ply\nformat ascii 2.0\nend_header\n", "version \"2.0\" is not 1.0");
+    ExpectPlyRefused("ply\nformat ascii 1.0\nelement vertex 3\nproperty half x\n",
+                     "header line 4: unknown type \"half\"");
+    ExpectPlyRefused(
+        "ply\nformat ascii 1.0\nelement face 1\nproperty list float int i\nend_header\n",
+        "header line 4: a list's count type must be an integer");
+    ExpectPlyRefused("ply\nformat ascii 1.0\nproperty float x\nend_header\n",
+                     "header line 3: \"property\" before any \"element\"");
+    ExpectPlyRefused("ply\nformat ascii 1.0\nelement vertex -1\nend_header\n",
+                     "header line 3: element \"vertex\" has count \"-1\"");
+    ExpectPlyRefused("ply\nformat ascii 1.0\nelement vertex 18446744073709551616\nend_header\n",
+                     "not a whole number below 2^64");
+    ExpectPlyRefused("ply\nformat ascii 1.0\nelement vertex 0\nelement vertex 0\nend_header\n",
+                     "a second element \"vertex\"");
+    ExpectPlyRefused("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n",
+                     "no end_header line");
+    ExpectPlyRefused("ply\nelement vertex 0\nend_header\n", "end_header before any \"format\"");
 }
 
 void CountsBeyondTheDataAreRefusedBeforeAnythingIsAllocated() {
     // Four billion vertices of 12 bytes declared in a file of a few dozen: refused from the
     // header, so no array is sized by the count.
     for (const char* encoding : kEncodings)
-        ExpectRefused(PlyWriter(encoding)
-                          .Line("element vertex 4000000000")
-                          .Line("property float x")
-                          .Line("property float y")
-                          .Line("property float z")
-                          .Line("element face 1")
-                          .Line("property list uchar int vertex_indices")
-                          .EndHeader()
-                          .Row<float>({0, 0, 0})
-                          .bytes(),
-                      "element \"vertex\" (header line 3) declares 4000000000 instances, more than "
-                      "the");
+        ExpectPlyRefused(
+            PlyWriter(encoding)
+                .Line("element vertex 4000000000")
+                .Line("property float x")
+                .Line("property float y")
+                .Line("property float z")
+                .Line("element face 1")
+                .Line("property list uchar int vertex_indices")
+                .EndHeader()
+                .Row<float>({0, 0, 0})
+                .bytes(),
+            "element \"vertex\" (header line 3) declares 4000000000 instances, more than "
+            "the");
     // A list whose length runs past the data: refused when it is met.
-    ExpectRefused(Triangle().Put<uint8_t>(255).Row<int32_t>({0, 1, 2}).bytes(),
-                  "face 0 of 1, property \"vertex_indices\": the data ends early");
-    ExpectRefused(PlyWriter("binary_big_endian")
-                      .Line("element vertex 3")
-                      .Line("property float x")
-                      .Line("property float y")
-                      .Line("property float z")
-                      .Line("element face 1")
-                      .Line("property list uint int vertex_indices")
-                      .EndHeader()
-                      .Row<float>({0, 0, 0, 1, 0, 0, 0, 1, 0})
-                      .Put<uint32_t>(0xffffffffu)
-                      .Row<int32_t>({0, 1, 2})
-                      .bytes(),
-                  "face 0 of 1, property \"vertex_indices\": the data ends early");
+    ExpectPlyRefused(Triangle().Put<uint8_t>(255).Row<int32_t>({0, 1, 2}).bytes(),
+                     "face 0 of 1, property \"vertex_indices\": the data ends early");
+    ExpectPlyRefused(PlyWriter("binary_big_endian")
+                         .Line("element vertex 3")
+                         .Line("property float x")
+                         .Line("property float y")
+                         .Line("property float z")
+                         .Line("element face 1")
+                         .Line("property list uint int vertex_indices")
+                         .EndHeader()
+                         .Row<float>({0, 0, 0, 1, 0, 0, 0, 1, 0})
+                         .Put<uint32_t>(0xffffffffu)
+                         .Row<int32_t>({0, 1, 2})
+                         .bytes(),
+                     "face 0 of 1, property \"vertex_indices\": the data ends early");
     // A skipped element's list likewise.
-    ExpectRefused(PlyWriter("binary_little_endian")
-                      .Line("element extra 1")
-                      .Line("property list int double values")
-                      .Line("element vertex 3")
-                      .Line("property float x")
-                      .Line("property float y")
-                      .Line("property float z")
-                      .Line("element face 1")
-                      .Line("property list uchar int vertex_indices")
-                      .EndHeader()
-                      .Put<int32_t>(1 << 30)
-                      .Row<float>({0, 0, 0, 1, 0, 0, 0, 1, 0})
-                      .Put<uint8_t>(3)
-                      .Row<int32_t>({0, 1, 2})
-                      .bytes(),
-                  "\"extra\" 0 of 1, property \"values\": the data ends early");
-    ExpectRefused(Triangle("ascii").Row<int>({1000, 0, 1, 2}).bytes(),
-                  "line 13, face 0 of 1, property \"vertex_indices\": the data ends early");
+    ExpectPlyRefused(PlyWriter("binary_little_endian")
+                         .Line("element extra 1")
+                         .Line("property list int double values")
+                         .Line("element vertex 3")
+                         .Line("property float x")
+                         .Line("property float y")
+                         .Line("property float z")
+                         .Line("element face 1")
+                         .Line("property list uchar int vertex_indices")
+                         .EndHeader()
+                         .Put<int32_t>(1 << 30)
+                         .Row<float>({0, 0, 0, 1, 0, 0, 0, 1, 0})
+                         .Put<uint8_t>(3)
+                         .Row<int32_t>({0, 1, 2})
+                         .bytes(),
+                     "\"extra\" 0 of 1, property \"values\": the data ends early");
+    ExpectPlyRefused(Triangle("ascii").Row<int>({1000, 0, 1, 2}).bytes(),
+                     "line 13, face 0 of 1, property \"vertex_indices\": the data ends early");
 }
 
 void TruncatedDataIsRefusedAtEveryLength() {
@@ -462,26 +464,26 @@ void TruncatedDataIsRefusedAtEveryLength() {
                 << mesh.status();
         }
     }
-    ExpectRefused(Triangle().Put<uint8_t>(3).Row<int32_t>({0, 1}).bytes(),
-                  "face 0 of 1, property \"vertex_indices\": the data ends early");
+    ExpectPlyRefused(Triangle().Put<uint8_t>(3).Row<int32_t>({0, 1}).bytes(),
+                     "face 0 of 1, property \"vertex_indices\": the data ends early");
 }
 
 void BadValuesAreRefusedNamingWhere() {
-    ExpectRefused(Triangle().Put<uint8_t>(3).Row<int32_t>({0, 3, 1}).bytes(),
-                  "face 0 of 1, property \"vertex_indices\": vertex index 3 is not one of the 3 "
-                  "vertices");
-    ExpectRefused(Triangle().Put<uint8_t>(3).Row<int32_t>({0, -1, 1}).bytes(),
-                  "vertex index -1 is not one of the 3 vertices");
-    ExpectRefused(Triangle("ascii").Row<double>({3, 0, 1.5, 2}).bytes(),
-                  "line 13, face 0 of 1, property \"vertex_indices\": vertex index 1.5");
-    ExpectRefused(Triangle("ascii").Line("3 0 one 2").bytes(),
-                  "line 13, face 0 of 1, property \"vertex_indices\": \"one\" is not a number");
-    ExpectRefused(Triangle("ascii").Line("-3 0 1 2").bytes(), "list length -3 is not a count");
+    ExpectPlyRefused(Triangle().Put<uint8_t>(3).Row<int32_t>({0, 3, 1}).bytes(),
+                     "face 0 of 1, property \"vertex_indices\": vertex index 3 is not one of the 3 "
+                     "vertices");
+    ExpectPlyRefused(Triangle().Put<uint8_t>(3).Row<int32_t>({0, -1, 1}).bytes(),
+                     "vertex index -1 is not one of the 3 vertices");
+    ExpectPlyRefused(Triangle("ascii").Row<double>({3, 0, 1.5, 2}).bytes(),
+                     "line 13, face 0 of 1, property \"vertex_indices\": vertex index 1.5");
+    ExpectPlyRefused(Triangle("ascii").Line("3 0 one 2").bytes(),
+                     "line 13, face 0 of 1, property \"vertex_indices\": \"one\" is not a number");
+    ExpectPlyRefused(Triangle("ascii").Line("-3 0 1 2").bytes(), "list length -3 is not a count");
     // Text from the file is shown escaped (no terminal control codes in a message) and cut.
-    ExpectRefused(Triangle("ascii").Line("3 0 \x1b[31m 2").bytes(),
-                  "\"\\x1b[31m\" is not a number");
-    ExpectRefused("ply\nformat " + std::string(100, 'a') + " 1.0\nend_header\n",
-                  "unknown format \"" + std::string(64, 'a') + "...\"");
+    ExpectPlyRefused(Triangle("ascii").Line("3 0 \x1b[31m 2").bytes(),
+                     "\"\\x1b[31m\" is not a number");
+    ExpectPlyRefused("ply\nformat " + std::string(100, 'a') + " 1.0\nend_header\n",
+                     "unknown format \"" + std::string(64, 'a') + "...\"");
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
     for (const float bad : {nan, inf, -inf}) {
@@ -496,85 +498,85 @@ void BadValuesAreRefusedNamingWhere() {
             .Row<float>({0, 0, 0, 1, bad, 0, 0, 1, 0})
             .Put<uint8_t>(3)
             .Row<int32_t>({0, 1, 2});
-        ExpectRefused(ply.bytes(), "vertex 1 of 3: its position");
+        ExpectPlyRefused(ply.bytes(), "vertex 1 of 3: its position");
     }
     // Beyond a float's range becomes infinite: refused too.
-    ExpectRefused(PlyWriter("ascii")
-                      .Line("element vertex 3")
-                      .Line("property double x")
-                      .Line("property double y")
-                      .Line("property double z")
-                      .Line("element face 1")
-                      .Line("property list uchar int vertex_indices")
-                      .EndHeader()
-                      .Line("0 0 0")
-                      .Line("1 0 0")
-                      .Line("0 1e300 0")
-                      .Line("3 0 1 2")
-                      .bytes(),
-                  "line 12, vertex 2 of 3: its position (0, 1e+300, 0) is not finite");
-    ExpectRefused(std::string(Triangle("ascii").bytes())
-                      .replace(Triangle("ascii").bytes().find("1.000000"), 8, "nan"),
-                  "line 11, vertex 1 of 3: its position (nan, 0, 0) is not finite");
+    ExpectPlyRefused(PlyWriter("ascii")
+                         .Line("element vertex 3")
+                         .Line("property double x")
+                         .Line("property double y")
+                         .Line("property double z")
+                         .Line("element face 1")
+                         .Line("property list uchar int vertex_indices")
+                         .EndHeader()
+                         .Line("0 0 0")
+                         .Line("1 0 0")
+                         .Line("0 1e300 0")
+                         .Line("3 0 1 2")
+                         .bytes(),
+                     "line 12, vertex 2 of 3: its position (0, 1e+300, 0) is not finite");
+    ExpectPlyRefused(std::string(Triangle("ascii").bytes())
+                         .replace(Triangle("ascii").bytes().find("1.000000"), 8, "nan"),
+                     "line 11, vertex 1 of 3: its position (nan, 0, 0) is not finite");
 }
 
 void FilesThatAreNotSurfacesAreRefused() {
-    ExpectRefused(PlyWriter("ascii")
-                      .Line("element vertex 2")
-                      .Line("property float x")
-                      .Line("property float y")
-                      .Line("property float z")
-                      .EndHeader()
-                      .Line("0 0 0")
-                      .Line("1 0 0")
-                      .bytes(),
-                  "PLY file has no faces (a point cloud is not a surface)");
+    ExpectPlyRefused(PlyWriter("ascii")
+                         .Line("element vertex 2")
+                         .Line("property float x")
+                         .Line("property float y")
+                         .Line("property float z")
+                         .EndHeader()
+                         .Line("0 0 0")
+                         .Line("1 0 0")
+                         .bytes(),
+                     "PLY file has no faces (a point cloud is not a surface)");
     // Indices listed in the vertices themselves (a malformed file) are not faces either.
-    ExpectRefused(PlyWriter("ascii")
-                      .Line("element vertex 3")
-                      .Line("property float x")
-                      .Line("property float y")
-                      .Line("property float z")
-                      .Line("property list uchar int vertex_indices")
-                      .EndHeader()
-                      .Line("0 0 0 3 0 1 2")
-                      .Line("1 0 0 0")
-                      .Line("0 1 0 0")
-                      .bytes(),
-                  "PLY file has no faces");
-    ExpectRefused(Triangle("ascii").Line("2 0 1").bytes(),
-                  "no polygon of 3 or more vertices (1 faces of fewer");
-    ExpectRefused(PlyWriter("ascii")
-                      .Line("element vertex 3")
-                      .Line("property float x")
-                      .Line("property float y")
-                      .Line("element face 1")
-                      .Line("property list uchar int vertex_indices")
-                      .EndHeader()
-                      .bytes(),
-                  "element \"vertex\" has no scalar property \"z\"");
-    ExpectRefused(PlyWriter("ascii")
-                      .Line("element vertex 3")
-                      .Line("property float x")
-                      .Line("property float y")
-                      .Line("property float z")
-                      .Line("element face 1")
-                      .Line("property int vertex_indices")
-                      .EndHeader()
-                      .bytes(),
-                  "element \"face\" (header line 7) has no list property \"vertex_indices\"");
-    ExpectRefused(PlyWriter("ascii")
-                      .Line("element vertex 3")
-                      .Line("property float x")
-                      .Line("property float y")
-                      .Line("property float z")
-                      .Line("element tristrips 1")
-                      .Line("property list int int vertex_indices")
-                      .EndHeader()
-                      .bytes(),
-                  "element \"tristrips\" is not read");
-    ExpectRefused("ply\nformat ascii 1.0\nelement face 0\nend_header\n",
-                  "has no \"vertex\" element");
+    ExpectPlyRefused(PlyWriter("ascii")
+                         .Line("element vertex 3")
+                         .Line("property float x")
+                         .Line("property float y")
+                         .Line("property float z")
+                         .Line("property list uchar int vertex_indices")
+                         .EndHeader()
+                         .Line("0 0 0 3 0 1 2")
+                         .Line("1 0 0 0")
+                         .Line("0 1 0 0")
+                         .bytes(),
+                     "PLY file has no faces");
+    ExpectPlyRefused(Triangle("ascii").Line("2 0 1").bytes(),
+                     "no polygon of 3 or more vertices (1 faces of fewer");
+    ExpectPlyRefused(PlyWriter("ascii")
+                         .Line("element vertex 3")
+                         .Line("property float x")
+                         .Line("property float y")
+                         .Line("element face 1")
+                         .Line("property list uchar int vertex_indices")
+                         .EndHeader()
+                         .bytes(),
+                     "element \"vertex\" has no scalar property \"z\"");
+    ExpectPlyRefused(PlyWriter("ascii")
+                         .Line("element vertex 3")
+                         .Line("property float x")
+                         .Line("property float y")
+                         .Line("property float z")
+                         .Line("element face 1")
+                         .Line("property int vertex_indices")
+                         .EndHeader()
+                         .bytes(),
+                     "element \"face\" (header line 7) has no list property \"vertex_indices\"");
+    ExpectPlyRefused(PlyWriter("ascii")
+                         .Line("element vertex 3")
+                         .Line("property float x")
+                         .Line("property float y")
+                         .Line("property float z")
+                         .Line("element tristrips 1")
+                         .Line("property list int int vertex_indices")
+                         .EndHeader()
+                         .bytes(),
+                     "element \"tristrips\" is not read");
+    ExpectPlyRefused("ply\nformat ascii 1.0\nelement face 0\nend_header\n",
+                     "has no \"vertex\" element");
 }
 
 void TheTriangleLimitHolds() {
@@ -597,8 +599,8 @@ void TheTriangleLimitHolds() {
     ASSERT_TRUE(mesh.ok()) << mesh.status();
     EXPECT_EQ(mesh->indices.size(), 9u);
     limits.max_triangles = 2;
-    ExpectRefused(ply.bytes(), "more triangles than the limit of 2 (passed at face 1 of 2)", limits,
-                  absl::StatusCode::kResourceExhausted);
+    ExpectPlyRefused(ply.bytes(), "more triangles than the limit of 2 (passed at face 1 of 2)",
+                     limits, absl::StatusCode::kResourceExhausted);
 }
 
 // Four test cases of several checks each: CTest runs every case as its own process.

@@ -79,11 +79,12 @@ void ExpectSameScene(const Scene& a, const Scene& b) {
                     x.image.width == y.image.width && x.image.height == y.image.height &&
                     SameBytes(x.image.texels, y.image.texels));
         ASSERT_EQ(x.portal.has_value(), y.portal.has_value());
-        if (x.portal)
+        if (x.portal) {
             EXPECT_TRUE(SameBytes(x.portal->corner, y.portal->corner) &&
                         SameBytes(x.portal->edge_u, y.portal->edge_u) &&
                         SameBytes(x.portal->edge_v, y.portal->edge_v) &&
                         Length(x.portal->normal - y.portal->normal) < 1e-6f);
+        }
     }
 }
 
