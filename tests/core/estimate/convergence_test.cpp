@@ -58,8 +58,8 @@ TEST(ConvergenceTest, FitsLeaveOutTheFirstEpochsAndMissingErrors) {
 
 TEST(ConvergenceTest, LogStaysBoundedSpreadOverTheRunAndEndsAtTheLatestEpoch) {
     ConvergenceLog log;
-    constexpr uint64_t kEpochs = 100'003;
-    for (uint64_t epoch = 1; epoch <= kEpochs; ++epoch) {
+    constexpr uint64_t kLongRunEpochs = 100'003;
+    for (uint64_t epoch = 1; epoch <= kLongRunEpochs; ++epoch) {
         ConvergencePoint point;
         point.epochs = epoch;
         log.Add(point);

@@ -12,7 +12,7 @@
 namespace pf {
 namespace {
 
-constexpr double kRadius = testing::kOnePointRadius;
+constexpr double kGrowingRadius = testing::kOnePointRadius;
 
 // One pixel seen through one hit point of weight 1.
 ProgressiveEstimate OnePoint(const BatchLayout& layout, double alpha) {
@@ -47,7 +47,7 @@ TEST(GrowingEpochsTest, RadiiHoldThroughTheGrowingEpochsAndTheLastShrinksThemAsA
     ASSERT_EQ(layout.GrowingEpochs(), 3u);
     const double alpha = 2.0 / 3.0;
     ProgressiveEstimate estimate = OnePoint(layout, alpha);
-    const double r0_sq = kRadius * kRadius;
+    const double r0_sq = kGrowingRadius * kGrowingRadius;
     double found = 0;
     for (uint32_t epoch = 0; epoch < 2; ++epoch) {
         estimate.MergeEpoch(Epoch(estimate, 3 + epoch, 0.0f));

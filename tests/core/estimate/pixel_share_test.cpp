@@ -14,8 +14,8 @@
 namespace pf {
 namespace {
 
-constexpr uint32_t kPhotons = 1000;  // emitted per batch
-constexpr double kRadius = 0.5;
+constexpr uint32_t kSharePhotons = 1000;  // emitted per batch
+constexpr double kShareRadius = 0.5;
 
 // Weights of an epoch's samples that a hit point stands for, averaged over the samples, as an
 // epoch's emission pass gives them (BatchResult::coverage).
@@ -31,9 +31,9 @@ ProgressiveEstimate TwoPointPixel() {
     camera_pass.emission = Image(1, 1);
     EstimateSettings settings;
     settings.alpha = 1;
-    settings.initial_radius = kRadius;
+    settings.initial_radius = kShareRadius;
     settings.samples_per_pixel = 2;
-    settings.layout = {kPhotons, 2};
+    settings.layout = {kSharePhotons, 2};
     return ProgressiveEstimate(std::move(camera_pass), settings, {});
 }
 
@@ -50,7 +50,7 @@ void MergeEpoch(ProgressiveEstimate& estimate, const Coverage& on_a, const Cover
         result.tally.inner_photons = {2, 2};
         result.tally.flux = {Rgb(3.0f), Rgb(1.0f)};
         result.samples.assign(spec.sample_end - spec.sample_begin, Rgb(0.0f));
-        result.photons_emitted = kPhotons;
+        result.photons_emitted = kSharePhotons;
         // The batch whose slice holds the pixel brings its emission pass (A, B in pixel order).
         if (estimate.EmissionShape(spec).first == 1) {
             result.emission = {Rgb(0.0f)};
@@ -62,8 +62,8 @@ void MergeEpoch(ProgressiveEstimate& estimate, const Coverage& on_a, const Cover
 
 // The unweighted densities tau / (w pi R^2 N) at A and B (the same after any number of
 // epochs): each hit point's radiance per unit of the weight of the samples it stands for.
-const double kDensityA = 3.0 / (kPiD * kRadius * kRadius * kPhotons);
-const double kDensityB = 1.0 / (kPiD * kRadius * kRadius * kPhotons);
+const double kDensityA = 3.0 / (kPiD * kShareRadius * kShareRadius * kSharePhotons);
+const double kDensityB = 1.0 / (kPiD * kShareRadius * kShareRadius * kSharePhotons);
 
 TEST(PixelShareTest, HitPointsCountByTheWeightOfTheSamplesTheyStandFor) {
     // Three quarters of the samples land near A, on a texel coloured (0.8, 0.4, 0.2) where A's
