@@ -40,7 +40,7 @@ bool IsClosedSurface(const std::vector<const TriangleMesh*>& meshes) {
             const uint32_t a = ids[mesh->indices[i]], b = ids[mesh->indices[i + 1]],
                            c = ids[mesh->indices[i + 2]];
             if (a == b || b == c || c == a) continue;
-            for (const auto [from, to] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
+            for (const auto& [from, to] : {std::pair{a, b}, std::pair{b, c}, std::pair{c, a}})
                 ++edges[uint64_t(from) << 32 | to];
         }
     }
