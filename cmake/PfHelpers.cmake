@@ -76,7 +76,8 @@ function(pf_add_proto_library name)
     target_link_libraries(${name} PUBLIC protobuf::libprotobuf gRPC::grpc++)
     # Included as "photonfarm/v1/batch.pb.h".
     target_include_directories(${name} PUBLIC "${CMAKE_CURRENT_BINARY_DIR}")
-    set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+    # protoc names each file's tables alike (schemas, file_default_instances): no unity build.
+    set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON UNITY_BUILD OFF)
 endfunction()
 
 # pf_embed_text(TARGET FILE SYMBOL): the text of FILE (relative to the current source folder)

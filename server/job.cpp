@@ -14,8 +14,6 @@ namespace {
 // A worker counts as active on a job while it holds a lease or reported within this long.
 constexpr auto kActiveWindow = std::chrono::seconds(10);
 
-double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
-
 bool SameSpec(const BatchSpec& a, const BatchSpec& b) {
     return a.index == b.index && a.epoch == b.epoch && a.photons == b.photons &&
            a.sample_begin == b.sample_begin && a.sample_end == b.sample_end;

@@ -37,6 +37,8 @@ namespace pf {
 
 using Clock = std::chrono::steady_clock;
 
+inline double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
 // A blob encoded on first use, once, whichever thread asks first; or one given ready.
 class LazyBlob {
 public:

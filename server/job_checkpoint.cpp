@@ -18,8 +18,6 @@ namespace v1 = photonfarm::v1;
 constexpr char kSceneKind[] = "scene";
 constexpr char kEstimateKind[] = "estimate";
 
-double Seconds(Clock::duration d) { return std::chrono::duration<double>(d).count(); }
-
 void AddFixedPart(const std::string& kind, std::shared_ptr<const Blob> blob,
                   JobCheckpointData& checkpoint) {
     v1::FixedPart& part = *checkpoint.record.add_fixed_parts();
