@@ -3,6 +3,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cstdlib>
+
 #include "absl/strings/str_cat.h"
 
 namespace pf::embree {
@@ -23,9 +25,15 @@ Device::State::~State() {
 
 absl::StatusOr<Device> Device::Create() {
     auto state = std::make_unique<State>();
-    state->device = rtcNewDevice(nullptr);
+    // PF_EMBREE_CONFIG: Embree's own configuration ("isa=sse4.2" holds its kernels to one
+    // instruction set, so machines of other CPUs trace the same hits: the golden image test).
+    const char* config = std::getenv("PF_EMBREE_CONFIG");
+    state->device = rtcNewDevice(config);
     if (state->device == nullptr)
-        return absl::UnavailableError("cannot create an Embree device (CPU without SSE2?)");
+        return absl::UnavailableError(
+            absl::StrCat("cannot create an Embree device",
+                         config ? absl::StrCat(" with PF_EMBREE_CONFIG \"", config, "\"") : "",
+                         " (CPU without SSE2?)"));
     rtcSetDeviceErrorFunction(state->device, OnEmbreeError, &state->last_error);
     return Device(std::move(state));
 }

@@ -16,7 +16,8 @@ namespace pf::embree {
 // callback. Not thread-safe for errors: the last error of any thread is kept.
 class Device {
 public:
-    // UNAVAILABLE when Embree cannot make a device (a CPU without SSE2, a broken install).
+    // UNAVAILABLE when Embree cannot make a device (a CPU without SSE2, a broken install, a
+    // bad PF_EMBREE_CONFIG). The environment's PF_EMBREE_CONFIG is Embree's configuration.
     static absl::StatusOr<Device> Create();
 
     RTCDevice Handle() const { return state_->device; }

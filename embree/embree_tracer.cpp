@@ -213,19 +213,19 @@ struct EmbreeTracer::Handles {
         return true;
     }
 
-    // Attaches triangles [first, first + count) of `scene` to `target` as geometry 0 and,
+    // Attaches triangles [first, first + count) of `model` to `target` as geometry 0 and,
     // those with cut-outs, geometry 1 (TriangleGroup), described in `group`.
-    bool AttachGroup(RTCScene target, const Scene& scene, uint32_t first, uint32_t count,
+    bool AttachGroup(RTCScene target, const Scene& model, uint32_t first, uint32_t count,
                      size_t vertex_count, TriangleGroup* group) {
         group->first = first;
         const auto cut_out = [&](uint32_t t) {
-            return scene.materials[scene.triangles[t].material].HasCutOuts();
+            return model.materials[model.triangles[t].material].HasCutOuts();
         };
         bool any = false;
         for (uint32_t t = first; alpha && !any && t < first + count; ++t) any = cut_out(t);
         if (!any)
             return AttachTriangles(
-                target, scene.triangles, [first](uint32_t i) { return first + i; }, count,
+                target, model.triangles, [first](uint32_t i) { return first + i; }, count,
                 vertex_count, 0, nullptr);
         group->split = true;
         for (uint32_t t = first; t < first + count; ++t)
@@ -234,7 +234,7 @@ struct EmbreeTracer::Handles {
             const std::vector<uint32_t>& part = group->triangles[id];
             if (!part.empty() &&
                 !AttachTriangles(
-                    target, scene.triangles, [&part](uint32_t i) { return part[i]; },
+                    target, model.triangles, [&part](uint32_t i) { return part[i]; },
                     static_cast<uint32_t>(part.size()), vertex_count, id,
                     id == 1 ? &part : nullptr))
                 return false;
