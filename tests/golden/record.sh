@@ -31,13 +31,19 @@ work="$root/build/golden"
 tree="$work/src-${commit:0:12}"
 mkdir -p "$work"
 if [[ ! -d "$tree" ]]; then
-    git -C "$root" worktree add --detach "$tree" "$commit" >/dev/null
+    git -C "$root" worktree add --quiet --detach "$tree" "$commit"
 fi
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
-cmake -S "$tree" -B "$tree/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPF_BUILD_BENCH=OFF \
-    "${launcher[@]}" >/dev/null
-cmake --build "$tree/build" --target integration_golden_test -- -j"$(nproc)" >/dev/null
+log="$tree/build.log"
+echo "building ${commit:0:12}'s integration_golden_test in $tree (log: $log)"
+if ! { cmake -S "$tree" -B "$tree/build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPF_BUILD_BENCH=OFF \
+           "${launcher[@]}" &&
+       cmake --build "$tree/build" --target integration_golden_test -- -j"$(nproc)"; } >"$log" 2>&1; then
+    tail -n 20 "$log" >&2
+    echo "$0: building ${commit:0:12} failed (the whole log: $log)" >&2
+    exit 1
+fi
 
 out=$(mktemp)
 trap 'rm -f "$out"' EXIT
@@ -46,8 +52,12 @@ if [[ -n "$images" ]]; then
     export PF_GOLDEN_IMAGES="$images"
 fi
 # The tree's own scenes (a commit renders what it shipped), recorded one process for all.
-PF_GOLDEN_RECORD="$out" "$tree/build/tests/integration_golden_test" \
-    --gtest_filter='Shipped/GoldenImages.*' >/dev/null
+if ! PF_GOLDEN_RECORD="$out" "$tree/build/tests/integration_golden_test" \
+        --gtest_filter='Shipped/GoldenImages.*' >"$tree/record.log" 2>&1; then
+    grep -A4 'Failure' "$tree/record.log" >&2 || tail -n 20 "$tree/record.log" >&2
+    echo "$0: ${commit:0:12} did not render every scene (the whole log: $tree/record.log)" >&2
+    exit 1
+fi
 if [[ -n "$images" ]]; then
     echo "$(wc -l <"$out") renders of ${commit:0:12} in $images"
     exit 0

@@ -17,6 +17,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <string>
@@ -57,6 +58,13 @@ constexpr char kEmbreeBaseline[] = "isa=sse4.2";
 std::string SourceDir() { return PF_SOURCE_DIR; }
 std::string ManifestPath() { return SourceDir() + "/tests/golden/cpu_images.txt"; }
 
+// Whether a pbrt file is a scene rather than a part that scenes Include (cornell-room.pbrt).
+bool IsWholeScene(const std::filesystem::path& path) {
+    std::ifstream file(path);
+    const std::string text{std::istreambuf_iterator<char>(file), {}};
+    return text.find("WorldBegin") != std::string::npos;
+}
+
 // The shipped scenes as paths relative to scenes/, sorted.
 std::vector<std::string> ShippedScenes() {
     std::vector<std::string> scenes;
@@ -64,7 +72,7 @@ std::vector<std::string> ShippedScenes() {
         for (const auto& entry :
              std::filesystem::directory_iterator(SourceDir() + "/scenes/" + folder)) {
             const std::string extension = entry.path().extension().string();
-            if (extension == ".gltf" || extension == ".pbrt")
+            if (extension == ".gltf" || (extension == ".pbrt" && IsWholeScene(entry.path())))
                 scenes.push_back(folder + entry.path().filename().string());
         }
     std::sort(scenes.begin(), scenes.end());
@@ -81,6 +89,11 @@ RenderSettings GoldenRender(const std::string& scene, Integrator integrator) {
     settings.given = {
         .integrator = true, .samples_per_pixel = true, .layout = true, .max_depth = true};
     JobSpec& job = settings.job;
+    // A glTF scene under a sky has it beside it (scenes/generate_scenes.py), as
+    // `photonfarm render scenes/NAME.gltf --environment scenes/NAME-sky.hdr` renders it.
+    const std::string sky =
+        SourceDir() + "/scenes/" + scene.substr(0, scene.rfind('.')) + "-sky.hdr";
+    if (std::filesystem::exists(sky)) job.environment.file = sky;
     job.integrator = integrator;
     job.width = 32;
     job.height = 24;
