@@ -18,7 +18,7 @@
 #include "core/estimate/progressive_estimate.h"
 #include "core/job/job_spec.h"
 #include "core/scene/emitters.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "core/util/command_line.h"
 #include "embree/embree_tracer.h"
 #include "worker/backend_factory.h"

@@ -17,8 +17,8 @@
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/mesh_builder.h"
-#include "core/scene/scene_files.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_files.h"
+#include "core/scene_io/scene_loader.h"
 #include "embree/embree_tracer.h"
 
 namespace pf {

@@ -17,7 +17,7 @@
 #include "core/estimate/progressive_estimate.h"
 #include "core/job/job_spec.h"
 #include "core/scene/emitters.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "embree/embree_tracer.h"
 #include "wire/blob_codec.h"
 #include "wire/proto_convert.h"

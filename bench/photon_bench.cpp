@@ -24,7 +24,7 @@
 #include "core/sampling/rng.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene_features.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "embree/embree_tracer.h"
 
 namespace pf {

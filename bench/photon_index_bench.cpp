@@ -15,7 +15,7 @@
 #include "core/pm/photon_grid.h"
 #include "core/pm/photon_map.h"
 #include "core/scene/scene_features.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "embree/embree_tracer.h"
 
 namespace pf {

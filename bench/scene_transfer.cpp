@@ -11,8 +11,8 @@
 
 #include "absl/strings/escaping.h"
 #include "core/film/png_writer.h"
-#include "core/scene/scene_files.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_files.h"
+#include "core/scene_io/scene_loader.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/test_env.h"
 #include "wire/blob_codec.h"

@@ -16,7 +16,7 @@
 #include "client/progress_display.h"
 #include "core/film/exr_io.h"
 #include "core/scene/scene_bundle.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "core/util/command_line.h"
 #include "wire/json.h"
 #include "wire/proto_convert.h"

@@ -13,7 +13,7 @@ for program in "${programs[@]}"; do
     [ -x "$program" ] || { echo "stage-binaries: $program is missing; build it first" >&2; exit 1; }
     install -m 0755 "$program" "$dest/bin/"
 done
-# Looked for in lib beside the programs' folder (core/scene/image_decode.cpp).
+# Looked for in lib beside the programs' folder (core/scene_io/image_decode.cpp).
 module="$build/lib/libpf_image_oiio.so"
 [ -f "$module" ] || { echo "stage-binaries: $module is missing; build it first" >&2; exit 1; }
 mkdir -p "$dest/lib"

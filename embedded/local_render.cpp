@@ -10,7 +10,7 @@
 #include "absl/strings/str_cat.h"
 #include "core/job/scene_settings.h"
 #include "core/scene/scene_bundle.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "server/coordinator.h"
 #include "server/dashboard_server.h"
 #include "server/in_process_source.h"

@@ -29,7 +29,7 @@
 #include "core/job/job_spec.h"
 #include "core/job/work_source.h"
 #include "core/scene/scene_bundle.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "server/checkpoint_store.h"
 #include "wire/blob_codec.h"
 

@@ -24,7 +24,7 @@
 #include "core/ppm/hash_grid.h"
 #include "core/ppm/photon_pass.h"
 #include "core/scene/scene_features.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "embree/embree_tracer.h"
 #include "server/camera_passes.h"
 

@@ -24,7 +24,7 @@
 #include "bench/farm_load/coordinator_process.h"
 #include "bench/farm_load/load_report.h"
 #include "client/farm_client.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "core/util/command_line.h"
 #include "tests/support/farm_credentials.h"
 #include "wire/proto_convert.h"

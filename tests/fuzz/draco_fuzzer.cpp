@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/scene/gltf_draco.h"
+#include "core/scene_io/gltf/gltf_draco.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     tinygltf::Model model;

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "core/scene/decompress.h"
+#include "core/scene_io/decompress.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const absl::StatusOr<std::string> out =

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "core/scene/gltf_meshopt.h"
+#include "core/scene_io/gltf/gltf_meshopt.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size < 4) return 0;

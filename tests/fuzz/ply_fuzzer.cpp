@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "core/scene/ply_reader.h"
+#include "core/scene_io/ply/ply_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     pf::SceneLimits limits;

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/scene/prepared_scene.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 
 int main(int argc, char** argv) {
     if (argc < 3) {

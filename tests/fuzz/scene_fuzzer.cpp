@@ -10,7 +10,7 @@
 #include <string>
 
 #include "core/scene/mesh_builder.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "tests/support/ply_fixture.h"
 
 namespace {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "core/scene/pbrt/pbrt_parameters.h"
+#include "core/scene_io/pbrt/pbrt_parameters.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const absl::StatusOr<std::vector<double>> numbers = pf::pbrt::ParseSpectrumFile(

@@ -29,7 +29,7 @@
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_replace.h"
 #include "core/film/exr_io.h"
-#include "core/scene/scene_files.h"
+#include "core/scene_io/scene_files.h"
 #include "embedded/local_render.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/image_agreement.h"

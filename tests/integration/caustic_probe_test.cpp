@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "embree/embree_tracer.h"
 #include "tests/support/gltf_builder.h"
 

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "absl/strings/str_format.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "core/shared/curve.h"
 #include "embedded/local_render.h"
 #include "embree/embree_tracer.h"

@@ -13,7 +13,7 @@
 #include "absl/strings/str_format.h"
 #include "core/job/integrator.h"
 #include "core/scene/scene_features.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "embedded/local_render.h"
 #include "embree/embree_tracer.h"
 #include "tests/support/gltf_builder.h"

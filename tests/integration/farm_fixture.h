@@ -25,7 +25,7 @@
 #include "core/film/image_metrics.h"
 #include "core/job/work_source.h"
 #include "core/scene/scene_bundle.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "photonfarm/v1/work.grpc.pb.h"
 #include "tests/support/child_process.h"

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/camera/surface_extent.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "embedded/local_render.h"
 #include "embree/embree_tracer.h"
 #include "tests/support/epoch_render.h"

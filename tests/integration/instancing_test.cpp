@@ -13,7 +13,7 @@
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/mesh_builder.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "embree/embree_tracer.h"
 #include "tests/support/image_agreement.h"
 #include "tests/support/small_render.h"

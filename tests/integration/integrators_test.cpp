@@ -19,7 +19,7 @@
 #include "core/job/integrator.h"
 #include "core/pm/density_estimate.h"
 #include "core/pm/photon_map.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "embedded/local_render.h"
 #include "embree/embree_tracer.h"
 #include "tests/integration/small_renders.h"

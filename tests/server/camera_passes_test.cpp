@@ -7,7 +7,7 @@
 #include <memory>
 #include <string>
 
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "embree/embree_tracer.h"
 
 namespace pf {

@@ -23,7 +23,7 @@
 #include <thread>
 
 #include "absl/strings/str_split.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "core/util/file_io.h"
 #include "embedded/local_render.h"
 #include "server/checkpoint_store.h"

@@ -14,7 +14,7 @@
 #include <thread>
 
 #include "client/farm_client.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "embedded/local_render.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "photonfarm/v1/jobs.grpc.pb.h"

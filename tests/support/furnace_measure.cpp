@@ -14,7 +14,7 @@
 #include "core/camera/camera_pass.h"
 #include "core/estimate/estimator.h"
 #include "core/film/image_metrics.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "embedded/local_render.h"
 #include "embree/embree_tracer.h"
 #include "tests/support/gltf_builder.h"

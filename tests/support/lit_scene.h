@@ -10,7 +10,7 @@
 
 #include "core/scene/emitters.h"
 #include "core/scene/scene_features.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "embree/embree_tracer.h"
 
 namespace pf::testing {

@@ -16,7 +16,7 @@
 #include "core/job/job_spec.h"
 #include "core/scene/emitters.h"
 #include "core/scene/scene_features.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/vulkan_validation.h"
 #include "worker/backend_factory.h"

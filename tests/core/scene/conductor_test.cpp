@@ -13,7 +13,7 @@
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/glossy.h"
-#include "core/scene/pbrt/pbrt_parameters.h"
+#include "core/scene_io/pbrt/pbrt_parameters.h"
 
 namespace pf {
 namespace {

@@ -13,7 +13,7 @@
 #include "core/scene/mesh_builder.h"
 #include "core/scene/prepared_scene.h"
 #include "core/shared/curve.h"
-#include "tests/core/scene/pbrt_test_support.h"
+#include "tests/core/scene_io/pbrt_test_support.h"
 
 namespace pf {
 namespace {

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "tests/support/chi_square.h"
 #include "tests/support/gltf_builder.h"
 

@@ -11,7 +11,7 @@
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/emitters.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "tests/support/chi_square.h"
 #include "tests/support/gltf_builder.h"
 

@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "absl/strings/escaping.h"
-#include "core/scene/scene_loader.h"
 #include "core/scene/tangents.h"
+#include "core/scene_io/scene_loader.h"
 #include "core/shared/shading_normal.h"
-#include "tests/core/scene/pbrt_test_support.h"
+#include "tests/core/scene_io/pbrt_test_support.h"
 #include "tests/support/gltf_builder.h"
 #include "tests/support/png_fixture.h"
 

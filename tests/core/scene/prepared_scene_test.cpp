@@ -8,8 +8,8 @@
 #include <cstring>
 #include <string>
 
-#include "core/scene/scene_loader.h"
 #include "core/scene/texture_program.h"
+#include "core/scene_io/scene_loader.h"
 #include "core/shared/coat.h"
 #include "core/util/byte_stream.h"
 #include "core/util/sha256.h"

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "absl/strings/escaping.h"
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "tests/support/png_fixture.h"
 #include "tests/support/test_env.h"
 

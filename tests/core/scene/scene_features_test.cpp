@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/scene/scene_loader.h"
+#include "core/scene_io/scene_loader.h"
 #include "core/shared/coat.h"
 #include "tests/support/gltf_builder.h"
 

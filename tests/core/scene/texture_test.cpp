@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
-#include "core/scene/image_decode.h"
-#include "core/scene/scene_files.h"
 #include "core/scene/texture_filter.h"
+#include "core/scene_io/image_decode.h"
+#include "core/scene_io/scene_files.h"
 #include "tests/support/png_fixture.h"
 #include "tests/support/test_env.h"
 
