@@ -40,7 +40,7 @@ constexpr char kEmbreeBaseline[] = "isa=sse4.2";
 
 // Runs this process again with kBaselineMaths in its environment, before any test: the
 // dynamic loader reads GLIBC_TUNABLES only at exec.
-[[maybe_unused]] const bool kReexecuted = [] {
+[[maybe_unused]] const bool kBaselineMathsInEffect = [] {
     const char* tunables = std::getenv(kTunables);
     if (tunables != nullptr && std::strstr(tunables, kBaselineMaths) != nullptr) return true;
     std::ifstream cmdline("/proc/self/cmdline", std::ios::binary);
@@ -184,7 +184,7 @@ TEST_P(GoldenImages, EveryIntegratorRendersTheRecordedImage) {
         EXPECT_EQ(digest, recorded->second)
             << GetParam() << " with " << name << " renders another image than the one "
             << manifest.recorded_from
-            << "; tests/golden/record.sh --images DIR renders both as EXR files";
+            << "; tests/golden/record.sh --commit REV --images DIR writes either side's renders";
     }
 }
 
