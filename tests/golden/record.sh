@@ -31,6 +31,7 @@ work="$root/build/golden"
 tree="$work/src-${commit:0:12}"
 mkdir -p "$work"
 if [[ ! -d "$tree" ]]; then
+    git -C "$root" worktree prune  # a tree removed with build/ is forgotten
     git -C "$root" worktree add --quiet --detach "$tree" "$commit"
 fi
 launcher=()
