@@ -142,9 +142,7 @@ void PolygonsAreFannedAndSmallFacesDropped() {
     for (const char* encoding : kPlyEncodings) {
         PlyWriter ply(encoding);
         ply.Line("element vertex 5")
-            .Line("property float x")
-            .Line("property float y")
-            .Line("property float z")
+            .FloatProperties({"x", "y", "z"})
             .Line("element face 4")
             .Line("property list uchar int vertex_indices")
             .EndHeader();
@@ -224,14 +222,7 @@ void NormalsAndTextureCoordinatesUnderEveryName() {
         for (const auto& [u, v] : uv_names) {
             PlyWriter ply(encoding);
             ply.Line("element vertex 3")
-                .Line("property float x")
-                .Line("property float y")
-                .Line("property float z")
-                .Line("property float nx")
-                .Line("property float ny")
-                .Line("property float nz")
-                .Line(std::string("property float ") + u)
-                .Line(std::string("property float ") + v)
+                .FloatProperties({"x", "y", "z", "nx", "ny", "nz", u, v})
                 .Line("element face 1")
                 .Line("property list uchar int vertex_index")
                 .EndHeader();
@@ -251,13 +242,7 @@ void NormalsAndTextureCoordinatesUnderEveryName() {
     // Only part of a normal or of a pair: neither is read.
     PlyWriter ply("ascii");
     ply.Line("element vertex 3")
-        .Line("property float x")
-        .Line("property float y")
-        .Line("property float z")
-        .Line("property float nx")
-        .Line("property float ny")
-        .Line("property float u")
-        .Line("property float t")
+        .FloatProperties({"x", "y", "z", "nx", "ny", "u", "t"})
         .Line("element face 1")
         .Line("property list uchar int vertex_indices")
         .EndHeader()

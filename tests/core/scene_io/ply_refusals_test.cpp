@@ -134,9 +134,7 @@ void BadValuesAreRefusedNamingWhere() {
     for (const float bad : {nan, inf, -inf}) {
         PlyWriter ply("binary_big_endian");
         ply.Line("element vertex 3")
-            .Line("property float x")
-            .Line("property float y")
-            .Line("property float z")
+            .FloatProperties({"x", "y", "z"})
             .Line("element face 1")
             .Line("property list uchar int vertex_indices")
             .EndHeader()
@@ -168,9 +166,7 @@ void BadValuesAreRefusedNamingWhere() {
 void FilesThatAreNotSurfacesAreRefused() {
     ExpectPlyRefused(PlyWriter("ascii")
                          .Line("element vertex 2")
-                         .Line("property float x")
-                         .Line("property float y")
-                         .Line("property float z")
+                         .FloatProperties({"x", "y", "z"})
                          .EndHeader()
                          .Line("0 0 0")
                          .Line("1 0 0")
@@ -179,9 +175,7 @@ void FilesThatAreNotSurfacesAreRefused() {
     // Indices listed in the vertices themselves (a malformed file) are not faces either.
     ExpectPlyRefused(PlyWriter("ascii")
                          .Line("element vertex 3")
-                         .Line("property float x")
-                         .Line("property float y")
-                         .Line("property float z")
+                         .FloatProperties({"x", "y", "z"})
                          .Line("property list uchar int vertex_indices")
                          .EndHeader()
                          .Line("0 0 0 3 0 1 2")
@@ -193,8 +187,7 @@ void FilesThatAreNotSurfacesAreRefused() {
                      "no polygon of 3 or more vertices (1 faces of fewer");
     ExpectPlyRefused(PlyWriter("ascii")
                          .Line("element vertex 3")
-                         .Line("property float x")
-                         .Line("property float y")
+                         .FloatProperties({"x", "y"})
                          .Line("element face 1")
                          .Line("property list uchar int vertex_indices")
                          .EndHeader()
@@ -202,9 +195,7 @@ void FilesThatAreNotSurfacesAreRefused() {
                      "element \"vertex\" has no scalar property \"z\"");
     ExpectPlyRefused(PlyWriter("ascii")
                          .Line("element vertex 3")
-                         .Line("property float x")
-                         .Line("property float y")
-                         .Line("property float z")
+                         .FloatProperties({"x", "y", "z"})
                          .Line("element face 1")
                          .Line("property int vertex_indices")
                          .EndHeader()
@@ -212,9 +203,7 @@ void FilesThatAreNotSurfacesAreRefused() {
                      "element \"face\" (header line 7) has no list property \"vertex_indices\"");
     ExpectPlyRefused(PlyWriter("ascii")
                          .Line("element vertex 3")
-                         .Line("property float x")
-                         .Line("property float y")
-                         .Line("property float z")
+                         .FloatProperties({"x", "y", "z"})
                          .Line("element tristrips 1")
                          .Line("property list int int vertex_indices")
                          .EndHeader()
@@ -227,9 +216,7 @@ void FilesThatAreNotSurfacesAreRefused() {
 void TheTriangleLimitHolds() {
     PlyWriter ply("binary_little_endian");
     ply.Line("element vertex 4")
-        .Line("property float x")
-        .Line("property float y")
-        .Line("property float z")
+        .FloatProperties({"x", "y", "z"})
         .Line("element face 2")
         .Line("property list uchar int vertex_indices")
         .EndHeader()

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstring>
+#include <initializer_list>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -25,13 +26,16 @@ public:
         return *this;
     }
     PlyWriter& EndHeader() { return Line("end_header"); }
+    // A "property float NAME" line for each name.
+    PlyWriter& FloatProperties(std::initializer_list<std::string> names) {
+        for (const std::string& name : names) Line("property float " + name);
+        return *this;
+    }
     // The header of `vertices` float positions and one face, a list of `count` counts.
     PlyWriter& PositionsAndAFace(const std::string& vertices = "3",
                                  const std::string& count = "uchar") {
         return Line("element vertex " + vertices)
-            .Line("property float x")
-            .Line("property float y")
-            .Line("property float z")
+            .FloatProperties({"x", "y", "z"})
             .Line("element face 1")
             .Line("property list " + count + " int vertex_indices");
     }
