@@ -247,10 +247,6 @@ FurnaceStreamsCheck CheckFurnaceStreams(const std::vector<Image>& renders, const
     return check;
 }
 
-}  // namespace pf::testing
-
-namespace pf::testing {
-
 absl::StatusOr<EpochDraws> RenderEpochDraws(RenderSettings settings) {
     JobSpec& job = settings.job;
     const uint64_t per_epoch = job.layout.PhotonsPerEpoch();
