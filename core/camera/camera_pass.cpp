@@ -16,8 +16,8 @@
 #include "core/math/morton.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/glossy.h"
 #include "core/scene/glossy_lights.h"
+#include "core/scene/scattering.h"
 #include "core/util/check.h"
 
 namespace pf {
@@ -61,7 +61,7 @@ void TraceGatherHits(const Scene& scene, const Tracer& tracer, const Vec3& geome
     const Vec3 geometric =
         Dot(origin_point.normal, geometric_normal) >= 0 ? geometric_normal : -geometric_normal;
     const Vec3 origin = OffsetRayOrigin(origin_point.position, geometric, scene.bounds.Magnitude());
-    const Frame frame = Frame::FromNormal(origin_point.normal);
+    const Frame frame = FrameFromNormal(origin_point.normal);
     // camera weight x albedo / pi x (pi / rays) x the landing's albedo / pi, per unit of the
     // landing's photon flux density: the estimate of one gather ray's light.
     const Rgb weight = origin_point.weight / static_cast<float>(rays);
@@ -70,7 +70,7 @@ void TraceGatherHits(const Scene& scene, const Tracer& tracer, const Vec3& geome
         if (!coated) {
             const float u1 = rng.NextFloat();
             const float u2 = rng.NextFloat();
-            const Vec3 direction = frame.ToWorld(SampleCosineHemisphere(u1, u2));
+            const Vec3 direction = ToWorld(frame, SampleCosineHemisphere(u1, u2));
             if (Dot(direction, geometric) > 0)
                 landing = FollowToDiffuse(scene, tracer, {origin, direction}, rng);
         }
@@ -122,8 +122,11 @@ Rgb TraceCameraSample(const Scene& scene, const Emitters& emitters, bool punctua
             const SurfacePoint surface = scene.Surface(hit);
             std::optional<Material> shading;  // where a texture sets the roughness
             const Material& material = scene.ShadingMaterial(surface, shading);
+            const Bsdf bsdf = BsdfOf(material);
             const bool front_facing = Dot(path.ray.direction, surface.geometric_normal) < 0;
-            if (kSpecular) path.throughput *= SegmentTransmittance(material, front_facing, hit.t);
+            if (kSpecular)
+                path.throughput *= SegmentTransmittance(
+                    material.absorption, material.outside_absorption, front_facing, hit.t);
             if (material.EmitsToward(front_facing))
                 emission += path.throughput * scene.Emission(surface);
             const Rgb base_color =
@@ -131,17 +134,17 @@ Rgb TraceCameraSample(const Scene& scene, const Emitters& emitters, bool punctua
                     ? scene.BaseColor(surface, filter_width.base + path.length * filter_width.angle)
                     : material.base_color;
             const Vec3& n = surface.shading_normal;
-            if (kSpecular && punctual && GlossyToPunctualLights(material))
-                emission += path.throughput *
-                            PunctualLightOnGloss(emitters, tracer, surface, material, base_color,
-                                                 front_facing, -path.ray.direction, rng);
+            if (kSpecular && punctual && GlossyToPunctualLights(bsdf))
+                emission += path.throughput * PunctualLightOnGloss(emitters, tracer, surface, bsdf,
+                                                                   base_color, front_facing,
+                                                                   -path.ray.direction, rng);
             SpecularBounce bounce;
             if (!kSpecular || material.type == MaterialType::kDiffuse) {
                 CoatArrival arrival;
                 if (kSpecular && material.HasCoat() && path.splits_left > 0) {
                     // A hit point on the base and the coat's reflection both, each weighed by
                     // its probability, rather than one of them.
-                    const Frame frame = Frame::FromNormal(front_facing ? n : -n);
+                    const Frame frame = FrameFromNormal(front_facing ? n : -n);
                     const float u1 = rng.NextFloat();
                     const float u2 = rng.NextFloat();
                     // Which reflection, the sheen's or the coat's: drawn only under a sheen.
@@ -149,17 +152,17 @@ Rgb TraceCameraSample(const Scene& scene, const Emitters& emitters, bool punctua
                     Vec3 wi;
                     Rgb reflected;
                     const gpu::Coat coat = CoatOf(material);
-                    const float entered = gpu::SplitAtCoat(coat, frame.ToLocal(-path.ray.direction),
-                                                           u_branch, u1, u2, wi, reflected);
+                    const float entered = gpu::SplitAtCoat(
+                        coat, ToLocal(frame, -path.ray.direction), u_branch, u1, u2, wi, reflected);
                     hit_points.push_back(
                         {surface.position, frame.n,
                          path.throughput * base_color * (entered * CoatInside(coat) / kPi), pixel,
                          surface.material});
                     footprints.push_back(pixel_width.base + path.length * pixel_width.angle);
                     --path.splits_left;
-                    arrival = {false, 0.0f, {frame.ToWorld(wi), reflected, false}};
+                    arrival = {false, 0.0f, {ToWorld(frame, wi), reflected, false}};
                 } else if (kSpecular) {
-                    arrival = ArriveAtCoat(material, path.ray.direction, n, front_facing, rng);
+                    arrival = ArriveAtCoat(bsdf, path.ray.direction, n, front_facing, rng.State());
                 }
                 if (arrival.at_base) {
                     // What the radiance at the base is worth under a coat (CoatInside).
@@ -179,7 +182,7 @@ Rgb TraceCameraSample(const Scene& scene, const Emitters& emitters, bool punctua
                         add(normal, base_color);
                         add(-normal, material.transmittance);
                     } else {
-                        const DiffuseSide side = ChooseDiffuseSide(material, base_color, rng);
+                        const DiffuseSide side = ChooseDiffuseSide(bsdf, base_color, rng.State());
                         add(side.through ? -normal : normal, side.albedo);
                     }
                     if (gather_rays > 0)
@@ -189,16 +192,15 @@ Rgb TraceCameraSample(const Scene& scene, const Emitters& emitters, bool punctua
                 }
                 bounce = arrival.reflected;
             } else if (const float reflect =
-                           ReflectionProbability(material, path.ray.direction, n, front_facing);
+                           ReflectionProbability(bsdf, path.ray.direction, n, front_facing);
                        path.splits_left > 0 && reflect > 0 && reflect < 1) {
                 // Continue with the reflection; the transmission waits on the stack.
                 const SpecularBounce transmitted = TransmitSpecular(
-                    material, path.ray.direction, n, front_facing, base_color, kCarriesRadiance);
+                    bsdf, path.ray.direction, n, front_facing, base_color, kCarriesRadiance);
                 CameraPath& other = stack[pending++];
                 other = path;
                 other.throughput *= transmitted.weight * (1.0f - reflect);
-                if (transmitted.transmitted)
-                    other.refraction *= RefractionOf(material, front_facing);
+                if (transmitted.transmitted) other.refraction *= RefractionOf(bsdf, front_facing);
                 other.ray = {OffsetRayOrigin(surface.position,
                                              front_facing ? -surface.geometric_normal
                                                           : surface.geometric_normal,
@@ -207,14 +209,14 @@ Rgb TraceCameraSample(const Scene& scene, const Emitters& emitters, bool punctua
                 ++other.depth;
                 --other.splits_left;
                 --path.splits_left;
-                bounce = ReflectSpecular(material, path.ray.direction, n, front_facing, base_color);
+                bounce = ReflectSpecular(bsdf, path.ray.direction, n, front_facing, base_color);
                 bounce.weight *= reflect;
             } else {
-                bounce = ScatterNonDiffuse(material, path.ray.direction, n, front_facing,
-                                           base_color, rng, kCarriesRadiance);
+                bounce = ScatterNonDiffuse(bsdf, path.ray.direction, n, front_facing, base_color,
+                                           rng.State(), kCarriesRadiance);
             }
             path.throughput *= bounce.weight;
-            if (bounce.transmitted) path.refraction *= RefractionOf(material, front_facing);
+            if (bounce.transmitted) path.refraction *= RefractionOf(bsdf, front_facing);
             if (path.depth >= kCameraRouletteDepth) {
                 const float survive =
                     std::min(1.0f, MaxComponent(path.throughput) / path.refraction);

@@ -14,15 +14,17 @@ std::optional<DiffuseLanding> FollowToDiffuse(const Scene& scene, const Tracer& 
         const SurfacePoint surface = scene.Surface(hit);
         std::optional<Material> shading;  // where a texture sets the roughness
         const Material& material = scene.ShadingMaterial(surface, shading);
+        const Bsdf bsdf = BsdfOf(material);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-        weight *= SegmentTransmittance(material, front_facing, hit.t);
+        weight *= SegmentTransmittance(material.absorption, material.outside_absorption,
+                                       front_facing, hit.t);
         const Rgb base_color = scene.BaseColor(surface);
-        const CoatArrival arrival =
-            material.type == MaterialType::kDiffuse
-                ? ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng)
-                : CoatArrival{};
+        const CoatArrival arrival = material.type == MaterialType::kDiffuse
+                                        ? ArriveAtCoat(bsdf, ray.direction, surface.shading_normal,
+                                                       front_facing, rng.State())
+                                        : CoatArrival{};
         if (material.type == MaterialType::kDiffuse && arrival.at_base) {
-            const DiffuseSide side = ChooseDiffuseSide(material, base_color, rng);
+            const DiffuseSide side = ChooseDiffuseSide(bsdf, base_color, rng.State());
             const Vec3 normal =
                 front_facing != side.through ? surface.shading_normal : -surface.shading_normal;
             return DiffuseLanding{surface.position, normal, side.albedo,
@@ -32,8 +34,8 @@ std::optional<DiffuseLanding> FollowToDiffuse(const Scene& scene, const Tracer& 
         const SpecularBounce bounce =
             material.type == MaterialType::kDiffuse
                 ? arrival.reflected
-                : ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                                    base_color, rng, kCarriesRadiance);
+                : ScatterNonDiffuse(bsdf, ray.direction, surface.shading_normal, front_facing,
+                                    base_color, rng.State(), kCarriesRadiance);
         weight *= bounce.weight;
         if (IsBlack(weight)) return std::nullopt;
         const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal

@@ -11,7 +11,7 @@
 #include "core/geometry/tracer.h"
 #include "core/math/vec3.h"
 #include "core/sampling/rng.h"
-#include "core/scene/glossy.h"
+#include "core/scene/scattering.h"
 #include "core/scene/scene.h"
 
 namespace pf {

@@ -91,7 +91,7 @@ SurfaceExtent ProbeSurfaceExtent(const Scene& scene, const Tracer& tracer,
     // The octants are the gather's, in the tangent plane of the hit point's shading normal
     // (gpu::WithinSurfaceEdges); the probes run in its surface's own plane, of the geometric
     // normal under it, so that a bump map's tilt of the shading normal is no edge.
-    const Frame frame = Frame::FromNormal(hit_point.normal);
+    const Frame frame = FrameFromNormal(hit_point.normal);
     const float scale = scene.bounds.Magnitude();
     // Off the surface by a little of the probe, so that rays along the plane clear the
     // surface's own unevenness (its facets).
@@ -110,7 +110,7 @@ SurfaceExtent ProbeSurfaceExtent(const Scene& scene, const Tracer& tracer,
     float rise[kProbes], span[kProbes];
     for (int k = 0; k < kProbes; ++k) {
         const float phi = 2 * kPi * float(k) / kProbes;
-        const Vec3 along = frame.ToWorld({std::cos(phi), std::sin(phi), 0.0f});
+        const Vec3 along = ToWorld(frame, {std::cos(phi), std::sin(phi), 0.0f});
         direction[k] = Normalize(along - n * Dot(along, n));
         rays[k] = {origin, direction[k], length};
     }

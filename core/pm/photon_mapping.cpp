@@ -10,8 +10,8 @@
 #include "core/ppm/direct_light.h"
 #include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/glossy.h"
 #include "core/scene/glossy_lights.h"
+#include "core/scene/scattering.h"
 
 namespace pf {
 namespace {
@@ -59,14 +59,14 @@ Rgb DiffuseRadiance(const PhotonMappingInputs& inputs, const SurfacePoint& surfa
                                                   settings.filter, inputs.features.ShadingNormals(),
                                                   scratch);
     // Final gathering: cosine-weighted rays, each carrying albedo (f cos / pdf = rho).
-    const Frame frame = Frame::FromNormal(normal);
+    const Frame frame = FrameFromNormal(normal);
     const Vec3 origin =
         OffsetRayOrigin(surface.position, geometric, inputs.scene->bounds.Magnitude());
     Rgb gathered(0.0f);
     for (uint32_t i = 0; i < settings.final_gather; ++i) {
         const float u1 = rng.NextFloat();
         const float u2 = rng.NextFloat();
-        const Vec3 direction = frame.ToWorld(SampleCosineHemisphere(u1, u2));
+        const Vec3 direction = ToWorld(frame, SampleCosineHemisphere(u1, u2));
         if (!(Dot(direction, geometric) > 0)) continue;
         gathered += GatherRay(inputs, {origin, direction}, rng, scratch);
     }
@@ -93,19 +93,21 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
         const SurfacePoint surface = scene.Surface(hit);
         std::optional<Material> shading;  // where a texture sets the roughness
         const Material& material = scene.ShadingMaterial(surface, shading);
+        const Bsdf bsdf = BsdfOf(material);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-        throughput *= SegmentTransmittance(material, front_facing, hit.t);
+        throughput *= SegmentTransmittance(material.absorption, material.outside_absorption,
+                                           front_facing, hit.t);
         // Emission seen directly or through specular and rough bounces (no light map holds it).
         if (material.EmitsToward(front_facing)) radiance += throughput * scene.Emission(surface);
         // Punctual lights on a glossy surface, which no path finds (core/scene/glossy_lights.h).
-        if (inputs.features.PunctualLights() && GlossyToPunctualLights(material))
+        if (inputs.features.PunctualLights() && GlossyToPunctualLights(bsdf))
             radiance += throughput * PunctualLightOnGloss(*inputs.emitters, *inputs.tracer, surface,
-                                                          material, scene.BaseColor(surface),
+                                                          bsdf, scene.BaseColor(surface),
                                                           front_facing, -ray.direction, rng);
-        const CoatArrival arrival =
-            material.type == MaterialType::kDiffuse
-                ? ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng)
-                : CoatArrival{};
+        const CoatArrival arrival = material.type == MaterialType::kDiffuse
+                                        ? ArriveAtCoat(bsdf, ray.direction, surface.shading_normal,
+                                                       front_facing, rng.State())
+                                        : CoatArrival{};
         if (material.type == MaterialType::kDiffuse && arrival.at_base) {
             const Rgb base_color = inputs.filter_angle > 0
                                        ? scene.BaseColor(surface, length * inputs.filter_angle)
@@ -126,10 +128,10 @@ Rgb PhotonMappingRadiance(const PhotonMappingInputs& inputs, Ray ray, Rng& rng) 
         const SpecularBounce bounce =
             material.type == MaterialType::kDiffuse
                 ? arrival.reflected
-                : ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                                    scene.BaseColor(surface), rng, kCarriesRadiance);
+                : ScatterNonDiffuse(bsdf, ray.direction, surface.shading_normal, front_facing,
+                                    scene.BaseColor(surface), rng.State(), kCarriesRadiance);
         throughput *= bounce.weight;
-        if (bounce.transmitted) refraction *= RefractionOf(material, front_facing);
+        if (bounce.transmitted) refraction *= RefractionOf(bsdf, front_facing);
         if (depth >= kCameraRouletteDepth) {
             const float survive = std::min(1.0f, MaxComponent(throughput) / refraction);
             if (!(rng.NextFloat() < survive)) break;

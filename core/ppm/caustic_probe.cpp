@@ -5,7 +5,7 @@
 
 #include "core/camera/camera_pass.h"
 #include "core/sampling/rng.h"
-#include "core/scene/glossy.h"
+#include "core/scene/scattering.h"
 
 namespace pf {
 
@@ -24,11 +24,12 @@ CausticProbe ProbeCaustics(const Scene& scene, const Emitters& emitters, const T
             const SurfacePoint surface = scene.Surface(hit);
             std::optional<Material> shading;  // where a texture sets the roughness
             const Material& material = scene.ShadingMaterial(surface, shading);
+            const Bsdf bsdf = BsdfOf(material);
             const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
             const CoatArrival arrival =
                 material.type == MaterialType::kDiffuse
-                    ? ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing,
-                                   rng)
+                    ? ArriveAtCoat(bsdf, ray.direction, surface.shading_normal, front_facing,
+                                   rng.State())
                     : CoatArrival{};
             if (material.type == MaterialType::kDiffuse && arrival.at_base) {
                 probe.caustic += bounce > 0;
@@ -37,8 +38,8 @@ CausticProbe ProbeCaustics(const Scene& scene, const Emitters& emitters, const T
             const SpecularBounce next =
                 material.type == MaterialType::kDiffuse
                     ? arrival.reflected
-                    : ScatterNonDiffuse(material, ray.direction, surface.shading_normal,
-                                        front_facing, scene.BaseColor(surface), rng, kCarriesFlux);
+                    : ScatterNonDiffuse(bsdf, ray.direction, surface.shading_normal, front_facing,
+                                        scene.BaseColor(surface), rng.State(), kCarriesFlux);
             if (IsBlack(next.weight)) break;
             const Vec3 side = front_facing == next.transmitted ? -surface.geometric_normal
                                                                : surface.geometric_normal;

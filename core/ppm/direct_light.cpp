@@ -6,7 +6,7 @@
 #include "core/camera/pixel_sample.h"
 #include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/glossy.h"
+#include "core/scene/scattering.h"
 #include "core/util/check.h"
 
 namespace pf {
@@ -17,7 +17,7 @@ namespace {
 // (1 without one).
 float CoatFactor(const DirectLightRays& rays, const Vec3& n, const Vec3& direction) {
     if (rays.coat == nullptr) return 1.0f;
-    return gpu::CoatTransmittance(CoatOf(*rays.coat), Frame::FromNormal(n).ToLocal(direction),
+    return gpu::CoatTransmittance(CoatOf(*rays.coat), ToLocal(FrameFromNormal(n), direction),
                                   rays.coat_u1, rays.coat_u2);
 }
 
@@ -47,8 +47,8 @@ DirectLightRays StartDirectLight(const Emitters& emitters, const Vec3& p, const 
     rays.light_active = emitters.SampleDirect(p, n, numbers.pick, numbers.light, &rays.light,
                                               numbers.pick_from_light);
     if (emitters.FoundByRays()) {
-        const Vec3 direction = Frame::FromNormal(n).ToWorld(
-            SampleCosineHemisphere(numbers.cosine.x, numbers.cosine.y));
+        const Vec3 direction =
+            ToWorld(FrameFromNormal(n), SampleCosineHemisphere(numbers.cosine.x, numbers.cosine.y));
         rays.bsdf_ray = {OffsetRayOrigin(p, n, emitters.SceneScale()), direction};
         rays.bsdf_active = true;
     }

@@ -15,7 +15,7 @@
 #include "core/sampling/frame.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/glossy.h"
+#include "core/scene/scattering.h"
 #include "core/scene/scene.h"
 #include "core/shared/shading_normal.h"
 
@@ -30,7 +30,7 @@ template <typename Land>
 bool LeaveCoatedBase(const Material& material, const Vec3& position, const Frame& frame,
                      const Rgb& base_color, Vec3 local, Ray& ray, Rgb& flux, Rng& rng, Land& land) {
     for (int returns = 0;; ++returns) {
-        const CoatLeaving leaving = LeaveCoatAt(material, frame, local, rng);
+        const CoatLeaving leaving = LeaveCoatAt(CoatOf(material), frame, local, rng.State());
         flux *= leaving.weight;
         ray.direction = leaving.direction;
         if (leaving.escaped) return true;
@@ -62,8 +62,11 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
     const SurfacePoint surface = scene.Surface(hit);
     std::optional<Material> shading;  // where a texture sets the roughness
     const Material& material = scene.ShadingMaterial(surface, shading);
+    const Bsdf bsdf = BsdfOf(material);
     const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-    if (kSpecular) flux *= SegmentTransmittance(material, front_facing, hit.t);
+    if (kSpecular)
+        flux *= SegmentTransmittance(material.absorption, material.outside_absorption, front_facing,
+                                     hit.t);
     // Veach's adjoint for shading normals: one factor where the photon arrives (after it lands:
     // the points gathering it weigh it by their own normals), one where it leaves.
     const bool shaded = !(surface.shading_normal == surface.geometric_normal);
@@ -82,7 +85,8 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
         const bool coated = kSpecular && material.HasCoat();
         CoatArrival coat;  // uncoated: at the base, weight 1
         if (coated) {
-            coat = ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng);
+            coat = ArriveAtCoat(bsdf, ray.direction, surface.shading_normal, front_facing,
+                                rng.State());
             if (coat.at_base) flux *= coat.weight;  // a reflection carries its own
         }
         if (coat.at_base) {
@@ -92,7 +96,7 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
             if (!(arrival > 0)) return PhotonEvent::kEnded;  // from below the shading normal
             flux *= arrival;
             // Back to its side or, through a translucent surface, on to the other.
-            const DiffuseSide side = kSpecular ? ChooseDiffuseSide(material, base_color, rng)
+            const DiffuseSide side = kSpecular ? ChooseDiffuseSide(bsdf, base_color, rng.State())
                                                : DiffuseSide{false, base_color};
             // Russian roulette by albedo: survivors carry flux * albedo / p.
             const float survive = std::min(1.0f, MaxComponent(side.albedo));
@@ -107,9 +111,9 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
                 // on its side of the surface, whatever the shading normal (as the path tracer
                 // sees it): the photon leaves by the surface's own cosine, where Veach's
                 // departure factor is 1.
-                ray.direction = Frame::FromNormal(geometric).ToWorld(local);
+                ray.direction = ToWorld(FrameFromNormal(geometric), local);
             } else {
-                if (!LeaveCoatedBase(material, surface.position, Frame::FromNormal(normal),
+                if (!LeaveCoatedBase(material, surface.position, FrameFromNormal(normal),
                                      base_color, local, ray, flux, rng, land))
                     return PhotonEvent::kEnded;
                 if (!(Dot(ray.direction, geometric) > 0))
@@ -121,8 +125,8 @@ PhotonEvent ScatterPhotonAt(const Scene& scene, const RayHit& hit, Ray& ray, Rgb
         }
         bounce = coat.reflected;
     } else {
-        bounce = ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                                   base_color, rng, kCarriesFlux);
+        bounce = ScatterNonDiffuse(bsdf, ray.direction, surface.shading_normal, front_facing,
+                                   base_color, rng.State(), kCarriesFlux);
     }
     const float survive = std::min(1.0f, MaxComponent(bounce.weight));
     if (!(rng.NextFloat() < survive) || !(arrival > 0)) return PhotonEvent::kEnded;

@@ -7,8 +7,8 @@
 
 #include "core/sampling/frame.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/glossy.h"
 #include "core/scene/glossy_lights.h"
+#include "core/scene/scattering.h"
 
 namespace pf {
 namespace {
@@ -26,7 +26,7 @@ bool TraceCoatedBase(const PathInputs& inputs, const SurfacePoint& surface, bool
     Rgb inside = entered * CoatInside(coat);  // a layer's radiance inside is ior^2 times larger
     const Vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
     const Vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
-    const Frame frame = Frame::FromNormal(normal);
+    const Frame frame = FrameFromNormal(normal);
     for (uint32_t visit = 0; visit < coat.depth; ++visit) {  // each with its chance to leave
         LightSample light;
         if (inputs.emitters->SampleDirect(surface.position, normal, rng, &light) &&
@@ -34,7 +34,7 @@ bool TraceCoatedBase(const PathInputs& inputs, const SurfacePoint& surface, bool
             const float u1 = rng.NextFloat();
             const float u2 = rng.NextFloat();
             const float through =
-                gpu::CoatTransmittance(coat, frame.ToLocal(light.direction), u1, u2);
+                gpu::CoatTransmittance(coat, ToLocal(frame, light.direction), u1, u2);
             radiance += inside * base_color / kPi * light.radiance_over_pdf *
                         (Dot(light.direction, normal) * through);
         }
@@ -45,7 +45,7 @@ bool TraceCoatedBase(const PathInputs& inputs, const SurfacePoint& surface, bool
         const float u1 = rng.NextFloat();
         const float u2 = rng.NextFloat();
         const CoatLeaving leaving =
-            LeaveCoatAt(material, frame, SampleCosineHemisphere(u1, u2), rng);
+            LeaveCoatAt(coat, frame, SampleCosineHemisphere(u1, u2), rng.State());
         inside *= leaving.weight;
         if (IsBlack(inside)) return false;
         if (leaving.escaped) {
@@ -94,8 +94,10 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
         const SurfacePoint surface = scene.Surface(hit);
         std::optional<Material> shading;  // where a texture sets the roughness
         const Material& material = scene.ShadingMaterial(surface, shading);
+        const Bsdf bsdf = BsdfOf(material);
         const bool front_facing = Dot(ray.direction, surface.geometric_normal) < 0;
-        throughput *= SegmentTransmittance(material, front_facing, hit.t);
+        throughput *= SegmentTransmittance(material.absorption, material.outside_absorption,
+                                           front_facing, hit.t);
         if (material.EmitsToward(front_facing)) {
             float weight = 1.0f;
             if (!specular_bounce) {
@@ -117,15 +119,15 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
                              : scene.BaseColor(surface, length * inputs.filter_angle);
         // Punctual lights on a glossy surface, which no path finds (core/scene/glossy_lights.h);
         // bare rough metal's light sampling below takes every light.
-        if (kSpecular && inputs.features.PunctualLights() && GlossyToPunctualLights(material) &&
+        if (kSpecular && inputs.features.PunctualLights() && GlossyToPunctualLights(bsdf) &&
             (material.type != MaterialType::kRoughConductor || material.HasCoat()))
-            radiance += throughput * PunctualLightOnGloss(*inputs.emitters, *inputs.tracer, surface,
-                                                          material, base_color, front_facing,
-                                                          -ray.direction, rng);
-        const CoatArrival arrival =
-            kSpecular && material.type == MaterialType::kDiffuse
-                ? ArriveAtCoat(material, ray.direction, surface.shading_normal, front_facing, rng)
-                : CoatArrival{};
+            radiance +=
+                throughput * PunctualLightOnGloss(*inputs.emitters, *inputs.tracer, surface, bsdf,
+                                                  base_color, front_facing, -ray.direction, rng);
+        const CoatArrival arrival = kSpecular && material.type == MaterialType::kDiffuse
+                                        ? ArriveAtCoat(bsdf, ray.direction, surface.shading_normal,
+                                                       front_facing, rng.State())
+                                        : CoatArrival{};
         if ((!kSpecular || material.type == MaterialType::kDiffuse) && !material.HasCoat()) {
             diffuse_seen = true;
             // Light sampled on the path's side and, through a translucent surface, on the other
@@ -151,7 +153,7 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
                         throughput * (albedo / kPi) * light.radiance_over_pdf * (cosine * weight);
                 }
             }
-            const DiffuseSide side = kSpecular ? ChooseDiffuseSide(material, base_color, rng)
+            const DiffuseSide side = kSpecular ? ChooseDiffuseSide(bsdf, base_color, rng.State())
                                                : DiffuseSide{false, base_color};
             const bool toward = front_facing != side.through;
             const Vec3 normal = toward ? surface.shading_normal : -surface.shading_normal;
@@ -159,7 +161,7 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
             const float u1 = rng.NextFloat();
             const float u2 = rng.NextFloat();
             const Vec3 local = SampleCosineHemisphere(u1, u2);
-            const Vec3 direction = Frame::FromNormal(normal).ToWorld(local);
+            const Vec3 direction = ToWorld(FrameFromNormal(normal), local);
             if (!(Dot(direction, geometric) > 0)) break;  // the shading normal pointed it inside
             throughput *= side.albedo;  // f cos / pdf = (rho / pi) cos / (p cos / pi), / p in it
             bsdf_pdf = (side.through ? through : 1.0f - through) * local.z / kPi;
@@ -194,16 +196,15 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
             if (inputs.emitters->SampleDirect(surface.position, normal, rng, &light) &&
                 !inputs.tracer->Occluded(light.shadow_ray)) {
                 const RoughReflection f =
-                    EvaluateRoughConductor(material, base_color, normal, wo, light.direction);
+                    EvaluateRoughConductor(bsdf, base_color, normal, wo, light.direction);
                 const float weight = light.pdf > 0 ? PowerHeuristic(light.pdf, f.pdf) : 1.0f;
                 radiance += throughput * f.value * light.radiance_over_pdf * weight;
             }
             const SpecularBounce bounce =
-                ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                                  base_color, rng, kCarriesRadiance);
+                ScatterNonDiffuse(bsdf, ray.direction, surface.shading_normal, front_facing,
+                                  base_color, rng.State(), kCarriesRadiance);
             throughput *= bounce.weight;
-            bsdf_pdf =
-                EvaluateRoughConductor(material, base_color, normal, wo, bounce.direction).pdf;
+            bsdf_pdf = EvaluateRoughConductor(bsdf, base_color, normal, wo, bounce.direction).pdf;
             bounced_at = surface.position;
             specular_bounce = false;
             coat_exit = false;
@@ -214,10 +215,10 @@ Rgb TracePathFor(const PathInputs& inputs, Ray ray, Rng& rng) {
         } else {
             // Specular surfaces, and rough glass, whose light is found by its own sampling alone.
             const SpecularBounce bounce =
-                ScatterNonDiffuse(material, ray.direction, surface.shading_normal, front_facing,
-                                  base_color, rng, kCarriesRadiance);
+                ScatterNonDiffuse(bsdf, ray.direction, surface.shading_normal, front_facing,
+                                  base_color, rng.State(), kCarriesRadiance);
             throughput *= bounce.weight;
-            if (bounce.transmitted) refraction *= RefractionOf(material, front_facing);
+            if (bounce.transmitted) refraction *= RefractionOf(bsdf, front_facing);
             specular_bounce = true;
             coat_exit = false;
             const Vec3 side = front_facing == bounce.transmitted ? -surface.geometric_normal

@@ -109,7 +109,7 @@ Emitters::Emitters(const Scene& scene) : scene_(scene) {
         EmissiveTriangle emissive{p0,
                                   edge1,
                                   edge2,
-                                  Frame::FromNormal(triangle.normal),
+                                  FrameFromNormal(triangle.normal),
                                   material.emission,
                                   scene.TriangleArea(t),
                                   material.two_sided != 0};
@@ -214,7 +214,7 @@ EmittedPhoton Emitters::EmitFromTriangle(const EmissiveTriangle& triangle, const
     const Vec3 point = triangle.p0 + triangle.edge1 * b.x + triangle.edge2 * b.y;
     // A two-sided light leaves from either face with equal chance.
     const bool back = triangle.two_sided && u[2] < 0.5f;
-    Vec3 direction = triangle.frame.ToWorld(SampleCosineHemisphere(u[3], u[4]));
+    Vec3 direction = ToWorld(triangle.frame, SampleCosineHemisphere(u[3], u[4]));
     if (back) direction = -direction;
     const Vec3 normal = back ? -triangle.frame.n : triangle.frame.n;
     // Cosine-weighted emission of radiance Le from area A carries flux pi * A * Le a side.
@@ -293,14 +293,14 @@ EmittedPhoton Emitters::EmitFromLight(const PunctualLight& light, uint32_t index
                     light.range > 0 ? &light : nullptr};
         case LightType::kSpot: {
             const Vec3 local = SampleUniformCone(u1, u2, light.cos_outer);
-            const Vec3 direction = Frame::FromNormal(light.direction).ToWorld(local);
+            const Vec3 direction = ToWorld(FrameFromNormal(light.direction), local);
             return {{light.position, direction},
                     light.intensity * (light.SpotFalloff(local.z) * SpotSolidAngle(light)),
                     light.range > 0 ? &light : nullptr};
         }
         case LightType::kDirectional: {
             // A disk as wide as the scene's bounding sphere, just outside it, facing the light.
-            const Frame frame = Frame::FromNormal(light.direction);
+            const Frame frame = FrameFromNormal(light.direction);
             const Point2 d = SampleUniformDisk(u1, u2);
             const Vec3 origin = scene_center_ - light.direction * (1.01f * scene_radius_) +
                                 (frame.s * d.x + frame.t * d.y) * scene_radius_;
@@ -332,7 +332,7 @@ EmittedPhoton Emitters::EmitFromEnvironment(const float* u) const {
     // facing it, just outside: flux L / pdf x pi R^2 (pbrt-v4's ImageInfiniteLight::SampleLe).
     const EnvironmentSampler::Sample sample = environment_sampler_.Draw(u1, u2);
     if (!(sample.pdf > 0)) return {{scene_center_, -sample.toward}, Rgb(0.0f)};
-    const Frame frame = Frame::FromNormal(sample.toward);
+    const Frame frame = FrameFromNormal(sample.toward);
     const Point2 d = SampleUniformDisk(u[2], u[3]);
     const Vec3 origin = scene_center_ + sample.toward * (1.01f * scene_radius_) +
                         (frame.s * d.x + frame.t * d.y) * scene_radius_;

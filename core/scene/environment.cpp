@@ -186,7 +186,7 @@ EnvironmentSampler::Sample EnvironmentSampler::Draw(float u1, float u2) const {
         sample.radiance = environment.scale;
         if (facing_) {
             const Vec3 local = SampleCosineHemisphere(u1, u2);
-            sample.toward = Frame::FromNormal(*facing_).ToWorld(local);
+            sample.toward = ToWorld(FrameFromNormal(*facing_), local);
             sample.pdf = local.z / kPi;
             return sample;
         }

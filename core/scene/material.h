@@ -8,6 +8,7 @@
 
 #include "core/math/vec3.h"
 #include "core/shared/gpu_types.h"
+#include "core/shared/scatter.h"
 
 namespace pf {
 
@@ -23,9 +24,8 @@ enum class MaterialType : uint32_t {
            // "mix"; Scene::Surface resolves it, core/shared/alpha.h's MixHash)
 };
 
-// Roughness below this is taken as this: a GGX lobe narrower is a mirror to float precision
-// (the loaders make a smooth surface a specular material instead).
-inline constexpr float kMinRoughness = 1e-3f;
+// Roughness below this is taken as this (core/shared/scatter.h).
+using gpu::kMinRoughness;
 
 inline constexpr int32_t kNoTexture = -1;
 
@@ -84,7 +84,7 @@ struct Material {
     // front (pbrt's MediumInterface outside: a liquid around the glass that holds it). Light
     // crossing a length d of one keeps exp(-absorption d) (Beer-Lambert): a path segment takes
     // the medium of the side of the surface it ends at (SegmentTransmittance in
-    // core/scene/glossy.h).
+    // core/shared/scatter.h).
     Rgb absorption{0.0f};
     Rgb outside_absorption{0.0f};
     // Diffuse transmission (pbrt-v4's diffusetransmission; core/shared/translucent.h): a
@@ -167,5 +167,41 @@ struct Material {
         return (front_facing || two_sided != 0) && IsEmissive();
     }
 };
+
+// The material kinds as the shared light transport numbers them (core/shared/gpu_types.h).
+static_assert(uint32_t(MaterialType::kDiffuse) == gpu::kMaterialDiffuse &&
+              uint32_t(MaterialType::kMirror) == gpu::kMaterialMirror &&
+              uint32_t(MaterialType::kDielectric) == gpu::kMaterialDielectric &&
+              uint32_t(MaterialType::kThinDielectric) == gpu::kMaterialThinDielectric &&
+              uint32_t(MaterialType::kRoughConductor) == gpu::kMaterialRoughConductor &&
+              uint32_t(MaterialType::kRoughDielectric) == gpu::kMaterialRoughDielectric &&
+              uint32_t(MaterialType::kMix) == gpu::kMaterialMix);
+
+// The material's coat and conductor Fresnel term, as core/shared/coat.h and conductor.h take
+// them.
+inline gpu::Coat CoatOf(const Material& material) {
+    return {material.coat_kind,      material.coat_ior,       material.coat_roughness,
+            material.coat_thickness, material.coat_weight,    material.coat_depth,
+            material.sheen_color,    material.sheen_roughness};
+}
+inline gpu::Conductor ConductorOf(const Material& material) {
+    return {material.conductor, material.conductor_eta, material.conductor_k};
+}
+
+// The material as the shared light transport scatters by it (core/shared/scatter.h; the
+// Vulkan kernels build theirs from GpuMaterial in specular.glsl). `material` is the one shading
+// the point (Scene::ShadingMaterial: textures applied, a mix resolved).
+inline gpu::Bsdf BsdfOf(const Material& material) {
+    gpu::Bsdf bsdf;
+    bsdf.type = uint32_t(material.type);
+    bsdf.ior = material.ior;
+    bsdf.roughness = material.roughness;
+    bsdf.coated = material.HasCoat();
+    bsdf.coat = CoatOf(material);
+    bsdf.conductor = ConductorOf(material);
+    bsdf.coat_samples = material.coat_samples;
+    bsdf.transmittance = material.transmittance;
+    return bsdf;
+}
 
 }  // namespace pf

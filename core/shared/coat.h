@@ -24,6 +24,7 @@
 #define PF_CORE_SHARED_COAT_H
 
 #include "core/shared/conductor.h"
+#include "core/shared/features.h"
 #include "core/shared/gpu_prelude.h"
 #include "core/shared/microfacet.h"
 #include "core/shared/path_sampling.h"
@@ -49,25 +50,17 @@ struct Coat {
     float sheen_roughness;
 };
 
-// Whether sheen is compiled in: always in C++; in GLSL the kernel's specialisation constant
-// kHasSheen, declared before this header is included, so a scene without sheen pays nothing.
-#ifdef __cplusplus
-PF_CONST(bool) kSheenCompiled = true;
-#else
-#define kSheenCompiled kHasSheen
-#endif
-
 // The probability P(w) that the sheen reflects light arriving at cosine cos_z (0 without one).
 PF_GPU_FN float SheenProbability(Coat coat, float cos_z) {
     const float largest = max(coat.sheen.x, max(coat.sheen.y, coat.sheen.z));
-    if (!kSheenCompiled || !(largest > 0.0f)) return 0.0f;
+    if (!kHasSheen || !(largest > 0.0f)) return 0.0f;
     return min(1.0f, largest * SheenAlbedo(abs(cos_z), coat.sheen_roughness));
 }
 
 // The base's normalisation under the sheen, 1 / (1 - P_avg).
 PF_GPU_FN float SheenInside(Coat coat) {
     const float largest = max(coat.sheen.x, max(coat.sheen.y, coat.sheen.z));
-    if (!kSheenCompiled || !(largest > 0.0f)) return 1.0f;
+    if (!kHasSheen || !(largest > 0.0f)) return 1.0f;
     return 1.0f / (1.0f - min(largest * SheenAverageAlbedo(coat.sheen_roughness), 0.99f));
 }
 

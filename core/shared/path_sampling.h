@@ -1,6 +1,6 @@
 // The sampling and scattering maths of photon and light paths, one definition for the CPU
 // (core/sampling/fast_trig.h, core/sampling/sampling.h, core/sampling/frame.h,
-// core/scene/specular.h and core/geometry/ray.h call it) and the Vulkan kernels: the same numbers
+// core/shared/scatter.h and core/geometry/ray.h call it) and the Vulkan kernels: the same numbers
 // in, nearly the same paths out. Written in the vocabulary of gpu_prelude.h.
 #ifndef PF_CORE_SHARED_PATH_SAMPLING_H
 #define PF_CORE_SHARED_PATH_SAMPLING_H

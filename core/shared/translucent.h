@@ -4,7 +4,7 @@
 // arriving on that side times R and the light arriving on the other times T (a hit point whose
 // normal is turned to the other side gathers the photons that land there), and a path that
 // goes on chooses one with the probability below, as pbrt-v4 chooses. One definition for the
-// CPU passes (core/scene/glossy.h's ChooseDiffuseSide) and the Vulkan photon kernel.
+// CPU passes (core/shared/scatter.h's ChooseDiffuseSide) and the Vulkan photon kernel.
 #ifndef PF_CORE_SHARED_TRANSLUCENT_H
 #define PF_CORE_SHARED_TRANSLUCENT_H
 

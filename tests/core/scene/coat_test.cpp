@@ -1,4 +1,4 @@
-// Coated surfaces (core/shared/coat.h, glossy.h's ArriveAtCoat and LeaveCoatAt): the walk
+// Coated surfaces (core/shared/coat.h, scatter.h's ArriveAtCoat and LeaveCoatAt): the walk
 // through a smooth coat reflects what the closed form of a layer over a Lambertian base
 // gives, a lossless coat over a white base loses nothing, light sampling's transmittance is
 // the walk's, the layered surface is reciprocal, and a coated mirror keeps what arrives.
@@ -10,7 +10,7 @@
 #include "core/sampling/frame.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/glossy.h"
+#include "core/scene/scattering.h"
 #include "tests/core/scene/coat_walk.h"
 
 namespace pf {
@@ -134,8 +134,9 @@ TEST(CoatTest, CoatedMirrorKeepsWhatArrives) {
     constexpr int kSamples = 50000;
     double sum = 0;
     for (int i = 0; i < kSamples; ++i) {
-        const SpecularBounce bounce = ScatterNonDiffuse(mirror, Incident(0.7f), {0, 0, 1}, true,
-                                                        Rgb(1.0f), rng, kCarriesRadiance);
+        const SpecularBounce bounce =
+            ScatterNonDiffuse(BsdfOf(mirror), Incident(0.7f), {0, 0, 1}, true, Rgb(1.0f),
+                              rng.State(), kCarriesRadiance);
         sum += Average(bounce.weight);
         ASSERT_GT(bounce.direction.z, 0) << "a coated mirror reflects";
         // Both the coat's and the mirror's reflections are the mirror direction of d.
@@ -148,8 +149,8 @@ TEST(CoatTest, CoatedMirrorKeepsWhatArrives) {
     copper.coat_thickness = 0.5f;
     double tinted = 0;
     for (int i = 0; i < kSamples; ++i)
-        tinted += Average(ScatterNonDiffuse(copper, Incident(1.0f), {0, 0, 1}, true,
-                                            Rgb(0.95f, 0.64f, 0.54f), rng, kCarriesRadiance)
+        tinted += Average(ScatterNonDiffuse(BsdfOf(copper), Incident(1.0f), {0, 0, 1}, true,
+                                            Rgb(0.95f, 0.64f, 0.54f), rng.State(), kCarriesRadiance)
                               .weight);
     EXPECT_LT(tinted / kSamples, Average(Rgb(0.95f, 0.64f, 0.54f)));
 }

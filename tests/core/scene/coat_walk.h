@@ -8,7 +8,7 @@
 #include "core/sampling/frame.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/glossy.h"
+#include "core/scene/scattering.h"
 
 namespace pf {
 
@@ -17,17 +17,18 @@ namespace pf {
 // (0 where absorbed).
 inline float Walk(const Material& material, const Vec3& d, Rng& rng, Vec3& out) {
     const Vec3 n(0, 0, 1);
-    const CoatArrival arrival = ArriveAtCoat(material, d, n, true, rng);
+    const CoatArrival arrival = ArriveAtCoat(BsdfOf(material), d, n, true, rng.State());
     if (!arrival.at_base) {
         out = arrival.reflected.direction;
         return Average(arrival.reflected.weight);
     }
     float flux = arrival.weight;
-    const Frame frame = Frame::FromNormal(n);
+    const Frame frame = FrameFromNormal(n);
     for (uint32_t visit = 0; visit < material.coat_depth; ++visit) {
         flux *= material.base_color.x;  // albedo as a weight: no roulette, less noise
-        const CoatLeaving leaving = LeaveCoatAt(
-            material, frame, SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()), rng);
+        const CoatLeaving leaving =
+            LeaveCoatAt(CoatOf(material), frame,
+                        SampleCosineHemisphere(rng.NextFloat(), rng.NextFloat()), rng.State());
         flux *= leaving.weight;
         if (leaving.escaped) {
             out = leaving.direction;

@@ -12,7 +12,7 @@
 
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/glossy.h"
+#include "core/scene/scattering.h"
 #include "core/scene_io/pbrt/pbrt_parameters.h"
 
 namespace pf {
@@ -123,11 +123,13 @@ TEST(ConductorTest, RoughGoldSamplesAsItEvaluates) {
         Rng rng(11);
         Rgbd sampled(0.0), integrated(0.0);
         for (int i = 0; i < kSamples; ++i) {
-            sampled +=
-                Rgbd(ScatterNonDiffuse(gold, d, n, true, Rgb(1.0f), rng, kCarriesRadiance).weight);
+            sampled += Rgbd(ScatterNonDiffuse(BsdfOf(gold), d, n, true, Rgb(1.0f), rng.State(),
+                                              kCarriesRadiance)
+                                .weight);
             Vec3 wi = SampleUniformSphere(rng.NextFloat(), rng.NextFloat());
             wi.z = std::abs(wi.z);
-            integrated += Rgbd(EvaluateRoughConductor(gold, Rgb(1.0f), n, -d, wi).value) * 2 * kPi;
+            integrated +=
+                Rgbd(EvaluateRoughConductor(BsdfOf(gold), Rgb(1.0f), n, -d, wi).value) * 2 * kPi;
         }
         for (int c = 0; c < 3; ++c)
             EXPECT_NEAR(sampled[c] / kSamples, integrated[c] / kSamples,

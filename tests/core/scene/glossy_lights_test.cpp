@@ -12,7 +12,7 @@
 
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
-#include "core/scene/glossy.h"
+#include "core/scene/scattering.h"
 #include "tests/core/scene/coat_walk.h"
 
 namespace pf {
@@ -108,9 +108,9 @@ TEST(GlossyLights, RoughGlassResponseIsWhatItsSamplingCarries) {
                 const Vec3 normal(0, 0, front ? 1.0f : -1.0f);
                 const Vec3 d = -wo;
                 const Estimate sampled = Average(800000, [&] {
-                    return double(
-                        ScatterNonDiffuse(glass, d, normal, front, tint, rng, kCarriesRadiance)
-                            .weight[channel]);
+                    return double(ScatterNonDiffuse(BsdfOf(glass), d, normal, front, tint,
+                                                    rng.State(), kCarriesRadiance)
+                                      .weight[channel]);
                 });
                 ExpectSame(evaluated, sampled,
                            std::string(front ? "into" : "out of") + " rough glass, cos " +

@@ -1,8 +1,6 @@
 // The rough materials: sampling rough metal agrees with its evaluation (what the path tracer's
 // light sampling weighs against), the sampled density integrates to at most one, and rough
 // glass loses energy only to masking.
-#include "core/scene/glossy.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +8,7 @@
 #include "core/sampling/frame.h"
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
+#include "core/scene/scattering.h"
 
 namespace pf {
 namespace {
@@ -38,13 +37,13 @@ TEST_P(RoughMetalTest, SamplingAgreesWithEvaluation) {
     double sampled = 0, integrated = 0, density = 0;
     for (int i = 0; i < kSamples; ++i) {
         const SpecularBounce bounce =
-            ScatterNonDiffuse(metal, d, n, true, Rgb(1.0f), rng, kCarriesRadiance);
+            ScatterNonDiffuse(BsdfOf(metal), d, n, true, Rgb(1.0f), rng.State(), kCarriesRadiance);
         sampled += Average(bounce.weight);
         const float u1 = rng.NextFloat();
         const float u2 = rng.NextFloat();
         Vec3 wi = SampleUniformSphere(u1, u2);
         wi.z = std::abs(wi.z);
-        const RoughReflection f = EvaluateRoughConductor(metal, Rgb(1.0f), n, wo, wi);
+        const RoughReflection f = EvaluateRoughConductor(BsdfOf(metal), Rgb(1.0f), n, wo, wi);
         integrated += Average(f.value) * 2 * kPi;
         density += f.pdf * 2 * kPi;
     }
@@ -78,8 +77,9 @@ TEST(RoughGlassTest, LosesEnergyOnlyToMaskingAndRefractsMostLight) {
     double carried = 0;
     int transmitted = 0;
     for (int i = 0; i < kSamples; ++i) {
-        const SpecularBounce bounce = ScatterNonDiffuse(
-            glass, Normalize(Vec3(0.3f, 0, -1)), {0, 0, 1}, true, Rgb(1.0f), rng, kCarriesFlux);
+        const SpecularBounce bounce =
+            ScatterNonDiffuse(BsdfOf(glass), Normalize(Vec3(0.3f, 0, -1)), {0, 0, 1}, true,
+                              Rgb(1.0f), rng.State(), kCarriesFlux);
         ASSERT_LE(MaxComponent(bounce.weight), 1.0f + 1e-5f);
         carried += Average(bounce.weight);
         if (bounce.transmitted) {
@@ -106,10 +106,11 @@ TEST(RoughGlassTest, RefractedRadianceScalesByEtaSquared) {
         const float expected = front ? 1 / (1.33f * 1.33f) : 1.33f * 1.33f;
         for (uint64_t seed = 0; seed < 2000; ++seed) {
             Rng flux_rng(seed), radiance_rng(seed);
-            const SpecularBounce flux =
-                ScatterNonDiffuse(glass, d, {0, 0, 1}, front, Rgb(1.0f), flux_rng, kCarriesFlux);
-            const SpecularBounce radiance = ScatterNonDiffuse(glass, d, {0, 0, 1}, front, Rgb(1.0f),
-                                                              radiance_rng, kCarriesRadiance);
+            const SpecularBounce flux = ScatterNonDiffuse(
+                BsdfOf(glass), d, {0, 0, 1}, front, Rgb(1.0f), flux_rng.State(), kCarriesFlux);
+            const SpecularBounce radiance =
+                ScatterNonDiffuse(BsdfOf(glass), d, {0, 0, 1}, front, Rgb(1.0f),
+                                  radiance_rng.State(), kCarriesRadiance);
             ASSERT_EQ(flux.transmitted, radiance.transmitted);
             if (!flux.transmitted || IsBlack(flux.weight)) {
                 ASSERT_EQ(flux.weight, radiance.weight);

@@ -176,8 +176,9 @@ TEST(SheenLayerTest, OverAMirrorTheWalkGivesTheClosedForm) {
         constexpr int kSamples = 200000;
         double sum = 0, sum_sq = 0;
         for (int i = 0; i < kSamples; ++i) {
-            const SpecularBounce bounce = ScatterNonDiffuse(mirror, Incident(mu), Vec3(0, 0, 1),
-                                                            true, Rgb(1.0f), rng, kCarriesRadiance);
+            const SpecularBounce bounce =
+                ScatterNonDiffuse(BsdfOf(mirror), Incident(mu), Vec3(0, 0, 1), true, Rgb(1.0f),
+                                  rng.State(), kCarriesRadiance);
             const double w = bounce.weight.x;
             sum += w, sum_sq += w * w;
         }

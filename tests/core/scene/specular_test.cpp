@@ -1,12 +1,11 @@
 // Fresnel and specular scattering: known values, Snell's law, and energy conservation.
-#include "core/scene/specular.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/sampling/rng.h"
 #include "core/sampling/sampling.h"
+#include "core/scene/scattering.h"
 
 namespace pf {
 namespace {
@@ -63,8 +62,8 @@ TEST(SpecularTest, ClearGlassConservesEnergyAndReflectsAtTheFresnelRate) {
         int reflected = 0;
         constexpr int kTrials = 200000;
         for (int i = 0; i < kTrials; ++i) {
-            const SpecularBounce b = ScatterSpecular(glass, d, Vec3(0, 0, 1), true, Rgb(1.0f),
-                                                     rng.NextFloat(), kCarriesFlux);
+            const SpecularBounce b = ScatterSpecular(BsdfOf(glass), d, Vec3(0, 0, 1), true,
+                                                     Rgb(1.0f), rng.NextFloat(), kCarriesFlux);
             ASSERT_EQ(b.weight, Rgb(1.0f));
             reflected += !b.transmitted;
         }
@@ -85,7 +84,7 @@ TEST(SpecularTest, RefractionScalesRadianceByEtaSquaredAndFluxNot) {
     constexpr float kUTransmit = 0.999f;           // above every Fresnel reflectance here
     const auto weight = [&](const Vec3& d, bool front, uint32_t carries) {
         const SpecularBounce b =
-            ScatterSpecular(glass, d, Vec3(0, 0, 1), front, Rgb(1.0f), kUTransmit, carries);
+            ScatterSpecular(BsdfOf(glass), d, Vec3(0, 0, 1), front, Rgb(1.0f), kUTransmit, carries);
         EXPECT_TRUE(b.transmitted);
         return b.weight.x;
     };
@@ -93,10 +92,10 @@ TEST(SpecularTest, RefractionScalesRadianceByEtaSquaredAndFluxNot) {
     EXPECT_FLOAT_EQ(weight(out, false, kCarriesRadiance), 1.5f * 1.5f);
     EXPECT_FLOAT_EQ(weight(in, true, kCarriesFlux), 1.0f);
     EXPECT_FLOAT_EQ(weight(out, false, kCarriesFlux), 1.0f);
-    EXPECT_FLOAT_EQ(RefractionOf(glass, true), 1.0f / (1.5f * 1.5f));
-    EXPECT_FLOAT_EQ(RefractionOf(Glass(MaterialType::kThinDielectric), true), 1.0f);
+    EXPECT_FLOAT_EQ(RefractionOf(BsdfOf(glass), true), 1.0f / (1.5f * 1.5f));
+    EXPECT_FLOAT_EQ(RefractionOf(BsdfOf(Glass(MaterialType::kThinDielectric)), true), 1.0f);
     const SpecularBounce reflected =
-        ScatterSpecular(glass, in, Vec3(0, 0, 1), true, Rgb(1.0f), 0.0f, kCarriesRadiance);
+        ScatterSpecular(BsdfOf(glass), in, Vec3(0, 0, 1), true, Rgb(1.0f), 0.0f, kCarriesRadiance);
     EXPECT_FALSE(reflected.transmitted);
     EXPECT_EQ(reflected.weight, Rgb(1.0f));
 }
@@ -106,7 +105,7 @@ TEST(SpecularTest, LeavingGlassAtGrazingAngleReflectsTotally) {
     const Vec3 d = Normalize(Vec3(0.9f, 0, 0.3f));  // inside, heading out through the back face
     for (float u : {0.0f, 0.5f, 0.999f}) {
         const SpecularBounce b =
-            ScatterSpecular(glass, d, Vec3(0, 0, 1), false, Rgb(1.0f), u, kCarriesRadiance);
+            ScatterSpecular(BsdfOf(glass), d, Vec3(0, 0, 1), false, Rgb(1.0f), u, kCarriesRadiance);
         EXPECT_FALSE(b.transmitted);
         EXPECT_NEAR(b.direction.z, -0.3f / Length(Vec3(0.9f, 0, 0.3f)), 1e-5f);
     }
@@ -117,7 +116,7 @@ TEST(SpecularTest, ThinGlassPassesStraightThroughAndConservesEnergy) {
     const Vec3 d = Normalize(Vec3(0.3f, 0.2f, -1.0f));
     Rng rng(9);
     for (int i = 0; i < 1000; ++i) {
-        const SpecularBounce b = ScatterSpecular(sheet, d, Vec3(0, 0, 1), true, Rgb(1.0f),
+        const SpecularBounce b = ScatterSpecular(BsdfOf(sheet), d, Vec3(0, 0, 1), true, Rgb(1.0f),
                                                  rng.NextFloat(), kCarriesRadiance);
         EXPECT_EQ(b.weight, Rgb(1.0f));  // out on the side it came from: no change of index
         if (b.transmitted)
@@ -132,7 +131,7 @@ TEST(SpecularTest, MirrorReflectsWithItsTint) {
     mirror.type = MaterialType::kMirror;
     const Vec3 d = Normalize(Vec3(1, 0, -1));
     const SpecularBounce b =
-        ScatterSpecular(mirror, d, Vec3(0, 0, 1), true, Rgb(0.9f), 0.5f, kCarriesRadiance);
+        ScatterSpecular(BsdfOf(mirror), d, Vec3(0, 0, 1), true, Rgb(0.9f), 0.5f, kCarriesRadiance);
     EXPECT_FALSE(b.transmitted);
     EXPECT_NEAR(b.direction.x, d.x, 1e-6f);
     EXPECT_NEAR(b.direction.z, -d.z, 1e-6f);

@@ -12,7 +12,7 @@
 
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
-#include "core/scene/specular.h"
+#include "core/scene/scattering.h"
 #include "core/scene_io/pbrt/pbrt_parameters.h"
 #include "core/scene_io/scene_files.h"
 #include "tests/core/scene_io/pbrt_test_support.h"

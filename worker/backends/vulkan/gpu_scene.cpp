@@ -6,6 +6,7 @@
 
 #include "core/scene/mesh_builder.h"
 #include "core/shared/curve.h"
+#include "core/shared/features.h"
 #include "core/shared/noise.h"
 #include "core/shared/sheen.h"
 #include "embree/bvh_builder.h"
@@ -272,33 +273,9 @@ void AddEmitters(const Scene& scene, const Emitters& emitters, GpuScene& gpu_sce
 SpecConstants SpecConstantsFor(const SceneFeatures& features) {
     SpecConstants spec{};
     spec[gpu::kSpecNearest] = 1;  // a heap of one where the job has none (pixel_trace.comp)
-    spec[gpu::kSpecHasMirror] = features.mirror;
-    spec[gpu::kSpecHasDielectric] = features.dielectric;
-    spec[gpu::kSpecHasThinDielectric] = features.thin_dielectric;
-    spec[gpu::kSpecHasTextures] = features.textures;
-    spec[gpu::kSpecHasSmoothNormals] = features.smooth_normals;
-    spec[gpu::kSpecHasTriangleLights] = features.triangle_lights;
-    spec[gpu::kSpecHasPointLights] = features.point_lights;
-    spec[gpu::kSpecHasSpotLights] = features.spot_lights;
-    spec[gpu::kSpecHasDirectionalLights] = features.directional_lights;
-    spec[gpu::kSpecHasRoughConductor] = features.rough_conductor;
-    spec[gpu::kSpecHasRoughDielectric] = features.rough_dielectric;
-    spec[gpu::kSpecHasEnvironment] = features.environment;
-    spec[gpu::kSpecHasTexturedLights] = features.textured_lights;
-    spec[gpu::kSpecHasImageLights] = features.image_lights;
-    spec[gpu::kSpecHasCoats] = features.coats;
-    spec[gpu::kSpecHasCutOuts] = features.cut_outs;
-    spec[gpu::kSpecHasMixes] = features.mixes;
-    spec[gpu::kSpecHasRoughnessTextures] = features.roughness_textures;
-    spec[gpu::kSpecHasMixTextures] = features.mix_textures;
-    spec[gpu::kSpecHasConductorFresnel] = features.conductor_fresnel;
-    spec[gpu::kSpecHasAbsorption] = features.absorption;
-    spec[gpu::kSpecHasShadingDetail] = features.shading_detail;
-    spec[gpu::kSpecHasTranslucency] = features.translucent;
-    spec[gpu::kSpecHasSheen] = features.sheen;
-    spec[gpu::kSpecHasVertexColors] = features.vertex_colors;
-    spec[gpu::kSpecHasProceduralTextures] = features.procedural_textures;
-    spec[gpu::kSpecHasCurves] = features.curves;
+#define PF_SPECIALISE(name, id, member) spec[gpu::id] = features.member;
+    PF_SCENE_FEATURES(PF_SPECIALISE)
+#undef PF_SPECIALISE
     return spec;
 }
 

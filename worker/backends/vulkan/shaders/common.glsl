@@ -16,37 +16,8 @@
 #include "core/shared/photon_kinds.h"
 #include "core/shared/curve.h"
 
-layout(constant_id = kSpecHasMirror) const bool kHasMirror = true;
-layout(constant_id = kSpecHasDielectric) const bool kHasDielectric = true;
-layout(constant_id = kSpecHasThinDielectric) const bool kHasThinDielectric = true;
-layout(constant_id = kSpecHasRoughConductor) const bool kHasRoughConductor = true;
-layout(constant_id = kSpecHasRoughDielectric) const bool kHasRoughDielectric = true;
-layout(constant_id = kSpecHasTextures) const bool kHasTextures = true;
-layout(constant_id = kSpecHasSmoothNormals) const bool kHasSmoothNormals = true;
-layout(constant_id = kSpecHasTriangleLights) const bool kHasTriangleLights = true;
-layout(constant_id = kSpecHasPointLights) const bool kHasPointLights = true;
-layout(constant_id = kSpecHasSpotLights) const bool kHasSpotLights = true;
-layout(constant_id = kSpecHasDirectionalLights) const bool kHasDirectionalLights = true;
-layout(constant_id = kSpecHasEnvironment) const bool kHasEnvironment = true;
-layout(constant_id = kSpecHasTexturedLights) const bool kHasTexturedLights = true;
-layout(constant_id = kSpecHasImageLights) const bool kHasImageLights = true;
-layout(constant_id = kSpecHasCoats) const bool kHasCoats = true;
-layout(constant_id = kSpecHasCutOuts) const bool kHasCutOuts = true;
-layout(constant_id = kSpecHasMixes) const bool kHasMixes = true;
-layout(constant_id = kSpecHasRoughnessTextures) const bool kHasRoughnessTextures = true;
-layout(constant_id = kSpecHasMixTextures) const bool kHasMixTextures = true;
-layout(constant_id = kSpecHasConductorFresnel) const bool kHasConductorFresnel = true;
-layout(constant_id = kSpecHasAbsorption) const bool kHasAbsorption = true;
-layout(constant_id = kSpecHasShadingDetail) const bool kHasShadingDetail = true;
-layout(constant_id = kSpecHasTranslucency) const bool kHasTranslucency = true;
-layout(constant_id = kSpecHasSheen) const bool kHasSheen = true;
-layout(constant_id = kSpecHasVertexColors) const bool kHasVertexColors = true;
-layout(constant_id = kSpecHasProceduralTextures) const bool kHasProceduralTextures = true;
-// The job's hit points gather kinds of photon of their own (rpm's), direct light's among them.
-layout(constant_id = kSpecPhotonKinds) const bool kPhotonKinds = true;
-layout(constant_id = kSpecHasCurves) const bool kHasCurves = true;
-// Some shading normal differs from its surface's (SceneFeatures::ShadingNormals).
-const bool kShadingNormals = kHasSmoothNormals || kHasShadingDetail || kHasCurves;
+#include "core/shared/features.h"
+#include "core/shared/frame.h"
 
 layout(push_constant, std430) uniform Push { GpuParams params; };
 

@@ -24,7 +24,7 @@ vec3 DirectIrradiance(vec3 p, vec3 n, uint coat, float pick, vec2 light_u, bool 
         light_part = light.radiance_over_pdf * (cosine * weight);
     }
     if (kLightsFoundByRays) {
-        ray_direction = FrameFromNormal(n) * SampleCosineHemisphere(cosine_u.x, cosine_u.y);
+        ray_direction = ToWorld(FrameFromNormal(n), SampleCosineHemisphere(cosine_u.x, cosine_u.y));
         const vec3 origin = OffsetRayOrigin(p, n);
         float pdf = 0;
         vec3 radiance = vec3(0);
@@ -41,9 +41,9 @@ vec3 DirectIrradiance(vec3 p, vec3 n, uint coat, float pick, vec2 light_u, bool 
         const Coat layer = CoatOf(materials[coat]);
         float u1 = 0, u2 = 0;
         if (layer.alpha > 0.0) u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-        const mat3 frame = FrameFromNormal(n);
-        if (MaxComponent(light_part) > 0.0) light_part *= CoatTransmittance(layer, light.direction * frame, u1, u2);
-        if (MaxComponent(ray_part) > 0.0) ray_part *= CoatTransmittance(layer, ray_direction * frame, u1, u2);
+        const Frame frame = FrameFromNormal(n);
+        if (MaxComponent(light_part) > 0.0) light_part *= CoatTransmittance(layer, ToLocal(frame, light.direction), u1, u2);
+        if (MaxComponent(ray_part) > 0.0) ray_part *= CoatTransmittance(layer, ToLocal(frame, ray_direction), u1, u2);
     }
     return light_part + ray_part;
 }

@@ -3,13 +3,6 @@
 // numbers in the same order; light kinds the scene lacks are compiled out.
 #include "environment.glsl"
 
-// A frame around a unit normal, as core/sampling/frame.h: columns s, t, n.
-mat3 FrameFromNormal(vec3 n) {
-    vec3 s, t;
-    OrthonormalBasis(n, s, t);
-    return mat3(s, t, n);
-}
-
 // The spot's falloff, glTF's quadratic or pbrt's smoothstep (PunctualLight::SpotFalloff).
 float SpotFalloff(GpuEmitter light, float cos_axis) {
     const float t = clamp((cos_axis - light.cone.y) * light.cone.z, 0.0, 1.0);
@@ -102,7 +95,7 @@ Photon EmitPhotonFrom(const float u[kEmissionNumbers]) {
         const vec3 point = emitter.position.xyz + emitter.edge1.xyz * b.x + emitter.edge2.xyz * b.y;
         // A two-sided light leaves from either face with equal chance (Emitters::EmitFromTriangle).
         const bool back = emitter.direction.w != 0.0 && u[3] < 0.5;
-        photon.direction = FrameFromNormal(emitter.direction.xyz) * SampleCosineHemisphere(u[4], u[5]);
+        photon.direction = ToWorld(FrameFromNormal(emitter.direction.xyz), SampleCosineHemisphere(u[4], u[5]));
         const vec3 normal = back ? -emitter.direction.xyz : emitter.direction.xyz;
         if (back) photon.direction = -photon.direction;
         photon.origin = OffsetRayOrigin(point, normal);
@@ -117,16 +110,16 @@ Photon EmitPhotonFrom(const float u[kEmissionNumbers]) {
     } else if (kHasSpotLights && kind == kEmitterSpot) {
         const vec3 local = SampleUniformCone(u1, u2, emitter.cone.y);
         photon.origin = emitter.position.xyz;
-        photon.direction = FrameFromNormal(emitter.direction.xyz) * local;
+        photon.direction = ToWorld(FrameFromNormal(emitter.direction.xyz), local);
         photon.flux *= SpotFalloff(emitter, local.z);
         photon.range = emitter.radiance.w;
     } else if (kHasDirectionalLights && kind == kEmitterDirectional) {
         // A disk as wide as the scene's bounding sphere, just outside it, facing the light.
-        const mat3 frame = FrameFromNormal(emitter.direction.xyz);
+        const Frame frame = FrameFromNormal(emitter.direction.xyz);
         const vec2 d = SampleUniformDisk(u1, u2);
         const float radius = params.scene_sphere.w;
         photon.origin = params.scene_sphere.xyz - emitter.direction.xyz * (1.01 * radius) +
-                        (frame[0] * d.x + frame[1] * d.y) * radius;
+                        (frame.s * d.x + frame.t * d.y) * radius;
         photon.direction = emitter.direction.xyz;
     } else if (kHasEnvironment && kind == kEmitterEnvironment && HasPortal(emitter)) {
         // Through the portal: a direction over the hemisphere outside it, then a point of it:
@@ -135,7 +128,7 @@ Photon EmitPhotonFrom(const float u[kEmissionNumbers]) {
         EnvironmentSample drawn;
         if (EnvironmentMapping(emitter) == kMappingUniform) {
             const vec3 local = SampleCosineHemisphere(u1, u2);
-            drawn.toward = FrameFromNormal(n) * local;
+            drawn.toward = ToWorld(FrameFromNormal(n), local);
             drawn.radiance = emitter.radiance.xyz;
             drawn.pdf = local.z / kPi;
         } else {
@@ -160,10 +153,10 @@ Photon EmitPhotonFrom(const float u[kEmissionNumbers]) {
             photon.flux = vec3(0);
             return photon;
         }
-        const mat3 frame = FrameFromNormal(drawn.toward);
+        const Frame frame = FrameFromNormal(drawn.toward);
         const vec2 d = SampleUniformDisk(u[3], u[4]);
         photon.origin = params.scene_sphere.xyz + drawn.toward * (1.01 * radius) +
-                        (frame[0] * d.x + frame[1] * d.y) * radius;
+                        (frame.s * d.x + frame.t * d.y) * radius;
         photon.flux = drawn.radiance * (kPi * radius * radius / drawn.pdf) * emitter.power.w;
     } else if (kHasImageLights && kind == kEmitterGoniometric) {
         // Intensity over the light's sphere is an environment map (Emitters::ImageSampler).

@@ -10,47 +10,6 @@
 // that the others' code is compiled out).
 layout(constant_id = kSpecVertexClass) const uint kVertexClass = kVertexAny;
 
-// Whether a diffuse material lets light through to its other side (Material::IsTranslucent).
-bool Translucent(GpuMaterial material) {
-    return kHasTranslucency && MaxComponent(material.transmittance.xyz) > 0.0;
-}
-
-bool Coated(GpuMaterial material) { return kHasCoats && material.coat.x > 0.0; }
-
-// Where a path meets a coated diffuse surface (ArriveAtCoat): it reaches the base, taking
-// `weight`, or the coat reflects it as `reflected`. Uncoated: the base, weight 1.
-bool ArriveAtCoat(GpuMaterial material, Surface surface, vec3 d, bool front_facing, inout Pcg32 rng,
-                  out float weight, out SpecularBounce reflected) {
-    weight = 1.0;
-    reflected = SpecularBounce(d, vec3(0.0), false);
-    if (!Coated(material)) return true;
-    const mat3 frame = FrameFromNormal(front_facing ? surface.shading_normal : -surface.shading_normal);
-    const float u_branch = Pcg32NextFloat(rng), u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-    vec3 wi;
-    const vec3 entered = EnterCoat(CoatOf(material), -d * frame, u_branch, u1, u2, wi);
-    if (wi.z < 0.0) {
-        weight = entered.x;  // grey on the way in
-        return true;
-    }
-    reflected = SpecularBounce(frame * wi, entered, false);
-    return false;
-}
-
-// ChooseDiffuseSide: whether the path goes through (a translucent surface's other side), and the
-// albedo it then carries.
-bool ChooseDiffuseSide(GpuMaterial material, vec3 base_color, inout Pcg32 rng, out vec3 albedo, out float through) {
-    through = 0.0;
-    albedo = base_color;
-    if (!Translucent(material)) return false;
-    through = TransmitProbability(base_color, material.transmittance.xyz);
-    if (Pcg32NextFloat(rng) < through) {
-        albedo = material.transmittance.xyz / through;
-        return true;
-    }
-    albedo = base_color / (1.0 - through);
-    return false;
-}
-
 // A light sample from p, normal n, its numbers from rng (Emitters::SampleDirect), and whether it
 // is unoccluded.
 bool SampleVisibleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample light) {
@@ -64,15 +23,15 @@ bool SampleVisibleLight(vec3 p, vec3 n, inout Pcg32 rng, out LightSample light) 
 // punctual lights (PunctualLightOnGloss in core/scene/glossy_lights.h): one light sample, kept
 // where it picked a punctual light, f |cos| times its radiance over pdf where its shadow ray is
 // clear; rough glass takes a light on either side. Three numbers, then a coated conductor's.
-vec3 PunctualLightOnGloss(GpuMaterial material, Surface surface, bool front_facing, vec3 wo, inout Pcg32 rng) {
+vec3 PunctualLightOnGloss(Bsdf bsdf, Surface surface, bool front_facing, vec3 wo, inout Pcg32 rng) {
     const vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
     const float pick = Pcg32NextFloat(rng), u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
     LightSample light;
     bool found = SampleLightFrom(surface.position, geometric, pick, vec2(u1, u2), false, light);
-    if (!found && kHasRoughDielectric && material.type == kMaterialRoughDielectric && !Coated(material))
+    if (!found && kHasRoughDielectric && bsdf.type == kMaterialRoughDielectric && !IsCoated(bsdf))
         found = SampleLightFrom(surface.position, -geometric, pick, vec2(u1, u2), false, light);
     if (!found || light.pdf > 0.0) return vec3(0.0);
-    const vec3 f = GlossyResponse(material, surface, front_facing, wo, light.direction, rng);
+    const vec3 f = GlossyResponse(bsdf, surface.base_color, surface.shading_normal, front_facing, wo, light.direction, rng);
     RayHit unused;
     if (!(MaxComponent(f) > 0.0) || TraceRay(light.origin, light.direction, light.distance, true, unused))
         return vec3(0.0);
@@ -83,13 +42,12 @@ vec3 PunctualLightOnGloss(GpuMaterial material, Surface surface, bool front_faci
 // `entered` (TraceCoatedBase): light sampling through the coat at each visit, then a cosine
 // bounce inside that the coat lets out or turns back. Sets the path leaving the coat; false
 // where it ends inside.
-bool TraceCoatedBase(Surface surface, bool front_facing, GpuMaterial material, vec3 entered, inout Pcg32 rng,
+bool TraceCoatedBase(Surface surface, bool front_facing, Coat coat, vec3 entered, inout Pcg32 rng,
                      inout vec3 radiance, out vec3 throughput, out vec3 origin, out vec3 direction) {
-    const Coat coat = CoatOf(material);
     vec3 inside = entered * CoatInside(coat);  // a layer's radiance inside is ior^2 times larger
     const vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
     const vec3 geometric = front_facing ? surface.geometric_normal : -surface.geometric_normal;
-    const mat3 frame = FrameFromNormal(normal);
+    const Frame frame = FrameFromNormal(normal);
     const vec3 base_color = surface.base_color;
     throughput = vec3(0);
     origin = surface.position;
@@ -98,7 +56,7 @@ bool TraceCoatedBase(Surface surface, bool front_facing, GpuMaterial material, v
         LightSample light;
         if (SampleVisibleLight(surface.position, normal, rng, light)) {
             const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-            const float through = CoatTransmittance(coat, light.direction * frame, u1, u2);
+            const float through = CoatTransmittance(coat, ToLocal(frame, light.direction), u1, u2);
             radiance += inside * base_color / kPi * light.radiance_over_pdf * (dot(light.direction, normal) * through);
         }
         const float survive = min(1.0, MaxComponent(base_color));
@@ -106,12 +64,11 @@ bool TraceCoatedBase(Surface surface, bool front_facing, GpuMaterial material, v
         inside *= base_color / survive;
         const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
         const vec3 up = SampleCosineHemisphere(u1, u2);
-        const float u_branch = Pcg32NextFloat(rng), v1 = Pcg32NextFloat(rng), v2 = Pcg32NextFloat(rng);
-        vec3 wi;
-        inside *= LeaveCoat(coat, up, u_branch, v1, v2, wi);
+        const CoatLeaving leaving = LeaveCoatAt(coat, frame, up, rng);
+        inside *= leaving.weight;
         if (!(MaxComponent(inside) > 0.0)) return false;
-        if (wi.z > 0.0) {
-            direction = frame * wi;
+        if (leaving.escaped) {
+            direction = leaving.direction;
             if (!(dot(direction, geometric) > 0)) return false;
             throughput = inside / CoatInside(coat);
             origin = OffsetRayOrigin(surface.position, geometric);
@@ -140,9 +97,9 @@ PathState BeginPath(vec3 origin, vec3 direction) {
 }
 
 // The class of vertex a material makes.
-uint VertexClass(GpuMaterial material) {
-    if (material.type == kMaterialDiffuse) return Coated(material) ? kVertexCoated : kVertexDiffuse;
-    if (kHasRoughConductor && material.type == kMaterialRoughConductor && !Coated(material)) return kVertexRough;
+uint VertexClass(Bsdf bsdf) {
+    if (bsdf.type == kMaterialDiffuse) return IsCoated(bsdf) ? kVertexCoated : kVertexDiffuse;
+    if (kHasRoughConductor && bsdf.type == kMaterialRoughConductor && !IsCoated(bsdf)) return kVertexRough;
     return kVertexSpecular;
 }
 
@@ -163,8 +120,10 @@ bool PathVertex(inout PathState path, bool found, RayHit hit, inout Pcg32 rng) {
     }
     const Surface surface = SurfaceAt(hit);
     const GpuMaterial material = ShadingMaterial(surface);
+    const Bsdf bsdf = BsdfOf(material);
     const bool front_facing = dot(direction, surface.geometric_normal) < 0;
-    if (kHasAbsorption) path.throughput *= SegmentTransmittance(material, front_facing, hit.t);
+    if (kHasAbsorption)
+        path.throughput *= SegmentTransmittance(material.absorption.xyz, material.outside_absorption.xyz, front_facing, hit.t);
     if (kHasTriangleLights) {
         float light_pdf;
         const vec3 emitted = HitEmitter(hit, path.specular_bounce ? path.origin : path.bounced_at, surface.position, light_pdf);
@@ -176,25 +135,24 @@ bool PathVertex(inout PathState path, bool found, RayHit hit, inout Pcg32 rng) {
         }
     }
     if (path.depth >= pixel_job.max_depth) return false;
-    const uint kind = kVertexClass == kVertexAny ? VertexClass(material) : kVertexClass;
+    const uint kind = kVertexClass == kVertexAny ? VertexClass(bsdf) : kVertexClass;
     const vec3 base_color = surface.base_color;
     // Punctual lights on a glossy surface, which no path finds; bare rough metal's light
     // sampling below takes every light.
-    if (kind != kVertexDiffuse && kind != kVertexRough && GlossyToPunctualLights(material))
-        path.radiance += path.throughput * PunctualLightOnGloss(material, surface, front_facing, -direction, rng);
-    float arrival_weight;
-    SpecularBounce reflected;
-    const bool at_base = kind != kVertexCoated ||
-                         ArriveAtCoat(material, surface, direction, front_facing, rng, arrival_weight, reflected);
+    if (kind != kVertexDiffuse && kind != kVertexRough && GlossyToPunctualLights(bsdf))
+        path.radiance += path.throughput * PunctualLightOnGloss(bsdf, surface, front_facing, -direction, rng);
+    const CoatArrival arrival = kind == kVertexCoated
+                                    ? ArriveAtCoat(bsdf, direction, surface.shading_normal, front_facing, rng)
+                                    : CoatArrival(true, 1.0, SpecularBounce(direction, vec3(0.0), false));
     if (kind == kVertexDiffuse) {
         // Light sampled on the path's side and, through a translucent surface, on the other;
         // the bounce on one of them, chosen with its probability, against whose density
         // each side's light sample is weighed.
-        const float through = Translucent(material) ? TransmitProbability(base_color, material.transmittance.xyz) : 0.0;
+        const float through = IsTranslucent(bsdf) ? TransmitProbability(base_color, bsdf.transmittance) : 0.0;
         for (int other = 0; other < 2; ++other) {
             if (other == 1 && !(through > 0)) break;
             const vec3 facing = front_facing != (other == 1) ? surface.shading_normal : -surface.shading_normal;
-            const vec3 albedo = other == 1 ? material.transmittance.xyz : base_color;
+            const vec3 albedo = other == 1 ? bsdf.transmittance : base_color;
             const float chosen = other == 1 ? through : 1.0 - through;
             LightSample light;
             if (SampleVisibleLight(surface.position, facing, rng, light)) {
@@ -203,24 +161,22 @@ bool PathVertex(inout PathState path, bool found, RayHit hit, inout Pcg32 rng) {
                 path.radiance += path.throughput * (albedo / kPi) * light.radiance_over_pdf * (cosine * weight);
             }
         }
-        vec3 albedo;
-        float unused;
-        const bool side_through = ChooseDiffuseSide(material, base_color, rng, albedo, unused);
-        const bool toward = front_facing != side_through;
+        const DiffuseSide side = ChooseDiffuseSide(bsdf, base_color, rng);
+        const bool toward = front_facing != side.through;
         const vec3 normal = toward ? surface.shading_normal : -surface.shading_normal;
         const vec3 geometric = toward ? surface.geometric_normal : -surface.geometric_normal;
         const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
         const vec3 local = SampleCosineHemisphere(u1, u2);
-        path.direction = FrameFromNormal(normal) * local;
+        path.direction = ToWorld(FrameFromNormal(normal), local);
         if (!(dot(path.direction, geometric) > 0)) return false;  // the shading normal pointed it inside
-        path.throughput *= albedo;
-        path.bsdf_pdf = (side_through ? through : 1.0 - through) * local.z / kPi;
+        path.throughput *= side.albedo;
+        path.bsdf_pdf = (side.through ? through : 1.0 - through) * local.z / kPi;
         path.bounced_at = surface.position;
         path.specular_bounce = false;
         path.coat_exit = false;
         path.origin = OffsetRayOrigin(surface.position, geometric);
-    } else if (kind == kVertexCoated && at_base) {
-        if (!TraceCoatedBase(surface, front_facing, material, path.throughput * arrival_weight, rng, path.radiance,
+    } else if (kind == kVertexCoated && arrival.at_base) {
+        if (!TraceCoatedBase(surface, front_facing, bsdf.coat, path.throughput * arrival.weight, rng, path.radiance,
                              path.throughput, path.origin, path.direction))
             return false;
         path.bounced_at = surface.position;
@@ -228,26 +184,25 @@ bool PathVertex(inout PathState path, bool found, RayHit hit, inout Pcg32 rng) {
         path.coat_exit = true;
     } else if (kind == kVertexCoated) {
         // The coat's reflection, found by its own sampling alone, as specular bounces are.
-        path.throughput *= reflected.weight;
+        path.throughput *= arrival.reflected.weight;
         path.specular_bounce = true;
         path.coat_exit = false;
         path.origin = OffsetRayOrigin(surface.position, front_facing ? surface.geometric_normal : -surface.geometric_normal);
-        path.direction = reflected.direction;
+        path.direction = arrival.reflected.direction;
     } else if (kind == kVertexRough) {
         // Light sampling weighed against the GGX lobe's own sampling.
         const vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
         const vec3 wo = -direction;
         LightSample light;
         if (SampleVisibleLight(surface.position, normal, rng, light)) {
-            vec3 value;
-            const float pdf = EvaluateRoughConductor(material, base_color, normal, wo, light.direction, value);
-            const float weight = light.pdf > 0 ? PowerHeuristic(light.pdf, pdf) : 1.0;
-            path.radiance += path.throughput * value * light.radiance_over_pdf * weight;
+            const RoughReflection f = EvaluateRoughConductor(bsdf, base_color, normal, wo, light.direction);
+            const float weight = light.pdf > 0 ? PowerHeuristic(light.pdf, f.pdf) : 1.0;
+            path.radiance += path.throughput * f.value * light.radiance_over_pdf * weight;
         }
-        const SpecularBounce bounce = ScatterNonDiffuse(material, surface, direction, front_facing, rng, kCarriesRadiance);
+        const SpecularBounce bounce = ScatterNonDiffuse(bsdf, direction, surface.shading_normal, front_facing,
+                                                        surface.base_color, rng, kCarriesRadiance);
         path.throughput *= bounce.weight;
-        vec3 unused;
-        path.bsdf_pdf = EvaluateRoughConductor(material, base_color, normal, wo, bounce.direction, unused);
+        path.bsdf_pdf = EvaluateRoughConductor(bsdf, base_color, normal, wo, bounce.direction).pdf;
         path.bounced_at = surface.position;
         path.specular_bounce = false;
         path.coat_exit = false;
@@ -255,9 +210,10 @@ bool PathVertex(inout PathState path, bool found, RayHit hit, inout Pcg32 rng) {
         path.direction = bounce.direction;
     } else {
         // Specular surfaces, and rough glass, whose light is found by its own sampling alone.
-        const SpecularBounce bounce = ScatterNonDiffuse(material, surface, direction, front_facing, rng, kCarriesRadiance);
+        const SpecularBounce bounce = ScatterNonDiffuse(bsdf, direction, surface.shading_normal, front_facing,
+                                                        surface.base_color, rng, kCarriesRadiance);
         path.throughput *= bounce.weight;
-        if (bounce.transmitted) path.refraction *= RefractionOf(material, front_facing);
+        if (bounce.transmitted) path.refraction *= RefractionOf(bsdf, front_facing);
         path.specular_bounce = true;
         path.coat_exit = false;
         path.origin = OffsetRayOrigin(surface.position, front_facing == bounce.transmitted ? -surface.geometric_normal

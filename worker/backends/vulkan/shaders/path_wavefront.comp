@@ -116,7 +116,7 @@ void main() {
             RayHit hit;
             if (TraceRay(paths[slot].origin.xyz, paths[slot].direction.xyz, kInfinity, false, hit)) {
                 paths[slot].hit = vec4(hit.t, uintBitsToFloat(hit.triangle), hit.b1, hit.b2);
-                const uint c = VertexClass(materials[HitMaterial(hit)]);
+                const uint c = VertexClass(BsdfOf(materials[HitMaterial(hit)]));
                 Enqueue(2 + c, kPathCountVertices + c, slot);
             } else {
                 PathState path = LoadPath(slot);

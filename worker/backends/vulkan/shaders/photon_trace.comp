@@ -117,9 +117,11 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
         if (bounce == 0) flux *= RangeWindow(hit.t, emitted.range);  // the light's range
         const Surface surface = SurfaceAt(hit);
         const GpuMaterial material = ShadingMaterial(surface);
+        const Bsdf bsdf = BsdfOf(material);
         const bool front_facing = dot(direction, surface.geometric_normal) < 0;
-        // Out of an absorbing glass's inside (InsideTransmittance).
-        if (kHasAbsorption) flux *= SegmentTransmittance(material, front_facing, hit.t);
+        // Out of an absorbing glass's inside.
+        if (kHasAbsorption)
+            flux *= SegmentTransmittance(material.absorption.xyz, material.outside_absorption.xyz, front_facing, hit.t);
         // Veach's adjoint for shading normals, as ScatterPhotonAt: arriving here (after landing),
         // and leaving.
         const bool shaded = kShadingNormals && surface.shading_normal != surface.geometric_normal;
@@ -129,18 +131,13 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
         SpecularBounce scatter = SpecularBounce(direction, vec3(0.0), false);  // absorbed
         if (material.type == kMaterialDiffuse) {
             const vec3 normal = front_facing ? surface.shading_normal : -surface.shading_normal;
-            const mat3 frame = FrameFromNormal(normal);
-            const bool coated = kHasCoats && material.coat.x > 0.0;
-            bool at_base = true;
-            if (coated) {  // as ArriveAtCoat: the coat reflects the photon or lets it in
-                const float u_branch = Pcg32NextFloat(rng), u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-                vec3 wi;
-                const vec3 weight = EnterCoat(CoatOf(material), -direction * frame, u_branch, u1, u2, wi);
-                at_base = wi.z < 0.0;
-                if (at_base) flux *= weight.x;  // grey on the way in
-                else scatter = SpecularBounce(frame * wi, weight, false);
-            }
-            if (at_base) {
+            const Frame frame = FrameFromNormal(normal);
+            const bool coated = IsCoated(bsdf);
+            // The coat reflects the photon or lets it in.
+            const CoatArrival at_coat = ArriveAtCoat(bsdf, direction, surface.shading_normal, front_facing, rng);
+            if (at_coat.at_base) flux *= at_coat.weight;
+            else scatter = at_coat.reflected;
+            if (at_coat.at_base) {
                 // The surface it landed on, toward the side it arrived from (HashGrid::Takes).
                 const vec3 landed = front_facing ? surface.geometric_normal : -surface.geometric_normal;
                 const uint kind = PhotonKind(scattered, diffused, false);
@@ -153,15 +150,10 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
                 }
                 if (!(arrival > 0.0)) break;  // from below the shading normal
                 flux *= arrival;
-                // Back to its side or, through a translucent surface, on to the other
-                // (ChooseDiffuseSide).
-                vec3 albedo = surface.base_color;
-                bool through = false;
-                if (kHasTranslucency && MaxComponent(material.transmittance.xyz) > 0.0) {
-                    const float p = TransmitProbability(albedo, material.transmittance.xyz);
-                    through = Pcg32NextFloat(rng) < p;
-                    albedo = through ? material.transmittance.xyz / p : albedo / (1.0 - p);
-                }
+                // Back to its side or, through a translucent surface, on to the other.
+                const DiffuseSide side = ChooseDiffuseSide(bsdf, surface.base_color, rng);
+                const vec3 albedo = side.albedo;
+                const bool through = side.through;
                 const bool toward = front_facing != through;
                 bool escaped = false;
                 for (int returns = 0;; ++returns) {
@@ -174,24 +166,23 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
                     if (!coated) {
                         // By the surface's own cosine, as ScatterPhotonAt: Lambertian reflection
                         // (and transmission) is the same toward every direction on its side.
-                        direction = (shaded || through ? FrameFromNormal(toward ? surface.geometric_normal
-                                                                                : -surface.geometric_normal)
-                                                       : frame) *
-                                    local;
+                        direction = ToWorld(shaded || through ? FrameFromNormal(toward ? surface.geometric_normal
+                                                                                        : -surface.geometric_normal)
+                                                               : frame,
+                                            local);
                         escaped = true;
                         break;
                     }
-                    // As LeaveCoatAt: out through the coat, or back down to the base.
-                    const float u_branch = Pcg32NextFloat(rng), v1 = Pcg32NextFloat(rng), v2 = Pcg32NextFloat(rng);
-                    vec3 wi;
-                    flux *= LeaveCoat(CoatOf(material), local, u_branch, v1, v2, wi);
-                    direction = frame * wi;
-                    if (wi.z > 0.0) {
+                    // Out through the coat, or back down to the base.
+                    const CoatLeaving leaving = LeaveCoatAt(bsdf.coat, frame, local, rng);
+                    flux *= leaving.weight;
+                    direction = leaving.direction;
+                    if (leaving.escaped) {
                         escaped = true;
                         break;
                     }
-                    if (MaxComponent(flux) <= 0.0 || returns + 1 >= int(CoatOf(material).depth)) break;
-                    const float inside = kShadingNormals ? abs(wi.z) : 1.0;
+                    if (MaxComponent(flux) <= 0.0 || returns + 1 >= int(bsdf.coat.depth)) break;
+                    const float inside = kShadingNormals ? abs(dot(direction, normal)) : 1.0;
                     if (inside > 0.0) {
                         if (gather) Gather(surface.position, direction, normal, flux / inside, kDiffusePhoton);
                         else if (Reaches(surface.position, direction, normal, kDiffusePhoton)) {
@@ -211,7 +202,8 @@ uint TracePath(const float u[kEmissionNumbers], Pcg32 rng, bool gather, out bool
                 continue;
             }
         } else if (kHasMirror || kHasDielectric || kHasThinDielectric || kHasRoughConductor || kHasRoughDielectric) {
-            scatter = ScatterNonDiffuse(material, surface, direction, front_facing, rng, kCarriesFlux);
+            scatter = ScatterNonDiffuse(bsdf, direction, surface.shading_normal, front_facing, surface.base_color, rng,
+                                        kCarriesFlux);
         }
         const float survive = min(1.0, MaxComponent(scatter.weight));
         if (!(Pcg32NextFloat(rng) < survive) || !(arrival > 0.0)) break;

@@ -45,23 +45,24 @@ vec3 GatherRay(vec3 origin, vec3 direction, inout Pcg32 rng) {
         if (!TraceRay(origin, direction, kInfinity, false, hit)) return vec3(0);
         const Surface surface = SurfaceAt(hit);
         const GpuMaterial material = ShadingMaterial(surface);
+        const Bsdf bsdf = BsdfOf(material);
         const bool front_facing = dot(direction, surface.geometric_normal) < 0;
-        if (kHasAbsorption) weight *= SegmentTransmittance(material, front_facing, hit.t);
-        float arrival_weight;
-        SpecularBounce reflected;
-        const bool at_base = material.type != kMaterialDiffuse ||
-                             ArriveAtCoat(material, surface, direction, front_facing, rng, arrival_weight, reflected);
-        if (material.type == kMaterialDiffuse && at_base) {
-            vec3 albedo;
-            float unused;
-            const bool through = ChooseDiffuseSide(material, surface.base_color, rng, albedo, unused);
-            const vec3 normal = front_facing != through ? surface.shading_normal : -surface.shading_normal;
-            if (Coated(material)) weight *= arrival_weight * CoatInside(CoatOf(material));
-            return weight * EstimateDiffuseRadiance(pixel_job.global_map, surface.position, normal, albedo);
+        if (kHasAbsorption)
+            weight *= SegmentTransmittance(material.absorption.xyz, material.outside_absorption.xyz, front_facing, hit.t);
+        const CoatArrival arrival = material.type == kMaterialDiffuse
+                                        ? ArriveAtCoat(bsdf, direction, surface.shading_normal, front_facing, rng)
+                                        : CoatArrival(false, 0.0, SpecularBounce(direction, vec3(0.0), false));
+        if (arrival.at_base) {
+            const DiffuseSide side = ChooseDiffuseSide(bsdf, surface.base_color, rng);
+            const vec3 normal = front_facing != side.through ? surface.shading_normal : -surface.shading_normal;
+            if (IsCoated(bsdf)) weight *= arrival.weight * CoatInside(bsdf.coat);
+            return weight * EstimateDiffuseRadiance(pixel_job.global_map, surface.position, normal, side.albedo);
         }
-        const SpecularBounce bounce = material.type == kMaterialDiffuse
-                                          ? reflected
-                                          : ScatterNonDiffuse(material, surface, direction, front_facing, rng, kCarriesRadiance);
+        const SpecularBounce bounce =
+            material.type == kMaterialDiffuse
+                ? arrival.reflected
+                : ScatterNonDiffuse(bsdf, direction, surface.shading_normal, front_facing, surface.base_color, rng,
+                                    kCarriesRadiance);
         weight *= bounce.weight;
         if (all(equal(weight, vec3(0)))) return vec3(0);
         origin = OffsetRayOrigin(surface.position, front_facing == bounce.transmitted ? -surface.geometric_normal
@@ -91,12 +92,12 @@ vec3 DiffuseRadiance(vec3 p, vec3 normal, vec3 geometric, vec3 albedo, uint coat
     if (pixel_job.final_gather == 0 || coat != kNoCoat)
         return radiance + EstimateDiffuseRadiance(pixel_job.global_map, p, normal, albedo);
     // Final gathering: cosine-weighted rays, each carrying albedo (f cos / pdf = rho).
-    const mat3 frame = FrameFromNormal(normal);
+    const Frame frame = FrameFromNormal(normal);
     const vec3 origin = OffsetRayOrigin(p, geometric);
     vec3 gathered = vec3(0);
     for (uint i = 0; i < pixel_job.final_gather; ++i) {
         const float u1 = Pcg32NextFloat(rng), u2 = Pcg32NextFloat(rng);
-        const vec3 direction = frame * SampleCosineHemisphere(u1, u2);
+        const vec3 direction = ToWorld(frame, SampleCosineHemisphere(u1, u2));
         if (!(dot(direction, geometric) > 0)) continue;
         gathered += GatherRay(origin, direction, rng);
     }
@@ -118,39 +119,42 @@ vec3 PhotonMappingRadiance(vec3 origin, vec3 direction, inout Pcg32 rng) {
         }
         const Surface surface = SurfaceAt(hit);
         const GpuMaterial material = ShadingMaterial(surface);
+        const Bsdf bsdf = BsdfOf(material);
         const bool front_facing = dot(direction, surface.geometric_normal) < 0;
-        if (kHasAbsorption) throughput *= SegmentTransmittance(material, front_facing, hit.t);
+        if (kHasAbsorption)
+            throughput *= SegmentTransmittance(material.absorption.xyz, material.outside_absorption.xyz, front_facing, hit.t);
         // Emission seen directly or through specular and rough bounces (no light map holds it).
         if (kHasTriangleLights) {
             float unused;
             radiance += throughput * HitEmitter(hit, origin, surface.position, unused);
         }
         // Punctual lights on a glossy surface, which no path finds.
-        if (GlossyToPunctualLights(material))
-            radiance += throughput * PunctualLightOnGloss(material, surface, front_facing, -direction, rng);
-        float arrival_weight;
-        SpecularBounce reflected;
-        const bool at_base = material.type != kMaterialDiffuse ||
-                             ArriveAtCoat(material, surface, direction, front_facing, rng, arrival_weight, reflected);
-        if (material.type == kMaterialDiffuse && at_base) {
-            const uint coat = Coated(material) ? surface.material : kNoCoat;
+        if (GlossyToPunctualLights(bsdf))
+            radiance += throughput * PunctualLightOnGloss(bsdf, surface, front_facing, -direction, rng);
+        const CoatArrival arrival = material.type == kMaterialDiffuse
+                                        ? ArriveAtCoat(bsdf, direction, surface.shading_normal, front_facing, rng)
+                                        : CoatArrival(false, 0.0, SpecularBounce(direction, vec3(0.0), false));
+        if (arrival.at_base) {
+            const uint coat = IsCoated(bsdf) ? surface.material : kNoCoat;
             // The light reflected on the path's side and, through a translucent surface, the
             // light let through from the other.
             vec3 diffuse = DiffuseRadiance(surface.position, front_facing ? surface.shading_normal : -surface.shading_normal,
                                            front_facing ? surface.geometric_normal : -surface.geometric_normal,
                                            surface.base_color, coat, rng);
-            if (Translucent(material))
+            if (IsTranslucent(bsdf))
                 diffuse += DiffuseRadiance(surface.position, front_facing ? -surface.shading_normal : surface.shading_normal,
                                            front_facing ? -surface.geometric_normal : surface.geometric_normal,
                                            material.transmittance.xyz, coat, rng);
-            const float factor = Coated(material) ? arrival_weight * CoatInside(CoatOf(material)) : 1.0;
+            const float factor = IsCoated(bsdf) ? arrival.weight * CoatInside(bsdf.coat) : 1.0;
             return radiance + throughput * factor * diffuse;
         }
-        const SpecularBounce bounce = material.type == kMaterialDiffuse
-                                          ? reflected
-                                          : ScatterNonDiffuse(material, surface, direction, front_facing, rng, kCarriesRadiance);
+        const SpecularBounce bounce =
+            material.type == kMaterialDiffuse
+                ? arrival.reflected
+                : ScatterNonDiffuse(bsdf, direction, surface.shading_normal, front_facing, surface.base_color, rng,
+                                    kCarriesRadiance);
         throughput *= bounce.weight;
-        if (bounce.transmitted) refraction *= RefractionOf(material, front_facing);
+        if (bounce.transmitted) refraction *= RefractionOf(bsdf, front_facing);
         if (depth >= pixel_job.roulette_depth) {
             const float survive = min(1.0, MaxComponent(throughput) / refraction);
             if (!(Pcg32NextFloat(rng) < survive)) break;
