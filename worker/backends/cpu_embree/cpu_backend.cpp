@@ -21,10 +21,7 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
     features_ = AnalyseFeatures(*job.scene, *job.emitters);
     grid_ = HashGrid();
     radiance_ = nullptr;
-    film_.reset();
-    fixed_ = {};
-    epoch_hit_points_.clear();
-    direct_sequence_.reset();
+    passes_.reset();
     maps_.reset();
     // A camera sample's cone, for textures where the integrators that render pixels meet them
     // (an orthographic camera's samples have none: point lookups).
@@ -39,15 +36,10 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
         case Integrator::kSppm:
         case Integrator::kRpm: {
             if (job.spec == nullptr) break;
-            absl::StatusOr<CameraPassSettings> film = FilmFor(*job.spec, *job.scene);
-            if (!film.ok()) return film.status();
-            film->features = features_;
-            film_ = *film;
-            if (job.spec->integrator == Integrator::kPpm) {
-                absl::StatusOr<PixelHitPoints> fixed = IndexFixedHitPoints(job.hit_points, *film_);
-                if (!fixed.ok()) return fixed.status();
-                fixed_ = std::move(*fixed);
-            }
+            absl::StatusOr<EpochPasses> passes = EpochPasses::Create(
+                *job.spec, *job.scene, *job.emitters, job.hit_points, features_);
+            if (!passes.ok()) return passes.status();
+            passes_ = std::move(*passes);
             break;
         }
         case Integrator::kPath: {
@@ -90,21 +82,10 @@ absl::Status CpuBackend::BeginJob(const JobInputs& job) {
 
 absl::Status CpuBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regions,
                                     const std::vector<HitPoint>* traced) {
-    if (film_) {
+    if (passes_) {
         // sppm's and rpm's hit points are the pass's; ppm samples direct light there.
-        const bool stochastic = TracesHitPointsEachEpoch(job_.spec->integrator);
-        const CameraPassSettings pass = StochasticCameraPass(*film_, *job_.spec, epoch);
-        if (!stochastic) {  // both traced by parts, as batches need them
-            direct_points_.Reset(pass);
-            emission_pass_ = EmissionCameraPass(*film_, *job_.spec, epoch);
-        } else if (traced != nullptr)
-            epoch_hit_points_ = *traced;
-        else
-            epoch_hit_points_ =
-                RunCameraPass(*job_.scene, *job_.emitters, tracer_, pass).hit_points;
-        if (stochastic) job_.hit_points = epoch_hit_points_;
-        direct_sequence_ =
-            DirectLightSequence{pass.samples_per_pixel, pass.first_sample, 1 + pass.gather_rays};
+        passes_->Begin(epoch, tracer_, traced);
+        if (passes_->Stochastic()) job_.hit_points = passes_->HitPoints();
     }
     PF_CHECK(regions.radius_sq.size() == job_.hit_points.size() &&
              (regions.edges.empty() || regions.edges.size() == regions.radius_sq.size()));
@@ -121,22 +102,23 @@ absl::StatusOr<std::vector<BatchResult>> CpuBackend::RunBatches(std::span<const 
     }
     PhotonPassInputs inputs{job_.scene, job_.emitters, &tracer_, job_.hit_points,
                             &grid_,     job_.seed,     features_};
-    if (film_ && !TracesHitPointsEachEpoch(job_.spec->integrator)) {
-        direct_points_.Cover(*job_.scene, *job_.emitters, tracer_, specs);
-        inputs.direct_points = direct_points_.Points();
-        inputs.direct_offset = direct_points_.FirstSlot();
-    } else {
-        inputs.direct_points = epoch_hit_points_;
+    if (passes_) {
+        if (!passes_->Stochastic()) {
+            passes_->CoverDirectPoints(tracer_, specs);
+            inputs.direct_points = passes_->DirectPoints();
+            inputs.direct_offset = passes_->DirectOffset();
+        } else {
+            inputs.direct_points = passes_->HitPoints();
+        }
+        inputs.direct_sequence = passes_->Sequence();
     }
-    inputs.direct_sequence = direct_sequence_;
     if (job_.spec != nullptr) {
         inputs.max_bounces = DepthLimit(job_.spec->max_depth, kMaxPhotonBounces);
         inputs.adaptive = job_.spec->photon_tracing == PhotonTracing::kAdaptive;
         inputs.direct_photons = job_.spec->integrator == Integrator::kRpm;
     }
     std::vector<BatchResult> results = RunPhotonBatches(inputs, specs, scratch_);
-    if (film_ && !TracesHitPointsEachEpoch(job_.spec->integrator))
-        TraceBatchEmission(*job_.scene, *job_.emitters, tracer_, emission_pass_, fixed_, results);
+    if (passes_ && !passes_->Stochastic()) passes_->AddEmission(tracer_, results);
     return results;
 }
 

@@ -11,6 +11,7 @@
 #include "core/geometry/tracer.h"
 #include "core/pm/photon_map.h"
 #include "core/ppm/direct_light.h"
+#include "core/ppm/epoch_passes.h"
 #include "core/ppm/hash_grid.h"
 #include "core/ppm/photon_pass.h"
 #include "core/render/pixel_pass.h"
@@ -37,17 +38,7 @@ private:
     PhotonPassScratch scratch_;
     RadianceFunction radiance_;               // path, pm: a camera sample's radiance
     std::shared_ptr<const PhotonMaps> maps_;  // pm: the job's photon maps
-    // ppm, sppm, rpm: the film whose epoch passes are traced (StochasticCameraPass), and the
-    // current epoch's pass's hit points, where sppm's and rpm's photons gather and the epoch's
-    // direct light is sampled; ppm's, where it samples direct light, in parts.
-    std::optional<CameraPassSettings> film_;
-    std::vector<HitPoint> epoch_hit_points_;
-    CameraPassPart direct_points_;
-    // ppm: the job's hit points by pixel, and the epoch's emission pass, whose share each batch
-    // traces (TraceBatchEmission).
-    PixelHitPoints fixed_;
-    CameraPassSettings emission_pass_;
-    std::optional<DirectLightSequence> direct_sequence_;  // the pass's camera samples
+    std::optional<EpochPasses> passes_;       // ppm, sppm, rpm: each epoch's camera passes
 };
 
 }  // namespace pf::embree

@@ -129,33 +129,27 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
     if (job.scene != &scene_) return absl::InvalidArgumentError("job's scene is not the backend's");
     buffers_.reset();
     kernels_.reset();
-    film_.reset();
-    fixed_ = {};
-    direct_sequence_.reset();
+    passes_.reset();
+    black_slots_.clear();
     job_ = job;
     size_t direct_points = 0;
     if (job.spec != nullptr && GathersAtHitPoints(job.spec->integrator)) {
         // Each epoch's camera pass is traced on this machine's CPU, as the CPU backend does;
         // the device holds one slot per pixel sample (and rpm's gather rays), black until the
         // first epoch: sppm's and rpm's hit points, or ppm's points of direct light.
-        absl::StatusOr<CameraPassSettings> film = FilmFor(*job.spec, scene_);
-        if (!film.ok()) return film.status();
-        film->features = AnalyseFeatures(scene_, *job.emitters);
+        absl::StatusOr<EpochPasses> passes =
+            EpochPasses::Create(*job.spec, scene_, *job.emitters, job.hit_points,
+                                AnalyseFeatures(scene_, *job.emitters));
+        if (!passes.ok()) return passes.status();
         if (absl::StatusOr<const Tracer*> tracer = CameraTracer(); !tracer.ok())
             return tracer.status();
-        film_ = *film;
-        // Room for the largest epoch's pass (a growing epoch takes fewer samples).
-        max_epoch_points_ = size_t(film_->width) * size_t(film_->height) *
-                            size_t(MaxEpochSamplesPerPixel(*job.spec)) *
-                            SlotsPerCameraSample(*job.spec);
-        if (StochasticJob()) {
-            epoch_hit_points_.assign(max_epoch_points_, {});
-            job_.hit_points = epoch_hit_points_;
+        passes_ = std::move(*passes);
+        max_epoch_points_ = passes_->MaxEpochPoints();
+        if (passes_->Stochastic()) {
+            black_slots_.assign(max_epoch_points_, {});
+            job_.hit_points = black_slots_;
         } else {
             direct_points = max_epoch_points_;
-            absl::StatusOr<PixelHitPoints> fixed = IndexFixedHitPoints(job.hit_points, *film_);
-            if (!fixed.ok()) return fixed.status();
-            fixed_ = std::move(*fixed);
         }
     }
     if (job_.hit_points.size() >= (size_t{1} << 31))
@@ -263,23 +257,15 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regi
     if (radius_sq.size() != n || !(regions.edges.empty() || regions.edges.size() == n))
         return absl::InvalidArgumentError("one radius and edge set per hit point expected");
     if (PixelJob()) return absl::OkStatus();  // pixel batches need nothing an epoch
-    if (film_) {
-        const CameraPassSettings pass = StochasticCameraPass(*film_, *job_.spec, epoch);
-        direct_sequence_ =
-            DirectLightSequence{pass.samples_per_pixel, pass.first_sample, 1 + pass.gather_rays};
-        if (StochasticJob()) {
-            epoch_hit_points_ =
-                traced != nullptr
-                    ? *traced
-                    : RunCameraPass(scene_, *job_.emitters, *camera_tracer_, pass).hit_points;
-            PF_CHECK(epoch_hit_points_.size() == n);
-            job_.hit_points = epoch_hit_points_;
+    if (passes_) {  // ppm's passes are traced by parts as batches need them (RunBatches)
+        passes_->Begin(epoch, *camera_tracer_, traced);
+        if (passes_->Stochastic()) {
+            PF_CHECK(passes_->HitPoints().size() == n);
+            job_.hit_points = passes_->HitPoints();
+            black_slots_ = {};
             std::ranges::transform(
-                epoch_hit_points_,
+                passes_->HitPoints(),
                 static_cast<gpu::GpuHitPoint*>(buffers_->hit_point_upload.Mapped()), ToGpu);
-        } else {  // both traced by parts as batches need them (RunBatches)
-            direct_points_.Reset(pass);
-            emission_pass_ = EmissionCameraPass(*film_, *job_.spec, epoch);
         }
     }
     // Cells two of the largest radius wide, as the CPU grid: the largest over the hit points
@@ -306,8 +292,8 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regi
         vkCmdCopyBuffer(*commands, buffers_->edges_upload.Handle(),
                         buffers_->surface_edges.Handle(), 1, &edge_copy);
     }
-    const VkBufferCopy points{.size = epoch_hit_points_.size() * sizeof(gpu::GpuHitPoint)};
-    if (film_ && StochasticJob() && !epoch_hit_points_.empty())
+    const VkBufferCopy points{.size = job_.hit_points.size() * sizeof(gpu::GpuHitPoint)};
+    if (passes_ && passes_->Stochastic() && n > 0)
         vkCmdCopyBuffer(*commands, buffers_->hit_point_upload.Handle(),
                         buffers_->hit_points.Handle(), 1, &points);
     vkCmdFillBuffer(*commands, buffers_->grid_begin.Handle(), 0, VK_WHOLE_SIZE, 0);
@@ -425,12 +411,12 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
     direct.seed_prefix = DirectLightSeeds(job_.seed, spec.epoch).Prefix();
     direct.end = spec.sample_end;
     direct.direct_begin = spec.sample_begin;
-    if (direct_sequence_) {
-        direct.direct_samples_per_pixel =
-            static_cast<uint32_t>(direct_sequence_->samples_per_pixel);
+    if (passes_) {
+        const DirectLightSequence& sequence = passes_->Sequence();
+        direct.direct_samples_per_pixel = static_cast<uint32_t>(sequence.samples_per_pixel);
         direct.direct_sequences = DirectLightSequences(job_.seed);
-        direct.direct_first_sample = direct_sequence_->first;
-        direct.direct_slots_per_sample = static_cast<uint32_t>(direct_sequence_->slots_per_sample);
+        direct.direct_first_sample = sequence.first;
+        direct.direct_slots_per_sample = static_cast<uint32_t>(sequence.slots_per_sample);
         direct.epoch_parity = static_cast<uint32_t>(spec.epoch & 1);
     }
     RecordThreads(*commands, Kernel::kDirectLight, direct, spec.sample_begin, direct_count);
@@ -498,15 +484,14 @@ BatchResult VulkanBackend::ReadResult(const BatchSpec& spec) const {
 }
 
 absl::Status VulkanBackend::UploadDirectPoints(std::span<const BatchSpec> specs) {
-    if (!direct_points_.Cover(scene_, *job_.emitters, *camera_tracer_, specs))
-        return absl::OkStatus();
-    const std::span<const HitPoint> part = direct_points_.Points();
-    PF_CHECK(direct_points_.FirstSlot() + part.size() <= max_epoch_points_);
+    if (!passes_->CoverDirectPoints(*camera_tracer_, specs)) return absl::OkStatus();
+    const std::span<const HitPoint> part = passes_->DirectPoints();
+    PF_CHECK(passes_->DirectOffset() + part.size() <= max_epoch_points_);
     // The part lies in the device's buffer where the whole pass's slots would.
-    const VkDeviceSize offset = direct_points_.FirstSlot() * sizeof(gpu::GpuHitPoint);
+    const VkDeviceSize offset = passes_->DirectOffset() * sizeof(gpu::GpuHitPoint);
     std::ranges::transform(part,
                            static_cast<gpu::GpuHitPoint*>(buffers_->direct_point_upload.Mapped()) +
-                               direct_points_.FirstSlot(),
+                               passes_->DirectOffset(),
                            ToGpu);
     absl::StatusOr<VkCommandBuffer> commands = stream_.Begin();
     if (!commands.ok()) return commands.status();
@@ -521,7 +506,7 @@ absl::Status VulkanBackend::UploadDirectPoints(std::span<const BatchSpec> specs)
 absl::StatusOr<std::vector<BatchResult>> VulkanBackend::RunBatches(
     std::span<const BatchSpec> specs) {
     if (buffers_ == nullptr) return absl::FailedPreconditionError("RunBatches before a job");
-    if (film_ && !StochasticJob())
+    if (passes_ && !passes_->Stochastic())
         if (absl::Status status = UploadDirectPoints(specs); !status.ok()) return status;
     std::vector<BatchResult> results;
     results.reserve(specs.size());
@@ -530,9 +515,7 @@ absl::StatusOr<std::vector<BatchResult>> VulkanBackend::RunBatches(
         if (!result.ok()) return result.status();
         results.push_back(std::move(*result));
     }
-    if (film_ && !StochasticJob())
-        TraceBatchEmission(scene_, *job_.emitters, *camera_tracer_, emission_pass_, fixed_,
-                           results);
+    if (passes_ && !passes_->Stochastic()) passes_->AddEmission(*camera_tracer_, results);
     return results;
 }
 

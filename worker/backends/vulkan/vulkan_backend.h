@@ -16,6 +16,7 @@
 #include "core/camera/camera_pass.h"
 #include "core/geometry/tracer.h"
 #include "core/ppm/direct_light.h"
+#include "core/ppm/epoch_passes.h"
 #include "worker/backend.h"
 #include "worker/backends/vulkan/buffer.h"
 #include "worker/backends/vulkan/command_stream.h"
@@ -120,20 +121,15 @@ private:
         return job_.spec != nullptr && job_.spec->photon_tracing == PhotonTracing::kAdaptive;
     }
 
-    // ppm, sppm, rpm: the film whose epoch passes are traced, on the CPU through camera_tracer_
-    // (made for the first job that needs it, pm's maps too), and the pass's points: sppm's hit
-    // points, which job_.hit_points views (rpm's too), or the part of ppm's points of direct
-    // light that the batches run need (UploadDirectPoints).
-    std::optional<CameraPassSettings> film_;
+    // ppm, sppm, rpm: each epoch's camera passes, traced on the CPU through camera_tracer_
+    // (made for the first job that needs it, pm's maps too): sppm's and rpm's hit points,
+    // which job_.hit_points views (black slots, one per pixel sample, until the first epoch),
+    // or the part of ppm's points of direct light that the batches run need
+    // (UploadDirectPoints).
+    std::optional<EpochPasses> passes_;
     std::unique_ptr<Tracer> camera_tracer_;
-    std::vector<HitPoint> epoch_hit_points_;
-    CameraPassPart direct_points_;
-    // ppm: the job's hit points by pixel, and the epoch's emission pass, whose share each batch
-    // traces on the CPU (TraceBatchEmission).
-    PixelHitPoints fixed_;
-    CameraPassSettings emission_pass_;
-    size_t max_epoch_points_ = 0;                         // the buffers' room for them
-    std::optional<DirectLightSequence> direct_sequence_;  // the pass's camera samples
+    std::vector<HitPoint> black_slots_;
+    size_t max_epoch_points_ = 0;  // the buffers' room for the passes' points
     gpu::vec4 scene_sphere_{};
     float scene_magnitude_ = 0;
     float flux_to_fixed_ = 0;  // fixed-point tally units per watt
