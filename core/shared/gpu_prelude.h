@@ -61,6 +61,9 @@ inline float intBitsToFloat(int32_t x) { return std::bit_cast<float>(x); }
 #define PF_GPU_CONSTEXPR_FN constexpr inline
 #define PF_INOUT(Type) Type&
 #define PF_OUT(Type) Type&
+// A struct read by a function: by reference in C++, where a call that is not inlined would copy
+// it, by value in GLSL.
+#define PF_IN(Type) const Type&
 #define PF_CONST(Type) inline constexpr Type
 // The struct's std430 size; alignment follows from its largest member in both languages.
 #define PF_GPU_LAYOUT(Type, bytes) \
@@ -74,6 +77,7 @@ inline float intBitsToFloat(int32_t x) { return std::bit_cast<float>(x); }
 #define PF_GPU_CONSTEXPR_FN
 #define PF_INOUT(Type) inout Type
 #define PF_OUT(Type) out Type
+#define PF_IN(Type) Type
 #define PF_CONST(Type) const Type
 #define PF_GPU_LAYOUT(Type, bytes)
 

@@ -57,25 +57,25 @@ struct SpecularBounce {
 #endif
 };
 
-PF_GPU_FN bool IsRough(Bsdf bsdf) {
+PF_GPU_FN bool IsRough(PF_IN(Bsdf) bsdf) {
     return (kHasRoughConductor && bsdf.type == kMaterialRoughConductor) ||
            (kHasRoughDielectric && bsdf.type == kMaterialRoughDielectric);
 }
-PF_GPU_FN bool IsCoated(Bsdf bsdf) { return kHasCoats && bsdf.coated; }
-PF_GPU_FN bool HasSheen(Bsdf bsdf) {
+PF_GPU_FN bool IsCoated(PF_IN(Bsdf) bsdf) { return kHasCoats && bsdf.coated; }
+PF_GPU_FN bool HasSheen(PF_IN(Bsdf) bsdf) {
     return kHasSheen && IsCoated(bsdf) &&
            !(bsdf.coat.sheen.x == 0.0f && bsdf.coat.sheen.y == 0.0f && bsdf.coat.sheen.z == 0.0f);
 }
 // Whether light crosses the diffuse surface to its other side.
-PF_GPU_FN bool IsTranslucent(Bsdf bsdf) {
+PF_GPU_FN bool IsTranslucent(PF_IN(Bsdf) bsdf) {
     return kHasTranslucency && !(bsdf.transmittance.x == 0.0f && bsdf.transmittance.y == 0.0f &&
                                  bsdf.transmittance.z == 0.0f);
 }
-PF_GPU_FN float RoughAlpha(Bsdf bsdf) { return max(bsdf.roughness, kMinRoughness); }
+PF_GPU_FN float RoughAlpha(PF_IN(Bsdf) bsdf) { return max(bsdf.roughness, kMinRoughness); }
 // The GGX alpha of a coated conductor's base: 0 for a mirror.
-PF_GPU_FN float BaseAlpha(Bsdf bsdf) { return IsRough(bsdf) ? RoughAlpha(bsdf) : 0.0f; }
+PF_GPU_FN float BaseAlpha(PF_IN(Bsdf) bsdf) { return IsRough(bsdf) ? RoughAlpha(bsdf) : 0.0f; }
 // eta = n_incident / n_transmitted for light arriving at a dielectric: front faces lead in.
-PF_GPU_FN float IncidentEta(Bsdf bsdf, bool front_facing) {
+PF_GPU_FN float IncidentEta(PF_IN(Bsdf) bsdf, bool front_facing) {
     return front_facing ? 1.0f / bsdf.ior : bsdf.ior;
 }
 
@@ -94,7 +94,7 @@ PF_GPU_FN vec3 SegmentTransmittance(vec3 behind, vec3 in_front, bool front_facin
 // thin sheet's internal reflections 2R/(1+R) for thin glass, 1 for a mirror, 0 otherwise.
 // `normal` is the shading normal on the triangle's front side, `front_facing` whether d
 // arrives at that side.
-PF_GPU_FN float ReflectionProbability(Bsdf bsdf, vec3 d, vec3 normal, bool front_facing) {
+PF_GPU_FN float ReflectionProbability(PF_IN(Bsdf) bsdf, vec3 d, vec3 normal, bool front_facing) {
     const vec3 n = front_facing ? normal : -normal;  // facing the incident side
     if (kHasDielectric && bsdf.type == kMaterialDielectric)
         return FresnelDielectric(-dot(d, n), IncidentEta(bsdf, front_facing));
@@ -107,7 +107,7 @@ PF_GPU_FN float ReflectionProbability(Bsdf bsdf, vec3 d, vec3 normal, bool front
 
 // The reflected branch: a mirror reflects its tint's Fresnel term (core/shared/conductor.h),
 // glass reflects untinted.
-PF_GPU_FN SpecularBounce ReflectSpecular(Bsdf bsdf, vec3 d, vec3 normal, bool front_facing,
+PF_GPU_FN SpecularBounce ReflectSpecular(PF_IN(Bsdf) bsdf, vec3 d, vec3 normal, bool front_facing,
                                          vec3 tint) {
     const vec3 n = front_facing ? normal : -normal;
     const vec3 reflected = d - n * (2.0f * dot(d, n));
@@ -120,7 +120,7 @@ PF_GPU_FN SpecularBounce ReflectSpecular(Bsdf bsdf, vec3 d, vec3 normal, bool fr
 // instead should rounding disagree with ReflectionProbability about total internal reflection),
 // straight through a thin sheet. `carries` (kCarriesRadiance or kCarriesFlux) says whether the
 // refraction scales the weight by eta^2 (RefractionScale).
-PF_GPU_FN SpecularBounce TransmitSpecular(Bsdf bsdf, vec3 d, vec3 normal, bool front_facing,
+PF_GPU_FN SpecularBounce TransmitSpecular(PF_IN(Bsdf) bsdf, vec3 d, vec3 normal, bool front_facing,
                                           vec3 tint, uint32_t carries) {
     if (kHasThinDielectric && bsdf.type == kMaterialThinDielectric)
         return SpecularBounce(d, tint, true);
@@ -134,7 +134,7 @@ PF_GPU_FN SpecularBounce TransmitSpecular(Bsdf bsdf, vec3 d, vec3 normal, bool f
 // The scale of radiance that a camera path transmitted through the surface took (RefractionScale
 // of kCarriesRadiance): eta^2 through solid glass, smooth or rough, 1 through a thin sheet.
 // Russian roulette divides it out.
-PF_GPU_FN float RefractionOf(Bsdf bsdf, bool front_facing) {
+PF_GPU_FN float RefractionOf(PF_IN(Bsdf) bsdf, bool front_facing) {
     const bool solid = (kHasDielectric && bsdf.type == kMaterialDielectric) ||
                        (kHasRoughDielectric && bsdf.type == kMaterialRoughDielectric);
     if (!solid) return 1.0f;
@@ -145,7 +145,7 @@ PF_GPU_FN float RefractionOf(Bsdf bsdf, bool front_facing) {
 // Scatters d at a specular surface, choosing the branch with its probability (u uniform in
 // [0, 1)), so the carried weight is only the branch's tint (and a refraction's scale of
 // radiance, for camera paths).
-PF_GPU_FN SpecularBounce ScatterSpecular(Bsdf bsdf, vec3 d, vec3 normal, bool front_facing,
+PF_GPU_FN SpecularBounce ScatterSpecular(PF_IN(Bsdf) bsdf, vec3 d, vec3 normal, bool front_facing,
                                          vec3 tint, float u, uint32_t carries) {
     if (u < ReflectionProbability(bsdf, d, normal, front_facing))
         return ReflectSpecular(bsdf, d, normal, front_facing, tint);
@@ -164,8 +164,9 @@ PF_GPU_FN SpecularBounce ReflectOffMicrofacet(Frame frame, vec3 d, vec3 wo, vec3
 // Scatters d at a rough surface; u_branch chooses reflection or refraction (rough glass),
 // (u1, u2) the microfacet. A black weight ends the path (the sample left the hemisphere it must
 // stay in).
-PF_GPU_FN SpecularBounce ScatterRough(Bsdf bsdf, vec3 d, vec3 normal, bool front_facing, vec3 tint,
-                                      float u_branch, float u1, float u2, uint32_t carries) {
+PF_GPU_FN SpecularBounce ScatterRough(PF_IN(Bsdf) bsdf, vec3 d, vec3 normal, bool front_facing,
+                                      vec3 tint, float u_branch, float u1, float u2,
+                                      uint32_t carries) {
     const vec3 n = front_facing ? normal : -normal;  // facing the incident side
     const Frame frame = FrameFromNormal(n);
     const vec3 wo = ToLocal(frame, -d);
@@ -194,7 +195,7 @@ PF_GPU_FN SpecularBounce ScatterRough(Bsdf bsdf, vec3 d, vec3 normal, bool front
 // surface by its microfacets (three numbers from rng), a specular one by Fresnel (one).
 // `carries` says whether a refraction scales the weight (kCarriesRadiance: camera paths) or
 // not (kCarriesFlux: photons).
-PF_GPU_FN SpecularBounce ScatterNonDiffuse(Bsdf bsdf, vec3 d, vec3 normal, bool front_facing,
+PF_GPU_FN SpecularBounce ScatterNonDiffuse(PF_IN(Bsdf) bsdf, vec3 d, vec3 normal, bool front_facing,
                                            vec3 tint, PF_INOUT(Pcg32) rng, uint32_t carries) {
     if (IsCoated(bsdf)) {  // a coated conductor
         const Frame frame = FrameFromNormal(front_facing ? normal : -normal);
@@ -219,7 +220,7 @@ struct DiffuseSide {
     bool through;
     vec3 albedo;
 };
-PF_GPU_FN DiffuseSide ChooseDiffuseSide(Bsdf bsdf, vec3 base_color, PF_INOUT(Pcg32) rng) {
+PF_GPU_FN DiffuseSide ChooseDiffuseSide(PF_IN(Bsdf) bsdf, vec3 base_color, PF_INOUT(Pcg32) rng) {
     DiffuseSide side;
     side.through = false;
     side.albedo = base_color;
@@ -248,7 +249,7 @@ struct CoatArrival {
         : at_base(at_base_in), weight(weight_in), reflected(reflected_in) {}
 #endif
 };
-PF_GPU_FN CoatArrival ArriveAtCoat(Bsdf bsdf, vec3 d, vec3 normal, bool front_facing,
+PF_GPU_FN CoatArrival ArriveAtCoat(PF_IN(Bsdf) bsdf, vec3 d, vec3 normal, bool front_facing,
                                    PF_INOUT(Pcg32) rng) {
     const SpecularBounce none = SpecularBounce(d, vec3(0.0f), false);
     if (!IsCoated(bsdf)) return CoatArrival(true, 1.0f, none);
@@ -291,7 +292,8 @@ struct RoughReflection {
     vec3 value;  // f(wo, wi) cos(wi)
     float pdf;
 };
-PF_GPU_FN RoughReflection EvaluateRoughConductor(Bsdf bsdf, vec3 tint, vec3 n, vec3 wo, vec3 wi) {
+PF_GPU_FN RoughReflection EvaluateRoughConductor(PF_IN(Bsdf) bsdf, vec3 tint, vec3 n, vec3 wo,
+                                                 vec3 wi) {
     RoughReflection reflection;
     reflection.value = vec3(0.0f);
     reflection.pdf = 0.0f;
@@ -311,7 +313,7 @@ PF_GPU_FN RoughReflection EvaluateRoughConductor(Bsdf bsdf, vec3 tint, vec3 n, v
 // coat with a rough interface, a sheen, or a rough conductor under it. A coat over a diffuse
 // base counts its own reflection here alone: the light through it is the base's. False in a
 // scene without punctual lights.
-PF_GPU_FN bool GlossyToPunctualLights(Bsdf bsdf) {
+PF_GPU_FN bool GlossyToPunctualLights(PF_IN(Bsdf) bsdf) {
     if (!kHasPunctualLights) return false;
     if (IsCoated(bsdf))
         return bsdf.coat.alpha > 0.0f || HasSheen(bsdf) ||
@@ -323,7 +325,7 @@ PF_GPU_FN bool GlossyToPunctualLights(Bsdf bsdf) {
 // space, unit; `normal` the shading normal on the triangle's front side): the parts of its BSDF
 // that are not deltas (core/shared/glossy_lights.h). Draws numbers from rng for a coated
 // conductor only.
-PF_GPU_FN vec3 GlossyResponse(Bsdf bsdf, vec3 tint, vec3 normal, bool front_facing, vec3 wo,
+PF_GPU_FN vec3 GlossyResponse(PF_IN(Bsdf) bsdf, vec3 tint, vec3 normal, bool front_facing, vec3 wo,
                               vec3 wi, PF_INOUT(Pcg32) rng) {
     const vec3 n = front_facing ? normal : -normal;
     const Frame frame = FrameFromNormal(n);
