@@ -33,7 +33,8 @@ size_t EpochPasses::MaxEpochPoints() const {
 
 void EpochPasses::Begin(uint64_t epoch, const Tracer& tracer, const std::vector<HitPoint>* traced) {
     const CameraPassSettings pass = StochasticCameraPass(film_, *spec_, epoch);
-    sequence_ = {pass.samples_per_pixel, pass.first_sample, 1 + pass.gather_rays};
+    sequence_ =
+        DirectLightSequence{pass.samples_per_pixel, pass.first_sample, 1 + pass.gather_rays};
     if (!stochastic_) {  // both traced by parts, as batches need them
         direct_points_.Reset(pass);
         emission_pass_ = EmissionCameraPass(film_, *spec_, epoch);

@@ -27,8 +27,9 @@ namespace pf {
 class EpochPasses {
 public:
     // For job `spec` (an integrator that GathersAtHitPoints) over `scene`, lit by `emitters`;
-    // `fixed` are ppm's hit points (the coordinator's), indexed by pixel here. Everything given
-    // must outlive this. INVALID_ARGUMENT where the film or a fixed hit point is not valid.
+    // `fixed` are ppm's hit points (the coordinator's), indexed by pixel here. All but
+    // `features` (copied) must outlive this. INVALID_ARGUMENT where the film or a fixed hit point
+    // is not valid.
     static absl::StatusOr<EpochPasses> Create(const JobSpec& spec, const Scene& scene,
                                               const Emitters& emitters,
                                               std::span<const HitPoint> fixed,
@@ -45,8 +46,8 @@ public:
     void Begin(uint64_t epoch, const Tracer& tracer, const std::vector<HitPoint>* traced);
     // sppm, rpm: the epoch's hit points, where photons gather and direct light is sampled.
     std::span<const HitPoint> HitPoints() const { return epoch_hit_points_; }
-    // Where the epoch's direct-light samples take their numbers.
-    const DirectLightSequence& Sequence() const { return sequence_; }
+    // Where the epoch's direct-light samples take their numbers; none before the first Begin.
+    const std::optional<DirectLightSequence>& Sequence() const { return sequence_; }
 
     // ppm: traces the slots of the epoch's pass that `specs`' direct-light slices lie in,
     // unless held already; returns whether it traced. DirectPoints are then those slots, the
@@ -63,7 +64,7 @@ private:
     const Emitters* emitters_ = nullptr;
     bool stochastic_ = false;
     CameraPassSettings film_;
-    DirectLightSequence sequence_;
+    std::optional<DirectLightSequence> sequence_;
     std::vector<HitPoint> epoch_hit_points_;  // sppm, rpm
     CameraPassPart direct_points_;            // ppm
     PixelHitPoints fixed_;                    // ppm

@@ -189,7 +189,7 @@ inline gpu::Conductor ConductorOf(const Material& material) {
 }
 
 // The material as the shared light transport scatters by it (core/shared/scatter.h; the
-// Vulkan kernels build theirs from GpuMaterial in specular.glsl). `material` is the one shading
+// Vulkan kernels build theirs from GpuMaterial in bsdf.glsl). `material` is the one shading
 // the point (Scene::ShadingMaterial: textures applied, a mix resolved).
 inline gpu::Bsdf BsdfOf(const Material& material) {
     gpu::Bsdf bsdf;

@@ -1,6 +1,6 @@
 // How a metal's reflectance varies with the angle of incidence, one definition for the CPU
 // (core/shared/scatter.h, coat.h's coated conductor) and the Vulkan kernels
-// (specular.glsl): every mirror and rough conductor reflects tint-times-this at the cosine
+// (through scatter.h): every mirror and rough conductor reflects tint-times-this at the cosine
 // between the incident direction and the (micro)facet it is reflected by.
 #ifndef PF_CORE_SHARED_CONDUCTOR_H
 #define PF_CORE_SHARED_CONDUCTOR_H

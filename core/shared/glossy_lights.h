@@ -4,7 +4,7 @@
 // where light sampling picked a punctual light (next-event estimation at a glossy vertex).
 // Area lights and the environment are found by the surfaces' own sampling, so these add only
 // what that sampling can never reach: nothing is counted twice.
-// Each function is what the sampling of core/shared/coat.h, microfacet.h and glossy.h draws,
+// Each function is what the sampling of core/shared/coat.h, microfacet.h and scatter.h draws,
 // evaluated: integrated over wi it gives the sampled albedo
 // (tests/core/scene/glossy_lights_test.cpp). Local frame of the shading normal on the viewer's side
 // (+z), wo toward the viewer. One definition for the CPU and the Vulkan kernels.

@@ -4,11 +4,11 @@
 // normals, core/shared/microfacet.h, the weight times the masking ratio G2 / G1), coats
 // (core/shared/coat.h), the side a translucent diffuse surface is read from, the media a
 // segment crosses, and what a glossy surface shows of a punctual light. Every pass and both
-// backends call these, so random numbers are drawn in the same order by construction.
+// backends call these, so the numbers they draw are drawn in one order by construction.
 //
 // A material reaches them as a Bsdf: what scattering reads of it at a point, textures applied.
 // BsdfOf builds one from the material's storage on each side (core/scene/material.h for the
-// CPU's Material, worker/backends/vulkan/shaders/specular.glsl for GpuMaterial). Materials a
+// CPU's Material, worker/backends/vulkan/shaders/bsdf.glsl for GpuMaterial). Materials a
 // scene lacks are compiled out of the kernels (core/shared/features.h).
 #ifndef PF_CORE_SHARED_SCATTER_H
 #define PF_CORE_SHARED_SCATTER_H

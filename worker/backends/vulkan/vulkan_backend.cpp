@@ -411,8 +411,8 @@ absl::StatusOr<BatchResult> VulkanBackend::RunBatch(const BatchSpec& spec) {
     direct.seed_prefix = DirectLightSeeds(job_.seed, spec.epoch).Prefix();
     direct.end = spec.sample_end;
     direct.direct_begin = spec.sample_begin;
-    if (passes_) {
-        const DirectLightSequence& sequence = passes_->Sequence();
+    if (passes_ && passes_->Sequence()) {
+        const DirectLightSequence& sequence = *passes_->Sequence();
         direct.direct_samples_per_pixel = static_cast<uint32_t>(sequence.samples_per_pixel);
         direct.direct_sequences = DirectLightSequences(job_.seed);
         direct.direct_first_sample = sequence.first;

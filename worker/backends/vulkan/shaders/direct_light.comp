@@ -7,7 +7,7 @@
 #include "common.glsl"
 #include "trace.glsl"
 #include "lights.glsl"
-#include "specular.glsl"
+#include "bsdf.glsl"
 #include "direct.glsl"
 #include "core/shared/sobol.h"
 

@@ -10,7 +10,7 @@
 #include "common.glsl"
 #include "trace.glsl"
 #include "lights.glsl"
-#include "specular.glsl"
+#include "bsdf.glsl"
 #include "grid.glsl"
 
 layout(local_size_x = kWorkgroupSize) in;

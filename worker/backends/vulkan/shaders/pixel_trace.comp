@@ -13,7 +13,7 @@
 #include "common.glsl"
 #include "trace.glsl"
 #include "lights.glsl"
-#include "specular.glsl"
+#include "bsdf.glsl"
 #include "direct.glsl"
 #include "photon_map.glsl"
 #include "path_vertex.glsl"
