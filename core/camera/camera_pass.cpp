@@ -151,7 +151,7 @@ Rgb TraceCameraSample(const Scene& scene, const Emitters& emitters, bool punctua
                     const float u_branch = material.HasSheen() ? rng.NextFloat() : 1.0f;
                     Vec3 wi;
                     Rgb reflected;
-                    const gpu::Coat coat = CoatOf(material);
+                    const gpu::Coat& coat = bsdf.coat;
                     const float entered = gpu::SplitAtCoat(
                         coat, ToLocal(frame, -path.ray.direction), u_branch, u1, u2, wi, reflected);
                     hit_points.push_back(
@@ -167,7 +167,7 @@ Rgb TraceCameraSample(const Scene& scene, const Emitters& emitters, bool punctua
                 if (arrival.at_base) {
                     // What the radiance at the base is worth under a coat (CoatInside).
                     const float coat =
-                        material.HasCoat() ? arrival.weight * CoatInside(CoatOf(material)) : 1.0f;
+                        material.HasCoat() ? arrival.weight * CoatInside(bsdf.coat) : 1.0f;
                     const Vec3 normal = front_facing ? n : -n;
                     const auto add = [&](const Vec3& facing, const Rgb& albedo) {
                         hit_points.push_back({surface.position, facing,

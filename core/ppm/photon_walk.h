@@ -29,8 +29,9 @@ enum class PhotonEvent { kEnded, kDiffuse, kNonDiffuse };
 template <typename Land>
 bool LeaveCoatedBase(const Material& material, const Vec3& position, const Frame& frame,
                      const Rgb& base_color, Vec3 local, Ray& ray, Rgb& flux, Rng& rng, Land& land) {
+    const gpu::Coat coat = CoatOf(material);
     for (int returns = 0;; ++returns) {
-        const CoatLeaving leaving = LeaveCoatAt(CoatOf(material), frame, local, rng.State());
+        const CoatLeaving leaving = LeaveCoatAt(coat, frame, local, rng.State());
         flux *= leaving.weight;
         ray.direction = leaving.direction;
         if (leaving.escaped) return true;

@@ -17,14 +17,10 @@ using gpu::CoatLeaving;
 using gpu::DiffuseSide;
 using gpu::EvaluateRoughConductor;
 using gpu::FresnelDielectric;  // (cos_incident, eta = n_incident / n_transmitted)
-using gpu::GgxDistribution;
-using gpu::GgxMaskingRatio;
-using gpu::GgxReflectionPdf;
 using gpu::GlossyResponse;
 using gpu::GlossyToPunctualLights;
 using gpu::kCarriesFlux;      // what a path carries (core/shared/path_sampling.h): photons
 using gpu::kCarriesRadiance;  // camera paths, whose radiance refraction scales by eta^2
-using gpu::kMaxCoatReturns;
 using gpu::LeaveCoatAt;
 using gpu::ReflectionProbability;
 using gpu::ReflectSpecular;
@@ -32,9 +28,7 @@ using gpu::Refract;  // (d, n facing d's side, eta, out refracted); false under 
 using gpu::RefractionOf;
 using gpu::RefractionScale;
 using gpu::RoughReflection;
-using gpu::SampleGgxVisibleNormal;
 using gpu::ScatterNonDiffuse;
-using gpu::ScatterRough;
 using gpu::ScatterSpecular;
 using gpu::SegmentTransmittance;
 using gpu::SpecularBounce;

@@ -144,12 +144,11 @@ absl::Status VulkanBackend::BeginJob(const JobInputs& job) {
         if (absl::StatusOr<const Tracer*> tracer = CameraTracer(); !tracer.ok())
             return tracer.status();
         passes_ = std::move(*passes);
-        max_epoch_points_ = passes_->MaxEpochPoints();
         if (passes_->Stochastic()) {
-            black_slots_.assign(max_epoch_points_, {});
+            black_slots_.assign(passes_->MaxEpochPoints(), {});
             job_.hit_points = black_slots_;
         } else {
-            direct_points = max_epoch_points_;
+            direct_points = passes_->MaxEpochPoints();
         }
     }
     if (job_.hit_points.size() >= (size_t{1} << 31))
@@ -293,7 +292,7 @@ absl::Status VulkanBackend::BeginEpoch(uint64_t epoch, const GatherRegions& regi
                         buffers_->surface_edges.Handle(), 1, &edge_copy);
     }
     const VkBufferCopy points{.size = job_.hit_points.size() * sizeof(gpu::GpuHitPoint)};
-    if (passes_ && passes_->Stochastic() && n > 0)
+    if (StochasticJob() && n > 0)
         vkCmdCopyBuffer(*commands, buffers_->hit_point_upload.Handle(),
                         buffers_->hit_points.Handle(), 1, &points);
     vkCmdFillBuffer(*commands, buffers_->grid_begin.Handle(), 0, VK_WHOLE_SIZE, 0);
@@ -486,7 +485,7 @@ BatchResult VulkanBackend::ReadResult(const BatchSpec& spec) const {
 absl::Status VulkanBackend::UploadDirectPoints(std::span<const BatchSpec> specs) {
     if (!passes_->CoverDirectPoints(*camera_tracer_, specs)) return absl::OkStatus();
     const std::span<const HitPoint> part = passes_->DirectPoints();
-    PF_CHECK(passes_->DirectOffset() + part.size() <= max_epoch_points_);
+    PF_CHECK(passes_->DirectOffset() + part.size() <= passes_->MaxEpochPoints());
     // The part lies in the device's buffer where the whole pass's slots would.
     const VkDeviceSize offset = passes_->DirectOffset() * sizeof(gpu::GpuHitPoint);
     std::ranges::transform(part,

@@ -109,9 +109,7 @@ private:
     bool wavefront_ = false;
     uint64_t wavefront_rounds_per_sample_ = 0;
     // Whether the job is sppm's or rpm's, whose hit points change every epoch.
-    bool StochasticJob() const {
-        return job_.spec != nullptr && TracesHitPointsEachEpoch(job_.spec->integrator);
-    }
+    bool StochasticJob() const { return passes_ && passes_->Stochastic(); }
     // Whether the job renders pixels (path, pm) rather than shooting photons into hit points.
     bool PixelJob() const {
         return job_.spec != nullptr && !GathersAtHitPoints(job_.spec->integrator);
@@ -129,7 +127,6 @@ private:
     std::optional<EpochPasses> passes_;
     std::unique_ptr<Tracer> camera_tracer_;
     std::vector<HitPoint> black_slots_;
-    size_t max_epoch_points_ = 0;  // the buffers' room for the passes' points
     gpu::vec4 scene_sphere_{};
     float scene_magnitude_ = 0;
     float flux_to_fixed_ = 0;  // fixed-point tally units per watt
